@@ -1,0 +1,84 @@
+"""The ROS type system: definitions, classes, CDR codecs, RIHS01 hashes and text forms.
+
+Everything here is pure Python and imports nothing heavy; PyYAML is only imported by the
+YAML helpers when they are called.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .cdr import CdrError, codec
+from .classes import ActionType, FieldError, Message, ServiceType
+from .classes import get_interface as _get_interface
+from .hashing import type_hash as _type_hash
+from .parser import InterfaceError, UnknownInterfaceError
+from .registry import Registry, default_registry, normalize_name
+
+__all__ = [
+    'ActionType', 'CdrError', 'FieldError', 'InterfaceError', 'Message', 'Registry',
+    'ServiceType', 'UnknownInterfaceError', 'definition_text', 'deserialize', 'get_interface',
+    'list_interfaces', 'message_to_csv', 'message_to_dict', 'message_to_yaml', 'serialize',
+    'set_message_fields', 'type_hash',
+]
+
+
+def get_interface(name: str) -> Any:
+    """Class for 'pkg/msg|srv|action/Name' (or 'pkg/Name' for messages, or a sub-type)."""
+    return _get_interface(name)
+
+
+def type_hash(name: str) -> str:
+    """'RIHS01_…' type hash of any interface or generated sub-type."""
+    return _type_hash(normalize_name(name))
+
+
+def serialize(msg: Message) -> bytes:
+    """CDR bytes (little-endian, with the 4-byte encapsulation header) of a message."""
+    try:
+        name = msg._TYPE_NAME
+    except AttributeError:
+        raise TypeError(f'not a ros2lite message: {msg!r}') from None
+    return codec(name, default_registry()).serialize(msg)
+
+
+def deserialize(type_or_name: str | type[Message], data: bytes | bytearray | memoryview
+                ) -> Any:
+    """Decode CDR bytes of either byte order into a message object."""
+    name = type_or_name if isinstance(type_or_name, str) else type_or_name._TYPE_NAME
+    name = normalize_name(name)
+    reg = default_registry()
+    reg.message(name)  # raises a clear error for unknown types
+    return codec(name, reg).deserialize(data)
+
+
+def list_interfaces() -> list[str]:
+    """Every 'pkg/kind/Name' definition visible on the search path, sorted."""
+    return default_registry().all_interfaces()
+
+
+def definition_text(name: str) -> str:
+    """The rosbag2 'ros2msg' schema text: the type's file plus every dependency once."""
+    from .text import definition_text as _definition_text
+    return _definition_text(normalize_name(name), default_registry())
+
+
+def message_to_dict(msg: Message, **opts: Any) -> dict[str, Any]:
+    from .convert import message_to_dict as _f
+    return _f(msg, **opts)
+
+
+def message_to_yaml(msg: Message, **opts: Any) -> str:
+    from .convert import message_to_yaml as _f
+    return _f(msg, **opts)
+
+
+def message_to_csv(msg: Message, **opts: Any) -> str:
+    from .convert import message_to_csv as _f
+    return _f(msg, **opts)
+
+
+def set_message_fields(msg: Message, values: dict[str, Any] | str, **opts: Any) -> Message:
+    """Fill `msg` from a dict or a YAML mapping text, with rosidl_runtime_py coercions."""
+    from .convert import set_message_fields as _f
+    return _f(msg, values, **opts)

@@ -1,0 +1,384 @@
+"""Message, service and action classes that behave like rclpy's generated ones.
+
+Each message class is generated Python source (slots, keyword constructor, validating
+properties) compiled once per type. Codecs write the `_field` slots directly, so validation costs
+only where user code assigns values.
+"""
+
+from __future__ import annotations
+
+import math
+from array import array
+from typing import Any
+
+from .parser import INT_RANGES, PRIMITIVES, FieldType, MessageDef
+from .registry import Registry, default_registry, normalize_name
+
+# array typecodes for primitive sequences/arrays (as rclpy: array.array for numbers)
+TYPECODES = {
+    'int8': 'b', 'uint8': 'B', 'char': 'B', 'int16': 'h', 'uint16': 'H', 'int32': 'i',
+    'uint32': 'I', 'int64': 'q', 'uint64': 'Q', 'float32': 'f', 'float64': 'd',
+}
+# rosidl names as get_fields_and_field_types() reports them
+ROSIDL_NAMES = {
+    'bool': 'boolean', 'byte': 'octet', 'char': 'uint8', 'float32': 'float', 'float64': 'double',
+}
+FLOAT32_MAX = 3.4028234663852886e38  # exact FLT_MAX
+
+
+class FieldError(TypeError, ValueError):
+    """A value does not fit a field (wrong type, out of range, too long)."""
+
+
+class MessageMeta(type):
+    """Marker metaclass so isinstance checks can tell ros2lite message classes apart."""
+
+
+class Message(metaclass=MessageMeta):
+    """Base of every generated message class."""
+
+    __slots__ = ()
+    _TYPE_NAME = ''
+    _DEF: MessageDef
+    SLOT_TYPES: tuple[FieldType, ...] = ()
+    _fields_and_field_types: dict[str, str] = {}
+
+    @classmethod
+    def get_fields_and_field_types(cls) -> dict[str, str]:
+        return dict(cls._fields_and_field_types)
+
+    def __repr__(self) -> str:
+        args = []
+        for name, ftype in zip(self._fields_and_field_types, self.SLOT_TYPES):
+            value = getattr(self, '_' + name)
+            if isinstance(value, array):
+                text = repr(value.tolist()) if len(value) else '[]'
+            else:
+                text = repr(value)
+            args.append(f'{name}={text}')
+        return f"{self._TYPE_NAME.replace('/', '.')}({', '.join(args)})"
+
+    def __eq__(self, other: object) -> bool:
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(getattr(self, s) == getattr(other, s) for s in self.__slots__)
+
+    __hash__ = None  # type: ignore[assignment]  # mutable, like rclpy messages
+
+
+def rosidl_type_string(ft: FieldType) -> str:
+    """Type text as rclpy's get_fields_and_field_types() gives it."""
+    if ft.is_primitive:
+        base = ROSIDL_NAMES.get(ft.base, ft.base)
+        if ft.string_bound:
+            base = f'{base}<={ft.string_bound}'
+    else:
+        pkg, _, name = ft.base.split('/')
+        base = f'{pkg}/{name}'
+    if ft.container == 'array':
+        return f'{base}[{ft.size}]'
+    if ft.container == 'bounded':
+        return f'sequence<{base}, {ft.size}>'
+    if ft.container == 'sequence':
+        return f'sequence<{base}>'
+    return base
+
+
+def _scalar_default(ft: FieldType) -> str:
+    """Source text for a fresh scalar default of an element type."""
+    base = ft.base
+    if base == 'bool':
+        return 'False'
+    if base == 'byte':
+        return "b'\\x00'"
+    if base in ('float32', 'float64'):
+        return '0.0'
+    if base in ('string', 'wstring'):
+        return "''"
+    if base in PRIMITIVES:
+        return '0'
+    return f'_C[{base!r}]()'
+
+
+def _default_source(ft: FieldType, default: Any) -> str:
+    """Source of an expression building a field's default value (a new object every time)."""
+    if default is not None:
+        if ft.base == 'byte':
+            default = [bytes([v]) for v in default] if ft.is_container else bytes([default])
+        if ft.is_container and ft.base in TYPECODES:
+            return f'_array({TYPECODES[ft.base]!r}, {default!r})'
+        if ft.is_container:
+            return repr(list(default))
+        return repr(default)
+    if not ft.is_container:
+        return _scalar_default(ft)
+    if ft.container == 'array':
+        if ft.base in TYPECODES:
+            return f'_array({TYPECODES[ft.base]!r}, [{_scalar_default(ft)}]) * {ft.size}'
+        return f'[{_scalar_default(ft)} for _ in range({ft.size})]'
+    if ft.base in TYPECODES:
+        return f'_array({TYPECODES[ft.base]!r})'
+    return '[]'
+
+
+def _check_scalar_source(ft: FieldType, name: str, var: str) -> list[str]:
+    """Validation lines for one scalar value held in `var` (may rebind `var`)."""
+    base = ft.base
+    if base == 'bool':
+        return [f'if not isinstance({var}, bool): raise _err({name!r}, "must be of type \'bool\'")']
+    if base in INT_RANGES and base != 'byte':
+        lo, hi = INT_RANGES[base]
+        return [
+            f'if not isinstance({var}, int):'
+            f' raise _err({name!r}, "must be of type \'int\'")',
+            f'if not {lo} <= {var} <= {hi}:'
+            f' raise _err({name!r}, "must be an integer in [{lo}, {hi}]")',
+        ]
+    if base == 'byte':
+        return [
+            f'if isinstance({var}, int) and 0 <= {var} <= 255: {var} = bytes(({var},))',
+            f'if not isinstance({var}, (bytes, bytearray)) or len({var}) != 1:'
+            f' raise _err({name!r}, "must be of type \'bytes\' with length 1")',
+            f'{var} = bytes({var})',
+        ]
+    if base in ('float32', 'float64'):
+        lines = [
+            f'if isinstance({var}, int) and not isinstance({var}, bool): {var} = float({var})',
+            f'if not isinstance({var}, float): raise _err({name!r}, "must be of type \'float\'")',
+        ]
+        if base == 'float32':
+            lines.append(
+                f'if ({var} < -{FLOAT32_MAX!r} or {var} > {FLOAT32_MAX!r}) and not _isinf({var}):'
+                f' raise _err({name!r}, "must be a float in [-{FLOAT32_MAX!r}, {FLOAT32_MAX!r}]")')
+        return lines
+    if base in ('string', 'wstring'):
+        lines = [f'if not isinstance({var}, str): raise _err({name!r}, "must be of type \'str\'")']
+        if ft.string_bound:
+            lines.append(
+                f'if len({var}) > {ft.string_bound}: raise _err({name!r},'
+                f' "must be string value not longer than {ft.string_bound}")')
+        return lines
+    return [
+        f'if type({var}) is not _C[{base!r}] and not _same_type({var}, {base!r}):'
+        f' raise _err({name!r}, "must be a sub message of type \'{base}\'")',
+    ]
+
+
+def _setter_source(name: str, ft: FieldType) -> list[str]:
+    lines = [f'def _set_{name}(self, v):']
+    body: list[str] = []
+    if not ft.is_container:
+        body += _check_scalar_source(ft, name, 'v')
+    else:
+        body.append('if isinstance(v, (str, dict)) or not hasattr(v, "__len__"):'
+                    f' raise _err({name!r}, "must be a set or sequence")')
+        if ft.base in TYPECODES:
+            code = TYPECODES[ft.base]
+            body.append(f'if type(v) is not _array or v.typecode != {code!r}:'
+                        f' v = _to_array({code!r}, v, {name!r}, {ft.base == "float32"})')
+        else:
+            if ft.base == 'byte':
+                body.append('if isinstance(v, (bytes, bytearray)): v = [bytes((x,)) for x in v]')
+            body.append('v = list(v)')
+            body.append('for i, e in enumerate(v):')
+            inner = _check_scalar_source(ft.element, name, 'e')
+            body += ['    ' + s for s in inner]
+            body.append('    v[i] = e')
+        if ft.container == 'array':
+            body.append(f'if len(v) != {ft.size}: raise _err({name!r},'
+                        f' "must have exactly {ft.size} elements")')
+        elif ft.container == 'bounded':
+            body.append(f'if len(v) > {ft.size}: raise _err({name!r},'
+                        f' "must have at most {ft.size} elements")')
+    body.append(f'self._{name} = v')
+    return lines + ['    ' + s for s in body]
+
+
+def _err(name: str, what: str) -> FieldError:
+    return FieldError(f"The '{name}' field {what}")
+
+
+def _to_array(code: str, value: Any, name: str, f32: bool) -> array:
+    try:
+        if code in 'fd':
+            value = [float(x) if isinstance(x, int) and not isinstance(x, bool) else x
+                     for x in value]
+            if not all(isinstance(x, float) for x in value):
+                raise TypeError
+            if f32 and any((x < -FLOAT32_MAX or x > FLOAT32_MAX) and not math.isinf(x)
+                           for x in value):
+                raise OverflowError
+        elif not all(isinstance(x, int) for x in value):
+            raise TypeError
+        return array(code, value)
+    except OverflowError:
+        raise _err(name, 'has a value out of its element range') from None
+    except TypeError:
+        kind = 'float' if code in 'fd' else 'int'
+        raise _err(name, f"must be a set or sequence and each value of type '{kind}'") from None
+
+
+class ClassFactory:
+    """Builds and caches classes for one registry."""
+
+    def __init__(self, registry: Registry) -> None:
+        self.registry = registry
+        self.classes: dict[str, type[Message]] = {}
+
+    def same_type(self, value: Any, name: str) -> bool:
+        return getattr(type(value), '_TYPE_NAME', None) == name
+
+    def message_class(self, name: str) -> type[Message]:
+        cls = self.classes.get(name)
+        if cls is not None:
+            return cls
+        mdef = self.registry.message(name)
+        for f in mdef.fields:
+            if not f.type.is_primitive:
+                self.message_class(f.type.base)
+        cls = self._build(mdef)
+        self.classes[name] = cls
+        if mdef.name != name:
+            self.classes[mdef.name] = cls
+        return cls
+
+    def _build(self, mdef: MessageDef) -> type[Message]:
+        short = mdef.short_name
+        names = [f.name for f in mdef.fields]
+        src = [f'class {short}(_Message):',
+               f'    __slots__ = {tuple("_" + n for n in names)!r}']
+        for c in mdef.constants:
+            src.append(f'    {c.name} = {c.value!r}')
+        params = ''.join(f', {n}=_MISSING' for n in names)
+        src.append(f'    def __init__(self{params}):')
+        if not names:
+            src.append('        pass')
+        for f in mdef.fields:
+            default = _default_source(f.type, f.default)
+            src.append(f'        if {f.name} is _MISSING: self._{f.name} = {default}')
+            src.append(f'        else: self.{f.name} = {f.name}')
+        for f in mdef.fields:
+            src += ['    ' + s for s in _setter_source(f.name, f.type)]
+            src.append(f'    {f.name} = property(lambda self: self._{f.name}, _set_{f.name})')
+        ns: dict[str, Any] = {
+            '_Message': Message, '_MISSING': _MISSING, '_C': self.classes, '_array': array,
+            '_err': _err, '_to_array': _to_array, '_isinf': math.isinf,
+            '_same_type': self.same_type,
+        }
+        exec(compile('\n'.join(src), f'<ros2lite {mdef.name}>', 'exec'), ns)  # noqa: S102
+        cls: type[Message] = ns[short]
+        cls._TYPE_NAME = mdef.name
+        cls._DEF = mdef
+        cls.SLOT_TYPES = tuple(f.type for f in mdef.fields)
+        cls._fields_and_field_types = {f.name: rosidl_type_string(f.type) for f in mdef.fields}
+        pkg, kind, _ = mdef.name.split('/')
+        cls.__module__ = f'ros2lite.msgs.{pkg}.{kind}'
+        cls.__qualname__ = short
+        return cls
+
+
+class _Missing:
+    def __repr__(self) -> str:
+        return '<missing>'
+
+
+_MISSING = _Missing()
+
+
+class ServiceType:
+    """A service class: a namespace holding Request, Response and Event like rosidl's."""
+
+    _TYPE_NAME = ''
+    Request: type[Message]
+    Response: type[Message]
+    Event: type[Message]
+
+    def __init__(self) -> None:
+        raise NotImplementedError('Service classes can not be instantiated')
+
+
+class ActionType:
+    """An action class: Goal/Result/Feedback plus the generated transport types."""
+
+    _TYPE_NAME = ''
+    Goal: type[Message]
+    Result: type[Message]
+    Feedback: type[Message]
+    FeedbackMessage: type[Message]
+    SendGoal: type[ServiceType]
+    GetResult: type[ServiceType]
+    Impl: type
+
+    def __init__(self) -> None:
+        raise NotImplementedError('Action classes can not be instantiated')
+
+
+_FACTORIES: dict[int, ClassFactory] = {}
+
+
+def factory(reg: Registry | None = None) -> ClassFactory:
+    reg = reg or default_registry()
+    f = _FACTORIES.get(id(reg))
+    if f is None or f.registry is not reg:
+        f = _FACTORIES[id(reg)] = ClassFactory(reg)
+    return f
+
+
+def _service_class(name: str, fac: ClassFactory) -> type[ServiceType]:
+    cls = fac.classes.get(name)
+    if cls is None:
+        attrs = {
+            '_TYPE_NAME': name,
+            'Request': fac.message_class(name + '_Request'),
+            'Response': fac.message_class(name + '_Response'),
+            'Event': fac.message_class(name + '_Event'),
+        }
+        pkg, kind, short = name.split('/')
+        cls = type(short, (ServiceType,), attrs)
+        cls.__module__ = f'ros2lite.msgs.{pkg}.{kind}'
+        fac.classes[name] = cls
+    return cls  # type: ignore[return-value]
+
+
+def _action_class(name: str, fac: ClassFactory) -> type[ActionType]:
+    cls = fac.classes.get(name)
+    if cls is None:
+        send_goal = _service_class(name + '_SendGoal', fac)
+        get_result = _service_class(name + '_GetResult', fac)
+        feedback_message = fac.message_class(name + '_FeedbackMessage')
+        impl = type('Impl', (), {
+            'SendGoalService': send_goal,
+            'GetResultService': get_result,
+            'FeedbackMessage': feedback_message,
+            'CancelGoalService': _service_class('action_msgs/srv/CancelGoal', fac),
+            'GoalStatusMessage': fac.message_class('action_msgs/msg/GoalStatusArray'),
+        })
+        pkg, kind, short = name.split('/')
+        cls = type(short, (ActionType,), {
+            '_TYPE_NAME': name,
+            'Goal': fac.message_class(name + '_Goal'),
+            'Result': fac.message_class(name + '_Result'),
+            'Feedback': fac.message_class(name + '_Feedback'),
+            'FeedbackMessage': feedback_message,
+            'SendGoal': send_goal,
+            'GetResult': get_result,
+            'Impl': impl,
+        })
+        cls.__module__ = f'ros2lite.msgs.{pkg}.{kind}'
+        fac.classes[name] = cls
+    return cls  # type: ignore[return-value]
+
+
+def get_interface(name: str, reg: Registry | None = None) -> Any:
+    """The class for any message, service, action or generated sub-type name."""
+    fac = factory(reg)
+    name = normalize_name(name)
+    cached = fac.classes.get(name)
+    if cached is not None:
+        return cached
+    kind = fac.registry.kind_of(name)
+    if kind == 'service':
+        return _service_class(name, fac)
+    if kind == 'action':
+        return _action_class(name, fac)
+    return fac.message_class(name)

@@ -1,0 +1,102 @@
+"""REP-2011 RIHS01 type hashes.
+
+rmw_zenoh puts the hash in every key expression, so a single wrong byte here means a real ROS
+node and ros2lite silently never meet. The table in shared/reference is the test oracle.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from typing import Any
+
+from .parser import Field, FieldType, MessageDef
+from .registry import Registry, default_registry, normalize_name
+
+_TYPE_IDS = {
+    'int8': 2, 'uint8': 3, 'int16': 4, 'uint16': 5, 'int32': 6, 'uint32': 7,
+    'int64': 8, 'uint64': 9, 'float32': 10, 'float64': 11, 'char': 3, 'bool': 15,
+    'byte': 16, 'string': 17, 'wstring': 18,
+}
+_NESTED = 1
+_BOUNDED_STRING = {'string': 21, 'wstring': 22}
+_CONTAINER_OFFSET = {'': 0, 'array': 48, 'bounded': 96, 'sequence': 144}
+_DUMMY = Field('structure_needs_at_least_one_member', FieldType('uint8'))
+
+
+def _field_type(ft: FieldType) -> dict[str, Any]:
+    if ft.is_primitive:
+        base = _BOUNDED_STRING[ft.base] if ft.string_bound else _TYPE_IDS[ft.base]
+        nested = ''
+    else:
+        base, nested = _NESTED, ft.base
+    return {
+        'type_id': base + _CONTAINER_OFFSET[ft.container],
+        'capacity': ft.size,
+        'string_capacity': ft.string_bound,
+        'nested_type_name': nested,
+    }
+
+
+def _description(name: str, fields: list[Field]) -> dict[str, Any]:
+    return {
+        'type_name': name,
+        'fields': [{'name': f.name, 'type': _field_type(f.type)} for f in (fields or [_DUMMY])],
+    }
+
+
+def _top_fields(name: str, reg: Registry) -> list[Field]:
+    """Fields of one description; services and actions are described as structs."""
+    kind = reg.kind_of(name)
+    if kind == 'service':
+        return [Field('request_message', FieldType(name + '_Request')),
+                Field('response_message', FieldType(name + '_Response')),
+                Field('event_message', FieldType(name + '_Event'))]
+    if kind == 'action':
+        return [Field('goal', FieldType(name + '_Goal')),
+                Field('result', FieldType(name + '_Result')),
+                Field('feedback', FieldType(name + '_Feedback')),
+                Field('send_goal_service', FieldType(name + '_SendGoal')),
+                Field('get_result_service', FieldType(name + '_GetResult')),
+                Field('feedback_message', FieldType(name + '_FeedbackMessage'))]
+    return reg.message(name).fields
+
+
+def type_description(name: str, reg: Registry | None = None) -> dict[str, Any]:
+    """The TypeDescription dict (without defaults) that the hash is computed over."""
+    reg = reg or default_registry()
+    name = normalize_name(name)
+    top = _top_fields(name, reg)
+    referenced: dict[str, list[Field]] = {}
+    pending = [f.type.base for f in top if not f.type.is_primitive]
+    while pending:
+        dep = pending.pop()
+        if dep in referenced:
+            continue
+        fields = _top_fields(dep, reg)
+        referenced[dep] = fields
+        pending += [f.type.base for f in fields if not f.type.is_primitive]
+    return {
+        'type_description': _description(name, top),
+        'referenced_type_descriptions': [
+            _description(n, referenced[n]) for n in sorted(referenced)],
+    }
+
+
+_CACHE: dict[tuple[int, str], str] = {}
+
+
+def type_hash(name: str, reg: Registry | None = None) -> str:
+    """'RIHS01_<sha256 hex>' for a message, service, action or generated sub-type."""
+    reg = reg or default_registry()
+    key = (id(reg), name)
+    h = _CACHE.get(key)
+    if h is None:
+        text = json.dumps(type_description(name, reg), separators=(', ', ': '),
+                          ensure_ascii=True)
+        h = _CACHE[key] = 'RIHS01_' + hashlib.sha256(text.encode()).hexdigest()
+    return h
+
+
+def message_hash_of(msg: MessageDef, reg: Registry | None = None) -> str:
+    return type_hash(msg.name, reg)

@@ -1,0 +1,236 @@
+"""Where interface definitions come from, and the cache of parsed definitions.
+
+Search order (first package match wins): ``ROS2LITE_INTERFACE_PATH`` directories holding
+``<pkg>/msg|srv|action``, then ``share/<pkg>`` of every ``AMENT_PREFIX_PATH`` prefix, then the
+bundled ``ros2lite/msgs``. A whole package comes from one place so a user's copy of a package
+never mixes with ours.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from .parser import (
+    ActionDef,
+    Field,
+    FieldType,
+    InterfaceError,
+    MessageDef,
+    ServiceDef,
+    UnknownInterfaceError,
+    parse_action,
+    parse_message,
+    parse_service,
+    validate_type_name,
+)
+
+BUNDLED = Path(__file__).resolve().parent.parent / 'msgs'
+KINDS = ('msg', 'srv', 'action')
+EXTENSIONS = {'msg': '.msg', 'srv': '.srv', 'action': '.action'}
+
+# Generated action sub-types, longest suffix first so '_SendGoal_Request' beats '_Request'.
+ACTION_SUFFIXES = (
+    '_SendGoal_Request', '_SendGoal_Response', '_SendGoal_Event',
+    '_GetResult_Request', '_GetResult_Response', '_GetResult_Event',
+    '_FeedbackMessage', '_SendGoal', '_GetResult', '_Goal', '_Result', '_Feedback',
+)
+SERVICE_SUFFIXES = ('_Request', '_Response', '_Event')
+
+_UUID = FieldType('unique_identifier_msgs/msg/UUID')
+_TIME = FieldType('builtin_interfaces/msg/Time')
+_EVENT_INFO = FieldType('service_msgs/msg/ServiceEventInfo')
+
+
+def search_roots() -> list[Path]:
+    """Directories whose children are package directories, in priority order."""
+    roots: list[Path] = []
+    for entry in os.environ.get('ROS2LITE_INTERFACE_PATH', '').split(os.pathsep):
+        if entry:
+            roots.append(Path(entry))
+    for prefix in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep):
+        if prefix:
+            roots.append(Path(prefix) / 'share')
+    roots.append(BUNDLED)
+    return roots
+
+
+def _is_interface_package(path: Path) -> bool:
+    return any((path / kind).is_dir() for kind in KINDS)
+
+
+class Registry:
+    """Finds, parses and caches definitions; one per search path configuration."""
+
+    def __init__(self, roots: list[Path] | None = None) -> None:
+        self.roots = roots if roots is not None else search_roots()
+        self._packages: dict[str, Path] | None = None
+        self._messages: dict[str, MessageDef] = {}
+        self._services: dict[str, ServiceDef] = {}
+        self._actions: dict[str, ActionDef] = {}
+
+    # -- discovery -------------------------------------------------------------------------
+    def packages(self) -> dict[str, Path]:
+        """Package name → its directory (the one holding msg/srv/action)."""
+        if self._packages is None:
+            found: dict[str, Path] = {}
+            for root in self.roots:
+                try:
+                    children = sorted(root.iterdir())
+                except OSError:
+                    continue
+                for child in children:
+                    if child.name not in found and _is_interface_package(child):
+                        found[child.name] = child
+            self._packages = found
+        return self._packages
+
+    def package_dir(self, package: str) -> Path:
+        try:
+            return self.packages()[package]
+        except KeyError:
+            raise UnknownInterfaceError(f"Unknown package '{package}'") from None
+
+    def package_interfaces(self, package: str) -> list[str]:
+        """Sorted 'pkg/kind/Name' of every definition file in a package."""
+        base = self.package_dir(package)
+        names = []
+        for kind in KINDS:
+            d = base / kind
+            if d.is_dir():
+                names += [f'{package}/{kind}/{p.stem}' for p in d.glob('*' + EXTENSIONS[kind])]
+        return sorted(names)
+
+    def all_interfaces(self) -> list[str]:
+        return [n for pkg in sorted(self.packages()) for n in self.package_interfaces(pkg)]
+
+    def interface_path(self, name: str) -> Path:
+        """The file defining 'pkg/kind/Name' (no generated sub-types)."""
+        pkg, kind, short = validate_type_name(name)
+        path = self.package_dir(pkg) / kind / (short + EXTENSIONS[kind])
+        if not path.is_file():
+            raise UnknownInterfaceError(f"Unknown interface '{name}'")
+        return path
+
+    def interface_text(self, name: str) -> str:
+        return self.interface_path(name).read_text(encoding='utf-8')
+
+    def exists(self, name: str) -> bool:
+        try:
+            self.interface_path(name)
+        except InterfaceError:
+            return False
+        return True
+
+    # -- definitions -----------------------------------------------------------------------
+    def service(self, name: str) -> ServiceDef:
+        svc = self._services.get(name)
+        if svc is None:
+            path = self.interface_path(name)
+            svc = parse_service(path.read_text(encoding='utf-8'), name, str(path))
+            self._services[name] = svc
+        return svc
+
+    def action(self, name: str) -> ActionDef:
+        act = self._actions.get(name)
+        if act is None:
+            path = self.interface_path(name)
+            act = parse_action(path.read_text(encoding='utf-8'), name, str(path))
+            self._actions[name] = act
+        return act
+
+    def message(self, name: str) -> MessageDef:
+        """Definition of any message-like type, including generated service/action parts."""
+        msg = self._messages.get(name)
+        if msg is None:
+            msg = self._load_message(normalize_name(name))
+            self._messages[name] = msg
+        return msg
+
+    def _load_message(self, name: str) -> MessageDef:
+        pkg, kind, short = validate_type_name(name)
+        if kind == 'msg':
+            path = self.interface_path(name)
+            return parse_message(path.read_text(encoding='utf-8'), name, str(path))
+        if kind == 'srv':
+            for suffix in SERVICE_SUFFIXES:
+                if short.endswith(suffix) and self.exists(name[:-len(suffix)]):
+                    svc = self.service(name[:-len(suffix)])
+                    if suffix == '_Request':
+                        return svc.request
+                    if suffix == '_Response':
+                        return svc.response
+                    return event_message(svc.name, svc.request.name, svc.response.name)
+            raise UnknownInterfaceError(f"Unknown interface '{name}'")
+        for suffix in ACTION_SUFFIXES:
+            if short.endswith(suffix) and self.exists(name[:-len(suffix)]):
+                return action_part(self.action(name[:-len(suffix)]), suffix)
+        raise UnknownInterfaceError(f"Unknown interface '{name}'")
+
+    def kind_of(self, name: str) -> str:
+        """'message', 'service' or 'action' for a type name (services/actions are files)."""
+        name = normalize_name(name)
+        _, kind, _ = validate_type_name(name)
+        if kind == 'srv' and self.exists(name):
+            return 'service'
+        if kind == 'action' and self.exists(name):
+            return 'action'
+        if kind == 'action' and any(name.endswith(s) for s in ('_SendGoal', '_GetResult')):
+            return 'service'
+        self.message(name)  # raises for unknown names
+        return 'message'
+
+
+def normalize_name(name: str) -> str:
+    """Accept 'pkg/Name' as shorthand for 'pkg/msg/Name'."""
+    parts = name.split('/')
+    if len(parts) == 2:
+        return f'{parts[0]}/msg/{parts[1]}'
+    return name
+
+
+def event_message(service: str, request: str, response: str) -> MessageDef:
+    """The `<S>_Event` message rosidl generates for service introspection."""
+    return MessageDef(service + '_Event', [
+        Field('info', _EVENT_INFO),
+        Field('request', FieldType(request, 0, 'bounded', 1)),
+        Field('response', FieldType(response, 0, 'bounded', 1)),
+    ])
+
+
+def action_part(action: ActionDef, suffix: str) -> MessageDef:
+    """One of the messages generated for an action, by its name suffix."""
+    n = action.name
+    parts: dict[str, MessageDef] = {
+        '_Goal': action.goal,
+        '_Result': action.result,
+        '_Feedback': action.feedback,
+        '_SendGoal_Request': MessageDef(n + '_SendGoal_Request', [
+            Field('goal_id', _UUID), Field('goal', FieldType(n + '_Goal'))]),
+        '_SendGoal_Response': MessageDef(n + '_SendGoal_Response', [
+            Field('accepted', FieldType('bool')), Field('stamp', _TIME)]),
+        '_GetResult_Request': MessageDef(n + '_GetResult_Request', [Field('goal_id', _UUID)]),
+        '_GetResult_Response': MessageDef(n + '_GetResult_Response', [
+            Field('status', FieldType('int8')), Field('result', FieldType(n + '_Result'))]),
+        '_FeedbackMessage': MessageDef(n + '_FeedbackMessage', [
+            Field('goal_id', _UUID), Field('feedback', FieldType(n + '_Feedback'))]),
+        '_SendGoal_Event': event_message(
+            n + '_SendGoal', n + '_SendGoal_Request', n + '_SendGoal_Response'),
+        '_GetResult_Event': event_message(
+            n + '_GetResult', n + '_GetResult_Request', n + '_GetResult_Response'),
+    }
+    if suffix not in parts:
+        raise UnknownInterfaceError(f"'{n}{suffix}' is a service, not a message")
+    return parts[suffix]
+
+
+def default_registry() -> Registry:
+    """The registry for the current environment (rebuilt when the search path changes)."""
+    key = (os.environ.get('ROS2LITE_INTERFACE_PATH', ''), os.environ.get('AMENT_PREFIX_PATH', ''))
+    reg = _REGISTRIES.get(key)
+    if reg is None:
+        reg = _REGISTRIES[key] = Registry()
+    return reg
+
+
+_REGISTRIES: dict[tuple[str, str], Registry] = {}
