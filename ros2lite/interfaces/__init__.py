@@ -36,20 +36,26 @@ def type_hash(name: str) -> str:
 def serialize(msg: Message) -> bytes:
     """CDR bytes (little-endian, with the 4-byte encapsulation header) of a message."""
     try:
-        name = msg._TYPE_NAME
+        c = type(msg)._CODEC  # type: ignore[attr-defined]
     except AttributeError:
-        raise TypeError(f'not a ros2lite message: {msg!r}') from None
-    return codec(name, default_registry()).serialize(msg)
+        if not isinstance(msg, Message):
+            raise TypeError(f'not a ros2lite message: {msg!r}') from None
+        c = codec(msg._TYPE_NAME, default_registry())
+    return c.serialize(msg)
+
+
+_BY_NAME: dict[str, Any] = {}
 
 
 def deserialize(type_or_name: str | type[Message], data: bytes | bytearray | memoryview
                 ) -> Any:
     """Decode CDR bytes of either byte order into a message object."""
-    name = type_or_name if isinstance(type_or_name, str) else type_or_name._TYPE_NAME
-    name = normalize_name(name)
-    reg = default_registry()
-    reg.message(name)  # raises a clear error for unknown types
-    return codec(name, reg).deserialize(data)
+    c = _BY_NAME.get(type_or_name)  # type: ignore[call-overload]
+    if c is None or c.reg is not default_registry():
+        name = type_or_name if isinstance(type_or_name, str) else type_or_name._TYPE_NAME
+        c = codec(normalize_name(name), default_registry())
+        _BY_NAME[type_or_name] = c  # type: ignore[index]
+    return c.deserialize(data)
 
 
 def list_interfaces() -> list[str]:
@@ -78,7 +84,10 @@ def message_to_csv(msg: Message, **opts: Any) -> str:
     return _f(msg, **opts)
 
 
-def set_message_fields(msg: Message, values: dict[str, Any] | str, **opts: Any) -> Message:
-    """Fill `msg` from a dict or a YAML mapping text, with rosidl_runtime_py coercions."""
+def set_message_fields(msg: Message, values: dict[str, Any] | str, **opts: Any) -> list[Any]:
+    """Fill `msg` from a dict or YAML mapping text (rosidl_runtime_py coercions).
+
+    Returns the stamp setters that 'header: auto' / 'stamp: now' asked for.
+    """
     from .convert import set_message_fields as _f
     return _f(msg, values, **opts)

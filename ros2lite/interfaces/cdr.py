@@ -81,21 +81,30 @@ class _Gen:
 
 
 class _SerGen(_Gen):
-    """Generates `def ser(m, b)` appending the CDR body of `m` to bytearray `b`."""
+    """Generates `def ser(m)`: chunks go to list `p`, `o` is the body offset, one final join."""
 
     def flush(self) -> None:
         if not self.run_fmt:
             return
-        s = self.const('_S', struct.Struct(self.endian + self.run_fmt))
+        st = struct.Struct(self.endian + self.run_fmt)
+        s = self.const('_S', st.pack)
         args = ', '.join(e for _, e in self.run_items)
-        self.emit(f'b += {s}.pack({args})')
+        self.emit(f'p.append({s}({args}))')
+        self.emit(f'o += {st.size}')
         self.run_fmt, self.run_items = '', []
+
+    def align_now(self, align: int) -> None:
+        """Runtime padding to `align` (the pending run must be flushed)."""
+        k = self.name('k')
+        self.emit(f'{k} = -o & {align - 1}')
+        self.emit(f'p.append(_Z[{k}])')
+        self.emit(f'o += {k}')
 
     def add(self, fmt: str, size: int, align: int, expr: str | None) -> None:
         pad = self.static_pad(align)
         if pad is None:
             self.flush()
-            self.emit(f'b += _Z[(4 - len(b)) & {align - 1}]')
+            self.align_now(align)
             self.forget(align)
             pad = 0
         self.run_fmt += 'x' * pad + fmt
@@ -103,19 +112,14 @@ class _SerGen(_Gen):
             self.run_items.append(('v', expr))
         self.advance(pad + size)
 
-    def runtime_align(self, align: int) -> None:
-        pad = self.static_pad(align)
-        if pad is None:
-            self.emit(f'b += _Z[(4 - len(b)) & {align - 1}]')
-            self.forget(align)
-        elif pad:
-            self.emit(f'b += _Z[{pad}]')
-            self.advance(pad)
-
     def struct(self, mdef: MessageDef, expr: str) -> None:
         for f in mdef.fields or [_DUMMY]:
             fexpr = f'{expr}._{f.name}' if mdef.fields else '0'
             self.field(f.type, fexpr)
+
+    def blob(self, expr: str, nbytes: str) -> None:
+        self.emit(f'p.append({expr})')
+        self.emit(f'o += {nbytes}')
 
     def field(self, ft: FieldType, expr: str) -> None:
         base = ft.base
@@ -127,11 +131,16 @@ class _SerGen(_Gen):
                 self.emit(f'{s} = {expr}.encode()')
                 self.add('I', 4, 4, f'len({s}) + 1')
                 self.flush()
-                self.emit(f'b += {s}')
-                self.emit('b.append(0)')
+                self.emit(f'p.append({s})')
+                self.blob('_NUL', f'len({s}) + 1')
                 self.forget()
             elif base == 'wstring':
-                self.wstring(expr)
+                w = self.name('w')
+                self.emit(f"{w} = _array('H', {expr}.encode('utf-16-le'))")
+                self.add('I', 4, 4, f'len({w})')
+                self.flush()
+                self.blob(f"_array('I', {w})", f'4 * len({w})')
+                self.forget(4)
             else:
                 self.struct(self.element_def(ft), expr)
             return
@@ -157,20 +166,23 @@ class _SerGen(_Gen):
             size = _SIZE[base]
             pad = self.static_pad(size)
             if pad is None:
-                self.emit(f'if {n}: b += _Z[(4 - len(b)) & {size - 1}]')
+                k = self.name('k')
+                self.emit(f'{k} = -o & {size - 1} if {n} else 0')
+                self.emit(f'p.append(_Z[{k}])')
+                self.emit(f'o += {k}')
             elif pad:
-                self.emit(f'if {n}: b += _Z[{pad}]')
-            self.emit(f'b += {expr}')
-            self.forget(min(size, 4) if size > 1 else 1)
-            if ft.container == 'array' and size > 1:
-                self.forget(size)
+                self.emit(f'if {n}:')
+                self.emit(f'    p.append(_Z[{pad}])')
+                self.emit(f'    o += {pad}')
+            self.blob(expr, f'{n} * {size}')
+            self.forget(size if ft.container == 'array' else min(size, 4))
             return
         if base == 'bool':
-            self.emit(f'b += bytes({expr})')
+            self.blob(f'bytes({expr})', n)
             self.forget()
             return
         if base == 'byte':
-            self.emit(f"b += b''.join({expr})")
+            self.blob(f"b''.join({expr})", n)
             self.forget()
             return
         e = self.name('e')
@@ -182,17 +194,14 @@ class _SerGen(_Gen):
         self.indent -= 1
         self.forget()
 
-    def wstring(self, expr: str) -> None:
-        u = self.name('w')
-        self.emit(f"{u} = _array('H', {expr}.encode('utf-16-le'))")
-        self.add('I', 4, 4, f'len({u})')
-        self.flush()
-        self.emit(f"b += _array('I', {u}).tobytes()")
-        self.forget(4)
-
 
 class _DesGen(_Gen):
-    """Generates `def des(d, mv, o) -> (msg, o)` reading from bytes `d` at offset `o`."""
+    """Generates `def des(d, o) -> (msg, o)` reading from bytes `d` at offset `o`."""
+
+    def __init__(self, registry: Registry, endian: str, lenient: bool) -> None:
+        super().__init__(registry, endian)
+        self.decode = "decode('utf-8', 'replace')" if lenient else 'decode()'
+        self.uses_mv = False
 
     def flush(self) -> None:
         if not self.run_fmt:
@@ -263,7 +272,7 @@ class _DesGen(_Gen):
                 n = self.name('n')
                 self.add('I', 4, 4, 'v', n)
                 self.flush()
-                self.emit(f"{target} = d[o:o + {n} - 1].decode('utf-8', 'replace')")
+                self.emit(f'{target} = d[o:o + {n} - 1].{self.decode}')
                 self.emit(f'o += {n}')
                 self.forget()
             elif base == 'wstring':
@@ -299,6 +308,7 @@ class _DesGen(_Gen):
             if size > 1:
                 self.runtime_align(size)
             self.emit(f'{a}.frombytes(mv[o:o + {n} * {size}])')
+            self.uses_mv = True
             if size > 1 and self.endian == '>':
                 self.emit(f'{a}.byteswap()')
             self.emit(f'o += {n} * {size}')
@@ -338,6 +348,7 @@ class _DesGen(_Gen):
         u = self.name('u')
         self.emit(f"{u} = _array('I')")
         self.emit(f'{u}.frombytes(mv[o:o + 4 * {n}])')
+        self.uses_mv = True
         if self.endian == '>':
             self.emit(f'{u}.byteswap()')
         self.emit(f"{target} = _array('H', {u}).tobytes().decode('utf-16-le', 'replace')")
@@ -345,81 +356,95 @@ class _DesGen(_Gen):
         self.forget(4)
 
 
-def build_serializer(name: str, reg: Registry) -> Callable[[Any, bytearray], None]:
+def build_serializer(name: str, reg: Registry) -> Callable[[Any], bytes]:
     gen = _SerGen(reg, '<')
+    gen.ns['_join'] = b''.join
+    gen.ns['_NUL'] = b'\x00'
+    gen.ns['_HEADER'] = HEADER_LE
     gen.struct(reg.message(name), 'm')
     gen.flush()
-    src = 'def ser(m, b):\n' + '\n'.join(gen.lines or ['    pass'])
+    body = ['    p = [_HEADER]', '    o = 0', *gen.lines, '    return _join(p)']
+    src = 'def ser(m):\n' + '\n'.join(body)
     exec(compile(src, f'<cdr ser {name}>', 'exec'), gen.ns)  # noqa: S102
-    fn: Callable[[Any, bytearray], None] = gen.ns['ser']
+    fn: Callable[[Any], bytes] = gen.ns['ser']
     fn.__doc__ = src
     return fn
 
 
-def build_deserializer(name: str, reg: Registry, little: bool = True
-                       ) -> Callable[[bytes, memoryview, int], tuple[Any, int]]:
-    gen = _DesGen(reg, '<' if little else '>')
+_Des = Callable[[bytes, int], tuple[Any, int]]
+
+
+def build_deserializer(name: str, reg: Registry, little: bool = True,
+                       lenient: bool = False) -> _Des:
+    gen = _DesGen(reg, '<' if little else '>', lenient)
     gen.ns['_new'] = object.__new__
     v = gen.struct(reg.message(name))
     gen.flush()
     gen.emit(f'return {v}, o')
-    src = 'def des(d, mv, o):\n' + '\n'.join(gen.lines)
+    head = ['    mv = memoryview(d)'] if gen.uses_mv else []
+    src = 'def des(d, o):\n' + '\n'.join(head + gen.lines)
     exec(compile(src, f'<cdr des {name}>', 'exec'), gen.ns)  # noqa: S102
-    fn: Callable[[bytes, memoryview, int], tuple[Any, int]] = gen.ns['des']
+    fn: _Des = gen.ns['des']
     fn.__doc__ = src
     return fn
 
 
 class Codec:
-    """Serializer and deserializers of one type, built on first use."""
+    """Serializer and deserializers of one type; each is generated on its first call."""
 
     __slots__ = ('_des_be', '_des_le', '_ser', 'name', 'reg')
 
     def __init__(self, name: str, reg: Registry) -> None:
         self.name, self.reg = name, reg
-        self._ser: Callable[[Any, bytearray], None] | None = None
-        self._des_le: Callable[[bytes, memoryview, int], tuple[Any, int]] | None = None
-        self._des_be: Callable[[bytes, memoryview, int], tuple[Any, int]] | None = None
+        self._ser: Callable[[Any], bytes] = self._first_ser
+        self._des_le: _Des = self._first_des_le
+        self._des_be: _Des = self._first_des_be
 
-    def serialize(self, msg: Message) -> bytes:
-        ser = self._ser
-        if ser is None:
-            ser = self._ser = build_serializer(self.name, self.reg)
-        b = bytearray(HEADER_LE)
+    def _first_ser(self, msg: Any) -> bytes:
+        self._ser = build_serializer(self.name, self.reg)
+        return self._ser(msg)
+
+    def _first_des_le(self, data: bytes, o: int) -> tuple[Any, int]:
+        self._des_le = build_deserializer(self.name, self.reg, True)
+        return self._des_le(data, o)
+
+    def _first_des_be(self, data: bytes, o: int) -> tuple[Any, int]:
+        self._des_be = build_deserializer(self.name, self.reg, False)
+        return self._des_be(data, o)
+
+    def serialize(self, msg: Any) -> bytes:
         try:
-            ser(msg, b)
+            return self._ser(msg)
         except (struct.error, AttributeError, TypeError, UnicodeEncodeError) as e:
             raise CdrError(f'cannot serialize {self.name}: {e}') from None
-        return bytes(b)
 
     def deserialize(self, data: bytes | bytearray | memoryview) -> Any:
         if type(data) is not bytes:
             data = bytes(data)
-        if len(data) < 4 or data[0] != 0 or data[1] > 1:
-            raise CdrError(f'not a CDR payload for {self.name} (bad encapsulation header)')
-        if data[1] == 1:
-            des = self._des_le
-            if des is None:
-                des = self._des_le = build_deserializer(self.name, self.reg, True)
-        else:
-            des = self._des_be
-            if des is None:
-                des = self._des_be = build_deserializer(self.name, self.reg, False)
         try:
-            msg, end = des(data, memoryview(data), 4)
+            if data[1] == 1 and data[0] == 0:
+                msg, end = self._des_le(data, 4)
+            elif data[1] == 0 and data[0] == 0:
+                msg, end = self._des_be(data, 4)
+            else:
+                raise CdrError(f'not a CDR payload for {self.name} (bad encapsulation header)')
+        except UnicodeDecodeError:
+            des = build_deserializer(self.name, self.reg, data[1] == 1, lenient=True)
+            msg, end = des(data, 4)
         except (struct.error, IndexError, ValueError) as e:
+            if isinstance(e, CdrError):
+                raise
             raise CdrError(f'truncated or corrupt {self.name} payload: {e}') from None
         if end > len(data):
             raise CdrError(f'truncated {self.name} payload: needs {end} bytes, got {len(data)}')
         return msg
 
 
-_CODECS: dict[tuple[int, str], Codec] = {}
-
-
 def codec(name: str, reg: Registry) -> Codec:
-    key = (id(reg), name)
-    c = _CODECS.get(key)
+    """The codec of a type, cached on its class so lookups cost one attribute access."""
+    cls = factory(reg).message_class(name)
+    c: Codec | None = cls.__dict__.get('_CODEC')
     if c is None:
-        c = _CODECS[key] = Codec(name, reg)
+        c = Codec(cls._TYPE_NAME, reg)
+        cls._CODEC = c  # type: ignore[attr-defined]
     return c

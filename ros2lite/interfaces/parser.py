@@ -74,8 +74,8 @@ class FieldType:
         """Element type as written in a .msg file ('pkg/Name' for messages)."""
         if self.is_primitive:
             return self.base + (f'<={self.string_bound}' if self.string_bound else '')
-        pkg, _, name = self.base.split('/')
-        return f'{pkg}/{name}'
+        pkg, kind, name = self.base.split('/')
+        return f'{pkg}/{name}' if kind == 'msg' else self.base
 
     def __str__(self) -> str:
         suffix = {'': '', 'array': f'[{self.size}]', 'bounded': f'[<={self.size}]',

@@ -224,13 +224,20 @@ def action_part(action: ActionDef, suffix: str) -> MessageDef:
     return parts[suffix]
 
 
+_DEFAULT: Registry | None = None
+
+
 def default_registry() -> Registry:
-    """The registry for the current environment (rebuilt when the search path changes)."""
-    key = (os.environ.get('ROS2LITE_INTERFACE_PATH', ''), os.environ.get('AMENT_PREFIX_PATH', ''))
-    reg = _REGISTRIES.get(key)
+    """The process-wide registry; the search path is read from the environment once."""
+    global _DEFAULT
+    reg = _DEFAULT
     if reg is None:
-        reg = _REGISTRIES[key] = Registry()
+        reg = _DEFAULT = Registry()
     return reg
 
 
-_REGISTRIES: dict[tuple[str, str], Registry] = {}
+def reload_registry() -> Registry:
+    """Re-read ROS2LITE_INTERFACE_PATH/AMENT_PREFIX_PATH (new classes are built afresh)."""
+    global _DEFAULT
+    _DEFAULT = Registry()
+    return _DEFAULT

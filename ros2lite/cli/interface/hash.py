@@ -1,0 +1,14 @@
+"""`interface hash`: the RIHS01 hash, to compare with what a real ROS node advertises."""
+
+from __future__ import annotations
+
+import click
+
+from ros2lite.interfaces import type_hash
+
+
+@click.command('hash')
+@click.argument('type_name', metavar='TYPE')
+def cli(type_name: str) -> None:
+    """Output the RIHS01 type hash of an interface (as used in rmw_zenoh keys)."""
+    click.echo(type_hash(type_name))

@@ -1,0 +1,75 @@
+"""Entry point of `ros2lite`: global options, the lazy command table and error handling."""
+
+from __future__ import annotations
+
+import os
+import sys
+from typing import Any
+
+import click
+
+from .errors import CliError
+from .lazy import LazyGroup
+
+COMMANDS: dict[str, tuple[str, str]] = {
+    'interface': ('ros2lite.cli.interface', 'Show information about ROS interfaces'),
+}
+
+
+def debug_enabled() -> bool:
+    return os.environ.get('ROS2LITE_DEBUG', '') not in ('', '0', 'false', 'no')
+
+
+@click.group(cls=LazyGroup, lazy=COMMANDS, invoke_without_command=True,
+             context_settings={'help_option_names': ['-h', '--help']})
+@click.option('--debug', is_flag=True, help='Show full tracebacks on errors.')
+@click.version_option(package_name='ros2lite', prog_name='ros2lite')
+@click.pass_context
+def cli(ctx: click.Context, debug: bool) -> None:
+    """ros2lite is an extensible command-line tool for ROS 2."""
+    if debug:
+        os.environ['ROS2LITE_DEBUG'] = '1'
+    if ctx.invoked_subcommand is None:
+        click.echo(ctx.get_help())
+
+
+def main(argv: list[str] | None = None) -> Any:
+    """Run the CLI; returns the process exit status."""
+    args = sys.argv[1:] if argv is None else argv
+    if '--debug' in args[:1]:
+        os.environ['ROS2LITE_DEBUG'] = '1'
+    try:
+        sys.stdout.reconfigure(line_buffering=True)  # type: ignore[union-attr]
+    except (AttributeError, ValueError):
+        pass
+    try:
+        cli.main(args=args, prog_name='ros2lite', standalone_mode=False)
+    except click.exceptions.Abort:
+        return 2
+    except click.exceptions.Exit as e:
+        return e.exit_code
+    except click.ClickException as e:
+        e.show()
+        return e.exit_code
+    except KeyboardInterrupt:
+        return 2
+    except BrokenPipeError:
+        # stdout went away (e.g. `| head`): quietly stop like other Unix tools
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 0
+    except CliError as e:
+        if debug_enabled():
+            raise
+        click.echo(str(e), err=True)
+        return e.code
+    except Exception as e:  # any library failure: one line, no traceback
+        if debug_enabled():
+            raise
+        click.echo(str(e) or type(e).__name__, err=True)
+        return 1
+    return 0
+
+
+def run() -> None:
+    sys.exit(main())

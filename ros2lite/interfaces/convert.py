@@ -1,0 +1,215 @@
+"""Message ⇄ dict/YAML/CSV with rosidl_runtime_py's semantics.
+
+Scripts parse `topic echo` output, so the YAML must be what rosidl_runtime_py produces: PyYAML's
+own emitter, field order from the definition, truncation with a trailing '...', and the
+'<array type: …>' placeholders. Input follows set_message_fields: coerce with the field's type,
+recurse into dicts, and report problems as one readable line.
+"""
+
+from __future__ import annotations
+
+import sys
+from array import array
+from collections.abc import Callable
+from functools import partial
+from typing import Any
+
+from .classes import ROSIDL_NAMES, FieldError, Message, get_interface
+from .parser import FieldType
+
+_Setter = Callable[[Any], None]
+
+
+def _element_name(ft: FieldType) -> str:
+    if ft.base in ('string', 'wstring'):
+        return ft.base
+    if ft.is_primitive:
+        return ROSIDL_NAMES.get(ft.base, ft.base)
+    return ft.base
+
+
+def abbreviate_array(value: Any, ft: FieldType) -> str:
+    """The '--no-arr' placeholder for a container value."""
+    name = _element_name(ft)
+    if ft.container == 'array':
+        return f'<array type: {name}[{ft.size}]>'
+    if ft.container == 'bounded':
+        return f'<sequence type: {name}[{ft.size}], length: {len(value)}>'
+    return f'<sequence type: {name}, length: {len(value)}>'
+
+
+def _convert(value: Any, ft: FieldType | None, trunc: int | None, no_arr: bool,
+             no_str: bool) -> Any:
+    if isinstance(value, bytes):
+        if trunc is not None and len(value) > trunc:
+            return ''.join(chr(c) for c in value[:trunc]) + '...'
+        return ''.join(chr(c) for c in value)
+    if isinstance(value, str):
+        if no_str:
+            return f'<string length: <{len(value)}>>'
+        if trunc is not None and len(value) > trunc:
+            return value[:trunc] + '...'
+        return value
+    if isinstance(value, (list, tuple, array)):
+        if no_arr and ft is not None and ft.is_container:
+            return abbreviate_array(value, ft)
+        items = value.tolist() if isinstance(value, array) else value
+        if trunc is not None and len(items) > trunc:
+            return [_convert(v, None, trunc, no_arr, no_str) for v in items[:trunc]] + ['...']
+        if isinstance(value, array):
+            return items
+        return [_convert(v, None, trunc, no_arr, no_str) for v in items]
+    if isinstance(value, (bool, int, float)):
+        return value
+    if isinstance(value, Message):
+        return message_to_dict(value, truncate_length=trunc, no_arr=no_arr, no_str=no_str)
+    return value
+
+
+def message_to_dict(msg: Message, *, truncate_length: int | None = None, no_arr: bool = False,
+                    no_str: bool = False) -> dict[str, Any]:
+    """Nested plain dict/list/scalar form of a message, in field order."""
+    return {
+        name: _convert(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
+        for name, ft in zip(msg._fields_and_field_types, msg.SLOT_TYPES)
+    }
+
+
+_DUMPER: Any = None
+
+
+def _dumper() -> Any:
+    """A private Dumper so our dict representer never leaks into the user's PyYAML."""
+    global _DUMPER
+    if _DUMPER is None:
+        import yaml
+
+        class Dumper(yaml.SafeDumper):
+            pass
+
+        def represent_dict(dumper: Any, data: dict[str, Any]) -> Any:
+            return dumper.represent_mapping('tag:yaml.org,2002:map', data.items())
+
+        Dumper.add_representer(dict, represent_dict)
+        _DUMPER = Dumper
+    return _DUMPER
+
+
+def message_to_yaml(msg: Message, *, truncate_length: int | None = None, no_arr: bool = False,
+                    no_str: bool = False, flow_style: bool = False) -> str:
+    """YAML text exactly as `ros2 topic echo` prints a message."""
+    import yaml
+    return yaml.dump(
+        message_to_dict(msg, truncate_length=truncate_length, no_arr=no_arr, no_str=no_str),
+        Dumper=_dumper(), allow_unicode=True, width=sys.maxsize, default_flow_style=flow_style,
+        sort_keys=False)
+
+
+def _csv_value(val: Any, ft: FieldType | None, trunc: int | None, no_arr: bool,
+               no_str: bool) -> str:
+    if isinstance(val, (list, tuple, array)):
+        if no_arr and ft is not None and ft.is_container:
+            return abbreviate_array(val, ft)
+        parts: list[str] = []
+        for i, v in enumerate(val):
+            if trunc is not None and i >= trunc:
+                parts.append('...')
+                break
+            parts.append(_csv_value(v, None, trunc, no_arr, no_str))
+        return ','.join(parts)
+    if isinstance(val, Message):
+        return message_to_csv(val, truncate_length=trunc, no_arr=no_arr, no_str=no_str)
+    if no_str and isinstance(val, str):
+        return f'<string length: <{len(val)}>>'
+    if isinstance(val, (str, bytes)) and trunc is not None and len(val) > trunc:
+        val = val[:trunc] + (b'...' if isinstance(val, bytes) else '...')
+    return str(val)
+
+
+def message_to_csv(msg: Message, *, truncate_length: int | None = None, no_arr: bool = False,
+                   no_str: bool = False) -> str:
+    """Comma-separated leaf values, depth first, as `ros2 topic echo --csv` prints them."""
+    return ','.join(
+        _csv_value(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
+        for name, ft in zip(msg._fields_and_field_types, msg.SLOT_TYPES))
+
+
+class PopulateError(ValueError):
+    """Input values do not fit the message; str() is the reason ros2cli would print."""
+
+
+def _coerce(current: Any, value: Any, ft: FieldType) -> Any:
+    """Convert `value` towards the type of the field's current value, like rosidl does."""
+    if isinstance(current, array):
+        return array(current.typecode, value)
+    if type(value) is type(current):
+        return value
+    if isinstance(current, bytes) and isinstance(value, int):
+        return value
+    return type(current)(value)
+
+
+def _populate(msg: Message, values: Any, setters: list[_Setter], header_auto: bool,
+              time_now: bool) -> None:
+    if not isinstance(values, dict):
+        raise PopulateError(f"Value '{values}' is expected to be a dictionary but is a "
+                            f'{type(values).__name__}')
+    types = dict(zip(msg._fields_and_field_types, msg.SLOT_TYPES))
+    for name, value in values.items():
+        if name not in types:
+            raise PopulateError(
+                f"'{type(msg).__name__}' object has no attribute '{name}'")
+        ft = types[name]
+        current = getattr(msg, name)
+        if header_auto and value == 'auto' and ft.base == 'std_msgs/msg/Header' and \
+                not ft.is_container:
+            setters.append(partial(setattr, current, 'stamp'))
+            continue
+        if time_now and value == 'now' and ft.base == 'builtin_interfaces/msg/Time' and \
+                not ft.is_container:
+            setters.append(partial(setattr, msg, name))
+            continue
+        if isinstance(current, Message) and type(value) is not type(current):
+            coerced = type(current)()
+            _populate(coerced, value, setters, header_auto, time_now)
+        else:
+            try:
+                coerced = _coerce(current, value, ft)
+            except (TypeError, ValueError, OverflowError) as e:
+                raise PopulateError(str(e)) from None
+        if ft.is_container and not ft.is_primitive:
+            cls = get_interface(ft.base)
+            built = []
+            for item in coerced:
+                if isinstance(item, cls):
+                    built.append(item)
+                    continue
+                sub = cls()
+                _populate(sub, item, setters, header_auto, time_now)
+                built.append(sub)
+            coerced = built
+        try:
+            setattr(msg, name, coerced)
+        except FieldError as e:
+            raise PopulateError(str(e)) from None
+
+
+def set_message_fields(msg: Message, values: dict[str, Any] | str | None, *,
+                       expand_header_auto: bool = False, expand_time_now: bool = False
+                       ) -> list[_Setter]:
+    """Fill `msg` from a dict or YAML text; returns setters for 'auto'/'now' stamps.
+
+    Raises PopulateError with a one-line reason; ros2cli prints it after
+    'Failed to populate field: '.
+    """
+    if isinstance(values, str):
+        import yaml
+        try:
+            values = yaml.safe_load(values)
+        except yaml.YAMLError as e:
+            raise PopulateError(f'invalid YAML: {" ".join(str(e).split())}') from None
+    if values is None:
+        values = {}
+    setters: list[_Setter] = []
+    _populate(msg, values, setters, expand_header_auto, expand_time_now)
+    return setters
