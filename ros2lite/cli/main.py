@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
 from typing import Any
@@ -38,10 +39,8 @@ def main(argv: list[str] | None = None) -> Any:
     args = sys.argv[1:] if argv is None else argv
     if '--debug' in args[:1]:
         os.environ['ROS2LITE_DEBUG'] = '1'
-    try:
+    with contextlib.suppress(AttributeError, ValueError):
         sys.stdout.reconfigure(line_buffering=True)  # type: ignore[union-attr]
-    except (AttributeError, ValueError):
-        pass
     try:
         cli.main(args=args, prog_name='ros2lite', standalone_mode=False)
     except click.exceptions.Abort:

@@ -44,17 +44,17 @@ def serialize(msg: Message) -> bytes:
     return c.serialize(msg)
 
 
-_BY_NAME: dict[str, Any] = {}
+_BY_NAME: dict[Any, Any] = {}
 
 
 def deserialize(type_or_name: str | type[Message], data: bytes | bytearray | memoryview
                 ) -> Any:
     """Decode CDR bytes of either byte order into a message object."""
-    c = _BY_NAME.get(type_or_name)  # type: ignore[call-overload]
+    c = _BY_NAME.get(type_or_name)
     if c is None or c.reg is not default_registry():
         name = type_or_name if isinstance(type_or_name, str) else type_or_name._TYPE_NAME
         c = codec(normalize_name(name), default_registry())
-        _BY_NAME[type_or_name] = c  # type: ignore[index]
+        _BY_NAME[type_or_name] = c
     return c.deserialize(data)
 
 

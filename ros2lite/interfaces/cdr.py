@@ -13,7 +13,7 @@ from array import array
 from collections.abc import Callable
 from typing import Any
 
-from .classes import TYPECODES, Message, factory
+from .classes import TYPECODES, factory
 from .parser import Field, FieldType, MessageDef
 from .registry import Registry
 
@@ -75,6 +75,9 @@ class _Gen:
         if self.mod >= align:
             return (-self.rem) % align
         return None
+
+    def check_bound(self, n: str, bound: int) -> None:
+        self.emit(f'if {n} > {bound}: raise _CdrError("sequence exceeds bound {bound}")')
 
     def element_def(self, ft: FieldType) -> MessageDef:
         return self.reg.message(ft.base)
@@ -159,7 +162,7 @@ class _SerGen(_Gen):
         else:
             self.emit(f'{n} = len({expr})')
             if ft.container == 'bounded':
-                self.emit(f'if {n} > {ft.size}: raise _CdrError("sequence exceeds bound {ft.size}")')
+                self.check_bound(n, ft.size)
             self.add('I', 4, 4, n)
         self.flush()
         if base in TYPECODES:
@@ -296,7 +299,7 @@ class _DesGen(_Gen):
             self.add('I', 4, 4, 'v', n)
             self.flush()
             if ft.container == 'bounded':
-                self.emit(f'if {n} > {ft.size}: raise _CdrError("sequence exceeds bound {ft.size}")')
+                self.check_bound(n, ft.size)
         self.flush()
         if base in TYPECODES:
             size = _SIZE[base]
@@ -365,7 +368,7 @@ def build_serializer(name: str, reg: Registry) -> Callable[[Any], bytes]:
     gen.flush()
     body = ['    p = [_HEADER]', '    o = 0', *gen.lines, '    return _join(p)']
     src = 'def ser(m):\n' + '\n'.join(body)
-    exec(compile(src, f'<cdr ser {name}>', 'exec'), gen.ns)  # noqa: S102
+    exec(compile(src, f'<cdr ser {name}>', 'exec'), gen.ns)
     fn: Callable[[Any], bytes] = gen.ns['ser']
     fn.__doc__ = src
     return fn
@@ -383,7 +386,7 @@ def build_deserializer(name: str, reg: Registry, little: bool = True,
     gen.emit(f'return {v}, o')
     head = ['    mv = memoryview(d)'] if gen.uses_mv else []
     src = 'def des(d, o):\n' + '\n'.join(head + gen.lines)
-    exec(compile(src, f'<cdr des {name}>', 'exec'), gen.ns)  # noqa: S102
+    exec(compile(src, f'<cdr des {name}>', 'exec'), gen.ns)
     fn: _Des = gen.ns['des']
     fn.__doc__ = src
     return fn

@@ -49,7 +49,7 @@ class Message(metaclass=MessageMeta):
 
     def __repr__(self) -> str:
         args = []
-        for name, ftype in zip(self._fields_and_field_types, self.SLOT_TYPES):
+        for name in self._fields_and_field_types:
             value = getattr(self, '_' + name)
             if isinstance(value, array):
                 text = repr(value.tolist()) if len(value) else '[]'
@@ -61,7 +61,8 @@ class Message(metaclass=MessageMeta):
     def __eq__(self, other: object) -> bool:
         if type(other) is not type(self):
             return NotImplemented
-        return all(getattr(self, s) == getattr(other, s) for s in self.__slots__)
+        slots: tuple[str, ...] = self.__slots__
+        return all(getattr(self, s) == getattr(other, s) for s in slots)
 
     __hash__ = None  # type: ignore[assignment]  # mutable, like rclpy messages
 
@@ -265,7 +266,7 @@ class ClassFactory:
             '_err': _err, '_to_array': _to_array, '_isinf': math.isinf,
             '_same_type': self.same_type,
         }
-        exec(compile('\n'.join(src), f'<ros2lite {mdef.name}>', 'exec'), ns)  # noqa: S102
+        exec(compile('\n'.join(src), f'<ros2lite {mdef.name}>', 'exec'), ns)
         cls: type[Message] = ns[short]
         cls._TYPE_NAME = mdef.name
         cls._DEF = mdef

@@ -71,7 +71,7 @@ def message_to_dict(msg: Message, *, truncate_length: int | None = None, no_arr:
     """Nested plain dict/list/scalar form of a message, in field order."""
     return {
         name: _convert(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
-        for name, ft in zip(msg._fields_and_field_types, msg.SLOT_TYPES)
+        for name, ft in zip(msg._fields_and_field_types, msg.SLOT_TYPES, strict=True)
     }
 
 
@@ -121,8 +121,10 @@ def _csv_value(val: Any, ft: FieldType | None, trunc: int | None, no_arr: bool,
         return message_to_csv(val, truncate_length=trunc, no_arr=no_arr, no_str=no_str)
     if no_str and isinstance(val, str):
         return f'<string length: <{len(val)}>>'
-    if isinstance(val, (str, bytes)) and trunc is not None and len(val) > trunc:
-        val = val[:trunc] + (b'...' if isinstance(val, bytes) else '...')
+    if trunc is not None and isinstance(val, str) and len(val) > trunc:
+        val = val[:trunc] + '...'
+    elif trunc is not None and isinstance(val, bytes) and len(val) > trunc:
+        val = val[:trunc] + b'...'
     return str(val)
 
 
@@ -131,7 +133,7 @@ def message_to_csv(msg: Message, *, truncate_length: int | None = None, no_arr: 
     """Comma-separated leaf values, depth first, as `ros2 topic echo --csv` prints them."""
     return ','.join(
         _csv_value(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
-        for name, ft in zip(msg._fields_and_field_types, msg.SLOT_TYPES))
+        for name, ft in zip(msg._fields_and_field_types, msg.SLOT_TYPES, strict=True))
 
 
 class PopulateError(ValueError):
@@ -154,7 +156,7 @@ def _populate(msg: Message, values: Any, setters: list[_Setter], header_auto: bo
     if not isinstance(values, dict):
         raise PopulateError(f"Value '{values}' is expected to be a dictionary but is a "
                             f'{type(values).__name__}')
-    types = dict(zip(msg._fields_and_field_types, msg.SLOT_TYPES))
+    types = dict(zip(msg._fields_and_field_types, msg.SLOT_TYPES, strict=True))
     for name, value in values.items():
         if name not in types:
             raise PopulateError(
@@ -169,6 +171,7 @@ def _populate(msg: Message, values: Any, setters: list[_Setter], header_auto: bo
                 not ft.is_container:
             setters.append(partial(setattr, msg, name))
             continue
+        coerced: Any
         if isinstance(current, Message) and type(value) is not type(current):
             coerced = type(current)()
             _populate(coerced, value, setters, header_auto, time_now)

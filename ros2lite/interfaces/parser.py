@@ -74,8 +74,8 @@ class FieldType:
         """Element type as written in a .msg file ('pkg/Name' for messages)."""
         if self.is_primitive:
             return self.base + (f'<={self.string_bound}' if self.string_bound else '')
-        pkg, kind, name = self.base.split('/')
-        return f'{pkg}/{name}' if kind == 'msg' else self.base
+        pkg, _, name = self.base.split('/')
+        return f'{pkg}/{name}'
 
     def __str__(self) -> str:
         suffix = {'': '', 'array': f'[{self.size}]', 'bounded': f'[<={self.size}]',
@@ -221,10 +221,10 @@ def parse_primitive_value(type_name: str, text: str, string_bound: int = 0) -> A
         except ValueError:
             raise ValueError(f"'{text}' is not a number") from None
     if type_name in STRING_TYPES:
-        value = _unquote(text)
-        if string_bound and len(value) > string_bound:
-            raise ValueError(f"string '{value}' exceeds its bound {string_bound}")
-        return value
+        unquoted = _unquote(text)
+        if string_bound and len(unquoted) > string_bound:
+            raise ValueError(f"string '{unquoted}' exceeds its bound {string_bound}")
+        return unquoted
     raise ValueError(f"type '{type_name}' cannot have a value")
 
 

@@ -148,7 +148,7 @@ class Registry:
         return msg
 
     def _load_message(self, name: str) -> MessageDef:
-        pkg, kind, short = validate_type_name(name)
+        _, kind, short = validate_type_name(name)
         if kind == 'msg':
             path = self.interface_path(name)
             return parse_message(path.read_text(encoding='utf-8'), name, str(path))

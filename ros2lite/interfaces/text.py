@@ -15,6 +15,7 @@ from .parser import (
     Constant,
     InterfaceError,
     MessageDef,
+    UnknownInterfaceError,
     parse_line,
     split_comment,
 )
@@ -43,10 +44,17 @@ def synthesized_text(mdef: MessageDef) -> str:
 
 
 def _message_text(name: str, reg: Registry) -> str:
-    name = normalize_name(name)
-    if reg.exists(name):
-        return reg.interface_text(name)
-    return synthesized_text(reg.message(name))
+    """Text of a message named as written ('pkg/Name'), generated sub-types included."""
+    pkg, _, short = normalize_name(name).split('/')
+    for kind in ('msg', 'action', 'srv'):
+        full = f'{pkg}/{kind}/{short}'
+        if kind == 'msg' and reg.exists(full):
+            return reg.interface_text(full)
+        try:
+            return synthesized_text(reg.message(full))
+        except InterfaceError:
+            continue
+    raise UnknownInterfaceError(f"Unknown interface '{name}'")
 
 
 def definition_text(name: str, reg: Registry) -> str:
@@ -70,7 +78,9 @@ def definition_text(name: str, reg: Registry) -> str:
     if kind == 'srv' and reg.exists(name):
         return SEPARATOR + f'SRV: {name}\n' + expand(reg.interface_text(name), pkg)
     reg.message(name)  # raises a clear error for unknown names
-    return expand(_message_text(name, reg), pkg)
+    if kind == 'msg' and reg.exists(name):
+        return expand(reg.interface_text(name), pkg)
+    return expand(synthesized_text(reg.message(name)), pkg)
 
 
 @dataclass
@@ -122,8 +132,7 @@ def show_lines(name: str, reg: Registry, *, all_comments: bool = False,
                 if not raw or line.is_comment:
                     shown = ''
                 elif line.trailing_comment is not None:
-                    cut = raw.find(line.trailing_comment)
-                    shown = raw[:cut - 1].strip()
+                    shown = split_comment(raw)[0].strip()
                 if shown:
                     out.append('\t' * level + shown)
             else:

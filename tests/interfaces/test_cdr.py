@@ -27,7 +27,7 @@ def to_rosbags(msg: Any) -> Any:
     """Build the equivalent rosbags dataclass instance of one of our messages."""
     cls = ROSBAGS.types[msg._TYPE_NAME]
     kwargs = {}
-    for f, ftype in zip(msg.get_fields_and_field_types(), msg.SLOT_TYPES):
+    for f, ftype in zip(msg.get_fields_and_field_types(), msg.SLOT_TYPES, strict=True):
         v = getattr(msg, f)
         if ftype.is_container and ftype.base in TYPECODES:
             v = np.array(list(v), dtype=_NP[TYPECODES[ftype.base]])

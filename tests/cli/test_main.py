@@ -1,0 +1,52 @@
+"""Global CLI behaviour: fast help, exit codes, one-line errors."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+from .conftest import run_process
+
+
+def test_help_imports_nothing_heavy() -> None:
+    code = ('import sys\nfrom ros2lite.cli.main import main\n'
+            'import contextlib, io\n'
+            'with contextlib.redirect_stdout(io.StringIO()): main(["--help"])\n'
+            'heavy = [m for m in ("zenoh", "yaml", "mcap", "rich", "ros2lite.interfaces") '
+            'if m in sys.modules]\nprint(heavy)')
+    out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == '[]'
+
+
+def test_help_lists_commands() -> None:
+    result = run_process('--help')
+    assert result.code == 0
+    assert 'interface' in result.out and 'Show information about ROS interfaces' in result.out
+
+
+def test_unknown_command_is_usage_error() -> None:
+    result = run_process('frobnicate')
+    assert result.code == 2 and 'No such command' in result.err
+
+
+def test_errors_are_one_line_without_traceback_unless_debug() -> None:
+    result = run_process('interface', 'show', 'nope/msg/X')
+    assert result.code == 1
+    assert result.err == "Unknown package 'nope'\n"
+    debug = run_process('--debug', 'interface', 'show', 'nope/msg/X')
+    assert debug.code == 1 and 'Traceback' in debug.err
+    env_debug = run_process('interface', 'show', 'nope/msg/X', env={'ROS2LITE_DEBUG': '1'})
+    assert 'Traceback' in env_debug.err
+
+
+def test_broken_definition_is_one_line(tmp_path: object) -> None:
+    from pathlib import Path
+    root = Path(str(tmp_path))
+    (root / 'bad_pkg' / 'msg').mkdir(parents=True)
+    (root / 'bad_pkg' / 'msg' / 'Bad.msg').write_text('int32 ok\nint33 broken\n')
+    result = run_process('interface', 'hash', 'bad_pkg/msg/Bad',
+                         env={'ROS2LITE_INTERFACE_PATH': str(root)})
+    assert result.code == 1
+    assert result.err.count('\n') == 1
+    assert 'Bad.msg:2:' in result.err and "invalid type name 'int33'" in result.err

@@ -1,0 +1,79 @@
+"""Generated classes behave like rclpy's: defaults, validation, repr, equality."""
+
+from __future__ import annotations
+
+from array import array
+
+import pytest
+
+from ros2lite.interfaces import FieldError, get_interface
+
+
+def test_keyword_constructor_defaults_and_repr() -> None:
+    twist = get_interface('geometry_msgs/msg/Twist')()
+    assert repr(twist) == (
+        'geometry_msgs.msg.Twist(linear=geometry_msgs.msg.Vector3(x=0.0, y=0.0, z=0.0), '
+        'angular=geometry_msgs.msg.Vector3(x=0.0, y=0.0, z=0.0))')
+    assert get_interface('geometry_msgs/msg/Quaternion')().w == 1.0
+    with pytest.raises(TypeError):
+        get_interface('std_msgs/msg/String')(nope=1)
+
+
+def test_constants_and_field_types() -> None:
+    status = get_interface('action_msgs/msg/GoalStatus')
+    assert status.STATUS_SUCCEEDED == 4
+    assert get_interface('sensor_msgs/msg/LaserScan').get_fields_and_field_types()['ranges'] == \
+        'sequence<float>'
+    fields = get_interface('sensor_msgs/msg/Imu').get_fields_and_field_types()
+    assert fields['orientation_covariance'] == 'double[9]'
+    assert fields['header'] == 'std_msgs/Header'
+
+
+@pytest.mark.parametrize(('type_name', 'field', 'value', 'message'), [
+    ('std_msgs/msg/Int8', 'data', 128, "The 'data' field must be an integer in [-128, 127]"),
+    ('std_msgs/msg/Int8', 'data', 'x', "The 'data' field must be of type 'int'"),
+    ('std_msgs/msg/String', 'data', 5, "The 'data' field must be of type 'str'"),
+    ('std_msgs/msg/Bool', 'data', 1, "The 'data' field must be of type 'bool'"),
+    ('std_msgs/msg/Float32', 'data', 1e39, "The 'data' field must be a float in"),
+    ('sensor_msgs/msg/Imu', 'orientation_covariance', [0.0], 'exactly 9 elements'),
+    ('geometry_msgs/msg/Twist', 'linear', 3, "must be a sub message of type"),
+    ('type_description_interfaces/msg/FieldType', 'nested_type_name', 'x' * 300,
+     'not longer than'),
+])
+def test_validation_on_assignment(type_name: str, field: str, value: object,
+                                  message: str) -> None:
+    msg = get_interface(type_name)()
+    with pytest.raises(FieldError) as err:
+        setattr(msg, field, value)
+    assert message in str(err.value)
+
+
+def test_sequences_become_arrays_and_ints_widen_to_float() -> None:
+    scan = get_interface('sensor_msgs/msg/LaserScan')(ranges=[1, 2.5])
+    assert isinstance(scan.ranges, array) and scan.ranges.typecode == 'f'
+    assert list(scan.ranges) == [1.0, 2.5]
+    vec = get_interface('geometry_msgs/msg/Vector3')(x=1)
+    assert vec.x == 1.0 and isinstance(vec.x, float)
+    with pytest.raises(FieldError):
+        get_interface('std_msgs/msg/UInt8MultiArray')(data=[256])
+
+
+def test_equality() -> None:
+    point = get_interface('geometry_msgs/msg/Point')
+    assert point(x=1.0) == point(x=1.0)
+    assert point(x=1.0) != point(x=2.0)
+    assert point() != get_interface('geometry_msgs/msg/Vector3')()
+
+
+def test_service_and_action_namespaces() -> None:
+    srv = get_interface('example_interfaces/srv/AddTwoInts')
+    assert srv.Request().a == 0 and srv.Response().sum == 0
+    assert srv.Event().info.event_type == 0
+    with pytest.raises(NotImplementedError):
+        srv()
+    act = get_interface('example_interfaces/action/Fibonacci')
+    assert act.SendGoal.Request().goal == act.Goal()
+    assert act.GetResult.Response().result == act.Result()
+    assert act.FeedbackMessage().feedback == act.Feedback()
+    assert get_interface('example_interfaces/action/Fibonacci_SendGoal_Request') is \
+        act.SendGoal.Request

@@ -1,0 +1,127 @@
+"""YAML/CSV output and YAML/dict input, against ros2cli's documented formats."""
+
+from __future__ import annotations
+
+import pytest
+
+from ros2lite import interfaces as I
+from ros2lite.interfaces.convert import PopulateError
+
+
+def msg(name: str, **kwargs: object) -> I.Message:
+    return I.get_interface(name)(**kwargs)
+
+
+@pytest.mark.parametrize(('value', 'text'), [
+    ('Hello World: 1', "data: 'Hello World: 1'\n"),
+    ('', "data: ''\n"),
+    ('yes', "data: 'yes'\n"),
+    ('123', "data: '123'\n"),
+    ('plain', 'data: plain\n'),
+])
+def test_string_quoting(value: str, text: str) -> None:
+    assert I.message_to_yaml(msg('std_msgs/msg/String', data=value)) == text
+
+
+@pytest.mark.parametrize(('value', 'text'), [
+    (0.0, 'data: 0.0\n'), (2.5e-07, 'data: 2.5e-07\n'), (float('inf'), 'data: .inf\n'),
+    (float('nan'), 'data: .nan\n'), (1e-07, 'data: 1.0e-07\n'),
+])
+def test_float_forms(value: float, text: str) -> None:
+    assert I.message_to_yaml(msg('std_msgs/msg/Float64', data=value)) == text
+
+
+def test_float32_is_widened_after_the_wire() -> None:
+    data = I.serialize(msg('std_msgs/msg/Float32', data=0.1))
+    out = I.deserialize('std_msgs/msg/Float32', data)
+    assert I.message_to_yaml(out) == 'data: 0.10000000149011612\n'
+
+
+def test_nested_block_and_flow_style() -> None:
+    twist = msg('geometry_msgs/msg/Twist')
+    twist.linear.x = 2.0
+    assert I.message_to_yaml(twist) == (
+        'linear:\n  x: 2.0\n  y: 0.0\n  z: 0.0\nangular:\n  x: 0.0\n  y: 0.0\n  z: 0.0\n')
+    assert I.message_to_yaml(msg('std_msgs/msg/String', data='Hello World: 1'),
+                             flow_style=True) == "{data: 'Hello World: 1'}\n"
+    seq = msg('std_msgs/msg/Int32MultiArray', data=[1, 2])
+    assert I.message_to_yaml(seq) == (
+        'layout:\n  dim: []\n  data_offset: 0\ndata:\n- 1\n- 2\n')
+
+
+def test_truncation_and_placeholders() -> None:
+    arr = msg('std_msgs/msg/Float64MultiArray', data=[float(i) for i in range(5)])
+    assert I.message_to_yaml(arr, truncate_length=2).endswith(
+        "data:\n- 0.0\n- 1.0\n- '...'\n")
+    assert I.message_to_yaml(msg('std_msgs/msg/String', data='abcdef'),
+                             truncate_length=3) == 'data: abc...\n'
+    assert "data: '<sequence type: double, length: 5>'" in I.message_to_yaml(arr, no_arr=True)
+    imu = msg('sensor_msgs/msg/Imu')
+    assert "orientation_covariance: '<array type: double[9]>'" in \
+        I.message_to_yaml(imu, no_arr=True)
+    bounded = msg('rcl_interfaces/msg/ParameterDescriptor')
+    assert "floating_point_range: '<sequence type: rcl_interfaces/msg/FloatingPointRange[1], " \
+        "length: 0>'" in I.message_to_yaml(bounded, no_arr=True)
+    assert I.message_to_yaml(msg('std_msgs/msg/String', data='hey'), no_str=True) == \
+        "data: '<string length: <3>>'\n"
+
+
+def test_csv() -> None:
+    scan = msg('sensor_msgs/msg/LaserScan', ranges=[1.0, 2.0, 3.0])
+    scan.header.frame_id = 'laser'
+    assert I.message_to_csv(scan) == '0,0,laser,0.0,0.0,0.0,0.0,0.0,0.0,0.0,1.0,2.0,3.0,'
+    assert I.message_to_csv(scan, truncate_length=2).endswith(',1.0,2.0,...,')
+    assert I.message_to_csv(msg('std_msgs/msg/Bool', data=True)) == 'True'
+    assert I.message_to_csv(scan, no_arr=True).endswith(
+        '<sequence type: float, length: 3>,<sequence type: float, length: 0>')
+
+
+def test_dict() -> None:
+    assert I.message_to_dict(msg('geometry_msgs/msg/Point', x=1.0)) == \
+        {'x': 1.0, 'y': 0.0, 'z': 0.0}
+
+
+def test_set_fields_coercions_and_nesting() -> None:
+    twist = msg('geometry_msgs/msg/Twist')
+    assert I.set_message_fields(twist, '{linear: {x: 2}, angular: {z: 1.8}}') == []
+    assert twist.linear.x == 2.0 and twist.angular.z == 1.8
+    num = msg('std_msgs/msg/Int32')
+    I.set_message_fields(num, {'data': 1.9})
+    assert num.data == 1
+    text = msg('std_msgs/msg/String')
+    I.set_message_fields(text, 'data: 5')
+    assert text.data == '5'
+    arr = msg('std_msgs/msg/Int32MultiArray')
+    I.set_message_fields(arr, '{data: [1, 2, 3], layout: {dim: [{label: x, size: 3}]}}')
+    assert list(arr.data) == [1, 2, 3] and arr.layout.dim[0].label == 'x'
+
+
+@pytest.mark.parametrize(('values', 'reason'), [
+    ('{linear: 3}', "Value '3' is expected to be a dictionary but is a int"),
+    ('{nope: 1}', "'Twist' object has no attribute 'nope'"),
+    ('{linear: {x: abc}}', "could not convert string to float: 'abc'"),
+    ('[1, 2]', "Value '[1, 2]' is expected to be a dictionary but is a list"),
+    ('{linear: {x: [1', 'invalid YAML'),
+])
+def test_set_fields_errors(values: str, reason: str) -> None:
+    with pytest.raises(PopulateError) as err:
+        I.set_message_fields(msg('geometry_msgs/msg/Twist'), values)
+    assert reason in str(err.value)
+
+
+def test_range_error_reads_like_rclpy() -> None:
+    with pytest.raises(PopulateError, match=r"must be an integer in \[-128, 127\]"):
+        I.set_message_fields(msg('std_msgs/msg/Int8'), {'data': 300})
+
+
+def test_header_auto_and_stamp_now() -> None:
+    pose = msg('geometry_msgs/msg/PoseStamped')
+    setters = I.set_message_fields(pose, '{header: auto}', expand_header_auto=True)
+    assert len(setters) == 1
+    stamp = msg('builtin_interfaces/msg/Time', sec=5)
+    setters[0](stamp)
+    assert pose.header.stamp.sec == 5 and pose.header.frame_id == ''
+    pose2 = msg('geometry_msgs/msg/PoseStamped')
+    setters = I.set_message_fields(pose2, '{header: {stamp: now, frame_id: map}}',
+                                   expand_time_now=True)
+    assert len(setters) == 1 and pose2.header.frame_id == 'map'
