@@ -1,0 +1,71 @@
+"""Is a router there?  Cheap probes used on every CLI call and while starting the daemon."""
+
+from __future__ import annotations
+
+import json
+import re
+import socket
+import time
+
+from ros2lite.transport.config import endpoint_host_port
+
+__all__ = ["router_answers", "wait_answers"]
+
+
+def router_answers(endpoint: str, timeout: float = 0.5) -> bool:
+    """Does anything accept connections at ``endpoint``?
+
+    For TCP-based endpoints (tcp, tls, ws) this is a plain TCP connect, which takes a
+    millisecond, where opening a Zenoh session takes tens of them and spins up a runtime.
+    It cannot tell a Zenoh router from another server on the port; that is an acceptable
+    trade for a probe run on every CLI call.  Unix sockets are connected to directly; other
+    protocols (udp, quic…) fall back to opening a short-lived Zenoh client session.
+    """
+    proto = endpoint.partition("/")[0]
+    if proto == "unixsock-stream":
+        path = re.split(r"[?#]", endpoint.partition("/")[2], maxsplit=1)[0]
+        with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as sock:
+            sock.settimeout(timeout)
+            try:
+                sock.connect(path)
+                return True
+            except OSError:
+                return False
+    parsed = endpoint_host_port(endpoint)
+    if parsed is not None and proto in ("tcp", "tls", "ws"):
+        _, host, port = parsed
+        host = {"0.0.0.0": "127.0.0.1", "::": "::1"}.get(host, host)
+        try:
+            with socket.create_connection((host, port), timeout=timeout):
+                return True
+        except OSError:
+            return False
+    return _zenoh_probe(endpoint, timeout)
+
+
+def _zenoh_probe(endpoint: str, timeout: float) -> bool:
+    import zenoh
+
+    config = zenoh.Config()
+    config.insert_json5("mode", '"client"')
+    config.insert_json5("connect/endpoints", json.dumps([endpoint]))
+    config.insert_json5("connect/timeout_ms", str(max(1, int(timeout * 1000))))
+    config.insert_json5("scouting/multicast/enabled", "false")
+    try:
+        session = zenoh.open(config)
+    except zenoh.ZError:
+        return False
+    try:
+        return bool(session.info.routers_zid())
+    finally:
+        session.close()
+
+
+def wait_answers(endpoint: str, timeout: float) -> bool:
+    deadline = time.monotonic() + timeout
+    while True:
+        if router_answers(endpoint, timeout=0.2):
+            return True
+        if time.monotonic() >= deadline:
+            return False
+        time.sleep(0.05)

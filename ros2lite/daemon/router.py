@@ -1,0 +1,457 @@
+"""Start, stop and inspect the ros2lite daemon: a Zenoh router in a detached process.
+
+Bookkeeping lives in the user's runtime dir (``$XDG_RUNTIME_DIR/ros2lite``, else
+``~/.cache/ros2lite``), one set of files per router endpoint so daemons on different ports
+coexist: ``router-<endpoint>.pid`` (JSON), ``.log`` and ``.lock``.
+
+Liveness is decided by an ``flock`` that the daemon holds on its pid file for its whole
+life, not by ``kill(pid, 0)``: the kernel drops the lock when the process dies (even on
+SIGKILL), so a recycled pid can never make a stale file look alive, and a dead daemon is
+detected without waiting for anyone to reap it.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import fcntl
+import json
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ros2lite.daemon.probe import router_answers, wait_answers
+from ros2lite.transport.config import (
+    router_config,
+    router_endpoint,
+    zerror_message,
+)
+
+__all__ = [
+    "DaemonError",
+    "DaemonInfo",
+    "DaemonStatus",
+    "StartResult",
+    "StopResult",
+    "ensure_running",
+    "router_answers",
+    "runtime_dir",
+    "serve",
+    "start",
+    "status",
+    "stop",
+]
+
+START_TIMEOUT = 10.0
+STOP_TIMEOUT = 5.0
+_CMDLINE_MARK = b"ros2lite.daemon"
+
+
+class DaemonError(RuntimeError):
+    """The daemon could not be started or stopped; the message says why (and where the log is)."""
+
+
+@dataclass(frozen=True)
+class DaemonInfo:
+    """What a running ros2lite daemon wrote into its pid file."""
+
+    pid: int
+    endpoint: str
+    listen: list[str] = field(default_factory=list)
+    connect: list[str] = field(default_factory=list)
+    zid: str | None = None
+    started_at: float | None = None
+    log_file: str | None = None
+
+
+@dataclass(frozen=True)
+class StartResult:
+    endpoint: str
+    started: bool  # True when this call spawned the router
+    already_running: bool  # something already answered at the endpoint
+    ours: bool  # the router serving the endpoint is a ros2lite daemon
+    pid: int | None = None
+    log_file: str | None = None
+
+    @property
+    def message(self) -> str:
+        if self.started:
+            return "The daemon has been started"
+        if self.ours:
+            return "The daemon is already running"
+        return ("The daemon is already running (a Zenoh router not started by ros2lite "
+                f"answers at {self.endpoint})")
+
+
+@dataclass(frozen=True)
+class StopResult:
+    endpoint: str
+    stopped: bool
+    foreign: bool = False  # a router answers there, but it is not ours to stop
+    pid: int | None = None
+
+    @property
+    def message(self) -> str:
+        if self.stopped:
+            return "The daemon has been stopped"
+        if self.foreign:
+            return (f"The router at {self.endpoint} was not started by ros2lite; "
+                    "not stopping it")
+        return "The daemon is not running"
+
+
+@dataclass(frozen=True)
+class DaemonStatus:
+    endpoint: str
+    running: bool  # something answers at the endpoint
+    ours: bool  # a live ros2lite daemon owns the endpoint
+    info: DaemonInfo | None = None
+
+    @property
+    def pid(self) -> int | None:
+        return self.info.pid if self.info else None
+
+    @property
+    def message(self) -> str:
+        if self.running and self.ours:
+            return "The daemon is running"
+        if self.running:
+            return ("The daemon is running (a Zenoh router not started by ros2lite at "
+                    f"{self.endpoint})")
+        if self.ours:
+            return (f"The daemon process (pid {self.pid}) exists but does not answer at "
+                    f"{self.endpoint}")
+        return "The daemon is not running"
+
+
+# --------------------------------------------------------------------------- files
+
+
+def runtime_dir() -> Path:
+    """Per-user directory for pid, lock and log files (created 0700 on first use)."""
+    xdg = os.environ.get("XDG_RUNTIME_DIR", "")
+    base = Path(xdg) if xdg and os.path.isdir(xdg) else Path.home() / ".cache"
+    path = base / "ros2lite"
+    path.mkdir(mode=0o700, parents=True, exist_ok=True)
+    return path
+
+
+def _stem(endpoint: str) -> str:
+    return "router-" + re.sub(r"[^A-Za-z0-9.:_-]", "_", endpoint)
+
+
+def pid_file(endpoint: str) -> Path:
+    return runtime_dir() / (_stem(endpoint) + ".pid")
+
+
+def log_file(endpoint: str) -> Path:
+    return runtime_dir() / (_stem(endpoint) + ".log")
+
+
+def _lock_file(endpoint: str) -> Path:
+    return runtime_dir() / (_stem(endpoint) + ".lock")
+
+
+@contextlib.contextmanager
+def _start_lock(endpoint: str, timeout: float) -> Iterator[None]:
+    """Serialise start/stop for one endpoint so two auto-starting CLIs don't race."""
+    with open(_lock_file(endpoint), "a+") as fh:
+        deadline = time.monotonic() + timeout
+        while True:
+            try:
+                fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                break
+            except BlockingIOError:
+                if time.monotonic() > deadline:
+                    raise DaemonError(
+                        f"another ros2lite process is starting/stopping the daemon for {endpoint}"
+                    ) from None
+                time.sleep(0.05)
+        try:
+            yield
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
+
+
+def _read_info(path: Path) -> DaemonInfo | None:
+    """The pid file's content if a live daemon holds it; stale files are removed."""
+    try:
+        fh = open(path)  # noqa: SIM115 - closed by the 'with' below
+    except FileNotFoundError:
+        return None
+    with fh:
+        try:
+            fcntl.flock(fh, fcntl.LOCK_SH | fcntl.LOCK_NB)
+        except BlockingIOError:
+            try:
+                data: dict[str, Any] = json.loads(fh.read() or "{}")
+                return DaemonInfo(
+                    pid=int(data["pid"]),
+                    endpoint=str(data["endpoint"]),
+                    listen=list(data.get("listen", [])),
+                    connect=list(data.get("connect", [])),
+                    zid=data.get("zid"),
+                    started_at=data.get("started_at"),
+                    log_file=data.get("log_file"),
+                )
+            except (ValueError, KeyError, TypeError):
+                return None  # held but unreadable: being written; treat as unknown
+        # We got the lock, so nobody holds it: the daemon is gone.  Remove the file only
+        # if the path still names the inode we locked (a new daemon may have replaced it).
+        try:
+            if os.stat(path).st_ino == os.fstat(fh.fileno()).st_ino:
+                os.unlink(path)
+        except FileNotFoundError:
+            pass
+        return None
+
+
+def _is_our_process(pid: int) -> bool:
+    """Double-check a pid really runs ``ros2lite.daemon`` (where /proc exists)."""
+    cmdline = Path(f"/proc/{pid}/cmdline")
+    if not Path("/proc/self/cmdline").exists():
+        return True
+    try:
+        return _CMDLINE_MARK in cmdline.read_bytes()
+    except OSError:
+        return False
+
+
+def _write_pid_file(path: Path, info: DaemonInfo) -> Any:
+    """Write the pid file atomically and return its handle, locked for the process' life."""
+    tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
+    fh = os.fdopen(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600), "w")
+    fcntl.flock(fh, fcntl.LOCK_EX)
+    json.dump(info.__dict__, fh)
+    fh.flush()
+    os.fsync(fh.fileno())
+    os.replace(tmp, path)
+    return fh
+
+
+def serve(
+    router: str,
+    listen: Sequence[str] = (),
+    connect: Sequence[str] = (),
+    *,
+    pid_path: Path | None = None,
+    log_path: Path | None = None,
+    ready_fd: int | None = None,
+) -> int:
+    """Run the router in this process until SIGTERM/SIGINT (the body of the daemon process).
+
+    Handshake lines go to ``ready_fd``: ``pid N`` first, then ``ready`` or ``error MSG``.
+    """
+
+    def tell(line: str) -> None:
+        if ready_fd is not None:
+            os.write(ready_fd, (line + "\n").encode())
+
+    stop_signals = {signal.SIGTERM, signal.SIGINT}
+    # Block before zenoh starts its threads so only our sigwait() sees these signals.
+    signal.pthread_sigmask(signal.SIG_BLOCK, stop_signals)
+    signal.signal(signal.SIGHUP, signal.SIG_IGN)
+    tell(f"pid {os.getpid()}")
+    import zenoh
+
+    zenoh.init_log_from_env_or("error")
+    endpoint = router_endpoint(router)
+    try:
+        config = router_config(endpoint, listen=list(listen) or None, connect=list(connect))
+        session = zenoh.open(config)
+    except Exception as exc:
+        msg = zerror_message(exc) if isinstance(exc, zenoh.ZError) else str(exc)
+        print(f"ros2lite daemon: {msg}", file=sys.stderr, flush=True)
+        tell(f"error {msg}")
+        return 1
+    info = DaemonInfo(
+        pid=os.getpid(), endpoint=endpoint, listen=list(listen) or [endpoint],
+        connect=list(connect), zid=str(session.zid()), started_at=time.time(),
+        log_file=str(log_path) if log_path else None,
+    )
+    path = pid_path or pid_file(endpoint)
+    lock = _write_pid_file(path, info)
+    tell("ready")
+    if ready_fd is not None:
+        os.close(ready_fd)
+    print(f"ros2lite daemon: router {info.zid} serving {', '.join(info.listen)}", flush=True)
+    try:
+        sig = signal.sigwait(stop_signals)
+        print(f"ros2lite daemon: {signal.Signals(sig).name}, shutting down", flush=True)
+        session.close()
+    finally:
+        with contextlib.suppress(OSError):
+            if os.stat(path).st_ino == os.fstat(lock.fileno()).st_ino:
+                os.unlink(path)
+        lock.close()
+    return 0
+
+
+# --------------------------------------------------------------------------- verbs
+
+
+def status(router: str | None = None) -> DaemonStatus:
+    """Is a router answering at the endpoint, and is it ours?"""
+    endpoint = router_endpoint(router)
+    info = _read_info(pid_file(endpoint))
+    return DaemonStatus(endpoint, router_answers(endpoint), info is not None, info)
+
+
+def start(
+    router: str | None = None,
+    listen: Sequence[str] = (),
+    connect: Sequence[str] = (),
+    *,
+    timeout: float = START_TIMEOUT,
+) -> StartResult:
+    """Spawn a detached router for the endpoint unless something already answers there.
+
+    ``listen`` defaults to the endpoint itself (loopback-only for the default endpoint);
+    pass e.g. ``tcp/0.0.0.0:7447`` to open it to the network.  ``connect`` lists other
+    routers to mesh with.  Waits up to ``timeout`` s for the router to answer.
+    """
+    endpoint = router_endpoint(router)
+    # Validate config and env up front so mistakes surface here, not in a log file.
+    router_config(endpoint, listen=list(listen) or None, connect=list(connect))
+    with _start_lock(endpoint, timeout):
+        info = _read_info(pid_file(endpoint))
+        if router_answers(endpoint) or (info is not None and wait_answers(endpoint, timeout)):
+            return StartResult(endpoint, False, True, info is not None,
+                               info.pid if info else None, info.log_file if info else None)
+        if info is not None:
+            raise DaemonError(
+                f"ros2lite daemon pid {info.pid} runs but does not answer at {endpoint}; "
+                f"see {info.log_file} or run 'ros2lite daemon stop'"
+            )
+        pid = _spawn(endpoint, list(listen), list(connect), timeout)
+        return StartResult(endpoint, True, False, True, pid, str(log_file(endpoint)))
+
+
+def _spawn(endpoint: str, listen: list[str], connect: list[str], timeout: float) -> int:
+    log = log_file(endpoint)
+    cmd = [sys.executable, "-m", "ros2lite.daemon", "--router", endpoint,
+           "--pid-file", str(pid_file(endpoint)), "--log-file", str(log)]
+    for ep in listen:
+        cmd += ["--listen", ep]
+    for ep in connect:
+        cmd += ["--connect", ep]
+    env = dict(os.environ)
+    # The daemon runs from '/', so relative config paths and an uninstalled source tree
+    # must be made absolute here.
+    for var in ("ZENOH_ROUTER_CONFIG_URI", "ZENOH_SESSION_CONFIG_URI"):
+        if env.get(var):
+            env[var] = os.path.abspath(env[var])
+    src_root = str(Path(__file__).resolve().parents[2])
+    if src_root not in _site_dirs():
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (src_root, env.get("PYTHONPATH")) if p)
+    proc = subprocess.Popen(
+        cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+        cwd="/", env=env, close_fds=True, text=True,
+    )
+    try:
+        out, err = proc.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        out, err = proc.communicate()
+        _kill_pid_from(out)
+        raise DaemonError(
+            f"the router did not come up at {endpoint} within {timeout:.0f} s; see {log}"
+        ) from None
+    lines = out.splitlines()
+    if proc.returncode != 0 or "ready" not in lines:
+        _kill_pid_from(out)
+        why = next((ln[6:] for ln in lines if ln.startswith("error ")), "") or err.strip()
+        raise DaemonError(f"could not start a router at {endpoint}: {why or 'unknown error'}"
+                          f" (log: {log})")
+    pid = _pid_from(out) or 0
+    if not wait_answers(endpoint, timeout):
+        raise DaemonError(f"the router (pid {pid}) started but does not answer at {endpoint}; "
+                          f"check --listen (log: {log})")
+    return pid
+
+
+def _site_dirs() -> set[str]:
+    """Directories a fresh interpreter finds packages in anyway (never put them first)."""
+    import site
+
+    dirs = set(site.getsitepackages()) if hasattr(site, "getsitepackages") else set()
+    dirs.add(site.getusersitepackages())
+    return {str(Path(d).resolve()) for d in dirs}
+
+
+def _pid_from(handshake: str) -> int | None:
+    for line in handshake.splitlines():
+        if line.startswith("pid "):
+            with contextlib.suppress(ValueError):
+                return int(line[4:])
+    return None
+
+
+def _kill_pid_from(handshake: str) -> None:
+    pid = _pid_from(handshake)
+    if pid:
+        with contextlib.suppress(OSError):
+            os.kill(pid, signal.SIGKILL)
+
+
+def _pid_gone(pid: int) -> bool:
+    """True when ``pid`` has exited (a zombie nobody reaped yet counts as exited)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return True
+    except PermissionError:
+        return False
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] == "Z"
+    except (OSError, IndexError):
+        return False
+
+
+def _exited(path: Path, pid: int) -> bool:
+    info = _read_info(path)
+    return (info is None or info.pid != pid) and _pid_gone(pid)
+
+
+def stop(router: str | None = None, *, timeout: float = STOP_TIMEOUT) -> StopResult:
+    """Stop our own daemon for the endpoint (never a foreign router); clean stale files."""
+    endpoint = router_endpoint(router)
+    path = pid_file(endpoint)
+    with _start_lock(endpoint, timeout + 1):
+        info = _read_info(path)
+        if info is None or not _is_our_process(info.pid):
+            return StopResult(endpoint, False, foreign=router_answers(endpoint))
+        for sig, wait in ((signal.SIGTERM, timeout), (signal.SIGKILL, 2.0)):
+            try:
+                os.kill(info.pid, sig)
+            except ProcessLookupError:
+                break
+            deadline = time.monotonic() + wait
+            while time.monotonic() < deadline:
+                with contextlib.suppress(ChildProcessError, OSError):
+                    os.waitpid(info.pid, os.WNOHANG)  # reaps only if it is our child
+                if _exited(path, info.pid):
+                    break
+                time.sleep(0.05)
+            if _exited(path, info.pid):
+                break
+        else:
+            raise DaemonError(f"daemon pid {info.pid} did not exit")
+        _read_info(path)  # removes the file if the daemon died without cleaning up
+        return StopResult(endpoint, True, pid=info.pid)
+
+
+def ensure_running(router: str | None = None, *, timeout: float = START_TIMEOUT) -> StartResult:
+    """For CLI verbs: make sure a router answers, starting our daemon if none does."""
+    endpoint = router_endpoint(router)
+    if router_answers(endpoint):
+        info = _read_info(pid_file(endpoint))
+        return StartResult(endpoint, False, True, info is not None,
+                           info.pid if info else None, info.log_file if info else None)
+    return start(endpoint, timeout=timeout)

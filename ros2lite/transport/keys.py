@@ -1,0 +1,412 @@
+"""ROS names and the Zenoh keys rmw_zenoh builds from them.
+
+Three things live here because they must agree byte for byte with rmw_zenoh_cpp:
+name validation/expansion (so we reject what rcl rejects), the data key expression
+``<domain>/<name>/<dds type>/<hash>``, and the ``@ros2_lv`` liveliness tokens that make up
+the ROS graph.  Token parsing is lenient: peers from other releases add chunks or use old
+QoS defaults, and a graph view must not fall over on one odd token.
+"""
+
+from __future__ import annotations
+
+import enum
+import re
+from dataclasses import dataclass
+
+from ros2lite.transport.qos import QoSProfile, decode_qos, encode_qos
+
+__all__ = [
+    "LIVELINESS_PREFIX",
+    "Entity",
+    "EntityKind",
+    "dds_type_name",
+    "demangle",
+    "endpoint_token",
+    "expand_topic_name",
+    "is_hidden_name",
+    "liveliness_prefix",
+    "liveliness_subscription_key",
+    "mangle",
+    "node_fqn",
+    "node_token",
+    "normalize_namespace",
+    "parse_token",
+    "ros_type_name",
+    "split_fqn",
+    "topic_key",
+    "validate_full_topic_name",
+    "validate_namespace",
+    "validate_node_name",
+    "validate_topic_name",
+]
+
+LIVELINESS_PREFIX = "@ros2_lv"
+
+_TOKEN_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_SUBST_RE = re.compile(r"\{([^{}]*)\}")
+
+
+# --------------------------------------------------------------------------- names
+
+
+def _check_tokens(name: str, what: str, shown: str | None = None) -> None:
+    label = shown if shown is not None else repr(name)
+    for token in name.split("/"):
+        if token and token[0].isdigit():
+            raise ValueError(
+                f"invalid {what} {label}: token {token!r} must not start with a digit"
+            )
+
+
+def validate_topic_name(name: str) -> None:
+    """Check a topic/service name as a user may write it (relative, ``~`` and ``{}`` allowed).
+
+    Raises ``ValueError`` saying what is wrong, like ``rcl_validate_topic_name``.
+    """
+    what = "topic name"
+    if not name:
+        raise ValueError(f"invalid {what}: must not be empty")
+    bad = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c in "_/~{}"))})
+    if bad:
+        raise ValueError(
+            f"invalid {what} {name!r}: character(s) {''.join(bad)!r} not allowed "
+            "(use letters, digits, '_', '/', '~', '{}')"
+        )
+    if name[0].isdigit():
+        raise ValueError(f"invalid {what} {name!r}: must not start with a digit")
+    if name.endswith("/"):
+        raise ValueError(f"invalid {what} {name!r}: must not end with '/'")
+    if "//" in name:
+        raise ValueError(f"invalid {what} {name!r}: must not contain '//'")
+    if "~" in name[1:] or (name.startswith("~") and len(name) > 1 and name[1] != "/"):
+        raise ValueError(
+            f"invalid {what} {name!r}: '~' is only allowed as '~' or '~/…' at the start"
+        )
+    depth = 0
+    for c in name:
+        if c == "{":
+            depth += 1
+            if depth > 1:
+                raise ValueError(f"invalid {what} {name!r}: nested '{{'")
+        elif c == "}":
+            depth -= 1
+            if depth < 0:
+                raise ValueError(f"invalid {what} {name!r}: unbalanced '}}'")
+    if depth:
+        raise ValueError(f"invalid {what} {name!r}: unbalanced '{{'")
+    for m in _SUBST_RE.finditer(name):
+        if not _TOKEN_RE.fullmatch(m.group(1)):
+            raise ValueError(f"invalid {what} {name!r}: bad substitution {m.group(0)!r}")
+    _check_tokens(_SUBST_RE.sub("x", name.replace("~", "x")), what, repr(name))
+
+
+def validate_full_topic_name(name: str) -> None:
+    """Check an expanded, absolute topic/service name (``/ns/name``), as rmw does."""
+    what = "topic name"
+    if not name:
+        raise ValueError(f"invalid {what}: must not be empty")
+    if not name.startswith("/"):
+        raise ValueError(f"invalid {what} {name!r}: must be absolute (start with '/')")
+    bad = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c in "_/"))})
+    if bad:
+        raise ValueError(
+            f"invalid {what} {name!r}: character(s) {''.join(bad)!r} not allowed "
+            "(use letters, digits, '_', '/')"
+        )
+    if name.endswith("/"):
+        raise ValueError(f"invalid {what} {name!r}: must not end with '/'")
+    if "//" in name:
+        raise ValueError(f"invalid {what} {name!r}: must not contain '//'")
+    _check_tokens(name, what)
+
+
+def validate_node_name(name: str) -> None:
+    """A node name is one token: letters, digits and '_', not starting with a digit."""
+    if not name:
+        raise ValueError("invalid node name: must not be empty")
+    bad = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c == "_"))})
+    if bad:
+        raise ValueError(
+            f"invalid node name {name!r}: character(s) {''.join(bad)!r} not allowed "
+            "(use letters, digits, '_')"
+        )
+    if name[0].isdigit():
+        raise ValueError(f"invalid node name {name!r}: must not start with a digit")
+
+
+def validate_namespace(namespace: str) -> None:
+    """An absolute namespace: ``/`` or ``/a/b`` (no trailing '/', no '//')."""
+    what = "namespace"
+    if not namespace:
+        raise ValueError(f"invalid {what}: must not be empty")
+    if not namespace.startswith("/"):
+        raise ValueError(f"invalid {what} {namespace!r}: must be absolute (start with '/')")
+    if namespace == "/":
+        return
+    bad = sorted({c for c in namespace if not (c.isascii() and (c.isalnum() or c in "_/"))})
+    if bad:
+        raise ValueError(
+            f"invalid {what} {namespace!r}: character(s) {''.join(bad)!r} not allowed "
+            "(use letters, digits, '_', '/')"
+        )
+    if namespace.endswith("/"):
+        raise ValueError(f"invalid {what} {namespace!r}: must not end with '/'")
+    if "//" in namespace:
+        raise ValueError(f"invalid {what} {namespace!r}: must not contain '//'")
+    _check_tokens(namespace, what)
+
+
+def normalize_namespace(namespace: str | None) -> str:
+    """rclpy's leniency: ``None``/``""`` → ``/`` and ``robot1`` → ``/robot1``; then validate."""
+    ns = namespace or "/"
+    if not ns.startswith("/"):
+        ns = "/" + ns
+    if len(ns) > 1:
+        ns = ns.rstrip("/") or "/"
+    validate_namespace(ns)
+    return ns
+
+
+def node_fqn(namespace: str, node_name: str) -> str:
+    """``/ns`` + ``name`` → ``/ns/name`` (and ``/`` + ``name`` → ``/name``)."""
+    return ("" if namespace == "/" else namespace) + "/" + node_name
+
+
+def split_fqn(fqn: str) -> tuple[str, str]:
+    """``/a/b/name`` → (``/a/b``, ``name``); ``/name`` → (``/``, ``name``)."""
+    head, _, tail = fqn.rpartition("/")
+    return (head or "/"), tail
+
+
+def expand_topic_name(name: str, node_name: str, namespace: str) -> str:
+    """Expand a user-written name into the absolute one, like ``rcl_expand_topic_name``.
+
+    ``~`` becomes the node's fully qualified name, ``{node}``/``{ns}``/``{namespace}`` are
+    substituted, and relative names are put under the node's namespace.
+    """
+    validate_topic_name(name)
+    validate_node_name(node_name)
+    validate_namespace(namespace)
+    if name.startswith("~"):
+        name = node_fqn(namespace, node_name) + name[1:]
+    subs = {"node": node_name, "ns": namespace, "namespace": namespace}
+
+    def repl(m: re.Match[str]) -> str:
+        key = m.group(1)
+        if key not in subs:
+            raise ValueError(f"invalid topic name {name!r}: unknown substitution {{{key}}}")
+        return subs[key]
+
+    name = _SUBST_RE.sub(repl, name)
+    if not name.startswith("/"):
+        name = ("" if namespace == "/" else namespace) + "/" + name
+    name = re.sub(r"/{2,}", "/", name)
+    validate_full_topic_name(name)
+    return name
+
+
+def is_hidden_name(name: str) -> bool:
+    """Hidden topics/services/nodes have a token starting with '_' (ros2cli hides them)."""
+    return any(tok.startswith("_") for tok in name.split("/") if tok)
+
+
+# --------------------------------------------------------------------------- types and keys
+
+
+def dds_type_name(ros_type: str) -> str:
+    """``std_msgs/msg/String`` → ``std_msgs::msg::dds_::String_`` (idempotent on DDS names)."""
+    if "::" in ros_type:
+        return ros_type
+    parts = ros_type.split("/")
+    if len(parts) != 3 or not all(parts):
+        raise ValueError(f"invalid type name {ros_type!r}: expected 'pkg/msg|srv|action/Name'")
+    pkg, kind, name = parts
+    if kind not in ("msg", "srv", "action"):
+        raise ValueError(f"invalid type name {ros_type!r}: middle part must be msg, srv or action")
+    return f"{pkg}::{kind}::dds_::{name}_"
+
+
+def ros_type_name(dds_type: str) -> str:
+    """``std_msgs::msg::dds_::String_`` → ``std_msgs/msg/String`` (idempotent on ROS names)."""
+    if "::" not in dds_type:
+        return dds_type
+    parts = dds_type.split("::")
+    if "dds_" in parts:
+        parts.remove("dds_")
+        if parts[-1].endswith("_"):
+            parts[-1] = parts[-1][:-1]
+    return "/".join(parts)
+
+
+def topic_key(domain_id: int, fq_name: str, type_name: str, type_hash: str) -> str:
+    """The data key expression: ``<domain>/<name without outer '/'>/<dds type>/<hash>``."""
+    name = fq_name[1:] if fq_name.startswith("/") else fq_name
+    name = name[:-1] if name.endswith("/") else name
+    if not name:
+        raise ValueError(f"invalid topic name {fq_name!r} for a key expression")
+    if not type_hash:
+        raise ValueError("type hash must not be empty")
+    return f"{int(domain_id)}/{name}/{dds_type_name(type_name)}/{type_hash}"
+
+
+def mangle(name: str) -> str:
+    """Make a name one key chunk: every '/' becomes '%'."""
+    return name.replace("/", "%")
+
+
+def demangle(chunk: str) -> str:
+    return chunk.replace("%", "/")
+
+
+def liveliness_prefix(domain_id: int) -> str:
+    return f"{LIVELINESS_PREFIX}/{int(domain_id)}"
+
+
+def liveliness_subscription_key(domain_id: int) -> str:
+    """What to subscribe/get for graph discovery; ``@ros2_lv`` is hermetic so ``**`` alone won't."""
+    return f"{liveliness_prefix(domain_id)}/**"
+
+
+class EntityKind(str, enum.Enum):
+    NODE = "NN"
+    PUBLISHER = "MP"
+    SUBSCRIPTION = "MS"
+    SERVICE = "SS"
+    CLIENT = "SC"
+
+
+def _chunk(value: str, what: str) -> str:
+    if not value:
+        raise ValueError(f"liveliness token {what} must not be empty")
+    return mangle(value)
+
+
+def node_token(
+    domain_id: int, zid: str, nid: int, namespace: str, node_name: str, enclave: str = "/"
+) -> str:
+    """The NN token; the entity-id field repeats the node id."""
+    return "/".join([
+        liveliness_prefix(domain_id), _chunk(zid, "zid"), str(nid), str(nid), EntityKind.NODE.value,
+        _chunk(enclave, "enclave"), _chunk(namespace, "namespace"), _chunk(node_name, "node name"),
+    ])
+
+
+def endpoint_token(
+    domain_id: int,
+    zid: str,
+    nid: int,
+    eid: int,
+    kind: EntityKind | str,
+    namespace: str,
+    node_name: str,
+    topic_name: str,
+    type_name: str,
+    type_hash: str,
+    qos: QoSProfile,
+    enclave: str = "/",
+) -> str:
+    """An MP/MS/SS/SC token.  ``topic_name`` is the full name; ``type_name`` ROS or DDS form."""
+    kind = EntityKind(kind)
+    if kind is EntityKind.NODE:
+        raise ValueError("use node_token() for NN tokens")
+    return "/".join([
+        liveliness_prefix(domain_id), _chunk(zid, "zid"), str(nid), str(eid), kind.value,
+        _chunk(enclave, "enclave"), _chunk(namespace, "namespace"), _chunk(node_name, "node name"),
+        _chunk(topic_name, "topic name"), _chunk(dds_type_name(type_name), "type"),
+        _chunk(type_hash, "type hash"), encode_qos(qos),
+    ])
+
+
+@dataclass(frozen=True)
+class Entity:
+    """One parsed liveliness token: a node, or an endpoint with its topic, type and QoS."""
+
+    domain_id: int
+    zid: str
+    nid: int
+    eid: int
+    kind: EntityKind
+    enclave: str
+    namespace: str
+    node_name: str
+    topic_name: str | None = None
+    type_name: str | None = None  # ROS form, e.g. std_msgs/msg/String
+    dds_type_name: str | None = None
+    type_hash: str | None = None
+    qos: QoSProfile | None = None
+    qos_chunk: str | None = None
+    extra: tuple[str, ...] = ()  # e.g. Rolling's optional 14th "backends" chunk
+
+    @property
+    def node_fqn(self) -> str:
+        return node_fqn(self.namespace, self.node_name)
+
+    @property
+    def is_node(self) -> bool:
+        return self.kind is EntityKind.NODE
+
+    def to_token(self) -> str:
+        """Rebuild the token (without ``extra``); handy for GIDs and tests."""
+        if self.kind is EntityKind.NODE:
+            return node_token(self.domain_id, self.zid, self.nid, self.namespace,
+                              self.node_name, self.enclave)
+        assert self.topic_name and self.type_hash and self.qos_chunk is not None
+        base = "/".join([
+            liveliness_prefix(self.domain_id), self.zid, str(self.nid), str(self.eid),
+            self.kind.value, mangle(self.enclave), mangle(self.namespace), mangle(self.node_name),
+            mangle(self.topic_name),
+            mangle(self.dds_type_name or dds_type_name(self.type_name or "")),
+            mangle(self.type_hash), self.qos_chunk,
+        ])
+        return base
+
+
+def _fail(strict: bool, key: str, why: str) -> None:
+    if strict:
+        raise ValueError(f"not an rmw_zenoh liveliness token ({why}): {key!r}")
+
+
+def parse_token(key: str, *, strict: bool = False) -> Entity | None:
+    """Parse an ``@ros2_lv`` key into an :class:`Entity`.
+
+    Returns ``None`` for anything that is not a well-formed token (or raises ``ValueError``
+    with the reason when ``strict``).  Extra trailing chunks are kept in ``Entity.extra``;
+    a QoS chunk that does not decode leaves ``qos=None`` unless ``strict``.
+    """
+    parts = str(key).split("/")
+    if len(parts) < 9 or parts[0] != LIVELINESS_PREFIX:
+        _fail(strict, key, "wrong prefix or too few chunks")
+        return None
+    try:
+        domain_id, nid, eid = int(parts[1]), int(parts[3]), int(parts[4])
+    except ValueError:
+        _fail(strict, key, "domain, node id and entity id must be integers")
+        return None
+    try:
+        kind = EntityKind(parts[5])
+    except ValueError:
+        _fail(strict, key, f"unknown entity kind {parts[5]!r}")
+        return None
+    if any(not p for p in parts[:9]):
+        _fail(strict, key, "empty chunk")
+        return None
+    enclave, namespace, node_name = (demangle(p) for p in parts[6:9])
+    if kind is EntityKind.NODE:
+        return Entity(domain_id, parts[2], nid, eid, kind, enclave, namespace, node_name,
+                      extra=tuple(parts[9:]))
+    if len(parts) < 13 or any(not p for p in parts[9:12]):
+        _fail(strict, key, "endpoint tokens need topic, type, hash and QoS chunks")
+        return None
+    dds = demangle(parts[10])
+    qos: QoSProfile | None
+    try:
+        qos = decode_qos(parts[12])
+    except ValueError:
+        if strict:
+            raise
+        qos = None
+    return Entity(
+        domain_id, parts[2], nid, eid, kind, enclave, namespace, node_name,
+        topic_name=demangle(parts[9]), type_name=ros_type_name(dds), dds_type_name=dds,
+        type_hash=demangle(parts[11]), qos=qos, qos_chunk=parts[12], extra=tuple(parts[13:]),
+    )

@@ -1,0 +1,478 @@
+"""QoS profiles: the rclpy-shaped ``QoSProfile``, its presets, and rmw_zenoh's token encoding.
+
+Zenoh itself does not match endpoints by QoS; the QoS only travels in the liveliness token
+(so ``topic info -v`` can show it) and selects how an endpoint is declared (TRANSIENT_LOCAL
+→ advanced publisher/subscriber).  Enum values are rmw's (``rmw/types.h``) because those are
+the numbers written into tokens.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import NamedTuple, TypeVar
+
+__all__ = [
+    "DURATION_BEST_AVAILABLE",
+    "DURATION_INFINITE",
+    "DURATION_UNSPECIFIED",
+    "PRESETS",
+    "ZENOH_DEFAULT_QOS",
+    "Compatibility",
+    "DurabilityPolicy",
+    "Duration",
+    "HistoryPolicy",
+    "LivelinessPolicy",
+    "QoSProfile",
+    "ReliabilityPolicy",
+    "best_available_qos",
+    "check_compatible",
+    "decode_qos",
+    "encode_qos",
+    "preset",
+    "qos_profile_action_status_default",
+    "qos_profile_best_available",
+    "qos_profile_default",
+    "qos_profile_parameter_events",
+    "qos_profile_parameters",
+    "qos_profile_rosout_default",
+    "qos_profile_sensor_data",
+    "qos_profile_services_default",
+    "qos_profile_system_default",
+    "qos_profile_unknown",
+    "resolve_best_available",
+]
+
+_P = TypeVar("_P", bound="_Policy")
+
+
+class _Policy(enum.IntEnum):
+    """An rmw policy enum that also knows ros2cli's lower-case spelling (``best_effort``)."""
+
+    @property
+    def short_key(self) -> str:
+        return self.name.lower()
+
+    @classmethod
+    def from_short_key(cls: type[_P], text: str) -> _P:
+        key = text.strip().lower().replace("-", "_")
+        for member in cls:
+            if member.short_key == key:
+                return member
+        choices = ", ".join(m.short_key for m in cls)
+        raise ValueError(f"invalid {cls.__name__} {text!r}; choose one of: {choices}")
+
+    @classmethod
+    def short_keys(cls) -> list[str]:
+        return [m.short_key for m in cls]
+
+
+class ReliabilityPolicy(_Policy):
+    SYSTEM_DEFAULT = 0
+    RELIABLE = 1
+    BEST_EFFORT = 2
+    UNKNOWN = 3
+    BEST_AVAILABLE = 4
+
+
+class DurabilityPolicy(_Policy):
+    SYSTEM_DEFAULT = 0
+    TRANSIENT_LOCAL = 1
+    VOLATILE = 2
+    UNKNOWN = 3
+    BEST_AVAILABLE = 4
+
+
+class HistoryPolicy(_Policy):
+    SYSTEM_DEFAULT = 0
+    KEEP_LAST = 1
+    KEEP_ALL = 2
+    UNKNOWN = 3
+
+
+class LivelinessPolicy(_Policy):
+    SYSTEM_DEFAULT = 0
+    AUTOMATIC = 1
+    MANUAL_BY_NODE = 2  # deprecated in rmw, kept so old tokens still decode
+    MANUAL_BY_TOPIC = 3
+    UNKNOWN = 4
+    BEST_AVAILABLE = 5
+
+
+@dataclass(frozen=True, order=True)
+class Duration:
+    """An ``rmw_time_t``: whole seconds plus nanoseconds, both non-negative."""
+
+    sec: int = 0
+    nsec: int = 0
+
+    @classmethod
+    def from_seconds(cls, seconds: float) -> Duration:
+        if seconds < 0:
+            raise ValueError(f"duration must not be negative: {seconds}")
+        total = round(seconds * 1_000_000_000)
+        return cls(total // 1_000_000_000, total % 1_000_000_000)
+
+    @classmethod
+    def from_nanoseconds(cls, ns: int) -> Duration:
+        if ns < 0:
+            raise ValueError(f"duration must not be negative: {ns} ns")
+        return cls(ns // 1_000_000_000, ns % 1_000_000_000)
+
+    @property
+    def nanoseconds(self) -> int:
+        return self.sec * 1_000_000_000 + self.nsec
+
+    @property
+    def is_unspecified(self) -> bool:
+        return self.sec == 0 and self.nsec == 0
+
+    @property
+    def is_infinite(self) -> bool:
+        return self == DURATION_INFINITE
+
+    def __str__(self) -> str:
+        if self.is_infinite:
+            return "Infinite"
+        return f"{self.nanoseconds} nanoseconds"
+
+
+DURATION_UNSPECIFIED = Duration(0, 0)
+DURATION_INFINITE = Duration(9223372036, 854775807)
+DURATION_BEST_AVAILABLE = Duration(9223372036, 854775806)
+
+
+@dataclass(frozen=True)
+class QoSProfile:
+    """A QoS profile with rclpy's field names and defaults (reliable, volatile, keep_last 10).
+
+    Durations left at 0 mean "unspecified", as in rmw; :func:`best_available_qos` turns them
+    into the infinite value rmw_zenoh puts in tokens.
+    """
+
+    reliability: ReliabilityPolicy = ReliabilityPolicy.RELIABLE
+    durability: DurabilityPolicy = DurabilityPolicy.VOLATILE
+    history: HistoryPolicy = HistoryPolicy.KEEP_LAST
+    depth: int = 10
+    deadline: Duration = DURATION_UNSPECIFIED
+    lifespan: Duration = DURATION_UNSPECIFIED
+    liveliness: LivelinessPolicy = LivelinessPolicy.SYSTEM_DEFAULT
+    liveliness_lease_duration: Duration = DURATION_UNSPECIFIED
+
+    def __post_init__(self) -> None:
+        # Accept plain ints (e.g. from YAML or tokens) but store the enums.
+        object.__setattr__(self, "reliability", ReliabilityPolicy(self.reliability))
+        object.__setattr__(self, "durability", DurabilityPolicy(self.durability))
+        object.__setattr__(self, "history", HistoryPolicy(self.history))
+        object.__setattr__(self, "liveliness", LivelinessPolicy(self.liveliness))
+        if self.depth < 0:
+            raise ValueError(f"QoS depth must not be negative: {self.depth}")
+
+    def replace(self, **changes: object) -> QoSProfile:
+        """A copy with some fields changed (``dataclasses.replace`` under a friendlier name)."""
+        return dataclasses.replace(self, **changes)  # type: ignore[arg-type]
+
+    @property
+    def is_transient_local(self) -> bool:
+        return self.durability == DurabilityPolicy.TRANSIENT_LOCAL
+
+
+_R, _D, _H, _L = ReliabilityPolicy, DurabilityPolicy, HistoryPolicy, LivelinessPolicy
+
+qos_profile_default = QoSProfile()
+qos_profile_sensor_data = QoSProfile(reliability=_R.BEST_EFFORT, depth=5)
+qos_profile_system_default = QoSProfile(
+    reliability=_R.SYSTEM_DEFAULT,
+    durability=_D.SYSTEM_DEFAULT,
+    history=_H.SYSTEM_DEFAULT,
+    depth=0,
+)
+qos_profile_services_default = QoSProfile()
+qos_profile_parameters = QoSProfile(depth=1000)
+qos_profile_parameter_events = QoSProfile(depth=1000)
+qos_profile_rosout_default = QoSProfile(
+    durability=_D.TRANSIENT_LOCAL, depth=1000, lifespan=Duration(10, 0)
+)
+qos_profile_action_status_default = QoSProfile(durability=_D.TRANSIENT_LOCAL, depth=1)
+qos_profile_best_available = QoSProfile(
+    reliability=_R.BEST_AVAILABLE,
+    durability=_D.BEST_AVAILABLE,
+    depth=10,
+    deadline=DURATION_BEST_AVAILABLE,
+    liveliness=_L.BEST_AVAILABLE,
+    liveliness_lease_duration=DURATION_BEST_AVAILABLE,
+)
+qos_profile_unknown = QoSProfile(
+    reliability=_R.UNKNOWN, durability=_D.UNKNOWN, history=_H.UNKNOWN, depth=0,
+    liveliness=_L.UNKNOWN,
+)
+
+#: Presets by the short names ros2cli's ``--qos-profile`` accepts (plus a few rcl ones).
+PRESETS: dict[str, QoSProfile] = {
+    "unknown": qos_profile_unknown,
+    "system_default": qos_profile_system_default,
+    "sensor_data": qos_profile_sensor_data,
+    "services_default": qos_profile_services_default,
+    "parameters": qos_profile_parameters,
+    "parameter_events": qos_profile_parameter_events,
+    "action_status_default": qos_profile_action_status_default,
+    "best_available": qos_profile_best_available,
+    "rosout_default": qos_profile_rosout_default,
+    "default": qos_profile_default,
+}
+
+#: What rmw_zenoh writes as "empty" in a token: RELIABLE, VOLATILE, KEEP_LAST 42, infinite.
+ZENOH_DEFAULT_QOS = QoSProfile(
+    reliability=_R.RELIABLE,
+    durability=_D.VOLATILE,
+    history=_H.KEEP_LAST,
+    depth=42,
+    deadline=DURATION_INFINITE,
+    lifespan=DURATION_INFINITE,
+    liveliness=_L.AUTOMATIC,
+    liveliness_lease_duration=DURATION_INFINITE,
+)
+
+
+def preset(name: str) -> QoSProfile:
+    """Look up a preset by its short name (``sensor_data``) or rclpy name (``qos_profile_…``)."""
+    key = name.strip().lower().replace("-", "_")
+    key = key.removeprefix("qos_profile_")
+    try:
+        return PRESETS[key]
+    except KeyError:
+        choices = ", ".join(PRESETS)
+        raise ValueError(f"unknown QoS profile {name!r}; choose one of: {choices}") from None
+
+
+def best_available_qos(profile: QoSProfile) -> QoSProfile:
+    """Normalise a requested profile exactly like rmw_zenoh before it is used or advertised.
+
+    SYSTEM_DEFAULT picks rmw_zenoh's default, depth 0 becomes 42 and unspecified durations
+    become infinite.  BEST_AVAILABLE policies are left as they are (rmw_zenoh advertises
+    them unresolved); use :func:`resolve_best_available` to pick concrete values.
+    """
+    d = ZENOH_DEFAULT_QOS
+    for field, unknown in (
+        ("reliability", _R.UNKNOWN),
+        ("durability", _D.UNKNOWN),
+        ("history", _H.UNKNOWN),
+        ("liveliness", _L.UNKNOWN),
+    ):
+        if getattr(profile, field) == unknown:
+            raise ValueError(f"QoS {field} UNKNOWN is not supported")
+    return QoSProfile(
+        reliability=d.reliability if profile.reliability == _R.SYSTEM_DEFAULT
+        else profile.reliability,
+        durability=d.durability if profile.durability == _D.SYSTEM_DEFAULT
+        else profile.durability,
+        history=d.history if profile.history == _H.SYSTEM_DEFAULT else profile.history,
+        depth=d.depth if profile.depth == 0 else profile.depth,
+        deadline=d.deadline if profile.deadline.is_unspecified else profile.deadline,
+        lifespan=d.lifespan if profile.lifespan.is_unspecified else profile.lifespan,
+        liveliness=d.liveliness if profile.liveliness == _L.SYSTEM_DEFAULT
+        else profile.liveliness,
+        liveliness_lease_duration=(
+            d.liveliness_lease_duration
+            if profile.liveliness_lease_duration.is_unspecified
+            else profile.liveliness_lease_duration
+        ),
+    )
+
+
+def _no_duration(d: Duration) -> bool:
+    # rmw compares with {0,0}; tokens carry "infinite" instead, which means the same thing.
+    return d.is_unspecified or d.is_infinite
+
+
+def resolve_best_available(
+    profile: QoSProfile, others: Sequence[QoSProfile], *, for_publisher: bool
+) -> QoSProfile:
+    """Replace BEST_AVAILABLE policies using the other side's profiles (rmw_dds_common's rules).
+
+    A publisher always takes RELIABLE and TRANSIENT_LOCAL (compatible with every
+    subscription); a subscription takes the strongest policy all ``others`` (publishers) offer.
+    """
+    changes: dict[str, object] = {}
+    n = len(others)
+    if for_publisher:
+        if profile.reliability == _R.BEST_AVAILABLE:
+            changes["reliability"] = _R.RELIABLE
+        if profile.durability == _D.BEST_AVAILABLE:
+            changes["durability"] = _D.TRANSIENT_LOCAL
+        if profile.liveliness == _L.BEST_AVAILABLE:
+            manual = any(o.liveliness == _L.MANUAL_BY_TOPIC for o in others)
+            changes["liveliness"] = _L.MANUAL_BY_TOPIC if manual else _L.AUTOMATIC
+        pick = min
+    else:
+        if profile.reliability == _R.BEST_AVAILABLE:
+            all_rel = sum(o.reliability == _R.RELIABLE for o in others) == n
+            changes["reliability"] = _R.RELIABLE if all_rel else _R.BEST_EFFORT
+        if profile.durability == _D.BEST_AVAILABLE:
+            all_tl = sum(o.durability == _D.TRANSIENT_LOCAL for o in others) == n
+            changes["durability"] = _D.TRANSIENT_LOCAL if all_tl else _D.VOLATILE
+        if profile.liveliness == _L.BEST_AVAILABLE:
+            all_man = sum(o.liveliness == _L.MANUAL_BY_TOPIC for o in others) == n
+            changes["liveliness"] = _L.MANUAL_BY_TOPIC if all_man else _L.AUTOMATIC
+        pick = max
+    for field in ("deadline", "liveliness_lease_duration"):
+        if getattr(profile, field) == DURATION_BEST_AVAILABLE:
+            given = [getattr(o, field) for o in others if not _no_duration(getattr(o, field))]
+            changes[field] = pick(given) if given else DURATION_UNSPECIFIED
+    return dataclasses.replace(profile, **changes)  # type: ignore[arg-type]
+
+
+def _num(value: int, default: int) -> str:
+    return "" if value == default else str(int(value))
+
+
+def encode_qos(profile: QoSProfile, *, normalise: bool = True) -> str:
+    """The token QoS chunk, e.g. ``::,10:,:,:,,`` for ``QoSProfile(depth=10)``.
+
+    Each number is written only when it differs from rmw_zenoh's default.  The profile is
+    first normalised with :func:`best_available_qos` (as rmw_zenoh does) unless told not to.
+    """
+    q = best_available_qos(profile) if normalise else profile
+    d = ZENOH_DEFAULT_QOS
+    return (
+        f"{_num(q.reliability, d.reliability)}:"
+        f"{_num(q.durability, d.durability)}:"
+        f"{_num(q.history, d.history)},{_num(q.depth, d.depth)}:"
+        f"{_num(q.deadline.sec, d.deadline.sec)},{_num(q.deadline.nsec, d.deadline.nsec)}:"
+        f"{_num(q.lifespan.sec, d.lifespan.sec)},{_num(q.lifespan.nsec, d.lifespan.nsec)}:"
+        f"{_num(q.liveliness, d.liveliness)},"
+        f"{_num(q.liveliness_lease_duration.sec, d.liveliness_lease_duration.sec)},"
+        f"{_num(q.liveliness_lease_duration.nsec, d.liveliness_lease_duration.nsec)}"
+    )
+
+
+def _parse_int(text: str, default: int, what: str, chunk: str) -> int:
+    text = text.strip()
+    if not text:
+        return default
+    try:
+        return int(text)
+    except ValueError:
+        raise ValueError(f"bad {what} {text!r} in QoS chunk {chunk!r}") from None
+
+
+def decode_qos(
+    chunk: str, *, default_durability: DurabilityPolicy = DurabilityPolicy.VOLATILE
+) -> QoSProfile:
+    """Parse a token QoS chunk back into a profile.
+
+    Lenient on purpose: missing trailing fields take the defaults, and an empty durability
+    decodes as ``default_durability``.  Old peers (Jazzy 0.2.0-0.2.2) defaulted to
+    TRANSIENT_LOCAL and left it empty; callers that know they face such a peer pass
+    ``default_durability=DurabilityPolicy.TRANSIENT_LOCAL``.  An explicit ``2`` always
+    decodes as VOLATILE.  Raises ``ValueError`` on non-numeric or out-of-range values.
+    """
+    d = ZENOH_DEFAULT_QOS
+    parts = chunk.split(":")
+    if len(parts) < 3 or len(parts) > 6:
+        raise ValueError(f"QoS chunk {chunk!r} must have 3 to 6 ':'-separated fields")
+    parts += [""] * (6 - len(parts))
+
+    def sub(index: int, count: int) -> list[str]:
+        values = parts[index].split(",")
+        if len(values) > count:
+            raise ValueError(f"too many ',' values in field {index} of QoS chunk {chunk!r}")
+        return values + [""] * (count - len(values))
+
+    hist, depth = sub(2, 2)
+    dl_s, dl_ns = sub(3, 2)
+    ls_s, ls_ns = sub(4, 2)
+    liv, lease_s, lease_ns = sub(5, 3)
+    try:
+        return QoSProfile(
+            reliability=ReliabilityPolicy(
+                _parse_int(parts[0], d.reliability, "reliability", chunk)
+            ),
+            durability=DurabilityPolicy(
+                _parse_int(parts[1], default_durability, "durability", chunk)
+            ),
+            history=HistoryPolicy(_parse_int(hist, d.history, "history", chunk)),
+            depth=_parse_int(depth, d.depth, "depth", chunk),
+            deadline=Duration(
+                _parse_int(dl_s, d.deadline.sec, "deadline", chunk),
+                _parse_int(dl_ns, d.deadline.nsec, "deadline", chunk),
+            ),
+            lifespan=Duration(
+                _parse_int(ls_s, d.lifespan.sec, "lifespan", chunk),
+                _parse_int(ls_ns, d.lifespan.nsec, "lifespan", chunk),
+            ),
+            liveliness=LivelinessPolicy(_parse_int(liv, d.liveliness, "liveliness", chunk)),
+            liveliness_lease_duration=Duration(
+                _parse_int(lease_s, d.liveliness_lease_duration.sec, "lease", chunk),
+                _parse_int(lease_ns, d.liveliness_lease_duration.nsec, "lease", chunk),
+            ),
+        )
+    except ValueError as exc:
+        if "QoS chunk" in str(exc):
+            raise
+        raise ValueError(f"bad value in QoS chunk {chunk!r}: {exc}") from None
+
+
+class Compatibility(NamedTuple):
+    """Result of :func:`check_compatible`; ``reason`` lists ERROR/WARNING lines, or is empty."""
+
+    compatible: bool
+    reason: str
+
+
+def check_compatible(publisher: QoSProfile, subscription: QoSProfile) -> Compatibility:
+    """Would a subscription with these requests get data from this publisher's offer?
+
+    Follows rmw's request/offer rules (what ``rmw_qos_profile_check_compatible`` reports):
+    errors make the pair incompatible, warnings (a side is SYSTEM_DEFAULT/UNKNOWN) do not.
+    Unspecified and infinite deadlines/leases both count as "none".
+    """
+    errors: list[str] = []
+    pub, sub = publisher, subscription
+    if pub.reliability == _R.BEST_EFFORT and sub.reliability == _R.RELIABLE:
+        errors.append("ERROR: Best effort publisher and reliable subscription;")
+    if pub.durability == _D.VOLATILE and sub.durability == _D.TRANSIENT_LOCAL:
+        errors.append("ERROR: Volatile publisher and transient local subscription;")
+    if _no_duration(pub.deadline) and not _no_duration(sub.deadline):
+        errors.append("ERROR: Subscription has a deadline, but publisher does not;")
+    elif not _no_duration(sub.deadline) and sub.deadline < pub.deadline:
+        errors.append("ERROR: Subscription deadline is less than publisher deadline;")
+    if pub.liveliness == _L.AUTOMATIC and sub.liveliness == _L.MANUAL_BY_TOPIC:
+        errors.append(
+            "ERROR: Publisher's liveliness is automatic and subscription's is manual by topic;"
+        )
+    pl, sl = pub.liveliness_lease_duration, sub.liveliness_lease_duration
+    if _no_duration(pl) and not _no_duration(sl):
+        errors.append(
+            "ERROR: Subscription has a liveliness lease duration, but publisher does not;"
+        )
+    elif not _no_duration(pl) and not _no_duration(sl) and sl < pl:
+        errors.append("ERROR: Subscription liveliness lease duration is less than publisher;")
+    if errors:
+        return Compatibility(False, " ".join(errors))
+    return Compatibility(True, " ".join(_warnings(pub, sub)))
+
+
+def _warnings(pub: QoSProfile, sub: QoSProfile) -> list[str]:
+    out: list[str] = []
+    checks = (
+        ("reliability", (_R.SYSTEM_DEFAULT, _R.UNKNOWN), _R.RELIABLE, _R.BEST_EFFORT),
+        ("durability", (_D.SYSTEM_DEFAULT, _D.UNKNOWN), _D.TRANSIENT_LOCAL, _D.VOLATILE),
+        ("liveliness", (_L.SYSTEM_DEFAULT, _L.UNKNOWN), _L.MANUAL_BY_TOPIC, _L.AUTOMATIC),
+    )
+    for field, unknown, strict_sub, weak_pub in checks:
+        p, s = getattr(pub, field), getattr(sub, field)
+        if p in unknown and s in unknown:
+            out.append(
+                f"WARNING: Publisher {field} is {p.short_key} and subscription {field} is "
+                f"{s.short_key};"
+            )
+        elif p in unknown and s == strict_sub:
+            out.append(f"WARNING: Subscription {field} is {s.short_key}, but publisher is "
+                       f"{p.short_key};")
+        elif p == weak_pub and s in unknown:
+            out.append(f"WARNING: Publisher {field} is {p.short_key}, but subscription is "
+                       f"{s.short_key};")
+    return out

@@ -1,0 +1,183 @@
+from __future__ import annotations
+
+import json
+import threading
+import time
+from pathlib import Path
+
+import pytest
+import zenoh
+
+from ros2lite.transport import config as cfg
+from ros2lite.transport.config import ConfigError, RouterUnavailableError, open_session
+from ros2lite.transport.keys import liveliness_subscription_key, node_token, topic_key
+
+
+def get(config: zenoh.Config, key: str) -> object:
+    return json.loads(config.get_json(key))
+
+
+def test_domain_id() -> None:
+    assert cfg.domain_id({}) == 0
+    assert cfg.domain_id({"ROS_DOMAIN_ID": " 7 "}) == 7
+    assert cfg.domain_id({"ROS_DOMAIN_ID": "232"}) == 232
+    with pytest.raises(ConfigError, match=r"0\.\.232, got 233"):
+        cfg.domain_id({"ROS_DOMAIN_ID": "233"})
+    with pytest.raises(ConfigError, match="integer"):
+        cfg.domain_id({"ROS_DOMAIN_ID": "abc"})
+    with pytest.raises(ConfigError):
+        cfg.domain_id({"ROS_DOMAIN_ID": "-1"})
+
+
+def test_router_endpoint() -> None:
+    assert cfg.router_endpoint(env={}) == "tcp/127.0.0.1:7447"
+    assert cfg.router_endpoint(env={"ROS2LITE_ROUTER": "tcp/127.0.0.1:9"}) == "tcp/127.0.0.1:9"
+    assert cfg.router_endpoint("tcp/[::1]:5", env={"ROS2LITE_ROUTER": "x/y"}) == "tcp/[::1]:5"
+    with pytest.raises(ConfigError, match="protocol"):
+        cfg.router_endpoint("localhost:7447", env={})
+
+
+def test_endpoint_host_port() -> None:
+    assert cfg.endpoint_host_port("tcp/127.0.0.1:7447") == ("tcp", "127.0.0.1", 7447)
+    assert cfg.endpoint_host_port("tcp/[::1]:7447#iface=lo") == ("tcp", "::1", 7447)
+    assert cfg.endpoint_host_port("tls/localhost:1?x=y") == ("tls", "localhost", 1)
+    assert cfg.endpoint_host_port("unixsock-stream//tmp/sock") is None
+    assert cfg.endpoint_host_port("nonsense") is None
+
+
+def test_parse_config_override() -> None:
+    text = 'mode="peer"; connect/endpoints=["tcp/a:1","tcp/b;c:2"];;x={a:"b;c"}; '
+    assert cfg.parse_config_override(text) == [
+        ("mode", '"peer"'),
+        ("connect/endpoints", '["tcp/a:1","tcp/b;c:2"]'),
+        ("x", '{a:"b;c"}'),
+    ]
+    assert cfg.parse_config_override("") == []
+    with pytest.raises(ConfigError, match="key=json5"):
+        cfg.parse_config_override("mode")
+
+
+def test_session_defaults() -> None:
+    config = cfg.session_config("tcp/127.0.0.1:1234", env={})
+    assert get(config, "mode") == "client"
+    assert get(config, "connect/endpoints") == ["tcp/127.0.0.1:1234"]
+    assert get(config, "scouting/multicast/enabled") is False
+    assert get(config, "timestamping/enabled") is True
+    assert get(config, "transport/shared_memory/enabled") is False
+    assert get(config, "listen/endpoints") == {"peer": ["tcp/127.0.0.1:0"]}
+    env_config = cfg.session_config(env={"ROS2LITE_ROUTER": "tcp/127.0.0.1:99"})
+    assert get(env_config, "connect/endpoints") == ["tcp/127.0.0.1:99"]
+
+
+def test_config_override_is_applied() -> None:
+    env = {"ZENOH_CONFIG_OVERRIDE": 'mode="peer";queries_default_timeout=1234'}
+    config = cfg.session_config("tcp/127.0.0.1:1", env=env)
+    assert get(config, "mode") == "peer"
+    assert get(config, "queries_default_timeout") == 1234
+    # The explicit router (the CLI's --router) beats the environment ...
+    env2 = {"ZENOH_CONFIG_OVERRIDE": 'connect/endpoints=["tcp/127.0.0.1:2"]'}
+    assert get(cfg.session_config("tcp/127.0.0.1:1", env=env2), "connect/endpoints") == [
+        "tcp/127.0.0.1:1"]
+    # ... while the override beats ROS2LITE_ROUTER.
+    env2["ROS2LITE_ROUTER"] = "tcp/127.0.0.1:3"
+    assert get(cfg.session_config(env=env2), "connect/endpoints") == ["tcp/127.0.0.1:2"]
+    admin = {"ZENOH_CONFIG_OVERRIDE": "adminspace/enabled=true"}
+    router = cfg.router_config("tcp/127.0.0.1:5", env=admin)
+    assert get(router, "adminspace/enabled") is True
+    with pytest.raises(ConfigError, match="ZENOH_CONFIG_OVERRIDE: cannot set bogus/key=1"):
+        cfg.session_config(env={"ZENOH_CONFIG_OVERRIDE": "bogus/key=1"})
+    with pytest.raises(ConfigError, match="unknown variant"):
+        cfg.session_config(env={"ZENOH_CONFIG_OVERRIDE": 'mode="sometimes"'})
+
+
+def test_session_config_file_replaces_defaults(tmp_path: Path) -> None:
+    path = tmp_path / "session.json5"
+    path.write_text('{ mode: "peer", connect: { endpoints: ["tcp/127.0.0.1:4242"] },'
+                    ' queries_default_timeout: 4321 }')
+    config = cfg.session_config(env={"ZENOH_SESSION_CONFIG_URI": str(path)})
+    assert get(config, "mode") == "peer"
+    assert get(config, "queries_default_timeout") == 4321
+    assert get(config, "connect/endpoints") == ["tcp/127.0.0.1:4242"]
+    assert get(config, "timestamping/enabled") is None  # our defaults are not mixed in
+    explicit = cfg.session_config("tcp/127.0.0.1:1", env={"ZENOH_SESSION_CONFIG_URI": str(path)})
+    assert get(explicit, "connect/endpoints") == ["tcp/127.0.0.1:1"]
+    with pytest.raises(ConfigError, match="not a readable file"):
+        cfg.session_config(env={"ZENOH_SESSION_CONFIG_URI": str(tmp_path / "missing.json5")})
+    bad = tmp_path / "bad.json5"
+    bad.write_text("{ mode: ")
+    with pytest.raises(ConfigError, match="ZENOH_SESSION_CONFIG_URI"):
+        cfg.session_config(env={"ZENOH_SESSION_CONFIG_URI": str(bad)})
+
+
+def test_router_config(tmp_path: Path) -> None:
+    config = cfg.router_config("tcp/127.0.0.1:5555", connect=["tcp/10.0.0.1:7447"], env={})
+    assert get(config, "mode") == "router"
+    assert get(config, "listen/endpoints") == ["tcp/127.0.0.1:5555"]
+    assert get(config, "connect/endpoints") == ["tcp/10.0.0.1:7447"]
+    assert get(config, "scouting/multicast/enabled") is False
+    assert get(config, "timestamping/enabled") is True
+    wide = cfg.router_config("tcp/127.0.0.1:5555", listen=["tcp/0.0.0.0:5555"], env={})
+    assert get(wide, "listen/endpoints") == ["tcp/0.0.0.0:5555"]
+    default = cfg.router_config(env={})
+    assert get(default, "listen/endpoints") == ["tcp/127.0.0.1:7447"]  # loopback only
+    path = tmp_path / "router.json5"
+    path.write_text('{ mode: "router", listen: { endpoints: ["tcp/127.0.0.1:6000"] } }')
+    from_file = cfg.router_config(env={"ZENOH_ROUTER_CONFIG_URI": str(path)})
+    assert get(from_file, "listen/endpoints") == ["tcp/127.0.0.1:6000"]
+
+
+def test_open_session_fails_fast_without_router(private_domain: int, dead_endpoint: str) -> None:
+    start = time.monotonic()
+    with pytest.raises(RouterUnavailableError) as err:
+        open_session(dead_endpoint)
+    assert time.monotonic() - start < 3.0
+    assert str(err.value) == (
+        f"No Zenoh router answers at {dead_endpoint} (start one with 'ros2lite daemon start')")
+    assert err.value.endpoint == dead_endpoint
+
+
+def test_open_session_fails_fast_in_peer_mode(
+    private_domain: int, dead_endpoint: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # A peer would happily open with no router; we must still refuse quickly.
+    monkeypatch.setenv("ZENOH_CONFIG_OVERRIDE", 'mode="peer";connect/exit_on_failure=false')
+    start = time.monotonic()
+    with pytest.raises(RouterUnavailableError, match=dead_endpoint):
+        open_session(dead_endpoint)
+    assert time.monotonic() - start < 3.0
+
+
+@pytest.mark.parametrize("mode", ["client", "peer"])
+def test_pub_sub_and_liveliness_through_router(
+    live_router: str, private_domain: int, monkeypatch: pytest.MonkeyPatch, mode: str
+) -> None:
+    monkeypatch.setenv("ZENOH_CONFIG_OVERRIDE", f'mode="{mode}"')
+    hash_ = "RIHS01_" + "0" * 64
+    key = topic_key(cfg.domain_id(), "/chatter", "std_msgs/msg/String", hash_)
+    a = open_session(live_router)
+    b = open_session(live_router)
+    try:
+        got: list[bytes] = []
+        arrived = threading.Event()
+
+        def on_sample(sample: zenoh.Sample) -> None:
+            got.append(sample.payload.to_bytes())
+            arrived.set()
+
+        sub = b.declare_subscriber(key, on_sample)
+        token = a.liveliness().declare_token(
+            node_token(private_domain, str(a.zid()), 0, "/", "talker"))
+        deadline = time.monotonic() + 5
+        while not arrived.is_set() and time.monotonic() < deadline:
+            a.put(key, b"\x00\x01\x00\x00hello")
+            arrived.wait(0.05)
+        assert got and got[0] == b"\x00\x01\x00\x00hello"
+        replies = b.liveliness().get(liveliness_subscription_key(private_domain),
+                                     zenoh.handlers.FifoChannel(1024), timeout=2)
+        keys = [str(r.ok.key_expr) for r in replies if r.ok is not None]
+        assert keys == [f"@ros2_lv/{private_domain}/{a.zid()}/0/0/NN/%/%/talker"]
+        token.undeclare()
+        sub.undeclare()
+    finally:
+        a.close()
+        b.close()

@@ -1,0 +1,176 @@
+from __future__ import annotations
+
+import pytest
+
+from ros2lite.transport import qos as q
+from ros2lite.transport.qos import (
+    DURATION_BEST_AVAILABLE,
+    DURATION_INFINITE,
+    DurabilityPolicy,
+    Duration,
+    HistoryPolicy,
+    LivelinessPolicy,
+    QoSProfile,
+    ReliabilityPolicy,
+    best_available_qos,
+    check_compatible,
+    decode_qos,
+    encode_qos,
+    preset,
+    resolve_best_available,
+)
+
+# The worked values of the rmw_zenoh reference, §2.2.
+WORKED = [
+    (QoSProfile(depth=10), "::,10:,:,:,,"),  # rclcpp QoS(10), services
+    (q.qos_profile_services_default, "::,10:,:,:,,"),
+    (QoSProfile(depth=7), "::,7:,:,:,,"),  # the talker
+    (q.qos_profile_sensor_data, "2::,5:,:,:,,"),  # best effort depth 5
+    (q.qos_profile_rosout_default, ":1:,1000:,:10,0:,,"),
+    (q.qos_profile_action_status_default, ":1:,1:,:,:,,"),
+    (q.qos_profile_parameters, "::,1000:,:,:,,"),
+    (q.qos_profile_parameter_events, "::,1000:,:,:,,"),
+]
+
+
+@pytest.mark.parametrize(("profile", "chunk"), WORKED)
+def test_worked_values(profile: QoSProfile, chunk: str) -> None:
+    assert encode_qos(profile) == chunk
+    assert decode_qos(chunk) == best_available_qos(profile)
+
+
+def test_rmw_zenoh_defaults_encode_empty() -> None:
+    assert encode_qos(q.ZENOH_DEFAULT_QOS) == "::,:,:,:,,"
+    # SYSTEM_DEFAULT everywhere and depth 0 normalise to those defaults.
+    assert encode_qos(q.qos_profile_system_default) == "::,:,:,:,,"
+    assert decode_qos("::,:,:,:,,") == q.ZENOH_DEFAULT_QOS
+
+
+def test_best_available_normalisation() -> None:
+    norm = best_available_qos(QoSProfile(depth=0))
+    assert norm.depth == 42
+    assert norm.deadline == norm.lifespan == norm.liveliness_lease_duration == DURATION_INFINITE
+    assert norm.liveliness == LivelinessPolicy.AUTOMATIC
+    # BEST_AVAILABLE is advertised unresolved, like rmw_zenoh does.
+    assert encode_qos(QoSProfile(reliability=ReliabilityPolicy.BEST_AVAILABLE)) == "4::,10:,:,:,,"
+    with pytest.raises(ValueError, match="UNKNOWN"):
+        best_available_qos(q.qos_profile_unknown)
+
+
+def test_explicit_values_round_trip() -> None:
+    profile = QoSProfile(
+        reliability=ReliabilityPolicy.BEST_EFFORT,
+        durability=DurabilityPolicy.TRANSIENT_LOCAL,
+        history=HistoryPolicy.KEEP_ALL,
+        depth=3,
+        deadline=Duration(1, 500),
+        lifespan=Duration.from_seconds(2.5),
+        liveliness=LivelinessPolicy.MANUAL_BY_TOPIC,
+        liveliness_lease_duration=Duration(4, 0),
+    )
+    chunk = encode_qos(profile)
+    assert chunk == "2:1:2,3:1,500:2,500000000:3,4,0"
+    assert decode_qos(chunk) == profile
+
+
+def test_lenient_decode_of_old_default_durability() -> None:
+    # Jazzy 0.2.0-0.2.2 peers wrote ':2:' for volatile and '::' for transient local.
+    assert decode_qos(":2:,10:,:,:,,").durability == DurabilityPolicy.VOLATILE
+    assert decode_qos("::,10:,:,:,,").durability == DurabilityPolicy.VOLATILE
+    old_tl = decode_qos("::,10:,:,:,,", default_durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    assert old_tl.durability == DurabilityPolicy.TRANSIENT_LOCAL
+    # Missing trailing fields take defaults.
+    assert decode_qos("2::,5") == decode_qos("2::,5:,:,:,,")
+
+
+@pytest.mark.parametrize("chunk", ["", "abc", "x::,:,:,:,,", "::,ten:,:,:,,", "9::,:,:,:,,",
+                                   "::,:,:,:,,:", "::,1,2:,:,:,,"])
+def test_garbage_chunks_raise(chunk: str) -> None:
+    with pytest.raises(ValueError, match="QoS chunk"):
+        decode_qos(chunk)
+
+
+def test_presets_and_short_keys() -> None:
+    assert preset("sensor_data") is q.qos_profile_sensor_data
+    assert preset("qos_profile_sensor_data") is q.qos_profile_sensor_data
+    assert preset("rosout_default").lifespan == Duration(10, 0)
+    assert preset("parameters").depth == preset("parameter_events").depth == 1000
+    assert preset("action_status_default").durability == DurabilityPolicy.TRANSIENT_LOCAL
+    assert preset("system_default").reliability == ReliabilityPolicy.SYSTEM_DEFAULT
+    assert QoSProfile() == QoSProfile(ReliabilityPolicy.RELIABLE, DurabilityPolicy.VOLATILE,
+                                      HistoryPolicy.KEEP_LAST, 10)
+    with pytest.raises(ValueError, match="sensor_data"):
+        preset("nope")
+    assert ReliabilityPolicy.from_short_key("best_effort") is ReliabilityPolicy.BEST_EFFORT
+    assert DurabilityPolicy.from_short_key("transient_local") is DurabilityPolicy.TRANSIENT_LOCAL
+    assert HistoryPolicy.from_short_key("KEEP_ALL") is HistoryPolicy.KEEP_ALL
+    assert ReliabilityPolicy.RELIABLE.short_key == "reliable"
+    assert "system_default" in ReliabilityPolicy.short_keys()
+    with pytest.raises(ValueError, match="reliable, best_effort"):
+        ReliabilityPolicy.from_short_key("sometimes")
+
+
+def test_profile_accepts_ints_and_checks_depth() -> None:
+    assert QoSProfile(reliability=2).reliability is ReliabilityPolicy.BEST_EFFORT  # type: ignore[arg-type]
+    assert QoSProfile().replace(depth=3).depth == 3
+    with pytest.raises(ValueError):
+        QoSProfile(depth=-1)
+
+
+def test_duration_helpers() -> None:
+    assert Duration.from_seconds(10) == Duration(10, 0)
+    assert Duration.from_nanoseconds(1_500_000_000) == Duration(1, 500_000_000)
+    assert str(DURATION_INFINITE) == "Infinite"
+    assert str(Duration(1, 5)) == "1000000005 nanoseconds"
+    assert Duration(1, 0) < Duration(1, 1) < Duration(2, 0)
+
+
+R, D, L = ReliabilityPolicy, DurabilityPolicy, LivelinessPolicy
+
+
+@pytest.mark.parametrize(
+    ("pub", "sub", "ok", "fragment"),
+    [
+        (QoSProfile(reliability=R.BEST_EFFORT), QoSProfile(), False, "Best effort publisher"),
+        (QoSProfile(), QoSProfile(reliability=R.BEST_EFFORT), True, ""),
+        (QoSProfile(), QoSProfile(durability=D.TRANSIENT_LOCAL), False, "Volatile publisher"),
+        (QoSProfile(durability=D.TRANSIENT_LOCAL), QoSProfile(), True, ""),
+        (QoSProfile(), QoSProfile(deadline=Duration(1, 0)), False, "publisher does not"),
+        (QoSProfile(deadline=Duration(2, 0)), QoSProfile(deadline=Duration(1, 0)), False,
+         "deadline is less"),
+        (QoSProfile(deadline=Duration(1, 0)), QoSProfile(deadline=Duration(2, 0)), True, ""),
+        (QoSProfile(liveliness=L.AUTOMATIC), QoSProfile(liveliness=L.MANUAL_BY_TOPIC), False,
+         "manual by topic"),
+        (QoSProfile(), QoSProfile(liveliness_lease_duration=Duration(1, 0)), False,
+         "lease duration, but publisher does not"),
+        (QoSProfile(liveliness_lease_duration=Duration(3, 0)),
+         QoSProfile(liveliness_lease_duration=Duration(1, 0)), False, "less than publisher"),
+        # Tokens carry "infinite" where users write "unspecified": both mean no deadline.
+        (decode_qos("::,10:,:,:,,"), QoSProfile(), True, ""),
+        (QoSProfile(), decode_qos("::,10:,:,:,,"), True, ""),
+        (q.qos_profile_system_default, q.qos_profile_system_default, True, "WARNING"),
+    ],
+)
+def test_compatibility(pub: QoSProfile, sub: QoSProfile, ok: bool, fragment: str) -> None:
+    compatible, reason = check_compatible(pub, sub)
+    assert compatible is ok
+    assert fragment in reason
+    if not fragment:
+        assert reason == "" or reason.startswith("WARNING")
+
+
+def test_resolve_best_available() -> None:
+    ba = q.qos_profile_best_available
+    pub = resolve_best_available(ba, [], for_publisher=True)
+    assert (pub.reliability, pub.durability, pub.liveliness) == (R.RELIABLE, D.TRANSIENT_LOCAL,
+                                                                 L.AUTOMATIC)
+    assert pub.deadline.is_unspecified
+    pubs = [QoSProfile(reliability=R.BEST_EFFORT, deadline=Duration(2, 0)),
+            QoSProfile(durability=D.TRANSIENT_LOCAL, deadline=Duration(5, 0))]
+    sub = resolve_best_available(ba, pubs, for_publisher=False)
+    assert (sub.reliability, sub.durability) == (R.BEST_EFFORT, D.VOLATILE)
+    assert sub.deadline == Duration(5, 0)
+    assert sub.liveliness_lease_duration.is_unspecified
+    tl = resolve_best_available(ba, [q.qos_profile_rosout_default], for_publisher=False)
+    assert (tl.reliability, tl.durability) == (R.RELIABLE, D.TRANSIENT_LOCAL)
+    assert ba.deadline == DURATION_BEST_AVAILABLE
