@@ -1,0 +1,192 @@
+"""`--ros-args` parsing with rcl's rules, so `ros2lite run pkg exe --ros-args -r …` behaves.
+
+Supported: ``-r/--remap [node:]from:=to`` (including ``__node``/``__name`` and ``__ns``),
+``-p/--param [node:]name:=value`` (YAML-typed), ``--params-file FILE``,
+``--log-level [name:=]LEVEL`` and ``-e/--enclave``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+LOG_LEVELS = {'debug': 10, 'info': 20, 'warn': 30, 'warning': 30, 'error': 40, 'fatal': 50,
+              'unset': 0}
+
+
+class RosArgsError(ValueError):
+    """Malformed --ros-args; the message says which argument and why."""
+
+
+@dataclass
+class Remap:
+    node: str | None   # only applies to this node name when given
+    source: str
+    target: str
+
+
+@dataclass
+class RosArgs:
+    remaps: list[Remap] = field(default_factory=list)
+    params: dict[str | None, dict[str, Any]] = field(default_factory=dict)  # node → name → value
+    params_files: list[Path] = field(default_factory=list)
+    log_levels: dict[str | None, int] = field(default_factory=dict)
+    enclave: str | None = None
+
+    def merge(self, other: RosArgs) -> RosArgs:
+        """Node-local arguments (`other`) take precedence over global ones."""
+        merged = RosArgs(self.remaps + other.remaps, {}, self.params_files + other.params_files,
+                         {**self.log_levels, **other.log_levels}, other.enclave or self.enclave)
+        for source in (self.params, other.params):
+            for node, values in source.items():
+                merged.params.setdefault(node, {}).update(values)
+        return merged
+
+    def node_name_override(self, node: str) -> str | None:
+        return self._special(node, ('__node', '__name'))
+
+    def namespace_override(self, node: str) -> str | None:
+        return self._special(node, ('__ns',))
+
+    def _special(self, node: str, keys: tuple[str, ...]) -> str | None:
+        found = None
+        for r in self.remaps:
+            if r.source in keys and r.node in (None, node):
+                found = r.target
+        return found
+
+    def parameter_overrides(self, node_fqn: str, node_name: str) -> dict[str, Any]:
+        """Values for one node: params files (in order), then -p, node-specific last."""
+        values: dict[str, Any] = {}
+        for path in self.params_files:
+            values.update(load_params_file(path, node_fqn, node_name))
+        values.update(self.params.get(None, {}))
+        values.update(self.params.get(node_name, {}))
+        return values
+
+
+def _split_assignment(text: str, what: str) -> tuple[str | None, str, str]:
+    if ':=' not in text:
+        raise RosArgsError(f"Couldn't parse {what} rule: '{text}' (expected 'from:=to')")
+    left, _, right = text.partition(':=')
+    node = None
+    if ':' in left:
+        node, _, left = left.partition(':')
+    if not left:
+        raise RosArgsError(f"Couldn't parse {what} rule: '{text}'")
+    return node, left, right
+
+
+def parse_value(text: str) -> Any:
+    """A parameter value from the command line, typed the YAML way ('1' → int)."""
+    import yaml
+    try:
+        return yaml.safe_load(text)
+    except yaml.YAMLError:
+        return text
+
+
+def split_ros_args(argv: list[str]) -> tuple[list[str], list[list[str]]]:
+    """Separate user arguments from each `--ros-args … [--]` block."""
+    user: list[str] = []
+    blocks: list[list[str]] = []
+    i = 0
+    while i < len(argv):
+        if argv[i] == '--ros-args':
+            block: list[str] = []
+            i += 1
+            while i < len(argv) and argv[i] not in ('--', '--ros-args'):
+                block.append(argv[i])
+                i += 1
+            if i < len(argv) and argv[i] == '--':
+                i += 1
+            blocks.append(block)
+            continue
+        user.append(argv[i])
+        i += 1
+    return user, blocks
+
+
+def parse_ros_args(argv: list[str] | None) -> RosArgs:
+    """Parse every `--ros-args` block found in argv."""
+    result = RosArgs()
+    if not argv:
+        return result
+    _, blocks = split_ros_args(argv)
+    for block in blocks:
+        it = iter(block)
+        for arg in it:
+            if arg in ('-r', '--remap'):
+                node, src, dst = _split_assignment(_next(it, arg), 'remap')
+                result.remaps.append(Remap(node, src, dst))
+            elif arg in ('-p', '--param'):
+                node, name, value = _split_assignment(_next(it, arg), 'parameter')
+                result.params.setdefault(node, {})[name] = parse_value(value)
+            elif arg == '--params-file':
+                path = Path(_next(it, arg))
+                if not path.is_file():
+                    raise RosArgsError(f"Couldn't read parameters file '{path}'")
+                result.params_files.append(path)
+            elif arg == '--log-level':
+                text = _next(it, arg)
+                logger: str | None = None
+                if ':=' in text:
+                    logger, _, text = text.partition(':=')
+                level = LOG_LEVELS.get(text.lower())
+                if level is None:
+                    raise RosArgsError(f"Invalid log level '{text}'")
+                result.log_levels[logger] = level
+            elif arg in ('-e', '--enclave'):
+                result.enclave = _next(it, arg)
+            elif arg in ('--enable-rosout-logs', '--disable-rosout-logs',
+                         '--enable-stdout-logs', '--disable-stdout-logs',
+                         '--enable-external-lib-logs', '--disable-external-lib-logs'):
+                continue
+            else:
+                raise RosArgsError(f"Unknown ROS argument '{arg}'")
+    return result
+
+
+def _next(it: Any, flag: str) -> str:
+    try:
+        value: str = next(it)
+    except StopIteration:
+        raise RosArgsError(f"Argument '{flag}' needs a value") from None
+    return value
+
+
+def load_params_file(path: Path, node_fqn: str, node_name: str) -> dict[str, Any]:
+    """Parameters for one node from a ROS 2 YAML params file (`/**` and wildcards honoured)."""
+    import fnmatch
+
+    import yaml
+    try:
+        data = yaml.safe_load(path.read_text(encoding='utf-8')) or {}
+    except (OSError, yaml.YAMLError) as e:
+        raise RosArgsError(f"Couldn't read parameters file '{path}': {e}") from None
+    if not isinstance(data, dict):
+        raise RosArgsError(f"Parameters file '{path}' must map node names to parameters")
+    values: dict[str, Any] = {}
+    for key, section in data.items():
+        pattern = str(key)
+        full = pattern if pattern.startswith('/') else '/' + pattern
+        if not (fnmatch.fnmatchcase(node_fqn, full.replace('/**', '*'))
+                or pattern in (node_name, '/**')):
+            continue
+        if not isinstance(section, dict) or not isinstance(
+                section.get('ros__parameters', {}), dict):
+            raise RosArgsError(f"Parameters file '{path}': '{key}' needs 'ros__parameters'")
+        values.update(_flatten(section.get('ros__parameters', {})))
+    return values
+
+
+def _flatten(tree: dict[str, Any], prefix: str = '') -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for k, v in tree.items():
+        name = f'{prefix}{k}'
+        if isinstance(v, dict):
+            out.update(_flatten(v, name + '.'))
+        else:
+            out[name] = v
+    return out

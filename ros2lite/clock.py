@@ -1,0 +1,107 @@
+"""ROS time: Time, Duration and clocks, including `/clock` simulation time.
+
+Kept rclpy-shaped (`node.get_clock().now().to_msg()`) because tutorial code relies on it.
+"""
+
+from __future__ import annotations
+
+import enum
+import threading
+import time
+from dataclasses import dataclass
+from typing import Any
+
+_NS = 1_000_000_000
+
+
+class ClockType(enum.IntEnum):
+    UNINITIALIZED = 0
+    ROS_TIME = 1
+    SYSTEM_TIME = 2
+    STEADY_TIME = 3
+
+
+@dataclass(frozen=True, order=True)
+class Duration:
+    nanoseconds: int = 0
+
+    @classmethod
+    def from_seconds(cls, seconds: float) -> Duration:
+        return cls(round(seconds * _NS))
+
+    def to_seconds(self) -> float:
+        return self.nanoseconds / _NS
+
+    def to_msg(self) -> Any:
+        from ros2lite.interfaces import get_interface
+        sec, nsec = divmod(self.nanoseconds, _NS)
+        return get_interface('builtin_interfaces/msg/Duration')(sec=sec, nanosec=nsec)
+
+
+@dataclass(frozen=True, order=True)
+class Time:
+    nanoseconds: int = 0
+    clock_type: ClockType = ClockType.SYSTEM_TIME
+
+    @classmethod
+    def from_msg(cls, msg: Any, clock_type: ClockType = ClockType.ROS_TIME) -> Time:
+        return cls(msg.sec * _NS + msg.nanosec, clock_type)
+
+    @property
+    def seconds_nanoseconds(self) -> tuple[int, int]:
+        return divmod(self.nanoseconds, _NS)
+
+    def to_msg(self) -> Any:
+        from ros2lite.interfaces import get_interface
+        sec, nsec = divmod(self.nanoseconds, _NS)
+        return get_interface('builtin_interfaces/msg/Time')(sec=sec, nanosec=nsec)
+
+    def __sub__(self, other: Time | Duration) -> Any:
+        if isinstance(other, Time):
+            return Duration(self.nanoseconds - other.nanoseconds)
+        return Time(self.nanoseconds - other.nanoseconds, self.clock_type)
+
+    def __add__(self, other: Duration) -> Time:
+        return Time(self.nanoseconds + other.nanoseconds, self.clock_type)
+
+
+class Clock:
+    """System, steady or ROS time; ROS time follows `/clock` once sim time is enabled."""
+
+    def __init__(self, clock_type: ClockType = ClockType.SYSTEM_TIME) -> None:
+        self.clock_type = clock_type
+        self._sim_ns: int | None = None     # None: ROS time is system time
+        self._changed = threading.Condition()
+
+    @property
+    def ros_time_is_active(self) -> bool:
+        return self._sim_ns is not None
+
+    def _enable_sim_time(self, enabled: bool) -> None:
+        with self._changed:
+            self._sim_ns = 0 if enabled else None
+            self._changed.notify_all()
+
+    def _set_sim_time(self, nanoseconds: int) -> None:
+        with self._changed:
+            if self._sim_ns is not None:
+                self._sim_ns = nanoseconds
+                self._changed.notify_all()
+
+    def now(self) -> Time:
+        if self.clock_type == ClockType.STEADY_TIME:
+            return Time(time.monotonic_ns(), self.clock_type)
+        sim = self._sim_ns
+        if sim is not None and self.clock_type == ClockType.ROS_TIME:
+            return Time(sim, self.clock_type)
+        return Time(time.time_ns(), self.clock_type)
+
+    def sleep_for(self, duration: Duration | float) -> None:
+        seconds = duration.to_seconds() if isinstance(duration, Duration) else duration
+        if self._sim_ns is None:
+            time.sleep(max(0.0, seconds))
+            return
+        target = self.now().nanoseconds + round(seconds * _NS)
+        with self._changed:
+            while self._sim_ns is not None and self._sim_ns < target:
+                self._changed.wait(0.1)

@@ -1,0 +1,125 @@
+"""One process context: the Zenoh session, the entity-id counter and the work queue.
+
+rmw_zenoh numbers nodes and endpoints from one counter per context and keys the graph by
+(session id, node id), so both live here. Callbacks from Zenoh threads never run user code: they
+queue work that an executor runs on the user's thread, as rclpy does.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import itertools
+import queue
+import threading
+from typing import Any
+
+from ros2lite.arguments import RosArgs, parse_ros_args
+
+
+class NotInitializedError(RuntimeError):
+    def __init__(self) -> None:
+        super().__init__('ros2lite is not initialized: call ros2lite.init() first')
+
+
+class Context:
+    """Owns the session; nodes, endpoints and executors of a process share it."""
+
+    def __init__(self) -> None:
+        self.session: Any = None
+        self.domain_id = 0
+        self.zid = ''
+        self.router: str | None = None
+        self.args = RosArgs()
+        self.argv: list[str] = []
+        # Work items are objects with an `execute()` method; None wakes a waiting executor.
+        self.work: queue.SimpleQueue[Any] = queue.SimpleQueue()
+        self._ids = itertools.count()
+        self._lock = threading.Lock()
+        self._nodes: list[Any] = []
+        self._on_shutdown: list[Any] = []
+        self._graph: Any = None
+
+    def init(self, args: list[str] | None = None, *, router: str | None = None,
+             domain_id: int | None = None) -> None:
+        from ros2lite.transport.config import domain_id as env_domain_id
+        from ros2lite.transport.config import open_session
+        if self.ok():
+            raise RuntimeError('Context.init() must only be called once')
+        self.argv = list(args or [])
+        self.args = parse_ros_args(self.argv)
+        self.domain_id = env_domain_id() if domain_id is None else domain_id
+        self.router = router
+        self.session = open_session(router)
+        self.zid = str(self.session.info.zid())
+
+    def ok(self) -> bool:
+        return self.session is not None
+
+    def require(self) -> Any:
+        if self.session is None:
+            raise NotInitializedError()
+        return self.session
+
+    def next_entity_id(self) -> int:
+        with self._lock:
+            return next(self._ids)
+
+    @property
+    def graph(self) -> Any:
+        """The live graph cache, created on first use (CLI snapshots don't need it)."""
+        with self._lock:
+            if self._graph is None:
+                from ros2lite.graph import GraphCache
+                self._graph = GraphCache(self.require(), self.domain_id)
+            return self._graph
+
+    def add_node(self, node: Any) -> None:
+        with self._lock:
+            self._nodes.append(node)
+
+    def remove_node(self, node: Any) -> None:
+        with self._lock:
+            if node in self._nodes:
+                self._nodes.remove(node)
+
+    def on_shutdown(self, fn: Any) -> None:
+        self._on_shutdown.append(fn)
+
+    def wake(self) -> None:
+        self.work.put(None)
+
+    def shutdown(self) -> None:
+        if self.session is None:
+            return
+        for fn in self._on_shutdown:
+            fn()
+        for node in list(self._nodes):
+            node.destroy_node()
+        if self._graph is not None:
+            self._graph.close()
+            self._graph = None
+        session, self.session = self.session, None
+        try:
+            session.close()
+        finally:
+            self.wake()
+            self._ids = itertools.count()
+
+    def try_shutdown(self) -> None:
+        if self.ok():
+            self.shutdown()
+
+
+def undeclare_quietly(*entities: Any) -> None:
+    """Undeclare Zenoh entities; errors only mean the session is already closed."""
+    for entity in entities:
+        if entity is not None:
+            with contextlib.suppress(Exception):
+                entity.undeclare()
+
+
+_default = Context()
+
+
+def default_context() -> Context:
+    return _default

@@ -1,0 +1,84 @@
+"""What publishers and subscriptions share: type resolution, keys, tokens and QoS mapping."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ros2lite.transport.keys import EntityKind, endpoint_token, topic_key
+from ros2lite.transport.qos import (
+    DurabilityPolicy,
+    HistoryPolicy,
+    QoSProfile,
+    ReliabilityPolicy,
+)
+
+
+def resolve_type(msg_type: Any) -> tuple[str, Any]:
+    """(type name, class or None) from a message class or a 'pkg/msg/Name' string."""
+    from ros2lite.interfaces import get_interface
+    from ros2lite.interfaces.registry import normalize_name
+    if isinstance(msg_type, str):
+        name = normalize_name(msg_type)
+        return name, get_interface(name)
+    name = str(getattr(msg_type, '_TYPE_NAME', '') or '')
+    if not name:
+        raise TypeError(f'not a ros2lite message type: {msg_type!r}')
+    return name, msg_type
+
+
+def as_qos(qos: QoSProfile | int) -> QoSProfile:
+    """rclpy accepts a depth wherever a profile goes."""
+    if isinstance(qos, int):
+        return QoSProfile(depth=qos)
+    return qos
+
+
+def zenoh_options(qos: QoSProfile) -> dict[str, Any]:
+    """Reliability and congestion control as rmw_zenoh maps them."""
+    import zenoh
+    reliable = qos.reliability != ReliabilityPolicy.BEST_EFFORT
+    block = reliable and qos.history == HistoryPolicy.KEEP_ALL
+    return {
+        'reliability': zenoh.Reliability.RELIABLE if reliable else zenoh.Reliability.BEST_EFFORT,
+        'congestion_control': zenoh.CongestionControl.BLOCK if block
+        else zenoh.CongestionControl.DROP,
+    }
+
+
+def is_transient_local(qos: QoSProfile) -> bool:
+    return qos.durability == DurabilityPolicy.TRANSIENT_LOCAL
+
+
+class Endpoint:
+    """A topic endpoint of a node, announced by a liveliness token while it lives."""
+
+    kind: EntityKind
+
+    def __init__(self, node: Any, msg_type: Any, topic: str, qos: QoSProfile | int) -> None:
+        from ros2lite.interfaces import type_hash
+        self.node = node
+        self.type_name, self.msg_class = resolve_type(msg_type)
+        self.type_hash = type_hash(self.type_name)
+        self.topic_name = node.resolve_topic_name(topic)
+        self.qos = as_qos(qos)
+        ctx = node.context
+        self.key = topic_key(ctx.domain_id, self.topic_name, self.type_name, self.type_hash)
+        self.entity_id = ctx.next_entity_id()
+        self.token_key = endpoint_token(
+            ctx.domain_id, ctx.zid, node.node_id, self.entity_id, self.kind, node.get_namespace(),
+            node.get_name(), self.topic_name, self.type_name, self.type_hash, self.qos)
+        self._token: Any = None
+
+    def _announce(self) -> None:
+        # rmw_zenoh declares the data entity first, then the token
+        self._token = self.node.context.session.liveliness().declare_token(self.token_key)
+
+    def _undeclare(self, *entities: Any) -> None:
+        from ros2lite.context import undeclare_quietly
+        undeclare_quietly(self._token, *entities)
+        self._token = None
+
+    @property
+    def gid(self) -> bytes:
+        from ros2lite.transport.attachment import gid_from_token
+        return gid_from_token(self.token_key)

@@ -1,0 +1,127 @@
+"""Node loggers: rcutils' console format on stderr, and `/rosout` messages.
+
+Format follows RCUTILS_CONSOLE_OUTPUT_FORMAT (default `[{severity}] [{time}] [{name}]: {message}`);
+RCUTILS_LOGGING_USE_STDOUT=1 moves output to stdout, RCUTILS_COLORIZED_OUTPUT=1 adds colour.
+"""
+
+from __future__ import annotations
+
+import inspect
+import os
+import sys
+import time
+from collections.abc import Callable
+from typing import Any
+
+DEBUG, INFO, WARN, ERROR, FATAL = 10, 20, 30, 40, 50
+_NAMES = {DEBUG: 'DEBUG', INFO: 'INFO', WARN: 'WARN', ERROR: 'ERROR', FATAL: 'FATAL'}
+_COLORS = {DEBUG: '\033[32m', INFO: '', WARN: '\033[33m', ERROR: '\033[31m', FATAL: '\033[31m'}
+DEFAULT_FORMAT = '[{severity}] [{time}] [{name}]: {message}'
+
+# logger name → level set by --log-level or set_level; None key is the default level
+_levels: dict[str | None, int] = {None: INFO}
+
+
+def set_logger_level(name: str | None, level: int) -> None:
+    _levels[name] = level
+
+
+def get_logger_level(name: str) -> int:
+    while name:
+        if name in _levels:
+            return _levels[name]
+        name = name.rpartition('.')[0]
+    return _levels[None]
+
+
+def _format(severity: int, name: str, message: str, stamp_ns: int, caller: inspect.Traceback
+            ) -> str:
+    fmt = os.environ.get('RCUTILS_CONSOLE_OUTPUT_FORMAT', DEFAULT_FORMAT)
+    sec, nsec = divmod(stamp_ns, 1_000_000_000)
+    fields = {
+        'severity': _NAMES[severity], 'name': name, 'message': message,
+        'time': f'{sec}.{nsec:09d}', 'time_as_nanoseconds': str(stamp_ns),
+        'function_name': caller.function, 'file_name': caller.filename,
+        'line_number': str(caller.lineno), 'date_time_with_ms': time.strftime(
+            '%Y-%m-%d %H:%M:%S', time.localtime(sec)) + f'.{nsec // 1_000_000:03d}',
+    }
+    text = fmt
+    for key, value in fields.items():
+        text = text.replace('{' + key + '}', value)
+    return text
+
+
+class RcutilsLogger:
+    """rclpy-compatible logger: debug/info/warn/error/fatal with once/skip_first/throttle."""
+
+    def __init__(self, name: str = '', publish: Callable[[int, str, str, inspect.Traceback],
+                                                          None] | None = None) -> None:
+        self.name = name
+        self._publish = publish
+        self._once: set[tuple[str, int]] = set()
+        self._seen: set[tuple[str, int]] = set()
+        self._last: dict[tuple[str, int], float] = {}
+
+    def get_child(self, suffix: str) -> RcutilsLogger:
+        return RcutilsLogger(f'{self.name}.{suffix}' if self.name else suffix, self._publish)
+
+    def set_level(self, level: int) -> None:
+        set_logger_level(self.name, int(level))
+
+    def get_effective_level(self) -> int:
+        return get_logger_level(self.name)
+
+    def is_enabled_for(self, severity: int) -> bool:
+        return severity >= self.get_effective_level()
+
+    def log(self, message: Any, severity: int, *, once: bool = False, skip_first: bool = False,
+            throttle_duration_sec: float | None = None, **_: Any) -> bool:
+        if not self.is_enabled_for(severity):
+            return False
+        frame = inspect.stack(0)[2]
+        caller = inspect.Traceback(frame.filename, frame.lineno, frame.function, None, None)
+        site = (frame.filename, frame.lineno)
+        if once:
+            if site in self._once:
+                return False
+            self._once.add(site)
+        if skip_first and site not in self._seen:
+            self._seen.add(site)
+            return False
+        if throttle_duration_sec:
+            now = time.monotonic()
+            if now - self._last.get(site, -1e18) < throttle_duration_sec:
+                return False
+            self._last[site] = now
+        text = str(message)
+        stamp = time.time_ns()
+        line = _format(severity, self.name, text, stamp, caller)
+        stream = sys.stdout if os.environ.get('RCUTILS_LOGGING_USE_STDOUT') == '1' else sys.stderr
+        if os.environ.get('RCUTILS_COLORIZED_OUTPUT') == '1' and _COLORS[severity]:
+            line = f'{_COLORS[severity]}{line}\033[0m'
+        print(line, file=stream, flush=True)
+        if self._publish is not None:
+            self._publish(severity, self.name, text, caller)
+        return True
+
+    def debug(self, message: Any, **kw: Any) -> bool:
+        return self.log(message, DEBUG, **kw)
+
+    def info(self, message: Any, **kw: Any) -> bool:
+        return self.log(message, INFO, **kw)
+
+    def warn(self, message: Any, **kw: Any) -> bool:
+        return self.log(message, WARN, **kw)
+
+    warning = warn
+
+    def error(self, message: Any, **kw: Any) -> bool:
+        return self.log(message, ERROR, **kw)
+
+    def fatal(self, message: Any, **kw: Any) -> bool:
+        return self.log(message, FATAL, **kw)
+
+
+def get_logger(name: str) -> RcutilsLogger:
+    """A console-only logger (no node, so nothing goes to /rosout)."""
+    return RcutilsLogger(name)

@@ -1,0 +1,289 @@
+"""Nodes: a name in the graph owning publishers, subscriptions, timers and parameters."""
+
+from __future__ import annotations
+
+import inspect
+import time
+from collections.abc import Callable
+from typing import Any
+
+from ros2lite.arguments import RosArgs, parse_ros_args
+from ros2lite.clock import Clock, ClockType
+from ros2lite.context import Context, default_context, undeclare_quietly
+from ros2lite.logging import RcutilsLogger, set_logger_level
+from ros2lite.publisher import Publisher
+from ros2lite.subscription import Subscription
+from ros2lite.timer import Timer
+from ros2lite.transport import keys
+from ros2lite.transport.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+
+ROSOUT_QOS = QoSProfile(durability=DurabilityPolicy.TRANSIENT_LOCAL, depth=1000)
+CLOCK_QOS = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT, depth=1)
+
+
+class Parameter:
+    """A named value; rclpy's Parameter reduced to what nodes need locally."""
+
+    def __init__(self, name: str, value: Any = None) -> None:
+        self.name = name
+        self.value = value
+
+    def __repr__(self) -> str:
+        return f'Parameter(name={self.name!r}, value={self.value!r})'
+
+
+class Node:
+    """rclpy-shaped node. Create after `ros2lite.init()`; destroy with `destroy_node()`."""
+
+    def __init__(self, node_name: str, *, context: Context | None = None,
+                 cli_args: list[str] | None = None, namespace: str | None = None,
+                 use_global_arguments: bool = True, enable_rosout: bool = True,
+                 parameter_overrides: list[Parameter] | None = None,
+                 allow_undeclared_parameters: bool = False,
+                 automatically_declare_parameters_from_overrides: bool = False) -> None:
+        self.context = context or default_context()
+        self.context.require()
+        args = self.context.args if use_global_arguments else RosArgs()
+        self._args = args.merge(parse_ros_args(cli_args)) if cli_args else args
+        name = self._args.node_name_override(node_name) or node_name
+        ns = self._args.namespace_override(node_name)
+        namespace = ns if ns is not None else namespace
+        keys.validate_node_name(name)
+        self._name = name
+        self._namespace = keys.normalize_namespace(namespace)
+        keys.validate_namespace(self._namespace)
+        self.node_id = self.context.next_entity_id()
+        self.publishers: list[Publisher] = []
+        self.subscriptions: list[Subscription] = []
+        self.timers: list[Timer] = []
+        self._destroyables: list[Any] = []
+        self._allow_undeclared = allow_undeclared_parameters
+        self._parameters: dict[str, Parameter] = {}
+        self._overrides = self._args.parameter_overrides(self.get_fully_qualified_name(), name)
+        for p in parameter_overrides or []:
+            self._overrides[p.name] = p.value
+        for level_name, level in self._args.log_levels.items():
+            set_logger_level(level_name, level)
+        session = self.context.session
+        self._token = session.liveliness().declare_token(keys.node_token(
+            self.context.domain_id, self.context.zid, self.node_id, self._namespace, self._name))
+        self._clock = Clock(ClockType.ROS_TIME)
+        self._clock_sub: Subscription | None = None
+        self._rosout: Publisher | None = None
+        if enable_rosout:
+            self._rosout = self.create_publisher('rcl_interfaces/msg/Log', '/rosout', ROSOUT_QOS)
+        self._logger = RcutilsLogger(self.get_logger_name(),
+                                     self._publish_rosout if enable_rosout else None)
+        if automatically_declare_parameters_from_overrides:
+            for pname, value in self._overrides.items():
+                self.declare_parameter(pname, value)
+        self.declare_parameter('use_sim_time', False)
+        if self.get_parameter('use_sim_time').value:
+            self._enable_sim_time()
+        self.context.add_node(self)
+
+    # -- names --------------------------------------------------------------------------------
+    def get_name(self) -> str:
+        return self._name
+
+    def get_namespace(self) -> str:
+        return self._namespace
+
+    def get_fully_qualified_name(self) -> str:
+        return keys.node_fqn(self._namespace, self._name)
+
+    def get_logger_name(self) -> str:
+        ns = self._namespace.strip('/').replace('/', '.')
+        return f'{ns}.{self._name}' if ns else self._name
+
+    def resolve_topic_name(self, topic: str) -> str:
+        """Expand a relative/private name and apply remapping rules, as rcl does."""
+        full = keys.expand_topic_name(topic, self._name, self._namespace)
+        for rule in self._args.remaps:
+            if rule.node not in (None, self._name) or rule.source.startswith('__'):
+                continue
+            if keys.expand_topic_name(rule.source, self._name, self._namespace) == full:
+                full = keys.expand_topic_name(rule.target, self._name, self._namespace)
+                break
+        keys.validate_full_topic_name(full)
+        return full
+
+    # -- entities -----------------------------------------------------------------------------
+    def create_publisher(self, msg_type: Any, topic: str, qos_profile: QoSProfile | int
+                         ) -> Publisher:
+        pub = Publisher(self, msg_type, topic, qos_profile)
+        self.publishers.append(pub)
+        return pub
+
+    def create_subscription(self, msg_type: Any, topic: str, callback: Callable[..., Any],
+                            qos_profile: QoSProfile | int, *, raw: bool = False
+                            ) -> Subscription:
+        sub = Subscription(self, msg_type, topic, callback, qos_profile, raw=raw)
+        self.subscriptions.append(sub)
+        return sub
+
+    def create_timer(self, timer_period_sec: float, callback: Callable[[], Any]) -> Timer:
+        timer = Timer(timer_period_sec, callback, self._clock)
+        self.timers.append(timer)
+        self.context.wake()
+        return timer
+
+    def destroy_publisher(self, pub: Publisher) -> None:
+        if pub in self.publishers:
+            self.publishers.remove(pub)
+        pub.destroy()
+
+    def destroy_subscription(self, sub: Subscription) -> None:
+        if sub in self.subscriptions:
+            self.subscriptions.remove(sub)
+        sub.destroy()
+
+    def destroy_timer(self, timer: Timer) -> None:
+        timer.cancel()
+        if timer in self.timers:
+            self.timers.remove(timer)
+
+    def add_destroyable(self, entity: Any) -> None:
+        """Register an entity (service, client…) whose destroy() runs with the node's."""
+        self._destroyables.append(entity)
+
+    def destroy_node(self) -> None:
+        for entity in [*self._destroyables, *self.subscriptions, *self.publishers]:
+            entity.destroy()
+        for timer in self.timers:
+            timer.cancel()
+        self._destroyables.clear()
+        self.subscriptions.clear()
+        self.publishers.clear()
+        self.timers.clear()
+        undeclare_quietly(self._token)
+        self._token = None
+        self.context.remove_node(self)
+
+    # -- time and logging ---------------------------------------------------------------------
+    def get_clock(self) -> Clock:
+        return self._clock
+
+    def get_logger(self) -> RcutilsLogger:
+        return self._logger
+
+    def _enable_sim_time(self) -> None:
+        self._clock._enable_sim_time(True)
+        if self._clock_sub is None:
+            self._clock_sub = self.create_subscription(
+                'rosgraph_msgs/msg/Clock', '/clock',
+                lambda m: self._clock._set_sim_time(m.clock.sec * 1_000_000_000 + m.clock.nanosec),
+                CLOCK_QOS)
+
+    def _publish_rosout(self, severity: int, name: str, text: str,
+                        caller: inspect.Traceback) -> None:
+        if self._rosout is None:
+            return
+        from ros2lite.interfaces import get_interface
+        log = get_interface('rcl_interfaces/msg/Log')
+        ns = time.time_ns()
+        self._rosout.publish(log(
+            stamp=get_interface('builtin_interfaces/msg/Time')(sec=ns // 1_000_000_000,
+                                                               nanosec=ns % 1_000_000_000),
+            level=severity, name=name, msg=text, file=caller.filename,
+            function=caller.function, line=caller.lineno))
+
+    # -- parameters (local store; the parameter services come with `ros2lite param`) ----------
+    def declare_parameter(self, name: str, value: Any = None, *_: Any, **__: Any) -> Parameter:
+        if name in self._parameters:
+            raise ValueError(f"parameter '{name}' has already been declared")
+        param = Parameter(name, self._overrides.get(name, value))
+        self._parameters[name] = param
+        return param
+
+    def declare_parameters(self, namespace: str, parameters: list[tuple[str, Any]]
+                           ) -> list[Parameter]:
+        prefix = f'{namespace}.' if namespace else ''
+        return [self.declare_parameter(prefix + n, v) for n, v, *_ in parameters]
+
+    def has_parameter(self, name: str) -> bool:
+        return name in self._parameters
+
+    def get_parameter(self, name: str) -> Parameter:
+        try:
+            return self._parameters[name]
+        except KeyError:
+            if self._allow_undeclared:
+                return Parameter(name, None)
+            raise LookupError(f"parameter '{name}' is not declared") from None
+
+    def get_parameter_or(self, name: str, alternative: Parameter | None = None) -> Parameter:
+        return self._parameters.get(name) or alternative or Parameter(name, None)
+
+    def set_parameters(self, parameters: list[Parameter]) -> list[bool]:
+        results = []
+        for p in parameters:
+            if p.name not in self._parameters and not self._allow_undeclared:
+                results.append(False)
+                continue
+            self._parameters[p.name] = Parameter(p.name, p.value)
+            if p.name == 'use_sim_time':
+                if p.value:
+                    self._enable_sim_time()
+                else:
+                    self._clock._enable_sim_time(False)
+            results.append(True)
+        return results
+
+    # -- graph --------------------------------------------------------------------------------
+    def _entities(self) -> list[Any]:
+        entities: list[Any] = self.context.graph.entities()
+        return entities
+
+    def get_node_names(self) -> list[str]:
+        return [n for n, _ in self.get_node_names_and_namespaces()]
+
+    def get_node_names_and_namespaces(self) -> list[tuple[str, str]]:
+        from ros2lite.graph import node_names_and_namespaces
+        return node_names_and_namespaces(self._entities())
+
+    def get_topic_names_and_types(self, include_hidden_topics: bool = False
+                                  ) -> list[tuple[str, list[str]]]:
+        from ros2lite.graph import topic_names_and_types
+        return topic_names_and_types(self._entities(), include_hidden_topics)
+
+    def get_service_names_and_types(self) -> list[tuple[str, list[str]]]:
+        from ros2lite.graph import service_names_and_types
+        return service_names_and_types(self._entities(), include_hidden=True)
+
+    def _by_node(self, node: str, namespace: str, kind: keys.EntityKind
+                 ) -> list[tuple[str, list[str]]]:
+        from ros2lite.graph import names_and_types_by_node
+        return names_and_types_by_node(self._entities(), node, namespace, kind)
+
+    def get_publisher_names_and_types_by_node(self, node_name: str, node_namespace: str
+                                              ) -> list[tuple[str, list[str]]]:
+        return self._by_node(node_name, node_namespace, keys.EntityKind.PUBLISHER)
+
+    def get_subscriber_names_and_types_by_node(self, node_name: str, node_namespace: str
+                                               ) -> list[tuple[str, list[str]]]:
+        return self._by_node(node_name, node_namespace, keys.EntityKind.SUBSCRIPTION)
+
+    def get_service_names_and_types_by_node(self, node_name: str, node_namespace: str
+                                            ) -> list[tuple[str, list[str]]]:
+        return self._by_node(node_name, node_namespace, keys.EntityKind.SERVICE)
+
+    def get_client_names_and_types_by_node(self, node_name: str, node_namespace: str
+                                           ) -> list[tuple[str, list[str]]]:
+        return self._by_node(node_name, node_namespace, keys.EntityKind.CLIENT)
+
+    def get_publishers_info_by_topic(self, topic_name: str) -> list[Any]:
+        from ros2lite.graph import endpoints_by_topic
+        return endpoints_by_topic(self._entities(), self.resolve_topic_name(topic_name),
+                                  keys.EntityKind.PUBLISHER)
+
+    def get_subscriptions_info_by_topic(self, topic_name: str) -> list[Any]:
+        from ros2lite.graph import endpoints_by_topic
+        return endpoints_by_topic(self._entities(), self.resolve_topic_name(topic_name),
+                                  keys.EntityKind.SUBSCRIPTION)
+
+    def count_publishers(self, topic_name: str) -> int:
+        return len(self.get_publishers_info_by_topic(topic_name))
+
+    def count_subscribers(self, topic_name: str) -> int:
+        return len(self.get_subscriptions_info_by_topic(topic_name))

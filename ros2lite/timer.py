@@ -1,0 +1,55 @@
+"""Timers, fired by the executor when due (steady time, or ROS time under sim time)."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from typing import Any
+
+
+class Timer:
+    def __init__(self, period_sec: float, callback: Callable[[], Any], clock: Any = None) -> None:
+        if period_sec < 0:
+            raise ValueError('timer period must not be negative')
+        self.timer_period_ns = round(period_sec * 1e9)
+        self.callback = callback
+        self._clock = clock
+        self._canceled = False
+        self._next = self._now() + self.timer_period_ns
+
+    def _now(self) -> int:
+        clock = self._clock
+        if clock is not None and clock.ros_time_is_active:
+            ns: int = clock.now().nanoseconds
+            return ns
+        return time.monotonic_ns()
+
+    def time_until_next_call(self) -> float | None:
+        if self._canceled:
+            return None
+        return (self._next - self._now()) / 1e9
+
+    def is_ready(self) -> bool:
+        remaining = self.time_until_next_call()
+        return remaining is not None and remaining <= 0
+
+    def execute(self) -> None:
+        if self._canceled:
+            return
+        now = self._now()
+        # keep the phase; if we fell behind by whole periods, skip them rather than burst
+        self._next += self.timer_period_ns
+        if self._next <= now:
+            behind = (now - self._next) // max(self.timer_period_ns, 1) + 1
+            self._next += behind * self.timer_period_ns
+        self.callback()
+
+    def cancel(self) -> None:
+        self._canceled = True
+
+    def is_canceled(self) -> bool:
+        return self._canceled
+
+    def reset(self) -> None:
+        self._canceled = False
+        self._next = self._now() + self.timer_period_ns
