@@ -1,133 +1,39 @@
 """ros2lite benchmarks: each line is `name value unit ratio-vs-baseline`.
 
 Every baseline is measured in the same run on the same machine, so ratios are comparable across
-machines even when absolute numbers are not. Ratios > 1 mean ros2lite is faster.
+machines even when absolute numbers are not. Each `bench_*.py` module next to this file exports
+`BENCHES = {name: function}`; `python benchmarks/run.py [name …]` runs all or some of them.
 """
 
 from __future__ import annotations
 
 import argparse
-import math
-import os
-import subprocess
+import importlib
 import sys
-import time
-from array import array
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
-
-def rate(fn: Callable[[], Any], min_time: float = 0.3, repeats: int = 5) -> float:
-    """Best-of-`repeats` calls per second, each repeat running at least `min_time`."""
-    n = 1
-    while True:
-        t0 = time.perf_counter()
-        for _ in range(n):
-            fn()
-        dt = time.perf_counter() - t0
-        if dt >= min_time / 4:
-            break
-        n *= 2
-    best = 0.0
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        for _ in range(n):
-            fn()
-        best = max(best, n / (time.perf_counter() - t0))
-    return best
+HERE = Path(__file__).resolve().parent
 
 
-def report(name: str, value: float, unit: str, ratio: float) -> None:
-    print(f'{name} {value:.6g} {unit} {ratio:.3f}', flush=True)
-
-
-def sample_messages() -> dict[str, Any]:
-    """The five benchmark messages, built with ros2lite classes."""
-    from ros2lite.interfaces import get_interface
-    Header = get_interface('std_msgs/msg/Header')
-    Time = get_interface('builtin_interfaces/msg/Time')
-    hdr = Header(stamp=Time(sec=1700000000, nanosec=123456789), frame_id='base_link')
-    imu = get_interface('sensor_msgs/msg/Imu')(header=hdr)
-    imu.orientation.w = 0.7
-    imu.angular_velocity.z = 0.25
-    imu.linear_acceleration.z = 9.81
-    imu.orientation_covariance = [0.01 * i for i in range(9)]
-    scan = get_interface('sensor_msgs/msg/LaserScan')(
-        header=hdr, angle_min=-math.pi, angle_max=math.pi, angle_increment=2 * math.pi / 1080,
-        range_min=0.1, range_max=30.0,
-        ranges=array('f', [1.0 + (i % 100) * 0.01 for i in range(1080)]),
-        intensities=array('f', [100.0] * 1080))
-    image = get_interface('sensor_msgs/msg/Image')(
-        header=hdr, height=480, width=640, encoding='rgb8', is_bigendian=0, step=640 * 3,
-        data=array('B', bytes(range(256)) * 3600))
-    TS = get_interface('geometry_msgs/msg/TransformStamped')
-    transforms = []
-    for i in range(10):
-        t = TS(header=hdr, child_frame_id=f'link_{i}')
-        t.transform.translation.x = float(i)
-        t.transform.rotation.w = 1.0
-        transforms.append(t)
-    tf = get_interface('tf2_msgs/msg/TFMessage')(transforms=transforms)
-    return {
-        'std_msgs/msg/String': get_interface('std_msgs/msg/String')(data='Hello World: 1'),
-        'sensor_msgs/msg/Imu': imu,
-        'sensor_msgs/msg/LaserScan': scan,
-        'sensor_msgs/msg/Image': image,
-        'tf2_msgs/msg/TFMessage': tf,
-    }
-
-
-def bench_cdr() -> list[float]:
-    from rosbags.typesys import Stores, get_typestore
-
-    from ros2lite import interfaces
-    store = get_typestore(Stores.ROS2_JAZZY)
-    ratios = []
-    for name, msg in sample_messages().items():
-        data = interfaces.serialize(msg)
-        theirs = store.deserialize_cdr(data, name)
-        assert bytes(store.serialize_cdr(theirs, name)) == data, name
-        short = name.rsplit('/', 1)[1]
-        ours_ser = rate(lambda m=msg: interfaces.serialize(m))
-        base_ser = rate(lambda m=theirs, n=name: store.serialize_cdr(m, n))
-        report(f'cdr_serialize_{short}', ours_ser, 'msg/s', ours_ser / base_ser)
-        ours_des = rate(lambda d=data, n=name: interfaces.deserialize(n, d))
-        base_des = rate(lambda d=data, n=name: store.deserialize_cdr(d, n))
-        report(f'cdr_deserialize_{short}', ours_des, 'msg/s', ours_des / base_des)
-        ratios += [ours_ser / base_ser, ours_des / base_des]
-    gmean = math.exp(sum(math.log(r) for r in ratios) / len(ratios))
-    report('cdr_geomean', gmean, 'ratio', gmean)
-    report('cdr_min', min(ratios), 'ratio', min(ratios))
-    return ratios
-
-
-def wall(cmd: list[str], runs: int = 15) -> float:
-    """Median wall time of a whole process, in seconds."""
-    times = []
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
-        times.append(time.perf_counter() - t0)
-    times.sort()
-    return times[len(times) // 2]
-
-
-def bench_help() -> None:
-    exe = os.path.join(os.path.dirname(sys.executable), 'ros2lite')
-    ours = wall([exe, '--help'])
-    base = wall([sys.executable, '-c', 'import click'])
-    # ratio as "times the baseline" here: the target is <= 1.5
-    report('cli_help_wall', ours * 1000, 'ms', ours / base)
-
-
-BENCHES = {'cdr': bench_cdr, 'help': bench_help}
+def discover() -> dict[str, Callable[[], Any]]:
+    sys.path.insert(0, str(HERE))
+    benches: dict[str, Callable[[], Any]] = {}
+    for path in sorted(HERE.glob('bench_*.py')):
+        benches.update(importlib.import_module(path.stem).BENCHES)
+    return benches
 
 
 def main() -> None:
+    benches = discover()
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument('only', nargs='*', choices=[*BENCHES, []], help='benchmarks to run')
+    parser.add_argument('only', nargs='*', help=f'benchmarks to run: {", ".join(benches)}')
     args = parser.parse_args()
-    for name, fn in BENCHES.items():
+    unknown = [n for n in args.only if n not in benches]
+    if unknown:
+        parser.error(f'unknown benchmark(s): {", ".join(unknown)}')
+    for name, fn in benches.items():
         if not args.only or name in args.only:
             fn()
 

@@ -1,0 +1,156 @@
+"""Pieces every graph verb shares: connecting (with daemon auto-start), the hidden CLI node,
+graph snapshots and the `--qos-*` options.
+
+ros2cli's strategy options are accepted with the same names. `--spin-time` is accepted for
+compatibility only: ros2lite answers graph questions from a complete liveliness query, so there
+is nothing to wait for.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+import click
+
+from .errors import CliError
+
+F = TypeVar('F', bound=Callable[..., Any])
+
+QOS_PROFILES = ['unknown', 'default', 'system_default', 'sensor_data', 'services_default',
+                'parameters', 'parameter_events', 'action_status_default', 'best_available']
+
+
+def strategy_options(*, no_daemon: bool = True) -> Callable[[F], F]:
+    """--spin-time, -s/--use-sim-time and (for graph queries) --no-daemon."""
+    def decorate(fn: F) -> F:
+        fn = click.option('-s', '--use-sim-time', is_flag=True,
+                          help='Enable ROS simulation time')(fn)
+        fn = click.option('--spin-time', type=float, default=0.5, show_default=True,
+                          help='Accepted for ros2cli compatibility; graph queries here are '
+                               'complete without spinning')(fn)
+        if no_daemon:
+            fn = click.option('--no-daemon', is_flag=True,
+                              help='Do not spawn nor use an already running daemon')(fn)
+        return fn
+    return decorate
+
+
+class CliSession:
+    """One CLI run's connection: ensures a router, opens a context, makes a hidden node."""
+
+    def __init__(self, *, no_daemon: bool = False, use_sim_time: bool = False) -> None:
+        self.no_daemon = no_daemon
+        self.use_sim_time = use_sim_time
+        self.context: Any = None
+        self._node: Any = None
+
+    def __enter__(self) -> CliSession:
+        from ros2lite.context import Context
+        from ros2lite.transport.config import RouterUnavailableError
+        if not self.no_daemon:
+            from ros2lite import daemon
+            try:
+                daemon.ensure_running()
+            except daemon.DaemonError as e:
+                raise CliError(str(e)) from None
+        self.context = Context()
+        try:
+            self.context.init([])
+        except RouterUnavailableError as e:
+            raise CliError(str(e)) from None
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self.context is not None:
+            self.context.try_shutdown()
+
+    def entities(self) -> list[Any]:
+        """Every entity in the domain, from one complete query."""
+        from ros2lite.graph import snapshot
+        entities: list[Any] = snapshot(self.context.session, self.context.domain_id)
+        return entities
+
+    def node(self, name: str | None = None) -> Any:
+        """The hidden node this run uses for its publishers/subscriptions."""
+        if self._node is None:
+            from ros2lite.node import Node, Parameter
+            self._node = Node(name or f'_ros2lite_{os.getpid()}', context=self.context,
+                              enable_rosout=False, use_global_arguments=False,
+                              parameter_overrides=[Parameter('use_sim_time',
+                                                             self.use_sim_time)])
+        return self._node
+
+
+def qos_options(default_profile: str) -> Callable[[F], F]:
+    """The `--qos-*` options of `topic pub`/`echo` (ros2cli's add_qos_arguments)."""
+    def decorate(fn: F) -> F:
+        opts = [
+            click.option('--qos-liveliness-lease-duration-seconds', type=float,
+                         help='Quality of service liveliness lease duration in seconds'),
+            click.option('--qos-liveliness', type=click.Choice(
+                ['system_default', 'automatic', 'manual_by_topic', 'unknown',
+                 'best_available']), help='Quality of service liveliness setting'),
+            click.option('--qos-durability', type=click.Choice(
+                ['system_default', 'transient_local', 'volatile', 'unknown', 'best_available']),
+                help='Quality of service durability setting'),
+            click.option('--qos-reliability', type=click.Choice(
+                ['system_default', 'reliable', 'best_effort', 'unknown', 'best_available']),
+                help='Quality of service reliability setting'),
+            click.option('--qos-history', type=click.Choice(
+                ['system_default', 'keep_last', 'keep_all', 'unknown']),
+                help='Quality of service history setting'),
+            click.option('--qos-depth', type=click.IntRange(min=0),
+                         help='Queue size setting to publish with (overrides depth value of '
+                              '--qos-profile option)'),
+            click.option('--qos-profile', type=click.Choice(QOS_PROFILES),
+                         default=default_profile, show_default=True,
+                         help='Quality of service preset profile to publish with'),
+        ]
+        for opt in opts:
+            fn = opt(fn)
+        return fn
+    return decorate
+
+
+def qos_from_options(qos_profile: str, qos_depth: int | None, qos_history: str | None,
+                     qos_reliability: str | None, qos_durability: str | None,
+                     qos_liveliness: str | None = None,
+                     qos_liveliness_lease_duration_seconds: float | None = None,
+                     **_: Any) -> Any:
+    """The profile the `--qos-*` options describe (unset options keep the preset's value)."""
+    from ros2lite.transport import qos as q
+    profile = q.preset(qos_profile)
+    changes: dict[str, Any] = {}
+    if qos_history is not None:
+        changes['history'] = q.HistoryPolicy.from_short_key(qos_history)
+    if qos_reliability is not None:
+        changes['reliability'] = q.ReliabilityPolicy.from_short_key(qos_reliability)
+    if qos_durability is not None:
+        changes['durability'] = q.DurabilityPolicy.from_short_key(qos_durability)
+    if qos_liveliness is not None:
+        changes['liveliness'] = q.LivelinessPolicy.from_short_key(qos_liveliness)
+    if qos_liveliness_lease_duration_seconds is not None:
+        changes['liveliness_lease_duration'] = q.Duration.from_seconds(
+            qos_liveliness_lease_duration_seconds)
+    if qos_depth is not None:
+        changes['depth'] = qos_depth
+    elif changes.get('durability', profile.durability) == q.DurabilityPolicy.TRANSIENT_LOCAL \
+            and profile.depth == 0:
+        changes['depth'] = 1
+    return profile.replace(**changes) if changes else profile
+
+
+def explicit_qos(**options: Any) -> bool:
+    """True when any `--qos-*` override (other than the profile) was given."""
+    return any(options.get(k) is not None for k in (
+        'qos_depth', 'qos_history', 'qos_reliability', 'qos_durability', 'qos_liveliness',
+        'qos_liveliness_lease_duration_seconds'))
+
+
+def include_hidden(ctx: click.Context, flag: bool = False) -> bool:
+    """--include-hidden-topics given on the verb or on `topic` itself."""
+    parent = ctx.find_root().obj or {}
+    return flag or bool(parent.get('include_hidden_topics')) or bool(
+        (ctx.parent.obj or {}).get('include_hidden_topics') if ctx.parent else False)

@@ -1,0 +1,124 @@
+"""Live-graph fixtures: one real Zenoh router per test session on a free loopback port, a
+private ROS_DOMAIN_ID, and helpers to run node processes against it.
+
+The router and domain are exported through os.environ, so the CLI (in-process or as a
+subprocess) and every spawned node find them exactly as a user's shell would.
+"""
+
+from __future__ import annotations
+
+import os
+import random
+import signal
+import socket
+import subprocess
+import sys
+import time
+from collections.abc import Callable, Iterator
+from typing import Any
+
+import pytest
+
+
+def free_port() -> int:
+    while True:
+        with socket.socket() as sock:
+            sock.bind(('127.0.0.1', 0))
+            port = int(sock.getsockname()[1])
+        if port != 7447:
+            return port
+
+
+@pytest.fixture(scope='session')
+def ros_router() -> Iterator[str]:
+    """A real router for the whole session; yields its endpoint."""
+    import zenoh
+
+    from ros2lite.transport.config import router_config
+    saved = {k: os.environ.get(k) for k in (
+        'ROS2LITE_ROUTER', 'ROS_DOMAIN_ID', 'ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI',
+        'ZENOH_ROUTER_CONFIG_URI', 'XDG_RUNTIME_DIR')}
+    endpoint = f'tcp/127.0.0.1:{free_port()}'
+    for key in ('ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI', 'ZENOH_ROUTER_CONFIG_URI'):
+        os.environ.pop(key, None)
+    router = zenoh.open(router_config(endpoint, env={}))
+    os.environ['ROS2LITE_ROUTER'] = endpoint
+    os.environ['ROS_DOMAIN_ID'] = str(random.randint(100, 232))
+    try:
+        yield endpoint
+    finally:
+        router.close()
+        for key, value in saved.items():
+            if value is None:
+                os.environ.pop(key, None)
+            else:
+                os.environ[key] = value
+
+
+@pytest.fixture
+def ros_context(ros_router: str) -> Iterator[Any]:
+    """An initialised ros2lite context of this test process."""
+    from ros2lite.context import Context
+    ctx = Context()
+    ctx.init([])
+    try:
+        yield ctx
+    finally:
+        ctx.try_shutdown()
+
+
+class Processes:
+    """Node processes started by a test; all are stopped (SIGINT, then SIGKILL) at teardown."""
+
+    def __init__(self) -> None:
+        self.procs: list[subprocess.Popen[str]] = []
+
+    def python(self, code: str, *args: str, **kw: Any) -> subprocess.Popen[str]:
+        return self.start([sys.executable, '-c', code, *args], **kw)
+
+    def cli(self, *args: str, **kw: Any) -> subprocess.Popen[str]:
+        return self.start([sys.executable, '-m', 'ros2lite', *args], **kw)
+
+    def start(self, cmd: list[str], **kw: Any) -> subprocess.Popen[str]:
+        kw.setdefault('stdout', subprocess.PIPE)
+        kw.setdefault('stderr', subprocess.PIPE)
+        proc = subprocess.Popen(cmd, text=True, **kw)
+        self.procs.append(proc)
+        return proc
+
+    def stop(self, proc: subprocess.Popen[str], timeout: float = 5.0) -> tuple[str, str]:
+        if proc.poll() is None:
+            proc.send_signal(signal.SIGINT)
+        try:
+            out, err = proc.communicate(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            out, err = proc.communicate()
+        return out or '', err or ''
+
+    def close(self) -> None:
+        for proc in self.procs:
+            if proc.poll() is None:
+                self.stop(proc, timeout=3.0)
+
+
+@pytest.fixture
+def processes(ros_router: str) -> Iterator[Processes]:
+    procs = Processes()
+    try:
+        yield procs
+    finally:
+        procs.close()
+
+
+def wait_until(predicate: Callable[[], Any], timeout: float = 10.0, interval: float = 0.05
+               ) -> Any:
+    """Poll until predicate() is truthy; returns its value or fails the test."""
+    deadline = time.monotonic() + timeout
+    while True:
+        value = predicate()
+        if value:
+            return value
+        if time.monotonic() > deadline:
+            pytest.fail(f'condition not met within {timeout} s')
+        time.sleep(interval)
