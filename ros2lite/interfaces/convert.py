@@ -75,34 +75,57 @@ def message_to_dict(msg: Message, *, truncate_length: int | None = None, no_arr:
     }
 
 
-_DUMPER: Any = None
+_DUMPERS: dict[bool, Any] = {}
+_C_MAX_WIDTH = 2**31 - 1   # libyaml keeps the width in a C int
 
 
-def _dumper() -> Any:
-    """A private Dumper so our dict representer never leaks into the user's PyYAML."""
-    global _DUMPER
-    if _DUMPER is None:
+def _dumper(fast: bool = False) -> Any:
+    """A private Dumper (our dict representer never leaks into the user's PyYAML).
+
+    `fast` picks libyaml's emitter when PyYAML has it; callers only ask for it when the
+    output is known to be identical to the pure-Python emitter's (see `_plain`).
+    """
+    dumper = _DUMPERS.get(fast)
+    if dumper is None:
         import yaml
+        base = getattr(yaml, 'CSafeDumper', yaml.SafeDumper) if fast else yaml.SafeDumper
 
-        class Dumper(yaml.SafeDumper):
+        class Dumper(base):  # type: ignore[valid-type,misc]
             pass
 
-        def represent_dict(dumper: Any, data: dict[str, Any]) -> Any:
-            return dumper.represent_mapping('tag:yaml.org,2002:map', data.items())
+        def represent_dict(d: Any, data: dict[str, Any]) -> Any:
+            return d.represent_mapping('tag:yaml.org,2002:map', data.items())
 
         Dumper.add_representer(dict, represent_dict)
-        _DUMPER = Dumper
-    return _DUMPER
+        dumper = _DUMPERS[fast] = Dumper
+    return dumper
+
+
+def _plain(value: Any) -> bool:
+    """True when every string inside is printable ASCII.
+
+    libyaml and PyYAML's Python emitter only differ in how they escape unusual characters
+    (non-BMP, private use, controls), so for such values libyaml's 5x faster output is
+    byte-identical (a property test checks this on every message type).
+    """
+    if isinstance(value, str):
+        return value.isascii() and value.isprintable()
+    if isinstance(value, dict):
+        return all(_plain(v) for v in value.values())
+    if isinstance(value, list):
+        return all(type(v) is float or type(v) is int or _plain(v) for v in value)
+    return True
 
 
 def message_to_yaml(msg: Message, *, truncate_length: int | None = None, no_arr: bool = False,
-                    no_str: bool = False, flow_style: bool = False) -> str:
+                    no_str: bool = False, flow_style: bool = False, fast: bool = True) -> str:
     """YAML text exactly as `ros2 topic echo` prints a message."""
     import yaml
-    return yaml.dump(
-        message_to_dict(msg, truncate_length=truncate_length, no_arr=no_arr, no_str=no_str),
-        Dumper=_dumper(), allow_unicode=True, width=sys.maxsize, default_flow_style=flow_style,
-        sort_keys=False)
+    data = message_to_dict(msg, truncate_length=truncate_length, no_arr=no_arr, no_str=no_str)
+    use_c = fast and _plain(data)
+    return yaml.dump(data, Dumper=_dumper(use_c), allow_unicode=True,
+                     width=_C_MAX_WIDTH if use_c else sys.maxsize,
+                     default_flow_style=flow_style, sort_keys=False)
 
 
 def _csv_value(val: Any, ft: FieldType | None, trunc: int | None, no_arr: bool,

@@ -125,3 +125,63 @@ def test_header_auto_and_stamp_now() -> None:
     setters = I.set_message_fields(pose2, '{header: {stamp: now, frame_id: map}}',
                                    expand_time_now=True)
     assert len(setters) == 1 and pose2.header.frame_id == 'map'
+
+
+# -- the libyaml fast path must be byte-identical to PyYAML's Python emitter -----------------
+
+_TRICKY = ['yes', 'no', 'null', '~', '123', '1.5', '0x1f', '- a', 'a: b', '#x', "it's", '"q"',
+           ' lead', 'trail ', '', '*a', '&b', '!t', '%p', '@x', '`y', '{', '[', ',', '?', '|']
+
+
+def _ascii_message_strategy() -> object:
+    import string
+
+    from hypothesis import strategies as st
+
+    from ros2lite.interfaces.parser import INT_RANGES, FieldType
+    from ros2lite.interfaces.registry import default_registry
+    text = st.one_of(st.sampled_from(_TRICKY), st.text(string.printable.strip(), max_size=12))
+
+    def value(ft: FieldType) -> object:
+        if ft.is_container:
+            return st.lists(scalar(ft.element), min_size=ft.size if ft.container == 'array'
+                            else 0, max_size=ft.size if ft.container != 'sequence' else 4)
+        return scalar(ft)
+
+    def scalar(ft: FieldType) -> object:
+        if ft.base == 'bool':
+            return st.booleans()
+        if ft.base == 'byte':
+            return st.binary(min_size=1, max_size=1)
+        if ft.base in INT_RANGES:
+            return st.integers(*INT_RANGES[ft.base])
+        if ft.base in ('float32', 'float64'):
+            return st.floats(width=32 if ft.base == 'float32' else 64)
+        if ft.base in ('string', 'wstring'):
+            return text.filter(lambda s: not ft.string_bound or len(s) <= ft.string_bound)
+        mdef = default_registry().message(ft.base)
+        return st.builds(I.get_interface(ft.base), **{f.name: value(f.type) for f in mdef.fields})
+
+    return scalar
+
+
+FAST_NAMES = [n for n in I.list_interfaces() if '/msg/' in n]
+
+
+@pytest.mark.parametrize('name', FAST_NAMES)
+def test_fast_yaml_path_is_byte_identical(name: str) -> None:
+    from hypothesis import HealthCheck, given, settings
+    from hypothesis import strategies as st
+
+    from ros2lite.interfaces.parser import FieldType
+    strategy = _ascii_message_strategy()(FieldType(name))  # type: ignore[operator]
+
+    @settings(max_examples=8, deadline=None, suppress_health_check=list(HealthCheck))
+    @given(st.data())
+    def check(data: st.DataObject) -> None:
+        m = data.draw(strategy)
+        for flow in (False, True):
+            for trunc in (None, 2):
+                assert I.message_to_yaml(m, flow_style=flow, truncate_length=trunc) == \
+                    I.message_to_yaml(m, flow_style=flow, truncate_length=trunc, fast=False)
+    check()
