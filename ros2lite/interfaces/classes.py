@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from array import array
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .parser import INT_RANGES, PRIMITIVES, FieldType, MessageDef
 from .registry import Registry, default_registry, normalize_name
@@ -65,6 +65,12 @@ class Message(metaclass=MessageMeta):
         return all(getattr(self, s) == getattr(other, s) for s in slots)
 
     __hash__ = None  # type: ignore[assignment]  # mutable, like rclpy messages
+
+    if TYPE_CHECKING:
+        # fields are generated per type, so type checkers treat messages as dynamic
+        def __init__(self, **kwargs: Any) -> None: ...
+
+        def __getattr__(self, name: str) -> Any: ...
 
 
 def rosidl_type_string(ft: FieldType) -> str:

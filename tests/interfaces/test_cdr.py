@@ -42,7 +42,8 @@ def to_rosbags(msg: Any) -> Any:
         elif not ftype.is_primitive:
             v = to_rosbags(v)
         kwargs[f] = v
-    if not kwargs and 'structure_needs_at_least_one_member' in cls.__dataclass_fields__:
+    if not kwargs and 'structure_needs_at_least_one_member' in getattr(
+            cls, '__dataclass_fields__', {}):
         kwargs['structure_needs_at_least_one_member'] = 0
     return cls(**kwargs)
 

@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import pytest
 
 from ros2lite import interfaces as I
 from ros2lite.interfaces.convert import PopulateError
 
 
-def msg(name: str, **kwargs: object) -> I.Message:
+def msg(name: str, **kwargs: object) -> Any:
     return I.get_interface(name)(**kwargs)
 
 
@@ -133,7 +135,7 @@ _TRICKY = ['yes', 'no', 'null', '~', '123', '1.5', '0x1f', '- a', 'a: b', '#x', 
            ' lead', 'trail ', '', '*a', '&b', '!t', '%p', '@x', '`y', '{', '[', ',', '?', '|']
 
 
-def _ascii_message_strategy() -> object:
+def _ascii_message_strategy() -> Any:
     import string
 
     from hypothesis import strategies as st
@@ -142,13 +144,13 @@ def _ascii_message_strategy() -> object:
     from ros2lite.interfaces.registry import default_registry
     text = st.one_of(st.sampled_from(_TRICKY), st.text(string.printable.strip(), max_size=12))
 
-    def value(ft: FieldType) -> object:
+    def value(ft: FieldType) -> Any:
         if ft.is_container:
             return st.lists(scalar(ft.element), min_size=ft.size if ft.container == 'array'
                             else 0, max_size=ft.size if ft.container != 'sequence' else 4)
         return scalar(ft)
 
-    def scalar(ft: FieldType) -> object:
+    def scalar(ft: FieldType) -> Any:
         if ft.base == 'bool':
             return st.booleans()
         if ft.base == 'byte':
@@ -174,7 +176,7 @@ def test_fast_yaml_path_is_byte_identical(name: str) -> None:
     from hypothesis import strategies as st
 
     from ros2lite.interfaces.parser import FieldType
-    strategy = _ascii_message_strategy()(FieldType(name))  # type: ignore[operator]
+    strategy = _ascii_message_strategy()(FieldType(name))
 
     @settings(max_examples=8, deadline=None, suppress_health_check=list(HealthCheck))
     @given(st.data())
