@@ -170,3 +170,128 @@ def endpoints_by_topic(entities: Iterable[Entity], topic: str, kind: EntityKind
 
 def count(entities: Iterable[Entity], topic: str, kind: EntityKind) -> int:
     return sum(1 for e in entities if e.kind == kind and e.topic_name == topic)
+
+
+# -- queries behind `topic list/info` and `node list/info` ---------------------------------------
+# rcl_action has no entity kinds of its own: an action shows up as a node publishing (server) or
+# subscribing (client) `<action>/_action/feedback`, typed `<pkg>/action/<Name>_FeedbackMessage`.
+
+ACTION_FEEDBACK_SUFFIX = '/_action/feedback'
+ACTION_FEEDBACK_TYPE_SUFFIX = '_FeedbackMessage'
+
+
+def topic_counts(entities: Iterable[Entity]) -> dict[str, tuple[int, int]]:
+    """(publishers, subscriptions) per topic in one pass (`count()` per topic is quadratic)."""
+    counts: dict[str, list[int]] = {}
+    for e in entities:
+        if e.kind in _TOPIC_KINDS and e.topic_name:
+            pair = counts.setdefault(e.topic_name, [0, 0])
+            pair[0 if e.kind == EntityKind.PUBLISHER else 1] += 1
+    return {name: (p, s) for name, (p, s) in counts.items()}
+
+
+def node_full_names(entities: Iterable[Entity], include_hidden: bool = False) -> list[str]:
+    """Fully qualified name of every node instance, sorted; duplicates stay (one per instance).
+
+    Like ros2cli, a node is hidden when its own name starts with '_' (the namespace is not
+    looked at).
+    """
+    from ros2lite.transport.keys import node_fqn
+    return sorted(node_fqn(ns, name) for name, ns in node_names_and_namespaces(entities)
+                  if include_hidden or not name.startswith('_'))
+
+
+def _node_instances(entities: Iterable[Entity], node: str, namespace: str
+                    ) -> dict[tuple[str, int], list[Entity]]:
+    ns = namespace or '/'
+    out: dict[tuple[str, int], list[Entity]] = {}
+    for e in entities:
+        if e.node_name == node and e.namespace == ns:
+            out.setdefault((e.zid, e.nid), []).append(e)
+    return out
+
+
+def _action_names(names_and_types: list[tuple[str, list[str]]]
+                  ) -> list[tuple[str, list[str]]]:
+    """Feedback topics → (action name, action types), following rcl_action's filter."""
+    cut_name, cut_type = len(ACTION_FEEDBACK_SUFFIX), len(ACTION_FEEDBACK_TYPE_SUFFIX)
+    return [
+        (name[:-cut_name],
+         [t[:-cut_type] if ACTION_FEEDBACK_TYPE_SUFFIX in t else t for t in types])
+        for name, types in names_and_types if ACTION_FEEDBACK_SUFFIX in name
+    ]
+
+
+def action_names_and_types(entities: Iterable[Entity]) -> list[tuple[str, list[str]]]:
+    """Every action in the graph (servers and clients alike), by name."""
+    return _action_names(_names_and_types(entities, _TOPIC_KINDS))
+
+
+@dataclass(frozen=True)
+class NodeInfo:
+    """What `ros2 node info` shows for one node instance; each list is (name, types) by name."""
+
+    subscribers: list[tuple[str, list[str]]]
+    publishers: list[tuple[str, list[str]]]
+    service_servers: list[tuple[str, list[str]]]
+    service_clients: list[tuple[str, list[str]]]
+    action_servers: list[tuple[str, list[str]]]
+    action_clients: list[tuple[str, list[str]]]
+
+
+def node_info(entities: Iterable[Entity], node: str, namespace: str,
+              include_hidden: bool = False) -> NodeInfo | None:
+    """The endpoints of one node instance, or None when no node has that name.
+
+    With several instances sharing the name, one of them is described (the first by session
+    and node id), as rmw_zenoh does. Hidden names are dropped unless `include_hidden`; action
+    topics and services are hidden names (`_action`), so by default they only show up in the
+    action sections, as in ros2cli.
+    """
+    instances = _node_instances(entities, node, namespace)
+    if not instances:
+        return None
+    mine = instances[min(instances)]
+
+    def of(kind: EntityKind) -> list[tuple[str, list[str]]]:
+        return _names_and_types(mine, (kind,))
+
+    def shown(items: list[tuple[str, list[str]]]) -> list[tuple[str, list[str]]]:
+        return items if include_hidden else [i for i in items if not is_hidden_name(i[0])]
+
+    pubs, subs = of(EntityKind.PUBLISHER), of(EntityKind.SUBSCRIPTION)
+    return NodeInfo(
+        subscribers=shown(subs), publishers=shown(pubs),
+        service_servers=shown(of(EntityKind.SERVICE)),
+        service_clients=shown(of(EntityKind.CLIENT)),
+        action_servers=shown(_action_names(pubs)), action_clients=shown(_action_names(subs)))
+
+
+def format_gid(gid: bytes) -> str:
+    """rclpy's dotted lower-case hex, e.g. `01.0f.2a.…`."""
+    return '.'.join(f'{b:02x}' for b in gid)
+
+
+def format_endpoint_info(info: TopicEndpointInfo) -> str:
+    """One endpoint as rclpy's `TopicEndpointInfo.__str__` prints it (no trailing newline)."""
+    from ros2lite.transport.qos import HistoryPolicy, qos_profile_unknown
+    qos = info.qos_profile or qos_profile_unknown
+    history = qos.history.name
+    if qos.history == HistoryPolicy.KEEP_LAST:
+        history += f' ({qos.depth})'
+    return '\n'.join([
+        f'Node name: {info.node_name}',
+        f'Node namespace: {info.node_namespace}',
+        f'Topic type: {info.topic_type}',
+        f'Topic type hash: {info.topic_type_hash}',
+        f'Endpoint type: {info.endpoint_type}',
+        f'GID: {format_gid(info.endpoint_gid)}',
+        'QoS profile:',
+        f'  Reliability: {qos.reliability.name}',
+        f'  History (Depth): {history}',
+        f'  Durability: {qos.durability.name}',
+        f'  Lifespan: {qos.lifespan}',
+        f'  Deadline: {qos.deadline}',
+        f'  Liveliness: {qos.liveliness.name}',
+        f'  Liveliness lease duration: {qos.liveliness_lease_duration}',
+    ])

@@ -50,11 +50,15 @@ class CliSession:
         from ros2lite.context import Context
         from ros2lite.transport.config import RouterUnavailableError
         if not self.no_daemon:
-            from ros2lite import daemon
-            try:
-                daemon.ensure_running()
-            except daemon.DaemonError as e:
-                raise CliError(str(e)) from None
+            from ros2lite.daemon.probe import router_answers
+            from ros2lite.transport.config import router_endpoint
+            # the usual case (a router answers) skips importing the daemon machinery
+            if not router_answers(router_endpoint()):
+                from ros2lite import daemon
+                try:
+                    daemon.ensure_running()
+                except daemon.DaemonError as e:
+                    raise CliError(str(e)) from None
         self.context = Context()
         try:
             self.context.init([])
@@ -102,11 +106,11 @@ def qos_options(default_profile: str) -> Callable[[F], F]:
                 ['system_default', 'keep_last', 'keep_all', 'unknown']),
                 help='Quality of service history setting'),
             click.option('--qos-depth', type=click.IntRange(min=0),
-                         help='Queue size setting to publish with (overrides depth value of '
+                         help='Queue size setting (overrides depth value of '
                               '--qos-profile option)'),
             click.option('--qos-profile', type=click.Choice(QOS_PROFILES),
                          default=default_profile, show_default=True,
-                         help='Quality of service preset profile to publish with'),
+                         help='Quality of service preset profile'),
         ]
         for opt in opts:
             fn = opt(fn)

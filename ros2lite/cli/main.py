@@ -13,7 +13,11 @@ from .errors import CliError
 from .lazy import LazyGroup
 
 COMMANDS: dict[str, tuple[str, str]] = {
+    'daemon': ('ros2lite.cli.daemon', 'Various daemon related sub-commands'),
     'interface': ('ros2lite.cli.interface', 'Show information about ROS interfaces'),
+    'node': ('ros2lite.cli.node', 'Various node related sub-commands'),
+    'run': ('ros2lite.cli.run', 'Run a package specific executable'),
+    'topic': ('ros2lite.cli.topic', 'Various topic related sub-commands'),
 }
 
 
@@ -24,12 +28,18 @@ def debug_enabled() -> bool:
 @click.group(cls=LazyGroup, lazy=COMMANDS, invoke_without_command=True,
              context_settings={'help_option_names': ['-h', '--help']})
 @click.option('--debug', is_flag=True, help='Show full tracebacks on errors.')
+@click.option('--router', metavar='ENDPOINT',
+              help='Zenoh router endpoint to use (default $ROS2LITE_ROUTER or '
+                   'tcp/127.0.0.1:7447).')
 @click.version_option(package_name='ros2lite', prog_name='ros2lite')
 @click.pass_context
-def cli(ctx: click.Context, debug: bool) -> None:
+def cli(ctx: click.Context, debug: bool, router: str | None) -> None:
     """ros2lite is an extensible command-line tool for ROS 2."""
     if debug:
         os.environ['ROS2LITE_DEBUG'] = '1'
+    if router:
+        # every session, daemon and child process of this run reads it from here
+        os.environ['ROS2LITE_ROUTER'] = router
     if ctx.invoked_subcommand is None:
         click.echo(ctx.get_help())
 
@@ -42,7 +52,10 @@ def main(argv: list[str] | None = None) -> Any:
     with contextlib.suppress(AttributeError, ValueError):
         sys.stdout.reconfigure(line_buffering=True)  # type: ignore[union-attr]
     try:
-        cli.main(args=args, prog_name='ros2lite', standalone_mode=False)
+        # invoke directly (not cli.main) so our handlers see every exception, including
+        # BrokenPipeError, which click.main would turn into a bare exit 1
+        with cli.make_context('ros2lite', list(args)) as ctx:
+            rc = cli.invoke(ctx)
     except click.exceptions.Abort:
         return 2
     except click.exceptions.Exit as e:
@@ -67,7 +80,7 @@ def main(argv: list[str] | None = None) -> Any:
             raise
         click.echo(str(e) or type(e).__name__, err=True)
         return 1
-    return 0
+    return rc if isinstance(rc, int) else 0
 
 
 def run() -> None:

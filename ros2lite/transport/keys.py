@@ -10,6 +10,7 @@ QoS defaults, and a graph view must not fall over on one odd token.
 from __future__ import annotations
 
 import enum
+import functools
 import re
 from dataclasses import dataclass
 
@@ -361,6 +362,11 @@ class Entity:
         return base
 
 
+# Graphs repeat a handful of QoS chunks across thousands of tokens and profiles are frozen,
+# so decoding each distinct chunk once makes a big graph snapshot noticeably cheaper.
+_decode_qos_cached = functools.lru_cache(maxsize=1024)(decode_qos)
+
+
 def _fail(strict: bool, key: str, why: str) -> None:
     if strict:
         raise ValueError(f"not an rmw_zenoh liveliness token ({why}): {key!r}")
@@ -400,7 +406,7 @@ def parse_token(key: str, *, strict: bool = False) -> Entity | None:
     dds = demangle(parts[10])
     qos: QoSProfile | None
     try:
-        qos = decode_qos(parts[12])
+        qos = _decode_qos_cached(parts[12])
     except ValueError:
         if strict:
             raise

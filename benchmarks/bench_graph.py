@@ -1,0 +1,117 @@
+"""Graph benchmarks: `ros2lite topic list` against a graph of 1000 live endpoints.
+
+The endpoints are liveliness tokens (100 nodes x 10 endpoints) declared by a separate process
+that also runs its own router on a free loopback port, so the measured CLI process pays for
+exactly what a user's would: start-up, connecting, one complete graph query and printing.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Iterator
+
+from common import report, wall
+
+NODES = 100
+ENDPOINTS_PER_NODE = 10
+STRING_HASH = 'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18'
+
+# Runs in the child: a router, then a client session declaring the tokens; prints "ready".
+_GRAPH_CHILD = f'''
+import sys
+import zenoh
+from ros2lite.transport.config import open_session, router_config
+from ros2lite.transport.keys import EntityKind, endpoint_token, node_token
+from ros2lite.transport.qos import QoSProfile
+
+endpoint, domain = sys.argv[1], int(sys.argv[2])
+router = zenoh.open(router_config(endpoint, env={{}}))
+session = open_session(endpoint, env={{}})
+zid = str(session.info.zid())
+lv = session.liveliness()
+tokens = []
+qos = QoSProfile(depth=10)
+half = {ENDPOINTS_PER_NODE} // 2
+for n in range({NODES}):
+    nid = n * ({ENDPOINTS_PER_NODE} + 1)
+    name = f'node_{{n:03d}}'
+    tokens.append(lv.declare_token(node_token(domain, zid, nid, '/bench', name)))
+    for i in range({ENDPOINTS_PER_NODE}):
+        if i < half:
+            kind, topic = EntityKind.PUBLISHER, f'/bench/t_{{n:03d}}_{{i}}'
+        else:
+            peer = (n + 1) % {NODES}
+            kind, topic = EntityKind.SUBSCRIPTION, f'/bench/t_{{peer:03d}}_{{i - half}}'
+        tokens.append(lv.declare_token(endpoint_token(
+            domain, zid, nid, nid + 1 + i, kind, '/bench', name, topic, 'std_msgs/msg/String',
+            '{STRING_HASH}', qos)))
+print('ready', flush=True)
+sys.stdin.read()
+'''
+
+
+def _free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(('127.0.0.1', 0))
+        return int(sock.getsockname()[1])
+
+
+@contextlib.contextmanager
+def _environment(env: dict[str, str]) -> Iterator[None]:
+    saved = dict(os.environ)
+    os.environ.clear()
+    os.environ.update(env)
+    try:
+        yield
+    finally:
+        os.environ.clear()
+        os.environ.update(saved)
+
+
+def bench_topic_list() -> None:
+    endpoint = f'tcp/127.0.0.1:{_free_port()}'
+    domain = '217'
+    with tempfile.TemporaryDirectory() as runtime:
+        # Byte-code caching as an installed package has it (pip compiles on install): a
+        # private pycache prefix, so a PYTHONDONTWRITEBYTECODE shell can't make every run
+        # recompile the sources, and the baseline gets the same treatment.
+        env = {**os.environ, 'ROS2LITE_ROUTER': endpoint, 'ROS_DOMAIN_ID': domain,
+               'XDG_RUNTIME_DIR': runtime, 'PYTHONPYCACHEPREFIX': os.path.join(runtime, 'pyc')}
+        for var in ('ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI',
+                    'ZENOH_ROUTER_CONFIG_URI', 'PYTHONDONTWRITEBYTECODE'):
+            env.pop(var, None)
+        child = subprocess.Popen([sys.executable, '-c', _GRAPH_CHILD, endpoint, domain],
+                                 stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
+                                 env=env)
+        try:
+            assert child.stdout is not None and child.stdout.readline().strip() == 'ready'
+            exe = os.path.join(os.path.dirname(sys.executable), 'ros2lite')
+            cmd = [exe, 'topic', 'list']
+            # sanity: the CLI sees every topic before we time it
+            expected = NODES * ENDPOINTS_PER_NODE // 2
+            deadline = time.monotonic() + 10
+            while True:
+                out = subprocess.run(cmd, env=env, capture_output=True, text=True).stdout
+                if len(out.splitlines()) == expected or time.monotonic() > deadline:
+                    break
+                time.sleep(0.05)
+            assert len(out.splitlines()) == expected, f'{len(out.splitlines())} topics'
+            with _environment(env):  # wall() runs commands with this process' environment
+                ours = wall(cmd, runs=9)
+                wall([sys.executable, '-c', 'import click'], runs=1)  # warm its cache too
+                base = wall([sys.executable, '-c', 'import click'], runs=9)
+        finally:
+            if child.stdin:
+                child.stdin.close()
+            child.terminate()
+            child.wait(timeout=10)
+    report('topic_list_1000_wall', ours * 1000, 'ms', ours / base)
+
+
+BENCHES = {'topic_list_1000': bench_topic_list}

@@ -1,0 +1,22 @@
+"""`daemon status`: ros2cli's one line, then which router serves the endpoint."""
+
+from __future__ import annotations
+
+import click
+
+
+@click.command('status')
+def cli() -> None:
+    """Output the status of the daemon."""
+    from ros2lite import daemon
+    st = daemon.status()
+    click.echo('The daemon is running' if st.running else 'The daemon is not running')
+    if st.running and st.ours:
+        click.echo(f'Serving {st.endpoint} (ros2lite daemon, pid {st.pid})')
+    elif st.running:
+        click.echo(f'Serving {st.endpoint} (a Zenoh router not started by ros2lite)')
+    elif st.ours:
+        click.echo(f'The ros2lite daemon (pid {st.pid}) exists but does not answer at '
+                   f'{st.endpoint}')
+    else:
+        click.echo(f'No Zenoh router answers at {st.endpoint}')

@@ -1,0 +1,70 @@
+"""`topic bw`: bandwidth of a topic, from the sizes of raw (never decoded) samples."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from typing import Any
+
+import click
+
+from ..common import CliSession, strategy_options
+from .echo import resolve_topic, wait_for_type
+
+DEFAULT_WINDOW_SIZE = 100
+
+
+def _scaled(bytes_per_s: float) -> Callable[[float], str]:
+    """ros2cli picks one unit (base 1000) from the rate and uses it for every number."""
+    if bytes_per_s < 1000:
+        return lambda n: f'{n:.0f} B'
+    if bytes_per_s < 1000_000:
+        return lambda n: f'{n / 1000:.2f} KB'
+    return lambda n: f'{n / 1000 / 1000:.2f} MB'
+
+
+def bw_line(s: Any) -> str:
+    fmt = _scaled(s.bytes_per_second)
+    return (f'{fmt(s.bytes_per_second)}/s from {s.count} messages\n'
+            f'\tMessage size mean: {fmt(s.mean)} min: {fmt(s.min)} max: {fmt(s.max)}')
+
+
+@click.command('bw')
+@click.argument('topic')
+@click.option('-w', '--window', type=click.IntRange(min=1), default=DEFAULT_WINDOW_SIZE,
+              show_default=True, metavar='WINDOW',
+              help='maximum window size, in # of messages, for calculating rate')
+@strategy_options(no_daemon=False)
+def cli(topic: str, window: int, spin_time: float, use_sim_time: bool) -> None:
+    """Display bandwidth used by topic."""
+    from ros2lite.executor import SingleThreadedExecutor
+    from ros2lite.topic_monitor import MonitoredSubscription
+    from ros2lite.topic_stats import BandwidthStats
+    from ros2lite.transport.qos import qos_profile_sensor_data
+    stats = BandwidthStats(window)
+    with CliSession(use_sim_time=use_sim_time) as session:
+        node = session.node()
+        full_name = resolve_topic(node, topic)
+        type_name = wait_for_type(session, topic, full_name)
+        clock = node.get_clock()
+
+        def now_ns() -> int:
+            t: int = clock.now().nanoseconds if use_sim_time else time.time_ns()
+            return t
+
+        def on_arrival(size: int, _attachment: bytes, arrived: int) -> None:
+            stats.add(now_ns() if use_sim_time else arrived, size)
+
+        def report() -> None:
+            summary = stats.summary(now_ns())
+            if summary is not None:
+                click.echo(bw_line(summary))
+
+        # sizes are taken as samples arrive, so none is missed and none is decoded
+        MonitoredSubscription(node, type_name, full_name, None, qos_profile_sensor_data,
+                              on_arrival=on_arrival)
+        click.echo(f'Subscribed to [{topic}]')
+        node.create_timer(1.0, report)
+        executor = SingleThreadedExecutor(context=session.context)
+        executor.add_node(node)
+        executor.spin()

@@ -1,0 +1,46 @@
+"""`topic info`: type and endpoint counts of one topic; `-v` adds every endpoint's details."""
+
+from __future__ import annotations
+
+import click
+
+from ..common import CliSession, strategy_options
+from ..errors import CliError
+
+
+@click.command('info')
+@strategy_options()
+@click.argument('topic_name')
+@click.option('-v', '--verbose', is_flag=True,
+              help='Also describe every publisher and subscription: node, type hash, GID '
+                   'and QoS')
+def cli(topic_name: str, verbose: bool, no_daemon: bool, spin_time: float,
+        use_sim_time: bool) -> None:
+    """Print information about a topic."""
+    from ros2lite.graph import (
+        count,
+        endpoints_by_topic,
+        format_endpoint_info,
+        topic_names_and_types,
+    )
+    from ros2lite.transport.keys import EntityKind, expand_topic_name
+    try:
+        name = expand_topic_name(topic_name, 'ros2lite', '/')
+    except ValueError as e:
+        raise CliError(str(e)) from None
+    with CliSession(no_daemon=no_daemon) as session:
+        entities = session.entities()
+    # hidden topics are always looked up here, as in ros2cli
+    types = dict(topic_names_and_types(entities, include_hidden=True)).get(name)
+    if types is None:
+        raise CliError(f"Unknown topic '{name}'")
+    end = '\n\n' if verbose else '\n'
+    out = [f'Type: {types[0] if len(types) == 1 else types}' + end]
+    for kind, label in ((EntityKind.PUBLISHER, 'Publisher'),
+                        (EntityKind.SUBSCRIPTION, 'Subscription')):
+        out.append(f'{label} count: {count(entities, name, kind)}' + end)
+        if verbose:
+            endpoints = sorted(endpoints_by_topic(entities, name, kind),
+                               key=lambda i: (i.node_namespace, i.node_name, i.endpoint_gid))
+            out += [format_endpoint_info(info) + end for info in endpoints]
+    click.echo(''.join(out), nl=False)

@@ -1,0 +1,92 @@
+"""Watching a topic from outside: find its type in the graph, pick a subscription QoS that
+connects to every publisher, and see samples the moment they arrive.
+
+Used by `topic echo/hz/bw/delay`; kept in the library because a script that monitors topics
+needs the same three things.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from typing import Any
+
+from ros2lite.subscription import Subscription
+from ros2lite.transport.keys import Entity, EntityKind
+from ros2lite.transport.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+
+__all__ = ['MatchedQoS', 'MonitoredSubscription', 'match_publishers_qos', 'topic_types']
+
+
+def topic_types(entities: Iterable[Entity], topic: str) -> list[str]:
+    """Every type any endpoint (publisher or subscription) uses on `topic`, sorted."""
+    return sorted({e.type_name for e in entities
+                   if e.kind in (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION)
+                   and e.topic_name == topic and e.type_name})
+
+
+@dataclass(frozen=True)
+class MatchedQoS:
+    """The profile to subscribe with, and which policies had to be weakened."""
+
+    profile: QoSProfile
+    reliability_fell_back: bool   # some but not all publishers are RELIABLE
+    durability_fell_back: bool    # some but not all publishers are TRANSIENT_LOCAL
+
+
+def match_publishers_qos(profile: QoSProfile, publishers: Iterable[QoSProfile | None]
+                         ) -> MatchedQoS:
+    """Ask for RELIABLE / TRANSIENT_LOCAL only when every publisher offers it.
+
+    That is the strongest request still compatible with all of them: a RELIABLE or
+    TRANSIENT_LOCAL subscription would not match a weaker publisher under DDS rules, and a
+    TRANSIENT_LOCAL one is what receives a latched publisher's history. With no publishers
+    the profile is returned unchanged.
+    """
+    offered = list(publishers)
+    if not offered:
+        return MatchedQoS(profile, False, False)
+    reliable = sum(1 for q in offered
+                   if q is not None and q.reliability == ReliabilityPolicy.RELIABLE)
+    latched = sum(1 for q in offered
+                  if q is not None and q.durability == DurabilityPolicy.TRANSIENT_LOCAL)
+    n = len(offered)
+    chosen = profile.replace(
+        reliability=ReliabilityPolicy.RELIABLE if reliable == n
+        else ReliabilityPolicy.BEST_EFFORT,
+        durability=DurabilityPolicy.TRANSIENT_LOCAL if latched == n
+        else DurabilityPolicy.VOLATILE)
+    return MatchedQoS(chosen, 0 < reliable < n, 0 < latched < n)
+
+
+class MonitoredSubscription(Subscription):
+    """A raw subscription that shows every sample to `on_arrival` the moment it arrives.
+
+    `on_arrival(size, attachment, received_ns)` runs on the Zenoh thread before the sample
+    is queued, with the CDR size, the rmw_zenoh attachment and the arrival time (the same
+    clock as MessageInfo.received_timestamp). It therefore sees every sample, including the
+    ones the subscription's queue (its QoS depth) drops when the consumer falls behind —
+    which is where rmw_zenoh counts lost messages, and what lets `topic hz` stay exact at
+    10 kHz. With `callback=None` nothing is queued at all: the hook is the whole consumer.
+    """
+
+    def __init__(self, node: Any, msg_type: Any, topic: str,
+                 callback: Callable[[bytes, Any], Any] | None, qos: QoSProfile, *,
+                 on_arrival: Callable[[int, bytes, int], Any]) -> None:
+        self._on_arrival = on_arrival
+        self._deliver = callback is not None
+        super().__init__(node, msg_type, topic, callback or _ignore, qos, raw=True)
+        node.subscriptions.append(self)   # destroyed with the node, like its own ones
+
+    def _on_sample(self, sample: Any) -> None:
+        attachment = sample.attachment
+        if attachment is None:
+            return   # rmw_zenoh ignores samples without one
+        self._on_arrival(len(sample.payload), attachment.to_bytes(), time.time_ns())
+        if self._deliver:
+            super()._on_sample(sample)
+
+
+def _ignore(*_: Any) -> None:
+    """Callback of a subscription whose samples are never queued."""
