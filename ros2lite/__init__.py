@@ -32,10 +32,14 @@ _EXPORTS = {
 
 
 def init(args: list[str] | None = None, *, context: Any = None, router: str | None = None,
-         domain_id: int | None = None) -> None:
-    """Open the Zenoh session (fails fast with a clear error when no router answers)."""
+         domain_id: int | None = None) -> Any:
+    """Open the Zenoh session (fails fast with a clear error when no router answers).
+
+    `args=None` reads `sys.argv` like rclpy; the returned context also works as
+    `with ros2lite.init(): …`, shutting down on exit.
+    """
     from ros2lite.context import default_context
-    (context or default_context()).init(args, router=router, domain_id=domain_id)
+    return (context or default_context()).init(args, router=router, domain_id=domain_id)
 
 
 def shutdown(*, context: Any = None) -> None:

@@ -7,10 +7,13 @@ queue work that an executor runs on the user's thread, as rclpy does.
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import itertools
 import queue
+import sys
 import threading
+import weakref
 from typing import Any
 
 from ros2lite.arguments import RosArgs, parse_ros_args
@@ -40,17 +43,28 @@ class Context:
         self._graph: Any = None
 
     def init(self, args: list[str] | None = None, *, router: str | None = None,
-             domain_id: int | None = None) -> None:
+             domain_id: int | None = None) -> Context:
+        """Open the session; `args=None` means `sys.argv`, as rclpy.init does, so
+        `--ros-args` given to a node's process reach its nodes."""
         from ros2lite.transport.config import domain_id as env_domain_id
         from ros2lite.transport.config import open_session
         if self.ok():
             raise RuntimeError('Context.init() must only be called once')
-        self.argv = list(args or [])
+        self.argv = list(sys.argv if args is None else args)
         self.args = parse_ros_args(self.argv)
         self.domain_id = env_domain_id() if domain_id is None else domain_id
         self.router = router
         self.session = open_session(router)
         self.zid = str(self.session.info.zid())
+        _live.add(self)
+        return self
+
+    # `with ros2lite.init():` shuts the context down on the way out, as rclpy allows
+    def __enter__(self) -> Context:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.try_shutdown()
 
     def ok(self) -> bool:
         return self.session is not None
@@ -116,6 +130,18 @@ def undeclare_quietly(*entities: Any) -> None:
         if entity is not None:
             with contextlib.suppress(Exception):
                 entity.undeclare()
+
+
+# Contexts still open at interpreter exit are shut down first: zenoh threads and our pump
+# threads must be gone before Python finalises, or the process aborts instead of exiting.
+_live: weakref.WeakSet[Context] = weakref.WeakSet()
+
+
+@atexit.register
+def _shutdown_live_contexts() -> None:
+    for ctx in list(_live):
+        with contextlib.suppress(Exception):
+            ctx.try_shutdown()
 
 
 _default = Context()

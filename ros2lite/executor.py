@@ -1,4 +1,10 @@
-"""A single-threaded executor: runs queued callbacks and due timers on the caller's thread."""
+"""A single-threaded executor: runs queued callbacks and due timers on the caller's thread.
+
+Work items (anything with `execute()`) arrive on the context's queue. `spin_once` runs exactly
+one callback, as rclpy promises; `spin` and `spin_until_future_complete` let a subscription
+deliver a short batch per turn (bounded in count and time, and ended as soon as the awaited
+future completes), which is what makes high message rates affordable in Python.
+"""
 
 from __future__ import annotations
 
@@ -9,6 +15,9 @@ from collections.abc import Callable
 from typing import Any
 
 from ros2lite.context import Context, default_context
+
+# at most this many samples of one subscription per turn in spin()/spin_until_future_complete
+_BATCH = 128
 
 
 class Future:
@@ -84,42 +93,91 @@ class SingleThreadedExecutor:
     def get_nodes(self) -> list[Any]:
         return list(self._nodes)
 
-    def _timers(self) -> list[Any]:
-        return [t for n in self._nodes for t in n.timers if not t.is_canceled()]
+    def _has_timers(self) -> bool:
+        return any(node.timers for node in self._nodes)
 
-    def _run_due_timers(self) -> float | None:
-        """Fire due timers; return seconds until the next one (None if there is none)."""
+    def _run_due_timers(self) -> tuple[bool, float | None]:
+        """Fire due timers; return (whether any fired, seconds until the next one or None)."""
+        fired = False
         wait: float | None = None
-        for timer in self._timers():
-            remaining = timer.time_until_next_call()
-            if remaining is None:
-                continue
-            if remaining <= 0:
-                timer.execute()
+        for node in self._nodes:
+            for timer in node.timers:
                 remaining = timer.time_until_next_call()
                 if remaining is None:
                     continue
-            wait = remaining if wait is None else min(wait, remaining)
-        return wait
+                if remaining <= 0:
+                    timer.execute()
+                    fired = True
+                    remaining = timer.time_until_next_call()
+                    if remaining is None:
+                        continue
+                wait = remaining if wait is None else min(wait, remaining)
+        return fired, wait
 
     def spin_once(self, timeout_sec: float | None = None) -> None:
-        """Do at most one queued item (plus any due timers), waiting up to `timeout_sec`."""
-        next_timer = self._run_due_timers()
-        wait = timeout_sec
-        if next_timer is not None:
-            wait = max(0.0, next_timer) if wait is None else min(wait, max(0.0, next_timer))
-        try:
-            item = self.context.work.get(timeout=wait) if wait != 0 else \
-                self.context.work.get_nowait()
-        except queue.Empty:
-            item = None
-        if item is not None:
-            item.execute()
-        self._run_due_timers()
+        """Run due timers or one queued item, waiting up to `timeout_sec` (None: forever)."""
+        self._spin_once(timeout_sec, None)
+
+    @staticmethod
+    def _execute(item: Any, batch: bool, done: Callable[[], bool] | None) -> None:
+        """Run one work item; in the run-until loops a subscription may deliver a batch."""
+        if batch:
+            many = getattr(item, 'execute_many', None)
+            if many is not None:
+                many(_BATCH, done)
+                return
+        item.execute()
+
+    def _spin_once(self, timeout_sec: float | None,
+                   done: Callable[[], bool] | None, batch: bool = False) -> None:
+        # A bare wake-up (node or timer added, future finished elsewhere) is not work: keep
+        # waiting for the rest of the timeout, unless `done()` holds or the context shut down.
+        # Returning on every wake-up made `spin_once(node, timeout_sec=…)` loops busy-spin,
+        # because each call adds the node to an executor, which queues a wake-up.
+        work = self.context.work
+        if not self._has_timers():
+            # hot path: work already queued runs at once, with no deadline arithmetic
+            try:
+                item = work.get_nowait()
+            except queue.Empty:
+                item = None
+            if item is not None:
+                self._execute(item, batch, done)
+                return
+        if timeout_sec is None and not self._has_timers():
+            # hot path (spin() and friends without timers): nothing to compute per item
+            while True:
+                item = work.get()
+                if item is not None:
+                    self._execute(item, batch, done)
+                    return
+                if not self.context.ok() or (done is not None and done()):
+                    return
+                if self._has_timers():
+                    break  # a timer was added meanwhile: take the general path
+        deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
+        while True:
+            fired, next_timer = self._run_due_timers()
+            if fired:
+                return
+            wait = None if deadline is None else max(0.0, deadline - time.monotonic())
+            if next_timer is not None:
+                wait = max(0.0, next_timer) if wait is None else min(wait, max(0.0, next_timer))
+            try:
+                item = work.get(timeout=wait) if wait != 0 else work.get_nowait()
+            except queue.Empty:
+                item = None
+            if item is not None:
+                self._execute(item, batch, done)
+                return
+            if not self.context.ok() or (done is not None and done()):
+                return
+            if deadline is not None and time.monotonic() >= deadline:
+                return
 
     def spin(self) -> None:
         while self.context.ok():
-            self.spin_once(None)
+            self._spin_once(None, None, True)
 
     def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None
                                    ) -> None:
@@ -129,7 +187,7 @@ class SingleThreadedExecutor:
             remaining = None if deadline is None else deadline - time.monotonic()
             if remaining is not None and remaining <= 0:
                 return
-            self.spin_once(remaining)
+            self._spin_once(remaining, future.done, True)
 
     def shutdown(self, timeout_sec: float | None = None) -> bool:
         self._nodes.clear()

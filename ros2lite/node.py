@@ -15,9 +15,10 @@ from ros2lite.publisher import Publisher
 from ros2lite.subscription import Subscription
 from ros2lite.timer import Timer
 from ros2lite.transport import keys
-from ros2lite.transport.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from ros2lite.transport.qos import QoSProfile, ReliabilityPolicy, qos_profile_rosout_default
 
-ROSOUT_QOS = QoSProfile(durability=DurabilityPolicy.TRANSIENT_LOCAL, depth=1000)
+# rcl's rosout profile, lifespan 10 s included: the token must read `:1:,1000:,:10,0:,,`
+ROSOUT_QOS = qos_profile_rosout_default
 CLOCK_QOS = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT, depth=1)
 
 

@@ -8,9 +8,10 @@ from typing import Any
 
 from ros2lite.endpoint import Endpoint, is_transient_local, zenoh_options
 from ros2lite.transport.keys import EntityKind
-from ros2lite.transport.qos import QoSProfile
+from ros2lite.transport.qos import QoSProfile, ReliabilityPolicy
 
-_ATTACHMENT_HEAD = struct.Struct('<qqB')
+# the whole 33-byte rmw_zenoh attachment in one pack: seq, timestamp, GID length, GID
+_ATTACHMENT = struct.Struct('<qqB16s')
 
 
 class Publisher:
@@ -24,15 +25,21 @@ class Publisher:
         self._pub: Any
         if is_transient_local(ep.qos):
             import zenoh.ext
+            # as rmw_zenoh: reliable + transient local also announces its last sequence
+            # number (sporadic heartbeat), which subscribers' heartbeat recovery relies on
+            miss = zenoh.ext.MissDetectionConfig(heartbeat=None, sporadic_heartbeat=0.5) \
+                if ep.qos.reliability != ReliabilityPolicy.BEST_EFFORT else None
             self._pub = zenoh.ext.declare_advanced_publisher(
                 session, ep.key, cache=zenoh.ext.CacheConfig(max(ep.qos.depth, 1)),
-                publisher_detection=True, **options)
+                sample_miss_detection=miss, publisher_detection=True, **options)
         else:
             self._pub = session.declare_publisher(ep.key, **options)
         ep._announce()
         self._gid = ep.gid
         self._seq = 0
         self._serialize: Any = None
+        self._msg_class = ep.msg_class
+        self._put = self._pub.put
 
     @property
     def topic_name(self) -> str:
@@ -52,20 +59,26 @@ class Publisher:
 
     def publish(self, msg: Any) -> None:
         """Send a message object, or bytes that already hold its CDR encoding."""
-        if isinstance(msg, (bytes, bytearray, memoryview)):
-            data = bytes(msg)
-        else:
-            if type(msg) is not self._ep.msg_class and \
-                    getattr(msg, '_TYPE_NAME', None) != self._ep.type_name:
-                raise TypeError(f"publisher of '{self._ep.type_name}' got {type(msg).__name__}")
+        # hot path first: a message of exactly our class, through its cached codec
+        if type(msg) is self._msg_class:
             ser = self._serialize
             if ser is None:
-                from ros2lite.interfaces import serialize
-                ser = self._serialize = serialize
+                ser = self._serialize = self._codec_serializer()
             data = ser(msg)
-        self._seq += 1
-        self._pub.put(data, attachment=_ATTACHMENT_HEAD.pack(self._seq, time.time_ns(), 16)
-                      + self._gid)
+        elif isinstance(msg, (bytes, bytearray, memoryview)):
+            data = bytes(msg)
+        else:
+            if getattr(msg, '_TYPE_NAME', None) != self._ep.type_name:
+                raise TypeError(f"publisher of '{self._ep.type_name}' got {type(msg).__name__}")
+            from ros2lite.interfaces import serialize
+            data = serialize(msg)
+        self._seq = seq = self._seq + 1
+        self._put(data, attachment=_ATTACHMENT.pack(seq, time.time_ns(), 16, self._gid))
+
+    def _codec_serializer(self) -> Any:
+        from ros2lite.interfaces.cdr import codec
+        from ros2lite.interfaces.registry import default_registry
+        return codec(self._ep.type_name, default_registry()).serialize
 
     def get_subscription_count(self) -> int:
         from ros2lite.graph import count
@@ -75,6 +88,11 @@ class Publisher:
     def destroy(self) -> None:
         self._ep._undeclare(self._pub)
         self._pub = None
+        self._put = _destroyed
+
+
+def _destroyed(*_: Any, **__: Any) -> None:
+    raise RuntimeError('publisher has been destroyed')
 
 
 class _PublisherEndpoint(Endpoint):

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import struct
+import threading
 import time
 from collections import deque
 from collections.abc import Callable
@@ -23,7 +25,21 @@ class MessageInfo:
     publisher_gid: bytes
 
 
+_CURRENT_ATTACHMENT = struct.Struct('<qqB')
+# Rust-side queue between zenoh and the pump thread (never below the QoS depth), and how many
+# samples the pump moves per GIL hold
+_CHANNEL_CAPACITY = 4096
+_PUMP_BATCH = 512
+# longest run of callbacks of one subscription in one executor turn (seconds)
+_BATCH_TIME = 0.002
+
+
 def _info(attachment: bytes, received: int) -> MessageInfo:
+    # the current 33-byte layout is unpacked inline (hot path); anything else goes through
+    # the full decoder, which also reads the legacy keyed layout
+    if len(attachment) == 33 and attachment[16] == 16:
+        seq, stamp, _ = _CURRENT_ATTACHMENT.unpack_from(attachment)
+        return MessageInfo(stamp, received, seq, attachment[17:])
     from ros2lite.transport.attachment import decode_attachment
     try:
         a = decode_attachment(attachment)
@@ -44,9 +60,18 @@ class Subscription:
         self.raw = raw
         self._work = node.context.work
         keep_all = ep.qos.history == HistoryPolicy.KEEP_ALL
-        self._buffer: deque[tuple[bytes, bytes, int]] = deque(
+        # zenoh samples as they came: `sample` for typed subscriptions, `(sample, arrival ns)`
+        # for raw ones (tools like `topic hz` need arrival times). Bytes are copied out on the
+        # executor thread, keeping the pump thread's share of the GIL small.
+        self._buffer: deque[Any] = deque(
             maxlen=None if keep_all else max(ep.qos.depth, 1))
-        handler = zenoh.handlers.Callback(self._on_sample)
+        # Samples wait in a Rust-side channel and our own pump thread moves them to the
+        # buffer in batches (see _pump). A zenoh callback per sample instead makes a second
+        # Python thread take the GIL for every sample while the executor thread runs user
+        # code; that GIL ping-pong was most of the cost of a message.
+        capacity = max(ep.qos.depth, _CHANNEL_CAPACITY)
+        handler = zenoh.handlers.FifoChannel(capacity) if keep_all \
+            else zenoh.handlers.RingChannel(capacity)   # KEEP_LAST may drop the oldest
         session = node.context.session
         self._sub: Any
         if is_transient_local(ep.qos):
@@ -61,7 +86,43 @@ class Subscription:
         else:
             self._sub = session.declare_subscriber(ep.key, handler)
         self._deserialize: Any = None
+        self._destroyed = False
+        self._scheduled = False
+        self._pump_thread = threading.Thread(
+            target=self._pump, args=(self._sub.handler,), daemon=True,
+            name=f'ros2lite-sub {ep.topic_name}')
+        self._pump_thread.start()
         ep._announce()
+
+    def _pump(self, channel: Any) -> None:
+        """Pump thread: block (GIL released) until a sample comes, then move everything
+        waiting in the channel to the buffer while holding the GIL once, so a burst costs
+        one GIL hand-off per batch instead of one per sample. Ends when the subscriber is
+        undeclared (the channel closes)."""
+        recv, try_recv = channel.recv, channel.try_recv
+        # a subclass hook (e.g. topic monitors) sees every sample; ours is inlined below
+        hook = None if type(self)._on_sample is Subscription._on_sample else self._on_sample
+        append, put, now, raw = self._buffer.append, self._work.put, time.time_ns, self.raw
+        while True:
+            try:
+                sample = recv()
+            except Exception:
+                return   # channel closed: subscription destroyed or session closed
+            n = 0
+            while sample is not None:
+                if hook is not None:
+                    try:
+                        hook(sample)
+                    except Exception:
+                        import traceback
+                        traceback.print_exc()
+                else:
+                    append((sample, now()) if raw else sample)
+                n += 1
+                sample = try_recv() if n < _PUMP_BATCH else None
+            if hook is None and not self._scheduled and not self._destroyed:
+                self._scheduled = True
+                put(self)
 
     @property
     def topic_name(self) -> str:
@@ -76,40 +137,98 @@ class Subscription:
         return self._ep.qos
 
     def _on_sample(self, sample: Any) -> None:
-        """Zenoh thread: keep the bytes and hand the work to the executor."""
-        attachment = sample.attachment
-        if attachment is None:
-            return  # rmw_zenoh drops samples without an attachment
-        self._buffer.append((sample.payload.to_bytes(), attachment.to_bytes(), time.time_ns()))
-        self._work.put(self)
+        """Pump thread: keep the sample and make sure the executor will come for it.
 
-    def take(self) -> tuple[Any, MessageInfo] | None:
-        """The oldest buffered sample as (message or bytes, info), or None."""
-        try:
-            data, attachment, received = self._buffer.popleft()
-        except IndexError:
-            return None
-        if self.raw:
-            return data, _info(attachment, received)
+        The subscription sits in the work queue at most once while it has samples (the
+        `_scheduled` flag), so a burst costs one queue entry, not one per sample. Samples
+        without an attachment, which rmw_zenoh ignores, are dropped when taken (checking here
+        would cost every sample a trip into zenoh on this thread)."""
+        if self._destroyed:
+            return
+        self._buffer.append((sample, time.time_ns()) if self.raw else sample)
+        if not self._scheduled:
+            self._scheduled = True
+            self._work.put(self)
+
+    def _reschedule(self) -> None:
+        # Clear the flag *before* looking at the buffer: a sample appended meanwhile is then
+        # either seen here or re-queued by the pump, never left behind.
+        self._scheduled = False
+        if self._buffer and not self._destroyed:
+            self._scheduled = True
+            self._work.put(self)
+
+    def _deserializer(self) -> Any:
         des = self._deserialize
         if des is None:
             from ros2lite.interfaces.cdr import codec
             from ros2lite.interfaces.registry import default_registry
             des = self._deserialize = codec(self._ep.type_name, default_registry()).deserialize
-        return des(data), _info(attachment, received)
+        return des
+
+    def take(self) -> tuple[Any, MessageInfo] | None:
+        """The oldest buffered sample as (message or bytes, info), or None. For typed
+        subscriptions `received_timestamp` is the time of the take."""
+        while True:
+            try:
+                entry = self._buffer.popleft()
+            except IndexError:
+                return None
+            sample, received = entry if self.raw else (entry, time.time_ns())
+            attachment = sample.attachment
+            if attachment is None:
+                continue   # rmw_zenoh drops samples without an attachment
+            data = sample.payload.to_bytes()
+            info = _info(attachment.to_bytes(), received)
+            return (data if self.raw else self._deserializer()(data)), info
 
     def execute(self) -> None:
-        item = self.take()
-        if item is None:
-            return
-        if self.raw:
-            self.callback(item[0], item[1])
-        else:
-            self.callback(item[0])
+        """Deliver the oldest sample (one callback, as rclpy's spin_once promises)."""
+        self.execute_many(1, None)
+
+    def execute_many(self, limit: int, stop: Callable[[], bool] | None) -> None:
+        """Deliver up to `limit` buffered samples, stopping early once `stop()` holds; what
+        is left goes back in the queue behind other work. spin() and
+        spin_until_future_complete() use this so a burst is not paid for per sample in
+        executor overhead. Typed callbacks never see MessageInfo, so it is only built for
+        raw ones."""
+        buffer, callback, raw = self._buffer, self.callback, self.raw
+        des = None if raw else self._deserialize or self._deserializer()
+        # a batch also ends after _BATCH_TIME, so slow callbacks can't starve timers
+        deadline = time.perf_counter() + _BATCH_TIME if limit > 1 else 0.0
+        try:
+            for i in range(limit):
+                if i & 7 == 7 and time.perf_counter() > deadline:
+                    break
+                try:
+                    entry = buffer.popleft()
+                except IndexError:
+                    break  # KEEP_LAST dropped it, or take() got there first
+                if self._destroyed:
+                    break
+                if des is None:
+                    sample, received = entry
+                    attachment = sample.attachment
+                    if attachment is None:
+                        continue   # rmw_zenoh drops samples without an attachment
+                    callback(sample.payload.to_bytes(), _info(attachment.to_bytes(), received))
+                else:
+                    if entry.attachment is None:
+                        continue
+                    callback(des(entry.payload.to_bytes()))
+                if stop is not None and stop():
+                    break
+        finally:
+            self._reschedule()
 
     def destroy(self) -> None:
-        self._ep._undeclare(self._sub)
+        self._destroyed = True
+        self._buffer.clear()
+        self._ep._undeclare(self._sub)   # closes the channel, which ends the pump thread
         self._sub = None
+        if self._pump_thread is not threading.current_thread():
+            # a pump still inside zenoh when the interpreter finalises aborts the process
+            self._pump_thread.join(timeout=1.0)
 
     def get_publisher_count(self) -> int:
         from ros2lite.graph import count

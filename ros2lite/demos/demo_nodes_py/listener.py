@@ -1,0 +1,26 @@
+"""`listener`: logs every `std_msgs/String` that arrives on `chatter`."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ros2lite.demos.runner import run_node
+from ros2lite.msgs.std_msgs.msg import String  # type: ignore[attr-defined]  # import hook
+from ros2lite.node import Node
+
+
+class Listener(Node):
+    def __init__(self) -> None:
+        super().__init__('listener')
+        self.sub = self.create_subscription(String, 'chatter', self.chatter_callback, 10)
+
+    def chatter_callback(self, msg: Any) -> None:
+        self.get_logger().info(f'I heard: [{msg.data}]')
+
+
+def main(args: list[str] | None = None) -> int:
+    return run_node(Listener, args)
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())

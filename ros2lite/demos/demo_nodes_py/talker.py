@@ -1,0 +1,29 @@
+"""`talker`: publishes `Hello World: N` on `chatter` once a second, counting from 0."""
+
+from __future__ import annotations
+
+from ros2lite.demos.runner import run_node
+from ros2lite.msgs.std_msgs.msg import String  # type: ignore[attr-defined]  # import hook
+from ros2lite.node import Node
+
+
+class Talker(Node):
+    def __init__(self) -> None:
+        super().__init__('talker')
+        self.i = 0
+        self.pub = self.create_publisher(String, 'chatter', 10)
+        self.tmr = self.create_timer(1.0, self.timer_callback)
+
+    def timer_callback(self) -> None:
+        msg = String(data=f'Hello World: {self.i}')
+        self.i += 1
+        self.get_logger().info(f'Publishing: "{msg.data}"')
+        self.pub.publish(msg)
+
+
+def main(args: list[str] | None = None) -> int:
+    return run_node(Talker, args)
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())

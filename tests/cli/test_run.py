@@ -1,0 +1,140 @@
+"""`ros2lite run`: finding the executable, passing arguments through untouched, exit statuses
+and ros2run's messages, and Ctrl-C/SIGTERM reaching the child."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from ros2lite.executor import SingleThreadedExecutor
+from ros2lite.node import Node
+from tests.cli.conftest import Result, run_process
+from tests.pkg.test_executables import make_ament_prefix
+from tests.spinning import spin_until
+
+
+@pytest.fixture
+def scripts(tmp_path: Path) -> dict[str, str]:
+    """An ament prefix with small shell executables; returns the env pointing at it."""
+    prefix = make_ament_prefix(tmp_path, 'tools', {
+        'fail3': '#!/bin/sh\nexit 3\n',
+        'segv': '#!/bin/sh\nkill -SEGV $$\n',
+        'echo_args': '#!/bin/sh\nprintf "%s|" "$@"\necho "FOO=$FOO"\n',
+        'a/dup': '#!/bin/sh\n', 'b/dup': '#!/bin/sh\n',
+    })
+    return {'AMENT_PREFIX_PATH': str(prefix)}
+
+
+def test_unknown_package(run: Callable[..., Result]) -> None:
+    result = run('run', 'no_such_package', 'talker')
+    assert (result.code, result.out, result.err) == (1, '', "Package 'no_such_package' not found\n")
+
+
+def test_unknown_executable(run: Callable[..., Result]) -> None:
+    result = run('run', 'demo_nodes_py', 'nope')
+    assert (result.code, result.err) == (1, 'No executable found\n')
+
+
+def test_missing_arguments_is_a_usage_error(run: Callable[..., Result]) -> None:
+    assert run('run', 'demo_nodes_py').code == 2
+
+
+def test_multiple_executables(scripts: dict[str, str]) -> None:
+    result = run_process('run', 'tools', 'dup', env=scripts)
+    prefix = Path(scripts['AMENT_PREFIX_PATH'])
+    assert result.code == 1
+    assert result.err == (f'Multiple executables found:\n- {prefix}/lib/tools/a/dup\n'
+                          f'- {prefix}/lib/tools/b/dup\n')
+
+
+def test_child_failure_status(scripts: dict[str, str]) -> None:
+    result = run_process('run', 'tools', 'fail3', env=scripts)
+    assert result.code == 3
+    assert result.err == '[ros2run]: Process exited with failure 3\n'
+
+
+def test_child_killed_by_signal(scripts: dict[str, str]) -> None:
+    result = run_process('run', 'tools', 'segv', env=scripts)
+    assert result.code == 128 + signal.SIGSEGV
+    assert result.err == '[ros2run]: Segmentation fault\n'
+
+
+def test_arguments_and_prefix_pass_through(scripts: dict[str, str]) -> None:
+    result = run_process('run', '--prefix', 'env FOO=from_prefix', 'tools', 'echo_args',
+                         '--ros-args', '-r', 'chatter:=/x', '--help', '-h', '--prefix', 'p',
+                         env=scripts)
+    assert result.code == 0, result.err
+    assert result.out == '--ros-args|-r|chatter:=/x|--help|-h|--prefix|p|FOO=from_prefix\n'
+    assert result.err == ''
+
+
+def start_run(processes: Any, *args: str) -> subprocess.Popen[str]:
+    # a new session: no controlling terminal, like a script or a service manager
+    return processes.start([sys.executable, '-m', 'ros2lite', 'run', *args],
+                           stdin=subprocess.DEVNULL, start_new_session=True)
+
+
+def test_run_talker_then_ctrl_c(ros_context: Any, processes: Any) -> None:
+    node = Node('run_probe', context=ros_context)
+    got: list[str] = []
+    node.create_subscription('std_msgs/msg/String', '/run_chatter',
+                             lambda m: got.append(m.data), 10)
+    ex = SingleThreadedExecutor(context=ros_context)
+    ex.add_node(node)
+    proc = start_run(processes, 'demo_nodes_py', 'talker', '--ros-args',
+                     '-r', 'chatter:=/run_chatter', '-r', '__node:=run_talker')
+    spin_until(ex, lambda: got, timeout=10)
+    assert got[0] == 'Hello World: 0'
+    assert ('run_talker', '/') in node.get_node_names_and_namespaces()
+    _out, err = processes.stop(proc)      # SIGINT to `ros2lite run` only
+    assert proc.returncode == 0, err
+    assert '[talker]' not in err and '[run_talker]: Publishing: "Hello World: 0"' in err
+    assert 'Traceback' not in err and '[ros2run]' not in err
+
+
+def test_sigterm_is_forwarded(processes: Any) -> None:
+    proc = start_run(processes, 'demo_nodes_py', 'listener')
+    time.sleep(0.5)
+    proc.send_signal(signal.SIGTERM)
+    _out, err = proc.communicate(timeout=10)
+    assert proc.returncode == 128 + signal.SIGTERM
+    assert err.strip().splitlines()[-1] == '[ros2run]: Terminated'
+
+
+def test_ctrl_c_in_a_terminal_reaches_the_child_once(tmp_path: Path) -> None:
+    """Typed Ctrl-C goes to the terminal's whole foreground group, child included, so `run`
+    must not forward another one; elsewhere (see above) it must forward."""
+    import fcntl
+    import pty
+    import termios
+    prefix = make_ament_prefix(tmp_path, 'tools', {'count_int': (
+        '#!/bin/sh\nn=0\ntrap \'n=$((n+1))\' INT\necho ready\n'
+        'i=0; while [ $i -lt 15 ]; do sleep 0.1; i=$((i+1)); done\necho "interrupts=$n"\n')})
+    master, slave = pty.openpty()
+
+    def take_terminal() -> None:
+        fcntl.ioctl(0, termios.TIOCSCTTY, 0)
+
+    try:
+        proc = subprocess.Popen(
+            [sys.executable, '-m', 'ros2lite', 'run', 'tools', 'count_int'],
+            stdin=slave, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+            start_new_session=True, preexec_fn=take_terminal,
+            env={**os.environ, 'AMENT_PREFIX_PATH': str(prefix)})
+        assert proc.stdout is not None
+        assert proc.stdout.readline() == 'ready\n'
+        os.killpg(proc.pid, signal.SIGINT)      # what the terminal does on Ctrl-C
+        out, err = proc.communicate(timeout=10)
+    finally:
+        os.close(master)
+        os.close(slave)
+    assert out == 'interrupts=1\n', err
+    assert proc.returncode == 0

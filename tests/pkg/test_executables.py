@@ -1,0 +1,125 @@
+"""The executable index: bundled demos, Python entry points and ament prefixes, and which of
+them owns a package."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from ros2lite.pkg.executables import (
+    ENTRY_POINT_GROUP,
+    MultipleExecutablesError,
+    PackageNotFoundError,
+    find_executable,
+    get_executables,
+    list_packages,
+)
+
+
+@pytest.fixture(autouse=True)
+def no_ament(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv('AMENT_PREFIX_PATH', raising=False)
+
+
+def make_ament_prefix(root: Path, package: str, files: dict[str, str]) -> Path:
+    """A minimal install prefix: the ament index marker plus files under lib/<package>."""
+    index = root / 'share' / 'ament_index' / 'resource_index' / 'packages'
+    index.mkdir(parents=True, exist_ok=True)
+    (index / package).write_text('')
+    for rel, body in files.items():
+        path = root / 'lib' / package / rel
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(body)
+        path.chmod(0o755 if body.startswith('#!') else 0o644)
+    return root
+
+
+def make_entry_points(root: Path, entries: dict[str, str]) -> Path:
+    """A fake installed distribution declaring `ros2lite.executables` entry points."""
+    dist = root / 'fake_nodes-1.0.dist-info'
+    dist.mkdir(parents=True)
+    (dist / 'METADATA').write_text('Metadata-Version: 2.1\nName: fake-nodes\nVersion: 1.0\n')
+    lines = [f'[{ENTRY_POINT_GROUP}]'] + [f'{k} = {v}' for k, v in entries.items()]
+    (dist / 'entry_points.txt').write_text('\n'.join(lines) + '\n')
+    return root
+
+
+def test_bundled_demos() -> None:
+    exes = get_executables('demo_nodes_py')
+    assert [e.name for e in exes] == ['listener', 'talker']
+    talker = find_executable('demo_nodes_py', 'talker')
+    assert talker is not None and talker.origin == 'bundled' and talker.is_python
+    assert find_executable('demo_nodes_py', 'nope') is None
+    assert 'demo_nodes_py' in list_packages()
+    with pytest.raises(PackageNotFoundError, match="Package 'no_such_pkg' not found"):
+        get_executables('no_such_pkg')
+
+
+def test_python_command_runs_like_a_console_script(tmp_path: Path) -> None:
+    (tmp_path / 'shadow_mod.py').write_text('import sys\n'
+                                             'def main():\n'
+                                             '    print(sys.argv)\n'
+                                             '    return 3\n')
+    from ros2lite.pkg.executables import Executable
+    exe = Executable('pkg', 'shown_name', 'shadow_mod:main', 'entry point')
+    cmd = exe.command(['--ros-args', '-r', 'a:=b'])
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=30,
+                          env={**os.environ, 'PYTHONPATH': str(tmp_path)})
+    assert proc.returncode == 3
+    assert proc.stdout.strip() == "['shown_name', '--ros-args', '-r', 'a:=b']"
+    # the working directory is not importable (as with console scripts)
+    (tmp_path / 'cwd_only.py').write_text('def main():\n    return 0\n')
+    missing = Executable('pkg', 'x', 'cwd_only:main', 'entry point')
+    proc = subprocess.run(missing.command(), capture_output=True, text=True, timeout=30,
+                          cwd=tmp_path)
+    assert proc.returncode == 1 and 'ModuleNotFoundError' in proc.stderr
+
+
+def test_ament_prefix(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    first = make_ament_prefix(tmp_path / 'ws', 'my_pkg', {
+        'node': '#!/bin/sh\n', 'sub/tool': '#!/bin/sh\n', 'data.txt': 'not executable',
+        '.hidden/node2': '#!/bin/sh\n'})
+    second = make_ament_prefix(tmp_path / 'opt', 'my_pkg', {'other': '#!/bin/sh\n'})
+    make_ament_prefix(tmp_path / 'opt', 'demo_nodes_py', {'talker': '#!/bin/sh\n'})
+    monkeypatch.setenv('AMENT_PREFIX_PATH', f'{first}{os.pathsep}{second}')
+    exes = get_executables('my_pkg')   # the first prefix owns the package
+    assert sorted(e.name for e in exes) == ['node', 'tool']
+    node = find_executable('my_pkg', 'node')
+    assert node is not None and node.origin == 'ament' and not node.is_python
+    assert node.command(['a']) == [str(first / 'lib' / 'my_pkg' / 'node'), 'a']
+    # an ament package shadows a bundled one of the same name
+    talker = find_executable('demo_nodes_py', 'talker')
+    assert talker is not None and talker.origin == 'ament'
+    assert {'my_pkg', 'demo_nodes_py'} <= set(list_packages())
+
+
+def test_multiple_executables(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    prefix = make_ament_prefix(tmp_path, 'dup', {'a/run': '#!/bin/sh\n',
+                                                 'b/run': '#!/bin/sh\n'})
+    monkeypatch.setenv('AMENT_PREFIX_PATH', str(prefix))
+    with pytest.raises(MultipleExecutablesError) as info:
+        find_executable('dup', 'run')
+    assert str(info.value) == ('Multiple executables found:\n'
+                               f'- {prefix}/lib/dup/a/run\n- {prefix}/lib/dup/b/run')
+
+
+def test_entry_points(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    make_entry_points(tmp_path, {'ep_pkg.hello': 'hello_mod:main',
+                                 'ep_pkg.deep.name': 'hello_mod:Obj.run',
+                                 'demo_nodes_py.talker': 'hello_mod:main',
+                                 'no_dot_name': 'hello_mod:main'})
+    monkeypatch.syspath_prepend(str(tmp_path))
+    hello = find_executable('ep_pkg', 'hello')
+    assert hello is not None and hello.origin == 'entry point'
+    assert hello.target == 'hello_mod:main'
+    deep = find_executable('ep_pkg', 'deep.name')
+    assert deep is not None and deep.target == 'hello_mod:Obj.run'
+    # an entry-point package owns that package name entirely
+    assert [e.name for e in get_executables('demo_nodes_py')] == ['talker']
+    assert find_executable('demo_nodes_py', 'listener') is None
+    assert 'ep_pkg' in list_packages() and 'no_dot_name' not in list_packages()
+    assert sys.path[0] == str(tmp_path)

@@ -1,0 +1,37 @@
+"""Helpers for client-library tests: spin an executor until something happened."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from typing import Any
+
+import pytest
+
+
+def spin_until(executor: Any, predicate: Callable[[], Any], timeout: float = 5.0) -> Any:
+    """Run `executor.spin_once` until predicate() is truthy; fail the test on timeout."""
+    deadline = time.monotonic() + timeout
+    while True:
+        value = predicate()
+        if value:
+            return value
+        if time.monotonic() > deadline:
+            pytest.fail(f'condition not met within {timeout} s')
+        executor.spin_once(timeout_sec=0.05)
+
+
+def spin_for(executor: Any, seconds: float) -> None:
+    """Run callbacks for a fixed time (to show that something does *not* arrive)."""
+    deadline = time.monotonic() + seconds
+    while (left := deadline - time.monotonic()) > 0:
+        executor.spin_once(timeout_sec=min(left, 0.05))
+
+
+def wait_matched(pub: Any, sub_count: int = 1, timeout: float = 5.0) -> None:
+    """Wait until the graph shows the publisher's subscriptions (so no early sample is lost)."""
+    deadline = time.monotonic() + timeout
+    while pub.get_subscription_count() < sub_count:
+        if time.monotonic() > deadline:
+            pytest.fail('subscription never appeared in the graph')
+        time.sleep(0.02)

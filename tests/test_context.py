@@ -1,0 +1,114 @@
+"""Contexts: opening against a router (and failing fast without one), sys.argv as rclpy reads
+it, the shared entity-id counter, and shutdown waking a spinning executor."""
+
+from __future__ import annotations
+
+import threading
+import time
+from typing import Any
+
+import pytest
+
+import ros2lite
+from ros2lite.context import Context, NotInitializedError
+from ros2lite.node import Node
+from tests.conftest import free_port
+
+
+def test_init_without_router_fails_fast_and_clearly(ros_router: str) -> None:
+    from ros2lite.transport.config import RouterUnavailableError
+    endpoint = f'tcp/127.0.0.1:{free_port()}'
+    ctx = Context()
+    start = time.monotonic()
+    with pytest.raises(RouterUnavailableError) as info:
+        ros2lite.init([], context=ctx, router=endpoint)
+    assert time.monotonic() - start < 3.0
+    assert endpoint in str(info.value)
+    assert 'ros2lite daemon start' in str(info.value)
+    assert not ctx.ok()
+
+
+def test_lifecycle(ros_router: str) -> None:
+    ctx = Context()
+    assert not ctx.ok()
+    with pytest.raises(NotInitializedError):
+        Node('early', context=ctx)
+    assert ros2lite.init([], context=ctx) is ctx
+    assert ctx.ok() and ros2lite.ok(context=ctx)
+    assert 0 < len(ctx.zid) <= 32 and int(ctx.zid, 16) > 0   # zenoh drops leading zeros
+    with pytest.raises(RuntimeError, match='once'):
+        ctx.init([])
+    ros2lite.shutdown(context=ctx)
+    assert not ctx.ok()
+    ros2lite.try_shutdown(context=ctx)  # a second shutdown is harmless
+    ctx.init([])    # and the context can be used again
+    assert ctx.ok()
+    ctx.shutdown()
+
+
+def test_with_statement_shuts_down(ros_router: str) -> None:
+    ctx = Context()
+    with ros2lite.init([], context=ctx):
+        node = Node('scoped', context=ctx)
+        assert ctx.ok()
+    assert not ctx.ok()
+    assert node._token is None   # nodes are destroyed with their context
+
+
+def test_args_none_means_sys_argv(ros_router: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr('sys.argv', ['prog', 'user_arg', '--ros-args', '-r', '__node:=renamed',
+                                     '-p', 'answer:=42'])
+    ctx = Context()
+    ctx.init(None)
+    try:
+        node = Node('original', context=ctx)
+        assert node.get_name() == 'renamed'
+        assert node.declare_parameter('answer', 0).value == 42
+    finally:
+        ctx.shutdown()
+    ctx.init([])   # an explicit list ignores sys.argv
+    try:
+        assert Node('original', context=ctx).get_name() == 'original'
+    finally:
+        ctx.shutdown()
+
+
+def test_nodes_and_endpoints_share_one_id_counter(ros_context: Any) -> None:
+    a = Node('a', context=ros_context, enable_rosout=False)
+    pub = a.create_publisher('std_msgs/msg/String', 'x', 10)
+    b = Node('b', context=ros_context, enable_rosout=False)
+    assert (a.node_id, pub._ep.entity_id, b.node_id) == (0, 1, 2)
+
+
+def test_shutdown_from_another_thread_ends_spin(ros_router: str) -> None:
+    ctx = Context().init([])
+    node = Node('spinner', context=ctx)
+    done = threading.Event()
+
+    def spin() -> None:
+        ros2lite.spin(node, executor=ros2lite.SingleThreadedExecutor(context=ctx))
+        done.set()
+
+    thread = threading.Thread(target=spin, daemon=True)
+    thread.start()
+    time.sleep(0.1)
+    assert not done.is_set()
+    ctx.shutdown()
+    assert done.wait(3.0)
+
+
+def test_process_exits_cleanly_without_shutdown(ros_router: str) -> None:
+    # a live subscription's threads must not hang or abort the interpreter at exit
+    import subprocess
+    import sys
+    code = (
+        'import ros2lite\n'
+        'from ros2lite.msgs.std_msgs.msg import String\n'
+        'ros2lite.init([])\n'
+        "n = ros2lite.Node('exiter')\n"
+        "n.create_subscription(String, '/exit_test', print, 10)\n"
+        "n.create_publisher(String, '/exit_test', 10).publish(String(data='x'))\n"
+        'raise SystemExit(3)\n')
+    proc = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
+                          timeout=20)
+    assert proc.returncode == 3, proc.stderr

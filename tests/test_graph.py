@@ -1,0 +1,134 @@
+"""Graph queries of a node, with the other side in a separate session (as another process
+would be): node names, topics and types, endpoint info, counts, by-node views, and updates
+when entities go away."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterator
+from typing import Any
+
+import pytest
+
+from ros2lite.context import Context
+from ros2lite.graph import snapshot
+from ros2lite.node import Node
+from ros2lite.transport.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+
+
+@pytest.fixture
+def remote(ros_router: str) -> Iterator[Context]:
+    ctx = Context().init([])
+    try:
+        yield ctx
+    finally:
+        ctx.try_shutdown()
+
+
+def eventually(fn: Any, timeout: float = 5.0) -> None:
+    """Retry an assertion block while the graph catches up."""
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            fn()
+            return
+        except AssertionError:
+            if time.monotonic() > deadline:
+                raise
+            time.sleep(0.05)
+
+
+def test_nodes_topics_and_endpoints(ros_context: Any, remote: Context) -> None:
+    observer = Node('observer', context=ros_context)
+    talker = Node('g_talker', namespace='/robot1', context=remote)
+    qos = QoSProfile(depth=7, reliability=ReliabilityPolicy.BEST_EFFORT)
+    pub = talker.create_publisher('std_msgs/msg/String', 'chatter', qos)
+    listener = Node('g_listener', context=remote)
+    listener.create_subscription('std_msgs/msg/String', '/robot1/chatter', lambda m: None, 10)
+    listener.create_subscription('std_msgs/msg/Int32', '/robot1/chatter', lambda m: None, 10)
+    listener.create_subscription('std_msgs/msg/String', '_hidden/topic', lambda m: None, 10)
+
+    def check() -> None:
+        nodes = observer.get_node_names_and_namespaces()
+        assert ('g_talker', '/robot1') in nodes and ('g_listener', '/') in nodes
+        assert ('observer', '/') in nodes
+        assert 'g_talker' in observer.get_node_names()
+        topics = dict(observer.get_topic_names_and_types())
+        assert topics['/robot1/chatter'] == ['std_msgs/msg/Int32', 'std_msgs/msg/String']
+        assert topics['/rosout'] == ['rcl_interfaces/msg/Log']
+        assert '/_hidden/topic' not in topics
+        assert '/_hidden/topic' in dict(observer.get_topic_names_and_types(True))
+        assert observer.count_publishers('/robot1/chatter') == 1
+        assert observer.count_subscribers('/robot1/chatter') == 2
+
+    eventually(check)
+    [info] = observer.get_publishers_info_by_topic('/robot1/chatter')
+    assert (info.node_name, info.node_namespace) == ('g_talker', '/robot1')
+    assert info.topic_type == 'std_msgs/msg/String'
+    assert info.topic_type_hash.startswith('RIHS01_df668c74')
+    assert info.endpoint_type == 'PUBLISHER'
+    assert info.endpoint_gid == pub.gid
+    assert info.qos_profile is not None and info.qos_profile.depth == 7
+    assert info.qos_profile.reliability == ReliabilityPolicy.BEST_EFFORT
+    subs = observer.get_subscriptions_info_by_topic('/robot1/chatter')
+    assert sorted(s.topic_type for s in subs) == ['std_msgs/msg/Int32', 'std_msgs/msg/String']
+    assert {s.endpoint_type for s in subs} == {'SUBSCRIPTION'}
+    # relative names resolve against the querying node's namespace
+    robot_observer = Node('robot_observer', namespace='/robot1', context=ros_context)
+    assert robot_observer.count_publishers('chatter') == 1
+
+
+def test_by_node_queries(ros_context: Any, remote: Context) -> None:
+    observer = Node('observer2', context=ros_context)
+    node = Node('worker', namespace='/team', context=remote)
+    node.create_publisher('std_msgs/msg/String', 'out', 10)
+    node.create_subscription('geometry_msgs/msg/Twist', 'cmd_vel', lambda m: None, 10)
+    node.create_publisher('std_msgs/msg/Bool', '/status',
+                          QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
+
+    def check() -> None:
+        pubs = observer.get_publisher_names_and_types_by_node('worker', '/team')
+        assert pubs == [('/rosout', ['rcl_interfaces/msg/Log']),
+                        ('/status', ['std_msgs/msg/Bool']),
+                        ('/team/out', ['std_msgs/msg/String'])]
+        assert observer.get_subscriber_names_and_types_by_node('worker', '/team') == [
+            ('/team/cmd_vel', ['geometry_msgs/msg/Twist'])]
+        assert observer.get_service_names_and_types_by_node('worker', '/team') == []
+        assert observer.get_client_names_and_types_by_node('worker', '/team') == []
+        assert observer.get_publisher_names_and_types_by_node('worker', '/') == []
+
+    eventually(check)
+
+
+def test_graph_forgets_what_goes_away(ros_context: Any, remote: Context) -> None:
+    observer = Node('observer3', context=ros_context)
+    node = Node('ephemeral', context=remote)
+    pub = node.create_publisher('std_msgs/msg/String', 'fleeting', 10)
+    eventually(lambda: _assert(observer.count_publishers('/fleeting') == 1))
+    node.destroy_publisher(pub)
+    eventually(lambda: _assert(observer.count_publishers('/fleeting') == 0))
+    assert ('ephemeral', '/') in observer.get_node_names_and_namespaces()
+    remote.shutdown()   # a whole process going away
+    eventually(lambda: _assert(('ephemeral', '/') not in
+                               observer.get_node_names_and_namespaces()))
+
+
+def test_snapshot_sees_everything_at_once(ros_context: Any, remote: Context) -> None:
+    node = Node('snap', context=remote)
+    for i in range(30):
+        node.create_publisher('std_msgs/msg/String', f'many_{i}', 10)
+    # tokens reach the router in declaration order: once the last one is there, all are
+    deadline = time.monotonic() + 5
+    while True:
+        entities = snapshot(ros_context.session, ros_context.domain_id)
+        if any(e.topic_name == '/many_29' for e in entities):
+            break
+        assert time.monotonic() < deadline
+        time.sleep(0.05)
+    mine = [e for e in entities if e.node_name == 'snap']
+    assert len([e for e in mine if e.topic_name and e.topic_name.startswith('/many_')]) == 30
+    assert len([e for e in mine if e.is_node]) == 1
+
+
+def _assert(condition: bool) -> None:
+    assert condition

@@ -1,0 +1,203 @@
+"""Subscriptions against a real router: typed and raw delivery, MessageInfo, history depth,
+TRANSIENT_LOCAL late joining, and rmw_zenoh's rule that samples without attachment are dropped."""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import pytest
+
+from ros2lite import interfaces
+from ros2lite.executor import SingleThreadedExecutor
+from ros2lite.node import Node
+from ros2lite.subscription import MessageInfo
+from ros2lite.transport.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
+from tests.spinning import spin_for, spin_until, wait_matched
+
+String = interfaces.get_interface('std_msgs/msg/String')
+
+
+@pytest.fixture
+def node(ros_context: Any) -> Node:
+    return Node('sub_test', context=ros_context)
+
+
+@pytest.fixture
+def executor(ros_context: Any, node: Node) -> SingleThreadedExecutor:
+    ex = SingleThreadedExecutor(context=ros_context)
+    ex.add_node(node)
+    return ex
+
+
+def test_typed_messages_arrive_in_order(node: Node, executor: SingleThreadedExecutor) -> None:
+    got: list[Any] = []
+    node.create_subscription(String, 'typed', got.append, 10)
+    pub = node.create_publisher(String, 'typed', 10)
+    wait_matched(pub)
+    for i in range(5):
+        pub.publish(String(data=f'Hello World: {i}'))
+    spin_until(executor, lambda: len(got) == 5)
+    assert [m.data for m in got] == [f'Hello World: {i}' for i in range(5)]
+    assert all(type(m) is String for m in got)
+
+
+def test_type_given_by_name(node: Node, executor: SingleThreadedExecutor) -> None:
+    got: list[Any] = []
+    sub = node.create_subscription('std_msgs/msg/String', 'by_name', got.append, 10)
+    pub = node.create_publisher('std_msgs/String', 'by_name', 10)
+    assert sub.msg_type is String and pub.msg_type is String
+    wait_matched(pub)
+    pub.publish(String(data='x'))
+    spin_until(executor, lambda: got)
+    assert got[0].data == 'x'
+
+
+def test_raw_subscription_gets_cdr_and_message_info(node: Node,
+                                                    executor: SingleThreadedExecutor) -> None:
+    got: list[tuple[bytes, MessageInfo]] = []
+    node.create_subscription(String, 'raw', lambda data, info: got.append((data, info)), 10,
+                             raw=True)
+    pub = node.create_publisher(String, 'raw', 10)
+    wait_matched(pub)
+    msgs = [String(data=f'raw {i}' * (i + 1)) for i in range(3)]
+    before = time.time_ns()
+    for m in msgs:
+        pub.publish(m)
+    spin_until(executor, lambda: len(got) == 3)
+    after = time.time_ns()
+    assert [d for d, _ in got] == [interfaces.serialize(m) for m in msgs]
+    infos = [i for _, i in got]
+    assert [i.publication_sequence_number for i in infos] == [1, 2, 3]
+    assert all(i.publisher_gid == pub.gid and len(pub.gid) == 16 for i in infos)
+    assert all(before <= i.source_timestamp <= after for i in infos)
+    assert all(i.source_timestamp <= i.received_timestamp <= after for i in infos)
+
+
+def test_publishing_cdr_bytes_passes_them_through(node: Node,
+                                                  executor: SingleThreadedExecutor) -> None:
+    got: list[Any] = []
+    node.create_subscription(String, 'bytes_in', got.append, 10)
+    pub = node.create_publisher(String, 'bytes_in', 10)
+    wait_matched(pub)
+    pub.publish(interfaces.serialize(String(data='pre-encoded')))
+    spin_until(executor, lambda: got)
+    assert got[0].data == 'pre-encoded'
+
+
+def test_keep_last_keeps_only_the_newest_depth_samples(ros_context: Any, node: Node,
+                                                       executor: SingleThreadedExecutor) -> None:
+    got: list[str] = []
+    sub = node.create_subscription(String, 'depth', lambda m: got.append(m.data), 3)
+    pub = node.create_publisher(String, 'depth', QoSProfile(depth=20))
+    wait_matched(pub)
+    for i in range(10):
+        pub.publish(String(data=str(i)))
+    # (white box) the last sample is in the subscription's buffer before any is taken
+    last = interfaces.serialize(String(data='9'))
+    deadline = time.monotonic() + 5
+    while not (sub._buffer and sub._buffer[-1].payload.to_bytes() == last):
+        assert time.monotonic() < deadline
+        time.sleep(0.01)
+    spin_for(executor, 0.3)
+    assert got == ['7', '8', '9']
+
+
+def test_keep_all_loses_nothing(ros_context: Any, node: Node,
+                                executor: SingleThreadedExecutor) -> None:
+    got: list[str] = []
+    qos = QoSProfile(history=HistoryPolicy.KEEP_ALL)
+    node.create_subscription(String, 'keep_all', lambda m: got.append(m.data), qos)
+    pub = node.create_publisher(String, 'keep_all', qos)
+    wait_matched(pub)
+    for i in range(500):
+        pub.publish(String(data=str(i)))
+    spin_until(executor, lambda: len(got) == 500)
+    assert got == [str(i) for i in range(500)]
+
+
+def test_transient_local_late_subscriber_gets_the_last_depth(
+        ros_context: Any, node: Node, executor: SingleThreadedExecutor) -> None:
+    tl = QoSProfile(depth=5, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    pub = node.create_publisher(String, 'latched', tl)
+    for i in range(8):
+        pub.publish(String(data=f'Hello World: {i}'))
+    # the late joiner lives in another session, as it would in another process
+    from ros2lite.context import Context
+    other = Context().init([])
+    try:
+        late = Node('late', context=other)
+        got: list[str] = []
+        late.create_subscription(String, 'latched', lambda m: got.append(m.data), tl)
+        volatile: list[str] = []
+        late.create_subscription(String, 'latched', lambda m: volatile.append(m.data), 5)
+        ex = SingleThreadedExecutor(context=other)
+        ex.add_node(late)
+        spin_until(ex, lambda: len(got) >= 5)
+        spin_for(ex, 0.2)
+        assert got == [f'Hello World: {i}' for i in range(3, 8)]
+        assert volatile == []   # a volatile subscription gets no history
+        pub.publish(String(data='live'))
+        spin_until(ex, lambda: got[-1:] == ['live'] and volatile == ['live'])
+    finally:
+        other.shutdown()
+
+
+def test_samples_without_attachment_are_dropped(ros_context: Any, node: Node,
+                                                executor: SingleThreadedExecutor) -> None:
+    got: list[str] = []
+    sub = node.create_subscription(String, 'no_att', lambda m: got.append(m.data), 10)
+    key = sub._ep.key
+    session = ros_context.session
+    payload = interfaces.serialize(String(data='bare'))
+    session.put(key, payload)
+    spin_for(executor, 0.3)
+    assert got == []
+    from ros2lite.transport.attachment import encode_attachment
+    session.put(key, payload, attachment=encode_attachment(1, None, bytes(16)))
+    spin_until(executor, lambda: got == ['bare'])
+
+
+def test_destroyed_subscription_stops_receiving(node: Node,
+                                                executor: SingleThreadedExecutor) -> None:
+    got: list[str] = []
+    sub = node.create_subscription(String, 'gone', lambda m: got.append(m.data), 10)
+    pub = node.create_publisher(String, 'gone', 10)
+    wait_matched(pub)
+    pub.publish(String(data='1'))
+    spin_until(executor, lambda: got == ['1'])
+    node.destroy_subscription(sub)
+    assert sub not in node.subscriptions
+    pub.publish(String(data='2'))
+    spin_for(executor, 0.3)
+    assert got == ['1']
+    assert pub.get_subscription_count() == 0
+
+
+CROSS_PROCESS_PUBLISHER = '''
+import sys, time
+import ros2lite
+from ros2lite.msgs.std_msgs.msg import String
+from ros2lite.transport.qos import HistoryPolicy, QoSProfile
+ros2lite.init()
+node = ros2lite.Node('remote_pub')
+pub = node.create_publisher(String, 'across', QoSProfile(history=HistoryPolicy.KEEP_ALL))
+deadline = time.monotonic() + 10
+while pub.get_subscription_count() < 1 and time.monotonic() < deadline:
+    time.sleep(0.02)
+for i in range(int(sys.argv[1])):
+    pub.publish(String(data=f'Hello World: {i}'))
+time.sleep(0.5)
+ros2lite.shutdown()
+'''
+
+
+def test_messages_from_another_process(processes: Any, node: Node,
+                                       executor: SingleThreadedExecutor) -> None:
+    got: list[str] = []
+    qos = QoSProfile(history=HistoryPolicy.KEEP_ALL)
+    node.create_subscription(String, 'across', lambda m: got.append(m.data), qos)
+    proc = processes.python(CROSS_PROCESS_PUBLISHER, '200')
+    spin_until(executor, lambda: len(got) == 200, timeout=10)
+    assert got == [f'Hello World: {i}' for i in range(200)]
+    assert proc.wait(timeout=10) == 0
