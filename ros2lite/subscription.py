@@ -119,7 +119,10 @@ class Subscription:
                 else:
                     append((sample, now()) if raw else sample)
                 n += 1
-                sample = try_recv() if n < _PUMP_BATCH else None
+                try:
+                    sample = try_recv() if n < _PUMP_BATCH else None
+                except Exception:
+                    sample = None   # closed mid-batch; the next recv() ends the thread
             if hook is None and not self._scheduled and not self._destroyed:
                 self._scheduled = True
                 put(self)
