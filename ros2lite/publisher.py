@@ -64,7 +64,11 @@ class Publisher:
             ser = self._serialize
             if ser is None:
                 ser = self._serialize = self._codec_serializer()
-            data = ser(msg)
+            try:
+                data = ser(msg)
+            except Exception as e:  # the raw generated function: name the type here
+                from ros2lite.interfaces.cdr import CdrError
+                raise CdrError(f'cannot serialize {self._ep.type_name}: {e}') from None
         elif isinstance(msg, (bytes, bytearray, memoryview)):
             data = bytes(msg)
         else:
@@ -78,7 +82,7 @@ class Publisher:
     def _codec_serializer(self) -> Any:
         from ros2lite.interfaces.cdr import codec
         from ros2lite.interfaces.registry import default_registry
-        return codec(self._ep.type_name, default_registry()).serialize
+        return codec(self._ep.type_name, default_registry()).raw_serializer()
 
     def get_subscription_count(self) -> int:
         from ros2lite.graph import count

@@ -415,6 +415,30 @@ class Codec:
         self._des_be = build_deserializer(self.name, self.reg, False)
         return self._des_be(data, o)
 
+    def raw_serializer(self) -> Callable[[Any], bytes]:
+        """The generated function itself, for hot loops that handle errors themselves."""
+        if self._ser == self._first_ser:
+            self._ser = build_serializer(self.name, self.reg)
+        return self._ser
+
+    def fast_deserializer(self) -> Callable[[bytes], Any]:
+        """A lean decoder for the common case (little-endian, well-formed bytes); anything
+        else falls back to `deserialize`, which gives the precise error."""
+        if self._des_le == self._first_des_le:
+            self._des_le = build_deserializer(self.name, self.reg, True)
+        des_le, slow = self._des_le, self.deserialize
+
+        def decode(data: bytes) -> Any:
+            try:
+                if data[1] == 1 and data[0] == 0:
+                    msg, end = des_le(data, 4)
+                    if end <= len(data):
+                        return msg
+            except Exception:
+                pass
+            return slow(data)
+        return decode
+
     def serialize(self, msg: Any) -> bytes:
         try:
             return self._ser(msg)
