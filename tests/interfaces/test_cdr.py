@@ -95,3 +95,19 @@ def test_wstring_round_trip() -> None:
 def test_truncated_or_bad_payload_raises(bad: bytes) -> None:
     with pytest.raises(CdrError):
         interfaces.deserialize('std_msgs/msg/String', bad)
+
+
+def test_fast_paths_agree_and_fall_back_to_precise_errors() -> None:
+    from ros2lite.interfaces.cdr import codec
+    from ros2lite.interfaces.registry import default_registry
+    c = codec('std_msgs/msg/String', default_registry())
+    msg = interfaces.get_interface('std_msgs/msg/String')(data='fast')
+    data = c.raw_serializer()(msg)
+    assert data == interfaces.serialize(msg)
+    decode = c.fast_deserializer()
+    assert decode(data) == msg
+    big = bytes(ROSBAGS.serialize_cdr(to_rosbags(msg), 'std_msgs/msg/String',
+                                      little_endian=False))
+    assert decode(big) == msg
+    with pytest.raises(CdrError):
+        decode(b'\x00\x01\x00\x00\x10\x00\x00\x00ab')
