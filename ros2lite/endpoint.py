@@ -49,6 +49,24 @@ def is_transient_local(qos: QoSProfile) -> bool:
     return qos.durability == DurabilityPolicy.TRANSIENT_LOCAL
 
 
+class EndpointOwner:
+    """What publishers and subscriptions expose about their endpoint (`self._ep`)."""
+
+    _ep: Endpoint
+
+    @property
+    def topic_name(self) -> str:
+        return self._ep.topic_name
+
+    @property
+    def msg_type(self) -> Any:
+        return self._ep.msg_class
+
+    @property
+    def qos_profile(self) -> QoSProfile:
+        return self._ep.qos
+
+
 class Endpoint:
     """A topic endpoint of a node, announced by a liveliness token while it lives."""
 

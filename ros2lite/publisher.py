@@ -6,7 +6,7 @@ import struct
 import time
 from typing import Any
 
-from ros2lite.endpoint import Endpoint, is_transient_local, zenoh_options
+from ros2lite.endpoint import Endpoint, EndpointOwner, is_transient_local, zenoh_options
 from ros2lite.transport.keys import EntityKind
 from ros2lite.transport.qos import QoSProfile, ReliabilityPolicy
 
@@ -14,7 +14,7 @@ from ros2lite.transport.qos import QoSProfile, ReliabilityPolicy
 _ATTACHMENT = struct.Struct('<qqB16s')
 
 
-class Publisher:
+class Publisher(EndpointOwner):
     """Publishes messages (or ready CDR bytes) with rmw_zenoh's sequence/timestamp/GID."""
 
     def __init__(self, node: Any, msg_type: Any, topic: str, qos: QoSProfile | int) -> None:
@@ -40,18 +40,6 @@ class Publisher:
         self._serialize: Any = None
         self._msg_class = ep.msg_class
         self._put = self._pub.put
-
-    @property
-    def topic_name(self) -> str:
-        return self._ep.topic_name
-
-    @property
-    def msg_type(self) -> Any:
-        return self._ep.msg_class
-
-    @property
-    def qos_profile(self) -> QoSProfile:
-        return self._ep.qos
 
     @property
     def gid(self) -> bytes:

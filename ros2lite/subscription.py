@@ -10,7 +10,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from ros2lite.endpoint import Endpoint, is_transient_local
+from ros2lite.endpoint import Endpoint, EndpointOwner, is_transient_local
 from ros2lite.transport.keys import EntityKind
 from ros2lite.transport.qos import HistoryPolicy, QoSProfile, ReliabilityPolicy
 
@@ -48,7 +48,7 @@ def _info(attachment: bytes, received: int) -> MessageInfo:
     return MessageInfo(a.source_timestamp, received, a.sequence_number, a.source_gid)
 
 
-class Subscription:
+class Subscription(EndpointOwner):
     """Calls `callback(msg)`; with raw=True calls `callback(cdr_bytes, MessageInfo)`."""
 
     def __init__(self, node: Any, msg_type: Any, topic: str, callback: Callable[..., Any],
@@ -126,18 +126,6 @@ class Subscription:
             if hook is None and not self._scheduled and not self._destroyed:
                 self._scheduled = True
                 put(self)
-
-    @property
-    def topic_name(self) -> str:
-        return self._ep.topic_name
-
-    @property
-    def msg_type(self) -> Any:
-        return self._ep.msg_class
-
-    @property
-    def qos_profile(self) -> QoSProfile:
-        return self._ep.qos
 
     def _on_sample(self, sample: Any) -> None:
         """Pump thread: keep the sample and make sure the executor will come for it.

@@ -10,23 +10,18 @@ from __future__ import annotations
 import os
 import random
 import signal
-import socket
 import subprocess
 import sys
-import time
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from typing import Any
 
 import pytest
 
+from tests.spinning import free_port, wait_until
 
-def free_port() -> int:
-    while True:
-        with socket.socket() as sock:
-            sock.bind(('127.0.0.1', 0))
-            port = int(sock.getsockname()[1])
-        if port != 7447:
-            return port
+__all__ = ['free_port', 'wait_until']
+
+
 
 
 @pytest.fixture(scope='session')
@@ -109,16 +104,3 @@ def processes(ros_router: str) -> Iterator[Processes]:
         yield procs
     finally:
         procs.close()
-
-
-def wait_until(predicate: Callable[[], Any], timeout: float = 10.0, interval: float = 0.05
-               ) -> Any:
-    """Poll until predicate() is truthy; returns its value or fails the test."""
-    deadline = time.monotonic() + timeout
-    while True:
-        value = predicate()
-        if value:
-            return value
-        if time.monotonic() > deadline:
-            pytest.fail(f'condition not met within {timeout} s')
-        time.sleep(interval)

@@ -1,7 +1,8 @@
-"""Helpers for client-library tests: spin an executor until something happened."""
+"""Shared test helpers: poll or spin until something happened, and free loopback ports."""
 
 from __future__ import annotations
 
+import socket
 import time
 from collections.abc import Callable
 from typing import Any
@@ -9,8 +10,20 @@ from typing import Any
 import pytest
 
 
-def spin_until(executor: Any, predicate: Callable[[], Any], timeout: float = 5.0) -> Any:
-    """Run `executor.spin_once` until predicate() is truthy; fail the test on timeout."""
+def free_port() -> int:
+    """A loopback TCP port nobody listens on right now (never rmw_zenohd's 7447)."""
+    while True:
+        with socket.socket() as sock:
+            sock.bind(('127.0.0.1', 0))
+            port = int(sock.getsockname()[1])
+        if port != 7447:
+            return port
+
+
+def wait_until(predicate: Callable[[], Any], timeout: float = 10.0, interval: float = 0.05,
+               step: Callable[[], Any] | None = None) -> Any:
+    """Until predicate() is truthy, sleep `interval` (or run `step`); returns its value or
+    fails the test on timeout."""
     deadline = time.monotonic() + timeout
     while True:
         value = predicate()
@@ -18,7 +31,15 @@ def spin_until(executor: Any, predicate: Callable[[], Any], timeout: float = 5.0
             return value
         if time.monotonic() > deadline:
             pytest.fail(f'condition not met within {timeout} s')
-        executor.spin_once(timeout_sec=0.05)
+        if step is None:
+            time.sleep(interval)
+        else:
+            step()
+
+
+def spin_until(executor: Any, predicate: Callable[[], Any], timeout: float = 5.0) -> Any:
+    """Run `executor.spin_once` until predicate() is truthy; fail the test on timeout."""
+    return wait_until(predicate, timeout, step=lambda: executor.spin_once(timeout_sec=0.05))
 
 
 def spin_for(executor: Any, seconds: float) -> None:

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import click
-
-from ..lazy import LazyGroup
+from ..lazy import command_group
 
 VERBS = {
     'start': (__name__ + '.start', 'Start the daemon if it isn\'t running'),
@@ -13,9 +11,4 @@ VERBS = {
 }
 
 
-@click.group(cls=LazyGroup, lazy=VERBS, invoke_without_command=True)
-@click.pass_context
-def cli(ctx: click.Context) -> None:
-    """Various daemon related sub-commands."""
-    if ctx.invoked_subcommand is None:
-        click.echo(ctx.get_help())
+cli = command_group('daemon', 'Various daemon related sub-commands.', VERBS)

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import click
-
-from ..lazy import LazyGroup
+from ..lazy import command_group
 
 VERBS = {
     'list': (__name__ + '.list', 'List all interface types available'),
@@ -17,9 +15,4 @@ VERBS = {
 }
 
 
-@click.group(cls=LazyGroup, lazy=VERBS, invoke_without_command=True)
-@click.pass_context
-def cli(ctx: click.Context) -> None:
-    """Show information about ROS interfaces."""
-    if ctx.invoked_subcommand is None:
-        click.echo(ctx.get_help())
+cli = command_group('interface', 'Show information about ROS interfaces.', VERBS)

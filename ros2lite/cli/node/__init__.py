@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import click
-
-from ..lazy import LazyGroup
+from ..lazy import command_group
 
 VERBS = {
     'info': (__name__ + '.info', 'Output information about a node'),
@@ -12,9 +10,4 @@ VERBS = {
 }
 
 
-@click.group(cls=LazyGroup, lazy=VERBS, invoke_without_command=True)
-@click.pass_context
-def cli(ctx: click.Context) -> None:
-    """Various node related sub-commands."""
-    if ctx.invoked_subcommand is None:
-        click.echo(ctx.get_help())
+cli = command_group('node', 'Various node related sub-commands.', VERBS)
