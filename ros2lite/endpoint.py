@@ -66,6 +66,10 @@ class EndpointOwner:
     def qos_profile(self) -> QoSProfile:
         return self._ep.qos
 
+    def destroy(self) -> None:
+        """Undeclare the Zenoh entity and the liveliness token."""
+        raise NotImplementedError
+
 
 class Endpoint:
     """A topic endpoint of a node, announced by a liveliness token while it lives."""

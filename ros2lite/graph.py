@@ -59,8 +59,6 @@ class GraphCache:
         from ros2lite.transport.keys import liveliness_subscription_key
         self._entities: dict[str, Entity] = {}
         self._cond = threading.Condition()
-        self._listeners: list[Callable[[], None]] = []
-        self._version = 0
         # seed synchronously (as rmw_zenoh does with a liveliness get) so the first query
         # after creation already sees the graph; the subscriber then keeps it current
         for entity in snapshot(session, domain_id):
@@ -80,20 +78,7 @@ class GraphCache:
                 self._entities[key] = entity
             else:
                 self._entities.pop(key, None)
-            self._version += 1
             self._cond.notify_all()
-            listeners = list(self._listeners)
-        for listener in listeners:
-            listener()
-
-    def add_listener(self, fn: Callable[[], None]) -> None:
-        with self._cond:
-            self._listeners.append(fn)
-
-    def remove_listener(self, fn: Callable[[], None]) -> None:
-        with self._cond:
-            if fn in self._listeners:
-                self._listeners.remove(fn)
 
     def entities(self) -> list[Entity]:
         with self._cond:

@@ -57,7 +57,6 @@ class Node:
         self.publishers: list[Publisher] = []
         self.subscriptions: list[Subscription] = []
         self.timers: list[Timer] = []
-        self._destroyables: list[Any] = []
         self._allow_undeclared = allow_undeclared_parameters
         self._parameters: dict[str, Parameter] = {}
         self._overrides = self._args.parameter_overrides(self.get_fully_qualified_name(), name)
@@ -144,16 +143,11 @@ class Node:
         if timer in self.timers:
             self.timers.remove(timer)
 
-    def add_destroyable(self, entity: Any) -> None:
-        """Register an entity (service, client…) whose destroy() runs with the node's."""
-        self._destroyables.append(entity)
-
     def destroy_node(self) -> None:
-        for entity in [*self._destroyables, *self.subscriptions, *self.publishers]:
+        for entity in [*self.subscriptions, *self.publishers]:
             entity.destroy()
         for timer in self.timers:
             timer.cancel()
-        self._destroyables.clear()
         self.subscriptions.clear()
         self.publishers.clear()
         self.timers.clear()

@@ -27,7 +27,9 @@ def strategy_options(*, no_daemon: bool = True) -> Callable[[F], F]:
     def decorate(fn: F) -> F:
         fn = click.option('-s', '--use-sim-time', is_flag=True,
                           help='Enable ROS simulation time')(fn)
+        # accepted so ros2cli command lines keep working, then dropped here once
         fn = click.option('--spin-time', type=float, default=0.5, show_default=True,
+                          expose_value=False,
                           help='Accepted for ros2cli compatibility; graph queries here are '
                                'complete without spinning')(fn)
         if no_daemon:
@@ -154,7 +156,6 @@ def explicit_qos(**options: Any) -> bool:
 
 
 def include_hidden(ctx: click.Context, flag: bool = False) -> bool:
-    """--include-hidden-topics given on the verb or on `topic` itself."""
-    parent = ctx.find_root().obj or {}
-    return flag or bool(parent.get('include_hidden_topics')) or bool(
-        (ctx.parent.obj or {}).get('include_hidden_topics') if ctx.parent else False)
+    """--include-hidden-topics given on the verb or on `topic` itself (whose flag reaches
+    the verb through click's shared context object)."""
+    return flag or bool((ctx.obj or {}).get('include_hidden_topics'))

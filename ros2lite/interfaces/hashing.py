@@ -10,7 +10,7 @@ import hashlib
 import json
 from typing import Any
 
-from .parser import Field, FieldType, MessageDef
+from .parser import Field, FieldType
 from .registry import Registry, default_registry, normalize_name
 
 _TYPE_IDS = {
@@ -97,6 +97,3 @@ def type_hash(name: str, reg: Registry | None = None) -> str:
         h = _CACHE[key] = 'RIHS01_' + hashlib.sha256(text.encode()).hexdigest()
     return h
 
-
-def message_hash_of(msg: MessageDef, reg: Registry | None = None) -> str:
-    return type_hash(msg.name, reg)

@@ -103,11 +103,17 @@ def validate_topic_name(name: str) -> None:
 
 def validate_full_topic_name(name: str) -> None:
     """Check an expanded, absolute topic/service name (``/ns/name``), as rmw does."""
-    what = "topic name"
+    _check_absolute(name, "topic name")
+
+
+def _check_absolute(name: str, what: str) -> None:
+    """Rules shared by absolute topic names and namespaces."""
     if not name:
         raise ValueError(f"invalid {what}: must not be empty")
     if not name.startswith("/"):
         raise ValueError(f"invalid {what} {name!r}: must be absolute (start with '/')")
+    if name == "/" and what == "namespace":
+        return
     bad = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c in "_/"))})
     if bad:
         raise ValueError(
@@ -137,24 +143,7 @@ def validate_node_name(name: str) -> None:
 
 def validate_namespace(namespace: str) -> None:
     """An absolute namespace: ``/`` or ``/a/b`` (no trailing '/', no '//')."""
-    what = "namespace"
-    if not namespace:
-        raise ValueError(f"invalid {what}: must not be empty")
-    if not namespace.startswith("/"):
-        raise ValueError(f"invalid {what} {namespace!r}: must be absolute (start with '/')")
-    if namespace == "/":
-        return
-    bad = sorted({c for c in namespace if not (c.isascii() and (c.isalnum() or c in "_/"))})
-    if bad:
-        raise ValueError(
-            f"invalid {what} {namespace!r}: character(s) {''.join(bad)!r} not allowed "
-            "(use letters, digits, '_', '/')"
-        )
-    if namespace.endswith("/"):
-        raise ValueError(f"invalid {what} {namespace!r}: must not end with '/'")
-    if "//" in namespace:
-        raise ValueError(f"invalid {what} {namespace!r}: must not contain '//'")
-    _check_tokens(namespace, what)
+    _check_absolute(namespace, "namespace")
 
 
 def normalize_namespace(namespace: str | None) -> str:

@@ -19,8 +19,7 @@ def _section(title: str, items: list[tuple[str, list[str]]]) -> str:
 @click.argument('node_name')
 @click.option('--include-hidden', is_flag=True,
               help='Also show hidden topics, services and actions')
-def cli(node_name: str, include_hidden: bool, no_daemon: bool, spin_time: float,
-        use_sim_time: bool) -> None:
+def cli(node_name: str, include_hidden: bool, no_daemon: bool, use_sim_time: bool) -> None:
     """Output information about a node."""
     from ros2lite.graph import node_full_names, node_info
     from ros2lite.transport.keys import split_fqn

@@ -16,8 +16,7 @@ DUPLICATE_WARNING = ('WARNING: Be aware that there are nodes in the graph that s
               help="Also list hidden nodes (name starts with '_')")
 @click.option('-c', '--count-nodes', '--count', 'count_nodes', is_flag=True,
               help='Print only how many nodes there are')
-def cli(show_all: bool, count_nodes: bool, no_daemon: bool, spin_time: float,
-        use_sim_time: bool) -> None:
+def cli(show_all: bool, count_nodes: bool, no_daemon: bool, use_sim_time: bool) -> None:
     """Output a list of available nodes."""
     from ros2lite.graph import node_full_names
     with CliSession(no_daemon=no_daemon) as session:

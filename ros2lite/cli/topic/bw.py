@@ -35,7 +35,7 @@ def bw_line(s: Any) -> str:
               show_default=True, metavar='WINDOW',
               help='maximum window size, in # of messages, for calculating rate')
 @strategy_options(no_daemon=False)
-def cli(topic: str, window: int, spin_time: float, use_sim_time: bool) -> None:
+def cli(topic: str, window: int, use_sim_time: bool) -> None:
     """Display bandwidth used by topic."""
     from ros2lite.executor import SingleThreadedExecutor
     from ros2lite.topic_monitor import MonitoredSubscription

@@ -23,7 +23,7 @@ def delay_line(s: Any) -> str:
 @click.option('-w', '--window', type=click.IntRange(min=0), default=DEFAULT_WINDOW_SIZE,
               show_default=True, help='window size, in # of messages, for calculating rate')
 @strategy_options(no_daemon=False)
-def cli(topic: str, window: int, spin_time: float, use_sim_time: bool) -> None:
+def cli(topic: str, window: int, use_sim_time: bool) -> None:
     """Display delay of topic from timestamp in header."""
     from ros2lite.executor import SingleThreadedExecutor
     from ros2lite.interfaces import deserialize, get_interface

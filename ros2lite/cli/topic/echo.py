@@ -206,7 +206,7 @@ def cli(topic_name: str, message_type: str | None, csv: bool, field: str | None,
         full_length: bool, truncate_length: int, no_arr: bool, no_str: bool, flow_style: bool,
         no_lost_messages: bool, raw: bool, filter_expr: str | None, once: bool,
         timeout: float | None, include_message_info: bool, clear: bool,
-        node_name: str | None, spin_time: float, use_sim_time: bool, no_daemon: bool,
+        node_name: str | None, use_sim_time: bool, no_daemon: bool,
         **qos: Any) -> None:
     """Output messages from a topic."""
     fields: list[str] | None = None

@@ -16,7 +16,7 @@ from ..common import CliSession, include_hidden, strategy_options
               help="Also match hidden topics (a name part starts with '_')")
 @click.pass_context
 def cli(ctx: click.Context, topic_type: str, count_topics: bool, include_hidden_topics: bool,
-        no_daemon: bool, spin_time: float, use_sim_time: bool) -> None:
+        no_daemon: bool, use_sim_time: bool) -> None:
     """Output a list of available topics of a given type."""
     from ros2lite.graph import topic_names_and_types
     with CliSession(no_daemon=no_daemon) as session:

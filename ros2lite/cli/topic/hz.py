@@ -96,7 +96,7 @@ def ros_or_arrival_time(node: Any, wall_time: bool) -> Callable[[int], int]:
                    'published during simulation')
 @strategy_options(no_daemon=False)
 def cli(topic_names: tuple[str, ...], window_size: int, filter_expr: str | None,
-        wall_time: bool, spin_time: float, use_sim_time: bool) -> None:
+        wall_time: bool, use_sim_time: bool) -> None:
     """Print the average receiving rate to screen.
 
     The rate is measured where the subscription receives samples, so it can differ from the

@@ -14,8 +14,7 @@ from ..errors import CliError
 @click.option('-v', '--verbose', is_flag=True,
               help='Also describe every publisher and subscription: node, type hash, GID '
                    'and QoS')
-def cli(topic_name: str, verbose: bool, no_daemon: bool, spin_time: float,
-        use_sim_time: bool) -> None:
+def cli(topic_name: str, verbose: bool, no_daemon: bool, use_sim_time: bool) -> None:
     """Print information about a topic."""
     from ros2lite.graph import (
         count,

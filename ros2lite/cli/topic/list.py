@@ -26,7 +26,7 @@ def _section(rows: list[tuple[str, list[str], int]], publishers: bool) -> str:
 @click.option('-v', '--verbose', is_flag=True, help='Count publishers and subscribers per topic')
 @click.pass_context
 def cli(ctx: click.Context, show_types: bool, count_topics: bool, include_hidden_topics: bool,
-        verbose: bool, no_daemon: bool, spin_time: float, use_sim_time: bool) -> None:
+        verbose: bool, no_daemon: bool, use_sim_time: bool) -> None:
     """Output a list of available topics."""
     from ros2lite.graph import topic_counts, topic_names_and_types
     with CliSession(no_daemon=no_daemon) as session:

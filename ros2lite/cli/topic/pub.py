@@ -42,7 +42,7 @@ WAIT_STEP = 0.1   # seconds between subscription-count checks while waiting
 def cli(topic_name: str, message_type: str, values: str | None, use_stdin: bool, rate: float,
         print_nth: int, once: bool, times: int, wait_matching_subscriptions: int | None,
         max_wait_time_secs: float | None, keep_alive: float, node_name: str | None,
-        spin_time: float, use_sim_time: bool, **qos: Any) -> None:
+        use_sim_time: bool, **qos: Any) -> None:
     """Publish a message to a topic.
 
     VALUES fills the message in YAML (e.g. 'data: Hello World'); 'now' sets a time field and

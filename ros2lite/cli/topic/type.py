@@ -11,8 +11,7 @@ from ..common import CliSession, include_hidden, strategy_options
 @strategy_options()
 @click.argument('topic_name')
 @click.pass_context
-def cli(ctx: click.Context, topic_name: str, no_daemon: bool, spin_time: float,
-        use_sim_time: bool) -> None:
+def cli(ctx: click.Context, topic_name: str, no_daemon: bool, use_sim_time: bool) -> None:
     """Print a topic's type."""
     from ros2lite.graph import topic_names_and_types
     from ros2lite.transport.keys import expand_topic_name
