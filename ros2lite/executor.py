@@ -17,13 +17,16 @@ from typing import Any
 from ros2lite.context import Context, default_context
 
 # at most this many samples of one subscription per turn in spin()/spin_until_future_complete
-_BATCH = 128
+_BATCH = 512
 
 
 class Future:
     """The result of an asynchronous operation (service call, goal), rclpy-style."""
 
     def __init__(self) -> None:
+        # a plain flag for done(), which executors poll after every callback; the Event is
+        # only for threads that block in wait()
+        self._finished = False
         self._done = threading.Event()
         self._result: Any = None
         self._exception: BaseException | None = None
@@ -31,7 +34,7 @@ class Future:
         self._cancelled = False
 
     def done(self) -> bool:
-        return self._done.is_set()
+        return self._finished
 
     def cancelled(self) -> bool:
         return self._cancelled
@@ -58,6 +61,7 @@ class Future:
         self._finish()
 
     def _finish(self) -> None:
+        self._finished = True
         self._done.set()
         for cb in self._callbacks:
             cb(self)

@@ -8,6 +8,7 @@ import time
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
+from itertools import chain, islice
 from typing import Any
 
 from ros2lite.endpoint import Endpoint, EndpointOwner, is_transient_local
@@ -99,31 +100,37 @@ class Subscription(EndpointOwner):
         waiting in the channel to the buffer while holding the GIL once, so a burst costs
         one GIL hand-off per batch instead of one per sample. Ends when the subscriber is
         undeclared (the channel closes)."""
-        recv, try_recv = channel.recv, channel.try_recv
+        recv = channel.recv
         # a subclass hook (e.g. topic monitors) sees every sample; ours is inlined below
         hook = None if type(self)._on_sample is Subscription._on_sample else self._on_sample
-        append, put, now, raw = self._buffer.append, self._work.put, time.time_ns, self.raw
+        append, extend, put = self._buffer.append, self._buffer.extend, self._work.put
+        now, raw = time.time_ns, self.raw
         while True:
             try:
-                sample = recv()
+                first = recv()
             except Exception:
                 return   # channel closed: subscription destroyed or session closed
-            n = 0
-            while sample is not None:
+            # what else is waiting, up to a batch: try_recv until it gives None
+            rest = islice(iter(channel.try_recv, None), _PUMP_BATCH - 1)
+            try:
                 if hook is not None:
-                    try:
-                        hook(sample)
-                    except Exception:
-                        import traceback
-                        traceback.print_exc()
+                    for sample in chain((first,), rest):
+                        try:
+                            hook(sample)
+                        except Exception:
+                            import traceback
+                            traceback.print_exc()
+                    continue
+                if raw:
+                    append((first, now()))
+                    for sample in rest:
+                        append((sample, now()))
                 else:
-                    append((sample, now()) if raw else sample)
-                n += 1
-                try:
-                    sample = try_recv() if n < _PUMP_BATCH else None
-                except Exception:
-                    sample = None   # closed mid-batch; the next recv() ends the thread
-            if hook is None and not self._scheduled and not self._destroyed:
+                    append(first)
+                    extend(rest)   # typed: the whole batch moves without a Python loop
+            except Exception:
+                pass   # closed mid-batch; the next recv() ends the thread
+            if not self._scheduled and not self._destroyed:
                 self._scheduled = True
                 put(self)
 
@@ -184,30 +191,42 @@ class Subscription(EndpointOwner):
         spin_until_future_complete() use this so a burst is not paid for per sample in
         executor overhead. Typed callbacks never see MessageInfo, so it is only built for
         raw ones."""
-        buffer, callback, raw = self._buffer, self.callback, self.raw
-        des = None if raw else self._deserialize or self._deserializer()
+        buffer, callback = self._buffer, self.callback
+        popleft, perf_counter = buffer.popleft, time.perf_counter
         # a batch also ends after _BATCH_TIME, so slow callbacks can't starve timers
-        deadline = time.perf_counter() + _BATCH_TIME if limit > 1 else 0.0
+        deadline = perf_counter() + _BATCH_TIME if limit > 1 else 0.0
         try:
-            for i in range(limit):
-                if i & 7 == 7 and time.perf_counter() > deadline:
-                    break
-                try:
-                    entry = buffer.popleft()
-                except IndexError:
-                    break  # KEEP_LAST dropped it, or take() got there first
-                if self._destroyed:
-                    break
-                if des is None:
-                    sample, received = entry
+            if self.raw:
+                for i in range(limit):
+                    if i & 7 == 7 and perf_counter() > deadline:
+                        break
+                    try:
+                        sample, received = popleft()
+                    except IndexError:
+                        break  # KEEP_LAST dropped it, or take() got there first
+                    if self._destroyed:
+                        break
                     attachment = sample.attachment
                     if attachment is None:
                         continue   # rmw_zenoh drops samples without an attachment
                     callback(sample.payload.to_bytes(), _info(attachment.to_bytes(), received))
-                else:
-                    if entry.attachment is None:
-                        continue
-                    callback(des(entry.payload.to_bytes()))
+                    if stop is not None and stop():
+                        break
+                return
+            # typed: the hot loop of a busy subscriber, kept to the bare minimum per sample
+            des = self._deserialize or self._deserializer()
+            for i in range(limit):
+                if i & 7 == 7 and perf_counter() > deadline:
+                    break
+                try:
+                    sample = popleft()
+                except IndexError:
+                    break
+                if self._destroyed:
+                    break
+                if sample.attachment is None:
+                    continue
+                callback(des(sample.payload.to_bytes()))
                 if stop is not None and stop():
                     break
         finally:

@@ -8,6 +8,7 @@ relative to the byte after the 4-byte encapsulation header, exactly as FastCDR d
 
 from __future__ import annotations
 
+import re
 import struct
 from array import array
 from collections.abc import Callable
@@ -367,6 +368,22 @@ def build_serializer(name: str, reg: Registry) -> Callable[[Any], bytes]:
     gen.struct(reg.message(name), 'm')
     gen.flush()
     body = ['    p = [_HEADER]', '    o = 0', *gen.lines, '    return _join(p)']
+    if not any(line.startswith('     ') for line in gen.lines):
+        # straight-line code (no loops or conditional padding): chunks in locals and one
+        # tuple join are cheaper than growing a list, which counts for small messages
+        lines, parts = [], ['_HEADER']
+        for line in gen.lines:
+            if line.startswith('    p.append(') and line.endswith(')'):
+                parts.append(f'c{len(parts)}')
+                lines.append(f'    {parts[-1]} = {line[13:-1]}')
+            else:
+                lines.append(line)
+        if not any(re.search(r'\bo\b', x) for x in lines if not x.startswith('    o += ')):
+            # no padding depends on the offset: stop tracking it
+            lines = [x for x in lines if not x.startswith('    o += ')]
+        else:
+            lines.insert(0, '    o = 0')
+        body = [*lines, f'    return _join(({", ".join(parts)},))']
     src = 'def ser(m):\n' + '\n'.join(body)
     exec(compile(src, f'<cdr ser {name}>', 'exec'), gen.ns)
     fn: Callable[[Any], bytes] = gen.ns['ser']
@@ -377,17 +394,50 @@ def build_serializer(name: str, reg: Registry) -> Callable[[Any], bytes]:
 _Des = Callable[[bytes, int], tuple[Any, int]]
 
 
-def build_deserializer(name: str, reg: Registry, little: bool = True,
-                       lenient: bool = False) -> _Des:
+def _des_body(name: str, reg: Registry, little: bool, lenient: bool,
+              indent: int) -> tuple[_DesGen, str]:
+    """Generated lines that build one `name` message from `d` at offset `o`, and the variable
+    that holds it at the end."""
     gen = _DesGen(reg, '<' if little else '>', lenient)
+    gen.indent = indent
     gen.ns['_new'] = object.__new__
     v = gen.struct(reg.message(name))
     gen.flush()
-    gen.emit(f'return {v}, o')
-    head = ['    mv = memoryview(d)'] if gen.uses_mv else []
-    src = 'def des(d, o):\n' + '\n'.join(head + gen.lines)
+    if gen.uses_mv:
+        gen.lines.insert(0, '    ' * indent + 'mv = memoryview(d)')
+    return gen, v
+
+
+def build_deserializer(name: str, reg: Registry, little: bool = True,
+                       lenient: bool = False) -> _Des:
+    gen, v = _des_body(name, reg, little, lenient, 1)
+    src = 'def des(d, o):\n' + '\n'.join(gen.lines) + f'\n    return {v}, o'
     exec(compile(src, f'<cdr des {name}>', 'exec'), gen.ns)
     fn: _Des = gen.ns['des']
+    fn.__doc__ = src
+    return fn
+
+
+def build_fast_decoder(name: str, reg: Registry, slow: Callable[[bytes], Any]
+                       ) -> Callable[[bytes], Any]:
+    """`decode(d)` for whole little-endian payloads with the header check inlined (one call
+    per message on the subscription hot path); anything unusual goes to `slow`, which gives
+    the precise error or handles big-endian and bad UTF-8."""
+    gen, v = _des_body(name, reg, True, False, 2)
+    gen.ns['_slow'] = slow
+    src = '\n'.join([
+        'def decode(d):',
+        '    try:',
+        '        if d[1] != 1 or d[0]:',
+        '            raise ValueError',
+        '        o = 4',
+        *gen.lines,
+        '    except Exception:',
+        '        return _slow(d)',
+        f'    return {v} if o <= len(d) else _slow(d)',
+    ])
+    exec(compile(src, f'<cdr decode {name}>', 'exec'), gen.ns)
+    fn: Callable[[bytes], Any] = gen.ns['decode']
     fn.__doc__ = src
     return fn
 
@@ -424,20 +474,7 @@ class Codec:
     def fast_deserializer(self) -> Callable[[bytes], Any]:
         """A lean decoder for the common case (little-endian, well-formed bytes); anything
         else falls back to `deserialize`, which gives the precise error."""
-        if self._des_le == self._first_des_le:
-            self._des_le = build_deserializer(self.name, self.reg, True)
-        des_le, slow = self._des_le, self.deserialize
-
-        def decode(data: bytes) -> Any:
-            try:
-                if data[1] == 1 and data[0] == 0:
-                    msg, end = des_le(data, 4)
-                    if end <= len(data):
-                        return msg
-            except Exception:
-                pass
-            return slow(data)
-        return decode
+        return build_fast_decoder(self.name, self.reg, self.deserialize)
 
     def serialize(self, msg: Any) -> bytes:
         try:

@@ -8,6 +8,7 @@ only where user code assigns values.
 from __future__ import annotations
 
 import math
+import operator
 from array import array
 from typing import TYPE_CHECKING, Any
 
@@ -266,11 +267,13 @@ class ClassFactory:
             src.append(f'        else: self.{f.name} = {f.name}')
         for f in mdef.fields:
             src += ['    ' + s for s in _setter_source(f.name, f.type)]
-            src.append(f'    {f.name} = property(lambda self: self._{f.name}, _set_{f.name})')
+            # a C-level getter: reading a field costs a third less than through a lambda
+            src.append(f"    {f.name} = property(_getter('_{f.name}'), _set_{f.name}, "
+                       f"doc={rosidl_type_string(f.type)!r})")
         ns: dict[str, Any] = {
             '_Message': Message, '_MISSING': _MISSING, '_C': self.classes, '_array': array,
             '_err': _err, '_to_array': _to_array, '_isinf': math.isinf,
-            '_same_type': self.same_type,
+            '_same_type': self.same_type, '_getter': operator.attrgetter,
         }
         exec(compile('\n'.join(src), f'<ros2lite {mdef.name}>', 'exec'), ns)
         cls: type[Message] = ns[short]
