@@ -17,7 +17,7 @@ congestion control BLOCK), otherwise the run fails instead of reporting a lossy 
   `sample.payload.to_bytes()`. (A plain callback subscriber is faster to write but not
   lossless: zenoh-python's callback thread drops samples at these rates.)
 
-Reported: `node_pubsub_string <msg/s> msg/s <ratio vs raw zenoh>`, medians of 5 runs per side,
+Reported: `node_pubsub_string <msg/s> msg/s <ratio vs raw zenoh>`, medians of 7 runs per side,
 raw and node runs interleaved (BENCH_NODE_VERBOSE=1 prints every run). On a small shared VM
 single runs scatter by ±25 %, which is why medians of interleaved runs are compared.
 """
@@ -38,7 +38,7 @@ from typing import Any
 from common import report
 
 N_MESSAGES = 200_000
-RUNS = 5
+RUNS = 7
 WARMUP = 'warmup'
 
 PUBLISHER = r'''

@@ -28,9 +28,11 @@ class MessageInfo:
 
 _CURRENT_ATTACHMENT = struct.Struct('<qqB')
 # Rust-side queue between zenoh and the pump thread (never below the QoS depth), and how many
-# samples the pump moves per GIL hold
+# samples the pump moves per GIL hold: up to a whole channel (about 1 ms of work), because a
+# pump that gives the GIL back mid-drain waits a switch interval (5 ms) to get it again
+# while the executor is busy, and meanwhile the full channel stalls zenoh's receive thread
 _CHANNEL_CAPACITY = 4096
-_PUMP_BATCH = 512
+_PUMP_BATCH = _CHANNEL_CAPACITY
 # longest run of callbacks of one subscription in one executor turn (seconds)
 _BATCH_TIME = 0.002
 
