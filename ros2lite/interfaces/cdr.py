@@ -213,6 +213,12 @@ class _DesGen(_Gen):
         st = struct.Struct(self.endian + self.run_fmt)
         s = self.const('_S', st.unpack_from)
         targets = self.run_items
+        if targets and all(kind == 'v' for kind, _ in targets):
+            # plain values: unpack straight into their targets (no temporary tuple indexing)
+            self.emit(f'{", ".join(t for _, t in targets)}, = {s}(d, o)')
+            self.emit(f'o += {st.size}')
+            self.run_fmt, self.run_items = '', []
+            return
         t = self.name('t')
         self.emit(f'{t} = {s}(d, o)')
         self.emit(f'o += {st.size}')
