@@ -10,12 +10,12 @@ import pytest
 from ros2lite.interfaces import type_hash
 from ros2lite.interfaces.hashing import type_description
 
-TABLE_PATH = Path(__file__).resolve().parents[3] / 'shared' / 'reference' / 'rihs01_jazzy.json'
+# a copy of the project reference table (shared/reference/rihs01_jazzy.json), kept with the
+# tests so a clean clone checks every hash instead of skipping
+TABLE_PATH = Path(__file__).resolve().parent / 'data' / 'rihs01_jazzy.json'
 
 
 def load_table() -> dict[str, str]:
-    if not TABLE_PATH.is_file():
-        pytest.skip(f'reference table not found at {TABLE_PATH}')
     table: dict[str, str] = json.loads(TABLE_PATH.read_text())
     return table
 
