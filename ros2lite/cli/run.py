@@ -74,26 +74,36 @@ def _terminal_signals_child() -> bool:
 
 
 def run_child(cmd: list[str]) -> int:
-    """Start `cmd`, forward SIGINT/SIGTERM as described above, return its returncode."""
-    try:
-        proc = subprocess.Popen(cmd)
-    except OSError as e:
-        raise CliError(f'{cmd[0]}: {e.strerror or e}') from None
+    """Start `cmd`, forward SIGINT/SIGTERM as described above, return its returncode.
+
+    Signals are taken by handlers installed before the child starts, not as
+    KeyboardInterrupt: a Ctrl-C landing between the child's start and our wait would
+    otherwise end this process early, and the terminal would hang up on the child."""
+    proc: subprocess.Popen[bytes] | None = None
+    interrupts = 0
+
+    def forward_int(_signum: int, _frame: Any) -> None:
+        nonlocal interrupts
+        interrupts += 1
+        if proc is not None and proc.poll() is None and (
+                interrupts > 1 or not _terminal_signals_child()):
+            proc.send_signal(signal.SIGINT)
 
     def forward_term(signum: int, _frame: Any) -> None:
-        if proc.poll() is None:
+        if proc is not None and proc.poll() is None:
             proc.send_signal(signum)
 
+    old_int = signal.signal(signal.SIGINT, forward_int)
     old_term = signal.signal(signal.SIGTERM, forward_term)
-    interrupts = 0
     try:
-        while True:
-            try:
-                return proc.wait()
-            except KeyboardInterrupt:
-                interrupts += 1
-                if proc.poll() is None and (interrupts > 1 or not _terminal_signals_child()):
-                    proc.send_signal(signal.SIGINT)
+        try:
+            proc = subprocess.Popen(cmd)
+        except OSError as e:
+            raise CliError(f'{cmd[0]}: {e.strerror or e}') from None
+        if interrupts and not _terminal_signals_child():
+            proc.send_signal(signal.SIGINT)   # came while the child was starting
+        return proc.wait()
     finally:
+        signal.signal(signal.SIGINT, old_int)
         signal.signal(signal.SIGTERM, old_term)
         sys.stdout.flush()
