@@ -26,7 +26,7 @@ _EXPORTS = {
     'DurabilityPolicy': 'ros2lite.transport.qos', 'HistoryPolicy': 'ros2lite.transport.qos',
     'qos_profile_sensor_data': 'ros2lite.transport.qos',
     'qos_profile_system_default': 'ros2lite.transport.qos',
-    'Time': 'ros2lite.clock', 'Duration': 'ros2lite.clock', 'Clock': 'ros2lite.clock',
+    'Time': 'ros2lite.clock', 'Duration': 'ros2lite.duration', 'Clock': 'ros2lite.clock',
     'get_logger': 'ros2lite.logging', 'MessageInfo': 'ros2lite.subscription',
 }
 

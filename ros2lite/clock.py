@@ -11,6 +11,8 @@ import time
 from dataclasses import dataclass
 from typing import Any
 
+from ros2lite.duration import Duration
+
 _NS = 1_000_000_000
 
 
@@ -19,23 +21,6 @@ class ClockType(enum.IntEnum):
     ROS_TIME = 1
     SYSTEM_TIME = 2
     STEADY_TIME = 3
-
-
-@dataclass(frozen=True, order=True)
-class Duration:
-    nanoseconds: int = 0
-
-    @classmethod
-    def from_seconds(cls, seconds: float) -> Duration:
-        return cls(round(seconds * _NS))
-
-    def to_seconds(self) -> float:
-        return self.nanoseconds / _NS
-
-    def to_msg(self) -> Any:
-        from ros2lite.interfaces import get_interface
-        sec, nsec = divmod(self.nanoseconds, _NS)
-        return get_interface('builtin_interfaces/msg/Duration')(sec=sec, nanosec=nsec)
 
 
 @dataclass(frozen=True, order=True)
@@ -58,7 +43,7 @@ class Time:
 
     def __sub__(self, other: Time | Duration) -> Any:
         if isinstance(other, Time):
-            return Duration(self.nanoseconds - other.nanoseconds)
+            return Duration(nanoseconds=self.nanoseconds - other.nanoseconds)
         return Time(self.nanoseconds - other.nanoseconds, self.clock_type)
 
     def __add__(self, other: Duration) -> Time:

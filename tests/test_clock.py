@@ -21,13 +21,13 @@ def test_time_and_duration_arithmetic() -> None:
     t = Time(5_500_000_000)
     assert t.seconds_nanoseconds == (5, 500_000_000)
     assert (t + Duration.from_seconds(0.5)).nanoseconds == 6_000_000_000
-    assert t - Time(1_000_000_000) == Duration(4_500_000_000)
-    assert (t - Duration(500_000_000)).nanoseconds == 5_000_000_000
+    assert t - Time(1_000_000_000) == Duration(nanoseconds=4_500_000_000)
+    assert (t - Duration(nanoseconds=500_000_000)).nanoseconds == 5_000_000_000
     assert Duration.from_seconds(1.25).to_seconds() == 1.25
     msg = t.to_msg()
     assert (msg.sec, msg.nanosec) == (5, 500_000_000)
     assert Time.from_msg(msg) == Time(5_500_000_000, ClockType.ROS_TIME)
-    d = Duration(2_000_000_001).to_msg()
+    d = Duration(nanoseconds=2_000_000_001).to_msg()
     assert (d.sec, d.nanosec) == (2, 1)
     assert Time(1) < Time(2)
 

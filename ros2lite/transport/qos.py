@@ -14,6 +14,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import NamedTuple, TypeVar
 
+from ros2lite.duration import Duration
+
 __all__ = [
     "DURATION_BEST_AVAILABLE",
     "DURATION_INFINITE",
@@ -101,47 +103,9 @@ class LivelinessPolicy(_Policy):
     BEST_AVAILABLE = 5
 
 
-@dataclass(frozen=True, order=True)
-class Duration:
-    """An ``rmw_time_t``: whole seconds plus nanoseconds, both non-negative."""
-
-    sec: int = 0
-    nsec: int = 0
-
-    @classmethod
-    def from_seconds(cls, seconds: float) -> Duration:
-        if seconds < 0:
-            raise ValueError(f"duration must not be negative: {seconds}")
-        total = round(seconds * 1_000_000_000)
-        return cls(total // 1_000_000_000, total % 1_000_000_000)
-
-    @classmethod
-    def from_nanoseconds(cls, ns: int) -> Duration:
-        if ns < 0:
-            raise ValueError(f"duration must not be negative: {ns} ns")
-        return cls(ns // 1_000_000_000, ns % 1_000_000_000)
-
-    @property
-    def nanoseconds(self) -> int:
-        return self.sec * 1_000_000_000 + self.nsec
-
-    @property
-    def is_unspecified(self) -> bool:
-        return self.sec == 0 and self.nsec == 0
-
-    @property
-    def is_infinite(self) -> bool:
-        return self == DURATION_INFINITE
-
-    def __str__(self) -> str:
-        if self.is_infinite:
-            return "Infinite"
-        return f"{self.nanoseconds} nanoseconds"
-
-
-DURATION_UNSPECIFIED = Duration(0, 0)
-DURATION_INFINITE = Duration(9223372036, 854775807)
-DURATION_BEST_AVAILABLE = Duration(9223372036, 854775806)
+DURATION_UNSPECIFIED = Duration()
+DURATION_INFINITE = Duration(nanoseconds=2**63 - 1)           # rmw's {INT64_MAX ns}
+DURATION_BEST_AVAILABLE = Duration(nanoseconds=2**63 - 2)
 
 
 @dataclass(frozen=True)
@@ -169,6 +133,9 @@ class QoSProfile:
         object.__setattr__(self, "liveliness", LivelinessPolicy(self.liveliness))
         if self.depth < 0:
             raise ValueError(f"QoS depth must not be negative: {self.depth}")
+        for name in ("deadline", "lifespan", "liveliness_lease_duration"):
+            if getattr(self, name).nanoseconds < 0:
+                raise ValueError(f"QoS {name.replace('_', ' ')} must not be negative")
 
     def replace(self, **changes: object) -> QoSProfile:
         """A copy with some fields changed (``dataclasses.replace`` under a friendlier name)."""
@@ -193,7 +160,7 @@ qos_profile_services_default = QoSProfile()
 qos_profile_parameters = QoSProfile(depth=1000)
 qos_profile_parameter_events = QoSProfile(depth=1000)
 qos_profile_rosout_default = QoSProfile(
-    durability=_D.TRANSIENT_LOCAL, depth=1000, lifespan=Duration(10, 0)
+    durability=_D.TRANSIENT_LOCAL, depth=1000, lifespan=Duration(seconds=10)
 )
 qos_profile_action_status_default = QoSProfile(durability=_D.TRANSIENT_LOCAL, depth=1)
 qos_profile_best_available = QoSProfile(
@@ -280,6 +247,10 @@ def best_available_qos(profile: QoSProfile) -> QoSProfile:
             else profile.liveliness_lease_duration
         ),
     )
+
+
+def _rmw_time(sec: int, nsec: int) -> Duration:
+    return Duration(nanoseconds=sec * 1_000_000_000 + nsec)
 
 
 def _no_duration(d: Duration) -> bool:
@@ -395,16 +366,16 @@ def decode_qos(
             ),
             history=HistoryPolicy(_parse_int(hist, d.history, "history", chunk)),
             depth=_parse_int(depth, d.depth, "depth", chunk),
-            deadline=Duration(
+            deadline=_rmw_time(
                 _parse_int(dl_s, d.deadline.sec, "deadline", chunk),
                 _parse_int(dl_ns, d.deadline.nsec, "deadline", chunk),
             ),
-            lifespan=Duration(
+            lifespan=_rmw_time(
                 _parse_int(ls_s, d.lifespan.sec, "lifespan", chunk),
                 _parse_int(ls_ns, d.lifespan.nsec, "lifespan", chunk),
             ),
             liveliness=LivelinessPolicy(_parse_int(liv, d.liveliness, "liveliness", chunk)),
-            liveliness_lease_duration=Duration(
+            liveliness_lease_duration=_rmw_time(
                 _parse_int(lease_s, d.liveliness_lease_duration.sec, "lease", chunk),
                 _parse_int(lease_ns, d.liveliness_lease_duration.nsec, "lease", chunk),
             ),

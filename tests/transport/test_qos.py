@@ -63,10 +63,10 @@ def test_explicit_values_round_trip() -> None:
         durability=DurabilityPolicy.TRANSIENT_LOCAL,
         history=HistoryPolicy.KEEP_ALL,
         depth=3,
-        deadline=Duration(1, 500),
+        deadline=Duration(seconds=1, nanoseconds=500),
         lifespan=Duration.from_seconds(2.5),
         liveliness=LivelinessPolicy.MANUAL_BY_TOPIC,
-        liveliness_lease_duration=Duration(4, 0),
+        liveliness_lease_duration=Duration(seconds=4),
     )
     chunk = encode_qos(profile)
     assert chunk == "2:1:2,3:1,500:2,500000000:3,4,0"
@@ -93,7 +93,7 @@ def test_garbage_chunks_raise(chunk: str) -> None:
 def test_presets_and_short_keys() -> None:
     assert preset("sensor_data") is q.qos_profile_sensor_data
     assert preset("qos_profile_sensor_data") is q.qos_profile_sensor_data
-    assert preset("rosout_default").lifespan == Duration(10, 0)
+    assert preset("rosout_default").lifespan == Duration(seconds=10)
     assert preset("parameters").depth == preset("parameter_events").depth == 1000
     assert preset("action_status_default").durability == DurabilityPolicy.TRANSIENT_LOCAL
     assert preset("system_default").reliability == ReliabilityPolicy.SYSTEM_DEFAULT
@@ -118,11 +118,11 @@ def test_profile_accepts_ints_and_checks_depth() -> None:
 
 
 def test_duration_helpers() -> None:
-    assert Duration.from_seconds(10) == Duration(10, 0)
-    assert Duration.from_nanoseconds(1_500_000_000) == Duration(1, 500_000_000)
+    assert Duration.from_seconds(10) == Duration(seconds=10)
+    assert Duration.from_nanoseconds(1_500_000_000) == Duration(seconds=1, nanoseconds=500000000)
     assert str(DURATION_INFINITE) == "Infinite"
-    assert str(Duration(1, 5)) == "1000000005 nanoseconds"
-    assert Duration(1, 0) < Duration(1, 1) < Duration(2, 0)
+    assert str(Duration(seconds=1, nanoseconds=5)) == "1000000005 nanoseconds"
+    assert Duration(seconds=1) < Duration(seconds=1, nanoseconds=1) < Duration(seconds=2)
 
 
 R, D, L = ReliabilityPolicy, DurabilityPolicy, LivelinessPolicy
@@ -135,16 +135,17 @@ R, D, L = ReliabilityPolicy, DurabilityPolicy, LivelinessPolicy
         (QoSProfile(), QoSProfile(reliability=R.BEST_EFFORT), True, ""),
         (QoSProfile(), QoSProfile(durability=D.TRANSIENT_LOCAL), False, "Volatile publisher"),
         (QoSProfile(durability=D.TRANSIENT_LOCAL), QoSProfile(), True, ""),
-        (QoSProfile(), QoSProfile(deadline=Duration(1, 0)), False, "publisher does not"),
-        (QoSProfile(deadline=Duration(2, 0)), QoSProfile(deadline=Duration(1, 0)), False,
+        (QoSProfile(), QoSProfile(deadline=Duration(seconds=1)), False, "publisher does not"),
+        (QoSProfile(deadline=Duration(seconds=2)), QoSProfile(deadline=Duration(seconds=1)), False,
          "deadline is less"),
-        (QoSProfile(deadline=Duration(1, 0)), QoSProfile(deadline=Duration(2, 0)), True, ""),
+        (QoSProfile(deadline=Duration(seconds=1)), QoSProfile(deadline=Duration(seconds=2)),
+         True, ""),
         (QoSProfile(liveliness=L.AUTOMATIC), QoSProfile(liveliness=L.MANUAL_BY_TOPIC), False,
          "manual by topic"),
-        (QoSProfile(), QoSProfile(liveliness_lease_duration=Duration(1, 0)), False,
+        (QoSProfile(), QoSProfile(liveliness_lease_duration=Duration(seconds=1)), False,
          "lease duration, but publisher does not"),
-        (QoSProfile(liveliness_lease_duration=Duration(3, 0)),
-         QoSProfile(liveliness_lease_duration=Duration(1, 0)), False, "less than publisher"),
+        (QoSProfile(liveliness_lease_duration=Duration(seconds=3)),
+         QoSProfile(liveliness_lease_duration=Duration(seconds=1)), False, "less than publisher"),
         # Tokens carry "infinite" where users write "unspecified": both mean no deadline.
         (decode_qos("::,10:,:,:,,"), QoSProfile(), True, ""),
         (QoSProfile(), decode_qos("::,10:,:,:,,"), True, ""),
@@ -165,11 +166,11 @@ def test_resolve_best_available() -> None:
     assert (pub.reliability, pub.durability, pub.liveliness) == (R.RELIABLE, D.TRANSIENT_LOCAL,
                                                                  L.AUTOMATIC)
     assert pub.deadline.is_unspecified
-    pubs = [QoSProfile(reliability=R.BEST_EFFORT, deadline=Duration(2, 0)),
-            QoSProfile(durability=D.TRANSIENT_LOCAL, deadline=Duration(5, 0))]
+    pubs = [QoSProfile(reliability=R.BEST_EFFORT, deadline=Duration(seconds=2)),
+            QoSProfile(durability=D.TRANSIENT_LOCAL, deadline=Duration(seconds=5))]
     sub = resolve_best_available(ba, pubs, for_publisher=False)
     assert (sub.reliability, sub.durability) == (R.BEST_EFFORT, D.VOLATILE)
-    assert sub.deadline == Duration(5, 0)
+    assert sub.deadline == Duration(seconds=5)
     assert sub.liveliness_lease_duration.is_unspecified
     tl = resolve_best_available(ba, [q.qos_profile_rosout_default], for_publisher=False)
     assert (tl.reliability, tl.durability) == (R.RELIABLE, D.TRANSIENT_LOCAL)

@@ -56,9 +56,9 @@ def test_verbose_blocks(run: Run, graph: TokenGraph) -> None:
                                        type_hash=STRING_HASH)
     odd = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT,
                      durability=DurabilityPolicy.TRANSIENT_LOCAL, history=HistoryPolicy.KEEP_ALL,
-                     lifespan=Duration(10, 0), deadline=Duration(0, 500),
+                     lifespan=Duration(seconds=10), deadline=Duration(nanoseconds=500),
                      liveliness=LivelinessPolicy.MANUAL_BY_TOPIC,
-                     liveliness_lease_duration=Duration(2, 5))
+                     liveliness_lease_duration=Duration(seconds=2, nanoseconds=5))
     sub_key = graph.node('listener', '/robot1').sub('/chatter', qos=odd, type_hash=STRING_HASH)
     expected = f'''Type: std_msgs/msg/String
 
