@@ -47,6 +47,10 @@ def cli(ctx: click.Context, debug: bool, router: str | None) -> None:
 def main(argv: list[str] | None = None) -> Any:
     """Run the CLI; returns the process exit status."""
     args = sys.argv[1:] if argv is None else argv
+    instruction = os.environ.get('_ROS2LITE_COMPLETE')
+    if instruction:
+        from .completion import shell_complete
+        return shell_complete(instruction)
     if '--debug' in args[:1]:
         os.environ['ROS2LITE_DEBUG'] = '1'
     with contextlib.suppress(AttributeError, ValueError):

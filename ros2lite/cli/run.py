@@ -18,6 +18,7 @@ from typing import Any
 
 import click
 
+from . import completion
 from .errors import CliError
 
 
@@ -27,8 +28,8 @@ from .errors import CliError
 @click.option('--prefix', metavar='CMD',
               help="Prefix command, which should go before the executable. Command must be "
                    "wrapped in quotes if it contains spaces (e.g. --prefix 'gdb -ex run --args').")
-@click.argument('package_name')
-@click.argument('executable_name')
+@click.argument('package_name', shell_complete=completion.executable_packages)
+@click.argument('executable_name', shell_complete=completion.executables)
 @click.argument('argv', nargs=-1, type=click.UNPROCESSED)
 def cli(prefix: str | None, package_name: str, executable_name: str,
         argv: tuple[str, ...]) -> None:

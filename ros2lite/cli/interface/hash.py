@@ -6,9 +6,11 @@ import click
 
 from ros2lite.interfaces import type_hash
 
+from .. import completion
+
 
 @click.command('hash')
-@click.argument('type_name', metavar='TYPE')
+@click.argument('type_name', metavar='TYPE', shell_complete=completion.interface_types)
 def cli(type_name: str) -> None:
     """Output the RIHS01 type hash of an interface (as used in rmw_zenoh keys)."""
     click.echo(type_hash(type_name))

@@ -6,9 +6,11 @@ import click
 
 from ros2lite.interfaces.registry import default_registry
 
+from .. import completion
+
 
 @click.command('package')
-@click.argument('package_name')
+@click.argument('package_name', shell_complete=completion.interface_packages)
 @click.option('-m', '--only-msgs', is_flag=True, help='Print out only the message types')
 @click.option('-s', '--only-srvs', is_flag=True, help='Print out only the service types')
 @click.option('-a', '--only-actions', is_flag=True, help='Print out only the action types')

@@ -9,6 +9,8 @@ import click
 from ros2lite.interfaces.registry import default_registry
 from ros2lite.interfaces.text import show_lines
 
+from .. import completion
+
 
 def read_type_argument(value: str) -> str:
     """'-' reads the type name from a pipe, as in `topic type /x | interface show -`."""
@@ -22,7 +24,7 @@ def read_type_argument(value: str) -> str:
 
 
 @click.command('show')
-@click.argument('type_name', metavar='TYPE')
+@click.argument('type_name', metavar='TYPE', shell_complete=completion.interface_types)
 @click.option('--all-comments', is_flag=True,
               help='Show all comments, including for nested interface definitions')
 @click.option('--no-comments', is_flag=True, help='Show no comments or whitespace')

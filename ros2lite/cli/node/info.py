@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from .. import completion
 from ..common import CliSession, strategy_options
 from ..errors import CliError
 
@@ -16,7 +17,7 @@ def _section(title: str, items: list[tuple[str, list[str]]]) -> str:
 
 @click.command('info')
 @strategy_options()
-@click.argument('node_name')
+@click.argument('node_name', shell_complete=completion.nodes)
 @click.option('--include-hidden', is_flag=True,
               help='Also show hidden topics, services and actions')
 def cli(node_name: str, include_hidden: bool, no_daemon: bool, use_sim_time: bool) -> None:

@@ -8,6 +8,7 @@ from typing import Any
 
 import click
 
+from .. import completion
 from ..common import CliSession, strategy_options
 from .echo import resolve_topic, wait_for_type
 
@@ -30,7 +31,7 @@ def bw_line(s: Any) -> str:
 
 
 @click.command('bw')
-@click.argument('topic')
+@click.argument('topic', shell_complete=completion.topics)
 @click.option('-w', '--window', type=click.IntRange(min=1), default=DEFAULT_WINDOW_SIZE,
               show_default=True, metavar='WINDOW',
               help='maximum window size, in # of messages, for calculating rate')

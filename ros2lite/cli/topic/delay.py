@@ -6,6 +6,7 @@ from typing import Any
 
 import click
 
+from .. import completion
 from ..common import CliSession, strategy_options
 from ..errors import CliError
 from .echo import resolve_topic, wait_for_type
@@ -19,7 +20,7 @@ def delay_line(s: Any) -> str:
 
 
 @click.command('delay')
-@click.argument('topic')
+@click.argument('topic', shell_complete=completion.topics)
 @click.option('-w', '--window', type=click.IntRange(min=0), default=DEFAULT_WINDOW_SIZE,
               show_default=True, help='window size, in # of messages, for calculating rate')
 @strategy_options(no_daemon=False)

@@ -9,6 +9,7 @@ from typing import Any
 
 import click
 
+from .. import completion
 from ..common import CliSession, explicit_qos, qos_from_options, qos_options, strategy_options
 from ..errors import CliError
 
@@ -170,8 +171,8 @@ def info_dict(info: Any) -> dict[str, int]:
 
 
 @click.command('echo')
-@click.argument('topic_name')
-@click.argument('message_type', required=False)
+@click.argument('topic_name', shell_complete=completion.topics)
+@click.argument('message_type', required=False, shell_complete=completion.message_types)
 @strategy_options()
 @qos_options('sensor_data')
 @click.option('--csv', is_flag=True,

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import click
 
+from .. import completion
 from ..common import CliSession, include_hidden, strategy_options
 
 
 @click.command('find')
 @strategy_options()
-@click.argument('topic_type')
+@click.argument('topic_type', shell_complete=completion.message_types)
 @click.option('-c', '--count-topics', is_flag=True,
               help='Print only how many topics match')
 @click.option('--include-hidden-topics', is_flag=True,

@@ -16,6 +16,7 @@ from typing import Any
 
 import click
 
+from .. import completion
 from ..common import CliSession, strategy_options
 from .echo import compile_filter, resolve_topic, wait_for_type
 
@@ -85,7 +86,8 @@ def ros_or_arrival_time(node: Any, wall_time: bool) -> Callable[[int], int]:
 
 
 @click.command('hz')
-@click.argument('topic_names', metavar='TOPIC_NAME...', nargs=-1, required=True)
+@click.argument('topic_names', metavar='TOPIC_NAME...', nargs=-1, required=True,
+                shell_complete=completion.topics)
 @click.option('-w', '--window', 'window_size', type=click.IntRange(min=1),
               default=DEFAULT_WINDOW_SIZE, show_default=True, metavar='WINDOW',
               help='window size, in # of messages, for calculating rate')

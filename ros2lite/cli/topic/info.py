@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import click
 
+from .. import completion
 from ..common import CliSession, strategy_options
 from ..errors import CliError
 
 
 @click.command('info')
 @strategy_options()
-@click.argument('topic_name')
+@click.argument('topic_name', shell_complete=completion.topics)
 @click.option('-v', '--verbose', is_flag=True,
               help='Also describe every publisher and subscription: node, type hash, GID '
                    'and QoS')

@@ -8,6 +8,7 @@ from typing import Any
 
 import click
 
+from .. import completion
 from ..common import CliSession, qos_from_options, qos_options, strategy_options
 from ..errors import CliError
 from .echo import message_type_name
@@ -16,8 +17,8 @@ WAIT_STEP = 0.1   # seconds between subscription-count checks while waiting
 
 
 @click.command('pub')
-@click.argument('topic_name')
-@click.argument('message_type')
+@click.argument('topic_name', shell_complete=completion.topics)
+@click.argument('message_type', shell_complete=completion.message_types)
 @click.argument('values', required=False)
 @click.option('--stdin', 'use_stdin', is_flag=True, help='Read values from standard input')
 @click.option('-r', '--rate', type=click.FloatRange(min=0, min_open=True), default=1.0,

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import click
 
+from .. import completion
 from ..common import CliSession, include_hidden, strategy_options
 
 
 @click.command('type')
 @strategy_options()
-@click.argument('topic_name')
+@click.argument('topic_name', shell_complete=completion.topics)
 @click.pass_context
 def cli(ctx: click.Context, topic_name: str, no_daemon: bool, use_sim_time: bool) -> None:
     """Print a topic's type."""

@@ -1,0 +1,75 @@
+"""Shell completion: names from the live graph and the local index, nothing (and fast) when
+no router answers, and the bash/zsh activation scripts click generates for us."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import time
+from typing import Any
+
+from ros2lite.node import Node
+from tests.spinning import free_port
+
+
+def complete(words: str, env: dict[str, str] | None = None, shell: str = 'bash'
+             ) -> list[str]:
+    """What `ros2lite` offers for the last word of `words`, as the bash hook would ask."""
+    argv = words.split(' ')
+    proc = subprocess.run(
+        [sys.executable, '-m', 'ros2lite'], capture_output=True, text=True, timeout=30,
+        env={**os.environ, **(env or {}), '_ROS2LITE_COMPLETE': f'{shell}_complete',
+             'COMP_WORDS': words, 'COMP_CWORD': str(len(argv) - 1)})
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr == ''
+    return [line.split(',', 1)[1] for line in proc.stdout.splitlines() if line]
+
+
+def test_topics_and_nodes_come_from_the_live_graph(ros_context: Any) -> None:
+    node = Node('completion_probe', namespace='/cmp', context=ros_context,
+                enable_rosout=False)
+    try:
+        node.create_publisher('std_msgs/msg/String', 'cmp_chatter', 10)
+        node.create_publisher('std_msgs/msg/String', '_cmp_hidden', 10)
+        assert complete('ros2lite topic echo /cmp/cmp_') == ['/cmp/cmp_chatter']
+        assert complete('ros2lite topic hz /cmp/cmp_chatter /cmp/cmp_') == ['/cmp/cmp_chatter']
+        # hidden names only once the user has started typing one
+        assert '/cmp/_cmp_hidden' not in complete('ros2lite topic info /cmp/')
+        assert complete('ros2lite topic info /cmp/_') == ['/cmp/_cmp_hidden']
+        assert complete('ros2lite node info /cmp/comp') == ['/cmp/completion_probe']
+    finally:
+        node.destroy_node()
+
+
+def test_types_packages_and_executables() -> None:
+    assert complete('ros2lite topic pub /x geometry_msgs/msg/Twist') == [
+        'geometry_msgs/msg/Twist', 'geometry_msgs/msg/TwistStamped',
+        'geometry_msgs/msg/TwistWithCovariance', 'geometry_msgs/msg/TwistWithCovarianceStamped']
+    assert complete('ros2lite topic find std_srvs/') == []          # services are not topics
+    assert 'std_srvs/srv/SetBool' in complete('ros2lite interface show std_srvs/')
+    assert complete('ros2lite interface package geometry_') == ['geometry_msgs']
+    assert complete('ros2lite run demo_nodes_') == ['demo_nodes_py']
+    assert complete('ros2lite run demo_nodes_py ') == ['listener', 'talker']
+    assert complete('ros2lite run no_such_pkg ') == []
+    assert complete('ros2lite top') == ['topic']
+
+
+def test_no_router_completes_nothing_quickly() -> None:
+    nobody = {'ROS2LITE_ROUTER': f'tcp/127.0.0.1:{free_port()}'}
+    start = time.monotonic()
+    assert complete('ros2lite topic echo /', nobody) == []
+    assert time.monotonic() - start < 10
+    # and it did not start a daemon on that endpoint
+    status = subprocess.run([sys.executable, '-m', 'ros2lite', 'daemon', 'status'],
+                            capture_output=True, text=True, env={**os.environ, **nobody})
+    assert 'not running' in status.stdout
+
+
+def test_activation_scripts() -> None:
+    for shell in ('bash', 'zsh'):
+        proc = subprocess.run([sys.executable, '-m', 'ros2lite'], capture_output=True,
+                              text=True, env={**os.environ,
+                                              '_ROS2LITE_COMPLETE': f'{shell}_source'})
+        assert proc.returncode == 0
+        assert '_ROS2LITE_COMPLETE' in proc.stdout and 'ros2lite' in proc.stdout
