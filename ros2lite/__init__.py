@@ -20,6 +20,7 @@ _EXPORTS = {
     'Node': 'ros2lite.node', 'Parameter': 'ros2lite.node',
     'Context': 'ros2lite.context', 'default_context': 'ros2lite.context',
     'SingleThreadedExecutor': 'ros2lite.executor', 'Future': 'ros2lite.executor',
+    'ExternalShutdownException': 'ros2lite.executor',
     'spin': 'ros2lite.executor', 'spin_once': 'ros2lite.executor',
     'spin_until_future_complete': 'ros2lite.executor',
     'QoSProfile': 'ros2lite.transport.qos', 'ReliabilityPolicy': 'ros2lite.transport.qos',
@@ -36,10 +37,13 @@ def init(args: list[str] | None = None, *, context: Any = None, router: str | No
     """Open the Zenoh session (fails fast with a clear error when no router answers).
 
     `args=None` reads `sys.argv` like rclpy; the returned context also works as
-    `with ros2lite.init(): …`, shutting down on exit.
+    `with ros2lite.init(): …`, shutting down on exit. Like rclpy it installs a SIGTERM
+    handler: spinning then ends with ExternalShutdownException and `ok()` turns False.
     """
-    from ros2lite.context import default_context
-    return (context or default_context()).init(args, router=router, domain_id=domain_id)
+    from ros2lite.context import default_context, install_signal_handlers
+    ctx = (context or default_context()).init(args, router=router, domain_id=domain_id)
+    install_signal_handlers()
+    return ctx
 
 
 def shutdown(*, context: Any = None) -> None:

@@ -10,7 +10,9 @@ from __future__ import annotations
 import atexit
 import contextlib
 import itertools
+import os
 import queue
+import signal
 import sys
 import threading
 import weakref
@@ -41,6 +43,9 @@ class Context:
         self._nodes: list[Any] = []
         self._on_shutdown: list[Any] = []
         self._graph: Any = None
+        # set by SIGTERM: ok() turns False at once and spinning executors raise
+        # ExternalShutdownException; the session itself closes on the way out
+        self.terminating = False
 
     def init(self, args: list[str] | None = None, *, router: str | None = None,
              domain_id: int | None = None) -> Context:
@@ -48,8 +53,9 @@ class Context:
         `--ros-args` given to a node's process reach its nodes."""
         from ros2lite.transport.config import domain_id as env_domain_id
         from ros2lite.transport.config import open_session
-        if self.ok():
+        if self.session is not None:
             raise RuntimeError('Context.init() must only be called once')
+        self.terminating = False
         self.argv = list(sys.argv if args is None else args)
         self.args = parse_ros_args(self.argv)
         self.domain_id = env_domain_id() if domain_id is None else domain_id
@@ -67,7 +73,7 @@ class Context:
         self.try_shutdown()
 
     def ok(self) -> bool:
-        return self.session is not None
+        return self.session is not None and not self.terminating
 
     def require(self) -> Any:
         if self.session is None:
@@ -120,8 +126,12 @@ class Context:
             self._ids = itertools.count()
 
     def try_shutdown(self) -> None:
-        if self.ok():
+        if self.session is not None:
             self.shutdown()
+
+    def _terminate(self) -> None:
+        self.terminating = True
+        self.wake()
 
 
 def undeclare_quietly(*entities: Any) -> None:
@@ -142,6 +152,37 @@ def _shutdown_live_contexts() -> None:
     for ctx in list(_live):
         with contextlib.suppress(Exception):
             ctx.try_shutdown()
+
+
+_previous_sigterm: Any = signal.SIG_DFL
+
+
+def _on_sigterm(signum: int, frame: Any) -> None:
+    """SIGTERM as rclpy handles it: open contexts stop being ok() and spinning executors
+    raise ExternalShutdownException, so `main()` can leave through its normal clean-up.
+    Doing the shutdown itself here could interrupt a zenoh call on this very thread."""
+    open_contexts = [ctx for ctx in list(_live) if ctx.ok()]
+    for ctx in open_contexts:
+        ctx._terminate()
+    if callable(_previous_sigterm):
+        _previous_sigterm(signum, frame)
+    elif not open_contexts and _previous_sigterm == signal.SIG_DFL:
+        # nothing of ours to stop: die of the signal as if we had never been installed
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        os.kill(os.getpid(), signal.SIGTERM)
+
+
+def install_signal_handlers() -> None:
+    """Route SIGTERM through `_on_sigterm` (main thread only; a handler already there is
+    still called after ours)."""
+    global _previous_sigterm
+    if threading.current_thread() is not threading.main_thread():
+        return
+    current = signal.getsignal(signal.SIGTERM)
+    if current is _on_sigterm:
+        return
+    _previous_sigterm = current
+    signal.signal(signal.SIGTERM, _on_sigterm)
 
 
 _default = Context()

@@ -20,6 +20,10 @@ from ros2lite.context import Context, default_context
 _BATCH = 512
 
 
+class ExternalShutdownException(Exception):
+    """Spinning ended because the process was asked to stop (SIGTERM), as in rclpy."""
+
+
 class Future:
     """The result of an asynchronous operation (service call, goal), rclpy-style."""
 
@@ -120,7 +124,13 @@ class SingleThreadedExecutor:
 
     def spin_once(self, timeout_sec: float | None = None) -> None:
         """Run due timers or one queued item, waiting up to `timeout_sec` (None: forever)."""
+        self._check_terminating()
         self._spin_once(timeout_sec, None)
+        self._check_terminating()
+
+    def _check_terminating(self) -> None:
+        if self.context.terminating:
+            raise ExternalShutdownException()
 
     @staticmethod
     def _execute(item: Any, batch: bool, done: Callable[[], bool] | None) -> None:
@@ -182,6 +192,7 @@ class SingleThreadedExecutor:
     def spin(self) -> None:
         while self.context.ok():
             self._spin_once(None, None, True)
+        self._check_terminating()
 
     def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None
                                    ) -> None:
@@ -192,6 +203,8 @@ class SingleThreadedExecutor:
             if remaining is not None and remaining <= 0:
                 return
             self._spin_once(remaining, future.done, True)
+        if not future.done():
+            self._check_terminating()
 
     def shutdown(self, timeout_sec: float | None = None) -> bool:
         self._nodes.clear()

@@ -112,3 +112,42 @@ def test_process_exits_cleanly_without_shutdown(ros_router: str) -> None:
     proc = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
                           timeout=20)
     assert proc.returncode == 3, proc.stderr
+
+
+SIGTERM_PROGRAM = r'''
+import signal, sys, time
+import ros2lite
+from ros2lite.executor import ExternalShutdownException
+mode = sys.argv[1]
+ros2lite.init([])
+node = ros2lite.Node('sigterm_program', enable_rosout=False)
+print('ready', flush=True)
+if mode == 'spin':
+    try:
+        ros2lite.spin(node)
+    except ExternalShutdownException:
+        print('external shutdown', flush=True)
+elif mode == 'loop':
+    while ros2lite.ok():        # a program that never spins still gets out
+        time.sleep(0.02)
+    print('left loop', flush=True)
+ros2lite.try_shutdown()
+if mode == 'after':
+    print('shut down', flush=True)
+    time.sleep(30)              # nothing of ours is open: SIGTERM must kill as usual
+'''
+
+
+@pytest.mark.parametrize(('mode', 'said', 'code'), [
+    ('spin', 'external shutdown', 0), ('loop', 'left loop', 0), ('after', 'shut down', -15)])
+def test_sigterm(processes: Any, mode: str, said: str, code: int) -> None:
+    import signal
+    proc = processes.python(SIGTERM_PROGRAM, mode)
+    assert proc.stdout.readline() == 'ready\n'
+    if mode == 'after':
+        assert proc.stdout.readline() == 'shut down\n'
+        said = ''
+    proc.send_signal(signal.SIGTERM)
+    out, err = proc.communicate(timeout=10)
+    assert (out.strip(), proc.returncode) == (said, code), err
+    assert 'Traceback' not in err

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import signal
 import sys
 from typing import Any
 
@@ -19,6 +20,15 @@ COMMANDS: dict[str, tuple[str, str]] = {
     'run': ('ros2lite.cli.run', 'Run a package specific executable'),
     'topic': ('ros2lite.cli.topic', 'Various topic related sub-commands'),
 }
+
+
+class _Terminated(BaseException):
+    """SIGTERM, raised where the main thread is so `with` blocks close sessions on the way
+    out (ros2cli leaves with status 15 through rclpy's ExternalShutdownException)."""
+
+
+def _raise_terminated(_signum: int, _frame: Any) -> None:
+    raise _Terminated()
 
 
 def debug_enabled() -> bool:
@@ -55,6 +65,19 @@ def main(argv: list[str] | None = None) -> Any:
         os.environ['ROS2LITE_DEBUG'] = '1'
     with contextlib.suppress(AttributeError, ValueError):
         sys.stdout.reconfigure(line_buffering=True)  # type: ignore[union-attr]
+    try:
+        previous_term = signal.signal(signal.SIGTERM, _raise_terminated)
+    except ValueError:   # not the main thread (e.g. a test harness): leave signals alone
+        return _main(args)
+    try:
+        return _main(args)
+    except _Terminated:
+        return signal.SIGTERM.value
+    finally:
+        signal.signal(signal.SIGTERM, previous_term or signal.SIG_DFL)
+
+
+def _main(args: list[str]) -> Any:
     try:
         # invoke directly (not cli.main) so our handlers see every exception, including
         # BrokenPipeError, which click.main would turn into a bare exit 1

@@ -1,9 +1,9 @@
 """The `main()` body every demo shares: init, build the node, spin, leave quietly.
 
-Demos are run by `ros2lite run` and by hand, where Ctrl-C is the normal way out, so an
-interrupt ends with status 0 and no traceback (as the rclpy demos do). Start-up errors a user
-can fix — no router, bad `--ros-args`, an invalid remapped name — become one line on stderr
-and status 1.
+Demos are run by `ros2lite run` and by hand, where Ctrl-C (or SIGTERM from a supervisor) is
+the normal way out, so either ends with status 0 and no traceback (as the rclpy demos do).
+Start-up errors a user can fix — no router, bad `--ros-args`, an invalid remapped name —
+become one line on stderr and status 1.
 """
 
 from __future__ import annotations
@@ -16,12 +16,13 @@ from typing import Any
 def run_node(make_node: Callable[[], Any], args: list[str] | None = None) -> int:
     """Spin the node `make_node()` builds until Ctrl-C or shutdown; returns the exit status."""
     import ros2lite
+    from ros2lite.executor import ExternalShutdownException
     from ros2lite.transport.config import SessionError
     try:
         with ros2lite.init(args=args):
             node = make_node()
             ros2lite.spin(node)
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except (SessionError, ValueError) as e:
         print(str(e), file=sys.stderr, flush=True)

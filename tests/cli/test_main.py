@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+from typing import Any
 
 from .conftest import run_process
 
@@ -50,3 +51,27 @@ def test_broken_definition_is_one_line(tmp_path: object) -> None:
     assert result.code == 1
     assert result.err.count('\n') == 1
     assert 'Bad.msg:2:' in result.err and "invalid type name 'int33'" in result.err
+
+
+def test_sigterm_leaves_with_status_15(processes: Any) -> None:
+    """ros2cli turns SIGTERM (rclpy's ExternalShutdownException) into status 15."""
+    import signal
+    import time
+
+    from ros2lite.transport.config import open_session
+    proc = processes.cli('topic', 'echo', '/sigterm_topic', 'std_msgs/msg/String')
+    # wait until echo's subscription is in the graph, i.e. it is past start-up
+    session = open_session()
+    try:
+        from ros2lite.graph import snapshot
+        from ros2lite.transport.config import domain_id
+        deadline = time.monotonic() + 15
+        while not any(e.topic_name == '/sigterm_topic' for e in snapshot(session, domain_id())):
+            assert time.monotonic() < deadline, 'echo never subscribed'
+            time.sleep(0.1)
+    finally:
+        session.close()
+    proc.send_signal(signal.SIGTERM)
+    _out, err = proc.communicate(timeout=10)
+    assert proc.returncode == 15
+    assert 'Traceback' not in err

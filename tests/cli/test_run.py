@@ -7,7 +7,6 @@ import os
 import signal
 import subprocess
 import sys
-import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -18,7 +17,7 @@ from ros2lite.executor import SingleThreadedExecutor
 from ros2lite.node import Node
 from tests.cli.conftest import Result, run_process
 from tests.pkg.test_executables import make_ament_prefix
-from tests.spinning import spin_until
+from tests.spinning import spin_until, wait_until
 
 
 @pytest.fixture
@@ -29,6 +28,7 @@ def scripts(tmp_path: Path) -> dict[str, str]:
         'segv': '#!/bin/sh\nkill -SEGV $$\n',
         'echo_args': '#!/bin/sh\nprintf "%s|" "$@"\necho "FOO=$FOO"\n',
         'a/dup': '#!/bin/sh\n', 'b/dup': '#!/bin/sh\n',
+        'wait_term': '#!/bin/sh\necho ready\nexec sleep 30\n',
     })
     return {'AMENT_PREFIX_PATH': str(prefix)}
 
@@ -76,10 +76,10 @@ def test_arguments_and_prefix_pass_through(scripts: dict[str, str]) -> None:
     assert result.err == ''
 
 
-def start_run(processes: Any, *args: str) -> subprocess.Popen[str]:
+def start_run(processes: Any, *args: str, **kw: Any) -> subprocess.Popen[str]:
     # a new session: no controlling terminal, like a script or a service manager
     return processes.start([sys.executable, '-m', 'ros2lite', 'run', *args],
-                           stdin=subprocess.DEVNULL, start_new_session=True)
+                           stdin=subprocess.DEVNULL, start_new_session=True, **kw)
 
 
 def test_run_talker_then_ctrl_c(ros_context: Any, processes: Any) -> None:
@@ -100,9 +100,25 @@ def test_run_talker_then_ctrl_c(ros_context: Any, processes: Any) -> None:
     assert 'Traceback' not in err and '[ros2run]' not in err
 
 
-def test_sigterm_is_forwarded(processes: Any) -> None:
-    proc = start_run(processes, 'demo_nodes_py', 'listener')
-    time.sleep(0.5)
+def test_sigterm_is_forwarded_and_the_demo_leaves_cleanly(ros_context: Any,
+                                                           processes: Any) -> None:
+    probe = Node('sigterm_probe', context=ros_context, enable_rosout=False)
+    proc = start_run(processes, 'demo_nodes_py', 'listener', '--ros-args',
+                     '-r', '__node:=sigterm_listener')
+    wait_until(lambda: ('sigterm_listener', '/') in probe.get_node_names_and_namespaces(),
+               timeout=10)
+    proc.send_signal(signal.SIGTERM)
+    _out, err = proc.communicate(timeout=10)
+    # as an rclpy demo: SIGTERM ends spinning (ExternalShutdownException), status 0
+    assert proc.returncode == 0, err
+    assert 'Traceback' not in err and '[ros2run]' not in err
+    wait_until(lambda: ('sigterm_listener', '/') not in probe.get_node_names_and_namespaces(),
+               timeout=5)
+
+
+def test_sigterm_death_of_the_child(scripts: dict[str, str], processes: Any) -> None:
+    proc = start_run(processes, 'tools', 'wait_term', env={**os.environ, **scripts})
+    assert proc.stdout.readline() == 'ready\n'
     proc.send_signal(signal.SIGTERM)
     _out, err = proc.communicate(timeout=10)
     assert proc.returncode == 128 + signal.SIGTERM
