@@ -15,19 +15,25 @@ class Timer:
         self.callback = callback
         self._clock = clock
         self._canceled = False
+        self._sim = False           # which time base `_next` is on
         self._next = self._now() + self.timer_period_ns
 
     def _now(self) -> int:
+        """Now on the timer's time base. When `use_sim_time` flips, steady time and ROS time
+        are unrelated numbers, so the next call is re-based to one period from now."""
         clock = self._clock
-        if clock is not None and clock.ros_time_is_active:
-            ns: int = clock.now().nanoseconds
-            return ns
-        return time.monotonic_ns()
+        sim = clock is not None and clock.ros_time_is_active
+        now: int = clock.now().nanoseconds if sim else time.monotonic_ns()
+        if sim != self._sim:
+            self._sim = sim
+            self._next = now + self.timer_period_ns
+        return now
 
     def time_until_next_call(self) -> float | None:
         if self._canceled:
             return None
-        return (self._next - self._now()) / 1e9
+        now = self._now()
+        return (self._next - now) / 1e9
 
     def is_ready(self) -> bool:
         remaining = self.time_until_next_call()

@@ -89,3 +89,21 @@ def test_period_validation() -> None:
     with pytest.raises(ValueError):
         Timer(-1.0, lambda: None)
     assert Timer(0.25, lambda: None).timer_period_ns == 250_000_000
+
+
+def test_switching_time_base_rebases_the_next_call() -> None:
+    from ros2lite.clock import Clock, ClockType
+    clock = Clock(ClockType.ROS_TIME)
+    timer = Timer(1.0, lambda: None, clock)
+    assert timer.time_until_next_call() == pytest.approx(1.0, abs=0.1)
+    # use_sim_time on: /clock says 5 s; the steady-time deadline means nothing there
+    clock._enable_sim_time(True)
+    clock._set_sim_time(5_000_000_000)
+    assert timer.time_until_next_call() == pytest.approx(1.0)
+    clock._set_sim_time(6_000_000_000)
+    assert timer.is_ready()
+    timer.execute()
+    assert timer.time_until_next_call() == pytest.approx(1.0)
+    # and back to steady time: one period from now again, not ~forever or at once
+    clock._enable_sim_time(False)
+    assert timer.time_until_next_call() == pytest.approx(1.0, abs=0.1)
