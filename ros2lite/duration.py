@@ -8,11 +8,13 @@ client library can use it.
 
 from __future__ import annotations
 
+from functools import total_ordering
 from typing import Any
 
 _NS = 1_000_000_000
 
 
+@total_ordering
 class Duration:
     """A signed span of time, held as whole nanoseconds."""
 
@@ -71,15 +73,6 @@ class Duration:
 
     def __lt__(self, other: Duration) -> bool:
         return self._ns < other._ns
-
-    def __le__(self, other: Duration) -> bool:
-        return self._ns <= other._ns
-
-    def __gt__(self, other: Duration) -> bool:
-        return self._ns > other._ns
-
-    def __ge__(self, other: Duration) -> bool:
-        return self._ns >= other._ns
 
     def __add__(self, other: Duration) -> Duration:
         if not isinstance(other, Duration):

@@ -32,7 +32,7 @@ class Timer:
     def time_until_next_call(self) -> float | None:
         if self._canceled:
             return None
-        now = self._now()
+        now = self._now()   # first: it may re-base `_next`
         return (self._next - now) / 1e9
 
     def is_ready(self) -> bool:

@@ -14,8 +14,10 @@ from typing import Any
 
 import click
 from click.shell_completion import CompletionItem
+from click.shell_completion import shell_complete as click_complete
 
-COMPLETE_VAR = '_ROS2LITE_COMPLETE'
+from .main import COMPLETE_VAR
+
 _GRAPH_TIMEOUT = 1.0
 
 Completer = Callable[[click.Context, click.Parameter, str], list[CompletionItem]]
@@ -23,8 +25,6 @@ Completer = Callable[[click.Context, click.Parameter, str], list[CompletionItem]
 
 def shell_complete(instruction: str) -> int:
     """Answer one completion request from the shell (`_ROS2LITE_COMPLETE` is set)."""
-    from click.shell_completion import shell_complete as click_complete
-
     from .main import cli
     return click_complete(cli, {}, 'ros2lite', COMPLETE_VAR, instruction)
 

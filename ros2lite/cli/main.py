@@ -21,6 +21,9 @@ COMMANDS: dict[str, tuple[str, str]] = {
     'topic': ('ros2lite.cli.topic', 'Various topic related sub-commands'),
 }
 
+# set by the shell's completion hook (see cli/completion.py)
+COMPLETE_VAR = '_ROS2LITE_COMPLETE'
+
 
 class _Terminated(BaseException):
     """SIGTERM, raised where the main thread is so `with` blocks close sessions on the way
@@ -57,7 +60,7 @@ def cli(ctx: click.Context, debug: bool, router: str | None) -> None:
 def main(argv: list[str] | None = None) -> Any:
     """Run the CLI; returns the process exit status."""
     args = sys.argv[1:] if argv is None else argv
-    instruction = os.environ.get('_ROS2LITE_COMPLETE')
+    instruction = os.environ.get(COMPLETE_VAR)
     if instruction:
         from .completion import shell_complete
         return shell_complete(instruction)

@@ -8,7 +8,6 @@ relative to the byte after the 4-byte encapsulation header, exactly as FastCDR d
 
 from __future__ import annotations
 
-import re
 import struct
 from array import array
 from collections.abc import Callable
@@ -84,8 +83,43 @@ class _Gen:
         return self.reg.message(ft.base)
 
 
+class _Restart(Exception):
+    """The serializer being generated needs a more general shape (see build_serializer)."""
+
+
 class _SerGen(_Gen):
-    """Generates `def ser(m)`: chunks go to list `p`, `o` is the body offset, one final join."""
+    """Generates the body of `def ser(m)`; `o` is the body offset, one final join.
+
+    Straight-line code (no loops, no conditional padding) keeps each chunk in a local and
+    joins one tuple, which is cheaper than growing a list for small messages; otherwise
+    chunks go to list `p`. Code that never reads the offset does not track it. Emitting
+    something the chosen shape can't hold raises _Restart."""
+
+    def __init__(self, registry: Registry, straight: bool, track_offset: bool) -> None:
+        super().__init__(registry, '<')
+        self.straight = straight
+        self.track_offset = track_offset
+        self.parts: list[str] = []
+
+    def chunk(self, expr: str) -> None:
+        if self.straight:
+            c = self.name('c')
+            self.emit(f'{c} = {expr}')
+            self.parts.append(c)
+        else:
+            self.emit(f'p.append({expr})')
+
+    def moved(self, nbytes: object) -> None:
+        if self.track_offset:
+            self.emit(f'o += {nbytes}')
+
+    def reads_offset(self) -> None:
+        if not self.track_offset:
+            raise _Restart
+
+    def opens_block(self) -> None:
+        if self.straight:
+            raise _Restart
 
     def flush(self) -> None:
         if not self.run_fmt:
@@ -93,16 +127,17 @@ class _SerGen(_Gen):
         st = struct.Struct(self.endian + self.run_fmt)
         s = self.const('_S', st.pack)
         args = ', '.join(e for _, e in self.run_items)
-        self.emit(f'p.append({s}({args}))')
-        self.emit(f'o += {st.size}')
+        self.chunk(f'{s}({args})')
+        self.moved(st.size)
         self.run_fmt, self.run_items = '', []
 
     def align_now(self, align: int) -> None:
         """Runtime padding to `align` (the pending run must be flushed)."""
+        self.reads_offset()
         k = self.name('k')
         self.emit(f'{k} = -o & {align - 1}')
-        self.emit(f'p.append(_Z[{k}])')
-        self.emit(f'o += {k}')
+        self.chunk(f'_Z[{k}]')
+        self.moved(k)
 
     def add(self, fmt: str, size: int, align: int, expr: str | None) -> None:
         pad = self.static_pad(align)
@@ -122,8 +157,8 @@ class _SerGen(_Gen):
             self.field(f.type, fexpr)
 
     def blob(self, expr: str, nbytes: str) -> None:
-        self.emit(f'p.append({expr})')
-        self.emit(f'o += {nbytes}')
+        self.chunk(expr)
+        self.moved(nbytes)
 
     def field(self, ft: FieldType, expr: str) -> None:
         base = ft.base
@@ -135,7 +170,7 @@ class _SerGen(_Gen):
                 self.emit(f'{s} = {expr}.encode()')
                 self.add('I', 4, 4, f'len({s}) + 1')
                 self.flush()
-                self.emit(f'p.append({s})')
+                self.chunk(s)
                 self.blob('_NUL', f'len({s}) + 1')
                 self.forget()
             elif base == 'wstring':
@@ -170,11 +205,13 @@ class _SerGen(_Gen):
             size = _SIZE[base]
             pad = self.static_pad(size)
             if pad is None:
+                self.reads_offset()
                 k = self.name('k')
                 self.emit(f'{k} = -o & {size - 1} if {n} else 0')
-                self.emit(f'p.append(_Z[{k}])')
-                self.emit(f'o += {k}')
+                self.chunk(f'_Z[{k}]')
+                self.moved(k)
             elif pad:
+                self.opens_block()
                 self.emit(f'if {n}:')
                 self.emit(f'    p.append(_Z[{pad}])')
                 self.emit(f'    o += {pad}')
@@ -189,6 +226,7 @@ class _SerGen(_Gen):
             self.blob(f"b''.join({expr})", n)
             self.forget()
             return
+        self.opens_block()
         e = self.name('e')
         self.emit(f'for {e} in {expr}:')
         self.indent += 1
@@ -367,29 +405,24 @@ class _DesGen(_Gen):
 
 
 def build_serializer(name: str, reg: Registry) -> Callable[[Any], bytes]:
-    gen = _SerGen(reg, '<')
+    # the cheapest shape the type allows: straight-line without offset, straight-line with
+    # offset, and the general list-building form (which always tracks the offset)
+    for straight, track_offset in ((True, False), (True, True), (False, True)):
+        gen = _SerGen(reg, straight, track_offset)
+        try:
+            gen.struct(reg.message(name), 'm')
+            gen.flush()
+        except _Restart:
+            continue
+        break
     gen.ns['_join'] = b''.join
     gen.ns['_NUL'] = b'\x00'
     gen.ns['_HEADER'] = HEADER_LE
-    gen.struct(reg.message(name), 'm')
-    gen.flush()
-    body = ['    p = [_HEADER]', '    o = 0', *gen.lines, '    return _join(p)']
-    if not any(line.startswith('     ') for line in gen.lines):
-        # straight-line code (no loops or conditional padding): chunks in locals and one
-        # tuple join are cheaper than growing a list, which counts for small messages
-        lines, parts = [], ['_HEADER']
-        for line in gen.lines:
-            if line.startswith('    p.append(') and line.endswith(')'):
-                parts.append(f'c{len(parts)}')
-                lines.append(f'    {parts[-1]} = {line[13:-1]}')
-            else:
-                lines.append(line)
-        if not any(re.search(r'\bo\b', x) for x in lines if not x.startswith('    o += ')):
-            # no padding depends on the offset: stop tracking it
-            lines = [x for x in lines if not x.startswith('    o += ')]
-        else:
-            lines.insert(0, '    o = 0')
-        body = [*lines, f'    return _join(({", ".join(parts)},))']
+    head = ['    o = 0'] if track_offset else []
+    if straight:
+        body = [*head, *gen.lines, f'    return _join(({", ".join(["_HEADER", *gen.parts])},))']
+    else:
+        body = ['    p = [_HEADER]', *head, *gen.lines, '    return _join(p)']
     src = 'def ser(m):\n' + '\n'.join(body)
     exec(compile(src, f'<cdr ser {name}>', 'exec'), gen.ns)
     fn: Callable[[Any], bytes] = gen.ns['ser']

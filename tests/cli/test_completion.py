@@ -3,27 +3,22 @@ no router answers, and the bash/zsh activation scripts click generates for us.""
 
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
 import time
 from typing import Any
 
 from ros2lite.node import Node
 from tests.spinning import free_port
 
+from .conftest import run_process
 
-def complete(words: str, env: dict[str, str] | None = None, shell: str = 'bash'
-             ) -> list[str]:
+
+def complete(words: str, env: dict[str, str] | None = None) -> list[str]:
     """What `ros2lite` offers for the last word of `words`, as the bash hook would ask."""
-    argv = words.split(' ')
-    proc = subprocess.run(
-        [sys.executable, '-m', 'ros2lite'], capture_output=True, text=True, timeout=30,
-        env={**os.environ, **(env or {}), '_ROS2LITE_COMPLETE': f'{shell}_complete',
-             'COMP_WORDS': words, 'COMP_CWORD': str(len(argv) - 1)})
-    assert proc.returncode == 0, proc.stderr
-    assert proc.stderr == ''
-    return [line.split(',', 1)[1] for line in proc.stdout.splitlines() if line]
+    result = run_process(env={**(env or {}), '_ROS2LITE_COMPLETE': 'bash_complete',
+                              'COMP_WORDS': words,
+                              'COMP_CWORD': str(len(words.split(' ')) - 1)})
+    assert (result.code, result.err) == (0, '')
+    return [line.split(',', 1)[1] for line in result.out.splitlines() if line]
 
 
 def test_topics_and_nodes_come_from_the_live_graph(ros_context: Any) -> None:
@@ -61,15 +56,11 @@ def test_no_router_completes_nothing_quickly() -> None:
     assert complete('ros2lite topic echo /', nobody) == []
     assert time.monotonic() - start < 10
     # and it did not start a daemon on that endpoint
-    status = subprocess.run([sys.executable, '-m', 'ros2lite', 'daemon', 'status'],
-                            capture_output=True, text=True, env={**os.environ, **nobody})
-    assert 'not running' in status.stdout
+    assert 'not running' in run_process('daemon', 'status', env=nobody).out
 
 
 def test_activation_scripts() -> None:
     for shell in ('bash', 'zsh'):
-        proc = subprocess.run([sys.executable, '-m', 'ros2lite'], capture_output=True,
-                              text=True, env={**os.environ,
-                                              '_ROS2LITE_COMPLETE': f'{shell}_source'})
-        assert proc.returncode == 0
-        assert '_ROS2LITE_COMPLETE' in proc.stdout and 'ros2lite' in proc.stdout
+        result = run_process(env={'_ROS2LITE_COMPLETE': f'{shell}_source'})
+        assert result.code == 0
+        assert '_ROS2LITE_COMPLETE' in result.out and 'ros2lite' in result.out

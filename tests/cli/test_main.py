@@ -53,24 +53,16 @@ def test_broken_definition_is_one_line(tmp_path: object) -> None:
     assert 'Bad.msg:2:' in result.err and "invalid type name 'int33'" in result.err
 
 
-def test_sigterm_leaves_with_status_15(processes: Any) -> None:
+def test_sigterm_leaves_with_status_15(processes: Any, ros_context: Any) -> None:
     """ros2cli turns SIGTERM (rclpy's ExternalShutdownException) into status 15."""
     import signal
-    import time
 
-    from ros2lite.transport.config import open_session
+    from ros2lite.graph import snapshot
+    from tests.spinning import wait_until
     proc = processes.cli('topic', 'echo', '/sigterm_topic', 'std_msgs/msg/String')
-    # wait until echo's subscription is in the graph, i.e. it is past start-up
-    session = open_session()
-    try:
-        from ros2lite.graph import snapshot
-        from ros2lite.transport.config import domain_id
-        deadline = time.monotonic() + 15
-        while not any(e.topic_name == '/sigterm_topic' for e in snapshot(session, domain_id())):
-            assert time.monotonic() < deadline, 'echo never subscribed'
-            time.sleep(0.1)
-    finally:
-        session.close()
+    # once echo's subscription is in the graph, it is past start-up
+    wait_until(lambda: any(e.topic_name == '/sigterm_topic' for e in
+                           snapshot(ros_context.session, ros_context.domain_id)), timeout=15)
     proc.send_signal(signal.SIGTERM)
     _out, err = proc.communicate(timeout=10)
     assert proc.returncode == 15
