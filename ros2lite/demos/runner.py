@@ -16,7 +16,7 @@ from typing import Any
 def run_node(make_node: Callable[[], Any], args: list[str] | None = None) -> int:
     """Spin the node `make_node()` builds until Ctrl-C or shutdown; returns the exit status."""
     import ros2lite
-    from ros2lite.executor import ExternalShutdownException
+    from ros2lite.executors import ExternalShutdownException
     from ros2lite.transport.config import SessionError
     try:
         with ros2lite.init(args=args):
