@@ -86,3 +86,10 @@ class BagTypes(Registry):
         if found is not None:
             return found
         return self._fallback.message(full)
+
+
+def type_ref(type_name: str, type_hash: str) -> type:
+    """A stand-in for a message class that only names a type and its RIHS01 hash: enough to
+    publish or subscribe raw CDR bytes of a type with no local definition."""
+    return type(type_name.rsplit('/', 1)[-1], (), {
+        '_TYPE_NAME': normalize_name(type_name), '_TYPE_HASH': type_hash})

@@ -242,24 +242,30 @@ class Recorder:
             qos = match_publishers_qos(QoSProfile(history=HistoryPolicy.KEEP_ALL, depth=depth),
                                        offered).profile
         hashes = {p.type_hash for p in pubs if p.type_hash}
+        msg_type: Any = type_name
         try:
             get_interface(type_name)
         except (InterfaceError, LookupError, ValueError) as e:
-            self._skipped.add(topic)
-            self._warn(f"Cannot record '{topic}': type {type_name} is unknown here ({e})")
-            return
+            if len(hashes) != 1:
+                self._skipped.add(topic)
+                self._warn(f"Cannot record '{topic}': type {type_name} is unknown here ({e})")
+                return
+            # not defined here: record its bytes all the same, under the publishers' hash
+            # (the bag gets an empty schema, as rosbag2 writes for unknown definitions)
+            from ros2lite.bag.definitions import type_ref
+            msg_type = type_ref(type_name, next(iter(hashes)))
         with self._lock:
             if not self._accepting:
                 return
             try:
                 tid = self.writer.create_topic(
                     topic, type_name, offered_qos_profiles=offered,
-                    type_description_hash=hashes.pop() if len(hashes) == 1 else None)
+                    type_description_hash=next(iter(hashes)) if len(hashes) == 1 else None)
             except (BagError, OSError) as e:
                 self._fail(e)
                 return
             stats = self._stats_by_tid[tid] = TopicStats(topic, type_name)
-            sub = MonitoredSubscription(self.node, type_name, topic, None, qos,
+            sub = MonitoredSubscription(self.node, msg_type, topic, None, qos,
                                         on_payload=self._receiver(tid, stats))
             self.stats.append(stats)
             self._by_name[topic] = tid
