@@ -142,9 +142,7 @@ class McapStorageWriter:
 
     def flush_chunk(self) -> None:
         """Close the chunk in progress so its messages reach the file now."""
-        flush = getattr(self._writer, 'flush', None)
-        if flush is not None:
-            flush()
+        self._writer.flush()
 
     def close(self, metadata: BagMetadata | None = None) -> None:
         """Write the last chunk, the summary and the footer; the file is complete after this."""
@@ -268,8 +266,8 @@ class McapStorageReader:
                     yield channel.topic, m.data, m.log_time, m.publish_time
             return
         for _schema, channel, m in self._reader.iter_messages(
-                topics=list(topics) if topics is not None else None, start_time=start,
-                end_time=stop, log_time_order=True):
+                topics=list(topics) if topics is not None else None, starting_at=start,
+                ending_before=stop, log_time_order=True):
             yield channel.topic, m.data, m.log_time, m.publish_time
 
     def _scan_summary(self) -> FileSummary:
