@@ -14,6 +14,7 @@ with the QoS every publisher offers (TRANSIENT_LOCAL included, so latched sample
 
 from __future__ import annotations
 
+import contextlib
 import re
 import struct
 import threading

@@ -9,6 +9,7 @@ handful of attribute look-ups per message.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import time
 from collections.abc import Iterable
@@ -187,10 +188,18 @@ class Writer:
         self._closed = True
         if self._storage is not None:
             self._storage.abandon()
-        try:
+        with contextlib.suppress(OSError):
             write_metadata_file(self.path, self.metadata())
-        except OSError:
-            pass
+
+    def discard(self) -> None:
+        """Remove the bag again (nothing was recorded: e.g. no graph to record from)."""
+        self._closed = True
+        if self._storage is not None:
+            self._storage.abandon()
+        for f in self._files:
+            with contextlib.suppress(OSError):
+                (self.path / f.path).unlink()
+        self._remove_if_empty()
 
     def _require(self) -> McapStorageWriter:
         if not self._open:

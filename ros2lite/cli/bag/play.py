@@ -57,7 +57,7 @@ def cli(bag_path: str, storage: str | None, read_ahead_queue_size: int, rate: fl
     """Play back ROS data from a bag."""
     import re
 
-    from ros2lite.bag.player import PlayOptions, Player
+    from ros2lite.bag.player import Player, PlayOptions
     from ros2lite.bag.reader import Reader
     from ros2lite.bag.storage import BagError
     if not Path(bag_path).exists():

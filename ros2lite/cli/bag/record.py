@@ -18,7 +18,6 @@ import click
 
 from .. import completion
 from ..common import CliSession
-from ..errors import CliError
 from .options import ManyValues, bag_error, warn
 
 SELECTION_ERROR = ('Need to specify at least one option out of --all, --all-topics, '
@@ -90,7 +89,7 @@ def cli(positional_topics: tuple[str, ...], topics: tuple[str, ...],
     """Record ROS data to a bag."""
     import re
 
-    from ros2lite.bag.recorder import RecordOptions, Recorder
+    from ros2lite.bag.recorder import RecordOptions
     from ros2lite.bag.storage import BagError
     from ros2lite.bag.writer import Writer
     if positional_topics:
@@ -111,45 +110,50 @@ def cli(positional_topics: tuple[str, ...], topics: tuple[str, ...],
     if compression_mode != 'none':
         raise bag_error(f"Compression mode '{compression_mode}' is not supported for MCAP; "
                         f'use --compression-format alone (chunk compression)')
+    events = [s.rstrip('/') + '/_service_event' for s in services]
+    excluded_events = [s.rstrip('/') + '/_service_event' for s in exclude_services]
+    options = RecordOptions(
+        topics=list(dict.fromkeys(_absolute(selected + events, node_name))),
+        all_topics=all_ or all_topics, all_services=all_ or all_services, regex=regex,
+        exclude_regex=exclude_regex,
+        exclude_topics=_absolute(list(exclude_topics) + excluded_events, node_name),
+        topic_types=list(topic_types), include_hidden_topics=include_hidden_topics,
+        qos_overrides=_qos_overrides(qos_profile_overrides_path),
+        polling_interval=polling_interval / 1000, max_cache_size=max_cache_size,
+        start_paused=start_paused, discovery=not no_discovery)
     custom = _custom_data(custom_data)
-    overrides = _qos_overrides(qos_profile_overrides_path)
     uri = output or time.strftime('rosbag2_%Y_%m_%d-%H_%M_%S')
     if os.path.exists(uri):
         raise bag_error(f"Output folder '{uri}' already exists.")
     try:
         writer = Writer(uri, compression=compression_format or 'none',
                         preset=storage_preset_profile, max_bag_size=max_bag_size,
-                        max_bag_duration=max_bag_duration, custom_data=custom)
+                        max_bag_duration=max_bag_duration, custom_data=custom).open()
     except BagError as e:
         raise bag_error(str(e)) from None
+    try:
+        session = CliSession(use_sim_time=use_sim_time).__enter__()
+    except BaseException:
+        writer.discard()      # no graph to record from: leave nothing behind
+        raise
+    try:
+        recorder = _record(session, writer, options, node_name, use_sim_time,
+                           keyboard=not disable_keyboard_controls)
+    finally:
+        session.__exit__(None, None, None)
+    if recorder.error is not None:
+        raise bag_error(f'{recorder.error}. Messages written before this are kept in '
+                        f"'{uri}' (run `ros2lite bag reindex {uri}` if another tool "
+                        f'cannot open it)')
 
-    from ros2lite.logging import get_logger
-    log = get_logger(node_name)
-    with CliSession(use_sim_time=use_sim_time) as session:
-        node = session.node(node_name)
-        try:
-            full = [node.resolve_topic_name(t) for t in selected]
-            svc_topics = [node.resolve_topic_name(s) + '/_service_event' for s in services]
-            excluded = [node.resolve_topic_name(t) for t in exclude_topics]
-            excluded += [node.resolve_topic_name(s) + '/_service_event'
-                         for s in exclude_services]
-        except ValueError as e:
-            raise bag_error(str(e)) from None
-        options = RecordOptions(
-            topics=list(dict.fromkeys(full + svc_topics)), all_topics=all_ or all_topics,
-            all_services=all_ or all_services, regex=regex, exclude_regex=exclude_regex,
-            exclude_topics=excluded, topic_types=list(topic_types),
-            include_hidden_topics=include_hidden_topics, qos_overrides=overrides,
-            polling_interval=polling_interval / 1000, max_cache_size=max_cache_size,
-            start_paused=start_paused, discovery=not no_discovery)
-        recorder = Recorder(node, writer, options, log=lambda m: log.info(m),
-                            warn=lambda m: log.warn(m))
-        _record(session, node, recorder, log, use_sim_time,
-                keyboard=not disable_keyboard_controls)
-        if recorder.error is not None:
-            raise bag_error(f'{recorder.error}. Messages written before this are kept in '
-                            f"'{uri}' (run `ros2lite bag reindex {uri}` if another tool "
-                            f'cannot open it)')
+
+def _absolute(names: list[str], node_name: str) -> list[str]:
+    """Topic names as the recorder node resolves them (it lives in the root namespace)."""
+    from ros2lite.transport.keys import expand_topic_name
+    try:
+        return [expand_topic_name(n, node_name, '/') for n in names]
+    except ValueError as e:
+        raise bag_error(str(e)) from None
 
 
 def _custom_data(pairs: tuple[str, ...]) -> dict[str, str] | None:
@@ -197,8 +201,15 @@ class _StopSignals:
             signal.signal(sig, handler)
 
 
-def _record(session: CliSession, node: Any, recorder: Any, log: Any, use_sim_time: bool,
-            keyboard: bool) -> None:
+def _record(session: CliSession, writer: Any, options: Any, node_name: str,
+            use_sim_time: bool, keyboard: bool) -> Any:
+    """Run the recorder until a signal (or a write error); returns it, stopped."""
+    from ros2lite.bag.recorder import Recorder
+    from ros2lite.logging import get_logger
+    log = get_logger(node_name)
+    node = session.node(node_name)
+    recorder = Recorder(node, writer, options, log=lambda m: log.info(m),
+                        warn=lambda m: log.warn(m))
     executor = None
     if use_sim_time:
         from ros2lite.executor import SingleThreadedExecutor
@@ -219,12 +230,8 @@ def _record(session: CliSession, node: Any, recorder: Any, log: Any, use_sim_tim
                 while not clock.ros_time_is_active and not stop.event.is_set():
                     executor.spin_once(0.1)
             if stop.event.is_set():
-                return
-            try:
-                recorder.start()
-            except Exception as e:
-                recorder.stop()
-                raise CliError(f'[ERROR] [ros2bag]: {e}') from None
+                return recorder
+            recorder.start()
             while not stop.event.is_set() and recorder.running and session.context.ok():
                 if executor is not None:
                     executor.spin_once(0.25)
@@ -242,6 +249,7 @@ def _record(session: CliSession, node: Any, recorder: Any, log: Any, use_sim_tim
                 'Writing remaining messages from cache to the bag. It may take a while')
             recorder.stop()
             log.info('Recording stopped')
+    return recorder
 
 
 def _size(n: float) -> str:
