@@ -163,10 +163,9 @@ class Recorder:
         if self._discovery_thread is not None:
             self._discovery_thread.join(timeout=5)
         for sub in self._subscriptions:
-            try:
+            # the session may be gone already: then nothing more arrives anyway
+            with contextlib.suppress(Exception):
                 sub.destroy()
-            except Exception:  # the session may be gone already; nothing more will arrive
-                pass
         self._running = False
         self._wake.set()
         if self._writer_thread is not None:
