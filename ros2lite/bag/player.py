@@ -73,8 +73,8 @@ class Player:
     """
 
     def __init__(self, node: Any, reader: Reader, options: PlayOptions, *,
-                 log: Callable[[str], None] | None = None,
-                 warn: Callable[[str], None] | None = None) -> None:
+                 log: Callable[[str], Any] | None = None,
+                 warn: Callable[[str], Any] | None = None) -> None:
         if options.rate <= 0:
             raise ValueError('rate must be greater than 0')
         self.node = node

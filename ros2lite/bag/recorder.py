@@ -79,8 +79,8 @@ class Recorder:
     """
 
     def __init__(self, node: Any, writer: Writer, options: RecordOptions, *,
-                 log: Callable[[str], None] | None = None,
-                 warn: Callable[[str], None] | None = None) -> None:
+                 log: Callable[[str], Any] | None = None,
+                 warn: Callable[[str], Any] | None = None) -> None:
         self.node = node
         self.writer = writer
         self.options = options

@@ -102,7 +102,8 @@ class McapStorageWriter:
         except OSError as e:
             raise _os_error(path, e) from None
         self._writer = Writer(
-            self._file, chunk_size=chunk_size,
+            self._file,  # type: ignore[arg-type]  # a file-like object is all it needs
+            chunk_size=chunk_size,
             compression={'none': CompressionType.NONE, 'zstd': CompressionType.ZSTD,
                          'lz4': CompressionType.LZ4}[compression],
             index_types=IndexType.ALL, use_chunking=True, use_statistics=True,
