@@ -90,6 +90,7 @@ class Player:
         self._anchor_bag = 0            # bag time (ns) at _anchor_wall
         self._anchor_wall = 0           # monotonic ns
         self._bag_now = reader.start_time
+        self._end = reader.end_time
         self.published = 0
         self.lateness: list[int] = []
         self._publishers: dict[str, Any] = {}
@@ -227,7 +228,8 @@ class Player:
         if self._paused or self._anchor_wall == 0:
             return self._bag_now
         elapsed = time.monotonic_ns() - self._anchor_wall
-        return self._anchor_bag + int(max(elapsed, 0) * self._rate)
+        # the bag's clock stops at its last message (until a loop starts it over)
+        return min(self._anchor_bag + int(max(elapsed, 0) * self._rate), self._end)
 
     # -- playing -------------------------------------------------------------------------------
     def play(self) -> None:

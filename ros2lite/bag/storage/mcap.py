@@ -193,7 +193,6 @@ class McapStorageReader:
     """One `.mcap` file, read through its summary when it has one."""
 
     def __init__(self, path: str) -> None:
-        from mcap.exceptions import McapError
         from mcap.reader import SeekingReader
         self.path = path
         try:
@@ -202,7 +201,8 @@ class McapStorageReader:
             raise BagError(f"Cannot open '{path}': {e.strerror or e}") from None
         try:
             self._reader = SeekingReader(self._stream)
-        except (McapError, ValueError, OSError, EOFError) as e:
+            self._reader.get_header()
+        except Exception as e:
             self._stream.close()
             raise BagError(f"'{path}' is not an MCAP file ({e or type(e).__name__})") from None
         self._summary: Any = None

@@ -7,6 +7,7 @@ import signal
 import subprocess
 import sys
 import threading
+import time
 import uuid
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -71,12 +72,16 @@ class Listener:
         self.node = Node(f'bag_listener_{uuid.uuid4().hex[:6]}', context=ctx,
                          enable_rosout=False)
         self.messages: list[Any] = []
+        self.arrivals: list[float] = []     # monotonic time each message was taken
+
+        def keep(message: Any) -> None:
+            self.arrivals.append(time.monotonic())
+            self.messages.append(message)
         if raw:
-            self.node.create_subscription(type_name, topic,
-                                          lambda data, _info: self.messages.append(data),
+            self.node.create_subscription(type_name, topic, lambda data, _info: keep(data),
                                           qos, raw=True)
         else:
-            self.node.create_subscription(type_name, topic, self.messages.append, qos)
+            self.node.create_subscription(type_name, topic, keep, qos)
         self._executor = SingleThreadedExecutor(context=ctx)
         self._executor.add_node(self.node)
         self._stop = threading.Event()
