@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import queue
 import re
+import sys
 import threading
 import time
 from collections.abc import Callable
@@ -28,6 +29,7 @@ from ros2lite.transport.qos import DurabilityPolicy, QoSProfile, ReliabilityPoli
 __all__ = ['PlayOptions', 'Player', 'playback_qos']
 
 _SPIN = 300_000          # ns spent spinning (not sleeping) before each deadline
+_SWITCH_INTERVAL = 0.0002   # s, while playing (see play())
 _END = object()
 
 
@@ -238,12 +240,17 @@ class Player:
             self._clock_thread = threading.Thread(target=self._clock_loop, daemon=True,
                                                   name='ros2lite-bag-clock')
             self._clock_thread.start()
+        # the read-ahead thread must not keep the GIL for long while a message is due: with
+        # the default 5 ms switch interval it could make a message that late
+        previous = sys.getswitchinterval()
+        sys.setswitchinterval(min(previous, _SWITCH_INTERVAL))
         try:
             while not self._stopped:
                 self._play_once()
                 if not self.options.loop:
                     break
         finally:
+            sys.setswitchinterval(previous)
             with self._cv:
                 self._stopped = True
                 self._cv.notify_all()
