@@ -18,4 +18,4 @@ from ros2lite.bag.reader import Reader
 from ros2lite.bag.storage import BagError
 from ros2lite.bag.writer import Writer
 
-__all__ = ['BagError', 'BagMetadata', 'MetadataError', 'Reader', 'TopicMetadata', 'Writer']
+__all__ = ["BagError", "BagMetadata", "MetadataError", "Reader", "TopicMetadata", "Writer"]

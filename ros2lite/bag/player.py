@@ -26,10 +26,10 @@ from ros2lite.bag.metadata import TopicMetadata
 from ros2lite.bag.reader import Reader
 from ros2lite.transport.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 
-__all__ = ['PlayOptions', 'Player', 'playback_qos']
+__all__ = ["PlayOptions", "Player", "playback_qos"]
 
-_SPIN = 300_000          # ns spent spinning (not sleeping) before each deadline
-_SWITCH_INTERVAL = 0.0002   # s, while playing (see play())
+_SPIN = 300_000  # ns spent spinning (not sleeping) before each deadline
+_SWITCH_INTERVAL = 0.0002  # s, while playing (see play())
 _END = object()
 
 
@@ -44,13 +44,13 @@ class PlayOptions:
     regex: str | None = None
     exclude_regex: str | None = None
     remap: dict[str, str] = field(default_factory=dict)
-    start_offset: float = 0.0              # seconds into the bag
-    delay: float = 0.0                     # seconds before playing (each loop)
-    clock_hz: float = 0.0                  # publish /clock at this rate (0: no)
+    start_offset: float = 0.0  # seconds into the bag
+    delay: float = 0.0  # seconds before playing (each loop)
+    clock_hz: float = 0.0  # publish /clock at this rate (0: no)
     start_paused: bool = False
     read_ahead_queue_size: int = 1000
     qos_overrides: dict[str, QoSProfile] = field(default_factory=dict)
-    record_timing: bool = False            # keep each message's lateness (benchmarks)
+    record_timing: bool = False  # keep each message's lateness (benchmarks)
 
 
 def playback_qos(offered: list[QoSProfile]) -> QoSProfile:
@@ -64,7 +64,8 @@ def playback_qos(offered: list[QoSProfile]) -> QoSProfile:
     return QoSProfile(
         reliability=ReliabilityPolicy.RELIABLE if reliable else ReliabilityPolicy.BEST_EFFORT,
         durability=DurabilityPolicy.TRANSIENT_LOCAL if latched else DurabilityPolicy.VOLATILE,
-        depth=depth)
+        depth=depth,
+    )
 
 
 class Player:
@@ -74,11 +75,17 @@ class Player:
     may be called from any thread.
     """
 
-    def __init__(self, node: Any, reader: Reader, options: PlayOptions, *,
-                 log: Callable[[str], Any] | None = None,
-                 warn: Callable[[str], Any] | None = None) -> None:
+    def __init__(
+        self,
+        node: Any,
+        reader: Reader,
+        options: PlayOptions,
+        *,
+        log: Callable[[str], Any] | None = None,
+        warn: Callable[[str], Any] | None = None,
+    ) -> None:
         if options.rate <= 0:
-            raise ValueError('rate must be greater than 0')
+            raise ValueError("rate must be greater than 0")
         self.node = node
         self.reader = reader
         self.options = options
@@ -87,10 +94,10 @@ class Player:
         self._cv = threading.Condition()
         self._paused = options.start_paused
         self._stopped = False
-        self._next = 0                  # "play next" requests not served yet
+        self._next = 0  # "play next" requests not served yet
         self._rate = options.rate
-        self._anchor_bag = 0            # bag time (ns) at _anchor_wall
-        self._anchor_wall = 0           # monotonic ns
+        self._anchor_bag = 0  # bag time (ns) at _anchor_wall
+        self._anchor_wall = 0  # monotonic ns
         self._bag_now = reader.start_time
         self._end = reader.end_time
         self.published = 0
@@ -111,32 +118,38 @@ class Player:
             return False
         if o.exclude_regex and re.search(o.exclude_regex, name):
             return False
-        return not (o.clock_hz > 0 and name == '/clock')
+        return not (o.clock_hz > 0 and name == "/clock")
 
     def _prepare(self) -> None:
         from ros2lite.interfaces import InterfaceError, get_interface
         from ros2lite.interfaces.registry import normalize_name
+
         for t in self.reader.topics:
             if not self._selected(t):
                 continue
-            if t.serialization_format != 'cdr' or not t.type:
-                self._warn(f"Topic '{t.name}' is not CDR ({t.serialization_format or '?'}); "
-                           f'not playing it')
+            if t.serialization_format != "cdr" or not t.type:
+                self._warn(
+                    f"Topic '{t.name}' is not CDR ({t.serialization_format or '?'}); not playing it"
+                )
                 continue
             type_name = normalize_name(t.type)
             msg_type: Any = type_name
             try:
                 get_interface(type_name)
                 from ros2lite.interfaces import type_hash
+
                 local_hash = type_hash(type_name)
             except (InterfaceError, LookupError, ValueError):
                 local_hash = None
-            if local_hash is None or (t.type_description_hash
-                                      and t.type_description_hash != local_hash):
+            if local_hash is None or (
+                t.type_description_hash and t.type_description_hash != local_hash
+            ):
                 msg_type = self._bag_type(t, type_name)
                 if msg_type is None:
-                    self._warn(f"Topic '{t.name}': type {t.type} is unknown here and the bag "
-                               f'holds no definition of it; not playing it')
+                    self._warn(
+                        f"Topic '{t.name}': type {t.type} is unknown here and the bag "
+                        f"holds no definition of it; not playing it"
+                    )
                     continue
             qos = self.options.qos_overrides.get(t.name) or playback_qos(t.offered_qos_profiles)
             target = self.options.remap.get(t.name, t.name)
@@ -146,9 +159,11 @@ class Player:
         """A publishable stand-in for a type known only from the bag (hash from the bag, or
         computed from its definition)."""
         from ros2lite.bag.definitions import type_ref
+
         digest = t.type_description_hash
         if not digest:
             from ros2lite.interfaces.hashing import type_hash
+
             types = self.reader._bag_types()
             if type_name not in types.known:
                 return None
@@ -182,7 +197,7 @@ class Player:
                 self._bag_now = self.bag_time()
                 self._paused = True
                 self._cv.notify_all()
-                self._log('Pausing play.')
+                self._log("Pausing play.")
 
     def resume(self) -> None:
         with self._cv:
@@ -190,7 +205,7 @@ class Player:
                 self._paused = False
                 self._reanchor()
                 self._cv.notify_all()
-                self._log('Resuming play.')
+                self._log("Resuming play.")
 
     def toggle_paused(self) -> None:
         if self._paused:
@@ -213,7 +228,7 @@ class Player:
             self._rate = rate
             self._reanchor()
             self._cv.notify_all()
-        self._log(f'Set rate to {rate:g}')
+        self._log(f"Set rate to {rate:g}")
         return True
 
     def stop(self) -> None:
@@ -237,8 +252,9 @@ class Player:
     def play(self) -> None:
         """Play (and loop, if asked) until the end or `stop()`."""
         if self.options.clock_hz > 0:
-            self._clock_thread = threading.Thread(target=self._clock_loop, daemon=True,
-                                                  name='ros2lite-bag-clock')
+            self._clock_thread = threading.Thread(
+                target=self._clock_loop, daemon=True, name="ros2lite-bag-clock"
+            )
             self._clock_thread.start()
         # the read-ahead thread must not keep the GIL for long while a message is due: with
         # the default 5 ms switch interval it could make a message that late
@@ -277,8 +293,12 @@ class Player:
     def _play_once(self) -> None:
         start = self.reader.start_time + int(self.options.start_offset * 1e9)
         ahead: queue.Queue[Any] = queue.Queue(max(self.options.read_ahead_queue_size, 1))
-        feeder = threading.Thread(target=self._reader_thread, args=(ahead, start), daemon=True,
-                                  name='ros2lite-bag-read-ahead')
+        feeder = threading.Thread(
+            target=self._reader_thread,
+            args=(ahead, start),
+            daemon=True,
+            name="ros2lite-bag-read-ahead",
+        )
         feeder.start()
         with self._cv:
             self._bag_now = start
@@ -308,8 +328,7 @@ class Player:
                                 break
                             cv.wait()
                             continue
-                        target = self._anchor_wall + int(
-                            (log_time - self._anchor_bag) / self._rate)
+                        target = self._anchor_wall + int((log_time - self._anchor_bag) / self._rate)
                         wait = target - monotonic()
                         if wait <= _SPIN:
                             break
@@ -327,14 +346,16 @@ class Player:
                 self.published += 1
         finally:
             if self._stopped:
-                feeder.join(timeout=0.5)   # it notices the stop within 0.1 s
+                feeder.join(timeout=0.5)  # it notices the stop within 0.1 s
 
     def _clock_loop(self) -> None:
         from ros2lite.interfaces import get_interface
-        clock_type = get_interface('rosgraph_msgs/msg/Clock')
-        time_type = get_interface('builtin_interfaces/msg/Time')
+
+        clock_type = get_interface("rosgraph_msgs/msg/Clock")
+        time_type = get_interface("builtin_interfaces/msg/Time")
         from ros2lite.transport.qos import QoSProfile as Q
-        pub = self.node.create_publisher(clock_type, '/clock', Q(depth=1))
+
+        pub = self.node.create_publisher(clock_type, "/clock", Q(depth=1))
         period = 1.0 / self.options.clock_hz
         next_tick = time.monotonic()
         while not self._stopped:

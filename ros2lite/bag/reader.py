@@ -26,9 +26,9 @@ from ros2lite.bag.metadata import (
 )
 from ros2lite.bag.storage import BagError, FileSummary, open_storage_reader, plugin_for
 
-__all__ = ['Reader', 'bag_files', 'metadata_from_files']
+__all__ = ["Reader", "bag_files", "metadata_from_files"]
 
-_SPLIT_INDEX = re.compile(r'.+_(\d+)\.\w+$')
+_SPLIT_INDEX = re.compile(r".+_(\d+)\.\w+$")
 
 
 def bag_files(directory: Path) -> list[Path]:
@@ -39,18 +39,20 @@ def bag_files(directory: Path) -> list[Path]:
     def key(p: Path) -> tuple[int, int, str]:
         m = _SPLIT_INDEX.match(p.name)
         return (0, int(m.group(1)), p.name) if m else (1, 0, p.name)
+
     return sorted(found, key=key)
 
 
-def metadata_from_files(names: list[str], summaries: list[FileSummary],
-                        storage_id: str) -> BagMetadata:
+def metadata_from_files(
+    names: list[str], summaries: list[FileSummary], storage_id: str
+) -> BagMetadata:
     """Bag metadata rebuilt from its files alone (what `reindex` writes): counts and times
     from the storage, compression, custom data and distro from the last `rosbag2` record."""
     topics: dict[str, TopicInformation] = {}
     files = []
     start, end, total = None, None, 0
     record = None
-    distro = ''
+    distro = ""
     for name, s in zip(names, summaries, strict=True):
         for t in s.topics:
             info = topics.setdefault(t.name, TopicInformation(t, 0))
@@ -71,7 +73,7 @@ def metadata_from_files(names: list[str], summaries: list[FileSummary],
         topics_with_message_count=list(topics.values()),
         relative_file_paths=list(names),
         files=files,
-        ros_distro=distro or (record.ros_distro if record else ''),
+        ros_distro=distro or (record.ros_distro if record else ""),
     )
     if start is not None:
         m.starting_time = start
@@ -123,14 +125,17 @@ class Reader:
                     raise BagError(f"No bag files (.mcap or .db3) in '{path}'")
         else:
             if plugin_for(self.path.name) is None:
-                raise BagError(f"'{path}' is not a bag (expected a directory, a .mcap or a "
-                               f'.db3 file)')
+                raise BagError(
+                    f"'{path}' is not a bag (expected a directory, a .mcap or a .db3 file)"
+                )
             self.directory = self.path.parent
             self.files = [self.path]
         for f in self.files:
-            if f.name.endswith('.zstd'):
-                raise BagError(f"'{f}' is compressed per file (compression_mode FILE); "
-                               f'decompress it first (zstd -d)')
+            if f.name.endswith(".zstd"):
+                raise BagError(
+                    f"'{f}' is compressed per file (compression_mode FILE); "
+                    f"decompress it first (zstd -d)"
+                )
         self.metadata: BagMetadata = meta if meta is not None else self._metadata_from_files()
 
     def _resolve(self, relative: str) -> Path:
@@ -163,8 +168,9 @@ class Reader:
 
     def _metadata_from_files(self) -> BagMetadata:
         summaries = [self.summary(f) for f in self.files]
-        return metadata_from_files([f.name for f in self.files], summaries,
-                                   self._storage_for(self.files[0]))
+        return metadata_from_files(
+            [f.name for f in self.files], summaries, self._storage_for(self.files[0])
+        )
 
     def close(self) -> None:
         for r in self._readers.values():
@@ -202,8 +208,9 @@ class Reader:
         return self.metadata.starting_time + self.metadata.duration
 
     # -- messages ------------------------------------------------------------------------------
-    def raw_messages(self, topics: Iterable[str] | None = None, start: int | None = None,
-                     stop: int | None = None) -> Iterator[tuple[str, bytes, int, int]]:
+    def raw_messages(
+        self, topics: Iterable[str] | None = None, start: int | None = None, stop: int | None = None
+    ) -> Iterator[tuple[str, bytes, int, int]]:
         """(topic, CDR bytes, log_time, publish_time) in log-time order across all files,
         with `start <= log_time < stop`."""
         wanted = set(topics) if topics is not None else None
@@ -213,9 +220,14 @@ class Reader:
             return
         yield from heapq.merge(*streams, key=lambda m: m[2])
 
-    def messages(self, topics: Iterable[str] | None = None, start: int | None = None,
-                 stop: int | None = None, *, raw: bool = False
-                 ) -> Iterator[tuple[str, Any, int]]:
+    def messages(
+        self,
+        topics: Iterable[str] | None = None,
+        start: int | None = None,
+        stop: int | None = None,
+        *,
+        raw: bool = False,
+    ) -> Iterator[tuple[str, Any, int]]:
         """(topic, message, log_time): message objects, or CDR bytes with `raw=True` or for
         a type that cannot be decoded here."""
         decoders = self._decoders
@@ -232,12 +244,13 @@ class Reader:
         """Decode CDR bytes of a type the bag holds (its own definition if need be)."""
         from ros2lite.interfaces.cdr import codec
         from ros2lite.interfaces.registry import normalize_name
-        return codec(normalize_name(type_name), self._registry_for(type_name, '')).deserialize(
-            data)
+
+        return codec(normalize_name(type_name), self._registry_for(type_name, "")).deserialize(data)
 
     def _bag_types(self) -> Any:
         if self._types is None:
             from ros2lite.bag.definitions import BagTypes
+
             types = BagTypes()
             for f in self.files:
                 try:
@@ -253,14 +266,14 @@ class Reader:
         """The local registry when it has this very type, else the bag's definitions."""
         from ros2lite.interfaces import InterfaceError, type_hash
         from ros2lite.interfaces.registry import default_registry, normalize_name
+
         full = normalize_name(type_name)
         try:
             local = type_hash(full)
         except (InterfaceError, LookupError, ValueError):
             local = None
         types = self._bag_types()
-        if local is not None and (not bag_hash or bag_hash == local
-                                  or full not in types.known):
+        if local is not None and (not bag_hash or bag_hash == local or full not in types.known):
             return default_registry()
         if full in types.known:
             return types
@@ -270,12 +283,14 @@ class Reader:
         from ros2lite.interfaces import InterfaceError
         from ros2lite.interfaces.cdr import codec
         from ros2lite.interfaces.registry import normalize_name
+
         meta = self.topic(topic)
-        if meta is None or meta.serialization_format != 'cdr' or not meta.type:
+        if meta is None or meta.serialization_format != "cdr" or not meta.type:
             return _as_bytes
         try:
-            c = codec(normalize_name(meta.type),
-                      self._registry_for(meta.type, meta.type_description_hash))
+            c = codec(
+                normalize_name(meta.type), self._registry_for(meta.type, meta.type_description_hash)
+            )
         except (InterfaceError, LookupError, ValueError):
             return _as_bytes
 
@@ -283,7 +298,8 @@ class Reader:
             try:
                 return c.deserialize(data)
             except ValueError:
-                return data   # not this type after all (e.g. garbage on the topic)
+                return data  # not this type after all (e.g. garbage on the topic)
+
         return decode
 
 

@@ -28,11 +28,11 @@ from ros2lite.bag.storage import BagError
 from ros2lite.bag.writer import Writer
 from ros2lite.transport.qos import HistoryPolicy, QoSProfile
 
-__all__ = ['DEFAULT_MAX_CACHE_SIZE', 'RecordOptions', 'Recorder', 'TopicStats']
+__all__ = ["DEFAULT_MAX_CACHE_SIZE", "RecordOptions", "Recorder", "TopicStats"]
 
 DEFAULT_MAX_CACHE_SIZE = 100 * 1024 * 1024
-_STAMP = struct.Struct('<q')
-SERVICE_EVENT_SUFFIX = '/_service_event'
+_STAMP = struct.Struct("<q")
+SERVICE_EVENT_SUFFIX = "/_service_event"
 # how long a finished chunk may wait in memory before it is put on disk anyway (seconds)
 _FLUSH_PERIOD = 1.0
 
@@ -41,9 +41,9 @@ _FLUSH_PERIOD = 1.0
 class RecordOptions:
     """What to record; the fields mirror `ros2 bag record`'s options."""
 
-    topics: list[str] = field(default_factory=list)   # fully qualified names
+    topics: list[str] = field(default_factory=list)  # fully qualified names
     all_topics: bool = False
-    all_services: bool = False       # service-event topics (`<service>/_service_event`)
+    all_services: bool = False  # service-event topics (`<service>/_service_event`)
     regex: str | None = None
     exclude_regex: str | None = None
     exclude_topics: list[str] = field(default_factory=list)
@@ -53,11 +53,10 @@ class RecordOptions:
     polling_interval: float = 0.1
     max_cache_size: int = DEFAULT_MAX_CACHE_SIZE
     start_paused: bool = False
-    discovery: bool = True           # keep looking for new topics while recording
+    discovery: bool = True  # keep looking for new topics while recording
 
     def selects_by_pattern(self) -> bool:
-        return self.all_topics or self.all_services or bool(self.regex) \
-            or bool(self.topic_types)
+        return self.all_topics or self.all_services or bool(self.regex) or bool(self.topic_types)
 
 
 @dataclass
@@ -78,9 +77,15 @@ class Recorder:
     `error` holds the failure that ended recording early (a full disk), if any.
     """
 
-    def __init__(self, node: Any, writer: Writer, options: RecordOptions, *,
-                 log: Callable[[str], Any] | None = None,
-                 warn: Callable[[str], Any] | None = None) -> None:
+    def __init__(
+        self,
+        node: Any,
+        writer: Writer,
+        options: RecordOptions,
+        *,
+        log: Callable[[str], Any] | None = None,
+        warn: Callable[[str], Any] | None = None,
+    ) -> None:
         self.node = node
         self.writer = writer
         self.options = options
@@ -101,7 +106,7 @@ class Recorder:
         self._running = False
         self._stopping = False
         self._accepting = True
-        self._lock = threading.Lock()      # subscribe vs stop
+        self._lock = threading.Lock()  # subscribe vs stop
         self._writer_thread: threading.Thread | None = None
         self._discovery_thread: threading.Thread | None = None
         self._discovery_done = threading.Event()
@@ -111,18 +116,20 @@ class Recorder:
     def start(self) -> None:
         self._running = True
         self.writer.open()
-        self._writer_thread = threading.Thread(target=self._write_loop, daemon=True,
-                                               name='ros2lite-bag-writer')
+        self._writer_thread = threading.Thread(
+            target=self._write_loop, daemon=True, name="ros2lite-bag-writer"
+        )
         self._writer_thread.start()
         if self.options.start_paused:
-            self._log('Wait for recording: Press SPACE to start.')
-        self._log('Listening for topics...')
+            self._log("Wait for recording: Press SPACE to start.")
+        self._log("Listening for topics...")
         self.discover()
         if self.options.discovery:
             self._discovery_thread = threading.Thread(
-                target=self._discovery_loop, daemon=True, name='ros2lite-bag-discovery')
+                target=self._discovery_loop, daemon=True, name="ros2lite-bag-discovery"
+            )
             self._discovery_thread.start()
-        self._log('Recording...')
+        self._log("Recording...")
 
     @property
     def paused(self) -> bool:
@@ -131,12 +138,12 @@ class Recorder:
     def pause(self) -> None:
         if not self._paused:
             self._paused = True
-            self._log('Pausing recording.')
+            self._log("Pausing recording.")
 
     def resume(self) -> None:
         if self._paused:
             self._paused = False
-            self._log('Resuming recording.')
+            self._log("Resuming recording.")
 
     def toggle_paused(self) -> None:
         if self._paused:
@@ -187,11 +194,14 @@ class Recorder:
                 self.discover()
             except Exception as e:  # the graph went away with the session: stop looking
                 if not self._stopping:
-                    self._warn(f'Topic discovery failed: {e}')
+                    self._warn(f"Topic discovery failed: {e}")
                 return
-            if self.options.topics and not self.options.selects_by_pattern() and all(
-                    t in self._by_name or t in self._skipped for t in self.options.topics):
-                self._log('All requested topics are subscribed. Stopping discovery...')
+            if (
+                self.options.topics
+                and not self.options.selects_by_pattern()
+                and all(t in self._by_name or t in self._skipped for t in self.options.topics)
+            ):
+                self._log("All requested topics are subscribed. Stopping discovery...")
                 return
 
     def wanted(self, topic: str, type_name: str) -> bool:
@@ -204,6 +214,7 @@ class Recorder:
             return o.all_services or bool(self._include and self._include.search(topic))
         if not o.include_hidden_topics:
             from ros2lite.transport.keys import is_hidden_name
+
             if is_hidden_name(topic):
                 return False
         if o.all_topics:
@@ -215,6 +226,7 @@ class Recorder:
     def discover(self) -> None:
         """Subscribe to every wanted topic that has publishers and no subscription yet."""
         from ros2lite.transport.keys import EntityKind
+
         publishers: dict[str, list[Any]] = {}
         for e in self.node.context.graph.entities():
             if e.kind == EntityKind.PUBLISHER and e.topic_name and e.type_name:
@@ -227,20 +239,23 @@ class Recorder:
                 continue
             if len(types) > 1:
                 self._skipped.add(topic)
-                self._warn(f"Topic '{topic}' has more than one type ({', '.join(types)}); "
-                           f'not recording it')
+                self._warn(
+                    f"Topic '{topic}' has more than one type ({', '.join(types)}); not recording it"
+                )
                 continue
             self._subscribe(topic, types[0], pubs)
 
     def _subscribe(self, topic: str, type_name: str, pubs: list[Any]) -> None:
         from ros2lite.interfaces import InterfaceError, get_interface
         from ros2lite.topic_monitor import MonitoredSubscription, match_publishers_qos
+
         offered = [p.qos for p in pubs if p.qos is not None]
         qos = self.options.qos_overrides.get(topic)
         if qos is None:
             depth = max([q.depth for q in offered] + [1])
-            qos = match_publishers_qos(QoSProfile(history=HistoryPolicy.KEEP_ALL, depth=depth),
-                                       offered).profile
+            qos = match_publishers_qos(
+                QoSProfile(history=HistoryPolicy.KEEP_ALL, depth=depth), offered
+            ).profile
         hashes = {p.type_hash for p in pubs if p.type_hash}
         msg_type: Any = type_name
         try:
@@ -253,20 +268,25 @@ class Recorder:
             # not defined here: record its bytes all the same, under the publishers' hash
             # (the bag gets an empty schema, as rosbag2 writes for unknown definitions)
             from ros2lite.bag.definitions import type_ref
+
             msg_type = type_ref(type_name, next(iter(hashes)))
         with self._lock:
             if not self._accepting:
                 return
             try:
                 tid = self.writer.create_topic(
-                    topic, type_name, offered_qos_profiles=offered,
-                    type_description_hash=next(iter(hashes)) if len(hashes) == 1 else None)
+                    topic,
+                    type_name,
+                    offered_qos_profiles=offered,
+                    type_description_hash=next(iter(hashes)) if len(hashes) == 1 else None,
+                )
             except (BagError, OSError) as e:
                 self._fail(e)
                 return
             stats = self._stats_by_tid[tid] = TopicStats(topic, type_name)
-            sub = MonitoredSubscription(self.node, msg_type, topic, None, qos,
-                                        on_payload=self._receiver(tid, stats))
+            sub = MonitoredSubscription(
+                self.node, msg_type, topic, None, qos, on_payload=self._receiver(tid, stats)
+            )
             self.stats.append(stats)
             self._by_name[topic] = tid
             self._subscriptions.append(sub)
@@ -281,7 +301,7 @@ class Recorder:
         def receive(data: bytes, attachment: bytes, received: int) -> None:
             if self._paused or not self._accepting:
                 return
-            if clock.ros_time_is_active:   # --use-sim-time and /clock is ticking
+            if clock.ros_time_is_active:  # --use-sim-time and /clock is ticking
                 received = clock.now().nanoseconds
             append((tid, data, received, attachment))
             stats.received += 1
@@ -291,6 +311,7 @@ class Recorder:
             # bounded memory: wait for the writer rather than drop anything
             while stats.bytes - stats.written_bytes > limit and queue and self.running:
                 time.sleep(0.0005)
+
         return receive
 
     # -- writing -------------------------------------------------------------------------------

@@ -29,7 +29,7 @@ from ros2lite.bag.storage import BagError
 from ros2lite.bag.storage.mcap import DEFAULT_CHUNK_SIZE, PRESETS, McapStorageWriter
 from ros2lite.transport.qos import QoSProfile
 
-__all__ = ['MIN_SPLIT_SIZE', 'Writer', 'type_definition']
+__all__ = ["MIN_SPLIT_SIZE", "Writer", "type_definition"]
 
 # rosbag2's smallest --max-bag-size (get_minimum_split_file_size of the mcap plugin)
 MIN_SPLIT_SIZE = 1024
@@ -41,10 +41,11 @@ def type_definition(type_name: str) -> tuple[str, str, str]:
     """(schema encoding, full ros2msg text, RIHS01 hash) from the local search path, or empty
     values for a type it does not know (rosbag2 writes an empty schema then)."""
     from ros2lite.interfaces import InterfaceError, definition_text, type_hash
+
     try:
-        return 'ros2msg', definition_text(type_name), type_hash(type_name)
+        return "ros2msg", definition_text(type_name), type_hash(type_name)
     except (InterfaceError, LookupError, ValueError, OSError):
-        return '', '', ''
+        return "", "", ""
 
 
 @dataclass
@@ -67,23 +68,33 @@ class Writer:
     indexable (rosbag2's storage preset profiles `zstd_fast`/`zstd_small` map here too).
     """
 
-    def __init__(self, uri: str | os.PathLike[str], *, storage_id: str = 'mcap',
-                 compression: str = 'none', chunk_size: int = DEFAULT_CHUNK_SIZE,
-                 preset: str | None = None, max_bag_size: int = 0,
-                 max_bag_duration: float = 0.0, custom_data: dict[str, str] | None = None
-                 ) -> None:
-        if storage_id != 'mcap':
+    def __init__(
+        self,
+        uri: str | os.PathLike[str],
+        *,
+        storage_id: str = "mcap",
+        compression: str = "none",
+        chunk_size: int = DEFAULT_CHUNK_SIZE,
+        preset: str | None = None,
+        max_bag_size: int = 0,
+        max_bag_duration: float = 0.0,
+        custom_data: dict[str, str] | None = None,
+    ) -> None:
+        if storage_id != "mcap":
             raise BagError(f"Writing storage '{storage_id}' is not supported (use mcap)")
         if preset is not None:
             if preset not in PRESETS:
-                raise BagError(f"Unknown storage preset profile '{preset}' "
-                               f"(choose from {', '.join(PRESETS)})")
+                raise BagError(
+                    f"Unknown storage preset profile '{preset}' (choose from {', '.join(PRESETS)})"
+                )
             compression, chunk_size = PRESETS[preset]
         if max_bag_size and max_bag_size < MIN_SPLIT_SIZE:
-            raise BagError(f'Invalid bag splitting size given. Please provide a value greater '
-                           f'than {MIN_SPLIT_SIZE}.')
+            raise BagError(
+                f"Invalid bag splitting size given. Please provide a value greater "
+                f"than {MIN_SPLIT_SIZE}."
+            )
         if max_bag_size < 0 or max_bag_duration < 0:
-            raise BagError('Bag split limits must not be negative')
+            raise BagError("Bag split limits must not be negative")
         self.path = Path(uri)
         if not self.path.name:
             raise BagError(f"Invalid bag path '{uri}'")
@@ -144,9 +155,10 @@ class Writer:
         return self._count
 
     def _next_file(self) -> None:
-        name = f'{self.path.name}_{len(self._files)}.mcap'
-        storage = McapStorageWriter(str(self.path / name), compression=self.compression,
-                                    chunk_size=self.chunk_size)
+        name = f"{self.path.name}_{len(self._files)}.mcap"
+        storage = McapStorageWriter(
+            str(self.path / name), compression=self.compression, chunk_size=self.chunk_size
+        )
         self._storage = storage
         self._file = FileInformation(path=name)
         self._files.append(self._file)
@@ -205,15 +217,20 @@ class Writer:
         if not self._open:
             self.open()
         if self._closed or self._storage is None:
-            raise BagError('bag writer is closed')
+            raise BagError("bag writer is closed")
         return self._storage
 
     # -- topics and messages --------------------------------------------------------------------
-    def create_topic(self, name: str, type_name: str, *,
-                     offered_qos_profiles: Iterable[QoSProfile] = (),
-                     type_description_hash: str | None = None,
-                     definition: tuple[str, str] | None = None,
-                     serialization_format: str = 'cdr') -> int:
+    def create_topic(
+        self,
+        name: str,
+        type_name: str,
+        *,
+        offered_qos_profiles: Iterable[QoSProfile] = (),
+        type_description_hash: str | None = None,
+        definition: tuple[str, str] | None = None,
+        serialization_format: str = "cdr",
+    ) -> int:
         """Add a topic; returns its id for `write_raw`. `definition` is (encoding, text);
         by default both it and the hash come from the local type search path."""
         self._require()
@@ -223,10 +240,14 @@ class Writer:
         if definition is not None:
             encoding, text = definition
         meta = TopicMetadata(
-            name=name, type=type_name, serialization_format=serialization_format,
+            name=name,
+            type=type_name,
+            serialization_format=serialization_format,
             offered_qos_profiles=list(offered_qos_profiles),
-            type_description_hash=local_hash if type_description_hash is None
-            else type_description_hash)
+            type_description_hash=local_hash
+            if type_description_hash is None
+            else type_description_hash,
+        )
         topic = _Topic(meta, encoding, text)
         self._register(topic)
         self._topics.append(topic)
@@ -236,8 +257,9 @@ class Writer:
     def topic_id(self, name: str) -> int:
         return self._by_name[name]
 
-    def write(self, topic: str, message: Any, log_time: int | None = None,
-              publish_time: int | None = None) -> None:
+    def write(
+        self, topic: str, message: Any, log_time: int | None = None, publish_time: int | None = None
+    ) -> None:
         """Write one message (CDR bytes or a message object) on a topic. A message object on
         a topic not created yet creates it with the message's type."""
         if log_time is None:
@@ -245,19 +267,23 @@ class Writer:
         tid = self._by_name.get(topic)
         if isinstance(message, (bytes, bytearray, memoryview)):
             if tid is None:
-                raise BagError(f"Topic '{topic}' was not created (create_topic) and raw bytes "
-                               f'do not say their type')
+                raise BagError(
+                    f"Topic '{topic}' was not created (create_topic) and raw bytes "
+                    f"do not say their type"
+                )
             data = bytes(message)
         else:
             from ros2lite.interfaces import serialize
-            type_name = getattr(message, '_TYPE_NAME', None)
+
+            type_name = getattr(message, "_TYPE_NAME", None)
             if type_name is None:
-                raise TypeError(f'not a ros2lite message: {message!r}')
+                raise TypeError(f"not a ros2lite message: {message!r}")
             if tid is None:
                 tid = self.create_topic(topic, type_name)
             elif self._topics[tid].meta.type != type_name:
-                raise BagError(f"Topic '{topic}' has type {self._topics[tid].meta.type}, "
-                               f'not {type_name}')
+                raise BagError(
+                    f"Topic '{topic}' has type {self._topics[tid].meta.type}, not {type_name}"
+                )
             data = serialize(message)
         self.write_raw(tid, data, log_time, log_time if publish_time is None else publish_time)
 
@@ -268,9 +294,9 @@ class Writer:
         f = self._file
         assert f is not None
         if f.message_count and (
-                (self.max_bag_size and self._file_bytes >= self.max_bag_size)
-                or (self.max_bag_duration
-                    and log_time - f.starting_time >= self.max_bag_duration)):
+            (self.max_bag_size and self._file_bytes >= self.max_bag_size)
+            or (self.max_bag_duration and log_time - f.starting_time >= self.max_bag_duration)
+        ):
             self.split()
             f = self._file
             assert f is not None
@@ -300,20 +326,21 @@ class Writer:
             try:
                 self._storage.flush_chunk()
             except OSError as e:
-                raise BagError(f"Cannot write '{self._storage.path}': {e.strerror or e}") \
-                    from None
+                raise BagError(f"Cannot write '{self._storage.path}': {e.strerror or e}") from None
 
     def metadata(self) -> BagMetadata:
         """The metadata as of now (what metadata.yaml will say if the bag closed now)."""
         empty = self._count == 0
         return BagMetadata(
-            storage_identifier='mcap',
+            storage_identifier="mcap",
             duration=0 if empty else self._end - self._start,
             starting_time=self._start,
             message_count=self._count,
             topics_with_message_count=[TopicInformation(t.meta, t.count) for t in self._topics],
             relative_file_paths=[f.path for f in self._files],
-            files=[FileInformation(f.path, f.starting_time, f.duration, f.message_count)
-                   for f in self._files],
+            files=[
+                FileInformation(f.path, f.starting_time, f.duration, f.message_count)
+                for f in self._files
+            ],
             custom_data=self.custom_data,
         )

@@ -12,8 +12,14 @@ from typing import Any, Protocol
 
 from ros2lite.bag.metadata import BagMetadata, TopicMetadata
 
-__all__ = ['PLUGINS', 'BagError', 'FileSummary', 'StorageReader', 'open_storage_reader',
-           'plugin_for']
+__all__ = [
+    "PLUGINS",
+    "BagError",
+    "FileSummary",
+    "StorageReader",
+    "open_storage_reader",
+    "plugin_for",
+]
 
 
 class BagError(Exception):
@@ -26,14 +32,14 @@ class FileSummary:
     format allows (MCAP summary section, SQL aggregates)."""
 
     topics: list[TopicMetadata]
-    counts: dict[str, int]                    # messages per topic
+    counts: dict[str, int]  # messages per topic
     message_count: int
-    start: int | None                         # first log time (ns), None when empty
+    start: int | None  # first log time (ns), None when empty
     end: int | None
     definitions: dict[str, tuple[str, str]] = field(default_factory=dict)  # type → (enc, text)
-    metadata: BagMetadata | None = None       # the last `rosbag2` record, if any
-    complete: bool = True                     # False: no summary, scanned up to a broken end
-    ros_distro: str = ''
+    metadata: BagMetadata | None = None  # the last `rosbag2` record, if any
+    complete: bool = True  # False: no summary, scanned up to a broken end
+    ros_distro: str = ""
 
 
 class StorageReader(Protocol):
@@ -41,16 +47,17 @@ class StorageReader(Protocol):
 
     def summary(self) -> FileSummary: ...
 
-    def messages(self, topics: set[str] | None = None, start: int | None = None,
-                 stop: int | None = None) -> Iterator[tuple[str, bytes, int, int]]: ...
+    def messages(
+        self, topics: set[str] | None = None, start: int | None = None, stop: int | None = None
+    ) -> Iterator[tuple[str, bytes, int, int]]: ...
 
     def close(self) -> None: ...
 
 
 # storage id → (module, file extension); rosbag2's names
 PLUGINS: dict[str, tuple[str, str]] = {
-    'mcap': ('ros2lite.bag.storage.mcap', '.mcap'),
-    'sqlite3': ('ros2lite.bag.storage.sqlite3', '.db3'),
+    "mcap": ("ros2lite.bag.storage.mcap", ".mcap"),
+    "sqlite3": ("ros2lite.bag.storage.sqlite3", ".db3"),
 }
 
 
@@ -64,6 +71,7 @@ def plugin_for(path: str) -> str | None:
 
 def open_storage_reader(path: str, storage_id: str | None = None) -> Any:
     import importlib
+
     sid = storage_id or plugin_for(path)
     if sid not in PLUGINS:
         raise BagError(f"No storage plugin for '{path}' (known: {', '.join(PLUGINS)})")

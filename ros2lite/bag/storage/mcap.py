@@ -29,27 +29,34 @@ from ros2lite.bag.metadata import (
 )
 from ros2lite.bag.storage import BagError, FileSummary
 
-__all__ = ['COMPRESSIONS', 'DEFAULT_CHUNK_SIZE', 'McapStorageReader', 'McapStorageWriter',
-           'open_reader', 'recover']
+__all__ = [
+    "COMPRESSIONS",
+    "DEFAULT_CHUNK_SIZE",
+    "McapStorageReader",
+    "McapStorageWriter",
+    "open_reader",
+    "recover",
+]
 
 # rosbag2's chunk size (mcap C++ 1.4 default); rosbag2_storage_mcap presets change it
 DEFAULT_CHUNK_SIZE = 768 * 1024
-COMPRESSIONS = ('none', 'zstd', 'lz4')
+COMPRESSIONS = ("none", "zstd", "lz4")
 # storage preset profiles of rosbag2_storage_mcap: compression and chunk size
 PRESETS: dict[str, tuple[str, int]] = {
-    'none': ('none', DEFAULT_CHUNK_SIZE),
-    'fastwrite': ('none', DEFAULT_CHUNK_SIZE),
-    'zstd_fast': ('zstd', DEFAULT_CHUNK_SIZE),
-    'zstd_small': ('zstd', 4 * 1024 * 1024),
+    "none": ("none", DEFAULT_CHUNK_SIZE),
+    "fastwrite": ("none", DEFAULT_CHUNK_SIZE),
+    "zstd_fast": ("zstd", DEFAULT_CHUNK_SIZE),
+    "zstd_small": ("zstd", 4 * 1024 * 1024),
 }
 
 
 def _library() -> str:
     from importlib.metadata import PackageNotFoundError, version
+
     try:
-        return f'ros2lite {version("ros2lite")}'
-    except PackageNotFoundError:   # pragma: no cover - running from a source tree
-        return 'ros2lite'
+        return f"ros2lite {version('ros2lite')}"
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree
+        return "ros2lite"
 
 
 class _DirectFile:
@@ -63,7 +70,7 @@ class _DirectFile:
         self._pos = 0
 
     def write(self, data: Any) -> int:
-        view = memoryview(data).cast('B')
+        view = memoryview(data).cast("B")
         n = len(view)
         done = 0
         while done < n:
@@ -90,12 +97,15 @@ def _os_error(path: str, e: OSError) -> BagError:
 class McapStorageWriter:
     """One `.mcap` file of a bag."""
 
-    def __init__(self, path: str, *, compression: str = 'none',
-                 chunk_size: int = DEFAULT_CHUNK_SIZE) -> None:
+    def __init__(
+        self, path: str, *, compression: str = "none", chunk_size: int = DEFAULT_CHUNK_SIZE
+    ) -> None:
         from mcap.writer import CompressionType, IndexType, Writer
+
         if compression not in COMPRESSIONS:
-            raise BagError(f"Unknown MCAP compression '{compression}' "
-                           f"(choose from {', '.join(COMPRESSIONS)})")
+            raise BagError(
+                f"Unknown MCAP compression '{compression}' (choose from {', '.join(COMPRESSIONS)})"
+            )
         self.path = path
         try:
             self._file = _DirectFile(path)
@@ -104,14 +114,22 @@ class McapStorageWriter:
         self._writer = Writer(
             self._file,  # type: ignore[arg-type]  # a file-like object is all it needs
             chunk_size=chunk_size,
-            compression={'none': CompressionType.NONE, 'zstd': CompressionType.ZSTD,
-                         'lz4': CompressionType.LZ4}[compression],
-            index_types=IndexType.ALL, use_chunking=True, use_statistics=True,
-            use_summary_offsets=True, repeat_channels=True, repeat_schemas=True)
+            compression={
+                "none": CompressionType.NONE,
+                "zstd": CompressionType.ZSTD,
+                "lz4": CompressionType.LZ4,
+            }[compression],
+            index_types=IndexType.ALL,
+            use_chunking=True,
+            use_statistics=True,
+            use_summary_offsets=True,
+            repeat_channels=True,
+            repeat_schemas=True,
+        )
         self._schemas: dict[str, int] = {}
         self._closed = False
         try:
-            self._writer.start(profile='ros2', library=_library())
+            self._writer.start(profile="ros2", library=_library())
         except OSError as e:
             self.abandon()
             raise _os_error(path, e) from None
@@ -127,19 +145,26 @@ class McapStorageWriter:
         sid = self._schemas.get(type_name)
         if sid is None:
             sid = self._schemas[type_name] = self._writer.register_schema(
-                type_name, encoding, text.encode())
+                type_name, encoding, text.encode()
+            )
         return sid
 
     def add_channel(self, topic: TopicMetadata, schema_id: int) -> int:
         cid: int = self._writer.register_channel(
-            topic.name, topic.serialization_format, schema_id,
-            {'offered_qos_profiles': dump_qos_list(topic.offered_qos_profiles),
-             'topic_type_hash': topic.type_description_hash})
+            topic.name,
+            topic.serialization_format,
+            schema_id,
+            {
+                "offered_qos_profiles": dump_qos_list(topic.offered_qos_profiles),
+                "topic_type_hash": topic.type_description_hash,
+            },
+        )
         return cid
 
     def add_rosbag2_metadata(self, metadata: BagMetadata) -> None:
         self._writer.add_metadata(
-            'rosbag2', {'serialized_metadata': dump_metadata(metadata, top_key=False)})
+            "rosbag2", {"serialized_metadata": dump_metadata(metadata, top_key=False)}
+        )
 
     def flush_chunk(self) -> None:
         """Close the chunk in progress so its messages reach the file now."""
@@ -167,26 +192,30 @@ class McapStorageWriter:
 
 # -- reading -------------------------------------------------------------------------------------
 
+
 def _topic(channel: Any, schema: Any) -> TopicMetadata:
     meta = channel.metadata or {}
     try:
-        qos = parse_qos_list(meta.get('offered_qos_profiles'))
+        qos = parse_qos_list(meta.get("offered_qos_profiles"))
     except MetadataError:
         qos = []
     return TopicMetadata(
-        name=channel.topic, type=schema.name if schema is not None else '',
-        serialization_format=channel.message_encoding, offered_qos_profiles=qos,
-        type_description_hash=meta.get('topic_type_hash', '') or '')
+        name=channel.topic,
+        type=schema.name if schema is not None else "",
+        serialization_format=channel.message_encoding,
+        offered_qos_profiles=qos,
+        type_description_hash=meta.get("topic_type_hash", "") or "",
+    )
 
 
 def _rosbag2_record(record: Any) -> tuple[BagMetadata | None, str]:
     data = record.metadata
-    text = data.get('serialized_metadata')
+    text = data.get("serialized_metadata")
     if text:
         with contextlib.suppress(MetadataError):
             m = parse_metadata(text, top_key=False)
             return m, m.ros_distro
-    return None, data.get('ROS_DISTRO', '')
+    return None, data.get("ROS_DISTRO", "")
 
 
 class McapStorageReader:
@@ -194,9 +223,10 @@ class McapStorageReader:
 
     def __init__(self, path: str) -> None:
         from mcap.reader import SeekingReader
+
         self.path = path
         try:
-            self._stream = open(path, 'rb')  # noqa: SIM115 - closed by close()
+            self._stream = open(path, "rb")  # noqa: SIM115 - closed by close()
         except OSError as e:
             raise BagError(f"Cannot open '{path}': {e.strerror or e}") from None
         try:
@@ -239,36 +269,47 @@ class McapStorageReader:
         for cid, n in stats.channel_message_counts.items():
             if cid in by_channel:
                 counts[by_channel[cid].name] += n
-        metadata, distro = None, ''
+        metadata, distro = None, ""
         for record in self._metadata_records():
             m, d = _rosbag2_record(record)
             metadata, distro = m or metadata, d or distro
         empty = stats.message_count == 0
         return FileSummary(
-            topics=list(topics.values()), counts=counts, message_count=stats.message_count,
+            topics=list(topics.values()),
+            counts=counts,
+            message_count=stats.message_count,
             start=None if empty else stats.message_start_time,
-            end=None if empty else stats.message_end_time, definitions=definitions,
-            metadata=metadata, ros_distro=distro)
+            end=None if empty else stats.message_end_time,
+            definitions=definitions,
+            metadata=metadata,
+            ros_distro=distro,
+        )
 
     def _metadata_records(self) -> Iterator[Any]:
         s = self._summary
         if s is None or not s.metadata_indexes:
             return iter(())
-        return (r for r in self._reader.iter_metadata() if r.name == 'rosbag2')
+        return (r for r in self._reader.iter_metadata() if r.name == "rosbag2")
 
-    def messages(self, topics: set[str] | None = None, start: int | None = None,
-                 stop: int | None = None) -> Iterator[tuple[str, bytes, int, int]]:
+    def messages(
+        self, topics: set[str] | None = None, start: int | None = None, stop: int | None = None
+    ) -> Iterator[tuple[str, bytes, int, int]]:
         """(topic, data, log_time, publish_time) in log-time order, `start <= t < stop`."""
         if self._mcap_summary() is None:
             for _schemas, channel, m in _scan(self._stream):
-                if (topics is None or channel.topic in topics) \
-                        and (start is None or m.log_time >= start) \
-                        and (stop is None or m.log_time < stop):
+                if (
+                    (topics is None or channel.topic in topics)
+                    and (start is None or m.log_time >= start)
+                    and (stop is None or m.log_time < stop)
+                ):
                     yield channel.topic, m.data, m.log_time, m.publish_time
             return
         for _schema, channel, m in self._reader.iter_messages(
-                topics=list(topics) if topics is not None else None, starting_at=start,
-                ending_before=stop, log_time_order=True):
+            topics=list(topics) if topics is not None else None,
+            starting_at=start,
+            ending_before=stop,
+            log_time_order=True,
+        ):
             yield channel.topic, m.data, m.log_time, m.publish_time
 
     def _scan_summary(self) -> FileSummary:
@@ -287,33 +328,44 @@ class McapStorageReader:
 
         start = end = None
         total = 0
-        for _schemas, channel, m in _scan(self._stream, on_metadata=records.append,
-                                          on_channel=on_channel):
+        for _schemas, channel, m in _scan(
+            self._stream, on_metadata=records.append, on_channel=on_channel
+        ):
             total += 1
             counts[channel.topic] += 1
             t = m.log_time
             start = t if start is None or t < start else start
             end = t if end is None or t > end else end
-        metadata, distro = None, ''
+        metadata, distro = None, ""
         for record in records:
-            if record.name == 'rosbag2':
+            if record.name == "rosbag2":
                 meta, d = _rosbag2_record(record)
                 metadata, distro = meta or metadata, d or distro
-        return FileSummary(topics=list(topics.values()), counts=counts, message_count=total,
-                           start=start, end=end, definitions=definitions, metadata=metadata,
-                           complete=False, ros_distro=distro)
+        return FileSummary(
+            topics=list(topics.values()),
+            counts=counts,
+            message_count=total,
+            start=start,
+            end=end,
+            definitions=definitions,
+            metadata=metadata,
+            complete=False,
+            ros_distro=distro,
+        )
 
 
 def _text(data: bytes) -> str:
-    return data.decode('utf-8', errors='replace')
+    return data.decode("utf-8", errors="replace")
 
 
-def _scan(stream: Any, on_metadata: Any = None, on_channel: Any = None
-          ) -> Iterator[tuple[dict[int, Any], Any, Any]]:
+def _scan(
+    stream: Any, on_metadata: Any = None, on_channel: Any = None
+) -> Iterator[tuple[dict[int, Any], Any, Any]]:
     """Every message record in file order, stopping quietly at the first record that cannot
     be read (a truncated chunk at the end of a killed recording)."""
     from mcap.records import Channel, Message, Metadata, Schema
     from mcap.stream_reader import StreamReader
+
     stream.seek(0)
     schemas: dict[int, Any] = {}
     channels: dict[int, Any] = {}
@@ -324,7 +376,7 @@ def _scan(stream: Any, on_metadata: Any = None, on_channel: Any = None
         except StopIteration:
             return
         except Exception:
-            return   # truncated or corrupt from here on
+            return  # truncated or corrupt from here on
         if isinstance(record, Message):
             channel = channels.get(record.channel_id)
             if channel is not None:
@@ -350,11 +402,16 @@ def recover(path: str) -> int:
     The new file is written beside the old one and renamed over it, so an interrupted
     recovery leaves the original untouched."""
     from mcap.writer import CompressionType, IndexType, Writer
-    tmp = path + '.recovering'
-    with open(path, 'rb') as src, open(tmp, 'wb') as dst:
-        writer = Writer(dst, chunk_size=DEFAULT_CHUNK_SIZE, compression=CompressionType.NONE,
-                        index_types=IndexType.ALL)
-        writer.start(profile='ros2', library=_library())
+
+    tmp = path + ".recovering"
+    with open(path, "rb") as src, open(tmp, "wb") as dst:
+        writer = Writer(
+            dst,
+            chunk_size=DEFAULT_CHUNK_SIZE,
+            compression=CompressionType.NONE,
+            index_types=IndexType.ALL,
+        )
+        writer.start(profile="ros2", library=_library())
         schema_ids: dict[int, int] = {}
         channel_ids: dict[int, int] = {}
         metadata: list[Any] = []
@@ -368,9 +425,11 @@ def recover(path: str) -> int:
                     sid = schema_ids.get(schema.id, 0)
                     if not sid:
                         sid = schema_ids[schema.id] = writer.register_schema(
-                            schema.name, schema.encoding, schema.data)
+                            schema.name, schema.encoding, schema.data
+                        )
                 cid = channel_ids[channel.id] = writer.register_channel(
-                    channel.topic, channel.message_encoding, sid, dict(channel.metadata))
+                    channel.topic, channel.message_encoding, sid, dict(channel.metadata)
+                )
             writer.add_message(cid, m.log_time, m.data, m.publish_time, m.sequence)
             kept += 1
         for record in metadata:

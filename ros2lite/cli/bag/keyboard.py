@@ -14,7 +14,7 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
-_ARROWS = {b'\x1b[A': 'up', b'\x1b[B': 'down', b'\x1b[C': 'right', b'\x1b[D': 'left'}
+_ARROWS = {b"\x1b[A": "up", b"\x1b[B": "down", b"\x1b[C": "right", b"\x1b[D": "left"}
 
 
 class Keyboard:
@@ -23,12 +23,13 @@ class Keyboard:
     def __init__(self, handlers: dict[str, Callable[[], Any]]) -> None:
         import termios
         import tty
+
         self.handlers = handlers
         self._fd = sys.stdin.fileno()
         self._saved = termios.tcgetattr(self._fd)
         tty.setcbreak(self._fd)
         self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._run, daemon=True, name='ros2lite-keys')
+        self._thread = threading.Thread(target=self._run, daemon=True, name="ros2lite-keys")
         self._thread.start()
 
     def _run(self) -> None:
@@ -39,15 +40,19 @@ class Keyboard:
             data = os.read(self._fd, 16)
             if not data:
                 return
-            key = _ARROWS.get(data[:3]) if data.startswith(b'\x1b') else \
-                data[:1].decode(errors='replace')
-            handler = self.handlers.get(key or '')
+            key = (
+                _ARROWS.get(data[:3])
+                if data.startswith(b"\x1b")
+                else data[:1].decode(errors="replace")
+            )
+            handler = self.handlers.get(key or "")
             if handler is not None:
                 with contextlib.suppress(Exception):
                     handler()
 
     def close(self) -> None:
         import termios
+
         self._stop.set()
         self._thread.join(timeout=1)
         termios.tcsetattr(self._fd, termios.TCSADRAIN, self._saved)

@@ -14,7 +14,7 @@ class ManyValues(click.Option):
     `nargs='+'` does (`--topics /a /b -o out`). It may also be repeated."""
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
-        kwargs.setdefault('multiple', True)
+        kwargs.setdefault("multiple", True)
         super().__init__(*args, **kwargs)
 
     def add_to_parser(self, parser: Any, ctx: click.Context) -> None:
@@ -27,17 +27,18 @@ class ManyValues(click.Option):
 
             def process(value: Any, state: Any, previous: Any = previous) -> None:
                 values = [value]
-                while state.rargs and not state.rargs[0].startswith('-'):
+                while state.rargs and not state.rargs[0].startswith("-"):
                     values.append(state.rargs.pop(0))
                 for v in values:
                     previous(v, state)
+
             opt.process = process
 
 
 def bag_error(message: str) -> CliError:
     """ros2bag's error line."""
-    return CliError(f'[ERROR] [ros2bag]: {message}')
+    return CliError(f"[ERROR] [ros2bag]: {message}")
 
 
 def warn(message: str) -> None:
-    click.echo(f'[WARN] [ros2bag]: {message}', err=True)
+    click.echo(f"[WARN] [ros2bag]: {message}", err=True)

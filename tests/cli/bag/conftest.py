@@ -23,25 +23,35 @@ from tests.spinning import wait_until
 @pytest.fixture
 def topic() -> str:
     """A topic name no other test uses."""
-    return f'/bag_{uuid.uuid4().hex[:10]}'
+    return f"/bag_{uuid.uuid4().hex[:10]}"
 
 
 def subscribed(ctx: Any, topic: str, count: int = 1) -> bool:
     """True once the graph shows `count` subscriptions on the topic."""
     from ros2lite.graph import snapshot
-    return sum(1 for e in snapshot(ctx.session, ctx.domain_id)
-               if e.kind.value == 'MS' and e.topic_name == topic) >= count
+
+    return (
+        sum(
+            1
+            for e in snapshot(ctx.session, ctx.domain_id)
+            if e.kind.value == "MS" and e.topic_name == topic
+        )
+        >= count
+    )
 
 
 class Recording:
     """A `bag record` process writing into `path`."""
 
-    def __init__(self, path: Path, *args: str, preexec: Callable[[], Any] | None = None
-                 ) -> None:
+    def __init__(self, path: Path, *args: str, preexec: Callable[[], Any] | None = None) -> None:
         self.path = path
         self.proc = subprocess.Popen(
-            [sys.executable, '-m', 'ros2lite', 'bag', 'record', '-o', str(path), *args],
-            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=preexec)
+            [sys.executable, "-m", "ros2lite", "bag", "record", "-o", str(path), *args],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            preexec_fn=preexec,
+        )
 
     def finish(self, sig: int = signal.SIGINT, timeout: float = 20) -> tuple[int, str, str]:
         if self.proc.poll() is None:
@@ -58,6 +68,7 @@ def recording(ros_router: str) -> Iterator[Callable[..., Recording]]:
         r = Recording(path, *args, **kw)
         made.append(r)
         return r
+
     yield start
     for r in made:
         if r.proc.poll() is None:
@@ -69,17 +80,18 @@ class Listener:
     """Collects a topic's messages (or raw bytes) on an executor thread of the test context."""
 
     def __init__(self, ctx: Any, topic: str, type_name: Any, qos: Any, raw: bool) -> None:
-        self.node = Node(f'bag_listener_{uuid.uuid4().hex[:6]}', context=ctx,
-                         enable_rosout=False)
+        self.node = Node(f"bag_listener_{uuid.uuid4().hex[:6]}", context=ctx, enable_rosout=False)
         self.messages: list[Any] = []
-        self.arrivals: list[float] = []     # monotonic time each message was taken
+        self.arrivals: list[float] = []  # monotonic time each message was taken
 
         def keep(message: Any) -> None:
             self.arrivals.append(time.monotonic())
             self.messages.append(message)
+
         if raw:
-            self.node.create_subscription(type_name, topic, lambda data, _info: keep(data),
-                                          qos, raw=True)
+            self.node.create_subscription(
+                type_name, topic, lambda data, _info: keep(data), qos, raw=True
+            )
         else:
             self.node.create_subscription(type_name, topic, keep, qos)
         self._executor = SingleThreadedExecutor(context=ctx)
@@ -106,6 +118,7 @@ def listener(ros_context: Any) -> Iterator[Callable[..., Listener]]:
         lst = Listener(ros_context, topic, type_name, qos, raw)
         made.append(lst)
         return lst
+
     yield start
     for lst in made:
         lst.stop()
@@ -113,15 +126,19 @@ def listener(ros_context: Any) -> Iterator[Callable[..., Listener]]:
 
 @pytest.fixture
 def node(ros_context: Any) -> Iterator[Node]:
-    n = Node(f'bag_test_{uuid.uuid4().hex[:6]}', context=ros_context, enable_rosout=False)
+    n = Node(f"bag_test_{uuid.uuid4().hex[:6]}", context=ros_context, enable_rosout=False)
     yield n
     n.destroy_node()
 
 
 def play(*args: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, '-m', 'ros2lite', 'bag', 'play', *args],
-                          capture_output=True, text=True, timeout=timeout,
-                          env={**os.environ})
+    return subprocess.run(
+        [sys.executable, "-m", "ros2lite", "bag", "play", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env={**os.environ},
+    )
 
 
-__all__ = ['Listener', 'Recording', 'play', 'subscribed', 'wait_until']
+__all__ = ["Listener", "Recording", "play", "subscribed", "wait_until"]

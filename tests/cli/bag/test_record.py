@@ -19,179 +19,208 @@ from ros2lite.transport.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
 from ..conftest import run_process
 from .conftest import play, subscribed, wait_until
 
-String = get_interface('std_msgs/msg/String')
+String = get_interface("std_msgs/msg/String")
 KEEP_ALL = QoSProfile(history=HistoryPolicy.KEEP_ALL)
 
 
-def publish_all(pub: Any, count: int, prefix: str = 'msg') -> list[str]:
-    sent = [f'{prefix} {i}' for i in range(count)]
+def publish_all(pub: Any, count: int, prefix: str = "msg") -> list[str]:
+    sent = [f"{prefix} {i}" for i in range(count)]
     for text in sent:
         pub.publish(String(data=text))
     return sent
 
 
-def test_record_then_play_round_trip(tmp_path: Path, node: Any, ros_context: Any,
-                                     recording: Any, listener: Any, topic: str) -> None:
+def test_record_then_play_round_trip(
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any, listener: Any, topic: str
+) -> None:
     pub = node.create_publisher(String, topic, KEEP_ALL)
-    rec = recording(tmp_path / 'bag', '--topics', topic)
+    rec = recording(tmp_path / "bag", "--topics", topic)
     wait_until(lambda: subscribed(ros_context, topic), timeout=20)
     sent = publish_all(pub, 2000)
     time.sleep(0.5)
     code, _out, err = rec.finish(signal.SIGINT)
     assert code == 0, err
-    assert f"Subscribed to topic '{topic}'" in err and 'Recording stopped' in err
-    with Reader(tmp_path / 'bag') as bag:
+    assert f"Subscribed to topic '{topic}'" in err and "Recording stopped" in err
+    with Reader(tmp_path / "bag") as bag:
         got = [(t, m.data, stamp) for t, m, stamp in bag]
         raw = list(bag.raw_messages())
-    assert [g[1] for g in got] == sent                       # nothing lost, in order
+    assert [g[1] for g in got] == sent  # nothing lost, in order
     assert {g[0] for g in got} == {topic}
-    assert all(p <= t for _, _, t, p in raw)                 # sent before received
-    assert raw[0][3] != raw[0][2]                            # publish time = sender's stamp
-    meta = read_metadata_file(tmp_path / 'bag' / 'metadata.yaml')
+    assert all(p <= t for _, _, t, p in raw)  # sent before received
+    assert raw[0][3] != raw[0][2]  # publish time = sender's stamp
+    meta = read_metadata_file(tmp_path / "bag" / "metadata.yaml")
     assert meta.message_count == 2000
     qos = meta.topic(topic).topic_metadata.offered_qos_profiles  # type: ignore[union-attr]
     assert qos[0].history == HistoryPolicy.KEEP_ALL
     # …and back out through `bag play` to a subscriber
     lst = listener(topic, String, 1000)
     wait_until(lambda: subscribed(ros_context, topic), timeout=10)
-    result = play(str(tmp_path / 'bag'), '-r', '20')
+    result = play(str(tmp_path / "bag"), "-r", "20")
     assert result.returncode == 0, result.stderr
     wait_until(lambda: len(lst.messages) == 2000, timeout=10)
     assert [m.data for m in lst.messages] == sent
 
 
 def test_sigterm_finishes_the_bag_and_late_topics_are_picked_up(
-        tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str) -> None:
-    rec = recording(tmp_path / 'bag', '-e', f'^{topic}', '-x', 'skip$', '--exclude-topics',
-                    f'{topic}/excluded', '-p', '50')
-    time.sleep(1.0)       # the recorder is up before any of these topics exists
-    pubs = {name: node.create_publisher(String, name, KEEP_ALL)
-            for name in (f'{topic}/late', f'{topic}/skip', f'{topic}/excluded',
-                         f'{topic}/_hidden')}
-    wait_until(lambda: subscribed(ros_context, f'{topic}/late'), timeout=20)
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str
+) -> None:
+    rec = recording(
+        tmp_path / "bag",
+        "-e",
+        f"^{topic}",
+        "-x",
+        "skip$",
+        "--exclude-topics",
+        f"{topic}/excluded",
+        "-p",
+        "50",
+    )
+    time.sleep(1.0)  # the recorder is up before any of these topics exists
+    pubs = {
+        name: node.create_publisher(String, name, KEEP_ALL)
+        for name in (f"{topic}/late", f"{topic}/skip", f"{topic}/excluded", f"{topic}/_hidden")
+    }
+    wait_until(lambda: subscribed(ros_context, f"{topic}/late"), timeout=20)
     for name, pub in pubs.items():
         publish_all(pub, 10, name)
     time.sleep(0.5)
     code, _out, err = rec.finish(signal.SIGTERM)
     assert code == 0, err
-    with Reader(tmp_path / 'bag') as bag:
-        assert [t.name for t in bag.topics] == [f'{topic}/late']
+    with Reader(tmp_path / "bag") as bag:
+        assert [t.name for t in bag.topics] == [f"{topic}/late"]
         assert bag.message_count == 10
 
 
-def test_latched_messages_are_recorded(tmp_path: Path, node: Any, ros_context: Any,
-                                       recording: Any, topic: str) -> None:
+def test_latched_messages_are_recorded(
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str
+) -> None:
     latched = QoSProfile(durability=DurabilityPolicy.TRANSIENT_LOCAL, depth=3)
     pub = node.create_publisher(String, topic, latched)
-    publish_all(pub, 3, 'latched')           # before any recorder exists
-    rec = recording(tmp_path / 'bag', '--topics', topic)
+    publish_all(pub, 3, "latched")  # before any recorder exists
+    rec = recording(tmp_path / "bag", "--topics", topic)
     wait_until(lambda: subscribed(ros_context, topic), timeout=20)
     time.sleep(1.0)
     code, _out, err = rec.finish()
     assert code == 0, err
-    with Reader(tmp_path / 'bag') as bag:
-        assert [m.data for _, m, _ in bag] == ['latched 0', 'latched 1', 'latched 2']
+    with Reader(tmp_path / "bag") as bag:
+        assert [m.data for _, m, _ in bag] == ["latched 0", "latched 1", "latched 2"]
         profile = bag.topic(topic).offered_qos_profiles[0]  # type: ignore[union-attr]
         assert profile.durability == DurabilityPolicy.TRANSIENT_LOCAL
 
 
-def test_sigkill_then_reindex_recovers(tmp_path: Path, node: Any, ros_context: Any,
-                                       recording: Any, topic: str) -> None:
+def test_sigkill_then_reindex_recovers(
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str
+) -> None:
     pub = node.create_publisher(String, topic, KEEP_ALL)
-    rec = recording(tmp_path / 'bag', '--topics', topic)
+    rec = recording(tmp_path / "bag", "--topics", topic)
     wait_until(lambda: subscribed(ros_context, topic), timeout=20)
     sent = publish_all(pub, 500)
-    time.sleep(2.0)                 # the recorder puts finished data on disk every second
+    time.sleep(2.0)  # the recorder puts finished data on disk every second
     rec.finish(signal.SIGKILL)
-    assert not (tmp_path / 'bag' / 'metadata.yaml').exists()
-    result = run_process('bag', 'reindex', str(tmp_path / 'bag'))
-    assert (result.code, result.err) == (0, '')
+    assert not (tmp_path / "bag" / "metadata.yaml").exists()
+    result = run_process("bag", "reindex", str(tmp_path / "bag"))
+    assert (result.code, result.err) == (0, "")
     from rosbags.highlevel import AnyReader
-    with AnyReader([tmp_path / 'bag']) as oracle:
+
+    with AnyReader([tmp_path / "bag"]) as oracle:
         conns = [c.topic for c in oracle.connections]
         got = [oracle.deserialize(raw, c.msgtype).data for c, _, raw in oracle.messages()]
     assert got == sent and conns == [topic]
 
 
-def test_random_bytes_are_recorded_as_they_came(tmp_path: Path, node: Any, ros_context: Any,
-                                                recording: Any, topic: str) -> None:
+def test_random_bytes_are_recorded_as_they_came(
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str
+) -> None:
     pub = node.create_publisher(String, topic, KEEP_ALL)
-    rec = recording(tmp_path / 'bag', '--topics', topic)
+    rec = recording(tmp_path / "bag", "--topics", topic)
     wait_until(lambda: subscribed(ros_context, topic), timeout=20)
     junk = [os.urandom(n) for n in (0, 1, 3, 17, 4096, 100_000)]
-    good = serialize(String(data='still fine'))
+    good = serialize(String(data="still fine"))
     for blob in junk:
         pub.publish(blob)
     pub.publish(good)
     time.sleep(0.5)
-    assert rec.proc.poll() is None                  # still recording
+    assert rec.proc.poll() is None  # still recording
     code, _out, err = rec.finish()
     assert code == 0, err
-    with Reader(tmp_path / 'bag') as bag:
+    with Reader(tmp_path / "bag") as bag:
         raw = [data for _, data, _ in bag.messages(raw=True)]
         decoded = [m for _, m, _ in bag]
     assert raw == [*junk, good]
-    assert decoded[-1].data == 'still fine' and decoded[4] == junk[4]
+    assert decoded[-1].data == "still fine" and decoded[4] == junk[4]
 
 
-def test_split_and_compressed_recording(tmp_path: Path, node: Any, ros_context: Any,
-                                        recording: Any, topic: str) -> None:
+def test_split_and_compressed_recording(
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str
+) -> None:
     pub = node.create_publisher(String, topic, KEEP_ALL)
-    rec = recording(tmp_path / 'bag', '--topics', topic, '--max-bag-size', '300000',
-                    '--compression-format', 'zstd')
+    rec = recording(
+        tmp_path / "bag",
+        "--topics",
+        topic,
+        "--max-bag-size",
+        "300000",
+        "--compression-format",
+        "zstd",
+    )
     wait_until(lambda: subscribed(ros_context, topic), timeout=20)
     for i in range(300):
-        pub.publish(String(data=f'{i:05d}' + os.urandom(1500).hex()))
+        pub.publish(String(data=f"{i:05d}" + os.urandom(1500).hex()))
     time.sleep(1.0)
     code, _out, err = rec.finish()
     assert code == 0, err
-    meta = read_metadata_file(tmp_path / 'bag' / 'metadata.yaml')
+    meta = read_metadata_file(tmp_path / "bag" / "metadata.yaml")
     assert len(meta.files) >= 2 and meta.message_count == 300
     from mcap.reader import make_reader
-    with open(tmp_path / 'bag' / meta.files[0].path, 'rb') as f:
+
+    with open(tmp_path / "bag" / meta.files[0].path, "rb") as f:
         summary = make_reader(f).get_summary()
         assert summary is not None
-        assert {c.compression for c in summary.chunk_indexes} == {'zstd'}
-    with Reader(tmp_path / 'bag') as bag:
-        assert [m.data[:5] for _, m, _ in bag] == [f'{i:05d}' for i in range(300)]
+        assert {c.compression for c in summary.chunk_indexes} == {"zstd"}
+    with Reader(tmp_path / "bag") as bag:
+        assert [m.data[:5] for _, m, _ in bag] == [f"{i:05d}" for i in range(300)]
 
 
 def _small_file_limit() -> None:
-    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)     # writes past the limit fail: EFBIG
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # writes past the limit fail: EFBIG
     resource.setrlimit(resource.RLIMIT_FSIZE, (200_000, 200_000))
 
 
 def test_full_disk_is_one_error_and_keeps_what_was_written(
-        tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str) -> None:
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str
+) -> None:
     pub = node.create_publisher(String, topic, KEEP_ALL)
-    rec = recording(tmp_path / 'bag', '--topics', topic, preexec=_small_file_limit)
+    rec = recording(tmp_path / "bag", "--topics", topic, preexec=_small_file_limit)
     wait_until(lambda: subscribed(ros_context, topic), timeout=20)
-    publish_all(pub, 20, 'early')
-    time.sleep(1.8)                                   # flushed to disk
+    publish_all(pub, 20, "early")
+    time.sleep(1.8)  # flushed to disk
     for i in range(100):
-        pub.publish(String(data=f'big {i} ' + 'x' * 10_000))
-    code, _out, err = rec.finish(timeout=30) if rec.proc.wait(timeout=30) is not None \
-        else (0, '', '')
+        pub.publish(String(data=f"big {i} " + "x" * 10_000))
+    code, _out, err = (
+        rec.finish(timeout=30) if rec.proc.wait(timeout=30) is not None else (0, "", "")
+    )
     assert code == 1
-    lines = [line for line in err.splitlines() if line.startswith('[ERROR]')]
-    assert len(lines) == 1 and 'File too large' in lines[0], err
-    assert 'Traceback' not in err
-    with Reader(tmp_path / 'bag') as bag:
+    lines = [line for line in err.splitlines() if line.startswith("[ERROR]")]
+    assert len(lines) == 1 and "File too large" in lines[0], err
+    assert "Traceback" not in err
+    with Reader(tmp_path / "bag") as bag:
         got = [m.data for _, m, _ in bag]
-    assert got[:20] == [f'early {i}' for i in range(20)]
+    assert got[:20] == [f"early {i}" for i in range(20)]
 
 
 def test_bad_options_and_paths(tmp_path: Path, ros_router: str) -> None:
-    none = run_process('bag', 'record', '-o', str(tmp_path / 'x'))
-    assert none.code == 1 and none.err.startswith('[ERROR] [ros2bag]: Need to specify')
-    (tmp_path / 'exists').mkdir()
-    exists = run_process('bag', 'record', '-a', '-o', str(tmp_path / 'exists'))
+    none = run_process("bag", "record", "-o", str(tmp_path / "x"))
+    assert none.code == 1 and none.err.startswith("[ERROR] [ros2bag]: Need to specify")
+    (tmp_path / "exists").mkdir()
+    exists = run_process("bag", "record", "-a", "-o", str(tmp_path / "exists"))
     assert (exists.code, exists.err) == (
-        1, f"[ERROR] [ros2bag]: Output folder '{tmp_path / 'exists'}' already exists.\n")
-    (tmp_path / 'file').write_text('')
-    under_file = run_process('bag', 'record', '-a', '-o', str(tmp_path / 'file' / 'bag'))
+        1,
+        f"[ERROR] [ros2bag]: Output folder '{tmp_path / 'exists'}' already exists.\n",
+    )
+    (tmp_path / "file").write_text("")
+    under_file = run_process("bag", "record", "-a", "-o", str(tmp_path / "file" / "bag"))
     assert under_file.code == 1 and len(under_file.err.splitlines()) == 1
-    assert 'Cannot create' in under_file.err
-    regex = run_process('bag', 'record', '-e', '(', '-o', str(tmp_path / 'r'))
-    assert regex.code == 1 and 'Invalid regular expression' in regex.err
-    assert not (tmp_path / 'r').exists() and not (tmp_path / 'x').exists()
+    assert "Cannot create" in under_file.err
+    regex = run_process("bag", "record", "-e", "(", "-o", str(tmp_path / "r"))
+    assert regex.code == 1 and "Invalid regular expression" in regex.err
+    assert not (tmp_path / "r").exists() and not (tmp_path / "x").exists()
