@@ -224,3 +224,81 @@ def test_bad_options_and_paths(tmp_path: Path, ros_router: str) -> None:
     regex = run_process("bag", "record", "-e", "(", "-o", str(tmp_path / "r"))
     assert regex.code == 1 and "Invalid regular expression" in regex.err
     assert not (tmp_path / "r").exists() and not (tmp_path / "x").exists()
+
+
+def test_start_paused_and_no_discovery_record_nothing(
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str
+) -> None:
+    early = node.create_publisher(String, topic, KEEP_ALL)
+    paused = recording(tmp_path / 'paused', '--topics', topic, '--start-paused')
+    blind = recording(tmp_path / 'blind', '-e', f'^{topic}/late', '--no-discovery')
+    wait_until(lambda: subscribed(ros_context, topic), timeout=20)
+    time.sleep(0.5)
+    late = node.create_publisher(String, f'{topic}/late', KEEP_ALL)
+    time.sleep(0.5)
+    publish_all(early, 10)
+    publish_all(late, 10)
+    time.sleep(0.5)
+    code, _out, err = paused.finish()
+    assert code == 0 and 'Wait for recording: Press SPACE to start.' in err
+    assert blind.finish()[0] == 0
+    for bag in ('paused', 'blind'):
+        with Reader(tmp_path / bag) as reader:
+            assert reader.message_count == 0
+
+
+def test_types_unknown_here_are_recorded_and_played_as_bytes(
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any, listener: Any, topic: str
+) -> None:
+    from ros2lite.bag.definitions import type_ref
+
+    alien = type_ref('alien_msgs/msg/Probe', 'RIHS01_' + '5a' * 32)
+    pub = node.create_publisher(alien, topic, KEEP_ALL)
+    rec = recording(tmp_path / 'bag', '--topics', topic)
+    wait_until(lambda: subscribed(ros_context, topic), timeout=20)
+    blobs = [bytes([0, 1, 0, 0, i, i, i, i]) for i in range(5)]
+    for blob in blobs:
+        pub.publish(blob)
+    time.sleep(0.5)
+    code, _out, err = rec.finish()
+    assert code == 0, err
+    with Reader(tmp_path / 'bag') as bag:
+        meta = bag.topic(topic)
+        assert meta is not None and meta.type == 'alien_msgs/msg/Probe'
+        assert meta.type_description_hash == 'RIHS01_' + '5a' * 32
+        assert [m for _, m, _ in bag] == blobs  # no definition anywhere: bytes
+    node.destroy_publisher(pub)
+    lst = listener(topic, alien, raw=True)
+    wait_until(lambda: subscribed(ros_context, topic))
+    result = play(str(tmp_path / 'bag'))
+    assert result.returncode == 0, result.stderr
+    wait_until(lambda: len(lst.messages) == 5)
+    assert lst.messages == blobs
+
+
+def test_use_sim_time_stamps_with_clock(
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str
+) -> None:
+    clock_type = get_interface('rosgraph_msgs/msg/Clock')
+    clock = node.create_publisher(clock_type, '/clock', 10)
+    pub = node.create_publisher(String, topic, KEEP_ALL)
+    rec = recording(tmp_path / 'bag', '--topics', topic, '--use-sim-time')
+    sim = clock_type()
+    sim.clock.sec = 1000
+
+    def tick() -> bool:
+        clock.publish(sim)
+        return subscribed(ros_context, topic)
+
+    wait_until(tick, timeout=20, interval=0.05)
+    for _ in range(5):
+        clock.publish(sim)
+        time.sleep(0.05)
+    publish_all(pub, 5)
+    time.sleep(0.5)
+    code, _out, err = rec.finish()
+    assert code == 0, err
+    assert 'use_sim_time set, waiting for /clock before starting recording...' in err
+    with Reader(tmp_path / 'bag') as bag:
+        stamps = [t for _, _, t in bag]
+    assert len(stamps) == 5 and all(t == 1000 * 10**9 for t in stamps)
