@@ -131,3 +131,53 @@ def test_bad_bags_are_one_line_errors(tmp_path: Path, ros_router: str) -> None:
     assert corrupt.stderr.startswith("[ERROR] [ros2bag]:")
     rate = play(str(tmp_path / "bad.mcap"), "-r", "0")
     assert rate.returncode == 2 and "Traceback" not in rate.stderr
+
+
+def test_recorded_qos_and_overrides_reach_the_publishers(
+    tmp_path: Path, ros_context: Any, topic: str
+) -> None:
+    from ros2lite.graph import snapshot
+    from ros2lite.transport.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+
+    latched = QoSProfile(durability=DurabilityPolicy.TRANSIENT_LOCAL, depth=4)
+    with Writer(tmp_path / "bag") as bag:
+        for name in (f"{topic}/latched", f"{topic}/plain"):
+            bag.create_topic(name, "std_msgs/msg/String", offered_qos_profiles=[latched])
+            for i in range(3):
+                bag.write(name, String(data="x"), T0 + i * STEP)
+    overrides = tmp_path / "qos.yaml"
+    overrides.write_text(f"{topic}/plain:\n  reliability: best_effort\n  depth: 3\n")
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "ros2lite",
+            "bag",
+            "play",
+            str(tmp_path / "bag"),
+            "-l",
+            "--qos-profile-overrides-path",
+            str(overrides),
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+
+    def publishers() -> dict[str, Any]:
+        return {
+            e.topic_name: e.qos
+            for e in snapshot(ros_context.session, ros_context.domain_id)
+            if e.kind.value == "MP" and (e.topic_name or "").startswith(topic)
+        }
+
+    try:
+        found = wait_until(lambda: len(publishers()) == 2 and publishers(), timeout=20)
+    finally:
+        proc.send_signal(signal.SIGINT)
+        proc.communicate(timeout=10)
+    assert found[f"{topic}/latched"].durability == DurabilityPolicy.TRANSIENT_LOCAL
+    assert found[f"{topic}/latched"].reliability == ReliabilityPolicy.RELIABLE
+    assert found[f"{topic}/plain"].reliability == ReliabilityPolicy.BEST_EFFORT
+    assert found[f"{topic}/plain"].durability == DurabilityPolicy.VOLATILE
+    assert found[f"{topic}/plain"].depth == 3

@@ -230,19 +230,19 @@ def test_start_paused_and_no_discovery_record_nothing(
     tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str
 ) -> None:
     early = node.create_publisher(String, topic, KEEP_ALL)
-    paused = recording(tmp_path / 'paused', '--topics', topic, '--start-paused')
-    blind = recording(tmp_path / 'blind', '-e', f'^{topic}/late', '--no-discovery')
+    paused = recording(tmp_path / "paused", "--topics", topic, "--start-paused")
+    blind = recording(tmp_path / "blind", "-e", f"^{topic}/late", "--no-discovery")
     wait_until(lambda: subscribed(ros_context, topic), timeout=20)
     time.sleep(0.5)
-    late = node.create_publisher(String, f'{topic}/late', KEEP_ALL)
+    late = node.create_publisher(String, f"{topic}/late", KEEP_ALL)
     time.sleep(0.5)
     publish_all(early, 10)
     publish_all(late, 10)
     time.sleep(0.5)
     code, _out, err = paused.finish()
-    assert code == 0 and 'Wait for recording: Press SPACE to start.' in err
+    assert code == 0 and "Wait for recording: Press SPACE to start." in err
     assert blind.finish()[0] == 0
-    for bag in ('paused', 'blind'):
+    for bag in ("paused", "blind"):
         with Reader(tmp_path / bag) as reader:
             assert reader.message_count == 0
 
@@ -252,9 +252,9 @@ def test_types_unknown_here_are_recorded_and_played_as_bytes(
 ) -> None:
     from ros2lite.bag.definitions import type_ref
 
-    alien = type_ref('alien_msgs/msg/Probe', 'RIHS01_' + '5a' * 32)
+    alien = type_ref("alien_msgs/msg/Probe", "RIHS01_" + "5a" * 32)
     pub = node.create_publisher(alien, topic, KEEP_ALL)
-    rec = recording(tmp_path / 'bag', '--topics', topic)
+    rec = recording(tmp_path / "bag", "--topics", topic)
     wait_until(lambda: subscribed(ros_context, topic), timeout=20)
     blobs = [bytes([0, 1, 0, 0, i, i, i, i]) for i in range(5)]
     for blob in blobs:
@@ -262,15 +262,15 @@ def test_types_unknown_here_are_recorded_and_played_as_bytes(
     time.sleep(0.5)
     code, _out, err = rec.finish()
     assert code == 0, err
-    with Reader(tmp_path / 'bag') as bag:
+    with Reader(tmp_path / "bag") as bag:
         meta = bag.topic(topic)
-        assert meta is not None and meta.type == 'alien_msgs/msg/Probe'
-        assert meta.type_description_hash == 'RIHS01_' + '5a' * 32
+        assert meta is not None and meta.type == "alien_msgs/msg/Probe"
+        assert meta.type_description_hash == "RIHS01_" + "5a" * 32
         assert [m for _, m, _ in bag] == blobs  # no definition anywhere: bytes
     node.destroy_publisher(pub)
     lst = listener(topic, alien, raw=True)
     wait_until(lambda: subscribed(ros_context, topic))
-    result = play(str(tmp_path / 'bag'))
+    result = play(str(tmp_path / "bag"))
     assert result.returncode == 0, result.stderr
     wait_until(lambda: len(lst.messages) == 5)
     assert lst.messages == blobs
@@ -279,10 +279,10 @@ def test_types_unknown_here_are_recorded_and_played_as_bytes(
 def test_use_sim_time_stamps_with_clock(
     tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str
 ) -> None:
-    clock_type = get_interface('rosgraph_msgs/msg/Clock')
-    clock = node.create_publisher(clock_type, '/clock', 10)
+    clock_type = get_interface("rosgraph_msgs/msg/Clock")
+    clock = node.create_publisher(clock_type, "/clock", 10)
     pub = node.create_publisher(String, topic, KEEP_ALL)
-    rec = recording(tmp_path / 'bag', '--topics', topic, '--use-sim-time')
+    rec = recording(tmp_path / "bag", "--topics", topic, "--use-sim-time")
     sim = clock_type()
     sim.clock.sec = 1000
 
@@ -298,7 +298,66 @@ def test_use_sim_time_stamps_with_clock(
     time.sleep(0.5)
     code, _out, err = rec.finish()
     assert code == 0, err
-    assert 'use_sim_time set, waiting for /clock before starting recording...' in err
-    with Reader(tmp_path / 'bag') as bag:
+    assert "use_sim_time set, waiting for /clock before starting recording..." in err
+    with Reader(tmp_path / "bag") as bag:
         stamps = [t for _, _, t in bag]
     assert len(stamps) == 5 and all(t == 1000 * 10**9 for t in stamps)
+
+
+def test_topic_types_hidden_topics_and_qos_overrides(
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str
+) -> None:
+    overrides = tmp_path / "qos.yaml"
+    overrides.write_text(
+        f"{topic}/typed:\n  reliability: best_effort\n  history: keep_last\n  depth: 7\n"
+    )
+    Int32 = get_interface("std_msgs/msg/Int32")
+    typed = node.create_publisher(Int32, f"{topic}/typed", KEEP_ALL)
+    hidden = node.create_publisher(String, f"{topic}/_hidden", KEEP_ALL)
+    other = node.create_publisher(String, f"{topic}/other", KEEP_ALL)
+    rec = recording(
+        tmp_path / "bag",
+        "--topic-types",
+        "std_msgs/msg/Int32",
+        "-e",
+        f"^{topic}/_",
+        "--include-hidden-topics",
+        "--qos-profile-overrides-path",
+        str(overrides),
+    )
+    wait_until(lambda: subscribed(ros_context, f"{topic}/_hidden"), timeout=20)
+    wait_until(lambda: subscribed(ros_context, f"{topic}/typed"), timeout=20)
+    from ros2lite.graph import snapshot
+    from ros2lite.transport.qos import ReliabilityPolicy
+
+    subs = [
+        e
+        for e in snapshot(ros_context.session, ros_context.domain_id)
+        if e.kind.value == "MS" and e.topic_name == f"{topic}/typed"
+    ]
+    assert subs[0].qos.reliability == ReliabilityPolicy.BEST_EFFORT and subs[0].qos.depth == 7
+    for i in range(5):
+        typed.publish(Int32(data=i))
+    publish_all(hidden, 5)
+    publish_all(other, 5)
+    time.sleep(0.5)
+    code, _out, err = rec.finish()
+    assert code == 0, err
+    with Reader(tmp_path / "bag") as bag:
+        assert sorted(t.name for t in bag.topics) == [f"{topic}/_hidden", f"{topic}/typed"]
+        assert [m.data for t, m, _ in bag if t.endswith("typed")] == list(range(5))
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("/x:\n  colour: red\n")
+    result = run_process(
+        "bag",
+        "record",
+        "-a",
+        "--qos-profile-overrides-path",
+        str(bad),
+        "-o",
+        str(tmp_path / "never"),
+    )
+    assert (result.code, result.err) == (
+        1,
+        "[ERROR] [ros2bag]: Unexpected key `colour` for QoS profile.\n",
+    )
