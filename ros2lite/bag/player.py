@@ -24,7 +24,12 @@ from typing import Any
 
 from ros2lite.bag.metadata import TopicMetadata
 from ros2lite.bag.reader import Reader
-from ros2lite.transport.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from ros2lite.transport.qos import (
+    DurabilityPolicy,
+    HistoryPolicy,
+    QoSProfile,
+    ReliabilityPolicy,
+)
 
 __all__ = ["PlayOptions", "Player", "playback_qos"]
 
@@ -55,15 +60,18 @@ class PlayOptions:
 
 def playback_qos(offered: list[QoSProfile]) -> QoSProfile:
     """rosbag2's choice: the recorded publishers' reliability and durability when all of
-    them agree on the stronger one, keep-last at least 10 deep."""
+    them agree on the stronger one, keep-last at least 10 deep; keep-all when every one of
+    them kept all (so Zenoh blocks rather than drops, as it did for the originals)."""
     if not offered:
         return QoSProfile()
     reliable = all(q.reliability == ReliabilityPolicy.RELIABLE for q in offered)
     latched = all(q.durability == DurabilityPolicy.TRANSIENT_LOCAL for q in offered)
+    keep_all = all(q.history == HistoryPolicy.KEEP_ALL for q in offered)
     depth = max([10] + [q.depth for q in offered])
     return QoSProfile(
         reliability=ReliabilityPolicy.RELIABLE if reliable else ReliabilityPolicy.BEST_EFFORT,
         durability=DurabilityPolicy.TRANSIENT_LOCAL if latched else DurabilityPolicy.VOLATILE,
+        history=HistoryPolicy.KEEP_ALL if keep_all else HistoryPolicy.KEEP_LAST,
         depth=depth,
     )
 

@@ -344,13 +344,13 @@ class Recorder:
                 write_raw(tid, data, received, sent)
                 stats[tid].written_bytes += len(data)
                 dirty = True
-        except (BagError, OSError) as e:
+        except Exception as e:  # a full disk, or anything else: recording ends, loudly
             self._fail(e)
             queue.clear()
 
     def _fail(self, e: BaseException) -> None:
         if self.error is None:
-            self.error = e if isinstance(e, BagError) else BagError(str(e))
+            self.error = e if isinstance(e, BagError) else BagError(str(e) or type(e).__name__)
 
 
 def select_topics(names: Iterable[str]) -> list[str]:

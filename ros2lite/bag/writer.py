@@ -186,22 +186,43 @@ class Writer:
             return
         self._closed = True
         storage, self._storage = self._storage, None
-        try:
-            if storage is not None:
+        if storage is not None:
+            try:
                 storage.close(self.metadata())
-        finally:
-            write_metadata_file(self.path, self.metadata())
+            except BagError:
+                storage.abandon()
+                self._write_metadata_from_disk()
+                raise
+        write_metadata_file(self.path, self.metadata())
 
     def abandon(self) -> None:
-        """Give up after a write error: keep what reached the disk, write metadata if we
-        still can (reindex recovers the rest)."""
+        """Give up after a write error: keep what reached the disk and describe exactly
+        that in metadata.yaml, if it can still be written."""
         if self._closed:
             return
         self._closed = True
         if self._storage is not None:
             self._storage.abandon()
-        with contextlib.suppress(OSError):
-            write_metadata_file(self.path, self.metadata())
+        self._write_metadata_from_disk()
+
+    def _write_metadata_from_disk(self) -> None:
+        # after a failed write the counts in memory include messages that never reached
+        # the file, so the metadata is read back from the files themselves
+        from ros2lite.bag.reader import metadata_from_files
+        from ros2lite.bag.storage.mcap import McapStorageReader
+
+        with contextlib.suppress(Exception):
+            summaries = []
+            for f in self._files:
+                reader = McapStorageReader(str(self.path / f.path))
+                try:
+                    summaries.append(reader.summary())
+                finally:
+                    reader.close()
+            meta = metadata_from_files([f.path for f in self._files], summaries, "mcap")
+            meta.custom_data = self.custom_data
+            meta.ros_distro = self.metadata().ros_distro
+            write_metadata_file(self.path, meta)
 
     def discard(self) -> None:
         """Remove the bag again (nothing was recorded: e.g. no graph to record from)."""

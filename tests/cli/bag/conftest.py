@@ -7,7 +7,6 @@ import signal
 import subprocess
 import sys
 import threading
-import time
 import uuid
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -82,18 +81,16 @@ class Listener:
     def __init__(self, ctx: Any, topic: str, type_name: Any, qos: Any, raw: bool) -> None:
         self.node = Node(f"bag_listener_{uuid.uuid4().hex[:6]}", context=ctx, enable_rosout=False)
         self.messages: list[Any] = []
-        self.arrivals: list[float] = []  # monotonic time each message was taken
+        self.arrivals: list[int] = []  # raw only: when each sample arrived (ns, wall clock)
 
-        def keep(message: Any) -> None:
-            self.arrivals.append(time.monotonic())
-            self.messages.append(message)
+        def keep(data: bytes, info: Any) -> None:
+            self.arrivals.append(info.received_timestamp)
+            self.messages.append(data)
 
         if raw:
-            self.node.create_subscription(
-                type_name, topic, lambda data, _info: keep(data), qos, raw=True
-            )
+            self.node.create_subscription(type_name, topic, keep, qos, raw=True)
         else:
-            self.node.create_subscription(type_name, topic, keep, qos)
+            self.node.create_subscription(type_name, topic, self.messages.append, qos)
         self._executor = SingleThreadedExecutor(context=ctx)
         self._executor.add_node(self.node)
         self._stop = threading.Event()

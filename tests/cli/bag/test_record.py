@@ -53,7 +53,7 @@ def test_record_then_play_round_trip(
     qos = meta.topic(topic).topic_metadata.offered_qos_profiles  # type: ignore[union-attr]
     assert qos[0].history == HistoryPolicy.KEEP_ALL
     # …and back out through `bag play` to a subscriber
-    lst = listener(topic, String, 1000)
+    lst = listener(topic, String, KEEP_ALL)
     wait_until(lambda: subscribed(ros_context, topic), timeout=10)
     result = play(str(tmp_path / "bag"), "-r", "20")
     assert result.returncode == 0, result.stderr
@@ -205,6 +205,7 @@ def test_full_disk_is_one_error_and_keeps_what_was_written(
     assert "Traceback" not in err
     with Reader(tmp_path / "bag") as bag:
         got = [m.data for _, m, _ in bag]
+        assert bag.message_count == len(got)  # metadata.yaml says what the file holds
     assert got[:20] == [f"early {i}" for i in range(20)]
 
 
