@@ -105,7 +105,6 @@ class Recorder:
         self._paused = options.start_paused
         self._running = False
         self._stopping = False
-        self._accepting = True
         self._lock = threading.Lock()  # subscribe vs stop
         self._writer_thread: threading.Thread | None = None
         self._discovery_thread: threading.Thread | None = None
@@ -164,11 +163,12 @@ class Recorder:
         with self._lock:
             if self._stopping:
                 return
-            self._stopping = True
-            self._accepting = False
+            self._stopping = True  # no new subscriptions from here on
         self._discovery_done.set()
         if self._discovery_thread is not None:
             self._discovery_thread.join(timeout=5)
+        # samples keep being queued until each subscription is gone (its receive thread is
+        # joined), so everything that reached this process gets written
         for sub in self._subscriptions:
             # the session may be gone already: then nothing more arrives anyway
             with contextlib.suppress(Exception):
@@ -271,7 +271,7 @@ class Recorder:
 
             msg_type = type_ref(type_name, next(iter(hashes)))
         with self._lock:
-            if not self._accepting:
+            if self._stopping:
                 return
             try:
                 tid = self.writer.create_topic(
@@ -299,7 +299,7 @@ class Recorder:
         clock = self._clock
 
         def receive(data: bytes, attachment: bytes, received: int) -> None:
-            if self._paused or not self._accepting:
+            if self._paused:
                 return
             if clock.ros_time_is_active:  # --use-sim-time and /clock is ticking
                 received = clock.now().nanoseconds
