@@ -17,6 +17,16 @@ from typing import Any
 _ARROWS = {b"\x1b[A": "up", b"\x1b[B": "down", b"\x1b[C": "right", b"\x1b[D": "left"}
 
 
+def available() -> bool:
+    """stdin is a terminal and we are its foreground job (changing the terminal mode from
+    a background job would stop the process with SIGTTOU)."""
+    try:
+        fd = sys.stdin.fileno()
+        return os.isatty(fd) and os.tcgetpgrp(fd) == os.getpgrp()
+    except (OSError, ValueError, AttributeError):
+        return False
+
+
 class Keyboard:
     """Calls `handlers[key]()` from a background thread for each key pressed."""
 

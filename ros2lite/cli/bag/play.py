@@ -183,7 +183,9 @@ def _play(player: Any, log: Any, keyboard: bool) -> None:
     from ros2lite.bag.storage import BagError
 
     keys = None
-    tty = sys.stdin.isatty() and sys.stderr.isatty()
+    from . import keyboard as keys_module
+
+    tty = keys_module.available() and sys.stderr.isatty()
     if keyboard and tty:
         from .keyboard import Keyboard
 

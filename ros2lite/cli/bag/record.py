@@ -341,7 +341,9 @@ def _record(
     status = _LiveStatus(recorder) if sys.stdout.isatty() and "NO_COLOR" not in os.environ else None
     with _StopSignals() as stop:
         keys = None
-        if keyboard and sys.stdin.isatty():
+        from . import keyboard as keys_module
+
+        if keyboard and keys_module.available():
             from .keyboard import Keyboard
 
             log.info("Press SPACE for pausing/resuming")
