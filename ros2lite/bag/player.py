@@ -318,7 +318,10 @@ class Player:
         lateness = self.lateness if self.options.record_timing else None
         try:
             while not self._stopped:
-                item = ahead.get()
+                try:
+                    item = ahead.get(timeout=0.1)
+                except queue.Empty:
+                    continue  # starved (or stopping: the reader then puts nothing more)
                 if item is _END:
                     return
                 if isinstance(item, BaseException):

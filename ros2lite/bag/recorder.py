@@ -20,7 +20,7 @@ import struct
 import threading
 import time
 from collections import deque
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -156,6 +156,7 @@ class Recorder:
         return self._running and self.error is None
 
     def queued(self) -> int:
+        """Messages received and not written yet."""
         return len(self._queue)
 
     def stop(self) -> None:
@@ -351,8 +352,3 @@ class Recorder:
     def _fail(self, e: BaseException) -> None:
         if self.error is None:
             self.error = e if isinstance(e, BagError) else BagError(str(e) or type(e).__name__)
-
-
-def select_topics(names: Iterable[str]) -> list[str]:
-    """Topic names as given, duplicates dropped, order kept."""
-    return list(dict.fromkeys(names))
