@@ -361,3 +361,37 @@ def test_topic_types_hidden_topics_and_qos_overrides(
         1,
         "[ERROR] [ros2bag]: Unexpected key `colour` for QoS profile.\n",
     )
+
+
+def test_sigint_under_load_keeps_a_gapless_prefix(
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str
+) -> None:
+    import threading
+
+    pub = node.create_publisher(String, topic, KEEP_ALL)
+    rec = recording(tmp_path / "bag", "--topics", topic)
+    wait_until(lambda: subscribed(ros_context, topic), timeout=20)
+    stop = threading.Event()
+    sent: list[str] = []
+
+    def flood() -> None:
+        i = 0
+        while not stop.is_set():
+            text = f"{i}"
+            pub.publish(String(data=text))
+            sent.append(text)
+            i += 1
+            if i % 200 == 0:
+                time.sleep(0.001)
+
+    thread = threading.Thread(target=flood, daemon=True)
+    thread.start()
+    time.sleep(1.0)
+    code, _out, err = rec.finish(signal.SIGINT)  # while messages are still pouring in
+    stop.set()
+    thread.join(5)
+    assert code == 0, err
+    with Reader(tmp_path / "bag") as bag:
+        got = [m.data for _, m, _ in bag]
+    assert len(got) > 100
+    assert got == sent[: len(got)]  # everything received up to the stop, no gaps
