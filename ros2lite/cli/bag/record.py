@@ -334,7 +334,7 @@ def _record(
     )
     executor = None
     if use_sim_time:
-        from ros2lite.executor import SingleThreadedExecutor
+        from ros2lite.executors import SingleThreadedExecutor
 
         executor = SingleThreadedExecutor(context=session.context)
         executor.add_node(node)
