@@ -17,7 +17,7 @@ from typing import Any
 __version__ = '0.1.0'
 
 _EXPORTS = {
-    'Node': 'ros2lite.node', 'Parameter': 'ros2lite.node',
+    'Node': 'ros2lite.node', 'Parameter': 'ros2lite.parameter',
     'Context': 'ros2lite.context', 'default_context': 'ros2lite.context',
     'SingleThreadedExecutor': 'ros2lite.executor', 'Future': 'ros2lite.executor',
     'ExternalShutdownException': 'ros2lite.executor',
