@@ -16,6 +16,7 @@ from typing import Any
 def run_node(make_node: Callable[[], Any], args: list[str] | None = None) -> int:
     """Spin the node `make_node()` builds until Ctrl-C or shutdown; returns the exit status."""
     import ros2lite
+    from ros2lite.exceptions import ParameterException
     from ros2lite.executor import ExternalShutdownException
     from ros2lite.transport.config import SessionError
     try:
@@ -24,7 +25,7 @@ def run_node(make_node: Callable[[], Any], args: list[str] | None = None) -> int
             ros2lite.spin(node)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
-    except (SessionError, ValueError) as e:
+    except (SessionError, ValueError, ParameterException) as e:
         print(str(e), file=sys.stderr, flush=True)
         return 1
     return 0

@@ -31,6 +31,7 @@ ENTRY_POINT_GROUP = 'ros2lite.executables'
 BUNDLED: dict[str, dict[str, str]] = {
     'demo_nodes_py': {
         'listener': 'ros2lite.demos.demo_nodes_py.listener:main',
+        'parameter_blackboard': 'ros2lite.demos.demo_nodes_py.parameter_blackboard:main',
         'talker': 'ros2lite.demos.demo_nodes_py.talker:main',
     },
 }

@@ -1,0 +1,81 @@
+"""What the `param` verbs share: their options, finding the node, and type names."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+import click
+
+from .. import completion
+from ..common import CliSession, strategy_options
+from ..errors import CliError
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+# rcl_interfaces/msg/ParameterType number → how ros2cli names it
+TYPE_NAMES = {
+    0: "not set",
+    1: "boolean",
+    2: "integer",
+    3: "double",
+    4: "string",
+    5: "byte array",
+    6: "boolean array",
+    7: "integer array",
+    8: "double array",
+    9: "string array",
+}
+
+
+def node_options(*, timeout: bool = True, node_required: bool = True) -> Callable[[F], F]:
+    """node_name, --include-hidden-nodes, the strategy options and (but for list) --timeout."""
+
+    def decorate(fn: F) -> F:
+        if timeout:
+            fn = click.option(
+                "--service-timeout",
+                metavar="N",
+                type=float,
+                default=None,
+                help="Maximum time to wait for service response in seconds "
+                "(default: waits indefinitely)",
+            )(fn)
+            fn = click.option(
+                "--timeout",
+                metavar="N",
+                type=int,
+                default=1,
+                show_default=True,
+                help="Wait for N seconds until node becomes available",
+            )(fn)
+        fn = click.option(
+            "--include-hidden-nodes", is_flag=True, help="Consider hidden nodes as well"
+        )(fn)
+        fn = click.argument("node_name", required=node_required, shell_complete=completion.nodes)(
+            fn
+        )
+        return strategy_options()(fn)
+
+    return decorate
+
+
+def connect(session: CliSession, node_name: str, include_hidden_nodes: bool, timeout: float) -> Any:
+    """The remote node's parameters, once the node is in the graph (else 'Node not found')."""
+    from ros2lite.graph import node_full_names
+    from ros2lite.parameters.remote import RemoteParameters, absolute_node_name, wait_for_node
+
+    fqn = absolute_node_name(node_name)
+    found = wait_for_node(
+        lambda: node_full_names(session.entities(), include_hidden=True),
+        fqn,
+        include_hidden_nodes,
+        timeout,
+    )
+    if not found:
+        raise CliError("Node not found")
+    return RemoteParameters(session.node(), fqn)
+
+
+def type_name(type_number: int) -> str:
+    return TYPE_NAMES.get(type_number, f"unknown ({type_number})")
