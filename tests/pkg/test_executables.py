@@ -50,7 +50,7 @@ def make_entry_points(root: Path, entries: dict[str, str]) -> Path:
 
 def test_bundled_demos() -> None:
     exes = get_executables('demo_nodes_py')
-    assert [e.name for e in exes] == ['listener', 'talker']
+    assert [e.name for e in exes] == ['listener', 'parameter_blackboard', 'talker']
     talker = find_executable('demo_nodes_py', 'talker')
     assert talker is not None and talker.origin == 'bundled' and talker.is_python
     assert find_executable('demo_nodes_py', 'nope') is None
