@@ -163,8 +163,9 @@ def parameter_value_to_python(parameter_value: Any) -> Any:
 def get_parameter_value(string_value: str) -> Any:
     """The ParameterValue a command-line string stands for, typed the YAML way.
 
-    Lists of one element type become arrays; anything else (mixed lists, maps, plain text)
-    stays the string as written — what `ros2 param set` sends.
+    Lists of one element type become arrays; a YAML string is that string (so "'5'" is the
+    text 5); anything else (mixed lists, maps, null) is the text as written — what rclpy's
+    `ros2 param set` sends.
     """
     import yaml
 
@@ -178,7 +179,8 @@ def get_parameter_value(string_value: str) -> Any:
         isinstance(loaded, list) and any(_every(loaded, k) for k in (bool, int, float, str))
     ):
         return Parameter("", value=loaded).get_parameter_value()
-    return _msg("ParameterValue")(type=Parameter.Type.STRING.value, string_value=string_value)
+    text = loaded if isinstance(loaded, str) else string_value
+    return _msg("ParameterValue")(type=Parameter.Type.STRING.value, string_value=text)
 
 
 __all__ = [

@@ -50,7 +50,8 @@ def test_message_round_trip_over_cdr(value: object) -> None:
     ('hello', T.STRING, 'hello'), ('[1, 2]', T.INTEGER_ARRAY, [1, 2]),
     ('[1.0, 2.5]', T.DOUBLE_ARRAY, [1.0, 2.5]), ('[a, b]', T.STRING_ARRAY, ['a', 'b']),
     ('[true, false]', T.BOOL_ARRAY, [True, False]), ('[1, a]', T.STRING, '[1, a]'),
-    ('{a: 1}', T.STRING, '{a: 1}'), ("'3'", T.STRING, "'3'"), ('[', T.STRING, '['),
+    ('{a: 1}', T.STRING, '{a: 1}'), ("'3'", T.STRING, '3'), ('~', T.STRING, '~'),
+    ('[', T.STRING, '['),
 ])
 def test_command_line_values(text: str, type_: Parameter.Type, python: object) -> None:
     value = get_parameter_value(text)
