@@ -17,7 +17,7 @@ def run_node(make_node: Callable[[], Any], args: list[str] | None = None) -> int
     """Spin the node `make_node()` builds until Ctrl-C or shutdown; returns the exit status."""
     import ros2lite
     from ros2lite.exceptions import ParameterException
-    from ros2lite.executor import ExternalShutdownException
+    from ros2lite.executors import ExternalShutdownException
     from ros2lite.transport.config import SessionError
     try:
         with ros2lite.init(args=args):

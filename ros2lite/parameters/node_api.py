@@ -64,8 +64,6 @@ class ParameterMixin:
     def _start_parameter_services(self) -> None:
         from ros2lite.parameters.services import ParameterService
 
-        if not hasattr(self, "create_service"):  # TEMPORARY until the Core merge
-            return
         self._parameter_service = ParameterService(self)
 
     def _on_use_sim_time_set(self, parameters: list[Parameter]) -> None:

@@ -91,12 +91,14 @@ class RemoteParameters:
             raise ParameterServiceError(
                 f"Wait for service timed out waiting for parameter services for node {self.fqn}"
             )
+        from ros2lite.client import ServiceCallError
+
         request = _srv(service).Request(**fields)
         try:
             return self._client(service).call(request, timeout_sec=self.service_timeout)
-        except TimeoutError:
+        except (TimeoutError, ServiceCallError) as e:
             raise ParameterServiceError(
-                f"Exception while calling service of node '{self.fqn}': timed out"
+                f"Exception while calling service of node '{self.fqn}': {e}"
             ) from None
 
     # -- the six services ------------------------------------------------------------------

@@ -82,7 +82,7 @@ def test_use_sim_time_is_a_checked_parameter(ros_context: Any) -> None:
 
 
 def test_parameter_events(ros_context: Any) -> None:
-    from ros2lite.executor import SingleThreadedExecutor
+    from ros2lite.executors import SingleThreadedExecutor
     listener = Node('event_listener', context=ros_context)
     events: list[Any] = []
     listener.create_subscription(ParameterEvent, '/parameter_events',
