@@ -60,6 +60,37 @@ def node_options(*, timeout: bool = True, node_required: bool = True) -> Callabl
     return decorate
 
 
+class GreedyOption(click.Option):
+    """An option that takes every following word up to the next option, like argparse's
+    `nargs='+'` (`--param-prefixes a b`); repeating the option adds more."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.update(multiple=True, type=click.UNPROCESSED)
+        super().__init__(*args, **kwargs)
+
+    def add_to_parser(self, parser: Any, ctx: click.Context) -> None:
+        super().add_to_parser(parser, ctx)
+        for name in self.opts:
+            option = parser._long_opt.get(name) or parser._short_opt.get(name)
+            if option is None:
+                continue
+            original = option.process
+
+            def process(value: Any, state: Any, original: Any = original) -> None:
+                words = [value]
+                while state.rargs and not state.rargs[0].startswith("-"):
+                    words.append(state.rargs.pop(0))
+                original(tuple(words), state)
+
+            option.process = process
+
+    def type_cast_value(self, ctx: click.Context, value: Any) -> Any:
+        # (('a', 'b'), ('c',)) from two uses → ('a', 'b', 'c')
+        return tuple(
+            w for group in value or () for w in (group if isinstance(group, tuple) else (group,))
+        )
+
+
 def connect(session: CliSession, node_name: str, include_hidden_nodes: bool, timeout: float) -> Any:
     """The remote node's parameters, once the node is in the graph (else 'Node not found')."""
     from ros2lite.graph import node_full_names

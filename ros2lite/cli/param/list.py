@@ -8,7 +8,7 @@ import click
 
 from ..common import CliSession
 from ..errors import CliError
-from .common import node_options, type_name
+from .common import GreedyOption, node_options, type_name
 
 
 @click.command("list")
@@ -21,9 +21,9 @@ from .common import node_options, type_name
 )
 @click.option(
     "--param-prefixes",
-    multiple=True,
-    metavar="PREFIX",
-    help="Only list parameters with the provided prefixes (repeatable)",
+    cls=GreedyOption,
+    metavar="PREFIX...",
+    help="Only list parameters with the provided prefixes",
 )
 @click.option("--param-type", is_flag=True, help="Print parameter types with parameter names")
 def cli(

@@ -31,6 +31,11 @@ def test_types_prefixes_and_filter(run: Callable[..., Result], target: str) -> N
     assert '  use_sim_time (type: boolean)' in typed
     assert run('param', 'list', target, '--param-prefixes', 'nested').out == \
         '  nested.deep.value\n'
+    # several prefixes after one flag, as argparse's nargs='+' takes them, before the node
+    assert run('param', 'list', '--param-prefixes', 'nested', 'use_sim_time', '--',
+               target).out == '  nested.deep.value\n  use_sim_time\n'
+    assert run('param', 'list', target, '--param-prefixes', 'nested', '--param-prefixes',
+               'fixed').out == '  fixed\n  nested.deep.value\n'
     assert run('param', 'list', target, '--filter', 'n.*s$').out == '  names\n'
     bad = run('param', 'list', target, '--filter', '(')
     assert bad.code == 1 and bad.err.startswith("Invalid regular expression '('")
