@@ -17,47 +17,69 @@ import time
 from bench_graph import _environment, _free_port
 from common import report, wall
 
-_ROUTER_CHILD = '''
+_ROUTER_CHILD = """
 import sys
 import zenoh
 from ros2lite.transport.config import router_config
 router = zenoh.open(router_config(sys.argv[1], env={}))
 print('ready', flush=True)
 sys.stdin.read()
-'''
+"""
 
 
 def bench_param_get() -> None:
-    endpoint = f'tcp/127.0.0.1:{_free_port()}'
+    endpoint = f"tcp/127.0.0.1:{_free_port()}"
     with tempfile.TemporaryDirectory() as runtime:
-        env = {**os.environ, 'ROS2LITE_ROUTER': endpoint, 'ROS_DOMAIN_ID': '218',
-               'XDG_RUNTIME_DIR': runtime, 'PYTHONPYCACHEPREFIX': os.path.join(runtime, 'pyc')}
-        for var in ('ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI',
-                    'ZENOH_ROUTER_CONFIG_URI', 'PYTHONDONTWRITEBYTECODE'):
+        env = {
+            **os.environ,
+            "ROS2LITE_ROUTER": endpoint,
+            "ROS_DOMAIN_ID": "218",
+            "XDG_RUNTIME_DIR": runtime,
+            "PYTHONPYCACHEPREFIX": os.path.join(runtime, "pyc"),
+        }
+        for var in (
+            "ZENOH_CONFIG_OVERRIDE",
+            "ZENOH_SESSION_CONFIG_URI",
+            "ZENOH_ROUTER_CONFIG_URI",
+            "PYTHONDONTWRITEBYTECODE",
+        ):
             env.pop(var, None)
-        router = subprocess.Popen([sys.executable, '-c', _ROUTER_CHILD, endpoint],
-                                  stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
-                                  env=env)
+        router = subprocess.Popen(
+            [sys.executable, "-c", _ROUTER_CHILD, endpoint],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            text=True,
+            env=env,
+        )
         node = None
         try:
-            assert router.stdout is not None and router.stdout.readline().strip() == 'ready'
+            assert router.stdout is not None and router.stdout.readline().strip() == "ready"
             node = subprocess.Popen(
-                [sys.executable, '-m', 'ros2lite.demos.demo_nodes_py.parameter_blackboard',
-                 '--ros-args', '-p', 'answer:=42'], env=env, stdout=subprocess.DEVNULL,
-                stderr=subprocess.DEVNULL)
-            exe = os.path.join(os.path.dirname(sys.executable), 'ros2lite')
-            cmd = [exe, 'param', 'get', '/parameter_blackboard', 'answer']
+                [
+                    sys.executable,
+                    "-m",
+                    "ros2lite.demos.demo_nodes_py.parameter_blackboard",
+                    "--ros-args",
+                    "-p",
+                    "answer:=42",
+                ],
+                env=env,
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )
+            exe = os.path.join(os.path.dirname(sys.executable), "ros2lite")
+            cmd = [exe, "param", "get", "/parameter_blackboard", "answer"]
             deadline = time.monotonic() + 15
-            while True:   # sanity: the node answers before we time it
+            while True:  # sanity: the node answers before we time it
                 out = subprocess.run(cmd, env=env, capture_output=True, text=True).stdout
-                if out == 'Integer value is: 42\n' or time.monotonic() > deadline:
+                if out == "Integer value is: 42\n" or time.monotonic() > deadline:
                     break
                 time.sleep(0.1)
-            assert out == 'Integer value is: 42\n', out
+            assert out == "Integer value is: 42\n", out
             with _environment(env):
                 ours = wall(cmd, runs=9)
-                wall([sys.executable, '-c', 'import click'], runs=1)
-                base = wall([sys.executable, '-c', 'import click'], runs=9)
+                wall([sys.executable, "-c", "import click"], runs=1)
+                base = wall([sys.executable, "-c", "import click"], runs=9)
         finally:
             for proc in (node, router):
                 if proc is not None:
@@ -65,7 +87,7 @@ def bench_param_get() -> None:
                         proc.stdin.close()
                     proc.terminate()
                     proc.wait(timeout=10)
-    report('param_get_wall', ours * 1000, 'ms', ours / base)
+    report("param_get_wall", ours * 1000, "ms", ours / base)
 
 
-BENCHES = {'param_get': bench_param_get}
+BENCHES = {"param_get": bench_param_get}

@@ -8,10 +8,10 @@ from collections.abc import Iterator
 
 import pytest
 
-TARGET = '/cli/param_target'
+TARGET = "/cli/param_target"
 
 # declares one parameter per kind, plus a range, a read-only one and a nested name
-TARGET_CODE = '''
+TARGET_CODE = """
 import sys
 import ros2lite
 from ros2lite.msgs.rcl_interfaces.msg import IntegerRange, FloatingPointRange, ParameterDescriptor
@@ -38,15 +38,19 @@ with ros2lite.init(args=sys.argv):
         ros2lite.spin(node)
     except KeyboardInterrupt:
         pass
-'''
+"""
 
 
 def start_target(name: str) -> subprocess.Popen[str]:
-    proc = subprocess.Popen([sys.executable, '-c', TARGET_CODE, name], text=True,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc = subprocess.Popen(
+        [sys.executable, "-c", TARGET_CODE, name],
+        text=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
     assert proc.stdout is not None
     line = proc.stdout.readline()
-    assert line == 'ready\n', proc.stderr.read() if proc.stderr else line
+    assert line == "ready\n", proc.stderr.read() if proc.stderr else line
     return proc
 
 
@@ -59,10 +63,10 @@ def stop(proc: subprocess.Popen[str]) -> None:
         proc.communicate()
 
 
-@pytest.fixture(scope='package')
+@pytest.fixture(scope="package")
 def target(ros_router: str) -> Iterator[str]:
     """`/cli/param_target`, shared by every test here: only read it."""
-    proc = start_target('param_target')
+    proc = start_target("param_target")
     try:
         yield TARGET
     finally:
@@ -72,8 +76,8 @@ def target(ros_router: str) -> Iterator[str]:
 @pytest.fixture
 def fresh_target(ros_router: str) -> Iterator[str]:
     """`/cli/param_scratch`, the same parameters, for one test that changes them."""
-    proc = start_target('param_scratch')
+    proc = start_target("param_scratch")
     try:
-        yield '/cli/param_scratch'
+        yield "/cli/param_scratch"
     finally:
         stop(proc)

@@ -9,25 +9,31 @@ import pytest
 from tests.cli.conftest import Result
 
 
-@pytest.mark.parametrize('name, line', [
-    ('flag', 'Boolean value is: True'), ('count', 'Integer value is: 5'),
-    ('ratio', 'Double value is: 1.5'), ('name', 'String value is: foo'),
-    ('names', "String values are: ['a', 'b']"), ('ints', 'Integer values are: [1, 2]'),
-    ('bools', 'Boolean values are: [True, False]'), ('doubles', 'Double values are: [0.5, 2.0]'),
-    ('nested.deep.value', 'Integer value is: 3'),
-])
-def test_values_and_labels(run: Callable[..., Result], target: str, name: str,
-                           line: str) -> None:
-    result = run('param', 'get', target, name)
-    assert (result.code, result.out, result.err) == (0, line + '\n', '')
+@pytest.mark.parametrize(
+    "name, line",
+    [
+        ("flag", "Boolean value is: True"),
+        ("count", "Integer value is: 5"),
+        ("ratio", "Double value is: 1.5"),
+        ("name", "String value is: foo"),
+        ("names", "String values are: ['a', 'b']"),
+        ("ints", "Integer values are: [1, 2]"),
+        ("bools", "Boolean values are: [True, False]"),
+        ("doubles", "Double values are: [0.5, 2.0]"),
+        ("nested.deep.value", "Integer value is: 3"),
+    ],
+)
+def test_values_and_labels(run: Callable[..., Result], target: str, name: str, line: str) -> None:
+    result = run("param", "get", target, name)
+    assert (result.code, result.out, result.err) == (0, line + "\n", "")
 
 
 def test_hide_type_and_relative_node_name(run: Callable[..., Result], target: str) -> None:
-    assert run('param', 'get', target.lstrip('/'), 'ints', '--hide-type').out == '[1, 2]\n'
+    assert run("param", "get", target.lstrip("/"), "ints", "--hide-type").out == "[1, 2]\n"
 
 
 def test_unknown_parameter_and_node(run: Callable[..., Result], target: str) -> None:
-    result = run('param', 'get', target, 'nope')
-    assert (result.code, result.out, result.err) == (1, '', 'Parameter not set\n')
-    result = run('param', 'get', '/cli/no_such_node', 'x', '--timeout', '0')
-    assert (result.code, result.out, result.err) == (1, '', 'Node not found\n')
+    result = run("param", "get", target, "nope")
+    assert (result.code, result.out, result.err) == (1, "", "Parameter not set\n")
+    result = run("param", "get", "/cli/no_such_node", "x", "--timeout", "0")
+    assert (result.code, result.out, result.err) == (1, "", "Node not found\n")
