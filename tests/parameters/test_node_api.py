@@ -80,7 +80,7 @@ def test_use_sim_time_is_a_checked_parameter(ros_context: Any) -> None:
     assert not node.get_clock().ros_time_is_active
     assert node.set_parameters([Parameter("use_sim_time", value=True)])[0].successful
     assert node.get_clock().ros_time_is_active
-    # a dynamically typed use_sim_time (auto-declared) still only takes booleans
+    # declared from an override, it is typed by the override's value
     auto = Node(
         "auto_clock",
         context=ros_context,
@@ -93,6 +93,16 @@ def test_use_sim_time_is_a_checked_parameter(ros_context: Any) -> None:
         False,
         "Wrong parameter type, expected 'Type.BOOL' got 'Type.STRING'",
     )
+    # undeclared and set again dynamically, it still only takes booleans
+    loose = Node("loose_clock", context=ros_context, allow_undeclared_parameters=True)
+    loose.undeclare_parameter("use_sim_time")
+    outcome = loose.set_parameters([Parameter("use_sim_time", value="yes")])[0]
+    assert (outcome.successful, outcome.reason) == (
+        False,
+        "use_sim_time parameter set to something besides a bool",
+    )
+    assert loose.set_parameters([Parameter("use_sim_time", value=True)])[0].successful
+    assert loose.get_clock().ros_time_is_active
     assert auto.get_clock().ros_time_is_active
 
 
