@@ -20,7 +20,7 @@ import queue
 import threading
 import time
 import weakref
-from collections.abc import Callable, Coroutine, Iterator
+from collections.abc import Callable, Coroutine
 from concurrent.futures import ThreadPoolExecutor
 from typing import TYPE_CHECKING, Any
 
@@ -74,6 +74,8 @@ class Executor:
         self._enqueue = self._queue.put
         # entities whose callback group was busy, re-queued when the group frees
         self._blocked: list[Executable] = []
+        # a due timer waits for its group: releasing a group must wake the loop
+        self._timer_waits = False
         self._is_shutdown = False
         self._spinning = 0
         self._context.add_executor(self)
@@ -194,10 +196,6 @@ class Executor:
         self.spin_once(timeout_sec)
 
     # -- finding work ----------------------------------------------------------------------------
-    def _timers(self) -> Iterator[Timer]:
-        for node in self.get_nodes():
-            yield from node.timers
-
     def _due_timer(self) -> tuple[Timer | None, float | None]:
         """A due timer whose group is free, else (None, seconds until the next one)."""
         wait: float | None = None
@@ -211,6 +209,7 @@ class Executor:
                 if remaining <= 0:
                     if timer.callback_group.can_execute(timer):
                         return timer, None
+                    self._timer_waits = True
                     continue   # its group's release wakes us
                 wait = remaining if wait is None else min(wait, remaining)
         return None, wait
@@ -305,13 +304,16 @@ class Executor:
     def _release(self, group: CallbackGroup, entity: Executable | None) -> None:
         if entity is not None:
             group.ending_execution(entity)
-        with self._lock:
-            waiting = [e for e in self._blocked if e.callback_group is group]
-            if waiting:
-                self._blocked = [e for e in self._blocked if e.callback_group is not group]
-        for e in waiting:
-            self._enqueue(e)
-        self.wake()   # due timers of the group may run now
+        if self._blocked:
+            with self._lock:
+                waiting = [e for e in self._blocked if e.callback_group is group]
+                if waiting:
+                    self._blocked = [e for e in self._blocked if e.callback_group is not group]
+            for e in waiting:
+                self._enqueue(e)
+        if self._timer_waits:
+            self._timer_waits = False
+            self.wake()   # due timers of the group may run now
 
     def _run_callback(self, callback: Callable[..., Any], *args: Any,
                       then: Callable[[Any], None] | None = None) -> Task | None:

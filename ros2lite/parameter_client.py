@@ -13,7 +13,7 @@ from typing import Any
 
 from ros2lite.parameter import Parameter
 from ros2lite.parameters.services import SERVICES, TYPES
-from ros2lite.transport.qos import QoSProfile, qos_profile_services_default
+from ros2lite.qos import QoSProfile, qos_profile_services_default
 
 DoneCallback = Callable[[Any], None]
 

@@ -14,7 +14,7 @@ class ParameterEventPublisher:
     """Turns a store's (new, changed, deleted) report into one ParameterEvent message."""
 
     def __init__(self, node: Any) -> None:
-        from ros2lite.transport.qos import qos_profile_parameter_events
+        from ros2lite.qos import qos_profile_parameter_events
 
         self._node = node
         self._publisher = node.create_publisher(TYPE, TOPIC, qos_profile_parameter_events)

@@ -33,7 +33,7 @@ class ParameterService:
     """Creates the services on `node` (names relative to the node: `<node>/<service>`)."""
 
     def __init__(self, node: Any) -> None:
-        from ros2lite.transport.qos import qos_profile_parameters
+        from ros2lite.qos import qos_profile_parameters
 
         self._node = node
         self.services = [

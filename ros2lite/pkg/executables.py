@@ -30,6 +30,10 @@ ENTRY_POINT_GROUP = 'ros2lite.executables'
 
 BUNDLED: dict[str, dict[str, str]] = {
     'demo_nodes_py': {
+        'add_two_ints_client': 'ros2lite.demos.demo_nodes_py.add_two_ints_client:main',
+        'add_two_ints_client_async':
+            'ros2lite.demos.demo_nodes_py.add_two_ints_client_async:main',
+        'add_two_ints_server': 'ros2lite.demos.demo_nodes_py.add_two_ints_server:main',
         'listener': 'ros2lite.demos.demo_nodes_py.listener:main',
         'parameter_blackboard': 'ros2lite.demos.demo_nodes_py.parameter_blackboard:main',
         'talker': 'ros2lite.demos.demo_nodes_py.talker:main',

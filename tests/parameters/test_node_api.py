@@ -14,7 +14,7 @@ from ros2lite.exceptions import InvalidParameterTypeException, ParameterNotDecla
 from ros2lite.interfaces import get_interface
 from ros2lite.node import Node
 from ros2lite.parameter import Parameter
-from ros2lite.transport.qos import qos_profile_parameter_events
+from ros2lite.qos import qos_profile_parameter_events
 from tests.spinning import spin_until
 
 ParameterEvent = get_interface("rcl_interfaces/msg/ParameterEvent")
