@@ -14,8 +14,7 @@ import sys
 import tempfile
 import time
 
-from bench_graph import _environment, _free_port
-from common import report, wall
+from common import cli_env, environment, free_port, import_click_wall, report, wall
 
 _ROUTER_CHILD = """
 import sys
@@ -28,22 +27,9 @@ sys.stdin.read()
 
 
 def bench_param_get() -> None:
-    endpoint = f"tcp/127.0.0.1:{_free_port()}"
+    endpoint = f"tcp/127.0.0.1:{free_port()}"
     with tempfile.TemporaryDirectory() as runtime:
-        env = {
-            **os.environ,
-            "ROS2LITE_ROUTER": endpoint,
-            "ROS_DOMAIN_ID": "218",
-            "XDG_RUNTIME_DIR": runtime,
-            "PYTHONPYCACHEPREFIX": os.path.join(runtime, "pyc"),
-        }
-        for var in (
-            "ZENOH_CONFIG_OVERRIDE",
-            "ZENOH_SESSION_CONFIG_URI",
-            "ZENOH_ROUTER_CONFIG_URI",
-            "PYTHONDONTWRITEBYTECODE",
-        ):
-            env.pop(var, None)
+        env = cli_env(endpoint, "219", runtime)
         router = subprocess.Popen(
             [sys.executable, "-c", _ROUTER_CHILD, endpoint],
             stdin=subprocess.PIPE,
@@ -76,10 +62,9 @@ def bench_param_get() -> None:
                     break
                 time.sleep(0.1)
             assert out == "Integer value is: 42\n", out
-            with _environment(env):
+            with environment(env):
                 ours = wall(cmd, runs=9)
-                wall([sys.executable, "-c", "import click"], runs=1)
-                base = wall([sys.executable, "-c", "import click"], runs=9)
+                base = import_click_wall()
         finally:
             for proc in (node, router):
                 if proc is not None:
