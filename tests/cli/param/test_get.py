@@ -37,3 +37,17 @@ def test_unknown_parameter_and_node(run: Callable[..., Result], target: str) -> 
     assert (result.code, result.out, result.err) == (1, "", "Parameter not set\n")
     result = run("param", "get", "/cli/no_such_node", "x", "--timeout", "0")
     assert (result.code, result.out, result.err) == (1, "", "Node not found\n")
+
+
+def test_node_without_parameter_services(
+    run: Callable[..., Result], ros_context: object, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from ros2lite.node import Node
+
+    Node("no_param_services", context=ros_context, start_parameter_services=False)
+    monkeypatch.setattr("ros2lite.parameters.remote.SERVICE_WAIT", 0.3)  # ros2cli waits 5 s
+    result = run("param", "get", "/no_param_services", "x")
+    assert (result.code, result.out) == (1, "")
+    assert result.err == (
+        "Wait for service timed out waiting for parameter services for node /no_param_services\n"
+    )
