@@ -108,5 +108,47 @@ def connect(session: CliSession, node_name: str, include_hidden_nodes: bool, tim
     return RemoteParameters(session.node(), fqn)
 
 
+def complete_parameter_names(
+    ctx: click.Context, _param: click.Parameter, incomplete: str
+) -> list[Any]:
+    """Names of the node's parameters, asked of the node itself; quick, quiet and without
+    starting the daemon, like the other completers (nothing when anything fails)."""
+    from click.shell_completion import CompletionItem
+
+    try:
+        names = _remote_parameter_names(ctx)
+    except Exception:
+        return []
+    return [CompletionItem(n) for n in sorted(names) if n.startswith(incomplete)]
+
+
+def _remote_parameter_names(ctx: click.Context) -> list[str]:
+    from ros2lite.context import Context
+    from ros2lite.daemon.probe import router_answers
+    from ros2lite.node import Node
+    from ros2lite.parameters.remote import RemoteParameters
+    from ros2lite.transport.config import router_endpoint
+
+    node_name = ctx.params.get("node_name")
+    router = ctx.find_root().params.get("router")
+    if not node_name or not router_answers(router_endpoint(router), timeout=0.3):
+        return []
+    context = Context().init([], router=router)
+    try:
+        node = Node(
+            "_ros2lite_completion",
+            context=context,
+            enable_rosout=False,
+            use_global_arguments=False,
+            start_parameter_services=False,
+        )
+        remote = RemoteParameters(node, node_name, service_timeout=1.0)
+        if not remote.wait_for_services(1.0, ["list_parameters"]):
+            return []
+        return list(remote.list_parameters().names)
+    finally:
+        context.try_shutdown()
+
+
 def type_name(type_number: int) -> str:
     return TYPE_NAMES.get(type_number, f"unknown ({type_number})")

@@ -5,12 +5,12 @@ from __future__ import annotations
 import click
 
 from ..common import CliSession
-from .common import connect, node_options
+from .common import complete_parameter_names, connect, node_options
 
 
 @click.command("delete")
 @node_options()
-@click.argument("parameter_name")
+@click.argument("parameter_name", shell_complete=complete_parameter_names)
 def cli(
     node_name: str,
     parameter_name: str,

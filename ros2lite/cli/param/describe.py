@@ -7,12 +7,12 @@ from typing import Any
 import click
 
 from ..common import CliSession
-from .common import connect, node_options, type_name
+from .common import complete_parameter_names, connect, node_options, type_name
 
 
 @click.command("describe")
 @node_options()
-@click.argument("parameter_names", nargs=-1, required=True)
+@click.argument("parameter_names", nargs=-1, required=True, shell_complete=complete_parameter_names)
 def cli(
     node_name: str,
     parameter_names: tuple[str, ...],

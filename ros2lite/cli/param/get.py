@@ -8,7 +8,7 @@ import click
 
 from ..common import CliSession
 from ..errors import CliError
-from .common import connect, node_options
+from .common import complete_parameter_names, connect, node_options
 
 # ParameterType number → the label before the value
 LABELS = {
@@ -26,7 +26,7 @@ LABELS = {
 
 @click.command("get")
 @node_options()
-@click.argument("parameter_name")
+@click.argument("parameter_name", shell_complete=complete_parameter_names)
 @click.option("--hide-type", is_flag=True, help="Hide the type information")
 def cli(
     node_name: str,

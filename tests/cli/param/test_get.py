@@ -51,3 +51,11 @@ def test_node_without_parameter_services(
     assert result.err == (
         "Wait for service timed out waiting for parameter services for node /no_param_services\n"
     )
+
+
+def test_parameter_names_complete_from_the_node(target: str) -> None:
+    from tests.cli.test_completion import complete
+
+    assert complete(f"ros2lite param get {target} na") == ["name", "names"]
+    assert complete(f"ros2lite param describe {target} count nes") == ["nested.deep.value"]
+    assert complete("ros2lite param get /cli/no_such_node na") == []
