@@ -32,7 +32,8 @@ if TYPE_CHECKING:  # what type checkers see; at run time the names load lazily
         spin_until_future_complete,
     )
     from ros2lite.logging import get_logger
-    from ros2lite.node import Node, Parameter
+    from ros2lite.node import Node
+    from ros2lite.parameter import Parameter
     from ros2lite.qos import (
         DurabilityPolicy,
         HistoryPolicy,
@@ -83,7 +84,7 @@ __all__ = [
 
 _EXPORTS = {
     'Node': 'ros2lite.node',
-    'Parameter': 'ros2lite.node',
+    'Parameter': 'ros2lite.parameter',
     'Context': 'ros2lite.context',
     'default_context': 'ros2lite.context',
     'Executor': 'ros2lite.executors',

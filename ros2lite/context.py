@@ -153,6 +153,14 @@ def _shutdown_live_contexts() -> None:
             ctx.try_shutdown()
 
 
+# Zenoh runs each callback handler (a service's queryable, a query's replies) on a non-daemon
+# Python thread that lives as long as the handler: Python joins those before atexit runs, so
+# the sessions must close earlier, where concurrent.futures also hooks in.
+_register_early = getattr(threading, '_register_atexit', None)
+if _register_early is not None:
+    _register_early(_shutdown_live_contexts)
+
+
 _previous_sigterm: Any = signal.SIG_DFL
 
 
