@@ -171,7 +171,7 @@ class GoalEntry:
 
     info: Any                     # action_msgs/GoalInfo (id and acceptance stamp)
     state: int = GoalStatus.STATUS_ACCEPTED
-    ended_at: float | None = None  # time.monotonic() when it reached a terminal state
+    ended_at: float | None = None  # time.monotonic() when its result became known
     stamp_ns: int = field(init=False)
 
     def __post_init__(self) -> None:
@@ -212,9 +212,13 @@ class GoalTable:
         """Apply an event; returns the new state (raises InvalidGoalTransition)."""
         entry = self._goals[key]
         entry.state = next_state(entry.state, event)
-        if entry.state in TERMINAL_STATES:
-            entry.ended_at = time.monotonic()
         return entry.state
+
+    def finish(self, key: bytes, now: float | None = None) -> None:
+        """The goal's result is known: its `result_timeout` starts now."""
+        entry = self._goals.get(key)
+        if entry is not None and entry.ended_at is None:
+            entry.ended_at = time.monotonic() if now is None else now
 
     def expire(self, now: float | None = None) -> list[bytes]:
         """Forget goals that ended more than `result_timeout` seconds ago; returns their keys."""

@@ -77,7 +77,10 @@ def test_status_array_and_expiry() -> None:
     assert [(s.goal_info.goal_id.uuid[0], s.status) for s in array.status_list] == [
         (1, S.STATUS_SUCCEEDED), (2, S.STATUS_ACCEPTED), (3, S.STATUS_ACCEPTED)]
     ended = table.get(bytes([1] * 16))
-    assert ended is not None and ended.ended_at is not None
+    assert ended is not None and ended.ended_at is None
+    assert table.expire(1e12) == []      # kept until its result is known
+    table.finish(bytes([1] * 16))
+    assert ended.ended_at is not None
     assert table.expire(ended.ended_at + 9.9) == []
     assert table.expire(ended.ended_at + 10) == [bytes([1] * 16)]
     assert len(table) == 2

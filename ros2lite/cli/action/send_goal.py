@@ -1,0 +1,130 @@
+"""`action send_goal`: send one goal, print its acceptance, feedback and result.
+
+Ctrl-C while the goal is active cancels it first ("Canceling goal...", "Goal canceled."),
+then leaves with status 2, as ros2cli does.
+"""
+
+from __future__ import annotations
+
+import sys
+from typing import Any
+
+import click
+
+from .. import completion
+from ..common import CliSession
+from ..errors import CliError
+
+
+def action_class(action_type: str) -> tuple[str, Any]:
+    """('pkg/action/Name', class) for 'pkg/action/Name' or 'pkg/Name'."""
+    from ros2lite.action.goals import resolve_action_type
+    from ros2lite.interfaces import InterfaceError
+    try:
+        cls = resolve_action_type(action_type)
+    except (InterfaceError, ValueError, TypeError, LookupError):
+        raise CliError('The passed action type is invalid') from None
+    return cls._TYPE_NAME, cls
+
+
+def build_goal(cls: Any, values: str) -> Any:
+    import yaml
+
+    from ros2lite.interfaces import set_message_fields
+    goal = cls.Goal()
+    try:
+        fields = yaml.safe_load(values)
+        set_message_fields(goal, fields)
+    except Exception as e:   # any reason the values do not fit, as ros2cli reports it
+        raise CliError(f'Failed to populate message fields: {e!r}') from None
+    return goal
+
+
+def _print_feedback(message: Any) -> None:
+    from ros2lite.interfaces import message_to_yaml
+    click.echo(f'Feedback:\n    {message_to_yaml(message.feedback)}')
+
+
+@click.command('send_goal')
+@click.argument('action_name', shell_complete=completion.actions)
+@click.argument('action_type', shell_complete=completion.action_types)
+@click.argument('goal', required=False)
+@click.option('--stdin', 'use_stdin', is_flag=True, help='Read the goal from standard input')
+@click.option('-f', '--feedback', is_flag=True, help='Echo feedback messages for the goal')
+@click.option('--timeout', type=click.FloatRange(min=0), metavar='SECONDS',
+              help='Give up when no action server shows up within this time '
+                   '(default: wait forever)')
+def cli(action_name: str, action_type: str, goal: str | None, use_stdin: bool, feedback: bool,
+        timeout: float | None) -> None:
+    """Send an action goal.
+
+    GOAL fills the goal message in YAML (e.g. '{order: 5}').
+    """
+    if use_stdin and goal is not None:
+        raise click.UsageError('argument --stdin: not allowed with argument goal')
+    values = sys.stdin.read() if use_stdin else (goal if goal is not None else '{}')
+    type_name, cls = action_class(action_type)
+    goal_msg = build_goal(cls, values)
+    pkg, _, name = type_name.split('/')
+    with CliSession() as session:
+        node = session.node(f'_ros2lite_send_goal_{pkg}_action_{name}')
+        send_goal(session, node, cls, action_name, goal_msg,
+                  _print_feedback if feedback else None, timeout)
+
+
+def send_goal(session: CliSession, node: Any, cls: Any, action_name: str, goal: Any,
+              feedback_callback: Any, timeout: float | None) -> None:
+    from ros2lite.action import ActionClient
+    from ros2lite.action.goals import GoalStatus, goal_id_hex, status_name
+    from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.interfaces import message_to_yaml
+    try:
+        client = ActionClient(node, cls, action_name)
+    except ValueError as e:   # an invalid action name
+        raise CliError(str(e)) from None
+    executor = SingleThreadedExecutor(context=session.context)
+    executor.add_node(node)
+    click.echo('Waiting for an action server to become available...')
+    if not client.wait_for_server(timeout_sec=timeout):
+        raise CliError(f"No action server for '{client.action_name}' after {timeout} s")
+    click.echo(f'Sending goal:\n     {message_to_yaml(goal)}')
+    goal_handle = None
+    done = False
+    try:
+        goal_future = client.send_goal_async(goal, feedback_callback)
+        executor.spin_until_future_complete(goal_future)
+        goal_handle = goal_future.result()
+        if not goal_handle.accepted:
+            click.echo('Goal was rejected.')
+            return
+        click.echo(f'Goal accepted with ID: {goal_id_hex(goal_handle.goal_id)}\n')
+        result_future = goal_handle.get_result_async()
+        executor.spin_until_future_complete(result_future)
+        result = result_future.result()
+        done = True
+        click.echo(f'Result:\n    {message_to_yaml(result.result)}')
+        click.echo(f'Goal finished with status: {status_name(result.status)}')
+    finally:
+        # ros2cli cancels a goal it knows to be ACCEPTED or EXECUTING; a goal whose first
+        # status has not arrived yet is just as alive, so it is canceled too
+        if goal_handle is not None and goal_handle.accepted and not done and \
+                goal_handle.status in (GoalStatus.STATUS_UNKNOWN, GoalStatus.STATUS_ACCEPTED,
+                                       GoalStatus.STATUS_EXECUTING):
+            _cancel(executor, goal_handle)
+        client.destroy()
+
+
+def _cancel(executor: Any, goal_handle: Any) -> None:
+    from ros2lite.action.goals import goal_key
+    click.echo('Canceling goal...')
+    future = goal_handle.cancel_goal_async()
+    executor.spin_until_future_complete(future)
+    response = future.result()
+    canceling = response.goals_canceling
+    if not canceling:
+        raise CliError('Failed to cancel goal')
+    if len(canceling) > 1:
+        raise CliError('More than one goal canceled')
+    if goal_key(canceling[0].goal_id) != goal_key(goal_handle.goal_id):
+        raise CliError('Canceled goal with incorrect goal ID')
+    click.echo('Goal canceled.')
