@@ -9,10 +9,14 @@ thread, publishing status and one feedback per step.
 
 from __future__ import annotations
 
+import os
 import struct
 import threading
 import time
+from collections.abc import Iterator
 from typing import Any
+
+import pytest
 
 SERVER_GID = bytes(range(0x30, 0x40))
 FIB = 'example_interfaces::action::dds_::Fibonacci'
@@ -181,3 +185,28 @@ class AlienFibonacciServer:
                     attachment=reply_attachment(query.attachment.to_bytes()))
         if ok:
             self._publish_status()
+
+
+@pytest.fixture
+def alien_session(ros_router: str) -> Iterator[Any]:
+    """A plain zenoh client session with a hand-written config."""
+    import zenoh
+    conf = zenoh.Config()
+    conf.insert_json5('mode', '"client"')
+    conf.insert_json5('connect/endpoints', f'["{ros_router}"]')
+    conf.insert_json5('scouting/multicast/enabled', 'false')
+    conf.insert_json5('timestamping/enabled', 'true')   # advanced publishers need it
+    session = zenoh.open(conf)
+    try:
+        yield session
+    finally:
+        session.close()
+
+
+@pytest.fixture
+def alien_server(alien_session: Any) -> Iterator[AlienFibonacciServer]:
+    server = AlienFibonacciServer(alien_session, int(os.environ['ROS_DOMAIN_ID']))
+    try:
+        yield server
+    finally:
+        server.close()
