@@ -12,7 +12,7 @@ import struct
 import time
 from dataclasses import dataclass
 
-from ros2lite.transport.xxh3 import xxh3_128
+import xxhash
 
 __all__ = [
     "ATTACHMENT_SIZE",
@@ -24,6 +24,8 @@ __all__ = [
     "encode_legacy_attachment",
     "gid_from_token",
     "is_legacy_attachment",
+    "pack_attachment",
+    "unpack_attachment",
 ]
 
 GID_SIZE = 16
@@ -31,6 +33,8 @@ ATTACHMENT_SIZE = 33
 LEGACY_ATTACHMENT_SIZE = 77
 
 _CURRENT = struct.Struct("<qqB")
+# the whole current layout in one struct: seq, timestamp, GID length, GID
+_PACKED = struct.Struct("<qqB16s")
 _I64 = struct.Struct("<q")
 
 _K_SEQ = b"\x0fsequence_number"
@@ -65,6 +69,24 @@ def encode_attachment(sequence_number: int, source_timestamp: int | None, gid: b
         raise ValueError(f"GID must be {GID_SIZE} bytes, got {len(gid)}")
     ts = time.time_ns() if source_timestamp is None else source_timestamp
     return _CURRENT.pack(sequence_number, ts, GID_SIZE) + bytes(gid)
+
+
+def pack_attachment(sequence_number: int, source_timestamp: int, gid: bytes) -> bytes:
+    """The hot-path encoder (publish, request, reply): no checks, one struct call."""
+    return _PACKED.pack(sequence_number, source_timestamp, GID_SIZE, gid)
+
+
+def unpack_attachment(data: bytes) -> tuple[int, int, bytes] | None:
+    """(seq, timestamp, gid) of either layout, or None when it is neither; the current
+    layout is unpacked inline because every received sample comes through here."""
+    if len(data) == ATTACHMENT_SIZE and data[16] == GID_SIZE:
+        seq, ts, _, gid = _PACKED.unpack(data)
+        return seq, ts, gid
+    try:
+        a = decode_attachment(data)
+    except ValueError:
+        return None
+    return a.sequence_number, a.source_timestamp, a.source_gid
 
 
 def encode_legacy_attachment(sequence_number: int, source_timestamp: int, gid: bytes) -> bytes:
@@ -110,4 +132,5 @@ def decode_attachment(data: bytes | bytearray | memoryview) -> Attachment:
 
 def gid_from_token(liveliness_key: str) -> bytes:
     """The entity GID rmw_zenoh derives: XXH3-128 of the token key, low64 then high64, LE."""
-    return xxh3_128(liveliness_key.encode("utf-8")).to_bytes(GID_SIZE, "little")
+    h = xxhash.xxh3_128_intdigest(liveliness_key.encode("utf-8"))
+    return h.to_bytes(GID_SIZE, "little")

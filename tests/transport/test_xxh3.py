@@ -1,4 +1,5 @@
-"""XXH3-128 against vectors produced by the reference implementation (xxhash 0.8, seed 0).
+"""The GID hash (XXH3-128 from the `xxhash` package) against vectors produced by the reference
+implementation (xxhash 0.8, seed 0), and the GID rmw_zenoh derives from it.
 
 Inputs are ``bytes((i * 7 + 3) % 251 for i in range(n))`` so every length class of the
 algorithm (0, 1-3, 4-8, 9-16, 17-128, 129-240, >240 incl. more than one 1024-byte block)
@@ -9,7 +10,13 @@ from __future__ import annotations
 
 import pytest
 
-from ros2lite.transport.xxh3 import xxh3_128, xxh3_128_digest, xxh3_128_hexdigest
+import xxhash
+
+from ros2lite.transport.attachment import gid_from_token
+
+
+def xxh3_128_hexdigest(data: bytes) -> str:
+    return xxhash.xxh3_128_hexdigest(data)
 
 PATTERN_VECTORS = {
     0: "99aa06d3014798d86001c324468d497f",
@@ -57,8 +64,7 @@ def test_text_vectors(data: bytes, expected: str) -> None:
     assert xxh3_128_hexdigest(data) == expected
 
 
-def test_int_and_digest_agree() -> None:
-    data = pattern(300)
-    value = xxh3_128(data)
-    assert xxh3_128_digest(data) == value.to_bytes(16, "big")
-    assert xxh3_128(bytearray(data)) == xxh3_128(memoryview(data)) == value
+def test_gid_is_the_little_endian_hash_of_the_token() -> None:
+    token = "@ros2_lv/0/aac3178e146ba6f1fc6e6a4085e77f21/0/10/MS/%/%/listener/%chatter"
+    value = int(xxh3_128_hexdigest(token.encode()), 16)
+    assert gid_from_token(token) == value.to_bytes(16, "little")
