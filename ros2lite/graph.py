@@ -225,7 +225,7 @@ def action_endpoints(entities: Iterable[Entity], action_name: str
         EntityKind.SUBSCRIPTION: {}, EntityKind.PUBLISHER: {}}
     for e in entities:
         if e.kind in found and e.topic_name == feedback and e.type_name:
-            name, types = found[e.kind].setdefault(
+            _, types = found[e.kind].setdefault(
                 (e.zid, e.nid), (node_fqn(e.namespace, e.node_name), set()))
             types.add(e.type_name[:-len(ACTION_FEEDBACK_TYPE_SUFFIX)]
                       if e.type_name.endswith(ACTION_FEEDBACK_TYPE_SUFFIX) else e.type_name)

@@ -39,7 +39,7 @@ def status_name(status: int) -> str:
     return _STATUS_NAMES.get(status, 'UNKNOWN')
 
 
-# -- names ----------------------------------------------------------------------------------------
+# -- names ---------------------------------------------------------------------------------
 
 @dataclass(frozen=True)
 class ActionNames:
@@ -103,7 +103,7 @@ def resolve_action_type(action_type: Any) -> Any:
     return action_type
 
 
-# -- goal ids -------------------------------------------------------------------------------------
+# -- goal ids ------------------------------------------------------------------------------
 
 def new_goal_id() -> Any:
     """A random (version 4) goal UUID message, as rclpy's ActionClient makes them."""
@@ -121,7 +121,7 @@ def goal_id_hex(goal_id: Any) -> str:
     return goal_key(goal_id).hex()
 
 
-# -- the goal state machine -------------------------------------------------------------------------
+# -- the goal state machine ----------------------------------------------------------------
 
 class GoalEvent(enum.Enum):
     """What may happen to a goal (rcl_action's goal events)."""
@@ -163,7 +163,7 @@ def is_cancelable(state: int) -> bool:
     return (state, GoalEvent.CANCEL_GOAL) in _TRANSITIONS
 
 
-# -- the server's goals -------------------------------------------------------------------------------
+# -- the server's goals --------------------------------------------------------------------
 
 @dataclass
 class GoalEntry:

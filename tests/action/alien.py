@@ -154,8 +154,6 @@ class AlienFibonacciServer:
         cdr = Cdr().put('b', goal['status']).put('I', len(seq)).put(f'{len(seq)}i', *seq)
         query.reply(query.key_expr, cdr.bytes(),
                     attachment=reply_attachment(query.attachment.to_bytes()))
-        if ok:
-            self._publish_status()
         query.drop()
 
     def _on_get_result(self, query: Any) -> None:

@@ -25,8 +25,8 @@ def tokens_of(alien: Any, domain: int, zid: str, nid: int) -> set[str]:
     return {k for k in keys if k.split('/')[2:4] == [zid, str(nid)]}
 
 
-def expected_tokens(domain: int, zid: str, node: Node, kinds: tuple[str, str]) -> set[str]:
-    """Endpoint tokens without their entity ids: `…/<kind>/%/%/<node>/<name>/<type>/<hash>/<qos>`."""
+def expected_tokens(node: Node, kinds: tuple[str, str]) -> set[str]:
+    """Endpoint tokens from their kind on: `<kind>/%/<ns>/<node>/<name>/<type>/<hash>/<qos>`."""
     service, topic = kinds
     name = node.get_name()
     parts = [
@@ -59,8 +59,8 @@ def test_sub_entities_tokens(ros_context: Any, alien_session: Any) -> None:
         found = tokens_of(alien_session, d, zid, node.node_id)
         return {k.split('/', 5)[5] for k in found if '_action' in k}
 
-    want_server = expected_tokens(d, zid, server_node, ('SS', 'MP'))
-    want_client = expected_tokens(d, zid, client_node, ('SC', 'MS'))
+    want_server = expected_tokens(server_node, ('SS', 'MP'))
+    want_client = expected_tokens(client_node, ('SC', 'MS'))
     deadline = time.monotonic() + 15
     while (endpoint_tokens(server_node), endpoint_tokens(client_node)) != \
             (want_server, want_client):
