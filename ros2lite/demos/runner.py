@@ -13,15 +13,18 @@ from collections.abc import Callable
 from typing import Any
 
 
-def run_node(make_node: Callable[[], Any], args: list[str] | None = None) -> int:
-    """Spin the node `make_node()` builds until Ctrl-C or shutdown; returns the exit status."""
+def run_node(make_node: Callable[[], Any], args: list[str] | None = None,
+             executor_factory: Callable[[], Any] | None = None) -> int:
+    """Spin the node `make_node()` builds until Ctrl-C or shutdown; returns the exit status.
+
+    `executor_factory` makes the executor to spin with (default: the global one)."""
     import ros2lite
     from ros2lite.executor import ExternalShutdownException
     from ros2lite.transport.config import SessionError
     try:
         with ros2lite.init(args=args):
             node = make_node()
-            ros2lite.spin(node)
+            ros2lite.spin(node, executor_factory() if executor_factory else None)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except (SessionError, ValueError) as e:
