@@ -7,16 +7,13 @@ exactly what a user's would: start-up, connecting, one complete graph query and 
 
 from __future__ import annotations
 
-import contextlib
 import os
-import socket
 import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Iterator
 
-from common import report, wall
+from common import cli_env, environment, free_port, import_click_wall, report, wall
 
 NODES = 100
 ENDPOINTS_PER_NODE = 10
@@ -56,36 +53,11 @@ sys.stdin.read()
 '''
 
 
-def _free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(('127.0.0.1', 0))
-        return int(sock.getsockname()[1])
-
-
-@contextlib.contextmanager
-def _environment(env: dict[str, str]) -> Iterator[None]:
-    saved = dict(os.environ)
-    os.environ.clear()
-    os.environ.update(env)
-    try:
-        yield
-    finally:
-        os.environ.clear()
-        os.environ.update(saved)
-
-
 def bench_topic_list() -> None:
-    endpoint = f'tcp/127.0.0.1:{_free_port()}'
+    endpoint = f'tcp/127.0.0.1:{free_port()}'
     domain = '217'
     with tempfile.TemporaryDirectory() as runtime:
-        # Byte-code caching as an installed package has it (pip compiles on install): a
-        # private pycache prefix, so a PYTHONDONTWRITEBYTECODE shell can't make every run
-        # recompile the sources, and the baseline gets the same treatment.
-        env = {**os.environ, 'ROS2LITE_ROUTER': endpoint, 'ROS_DOMAIN_ID': domain,
-               'XDG_RUNTIME_DIR': runtime, 'PYTHONPYCACHEPREFIX': os.path.join(runtime, 'pyc')}
-        for var in ('ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI',
-                    'ZENOH_ROUTER_CONFIG_URI', 'PYTHONDONTWRITEBYTECODE'):
-            env.pop(var, None)
+        env = cli_env(endpoint, domain, runtime)
         child = subprocess.Popen([sys.executable, '-c', _GRAPH_CHILD, endpoint, domain],
                                  stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
                                  env=env)
@@ -102,10 +74,9 @@ def bench_topic_list() -> None:
                     break
                 time.sleep(0.05)
             assert len(out.splitlines()) == expected, f'{len(out.splitlines())} topics'
-            with _environment(env):  # wall() runs commands with this process' environment
+            with environment(env):  # wall() runs commands with this process' environment
                 ours = wall(cmd, runs=9)
-                wall([sys.executable, '-c', 'import click'], runs=1)  # warm its cache too
-                base = wall([sys.executable, '-c', 'import click'], runs=9)
+                base = import_click_wall()
         finally:
             if child.stdin:
                 child.stdin.close()

@@ -82,7 +82,7 @@ class Flag:
     (so the node side can use `spin_until_future_complete`, the idiomatic wait)."""
 
     def __init__(self) -> None:
-        from ros2lite.executor import Future
+        from ros2lite.task import Future
         self.future = Future()
 
     def set(self) -> None:
@@ -252,7 +252,7 @@ def raw_run(key: str, warm_cdr: bytes) -> float:
 def node_run(key: str, string_type: Any) -> float:
     """ros2lite: a node's KEEP_ALL subscription, callbacks run by the executor here."""
     from ros2lite.context import Context
-    from ros2lite.executor import SingleThreadedExecutor
+    from ros2lite.executors import SingleThreadedExecutor
     from ros2lite.node import Node
     from ros2lite.transport.qos import HistoryPolicy, QoSProfile
     ctx = Context()

@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import contextlib
+import os
+import socket
 import subprocess
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any
 
 
@@ -43,3 +46,42 @@ def wall(cmd: list[str], runs: int = 15) -> float:
     return times[len(times) // 2]
 
 
+
+
+def free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(('127.0.0.1', 0))
+        return int(sock.getsockname()[1])
+
+
+def cli_env(endpoint: str, domain: str, runtime: str) -> dict[str, str]:
+    """The environment of a measured CLI process: our router and domain, and byte-code
+    caching as an installed package has it (pip compiles on install): a private pycache
+    prefix, so a PYTHONDONTWRITEBYTECODE shell can't make every run recompile the sources
+    (the baseline gets the same treatment)."""
+    env = {**os.environ, 'ROS2LITE_ROUTER': endpoint, 'ROS_DOMAIN_ID': domain,
+           'XDG_RUNTIME_DIR': runtime, 'PYTHONPYCACHEPREFIX': os.path.join(runtime, 'pyc')}
+    for var in ('ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI',
+                'ZENOH_ROUTER_CONFIG_URI', 'PYTHONDONTWRITEBYTECODE'):
+        env.pop(var, None)
+    return env
+
+
+@contextlib.contextmanager
+def environment(env: dict[str, str]) -> Iterator[None]:
+    """Run the block with exactly `env` as this process' environment."""
+    saved = dict(os.environ)
+    os.environ.clear()
+    os.environ.update(env)
+    try:
+        yield
+    finally:
+        os.environ.clear()
+        os.environ.update(saved)
+
+
+def import_click_wall(runs: int = 9) -> float:
+    """The CLI baseline: `python -c 'import click'` (cache warmed first)."""
+    import sys
+    wall([sys.executable, '-c', 'import click'], runs=1)
+    return wall([sys.executable, '-c', 'import click'], runs=runs)

@@ -12,23 +12,103 @@ Names are re-exported lazily so `import ros2lite` (and `ros2lite --help`) stays 
 from __future__ import annotations
 
 import importlib
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 __version__ = '0.1.0'
 
+if TYPE_CHECKING:  # what type checkers see; at run time the names load lazily
+    from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
+    from ros2lite.clock import Clock
+    from ros2lite.context import Context, default_context
+    from ros2lite.duration import Duration
+    from ros2lite.executors import (
+        Executor,
+        ExternalShutdownException,
+        MultiThreadedExecutor,
+        SingleThreadedExecutor,
+        get_global_executor,
+        spin,
+        spin_once,
+        spin_until_future_complete,
+    )
+    from ros2lite.logging import get_logger
+    from ros2lite.node import Node, Parameter
+    from ros2lite.qos import (
+        DurabilityPolicy,
+        HistoryPolicy,
+        QoSProfile,
+        ReliabilityPolicy,
+        qos_profile_sensor_data,
+        qos_profile_system_default,
+    )
+    from ros2lite.subscription import MessageInfo
+    from ros2lite.task import Future, Task
+    from ros2lite.time import Time
+
+__all__ = [
+    'Clock',
+    'Context',
+    'DurabilityPolicy',
+    'Duration',
+    'Executor',
+    'ExternalShutdownException',
+    'Future',
+    'HistoryPolicy',
+    'MessageInfo',
+    'MultiThreadedExecutor',
+    'MutuallyExclusiveCallbackGroup',
+    'Node',
+    'Parameter',
+    'QoSProfile',
+    'ReentrantCallbackGroup',
+    'ReliabilityPolicy',
+    'SingleThreadedExecutor',
+    'Task',
+    'Time',
+    '__version__',
+    'create_node',
+    'default_context',
+    'get_global_executor',
+    'get_logger',
+    'init',
+    'ok',
+    'qos_profile_sensor_data',
+    'qos_profile_system_default',
+    'shutdown',
+    'spin',
+    'spin_once',
+    'spin_until_future_complete',
+    'try_shutdown',
+]
+
 _EXPORTS = {
-    'Node': 'ros2lite.node', 'Parameter': 'ros2lite.node',
-    'Context': 'ros2lite.context', 'default_context': 'ros2lite.context',
-    'SingleThreadedExecutor': 'ros2lite.executor', 'Future': 'ros2lite.executor',
-    'ExternalShutdownException': 'ros2lite.executor',
-    'spin': 'ros2lite.executor', 'spin_once': 'ros2lite.executor',
-    'spin_until_future_complete': 'ros2lite.executor',
-    'QoSProfile': 'ros2lite.transport.qos', 'ReliabilityPolicy': 'ros2lite.transport.qos',
-    'DurabilityPolicy': 'ros2lite.transport.qos', 'HistoryPolicy': 'ros2lite.transport.qos',
-    'qos_profile_sensor_data': 'ros2lite.transport.qos',
-    'qos_profile_system_default': 'ros2lite.transport.qos',
-    'Time': 'ros2lite.clock', 'Duration': 'ros2lite.duration', 'Clock': 'ros2lite.clock',
-    'get_logger': 'ros2lite.logging', 'MessageInfo': 'ros2lite.subscription',
+    'Node': 'ros2lite.node',
+    'Parameter': 'ros2lite.node',
+    'Context': 'ros2lite.context',
+    'default_context': 'ros2lite.context',
+    'Executor': 'ros2lite.executors',
+    'SingleThreadedExecutor': 'ros2lite.executors',
+    'MultiThreadedExecutor': 'ros2lite.executors',
+    'ExternalShutdownException': 'ros2lite.executors',
+    'get_global_executor': 'ros2lite.executors',
+    'spin': 'ros2lite.executors',
+    'spin_once': 'ros2lite.executors',
+    'spin_until_future_complete': 'ros2lite.executors',
+    'Future': 'ros2lite.task',
+    'Task': 'ros2lite.task',
+    'MutuallyExclusiveCallbackGroup': 'ros2lite.callback_groups',
+    'ReentrantCallbackGroup': 'ros2lite.callback_groups',
+    'QoSProfile': 'ros2lite.qos',
+    'ReliabilityPolicy': 'ros2lite.qos',
+    'DurabilityPolicy': 'ros2lite.qos',
+    'HistoryPolicy': 'ros2lite.qos',
+    'qos_profile_sensor_data': 'ros2lite.qos',
+    'qos_profile_system_default': 'ros2lite.qos',
+    'Time': 'ros2lite.time',
+    'Duration': 'ros2lite.duration',
+    'Clock': 'ros2lite.clock',
+    'get_logger': 'ros2lite.logging',
+    'MessageInfo': 'ros2lite.subscription',
 }
 
 

@@ -1,8 +1,8 @@
-"""One process context: the Zenoh session, the entity-id counter and the work queue.
+"""One process context: the Zenoh session, the entity-id counter, shutdown.
 
 rmw_zenoh numbers nodes and endpoints from one counter per context and keys the graph by
-(session id, node id), so both live here. Callbacks from Zenoh threads never run user code: they
-queue work that an executor runs on the user's thread, as rclpy does.
+(session id, node id), so both live here. The work queue does not: each executor owns the work
+of its nodes (see ros2lite.executors); the context only wakes executors when it shuts down.
 """
 
 from __future__ import annotations
@@ -11,7 +11,6 @@ import atexit
 import contextlib
 import itertools
 import os
-import queue
 import signal
 import sys
 import threading
@@ -36,8 +35,11 @@ class Context:
         self.router: str | None = None
         self.args = RosArgs()
         self.argv: list[str] = []
-        # Work items are objects with an `execute()` method; None wakes a waiting executor.
-        self.work: queue.SimpleQueue[Any] = queue.SimpleQueue()
+        # executors of this context, woken when it shuts down or is told to terminate
+        self._executors: weakref.WeakSet[Any] = weakref.WeakSet()
+        # service servers of this process by key, so a blocking call can tell when waiting
+        # for one of them would deadlock
+        self.local_services: dict[str, Any] = {}
         self._ids = itertools.count()
         self._lock = threading.Lock()
         self._nodes: list[Any] = []
@@ -105,8 +107,13 @@ class Context:
     def on_shutdown(self, fn: Any) -> None:
         self._on_shutdown.append(fn)
 
+    def add_executor(self, executor: Any) -> None:
+        self._executors.add(executor)
+
     def wake(self) -> None:
-        self.work.put(None)
+        """Wake every executor of this context (it looks at ok() again)."""
+        for executor in list(self._executors):
+            executor.wake()
 
     def shutdown(self) -> None:
         if self.session is None:
@@ -132,14 +139,6 @@ class Context:
     def _terminate(self) -> None:
         self.terminating = True
         self.wake()
-
-
-def undeclare_quietly(*entities: Any) -> None:
-    """Undeclare Zenoh entities; errors only mean the session is already closed."""
-    for entity in entities:
-        if entity is not None:
-            with contextlib.suppress(Exception):
-                entity.undeclare()
 
 
 # Contexts still open at interpreter exit are shut down first: zenoh threads and our pump

@@ -5,12 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from ros2lite.transport.keys import EntityKind, endpoint_token, topic_key
-from ros2lite.transport.qos import (
-    DurabilityPolicy,
-    HistoryPolicy,
-    QoSProfile,
-    ReliabilityPolicy,
-)
+from ros2lite.transport.qos import QoSProfile
 
 
 def resolve_type(msg_type: Any) -> tuple[str, Any]:
@@ -31,22 +26,6 @@ def as_qos(qos: QoSProfile | int) -> QoSProfile:
     if isinstance(qos, int):
         return QoSProfile(depth=qos)
     return qos
-
-
-def zenoh_options(qos: QoSProfile) -> dict[str, Any]:
-    """Reliability and congestion control as rmw_zenoh maps them."""
-    import zenoh
-    reliable = qos.reliability != ReliabilityPolicy.BEST_EFFORT
-    block = reliable and qos.history == HistoryPolicy.KEEP_ALL
-    return {
-        'reliability': zenoh.Reliability.RELIABLE if reliable else zenoh.Reliability.BEST_EFFORT,
-        'congestion_control': zenoh.CongestionControl.BLOCK if block
-        else zenoh.CongestionControl.DROP,
-    }
-
-
-def is_transient_local(qos: QoSProfile) -> bool:
-    return qos.durability == DurabilityPolicy.TRANSIENT_LOCAL
 
 
 class EndpointOwner:
@@ -93,10 +72,11 @@ class Endpoint:
 
     def _announce(self) -> None:
         # rmw_zenoh declares the data entity first, then the token
-        self._token = self.node.context.session.liveliness().declare_token(self.token_key)
+        from ros2lite.transport.session import declare_token
+        self._token = declare_token(self.node.context.session, self.token_key)
 
     def _undeclare(self, *entities: Any) -> None:
-        from ros2lite.context import undeclare_quietly
+        from ros2lite.transport.session import undeclare_quietly
         undeclare_quietly(self._token, *entities)
         self._token = None
 

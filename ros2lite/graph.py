@@ -34,44 +34,27 @@ class TopicEndpointInfo:
 
 def snapshot(session: Any, domain_id: int, timeout: float = 5.0) -> list[Entity]:
     """All entities in the domain, from one complete liveliness query."""
-    import zenoh
-
-    from ros2lite.transport.keys import liveliness_subscription_key
-    # an explicit large channel: the default handler can stall past a few hundred replies
-    replies = session.liveliness().get(liveliness_subscription_key(domain_id),
-                                       zenoh.handlers.FifoChannel(1 << 16), timeout=timeout)
-    out = []
-    for reply in replies:
-        sample = reply.ok
-        if sample is not None:
-            entity = parse_token(str(sample.key_expr))
-            if entity is not None:
-                out.append(entity)
-    return out
+    from ros2lite.transport.session import liveliness_keys
+    return [e for e in map(parse_token, liveliness_keys(session, domain_id, timeout))
+            if e is not None]
 
 
 class GraphCache:
     """Entities kept current from a liveliness subscriber with history."""
 
     def __init__(self, session: Any, domain_id: int) -> None:
-        import zenoh
-
-        from ros2lite.transport.keys import liveliness_subscription_key
+        from ros2lite.transport.session import declare_liveliness_subscriber
         self._entities: dict[str, Entity] = {}
         self._cond = threading.Condition()
         # seed synchronously (as rmw_zenoh does with a liveliness get) so the first query
         # after creation already sees the graph; the subscriber then keeps it current
         for entity in snapshot(session, domain_id):
             self._entities[entity.to_token()] = entity
-        self._sub = session.liveliness().declare_subscriber(
-            liveliness_subscription_key(domain_id), zenoh.handlers.Callback(self._on_sample),
-            history=True)
+        self._sub = declare_liveliness_subscriber(session, domain_id, self._on_change)
 
-    def _on_sample(self, sample: Any) -> None:
-        import zenoh
-        key = str(sample.key_expr)
+    def _on_change(self, key: str, alive: bool) -> None:
         with self._cond:
-            if sample.kind == zenoh.SampleKind.PUT:
+            if alive:
                 entity = parse_token(key)
                 if entity is None:
                     return
@@ -97,7 +80,7 @@ class GraphCache:
         return True
 
     def close(self) -> None:
-        from ros2lite.context import undeclare_quietly
+        from ros2lite.transport.session import undeclare_quietly
         undeclare_quietly(self._sub)
 
 

@@ -8,14 +8,23 @@ from collections.abc import Callable
 from typing import Any
 
 from ros2lite.arguments import RosArgs, parse_ros_args
+from ros2lite.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup
+from ros2lite.client import Client
 from ros2lite.clock import Clock, ClockType
-from ros2lite.context import Context, default_context, undeclare_quietly
+from ros2lite.context import Context, default_context
+from ros2lite.executable import Executable, GuardCondition
 from ros2lite.logging import RcutilsLogger, set_logger_level
 from ros2lite.publisher import Publisher
+from ros2lite.service import Service
 from ros2lite.subscription import Subscription
 from ros2lite.timer import Timer
 from ros2lite.transport import keys
-from ros2lite.transport.qos import QoSProfile, ReliabilityPolicy, qos_profile_rosout_default
+from ros2lite.transport.qos import (
+    QoSProfile,
+    ReliabilityPolicy,
+    qos_profile_rosout_default,
+    qos_profile_services_default,
+)
 
 # rcl's rosout profile, lifespan 10 s included: the token must read `:1:,1000:,:10,0:,,`
 ROSOUT_QOS = qos_profile_rosout_default
@@ -57,6 +66,16 @@ class Node:
         self.publishers: list[Publisher] = []
         self.subscriptions: list[Subscription] = []
         self.timers: list[Timer] = []
+        self.services: list[Service] = []
+        self.clients: list[Client] = []
+        self.guards: list[GuardCondition] = []
+        self.waitables: list[Executable] = []
+        self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
+        self._callback_groups: list[CallbackGroup] = [self.default_callback_group]
+        # the executor this node was added to (it owns the node's work), and the last one
+        # (whose queue may still hold entries of its entities)
+        self._executor: Any = None
+        self._last_executor: Any = None
         self._allow_undeclared = allow_undeclared_parameters
         self._parameters: dict[str, Parameter] = {}
         self._overrides = self._args.parameter_overrides(self.get_fully_qualified_name(), name)
@@ -64,8 +83,8 @@ class Node:
             self._overrides[p.name] = p.value
         for level_name, level in self._args.log_levels.items():
             set_logger_level(level_name, level)
-        session = self.context.session
-        self._token = session.liveliness().declare_token(keys.node_token(
+        from ros2lite.transport.session import declare_token
+        self._token: Any = declare_token(self.context.session, keys.node_token(
             self.context.domain_id, self.context.zid, self.node_id, self._namespace, self._name))
         self._clock = Clock(ClockType.ROS_TIME)
         self._clock_sub: Subscription | None = None
@@ -108,25 +127,108 @@ class Node:
         keys.validate_full_topic_name(full)
         return full
 
+    # -- executor and callback groups --------------------------------------------------------
+    @property
+    def executor(self) -> Any:
+        """The executor this node was added to, or None."""
+        return self._executor
+
+    @executor.setter
+    def executor(self, new_executor: Any) -> None:
+        if new_executor is self._executor:
+            return
+        if self._executor is not None:
+            self._executor.remove_node(self)
+        if new_executor is not None:
+            new_executor.add_node(self)
+
+    @property
+    def callback_groups(self) -> list[CallbackGroup]:
+        return list(self._callback_groups)
+
+    def add_waitable(self, waitable: Executable) -> None:
+        self.waitables.append(waitable)
+        waitable._notify() if waitable._has_work() else None
+
+    def remove_waitable(self, waitable: Executable) -> None:
+        if waitable in self.waitables:
+            self.waitables.remove(waitable)
+
+    def _executables(self) -> list[Executable]:
+        """Everything that queues itself on the executor (timers are found by it)."""
+        return [*self.subscriptions, *self.services, *self.clients, *self.guards,
+                *self.waitables]
+
+    def _remember_group(self, group: CallbackGroup | None) -> None:
+        if group is not None and group not in self._callback_groups:
+            self._callback_groups.append(group)
+
+    def _wake_executor(self) -> None:
+        if self._executor is not None:
+            self._executor.wake()
+
+    def resolve_service_name(self, service: str, *, only_expand: bool = False) -> str:
+        """Services resolve (expansion, remapping) exactly as topics do."""
+        if only_expand:
+            full = keys.expand_topic_name(service, self._name, self._namespace)
+            keys.validate_full_topic_name(full)
+            return full
+        return self.resolve_topic_name(service)
+
     # -- entities -----------------------------------------------------------------------------
-    def create_publisher(self, msg_type: Any, topic: str, qos_profile: QoSProfile | int
-                         ) -> Publisher:
+    def create_publisher(self, msg_type: Any, topic: str, qos_profile: QoSProfile | int, *,
+                         callback_group: CallbackGroup | None = None,
+                         event_callbacks: Any = None) -> Publisher:
         pub = Publisher(self, msg_type, topic, qos_profile)
         self.publishers.append(pub)
         return pub
 
     def create_subscription(self, msg_type: Any, topic: str, callback: Callable[..., Any],
-                            qos_profile: QoSProfile | int, *, raw: bool = False
-                            ) -> Subscription:
-        sub = Subscription(self, msg_type, topic, callback, qos_profile, raw=raw)
+                            qos_profile: QoSProfile | int, *,
+                            callback_group: CallbackGroup | None = None,
+                            event_callbacks: Any = None, raw: bool = False) -> Subscription:
+        self._remember_group(callback_group)
+        sub = Subscription(self, msg_type, topic, callback, qos_profile, raw=raw,
+                           callback_group=callback_group)
         self.subscriptions.append(sub)
         return sub
 
-    def create_timer(self, timer_period_sec: float, callback: Callable[[], Any]) -> Timer:
-        timer = Timer(timer_period_sec, callback, self._clock)
+    def create_timer(self, timer_period_sec: float, callback: Callable[[], Any],
+                     callback_group: CallbackGroup | None = None, clock: Clock | None = None
+                     ) -> Timer:
+        self._remember_group(callback_group)
+        timer = Timer(timer_period_sec, callback, clock or self._clock, node=self,
+                      callback_group=callback_group)
         self.timers.append(timer)
-        self.context.wake()
+        self._wake_executor()
         return timer
+
+    def create_service(self, srv_type: Any, srv_name: str, callback: Callable[..., Any], *,
+                       qos_profile: QoSProfile = qos_profile_services_default,
+                       callback_group: CallbackGroup | None = None,
+                       deferred: bool = False) -> Service:
+        """Serve `srv_name`: `callback(request, response)` returns the response (or, with
+        `deferred=True`, `callback(request, header)` answers later via `send_response`)."""
+        self._remember_group(callback_group)
+        srv = Service(self, srv_type, srv_name, callback, qos_profile,
+                      callback_group=callback_group, deferred=deferred)
+        self.services.append(srv)
+        return srv
+
+    def create_client(self, srv_type: Any, srv_name: str, *,
+                      qos_profile: QoSProfile = qos_profile_services_default,
+                      callback_group: CallbackGroup | None = None) -> Client:
+        self._remember_group(callback_group)
+        client = Client(self, srv_type, srv_name, qos_profile, callback_group=callback_group)
+        self.clients.append(client)
+        return client
+
+    def create_guard_condition(self, callback: Callable[[], Any],
+                               callback_group: CallbackGroup | None = None) -> GuardCondition:
+        self._remember_group(callback_group)
+        guard = GuardCondition(self, callback, callback_group)
+        self.guards.append(guard)
+        return guard
 
     def destroy_publisher(self, pub: Publisher) -> None:
         if pub in self.publishers:
@@ -143,16 +245,46 @@ class Node:
         if timer in self.timers:
             self.timers.remove(timer)
 
+    def destroy_service(self, srv: Service) -> None:
+        if srv in self.services:
+            self.services.remove(srv)
+        srv.destroy()
+
+    def destroy_client(self, client: Client) -> None:
+        if client in self.clients:
+            self.clients.remove(client)
+        client.destroy()
+
+    def destroy_guard_condition(self, guard: GuardCondition) -> None:
+        if guard in self.guards:
+            self.guards.remove(guard)
+        guard.destroy()
+
     def destroy_node(self) -> None:
-        for entity in [*self.subscriptions, *self.publishers]:
+        from ros2lite.transport.session import undeclare_quietly
+        entities: list[Any] = [*self.subscriptions, *self.publishers, *self.services,
+                               *self.clients]
+        for entity in entities:
             entity.destroy()
         for timer in self.timers:
             timer.cancel()
+        for guard in self.guards:
+            guard.destroy()
+        for waitable in self.waitables:
+            destroy: Callable[[], Any] | None = getattr(waitable, 'destroy', None)
+            if destroy is not None:
+                destroy()
         self.subscriptions.clear()
         self.publishers.clear()
         self.timers.clear()
+        self.services.clear()
+        self.clients.clear()
+        self.guards.clear()
+        self.waitables.clear()
         undeclare_quietly(self._token)
         self._token = None
+        if self._executor is not None:
+            self._executor.remove_node(self)
         self.context.remove_node(self)
 
     # -- time and logging ---------------------------------------------------------------------
@@ -282,3 +414,13 @@ class Node:
 
     def count_subscribers(self, topic_name: str) -> int:
         return len(self.get_subscriptions_info_by_topic(topic_name))
+
+    def count_services(self, service_name: str) -> int:
+        from ros2lite.graph import count
+        return count(self._entities(), self.resolve_service_name(service_name),
+                     keys.EntityKind.SERVICE)
+
+    def count_clients(self, service_name: str) -> int:
+        from ros2lite.graph import count
+        return count(self._entities(), self.resolve_service_name(service_name),
+                     keys.EntityKind.CLIENT)

@@ -2,38 +2,23 @@
 
 from __future__ import annotations
 
-import struct
 import time
 from typing import Any
 
-from ros2lite.endpoint import Endpoint, EndpointOwner, is_transient_local, zenoh_options
+from ros2lite.endpoint import Endpoint, EndpointOwner
+from ros2lite.transport.attachment import pack_attachment
 from ros2lite.transport.keys import EntityKind
-from ros2lite.transport.qos import QoSProfile, ReliabilityPolicy
-
-# the whole 33-byte rmw_zenoh attachment in one pack: seq, timestamp, GID length, GID
-_ATTACHMENT = struct.Struct('<qqB16s')
+from ros2lite.transport.qos import QoSProfile
 
 
 class Publisher(EndpointOwner):
     """Publishes messages (or ready CDR bytes) with rmw_zenoh's sequence/timestamp/GID."""
 
     def __init__(self, node: Any, msg_type: Any, topic: str, qos: QoSProfile | int) -> None:
+        from ros2lite.transport.session import declare_publisher
         self._ep = _PublisherEndpoint(node, msg_type, topic, qos)
         ep = self._ep
-        session = node.context.session
-        options = zenoh_options(ep.qos)
-        self._pub: Any
-        if is_transient_local(ep.qos):
-            import zenoh.ext
-            # as rmw_zenoh: reliable + transient local also announces its last sequence
-            # number (sporadic heartbeat), which subscribers' heartbeat recovery relies on
-            miss = zenoh.ext.MissDetectionConfig(heartbeat=None, sporadic_heartbeat=0.5) \
-                if ep.qos.reliability != ReliabilityPolicy.BEST_EFFORT else None
-            self._pub = zenoh.ext.declare_advanced_publisher(
-                session, ep.key, cache=zenoh.ext.CacheConfig(max(ep.qos.depth, 1)),
-                sample_miss_detection=miss, publisher_detection=True, **options)
-        else:
-            self._pub = session.declare_publisher(ep.key, **options)
+        self._pub: Any = declare_publisher(node.context.session, ep.key, ep.qos)
         ep._announce()
         self._gid = ep.gid
         self._seq = 0
@@ -65,7 +50,7 @@ class Publisher(EndpointOwner):
             from ros2lite.interfaces import serialize
             data = serialize(msg)
         self._seq = seq = self._seq + 1
-        self._put(data, attachment=_ATTACHMENT.pack(seq, time.time_ns(), 16, self._gid))
+        self._put(data, attachment=pack_attachment(seq, time.time_ns(), self._gid))
 
     def _codec_serializer(self) -> Any:
         from ros2lite.interfaces.cdr import codec

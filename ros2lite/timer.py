@@ -4,13 +4,25 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+from ros2lite.executable import Executable
+
+if TYPE_CHECKING:
+    from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.task import Task
 
 
-class Timer:
-    def __init__(self, period_sec: float, callback: Callable[[], Any], clock: Any = None) -> None:
+class Timer(Executable):
+    """Calls `callback()` every period; the executor finds it due (no queue entry)."""
+
+    is_timer = True
+
+    def __init__(self, period_sec: float, callback: Callable[[], Any], clock: Any = None, *,
+                 node: Any = None, callback_group: CallbackGroup | None = None) -> None:
         if period_sec < 0:
             raise ValueError('timer period must not be negative')
+        super().__init__(node, callback_group)
         self.timer_period_ns = round(period_sec * 1e9)
         self.callback = callback
         self._clock = clock
@@ -39,16 +51,28 @@ class Timer:
         remaining = self.time_until_next_call()
         return remaining is not None and remaining <= 0
 
+    @property
+    def timer_period_sec(self) -> float:
+        return self.timer_period_ns / 1e9
+
     def execute(self) -> None:
+        """Fire now (advancing the schedule), on the caller's thread."""
+        if self._fire():
+            self.callback()
+
+    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+        return self._call(self.callback) if self._fire() else None
+
+    def _fire(self) -> bool:
         if self._canceled:
-            return
+            return False
         now = self._now()
         # keep the phase; if we fell behind by whole periods, skip them rather than burst
         self._next += self.timer_period_ns
         if self._next <= now:
             behind = (now - self._next) // max(self.timer_period_ns, 1) + 1
             self._next += behind * self.timer_period_ns
-        self.callback()
+        return True
 
     def cancel(self) -> None:
         self._canceled = True

@@ -14,7 +14,12 @@ from typing import Any
 
 from ros2lite.subscription import Subscription
 from ros2lite.transport.keys import Entity, EntityKind
-from ros2lite.transport.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from ros2lite.transport.qos import (
+    DurabilityPolicy,
+    QoSProfile,
+    ReliabilityPolicy,
+    resolve_best_available,
+)
 
 __all__ = ['MatchedQoS', 'MonitoredSubscription', 'match_publishers_qos', 'topic_types']
 
@@ -39,25 +44,26 @@ def match_publishers_qos(profile: QoSProfile, publishers: Iterable[QoSProfile | 
                          ) -> MatchedQoS:
     """Ask for RELIABLE / TRANSIENT_LOCAL only when every publisher offers it.
 
-    That is the strongest request still compatible with all of them: a RELIABLE or
-    TRANSIENT_LOCAL subscription would not match a weaker publisher under DDS rules, and a
-    TRANSIENT_LOCAL one is what receives a latched publisher's history. With no publishers
-    the profile is returned unchanged.
+    That is rmw's BEST_AVAILABLE rule for a subscription (transport.qos owns it): the
+    strongest request still compatible with all of them, and TRANSIENT_LOCAL is what
+    receives a latched publisher's history. A publisher whose QoS is unknown counts as the
+    weakest. With no publishers the profile is returned unchanged.
     """
-    offered = list(publishers)
+    offered = [q if q is not None else _WEAKEST for q in publishers]
     if not offered:
         return MatchedQoS(profile, False, False)
-    reliable = sum(1 for q in offered
-                   if q is not None and q.reliability == ReliabilityPolicy.RELIABLE)
-    latched = sum(1 for q in offered
-                  if q is not None and q.durability == DurabilityPolicy.TRANSIENT_LOCAL)
+    chosen = resolve_best_available(
+        profile.replace(reliability=ReliabilityPolicy.BEST_AVAILABLE,
+                        durability=DurabilityPolicy.BEST_AVAILABLE),
+        offered, for_publisher=False)
     n = len(offered)
-    chosen = profile.replace(
-        reliability=ReliabilityPolicy.RELIABLE if reliable == n
-        else ReliabilityPolicy.BEST_EFFORT,
-        durability=DurabilityPolicy.TRANSIENT_LOCAL if latched == n
-        else DurabilityPolicy.VOLATILE)
+    reliable = sum(q.reliability == ReliabilityPolicy.RELIABLE for q in offered)
+    latched = sum(q.durability == DurabilityPolicy.TRANSIENT_LOCAL for q in offered)
     return MatchedQoS(chosen, 0 < reliable < n, 0 < latched < n)
+
+
+_WEAKEST = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT,
+                      durability=DurabilityPolicy.VOLATILE)
 
 
 class MonitoredSubscription(Subscription):

@@ -16,7 +16,7 @@ from typing import Any
 
 import pytest
 
-from ros2lite.executor import SingleThreadedExecutor
+from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
 from ros2lite.subscription import MessageInfo
 from tests.spinning import spin_until
@@ -73,11 +73,12 @@ def test_ros2lite_sees_and_hears_the_alien(ros_context: Any, alien: Any) -> None
     try:
         node = Node('lite_node', context=ros_context)
         deadline = time.monotonic() + 15
-        while ('alien_node', '/alien_ns') not in node.get_node_names_and_namespaces():
-            assert time.monotonic() < deadline, node.get_node_names_and_namespaces()
+        # the node's token and its publisher's token arrive one after the other: wait for both
+        while ('alien_node', '/alien_ns') not in node.get_node_names_and_namespaces() or \
+                ('/alien_ns/alien_chatter', ['std_msgs/msg/String']) not in \
+                node.get_topic_names_and_types():
+            assert time.monotonic() < deadline, node.get_topic_names_and_types()
             time.sleep(0.05)
-        assert ('/alien_ns/alien_chatter', ['std_msgs/msg/String']) in \
-            node.get_topic_names_and_types()
         [info] = node.get_publishers_info_by_topic('/alien_ns/alien_chatter')
         assert (info.node_name, info.node_namespace) == ('alien_node', '/alien_ns')
         assert info.qos_profile is not None and info.qos_profile.depth == 7

@@ -8,7 +8,7 @@ from typing import Any
 import pytest
 
 from ros2lite.clock import Clock, ClockType, Duration, Time
-from ros2lite.executor import SingleThreadedExecutor
+from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.interfaces import get_interface
 from ros2lite.node import Node, Parameter
 from tests.spinning import spin_for, spin_until

@@ -117,7 +117,7 @@ def test_process_exits_cleanly_without_shutdown(ros_router: str) -> None:
 SIGTERM_PROGRAM = r'''
 import signal, sys, time
 import ros2lite
-from ros2lite.executor import ExternalShutdownException
+from ros2lite.executors import ExternalShutdownException
 mode = sys.argv[1]
 ros2lite.init([])
 node = ros2lite.Node('sigterm_program', enable_rosout=False)

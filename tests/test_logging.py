@@ -11,7 +11,7 @@ from typing import Any
 import pytest
 
 from ros2lite import logging as rlog
-from ros2lite.executor import SingleThreadedExecutor
+from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import ROSOUT_QOS, Node
 from tests.spinning import spin_for, spin_until
 

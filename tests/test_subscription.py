@@ -9,7 +9,7 @@ from typing import Any
 import pytest
 
 from ros2lite import interfaces
-from ros2lite.executor import SingleThreadedExecutor
+from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
 from ros2lite.subscription import MessageInfo
 from ros2lite.transport.qos import DurabilityPolicy, HistoryPolicy, QoSProfile

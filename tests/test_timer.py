@@ -8,7 +8,7 @@ from typing import Any
 
 import pytest
 
-from ros2lite.executor import SingleThreadedExecutor
+from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
 from ros2lite.timer import Timer
 from tests.spinning import spin_for

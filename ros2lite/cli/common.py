@@ -159,3 +159,23 @@ def include_hidden(ctx: click.Context, flag: bool = False) -> bool:
     """--include-hidden-topics given on the verb or on `topic` itself (whose flag reaches
     the verb through click's shared context object)."""
     return flag or bool((ctx.obj or {}).get('include_hidden_topics'))
+
+
+def interface_type_name(name: str, kind: str, *, invalid: str, not_kind: str | None = None
+                        ) -> str:
+    """A user-given 'pkg/Name' or 'pkg/<kind>/Name' as the full name of an existing
+    interface of that kind; ros2cli's messages (`invalid`, `not_kind`) otherwise."""
+    from ros2lite.interfaces import InterfaceError, get_interface
+    parts = name.split('/')
+    if len(parts) == 2:
+        parts = [parts[0], kind, parts[1]]
+    if len(parts) != 3 or not all(parts):
+        raise CliError(invalid)
+    full = '/'.join(parts)
+    try:
+        get_interface(full)
+    except (InterfaceError, ValueError, LookupError):
+        raise CliError(invalid) from None
+    if parts[1] != kind:
+        raise CliError(not_kind or invalid)
+    return full

@@ -75,6 +75,20 @@ def topics(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
 
 
 @_quietly
+def services(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
+    from ros2lite.graph import service_names_and_types
+    names = service_names_and_types(_graph_entities(ctx), _hidden_wanted(incomplete))
+    return _matching((name for name, _ in names), incomplete)
+
+
+@_quietly
+def actions(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
+    from ros2lite.graph import action_names_and_types
+    names = action_names_and_types(_graph_entities(ctx))
+    return _matching((name for name, _ in names), incomplete)
+
+
+@_quietly
 def nodes(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
     from ros2lite.graph import node_full_names
     entities = _graph_entities(ctx)
@@ -92,6 +106,16 @@ def _interfaces(kind: str | None, incomplete: str) -> list[CompletionItem]:
 @_quietly
 def message_types(_ctx: click.Context, incomplete: str) -> list[CompletionItem]:
     return _interfaces('msg', incomplete)
+
+
+@_quietly
+def service_types(_ctx: click.Context, incomplete: str) -> list[CompletionItem]:
+    return _interfaces('srv', incomplete)
+
+
+@_quietly
+def action_types(_ctx: click.Context, incomplete: str) -> list[CompletionItem]:
+    return _interfaces('action', incomplete)
 
 
 @_quietly

@@ -13,18 +13,20 @@ from collections.abc import Callable
 from typing import Any
 
 
-def run_node(make_node: Callable[[], Any], args: list[str] | None = None,
-             executor_factory: Callable[[], Any] | None = None) -> int:
-    """Spin the node `make_node()` builds until Ctrl-C or shutdown; returns the exit status.
-
-    `executor_factory` makes the executor to spin with (default: the global one)."""
+def run_node(make_node: Callable[[], Any], args: list[str] | None = None) -> int:
+    """Spin the node `make_node()` builds until Ctrl-C or shutdown; returns the exit status."""
     import ros2lite
-    from ros2lite.executor import ExternalShutdownException
+    return run_main(lambda: ros2lite.spin(make_node()), args)
+
+
+def run_main(body: Callable[[], Any], args: list[str] | None = None) -> int:
+    """Run `body()` in an initialised context (demos that do something and end)."""
+    import ros2lite
+    from ros2lite.executors import ExternalShutdownException
     from ros2lite.transport.config import SessionError
     try:
         with ros2lite.init(args=args):
-            node = make_node()
-            ros2lite.spin(node, executor_factory() if executor_factory else None)
+            body()
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except (SessionError, ValueError) as e:

@@ -36,6 +36,10 @@ BUNDLED: dict[str, dict[str, str]] = {
             'ros2lite.demos.action_tutorials_py.fibonacci_action_server:main',
     },
     'demo_nodes_py': {
+        'add_two_ints_client': 'ros2lite.demos.demo_nodes_py.add_two_ints_client:main',
+        'add_two_ints_client_async':
+            'ros2lite.demos.demo_nodes_py.add_two_ints_client_async:main',
+        'add_two_ints_server': 'ros2lite.demos.demo_nodes_py.add_two_ints_server:main',
         'listener': 'ros2lite.demos.demo_nodes_py.listener:main',
         'talker': 'ros2lite.demos.demo_nodes_py.talker:main',
     },

@@ -27,6 +27,7 @@ __all__ = [
     "Duration",
     "HistoryPolicy",
     "LivelinessPolicy",
+    "QoSPresetProfiles",
     "QoSProfile",
     "ReliabilityPolicy",
     "best_available_qos",
@@ -189,6 +190,29 @@ PRESETS: dict[str, QoSProfile] = {
     "rosout_default": qos_profile_rosout_default,
     "default": qos_profile_default,
 }
+
+
+
+class QoSPresetProfiles(enum.Enum):
+    """rclpy's enum of the presets: ``QoSPresetProfiles.SENSOR_DATA.value`` is the profile."""
+
+    UNKNOWN = qos_profile_unknown
+    SYSTEM_DEFAULT = qos_profile_system_default
+    SENSOR_DATA = qos_profile_sensor_data
+    SERVICES_DEFAULT = qos_profile_services_default
+    PARAMETERS = qos_profile_parameters
+    PARAMETER_EVENTS = qos_profile_parameter_events
+    ACTION_STATUS_DEFAULT = qos_profile_action_status_default
+    BEST_AVAILABLE = qos_profile_best_available
+
+    @classmethod
+    def short_keys(cls) -> list[str]:
+        return [name.lower() for name in cls.__members__]   # aliases too (equal profiles)
+
+    @classmethod
+    def get_from_short_key(cls, name: str) -> QoSProfile:
+        return cls[name.upper()].value
+
 
 #: What rmw_zenoh writes as "empty" in a token: RELIABLE, VOLATILE, KEEP_LAST 42, infinite.
 ZENOH_DEFAULT_QOS = QoSProfile(

@@ -13,7 +13,7 @@ from typing import Any
 
 import pytest
 
-from ros2lite.executor import SingleThreadedExecutor
+from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
 from tests.cli.conftest import Result, run_process
 from tests.pkg.test_executables import make_ament_prefix

@@ -10,7 +10,7 @@ from typing import Any
 
 import pytest
 
-from ros2lite.executor import SingleThreadedExecutor
+from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.interfaces import get_interface
 from ros2lite.node import Node
 from tests.spinning import spin_until
@@ -146,3 +146,18 @@ def test_bad_arguments_are_one_line(processes: Any, args: list[str], message: st
 def _env() -> dict[str, str]:
     import os
     return dict(os.environ)
+
+
+def test_add_two_ints_server_and_clients(processes: Any) -> None:
+    server = demo(processes, 'add_two_ints_server')
+    for exe, line in (('add_two_ints_client', 'for 2 \\+ 3 = 5'),
+                      ('add_two_ints_client_async', 'for 41 \\+ 1 = 42')):
+        client = demo(processes, exe)
+        out, err = client.communicate(timeout=30)
+        assert client.returncode == 0, err
+        assert re.search(log_line('add_two_ints_client', 'Result of add_two_ints: ' + line),
+                         err + out), err + out
+    out, err = processes.stop(server)
+    assert server.returncode == 0 and 'Traceback' not in err
+    assert re.search(log_line('add_two_ints_server', 'Incoming request') + '\na: 2 b: 3',
+                     err + out), err + out

@@ -9,7 +9,6 @@ is covered.
 from __future__ import annotations
 
 import pytest
-
 import xxhash
 
 from ros2lite.transport.attachment import gid_from_token

@@ -38,7 +38,7 @@ def bw_line(s: Any) -> str:
 @strategy_options(no_daemon=False)
 def cli(topic: str, window: int, use_sim_time: bool) -> None:
     """Display bandwidth used by topic."""
-    from ros2lite.executor import SingleThreadedExecutor
+    from ros2lite.executors import SingleThreadedExecutor
     from ros2lite.topic_monitor import MonitoredSubscription
     from ros2lite.topic_stats import BandwidthStats
     from ros2lite.transport.qos import qos_profile_sensor_data

@@ -26,7 +26,7 @@ def delay_line(s: Any) -> str:
 @strategy_options(no_daemon=False)
 def cli(topic: str, window: int, use_sim_time: bool) -> None:
     """Display delay of topic from timestamp in header."""
-    from ros2lite.executor import SingleThreadedExecutor
+    from ros2lite.executors import SingleThreadedExecutor
     from ros2lite.interfaces import deserialize, get_interface
     from ros2lite.topic_stats import DelayStats
     from ros2lite.transport.qos import qos_profile_sensor_data

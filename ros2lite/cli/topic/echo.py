@@ -80,7 +80,7 @@ def compile_filter(expr: str | None) -> Callable[[Any], Any] | None:
 def spin(session: CliSession, node: Any, done: Callable[[], bool] | None = None,
          deadline: float | None = None) -> None:
     """Run the node's callbacks until `done()` holds or the monotonic `deadline` passes."""
-    from ros2lite.executor import SingleThreadedExecutor
+    from ros2lite.executors import SingleThreadedExecutor
     executor = SingleThreadedExecutor(context=session.context)
     executor.add_node(node)
     while session.context.ok() and not (done is not None and done()):

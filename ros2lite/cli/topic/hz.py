@@ -148,7 +148,7 @@ def _subscribe(node: Any, type_name: str, topic: str, rate: Any, stamp: Callable
 
 
 def _report_every_second(session: CliSession, node: Any, stats: dict[str, Any]) -> None:
-    from ros2lite.executor import SingleThreadedExecutor
+    from ros2lite.executors import SingleThreadedExecutor
     executor = SingleThreadedExecutor(context=session.context)
     executor.add_node(node)
     fancy = RichTable() if len(stats) > 1 and use_rich() else None

@@ -125,7 +125,7 @@ def publish_loop(session: CliSession, node: Any, topic: str, message_type: str, 
 
     publish_one()
     if times != 1:
-        from ros2lite.executor import SingleThreadedExecutor
+        from ros2lite.executors import SingleThreadedExecutor
         executor = SingleThreadedExecutor(context=session.context)
         executor.add_node(node)
         timer = node.create_timer(period, publish_one)

@@ -12,7 +12,7 @@ from typing import Any
 from ros2lite.action import ActionServer, CancelResponse, GoalResponse
 from ros2lite.action.server import ServerGoalHandle
 from ros2lite.callback_groups import ReentrantCallbackGroup
-from ros2lite.demos.runner import run_node
+from ros2lite.demos.runner import run_main
 from ros2lite.msgs.action_tutorials_interfaces.action import (  # type: ignore[attr-defined]
     Fibonacci,
 )
@@ -64,8 +64,13 @@ class FibonacciActionServer(Node):
 
 
 def main(args: list[str] | None = None) -> int:
+    import ros2lite
     from ros2lite.executors import MultiThreadedExecutor
-    return run_node(FibonacciActionServer, args, executor_factory=MultiThreadedExecutor)
+
+    def body() -> None:
+        # a multi-threaded executor, so goals are processed concurrently
+        ros2lite.spin(FibonacciActionServer(), executor=MultiThreadedExecutor())
+    return run_main(body, args)
 
 
 if __name__ == '__main__':

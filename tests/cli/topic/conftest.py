@@ -14,7 +14,7 @@ from typing import Any
 
 import pytest
 
-from ros2lite.executor import SingleThreadedExecutor
+from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
 
 

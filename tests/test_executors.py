@@ -11,9 +11,10 @@ from typing import Any
 import pytest
 
 import ros2lite
-from ros2lite.executor import Future, SingleThreadedExecutor
+from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.interfaces import get_interface
 from ros2lite.node import Node
+from ros2lite.task import Future
 from tests.spinning import spin_until, wait_matched
 
 
@@ -194,3 +195,135 @@ def test_timers_are_not_starved_by_a_busy_subscription(ros_context: Any) -> None
     assert len(got) < 300          # still busy with the backlog…
     assert len(ticks) >= 8         # …yet the 10 ms timer kept firing
     assert max(b - a for a, b in itertools.pairwise(ticks)) < 0.03
+
+
+# -- rclpy's concurrency model: executors own their nodes' work, callback groups, tasks --------
+
+def test_each_executor_runs_only_its_own_nodes(ros_context: Any) -> None:
+    a, b = Node('exec_a', context=ros_context), Node('exec_b', context=ros_context)
+    ran: list[str] = []
+    a.create_timer(0.01, lambda: ran.append('a'))
+    b.create_timer(0.01, lambda: ran.append('b'))
+    first = SingleThreadedExecutor(context=ros_context)
+    second = SingleThreadedExecutor(context=ros_context)
+    first.add_node(a)
+    second.add_node(b)
+    assert a.executor is first and b.executor is second
+    spin_until(first, lambda: ran.count('a') >= 3)
+    assert 'b' not in ran
+    spin_until(second, lambda: 'b' in ran)
+    # moving a node moves its work
+    second.add_node(a)
+    assert a.executor is second and first.get_nodes() == []
+    ran.clear()
+    spin_until(second, lambda: 'a' in ran and 'b' in ran)
+
+
+def _overlap(executor: Any, node: Node, group_a: Any, group_b: Any) -> int:
+    """Most callbacks of two slow timers found running at the same time."""
+    running = 0
+    most = 0
+    lock = threading.Lock()
+    calls = itertools.count()
+
+    def slow() -> None:
+        nonlocal running, most
+        with lock:
+            running += 1
+            most = max(most, running)
+        time.sleep(0.05)
+        with lock:
+            running -= 1
+        next(calls)
+
+    node.create_timer(0.01, slow, callback_group=group_a)
+    node.create_timer(0.01, slow, callback_group=group_b)
+    executor.add_node(node)
+    deadline = time.monotonic() + 10
+    while next(calls) < 12 and time.monotonic() < deadline:
+        executor.spin_once(timeout_sec=0.05)
+    executor.shutdown()
+    return most
+
+
+def test_multithreaded_executor_honours_mutually_exclusive_groups(ros_context: Any) -> None:
+    from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup
+    from ros2lite.executors import MultiThreadedExecutor
+    node = Node('mutex', context=ros_context)
+    group = MutuallyExclusiveCallbackGroup()
+    assert _overlap(MultiThreadedExecutor(4, context=ros_context), node, group, group) == 1
+
+
+def test_multithreaded_executor_runs_reentrant_callbacks_in_parallel(ros_context: Any) -> None:
+    from ros2lite.callback_groups import ReentrantCallbackGroup
+    from ros2lite.executors import MultiThreadedExecutor
+    node = Node('reentrant', context=ros_context)
+    group = ReentrantCallbackGroup()
+    assert _overlap(MultiThreadedExecutor(4, context=ros_context), node, group, group) == 2
+
+
+def test_single_threaded_executor_never_overlaps(ros_context: Any) -> None:
+    from ros2lite.callback_groups import ReentrantCallbackGroup
+    node = Node('single', context=ros_context)
+    group = ReentrantCallbackGroup()
+    assert _overlap(SingleThreadedExecutor(context=ros_context), node, group, group) == 1
+
+
+def test_coroutine_task_resumes_when_the_awaited_future_completes(ros_context: Any) -> None:
+    executor = SingleThreadedExecutor(context=ros_context)
+    node = Node('tasks', context=ros_context)
+    executor.add_node(node)
+    gate = Future()
+    steps: list[str] = []
+
+    async def work(x: int) -> int:
+        steps.append('start')
+        value = await gate
+        steps.append('resumed')
+        return x + value
+
+    task = executor.create_task(work, 40)
+    node.create_timer(0.05, lambda: gate.done() or gate.set_result(2))
+    executor.spin_until_future_complete(task, timeout_sec=5)
+    assert task.done() and task.result() == 42
+    assert steps == ['start', 'resumed']
+
+
+def test_task_exception_is_raised_from_spin(ros_context: Any) -> None:
+    executor = SingleThreadedExecutor(context=ros_context)
+
+    async def fail() -> None:
+        raise ValueError('inside the task')
+
+    task = executor.create_task(fail)
+    with pytest.raises(ValueError, match='inside the task'):
+        executor.spin_once(timeout_sec=1)
+    assert isinstance(task.exception(), ValueError)
+
+
+def test_async_timer_callback_keeps_its_group_until_it_ends(ros_context: Any) -> None:
+    """A coroutine callback holds its mutually exclusive group while it awaits, as in rclpy:
+    the other timer of the group does not run meanwhile."""
+    executor = SingleThreadedExecutor(context=ros_context)
+    node = Node('async_timer', context=ros_context)
+    gate = Future()
+    log: list[str] = []
+
+    async def waiting() -> None:
+        log.append('await')
+        await gate
+        log.append('done')
+
+    first = node.create_timer(0.01, waiting)
+    node.create_timer(0.01, lambda: log.append('other'))
+    executor.add_node(node)
+    spin_until(executor, lambda: 'await' in log)
+    first.cancel()
+    spin_for_count = 0
+    while spin_for_count < 5:
+        executor.spin_once(timeout_sec=0.02)
+        spin_for_count += 1
+    assert 'other' not in log
+    gate.set_result(None)
+    spin_until(executor, lambda: 'other' in log)
+    assert log.index('done') < log.index('other')

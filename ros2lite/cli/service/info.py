@@ -1,0 +1,31 @@
+"""`service info`: type and how many clients and servers a service has."""
+
+from __future__ import annotations
+
+import click
+
+from .. import completion
+from ..common import CliSession, strategy_options
+from ..errors import CliError
+
+
+@click.command('info')
+@strategy_options()
+@click.argument('service_name', shell_complete=completion.services)
+@click.pass_context
+def cli(ctx: click.Context, service_name: str, no_daemon: bool, use_sim_time: bool) -> None:
+    """Print information about a service."""
+    from ros2lite.graph import count, service_names_and_types
+    from ros2lite.transport.keys import EntityKind, expand_topic_name
+    try:
+        name = expand_topic_name(service_name, 'ros2lite', '/')
+    except ValueError:
+        raise CliError(f"Unknown service '{service_name}'") from None
+    with CliSession(no_daemon=no_daemon) as session:
+        entities = session.entities()
+    types = dict(service_names_and_types(entities, include_hidden=True)).get(name)
+    if types is None:
+        raise CliError(f"Unknown service '{name}'")
+    click.echo(f'Type: {", ".join(types)}')
+    click.echo(f'Clients count: {count(entities, name, EntityKind.CLIENT)}')
+    click.echo(f'Services count: {count(entities, name, EntityKind.SERVICE)}')

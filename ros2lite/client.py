@@ -1,0 +1,221 @@
+"""Service clients, on rmw_zenoh's wire: one query per request through a querier (target
+ALL_COMPLETE, no consolidation), with a per-client sequence number and the client's GID in the
+attachment (rmw_zenoh.md §5).
+
+`call_async` futures complete on the executor of the client's node, so done-callbacks and
+awaiting coroutines run there. `call` does not need an executor at all: the reply wakes the
+calling thread directly, which is why it also works inside a callback; it refuses only where
+waiting could never end (the server is ours and cannot run until the caller returns).
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections import deque
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+from ros2lite.endpoint import Endpoint
+from ros2lite.executable import Executable
+from ros2lite.task import Future
+from ros2lite.transport.attachment import pack_attachment
+from ros2lite.transport.keys import EntityKind
+from ros2lite.transport.qos import QoSProfile
+
+if TYPE_CHECKING:
+    from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.task import Task
+
+__all__ = ['Client', 'ServiceCallError']
+
+# rmw_zenoh waits for a get_result reply without a time limit (PR #685); other queries time
+# out after the session's queries_default_timeout (600 s)
+_UNLIMITED = 10 * 365 * 24 * 3600.0
+
+
+class ServiceCallError(RuntimeError):
+    """A request ended without a response (no server answered, or the query failed)."""
+
+
+class Client(Executable):
+    """Calls the service `srv_name` of type `srv_type`."""
+
+    # completing a future runs no user callback here: it must not wait for the group, or a
+    # coroutine holding that group while awaiting this very future would never resume
+    needs_group = False
+
+    def __init__(self, node: Any, srv_type: Any, srv_name: str, qos: QoSProfile | int, *,
+                 callback_group: CallbackGroup | None = None) -> None:
+        from ros2lite.transport.session import declare_querier
+        super().__init__(node, callback_group)
+        self._ep = _ClientEndpoint(node, srv_type, srv_name, qos)
+        self.srv_type: Any = self._ep.msg_class
+        self.srv_name = self._ep.topic_name
+        self.qos_profile = self._ep.qos
+        self._gid = self._ep.gid
+        self._lock = threading.Lock()
+        self._seq = 0
+        self._pending: dict[int, Future] = {}
+        # (sequence number, response bytes or None, error text) from Zenoh threads
+        self._responses: deque[tuple[int, bytes | None, str]] = deque()
+        self._request_codec: Any = None
+        self._response_codec: Any = None
+        timeout = _UNLIMITED if '/_action/get_result' in self.srv_name else None
+        self._querier: Any = declare_querier(node.context.session, self._ep.key, timeout)
+        self._ep._announce()
+
+    @property
+    def service_name(self) -> str:
+        return self.srv_name
+
+    def _codecs(self) -> tuple[Any, Any]:
+        if self._request_codec is None:
+            from ros2lite.interfaces.cdr import codec
+            from ros2lite.interfaces.registry import default_registry
+            name = self._ep.type_name
+            self._request_codec = codec(f'{name}_Request', default_registry())
+            self._response_codec = codec(f'{name}_Response', default_registry())
+        return self._request_codec, self._response_codec
+
+    def _send(self, request: Any, on_response: Callable[[int, bytes | None, str], None],
+              future: Future | None = None) -> None:
+        """Serialize and send; `on_response(seq, data or None, error)` once, on a Zenoh
+        thread. A `future` is registered under the request's sequence number first."""
+        if getattr(request, '_TYPE_NAME', None) != f'{self._ep.type_name}_Request':
+            raise TypeError(f"client of '{self._ep.type_name}' got {type(request).__name__}; "
+                            f'expected {self._ep.type_name}_Request')
+        data = self._codecs()[0].serialize(request)
+        with self._lock:
+            self._seq = seq = self._seq + 1
+            if future is not None:
+                self._pending[seq] = future
+        answered = threading.Event()
+
+        def reply(payload: bytes, attachment: bytes | None) -> None:
+            if not answered.is_set():   # one response per request, as rmw_zenoh takes it
+                answered.set()
+                on_response(seq, payload, '')
+
+        def end(error: str | None) -> None:
+            if not answered.is_set():
+                answered.set()
+                on_response(seq, None, error or f"no server of '{self.srv_name}' answered")
+
+        try:
+            self._querier.get(data, pack_attachment(seq, time.time_ns(), self._gid), reply, end)
+        except BaseException:
+            with self._lock:
+                self._pending.pop(seq, None)
+            raise
+
+    # -- asynchronous: completed by the executor ---------------------------------------------------
+    def call_async(self, request: Any) -> Future:
+        future = Future()
+        self._send(request, self._on_response, future)
+        return future
+
+    def _on_response(self, seq: int, data: bytes | None, error: str) -> None:
+        self._responses.append((seq, data, error))
+        self._notify()
+
+    def _has_work(self) -> bool:
+        return bool(self._responses)
+
+    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+        while self._responses:
+            seq, data, error = self._responses.popleft()
+            with self._lock:
+                future = self._pending.pop(seq, None)
+            if future is None or future.done():
+                continue   # given up on (remove_pending_request) or cancelled
+            if data is None:
+                future.set_exception(ServiceCallError(error))
+                continue
+            try:
+                response = self._codecs()[1].deserialize(data)
+            except Exception as e:
+                future.set_exception(ServiceCallError(f'undecodable response: {e}'))
+                continue
+            future.set_result(response)
+        return None
+
+    def remove_pending_request(self, future: Future) -> None:
+        with self._lock:
+            for seq, pending in list(self._pending.items()):
+                if pending is future:
+                    del self._pending[seq]
+
+    # -- synchronous: the reply wakes the caller ---------------------------------------------------
+    def call(self, request: Any, timeout_sec: float | None = None) -> Any:
+        """Send and wait for the response; TimeoutError when `timeout_sec` passes first."""
+        self._refuse_deadlock()
+        done = threading.Event()
+        outcome: list[tuple[bytes | None, str]] = []
+
+        def on_response(seq: int, data: bytes | None, error: str) -> None:
+            outcome.append((data, error))
+            done.set()
+
+        self._send(request, on_response)
+        if not done.wait(timeout_sec):
+            raise TimeoutError(f"service '{self.srv_name}' did not answer within "
+                               f'{timeout_sec} s')
+        data, error = outcome[0]
+        if data is None:
+            raise ServiceCallError(error)
+        return self._codecs()[1].deserialize(data)
+
+    def _refuse_deadlock(self) -> None:
+        """Inside a callback, a server of ours on the same executor may be unable to run
+        until that callback returns: then waiting would never end, so say so instead."""
+        from ros2lite.executors import MultiThreadedExecutor, current_execution
+        executor, entity = current_execution()
+        if executor is None:
+            return
+        server = self._node.context.local_services.get(self._ep.key)
+        if server is None or server._node._executor is not executor:
+            return
+        blocked = not isinstance(executor, MultiThreadedExecutor) or executor.num_threads < 2
+        group = server.callback_group
+        if not blocked and entity is not None and group is entity.callback_group:
+            from ros2lite.callback_groups import ReentrantCallbackGroup
+            blocked = not isinstance(group, ReentrantCallbackGroup)
+        if blocked:
+            raise RuntimeError(
+                f"Client.call('{self.srv_name}') inside a callback would deadlock: its "
+                'server runs on the same executor and cannot run until this callback '
+                'returns. Await client.call_async() in an async callback, or use a '
+                'MultiThreadedExecutor with the callbacks in different callback groups '
+                '(or a ReentrantCallbackGroup).')
+
+    # -- availability -----------------------------------------------------------------------------
+    def _server_count(self, entities: list[Any]) -> int:
+        return sum(1 for e in entities
+                   if e.kind == EntityKind.SERVICE and e.topic_name == self.srv_name
+                   and e.type_name == self._ep.type_name
+                   and e.type_hash == self._ep.type_hash)
+
+    def service_is_ready(self) -> bool:
+        return self._server_count(self._node.context.graph.entities()) > 0
+
+    def wait_for_service(self, timeout_sec: float | None = None) -> bool:
+        """Wait until a server is in the graph; False if `timeout_sec` passed first."""
+        context = self._node.context
+        context.graph.wait_for(
+            lambda entities: self._server_count(entities) > 0 or not context.ok(),
+            timeout_sec)
+        return context.ok() and self.service_is_ready()
+
+    def destroy(self) -> None:
+        with self._lock:
+            pending, self._pending = self._pending, {}
+        for future in pending.values():
+            future.cancel()
+        self._ep._undeclare(self._querier)
+        self._querier = None
+
+
+class _ClientEndpoint(Endpoint):
+    kind = EntityKind.CLIENT
+

@@ -1,0 +1,33 @@
+"""`add_two_ints_client`: waits for `add_two_ints`, asks for 2 + 3, logs the result, ends."""
+
+from __future__ import annotations
+
+import ros2lite
+from ros2lite.demos.runner import run_main
+from ros2lite.msgs.example_interfaces.srv import AddTwoInts  # type: ignore[attr-defined]
+
+
+def request_once(a: int, b: int) -> None:
+    node = ros2lite.create_node('add_two_ints_client')
+    client = node.create_client(AddTwoInts, 'add_two_ints')
+    request = AddTwoInts.Request(a=a, b=b)
+    while not client.wait_for_service(timeout_sec=1.0):
+        node.get_logger().info('service not available, waiting again...')
+    future = client.call_async(request)
+    ros2lite.spin_until_future_complete(node, future)
+    try:
+        result = future.result()
+    except Exception as e:
+        node.get_logger().info(f'Service call failed {e!r}')
+    else:
+        node.get_logger().info(
+            f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}')
+    node.destroy_node()
+
+
+def main(args: list[str] | None = None) -> int:
+    return run_main(lambda: request_once(2, 3), args)
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())

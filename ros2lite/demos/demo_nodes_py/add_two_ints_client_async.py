@@ -1,0 +1,37 @@
+"""`add_two_ints_client_async`: the same as `add_two_ints_client`, asking for 41 + 1 and
+spinning the node itself until the future is done."""
+
+from __future__ import annotations
+
+import ros2lite
+from ros2lite.demos.runner import run_main
+from ros2lite.msgs.example_interfaces.srv import AddTwoInts  # type: ignore[attr-defined]
+
+
+def request_async() -> None:
+    node = ros2lite.create_node('add_two_ints_client')
+    client = node.create_client(AddTwoInts, 'add_two_ints')
+    while not client.wait_for_service(timeout_sec=1.0):
+        print('service not available, waiting again...', flush=True)
+    request = AddTwoInts.Request(a=41, b=1)
+    future = client.call_async(request)
+    while ros2lite.ok():
+        ros2lite.spin_once(node)
+        if future.done():
+            try:
+                result = future.result()
+            except Exception as e:
+                node.get_logger().info(f'Service call failed {e!r}')
+            else:
+                node.get_logger().info(
+                    f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}')
+            break
+    node.destroy_node()
+
+
+def main(args: list[str] | None = None) -> int:
+    return run_main(request_async, args)
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())

@@ -1,0 +1,28 @@
+"""`add_two_ints_server`: serves `add_two_ints` (example_interfaces/srv/AddTwoInts)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ros2lite.demos.runner import run_node
+from ros2lite.msgs.example_interfaces.srv import AddTwoInts  # type: ignore[attr-defined]
+from ros2lite.node import Node
+
+
+class AddTwoIntsServer(Node):
+    def __init__(self) -> None:
+        super().__init__('add_two_ints_server')
+        self.srv = self.create_service(AddTwoInts, 'add_two_ints', self.add_two_ints_callback)
+
+    def add_two_ints_callback(self, request: Any, response: Any) -> Any:
+        response.sum = request.a + request.b
+        self.get_logger().info(f'Incoming request\na: {request.a} b: {request.b}')
+        return response
+
+
+def main(args: list[str] | None = None) -> int:
+    return run_node(AddTwoIntsServer, args)
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())

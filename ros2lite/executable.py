@@ -1,0 +1,95 @@
+"""What subscriptions, services, clients, timers and guard conditions share: they belong to a
+node and a callback group, and when work arrives (on any thread) they wake the executor their
+node was added to, at most once until it has run them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+from ros2lite.callback_groups import CallbackGroup
+
+if TYPE_CHECKING:
+    from ros2lite.task import Task
+
+__all__ = ['Executable', 'GuardCondition']
+
+
+class Executable:
+    """Base of everything an executor runs for a node."""
+
+    # completing a client's future runs no user callback of its own, so it need not wait for
+    # its group: a coroutine holding the group while it awaits that very future would
+    # otherwise never resume
+    needs_group = True
+    is_timer = False
+
+    def __init__(self, node: Any, callback_group: CallbackGroup | None) -> None:
+        from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup
+        self._node = node
+        self.callback_group = callback_group or (
+            node.default_callback_group if node is not None
+            else MutuallyExclusiveCallbackGroup())
+        self.callback_group.add_entity(self)
+        # in the executor's queue, or running: set and cleared by the owner of the queue
+        self._scheduled = False
+
+    def _notify(self) -> None:
+        """Any thread: work arrived; queue this entity on its node's executor (once)."""
+        if self._scheduled:
+            return
+        executor = self._node._executor
+        if executor is not None:
+            self._scheduled = True
+            executor._enqueue(self)
+
+    def _executed(self) -> None:
+        """Executor thread, after `_execute`: clear the flag *before* looking for more work,
+        so work that arrives meanwhile is either seen here or queued by `_notify`."""
+        self._scheduled = False
+        if self._has_work():
+            self._notify()
+
+    def _has_work(self) -> bool:
+        return False
+
+    def _call(self, callback: Callable[..., Any], *args: Any,
+              then: Callable[[Any], None] | None = None) -> Task | None:
+        """Run a user callback on the executor's terms (a coroutine becomes a Task)."""
+        executor = self._node._executor if self._node is not None else None
+        if executor is not None:
+            return executor._run_callback(callback, *args, then=then)
+        result = callback(*args)
+        if then is not None:
+            then(result)
+        return None
+
+    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+        """Run pending work; return a Task if a coroutine callback is still running (it
+        keeps the callback group until it finishes)."""
+        raise NotImplementedError
+
+
+class GuardCondition(Executable):
+    """`trigger()` from any thread makes the executor call `callback()` on its thread."""
+
+    def __init__(self, node: Any, callback: Callable[[], Any] | None,
+                 callback_group: CallbackGroup | None = None) -> None:
+        super().__init__(node, callback_group)
+        self.callback = callback
+        self._triggered = False
+
+    def trigger(self) -> None:
+        self._triggered = True
+        self._notify()
+
+    def _has_work(self) -> bool:
+        return self._triggered
+
+    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+        self._triggered = False
+        return self._call(self.callback) if self.callback is not None else None
+
+    def destroy(self) -> None:
+        self.callback = None

@@ -1,0 +1,459 @@
+"""Executors, as rclpy has them: they own the work of the nodes added to them.
+
+Entities (subscriptions, services, clients, guard conditions) queue themselves on their node's
+executor when work arrives; due timers are found by the executor itself. A
+`SingleThreadedExecutor` runs everything on the thread that spins it; a
+`MultiThreadedExecutor` hands callbacks to a thread pool, running at once only what the
+callback groups allow. Coroutine callbacks run as Tasks that keep their group until they end.
+
+`spin_once` runs exactly one callback, as rclpy promises; `spin` and
+`spin_until_future_complete` let a subscription deliver a short batch per turn (bounded in count
+and time, and ended as soon as the awaited future completes), which is what makes high message
+rates affordable in Python.
+"""
+
+from __future__ import annotations
+
+import inspect
+import os
+import queue
+import threading
+import time
+import weakref
+from collections.abc import Callable, Coroutine, Iterator
+from concurrent.futures import ThreadPoolExecutor
+from typing import TYPE_CHECKING, Any
+
+from ros2lite.context import Context, default_context
+from ros2lite.executable import Executable
+from ros2lite.task import Future, Task
+
+if TYPE_CHECKING:
+    from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.node import Node
+    from ros2lite.timer import Timer
+
+__all__ = [
+    'Executor',
+    'ExternalShutdownException',
+    'MultiThreadedExecutor',
+    'ShutdownException',
+    'SingleThreadedExecutor',
+    'get_global_executor',
+    'spin',
+    'spin_once',
+    'spin_until_future_complete',
+]
+
+class ExternalShutdownException(Exception):
+    """Spinning ended because the process was asked to stop (SIGTERM), as in rclpy."""
+
+
+class ShutdownException(Exception):
+    """The executor was shut down."""
+
+
+# which executor and entity the current thread is running a callback for (deadlock checks)
+_running = threading.local()
+
+
+def current_execution() -> tuple[Executor | None, Executable | None]:
+    """(executor, entity) whose callback this thread is running, or (None, None)."""
+    return getattr(_running, 'executor', None), getattr(_running, 'entity', None)
+
+
+class Executor:
+    """Runs the callbacks of its nodes; subclasses decide on which threads."""
+
+    def __init__(self, *, context: Context | None = None) -> None:
+        self._context = context or default_context()
+        self._nodes: list[Node] = []
+        self._lock = threading.RLock()
+        # entities and tasks with work; None is a bare wake-up
+        self._queue: queue.SimpleQueue[Any] = queue.SimpleQueue()
+        self._enqueue = self._queue.put
+        # entities whose callback group was busy, re-queued when the group frees
+        self._blocked: list[Executable] = []
+        # a due timer waits for its group: releasing a group must wake the loop
+        self._timer_waits = False
+        self._is_shutdown = False
+        self._spinning = 0
+        self._context.add_executor(self)
+
+    @property
+    def context(self) -> Context:
+        return self._context
+
+    # -- nodes and tasks -----------------------------------------------------------------------
+    def add_node(self, node: Node) -> bool:
+        """Take over `node` (a node belongs to one executor at a time)."""
+        with self._lock:
+            if node in self._nodes:
+                return False
+            self._nodes.append(node)
+        previous = node._executor
+        if previous is not None and previous is not self:
+            previous.remove_node(node)
+        if node._last_executor is not self:
+            # entries of its entities may sit in another executor's queue: start afresh
+            for entity in node._executables():
+                entity._scheduled = False
+            node._last_executor = self
+        node._executor = self
+        for entity in node._executables():
+            if not entity._scheduled and entity._has_work():
+                entity._notify()
+        if self._spinning:
+            self.wake()   # a spinning thread must see the node's timers
+        return True
+
+    def remove_node(self, node: Node) -> None:
+        with self._lock:
+            if node not in self._nodes:
+                return
+            self._nodes.remove(node)
+        if node._executor is self:
+            node._executor = None
+
+    def get_nodes(self) -> list[Node]:
+        with self._lock:
+            return list(self._nodes)
+
+    def wake(self) -> None:
+        self._queue.put(None)
+
+    def create_task(self, callback: Callable[..., Any] | Coroutine[Any, Any, Any],
+                    *args: Any, **kwargs: Any) -> Task:
+        """Run `callback(*args, **kwargs)` (or a coroutine) on this executor as a Task."""
+        if inspect.iscoroutine(callback):
+            coro = callback
+            task = Task(lambda: coro, executor=self, reschedule=self._enqueue)
+        else:
+            assert callable(callback)
+            task = Task(callback, args, kwargs, executor=self, reschedule=self._enqueue)
+        self._enqueue(task)
+        return task
+
+    def shutdown(self, timeout_sec: float | None = None) -> bool:
+        self._is_shutdown = True
+        for node in self.get_nodes():
+            self.remove_node(node)
+        self.wake()
+        return True
+
+    # -- spinning --------------------------------------------------------------------------------
+    def _ok(self) -> bool:
+        return self._context.ok() and not self._is_shutdown
+
+    def _check_terminating(self) -> None:
+        if self._context.terminating:
+            raise ExternalShutdownException()
+
+    def spin(self) -> None:
+        self._spinning += 1
+        try:
+            while self._ok():
+                item = self._next(None, None)
+                if item is not None:
+                    self._dispatch(item, True, None)
+        finally:
+            self._spinning -= 1
+        self._check_terminating()
+
+    def spin_once(self, timeout_sec: float | None = None) -> None:
+        """Run one callback (or due timer), waiting up to `timeout_sec` (None: forever)."""
+        self._check_terminating()
+        self._spinning += 1
+        try:
+            item = self._next(timeout_sec, None)
+            if item is not None:
+                self._dispatch(item, False, None)
+        finally:
+            self._spinning -= 1
+        self._check_terminating()
+
+    def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None
+                                   ) -> None:
+        future.add_done_callback(lambda _f: self.wake())
+        deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
+        self._spinning += 1
+        try:
+            while self._ok() and not future.done():
+                remaining = None if deadline is None else deadline - time.monotonic()
+                if remaining is not None and remaining <= 0:
+                    return
+                item = self._next(remaining, future.done)
+                if item is not None:
+                    self._dispatch(item, True, future.done)
+        finally:
+            self._spinning -= 1
+        if not future.done():
+            self._check_terminating()
+
+    def spin_once_until_future_complete(self, future: Future,
+                                        timeout_sec: float | None = None) -> None:
+        future.add_done_callback(lambda _f: self.wake())
+        self.spin_once(timeout_sec)
+
+    # -- finding work ----------------------------------------------------------------------------
+    def _timers(self) -> Iterator[Timer]:
+        for node in self.get_nodes():
+            yield from node.timers
+
+    def _due_timer(self) -> tuple[Timer | None, float | None]:
+        """A due timer whose group is free, else (None, seconds until the next one)."""
+        wait: float | None = None
+        for node in self._nodes:
+            for timer in node.timers:
+                if timer._scheduled:
+                    continue
+                remaining = timer.time_until_next_call()
+                if remaining is None:
+                    continue
+                if remaining <= 0:
+                    if timer.callback_group.can_execute(timer):
+                        return timer, None
+                    self._timer_waits = True
+                    continue   # its group's release wakes us
+                wait = remaining if wait is None else min(wait, remaining)
+        return None, wait
+
+    def _next(self, timeout: float | None, stop: Callable[[], bool] | None) -> Any:
+        """The next entity, task or due timer; None when the timeout passed, `stop()` holds
+        or the executor/context shut down. A bare wake-up is not work: waiting goes on."""
+        work = self._queue
+        has_timers = any(node.timers for node in self._nodes)
+        if not has_timers:
+            # hot path: work already queued runs at once, with no deadline arithmetic
+            try:
+                item = work.get_nowait()
+            except queue.Empty:
+                item = None
+            if item is not None:
+                return item
+            if timeout is None:
+                while True:
+                    item = work.get()
+                    if item is not None:
+                        return item
+                    if not self._ok() or (stop is not None and stop()):
+                        return None
+                    if any(node.timers for node in self._nodes):
+                        break   # a timer was added meanwhile: take the general path
+        deadline = None if timeout is None else time.monotonic() + timeout
+        while True:
+            timer, next_timer = self._due_timer()
+            if timer is not None:
+                return timer
+            wait = None if deadline is None else max(0.0, deadline - time.monotonic())
+            if next_timer is not None:
+                wait = max(0.0, next_timer) if wait is None else min(wait, max(0.0, next_timer))
+            try:
+                item = work.get(timeout=wait) if wait != 0 else work.get_nowait()
+            except queue.Empty:
+                item = None
+            if item is not None:
+                return item
+            if not self._ok() or (stop is not None and stop()):
+                return None
+            if deadline is not None and time.monotonic() >= deadline:
+                return None
+
+    # -- running work ----------------------------------------------------------------------------
+    def _dispatch(self, item: Any, batch: bool, stop: Callable[[], bool] | None) -> None:
+        if type(item) is Task:
+            self._run_task(item)
+            return
+        node = item._node
+        if node._executor is not self:
+            # its node left: if it comes back here, add_node queues the entity again; if it
+            # went to another executor, that one has taken the entity over
+            if node._last_executor is self:
+                item._scheduled = False
+            return
+        group = item.callback_group
+        if item.needs_group and not group.beginning_execution(item):
+            with self._lock:
+                self._blocked.append(item)
+            if group.can_execute(item):   # freed meanwhile: don't wait for a release
+                self._release(group, None)
+            return
+        self._start(item, group, batch, stop)
+
+    def _start(self, entity: Executable, group: CallbackGroup, batch: bool,
+               stop: Callable[[], bool] | None) -> None:
+        self._run_entity(entity, group, batch, stop)
+
+    def _run_entity(self, entity: Executable, group: CallbackGroup, batch: bool,
+                    stop: Callable[[], bool] | None) -> None:
+        saved = current_execution()
+        _running.executor, _running.entity = self, entity
+        pending: Task | None = None
+        try:
+            pending = entity._execute(batch, stop)
+        finally:
+            _running.executor, _running.entity = saved
+            entity._executed()
+            if entity.needs_group:
+                if pending is None or pending.done():
+                    self._release(group, entity)
+                else:
+                    pending.add_done_callback(lambda _f: self._release(group, entity))
+
+    def _run_task(self, task: Task) -> None:
+        task()
+        if task.done() and task.exception() is not None:
+            raise task.exception()   # type: ignore[misc]
+
+    def _release(self, group: CallbackGroup, entity: Executable | None) -> None:
+        if entity is not None:
+            group.ending_execution(entity)
+        if self._blocked:
+            with self._lock:
+                waiting = [e for e in self._blocked if e.callback_group is group]
+                if waiting:
+                    self._blocked = [e for e in self._blocked if e.callback_group is not group]
+            for e in waiting:
+                self._enqueue(e)
+        if self._timer_waits:
+            self._timer_waits = False
+            self.wake()   # due timers of the group may run now
+
+    def _run_callback(self, callback: Callable[..., Any], *args: Any,
+                      then: Callable[[Any], None] | None = None) -> Task | None:
+        """Call a user callback; a coroutine it returns goes on as a Task of this executor
+        (first step now). `then(result)` gets the result, now or when the task ends."""
+        result = callback(*args)
+        if not inspect.iscoroutine(result):
+            if then is not None:
+                then(result)
+            return None
+        coro = result
+        task = Task(lambda: coro, executor=self, reschedule=self._enqueue)
+        if then is not None:
+            task.add_done_callback(
+                lambda t: then(t.result()) if t.exception() is None else None)
+        self._run_task(task)
+        return None if task.done() else task
+
+
+class SingleThreadedExecutor(Executor):
+    """Runs every callback on the thread that spins it."""
+
+
+class MultiThreadedExecutor(Executor):
+    """Runs callbacks on a pool of `num_threads` threads, as far as callback groups allow."""
+
+    def __init__(self, num_threads: int | None = None, *, context: Context | None = None
+                 ) -> None:
+        super().__init__(context=context)
+        if num_threads is None:
+            num_threads = max(os.cpu_count() or 2, 2)
+        if num_threads < 1:
+            raise ValueError('num_threads must be at least 1')
+        self._num_threads = num_threads
+        self._pool = ThreadPoolExecutor(num_threads, thread_name_prefix='ros2lite-executor')
+        self._errors: queue.SimpleQueue[BaseException] = queue.SimpleQueue()
+        self._workers = threading.BoundedSemaphore(num_threads)
+
+    @property
+    def num_threads(self) -> int:
+        return self._num_threads
+
+    def _raise_errors(self) -> None:
+        try:
+            error = self._errors.get_nowait()
+        except queue.Empty:
+            return
+        raise error
+
+    def _next(self, timeout: float | None, stop: Callable[[], bool] | None) -> Any:
+        self._raise_errors()
+        item = super()._next(timeout, stop)
+        self._raise_errors()
+        return item
+
+    def _submit(self, fn: Callable[..., None], *args: Any) -> None:
+        # never queue more work in the pool than it has threads: what waits stays in our
+        # queue, where callback groups and node moves are still honoured
+        self._workers.acquire()
+
+        def run() -> None:
+            try:
+                fn(*args)
+            except BaseException as e:
+                self._errors.put(e)
+            finally:
+                self._workers.release()
+                self.wake()
+
+        self._pool.submit(run)
+
+    def _start(self, entity: Executable, group: CallbackGroup, batch: bool,
+               stop: Callable[[], bool] | None) -> None:
+        if entity.is_timer:
+            entity._scheduled = True   # not due again for us while it runs
+        self._submit(self._run_entity, entity, group, batch, stop)
+
+    def _dispatch(self, item: Any, batch: bool, stop: Callable[[], bool] | None) -> None:
+        if type(item) is Task:
+            self._submit(self._run_task, item)
+            return
+        super()._dispatch(item, batch, stop)
+
+    def shutdown(self, timeout_sec: float | None = None) -> bool:
+        super().shutdown(timeout_sec)
+        self._pool.shutdown(wait=timeout_sec is None or timeout_sec > 0)
+        return True
+
+
+# -- the module-level helpers, on one executor per context (rclpy's global executor) ----------
+_global: weakref.WeakKeyDictionary[Context, SingleThreadedExecutor] = \
+    weakref.WeakKeyDictionary()
+_global_lock = threading.Lock()
+
+
+def get_global_executor(context: Context | None = None) -> SingleThreadedExecutor:
+    ctx = context or default_context()
+    with _global_lock:
+        executor = _global.get(ctx)
+        if executor is None:
+            executor = _global[ctx] = SingleThreadedExecutor(context=ctx)
+        return executor
+
+
+def _executor_for(node: Node, executor: Executor | None) -> Executor:
+    return executor if executor is not None else get_global_executor(node.context)
+
+
+def spin_once(node: Node, *, executor: Executor | None = None,
+              timeout_sec: float | None = None) -> None:
+    ex = _executor_for(node, executor)
+    added = ex.add_node(node)
+    try:
+        ex.spin_once(timeout_sec)
+    finally:
+        if added:
+            ex.remove_node(node)
+
+
+def spin(node: Node, executor: Executor | None = None) -> None:
+    """Run the node's callbacks until shutdown (Ctrl-C raises KeyboardInterrupt, as rclpy)."""
+    ex = _executor_for(node, executor)
+    added = ex.add_node(node)
+    try:
+        ex.spin()
+    finally:
+        if added:
+            ex.remove_node(node)
+
+
+def spin_until_future_complete(node: Node, future: Future, executor: Executor | None = None,
+                               timeout_sec: float | None = None) -> None:
+    ex = _executor_for(node, executor)
+    added = ex.add_node(node)
+    try:
+        ex.spin_until_future_complete(future, timeout_sec)
+    finally:
+        if added:
+            ex.remove_node(node)

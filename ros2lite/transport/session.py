@@ -1,0 +1,296 @@
+"""The one seam to Zenoh: every declaration, put, query and reply the library makes.
+
+The rest of the library hands in key expressions, QoS profiles, bytes and callbacks, and gets
+back small handles; it never imports zenoh.  Received data stays as the Zenoh object only
+where copying it out would cost the hot path a Python loop per sample (subscription batches,
+see :class:`SampleReceiver`); there the caller reads it through :class:`Sample`.
+
+Callbacks given here run on Zenoh's own threads, so they must only queue work (the executor
+runs user code), never block.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import threading
+from collections import deque
+from collections.abc import Callable
+from itertools import chain, islice
+from typing import Any, Protocol
+
+import zenoh
+import zenoh.ext
+
+from ros2lite.transport.keys import liveliness_subscription_key
+from ros2lite.transport.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+
+__all__ = [
+    "Handle",
+    "Querier",
+    "Request",
+    "Sample",
+    "SampleReceiver",
+    "declare_liveliness_subscriber",
+    "declare_publisher",
+    "declare_querier",
+    "declare_queryable",
+    "declare_token",
+    "liveliness_keys",
+    "undeclare_quietly",
+]
+
+
+class _Bytes(Protocol):
+    def to_bytes(self) -> bytes: ...
+
+
+class Sample(Protocol):
+    """What a received sample offers (a zenoh.Sample): its payload and attachment."""
+
+    @property
+    def payload(self) -> _Bytes: ...
+
+    @property
+    def attachment(self) -> _Bytes | None: ...
+
+
+class Handle(Protocol):
+    def undeclare(self) -> None: ...
+
+
+def undeclare_quietly(*handles: Any) -> None:
+    """Undeclare what is given; errors only mean the session is already closed."""
+    for handle in handles:
+        if handle is not None:
+            with contextlib.suppress(Exception):
+                handle.undeclare()
+
+
+# -- graph ----------------------------------------------------------------------------------------
+def declare_token(session: Any, key: str) -> Handle:
+    token: Handle = session.liveliness().declare_token(key)
+    return token
+
+
+def liveliness_keys(session: Any, domain_id: int, timeout: float = 5.0) -> list[str]:
+    """Keys of every live token of the domain, from one complete liveliness query."""
+    # an explicit large channel: the default handler can stall past a few hundred replies
+    replies = session.liveliness().get(liveliness_subscription_key(domain_id),
+                                       zenoh.handlers.FifoChannel(1 << 16), timeout=timeout)
+    keys = []
+    for reply in replies:
+        sample = reply.ok
+        if sample is not None:
+            keys.append(str(sample.key_expr))
+    return keys
+
+
+def declare_liveliness_subscriber(session: Any, domain_id: int,
+                                  on_change: Callable[[str, bool], None]) -> Handle:
+    """`on_change(key, alive)` for every token of the domain appearing or going away,
+    starting with the ones alive now (history)."""
+    put = zenoh.SampleKind.PUT
+
+    def callback(sample: Any) -> None:
+        on_change(str(sample.key_expr), sample.kind == put)
+
+    sub: Handle = session.liveliness().declare_subscriber(
+        liveliness_subscription_key(domain_id), zenoh.handlers.Callback(callback), history=True)
+    return sub
+
+
+# -- topics ---------------------------------------------------------------------------------------
+def _reliable(qos: QoSProfile) -> bool:
+    return qos.reliability != ReliabilityPolicy.BEST_EFFORT
+
+
+def _transient_local(qos: QoSProfile) -> bool:
+    return qos.durability == DurabilityPolicy.TRANSIENT_LOCAL
+
+
+def declare_publisher(session: Any, key: str, qos: QoSProfile) -> Any:
+    """A publisher with `.put(payload, attachment=…)`, mapped from QoS as rmw_zenoh does:
+    reliability, BLOCK congestion control only for reliable KEEP_ALL, and transient local
+    through zenoh-ext's advanced publisher (a cache of `depth` samples)."""
+    reliable = _reliable(qos)
+    block = reliable and qos.history == HistoryPolicy.KEEP_ALL
+    options: dict[str, Any] = {
+        "reliability": zenoh.Reliability.RELIABLE if reliable else zenoh.Reliability.BEST_EFFORT,
+        "congestion_control": zenoh.CongestionControl.BLOCK if block
+        else zenoh.CongestionControl.DROP,
+    }
+    if _transient_local(qos):
+        # as rmw_zenoh: reliable + transient local also announces its last sequence number
+        # (sporadic heartbeat), which subscribers' heartbeat recovery relies on
+        miss = zenoh.ext.MissDetectionConfig(heartbeat=None, sporadic_heartbeat=0.5) \
+            if reliable else None
+        return zenoh.ext.declare_advanced_publisher(
+            session, key, cache=zenoh.ext.CacheConfig(max(qos.depth, 1)),
+            sample_miss_detection=miss, publisher_detection=True, **options)
+    return session.declare_publisher(key, **options)
+
+
+# Rust-side queue between zenoh and the pump thread (never below the QoS depth), and how many
+# samples the pump moves per GIL hold: up to a whole channel (about 1 ms of work), because a
+# pump that gives the GIL back mid-drain waits a switch interval (5 ms) to get it again
+# while the executor is busy, and meanwhile the full channel stalls zenoh's receive thread
+_CHANNEL_CAPACITY = 4096
+
+
+class SampleReceiver:
+    """A subscriber whose samples land in `buffer`, moved there by a pump thread of its own.
+
+    A zenoh callback per sample would make a second Python thread take the GIL for every
+    sample while the executor thread runs user code; that ping-pong was most of the cost of
+    a message. Instead samples wait in a Rust-side channel and the pump moves everything
+    waiting while holding the GIL once, then calls `on_batch()` (which schedules delivery).
+    Typed consumers get the samples as they came (`extend`, no Python loop); with
+    `stamp=True` each is stored as `(sample, arrival ns)`; a `hook(sample)` replaces the
+    buffer entirely (monitors that must see every sample at arrival).
+    """
+
+    def __init__(self, session: Any, key: str, qos: QoSProfile, buffer: deque[Any],
+                 on_batch: Callable[[], None], *, stamp: bool = False,
+                 hook: Callable[[Any], None] | None = None, name: str = "") -> None:
+        import time
+        keep_all = qos.history == HistoryPolicy.KEEP_ALL
+        capacity = max(qos.depth, _CHANNEL_CAPACITY)
+        handler = zenoh.handlers.FifoChannel(capacity) if keep_all \
+            else zenoh.handlers.RingChannel(capacity)   # KEEP_LAST may drop the oldest
+        if _transient_local(qos):
+            recovery = zenoh.ext.RecoveryConfig(periodic_queries=None, heartbeat=True) \
+                if _reliable(qos) else None
+            self._sub: Any = zenoh.ext.declare_advanced_subscriber(
+                session, key, handler,
+                history=zenoh.ext.HistoryConfig(detect_late_publishers=True,
+                                                max_samples=max(qos.depth, 1)),
+                recovery=recovery, subscriber_detection=True)
+        else:
+            self._sub = session.declare_subscriber(key, handler)
+        self._buffer = buffer
+        self._on_batch = on_batch
+        self._stamp = stamp
+        self._hook = hook
+        self._now = time.time_ns
+        self._thread = threading.Thread(target=self._pump, args=(self._sub.handler,),
+                                        daemon=True, name=f"ros2lite-sub {name}")
+        self._thread.start()
+
+    def _pump(self, channel: Any) -> None:
+        """Block (GIL released) until a sample comes, then move the whole backlog at once.
+        Ends when the subscriber is undeclared (the channel closes)."""
+        recv = channel.recv
+        append, extend = self._buffer.append, self._buffer.extend
+        now, stamp, hook, on_batch = self._now, self._stamp, self._hook, self._on_batch
+        while True:
+            try:
+                first = recv()
+            except Exception:
+                return   # channel closed: subscription destroyed or session closed
+            # what else is waiting, up to a channel's worth: try_recv until it gives None
+            rest = islice(iter(channel.try_recv, None), _CHANNEL_CAPACITY - 1)
+            try:
+                if hook is not None:
+                    for sample in chain((first,), rest):
+                        try:
+                            hook(sample)
+                        except Exception:
+                            import traceback
+                            traceback.print_exc()
+                    continue
+                if stamp:
+                    append((first, now()))
+                    for sample in rest:
+                        append((sample, now()))
+                else:
+                    append(first)
+                    extend(rest)   # the whole batch moves without a Python loop
+            except Exception:
+                pass   # closed mid-batch; the next recv() ends the thread
+            on_batch()
+
+    def undeclare(self) -> None:
+        undeclare_quietly(self._sub)   # closes the channel, which ends the pump thread
+        if self._thread is not threading.current_thread():
+            # a pump still inside zenoh when the interpreter finalises aborts the process
+            self._thread.join(timeout=1.0)
+
+
+# -- services -------------------------------------------------------------------------------------
+class Request:
+    """One incoming query: its payload and attachment, and the way to answer it once."""
+
+    __slots__ = ("_query", "attachment", "key", "payload")
+
+    def __init__(self, query: Any, key: str) -> None:
+        self._query = query
+        self.key = key
+        payload = query.payload
+        attachment = query.attachment
+        self.payload = payload.to_bytes() if payload is not None else b""
+        self.attachment = attachment.to_bytes() if attachment is not None else None
+
+    def reply(self, payload: bytes, attachment: bytes) -> None:
+        """Answer on the service key and finalise the query (the client stops waiting)."""
+        query, self._query = self._query, None
+        if query is None:
+            raise RuntimeError("this request has already been answered")
+        try:
+            query.reply(self.key, payload, attachment=attachment)
+        finally:
+            query.drop()
+
+    def drop(self) -> None:
+        """Finalise without an answer (the client's query ends with no reply)."""
+        query, self._query = self._query, None
+        if query is not None:
+            query.drop()
+
+
+def declare_queryable(session: Any, key: str, on_request: Callable[[Request], None]) -> Handle:
+    """A service server's queryable: `complete=True`, because rmw_zenoh clients query with
+    target ALL_COMPLETE and would never reach an incomplete one."""
+    queryable: Handle = session.declare_queryable(
+        key, zenoh.handlers.Callback(lambda query: on_request(Request(query, key))),
+        complete=True)
+    return queryable
+
+
+class Querier:
+    """A service client's querier: one query per request (ALL_COMPLETE, no consolidation)."""
+
+    def __init__(self, session: Any, key: str, timeout: float | None) -> None:
+        options: dict[str, Any] = {
+            "target": zenoh.QueryTarget.ALL_COMPLETE,
+            "consolidation": zenoh.ConsolidationMode.NONE,
+        }
+        if timeout is not None:
+            options["timeout"] = timeout
+        self._querier = session.declare_querier(key, **options)
+
+    def get(self, payload: bytes, attachment: bytes,
+            on_reply: Callable[[bytes, bytes | None], None],
+            on_end: Callable[[str | None], None]) -> None:
+        """Send one request. `on_reply(payload, attachment)` per answer; `on_end(error)` once
+        the query is over (error: the text of an error reply or timeout, else None)."""
+        error: list[str] = []
+
+        def reply(r: Any) -> None:
+            ok = r.ok
+            if ok is None:
+                err = r.err
+                error.append(err.payload.to_bytes().decode("utf-8", "replace")
+                             if err is not None else "error reply")
+                return
+            att = ok.attachment
+            on_reply(ok.payload.to_bytes(), att.to_bytes() if att is not None else None)
+
+        self._querier.get(zenoh.handlers.Callback(reply, lambda: on_end(
+            error[0] if error else None)), payload=payload, attachment=attachment)
+
+    def undeclare(self) -> None:
+        undeclare_quietly(self._querier)
+
+
+def declare_querier(session: Any, key: str, timeout: float | None) -> Querier:
+    return Querier(session, key, timeout)
