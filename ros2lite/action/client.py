@@ -191,13 +191,29 @@ class ActionClient:
 
     def send_goal(self, goal: Any, feedback_callback: Callable[[Any], Any] | None = None,
                   goal_uuid: Any = None) -> Any:
-        """Send a goal and block until its result (None when it was rejected).
+        """Send a goal and block until its GetResult response (None if it was rejected).
 
-        Needs the node spun elsewhere (another thread's executor), as in rclpy."""
-        handle = self._wait(self.send_goal_async(goal, feedback_callback, goal_uuid))
-        if not handle.accepted:
-            return None
-        return self._get_result(handle)
+        The replies wake this thread directly, so no executor is needed for that; feedback
+        callbacks still run only where the node is spun."""
+        if not isinstance(goal, self._action_type.Goal):
+            raise TypeError(f'goal must be a {self._action_type.Goal.__name__}, '
+                            f'got {type(goal).__name__}')
+        goal_id = new_goal_id() if goal_uuid is None else goal_uuid
+        key = goal_key(goal_id)
+        if feedback_callback is not None:
+            with self._lock:
+                self._feedback_callbacks[key] = feedback_callback
+        try:
+            response = self._goal_client.call(
+                self._action_type.Impl.SendGoalService.Request(goal_id=goal_id, goal=goal))
+            handle = ClientGoalHandle(self, goal_id, response)
+            if not handle.accepted:
+                return None
+            with self._lock:
+                self._goal_handles[key] = weakref.ref(handle)
+            return self._get_result(handle)
+        finally:
+            self._drop_feedback(key)
 
     def _drop_feedback(self, key: bytes) -> None:
         with self._lock:
@@ -213,7 +229,11 @@ class ActionClient:
         return self._cancel_client.call_async(request)
 
     def _cancel_goal(self, goal_handle: ClientGoalHandle) -> Any:
-        return self._wait(self._cancel_goal_async(goal_handle))
+        if not goal_handle.accepted:
+            raise TypeError('Action goal was not accepted')
+        request = CancelGoal.Request()
+        request.goal_info.goal_id = goal_handle.goal_id
+        return self._cancel_client.call(request)
 
     def _get_result_async(self, goal_handle: ClientGoalHandle) -> Future:
         if not isinstance(goal_handle, ClientGoalHandle):
@@ -234,13 +254,14 @@ class ActionClient:
         return future
 
     def _get_result(self, goal_handle: ClientGoalHandle) -> Any:
-        return self._wait(self._get_result_async(goal_handle))
-
-    def _wait(self, future: Future) -> Any:
-        done = threading.Event()
-        future.add_done_callback(lambda _f: done.set())
-        done.wait()
-        return future.result()
+        if not goal_handle.accepted:
+            raise TypeError('Action goal was not accepted')
+        response = self._result_client.call(
+            self._action_type.Impl.GetResultService.Request(goal_id=goal_handle.goal_id))
+        self._drop_feedback(goal_key(goal_handle.goal_id))
+        if response.status in TERMINAL_STATES:
+            goal_handle._status = response.status
+        return response
 
     # -- server discovery --------------------------------------------------------------------
     def server_is_ready(self) -> bool:

@@ -179,10 +179,10 @@ class ActionServer:
         names = self._names
         # rcl_action's order: the three services, then feedback and status publishers
         self._goal_service = node.create_service(
-            impl.SendGoalService, names.send_goal, self._on_goal_request,
+            impl.SendGoalService, names.send_goal, self._execute_goal_request,
             qos_profile=goal_service_qos_profile, callback_group=group, deferred=True)
         self._cancel_service = node.create_service(
-            impl.CancelGoalService, names.cancel_goal, self._on_cancel_request,
+            impl.CancelGoalService, names.cancel_goal, self._execute_cancel_request,
             qos_profile=cancel_service_qos_profile, callback_group=group, deferred=True)
         self._result_service = node.create_service(
             impl.GetResultService, names.get_result, self._on_result_request,
@@ -219,17 +219,7 @@ class ActionServer:
     def action_name(self) -> str:
         return self._names.action
 
-    # -- requests -----------------------------------------------------------------------------
-    def _spawn(self, coroutine_fn: Callable[..., Any], *args: Any) -> None:
-        """Run request handling as a task, so user callbacks may be coroutines."""
-        self._node.executor.create_task(coroutine_fn, *args)
-
-    def _on_goal_request(self, request: Any, header: Any) -> None:
-        self._spawn(self._execute_goal_request, request, header)
-
-    def _on_cancel_request(self, request: Any, header: Any) -> None:
-        self._spawn(self._execute_cancel_request, request, header)
-
+    # -- requests (deferred service callbacks; coroutines, so user callbacks may be too) -----
     async def _execute_goal_request(self, request: Any, header: Any) -> None:
         key = goal_key(request.goal_id)
         with self._lock:
@@ -330,7 +320,11 @@ class ActionServer:
     def _notify_execute(self, goal_handle: ServerGoalHandle,
                         execute_callback: Callable[..., Any] | None) -> None:
         callback = execute_callback or self._execute_callback
-        self._node.executor.create_task(self._execute_goal, callback, goal_handle)
+        executor = self._node.executor
+        if executor is None:
+            raise RuntimeError('the action server\'s node must be added to an executor to '
+                               'execute goals')
+        executor.create_task(self._execute_goal, callback, goal_handle)
 
     async def _execute_goal(self, execute_callback: Callable[..., Any],
                             goal_handle: ServerGoalHandle) -> None:

@@ -142,18 +142,3 @@ def executables(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
     if not package:
         return []
     return _matching((e.name for e in get_executables(package)), incomplete)
-
-
-@_quietly
-def actions(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
-    from ros2lite.graph import action_names_and_types
-    names = [name for name, _ in action_names_and_types(_graph_entities(ctx))]
-    if not _hidden_wanted(incomplete):
-        from ros2lite.transport.keys import is_hidden_name
-        names = [n for n in names if not is_hidden_name(n)]
-    return _matching(names, incomplete)
-
-
-@_quietly
-def action_types(_ctx: click.Context, incomplete: str) -> list[CompletionItem]:
-    return _interfaces('action', incomplete)

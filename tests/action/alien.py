@@ -39,7 +39,7 @@ class Cdr:
         self.body = bytearray()
 
     def put(self, fmt: str, *values: Any) -> Cdr:
-        size = struct.calcsize('<' + fmt[0])
+        size = struct.calcsize('<' + fmt.lstrip('0123456789')[0])
         self.body += b'\x00' * (-len(self.body) % size)
         self.body += struct.pack('<' + fmt, *values)
         return self
@@ -137,7 +137,7 @@ class AlienFibonacciServer:
         for i in range(1, goal['order']):
             if goal['cancel']:
                 break
-            seq.append(seq[i] + seq[i - 1])
+            seq.append((seq[i] + seq[i - 1]) % 2**31)   # long goals stay int32
             fb = Cdr().raw(uuid).put('I', len(seq)).put(f'{len(seq)}i', *seq)
             self.feedback.put(fb.bytes(), attachment=self._attachment())
             time.sleep(self.step)

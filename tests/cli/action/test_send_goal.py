@@ -5,8 +5,7 @@ from __future__ import annotations
 
 import re
 import signal
-import subprocess
-import sys
+import threading
 import time
 from collections.abc import Callable
 from typing import Any
@@ -68,26 +67,46 @@ def test_timeout_waiting_for_server(run: Callable[..., Any], ros_router: str) ->
     assert result.err == "No action server for '/nobody_serves' after 0.5 s\n"
 
 
+class Lines:
+    """Everything a child writes to one pipe, read by a thread as it comes, so waiting for a
+    line never misses one already in the pipe's buffer."""
+
+    def __init__(self, stream: Any) -> None:
+        self.lines: list[str] = []
+        self._cond = threading.Condition()
+        self._thread = threading.Thread(target=self._read, args=(stream,), daemon=True)
+        self._thread.start()
+
+    def _read(self, stream: Any) -> None:
+        for line in iter(stream.readline, ''):
+            with self._cond:
+                self.lines.append(line)
+                self._cond.notify_all()
+
+    def wait_for(self, text: str, timeout: float) -> None:
+        with self._cond:
+            assert self._cond.wait_for(lambda: any(text in line for line in self.lines),
+                                       timeout), self.lines
+
+    def all(self, timeout: float) -> str:
+        """The whole output, once the pipe closed (the child exited)."""
+        self._thread.join(timeout)
+        return ''.join(self.lines)
+
+
 def test_ctrl_c_cancels_the_goal(processes: Any) -> None:
     server = processes.cli('run', 'action_tutorials_py', 'fibonacci_action_server')
-    proc = processes.start(
-        [sys.executable, '-m', 'ros2lite', 'action', 'send_goal', '-f', 'fibonacci',
-         'action_tutorials_interfaces/action/Fibonacci', '{order: 30}'],
-        stdout=subprocess.PIPE)
-    assert proc.stdout is not None
-    lines = []
-    deadline = time.monotonic() + 30
-    while not lines or lines[-1] != 'Feedback:\n':
-        assert time.monotonic() < deadline, lines
-        line = proc.stdout.readline()
-        assert line, lines
-        lines.append(line)
+    server_log = Lines(server.stderr)
+    proc = processes.cli('action', 'send_goal', '-f', 'fibonacci',
+                         'action_tutorials_interfaces/action/Fibonacci', '{order: 30}')
+    out = Lines(proc.stdout)
+    out.wait_for('Feedback:', timeout=30)
     proc.send_signal(signal.SIGINT)
-    out, _ = proc.communicate(timeout=20)
-    assert proc.returncode == 2
-    assert out.endswith('Canceling goal...\nGoal canceled.\n'), out
-    _, err = processes.stop(server)
-    assert 'Received cancel request' in err and 'Goal canceled' in err
+    assert proc.wait(timeout=20) == 2
+    assert out.all(timeout=5).endswith('Canceling goal...\nGoal canceled.\n'), out.lines
+    # the server saw the cancel and ended the goal as canceled
+    server_log.wait_for('Goal canceled', timeout=20)
+    assert any('Received cancel request' in line for line in server_log.lines)
 
 
 def test_send_goal_runs_as_a_process(alien_server: AlienFibonacciServer) -> None:
