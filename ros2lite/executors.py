@@ -20,7 +20,7 @@ import queue
 import threading
 import time
 import weakref
-from collections.abc import Callable, Coroutine, Iterator
+from collections.abc import Callable, Coroutine
 from concurrent.futures import ThreadPoolExecutor
 from typing import TYPE_CHECKING, Any
 
@@ -196,10 +196,6 @@ class Executor:
         self.spin_once(timeout_sec)
 
     # -- finding work ----------------------------------------------------------------------------
-    def _timers(self) -> Iterator[Timer]:
-        for node in self.get_nodes():
-            yield from node.timers
-
     def _due_timer(self) -> tuple[Timer | None, float | None]:
         """A due timer whose group is free, else (None, seconds until the next one)."""
         wait: float | None = None

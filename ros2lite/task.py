@@ -106,19 +106,35 @@ class Task(Future):
         self._args = args
         self._kwargs = kwargs or {}
         self._coro: Any = None
-        self._running = threading.Lock()
         self._reschedule = reschedule
+        # a step runs on one thread at a time; a call arriving meanwhile (the awaited future
+        # completed on another thread before the step ended) is not lost: the running call
+        # takes another step when it is done
+        self._state = threading.Lock()
+        self._executing = False
+        self._again = False
 
     def executing(self) -> bool:
-        return self._running.locked()
+        return self._executing
 
     def __call__(self) -> None:
-        if self._finished or not self._running.acquire(blocking=False):
-            return
+        with self._state:
+            if self._finished:
+                return
+            if self._executing:
+                self._again = True
+                return
+            self._executing = True
         try:
-            self._step()
+            while True:
+                self._step()
+                with self._state:
+                    if not self._again or self._finished:
+                        return
+                    self._again = False
         finally:
-            self._running.release()
+            with self._state:
+                self._executing = False
 
     def _step(self) -> None:
         if self._coro is None:
