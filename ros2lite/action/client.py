@@ -22,6 +22,7 @@ from ros2lite.action.goals import (
     new_goal_id,
     resolve_action_type,
 )
+from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
 from ros2lite.task import Future
 
@@ -83,7 +84,7 @@ class ClientGoalHandle:
         return self._action_client._get_result_async(self)
 
 
-class ActionClient:
+class ActionClient(Executable):
     """Sends goals to one action (rclpy.action.ActionClient's arguments and defaults)."""
 
     def __init__(self, node: Any, action_type: Any, action_name: str, *,
@@ -102,8 +103,10 @@ class ActionClient:
         self._lock = threading.Lock()
         self._feedback_callbacks: dict[bytes, Callable[[Any], Any]] = {}
         self._goal_handles: dict[bytes, weakref.ref[ClientGoalHandle]] = {}
-        group = callback_group if callback_group is not None else node.default_callback_group
-        self.callback_group = group
+        # a waitable of the node, as in rclpy: destroy_node() destroys it too; its work is
+        # done by its own services, clients and subscriptions
+        super().__init__(node, callback_group)
+        group = self.callback_group
         impl = self._action_type.Impl
         names = self._names
         self._goal_client = node.create_client(
@@ -122,6 +125,10 @@ class ActionClient:
             impl.GoalStatusMessage, names.status, self._on_status, status_sub_qos_profile,
             callback_group=group)
         self._destroyed = False
+        node.add_waitable(self)
+
+    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
+        return None   # never has work of its own
 
     @property
     def action_type(self) -> Any:
@@ -287,6 +294,8 @@ class ActionClient:
             return
         self._destroyed = True
         node = self._node
+        # a new list, not remove(): destroy_node() may be iterating over the old one
+        node.waitables = [w for w in node.waitables if w is not self]
         for client in (self._goal_client, self._cancel_client, self._result_client):
             node.destroy_client(client)
         node.destroy_subscription(self._feedback_sub)

@@ -28,6 +28,7 @@ from ros2lite.action.goals import (
     goal_key,
     resolve_action_type,
 )
+from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
 from ros2lite.task import Future
 
@@ -143,7 +144,7 @@ class ServerGoalHandle:
             self._action_server._update_goal(self._key, event)
 
 
-class ActionServer:
+class ActionServer(Executable):
     """Serves one action on a node (rclpy.action.ActionServer's arguments and defaults)."""
 
     def __init__(self, node: Any, action_type: Any, action_name: str,
@@ -173,8 +174,10 @@ class ActionServer:
         self.register_goal_callback(goal_callback)
         self.register_handle_accepted_callback(handle_accepted_callback)
         self.register_cancel_callback(cancel_callback)
-        group = callback_group if callback_group is not None else node.default_callback_group
-        self.callback_group = group
+        # a waitable of the node, as in rclpy: destroy_node() destroys it too; its work is
+        # done by its own services, clients and subscriptions
+        super().__init__(node, callback_group)
+        group = self.callback_group
         impl = self._action_type.Impl
         names = self._names
         # rcl_action's order: the three services, then feedback and status publishers
@@ -192,6 +195,10 @@ class ActionServer:
         self._status_pub = node.create_publisher(
             impl.GoalStatusMessage, names.status, status_pub_qos_profile)
         self._destroyed = False
+        node.add_waitable(self)
+
+    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
+        return None   # never has work of its own
 
     # -- rclpy's registration API ---------------------------------------------------------------
     def register_execute_callback(self, execute_callback: Callable[..., Any]) -> None:
@@ -359,6 +366,8 @@ class ActionServer:
             return
         self._destroyed = True
         node = self._node
+        # a new list, not remove(): destroy_node() may be iterating over the old one
+        node.waitables = [w for w in node.waitables if w is not self]
         for service in (self._goal_service, self._cancel_service, self._result_service):
             node.destroy_service(service)
         node.destroy_publisher(self._feedback_pub)
