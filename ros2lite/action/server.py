@@ -237,7 +237,11 @@ class ActionServer(Executable):
         if exists:
             self._logger.error(f'Received a goal with an ID already in use: {key.hex()}')
         else:
-            response = await await_or_execute(self._goal_callback, request.goal)
+            try:
+                response = await await_or_execute(self._goal_callback, request.goal)
+            except Exception as e:   # the client still gets an answer: rejected
+                self._logger.error(f'Error raised in goal callback: {e!r}; rejecting goal')
+                response = GoalResponse.REJECT
             if isinstance(response, GoalResponse):
                 accepted = response == GoalResponse.ACCEPT
             else:
@@ -271,7 +275,11 @@ class ActionServer(Executable):
             goal_handle = self._goal_handles.get(goal_key(info.goal_id))
             if goal_handle is None:
                 continue
-            answer = await await_or_execute(self._cancel_callback, goal_handle)
+            try:
+                answer = await await_or_execute(self._cancel_callback, goal_handle)
+            except Exception as e:   # the client still gets an answer: not canceled
+                self._logger.error(f'Error raised in cancel callback: {e!r}')
+                answer = CancelResponse.REJECT
             if answer == CancelResponse.ACCEPT:
                 try:
                     goal_handle._update_state(GoalEvent.CANCEL_GOAL)

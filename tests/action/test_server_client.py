@@ -106,13 +106,21 @@ def test_goal_feedback_and_result(fx: Fixture) -> None:
 
 
 def test_rejected_goal(fx: Fixture) -> None:
-    fx.server(goal_callback=lambda goal: GoalResponse.REJECT if goal.order > 5
-              else GoalResponse.ACCEPT)
+    def goal_callback(goal: Any) -> GoalResponse:
+        if goal.order == 7:
+            raise ValueError('no sevens')   # answered as a rejection, the server lives on
+        return GoalResponse.REJECT if goal.order > 5 else GoalResponse.ACCEPT
+
+    fx.server(goal_callback=goal_callback)
     client = fx.client()
-    handle = fx.wait(client.send_goal_async(Fibonacci.Goal(order=6)))
-    assert not handle.accepted and handle.status == GoalStatus.STATUS_UNKNOWN
+    for order in (6, 7):
+        handle = fx.wait(client.send_goal_async(Fibonacci.Goal(order=order)))
+        assert not handle.accepted and handle.status == GoalStatus.STATUS_UNKNOWN
     with pytest.raises(TypeError):
         handle.get_result_async()
+    fx.release.set()
+    assert client.send_goal(Fibonacci.Goal(order=7)) is None
+    assert client.send_goal(Fibonacci.Goal(order=1)).status == GoalStatus.STATUS_SUCCEEDED
 
 
 def test_cancel_accepted_and_rejected(fx: Fixture) -> None:
