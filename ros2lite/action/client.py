@@ -103,6 +103,9 @@ class ActionClient(Executable):
         self._lock = threading.Lock()
         self._feedback_callbacks: dict[bytes, Callable[[Any], Any]] = {}
         self._goal_handles: dict[bytes, weakref.ref[ClientGoalHandle]] = {}
+        # goals sent but not answered yet, with the last status seen for them: the server
+        # may publish a goal's status before its answer to send_goal arrives here
+        self._unanswered: dict[bytes, int] = {}
         # a waitable of the node, as in rclpy: destroy_node() destroys it too; its work is
         # done by its own services, clients and subscriptions
         super().__init__(node, callback_group)
@@ -150,6 +153,9 @@ class ActionClient(Executable):
         with self._lock:
             for status in message.status_list:
                 key = goal_key(status.goal_info.goal_id)
+                if key in self._unanswered:
+                    self._unanswered[key] = status.status
+                    continue
                 ref = self._goal_handles.get(key)
                 handle = ref() if ref is not None else None
                 if handle is None:
@@ -171,26 +177,34 @@ class ActionClient(Executable):
         goal_id = new_goal_id() if goal_uuid is None else goal_uuid
         request = self._action_type.Impl.SendGoalService.Request(goal_id=goal_id, goal=goal)
         key = goal_key(goal_id)
-        if feedback_callback is not None:
-            with self._lock:
+        with self._lock:
+            if feedback_callback is not None:
                 self._feedback_callbacks[key] = feedback_callback
+            self._unanswered[key] = GoalStatus.STATUS_UNKNOWN
         future = Future()
-        call = self._goal_client.call_async(request)
+        try:
+            call = self._goal_client.call_async(request)
+        except BaseException:
+            self._forget_goal(key)
+            raise
 
         def answered(call_future: Future) -> None:
             exc = call_future.exception() if not call_future.cancelled() else None
             if call_future.cancelled() or exc is not None:
-                self._drop_feedback(key)
+                self._forget_goal(key)
                 if exc is not None:
                     future.set_exception(exc)
                 else:
                     future.cancel()
                 return
             handle = ClientGoalHandle(self, goal_id, call_future.result())
-            if handle.accepted:
-                with self._lock:
-                    self._goal_handles[key] = weakref.ref(handle)
-            else:
+            with self._lock:
+                early = self._unanswered.pop(key, GoalStatus.STATUS_UNKNOWN)
+                if handle.accepted:
+                    handle._status = early
+                    if early not in TERMINAL_STATES:
+                        self._goal_handles[key] = weakref.ref(handle)
+            if not handle.accepted:
                 self._drop_feedback(key)
             future.set_result(handle)
         call.add_done_callback(answered)
@@ -207,9 +221,10 @@ class ActionClient(Executable):
                             f'got {type(goal).__name__}')
         goal_id = new_goal_id() if goal_uuid is None else goal_uuid
         key = goal_key(goal_id)
-        if feedback_callback is not None:
-            with self._lock:
+        with self._lock:
+            if feedback_callback is not None:
                 self._feedback_callbacks[key] = feedback_callback
+            self._unanswered[key] = GoalStatus.STATUS_UNKNOWN
         try:
             response = self._goal_client.call(
                 self._action_type.Impl.SendGoalService.Request(goal_id=goal_id, goal=goal))
@@ -217,14 +232,20 @@ class ActionClient(Executable):
             if not handle.accepted:
                 return None
             with self._lock:
+                handle._status = self._unanswered.pop(key, GoalStatus.STATUS_UNKNOWN)
                 self._goal_handles[key] = weakref.ref(handle)
             return self._get_result(handle)
         finally:
-            self._drop_feedback(key)
+            self._forget_goal(key)
 
     def _drop_feedback(self, key: bytes) -> None:
         with self._lock:
             self._feedback_callbacks.pop(key, None)
+
+    def _forget_goal(self, key: bytes) -> None:
+        with self._lock:
+            self._feedback_callbacks.pop(key, None)
+            self._unanswered.pop(key, None)
 
     def _cancel_goal_async(self, goal_handle: ClientGoalHandle) -> Future:
         if not isinstance(goal_handle, ClientGoalHandle):

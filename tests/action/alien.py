@@ -67,6 +67,7 @@ class AlienFibonacciServer:
         self.goals: dict[bytes, dict[str, Any]] = {}
         self.lock = threading.Lock()
         self.requests: list[str] = []
+        self.closed = False
         self._pub_seq = 0
         base = f'{d}/{action}/_action'
         mangled = '%' + action.replace('/', '%') + '%_action'
@@ -100,8 +101,10 @@ class AlienFibonacciServer:
         self.entities += [self.feedback, self.status]
 
     def close(self) -> None:
-        for entity in reversed(self.entities):
-            entity.undeclare()
+        self.closed = True
+        with self.lock:   # no goal thread is publishing from here on
+            for entity in reversed(self.entities):
+                entity.undeclare()
 
     def _attachment(self) -> bytes:
         self._pub_seq += 1
@@ -109,6 +112,8 @@ class AlienFibonacciServer:
 
     def _publish_status(self) -> None:
         with self.lock:
+            if self.closed:
+                return
             cdr = Cdr().put('I', len(self.goals))
             for uuid, goal in self.goals.items():
                 cdr.raw(uuid).put('iI', goal['sec'], goal['nanosec']).put('b', goal['status'])
@@ -135,11 +140,13 @@ class AlienFibonacciServer:
         goal = self.goals[uuid]
         seq = [0, 1]
         for i in range(1, goal['order']):
-            if goal['cancel']:
+            if goal['cancel'] or self.closed:
                 break
             seq.append((seq[i] + seq[i - 1]) % 2**31)   # long goals stay int32
             fb = Cdr().raw(uuid).put('I', len(seq)).put(f'{len(seq)}i', *seq)
-            self.feedback.put(fb.bytes(), attachment=self._attachment())
+            with self.lock:
+                if not self.closed:
+                    self.feedback.put(fb.bytes(), attachment=self._attachment())
             time.sleep(self.step)
         with self.lock:
             goal['status'] = CANCELED if goal['cancel'] else SUCCEEDED
