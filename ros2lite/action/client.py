@@ -22,6 +22,7 @@ from ros2lite.action.goals import (
     new_goal_id,
     resolve_action_type,
 )
+from ros2lite.action.server import await_or_execute
 from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
 from ros2lite.task import Future
@@ -142,12 +143,12 @@ class ActionClient(Executable):
         return self._names.action
 
     # -- incoming ----------------------------------------------------------------------------
-    def _on_feedback(self, message: Any) -> Any:
+    async def _on_feedback(self, message: Any) -> None:
+        # a coroutine, so that feedback callbacks may be `async def` too (as in rclpy)
         with self._lock:
             callback = self._feedback_callbacks.get(goal_key(message.goal_id))
         if callback is not None:
-            return callback(message)
-        return None
+            await await_or_execute(callback, message)
 
     def _on_status(self, message: Any) -> None:
         with self._lock:

@@ -169,16 +169,26 @@ def test_abort_and_failing_execute(fx: Fixture) -> None:
     assert [list(r.result.sequence) for r in results] == [[7], [], []]
 
 
-def test_async_execute_callback(fx: Fixture) -> None:
+def test_async_callbacks(fx: Fixture) -> None:
     async def execute(goal_handle: ServerGoalHandle) -> Any:
+        goal_handle.publish_feedback(Fibonacci.Feedback(sequence=[1, 2]))
         goal_handle.succeed()
         return Fibonacci.Result(sequence=[goal_handle.request.order])
 
-    fx.server(execute)
+    async def goal_callback(goal: Any) -> GoalResponse:
+        return GoalResponse.ACCEPT
+
+    fx.server(execute, goal_callback=goal_callback)
     client = fx.client()
-    handle = fx.wait(client.send_goal_async(Fibonacci.Goal(order=9)))
+    feedback: list[Any] = []
+
+    async def on_feedback(message: Any) -> None:
+        feedback.append(list(message.feedback.sequence))
+
+    handle = fx.wait(client.send_goal_async(Fibonacci.Goal(order=9), on_feedback))
     result = fx.wait(handle.get_result_async())
     assert result.status == GoalStatus.STATUS_SUCCEEDED and list(result.result.sequence) == [9]
+    wait_until(lambda: feedback == [[1, 2]])
 
 
 def test_late_status_subscriber_gets_the_latched_status(fx: Fixture) -> None:
