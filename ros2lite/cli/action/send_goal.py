@@ -40,9 +40,28 @@ def build_goal(cls: Any, values: str) -> Any:
     return goal
 
 
-def _print_feedback(message: Any) -> None:
-    from ros2lite.interfaces import message_to_yaml
-    click.echo(f'Feedback:\n    {message_to_yaml(message.feedback)}')
+class FeedbackPrinter:
+    """Prints feedback as ros2cli does, but never before the goal's acceptance line: the
+    first feedback may overtake the server's answer to send_goal on the way here."""
+
+    def __init__(self) -> None:
+        self._held: list[Any] | None = []
+
+    def __call__(self, message: Any) -> None:
+        if self._held is not None:
+            self._held.append(message)
+        else:
+            self._print(message)
+
+    def release(self) -> None:
+        held, self._held = self._held or [], None
+        for message in held:
+            self._print(message)
+
+    @staticmethod
+    def _print(message: Any) -> None:
+        from ros2lite.interfaces import message_to_yaml
+        click.echo(f'Feedback:\n    {message_to_yaml(message.feedback)}')
 
 
 @click.command('send_goal')
@@ -69,11 +88,11 @@ def cli(action_name: str, action_type: str, goal: str | None, use_stdin: bool, f
     with CliSession() as session:
         node = session.node(f'_ros2lite_send_goal_{pkg}_action_{name}')
         send_goal(session, node, cls, action_name, goal_msg,
-                  _print_feedback if feedback else None, timeout)
+                  FeedbackPrinter() if feedback else None, timeout)
 
 
 def send_goal(session: CliSession, node: Any, cls: Any, action_name: str, goal: Any,
-              feedback_callback: Any, timeout: float | None) -> None:
+              feedback: FeedbackPrinter | None, timeout: float | None) -> None:
     from ros2lite.action import ActionClient
     from ros2lite.action.goals import GoalStatus, goal_id_hex, status_name
     from ros2lite.executors import SingleThreadedExecutor
@@ -91,13 +110,15 @@ def send_goal(session: CliSession, node: Any, cls: Any, action_name: str, goal: 
     goal_handle = None
     done = False
     try:
-        goal_future = client.send_goal_async(goal, feedback_callback)
+        goal_future = client.send_goal_async(goal, feedback)
         executor.spin_until_future_complete(goal_future)
         goal_handle = goal_future.result()
         if not goal_handle.accepted:
             click.echo('Goal was rejected.')
             return
         click.echo(f'Goal accepted with ID: {goal_id_hex(goal_handle.goal_id)}\n')
+        if feedback is not None:
+            feedback.release()
         result_future = goal_handle.get_result_async()
         executor.spin_until_future_complete(result_future)
         result = result_future.result()
