@@ -105,7 +105,9 @@ class ServerGoalHandle:
 
     @property
     def is_cancel_requested(self) -> bool:
-        return self.status == GoalStatus.STATUS_CANCELING
+        """True once a cancel was accepted, and also once the server is gone (destroyed or
+        shut down), so that execute loops written for cancellation end there too."""
+        return self._destroyed or self.status == GoalStatus.STATUS_CANCELING
 
     def execute(self, execute_callback: Callable[..., Any] | None = None) -> None:
         """Start executing (with the server's execute callback unless one is given).

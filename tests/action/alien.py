@@ -101,6 +101,8 @@ class AlienFibonacciServer:
         self.entities += [self.feedback, self.status]
 
     def close(self) -> None:
+        if self.closed:
+            return
         self.closed = True
         with self.lock:   # no goal thread is publishing from here on
             for entity in reversed(self.entities):

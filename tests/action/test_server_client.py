@@ -225,3 +225,22 @@ def test_blocking_send_goal(fx: Fixture) -> None:
     response = client.send_goal(Fibonacci.Goal(order=3))
     assert response.status == GoalStatus.STATUS_SUCCEEDED
     assert list(response.result.sequence) == [0, 1, 1, 2]
+
+
+def test_destroying_the_server_ends_execute_loops(fx: Fixture) -> None:
+    ended = threading.Event()
+
+    def execute(goal_handle: ServerGoalHandle) -> Any:
+        while not goal_handle.is_cancel_requested:
+            time.sleep(0.01)
+        goal_handle.canceled()   # a no-op once the server is gone
+        ended.set()
+        return Fibonacci.Result()
+
+    server = fx.server(execute)
+    client = fx.client()
+    handle = fx.wait(client.send_goal_async(Fibonacci.Goal(order=1)))
+    wait_until(lambda: handle.status == GoalStatus.STATUS_EXECUTING)
+    server.destroy()
+    assert ended.wait(5)
+    assert fx.server_node.waitables == []

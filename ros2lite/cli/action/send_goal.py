@@ -108,11 +108,9 @@ def send_goal(session: CliSession, node: Any, cls: Any, action_name: str, goal: 
         raise CliError(f"No action server for '{client.action_name}' after {timeout} s")
     click.echo(f'Sending goal:\n     {message_to_yaml(goal)}')
     goal_handle = None
-    done = False
     try:
         goal_future = client.send_goal_async(goal, feedback)
-        executor.spin_until_future_complete(goal_future)
-        goal_handle = goal_future.result()
+        goal_handle = _outcome(executor, goal_future, 'sending goal')
         if not goal_handle.accepted:
             click.echo('Goal was rejected.')
             return
@@ -120,27 +118,34 @@ def send_goal(session: CliSession, node: Any, cls: Any, action_name: str, goal: 
         if feedback is not None:
             feedback.release()
         result_future = goal_handle.get_result_async()
-        executor.spin_until_future_complete(result_future)
-        result = result_future.result()
-        done = True
+        result = _outcome(executor, result_future, 'getting result')
         click.echo(f'Result:\n    {message_to_yaml(result.result)}')
         click.echo(f'Goal finished with status: {status_name(result.status)}')
-    finally:
-        # ros2cli cancels a goal it knows to be ACCEPTED or EXECUTING; a goal whose first
-        # status has not arrived yet is just as alive, so it is canceled too
-        if goal_handle is not None and goal_handle.accepted and not done and \
+    except BaseException as e:
+        # Ctrl-C (or SIGTERM) while the goal is active cancels it, as ros2cli does; a goal
+        # whose first status has not arrived yet is just as alive. A failure such as the
+        # server going away is reported as it is, with no cancel that could not succeed.
+        if not isinstance(e, Exception) and goal_handle is not None and \
                 goal_handle.status in (GoalStatus.STATUS_UNKNOWN, GoalStatus.STATUS_ACCEPTED,
                                        GoalStatus.STATUS_EXECUTING):
             _cancel(executor, goal_handle)
+        raise
+    finally:
         client.destroy()
+
+
+def _outcome(executor: Any, future: Any, doing: str) -> Any:
+    """Spin until `future` is done; its result, or ros2cli's error naming what failed."""
+    executor.spin_until_future_complete(future)
+    if future.cancelled() or future.exception() is not None:
+        raise CliError(f'Exception while {doing}: {future.exception()!r}')
+    return future.result()
 
 
 def _cancel(executor: Any, goal_handle: Any) -> None:
     from ros2lite.action.goals import goal_key
     click.echo('Canceling goal...')
-    future = goal_handle.cancel_goal_async()
-    executor.spin_until_future_complete(future)
-    response = future.result()
+    response = _outcome(executor, goal_handle.cancel_goal_async(), 'canceling goal')
     canceling = response.goals_canceling
     if not canceling:
         raise CliError('Failed to cancel goal')

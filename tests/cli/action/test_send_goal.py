@@ -114,3 +114,14 @@ def test_send_goal_runs_as_a_process(alien_server: AlienFibonacciServer) -> None
                          stdin='order: 2')
     assert result.code == 0, result.err
     assert result.out.endswith('Goal finished with status: SUCCEEDED\n')
+
+
+def test_server_gone_mid_goal(processes: Any, alien_server: AlienFibonacciServer) -> None:
+    proc = processes.cli('action', 'send_goal', '/alien_fib', FIB, '{order: 1000}')
+    out = Lines(proc.stdout)
+    out.wait_for('Goal accepted', timeout=30)
+    alien_server.close()
+    assert proc.wait(timeout=20) == 1
+    assert 'Canceling' not in out.all(timeout=5)
+    err = proc.stderr.read()
+    assert err.startswith('Exception while getting result: ') and len(err.splitlines()) == 1
