@@ -195,6 +195,29 @@ def action_names_and_types(entities: Iterable[Entity]) -> list[tuple[str, list[s
     return _action_names(_names_and_types(entities, _TOPIC_KINDS))
 
 
+def action_endpoints(entities: Iterable[Entity], action_name: str
+                     ) -> tuple[list[tuple[str, list[str]]], list[tuple[str, list[str]]]]:
+    """(clients, servers) of one action: (node full name, action types) per node instance.
+
+    As rcl_action sees it, servers publish `<action>/_action/feedback` and clients subscribe
+    to it; hidden nodes (the CLI's own) count too, as in `ros2 action info`.
+    """
+    from ros2lite.transport.keys import node_fqn
+    feedback = action_name + ACTION_FEEDBACK_SUFFIX
+    found: dict[EntityKind, dict[tuple[str, int], tuple[str, set[str]]]] = {
+        EntityKind.SUBSCRIPTION: {}, EntityKind.PUBLISHER: {}}
+    for e in entities:
+        if e.kind in found and e.topic_name == feedback and e.type_name:
+            _, types = found[e.kind].setdefault(
+                (e.zid, e.nid), (node_fqn(e.namespace, e.node_name), set()))
+            types.add(e.type_name[:-len(ACTION_FEEDBACK_TYPE_SUFFIX)]
+                      if e.type_name.endswith(ACTION_FEEDBACK_TYPE_SUFFIX) else e.type_name)
+
+    def listed(kind: EntityKind) -> list[tuple[str, list[str]]]:
+        return sorted((name, sorted(types)) for name, types in found[kind].values())
+    return listed(EntityKind.SUBSCRIPTION), listed(EntityKind.PUBLISHER)
+
+
 @dataclass(frozen=True)
 class NodeInfo:
     """What `ros2 node info` shows for one node instance; each list is (name, types) by name."""

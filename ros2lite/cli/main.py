@@ -14,6 +14,7 @@ from .errors import CliError
 from .lazy import LazyGroup
 
 COMMANDS: dict[str, tuple[str, str]] = {
+    'action': ('ros2lite.cli.action', 'Various action related sub-commands'),
     'bag': ('ros2lite.cli.bag', 'Various rosbag related sub-commands'),
     'daemon': ('ros2lite.cli.daemon', 'Various daemon related sub-commands'),
     'interface': ('ros2lite.cli.interface', 'Show information about ROS interfaces'),

@@ -29,6 +29,12 @@ from pathlib import Path
 ENTRY_POINT_GROUP = 'ros2lite.executables'
 
 BUNDLED: dict[str, dict[str, str]] = {
+    'action_tutorials_py': {
+        'fibonacci_action_client':
+            'ros2lite.demos.action_tutorials_py.fibonacci_action_client:main',
+        'fibonacci_action_server':
+            'ros2lite.demos.action_tutorials_py.fibonacci_action_server:main',
+    },
     'demo_nodes_py': {
         'add_two_ints_client': 'ros2lite.demos.demo_nodes_py.add_two_ints_client:main',
         'add_two_ints_client_async':

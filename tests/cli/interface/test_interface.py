@@ -23,9 +23,10 @@ def test_list_sections(run: Run) -> None:
 
 def test_packages_and_package(run: Run) -> None:
     packages = run('interface', 'packages').out.splitlines()
-    assert len(packages) == 25 and packages == sorted(packages)
+    assert len(packages) == 26 and packages == sorted(packages)
     assert run('interface', 'packages', '-a').out.split() == [
-        'example_interfaces', 'tf2_msgs', 'turtlesim', 'turtlesim_msgs']
+        'action_tutorials_interfaces', 'example_interfaces', 'tf2_msgs', 'turtlesim',
+        'turtlesim_msgs']
     assert run('interface', 'package', 'std_srvs').out.split() == [
         'std_srvs/srv/Empty', 'std_srvs/srv/SetBool', 'std_srvs/srv/Trigger']
     bad = run('interface', 'package', 'nope')

@@ -1,0 +1,324 @@
+"""ActionClient and ClientGoalHandle, shaped like rclpy.action.client.
+
+The client is three service clients (send_goal, cancel_goal, get_result) and two
+subscriptions (feedback, status) of its node. Feedback reaches the callback given for its
+goal; the status topic keeps every live goal handle's `status` current.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+import weakref
+from collections.abc import Callable
+from typing import Any
+
+from ros2lite.action.goals import (
+    TERMINAL_STATES,
+    ActionNames,
+    CancelGoal,
+    GoalStatus,
+    goal_key,
+    new_goal_id,
+    resolve_action_type,
+)
+from ros2lite.action.server import await_or_execute
+from ros2lite.executable import Executable
+from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
+from ros2lite.task import Future
+
+# how often wait_for_server looks at the graph
+_POLL = 0.05
+
+
+class ClientGoalHandle:
+    """A goal as its client sees it: accepted or not, its status, and ways to end it."""
+
+    def __init__(self, action_client: ActionClient, goal_id: Any, goal_response: Any) -> None:
+        self._action_client = action_client
+        self._goal_id = goal_id
+        self._goal_response = goal_response
+        self._status = GoalStatus.STATUS_UNKNOWN
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, ClientGoalHandle) and \
+            goal_key(self._goal_id) == goal_key(other._goal_id)
+
+    def __ne__(self, other: object) -> bool:
+        return not self == other
+
+    def __hash__(self) -> int:
+        return hash(goal_key(self._goal_id))
+
+    def __repr__(self) -> str:
+        return (f'ClientGoalHandle <id: {list(goal_key(self._goal_id))}, '
+                f'accepted: {self.accepted}, status: {self.status}>')
+
+    @property
+    def goal_id(self) -> Any:
+        return self._goal_id
+
+    @property
+    def stamp(self) -> Any:
+        return self._goal_response.stamp
+
+    @property
+    def accepted(self) -> bool:
+        return bool(self._goal_response.accepted)
+
+    @property
+    def status(self) -> int:
+        return self._status
+
+    def cancel_goal(self) -> Any:
+        """Ask the server to cancel; blocks until it answers (CancelGoal.Response)."""
+        return self._action_client._cancel_goal(self)
+
+    def cancel_goal_async(self) -> Future:
+        return self._action_client._cancel_goal_async(self)
+
+    def get_result(self) -> Any:
+        """Block until the goal ends; gives its GetResult response (status and result)."""
+        return self._action_client._get_result(self)
+
+    def get_result_async(self) -> Future:
+        return self._action_client._get_result_async(self)
+
+
+class ActionClient(Executable):
+    """Sends goals to one action (rclpy.action.ActionClient's arguments and defaults)."""
+
+    def __init__(self, node: Any, action_type: Any, action_name: str, *,
+                 callback_group: Any = None,
+                 goal_service_qos_profile: QoSProfile = qos_profile_services_default,
+                 result_service_qos_profile: QoSProfile = qos_profile_services_default,
+                 cancel_service_qos_profile: QoSProfile = qos_profile_services_default,
+                 feedback_sub_qos_profile: QoSProfile = QoSProfile(depth=10),  # noqa: B008
+                 status_sub_qos_profile: QoSProfile = qos_profile_action_status_default
+                 ) -> None:
+        self._node = node
+        self._action_type = resolve_action_type(action_type)
+        self._action_name = action_name
+        self._names = ActionNames(node.resolve_topic_name(action_name),
+                                  self._action_type._TYPE_NAME)
+        self._lock = threading.Lock()
+        self._feedback_callbacks: dict[bytes, Callable[[Any], Any]] = {}
+        self._goal_handles: dict[bytes, weakref.ref[ClientGoalHandle]] = {}
+        # goals sent but not answered yet, with the last status seen for them: the server
+        # may publish a goal's status before its answer to send_goal arrives here
+        self._unanswered: dict[bytes, int] = {}
+        # a waitable of the node, as in rclpy: destroy_node() destroys it too; its work is
+        # done by its own services, clients and subscriptions
+        super().__init__(node, callback_group)
+        group = self.callback_group
+        impl = self._action_type.Impl
+        names = self._names
+        self._goal_client = node.create_client(
+            impl.SendGoalService, names.send_goal, qos_profile=goal_service_qos_profile,
+            callback_group=group)
+        self._cancel_client = node.create_client(
+            impl.CancelGoalService, names.cancel_goal, qos_profile=cancel_service_qos_profile,
+            callback_group=group)
+        self._result_client = node.create_client(
+            impl.GetResultService, names.get_result, qos_profile=result_service_qos_profile,
+            callback_group=group)
+        self._feedback_sub = node.create_subscription(
+            impl.FeedbackMessage, names.feedback, self._on_feedback, feedback_sub_qos_profile,
+            callback_group=group)
+        self._status_sub = node.create_subscription(
+            impl.GoalStatusMessage, names.status, self._on_status, status_sub_qos_profile,
+            callback_group=group)
+        self._destroyed = False
+        node.add_waitable(self)
+
+    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
+        return None   # never has work of its own
+
+    @property
+    def action_type(self) -> Any:
+        return self._action_type
+
+    @property
+    def action_name(self) -> str:
+        return self._names.action
+
+    # -- incoming ----------------------------------------------------------------------------
+    async def _on_feedback(self, message: Any) -> None:
+        # a coroutine, so that feedback callbacks may be `async def` too (as in rclpy)
+        with self._lock:
+            callback = self._feedback_callbacks.get(goal_key(message.goal_id))
+        if callback is not None:
+            await await_or_execute(callback, message)
+
+    def _on_status(self, message: Any) -> None:
+        with self._lock:
+            for status in message.status_list:
+                key = goal_key(status.goal_info.goal_id)
+                if key in self._unanswered:
+                    self._unanswered[key] = status.status
+                    continue
+                ref = self._goal_handles.get(key)
+                handle = ref() if ref is not None else None
+                if handle is None:
+                    self._goal_handles.pop(key, None)
+                    continue
+                handle._status = status.status
+                if status.status in TERMINAL_STATES:
+                    del self._goal_handles[key]
+
+    # -- goals -------------------------------------------------------------------------------
+    def send_goal_async(self, goal: Any, feedback_callback: Callable[[Any], Any] | None = None,
+                        goal_uuid: Any = None) -> Future:
+        """Send a goal; the future gives its ClientGoalHandle once the server answers.
+
+        `feedback_callback(feedback_message)` gets this goal's `<A>_FeedbackMessage`s."""
+        if not isinstance(goal, self._action_type.Goal):
+            raise TypeError(f'goal must be a {self._action_type.Goal.__name__}, '
+                            f'got {type(goal).__name__}')
+        goal_id = new_goal_id() if goal_uuid is None else goal_uuid
+        request = self._action_type.Impl.SendGoalService.Request(goal_id=goal_id, goal=goal)
+        key = goal_key(goal_id)
+        with self._lock:
+            if feedback_callback is not None:
+                self._feedback_callbacks[key] = feedback_callback
+            self._unanswered[key] = GoalStatus.STATUS_UNKNOWN
+        future = Future()
+        try:
+            call = self._goal_client.call_async(request)
+        except BaseException:
+            self._forget_goal(key)
+            raise
+
+        def answered(call_future: Future) -> None:
+            exc = call_future.exception() if not call_future.cancelled() else None
+            if call_future.cancelled() or exc is not None:
+                self._forget_goal(key)
+                if exc is not None:
+                    future.set_exception(exc)
+                else:
+                    future.cancel()
+                return
+            handle = ClientGoalHandle(self, goal_id, call_future.result())
+            with self._lock:
+                early = self._unanswered.pop(key, GoalStatus.STATUS_UNKNOWN)
+                if handle.accepted:
+                    handle._status = early
+                    if early not in TERMINAL_STATES:
+                        self._goal_handles[key] = weakref.ref(handle)
+            if not handle.accepted:
+                self._drop_feedback(key)
+            future.set_result(handle)
+        call.add_done_callback(answered)
+        return future
+
+    def send_goal(self, goal: Any, feedback_callback: Callable[[Any], Any] | None = None,
+                  goal_uuid: Any = None) -> Any:
+        """Send a goal and block until its GetResult response (None if it was rejected).
+
+        The replies wake this thread directly, so no executor is needed for that; feedback
+        callbacks still run only where the node is spun."""
+        if not isinstance(goal, self._action_type.Goal):
+            raise TypeError(f'goal must be a {self._action_type.Goal.__name__}, '
+                            f'got {type(goal).__name__}')
+        goal_id = new_goal_id() if goal_uuid is None else goal_uuid
+        key = goal_key(goal_id)
+        with self._lock:
+            if feedback_callback is not None:
+                self._feedback_callbacks[key] = feedback_callback
+            self._unanswered[key] = GoalStatus.STATUS_UNKNOWN
+        try:
+            response = self._goal_client.call(
+                self._action_type.Impl.SendGoalService.Request(goal_id=goal_id, goal=goal))
+            handle = ClientGoalHandle(self, goal_id, response)
+            if not handle.accepted:
+                return None
+            with self._lock:
+                handle._status = self._unanswered.pop(key, GoalStatus.STATUS_UNKNOWN)
+                self._goal_handles[key] = weakref.ref(handle)
+            return self._get_result(handle)
+        finally:
+            self._forget_goal(key)
+
+    def _drop_feedback(self, key: bytes) -> None:
+        with self._lock:
+            self._feedback_callbacks.pop(key, None)
+
+    def _forget_goal(self, key: bytes) -> None:
+        with self._lock:
+            self._feedback_callbacks.pop(key, None)
+            self._unanswered.pop(key, None)
+
+    def _cancel_goal_async(self, goal_handle: ClientGoalHandle) -> Future:
+        if not isinstance(goal_handle, ClientGoalHandle):
+            raise TypeError('expected a ClientGoalHandle')
+        if not goal_handle.accepted:
+            raise TypeError('Action goal was not accepted')
+        request = CancelGoal.Request()
+        request.goal_info.goal_id = goal_handle.goal_id
+        return self._cancel_client.call_async(request)
+
+    def _cancel_goal(self, goal_handle: ClientGoalHandle) -> Any:
+        if not goal_handle.accepted:
+            raise TypeError('Action goal was not accepted')
+        request = CancelGoal.Request()
+        request.goal_info.goal_id = goal_handle.goal_id
+        return self._cancel_client.call(request)
+
+    def _get_result_async(self, goal_handle: ClientGoalHandle) -> Future:
+        if not isinstance(goal_handle, ClientGoalHandle):
+            raise TypeError('expected a ClientGoalHandle')
+        if not goal_handle.accepted:
+            raise TypeError('Action goal was not accepted')
+        key = goal_key(goal_handle.goal_id)
+        request = self._action_type.Impl.GetResultService.Request(goal_id=goal_handle.goal_id)
+        future = self._result_client.call_async(request)
+
+        def done(f: Future) -> None:
+            self._drop_feedback(key)
+            if not f.cancelled() and f.exception() is None:
+                status = f.result().status
+                if status in TERMINAL_STATES:
+                    goal_handle._status = status
+        future.add_done_callback(done)
+        return future
+
+    def _get_result(self, goal_handle: ClientGoalHandle) -> Any:
+        if not goal_handle.accepted:
+            raise TypeError('Action goal was not accepted')
+        response = self._result_client.call(
+            self._action_type.Impl.GetResultService.Request(goal_id=goal_handle.goal_id))
+        self._drop_feedback(goal_key(goal_handle.goal_id))
+        if response.status in TERMINAL_STATES:
+            goal_handle._status = response.status
+        return response
+
+    # -- server discovery --------------------------------------------------------------------
+    def server_is_ready(self) -> bool:
+        """All three services answer and the feedback and status topics have a publisher
+        (what rcl_action_server_is_available checks)."""
+        return (self._goal_client.service_is_ready() and
+                self._cancel_client.service_is_ready() and
+                self._result_client.service_is_ready() and
+                self._feedback_sub.get_publisher_count() > 0 and
+                self._status_sub.get_publisher_count() > 0)
+
+    def wait_for_server(self, timeout_sec: float | None = None) -> bool:
+        """Wait until the server is ready; False on timeout (None: wait forever)."""
+        deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
+        while self._node.context.ok() and not self.server_is_ready():
+            if deadline is not None and time.monotonic() >= deadline:
+                break
+            time.sleep(_POLL)
+        return self.server_is_ready()
+
+    def destroy(self) -> None:
+        if self._destroyed:
+            return
+        self._destroyed = True
+        node = self._node
+        # a new list, not remove(): destroy_node() may be iterating over the old one
+        node.waitables = [w for w in node.waitables if w is not self]
+        for client in (self._goal_client, self._cancel_client, self._result_client):
+            node.destroy_client(client)
+        node.destroy_subscription(self._feedback_sub)
+        node.destroy_subscription(self._status_sub)

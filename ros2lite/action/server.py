@@ -1,0 +1,388 @@
+"""ActionServer and ServerGoalHandle, shaped like rclpy.action.server.
+
+An action server is five ordinary entities of its node (rcl_action over rmw_zenoh has nothing
+more): the send_goal, cancel_goal and get_result services, and the feedback and status
+publishers. Requests run in the server's callback group; each accepted goal's execute
+callback runs as a task on the node's executor, as in rclpy, so it may be `async def`.
+get_result requests for goals still running are answered when the goal ends (deferred
+service replies).
+"""
+
+from __future__ import annotations
+
+import enum
+import inspect
+import threading
+import traceback
+from collections.abc import Callable
+from typing import Any
+
+from ros2lite.action.goals import (
+    TERMINAL_STATES,
+    ActionNames,
+    CancelGoal,
+    GoalEvent,
+    GoalInfo,
+    GoalStatus,
+    GoalTable,
+    goal_key,
+    resolve_action_type,
+)
+from ros2lite.executable import Executable
+from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
+from ros2lite.task import Future
+
+
+class GoalResponse(enum.Enum):
+    """What a goal callback answers."""
+
+    REJECT = 1
+    ACCEPT = 2
+
+
+class CancelResponse(enum.Enum):
+    """What a cancel callback answers."""
+
+    REJECT = 1
+    ACCEPT = 2
+
+
+def default_goal_callback(goal_request: Any) -> GoalResponse:
+    return GoalResponse.ACCEPT
+
+
+def default_handle_accepted_callback(goal_handle: ServerGoalHandle) -> None:
+    goal_handle.execute()
+
+
+def default_cancel_callback(cancel_request: Any) -> CancelResponse:
+    return CancelResponse.REJECT
+
+
+async def await_or_execute(callback: Callable[..., Any], *args: Any) -> Any:
+    """Call a plain or `async def` callback and give its result."""
+    result = callback(*args)
+    if inspect.isawaitable(result):
+        result = await result
+    return result
+
+
+class ServerGoalHandle:
+    """One accepted goal as the user's callbacks see it."""
+
+    def __init__(self, action_server: ActionServer, goal_info: Any, goal_request: Any) -> None:
+        self._action_server = action_server
+        self._goal_info = goal_info
+        self._goal_request = goal_request
+        self._key = goal_key(goal_info.goal_id)
+        self._destroyed = False
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, ServerGoalHandle) and self._key == other._key
+
+    def __hash__(self) -> int:
+        return hash(self._key)
+
+    def __repr__(self) -> str:
+        return f'ServerGoalHandle <id: {self._key.hex()}, status: {self.status}>'
+
+    @property
+    def request(self) -> Any:
+        return self._goal_request
+
+    @property
+    def goal_id(self) -> Any:
+        return self._goal_info.goal_id
+
+    @property
+    def status(self) -> int:
+        return self._action_server._goal_status(self._key)
+
+    @property
+    def is_active(self) -> bool:
+        return self.status in (GoalStatus.STATUS_ACCEPTED, GoalStatus.STATUS_EXECUTING,
+                               GoalStatus.STATUS_CANCELING)
+
+    @property
+    def is_cancel_requested(self) -> bool:
+        """True once a cancel was accepted, and also once the server is gone (destroyed or
+        shut down), so that execute loops written for cancellation end there too."""
+        return self._destroyed or self.status == GoalStatus.STATUS_CANCELING
+
+    def execute(self, execute_callback: Callable[..., Any] | None = None) -> None:
+        """Start executing (with the server's execute callback unless one is given).
+
+        A goal whose cancel was requested before it started keeps CANCELING: the callback
+        still runs, so that it can finish the goal as canceled."""
+        if not self.is_cancel_requested:
+            self._update_state(GoalEvent.EXECUTE)
+        self._action_server._notify_execute(self, execute_callback)
+
+    def publish_feedback(self, feedback: Any) -> None:
+        server = self._action_server
+        if not isinstance(feedback, server._action_type.Feedback):
+            raise TypeError(f'feedback must be a {server._action_type.Feedback.__name__}, '
+                            f'got {type(feedback).__name__}')
+        if self._destroyed:
+            return
+        message = server._action_type.Impl.FeedbackMessage(
+            goal_id=self._goal_info.goal_id, feedback=feedback)
+        server._feedback_pub.publish(message)
+
+    def succeed(self) -> None:
+        self._update_state(GoalEvent.SUCCEED)
+
+    def abort(self) -> None:
+        self._update_state(GoalEvent.ABORT)
+
+    def canceled(self) -> None:
+        self._update_state(GoalEvent.CANCELED)
+
+    def destroy(self) -> None:
+        self._destroyed = True
+
+    def _update_state(self, event: GoalEvent) -> None:
+        if not self._destroyed:
+            self._action_server._update_goal(self._key, event)
+
+
+class ActionServer(Executable):
+    """Serves one action on a node (rclpy.action.ActionServer's arguments and defaults)."""
+
+    def __init__(self, node: Any, action_type: Any, action_name: str,
+                 execute_callback: Callable[..., Any], *,
+                 callback_group: Any = None,
+                 goal_callback: Callable[[Any], Any] = default_goal_callback,
+                 handle_accepted_callback: Callable[[ServerGoalHandle], Any] =
+                 default_handle_accepted_callback,
+                 cancel_callback: Callable[[ServerGoalHandle], Any] = default_cancel_callback,
+                 goal_service_qos_profile: QoSProfile = qos_profile_services_default,
+                 result_service_qos_profile: QoSProfile = qos_profile_services_default,
+                 cancel_service_qos_profile: QoSProfile = qos_profile_services_default,
+                 feedback_pub_qos_profile: QoSProfile = QoSProfile(depth=10),  # noqa: B008
+                 status_pub_qos_profile: QoSProfile = qos_profile_action_status_default,
+                 result_timeout: float = 900) -> None:
+        self._node = node
+        self._action_type = resolve_action_type(action_type)
+        self._action_name = action_name
+        self._names = ActionNames(node.resolve_topic_name(action_name),
+                                  self._action_type._TYPE_NAME)
+        self._logger = node.get_logger()
+        self._lock = threading.RLock()
+        self._goals = GoalTable(result_timeout)
+        self._goal_handles: dict[bytes, ServerGoalHandle] = {}
+        self._result_futures: dict[bytes, Future] = {}
+        self.register_execute_callback(execute_callback)
+        self.register_goal_callback(goal_callback)
+        self.register_handle_accepted_callback(handle_accepted_callback)
+        self.register_cancel_callback(cancel_callback)
+        # a waitable of the node, as in rclpy: destroy_node() destroys it too; its work is
+        # done by its own services, clients and subscriptions
+        super().__init__(node, callback_group)
+        group = self.callback_group
+        impl = self._action_type.Impl
+        names = self._names
+        # rcl_action's order: the three services, then feedback and status publishers
+        self._goal_service = node.create_service(
+            impl.SendGoalService, names.send_goal, self._execute_goal_request,
+            qos_profile=goal_service_qos_profile, callback_group=group, deferred=True)
+        self._cancel_service = node.create_service(
+            impl.CancelGoalService, names.cancel_goal, self._execute_cancel_request,
+            qos_profile=cancel_service_qos_profile, callback_group=group, deferred=True)
+        self._result_service = node.create_service(
+            impl.GetResultService, names.get_result, self._on_result_request,
+            qos_profile=result_service_qos_profile, callback_group=group, deferred=True)
+        self._feedback_pub = node.create_publisher(
+            impl.FeedbackMessage, names.feedback, feedback_pub_qos_profile)
+        self._status_pub = node.create_publisher(
+            impl.GoalStatusMessage, names.status, status_pub_qos_profile)
+        self._destroyed = False
+        node.add_waitable(self)
+
+    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
+        return None   # never has work of its own
+
+    # -- rclpy's registration API ---------------------------------------------------------------
+    def register_execute_callback(self, execute_callback: Callable[..., Any]) -> None:
+        if not callable(execute_callback):
+            raise TypeError('Failed to register execute callback: not callable')
+        self._execute_callback = execute_callback
+
+    def register_goal_callback(self, goal_callback: Callable[[Any], Any] | None) -> None:
+        self._goal_callback = goal_callback or default_goal_callback
+
+    def register_handle_accepted_callback(
+            self, handle_accepted_callback: Callable[[ServerGoalHandle], Any] | None) -> None:
+        self._handle_accepted_callback = handle_accepted_callback or \
+            default_handle_accepted_callback
+
+    def register_cancel_callback(
+            self, cancel_callback: Callable[[ServerGoalHandle], Any] | None) -> None:
+        self._cancel_callback = cancel_callback or default_cancel_callback
+
+    @property
+    def action_type(self) -> Any:
+        return self._action_type
+
+    @property
+    def action_name(self) -> str:
+        return self._names.action
+
+    # -- requests (deferred service callbacks; coroutines, so user callbacks may be too) -----
+    async def _execute_goal_request(self, request: Any, header: Any) -> None:
+        key = goal_key(request.goal_id)
+        with self._lock:
+            self._goals.expire()
+            self._forget_expired()
+            exists = key in self._goals
+        accepted = False
+        if exists:
+            self._logger.error(f'Received a goal with an ID already in use: {key.hex()}')
+        else:
+            try:
+                response = await await_or_execute(self._goal_callback, request.goal)
+            except Exception as e:   # the client still gets an answer: rejected
+                self._logger.error(f'Error raised in goal callback: {e!r}; rejecting goal')
+                response = GoalResponse.REJECT
+            if isinstance(response, GoalResponse):
+                accepted = response == GoalResponse.ACCEPT
+            else:
+                self._logger.warning('Goal request callback did not return a GoalResponse '
+                                     'type. Rejecting goal.')
+        info = GoalInfo(goal_id=request.goal_id)
+        goal_handle = None
+        if accepted:
+            info.stamp = self._node.get_clock().now().to_msg()
+            with self._lock:
+                if key in self._goals:   # the same id accepted meanwhile
+                    accepted = False
+                else:
+                    self._goals.add(info)
+                    goal_handle = ServerGoalHandle(self, info, request.goal)
+                    self._goal_handles[key] = goal_handle
+                    self._result_futures[key] = Future()
+        response_msg = self._action_type.Impl.SendGoalService.Response(
+            accepted=accepted, stamp=info.stamp)
+        self._goal_service.send_response(response_msg, header)
+        if goal_handle is None:
+            return
+        self._publish_status()
+        await await_or_execute(self._handle_accepted_callback, goal_handle)
+
+    async def _execute_cancel_request(self, request: Any, header: Any) -> None:
+        with self._lock:
+            code, infos = self._goals.select_cancel(request)
+        canceling = []
+        for info in infos:
+            goal_handle = self._goal_handles.get(goal_key(info.goal_id))
+            if goal_handle is None:
+                continue
+            try:
+                answer = await await_or_execute(self._cancel_callback, goal_handle)
+            except Exception as e:   # the client still gets an answer: not canceled
+                self._logger.error(f'Error raised in cancel callback: {e!r}')
+                answer = CancelResponse.REJECT
+            if answer == CancelResponse.ACCEPT:
+                try:
+                    goal_handle._update_state(GoalEvent.CANCEL_GOAL)
+                except RuntimeError:
+                    continue   # it ended while the callback ran
+                canceling.append(info)
+        if infos and not canceling:
+            code = CancelGoal.Response.ERROR_REJECTED   # the user turned every goal down
+        self._cancel_service.send_response(
+            CancelGoal.Response(return_code=code, goals_canceling=canceling), header)
+
+    def _on_result_request(self, request: Any, header: Any) -> None:
+        key = goal_key(request.goal_id)
+        with self._lock:
+            self._goals.expire()
+            self._forget_expired()
+            future = self._result_futures.get(key)
+        if future is None:
+            response = self._action_type.Impl.GetResultService.Response(
+                status=GoalStatus.STATUS_UNKNOWN)
+            self._result_service.send_response(response, header)
+            return
+        # answered now if the goal is over, or the moment it ends
+        future.add_done_callback(
+            lambda f: self._result_service.send_response(f.result(), header))
+
+    # -- goal bookkeeping ---------------------------------------------------------------------
+    def _goal_status(self, key: bytes) -> int:
+        with self._lock:
+            entry = self._goals.get(key)
+            return GoalStatus.STATUS_UNKNOWN if entry is None else entry.state
+
+    def _update_goal(self, key: bytes, event: GoalEvent) -> None:
+        with self._lock:
+            if key not in self._goals:
+                return   # expired already
+            self._goals.update(key, event)
+        self._publish_status()
+
+    def _forget_expired(self) -> None:
+        for key in [k for k in self._goal_handles if k not in self._goals]:
+            self._goal_handles.pop(key).destroy()
+            self._result_futures.pop(key, None)
+
+    def _publish_status(self) -> None:
+        if self._destroyed:
+            return
+        with self._lock:
+            self._goals.expire()
+            self._forget_expired()
+            self._status_pub.publish(self._goals.status_array())
+
+    def _notify_execute(self, goal_handle: ServerGoalHandle,
+                        execute_callback: Callable[..., Any] | None) -> None:
+        callback = execute_callback or self._execute_callback
+        executor = self._node.executor
+        if executor is None:
+            raise RuntimeError('the action server\'s node must be added to an executor to '
+                               'execute goals')
+        executor.create_task(self._execute_goal, callback, goal_handle)
+
+    async def _execute_goal(self, execute_callback: Callable[..., Any],
+                            goal_handle: ServerGoalHandle) -> None:
+        key = goal_handle._key
+        result_type = self._action_type.Result
+        try:
+            result = await await_or_execute(execute_callback, goal_handle)
+        except Exception as e:
+            self._logger.error(f'Error raised in execute callback: {e}')
+            traceback.print_exc()
+            result = result_type()
+        if not isinstance(result, result_type):
+            self._logger.error(f'Execute callback returned {type(result).__name__}, not a '
+                               f'{result_type.__name__}; sending an empty result')
+            result = result_type()
+        if goal_handle.is_active:
+            self._logger.warning(f'Goal state not set, assuming aborted. Goal ID: {key.hex()}')
+            goal_handle.abort()
+        status = goal_handle.status
+        if status not in TERMINAL_STATES:
+            return   # expired or destroyed meanwhile: nobody can ask for the result
+        response = self._action_type.Impl.GetResultService.Response(status=status, result=result)
+        with self._lock:
+            future = self._result_futures.get(key)
+            self._goals.finish(key)
+        if future is not None and not future.done():
+            future.set_result(response)
+
+    def destroy(self) -> None:
+        """Withdraw the five entities from the graph."""
+        if self._destroyed:
+            return
+        self._destroyed = True
+        node = self._node
+        # a new list, not remove(): destroy_node() may be iterating over the old one
+        node.waitables = [w for w in node.waitables if w is not self]
+        for service in (self._goal_service, self._cancel_service, self._result_service):
+            node.destroy_service(service)
+        node.destroy_publisher(self._feedback_pub)
+        node.destroy_publisher(self._status_pub)
+        with self._lock:
+            for handle in self._goal_handles.values():
+                handle.destroy()
+            self._goal_handles.clear()

@@ -1,0 +1,44 @@
+"""`action info`: who serves and who uses one action."""
+
+from __future__ import annotations
+
+import click
+
+from .. import completion
+from ..common import CliSession, strategy_options
+from ..errors import CliError
+
+
+def _section(title: str, rows: list[tuple[str, list[str]]], show_types: bool,
+             count: bool) -> list[str]:
+    lines = [f'{title}: {len(rows)}']
+    if not count:
+        lines += [f'    {node} [{", ".join(types)}]' if show_types else f'    {node}'
+                  for node, types in rows]
+    return lines
+
+
+@click.command('info')
+@strategy_options()
+@click.argument('action_name', shell_complete=completion.actions)
+@click.option('-t', '--show-types', is_flag=True, help='Additionally show the action type')
+@click.option('-c', '--count', is_flag=True,
+              help='Only display the number of action clients and action servers')
+def cli(action_name: str, show_types: bool, count: bool, no_daemon: bool,
+        use_sim_time: bool) -> None:
+    """Print information about an action."""
+    from ros2lite.graph import action_endpoints
+    from ros2lite.transport.keys import expand_topic_name, validate_full_topic_name
+    try:
+        name = expand_topic_name(action_name, 'ros2lite', '/')
+        validate_full_topic_name(name)
+    except ValueError as e:
+        raise CliError(str(e)) from None
+    with CliSession(no_daemon=no_daemon) as session:
+        entities = session.entities()
+    clients, servers = action_endpoints(entities, name)
+    # ros2cli echoes the name as it was given
+    lines = [f'Action: {action_name}']
+    lines += _section('Action clients', clients, show_types, count)
+    lines += _section('Action servers', servers, show_types, count)
+    click.echo('\n'.join(lines))

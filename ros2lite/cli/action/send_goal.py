@@ -1,0 +1,156 @@
+"""`action send_goal`: send one goal, print its acceptance, feedback and result.
+
+Ctrl-C while the goal is active cancels it first ("Canceling goal...", "Goal canceled."),
+then leaves with status 2, as ros2cli does.
+"""
+
+from __future__ import annotations
+
+import sys
+from typing import Any
+
+import click
+
+from .. import completion
+from ..common import CliSession
+from ..errors import CliError
+
+
+def action_class(action_type: str) -> tuple[str, Any]:
+    """('pkg/action/Name', class) for 'pkg/action/Name' or 'pkg/Name'."""
+    from ros2lite.action.goals import resolve_action_type
+    from ros2lite.interfaces import InterfaceError
+    try:
+        cls = resolve_action_type(action_type)
+    except (InterfaceError, ValueError, TypeError, LookupError):
+        raise CliError('The passed action type is invalid') from None
+    return cls._TYPE_NAME, cls
+
+
+def build_goal(cls: Any, values: str) -> Any:
+    import yaml
+
+    from ros2lite.interfaces import set_message_fields
+    goal = cls.Goal()
+    try:
+        fields = yaml.safe_load(values)
+        set_message_fields(goal, fields)
+    except Exception as e:   # any reason the values do not fit, as ros2cli reports it
+        raise CliError(f'Failed to populate message fields: {e!r}') from None
+    return goal
+
+
+class FeedbackPrinter:
+    """Prints feedback as ros2cli does, but never before the goal's acceptance line: the
+    first feedback may overtake the server's answer to send_goal on the way here."""
+
+    def __init__(self) -> None:
+        self._held: list[Any] | None = []
+
+    def __call__(self, message: Any) -> None:
+        if self._held is not None:
+            self._held.append(message)
+        else:
+            self._print(message)
+
+    def release(self) -> None:
+        held, self._held = self._held or [], None
+        for message in held:
+            self._print(message)
+
+    @staticmethod
+    def _print(message: Any) -> None:
+        from ros2lite.interfaces import message_to_yaml
+        click.echo(f'Feedback:\n    {message_to_yaml(message.feedback)}')
+
+
+@click.command('send_goal')
+@click.argument('action_name', shell_complete=completion.actions)
+@click.argument('action_type', shell_complete=completion.action_types)
+@click.argument('goal', required=False)
+@click.option('--stdin', 'use_stdin', is_flag=True, help='Read the goal from standard input')
+@click.option('-f', '--feedback', is_flag=True, help='Echo feedback messages for the goal')
+@click.option('--timeout', type=click.FloatRange(min=0), metavar='SECONDS',
+              help='Give up when no action server shows up within this time '
+                   '(default: wait forever)')
+def cli(action_name: str, action_type: str, goal: str | None, use_stdin: bool, feedback: bool,
+        timeout: float | None) -> None:
+    """Send an action goal.
+
+    GOAL fills the goal message in YAML (e.g. '{order: 5}').
+    """
+    if use_stdin and goal is not None:
+        raise click.UsageError('argument --stdin: not allowed with argument goal')
+    values = sys.stdin.read() if use_stdin else (goal if goal is not None else '{}')
+    type_name, cls = action_class(action_type)
+    goal_msg = build_goal(cls, values)
+    pkg, _, name = type_name.split('/')
+    with CliSession() as session:
+        node = session.node(f'_ros2lite_send_goal_{pkg}_action_{name}')
+        send_goal(session, node, cls, action_name, goal_msg,
+                  FeedbackPrinter() if feedback else None, timeout)
+
+
+def send_goal(session: CliSession, node: Any, cls: Any, action_name: str, goal: Any,
+              feedback: FeedbackPrinter | None, timeout: float | None) -> None:
+    from ros2lite.action import ActionClient
+    from ros2lite.action.goals import GoalStatus, goal_id_hex, status_name
+    from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.interfaces import message_to_yaml
+    try:
+        client = ActionClient(node, cls, action_name)
+    except ValueError as e:   # an invalid action name
+        raise CliError(str(e)) from None
+    executor = SingleThreadedExecutor(context=session.context)
+    executor.add_node(node)
+    click.echo('Waiting for an action server to become available...')
+    if not client.wait_for_server(timeout_sec=timeout):
+        raise CliError(f"No action server for '{client.action_name}' after {timeout} s")
+    click.echo(f'Sending goal:\n     {message_to_yaml(goal)}')
+    goal_handle = None
+    try:
+        goal_future = client.send_goal_async(goal, feedback)
+        goal_handle = _outcome(executor, goal_future, 'sending goal')
+        if not goal_handle.accepted:
+            click.echo('Goal was rejected.')
+            return
+        click.echo(f'Goal accepted with ID: {goal_id_hex(goal_handle.goal_id)}\n')
+        if feedback is not None:
+            feedback.release()
+        result_future = goal_handle.get_result_async()
+        result = _outcome(executor, result_future, 'getting result')
+        click.echo(f'Result:\n    {message_to_yaml(result.result)}')
+        click.echo(f'Goal finished with status: {status_name(result.status)}')
+    except BaseException as e:
+        # Ctrl-C (or SIGTERM) while the goal is active cancels it, as ros2cli does; a goal
+        # whose first status has not arrived yet is just as alive. A failure such as the
+        # server going away is reported as it is, with no cancel that could not succeed.
+        if not isinstance(e, Exception) and goal_handle is not None and \
+                goal_handle.status in (GoalStatus.STATUS_UNKNOWN, GoalStatus.STATUS_ACCEPTED,
+                                       GoalStatus.STATUS_EXECUTING):
+            _cancel(executor, goal_handle)
+        raise
+    finally:
+        client.destroy()
+
+
+def _outcome(executor: Any, future: Any, doing: str) -> Any:
+    """Spin until `future` is done; its result, or ros2cli's error naming what failed."""
+    executor.spin_until_future_complete(future)
+    if future.cancelled() or future.exception() is not None:
+        raise CliError(f'Exception while {doing}: {future.exception()!r}')
+    return future.result()
+
+
+def _cancel(executor: Any, goal_handle: Any) -> None:
+    from ros2lite.action.goals import goal_key
+    click.echo('Canceling goal...')
+    response = _outcome(executor, goal_handle.cancel_goal_async(), 'canceling goal')
+    canceling = response.goals_canceling
+    if not canceling:
+        raise CliError('Failed to cancel goal')
+    if len(canceling) > 1:
+        raise CliError('More than one goal canceled')
+    if goal_key(canceling[0].goal_id) != goal_key(goal_handle.goal_id):
+        raise CliError('Canceled goal with incorrect goal ID')
+    click.echo('Goal canceled.')

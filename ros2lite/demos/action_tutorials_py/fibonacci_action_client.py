@@ -1,0 +1,66 @@
+"""`fibonacci_action_client`: sends `fibonacci` one goal of order 10, logs the feedback and
+the result, then exits."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import ros2lite
+from ros2lite.action import ActionClient
+from ros2lite.demos.runner import run_node
+from ros2lite.msgs.action_msgs.msg import GoalStatus  # type: ignore[attr-defined]
+from ros2lite.msgs.action_tutorials_interfaces.action import (  # type: ignore[attr-defined]
+    Fibonacci,
+)
+from ros2lite.node import Node
+
+
+class FibonacciActionClient(Node):
+    def __init__(self) -> None:
+        super().__init__('fibonacci_action_client')
+        self._action_client = ActionClient(self, Fibonacci, 'fibonacci')
+
+    def goal_response_callback(self, future: Any) -> None:
+        goal_handle = future.result()
+        if not goal_handle.accepted:
+            self.get_logger().info('Goal rejected :(')
+            return
+        self.get_logger().info('Goal accepted :)')
+        self._get_result_future = goal_handle.get_result_async()
+        self._get_result_future.add_done_callback(self.get_result_callback)
+
+    def feedback_callback(self, feedback: Any) -> None:
+        self.get_logger().info(f'Received feedback: {feedback.feedback.partial_sequence}')
+
+    def get_result_callback(self, future: Any) -> None:
+        result = future.result().result
+        status = future.result().status
+        if status == GoalStatus.STATUS_SUCCEEDED:
+            self.get_logger().info(f'Goal succeeded! Result: {result.sequence}')
+        else:
+            self.get_logger().info(f'Goal failed with status: {status}')
+        ros2lite.shutdown(context=self.context)   # leave after the result, as the demo does
+
+    def send_goal(self) -> None:
+        self.get_logger().info('Waiting for action server...')
+        self._action_client.wait_for_server()
+        goal_msg = Fibonacci.Goal()
+        goal_msg.order = 10
+        self.get_logger().info('Sending goal request...')
+        self._send_goal_future = self._action_client.send_goal_async(
+            goal_msg, feedback_callback=self.feedback_callback)
+        self._send_goal_future.add_done_callback(self.goal_response_callback)
+
+
+def _make() -> FibonacciActionClient:
+    client = FibonacciActionClient()
+    client.send_goal()
+    return client
+
+
+def main(args: list[str] | None = None) -> int:
+    return run_node(_make, args)
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())

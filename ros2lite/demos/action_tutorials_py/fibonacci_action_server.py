@@ -1,0 +1,77 @@
+"""`fibonacci_action_server`: serves `fibonacci`, one feedback per second per goal.
+
+Goals run in parallel (a reentrant group on a multi-threaded executor) and can be canceled,
+as in the ROS demo.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+from ros2lite.action import ActionServer, CancelResponse, GoalResponse
+from ros2lite.action.server import ServerGoalHandle
+from ros2lite.callback_groups import ReentrantCallbackGroup
+from ros2lite.demos.runner import run_main
+from ros2lite.msgs.action_tutorials_interfaces.action import (  # type: ignore[attr-defined]
+    Fibonacci,
+)
+from ros2lite.node import Node
+
+
+class FibonacciActionServer(Node):
+    def __init__(self) -> None:
+        super().__init__('fibonacci_action_server')
+        self._action_server = ActionServer(
+            self, Fibonacci, 'fibonacci',
+            execute_callback=self.execute_callback,
+            callback_group=ReentrantCallbackGroup(),
+            goal_callback=self.goal_callback,
+            cancel_callback=self.cancel_callback)
+
+    def destroy(self) -> None:
+        self._action_server.destroy()
+        super().destroy_node()
+
+    def goal_callback(self, goal_request: Any) -> GoalResponse:
+        # this server takes several goals at once
+        self.get_logger().info('Received goal request')
+        return GoalResponse.ACCEPT
+
+    def cancel_callback(self, goal_handle: ServerGoalHandle) -> CancelResponse:
+        self.get_logger().info('Received cancel request')
+        return CancelResponse.ACCEPT
+
+    async def execute_callback(self, goal_handle: ServerGoalHandle) -> Any:
+        self.get_logger().info('Executing goal...')
+        feedback_msg = Fibonacci.Feedback()
+        feedback_msg.partial_sequence = [0, 1]
+        for i in range(1, goal_handle.request.order):
+            if goal_handle.is_cancel_requested:
+                goal_handle.canceled()
+                self.get_logger().info('Goal canceled')
+                return Fibonacci.Result()
+            feedback_msg.partial_sequence.append(
+                feedback_msg.partial_sequence[i] + feedback_msg.partial_sequence[i - 1])
+            self.get_logger().info(f'Publishing feedback: {feedback_msg.partial_sequence}')
+            goal_handle.publish_feedback(feedback_msg)
+            time.sleep(1)   # for demonstration, as the ROS demo does
+        goal_handle.succeed()
+        result = Fibonacci.Result()
+        result.sequence = feedback_msg.partial_sequence
+        self.get_logger().info(f'Returning result: {result.sequence}')
+        return result
+
+
+def main(args: list[str] | None = None) -> int:
+    import ros2lite
+    from ros2lite.executors import MultiThreadedExecutor
+
+    def body() -> None:
+        # a multi-threaded executor, so goals are processed concurrently
+        ros2lite.spin(FibonacciActionServer(), executor=MultiThreadedExecutor())
+    return run_main(body, args)
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())

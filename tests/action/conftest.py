@@ -1,0 +1,5 @@
+from __future__ import annotations
+
+from tests.action.alien import alien_server, alien_session
+
+__all__ = ['alien_server', 'alien_session']
