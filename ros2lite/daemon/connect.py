@@ -50,12 +50,15 @@ def autostart_enabled(env: Mapping[str, str] | None = None) -> bool:
     """May a node start the daemon?  Not with ``ROS2LITE_NO_DAEMON`` set or when the user
     manages the router the rmw_zenoh way (``ZENOH_ROUTER_CHECK_ATTEMPTS`` set)."""
     environ = os.environ if env is None else env
-    return not _truthy(environ.get(NO_DAEMON_ENV, "")) and not environ.get(
-        ROUTER_CHECK_ENV, "").strip()
+    return (
+        not _truthy(environ.get(NO_DAEMON_ENV, ""))
+        and not environ.get(ROUTER_CHECK_ENV, "").strip()
+    )
 
 
 def _log(severity: str, message: str) -> None:
     from ros2lite.logging import get_logger
+
     logger = get_logger(LOGGER_NAME)
     (logger.warn if severity == "warn" else logger.info)(message)
 
@@ -63,19 +66,27 @@ def _log(severity: str, message: str) -> None:
 def _autostart(router: str | None) -> None:
     """Start our daemon at the node's endpoint when nothing answers there (see module doc)."""
     from ros2lite.daemon.probe import router_answers
+
     endpoint = router_endpoint(router)
-    if (session_endpoint(router) != endpoint or not is_local_endpoint(endpoint)
-            or router_answers(endpoint)):
+    if (
+        session_endpoint(router) != endpoint
+        or not is_local_endpoint(endpoint)
+        or router_answers(endpoint)
+    ):
         return
     from ros2lite.daemon.router import DaemonError, start
+
     try:
         result = start(endpoint)
     except DaemonError as exc:
         _log("warn", f"could not start the ros2lite daemon: {exc}")
         return
     if result.started:
-        _log("info", f"no Zenoh router answered at {endpoint}: started the ros2lite daemon "
-                     f"(pid {result.pid}); set {NO_DAEMON_ENV}=1 to stop nodes doing this")
+        _log(
+            "info",
+            f"no Zenoh router answered at {endpoint}: started the ros2lite daemon "
+            f"(pid {result.pid}); set {NO_DAEMON_ENV}=1 to stop nodes doing this",
+        )
 
 
 def open_node_session(router: str | None = None) -> Any:
@@ -92,10 +103,16 @@ def open_node_session(router: str | None = None) -> Any:
     def waiting(n: int) -> None:
         if n == 1 and attempts != 1:
             more = "until one does" if attempts == 0 else f"for up to {attempts} s"
-            _log("warn", f"no Zenoh router answers at {endpoint}; waiting {more} "
-                         "(start one with 'ros2lite daemon start')")
+            _log(
+                "warn",
+                f"no Zenoh router answers at {endpoint}; waiting {more} "
+                "(start one with 'ros2lite daemon start')",
+            )
 
     if not check_router(session, attempts, waiting):
-        _log("warn", f"no Zenoh router answers at {endpoint}: running without one; this node "
-                     "joins the graph as soon as a router runs ('ros2lite daemon start')")
+        _log(
+            "warn",
+            f"no Zenoh router answers at {endpoint}: running without one; this node "
+            "joins the graph as soon as a router runs ('ros2lite daemon start')",
+        )
     return session

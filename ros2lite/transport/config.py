@@ -38,10 +38,12 @@ __all__ = [
     "DEFAULT_ROUTER",
     "ROUTER_ENV",
     "ConfigError",
-    "SessionMode",
     "RouterUnavailableError",
     "SessionError",
+    "SessionMode",
     "apply_config_override",
+    "check_router",
+    "configured_mode",
     "default_listen",
     "domain_id",
     "endpoint_host_port",
@@ -49,9 +51,6 @@ __all__ = [
     "node_session_mode",
     "open_session",
     "parse_config_override",
-    "check_router",
-    "configured_mode",
-    "has_router",
     "router_check_attempts",
     "router_config",
     "router_endpoint",
@@ -412,10 +411,6 @@ def open_session(
 def session_endpoint(router: str | None = None, env: Mapping[str, str] | None = None) -> str:
     """The router endpoint(s) a session would connect to, as one line for messages."""
     return _configured_endpoint(session_config(router, env), router_endpoint(router, env))
-
-
-def has_router(session: zenoh.Session) -> bool:
-    return bool(session.info.routers_zid())
 
 
 def wait_for_router(session: zenoh.Session, timeout: float) -> bool:
