@@ -8,8 +8,9 @@ starts meanwhile, then the daemon is started again. Measured:
 * `router_outage_gap`: the longest silence the listener saw (ms), and `router_outage_lost`:
   counter values it never got;
 * `router_restart_discovery`: from calling `daemon.start()` (spawning the router included) until
-  a client session (what a CLI verb opens) lists the node started during the outage (ms). In client mode that node cannot
-  start at all, so the baseline there is the old listener reappearing in the graph.
+  a client session (what a CLI verb opens) lists the node started during the outage (ms). In
+  client mode that node cannot start at all, so the baseline there is the old listener
+  reappearing in the graph.
 
 Nodes run as they do by default (peer sessions); the baseline is the same run with every node
 forced to client mode (`ZENOH_CONFIG_OVERRIDE='mode="client"'`, the behaviour before peer nodes),
@@ -19,6 +20,7 @@ so each ratio is peer / client measured side by side.
 from __future__ import annotations
 
 import contextlib
+import itertools
 import os
 import random
 import socket
@@ -172,7 +174,7 @@ def outage(mode: str | None) -> tuple[float, int, float]:
             daemon.stop(endpoint)
     times = [t for _, t in listener.samples]
     seqs = [s for s, _ in listener.samples]
-    gap = max(b - a for a, b in zip(times, times[1:], strict=False))
+    gap = max(b - a for a, b in itertools.pairwise(times))
     lost = (seqs[-1] - seqs[0] + 1) - len(set(seqs))
     return gap, lost, rediscovery
 
