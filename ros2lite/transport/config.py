@@ -259,8 +259,9 @@ def is_local_endpoint(endpoint: str) -> bool:
 
 def node_session_mode(router: str | None = None, env: Mapping[str, str] | None = None
                       ) -> SessionMode:
-    """The mode a long-lived node opens: peer when the router is on this host, else client."""
-    return "peer" if is_local_endpoint(router_endpoint(router, env)) else "client"
+    """The mode a long-lived node opens: peer when the router it connects to (after config
+    files and overrides) is on this host, else client."""
+    return "peer" if is_local_endpoint(session_endpoint(router, env)) else "client"
 
 
 def session_config(

@@ -95,6 +95,10 @@ def test_node_sessions_are_peers_that_retry_the_router_often() -> None:
 def test_node_mode_is_peer_only_with_a_router_on_this_host(endpoint: str, mode: str) -> None:
     # our peers listen on loopback only, so a remote router could not introduce them
     assert cfg.node_session_mode(endpoint, env={}) == mode
+    # the router the session really connects to decides
+    override = {"ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["{endpoint}"]',
+                "ROS2LITE_ROUTER": "tcp/127.0.0.1:7447"}
+    assert cfg.node_session_mode(env=override) == mode
 
 
 def test_router_check_attempts() -> None:
