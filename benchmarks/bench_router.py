@@ -10,7 +10,7 @@ starts meanwhile, then the daemon is started again. Measured:
 * `router_restart_discovery`: from calling `daemon.start()` (spawning the router included) until
   a client session (what a CLI verb opens) lists the node started during the outage (ms). In
   client mode that node cannot start at all, so the baseline there is the old listener
-  reappearing in the graph.
+  reappearing in the graph. `…_after_ready` counts from the router answering instead.
 
 Nodes run as they do by default (peer sessions); the baseline is the same run with every node
 forced to client mode (`ZENOH_CONFIG_OVERRIDE='mode="client"'`, the behaviour before peer nodes),
@@ -132,8 +132,9 @@ def _wait(predicate: Any, timeout: float) -> bool:
     return True
 
 
-def outage(mode: str | None) -> tuple[float, int, float]:
-    """One run; returns (longest gap s, lost messages, rediscovery s)."""
+def outage(mode: str | None) -> tuple[float, int, float, float]:
+    """One run; returns (longest gap s, lost messages, rediscovery s from the start call and
+    from the router answering)."""
     from ros2lite import daemon
     with socket.socket() as sock:
         sock.bind(('127.0.0.1', 0))
@@ -164,8 +165,10 @@ def outage(mode: str | None) -> tuple[float, int, float]:
             watched = 'outage_late' if late else 'outage_listener'
             back = time.monotonic()   # includes spawning the router: what a user waits for
             daemon.start(endpoint)
+            answering = time.monotonic()
             _wait(lambda: watched in _node_names(endpoint), 30)
             rediscovery = time.monotonic() - back
+            after_ready = time.monotonic() - answering
             heard_before = len(listener.samples)
             _wait(lambda: len(listener.samples) > heard_before + 50, 30)
         finally:
@@ -176,7 +179,7 @@ def outage(mode: str | None) -> tuple[float, int, float]:
     seqs = [s for s, _ in listener.samples]
     gap = max(b - a for a, b in itertools.pairwise(times))
     lost = (seqs[-1] - seqs[0] + 1) - len(set(seqs))
-    return gap, lost, rediscovery
+    return gap, lost, rediscovery, after_ready
 
 
 def bench_router_outage() -> None:
@@ -188,6 +191,8 @@ def bench_router_outage() -> None:
     report('router_outage_lost_client_mode', client[1], 'msgs', 1.0)
     report('router_restart_discovery', peer[2] * 1000, 'ms', peer[2] / client[2])
     report('router_restart_discovery_client_mode', client[2] * 1000, 'ms', 1.0)
+    report('router_restart_discovery_after_ready', peer[3] * 1000, 'ms', peer[3] / client[3])
+    report('router_restart_discovery_after_ready_client_mode', client[3] * 1000, 'ms', 1.0)
 
 
 BENCHES = {'router_outage': bench_router_outage}
