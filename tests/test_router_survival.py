@@ -227,3 +227,57 @@ def test_node_with_no_router_and_no_daemon(private: dict[str, str], capfd: Any,
     for line, text in zip(err.splitlines(), lines, strict=True):
         assert line.startswith('[WARN]') and text in line
     assert not daemon.status(private['ROS2LITE_ROUTER']).running
+
+
+def test_rmw_zenoh_peer_keeps_hearing_a_node_without_router(private: dict[str, str]) -> None:
+    """A session configured as rmw_zenoh's default session config (peer, loopback listener,
+    gossip through the router, written out literally here) and a ros2lite node talk directly,
+    so the data keeps flowing while the router is stopped."""
+    import zenoh
+
+    from ros2lite.context import Context
+    from ros2lite.interfaces import get_interface
+    from ros2lite.node import Node as RosNode
+    endpoint = private['ROS2LITE_ROUTER']
+    daemon.start(endpoint)
+    conf = zenoh.Config()
+    for key, value in [
+        ('mode', '"peer"'),
+        ('connect/endpoints', f'["{endpoint}"]'),
+        ('listen/endpoints', '["tcp/localhost:0"]'),
+        ('scouting/multicast/enabled', 'false'),
+        ('scouting/gossip/enabled', 'true'),
+        ('scouting/gossip/target', '{router: ["router", "peer"], peer: ["router"]}'),
+        ('scouting/gossip/autoconnect', '{router: [], peer: ["router", "peer"]}'),
+        ('scouting/gossip/autoconnect_strategy',
+         '{peer: {to_router: "always", to_peer: "greater-zid"}}'),
+        ('timestamping/enabled', 'true'),
+    ]:
+        conf.insert_json5(key, value)
+    alien = zenoh.open(conf)
+    heard: list[bytes] = []
+    key = (f"{private['ROS_DOMAIN_ID']}/outage_chatter/std_msgs::msg::dds_::String_/"
+           'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18')
+    sub = alien.declare_subscriber(key, lambda s: heard.append(s.payload.to_bytes()))
+    ctx = Context().init([])
+    stop = threading.Event()
+    try:
+        String = get_interface('std_msgs/msg/String')
+        pub = RosNode('outage_node', context=ctx).create_publisher(String, '/outage_chatter', 10)
+
+        def talk() -> None:
+            while not stop.wait(0.02):
+                pub.publish(String(data='hi'))
+
+        threading.Thread(target=talk, daemon=True).start()
+        wait_until(lambda: len(heard) >= 5, timeout=10)
+        assert daemon.stop(endpoint).stopped
+        before = len(heard)
+        time.sleep(1.0)
+        assert len(heard) >= before + 20    # 50 Hz, no router
+        assert heard[-1] == b'\x00\x01\x00\x00\x03\x00\x00\x00hi\x00'
+    finally:
+        stop.set()
+        ctx.shutdown()
+        sub.undeclare()
+        alien.close()
