@@ -109,7 +109,12 @@ def open_node_session(router: str | None = None) -> Any:
                 "(start one with 'ros2lite daemon start')",
             )
 
-    if not check_router(session, attempts, waiting):
+    try:
+        found = check_router(session, attempts, waiting)
+    except BaseException:  # Ctrl-C while waiting: no zenoh session may outlive the interpreter
+        session.close()
+        raise
+    if not found:
         _log(
             "warn",
             f"no Zenoh router answers at {endpoint}: running without one; this node "
