@@ -115,7 +115,8 @@ _EXPORTS = {
 
 def init(args: list[str] | None = None, *, context: Any = None, router: str | None = None,
          domain_id: int | None = None) -> Any:
-    """Open the Zenoh session (fails fast with a clear error when no router answers).
+    """Open the node's Zenoh session (a peer; with no router it starts the daemon, or runs on
+    without one: see `ros2lite.daemon.connect`).
 
     `args=None` reads `sys.argv` like rclpy; the returned context also works as
     `with ros2lite.init(): …`, shutting down on exit. Like rclpy it installs a SIGTERM

@@ -15,8 +15,11 @@ from ros2lite.node import Node
 from tests.conftest import free_port
 
 
-def test_init_without_router_fails_fast_and_clearly(ros_router: str) -> None:
+def test_client_mode_init_without_router_fails_fast_and_clearly(
+        ros_router: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    # a node runs without a router (see tests/test_router_survival.py); a client cannot
     from ros2lite.transport.config import RouterUnavailableError
+    monkeypatch.setenv('ZENOH_CONFIG_OVERRIDE', 'mode="client"')
     endpoint = f'tcp/127.0.0.1:{free_port()}'
     ctx = Context()
     start = time.monotonic()

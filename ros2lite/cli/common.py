@@ -63,7 +63,7 @@ class CliSession:
                     raise CliError(str(e)) from None
         self.context = Context()
         try:
-            self.context.init([])
+            self.context.init([], short_lived=True)
         except RouterUnavailableError as e:
             raise CliError(str(e)) from None
         return self

@@ -123,10 +123,13 @@ def test_ctrl_c_while_starting_is_quiet(processes: Any) -> None:
     assert 'Traceback' not in err
 
 
-def test_no_router_is_one_line(processes: Any) -> None:
+def test_no_router_in_client_mode_is_one_line(processes: Any) -> None:
+    # nodes start the daemon or run without a router (tests/test_router_survival.py); a
+    # client-mode session has no such way out
     from tests.conftest import free_port
     proc = processes.start([sys.executable, '-m', 'ros2lite.demos.demo_nodes_py.talker'],
-                           env={**_env(), 'ROS2LITE_ROUTER': f'tcp/127.0.0.1:{free_port()}'})
+                           env={**_env(), 'ROS2LITE_ROUTER': f'tcp/127.0.0.1:{free_port()}',
+                                'ZENOH_CONFIG_OVERRIDE': 'mode="client"'})
     _out, err = proc.communicate(timeout=10)
     assert proc.returncode == 1
     assert err.count('\n') == 1 and 'No Zenoh router answers' in err
