@@ -53,6 +53,23 @@ def ros_router() -> Iterator[str]:
 
 
 @pytest.fixture
+def alien_session(ros_router: str) -> Iterator[Any]:
+    """A plain zenoh client session with a hand-written config: the other side of tests that
+    check our wire format against the reference, not against our own code."""
+    import zenoh
+    conf = zenoh.Config()
+    conf.insert_json5('mode', '"client"')
+    conf.insert_json5('connect/endpoints', f'["{ros_router}"]')
+    conf.insert_json5('scouting/multicast/enabled', 'false')
+    conf.insert_json5('timestamping/enabled', 'true')   # advanced publishers need it
+    session = zenoh.open(conf)
+    try:
+        yield session
+    finally:
+        session.close()
+
+
+@pytest.fixture
 def ros_context(ros_router: str) -> Iterator[Any]:
     """An initialised ros2lite context of this test process."""
     from ros2lite.context import Context

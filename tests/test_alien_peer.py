@@ -12,11 +12,8 @@ import json
 import struct
 import threading
 import time
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
-
-import pytest
 
 from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
@@ -47,31 +44,17 @@ def attachment(seq: int, ts: int, gid: bytes) -> bytes:
     return struct.pack('<qqB', seq, ts, 16) + gid
 
 
-@pytest.fixture
-def alien(ros_router: str) -> Iterator[Any]:
-    """A plain zenoh client session with a hand-written config."""
-    import zenoh
-    conf = zenoh.Config()
-    conf.insert_json5('mode', '"client"')
-    conf.insert_json5('connect/endpoints', f'["{ros_router}"]')
-    conf.insert_json5('scouting/multicast/enabled', 'false')
-    session = zenoh.open(conf)
-    try:
-        yield session
-    finally:
-        session.close()
 
-
-def test_ros2lite_sees_and_hears_the_alien(ros_context: Any, alien: Any) -> None:
+def test_ros2lite_sees_and_hears_the_alien(ros_context: Any, alien_session: Any) -> None:
     d = ros_context.domain_id
-    zid = str(alien.info.zid())
+    zid = str(alien_session.info.zid())
     ns, name, topic = '%alien_ns', 'alien_node', '%alien_ns%alien_chatter'
-    nn = alien.liveliness().declare_token(f'@ros2_lv/{d}/{zid}/0/0/NN/%/{ns}/{name}')
-    mp = alien.liveliness().declare_token(
+    nn = alien_session.liveliness().declare_token(f'@ros2_lv/{d}/{zid}/0/0/NN/%/{ns}/{name}')
+    mp = alien_session.liveliness().declare_token(
         f'@ros2_lv/{d}/{zid}/0/1/MP/%/{ns}/{name}/{topic}/{STRING_TYPE}/{STRING_HASH}/'
         f'2::,7:,:,:,,')
     data_key = f'{d}/alien_ns/alien_chatter/{STRING_TYPE}/{STRING_HASH}'
-    alien_pub = alien.declare_publisher(data_key)
+    alien_pub = alien_session.declare_publisher(data_key)
     try:
         node = Node('lite_node', context=ros_context)
         deadline = time.monotonic() + 15
@@ -118,7 +101,7 @@ def test_ros2lite_sees_and_hears_the_alien(ros_context: Any, alien: Any) -> None
             entity.undeclare()
 
 
-def test_alien_hears_ros2lite(ros_context: Any, alien: Any) -> None:
+def test_alien_hears_ros2lite(ros_context: Any, alien_session: Any) -> None:
     d = ros_context.domain_id
     received: list[tuple[bytes, bytes | None]] = []
     cond = threading.Condition()
@@ -129,10 +112,10 @@ def test_alien_hears_ros2lite(ros_context: Any, alien: Any) -> None:
             received.append((sample.payload.to_bytes(), None if att is None else att.to_bytes()))
             cond.notify_all()
 
-    sub = alien.declare_subscriber(f'{d}/from_lite/{STRING_TYPE}/{STRING_HASH}', on_sample)
+    sub = alien_session.declare_subscriber(f'{d}/from_lite/{STRING_TYPE}/{STRING_HASH}', on_sample)
     # the alien announces its subscription, so the ros2lite side can wait for it in the graph
-    token = alien.liveliness().declare_token(
-        f'@ros2_lv/{d}/{alien.info.zid()}/0/0/MS/%/%/alien_listener/%from_lite/'
+    token = alien_session.liveliness().declare_token(
+        f'@ros2_lv/{d}/{alien_session.info.zid()}/0/0/MS/%/%/alien_listener/%from_lite/'
         f'{STRING_TYPE}/{STRING_HASH}/::,10:,:,:,,')
     try:
         node = Node('lite_talker', context=ros_context)
@@ -161,7 +144,7 @@ def test_alien_hears_ros2lite(ros_context: Any, alien: Any) -> None:
         sub.undeclare()
 
 
-def test_liveliness_tokens_have_the_rmw_zenoh_shape(ros_context: Any, alien: Any) -> None:
+def test_liveliness_tokens_have_the_rmw_zenoh_shape(ros_context: Any, alien_session: Any) -> None:
     import zenoh
     d = ros_context.domain_id
     node = Node('lite_node', context=ros_context)
@@ -196,7 +179,7 @@ def test_liveliness_tokens_have_the_rmw_zenoh_shape(ros_context: Any, alien: Any
     }
 
     def tokens_of_ours() -> set[str]:
-        replies = alien.liveliness().get(f'@ros2_lv/{d}/**',
+        replies = alien_session.liveliness().get(f'@ros2_lv/{d}/**',
                                          zenoh.handlers.FifoChannel(1024), timeout=5)
         keys = {str(r.ok.key_expr) for r in replies if r.ok is not None}
         return {k for k in keys if f'/{zid}/' in k}

@@ -32,19 +32,6 @@ def header(seq: int, ts: int, gid: bytes) -> bytes:
     return struct.pack('<qqB', seq, ts, 16) + gid
 
 
-@pytest.fixture
-def alien(ros_router: str) -> Iterator[Any]:
-    import zenoh
-    conf = zenoh.Config()
-    conf.insert_json5('mode', '"client"')
-    conf.insert_json5('connect/endpoints', f'["{ros_router}"]')
-    conf.insert_json5('scouting/multicast/enabled', 'false')
-    session = zenoh.open(conf)
-    try:
-        yield session
-    finally:
-        session.close()
-
 
 @pytest.fixture
 def served(ros_context: Any) -> Iterator[tuple[Node, list[Any]]]:
@@ -77,13 +64,13 @@ def alien_call(session: Any, domain: int, payload: bytes, attachment: bytes | No
     return [r.ok for r in replies if r.ok is not None]
 
 
-def test_reply_echoes_sequence_number_and_client_gid(served: Any, alien: Any,
+def test_reply_echoes_sequence_number_and_client_gid(served: Any, alien_session: Any,
                                                      ros_context: Any) -> None:
     request = b'\x00\x01\x00\x00' + struct.pack('<qq', 20, 22)
     before = time.time_ns()
     wait_until(lambda: any(e.kind == EntityKind.SERVICE for e in
                            snapshot(ros_context.session, ros_context.domain_id)))
-    (reply,) = alien_call(alien, ros_context.domain_id, request,
+    (reply,) = alien_call(alien_session, ros_context.domain_id, request,
                           header(42, time.time_ns(), CLIENT_GID))
     assert reply.payload.to_bytes() == b'\x00\x01\x00\x00' + struct.pack('<q', 42)
     seq, stamp, n = struct.unpack_from('<qqB', reply.attachment.to_bytes())
@@ -93,19 +80,19 @@ def test_reply_echoes_sequence_number_and_client_gid(served: Any, alien: Any,
     assert served[1][-1] == AddTwoInts.Request(a=20, b=22)
 
 
-def test_requests_without_a_valid_attachment_are_dropped(served: Any, alien: Any,
+def test_requests_without_a_valid_attachment_are_dropped(served: Any, alien_session: Any,
                                                          ros_context: Any) -> None:
     request = b'\x00\x01\x00\x00' + struct.pack('<qq', 1, 2)
     wait_until(lambda: any(e.kind == EntityKind.SERVICE for e in
                            snapshot(ros_context.session, ros_context.domain_id)))
-    assert alien_call(alien, ros_context.domain_id, request, None) == []
-    assert alien_call(alien, ros_context.domain_id, request,
+    assert alien_call(alien_session, ros_context.domain_id, request, None) == []
+    assert alien_call(alien_session, ros_context.domain_id, request,
                       header(-1, time.time_ns(), CLIENT_GID)) == []
-    assert alien_call(alien, ros_context.domain_id, b'\x00\x01', header(
+    assert alien_call(alien_session, ros_context.domain_id, b'\x00\x01', header(
         1, time.time_ns(), CLIENT_GID)) == []   # undecodable CDR
     assert served[1] == []
     # and the server still answers a good one afterwards
-    assert len(alien_call(alien, ros_context.domain_id, request,
+    assert len(alien_call(alien_session, ros_context.domain_id, request,
                           header(2, time.time_ns(), CLIENT_GID))) == 1
 
 
@@ -127,7 +114,7 @@ def test_server_and_client_tokens(ros_context: Any) -> None:
     assert '/SS/' in server.to_token() and '/SC/' in client.to_token()
 
 
-def test_alien_server_called_by_our_client(alien: Any, ros_context: Any) -> None:
+def test_alien_server_called_by_our_client(alien_session: Any, ros_context: Any) -> None:
     """A queryable written from the reference; our client's requests carry seq 1, 2, … and the
     client's GID, and the reply is matched back to the right call."""
     import zenoh
@@ -144,9 +131,9 @@ def test_alien_server_called_by_our_client(alien: Any, ros_context: Any) -> None
             query.reply(key, b'\x00\x01\x00\x00' + struct.pack('<q', a * b),
                         attachment=header(seq, time.time_ns(), att[17:]))
 
-    queryable = alien.declare_queryable(key, zenoh.handlers.Callback(serve), complete=True)
-    token = alien.liveliness().declare_token(
-        f'@ros2_lv/{domain}/{alien.info.zid()}/0/1/SS/%/%/alien/%alien_add/'
+    queryable = alien_session.declare_queryable(key, zenoh.handlers.Callback(serve), complete=True)
+    token = alien_session.liveliness().declare_token(
+        f'@ros2_lv/{domain}/{alien_session.info.zid()}/0/1/SS/%/%/alien/%alien_add/'
         f'example_interfaces%srv%AddTwoInts/{ADD_HASH}/::,10:,:,:,,')
     try:
         node = Node('caller', context=ros_context)

@@ -181,3 +181,20 @@ def interface_type_name(name: str, kind: str, *, invalid: str, not_kind: str | N
     if parts[1] != kind:
         raise CliError(not_kind or invalid)
     return full
+
+
+def print_types_of(ctx: click.Context, name: str, no_daemon: bool,
+                   names_and_types: Callable[[list[Any]], list[tuple[str, list[str]]]]) -> None:
+    """What `topic/service/action type` share: the type(s) of `name` in the graph, or exit 1
+    without a word, as ros2cli does (a name that cannot be valid is just an unknown one)."""
+    from ros2lite.transport.keys import expand_topic_name
+    try:
+        full = expand_topic_name(name, 'ros2lite', '/')
+    except ValueError:
+        ctx.exit(1)
+    with CliSession(no_daemon=no_daemon) as session:
+        entities = session.entities()
+    types = dict(names_and_types(entities)).get(full)
+    if types is None:
+        ctx.exit(1)
+    click.echo('\n'.join(types))

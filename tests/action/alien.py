@@ -194,21 +194,6 @@ class AlienFibonacciServer:
             self._publish_status()
 
 
-@pytest.fixture
-def alien_session(ros_router: str) -> Iterator[Any]:
-    """A plain zenoh client session with a hand-written config."""
-    import zenoh
-    conf = zenoh.Config()
-    conf.insert_json5('mode', '"client"')
-    conf.insert_json5('connect/endpoints', f'["{ros_router}"]')
-    conf.insert_json5('scouting/multicast/enabled', 'false')
-    conf.insert_json5('timestamping/enabled', 'true')   # advanced publishers need it
-    session = zenoh.open(conf)
-    try:
-        yield session
-    finally:
-        session.close()
-
 
 @pytest.fixture
 def alien_server(alien_session: Any) -> Iterator[AlienFibonacciServer]:

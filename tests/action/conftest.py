@@ -1,5 +1,5 @@
 from __future__ import annotations
 
-from tests.action.alien import alien_server, alien_session
+from tests.action.alien import alien_server
 
-__all__ = ['alien_server', 'alien_session']
+__all__ = ['alien_server']

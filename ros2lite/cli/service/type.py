@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import CliSession, strategy_options
+from ..common import print_types_of, strategy_options
 
 
 @click.command('type')
@@ -15,16 +15,5 @@ from ..common import CliSession, strategy_options
 def cli(ctx: click.Context, service_name: str, no_daemon: bool, use_sim_time: bool) -> None:
     """Output a service's type."""
     from ros2lite.graph import service_names_and_types
-    from ros2lite.transport.keys import expand_topic_name
-    try:
-        name = expand_topic_name(service_name, 'ros2lite', '/')
-    except ValueError:
-        ctx.exit(1)  # a name that cannot be valid is just an unknown service here
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
-    for service, types in service_names_and_types(entities, include_hidden=True):
-        if service == name:
-            click.echo('\n'.join(types))
-            return
-    ctx.exit(1)
-
+    print_types_of(ctx, service_name, no_daemon,
+                   lambda entities: service_names_and_types(entities, include_hidden=True))

@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import CliSession, include_hidden, strategy_options
+from ..common import include_hidden, print_types_of, strategy_options
 
 
 @click.command('type')
@@ -15,15 +15,5 @@ from ..common import CliSession, include_hidden, strategy_options
 def cli(ctx: click.Context, topic_name: str, no_daemon: bool, use_sim_time: bool) -> None:
     """Print a topic's type."""
     from ros2lite.graph import topic_names_and_types
-    from ros2lite.transport.keys import expand_topic_name
-    try:
-        name = expand_topic_name(topic_name, 'ros2lite', '/')
-    except ValueError:
-        ctx.exit(1)  # a name that cannot be valid is just an unknown topic here
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
-    for topic, types in topic_names_and_types(entities, include_hidden(ctx)):
-        if topic == name:
-            click.echo('\n'.join(types))
-            return
-    ctx.exit(1)
+    print_types_of(ctx, topic_name, no_daemon,
+                   lambda entities: topic_names_and_types(entities, include_hidden(ctx)))
