@@ -1,8 +1,9 @@
 """Graph benchmarks: `ros2lite topic list` against a graph of 1000 live endpoints.
 
 The endpoints are liveliness tokens (100 nodes x 10 endpoints) declared by a separate process
-that also runs its own router on a free loopback port, so the measured CLI process pays for
-exactly what a user's would: start-up, connecting, one complete graph query and printing.
+(in a peer session, as nodes open) that also runs its own router on a free loopback port, so
+the measured CLI process pays for exactly what a user's would: start-up, connecting, one
+complete graph query and printing.
 """
 
 from __future__ import annotations
@@ -23,13 +24,13 @@ STRING_HASH = 'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f
 _GRAPH_CHILD = f'''
 import sys
 import zenoh
-from ros2lite.transport.config import open_session, router_config
+from ros2lite.transport.config import node_session_mode, open_session, router_config
 from ros2lite.transport.keys import EntityKind, endpoint_token, node_token
 from ros2lite.transport.qos import QoSProfile
 
 endpoint, domain = sys.argv[1], int(sys.argv[2])
 router = zenoh.open(router_config(endpoint, env={{}}))
-session = open_session(endpoint, env={{}})
+session = open_session(endpoint, mode=node_session_mode(endpoint), env={{}})  # as nodes do
 zid = str(session.info.zid())
 lv = session.liveliness()
 tokens = []

@@ -2,8 +2,9 @@
 raw zenoh-python moving the same CDR bytes, measured in the same run.
 
 Arrangement (identical for both sides): a router process on a free loopback port, the
-*subscriber* in this process and the *publisher* in a child process. Both open their sessions
-with `ros2lite.transport.config.open_session` (same config). The publisher sends warm-up
+*subscriber* in this process and the *publisher* in a child process. Both sides open the
+sessions nodes open: peer mode, data on a direct loopback link (the baseline passes
+`node_session_mode()` to `ros2lite.transport.config.open_session`). The publisher sends warm-up
 samples until the subscriber has heard one (so routes exist and nothing is lost to discovery),
 then N samples `Hello World: i` back to back; the subscriber counts them and the rate is N over
 the time from the first to the last arrival. Every sample must arrive (KEEP_ALL + RELIABLE;
@@ -60,8 +61,8 @@ if mode == 'node':
     send = pub.publish
 else:
     import zenoh
-    from ros2lite.transport.config import open_session
-    session = open_session()
+    from ros2lite.transport.config import node_session_mode, open_session
+    session = open_session(mode=node_session_mode())
     pub = session.declare_publisher(key, reliability=zenoh.Reliability.RELIABLE,
                                     congestion_control=zenoh.CongestionControl.BLOCK)
     msgs = [interfaces.serialize(String(data=f'Hello World: {i}')) for i in range(n)]
@@ -227,8 +228,8 @@ def raw_run(key: str, warm_cdr: bytes) -> float:
     subscriber is not lossless here: it drops samples under this load)."""
     import zenoh
 
-    from ros2lite.transport.config import open_session
-    session = open_session()
+    from ros2lite.transport.config import node_session_mode, open_session
+    session = open_session(mode=node_session_mode())
     try:
         def subscribe(counter: Counter) -> Callable[[Flag, float], None]:
             sub = session.declare_subscriber(key, zenoh.handlers.FifoChannel(4096))

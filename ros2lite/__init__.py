@@ -32,7 +32,8 @@ if TYPE_CHECKING:  # what type checkers see; at run time the names load lazily
         spin_until_future_complete,
     )
     from ros2lite.logging import get_logger
-    from ros2lite.node import Node, Parameter
+    from ros2lite.node import Node
+    from ros2lite.parameter import Parameter
     from ros2lite.qos import (
         DurabilityPolicy,
         HistoryPolicy,
@@ -83,7 +84,7 @@ __all__ = [
 
 _EXPORTS = {
     'Node': 'ros2lite.node',
-    'Parameter': 'ros2lite.node',
+    'Parameter': 'ros2lite.parameter',
     'Context': 'ros2lite.context',
     'default_context': 'ros2lite.context',
     'Executor': 'ros2lite.executors',
@@ -114,7 +115,8 @@ _EXPORTS = {
 
 def init(args: list[str] | None = None, *, context: Any = None, router: str | None = None,
          domain_id: int | None = None) -> Any:
-    """Open the Zenoh session (fails fast with a clear error when no router answers).
+    """Open the node's Zenoh session (a peer; with no router it starts the daemon, or runs on
+    without one: see `ros2lite.daemon.connect`).
 
     `args=None` reads `sys.argv` like rclpy; the returned context also works as
     `with ros2lite.init(): …`, shutting down on exit. Like rclpy it installs a SIGTERM

@@ -156,37 +156,11 @@ def _next(it: Any, flag: str) -> str:
     return value
 
 
-def load_params_file(path: Path, node_fqn: str, node_name: str) -> dict[str, Any]:
-    """Parameters for one node from a ROS 2 YAML params file (`/**` and wildcards honoured)."""
-    import fnmatch
-
-    import yaml
+def load_params_file(path: Path, node_fqn: str, node_name: str | None = None
+                     ) -> dict[str, Any]:
+    """Parameters for one node from a ROS 2 YAML params file (rules: parameters/files.py)."""
+    from ros2lite.parameters.files import ParamsFileError, values_for_node
     try:
-        data = yaml.safe_load(path.read_text(encoding='utf-8')) or {}
-    except (OSError, yaml.YAMLError) as e:
-        raise RosArgsError(f"Couldn't read parameters file '{path}': {e}") from None
-    if not isinstance(data, dict):
-        raise RosArgsError(f"Parameters file '{path}' must map node names to parameters")
-    values: dict[str, Any] = {}
-    for key, section in data.items():
-        pattern = str(key)
-        full = pattern if pattern.startswith('/') else '/' + pattern
-        if not (fnmatch.fnmatchcase(node_fqn, full.replace('/**', '*'))
-                or pattern in (node_name, '/**')):
-            continue
-        if not isinstance(section, dict) or not isinstance(
-                section.get('ros__parameters', {}), dict):
-            raise RosArgsError(f"Parameters file '{path}': '{key}' needs 'ros__parameters'")
-        values.update(_flatten(section.get('ros__parameters', {})))
-    return values
-
-
-def _flatten(tree: dict[str, Any], prefix: str = '') -> dict[str, Any]:
-    out: dict[str, Any] = {}
-    for k, v in tree.items():
-        name = f'{prefix}{k}'
-        if isinstance(v, dict):
-            out.update(_flatten(v, name + '.'))
-        else:
-            out[name] = v
-    return out
+        return values_for_node(path, node_fqn)
+    except ParamsFileError as e:
+        raise RosArgsError(str(e)) from None

@@ -50,11 +50,11 @@ class Context:
         self.terminating = False
 
     def init(self, args: list[str] | None = None, *, router: str | None = None,
-             domain_id: int | None = None) -> Context:
+             domain_id: int | None = None, short_lived: bool = False) -> Context:
         """Open the session; `args=None` means `sys.argv`, as rclpy.init does, so
-        `--ros-args` given to a node's process reach its nodes."""
+        `--ros-args` given to a node's process reach its nodes. `short_lived` (CLI verbs)
+        opens a client session that fails fast without a router, instead of a node's."""
         from ros2lite.transport.config import domain_id as env_domain_id
-        from ros2lite.transport.config import open_session
         if self.session is not None:
             raise RuntimeError('Context.init() must only be called once')
         self.terminating = False
@@ -62,10 +62,19 @@ class Context:
         self.args = parse_ros_args(self.argv)
         self.domain_id = env_domain_id() if domain_id is None else domain_id
         self.router = router
-        self.session = open_session(router)
+        self.session = self._open_session(router, short_lived)
         self.zid = str(self.session.info.zid())
         _live.add(self)
         return self
+
+    @staticmethod
+    def _open_session(router: str | None, short_lived: bool) -> Any:
+        """A node's peer session (daemon started on demand), or a CLI verb's client one."""
+        if short_lived:
+            from ros2lite.transport.config import open_session
+            return open_session(router, mode='client')
+        from ros2lite.daemon.connect import open_node_session
+        return open_node_session(router)
 
     # `with ros2lite.init():` shuts the context down on the way out, as rclpy allows
     def __enter__(self) -> Context:
@@ -151,6 +160,14 @@ def _shutdown_live_contexts() -> None:
     for ctx in list(_live):
         with contextlib.suppress(Exception):
             ctx.try_shutdown()
+
+
+# Zenoh runs each callback handler (a service's queryable, a query's replies) on a non-daemon
+# Python thread that lives as long as the handler: Python joins those before atexit runs, so
+# the sessions must close earlier, where concurrent.futures also hooks in.
+_register_early = getattr(threading, '_register_atexit', None)
+if _register_early is not None:
+    _register_early(_shutdown_live_contexts)
 
 
 _previous_sigterm: Any = signal.SIG_DFL

@@ -59,7 +59,9 @@ class Endpoint:
         from ros2lite.interfaces import type_hash
         self.node = node
         self.type_name, self.msg_class = resolve_type(msg_type)
-        self.type_hash = type_hash(self.type_name)
+        # a type known only by name and hash (no local definition: `bag play` of a bag's own
+        # types, `bag record` of a remote node's) may carry its hash along
+        self.type_hash = getattr(msg_type, '_TYPE_HASH', None) or type_hash(self.type_name)
         self.topic_name = node.resolve_topic_name(topic)
         self.qos = as_qos(qos)
         ctx = node.context

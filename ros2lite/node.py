@@ -14,6 +14,8 @@ from ros2lite.clock import Clock, ClockType
 from ros2lite.context import Context, default_context
 from ros2lite.executable import Executable, GuardCondition
 from ros2lite.logging import RcutilsLogger, set_logger_level
+from ros2lite.parameter import Parameter
+from ros2lite.parameters.node_api import ParameterMixin
 from ros2lite.publisher import Publisher
 from ros2lite.service import Service
 from ros2lite.subscription import Subscription
@@ -31,18 +33,7 @@ ROSOUT_QOS = qos_profile_rosout_default
 CLOCK_QOS = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT, depth=1)
 
 
-class Parameter:
-    """A named value; rclpy's Parameter reduced to what nodes need locally."""
-
-    def __init__(self, name: str, value: Any = None) -> None:
-        self.name = name
-        self.value = value
-
-    def __repr__(self) -> str:
-        return f'Parameter(name={self.name!r}, value={self.value!r})'
-
-
-class Node:
+class Node(ParameterMixin):
     """rclpy-shaped node. Create after `ros2lite.init()`; destroy with `destroy_node()`."""
 
     def __init__(self, node_name: str, *, context: Context | None = None,
@@ -50,7 +41,8 @@ class Node:
                  use_global_arguments: bool = True, enable_rosout: bool = True,
                  parameter_overrides: list[Parameter] | None = None,
                  allow_undeclared_parameters: bool = False,
-                 automatically_declare_parameters_from_overrides: bool = False) -> None:
+                 automatically_declare_parameters_from_overrides: bool = False,
+                 start_parameter_services: bool = True) -> None:
         self.context = context or default_context()
         self.context.require()
         args = self.context.args if use_global_arguments else RosArgs()
@@ -76,11 +68,6 @@ class Node:
         # (whose queue may still hold entries of its entities)
         self._executor: Any = None
         self._last_executor: Any = None
-        self._allow_undeclared = allow_undeclared_parameters
-        self._parameters: dict[str, Parameter] = {}
-        self._overrides = self._args.parameter_overrides(self.get_fully_qualified_name(), name)
-        for p in parameter_overrides or []:
-            self._overrides[p.name] = p.value
         for level_name, level in self._args.log_levels.items():
             set_logger_level(level_name, level)
         from ros2lite.transport.session import declare_token
@@ -93,12 +80,9 @@ class Node:
             self._rosout = self.create_publisher('rcl_interfaces/msg/Log', '/rosout', ROSOUT_QOS)
         self._logger = RcutilsLogger(self.get_logger_name(),
                                      self._publish_rosout if enable_rosout else None)
-        if automatically_declare_parameters_from_overrides:
-            for pname, value in self._overrides.items():
-                self.declare_parameter(pname, value)
-        self.declare_parameter('use_sim_time', False)
-        if self.get_parameter('use_sim_time').value:
-            self._enable_sim_time()
+        self._init_parameters(parameter_overrides, allow_undeclared_parameters,
+                              automatically_declare_parameters_from_overrides,
+                              start_parameter_services)
         self.context.add_node(self)
 
     # -- names --------------------------------------------------------------------------------
@@ -314,48 +298,6 @@ class Node:
                                                                nanosec=ns % 1_000_000_000),
             level=severity, name=name, msg=text, file=caller.filename,
             function=caller.function, line=caller.lineno))
-
-    # -- parameters (local store; the parameter services come with `ros2lite param`) ----------
-    def declare_parameter(self, name: str, value: Any = None, *_: Any, **__: Any) -> Parameter:
-        if name in self._parameters:
-            raise ValueError(f"parameter '{name}' has already been declared")
-        param = Parameter(name, self._overrides.get(name, value))
-        self._parameters[name] = param
-        return param
-
-    def declare_parameters(self, namespace: str, parameters: list[tuple[str, Any]]
-                           ) -> list[Parameter]:
-        prefix = f'{namespace}.' if namespace else ''
-        return [self.declare_parameter(prefix + n, v) for n, v, *_ in parameters]
-
-    def has_parameter(self, name: str) -> bool:
-        return name in self._parameters
-
-    def get_parameter(self, name: str) -> Parameter:
-        try:
-            return self._parameters[name]
-        except KeyError:
-            if self._allow_undeclared:
-                return Parameter(name, None)
-            raise LookupError(f"parameter '{name}' is not declared") from None
-
-    def get_parameter_or(self, name: str, alternative: Parameter | None = None) -> Parameter:
-        return self._parameters.get(name) or alternative or Parameter(name, None)
-
-    def set_parameters(self, parameters: list[Parameter]) -> list[bool]:
-        results = []
-        for p in parameters:
-            if p.name not in self._parameters and not self._allow_undeclared:
-                results.append(False)
-                continue
-            self._parameters[p.name] = Parameter(p.name, p.value)
-            if p.name == 'use_sim_time':
-                if p.value:
-                    self._enable_sim_time()
-                else:
-                    self._clock._enable_sim_time(False)
-            results.append(True)
-        return results
 
     # -- graph --------------------------------------------------------------------------------
     def _entities(self) -> list[Any]:

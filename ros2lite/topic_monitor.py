@@ -75,12 +75,19 @@ class MonitoredSubscription(Subscription):
     ones the subscription's queue (its QoS depth) drops when the consumer falls behind —
     which is where rmw_zenoh counts lost messages, and what lets `topic hz` stay exact at
     10 kHz. With `callback=None` nothing is queued at all: the hook is the whole consumer.
+
+    `on_payload(cdr_bytes, attachment, received_ns)`, given instead of `on_arrival`, gets the
+    payload itself on the same thread (what `bag record` keeps, never decoded).
     """
 
     def __init__(self, node: Any, msg_type: Any, topic: str,
                  callback: Callable[[bytes, Any], Any] | None, qos: QoSProfile, *,
-                 on_arrival: Callable[[int, bytes, int], Any]) -> None:
+                 on_arrival: Callable[[int, bytes, int], Any] | None = None,
+                 on_payload: Callable[[bytes, bytes, int], Any] | None = None) -> None:
+        if (on_arrival is None) == (on_payload is None):
+            raise TypeError('give exactly one of on_arrival and on_payload')
         self._on_arrival = on_arrival
+        self._on_payload = on_payload
         self._deliver = callback is not None
         super().__init__(node, msg_type, topic, callback or _ignore, qos, raw=True)
         node.subscriptions.append(self)   # destroyed with the node, like its own ones
@@ -89,7 +96,11 @@ class MonitoredSubscription(Subscription):
         attachment = sample.attachment
         if attachment is None:
             return   # rmw_zenoh ignores samples without one
-        self._on_arrival(len(sample.payload), attachment.to_bytes(), time.time_ns())
+        if self._on_payload is not None:
+            self._on_payload(sample.payload.to_bytes(), attachment.to_bytes(), time.time_ns())
+        else:
+            self._on_arrival(len(sample.payload), attachment.to_bytes(),  # type: ignore[misc]
+                             time.time_ns())
         if self._deliver:
             super()._on_sample(sample)
 

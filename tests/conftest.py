@@ -32,12 +32,14 @@ def ros_router() -> Iterator[str]:
     from ros2lite.transport.config import router_config
     saved = {k: os.environ.get(k) for k in (
         'ROS2LITE_ROUTER', 'ROS_DOMAIN_ID', 'ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI',
-        'ZENOH_ROUTER_CONFIG_URI', 'XDG_RUNTIME_DIR')}
+        'ZENOH_ROUTER_CONFIG_URI', 'XDG_RUNTIME_DIR', 'ROS2LITE_NO_DAEMON')}
     endpoint = f'tcp/127.0.0.1:{free_port()}'
     for key in ('ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI', 'ZENOH_ROUTER_CONFIG_URI'):
         os.environ.pop(key, None)
     router = zenoh.open(router_config(endpoint, env={}))
     os.environ['ROS2LITE_ROUTER'] = endpoint
+    # a node pointed elsewhere must never start a daemon in the user's runtime dir
+    os.environ['ROS2LITE_NO_DAEMON'] = '1'
     os.environ['ROS_DOMAIN_ID'] = str(random.randint(100, 232))
     try:
         yield endpoint

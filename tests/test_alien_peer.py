@@ -8,10 +8,12 @@ transport, graph and client library.
 
 from __future__ import annotations
 
+import json
 import struct
 import threading
 import time
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -167,13 +169,29 @@ def test_liveliness_tokens_have_the_rmw_zenoh_shape(ros_context: Any, alien: Any
     node.create_subscription('std_msgs/msg/String', '/robot1/chatter', lambda m: None, 10)
     zid = ros_context.zid
     assert zid == str(ros_context.session.info.zid())
+    hashes = json.loads((Path(__file__).parent / 'interfaces' / 'data' /
+                         'rihs01_jazzy.json').read_text())
     expected = {
         f'@ros2_lv/{d}/{zid}/0/0/NN/%/%/lite_node',
         f'@ros2_lv/{d}/{zid}/0/1/MP/%/%/lite_node/%rosout/{LOG_TYPE}/{LOG_HASH}/'
         ':1:,1000:,:10,0:,,',
-        f'@ros2_lv/{d}/{zid}/0/2/MP/%/%/lite_node/%chatter/{STRING_TYPE}/{STRING_HASH}/'
+        # every node publishes /parameter_events and serves the six parameter services
+        f'@ros2_lv/{d}/{zid}/0/2/MP/%/%/lite_node/%parameter_events/'
+        'rcl_interfaces::msg::dds_::ParameterEvent_/'
+        f"{hashes['rcl_interfaces/msg/ParameterEvent']}/::,1000:,:,:,,",
+        *(f'@ros2_lv/{d}/{zid}/0/{3 + i}/SS/%/%/lite_node/%lite_node%{service}/'
+          f'rcl_interfaces::srv::dds_::{srv}_/{hashes["rcl_interfaces/srv/" + srv]}/'
+          '::,1000:,:,:,,'
+          for i, (service, srv) in enumerate([
+              ('describe_parameters', 'DescribeParameters'),
+              ('get_parameters', 'GetParameters'),
+              ('get_parameter_types', 'GetParameterTypes'),
+              ('list_parameters', 'ListParameters'),
+              ('set_parameters', 'SetParameters'),
+              ('set_parameters_atomically', 'SetParametersAtomically')])),
+        f'@ros2_lv/{d}/{zid}/0/9/MP/%/%/lite_node/%chatter/{STRING_TYPE}/{STRING_HASH}/'
         '::,7:,:,:,,',
-        f'@ros2_lv/{d}/{zid}/0/3/MS/%/%/lite_node/%robot1%chatter/{STRING_TYPE}/{STRING_HASH}/'
+        f'@ros2_lv/{d}/{zid}/0/10/MS/%/%/lite_node/%robot1%chatter/{STRING_TYPE}/{STRING_HASH}/'
         '::,10:,:,:,,',
     }
 

@@ -91,7 +91,7 @@ def test_params_file_matching(tmp_path: Path) -> None:
         '/**:\n  ros__parameters:\n    everyone: 1\n    shared: all\n'
         '/robot1/talker:\n  ros__parameters:\n    shared: mine\n    deep:\n      a: 1\n'
         'listener:\n  ros__parameters:\n    only_listener: true\n'
-        '/robot*/talk*:\n  ros__parameters:\n    wild: yes\n')
+        '/*/talker:\n  ros__parameters:\n    wild: yes\n')
     talker = load_params_file(path, '/robot1/talker', 'talker')
     assert talker == {'everyone': 1, 'shared': 'mine', 'deep.a': 1, 'wild': True}
     assert load_params_file(path, '/listener', 'listener') == {

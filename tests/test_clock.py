@@ -10,7 +10,8 @@ import pytest
 from ros2lite.clock import Clock, ClockType, Duration, Time
 from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.interfaces import get_interface
-from ros2lite.node import Node, Parameter
+from ros2lite.node import Node
+from ros2lite.parameter import Parameter
 from tests.spinning import spin_for, spin_until
 
 ClockMsg = get_interface('rosgraph_msgs/msg/Clock')
@@ -72,14 +73,14 @@ def test_sim_time_follows_clock_topic(ros_context: Any, clock_pub: Any) -> None:
     spin_until(ex, sent_and_seen)
     assert clock.now() == Time(target, ClockType.ROS_TIME)
     # switching sim time off goes back to the system clock
-    node.set_parameters([Parameter('use_sim_time', False)])
+    node.set_parameters([Parameter('use_sim_time', value=False)])
     assert not clock.ros_time_is_active
     assert abs(clock.now().nanoseconds - time.time_ns()) < 1_000_000_000
 
 
 def test_timers_follow_sim_time(ros_context: Any, clock_pub: Any) -> None:
     node = Node('sim_timer', context=ros_context,
-                parameter_overrides=[Parameter('use_sim_time', True)])
+                parameter_overrides=[Parameter('use_sim_time', value=True)])
     calls: list[int] = []
     node.create_timer(1.0, lambda: calls.append(node.get_clock().now().nanoseconds))
     ex = SingleThreadedExecutor(context=ros_context)
@@ -99,7 +100,7 @@ def test_timers_follow_sim_time(ros_context: Any, clock_pub: Any) -> None:
 def test_sim_time_enabled_later(ros_context: Any, clock_pub: Any) -> None:
     node = Node('late_sim', context=ros_context)
     assert not node.get_clock().ros_time_is_active
-    node.set_parameters([Parameter('use_sim_time', True)])
+    node.set_parameters([Parameter('use_sim_time', value=True)])
     ex = SingleThreadedExecutor(context=ros_context)
     ex.add_node(node)
 

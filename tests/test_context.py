@@ -15,8 +15,11 @@ from ros2lite.node import Node
 from tests.conftest import free_port
 
 
-def test_init_without_router_fails_fast_and_clearly(ros_router: str) -> None:
+def test_client_mode_init_without_router_fails_fast_and_clearly(
+        ros_router: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    # a node runs without a router (see tests/test_router_survival.py); a client cannot
     from ros2lite.transport.config import RouterUnavailableError
+    monkeypatch.setenv('ZENOH_CONFIG_OVERRIDE', 'mode="client"')
     endpoint = f'tcp/127.0.0.1:{free_port()}'
     ctx = Context()
     start = time.monotonic()
@@ -74,10 +77,11 @@ def test_args_none_means_sys_argv(ros_router: str, monkeypatch: pytest.MonkeyPat
 
 
 def test_nodes_and_endpoints_share_one_id_counter(ros_context: Any) -> None:
-    a = Node('a', context=ros_context, enable_rosout=False)
+    a = Node('a', context=ros_context, enable_rosout=False, start_parameter_services=False)
     pub = a.create_publisher('std_msgs/msg/String', 'x', 10)
     b = Node('b', context=ros_context, enable_rosout=False)
-    assert (a.node_id, pub._ep.entity_id, b.node_id) == (0, 1, 2)
+    # id 1 is a's /parameter_events publisher
+    assert (a.node_id, pub._ep.entity_id, b.node_id) == (0, 2, 3)
 
 
 def test_shutdown_from_another_thread_ends_spin(ros_router: str) -> None:

@@ -88,12 +88,18 @@ def test_by_node_queries(ros_context: Any, remote: Context) -> None:
 
     def check() -> None:
         pubs = observer.get_publisher_names_and_types_by_node('worker', '/team')
-        assert pubs == [('/rosout', ['rcl_interfaces/msg/Log']),
+        assert pubs == [('/parameter_events', ['rcl_interfaces/msg/ParameterEvent']),
+                        ('/rosout', ['rcl_interfaces/msg/Log']),
                         ('/status', ['std_msgs/msg/Bool']),
                         ('/team/out', ['std_msgs/msg/String'])]
         assert observer.get_subscriber_names_and_types_by_node('worker', '/team') == [
             ('/team/cmd_vel', ['geometry_msgs/msg/Twist'])]
-        assert observer.get_service_names_and_types_by_node('worker', '/team') == []
+        # the six parameter services, under the node's name
+        services = observer.get_service_names_and_types_by_node('worker', '/team')
+        assert [name for name, _ in services] == [
+            f'/team/worker/{s}' for s in ('describe_parameters', 'get_parameter_types',
+                                          'get_parameters', 'list_parameters',
+                                          'set_parameters', 'set_parameters_atomically')]
         assert observer.get_client_names_and_types_by_node('worker', '/team') == []
         assert observer.get_publisher_names_and_types_by_node('worker', '/') == []
 

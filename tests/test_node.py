@@ -9,8 +9,10 @@ from typing import Any
 
 import pytest
 
+from ros2lite.exceptions import ParameterAlreadyDeclaredException, ParameterNotDeclaredException
 from ros2lite.graph import snapshot
-from ros2lite.node import Node, Parameter
+from ros2lite.node import Node
+from ros2lite.parameter import Parameter
 
 
 def ros_args(*args: str) -> list[str]:
@@ -109,21 +111,22 @@ def test_parameters(ros_context: Any, tmp_path: Path) -> None:
     node = Node('talker', context=ros_context,
                 cli_args=ros_args('-p', 'rate:=2.5', '-p', 'name:=hi', '-p', 'flag:=true',
                                   '--params-file', str(params)),
-                parameter_overrides=[Parameter('override', [1, 2])])
+                parameter_overrides=[Parameter('override', value=[1, 2])])
     assert node.declare_parameter('rate', 1.0).value == 2.5
     assert node.declare_parameter('name', '').value == 'hi'
     assert node.declare_parameter('flag', False).value is True
     assert node.declare_parameter('from_file', 0).value == 2
     assert node.declare_parameter('nested.k', '').value == 'v'
-    assert node.declare_parameter('override', []).value == [1, 2]
+    assert node.declare_parameter('override', [0]).value == [1, 2]
     assert node.declare_parameter('unset', 7).value == 7
     assert node.get_parameter('use_sim_time').value is False
-    with pytest.raises(ValueError, match='already been declared'):
+    with pytest.raises(ParameterAlreadyDeclaredException, match='already declared'):
         node.declare_parameter('rate', 0.0)
-    with pytest.raises(LookupError):
+    with pytest.raises(ParameterNotDeclaredException):
         node.get_parameter('never_declared')
-    assert node.set_parameters([Parameter('rate', 9.0), Parameter('never_declared', 1)]) == \
-        [True, False]
+    # as rclpy: parameters before the undeclared one are set, then it raises
+    with pytest.raises(ParameterNotDeclaredException, match='never_declared'):
+        node.set_parameters([Parameter('rate', value=9.0), Parameter('never_declared', value=1)])
     assert node.get_parameter('rate').value == 9.0
     assert node.has_parameter('rate') and not node.has_parameter('never_declared')
     declared = node.declare_parameters('ns', [('a', 1), ('b', 'two')])
@@ -135,7 +138,7 @@ def test_automatic_declaration_from_overrides(ros_context: Any) -> None:
                 automatically_declare_parameters_from_overrides=True,
                 allow_undeclared_parameters=True)
     assert node.get_parameter('x').value == 3
-    assert node.get_parameter('missing').value is None
+    assert node.get_parameter('missing').type_ == Parameter.Type.NOT_SET
 
 
 def test_node_token_lives_with_the_node(ros_context: Any) -> None:

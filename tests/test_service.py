@@ -110,7 +110,7 @@ def test_requests_without_a_valid_attachment_are_dropped(served: Any, alien: Any
 
 
 def test_server_and_client_tokens(ros_context: Any) -> None:
-    node = Node('tokens', namespace='/ns', context=ros_context)
+    node = Node('tokens', namespace='/ns', context=ros_context, start_parameter_services=False)
     node.create_service(AddTwoInts, 'add', lambda req, resp: resp)
     node.create_client(AddTwoInts, '~/private_add')
 

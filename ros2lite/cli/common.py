@@ -63,7 +63,7 @@ class CliSession:
                     raise CliError(str(e)) from None
         self.context = Context()
         try:
-            self.context.init([])
+            self.context.init([], short_lived=True)
         except RouterUnavailableError as e:
             raise CliError(str(e)) from None
         return self
@@ -81,11 +81,13 @@ class CliSession:
     def node(self, name: str | None = None) -> Any:
         """The hidden node this run uses for its publishers/subscriptions."""
         if self._node is None:
-            from ros2lite.node import Node, Parameter
+            from ros2lite.node import Node
+            from ros2lite.parameter import Parameter
             self._node = Node(name or f'_ros2lite_{os.getpid()}', context=self.context,
                               enable_rosout=False, use_global_arguments=False,
+                              start_parameter_services=False,
                               parameter_overrides=[Parameter('use_sim_time',
-                                                             self.use_sim_time)])
+                                                             value=self.use_sim_time)])
         return self._node
 
 

@@ -15,9 +15,11 @@ from .lazy import LazyGroup
 
 COMMANDS: dict[str, tuple[str, str]] = {
     'action': ('ros2lite.cli.action', 'Various action related sub-commands'),
+    'bag': ('ros2lite.cli.bag', 'Various rosbag related sub-commands'),
     'daemon': ('ros2lite.cli.daemon', 'Various daemon related sub-commands'),
     'interface': ('ros2lite.cli.interface', 'Show information about ROS interfaces'),
     'node': ('ros2lite.cli.node', 'Various node related sub-commands'),
+    'param': ('ros2lite.cli.param', 'Various param related sub-commands'),
     'run': ('ros2lite.cli.run', 'Run a package specific executable'),
     'service': ('ros2lite.cli.service', 'Various service related sub-commands'),
     'topic': ('ros2lite.cli.topic', 'Various topic related sub-commands'),

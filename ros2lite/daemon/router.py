@@ -24,14 +24,20 @@ import time
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ros2lite.daemon.probe import router_answers, wait_answers
 from ros2lite.transport.config import (
+    SessionError,
+    domain_id,
+    open_session,
     router_config,
     router_endpoint,
     zerror_message,
 )
+
+if TYPE_CHECKING:
+    from ros2lite.transport.admin import ConnectedSession
 
 __all__ = [
     "DaemonError",
@@ -39,6 +45,7 @@ __all__ = [
     "DaemonStatus",
     "StartResult",
     "StopResult",
+    "connected_sessions",
     "ensure_running",
     "router_answers",
     "runtime_dir",
@@ -95,6 +102,8 @@ class StopResult:
     stopped: bool
     foreign: bool = False  # a router answers there, but it is not ours to stop
     pid: int | None = None
+    # the sessions that were connected when it was stopped (None: unknown)
+    sessions: list[ConnectedSession] | None = None
 
     @property
     def message(self) -> str:
@@ -112,6 +121,8 @@ class DaemonStatus:
     running: bool  # something answers at the endpoint
     ours: bool  # a live ros2lite daemon owns the endpoint
     info: DaemonInfo | None = None
+    # other sessions connected to the router, when asked for and its admin space answers
+    sessions: list[ConnectedSession] | None = None
 
     @property
     def pid(self) -> int | None:
@@ -296,11 +307,29 @@ def serve(
 # --------------------------------------------------------------------------- verbs
 
 
-def status(router: str | None = None) -> DaemonStatus:
-    """Is a router answering at the endpoint, and is it ours?"""
+def status(router: str | None = None, *, sessions: bool = False) -> DaemonStatus:
+    """Is a router answering at the endpoint, and is it ours?  With ``sessions``, also
+    which sessions are connected to it (one short client session asks its admin space)."""
     endpoint = router_endpoint(router)
     info = _read_info(pid_file(endpoint))
-    return DaemonStatus(endpoint, router_answers(endpoint), info is not None, info)
+    running = router_answers(endpoint)
+    connected = connected_sessions(endpoint) if running and sessions else None
+    return DaemonStatus(endpoint, running, info is not None, info, connected)
+
+
+def connected_sessions(router: str | None = None, timeout: float = 2.0
+                       ) -> list[ConnectedSession] | None:
+    """The sessions linked to the router at the endpoint, with their node names; None when
+    no router answers or its admin space is closed (e.g. a foreign router's)."""
+    from ros2lite.transport.admin import router_sessions
+    try:
+        session = open_session(router_endpoint(router), mode="client", timeout=timeout)
+    except SessionError:
+        return None
+    try:
+        return router_sessions(session, domain_id(), timeout)
+    finally:
+        session.close()
 
 
 def start(
@@ -427,6 +456,8 @@ def stop(router: str | None = None, *, timeout: float = STOP_TIMEOUT) -> StopRes
         info = _read_info(path)
         if info is None or not _is_our_process(info.pid):
             return StopResult(endpoint, False, foreign=router_answers(endpoint))
+        # asked before stopping, so `daemon stop` can say who is cut off
+        sessions = connected_sessions(endpoint) if router_answers(endpoint) else None
         for sig, wait in ((signal.SIGTERM, timeout), (signal.SIGKILL, 2.0)):
             try:
                 os.kill(info.pid, sig)
@@ -444,7 +475,7 @@ def stop(router: str | None = None, *, timeout: float = STOP_TIMEOUT) -> StopRes
         else:
             raise DaemonError(f"daemon pid {info.pid} did not exit")
         _read_info(path)  # removes the file if the daemon died without cleaning up
-        return StopResult(endpoint, True, pid=info.pid)
+        return StopResult(endpoint, True, pid=info.pid, sessions=sessions)
 
 
 def ensure_running(router: str | None = None, *, timeout: float = START_TIMEOUT) -> StartResult:

@@ -22,6 +22,7 @@ def run_node(make_node: Callable[[], Any], args: list[str] | None = None) -> int
 def run_main(body: Callable[[], Any], args: list[str] | None = None) -> int:
     """Run `body()` in an initialised context (demos that do something and end)."""
     import ros2lite
+    from ros2lite.exceptions import ParameterException
     from ros2lite.executors import ExternalShutdownException
     from ros2lite.transport.config import SessionError
     try:
@@ -29,7 +30,7 @@ def run_main(body: Callable[[], Any], args: list[str] | None = None) -> int:
             body()
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
-    except (SessionError, ValueError) as e:
+    except (SessionError, ValueError, ParameterException) as e:
         print(str(e), file=sys.stderr, flush=True)
         return 1
     return 0

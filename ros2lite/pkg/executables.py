@@ -41,6 +41,7 @@ BUNDLED: dict[str, dict[str, str]] = {
             'ros2lite.demos.demo_nodes_py.add_two_ints_client_async:main',
         'add_two_ints_server': 'ros2lite.demos.demo_nodes_py.add_two_ints_server:main',
         'listener': 'ros2lite.demos.demo_nodes_py.listener:main',
+        'parameter_blackboard': 'ros2lite.demos.demo_nodes_py.parameter_blackboard:main',
         'talker': 'ros2lite.demos.demo_nodes_py.talker:main',
     },
 }

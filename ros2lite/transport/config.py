@@ -1,20 +1,21 @@
 """Zenoh configuration for ros2lite sessions and routers, from the environment ROS users know.
 
-Sessions run in **client** mode by default, connected to one router.  rmw_zenoh's own sessions
-are peers (they listen on loopback and open direct links to every other peer the router
-gossips about), which pays off for long-lived nodes moving lots of data.  A ros2lite process is
-usually a short CLI call, where client mode is the better fit:
+Two session modes, chosen by what the process is:
 
-* one TCP link instead of one per ROS process on the host, so opening is quick and cheap;
-* nothing listens, so nothing new is exposed;
-* delivery never depends on a peer-to-peer link being up: rmw_zenohd runs with
-  ``peers_failover_brokering: false``, so a *peer* that has not (yet) linked to another peer
-  gets no data from it, while a router always forwards to and from its clients;
-* an unreachable router is reported by ``zenoh.open`` itself, so failing fast is easy.
+* **Nodes** (the client library, ``run``, demos) open **peer** sessions, as rmw_zenoh's own
+  nodes do: they connect to the router for discovery (gossip), listen on an ephemeral loopback
+  port, and open direct links to every peer the router introduces.  Data then flows peer to
+  peer, so established peers keep talking when the router stops or restarts.  They retry the
+  router every :data:`RETRY_MAX_MS` at most, so discovery is back well within a second of its
+  return, and a peer opens even when no router answers yet (the caller decides what to do
+  about that: see :func:`router_check_attempts` and :mod:`ros2lite.daemon.connect`).
+  When the router is not on this host a node falls back to client mode: our peers only listen
+  on loopback, and rmw_zenohd does not broker data between peers that cannot reach each other.
+* **Short CLI verbs** stay **clients**: one TCP link, nothing listening, delivery through the
+  router (which always forwards to and from its clients), and ``zenoh.open`` itself reports a
+  missing router, so failing fast is easy.
 
-The price is one extra loopback hop through the router.  ``ZENOH_CONFIG_OVERRIDE='mode="peer"'``
-switches to rmw_zenoh's peer layout (a loopback listener and the same gossip settings are
-already configured for that mode).
+``ZENOH_CONFIG_OVERRIDE='mode="client"'`` (or ``"peer"``) forces a mode for every session.
 
 Precedence, lowest first: built-in defaults, or the json5 file in ``ZENOH_SESSION_CONFIG_URI``
 / ``ZENOH_ROUTER_CONFIG_URI`` instead of them (as rmw_zenoh does); ``ROS2LITE_ROUTER``;
@@ -28,7 +29,8 @@ import json
 import os
 import re
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
+from typing import Literal
 
 import zenoh
 
@@ -38,17 +40,27 @@ __all__ = [
     "ConfigError",
     "RouterUnavailableError",
     "SessionError",
+    "SessionMode",
     "apply_config_override",
+    "check_router",
+    "configured_mode",
     "default_listen",
     "domain_id",
     "endpoint_host_port",
+    "is_local_endpoint",
+    "node_session_mode",
     "open_session",
     "parse_config_override",
+    "router_check_attempts",
     "router_config",
     "router_endpoint",
     "session_config",
+    "session_endpoint",
+    "wait_for_router",
     "zerror_message",
 ]
+
+SessionMode = Literal["peer", "client"]
 
 DEFAULT_ROUTER = "tcp/127.0.0.1:7447"
 ROUTER_ENV = "ROS2LITE_ROUTER"
@@ -56,11 +68,17 @@ SESSION_CONFIG_ENV = "ZENOH_SESSION_CONFIG_URI"
 ROUTER_CONFIG_ENV = "ZENOH_ROUTER_CONFIG_URI"
 OVERRIDE_ENV = "ZENOH_CONFIG_OVERRIDE"
 DOMAIN_ENV = "ROS_DOMAIN_ID"
+ROUTER_CHECK_ENV = "ZENOH_ROUTER_CHECK_ATTEMPTS"
 MAX_DOMAIN_ID = 232
 
 # How long zenoh may keep retrying the router at open; short, because a router that is
 # starting is waited for by the daemon code before a session is ever opened.
 CONNECT_TIMEOUT_MS = 1000
+# How often a session retries a router it lost (or never reached): zenoh's default backs off
+# to 4 s, which is what made discovery take ~3.5 s after a router restart.  A refused loopback
+# connect costs microseconds, so retrying often is cheap.
+RETRY_INIT_MS = 100
+RETRY_MAX_MS = 400
 
 
 class ConfigError(ValueError):
@@ -228,7 +246,30 @@ def _endpoints_json(endpoints: Sequence[str]) -> str:
     return json.dumps(list(endpoints))
 
 
-def session_config(router: str | None = None, env: Mapping[str, str] | None = None) -> zenoh.Config:
+def is_local_endpoint(endpoint: str) -> bool:
+    """Is ``endpoint`` on this host (loopback, a wildcard address or a unix socket)?"""
+    if endpoint.partition("/")[0].startswith("unixsock"):
+        return True
+    parsed = endpoint_host_port(endpoint)
+    if parsed is None:
+        return False
+    host = parsed[1].lower()
+    return host in ("localhost", "::1", "::", "0.0.0.0") or host.startswith("127.")
+
+
+def node_session_mode(router: str | None = None, env: Mapping[str, str] | None = None
+                      ) -> SessionMode:
+    """The mode a long-lived node opens: peer when the router it connects to (after config
+    files and overrides) is on this host, else client."""
+    return "peer" if is_local_endpoint(session_endpoint(router, env)) else "client"
+
+
+def session_config(
+    router: str | None = None,
+    env: Mapping[str, str] | None = None,
+    *,
+    mode: SessionMode = "client",
+) -> zenoh.Config:
     """The config for one ros2lite session (see the module docstring for the choices)."""
     environ = _env(env)
     config = _load_file(SESSION_CONFIG_ENV, environ)
@@ -236,12 +277,16 @@ def session_config(router: str | None = None, env: Mapping[str, str] | None = No
     if config is None:
         config = zenoh.Config()
         endpoint = endpoint or router_endpoint(None, env)
+        retry = (f"{{period_init_ms: {RETRY_INIT_MS}, period_max_ms: {RETRY_MAX_MS}, "
+                 "period_increase_factor: 2}")
         defaults = [
-            ("mode", '"client"'),
-            # Clients ignore "listen"; a peer (via override) listens on loopback like rmw_zenoh.
+            ("mode", json.dumps(mode)),
+            # Clients ignore "listen"; a peer listens on loopback like rmw_zenoh's sessions.
             ("listen/endpoints", '{peer: ["tcp/127.0.0.1:0"]}'),
-            ("connect/exit_on_failure", "true"),
-            ("connect/timeout_ms", str(CONNECT_TIMEOUT_MS)),
+            # A client fails fast without a router; a peer opens anyway and keeps retrying.
+            ("connect/exit_on_failure", "{router: false, peer: false, client: true}"),
+            ("connect/timeout_ms", f"{{router: -1, peer: -1, client: {CONNECT_TIMEOUT_MS}}}"),
+            ("connect/retry", retry),
             ("scouting/multicast/enabled", "false"),
             ("scouting/gossip/enabled", "true"),
             ("scouting/gossip/target", '{router: ["router", "peer"], peer: ["router"]}'),
@@ -288,6 +333,9 @@ def router_config(
             ("scouting/gossip/multihop", "false"),
             ("routing/router/peers_failover_brokering", "false"),
             ("timestamping/enabled", "true"),
+            # read-only: `daemon status`/`stop` list the connected sessions from it
+            ("adminspace/enabled", "true"),
+            ("adminspace/permissions", "{read: true, write: false}"),
             ("transport/shared_memory/enabled", "false"),
         ]
         for key, value in defaults:
@@ -320,22 +368,31 @@ def _configured_endpoint(config: zenoh.Config, fallback: str) -> str:
     return fallback
 
 
+def configured_mode(config: zenoh.Config) -> str:
+    """The mode a config will open in (after files and overrides), 'peer' if unset."""
+    try:
+        return str(json.loads(config.get_json("mode")) or "peer")
+    except (zenoh.ZError, ValueError, TypeError):
+        return "peer"
+
+
 def open_session(
     router: str | None = None,
     *,
+    mode: SessionMode = "client",
     timeout: float = 1.0,
     require_router: bool = True,
     env: Mapping[str, str] | None = None,
 ) -> zenoh.Session:
-    """Open a zenoh session for ros2lite and make sure a router is really there.
+    """Open a zenoh session for ros2lite and (by default) make sure a router is really there.
 
     zenoh-python behaves differently per mode when the router is down: a client fails in
     ``zenoh.open`` (after ``connect/timeout_ms``), but a peer opens anyway with no router
-    and just hears nothing.  So after opening we also wait up to ``timeout`` seconds for
-    ``session.info.routers_zid()`` to list one, and raise :class:`RouterUnavailableError`
-    (one clear line) otherwise.
+    and just hears nothing.  So with ``require_router`` we also wait up to ``timeout``
+    seconds for ``session.info.routers_zid()`` to list one, and raise
+    :class:`RouterUnavailableError` (one clear line) otherwise.
     """
-    config = session_config(router, env)
+    config = session_config(router, env, mode=mode)
     endpoint = _configured_endpoint(config, router_endpoint(router, env))
     try:
         session = zenoh.open(config)
@@ -346,10 +403,58 @@ def open_session(
         raise SessionError(f"cannot open a Zenoh session: {detail}") from None
     if not require_router:
         return session
+    if not wait_for_router(session, timeout):
+        session.close()
+        raise RouterUnavailableError(endpoint, "session opened but no router is connected")
+    return session
+
+
+def session_endpoint(router: str | None = None, env: Mapping[str, str] | None = None) -> str:
+    """The router endpoint(s) a session would connect to, as one line for messages."""
+    return _configured_endpoint(session_config(router, env), router_endpoint(router, env))
+
+
+def wait_for_router(session: zenoh.Session, timeout: float) -> bool:
+    """Wait up to ``timeout`` s for the session to be connected to a router."""
     deadline = time.monotonic() + timeout
     while not session.info.routers_zid():
         if time.monotonic() >= deadline:
-            session.close()
-            raise RouterUnavailableError(endpoint, "session opened but no router is connected")
+            return False
         time.sleep(0.02)
-    return session
+    return True
+
+
+def router_check_attempts(env: Mapping[str, str] | None = None) -> int:
+    """``ZENOH_ROUTER_CHECK_ATTEMPTS`` as rmw_zenoh reads it.
+
+    Unset or empty means 1 check; N > 0 means N checks one second apart; 0 means wait until a
+    router answers; a negative value skips the check.
+    """
+    raw = _env(env).get(ROUTER_CHECK_ENV, "").strip()
+    if not raw:
+        return 1
+    try:
+        return int(raw)
+    except ValueError:
+        raise ConfigError(f"{ROUTER_CHECK_ENV} must be an integer, got {raw!r}") from None
+
+
+def check_router(
+    session: zenoh.Session, attempts: int, on_miss: Callable[[int], None] | None = None
+) -> bool:
+    """rmw_zenoh's start-up router check: ``attempts`` checks 1 s apart (0: until one answers).
+
+    ``on_miss(n)`` is called after the n-th failed check (to log that we wait).  Returns
+    whether a router is connected; a negative ``attempts`` skips the check (returns True).
+    """
+    if attempts < 0:
+        return True
+    n = 0
+    while True:
+        if wait_for_router(session, 1.0 if n else 0.2):
+            return True
+        n += 1
+        if on_miss is not None:
+            on_miss(n)
+        if attempts and n >= attempts:
+            return False

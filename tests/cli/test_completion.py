@@ -45,7 +45,9 @@ def test_types_packages_and_executables() -> None:
     assert 'std_srvs/srv/SetBool' in complete('ros2lite interface show std_srvs/')
     assert complete('ros2lite interface package geometry_') == ['geometry_msgs']
     assert complete('ros2lite run demo_nodes_') == ['demo_nodes_py']
-    assert complete('ros2lite run demo_nodes_py ') == ['listener', 'talker']
+    assert complete('ros2lite run demo_nodes_py ') == [
+        'add_two_ints_client', 'add_two_ints_client_async', 'add_two_ints_server', 'listener',
+        'parameter_blackboard', 'talker']
     assert complete('ros2lite run no_such_pkg ') == []
     assert complete('ros2lite top') == ['topic']
 

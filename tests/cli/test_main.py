@@ -6,6 +6,8 @@ import subprocess
 import sys
 from typing import Any
 
+import pytest
+
 from .conftest import run_process
 
 
@@ -67,3 +69,26 @@ def test_sigterm_leaves_with_status_15(processes: Any, ros_context: Any) -> None
     _out, err = proc.communicate(timeout=10)
     assert proc.returncode == 15
     assert 'Traceback' not in err
+
+
+@pytest.mark.parametrize('verb', [
+    ['topic', 'echo', '/sigint_topic', 'std_msgs/msg/String'],
+    ['topic', 'hz', '/sigint_topic'],
+    ['topic', 'bw', '/sigint_topic'],
+    ['topic', 'delay', '/sigint_topic'],
+    ['topic', 'pub', '/sigint_topic', 'std_msgs/msg/String'],
+], ids=lambda v: v[1])
+def test_ctrl_c_leaves_with_status_2(processes: Any, ros_context: Any, verb: list[str]) -> None:
+    """ros2cli's KeyboardInterrupt status, in every verb that runs until interrupted."""
+    import signal
+
+    from ros2lite.graph import snapshot
+    from tests.spinning import wait_until
+    proc = processes.cli(*verb)
+    hidden = f'_ros2lite_{proc.pid}'
+    # once the verb's hidden node is in the graph, it is past start-up
+    wait_until(lambda: any(e.node_name == hidden for e in
+                           snapshot(ros_context.session, ros_context.domain_id)), timeout=15)
+    proc.send_signal(signal.SIGINT)
+    _out, err = proc.communicate(timeout=10)
+    assert (proc.returncode, err) == (2, '')

@@ -123,18 +123,43 @@ def test_ctrl_c_while_starting_is_quiet(processes: Any) -> None:
     assert 'Traceback' not in err
 
 
-def test_no_router_is_one_line(processes: Any) -> None:
+def test_no_router_in_client_mode_is_one_line(processes: Any) -> None:
+    # nodes start the daemon or run without a router (tests/test_router_survival.py); a
+    # client-mode session has no such way out
     from tests.conftest import free_port
     proc = processes.start([sys.executable, '-m', 'ros2lite.demos.demo_nodes_py.talker'],
-                           env={**_env(), 'ROS2LITE_ROUTER': f'tcp/127.0.0.1:{free_port()}'})
+                           env={**_env(), 'ROS2LITE_ROUTER': f'tcp/127.0.0.1:{free_port()}',
+                                'ZENOH_CONFIG_OVERRIDE': 'mode="client"'})
     _out, err = proc.communicate(timeout=10)
     assert proc.returncode == 1
     assert err.count('\n') == 1 and 'No Zenoh router answers' in err
 
 
+def test_parameter_blackboard(ros_context: Any, processes: Any) -> None:
+    """Holds every override and anything set later, as ROS's demo does."""
+    from ros2lite.parameter import Parameter, parameter_value_to_python
+    from ros2lite.parameters.remote import RemoteParameters
+    proc = demo(processes, 'parameter_blackboard', '--ros-args', '-p', 'speed:=2.5',
+                '-p', 'names:=[a, b]')
+    client = Node('_blackboard_client', context=ros_context, start_parameter_services=False)
+    remote = RemoteParameters(client, '/parameter_blackboard', service_timeout=10.0)
+    assert remote.wait_for_services(10.0)
+    assert sorted(remote.list_parameters().names) == ['names', 'speed', 'use_sim_time']
+    assert remote.set_parameters([Parameter('brand_new', value=7)])[0].successful
+    values = remote.get_parameters(['speed', 'names', 'brand_new'])
+    assert [parameter_value_to_python(v) for v in values] == [2.5, ['a', 'b'], 7]
+    _out, err = processes.stop(proc)
+    assert proc.returncode == 0
+    assert re.fullmatch(log_line('parameter_blackboard', re.escape(
+        "Parameter blackboard node named '/parameter_blackboard' ready, and serving '3' "
+        "parameters already!")), err.splitlines()[0]), err
+
+
 @pytest.mark.parametrize('args, message', [
     (['--ros-args', '-r', '__node:=1bad'], 'invalid node name'),
     (['--ros-args', '--bogus'], "Unknown ROS argument '--bogus'"),
+    # an override of another type than the declared default: rclpy's exception, one line
+    (['--ros-args', '-p', 'use_sim_time:=3'], "expecting type 'BOOL'"),
 ])
 def test_bad_arguments_are_one_line(processes: Any, args: list[str], message: str) -> None:
     proc = demo(processes, 'listener', *args)

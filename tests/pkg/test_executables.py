@@ -50,7 +50,9 @@ def make_entry_points(root: Path, entries: dict[str, str]) -> Path:
 
 def test_bundled_demos() -> None:
     exes = get_executables('demo_nodes_py')
-    assert [e.name for e in exes] == ['listener', 'talker']
+    assert [e.name for e in exes] == [
+        'add_two_ints_client', 'add_two_ints_client_async', 'add_two_ints_server', 'listener',
+        'parameter_blackboard', 'talker']
     talker = find_executable('demo_nodes_py', 'talker')
     assert talker is not None and talker.origin == 'bundled' and talker.is_python
     assert find_executable('demo_nodes_py', 'nope') is None

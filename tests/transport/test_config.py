@@ -69,6 +69,53 @@ def test_session_defaults() -> None:
     assert get(env_config, "connect/endpoints") == ["tcp/127.0.0.1:99"]
 
 
+def test_node_sessions_are_peers_that_retry_the_router_often() -> None:
+    config = cfg.session_config("tcp/127.0.0.1:1234", env={}, mode="peer")
+    assert get(config, "mode") == "peer"
+    # a peer opens without a router and keeps retrying it; a client gives up at once
+    assert get(config, "connect/exit_on_failure") == {
+        "router": False, "peer": False, "client": True}
+    assert get(config, "connect/timeout_ms") == {"router": -1, "peer": -1, "client": 1000}
+    retry = get(config, "connect/retry")
+    assert isinstance(retry, dict) and retry["period_max_ms"] <= 500
+    assert get(config, "scouting/gossip/autoconnect") == {
+        "router": [], "peer": ["router", "peer"]}
+
+
+@pytest.mark.parametrize("endpoint, mode", [
+    ("tcp/127.0.0.1:7447", "peer"),
+    ("tcp/localhost:7447", "peer"),
+    ("tcp/[::1]:7447", "peer"),
+    ("tcp/0.0.0.0:7447", "peer"),
+    ("unixsock-stream//tmp/router.sock", "peer"),
+    ("tcp/10.0.0.1:7447", "client"),
+    ("tcp/robot.local:7447", "client"),
+    ("udp/127.0.0.1:7447", "peer"),
+])
+def test_node_mode_is_peer_only_with_a_router_on_this_host(endpoint: str, mode: str) -> None:
+    # our peers listen on loopback only, so a remote router could not introduce them
+    assert cfg.node_session_mode(endpoint, env={}) == mode
+    # the router the session really connects to decides
+    override = {"ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["{endpoint}"]',
+                "ROS2LITE_ROUTER": "tcp/127.0.0.1:7447"}
+    assert cfg.node_session_mode(env=override) == mode
+
+
+def test_router_check_attempts() -> None:
+    assert cfg.router_check_attempts({}) == 1
+    assert cfg.router_check_attempts({"ZENOH_ROUTER_CHECK_ATTEMPTS": " 3 "}) == 3
+    assert cfg.router_check_attempts({"ZENOH_ROUTER_CHECK_ATTEMPTS": "0"}) == 0
+    assert cfg.router_check_attempts({"ZENOH_ROUTER_CHECK_ATTEMPTS": "-1"}) == -1
+    with pytest.raises(ConfigError, match="ZENOH_ROUTER_CHECK_ATTEMPTS must be an integer"):
+        cfg.router_check_attempts({"ZENOH_ROUTER_CHECK_ATTEMPTS": "many"})
+
+
+def test_router_admin_space_is_read_only() -> None:
+    config = cfg.router_config("tcp/127.0.0.1:5", env={})
+    assert get(config, "adminspace/enabled") is True
+    assert get(config, "adminspace/permissions") == {"read": True, "write": False}
+
+
 def test_config_override_is_applied() -> None:
     env = {"ZENOH_CONFIG_OVERRIDE": 'mode="peer";queries_default_timeout=1234'}
     config = cfg.session_config("tcp/127.0.0.1:1", env=env)
@@ -81,9 +128,12 @@ def test_config_override_is_applied() -> None:
     # ... while the override beats ROS2LITE_ROUTER.
     env2["ROS2LITE_ROUTER"] = "tcp/127.0.0.1:3"
     assert get(cfg.session_config(env=env2), "connect/endpoints") == ["tcp/127.0.0.1:2"]
-    admin = {"ZENOH_CONFIG_OVERRIDE": "adminspace/enabled=true"}
+    admin = {"ZENOH_CONFIG_OVERRIDE": "adminspace/enabled=false"}
     router = cfg.router_config("tcp/127.0.0.1:5", env=admin)
-    assert get(router, "adminspace/enabled") is True
+    assert get(router, "adminspace/enabled") is False
+    # a node's mode is a default too: the override wins
+    forced = cfg.session_config(env={"ZENOH_CONFIG_OVERRIDE": 'mode="client"'}, mode="peer")
+    assert get(forced, "mode") == "client"
     with pytest.raises(ConfigError, match="ZENOH_CONFIG_OVERRIDE: cannot set bogus/key=1"):
         cfg.session_config(env={"ZENOH_CONFIG_OVERRIDE": "bogus/key=1"})
     with pytest.raises(ConfigError, match="unknown variant"):

@@ -1,4 +1,5 @@
-"""`daemon status`: ros2cli's one line, then which router serves the endpoint."""
+"""`daemon status`: ros2cli's one line, then which router serves the endpoint and who is
+connected to it."""
 
 from __future__ import annotations
 
@@ -9,7 +10,9 @@ import click
 def cli() -> None:
     """Output the status of the daemon."""
     from ros2lite import daemon
-    st = daemon.status()
+
+    from .sessions import table
+    st = daemon.status(sessions=True)
     click.echo('The daemon is running' if st.running else 'The daemon is not running')
     if st.running and st.ours:
         click.echo(f'Serving {st.endpoint} (ros2lite daemon, pid {st.pid})')
@@ -20,3 +23,9 @@ def cli() -> None:
                    f'{st.endpoint}')
     else:
         click.echo(f'No Zenoh router answers at {st.endpoint}')
+    if st.running:
+        if st.sessions is None:
+            click.echo("Connected sessions: unknown (the router's admin space does not answer)")
+        else:
+            for line in table(st.sessions):
+                click.echo(line)

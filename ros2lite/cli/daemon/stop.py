@@ -1,4 +1,5 @@
-"""`daemon stop`: stop our own router; a foreign one (e.g. rmw_zenohd) is left alone."""
+"""`daemon stop`: stop our own router (a foreign one, e.g. rmw_zenohd, is left alone) and say
+what that did to the sessions connected to it."""
 
 from __future__ import annotations
 
@@ -16,6 +17,10 @@ def cli() -> None:
     except daemon.DaemonError as e:
         raise CliError(str(e)) from None
     click.echo('The daemon has been stopped' if result.stopped else 'The daemon is not running')
+    if result.stopped and result.sessions is not None:
+        from .sessions import consequences
+        for line in consequences(result.sessions):
+            click.echo(line)
     if result.foreign:
         click.echo(f'A Zenoh router not started by ros2lite answers at {result.endpoint}; '
                    'not stopping it')

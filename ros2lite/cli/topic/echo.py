@@ -228,6 +228,7 @@ def cli(topic_name: str, message_type: str | None, csv: bool, field: str | None,
                 raise CliError('Could not determine the type for the passed topic')
         else:
             type_name = message_type_name(message_type)
+            warn_type_mismatch(session, full_name, type_name)
         lost = None
         if not no_lost_messages:
             from ros2lite.topic_stats import LostMessageCounter
@@ -245,6 +246,27 @@ def cli(topic_name: str, message_type: str | None, csv: bool, field: str | None,
         else:
             node.create_subscription(type_name, full_name, printer, profile, raw=True)
         spin(session, node, lambda: printer.done, deadline)
+
+
+def warn_type_mismatch(session: CliSession, full_name: str, type_name: str) -> None:
+    """Say at once when no publisher uses the asked type (or its hash): the data key holds
+    both, so such a subscription would wait forever in silence."""
+    from ros2lite.graph import endpoints_by_topic
+    from ros2lite.interfaces import type_hash
+    from ros2lite.transport.keys import EntityKind
+    pubs = endpoints_by_topic(session.entities(), full_name, EntityKind.PUBLISHER)
+    ours = type_hash(type_name)
+    if not pubs or any(p.topic_type == type_name and p.topic_type_hash == ours for p in pubs):
+        return
+    names = sorted({p.topic_type for p in pubs})
+    if type_name in names:
+        hashes = sorted({p.topic_type_hash for p in pubs if p.topic_type == type_name})
+        why = (f'as {type_name} with type hash {", ".join(hashes)}, not {ours} (another '
+               'definition of the type)')
+    else:
+        why = f'as {", ".join(names)}, not {type_name}'
+    click.echo(f"WARNING: topic '{full_name}' is published {why}; nothing will arrive until a "
+               f'matching publisher appears', err=True)
 
 
 def choose_qos(session: CliSession, full_name: str, options: dict[str, Any]) -> Any:

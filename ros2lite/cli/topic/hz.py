@@ -110,17 +110,15 @@ def cli(topic_names: tuple[str, ...], window_size: int, filter_expr: str | None,
         node = session.node()
         stamp = ros_or_arrival_time(node, wall_time)
         stats: dict[str, RateStats] = {}
-        try:
-            for topic in topic_names:
-                full_name = resolve_topic(node, topic)
-                type_name = wait_for_type(session, topic, full_name)
-                stats[topic] = rate = RateStats(window_size)
-                _subscribe(node, type_name, full_name, rate, stamp, filter_fn)
-                if len(topic_names) > 1:
-                    click.echo(f'Subscribed to [{topic}]')
-            _report_every_second(session, node, stats)
-        except KeyboardInterrupt:
-            pass   # Ctrl-C is how hz is meant to end
+        # Ctrl-C, hz's usual end, leaves with status 2 as in every other verb (ros2cli's)
+        for topic in topic_names:
+            full_name = resolve_topic(node, topic)
+            type_name = wait_for_type(session, topic, full_name)
+            stats[topic] = rate = RateStats(window_size)
+            _subscribe(node, type_name, full_name, rate, stamp, filter_fn)
+            if len(topic_names) > 1:
+                click.echo(f'Subscribed to [{topic}]')
+        _report_every_second(session, node, stats)
 
 
 def _subscribe(node: Any, type_name: str, topic: str, rate: Any, stamp: Callable[[int], int],

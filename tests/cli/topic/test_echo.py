@@ -86,6 +86,17 @@ def test_topic_with_two_types_is_refused(run: Callable[..., Result], talker: Any
                           '[std_msgs/msg/Int32, std_msgs/msg/String]\n')
 
 
+def test_type_not_published_is_said_at_once(run: Callable[..., Result], talker: Any,
+                                            ros_context: Any, topic: str) -> None:
+    talker(topic, 'std_msgs/msg/String', hello)
+    wait_until(lambda: has_endpoint(ros_context, topic, 'MP'))
+    result = run('topic', 'echo', topic, 'std_msgs/msg/Int32', '--timeout', '0.5')
+    assert (result.code, result.out) == (0, '')
+    assert result.err == (f"WARNING: topic '{topic}' is published as std_msgs/msg/String, not "
+                          'std_msgs/msg/Int32; nothing will arrive until a matching publisher '
+                          'appears\n')
+
+
 def test_csv_and_flow_style(run: Callable[..., Result], talker: Any, topic: str) -> None:
     vec = get_interface('geometry_msgs/msg/Vector3')
     talker(topic, 'geometry_msgs/msg/Vector3', lambda i: vec(x=1.0, y=2.5, z=float(i)))

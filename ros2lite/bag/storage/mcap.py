@@ -1,0 +1,448 @@
+"""The `mcap` storage plugin: rosbag2's MCAP layout on top of the `mcap` package.
+
+Writing: profile `ros2`, chunked, every index, statistics and summary (rosbag2's defaults), one
+`ros2msg` schema per type, one channel per topic carrying `offered_qos_profiles` and
+`topic_type_hash`, and `rosbag2` metadata records. The file is written without a user-space
+buffer, so each finished chunk is in the OS the moment the writer lets go of it: a recorder
+killed outright leaves every complete chunk readable.
+
+Reading: the summary section alone answers counts, times, topics and definitions (cheap on any
+size of file); messages come through the chunk indexes in log-time order. A file without a
+summary (a killed recorder) is scanned record by record up to its first broken record.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+from collections.abc import Iterator
+from typing import Any
+
+from ros2lite.bag.metadata import (
+    BagMetadata,
+    MetadataError,
+    TopicMetadata,
+    dump_metadata,
+    dump_qos_list,
+    parse_metadata,
+    parse_qos_list,
+)
+from ros2lite.bag.storage import BagError, FileSummary
+
+__all__ = [
+    "COMPRESSIONS",
+    "DEFAULT_CHUNK_SIZE",
+    "McapStorageReader",
+    "McapStorageWriter",
+    "open_reader",
+    "recover",
+]
+
+# rosbag2's chunk size (mcap C++ 1.4 default); rosbag2_storage_mcap presets change it
+DEFAULT_CHUNK_SIZE = 768 * 1024
+COMPRESSIONS = ("none", "zstd", "lz4")
+# storage preset profiles of rosbag2_storage_mcap: compression and chunk size
+PRESETS: dict[str, tuple[str, int]] = {
+    "none": ("none", DEFAULT_CHUNK_SIZE),
+    "fastwrite": ("none", DEFAULT_CHUNK_SIZE),
+    "zstd_fast": ("zstd", DEFAULT_CHUNK_SIZE),
+    "zstd_small": ("zstd", 4 * 1024 * 1024),
+}
+
+
+def _library() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return f"ros2lite {version('ros2lite')}"
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree
+        return "ros2lite"
+
+
+class _DirectFile:
+    """A write-only file with no user-space buffer and a known position. The mcap writer
+    assembles whole chunks in memory and hands each over in one write, so buffering again
+    would only delay data on its way to the OS."""
+
+    def __init__(self, path: str) -> None:
+        self.path = path
+        self._fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
+        self._pos = 0
+
+    def write(self, data: Any) -> int:
+        view = memoryview(data).cast("B")
+        n = len(view)
+        done = 0
+        while done < n:
+            done += os.write(self._fd, view[done:])
+        self._pos += n
+        return n
+
+    def tell(self) -> int:
+        return self._pos
+
+    def flush(self) -> None:
+        pass
+
+    def close(self) -> None:
+        if self._fd >= 0:
+            fd, self._fd = self._fd, -1
+            os.close(fd)
+
+
+def _os_error(path: str, e: OSError) -> BagError:
+    return BagError(f"Cannot write '{path}': {e.strerror or e}")
+
+
+class McapStorageWriter:
+    """One `.mcap` file of a bag."""
+
+    def __init__(
+        self, path: str, *, compression: str = "none", chunk_size: int = DEFAULT_CHUNK_SIZE
+    ) -> None:
+        from mcap.writer import CompressionType, IndexType, Writer
+
+        if compression not in COMPRESSIONS:
+            raise BagError(
+                f"Unknown MCAP compression '{compression}' (choose from {', '.join(COMPRESSIONS)})"
+            )
+        self.path = path
+        try:
+            self._file = _DirectFile(path)
+        except OSError as e:
+            raise _os_error(path, e) from None
+        self._writer = Writer(
+            self._file,  # type: ignore[arg-type]  # a file-like object is all it needs
+            chunk_size=chunk_size,
+            compression={
+                "none": CompressionType.NONE,
+                "zstd": CompressionType.ZSTD,
+                "lz4": CompressionType.LZ4,
+            }[compression],
+            index_types=IndexType.ALL,
+            use_chunking=True,
+            use_statistics=True,
+            use_summary_offsets=True,
+            repeat_channels=True,
+            repeat_schemas=True,
+        )
+        self._schemas: dict[str, int] = {}
+        self._closed = False
+        try:
+            self._writer.start(profile="ros2", library=_library())
+        except OSError as e:
+            self.abandon()
+            raise _os_error(path, e) from None
+        # the hot path: mcap's own method, bound once
+        self.add_message = self._writer.add_message
+
+    @property
+    def size(self) -> int:
+        """Bytes handed to the OS so far (the chunk being built is not counted)."""
+        return self._file.tell()
+
+    def add_schema(self, type_name: str, encoding: str, text: str) -> int:
+        sid = self._schemas.get(type_name)
+        if sid is None:
+            sid = self._schemas[type_name] = self._writer.register_schema(
+                type_name, encoding, text.encode()
+            )
+        return sid
+
+    def add_channel(self, topic: TopicMetadata, schema_id: int) -> int:
+        cid: int = self._writer.register_channel(
+            topic.name,
+            topic.serialization_format,
+            schema_id,
+            {
+                "offered_qos_profiles": dump_qos_list(topic.offered_qos_profiles),
+                "topic_type_hash": topic.type_description_hash,
+            },
+        )
+        return cid
+
+    def add_rosbag2_metadata(self, metadata: BagMetadata) -> None:
+        self._writer.add_metadata(
+            "rosbag2", {"serialized_metadata": dump_metadata(metadata, top_key=False)}
+        )
+
+    def flush_chunk(self) -> None:
+        """Close the chunk in progress so its messages reach the file now."""
+        self._writer.flush()
+
+    def close(self, metadata: BagMetadata | None = None) -> None:
+        """Write the last chunk, the summary and the footer; the file is complete after this."""
+        if self._closed:
+            return
+        self._closed = True
+        try:
+            if metadata is not None:
+                self.add_rosbag2_metadata(metadata)
+            self._writer.finish()
+        except OSError as e:
+            raise _os_error(self.path, e) from None
+        finally:
+            self._file.close()
+
+    def abandon(self) -> None:
+        """Stop without finishing (the disk refused us): what is on disk stays recoverable."""
+        self._closed = True
+        self._file.close()
+
+
+# -- reading -------------------------------------------------------------------------------------
+
+
+def _topic(channel: Any, schema: Any) -> TopicMetadata:
+    meta = channel.metadata or {}
+    try:
+        qos = parse_qos_list(meta.get("offered_qos_profiles"))
+    except MetadataError:
+        qos = []
+    return TopicMetadata(
+        name=channel.topic,
+        type=schema.name if schema is not None else "",
+        serialization_format=channel.message_encoding,
+        offered_qos_profiles=qos,
+        type_description_hash=meta.get("topic_type_hash", "") or "",
+    )
+
+
+def _rosbag2_record(record: Any) -> tuple[BagMetadata | None, str]:
+    data = record.metadata
+    text = data.get("serialized_metadata")
+    if text:
+        with contextlib.suppress(MetadataError):
+            m = parse_metadata(text, top_key=False)
+            return m, m.ros_distro
+    return None, data.get("ROS_DISTRO", "")
+
+
+class McapStorageReader:
+    """One `.mcap` file, read through its summary when it has one."""
+
+    def __init__(self, path: str) -> None:
+        from mcap.reader import SeekingReader
+
+        self.path = path
+        try:
+            self._stream = open(path, "rb")  # noqa: SIM115 - closed by close()
+        except OSError as e:
+            raise BagError(f"Cannot open '{path}': {e.strerror or e}") from None
+        try:
+            self._reader = SeekingReader(self._stream)
+            self._reader.get_header()
+        except Exception as e:
+            self._stream.close()
+            raise BagError(f"'{path}' is not an MCAP file ({e or type(e).__name__})") from None
+        self._summary: Any = None
+        self._indexed: bool | None = None
+
+    def close(self) -> None:
+        self._stream.close()
+
+    def _mcap_summary(self) -> Any:
+        """mcap's Summary, or None for a file that has none (or a broken end)."""
+        if self._indexed is None:
+            try:
+                self._summary = self._reader.get_summary()
+            except Exception:
+                self._summary = None
+            self._indexed = self._summary is not None and self._summary.statistics is not None
+        return self._summary if self._indexed else None
+
+    def summary(self) -> FileSummary:
+        s = self._mcap_summary()
+        if s is None:
+            return self._scan_summary()
+        stats = s.statistics
+        by_channel: dict[int, TopicMetadata] = {}
+        topics: dict[str, TopicMetadata] = {}
+        definitions: dict[str, tuple[str, str]] = {}
+        for cid, channel in s.channels.items():
+            schema = s.schemas.get(channel.schema_id)
+            t = by_channel[cid] = _topic(channel, schema)
+            topics.setdefault(t.name, t)
+            if schema is not None and schema.name not in definitions:
+                definitions[schema.name] = (schema.encoding, _text(schema.data))
+        counts = dict.fromkeys(topics, 0)
+        for cid, n in stats.channel_message_counts.items():
+            if cid in by_channel:
+                counts[by_channel[cid].name] += n
+        metadata, distro = None, ""
+        for record in self._metadata_records():
+            m, d = _rosbag2_record(record)
+            metadata, distro = m or metadata, d or distro
+        empty = stats.message_count == 0
+        return FileSummary(
+            topics=list(topics.values()),
+            counts=counts,
+            message_count=stats.message_count,
+            start=None if empty else stats.message_start_time,
+            end=None if empty else stats.message_end_time,
+            definitions=definitions,
+            metadata=metadata,
+            ros_distro=distro,
+        )
+
+    def _metadata_records(self) -> Iterator[Any]:
+        s = self._summary
+        if s is None or not s.metadata_indexes:
+            return iter(())
+        return (r for r in self._reader.iter_metadata() if r.name == "rosbag2")
+
+    def messages(
+        self, topics: set[str] | None = None, start: int | None = None, stop: int | None = None
+    ) -> Iterator[tuple[str, bytes, int, int]]:
+        """(topic, data, log_time, publish_time) in log-time order, `start <= t < stop`."""
+        if self._mcap_summary() is None:
+            for _schemas, channel, m in _scan(self._stream):
+                if (
+                    (topics is None or channel.topic in topics)
+                    and (start is None or m.log_time >= start)
+                    and (stop is None or m.log_time < stop)
+                ):
+                    yield channel.topic, m.data, m.log_time, m.publish_time
+            return
+        for _schema, channel, m in self._reader.iter_messages(
+            topics=list(topics) if topics is not None else None,
+            starting_at=start,
+            ending_before=stop,
+            log_time_order=True,
+        ):
+            yield channel.topic, m.data, m.log_time, m.publish_time
+
+    def _scan_summary(self) -> FileSummary:
+        """Summary of a file without one, from its records up to the first broken one."""
+        topics: dict[str, TopicMetadata] = {}
+        definitions: dict[str, tuple[str, str]] = {}
+        counts: dict[str, int] = {}
+        records: list[Any] = []
+
+        def on_channel(channel: Any, schema: Any) -> None:
+            t = _topic(channel, schema)
+            topics.setdefault(t.name, t)
+            counts.setdefault(t.name, 0)
+            if schema is not None and schema.name not in definitions:
+                definitions[schema.name] = (schema.encoding, _text(schema.data))
+
+        start = end = None
+        total = 0
+        for _schemas, channel, m in _scan(
+            self._stream, on_metadata=records.append, on_channel=on_channel
+        ):
+            total += 1
+            counts[channel.topic] += 1
+            t = m.log_time
+            start = t if start is None or t < start else start
+            end = t if end is None or t > end else end
+        metadata, distro = None, ""
+        for record in records:
+            if record.name == "rosbag2":
+                meta, d = _rosbag2_record(record)
+                metadata, distro = meta or metadata, d or distro
+        return FileSummary(
+            topics=list(topics.values()),
+            counts=counts,
+            message_count=total,
+            start=start,
+            end=end,
+            definitions=definitions,
+            metadata=metadata,
+            complete=False,
+            ros_distro=distro,
+        )
+
+
+def _text(data: bytes) -> str:
+    return data.decode("utf-8", errors="replace")
+
+
+def _scan(
+    stream: Any, on_metadata: Any = None, on_channel: Any = None
+) -> Iterator[tuple[dict[int, Any], Any, Any]]:
+    """Every message record in file order, stopping quietly at the first record that cannot
+    be read (a truncated chunk at the end of a killed recording)."""
+    from mcap.records import Channel, Message, Metadata, Schema
+    from mcap.stream_reader import StreamReader
+
+    stream.seek(0)
+    schemas: dict[int, Any] = {}
+    channels: dict[int, Any] = {}
+    records = StreamReader(stream, skip_magic=False).records
+    while True:
+        try:
+            record = next(records)
+        except StopIteration:
+            return
+        except Exception:
+            return  # truncated or corrupt from here on
+        if isinstance(record, Message):
+            channel = channels.get(record.channel_id)
+            if channel is not None:
+                yield schemas, channel, record
+        elif isinstance(record, Schema):
+            schemas[record.id] = record
+        elif isinstance(record, Channel):
+            if record.id not in channels and on_channel is not None:
+                on_channel(record, schemas.get(record.schema_id))
+            channels[record.id] = record
+        elif isinstance(record, Metadata) and on_metadata is not None:
+            on_metadata(record)
+
+
+def open_reader(path: str) -> McapStorageReader:
+    return McapStorageReader(path)
+
+
+def recover(path: str) -> int:
+    """Rewrite a file that has no summary (its recorder was killed) into a complete MCAP
+    holding every message up to its last complete chunk; returns the messages kept.
+
+    The new file is written beside the old one and renamed over it, so an interrupted
+    recovery leaves the original untouched."""
+    from mcap.writer import CompressionType, IndexType, Writer
+
+    tmp = path + ".recovering"
+    with open(path, "rb") as src, open(tmp, "wb") as dst:
+        writer = Writer(
+            dst,
+            chunk_size=DEFAULT_CHUNK_SIZE,
+            compression=CompressionType.NONE,
+            index_types=IndexType.ALL,
+        )
+        writer.start(profile="ros2", library=_library())
+        schema_ids: dict[int, int] = {}
+        channel_ids: dict[int, int] = {}
+        metadata: list[Any] = []
+        kept = 0
+        for schemas, channel, m in _scan(src, on_metadata=metadata.append):
+            cid = channel_ids.get(channel.id)
+            if cid is None:
+                sid = 0
+                schema = schemas.get(channel.schema_id)
+                if schema is not None:
+                    sid = schema_ids.get(schema.id, 0)
+                    if not sid:
+                        sid = schema_ids[schema.id] = writer.register_schema(
+                            schema.name, schema.encoding, schema.data
+                        )
+                cid = channel_ids[channel.id] = writer.register_channel(
+                    channel.topic, channel.message_encoding, sid, dict(channel.metadata)
+                )
+            writer.add_message(cid, m.log_time, m.data, m.publish_time, m.sequence)
+            kept += 1
+        for record in metadata:
+            writer.add_metadata(record.name, dict(record.metadata))
+        writer.finish()
+    os.replace(tmp, path)
+    return kept
+
+
+def is_complete(path: str) -> bool:
+    """Whether a file has its summary (was closed properly)."""
+    reader = McapStorageReader(path)
+    try:
+        return reader._mcap_summary() is not None
+    finally:
+        reader.close()

@@ -1,0 +1,159 @@
+"""The `sqlite3` storage plugin (read only): rosbag2's `.db3` files, through the stdlib.
+
+Tables: `topics` (name, type, serialization_format, offered_qos_profiles[, type_description_hash]),
+`messages` (topic_id, timestamp, data) and, in newer files, `message_definitions` and `metadata`.
+A db3 message has one timestamp: it is both the log and the publish time.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import sqlite3
+from collections.abc import Iterator
+from typing import Any
+
+from ros2lite.bag.metadata import MetadataError, TopicMetadata, parse_metadata, parse_qos_list
+from ros2lite.bag.storage import BagError, FileSummary
+
+__all__ = ["Sqlite3StorageReader", "open_reader"]
+
+
+class Sqlite3StorageReader:
+    def __init__(self, path: str) -> None:
+        import os
+
+        self.path = path
+        if not os.path.isfile(path):
+            raise BagError(f"Cannot open '{path}': No such file")
+        self._db = self._connect(path)
+
+    @staticmethod
+    def _connect(path: str) -> sqlite3.Connection:
+        from urllib.parse import quote
+
+        uri = "file:" + quote(path)
+        # read-only; a bag in a read-only directory (no -shm can be made) is opened as
+        # immutable, which is what a finished bag is
+        for suffix in ("?mode=ro", "?mode=ro&immutable=1"):
+            try:
+                db = sqlite3.connect(uri + suffix, uri=True, check_same_thread=False)
+                db.execute("SELECT count(*) FROM sqlite_master").fetchone()
+                return db
+            except sqlite3.DatabaseError as e:
+                error = e
+        raise BagError(f"'{path}' is not a readable sqlite3 bag ({error})")
+
+    def close(self) -> None:
+        self._db.close()
+
+    def _tables(self) -> set[str]:
+        return {r[0] for r in self._db.execute("SELECT name FROM sqlite_master WHERE type='table'")}
+
+    def _topic_rows(self) -> list[tuple[int, TopicMetadata]]:
+        cols = [r[1] for r in self._db.execute("PRAGMA table_info(topics)")]
+        has_hash = "type_description_hash" in cols
+        rows = self._db.execute(
+            "SELECT id, name, type, serialization_format, offered_qos_profiles"
+            + (", type_description_hash" if has_hash else "")
+            + " FROM topics ORDER BY id"
+        )
+        out = []
+        for row in rows:
+            try:
+                qos = parse_qos_list(row[4])
+            except MetadataError:
+                qos = []
+            out.append(
+                (
+                    row[0],
+                    TopicMetadata(
+                        name=row[1],
+                        type=row[2],
+                        serialization_format=row[3],
+                        offered_qos_profiles=qos,
+                        type_description_hash=(row[5] or "") if has_hash else "",
+                    ),
+                )
+            )
+        return out
+
+    def summary(self) -> FileSummary:
+        try:
+            return self._summary()
+        except sqlite3.DatabaseError as e:
+            raise BagError(f"'{self.path}' is not a readable sqlite3 bag ({e})") from None
+
+    def _summary(self) -> FileSummary:
+        tables = self._tables()
+        if not {"topics", "messages"} <= tables:
+            raise BagError(f"'{self.path}' is not a rosbag2 sqlite3 file (no topics/messages)")
+        topics = self._topic_rows()
+        by_id = {tid: t for tid, t in topics}
+        counts = {t.name: 0 for _, t in topics}
+        total, start, end = 0, None, None
+        for tid, n, lo, hi in self._db.execute(
+            "SELECT topic_id, count(*), min(timestamp), max(timestamp) FROM messages "
+            "GROUP BY topic_id"
+        ):
+            if tid in by_id:
+                counts[by_id[tid].name] += n
+            total += n
+            start = lo if start is None or lo < start else start
+            end = hi if end is None or hi > end else end
+        definitions: dict[str, tuple[str, str]] = {}
+        if "message_definitions" in tables:
+            for type_name, encoding, text in self._db.execute(
+                "SELECT topic_type, encoding, encoded_message_definition FROM message_definitions"
+            ):
+                definitions[type_name] = (encoding, text)
+        metadata, distro = None, ""
+        if "metadata" in tables:
+            with contextlib.suppress(sqlite3.DatabaseError, MetadataError):
+                row = self._db.execute(
+                    "SELECT metadata FROM metadata ORDER BY id DESC LIMIT 1"
+                ).fetchone()
+                if row:
+                    metadata = parse_metadata(row[0], top_key=False)
+                    distro = metadata.ros_distro
+        if not distro and "schema" in tables:
+            with contextlib.suppress(sqlite3.DatabaseError):
+                row = self._db.execute("SELECT ros_distro FROM schema").fetchone()
+                distro = row[0] if row else ""
+        return FileSummary(
+            topics=[t for _, t in topics],
+            counts=counts,
+            message_count=total,
+            start=start,
+            end=end,
+            definitions=definitions,
+            metadata=metadata,
+            ros_distro=distro,
+        )
+
+    def messages(
+        self, topics: set[str] | None = None, start: int | None = None, stop: int | None = None
+    ) -> Iterator[tuple[str, bytes, int, int]]:
+        names = {tid: t.name for tid, t in self._topic_rows()}
+        query = "SELECT topic_id, timestamp, data FROM messages"
+        where: list[str] = []
+        args: list[Any] = []
+        if start is not None:
+            where.append("timestamp >= ?")
+            args.append(start)
+        if stop is not None:
+            where.append("timestamp < ?")
+            args.append(stop)
+        if where:
+            query += " WHERE " + " AND ".join(where)
+        query += " ORDER BY timestamp, id"
+        try:
+            for tid, stamp, data in self._db.execute(query, args):
+                name = names.get(tid)
+                if name is not None and (topics is None or name in topics):
+                    yield name, bytes(data), stamp, stamp
+        except sqlite3.DatabaseError as e:
+            raise BagError(f"'{self.path}' is not a readable sqlite3 bag ({e})") from None
+
+
+def open_reader(path: str) -> Sqlite3StorageReader:
+    return Sqlite3StorageReader(path)

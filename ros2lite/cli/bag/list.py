@@ -1,0 +1,55 @@
+"""`bag list`: the storage plugins and compressors this ros2lite has, as ros2cli lists them."""
+
+from __future__ import annotations
+
+import click
+
+# plugin kind → [(name, description, type, base class)], pluginlib's fields
+PLUGINS: dict[str, list[tuple[str, str, str, str]]] = {
+    "storage": [
+        (
+            "mcap",
+            "Plugin to write to and read from MCAP files",
+            "rosbag2_storage_plugins::MCAPStorage",
+            "rosbag2_storage::storage_interfaces::ReadWriteInterface",
+        ),
+        (
+            "sqlite3",
+            "Plugin to read sqlite3 (.db3) bags",
+            "rosbag2_storage_plugins::SqliteStorage",
+            "rosbag2_storage::storage_interfaces::ReadWriteInterface",
+        ),
+    ],
+    "converter": [],
+    "compressor": [
+        (
+            "zstd",
+            "zstd compression of MCAP chunks",
+            "rosbag2_compression_zstd::ZstdCompressor",
+            "rosbag2_compression::BaseCompressorInterface",
+        ),
+    ],
+    "decompressor": [
+        (
+            "zstd",
+            "zstd decompression of MCAP chunks",
+            "rosbag2_compression_zstd::ZstdDecompressor",
+            "rosbag2_compression::BaseDecompressorInterface",
+        ),
+    ],
+}
+
+
+@click.command("list")
+@click.argument("plugin_type", type=click.Choice(list(PLUGINS)))
+@click.option("-v", "--verbose", is_flag=True, help="List out verbose information.")
+def cli(plugin_type: str, verbose: bool) -> None:
+    """Print information about available plugins to the screen."""
+    for name, description, type_name, base in PLUGINS[plugin_type]:
+        if verbose:
+            click.echo(
+                f"name: {name}\n\tdescription: {description}\n\ttype: {type_name}"
+                f"\n\tbase_class: {base}"
+            )
+        else:
+            click.echo(name)

@@ -1,0 +1,432 @@
+"""`bag record`: record topics into a rosbag2 MCAP bag until Ctrl-C (or SIGTERM).
+
+The library's Recorder does the work (raw subscriptions, a writer thread, clean close); this
+verb parses ros2cli's options, logs rosbag2_recorder's lines on stderr and, on a terminal,
+keeps a live per-topic status and takes SPACE to pause/resume.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import sys
+import threading
+import time
+from typing import Any
+
+import click
+
+from .. import completion
+from ..common import CliSession
+from .options import ManyValues, bag_error, warn
+
+SELECTION_ERROR = (
+    "Need to specify at least one option out of --all, --all-topics, "
+    "--all-services, --services, --topics, --topic-types or --regex"
+)
+
+
+@click.command("record")
+@click.argument(
+    "positional_topics", metavar="[TOPICS]...", nargs=-1, shell_complete=completion.topics
+)
+@click.option(
+    "--topics",
+    cls=ManyValues,
+    metavar="TOPIC...",
+    shell_complete=completion.topics,
+    help="List of topics to record.",
+)
+@click.option(
+    "--services",
+    cls=ManyValues,
+    metavar="SERVICE...",
+    help="List of services to record (their service-event topics).",
+)
+@click.option(
+    "--topic-types", cls=ManyValues, metavar="TYPE...", help="Record topics of these types."
+)
+@click.option("-a", "--all", "all_", is_flag=True, help="Record all topics and services.")
+@click.option("--all-topics", is_flag=True, help="Record all topics (no services).")
+@click.option("--all-services", is_flag=True, help="Record all services.")
+@click.option("-e", "--regex", help="Record only topics matching the regular expression.")
+@click.option("-x", "--exclude-regex", help="Exclude topics matching the regular expression.")
+@click.option(
+    "--exclude-topics", cls=ManyValues, metavar="TOPIC...", help="List of topics not to record."
+)
+@click.option(
+    "--exclude-services",
+    cls=ManyValues,
+    metavar="SERVICE...",
+    help="List of services not to record.",
+)
+@click.option(
+    "--include-hidden-topics",
+    is_flag=True,
+    help="Record hidden topics as well (names with a part starting with _).",
+)
+@click.option(
+    "-o",
+    "--output",
+    metavar="URI",
+    help="Destination of the bag (default rosbag2_<local date and time>).",
+)
+@click.option(
+    "-s",
+    "--storage",
+    type=click.Choice(["mcap", "sqlite3"]),
+    default="mcap",
+    show_default=True,
+    help="Storage identifier.",
+)
+@click.option(
+    "-b",
+    "--max-bag-size",
+    type=click.IntRange(min=0),
+    default=0,
+    help="Split the bag at this many bytes (0: no splitting).",
+)
+@click.option(
+    "-d",
+    "--max-bag-duration",
+    type=click.FloatRange(min=0),
+    default=0,
+    help="Split the bag after this many seconds (0: no splitting).",
+)
+@click.option(
+    "--max-cache-size",
+    type=click.IntRange(min=0),
+    default=100 * 1024 * 1024,
+    show_default=True,
+    help="Bytes per topic kept in memory while the disk catches up; past it the "
+    "receiver waits (Zenoh then queues) rather than dropping messages.",
+)
+@click.option(
+    "--storage-preset-profile",
+    type=click.Choice(["none", "fastwrite", "zstd_fast", "zstd_small"]),
+    help="MCAP preset: zstd_fast / zstd_small compress chunks.",
+)
+@click.option(
+    "--compression-mode",
+    type=click.Choice(["none", "file", "message"]),
+    default="none",
+    help='Only "none": MCAP bags compress chunks instead.',
+)
+@click.option(
+    "--compression-format",
+    type=click.Choice(["zstd", "lz4"]),
+    help="Compress MCAP chunks with this format (the bag stays indexed).",
+)
+@click.option(
+    "--qos-profile-overrides-path",
+    type=click.Path(dir_okay=False),
+    help="YAML file of QoS profiles by topic, used instead of the offered ones.",
+)
+@click.option("--start-paused", is_flag=True, help="Start paused (SPACE resumes).")
+@click.option("--use-sim-time", is_flag=True, help="Stamp messages with /clock time.")
+@click.option(
+    "--no-discovery", is_flag=True, help="Subscribe only to topics that exist at start-up."
+)
+@click.option(
+    "-p",
+    "--polling-interval",
+    type=click.IntRange(min=1),
+    default=100,
+    show_default=True,
+    help="Milliseconds between topic discovery passes.",
+)
+@click.option(
+    "--node-name", default="rosbag2_recorder", show_default=True, help="Name of the recorder node."
+)
+@click.option(
+    "--custom-data",
+    cls=ManyValues,
+    metavar="KEY=VALUE...",
+    help="Custom metadata stored in the bag.",
+)
+@click.option("--disable-keyboard-controls", is_flag=True, help="Ignore the keyboard.")
+def cli(
+    positional_topics: tuple[str, ...],
+    topics: tuple[str, ...],
+    services: tuple[str, ...],
+    topic_types: tuple[str, ...],
+    all_: bool,
+    all_topics: bool,
+    all_services: bool,
+    regex: str | None,
+    exclude_regex: str | None,
+    exclude_topics: tuple[str, ...],
+    exclude_services: tuple[str, ...],
+    include_hidden_topics: bool,
+    output: str | None,
+    storage: str,
+    max_bag_size: int,
+    max_bag_duration: float,
+    max_cache_size: int,
+    storage_preset_profile: str | None,
+    compression_mode: str,
+    compression_format: str | None,
+    qos_profile_overrides_path: str | None,
+    start_paused: bool,
+    use_sim_time: bool,
+    no_discovery: bool,
+    polling_interval: int,
+    node_name: str,
+    custom_data: tuple[str, ...],
+    disable_keyboard_controls: bool,
+) -> None:
+    """Record ROS data to a bag."""
+    import re
+
+    from ros2lite.bag.recorder import RecordOptions
+    from ros2lite.bag.storage import BagError
+    from ros2lite.bag.writer import Writer
+
+    if positional_topics:
+        warn(
+            'Positional "topics" argument deprecated. Please use optional "--topics" '
+            "argument instead."
+        )
+    selected = list(positional_topics) + list(topics)
+    if not (selected or services or topic_types or all_ or all_topics or all_services or regex):
+        raise bag_error(SELECTION_ERROR)
+    for pattern in (regex, exclude_regex):
+        if pattern:
+            try:
+                re.compile(pattern)
+            except re.error as e:
+                raise bag_error(f"Invalid regular expression '{pattern}': {e}") from None
+    if storage != "mcap":
+        raise bag_error(f"Recording to '{storage}' is not supported; use -s mcap")
+    if compression_mode != "none":
+        raise bag_error(
+            f"Compression mode '{compression_mode}' is not supported for MCAP; "
+            f"use --compression-format alone (chunk compression)"
+        )
+    events = [s.rstrip("/") + "/_service_event" for s in services]
+    excluded_events = [s.rstrip("/") + "/_service_event" for s in exclude_services]
+    options = RecordOptions(
+        topics=list(dict.fromkeys(_absolute(selected + events, node_name))),
+        all_topics=all_ or all_topics,
+        all_services=all_ or all_services,
+        regex=regex,
+        exclude_regex=exclude_regex,
+        exclude_topics=_absolute(list(exclude_topics) + excluded_events, node_name),
+        topic_types=list(topic_types),
+        include_hidden_topics=include_hidden_topics,
+        qos_overrides=_qos_overrides(qos_profile_overrides_path),
+        polling_interval=polling_interval / 1000,
+        max_cache_size=max_cache_size,
+        start_paused=start_paused,
+        discovery=not no_discovery,
+    )
+    custom = _custom_data(custom_data)
+    uri = output or time.strftime("rosbag2_%Y_%m_%d-%H_%M_%S")
+    if os.path.exists(uri):
+        raise bag_error(f"Output folder '{uri}' already exists.")
+    try:
+        writer = Writer(
+            uri,
+            compression=compression_format or "none",
+            preset=storage_preset_profile,
+            max_bag_size=max_bag_size,
+            max_bag_duration=max_bag_duration,
+            custom_data=custom,
+        ).open()
+    except BagError as e:
+        raise bag_error(str(e)) from None
+    try:
+        session = CliSession(use_sim_time=use_sim_time).__enter__()
+    except BaseException:
+        writer.discard()  # no graph to record from: leave nothing behind
+        raise
+    try:
+        recorder = _record(
+            session,
+            writer,
+            options,
+            node_name,
+            use_sim_time,
+            keyboard=not disable_keyboard_controls,
+        )
+    finally:
+        session.__exit__(None, None, None)
+    if recorder.error is not None:
+        raise bag_error(
+            f"{recorder.error}. Messages written before this are kept in "
+            f"'{uri}' (run `ros2lite bag reindex {uri}` if another tool "
+            f"cannot open it)"
+        )
+
+
+def _absolute(names: list[str], node_name: str) -> list[str]:
+    """Topic names as the recorder node resolves them (it lives in the root namespace)."""
+    from ros2lite.transport.keys import expand_topic_name
+
+    try:
+        return [expand_topic_name(n, node_name, "/") for n in names]
+    except ValueError as e:
+        raise bag_error(str(e)) from None
+
+
+def _custom_data(pairs: tuple[str, ...]) -> dict[str, str] | None:
+    out = {}
+    for pair in pairs:
+        key, sep, value = pair.partition("=")
+        if not sep or not key:
+            raise bag_error(f"Custom data '{pair}' is not KEY=VALUE")
+        out[key] = value
+    return out or None
+
+
+def _qos_overrides(path: str | None) -> dict[str, Any]:
+    if path is None:
+        return {}
+    from ros2lite.bag.metadata import MetadataError, parse_qos_overrides
+
+    try:
+        with open(path, encoding="utf-8") as f:
+            return parse_qos_overrides(f.read())
+    except OSError as e:
+        raise bag_error(f"Cannot read '{path}': {e.strerror or e}") from None
+    except MetadataError as e:
+        raise bag_error(str(e)) from None
+
+
+class _StopSignals:
+    """SIGINT and SIGTERM only ask the recorder to stop: a second Ctrl-C while the bag is
+    being finished must not cut the file short."""
+
+    def __init__(self) -> None:
+        self.event = threading.Event()
+        self._previous: dict[int, Any] = {}
+
+    def __enter__(self) -> _StopSignals:
+        if threading.current_thread() is threading.main_thread():
+            for sig in (signal.SIGINT, signal.SIGTERM):
+                self._previous[sig] = signal.signal(sig, self._handle)
+        return self
+
+    def _handle(self, _signum: int, _frame: Any) -> None:
+        self.event.set()
+
+    def __exit__(self, *exc: object) -> None:
+        for sig, handler in self._previous.items():
+            signal.signal(sig, handler)
+
+
+def _record(
+    session: CliSession,
+    writer: Any,
+    options: Any,
+    node_name: str,
+    use_sim_time: bool,
+    keyboard: bool,
+) -> Any:
+    """Run the recorder until a signal (or a write error); returns it, stopped."""
+    from ros2lite.bag.recorder import Recorder
+    from ros2lite.logging import get_logger
+
+    log = get_logger(node_name)
+    node = session.node(node_name)
+    recorder = Recorder(
+        node, writer, options, log=lambda m: log.info(m), warn=lambda m: log.warn(m)
+    )
+    executor = None
+    if use_sim_time:
+        from ros2lite.executors import SingleThreadedExecutor
+
+        executor = SingleThreadedExecutor(context=session.context)
+        executor.add_node(node)
+    status = _LiveStatus(recorder) if sys.stdout.isatty() and "NO_COLOR" not in os.environ else None
+    with _StopSignals() as stop:
+        keys = None
+        from . import keyboard as keys_module
+
+        if keyboard and keys_module.available():
+            from .keyboard import Keyboard
+
+            log.info("Press SPACE for pausing/resuming")
+            keys = Keyboard({" ": recorder.toggle_paused})
+        try:
+            if executor is not None:
+                log.info("use_sim_time set, waiting for /clock before starting recording...")
+                clock = node.get_clock()
+                while not clock.ros_time_is_active and not stop.event.is_set():
+                    executor.spin_once(0.1)
+            if stop.event.is_set():
+                return recorder
+            recorder.start()
+            while not stop.event.is_set() and recorder.running and session.context.ok():
+                if executor is not None:
+                    executor.spin_once(0.25)
+                else:
+                    stop.event.wait(0.25)
+                if status is not None:
+                    status.update()
+        finally:
+            if keys is not None:
+                keys.close()
+            if status is not None:
+                status.close()
+            from ros2lite.logging import get_logger
+
+            get_logger("rosbag2_cpp").info(
+                "Writing remaining messages from cache to the bag. It may take a while"
+            )
+            recorder.stop()
+            log.info("Recording stopped")
+    return recorder
+
+
+def _size(n: float) -> str:
+    for unit in ("B", "KiB", "MiB", "GiB"):
+        if n < 1024 or unit == "GiB":
+            return f"{n:.0f} {unit}" if unit == "B" else f"{n:.1f} {unit}"
+        n /= 1024
+    return f"{n:.1f} TiB"
+
+
+class _LiveStatus:
+    """Per-topic count, bytes and rate, redrawn in place on a terminal."""
+
+    def __init__(self, recorder: Any) -> None:
+        from rich.console import Console
+        from rich.live import Live
+
+        self.recorder = recorder
+        self._last: dict[str, tuple[float, int]] = {}
+        self._rates: dict[str, float] = {}
+        self._live = Live(console=Console(), auto_refresh=False, transient=True)
+        self._live.start()
+
+    def update(self) -> None:
+        from rich.table import Table
+
+        now = time.monotonic()
+        table = Table(
+            "topic",
+            "type",
+            "messages",
+            "size",
+            "rate",
+            title="Paused" if self.recorder.paused else "Recording",
+        )
+        for s in list(self.recorder.stats):
+            then, count = self._last.get(s.name, (now, s.received))
+            if now - then >= 1.0:
+                self._rates[s.name] = (s.received - count) / (now - then)
+                self._last[s.name] = (now, s.received)
+            else:
+                self._last.setdefault(s.name, (now, s.received))
+            table.add_row(
+                s.name,
+                s.type,
+                str(s.received),
+                _size(s.bytes),
+                f"{self._rates.get(s.name, 0.0):.1f} Hz",
+            )
+        self._live.update(table, refresh=True)
+
+    def close(self) -> None:
+        self._live.stop()

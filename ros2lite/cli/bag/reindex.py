@@ -1,0 +1,26 @@
+"""`bag reindex`: rebuild metadata.yaml (and unfinished MCAP files) from the bag's files."""
+
+from __future__ import annotations
+
+import click
+
+from .options import bag_error
+
+
+@click.command("reindex")
+@click.argument("bag_path", type=click.Path())
+@click.option(
+    "-s",
+    "--storage",
+    type=click.Choice(["mcap", "sqlite3"]),
+    help="Storage identifier (default: from the file extensions).",
+)
+def cli(bag_path: str, storage: str | None) -> None:
+    """Reconstruct metadata file for a bag."""
+    from ros2lite.bag.reindex import reindex
+    from ros2lite.bag.storage import BagError
+
+    try:
+        reindex(bag_path, storage)
+    except BagError as e:
+        raise bag_error(str(e)) from None

@@ -1,0 +1,44 @@
+"""How `daemon status` and `daemon stop` describe the sessions connected to the router."""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}" + ("" if n == 1 else "s")
+
+
+def table(sessions: list[Any]) -> list[str]:
+    """`Connected sessions: N`, then one line per session: mode, zid, its nodes."""
+    lines = [f"Connected sessions: {len(sessions)}"]
+    for s in sessions:
+        lines.append(f"  {s.whatami:<6}  {s.zid:<32}  {', '.join(s.nodes) or '(no nodes)'}")
+    return lines
+
+
+def consequences(sessions: list[Any]) -> list[str]:
+    """What stopping the router did to the sessions that were connected to it."""
+    if not sessions:
+        return []
+    peers = len([s for s in sessions if s.whatami == "peer"])
+    others = len(sessions) - peers
+    nodes = sorted(n for s in sessions for n in s.nodes)
+    were = "was" if len(sessions) == 1 else "were"
+    lines = [
+        f"{_plural(len(sessions), 'session')} {were} connected to it"
+        + (f" (nodes: {', '.join(nodes)})" if nodes else "")
+    ]
+    if peers:
+        keep, they = ("keeps", "it knows") if peers == 1 else ("keep", "they know")
+        lines.append(
+            f"{_plural(peers, 'peer session')} {keep} exchanging data with the peers "
+            f"{they} already; nodes started from now on are not discovered until "
+            "a router runs again ('ros2lite daemon start')"
+        )
+    if others:
+        lines.append(
+            f"{_plural(others, 'client session')} (CLI verbs, client-mode nodes) "
+            "lost the connection until a router runs again"
+        )
+    return lines

@@ -1,0 +1,49 @@
+"""`param describe`: type, description and constraints of declared parameters."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import click
+
+from ..common import CliSession
+from .common import complete_parameter_names, connect, node_options, type_name
+
+
+@click.command("describe")
+@node_options()
+@click.argument("parameter_names", nargs=-1, required=True, shell_complete=complete_parameter_names)
+def cli(
+    node_name: str,
+    parameter_names: tuple[str, ...],
+    include_hidden_nodes: bool,
+    timeout: int,
+    service_timeout: float | None,
+    no_daemon: bool,
+    use_sim_time: bool,
+) -> None:
+    """Show descriptive information about declared parameters."""
+    with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
+        remote = connect(session, node_name, include_hidden_nodes, timeout)
+        remote.service_timeout = service_timeout
+        descriptors = remote.describe_parameters(list(parameter_names))
+    # as ros2cli: a name the node does not know empties the reply, which prints nothing
+    for descriptor in descriptors:
+        click.echo("\n".join(render(descriptor)))
+
+
+def render(d: Any) -> list[str]:
+    lines = [f"Parameter name: {d.name}", f"  Type: {type_name(d.type)}"]
+    if d.description:
+        lines.append(f"  Description: {d.description}")
+    lines.append("  Constraints:")
+    if d.read_only:
+        lines.append("    Read only: true")
+    ranges = [*d.floating_point_range, *d.integer_range]
+    if ranges:
+        lines += [f"    Min value: {ranges[0].from_value}", f"    Max value: {ranges[0].to_value}"]
+        if ranges[0].step:
+            lines.append(f"    Step: {ranges[0].step}")
+    if d.additional_constraints:
+        lines.append(f"    Additional constraints: {d.additional_constraints}")
+    return lines

@@ -1,0 +1,123 @@
+"""How a long-lived node gets its session: start the daemon on demand, then open a peer.
+
+A node is started from a tutorial, a launch file or a service manager, often before any CLI
+verb has started the daemon, so a missing router must not be fatal.  In order:
+
+1. If no router answers at the node's router endpoint, that endpoint is on this host and the
+   user did not opt out, start the ros2lite daemon there, as the CLI's graph verbs do.
+   Opting out: ``ROS2LITE_NO_DAEMON=1``, or setting ``ZENOH_ROUTER_CHECK_ATTEMPTS`` (whoever
+   sets it manages the router, as with rmw_zenoh).  Nothing is started for an endpoint that
+   ``ZENOH_SESSION_CONFIG_URI``/``ZENOH_CONFIG_OVERRIDE`` replaced: that router is the user's.
+2. Open the session in the node mode (peer, see :mod:`ros2lite.transport.config`).
+3. If still no router is connected, do rmw_zenoh's check (``ZENOH_ROUTER_CHECK_ATTEMPTS``:
+   unset 1 check, N checks 1 s apart, 0 until one answers, negative none), log one line and
+   carry on: the peer keeps retrying and joins the graph as soon as a router runs.
+
+A session forced into client mode (a remote router, or ``mode="client"`` in an override)
+cannot open without its router and fails with :class:`RouterUnavailableError` instead.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from typing import Any
+
+from ros2lite.transport.config import (
+    ROUTER_CHECK_ENV,
+    check_router,
+    configured_mode,
+    is_local_endpoint,
+    node_session_mode,
+    open_session,
+    router_check_attempts,
+    router_endpoint,
+    session_config,
+    session_endpoint,
+)
+
+__all__ = ["NO_DAEMON_ENV", "autostart_enabled", "open_node_session"]
+
+NO_DAEMON_ENV = "ROS2LITE_NO_DAEMON"
+LOGGER_NAME = "ros2lite"
+
+
+def _truthy(value: str) -> bool:
+    return value.strip().lower() not in ("", "0", "false", "no", "off")
+
+
+def autostart_enabled(env: Mapping[str, str] | None = None) -> bool:
+    """May a node start the daemon?  Not with ``ROS2LITE_NO_DAEMON`` set or when the user
+    manages the router the rmw_zenoh way (``ZENOH_ROUTER_CHECK_ATTEMPTS`` set)."""
+    environ = os.environ if env is None else env
+    return (
+        not _truthy(environ.get(NO_DAEMON_ENV, ""))
+        and not environ.get(ROUTER_CHECK_ENV, "").strip()
+    )
+
+
+def _log(severity: str, message: str) -> None:
+    from ros2lite.logging import get_logger
+
+    logger = get_logger(LOGGER_NAME)
+    (logger.warn if severity == "warn" else logger.info)(message)
+
+
+def _autostart(router: str | None) -> None:
+    """Start our daemon at the node's endpoint when nothing answers there (see module doc)."""
+    from ros2lite.daemon.probe import router_answers
+
+    endpoint = router_endpoint(router)
+    if (
+        session_endpoint(router) != endpoint
+        or not is_local_endpoint(endpoint)
+        or router_answers(endpoint)
+    ):
+        return
+    from ros2lite.daemon.router import DaemonError, start
+
+    try:
+        result = start(endpoint)
+    except DaemonError as exc:
+        _log("warn", f"could not start the ros2lite daemon: {exc}")
+        return
+    if result.started:
+        _log(
+            "info",
+            f"no Zenoh router answered at {endpoint}: started the ros2lite daemon "
+            f"(pid {result.pid}); set {NO_DAEMON_ENV}=1 to stop nodes doing this",
+        )
+
+
+def open_node_session(router: str | None = None) -> Any:
+    """The session of a long-lived node (module doc); raises ConfigError/SessionError."""
+    if autostart_enabled():
+        _autostart(router)
+    mode = node_session_mode(router)
+    attempts = router_check_attempts()
+    if configured_mode(session_config(router, mode=mode)) != "peer":
+        return open_session(router, mode=mode)
+    session = open_session(router, mode=mode, require_router=False)
+    endpoint = session_endpoint(router)
+
+    def waiting(n: int) -> None:
+        if n == 1 and attempts != 1:
+            more = "until one does" if attempts == 0 else f"for up to {attempts} s"
+            _log(
+                "warn",
+                f"no Zenoh router answers at {endpoint}; waiting {more} "
+                "(start one with 'ros2lite daemon start')",
+            )
+
+    try:
+        found = check_router(session, attempts, waiting)
+    except BaseException:  # Ctrl-C while waiting: no zenoh session may outlive the interpreter
+        session.close()
+        raise
+    if not found:
+        _log(
+            "warn",
+            f"no Zenoh router answers at {endpoint}: running without one; this node "
+            "joins the graph as soon as a router runs ('ros2lite daemon start')",
+        )
+    return session

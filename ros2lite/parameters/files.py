@@ -1,0 +1,133 @@
+"""ROS 2 parameter YAML files: which entries apply to a node, and the `param dump` layout.
+
+A file maps node names to ``ros__parameters``. Node names follow rcl's rules: a leading ``/``
+is implied, namespaces may be written as nested keys (``ns: {node: {ros__parameters: …}}``),
+``/*`` stands for exactly one name segment and ``/**`` for any number of them (so ``/**``
+alone matches every node). Nested parameter maps become dotted names (``a: {b: 1}`` is
+``a.b``). Later entries win over earlier ones, in file order.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any
+
+from ros2lite.parameter import PARAMETER_SEPARATOR_STRING
+
+PARAMS_KEY = "ros__parameters"
+WILDCARD = "/**"
+
+
+class ParamsFileError(ValueError):
+    """The file cannot be read or is not a ROS 2 parameters file; the message says why."""
+
+
+def read_params_file(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
+    """Every (node name, flattened parameters) entry of the file, in file order."""
+    import yaml
+
+    path = Path(path)
+    try:
+        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, yaml.YAMLError) as e:
+        raise ParamsFileError(f"Couldn't read parameters file '{path}': {e}") from None
+    if data is None:
+        return []
+    if not isinstance(data, dict):
+        raise ParamsFileError(f"Parameters file '{path}' must map node names to parameters")
+    entries: list[tuple[str, dict[str, Any]]] = []
+    _collect(path, data, "", entries)
+    return entries
+
+
+def _collect(
+    path: Path, tree: dict[Any, Any], prefix: str, out: list[tuple[str, dict[str, Any]]]
+) -> None:
+    for key, section in tree.items():
+        name = f"{prefix}/{str(key).strip('/')}" if prefix else _absolute(str(key))
+        if not isinstance(section, dict):
+            raise ParamsFileError(f"Parameters file '{path}': '{name}' needs '{PARAMS_KEY}'")
+        if PARAMS_KEY in section:
+            params = section[PARAMS_KEY]
+            if not isinstance(params, dict):
+                raise ParamsFileError(
+                    f"Parameters file '{path}': '{name}' needs '{PARAMS_KEY}' to be a map"
+                )
+            out.append((name, flatten(params)))
+            rest = {k: v for k, v in section.items() if k != PARAMS_KEY}
+        else:
+            rest = section  # a namespace level
+        if rest:
+            _collect(path, rest, name, out)
+
+
+def _absolute(name: str) -> str:
+    return name if name.startswith("/") else "/" + name
+
+
+def flatten(tree: dict[Any, Any], prefix: str = "") -> dict[str, Any]:
+    """Nested maps as dotted names: {'a': {'b': 1}} → {'a.b': 1}."""
+    out: dict[str, Any] = {}
+    for key, value in tree.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict):
+            out.update(flatten(value, name + PARAMETER_SEPARATOR_STRING))
+        else:
+            out[name] = value
+    return out
+
+
+def node_pattern(name: str) -> re.Pattern[str]:
+    """rcl's matching: '/*' is one name segment, '/**' any number of them, the rest literal."""
+    parts = re.split(r"(/\*\*|/\*)", _absolute(name))
+    regex = "".join(
+        "(/[^/]+)*" if p == "/**" else "(/[^/]+)" if p == "/*" else re.escape(p) for p in parts
+    )
+    return re.compile(regex)
+
+
+def matches(pattern: str, node_fqn: str) -> bool:
+    return node_pattern(pattern).fullmatch(node_fqn) is not None
+
+
+def values_for_node(
+    path: str | Path, node_fqn: str, *, use_wildcard: bool = True
+) -> dict[str, Any]:
+    """The parameters this file gives the node (`use_wildcard=False` skips pattern entries)."""
+    values: dict[str, Any] = {}
+    for name, params in read_params_file(path):
+        if "*" in name and not use_wildcard:
+            continue
+        if matches(name, node_fqn):
+            values.update(params)
+    return values
+
+
+def dump_tree(values: dict[str, Any]) -> dict[str, Any]:
+    """Dotted names back into nested maps (what `param dump` writes)."""
+    tree: dict[str, Any] = {}
+    for name in sorted(values):
+        node = tree
+        *parents, leaf = name.split(PARAMETER_SEPARATOR_STRING)
+        for i, part in enumerate(parents):
+            child = node.setdefault(part, {})
+            if not isinstance(child, dict):  # 'a' and 'a.b' both exist: keep the rest flat
+                leaf = PARAMETER_SEPARATOR_STRING.join([*parents[i:], leaf])
+                break
+            node = child
+        node[leaf] = values[name]
+    return tree
+
+
+def dump_yaml(node_fqn: str, values: dict[str, Any]) -> str:
+    """A parameters file for one node, as `ros2 param dump` prints it (keys sorted)."""
+    import yaml
+
+    text: str = yaml.dump({node_fqn: {PARAMS_KEY: dump_tree(values)}}, default_flow_style=False)
+    return text
+
+
+def dump_file_name(node_fqn: str) -> str:
+    """`/ns/node` → `ns__node.yaml`, the name `param dump --output-dir` writes."""
+    return node_fqn.lstrip("/").replace("/", "__") + ".yaml"

@@ -1,0 +1,190 @@
+"""The parameter half of `Node`'s API (rclpy's method names), kept out of node.py.
+
+`Node` inherits `ParameterMixin` and calls `_init_parameters` once its name, clock and
+publishers work. The rules live in `ParameterStore`; this class wires the store to the node:
+overrides from `--ros-args`, /parameter_events, the parameter services and `use_sim_time`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from ros2lite.parameter import Parameter
+from ros2lite.parameters.store import (
+    OnSetCallback,
+    ParameterStore,
+    PostSetCallback,
+    PreSetCallback,
+    result,
+)
+
+USE_SIM_TIME = "use_sim_time"
+
+
+class ParameterMixin:
+    """Parameters of a node: declare, get, set, describe, callbacks (as rclpy.node.Node)."""
+
+    _parameter_store: ParameterStore
+
+    def _init_parameters(
+        self,
+        parameter_overrides: Sequence[Parameter] | None,
+        allow_undeclared_parameters: bool,
+        automatically_declare_parameters_from_overrides: bool,
+        start_parameter_services: bool = True,
+    ) -> None:
+        from ros2lite.parameters.events import ParameterEventPublisher
+
+        node: Any = self
+        overrides = _override_parameters(
+            node._args.parameter_overrides(node.get_fully_qualified_name(), node.get_name())
+        )
+        overrides.update({p.name: p for p in parameter_overrides or []})
+        self._parameter_store = ParameterStore(
+            overrides=overrides,
+            allow_undeclared=allow_undeclared_parameters,
+            emit=ParameterEventPublisher(node),
+        )
+        if automatically_declare_parameters_from_overrides:
+            self.declare_parameters(
+                "",
+                [(name, p.value, _descriptor()) for name, p in overrides.items()],
+                ignore_override=True,
+            )
+        # use_sim_time, as rclpy's TimeSource handles it
+        if not self.has_parameter(USE_SIM_TIME):
+            self.declare_parameter(USE_SIM_TIME, False)
+        self._apply_use_sim_time(self._parameter_store.get_parameter_or(USE_SIM_TIME))
+        self._parameter_store.add_on_set_parameters_callback(_check_use_sim_time)
+        self._parameter_store.add_post_set_parameters_callback(self._on_use_sim_time_set)
+        if start_parameter_services:
+            self._start_parameter_services()
+
+    def _start_parameter_services(self) -> None:
+        from ros2lite.parameters.services import ParameterService
+
+        self._parameter_service = ParameterService(self)
+
+    def _on_use_sim_time_set(self, parameters: list[Parameter]) -> None:
+        for p in parameters:
+            if p.name == USE_SIM_TIME:
+                self._apply_use_sim_time(p)
+
+    def _apply_use_sim_time(self, param: Parameter) -> None:
+        node: Any = self
+        if param.type_ != Parameter.Type.BOOL:
+            return
+        if param.value:
+            node._enable_sim_time()
+        else:
+            node.get_clock()._enable_sim_time(False)
+
+    # -- declare -----------------------------------------------------------------------------
+    def declare_parameter(
+        self, name: str, value: Any = None, descriptor: Any = None, ignore_override: bool = False
+    ) -> Parameter:
+        """Declare one parameter; returns it with its effective value (an override wins)."""
+        entry: tuple[Any, ...] = (
+            (name,)
+            if value is None and descriptor is None
+            else (name, value, descriptor if descriptor is not None else _descriptor())
+        )
+        return self._parameter_store.declare_parameters("", [entry], ignore_override)[0]
+
+    def declare_parameters(
+        self, namespace: str, parameters: Sequence[tuple[Any, ...]], ignore_override: bool = False
+    ) -> list[Parameter]:
+        return self._parameter_store.declare_parameters(namespace, parameters, ignore_override)
+
+    def undeclare_parameter(self, name: str) -> None:
+        self._parameter_store.undeclare_parameter(name)
+
+    # -- read --------------------------------------------------------------------------------
+    def has_parameter(self, name: str) -> bool:
+        return self._parameter_store.has_parameter(name)
+
+    def get_parameter(self, name: str) -> Parameter:
+        return self._parameter_store.get_parameter(name)
+
+    def get_parameters(self, names: list[str]) -> list[Parameter]:
+        return self._parameter_store.get_parameters(names)
+
+    def get_parameter_or(self, name: str, alternative_value: Parameter | None = None) -> Parameter:
+        return self._parameter_store.get_parameter_or(name, alternative_value)
+
+    def get_parameters_by_prefix(self, prefix: str) -> dict[str, Parameter]:
+        return self._parameter_store.get_parameters_by_prefix(prefix)
+
+    def get_parameter_type(self, name: str) -> Parameter.Type:
+        return self._parameter_store.get_parameter_type(name)
+
+    def get_parameter_types(self, names: list[str]) -> list[Parameter.Type]:
+        if not all(isinstance(n, str) for n in names):
+            raise TypeError("All names must be instances of type str")
+        return [self._parameter_store.get_parameter_type(n) for n in names]
+
+    def describe_parameter(self, name: str) -> Any:
+        return self._parameter_store.describe_parameter(name)
+
+    def describe_parameters(self, names: list[str]) -> list[Any]:
+        return [self._parameter_store.describe_parameter(n) for n in names]
+
+    def list_parameters(self, prefixes: list[str], depth: int) -> Any:
+        return self._parameter_store.list_parameters(prefixes, depth)
+
+    # -- write -------------------------------------------------------------------------------
+    def set_parameters(self, parameter_list: Sequence[Parameter]) -> list[Any]:
+        """One SetParametersResult per parameter, each set on its own."""
+        return self._parameter_store.set_parameters(parameter_list)
+
+    def set_parameters_atomically(self, parameter_list: Sequence[Parameter]) -> Any:
+        return self._parameter_store.set_parameters_atomically(parameter_list)
+
+    def set_descriptor(self, name: str, descriptor: Any, alternative_value: Any = None) -> Any:
+        return self._parameter_store.set_descriptor(name, descriptor, alternative_value)
+
+    # -- callbacks ---------------------------------------------------------------------------
+    def add_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
+        self._parameter_store.add_pre_set_parameters_callback(callback)
+
+    def add_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
+        self._parameter_store.add_on_set_parameters_callback(callback)
+
+    def add_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
+        self._parameter_store.add_post_set_parameters_callback(callback)
+
+    def remove_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
+        self._parameter_store.remove_pre_set_parameters_callback(callback)
+
+    def remove_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
+        self._parameter_store.remove_on_set_parameters_callback(callback)
+
+    def remove_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
+        self._parameter_store.remove_post_set_parameters_callback(callback)
+
+
+def _descriptor() -> Any:
+    from ros2lite.parameters.store import descriptor
+
+    return descriptor()
+
+
+def _check_use_sim_time(parameters: list[Parameter]) -> Any:
+    for p in parameters:
+        if p.name == USE_SIM_TIME and p.type_ not in (Parameter.Type.BOOL, Parameter.Type.NOT_SET):
+            return result(False, f"{USE_SIM_TIME} parameter set to something besides a bool")
+    return result(True)
+
+
+def _override_parameters(values: dict[str, Any]) -> dict[str, Parameter]:
+    """`-p`/params-file values as Parameters; a value no parameter type can hold is an error."""
+    from ros2lite.arguments import RosArgsError
+
+    out: dict[str, Parameter] = {}
+    for name, value in values.items():
+        try:
+            out[name] = Parameter(name, value=value)
+        except (TypeError, ValueError) as e:
+            raise RosArgsError(f"Invalid value for parameter override '{name}': {e}") from None
+    return out

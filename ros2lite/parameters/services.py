@@ -1,0 +1,98 @@
+"""The six standard parameter services every node offers under `~/`, answered as rclpy does:
+an unknown name empties the whole reply (get/describe/types); an undeclared parameter in a set
+is a failed result whose reason is the exception's message."""
+
+from __future__ import annotations
+
+import contextlib
+from typing import Any
+
+from ros2lite.exceptions import ParameterNotDeclaredException, ParameterUninitializedException
+from ros2lite.parameter import Parameter
+from ros2lite.parameters.store import result
+
+SERVICES = (
+    "describe_parameters",
+    "get_parameters",
+    "get_parameter_types",
+    "list_parameters",
+    "set_parameters",
+    "set_parameters_atomically",
+)
+TYPES = {
+    "describe_parameters": "DescribeParameters",
+    "get_parameters": "GetParameters",
+    "get_parameter_types": "GetParameterTypes",
+    "list_parameters": "ListParameters",
+    "set_parameters": "SetParameters",
+    "set_parameters_atomically": "SetParametersAtomically",
+}
+
+
+class ParameterService:
+    """Creates the services on `node` (names relative to the node: `<node>/<service>`)."""
+
+    def __init__(self, node: Any) -> None:
+        from ros2lite.qos import qos_profile_parameters
+
+        self._node = node
+        self.services = [
+            node.create_service(
+                f"rcl_interfaces/srv/{TYPES[name]}",
+                f"{node.get_name()}/{name}",
+                getattr(self, f"_{name}"),
+                qos_profile=qos_profile_parameters,
+            )
+            for name in SERVICES
+        ]
+
+    def _describe_parameters(self, request: Any, response: Any) -> Any:
+        try:
+            response.descriptors = [self._node.describe_parameter(n) for n in request.names]
+        except ParameterNotDeclaredException:
+            response.descriptors = []
+        return response
+
+    def _get_parameters(self, request: Any, response: Any) -> Any:
+        try:
+            response.values = [
+                self._node.get_parameter(n).get_parameter_value() for n in request.names
+            ]
+        except (ParameterNotDeclaredException, ParameterUninitializedException):
+            response.values = []
+        return response
+
+    def _get_parameter_types(self, request: Any, response: Any) -> Any:
+        try:
+            response.types = [self._node.get_parameter_type(n).value for n in request.names]
+        except ParameterNotDeclaredException:
+            response.types = []
+        return response
+
+    def _list_parameters(self, request: Any, response: Any) -> Any:
+        # a bad request gets the default (empty) result
+        with contextlib.suppress(TypeError, ValueError):
+            response.result = self._node.list_parameters(list(request.prefixes), int(request.depth))
+        return response
+
+    def _set_parameters(self, request: Any, response: Any) -> Any:
+        response.results = [self._set([p]) for p in request.parameters]
+        return response
+
+    def _set_parameters_atomically(self, request: Any, response: Any) -> Any:
+        response.result = self._set(list(request.parameters))
+        return response
+
+    def _set(self, messages: list[Any]) -> Any:
+        """Set atomically; undeclared names and malformed values are failed results."""
+        try:
+            params = [Parameter.from_parameter_msg(m) for m in messages]
+            outcome = self._node.set_parameters_atomically(params)
+        except (ParameterNotDeclaredException, TypeError, ValueError) as e:
+            return result(False, str(e))
+        return outcome
+
+    def destroy(self) -> None:
+        for service in self.services:
+            self._node.destroy_service(service)
+        self.services.clear()

@@ -1,0 +1,141 @@
+"""Publishers, listeners and recorder processes for the bag verbs, over the session router."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import threading
+import uuid
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from ros2lite.executors import SingleThreadedExecutor
+from ros2lite.node import Node
+from tests.spinning import wait_until
+
+
+@pytest.fixture
+def topic() -> str:
+    """A topic name no other test uses."""
+    return f"/bag_{uuid.uuid4().hex[:10]}"
+
+
+def subscribed(ctx: Any, topic: str, count: int = 1) -> bool:
+    """True once the graph shows `count` subscriptions on the topic."""
+    from ros2lite.graph import snapshot
+
+    return (
+        sum(
+            1
+            for e in snapshot(ctx.session, ctx.domain_id)
+            if e.kind.value == "MS" and e.topic_name == topic
+        )
+        >= count
+    )
+
+
+class Recording:
+    """A `bag record` process writing into `path`."""
+
+    def __init__(self, path: Path, *args: str, preexec: Callable[[], Any] | None = None) -> None:
+        self.path = path
+        self.proc = subprocess.Popen(
+            [sys.executable, "-m", "ros2lite", "bag", "record", "-o", str(path), *args],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            preexec_fn=preexec,
+        )
+
+    def finish(self, sig: int = signal.SIGINT, timeout: float = 20) -> tuple[int, str, str]:
+        if self.proc.poll() is None:
+            self.proc.send_signal(sig)
+        out, err = self.proc.communicate(timeout=timeout)
+        return self.proc.returncode, out, err
+
+
+@pytest.fixture
+def recording(ros_router: str) -> Iterator[Callable[..., Recording]]:
+    made: list[Recording] = []
+
+    def start(path: Path, *args: str, **kw: Any) -> Recording:
+        r = Recording(path, *args, **kw)
+        made.append(r)
+        return r
+
+    yield start
+    for r in made:
+        if r.proc.poll() is None:
+            r.proc.kill()
+            r.proc.communicate()
+
+
+class Listener:
+    """Collects a topic's messages (or raw bytes) on an executor thread of the test context."""
+
+    def __init__(self, ctx: Any, topic: str, type_name: Any, qos: Any, raw: bool) -> None:
+        self.node = Node(f"bag_listener_{uuid.uuid4().hex[:6]}", context=ctx, enable_rosout=False)
+        self.messages: list[Any] = []
+        self.arrivals: list[int] = []  # raw only: when each sample arrived (ns, wall clock)
+
+        def keep(data: bytes, info: Any) -> None:
+            self.arrivals.append(info.received_timestamp)
+            self.messages.append(data)
+
+        if raw:
+            self.node.create_subscription(type_name, topic, keep, qos, raw=True)
+        else:
+            self.node.create_subscription(type_name, topic, self.messages.append, qos)
+        self._executor = SingleThreadedExecutor(context=ctx)
+        self._executor.add_node(self.node)
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._spin, daemon=True)
+        self._thread.start()
+
+    def _spin(self) -> None:
+        while not self._stop.is_set():
+            self._executor.spin_once(0.05)
+
+    def stop(self) -> None:
+        self._stop.set()
+        self._thread.join(5)
+        self.node.destroy_node()
+
+
+@pytest.fixture
+def listener(ros_context: Any) -> Iterator[Callable[..., Listener]]:
+    made: list[Listener] = []
+
+    def start(topic: str, type_name: Any, qos: Any = 1000, raw: bool = False) -> Listener:
+        lst = Listener(ros_context, topic, type_name, qos, raw)
+        made.append(lst)
+        return lst
+
+    yield start
+    for lst in made:
+        lst.stop()
+
+
+@pytest.fixture
+def node(ros_context: Any) -> Iterator[Node]:
+    n = Node(f"bag_test_{uuid.uuid4().hex[:6]}", context=ros_context, enable_rosout=False)
+    yield n
+    n.destroy_node()
+
+
+def play(*args: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "ros2lite", "bag", "play", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env={**os.environ},
+    )
+
+
+__all__ = ["Listener", "Recording", "play", "subscribed", "wait_until"]
