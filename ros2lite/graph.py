@@ -35,8 +35,9 @@ class TopicEndpointInfo:
 def snapshot(session: Any, domain_id: int, timeout: float = 5.0) -> list[Entity]:
     """All entities in the domain, from one complete liveliness query."""
     from ros2lite.transport.session import liveliness_keys
-    return [e for e in map(parse_token, liveliness_keys(session, domain_id, timeout))
-            if e is not None]
+    # a peer session may hear a token twice (from its router and from the peer itself)
+    keys = dict.fromkeys(liveliness_keys(session, domain_id, timeout))
+    return [e for e in map(parse_token, keys) if e is not None]
 
 
 class GraphCache:

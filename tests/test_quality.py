@@ -28,3 +28,12 @@ def test_only_cli_imports_click_or_rich() -> None:
                  if 'cli' not in p.relative_to(ROOT / 'ros2lite').parts[:1]
                  and pattern.search(p.read_text())]
     assert offenders == []
+
+
+def test_only_transport_imports_zenoh() -> None:
+    """One seam to Zenoh: every declaration, put, query and session lives in transport/."""
+    pattern = re.compile(r'^\s*(import|from)\s+zenoh\b', re.MULTILINE)
+    offenders = [str(p.relative_to(ROOT)) for p in (ROOT / 'ros2lite').rglob('*.py')
+                 if p.relative_to(ROOT / 'ros2lite').parts[0] != 'transport'
+                 and pattern.search(p.read_text())]
+    assert offenders == []

@@ -82,6 +82,7 @@ def run_child(cmd: list[str]) -> int:
     otherwise end this process early, and the terminal would hang up on the child."""
     proc: subprocess.Popen[bytes] | None = None
     interrupts = 0
+    terminated = False
 
     def forward_int(_signum: int, _frame: Any) -> None:
         nonlocal interrupts
@@ -91,6 +92,8 @@ def run_child(cmd: list[str]) -> int:
             proc.send_signal(signal.SIGINT)
 
     def forward_term(signum: int, _frame: Any) -> None:
+        nonlocal terminated
+        terminated = True
         if proc is not None and proc.poll() is None:
             proc.send_signal(signum)
 
@@ -101,8 +104,12 @@ def run_child(cmd: list[str]) -> int:
             proc = subprocess.Popen(cmd)
         except OSError as e:
             raise CliError(f'{cmd[0]}: {e.strerror or e}') from None
-        if interrupts and not _terminal_signals_child():
-            proc.send_signal(signal.SIGINT)   # came while the child was starting
+        # signals that came while the child was starting (it may already run and be seen
+        # running, so a SIGTERM then is no rarer than one later)
+        if terminated:
+            proc.send_signal(signal.SIGTERM)
+        elif interrupts and not _terminal_signals_child():
+            proc.send_signal(signal.SIGINT)
         return proc.wait()
     finally:
         signal.signal(signal.SIGINT, old_int)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import re
 import socket
 import time
@@ -44,21 +43,8 @@ def router_answers(endpoint: str, timeout: float = 0.5) -> bool:
 
 
 def _zenoh_probe(endpoint: str, timeout: float) -> bool:
-    import zenoh
-
-    config = zenoh.Config()
-    config.insert_json5("mode", '"client"')
-    config.insert_json5("connect/endpoints", json.dumps([endpoint]))
-    config.insert_json5("connect/timeout_ms", str(max(1, int(timeout * 1000))))
-    config.insert_json5("scouting/multicast/enabled", "false")
-    try:
-        session = zenoh.open(config)
-    except zenoh.ZError:
-        return False
-    try:
-        return bool(session.info.routers_zid())
-    finally:
-        session.close()
+    from ros2lite.transport.config import router_reachable
+    return router_reachable(endpoint, timeout)
 
 
 def wait_answers(endpoint: str, timeout: float) -> bool:

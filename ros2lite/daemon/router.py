@@ -33,7 +33,6 @@ from ros2lite.transport.config import (
     open_session,
     router_config,
     router_endpoint,
-    zerror_message,
 )
 
 if TYPE_CHECKING:
@@ -269,15 +268,13 @@ def serve(
     signal.pthread_sigmask(signal.SIG_BLOCK, stop_signals)
     signal.signal(signal.SIGHUP, signal.SIG_IGN)
     tell(f"pid {os.getpid()}")
-    import zenoh
+    from ros2lite.transport.config import open_router
 
-    zenoh.init_log_from_env_or("error")
     endpoint = router_endpoint(router)
     try:
-        config = router_config(endpoint, listen=list(listen) or None, connect=list(connect))
-        session = zenoh.open(config)
+        session = open_router(endpoint, list(listen) or None, connect)
     except Exception as exc:
-        msg = zerror_message(exc) if isinstance(exc, zenoh.ZError) else str(exc)
+        msg = str(exc)
         print(f"ros2lite daemon: {msg}", file=sys.stderr, flush=True)
         tell(f"error {msg}")
         return 1

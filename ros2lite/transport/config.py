@@ -458,3 +458,33 @@ def check_router(
             on_miss(n)
         if attempts and n >= attempts:
             return False
+
+
+def open_router(
+    endpoint: str, listen: Sequence[str] | None = None, connect: Sequence[str] = ()
+) -> zenoh.Session:
+    """A router session (the daemon's), logging zenoh's errors only; a refusal (port taken,
+    bad endpoint) is a SessionError with zenoh's message in one line."""
+    zenoh.init_log_from_env_or("error")
+    try:
+        return zenoh.open(router_config(endpoint, listen=listen, connect=list(connect)))
+    except zenoh.ZError as exc:
+        raise SessionError(zerror_message(exc)) from None
+
+
+def router_reachable(endpoint: str, timeout: float) -> bool:
+    """Whether a client session to `endpoint` finds a router there (for protocols a plain
+    socket connect cannot probe)."""
+    config = zenoh.Config()
+    config.insert_json5("mode", '"client"')
+    config.insert_json5("connect/endpoints", json.dumps([endpoint]))
+    config.insert_json5("connect/timeout_ms", str(max(1, int(timeout * 1000))))
+    config.insert_json5("scouting/multicast/enabled", "false")
+    try:
+        session = zenoh.open(config)
+    except zenoh.ZError:
+        return False
+    try:
+        return bool(session.info.routers_zid())
+    finally:
+        session.close()

@@ -38,7 +38,10 @@ def test_delay_of_stamped_messages(processes: Any, talker: Any, topic: str) -> N
     blocks = BLOCK.findall(delay.text)
     assert BLOCK.sub('', delay.text).replace('no new messages\n', '') == ''
     for mean, low, high, _std, window in blocks:
-        assert 0.25 <= float(low) <= float(mean) <= float(high) < 0.3, delay.text
+        # stamps are 0.25 s old when sent; what comes on top is transport and scheduling
+        # latency, which a loaded machine can stretch to tens of milliseconds, so the upper
+        # bound only rules out a wrong computation (seconds vs nanoseconds, a sign)
+        assert 0.25 <= float(low) <= float(mean) <= float(high) < 1.25, delay.text
         assert int(window) >= 30
 
 
