@@ -246,6 +246,9 @@ class Node(ParameterMixin):
 
     def destroy_node(self) -> None:
         from ros2lite.transport.session import undeclare_quietly
+        # logging still works once the node is gone (e.g. from a goal thread finishing
+        # during shutdown): it just no longer reaches /rosout
+        self._rosout = None
         entities: list[Any] = [*self.subscriptions, *self.publishers, *self.services,
                                *self.clients]
         for entity in entities:

@@ -157,3 +157,10 @@ def test_node_token_lives_with_the_node(ros_context: Any) -> None:
     while present():
         assert time.monotonic() < deadline, 'node token outlived destroy_node()'
         time.sleep(0.05)
+
+
+def test_logging_after_destroy_node(ros_context: Any, capsys: Any) -> None:
+    node = Node('logs_late', context=ros_context)
+    node.destroy_node()
+    node.get_logger().info('still heard')   # on the console; /rosout is gone with the node
+    assert 'still heard' in capsys.readouterr().err

@@ -305,8 +305,15 @@ class ActionServer(Executable):
             self._result_service.send_response(response, header)
             return
         # answered now if the goal is over, or the moment it ends
-        future.add_done_callback(
-            lambda f: self._result_service.send_response(f.result(), header))
+        future.add_done_callback(lambda f: self._send_result(f.result(), header))
+
+    def _send_result(self, response: Any, header: Any) -> None:
+        if self._destroyed:
+            return   # the service is gone, and with it the request
+        try:
+            self._result_service.send_response(response, header)
+        except Exception as e:   # e.g. the session closed meanwhile
+            self._logger.debug(f'could not send a result: {e}')
 
     # -- goal bookkeeping ---------------------------------------------------------------------
     def _goal_status(self, key: bytes) -> int:

@@ -13,7 +13,8 @@ from ..common import CliSession, strategy_options
 @click.argument('action_type', shell_complete=completion.action_types)
 @click.option('-c', '--count-actions', is_flag=True,
               help='Only display the number of actions discovered')
-@click.option('-a', '--include-hidden-actions', is_flag=True,
+@click.option('--include-hidden-actions', '-a', '--all', 'include_hidden_actions',
+              is_flag=True,
               help="Also match hidden actions (a name part starts with '_')")
 def cli(action_type: str, count_actions: bool, include_hidden_actions: bool, no_daemon: bool,
         use_sim_time: bool) -> None:

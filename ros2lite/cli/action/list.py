@@ -12,7 +12,8 @@ from ..common import CliSession, strategy_options
 @click.option('-t', '--show-types', is_flag=True, help='Additionally show the action type')
 @click.option('-c', '--count-actions', is_flag=True,
               help='Only display the number of actions discovered')
-@click.option('-a', '--include-hidden-actions', is_flag=True,
+@click.option('--include-hidden-actions', '-a', '--all', 'include_hidden_actions',
+              is_flag=True,
               help="Also list hidden actions (a name part starts with '_')")
 def cli(show_types: bool, count_actions: bool, include_hidden_actions: bool, no_daemon: bool,
         use_sim_time: bool) -> None:

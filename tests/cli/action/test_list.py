@@ -21,7 +21,7 @@ def test_list(run: Callable[..., Any], alien_server: AlienFibonacciServer,
         assert run('action', 'list', '-t').out == \
             '/alien_fib [example_interfaces/action/Fibonacci]\n'
         assert run('action', 'list', '-c').out == '1\n'
-        assert run('action', 'list', '-a', '--count-actions').out == '2\n'
+        assert run('action', 'list', '--all', '--count-actions').out == '2\n'
         assert run('action', 'list', '--include-hidden-actions').out == \
             '/alien_fib\n/ns/_hidden_fib\n'
     finally:
