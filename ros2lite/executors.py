@@ -337,8 +337,15 @@ class SingleThreadedExecutor(Executor):
     """Runs every callback on the thread that spins it."""
 
 
+# queued by a worker whose callback raised, so the spinning thread raises it promptly
+_WORKER_FAILED = object()
+
+
 class MultiThreadedExecutor(Executor):
-    """Runs callbacks on a pool of `num_threads` threads, as far as callback groups allow."""
+    """Runs callbacks on a pool of `num_threads` threads, as far as callback groups allow.
+
+    An exception in a callback is raised from the spinning call (this one or the next), as
+    rclpy does."""
 
     def __init__(self, num_threads: int | None = None, *, context: Context | None = None
                  ) -> None:
@@ -379,6 +386,7 @@ class MultiThreadedExecutor(Executor):
                 fn(*args)
             except BaseException as e:
                 self._errors.put(e)
+                self._enqueue(_WORKER_FAILED)
             finally:
                 self._workers.release()
                 self.wake()
@@ -392,6 +400,9 @@ class MultiThreadedExecutor(Executor):
         self._submit(self._run_entity, entity, group, batch, stop)
 
     def _dispatch(self, item: Any, batch: bool, stop: Callable[[], bool] | None) -> None:
+        if item is _WORKER_FAILED:
+            self._raise_errors()
+            return
         if type(item) is Task:
             self._submit(self._run_task, item)
             return
