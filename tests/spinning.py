@@ -56,3 +56,42 @@ def wait_matched(pub: Any, sub_count: int = 1, timeout: float = 5.0) -> None:
         if time.monotonic() > deadline:
             pytest.fail('subscription never appeared in the graph')
         time.sleep(0.02)
+
+
+class Listener:
+    """Collects a topic's messages (or, raw, its CDR bytes and arrival times) on an
+    executor thread of the test's context."""
+
+    def __init__(self, ctx: Any, topic: str, type_name: Any, qos: Any, raw: bool = False
+                 ) -> None:
+        import threading
+        import uuid
+
+        from ros2lite.executors import SingleThreadedExecutor
+        from ros2lite.node import Node
+        self.node = Node(f'listener_{uuid.uuid4().hex[:6]}', context=ctx, enable_rosout=False)
+        self.messages: list[Any] = []
+        self.arrivals: list[int] = []   # raw only: when each sample arrived (ns, wall clock)
+
+        def keep(data: bytes, info: Any) -> None:
+            self.arrivals.append(info.received_timestamp)
+            self.messages.append(data)
+
+        if raw:
+            self.node.create_subscription(type_name, topic, keep, qos, raw=True)
+        else:
+            self.node.create_subscription(type_name, topic, self.messages.append, qos)
+        self._executor = SingleThreadedExecutor(context=ctx)
+        self._executor.add_node(self.node)
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._spin, daemon=True)
+        self._thread.start()
+
+    def _spin(self) -> None:
+        while not self._stop.is_set():
+            self._executor.spin_once(0.05)
+
+    def stop(self) -> None:
+        self._stop.set()
+        self._thread.join(5)
+        self.node.destroy_node()

@@ -6,7 +6,6 @@ import os
 import signal
 import subprocess
 import sys
-import threading
 import uuid
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -14,9 +13,8 @@ from typing import Any
 
 import pytest
 
-from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
-from tests.spinning import wait_until
+from tests.spinning import Listener, wait_until
 
 
 @pytest.fixture
@@ -73,38 +71,6 @@ def recording(ros_router: str) -> Iterator[Callable[..., Recording]]:
         if r.proc.poll() is None:
             r.proc.kill()
             r.proc.communicate()
-
-
-class Listener:
-    """Collects a topic's messages (or raw bytes) on an executor thread of the test context."""
-
-    def __init__(self, ctx: Any, topic: str, type_name: Any, qos: Any, raw: bool) -> None:
-        self.node = Node(f"bag_listener_{uuid.uuid4().hex[:6]}", context=ctx, enable_rosout=False)
-        self.messages: list[Any] = []
-        self.arrivals: list[int] = []  # raw only: when each sample arrived (ns, wall clock)
-
-        def keep(data: bytes, info: Any) -> None:
-            self.arrivals.append(info.received_timestamp)
-            self.messages.append(data)
-
-        if raw:
-            self.node.create_subscription(type_name, topic, keep, qos, raw=True)
-        else:
-            self.node.create_subscription(type_name, topic, self.messages.append, qos)
-        self._executor = SingleThreadedExecutor(context=ctx)
-        self._executor.add_node(self.node)
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._spin, daemon=True)
-        self._thread.start()
-
-    def _spin(self) -> None:
-        while not self._stop.is_set():
-            self._executor.spin_once(0.05)
-
-    def stop(self) -> None:
-        self._stop.set()
-        self._thread.join(5)
-        self.node.destroy_node()
 
 
 @pytest.fixture

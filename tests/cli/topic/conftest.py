@@ -14,8 +14,8 @@ from typing import Any
 
 import pytest
 
-from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
+from tests.spinning import Listener
 
 
 class Talker:
@@ -59,29 +59,6 @@ def talker(ros_context: Any) -> Iterator[Callable[..., Talker]]:
     yield start
     for t in made:
         t.stop()
-
-
-class Listener:
-    """Collects every message of a topic, spinning its own executor on a thread."""
-
-    def __init__(self, ctx: Any, topic: str, type_name: str, qos: Any) -> None:
-        self.node = Node(f'listener_{uuid.uuid4().hex[:6]}', context=ctx, enable_rosout=False)
-        self.messages: list[Any] = []
-        self.node.create_subscription(type_name, topic, self.messages.append, qos)
-        self._executor = SingleThreadedExecutor(context=ctx)
-        self._executor.add_node(self.node)
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._spin, daemon=True)
-        self._thread.start()
-
-    def _spin(self) -> None:
-        while not self._stop.is_set():
-            self._executor.spin_once(0.05)
-
-    def stop(self) -> None:
-        self._stop.set()
-        self._thread.join(5)
-        self.node.destroy_node()
 
 
 @pytest.fixture
