@@ -56,8 +56,13 @@ class Executable:
 
     def _call(self, callback: Callable[..., Any], *args: Any,
               then: Callable[[Any], None] | None = None) -> Task | None:
-        """Run a user callback on the executor's terms (a coroutine becomes a Task)."""
-        executor = self._node._executor if self._node is not None else None
+        """Run a user callback on the executor's terms (a coroutine becomes a Task). That is
+        the executor running this entity now: a multi-threaded one may run it after the node
+        has moved on (spin_once's helper removes the node once the work is handed over)."""
+        from ros2lite.executors import current_execution
+        executor = current_execution()[0]
+        if executor is None and self._node is not None:
+            executor = self._node._executor
         if executor is not None:
             return executor._run_callback(callback, *args, then=then)
         result = callback(*args)

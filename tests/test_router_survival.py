@@ -187,8 +187,10 @@ def test_run_with_no_router_starts_the_daemon(private: dict[str, str]) -> None:
                             stderr=subprocess.PIPE, text=True)
     try:
         wait_until(lambda: daemon.status(endpoint).ours, timeout=20)
+        # typed, so echo waits for the talker even if its publisher is not in the graph yet
         heard = subprocess.run([sys.executable, '-m', 'ros2lite', 'topic', 'echo', '--once',
-                                '/chatter'], env={**os.environ, **private}, timeout=30,
+                                '/chatter', 'std_msgs/msg/String'],
+                               env={**os.environ, **private}, timeout=30,
                                capture_output=True, text=True)
         assert heard.stdout.startswith("data: 'Hello World: ")
     finally:
