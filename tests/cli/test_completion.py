@@ -37,6 +37,24 @@ def test_topics_and_nodes_come_from_the_live_graph(ros_context: Any) -> None:
         node.destroy_node()
 
 
+def test_services_and_actions_come_from_the_live_graph(ros_context: Any) -> None:
+    from ros2lite.action import ActionServer
+    from ros2lite.msgs.action_tutorials_interfaces.action import Fibonacci
+    from ros2lite.msgs.example_interfaces.srv import AddTwoInts
+    node = Node('completion_services', namespace='/cmps', context=ros_context,
+                enable_rosout=False, start_parameter_services=False)
+    try:
+        node.create_service(AddTwoInts, 'cmp_add', lambda req, resp: resp)
+        server = ActionServer(node, Fibonacci, 'cmp_fib', lambda goal: Fibonacci.Result())
+        assert complete('ros2lite service call /cmps/cmp_') == ['/cmps/cmp_add']
+        assert complete('ros2lite action send_goal /cmps/cmp_') == ['/cmps/cmp_fib']
+        assert 'example_interfaces/srv/AddTwoInts' in complete(
+            'ros2lite service call /cmps/cmp_add example_interfaces/srv/Add')
+        server.destroy()
+    finally:
+        node.destroy_node()
+
+
 def test_types_packages_and_executables() -> None:
     assert complete('ros2lite topic pub /x geometry_msgs/msg/Twist') == [
         'geometry_msgs/msg/Twist', 'geometry_msgs/msg/TwistStamped',
