@@ -376,7 +376,9 @@ class MultiThreadedExecutor(Executor):
         self._raise_errors()
         return item
 
-    def _submit(self, fn: Callable[..., None], *args: Any) -> None:
+    def _submit(self, fn: Callable[..., None], *args: Any) -> bool:
+        """Hand `fn(*args)` to a worker; False if the executor was shut down meanwhile (by
+        another thread, while this one was still spinning)."""
         # never queue more work in the pool than it has threads: what waits stays in our
         # queue, where callback groups and node moves are still honoured
         self._workers.acquire()
@@ -391,13 +393,22 @@ class MultiThreadedExecutor(Executor):
                 self._workers.release()
                 self.wake()
 
-        self._pool.submit(run)
+        try:
+            self._pool.submit(run)
+        except RuntimeError:   # the pool is shut down: the work goes with the executor
+            self._workers.release()
+            return False
+        return True
 
     def _start(self, entity: Executable, group: CallbackGroup, batch: bool,
                stop: Callable[[], bool] | None) -> None:
         if entity.is_timer:
             entity._scheduled = True   # not due again for us while it runs
-        self._submit(self._run_entity, entity, group, batch, stop)
+        if not self._submit(self._run_entity, entity, group, batch, stop):
+            # not run: leave the entity as another executor would want to find it
+            entity._scheduled = False
+            if entity.needs_group:
+                group.ending_execution(entity)
 
     def _dispatch(self, item: Any, batch: bool, stop: Callable[[], bool] | None) -> None:
         if item is _WORKER_FAILED:

@@ -327,3 +327,45 @@ def test_async_timer_callback_keeps_its_group_until_it_ends(ros_context: Any) ->
     gate.set_result(None)
     spin_until(executor, lambda: 'other' in log)
     assert log.index('done') < log.index('other')
+
+
+def test_shutting_down_a_multithreaded_executor_while_it_spins(ros_context: Any) -> None:
+    """shutdown() from another thread ends spin() quietly, even with work still coming in."""
+    from ros2lite.executors import MultiThreadedExecutor
+    node = Node('busy_mt', context=ros_context)
+    ticks = itertools.count()
+    node.create_timer(0.0005, lambda: next(ticks))
+    executor = MultiThreadedExecutor(2, context=ros_context)
+    executor.add_node(node)
+    errors: list[BaseException] = []
+
+    def spin() -> None:
+        try:
+            executor.spin()
+        except BaseException as e:   # what an unhandled thread exception would be
+            errors.append(e)
+
+    thread = threading.Thread(target=spin)
+    thread.start()
+    deadline = time.monotonic() + 10
+    while next(ticks) < 20 and time.monotonic() < deadline:
+        time.sleep(0.01)
+    executor.shutdown()
+    thread.join(10)
+    assert not thread.is_alive() and errors == []
+
+
+def test_work_taken_just_before_shutdown_is_dropped_cleanly(ros_context: Any) -> None:
+    """(white box) the spinning thread may hand over an item it took just before another
+    thread shut the pool down: no 'cannot schedule new futures', and the entity's group
+    and flag are left free for whoever runs the node next."""
+    from ros2lite.executors import MultiThreadedExecutor
+    node = Node('late_work', context=ros_context)
+    timer = node.create_timer(10.0, lambda: None)
+    executor = MultiThreadedExecutor(2, context=ros_context)
+    executor.add_node(node)
+    executor.shutdown()
+    group = timer.callback_group
+    assert group.beginning_execution(timer)
+    executor._start(timer, group, False, None)
+    assert group.can_execute(timer) and not timer._scheduled
