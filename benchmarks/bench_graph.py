@@ -59,9 +59,13 @@ def bench_topic_list() -> None:
     domain = '217'
     with tempfile.TemporaryDirectory() as runtime:
         env = cli_env(endpoint, domain, runtime)
-        child = subprocess.Popen([sys.executable, '-c', _GRAPH_CHILD, endpoint, domain],
-                                 stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
-                                 env=env)
+        child = subprocess.Popen(
+            [sys.executable, '-c', _GRAPH_CHILD, endpoint, domain],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            text=True,
+            env=env,
+        )
         try:
             assert child.stdout is not None and child.stdout.readline().strip() == 'ready'
             exe = os.path.join(os.path.dirname(sys.executable), 'ros2lite')

@@ -14,6 +14,7 @@ from common import rate, report, wall
 def sample_messages() -> dict[str, Any]:
     """The five benchmark messages, built with ros2lite classes."""
     from ros2lite.interfaces import get_interface
+
     Header = get_interface('std_msgs/msg/Header')
     Time = get_interface('builtin_interfaces/msg/Time')
     hdr = Header(stamp=Time(sec=1700000000, nanosec=123456789), frame_id='base_link')
@@ -23,13 +24,24 @@ def sample_messages() -> dict[str, Any]:
     imu.linear_acceleration.z = 9.81
     imu.orientation_covariance = [0.01 * i for i in range(9)]
     scan = get_interface('sensor_msgs/msg/LaserScan')(
-        header=hdr, angle_min=-math.pi, angle_max=math.pi, angle_increment=2 * math.pi / 1080,
-        range_min=0.1, range_max=30.0,
+        header=hdr,
+        angle_min=-math.pi,
+        angle_max=math.pi,
+        angle_increment=2 * math.pi / 1080,
+        range_min=0.1,
+        range_max=30.0,
         ranges=array('f', [1.0 + (i % 100) * 0.01 for i in range(1080)]),
-        intensities=array('f', [100.0] * 1080))
+        intensities=array('f', [100.0] * 1080),
+    )
     image = get_interface('sensor_msgs/msg/Image')(
-        header=hdr, height=480, width=640, encoding='rgb8', is_bigendian=0, step=640 * 3,
-        data=array('B', bytes(range(256)) * 3600))
+        header=hdr,
+        height=480,
+        width=640,
+        encoding='rgb8',
+        is_bigendian=0,
+        step=640 * 3,
+        data=array('B', bytes(range(256)) * 3600),
+    )
     TS = get_interface('geometry_msgs/msg/TransformStamped')
     transforms = []
     for i in range(10):
@@ -51,6 +63,7 @@ def bench_cdr() -> list[float]:
     from rosbags.typesys import Stores, get_typestore
 
     from ros2lite import interfaces
+
     store = get_typestore(Stores.ROS2_JAZZY)
     ratios = []
     for name, msg in sample_messages().items():

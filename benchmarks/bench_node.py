@@ -84,6 +84,7 @@ class Flag:
 
     def __init__(self) -> None:
         from ros2lite.task import Future
+
         self.future = Future()
 
     def set(self) -> None:
@@ -136,16 +137,28 @@ def private_router() -> Iterator[None]:
     with the subscriber, whose full channel can then stall the router itself.
     """
     import socket
+
     with socket.socket() as sock:
         sock.bind(('127.0.0.1', 0))
         port = sock.getsockname()[1]
     endpoint = f'tcp/127.0.0.1:{port}'
-    saved = {k: os.environ.get(k) for k in ('ROS2LITE_ROUTER', 'ROS_DOMAIN_ID',
-                                            'ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI')}
+    saved = {
+        k: os.environ.get(k)
+        for k in (
+            'ROS2LITE_ROUTER',
+            'ROS_DOMAIN_ID',
+            'ZENOH_CONFIG_OVERRIDE',
+            'ZENOH_SESSION_CONFIG_URI',
+        )
+    }
     os.environ.pop('ZENOH_CONFIG_OVERRIDE', None)
     os.environ.pop('ZENOH_SESSION_CONFIG_URI', None)
-    router = subprocess.Popen([sys.executable, '-c', ROUTER, endpoint], stdin=subprocess.PIPE,
-                              stdout=subprocess.PIPE, text=True)
+    router = subprocess.Popen(
+        [sys.executable, '-c', ROUTER, endpoint],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
     assert router.stdout is not None and router.stdin is not None
     os.environ['ROS2LITE_ROUTER'] = endpoint
     os.environ['ROS_DOMAIN_ID'] = str(random.randint(100, 232))
@@ -167,8 +180,9 @@ def private_router() -> Iterator[None]:
                 os.environ[k] = v
 
 
-def run_once(mode: str, n: int, key: str,
-             subscribe: Callable[[Counter], Callable[[Flag, float], None]]) -> float:
+def run_once(
+    mode: str, n: int, key: str, subscribe: Callable[[Counter], Callable[[Flag, float], None]]
+) -> float:
     """One measured run: start the publisher child, let `subscribe` receive, return msg/s.
 
     `subscribe(counter)` sets up the receiving side and returns `wait(flag, timeout)`, which
@@ -176,8 +190,12 @@ def run_once(mode: str, n: int, key: str,
     """
     counter = Counter(n)
     wait = subscribe(counter)
-    proc = subprocess.Popen([sys.executable, '-c', PUBLISHER, mode, str(n), key],
-                            stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [sys.executable, '-c', PUBLISHER, mode, str(n), key],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
     assert proc.stdin is not None and proc.stdout is not None
     try:
         assert proc.stdout.readline().strip() == 'ready'
@@ -208,11 +226,12 @@ def bench_node_throughput() -> tuple[float, float]:
     warm_cdr = serialize(String(data=WARMUP))
     with private_router():
         domain = int(os.environ['ROS_DOMAIN_ID'])
-        key = topic_key(domain, '/bench_chatter', 'std_msgs/msg/String',
-                        type_hash('std_msgs/msg/String'))
+        key = topic_key(
+            domain, '/bench_chatter', 'std_msgs/msg/String', type_hash('std_msgs/msg/String')
+        )
         raw_rates: list[float] = []
         node_rates: list[float] = []
-        for _ in range(RUNS):   # interleaved, so drifting machine load hits both alike
+        for _ in range(RUNS):  # interleaved, so drifting machine load hits both alike
             raw_rates.append(raw_run(key, warm_cdr))
             node_rates.append(node_run(key, String))
     ours, base = statistics.median(node_rates), statistics.median(raw_rates)
@@ -229,13 +248,15 @@ def raw_run(key: str, warm_cdr: bytes) -> float:
     import zenoh
 
     from ros2lite.transport.config import node_session_mode, open_session
+
     session = open_session(mode=node_session_mode())
     try:
+
         def subscribe(counter: Counter) -> Callable[[Flag, float], None]:
             sub = session.declare_subscriber(key, zenoh.handlers.FifoChannel(4096))
 
             def drain() -> None:
-                with contextlib.suppress(zenoh.ZError):   # closed with the session
+                with contextlib.suppress(zenoh.ZError):  # closed with the session
                     for sample in sub.handler:
                         if sample.payload.to_bytes() == warm_cdr:
                             counter.warm.set()
@@ -256,6 +277,7 @@ def node_run(key: str, string_type: Any) -> float:
     from ros2lite.executors import SingleThreadedExecutor
     from ros2lite.node import Node
     from ros2lite.transport.qos import HistoryPolicy, QoSProfile
+
     ctx = Context()
     ctx.init([])
     try:
@@ -269,10 +291,13 @@ def node_run(key: str, string_type: Any) -> float:
                     counter.warm.set()
                 else:
                     counter.hit()
-            node.create_subscription(string_type, 'bench_chatter', on_msg,
-                                     QoSProfile(history=HistoryPolicy.KEEP_ALL))
-            return lambda flag, timeout: ex.spin_until_future_complete(flag.future,
-                                                                      timeout_sec=timeout)
+
+            node.create_subscription(
+                string_type, 'bench_chatter', on_msg, QoSProfile(history=HistoryPolicy.KEEP_ALL)
+            )
+            return lambda flag, timeout: ex.spin_until_future_complete(
+                flag.future, timeout_sec=timeout
+            )
 
         return run_once('node', N_MESSAGES, key, subscribe)
     finally:

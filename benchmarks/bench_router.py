@@ -75,8 +75,13 @@ except KeyboardInterrupt:
 
 class Proc:
     def __init__(self, code: str, env: dict[str, str], *args: str) -> None:
-        self.proc = subprocess.Popen([sys.executable, '-c', code, *args], env=env, text=True,
-                                     stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+        self.proc = subprocess.Popen(
+            [sys.executable, '-c', code, *args],
+            env=env,
+            text=True,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL,
+        )
         self.samples: list[tuple[int, float]] = []
         self.ready = threading.Event()
         threading.Thread(target=self._read, daemon=True).start()
@@ -113,6 +118,7 @@ def _environment(env: dict[str, str]) -> Iterator[None]:
 def _node_names(endpoint: str) -> set[str]:
     from ros2lite.graph import node_names_and_namespaces, snapshot
     from ros2lite.transport.config import domain_id, open_session
+
     try:
         session = open_session(endpoint, timeout=0.5)
     except Exception:
@@ -136,17 +142,22 @@ def outage(mode: str | None) -> tuple[float, int, float, float]:
     """One run; returns (longest gap s, lost messages, rediscovery s from the start call and
     from the router answering)."""
     from ros2lite import daemon
+
     with socket.socket() as sock:
         sock.bind(('127.0.0.1', 0))
         endpoint = f'tcp/127.0.0.1:{sock.getsockname()[1]}'
     runtime = tempfile.mkdtemp()
-    env = {'ROS2LITE_ROUTER': endpoint, 'XDG_RUNTIME_DIR': runtime, 'ROS2LITE_NO_DAEMON': '1',
-           'ROS_DOMAIN_ID': str(random.randint(100, 232))}
+    env = {
+        'ROS2LITE_ROUTER': endpoint,
+        'XDG_RUNTIME_DIR': runtime,
+        'ROS2LITE_NO_DAEMON': '1',
+        'ROS_DOMAIN_ID': str(random.randint(100, 232)),
+    }
     with _environment(env):
         for var in ('ZENOH_SESSION_CONFIG_URI', 'ZENOH_ROUTER_CONFIG_URI', 'ZENOH_CONFIG_OVERRIDE'):
             os.environ.pop(var, None)
         child_env = dict(os.environ)
-        if mode:   # the nodes only: the override would apply to the router too
+        if mode:  # the nodes only: the override would apply to the router too
             child_env['ZENOH_CONFIG_OVERRIDE'] = f'mode="{mode}"'
 
         daemon.start(endpoint)
@@ -163,7 +174,7 @@ def outage(mode: str | None) -> tuple[float, int, float, float]:
                 procs.append(late)
             time.sleep(OUTAGE)
             watched = 'outage_late' if late else 'outage_listener'
-            back = time.monotonic()   # includes spawning the router: what a user waits for
+            back = time.monotonic()  # includes spawning the router: what a user waits for
             daemon.start(endpoint)
             answering = time.monotonic()
             _wait(lambda: watched in _node_names(endpoint), 30)

@@ -66,14 +66,18 @@ def _percentiles(samples: list[float]) -> tuple[float, float]:
 
 def _raw_round_trips(endpoint: str) -> list[float]:
     import zenoh
+
     conf = zenoh.Config.from_json5(
         f'{{mode: "client", connect: {{endpoints: ["{endpoint}"]}}, '
-        'scouting: {multicast: {enabled: false}}}')
+        'scouting: {multicast: {enabled: false}}}'
+    )
     session = zenoh.open(conf)
     try:
         querier = session.declare_querier(
-            'bench/raw_echo', target=zenoh.QueryTarget.ALL_COMPLETE,
-            consolidation=zenoh.ConsolidationMode.NONE)
+            'bench/raw_echo',
+            target=zenoh.QueryTarget.ALL_COMPLETE,
+            consolidation=zenoh.ConsolidationMode.NONE,
+        )
         payload = b'\x00\x01\x00\x00' + bytes(16)
         attachment = bytes(33)
         times = []
@@ -93,6 +97,7 @@ def _library_round_trips() -> list[float]:
     import ros2lite
     from ros2lite.context import Context
     from ros2lite.msgs.example_interfaces.srv import AddTwoInts  # type: ignore[attr-defined]
+
     ctx = Context().init([])
     try:
         node = ros2lite.Node('bench_client', context=ctx, enable_rosout=False)
@@ -117,8 +122,13 @@ def bench_service() -> None:
     domain = '218'
     with tempfile.TemporaryDirectory() as runtime:
         env = cli_env(endpoint, domain, runtime)
-        child = subprocess.Popen([sys.executable, '-c', _SERVERS, endpoint], env=env,
-                                 stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+        child = subprocess.Popen(
+            [sys.executable, '-c', _SERVERS, endpoint],
+            env=env,
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            text=True,
+        )
         try:
             assert child.stdout is not None and child.stdout.readline().strip() == 'ready'
             with environment(env):
@@ -134,7 +144,7 @@ def bench_service() -> None:
                 base = import_click_wall()
         finally:
             if child.stdin:
-                child.stdin.close()   # the child shuts down and closes its router
+                child.stdin.close()  # the child shuts down and closes its router
             child.wait(timeout=30)
     raw50, raw99 = _percentiles(raw)
     our50, our99 = _percentiles(ours)

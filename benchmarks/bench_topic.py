@@ -95,7 +95,7 @@ while time.monotonic() < start + seconds:
         time.sleep(ahead)   # paced, so the flood does not take the CPU echo needs
 ctx.shutdown()
 '''
-FLOOD_RATE = 40000   # msg/s offered: more than echo can print
+FLOOD_RATE = 40000  # msg/s offered: more than echo can print
 
 
 def _free_port() -> int:
@@ -110,9 +110,13 @@ def private_router() -> Iterator[dict[str, str]]:
     import zenoh
 
     from ros2lite.transport.config import router_config
+
     endpoint = f'tcp/127.0.0.1:{_free_port()}'
-    env = {k: v for k, v in os.environ.items() if k not in (
-        'ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI', 'ZENOH_ROUTER_CONFIG_URI')}
+    env = {
+        k: v
+        for k, v in os.environ.items()
+        if k not in ('ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI', 'ZENOH_ROUTER_CONFIG_URI')
+    }
     router = zenoh.open(router_config(endpoint, env={}))
     env.update(ROS2LITE_ROUTER=endpoint, ROS_DOMAIN_ID=str(random.randint(100, 232)))
     try:
@@ -122,8 +126,13 @@ def private_router() -> Iterator[dict[str, str]]:
 
 
 def _cli(env: dict[str, str], *args: str) -> subprocess.Popen[str]:
-    return subprocess.Popen([sys.executable, '-m', 'ros2lite', *args], env=env, text=True,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    return subprocess.Popen(
+        [sys.executable, '-m', 'ros2lite', *args],
+        env=env,
+        text=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
 
 
 def _interrupt(proc: subprocess.Popen[str]) -> str:
@@ -136,21 +145,26 @@ def _interrupt(proc: subprocess.Popen[str]) -> str:
     return out
 
 
-def hz_trial(env: dict[str, str], hz: float, seconds: float, *hz_args: str
-             ) -> tuple[float, float, float]:
+def hz_trial(
+    env: dict[str, str], hz: float, seconds: float, *hz_args: str
+) -> tuple[float, float, float]:
     """(reference rate, hz's rate, relative error) for one publishing rate."""
     topic = f'/bench_hz_{int(hz)}'
     count = max(2000, int(hz * seconds))
     with tempfile.TemporaryDirectory() as tmp:
         times_file = os.path.join(tmp, 'sent')
         monitor = _cli(env, 'topic', 'hz', topic, *hz_args)
-        publisher = subprocess.run([sys.executable, '-c', PUBLISHER, topic, str(hz), str(count),
-                                    times_file], env=env, capture_output=True, text=True,
-                                   timeout=60)
+        publisher = subprocess.run(
+            [sys.executable, '-c', PUBLISHER, topic, str(hz), str(count), times_file],
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=60,
+        )
         if publisher.returncode != 0:
             monitor.kill()
             raise RuntimeError(publisher.stderr)
-        time.sleep(1.3)            # one more report tick: the window now ends at the last sample
+        time.sleep(1.3)  # one more report tick: the window now ends at the last sample
         out = _interrupt(monitor)
         with open(times_file) as f:
             sent = [float(line) for line in f]
@@ -168,9 +182,13 @@ def bench_hz() -> None:
         sustained = 0.0
         # steady state: each window leaves out the first second of the run, when the
         # subscriber's very first samples still arrive with start-up latency
-        for hz, seconds, window in ((1000, 3.0, 2000), (10000, 3.0, 10000),
-                                    (20000, 2.0, 10000), (40000, 2.0, 10000),
-                                    (80000, 2.0, 10000)):
+        for hz, seconds, window in (
+            (1000, 3.0, 2000),
+            (10000, 3.0, 10000),
+            (20000, 2.0, 10000),
+            (40000, 2.0, 10000),
+            (80000, 2.0, 10000),
+        ):
             reference, _, error = hz_trial(env, hz, seconds, '-w', str(window))
             report(f'hz_error_{hz // 1000}khz', error * 100, '%', error / TARGET_ERROR)
             if error < TARGET_ERROR:
@@ -180,11 +198,20 @@ def bench_hz() -> None:
 
 def bench_echo() -> None:
     import yaml
+
     with private_router() as env:
         # a deeper queue than sensor_data's 5: Zenoh delivers the flood in batches, and a
         # 5-deep queue would drop most of each batch before echo could print it
-        echo = _cli(env, 'topic', 'echo', '/bench_echo', 'std_msgs/msg/String',
-                    '--no-lost-messages', '--qos-depth', '1000')
+        echo = _cli(
+            env,
+            'topic',
+            'echo',
+            '/bench_echo',
+            'std_msgs/msg/String',
+            '--no-lost-messages',
+            '--qos-depth',
+            '1000',
+        )
         stamps: list[float] = []
         assert echo.stdout is not None
         stream = echo.stdout
@@ -196,8 +223,12 @@ def bench_echo() -> None:
 
         reader = threading.Thread(target=read, daemon=True)
         reader.start()
-        flood = subprocess.Popen([sys.executable, '-c', FLOODER, '/bench_echo', '5',
-                                  str(FLOOD_RATE)], env=env, stderr=subprocess.PIPE, text=True)
+        flood = subprocess.Popen(
+            [sys.executable, '-c', FLOODER, '/bench_echo', '5', str(FLOOD_RATE)],
+            env=env,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         flood.wait(timeout=60)
         _interrupt(echo)
         reader.join(5)
@@ -213,6 +244,7 @@ def bench_echo() -> None:
 
     def dump() -> None:
         yaml.dump(it(), allow_unicode=True, width=sys.maxsize)
+
     baseline = rate(dump)
     report('echo_pipe_rate', ours, 'msg/s', ours / baseline)
 

@@ -46,8 +46,6 @@ def wall(cmd: list[str], runs: int = 15) -> float:
     return times[len(times) // 2]
 
 
-
-
 def free_port() -> int:
     with socket.socket() as sock:
         sock.bind(('127.0.0.1', 0))
@@ -59,10 +57,19 @@ def cli_env(endpoint: str, domain: str, runtime: str) -> dict[str, str]:
     caching as an installed package has it (pip compiles on install): a private pycache
     prefix, so a PYTHONDONTWRITEBYTECODE shell can't make every run recompile the sources
     (the baseline gets the same treatment)."""
-    env = {**os.environ, 'ROS2LITE_ROUTER': endpoint, 'ROS_DOMAIN_ID': domain,
-           'XDG_RUNTIME_DIR': runtime, 'PYTHONPYCACHEPREFIX': os.path.join(runtime, 'pyc')}
-    for var in ('ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI',
-                'ZENOH_ROUTER_CONFIG_URI', 'PYTHONDONTWRITEBYTECODE'):
+    env = {
+        **os.environ,
+        'ROS2LITE_ROUTER': endpoint,
+        'ROS_DOMAIN_ID': domain,
+        'XDG_RUNTIME_DIR': runtime,
+        'PYTHONPYCACHEPREFIX': os.path.join(runtime, 'pyc'),
+    }
+    for var in (
+        'ZENOH_CONFIG_OVERRIDE',
+        'ZENOH_SESSION_CONFIG_URI',
+        'ZENOH_ROUTER_CONFIG_URI',
+        'PYTHONDONTWRITEBYTECODE',
+    ):
         env.pop(var, None)
     return env
 
@@ -83,5 +90,6 @@ def environment(env: dict[str, str]) -> Iterator[None]:
 def import_click_wall(runs: int = 9) -> float:
     """The CLI baseline: `python -c 'import click'` (cache warmed first)."""
     import sys
+
     wall([sys.executable, '-c', 'import click'], runs=1)
     return wall([sys.executable, '-c', 'import click'], runs=runs)

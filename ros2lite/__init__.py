@@ -113,8 +113,13 @@ _EXPORTS = {
 }
 
 
-def init(args: list[str] | None = None, *, context: Any = None, router: str | None = None,
-         domain_id: int | None = None) -> Any:
+def init(
+    args: list[str] | None = None,
+    *,
+    context: Any = None,
+    router: str | None = None,
+    domain_id: int | None = None,
+) -> Any:
     """Open the node's Zenoh session (a peer; with no router it starts the daemon, or runs on
     without one: see `ros2lite.daemon.connect`).
 
@@ -123,6 +128,7 @@ def init(args: list[str] | None = None, *, context: Any = None, router: str | No
     handler: spinning then ends with ExternalShutdownException and `ok()` turns False.
     """
     from ros2lite.context import default_context, install_signal_handlers
+
     ctx = (context or default_context()).init(args, router=router, domain_id=domain_id)
     install_signal_handlers()
     return ctx
@@ -130,21 +136,25 @@ def init(args: list[str] | None = None, *, context: Any = None, router: str | No
 
 def shutdown(*, context: Any = None) -> None:
     from ros2lite.context import default_context
+
     (context or default_context()).shutdown()
 
 
 def try_shutdown(*, context: Any = None) -> None:
     from ros2lite.context import default_context
+
     (context or default_context()).try_shutdown()
 
 
 def ok(*, context: Any = None) -> bool:
     from ros2lite.context import default_context
+
     return (context or default_context()).ok()
 
 
 def create_node(node_name: str, **kwargs: Any) -> Any:
     from ros2lite.node import Node
+
     return Node(node_name, **kwargs)
 
 

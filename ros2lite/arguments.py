@@ -11,8 +11,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-LOG_LEVELS = {'debug': 10, 'info': 20, 'warn': 30, 'warning': 30, 'error': 40, 'fatal': 50,
-              'unset': 0}
+LOG_LEVELS = {
+    'debug': 10,
+    'info': 20,
+    'warn': 30,
+    'warning': 30,
+    'error': 40,
+    'fatal': 50,
+    'unset': 0,
+}
 
 
 class RosArgsError(ValueError):
@@ -21,7 +28,7 @@ class RosArgsError(ValueError):
 
 @dataclass
 class Remap:
-    node: str | None   # only applies to this node name when given
+    node: str | None  # only applies to this node name when given
     source: str
     target: str
 
@@ -36,8 +43,13 @@ class RosArgs:
 
     def merge(self, other: RosArgs) -> RosArgs:
         """Node-local arguments (`other`) take precedence over global ones."""
-        merged = RosArgs(self.remaps + other.remaps, {}, self.params_files + other.params_files,
-                         {**self.log_levels, **other.log_levels}, other.enclave or self.enclave)
+        merged = RosArgs(
+            self.remaps + other.remaps,
+            {},
+            self.params_files + other.params_files,
+            {**self.log_levels, **other.log_levels},
+            other.enclave or self.enclave,
+        )
         for source in (self.params, other.params):
             for node, values in source.items():
                 merged.params.setdefault(node, {}).update(values)
@@ -81,6 +93,7 @@ def _split_assignment(text: str, what: str) -> tuple[str | None, str, str]:
 def parse_value(text: str) -> Any:
     """A parameter value from the command line, typed the YAML way ('1' → int)."""
     import yaml
+
     try:
         return yaml.safe_load(text)
     except yaml.YAMLError:
@@ -139,9 +152,14 @@ def parse_ros_args(argv: list[str] | None) -> RosArgs:
                 result.log_levels[logger] = level
             elif arg in ('-e', '--enclave'):
                 result.enclave = _next(it, arg)
-            elif arg in ('--enable-rosout-logs', '--disable-rosout-logs',
-                         '--enable-stdout-logs', '--disable-stdout-logs',
-                         '--enable-external-lib-logs', '--disable-external-lib-logs'):
+            elif arg in (
+                '--enable-rosout-logs',
+                '--disable-rosout-logs',
+                '--enable-stdout-logs',
+                '--disable-stdout-logs',
+                '--enable-external-lib-logs',
+                '--disable-external-lib-logs',
+            ):
                 continue
             else:
                 raise RosArgsError(f"Unknown ROS argument '{arg}'")
@@ -156,10 +174,10 @@ def _next(it: Any, flag: str) -> str:
     return value
 
 
-def load_params_file(path: Path, node_fqn: str, node_name: str | None = None
-                     ) -> dict[str, Any]:
+def load_params_file(path: Path, node_fqn: str, node_name: str | None = None) -> dict[str, Any]:
     """Parameters for one node from a ROS 2 YAML params file (rules: parameters/files.py)."""
     from ros2lite.parameters.files import ParamsFileError, values_for_node
+
     try:
         return values_for_node(path, node_fqn)
     except ParamsFileError as e:

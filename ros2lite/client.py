@@ -45,9 +45,17 @@ class Client(Executable):
     # coroutine holding that group while awaiting this very future would never resume
     needs_group = False
 
-    def __init__(self, node: Any, srv_type: Any, srv_name: str, qos: QoSProfile | int, *,
-                 callback_group: CallbackGroup | None = None) -> None:
+    def __init__(
+        self,
+        node: Any,
+        srv_type: Any,
+        srv_name: str,
+        qos: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+    ) -> None:
         from ros2lite.transport.session import declare_querier
+
         super().__init__(node, callback_group)
         self._ep = _ClientEndpoint(node, srv_type, srv_name, qos)
         self.srv_type: Any = self._ep.msg_class
@@ -73,18 +81,25 @@ class Client(Executable):
         if self._request_codec is None:
             from ros2lite.interfaces.cdr import codec
             from ros2lite.interfaces.registry import default_registry
+
             name = self._ep.type_name
             self._request_codec = codec(f'{name}_Request', default_registry())
             self._response_codec = codec(f'{name}_Response', default_registry())
         return self._request_codec, self._response_codec
 
-    def _send(self, request: Any, on_response: Callable[[int, bytes | None, str], None],
-              future: Future | None = None) -> None:
+    def _send(
+        self,
+        request: Any,
+        on_response: Callable[[int, bytes | None, str], None],
+        future: Future | None = None,
+    ) -> None:
         """Serialize and send; `on_response(seq, data or None, error)` once, on a Zenoh
         thread. A `future` is registered under the request's sequence number first."""
         if getattr(request, '_TYPE_NAME', None) != f'{self._ep.type_name}_Request':
-            raise TypeError(f"client of '{self._ep.type_name}' got {type(request).__name__}; "
-                            f'expected {self._ep.type_name}_Request')
+            raise TypeError(
+                f"client of '{self._ep.type_name}' got {type(request).__name__}; "
+                f'expected {self._ep.type_name}_Request'
+            )
         data = self._codecs()[0].serialize(request)
         with self._lock:
             self._seq = seq = self._seq + 1
@@ -93,7 +108,7 @@ class Client(Executable):
         answered = threading.Event()
 
         def reply(payload: bytes, attachment: bytes | None) -> None:
-            if not answered.is_set():   # one response per request, as rmw_zenoh takes it
+            if not answered.is_set():  # one response per request, as rmw_zenoh takes it
                 answered.set()
                 on_response(seq, payload, '')
 
@@ -128,7 +143,7 @@ class Client(Executable):
             with self._lock:
                 future = self._pending.pop(seq, None)
             if future is None or future.done():
-                continue   # given up on (remove_pending_request) or cancelled
+                continue  # given up on (remove_pending_request) or cancelled
             if data is None:
                 future.set_exception(ServiceCallError(error))
                 continue
@@ -159,8 +174,7 @@ class Client(Executable):
 
         self._send(request, on_response)
         if not done.wait(timeout_sec):
-            raise TimeoutError(f"service '{self.srv_name}' did not answer within "
-                               f'{timeout_sec} s')
+            raise TimeoutError(f"service '{self.srv_name}' did not answer within {timeout_sec} s")
         data, error = outcome[0]
         if data is None:
             raise ServiceCallError(error)
@@ -170,6 +184,7 @@ class Client(Executable):
         """Inside a callback, a server of ours on the same executor may be unable to run
         until that callback returns: then waiting would never end, so say so instead."""
         from ros2lite.executors import MultiThreadedExecutor, current_execution
+
         executor, entity = current_execution()
         if executor is None:
             return
@@ -180,6 +195,7 @@ class Client(Executable):
         group = server.callback_group
         if not blocked and entity is not None and group is entity.callback_group:
             from ros2lite.callback_groups import ReentrantCallbackGroup
+
             blocked = not isinstance(group, ReentrantCallbackGroup)
         if blocked:
             raise RuntimeError(
@@ -187,14 +203,19 @@ class Client(Executable):
                 'server runs on the same executor and cannot run until this callback '
                 'returns. Await client.call_async() in an async callback, or use a '
                 'MultiThreadedExecutor with the callbacks in different callback groups '
-                '(or a ReentrantCallbackGroup).')
+                '(or a ReentrantCallbackGroup).'
+            )
 
     # -- availability -----------------------------------------------------------------------------
     def _server_count(self, entities: list[Any]) -> int:
-        return sum(1 for e in entities
-                   if e.kind == EntityKind.SERVICE and e.topic_name == self.srv_name
-                   and e.type_name == self._ep.type_name
-                   and e.type_hash == self._ep.type_hash)
+        return sum(
+            1
+            for e in entities
+            if e.kind == EntityKind.SERVICE
+            and e.topic_name == self.srv_name
+            and e.type_name == self._ep.type_name
+            and e.type_hash == self._ep.type_hash
+        )
 
     def service_is_ready(self) -> bool:
         return self._server_count(self._node.context.graph.entities()) > 0
@@ -203,8 +224,8 @@ class Client(Executable):
         """Wait until a server is in the graph; False if `timeout_sec` passed first."""
         context = self._node.context
         context.graph.wait_for(
-            lambda entities: self._server_count(entities) > 0 or not context.ok(),
-            timeout_sec)
+            lambda entities: self._server_count(entities) > 0 or not context.ok(), timeout_sec
+        )
         return context.ok() and self.service_is_ready()
 
     def destroy(self) -> None:
@@ -218,4 +239,3 @@ class Client(Executable):
 
 class _ClientEndpoint(Endpoint):
     kind = EntityKind.CLIENT
-

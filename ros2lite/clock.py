@@ -38,6 +38,7 @@ class Time:
 
     def to_msg(self) -> Any:
         from ros2lite.interfaces import get_interface
+
         sec, nsec = divmod(self.nanoseconds, _NS)
         return get_interface('builtin_interfaces/msg/Time')(sec=sec, nanosec=nsec)
 
@@ -55,7 +56,7 @@ class Clock:
 
     def __init__(self, clock_type: ClockType = ClockType.SYSTEM_TIME) -> None:
         self.clock_type = clock_type
-        self._sim_ns: int | None = None     # None: ROS time is system time
+        self._sim_ns: int | None = None  # None: ROS time is system time
         self._changed = threading.Condition()
 
     @property

@@ -49,12 +49,19 @@ class Context:
         # ExternalShutdownException; the session itself closes on the way out
         self.terminating = False
 
-    def init(self, args: list[str] | None = None, *, router: str | None = None,
-             domain_id: int | None = None, short_lived: bool = False) -> Context:
+    def init(
+        self,
+        args: list[str] | None = None,
+        *,
+        router: str | None = None,
+        domain_id: int | None = None,
+        short_lived: bool = False,
+    ) -> Context:
         """Open the session; `args=None` means `sys.argv`, as rclpy.init does, so
         `--ros-args` given to a node's process reach its nodes. `short_lived` (CLI verbs)
         opens a client session that fails fast without a router, instead of a node's."""
         from ros2lite.transport.config import domain_id as env_domain_id
+
         if self.session is not None:
             raise RuntimeError('Context.init() must only be called once')
         self.terminating = False
@@ -72,8 +79,10 @@ class Context:
         """A node's peer session (daemon started on demand), or a CLI verb's client one."""
         if short_lived:
             from ros2lite.transport.config import open_session
+
             return open_session(router, mode='client')
         from ros2lite.daemon.connect import open_node_session
+
         return open_node_session(router)
 
     # `with ros2lite.init():` shuts the context down on the way out, as rclpy allows
@@ -101,6 +110,7 @@ class Context:
         with self._lock:
             if self._graph is None:
                 from ros2lite.graph import GraphCache
+
                 self._graph = GraphCache(self.require(), self.domain_id)
             return self._graph
 

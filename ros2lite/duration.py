@@ -63,6 +63,7 @@ class Duration:
 
     def to_msg(self) -> Any:
         from ros2lite.interfaces import get_interface
+
         return get_interface('builtin_interfaces/msg/Duration')(sec=self.sec, nanosec=self.nsec)
 
     def __eq__(self, other: object) -> bool:

@@ -12,6 +12,7 @@ def resolve_type(msg_type: Any) -> tuple[str, Any]:
     """(type name, class or None) from a message class or a 'pkg/msg/Name' string."""
     from ros2lite.interfaces import get_interface
     from ros2lite.interfaces.registry import normalize_name
+
     if isinstance(msg_type, str):
         name = normalize_name(msg_type)
         return name, get_interface(name)
@@ -57,6 +58,7 @@ class Endpoint:
 
     def __init__(self, node: Any, msg_type: Any, topic: str, qos: QoSProfile | int) -> None:
         from ros2lite.interfaces import type_hash
+
         self.node = node
         self.type_name, self.msg_class = resolve_type(msg_type)
         # a type known only by name and hash (no local definition: `bag play` of a bag's own
@@ -68,21 +70,34 @@ class Endpoint:
         self.key = topic_key(ctx.domain_id, self.topic_name, self.type_name, self.type_hash)
         self.entity_id = ctx.next_entity_id()
         self.token_key = endpoint_token(
-            ctx.domain_id, ctx.zid, node.node_id, self.entity_id, self.kind, node.get_namespace(),
-            node.get_name(), self.topic_name, self.type_name, self.type_hash, self.qos)
+            ctx.domain_id,
+            ctx.zid,
+            node.node_id,
+            self.entity_id,
+            self.kind,
+            node.get_namespace(),
+            node.get_name(),
+            self.topic_name,
+            self.type_name,
+            self.type_hash,
+            self.qos,
+        )
         self._token: Any = None
 
     def _announce(self) -> None:
         # rmw_zenoh declares the data entity first, then the token
         from ros2lite.transport.session import declare_token
+
         self._token = declare_token(self.node.context.session, self.token_key)
 
     def _undeclare(self, *entities: Any) -> None:
         from ros2lite.transport.session import undeclare_quietly
+
         undeclare_quietly(self._token, *entities)
         self._token = None
 
     @property
     def gid(self) -> bytes:
         from ros2lite.transport.attachment import gid_from_token
+
         return gid_from_token(self.token_key)

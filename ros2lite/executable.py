@@ -27,10 +27,11 @@ class Executable:
 
     def __init__(self, node: Any, callback_group: CallbackGroup | None) -> None:
         from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup
+
         self._node = node
         self.callback_group = callback_group or (
-            node.default_callback_group if node is not None
-            else MutuallyExclusiveCallbackGroup())
+            node.default_callback_group if node is not None else MutuallyExclusiveCallbackGroup()
+        )
         self.callback_group.add_entity(self)
         # in the executor's queue, or running: set and cleared by the owner of the queue
         self._scheduled = False
@@ -54,12 +55,14 @@ class Executable:
     def _has_work(self) -> bool:
         return False
 
-    def _call(self, callback: Callable[..., Any], *args: Any,
-              then: Callable[[Any], None] | None = None) -> Task | None:
+    def _call(
+        self, callback: Callable[..., Any], *args: Any, then: Callable[[Any], None] | None = None
+    ) -> Task | None:
         """Run a user callback on the executor's terms (a coroutine becomes a Task). That is
         the executor running this entity now: a multi-threaded one may run it after the node
         has moved on (spin_once's helper removes the node once the work is handed over)."""
         from ros2lite.executors import current_execution
+
         executor = current_execution()[0]
         if executor is None and self._node is not None:
             executor = self._node._executor
@@ -79,8 +82,12 @@ class Executable:
 class GuardCondition(Executable):
     """`trigger()` from any thread makes the executor call `callback()` on its thread."""
 
-    def __init__(self, node: Any, callback: Callable[[], Any] | None,
-                 callback_group: CallbackGroup | None = None) -> None:
+    def __init__(
+        self,
+        node: Any,
+        callback: Callable[[], Any] | None,
+        callback_group: CallbackGroup | None = None,
+    ) -> None:
         super().__init__(node, callback_group)
         self.callback = callback
         self._triggered = False

@@ -45,6 +45,7 @@ __all__ = [
     'spin_until_future_complete',
 ]
 
+
 class ExternalShutdownException(Exception):
     """Spinning ended because the process was asked to stop (SIGTERM), as in rclpy."""
 
@@ -104,7 +105,7 @@ class Executor:
             if not entity._scheduled and entity._has_work():
                 entity._notify()
         if self._spinning:
-            self.wake()   # a spinning thread must see the node's timers
+            self.wake()  # a spinning thread must see the node's timers
         return True
 
     def remove_node(self, node: Node) -> None:
@@ -122,8 +123,9 @@ class Executor:
     def wake(self) -> None:
         self._queue.put(None)
 
-    def create_task(self, callback: Callable[..., Any] | Coroutine[Any, Any, Any],
-                    *args: Any, **kwargs: Any) -> Task:
+    def create_task(
+        self, callback: Callable[..., Any] | Coroutine[Any, Any, Any], *args: Any, **kwargs: Any
+    ) -> Task:
         """Run `callback(*args, **kwargs)` (or a coroutine) on this executor as a Task."""
         if inspect.iscoroutine(callback):
             coro = callback
@@ -172,8 +174,7 @@ class Executor:
             self._spinning -= 1
         self._check_terminating()
 
-    def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None
-                                   ) -> None:
+    def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None) -> None:
         future.add_done_callback(lambda _f: self.wake())
         deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
         self._spinning += 1
@@ -190,8 +191,9 @@ class Executor:
         if not future.done():
             self._check_terminating()
 
-    def spin_once_until_future_complete(self, future: Future,
-                                        timeout_sec: float | None = None) -> None:
+    def spin_once_until_future_complete(
+        self, future: Future, timeout_sec: float | None = None
+    ) -> None:
         future.add_done_callback(lambda _f: self.wake())
         self.spin_once(timeout_sec)
 
@@ -210,7 +212,7 @@ class Executor:
                     if timer.callback_group.can_execute(timer):
                         return timer, None
                     self._timer_waits = True
-                    continue   # its group's release wakes us
+                    continue  # its group's release wakes us
                 wait = remaining if wait is None else min(wait, remaining)
         return None, wait
 
@@ -235,7 +237,7 @@ class Executor:
                     if not self._ok() or (stop is not None and stop()):
                         return None
                     if any(node.timers for node in self._nodes):
-                        break   # a timer was added meanwhile: take the general path
+                        break  # a timer was added meanwhile: take the general path
         deadline = None if timeout is None else time.monotonic() + timeout
         while True:
             timer, next_timer = self._due_timer()
@@ -271,17 +273,19 @@ class Executor:
         if item.needs_group and not group.beginning_execution(item):
             with self._lock:
                 self._blocked.append(item)
-            if group.can_execute(item):   # freed meanwhile: don't wait for a release
+            if group.can_execute(item):  # freed meanwhile: don't wait for a release
                 self._release(group, None)
             return
         self._start(item, group, batch, stop)
 
-    def _start(self, entity: Executable, group: CallbackGroup, batch: bool,
-               stop: Callable[[], bool] | None) -> None:
+    def _start(
+        self, entity: Executable, group: CallbackGroup, batch: bool, stop: Callable[[], bool] | None
+    ) -> None:
         self._run_entity(entity, group, batch, stop)
 
-    def _run_entity(self, entity: Executable, group: CallbackGroup, batch: bool,
-                    stop: Callable[[], bool] | None) -> None:
+    def _run_entity(
+        self, entity: Executable, group: CallbackGroup, batch: bool, stop: Callable[[], bool] | None
+    ) -> None:
         saved = current_execution()
         _running.executor, _running.entity = self, entity
         pending: Task | None = None
@@ -299,7 +303,7 @@ class Executor:
     def _run_task(self, task: Task) -> None:
         task()
         if task.done() and task.exception() is not None:
-            raise task.exception()   # type: ignore[misc]
+            raise task.exception()  # type: ignore[misc]
 
     def _release(self, group: CallbackGroup, entity: Executable | None) -> None:
         if entity is not None:
@@ -313,10 +317,11 @@ class Executor:
                 self._enqueue(e)
         if self._timer_waits:
             self._timer_waits = False
-            self.wake()   # due timers of the group may run now
+            self.wake()  # due timers of the group may run now
 
-    def _run_callback(self, callback: Callable[..., Any], *args: Any,
-                      then: Callable[[Any], None] | None = None) -> Task | None:
+    def _run_callback(
+        self, callback: Callable[..., Any], *args: Any, then: Callable[[Any], None] | None = None
+    ) -> Task | None:
         """Call a user callback; a coroutine it returns goes on as a Task of this executor
         (first step now). `then(result)` gets the result, now or when the task ends."""
         result = callback(*args)
@@ -327,8 +332,7 @@ class Executor:
         coro = result
         task = Task(lambda: coro, executor=self, reschedule=self._enqueue)
         if then is not None:
-            task.add_done_callback(
-                lambda t: then(t.result()) if t.exception() is None else None)
+            task.add_done_callback(lambda t: then(t.result()) if t.exception() is None else None)
         self._run_task(task)
         return None if task.done() else task
 
@@ -347,8 +351,7 @@ class MultiThreadedExecutor(Executor):
     An exception in a callback is raised from the spinning call (this one or the next), as
     rclpy does."""
 
-    def __init__(self, num_threads: int | None = None, *, context: Context | None = None
-                 ) -> None:
+    def __init__(self, num_threads: int | None = None, *, context: Context | None = None) -> None:
         super().__init__(context=context)
         if num_threads is None:
             num_threads = max(os.cpu_count() or 2, 2)
@@ -395,15 +398,16 @@ class MultiThreadedExecutor(Executor):
 
         try:
             self._pool.submit(run)
-        except RuntimeError:   # the pool is shut down: the work goes with the executor
+        except RuntimeError:  # the pool is shut down: the work goes with the executor
             self._workers.release()
             return False
         return True
 
-    def _start(self, entity: Executable, group: CallbackGroup, batch: bool,
-               stop: Callable[[], bool] | None) -> None:
+    def _start(
+        self, entity: Executable, group: CallbackGroup, batch: bool, stop: Callable[[], bool] | None
+    ) -> None:
         if entity.is_timer:
-            entity._scheduled = True   # not due again for us while it runs
+            entity._scheduled = True  # not due again for us while it runs
         if not self._submit(self._run_entity, entity, group, batch, stop):
             # not run: leave the entity as another executor would want to find it
             entity._scheduled = False
@@ -426,8 +430,7 @@ class MultiThreadedExecutor(Executor):
 
 
 # -- the module-level helpers, on one executor per context (rclpy's global executor) ----------
-_global: weakref.WeakKeyDictionary[Context, SingleThreadedExecutor] = \
-    weakref.WeakKeyDictionary()
+_global: weakref.WeakKeyDictionary[Context, SingleThreadedExecutor] = weakref.WeakKeyDictionary()
 _global_lock = threading.Lock()
 
 
@@ -444,8 +447,9 @@ def _executor_for(node: Node, executor: Executor | None) -> Executor:
     return executor if executor is not None else get_global_executor(node.context)
 
 
-def spin_once(node: Node, *, executor: Executor | None = None,
-              timeout_sec: float | None = None) -> None:
+def spin_once(
+    node: Node, *, executor: Executor | None = None, timeout_sec: float | None = None
+) -> None:
     ex = _executor_for(node, executor)
     added = ex.add_node(node)
     try:
@@ -466,8 +470,9 @@ def spin(node: Node, executor: Executor | None = None) -> None:
             ex.remove_node(node)
 
 
-def spin_until_future_complete(node: Node, future: Future, executor: Executor | None = None,
-                               timeout_sec: float | None = None) -> None:
+def spin_until_future_complete(
+    node: Node, future: Future, executor: Executor | None = None, timeout_sec: float | None = None
+) -> None:
     ex = _executor_for(node, executor)
     added = ex.add_node(node)
     try:

@@ -27,7 +27,7 @@ class TopicEndpointInfo:
     node_namespace: str
     topic_type: str
     topic_type_hash: str
-    endpoint_type: str          # 'PUBLISHER' or 'SUBSCRIPTION'
+    endpoint_type: str  # 'PUBLISHER' or 'SUBSCRIPTION'
     endpoint_gid: bytes
     qos_profile: QoSProfile | None
 
@@ -35,6 +35,7 @@ class TopicEndpointInfo:
 def snapshot(session: Any, domain_id: int, timeout: float = 5.0) -> list[Entity]:
     """All entities in the domain, from one complete liveliness query."""
     from ros2lite.transport.session import liveliness_keys
+
     # a peer session may hear a token twice (from its router and from the peer itself)
     keys = dict.fromkeys(liveliness_keys(session, domain_id, timeout))
     return [e for e in map(parse_token, keys) if e is not None]
@@ -45,6 +46,7 @@ class GraphCache:
 
     def __init__(self, session: Any, domain_id: int) -> None:
         from ros2lite.transport.session import declare_liveliness_subscriber
+
         self._entities: dict[str, Entity] = {}
         self._cond = threading.Condition()
         # seed synchronously (as rmw_zenoh does with a liveliness get) so the first query
@@ -71,6 +73,7 @@ class GraphCache:
     def wait_for(self, predicate: Callable[[list[Entity]], bool], timeout: float | None) -> bool:
         """Block until `predicate(entities)` holds or the timeout passes."""
         import time
+
         deadline = None if timeout is None else time.monotonic() + timeout
         with self._cond:
             while not predicate(list(self._entities.values())):
@@ -82,21 +85,24 @@ class GraphCache:
 
     def close(self) -> None:
         from ros2lite.transport.session import undeclare_quietly
+
         undeclare_quietly(self._sub)
 
 
 # -- queries over a list of entities (shared by GraphCache and snapshot users) -------------------
+
 
 def node_names_and_namespaces(entities: Iterable[Entity]) -> list[tuple[str, str]]:
     """(name, namespace) of every node, once per node instance, in name order."""
     seen: dict[tuple[str, int], tuple[str, str]] = {}
     for e in entities:
         seen.setdefault((e.zid, e.nid), (e.node_name, e.namespace))
-    return sorted(seen.values(), key=lambda nn: (nn[1].rstrip('/') + '/' + nn[0]))
+    return sorted(seen.values(), key=lambda nn: nn[1].rstrip('/') + '/' + nn[0])
 
 
-def _names_and_types(entities: Iterable[Entity], kinds: tuple[EntityKind, ...]
-                     ) -> list[tuple[str, list[str]]]:
+def _names_and_types(
+    entities: Iterable[Entity], kinds: tuple[EntityKind, ...]
+) -> list[tuple[str, list[str]]]:
     table: dict[str, set[str]] = {}
     for e in entities:
         if e.kind in kinds and e.topic_name and e.type_name:
@@ -104,14 +110,16 @@ def _names_and_types(entities: Iterable[Entity], kinds: tuple[EntityKind, ...]
     return [(name, sorted(types)) for name, types in sorted(table.items())]
 
 
-def topic_names_and_types(entities: Iterable[Entity], include_hidden: bool = False
-                          ) -> list[tuple[str, list[str]]]:
+def topic_names_and_types(
+    entities: Iterable[Entity], include_hidden: bool = False
+) -> list[tuple[str, list[str]]]:
     result = _names_and_types(entities, _TOPIC_KINDS)
     return result if include_hidden else [r for r in result if not is_hidden_name(r[0])]
 
 
-def service_names_and_types(entities: Iterable[Entity], include_hidden: bool = False
-                            ) -> list[tuple[str, list[str]]]:
+def service_names_and_types(
+    entities: Iterable[Entity], include_hidden: bool = False
+) -> list[tuple[str, list[str]]]:
     result = _names_and_types(entities, _SERVICE_KINDS)
     return result if include_hidden else [r for r in result if not is_hidden_name(r[0])]
 
@@ -121,19 +129,30 @@ def _of_node(entities: Iterable[Entity], node: str, namespace: str) -> list[Enti
     return [e for e in entities if e.node_name == node and e.namespace == ns]
 
 
-def names_and_types_by_node(entities: Iterable[Entity], node: str, namespace: str,
-                            kind: EntityKind) -> list[tuple[str, list[str]]]:
+def names_and_types_by_node(
+    entities: Iterable[Entity], node: str, namespace: str, kind: EntityKind
+) -> list[tuple[str, list[str]]]:
     return _names_and_types(_of_node(entities, node, namespace), (kind,))
 
 
-def endpoints_by_topic(entities: Iterable[Entity], topic: str, kind: EntityKind
-                       ) -> list[TopicEndpointInfo]:
+def endpoints_by_topic(
+    entities: Iterable[Entity], topic: str, kind: EntityKind
+) -> list[TopicEndpointInfo]:
     from ros2lite.transport.attachment import gid_from_token
+
     label = 'PUBLISHER' if kind == EntityKind.PUBLISHER else 'SUBSCRIPTION'
     return [
-        TopicEndpointInfo(e.node_name, e.namespace, e.type_name or '', e.type_hash or '',
-                          label, gid_from_token(e.to_token()), e.qos)
-        for e in entities if e.kind == kind and e.topic_name == topic
+        TopicEndpointInfo(
+            e.node_name,
+            e.namespace,
+            e.type_name or '',
+            e.type_hash or '',
+            label,
+            gid_from_token(e.to_token()),
+            e.qos,
+        )
+        for e in entities
+        if e.kind == kind and e.topic_name == topic
     ]
 
 
@@ -166,12 +185,17 @@ def node_full_names(entities: Iterable[Entity], include_hidden: bool = False) ->
     looked at).
     """
     from ros2lite.transport.keys import node_fqn
-    return sorted(node_fqn(ns, name) for name, ns in node_names_and_namespaces(entities)
-                  if include_hidden or not name.startswith('_'))
+
+    return sorted(
+        node_fqn(ns, name)
+        for name, ns in node_names_and_namespaces(entities)
+        if include_hidden or not name.startswith('_')
+    )
 
 
-def _node_instances(entities: Iterable[Entity], node: str, namespace: str
-                    ) -> dict[tuple[str, int], list[Entity]]:
+def _node_instances(
+    entities: Iterable[Entity], node: str, namespace: str
+) -> dict[tuple[str, int], list[Entity]]:
     ns = namespace or '/'
     out: dict[tuple[str, int], list[Entity]] = {}
     for e in entities:
@@ -180,14 +204,16 @@ def _node_instances(entities: Iterable[Entity], node: str, namespace: str
     return out
 
 
-def _action_names(names_and_types: list[tuple[str, list[str]]]
-                  ) -> list[tuple[str, list[str]]]:
+def _action_names(names_and_types: list[tuple[str, list[str]]]) -> list[tuple[str, list[str]]]:
     """Feedback topics → (action name, action types), following rcl_action's filter."""
     cut_name, cut_type = len(ACTION_FEEDBACK_SUFFIX), len(ACTION_FEEDBACK_TYPE_SUFFIX)
     return [
-        (name[:-cut_name],
-         [t[:-cut_type] if ACTION_FEEDBACK_TYPE_SUFFIX in t else t for t in types])
-        for name, types in names_and_types if ACTION_FEEDBACK_SUFFIX in name
+        (
+            name[:-cut_name],
+            [t[:-cut_type] if ACTION_FEEDBACK_TYPE_SUFFIX in t else t for t in types],
+        )
+        for name, types in names_and_types
+        if ACTION_FEEDBACK_SUFFIX in name
     ]
 
 
@@ -196,26 +222,35 @@ def action_names_and_types(entities: Iterable[Entity]) -> list[tuple[str, list[s
     return _action_names(_names_and_types(entities, _TOPIC_KINDS))
 
 
-def action_endpoints(entities: Iterable[Entity], action_name: str
-                     ) -> tuple[list[tuple[str, list[str]]], list[tuple[str, list[str]]]]:
+def action_endpoints(
+    entities: Iterable[Entity], action_name: str
+) -> tuple[list[tuple[str, list[str]]], list[tuple[str, list[str]]]]:
     """(clients, servers) of one action: (node full name, action types) per node instance.
 
     As rcl_action sees it, servers publish `<action>/_action/feedback` and clients subscribe
     to it; hidden nodes (the CLI's own) count too, as in `ros2 action info`.
     """
     from ros2lite.transport.keys import node_fqn
+
     feedback = action_name + ACTION_FEEDBACK_SUFFIX
     found: dict[EntityKind, dict[tuple[str, int], tuple[str, set[str]]]] = {
-        EntityKind.SUBSCRIPTION: {}, EntityKind.PUBLISHER: {}}
+        EntityKind.SUBSCRIPTION: {},
+        EntityKind.PUBLISHER: {},
+    }
     for e in entities:
         if e.kind in found and e.topic_name == feedback and e.type_name:
             _, types = found[e.kind].setdefault(
-                (e.zid, e.nid), (node_fqn(e.namespace, e.node_name), set()))
-            types.add(e.type_name[:-len(ACTION_FEEDBACK_TYPE_SUFFIX)]
-                      if e.type_name.endswith(ACTION_FEEDBACK_TYPE_SUFFIX) else e.type_name)
+                (e.zid, e.nid), (node_fqn(e.namespace, e.node_name), set())
+            )
+            types.add(
+                e.type_name[: -len(ACTION_FEEDBACK_TYPE_SUFFIX)]
+                if e.type_name.endswith(ACTION_FEEDBACK_TYPE_SUFFIX)
+                else e.type_name
+            )
 
     def listed(kind: EntityKind) -> list[tuple[str, list[str]]]:
         return sorted((name, sorted(types)) for name, types in found[kind].values())
+
     return listed(EntityKind.SUBSCRIPTION), listed(EntityKind.PUBLISHER)
 
 
@@ -231,8 +266,9 @@ class NodeInfo:
     action_clients: list[tuple[str, list[str]]]
 
 
-def node_info(entities: Iterable[Entity], node: str, namespace: str,
-              include_hidden: bool = False) -> NodeInfo | None:
+def node_info(
+    entities: Iterable[Entity], node: str, namespace: str, include_hidden: bool = False
+) -> NodeInfo | None:
     """The endpoints of one node instance, or None when no node has that name.
 
     With several instances sharing the name, one of them is described (the first by session
@@ -253,10 +289,13 @@ def node_info(entities: Iterable[Entity], node: str, namespace: str,
 
     pubs, subs = of(EntityKind.PUBLISHER), of(EntityKind.SUBSCRIPTION)
     return NodeInfo(
-        subscribers=shown(subs), publishers=shown(pubs),
+        subscribers=shown(subs),
+        publishers=shown(pubs),
         service_servers=shown(of(EntityKind.SERVICE)),
         service_clients=shown(of(EntityKind.CLIENT)),
-        action_servers=shown(_action_names(pubs)), action_clients=shown(_action_names(subs)))
+        action_servers=shown(_action_names(pubs)),
+        action_clients=shown(_action_names(subs)),
+    )
 
 
 def format_gid(gid: bytes) -> str:
@@ -267,23 +306,26 @@ def format_gid(gid: bytes) -> str:
 def format_endpoint_info(info: TopicEndpointInfo) -> str:
     """One endpoint as rclpy's `TopicEndpointInfo.__str__` prints it (no trailing newline)."""
     from ros2lite.transport.qos import HistoryPolicy, qos_profile_unknown
+
     qos = info.qos_profile or qos_profile_unknown
     history = qos.history.name
     if qos.history == HistoryPolicy.KEEP_LAST:
         history += f' ({qos.depth})'
-    return '\n'.join([
-        f'Node name: {info.node_name}',
-        f'Node namespace: {info.node_namespace}',
-        f'Topic type: {info.topic_type}',
-        f'Topic type hash: {info.topic_type_hash}',
-        f'Endpoint type: {info.endpoint_type}',
-        f'GID: {format_gid(info.endpoint_gid)}',
-        'QoS profile:',
-        f'  Reliability: {qos.reliability.name}',
-        f'  History (Depth): {history}',
-        f'  Durability: {qos.durability.name}',
-        f'  Lifespan: {qos.lifespan}',
-        f'  Deadline: {qos.deadline}',
-        f'  Liveliness: {qos.liveliness.name}',
-        f'  Liveliness lease duration: {qos.liveliness_lease_duration}',
-    ])
+    return '\n'.join(
+        [
+            f'Node name: {info.node_name}',
+            f'Node namespace: {info.node_namespace}',
+            f'Topic type: {info.topic_type}',
+            f'Topic type hash: {info.topic_type_hash}',
+            f'Endpoint type: {info.endpoint_type}',
+            f'GID: {format_gid(info.endpoint_gid)}',
+            'QoS profile:',
+            f'  Reliability: {qos.reliability.name}',
+            f'  History (Depth): {history}',
+            f'  Durability: {qos.durability.name}',
+            f'  Lifespan: {qos.lifespan}',
+            f'  Deadline: {qos.deadline}',
+            f'  Liveliness: {qos.liveliness.name}',
+            f'  Liveliness lease duration: {qos.liveliness_lease_duration}',
+        ]
+    )

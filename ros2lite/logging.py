@@ -34,19 +34,25 @@ def get_logger_level(name: str) -> int:
     return _levels[None]
 
 
-def _format(severity: int, name: str, message: str, stamp_ns: int, caller: inspect.Traceback
-            ) -> str:
+def _format(
+    severity: int, name: str, message: str, stamp_ns: int, caller: inspect.Traceback
+) -> str:
     fmt = os.environ.get('RCUTILS_CONSOLE_OUTPUT_FORMAT', DEFAULT_FORMAT)
     sec, nsec = divmod(stamp_ns, 1_000_000_000)
     fields = {
-        'severity': _NAMES[severity], 'name': name, 'message': message,
-        'time': f'{sec}.{nsec:09d}', 'time_as_nanoseconds': str(stamp_ns),
-        'function_name': caller.function, 'file_name': caller.filename,
+        'severity': _NAMES[severity],
+        'name': name,
+        'message': message,
+        'time': f'{sec}.{nsec:09d}',
+        'time_as_nanoseconds': str(stamp_ns),
+        'function_name': caller.function,
+        'file_name': caller.filename,
         'line_number': str(caller.lineno),
     }
-    if '{date_time_with_ms}' in fmt:   # the only costly field: only when asked for
-        fields['date_time_with_ms'] = time.strftime(
-            '%Y-%m-%d %H:%M:%S', time.localtime(sec)) + f'.{nsec // 1_000_000:03d}'
+    if '{date_time_with_ms}' in fmt:  # the only costly field: only when asked for
+        fields['date_time_with_ms'] = (
+            time.strftime('%Y-%m-%d %H:%M:%S', time.localtime(sec)) + f'.{nsec // 1_000_000:03d}'
+        )
     text = fmt
     for key, value in fields.items():
         text = text.replace('{' + key + '}', value)
@@ -56,8 +62,11 @@ def _format(severity: int, name: str, message: str, stamp_ns: int, caller: inspe
 class RcutilsLogger:
     """rclpy-compatible logger: debug/info/warn/error/fatal with once/skip_first/throttle."""
 
-    def __init__(self, name: str = '', publish: Callable[[int, str, str, inspect.Traceback],
-                                                          None] | None = None) -> None:
+    def __init__(
+        self,
+        name: str = '',
+        publish: Callable[[int, str, str, inspect.Traceback], None] | None = None,
+    ) -> None:
         self.name = name
         self._publish = publish
         self._once: set[tuple[str, int]] = set()
@@ -76,15 +85,23 @@ class RcutilsLogger:
     def is_enabled_for(self, severity: int) -> bool:
         return severity >= self.get_effective_level()
 
-    def log(self, message: Any, severity: int, *, once: bool = False, skip_first: bool = False,
-            throttle_duration_sec: float | None = None, **_: Any) -> bool:
+    def log(
+        self,
+        message: Any,
+        severity: int,
+        *,
+        once: bool = False,
+        skip_first: bool = False,
+        throttle_duration_sec: float | None = None,
+        **_: Any,
+    ) -> bool:
         if not self.is_enabled_for(severity):
             return False
         # the user's frame, found directly: inspect.stack() walked (and described) the whole
         # stack on every call, which made one log line cost 0.3-2 ms
         frame = sys._getframe(1)
         if frame.f_code in _LEVEL_METHODS and frame.f_back is not None:
-            frame = frame.f_back      # called through debug()/info()/…
+            frame = frame.f_back  # called through debug()/info()/…
         code = frame.f_code
         caller = inspect.Traceback(code.co_filename, frame.f_lineno, code.co_name, None, None)
         site = (code.co_filename, frame.f_lineno)
@@ -129,9 +146,16 @@ class RcutilsLogger:
         return self.log(message, FATAL, **kw)
 
 
-_LEVEL_METHODS = {f.__code__ for f in (RcutilsLogger.debug, RcutilsLogger.info,
-                                        RcutilsLogger.warn, RcutilsLogger.error,
-                                        RcutilsLogger.fatal)}
+_LEVEL_METHODS = {
+    f.__code__
+    for f in (
+        RcutilsLogger.debug,
+        RcutilsLogger.info,
+        RcutilsLogger.warn,
+        RcutilsLogger.error,
+        RcutilsLogger.fatal,
+    )
+}
 
 
 def get_logger(name: str) -> RcutilsLogger:

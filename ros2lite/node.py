@@ -36,13 +36,20 @@ CLOCK_QOS = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT, depth=1)
 class Node(ParameterMixin):
     """rclpy-shaped node. Create after `ros2lite.init()`; destroy with `destroy_node()`."""
 
-    def __init__(self, node_name: str, *, context: Context | None = None,
-                 cli_args: list[str] | None = None, namespace: str | None = None,
-                 use_global_arguments: bool = True, enable_rosout: bool = True,
-                 parameter_overrides: list[Parameter] | None = None,
-                 allow_undeclared_parameters: bool = False,
-                 automatically_declare_parameters_from_overrides: bool = False,
-                 start_parameter_services: bool = True) -> None:
+    def __init__(
+        self,
+        node_name: str,
+        *,
+        context: Context | None = None,
+        cli_args: list[str] | None = None,
+        namespace: str | None = None,
+        use_global_arguments: bool = True,
+        enable_rosout: bool = True,
+        parameter_overrides: list[Parameter] | None = None,
+        allow_undeclared_parameters: bool = False,
+        automatically_declare_parameters_from_overrides: bool = False,
+        start_parameter_services: bool = True,
+    ) -> None:
         self.context = context or default_context()
         self.context.require()
         args = self.context.args if use_global_arguments else RosArgs()
@@ -71,18 +78,27 @@ class Node(ParameterMixin):
         for level_name, level in self._args.log_levels.items():
             set_logger_level(level_name, level)
         from ros2lite.transport.session import declare_token
-        self._token: Any = declare_token(self.context.session, keys.node_token(
-            self.context.domain_id, self.context.zid, self.node_id, self._namespace, self._name))
+
+        self._token: Any = declare_token(
+            self.context.session,
+            keys.node_token(
+                self.context.domain_id, self.context.zid, self.node_id, self._namespace, self._name
+            ),
+        )
         self._clock = Clock(ClockType.ROS_TIME)
         self._clock_sub: Subscription | None = None
         self._rosout: Publisher | None = None
         if enable_rosout:
             self._rosout = self.create_publisher('rcl_interfaces/msg/Log', '/rosout', ROSOUT_QOS)
-        self._logger = RcutilsLogger(self.get_logger_name(),
-                                     self._publish_rosout if enable_rosout else None)
-        self._init_parameters(parameter_overrides, allow_undeclared_parameters,
-                              automatically_declare_parameters_from_overrides,
-                              start_parameter_services)
+        self._logger = RcutilsLogger(
+            self.get_logger_name(), self._publish_rosout if enable_rosout else None
+        )
+        self._init_parameters(
+            parameter_overrides,
+            allow_undeclared_parameters,
+            automatically_declare_parameters_from_overrides,
+            start_parameter_services,
+        )
         self.context.add_node(self)
 
     # -- names --------------------------------------------------------------------------------
@@ -140,8 +156,7 @@ class Node(ParameterMixin):
 
     def _executables(self) -> list[Executable]:
         """Everything that queues itself on the executor (timers are found by it)."""
-        return [*self.subscriptions, *self.services, *self.clients, *self.guards,
-                *self.waitables]
+        return [*self.subscriptions, *self.services, *self.clients, *self.guards, *self.waitables]
 
     def _remember_group(self, group: CallbackGroup | None) -> None:
         if group is not None and group not in self._callback_groups:
@@ -160,55 +175,97 @@ class Node(ParameterMixin):
         return self.resolve_topic_name(service)
 
     # -- entities -----------------------------------------------------------------------------
-    def create_publisher(self, msg_type: Any, topic: str, qos_profile: QoSProfile | int, *,
-                         callback_group: CallbackGroup | None = None,
-                         event_callbacks: Any = None) -> Publisher:
+    def create_publisher(
+        self,
+        msg_type: Any,
+        topic: str,
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: Any = None,
+    ) -> Publisher:
         pub = Publisher(self, msg_type, topic, qos_profile)
         self.publishers.append(pub)
         return pub
 
-    def create_subscription(self, msg_type: Any, topic: str, callback: Callable[..., Any],
-                            qos_profile: QoSProfile | int, *,
-                            callback_group: CallbackGroup | None = None,
-                            event_callbacks: Any = None, raw: bool = False) -> Subscription:
+    def create_subscription(
+        self,
+        msg_type: Any,
+        topic: str,
+        callback: Callable[..., Any],
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: Any = None,
+        raw: bool = False,
+    ) -> Subscription:
         self._remember_group(callback_group)
-        sub = Subscription(self, msg_type, topic, callback, qos_profile, raw=raw,
-                           callback_group=callback_group)
+        sub = Subscription(
+            self, msg_type, topic, callback, qos_profile, raw=raw, callback_group=callback_group
+        )
         self.subscriptions.append(sub)
         return sub
 
-    def create_timer(self, timer_period_sec: float, callback: Callable[[], Any],
-                     callback_group: CallbackGroup | None = None, clock: Clock | None = None
-                     ) -> Timer:
+    def create_timer(
+        self,
+        timer_period_sec: float,
+        callback: Callable[[], Any],
+        callback_group: CallbackGroup | None = None,
+        clock: Clock | None = None,
+    ) -> Timer:
         self._remember_group(callback_group)
-        timer = Timer(timer_period_sec, callback, clock or self._clock, node=self,
-                      callback_group=callback_group)
+        timer = Timer(
+            timer_period_sec,
+            callback,
+            clock or self._clock,
+            node=self,
+            callback_group=callback_group,
+        )
         self.timers.append(timer)
         self._wake_executor()
         return timer
 
-    def create_service(self, srv_type: Any, srv_name: str, callback: Callable[..., Any], *,
-                       qos_profile: QoSProfile = qos_profile_services_default,
-                       callback_group: CallbackGroup | None = None,
-                       deferred: bool = False) -> Service:
+    def create_service(
+        self,
+        srv_type: Any,
+        srv_name: str,
+        callback: Callable[..., Any],
+        *,
+        qos_profile: QoSProfile = qos_profile_services_default,
+        callback_group: CallbackGroup | None = None,
+        deferred: bool = False,
+    ) -> Service:
         """Serve `srv_name`: `callback(request, response)` returns the response (or, with
         `deferred=True`, `callback(request, header)` answers later via `send_response`)."""
         self._remember_group(callback_group)
-        srv = Service(self, srv_type, srv_name, callback, qos_profile,
-                      callback_group=callback_group, deferred=deferred)
+        srv = Service(
+            self,
+            srv_type,
+            srv_name,
+            callback,
+            qos_profile,
+            callback_group=callback_group,
+            deferred=deferred,
+        )
         self.services.append(srv)
         return srv
 
-    def create_client(self, srv_type: Any, srv_name: str, *,
-                      qos_profile: QoSProfile = qos_profile_services_default,
-                      callback_group: CallbackGroup | None = None) -> Client:
+    def create_client(
+        self,
+        srv_type: Any,
+        srv_name: str,
+        *,
+        qos_profile: QoSProfile = qos_profile_services_default,
+        callback_group: CallbackGroup | None = None,
+    ) -> Client:
         self._remember_group(callback_group)
         client = Client(self, srv_type, srv_name, qos_profile, callback_group=callback_group)
         self.clients.append(client)
         return client
 
-    def create_guard_condition(self, callback: Callable[[], Any],
-                               callback_group: CallbackGroup | None = None) -> GuardCondition:
+    def create_guard_condition(
+        self, callback: Callable[[], Any], callback_group: CallbackGroup | None = None
+    ) -> GuardCondition:
         self._remember_group(callback_group)
         guard = GuardCondition(self, callback, callback_group)
         self.guards.append(guard)
@@ -246,11 +303,11 @@ class Node(ParameterMixin):
 
     def destroy_node(self) -> None:
         from ros2lite.transport.session import undeclare_quietly
+
         # logging still works once the node is gone (e.g. from a goal thread finishing
         # during shutdown): it just no longer reaches /rosout
         self._rosout = None
-        entities: list[Any] = [*self.subscriptions, *self.publishers, *self.services,
-                               *self.clients]
+        entities: list[Any] = [*self.subscriptions, *self.publishers, *self.services, *self.clients]
         for entity in entities:
             entity.destroy()
         for timer in self.timers:
@@ -285,22 +342,34 @@ class Node(ParameterMixin):
         self._clock._enable_sim_time(True)
         if self._clock_sub is None:
             self._clock_sub = self.create_subscription(
-                'rosgraph_msgs/msg/Clock', '/clock',
+                'rosgraph_msgs/msg/Clock',
+                '/clock',
                 lambda m: self._clock._set_sim_time(m.clock.sec * 1_000_000_000 + m.clock.nanosec),
-                CLOCK_QOS)
+                CLOCK_QOS,
+            )
 
-    def _publish_rosout(self, severity: int, name: str, text: str,
-                        caller: inspect.Traceback) -> None:
+    def _publish_rosout(
+        self, severity: int, name: str, text: str, caller: inspect.Traceback
+    ) -> None:
         if self._rosout is None:
             return
         from ros2lite.interfaces import get_interface
+
         log = get_interface('rcl_interfaces/msg/Log')
         ns = time.time_ns()
-        self._rosout.publish(log(
-            stamp=get_interface('builtin_interfaces/msg/Time')(sec=ns // 1_000_000_000,
-                                                               nanosec=ns % 1_000_000_000),
-            level=severity, name=name, msg=text, file=caller.filename,
-            function=caller.function, line=caller.lineno))
+        self._rosout.publish(
+            log(
+                stamp=get_interface('builtin_interfaces/msg/Time')(
+                    sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000
+                ),
+                level=severity,
+                name=name,
+                msg=text,
+                file=caller.filename,
+                function=caller.function,
+                line=caller.lineno,
+            )
+        )
 
     # -- graph --------------------------------------------------------------------------------
     def _entities(self) -> list[Any]:
@@ -312,47 +381,61 @@ class Node(ParameterMixin):
 
     def get_node_names_and_namespaces(self) -> list[tuple[str, str]]:
         from ros2lite.graph import node_names_and_namespaces
+
         return node_names_and_namespaces(self._entities())
 
-    def get_topic_names_and_types(self, include_hidden_topics: bool = False
-                                  ) -> list[tuple[str, list[str]]]:
+    def get_topic_names_and_types(
+        self, include_hidden_topics: bool = False
+    ) -> list[tuple[str, list[str]]]:
         from ros2lite.graph import topic_names_and_types
+
         return topic_names_and_types(self._entities(), include_hidden_topics)
 
     def get_service_names_and_types(self) -> list[tuple[str, list[str]]]:
         from ros2lite.graph import service_names_and_types
+
         return service_names_and_types(self._entities(), include_hidden=True)
 
-    def _by_node(self, node: str, namespace: str, kind: keys.EntityKind
-                 ) -> list[tuple[str, list[str]]]:
+    def _by_node(
+        self, node: str, namespace: str, kind: keys.EntityKind
+    ) -> list[tuple[str, list[str]]]:
         from ros2lite.graph import names_and_types_by_node
+
         return names_and_types_by_node(self._entities(), node, namespace, kind)
 
-    def get_publisher_names_and_types_by_node(self, node_name: str, node_namespace: str
-                                              ) -> list[tuple[str, list[str]]]:
+    def get_publisher_names_and_types_by_node(
+        self, node_name: str, node_namespace: str
+    ) -> list[tuple[str, list[str]]]:
         return self._by_node(node_name, node_namespace, keys.EntityKind.PUBLISHER)
 
-    def get_subscriber_names_and_types_by_node(self, node_name: str, node_namespace: str
-                                               ) -> list[tuple[str, list[str]]]:
+    def get_subscriber_names_and_types_by_node(
+        self, node_name: str, node_namespace: str
+    ) -> list[tuple[str, list[str]]]:
         return self._by_node(node_name, node_namespace, keys.EntityKind.SUBSCRIPTION)
 
-    def get_service_names_and_types_by_node(self, node_name: str, node_namespace: str
-                                            ) -> list[tuple[str, list[str]]]:
+    def get_service_names_and_types_by_node(
+        self, node_name: str, node_namespace: str
+    ) -> list[tuple[str, list[str]]]:
         return self._by_node(node_name, node_namespace, keys.EntityKind.SERVICE)
 
-    def get_client_names_and_types_by_node(self, node_name: str, node_namespace: str
-                                           ) -> list[tuple[str, list[str]]]:
+    def get_client_names_and_types_by_node(
+        self, node_name: str, node_namespace: str
+    ) -> list[tuple[str, list[str]]]:
         return self._by_node(node_name, node_namespace, keys.EntityKind.CLIENT)
 
     def get_publishers_info_by_topic(self, topic_name: str) -> list[Any]:
         from ros2lite.graph import endpoints_by_topic
-        return endpoints_by_topic(self._entities(), self.resolve_topic_name(topic_name),
-                                  keys.EntityKind.PUBLISHER)
+
+        return endpoints_by_topic(
+            self._entities(), self.resolve_topic_name(topic_name), keys.EntityKind.PUBLISHER
+        )
 
     def get_subscriptions_info_by_topic(self, topic_name: str) -> list[Any]:
         from ros2lite.graph import endpoints_by_topic
-        return endpoints_by_topic(self._entities(), self.resolve_topic_name(topic_name),
-                                  keys.EntityKind.SUBSCRIPTION)
+
+        return endpoints_by_topic(
+            self._entities(), self.resolve_topic_name(topic_name), keys.EntityKind.SUBSCRIPTION
+        )
 
     def count_publishers(self, topic_name: str) -> int:
         return len(self.get_publishers_info_by_topic(topic_name))
@@ -362,10 +445,14 @@ class Node(ParameterMixin):
 
     def count_services(self, service_name: str) -> int:
         from ros2lite.graph import count
-        return count(self._entities(), self.resolve_service_name(service_name),
-                     keys.EntityKind.SERVICE)
+
+        return count(
+            self._entities(), self.resolve_service_name(service_name), keys.EntityKind.SERVICE
+        )
 
     def count_clients(self, service_name: str) -> int:
         from ros2lite.graph import count
-        return count(self._entities(), self.resolve_service_name(service_name),
-                     keys.EntityKind.CLIENT)
+
+        return count(
+            self._entities(), self.resolve_service_name(service_name), keys.EntityKind.CLIENT
+        )

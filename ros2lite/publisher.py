@@ -16,6 +16,7 @@ class Publisher(EndpointOwner):
 
     def __init__(self, node: Any, msg_type: Any, topic: str, qos: QoSProfile | int) -> None:
         from ros2lite.transport.session import declare_publisher
+
         self._ep = _PublisherEndpoint(node, msg_type, topic, qos)
         ep = self._ep
         self._pub: Any = declare_publisher(node.context.session, ep.key, ep.qos)
@@ -41,6 +42,7 @@ class Publisher(EndpointOwner):
                 data = ser(msg)
             except Exception as e:  # the raw generated function: name the type here
                 from ros2lite.interfaces.cdr import CdrError
+
                 raise CdrError(f'cannot serialize {self._ep.type_name}: {e}') from None
         elif isinstance(msg, (bytes, bytearray, memoryview)):
             data = bytes(msg)
@@ -48,6 +50,7 @@ class Publisher(EndpointOwner):
             if getattr(msg, '_TYPE_NAME', None) != self._ep.type_name:
                 raise TypeError(f"publisher of '{self._ep.type_name}' got {type(msg).__name__}")
             from ros2lite.interfaces import serialize
+
             data = serialize(msg)
         self._seq = seq = self._seq + 1
         self._put(data, attachment=pack_attachment(seq, time.time_ns(), self._gid))
@@ -55,12 +58,15 @@ class Publisher(EndpointOwner):
     def _codec_serializer(self) -> Any:
         from ros2lite.interfaces.cdr import codec
         from ros2lite.interfaces.registry import default_registry
+
         return codec(self._ep.type_name, default_registry()).raw_serializer()
 
     def get_subscription_count(self) -> int:
         from ros2lite.graph import count
-        return count(self._ep.node.context.graph.entities(), self.topic_name,
-                     EntityKind.SUBSCRIPTION)
+
+        return count(
+            self._ep.node.context.graph.entities(), self.topic_name, EntityKind.SUBSCRIPTION
+        )
 
     def destroy(self) -> None:
         self._ep._undeclare(self._pub)

@@ -45,10 +45,19 @@ class Service(Executable):
     With `deferred=True` the callback is `callback(request, header)` and the owner answers
     later with `send_response(response, header)` (the action server's get_result does)."""
 
-    def __init__(self, node: Any, srv_type: Any, srv_name: str, callback: Callable[..., Any],
-                 qos: QoSProfile | int, *, callback_group: CallbackGroup | None = None,
-                 deferred: bool = False) -> None:
+    def __init__(
+        self,
+        node: Any,
+        srv_type: Any,
+        srv_name: str,
+        callback: Callable[..., Any],
+        qos: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        deferred: bool = False,
+    ) -> None:
         from ros2lite.transport.session import declare_queryable
+
         super().__init__(node, callback_group)
         self._ep = _ServiceEndpoint(node, srv_type, srv_name, qos)
         self.srv_type: Any = self._ep.msg_class
@@ -60,8 +69,9 @@ class Service(Executable):
         self._destroyed = False
         self._request_codec: Any = None
         self._response_codec: Any = None
-        self._queryable: Any = declare_queryable(node.context.session, self._ep.key,
-                                                 self._on_request)
+        self._queryable: Any = declare_queryable(
+            node.context.session, self._ep.key, self._on_request
+        )
         self._ep._announce()
         node.context.local_services[self._ep.key] = self
 
@@ -84,6 +94,7 @@ class Service(Executable):
         if self._request_codec is None:
             from ros2lite.interfaces.cdr import codec
             from ros2lite.interfaces.registry import default_registry
+
             name = self._ep.type_name
             self._request_codec = codec(f'{name}_Request', default_registry())
             self._response_codec = codec(f'{name}_Response', default_registry())
@@ -116,8 +127,12 @@ class Service(Executable):
         try:
             if self._deferred:
                 return self._call(self.callback, message, header)
-            return self._call(self.callback, message, self.srv_type.Response(),
-                              then=lambda response: self.send_response(response, header))
+            return self._call(
+                self.callback,
+                message,
+                self.srv_type.Response(),
+                then=lambda response: self.send_response(response, header),
+            )
         except BaseException:
             self._abandon(header)
             raise
@@ -135,15 +150,18 @@ class Service(Executable):
             raise RuntimeError('this request has already been answered')
         if getattr(response, '_TYPE_NAME', None) != f'{self._ep.type_name}_Response':
             request.drop()
-            raise TypeError(f"service '{self.srv_name}' callback must return a "
-                            f'{self._ep.type_name}_Response, got {type(response).__name__}')
+            raise TypeError(
+                f"service '{self.srv_name}' callback must return a "
+                f'{self._ep.type_name}_Response, got {type(response).__name__}'
+            )
         try:
             data = self._codecs()[1].serialize(response)
         except BaseException:
             request.drop()
             raise
-        request.reply(data, pack_attachment(header.sequence_number, time.time_ns(),
-                                            header.client_gid))
+        request.reply(
+            data, pack_attachment(header.sequence_number, time.time_ns(), header.client_gid)
+        )
 
     def destroy(self) -> None:
         self._destroyed = True

@@ -24,8 +24,8 @@ if TYPE_CHECKING:
 class MessageInfo:
     """Delivery metadata from the rmw_zenoh attachment, plus our receive time."""
 
-    source_timestamp: int           # ns since the epoch, from the publisher
-    received_timestamp: int         # ns since the epoch, when the sample arrived here
+    source_timestamp: int  # ns since the epoch, from the publisher
+    received_timestamp: int  # ns since the epoch, when the sample arrived here
     publication_sequence_number: int
     publisher_gid: bytes
 
@@ -46,10 +46,19 @@ def _info(attachment: bytes, received: int) -> MessageInfo:
 class Subscription(EndpointOwner, Executable):
     """Calls `callback(msg)`; with raw=True calls `callback(cdr_bytes, MessageInfo)`."""
 
-    def __init__(self, node: Any, msg_type: Any, topic: str, callback: Callable[..., Any],
-                 qos: QoSProfile | int, *, raw: bool = False,
-                 callback_group: CallbackGroup | None = None) -> None:
+    def __init__(
+        self,
+        node: Any,
+        msg_type: Any,
+        topic: str,
+        callback: Callable[..., Any],
+        qos: QoSProfile | int,
+        *,
+        raw: bool = False,
+        callback_group: CallbackGroup | None = None,
+    ) -> None:
         from ros2lite.transport.session import SampleReceiver
+
         Executable.__init__(self, node, callback_group)
         self._ep = _SubscriptionEndpoint(node, msg_type, topic, qos)
         ep = self._ep
@@ -60,15 +69,21 @@ class Subscription(EndpointOwner, Executable):
         # zenoh samples as they came: `sample` for typed subscriptions, `(sample, arrival ns)`
         # for raw ones (tools like `topic hz` need arrival times). Bytes are copied out on the
         # executor thread, keeping the pump thread's share of the GIL small.
-        self._buffer: deque[Any] = deque(
-            maxlen=None if keep_all else max(ep.qos.depth, 1))
+        self._buffer: deque[Any] = deque(maxlen=None if keep_all else max(ep.qos.depth, 1))
         self._deserialize: Any = None
         self._destroyed = False
         # a subclass hook (e.g. topic monitors) sees every sample instead of the buffer
         hook = None if type(self)._on_sample is Subscription._on_sample else self._on_sample
         self._receiver = SampleReceiver(
-            node.context.session, ep.key, ep.qos, self._buffer, self._notify, stamp=raw,
-            hook=hook, name=ep.topic_name)
+            node.context.session,
+            ep.key,
+            ep.qos,
+            self._buffer,
+            self._notify,
+            stamp=raw,
+            hook=hook,
+            name=ep.topic_name,
+        )
         ep._announce()
 
     def _on_sample(self, sample: Any) -> None:
@@ -87,8 +102,10 @@ class Subscription(EndpointOwner, Executable):
         if des is None:
             from ros2lite.interfaces.cdr import codec
             from ros2lite.interfaces.registry import default_registry
-            des = self._deserialize = codec(self._ep.type_name,
-                                            default_registry()).fast_deserializer()
+
+            des = self._deserialize = codec(
+                self._ep.type_name, default_registry()
+            ).fast_deserializer()
         return des
 
     def take(self) -> tuple[Any, MessageInfo] | None:
@@ -102,7 +119,7 @@ class Subscription(EndpointOwner, Executable):
             sample, received = entry if self.raw else (entry, time.time_ns())
             attachment = sample.attachment
             if attachment is None:
-                continue   # rmw_zenoh drops samples without an attachment
+                continue  # rmw_zenoh drops samples without an attachment
             data = sample.payload.to_bytes()
             info = _info(attachment.to_bytes(), received)
             return (data if self.raw else self._deserializer()(data)), info
@@ -113,8 +130,11 @@ class Subscription(EndpointOwner, Executable):
         executor overhead; what is left goes back in the queue behind other work."""
         if self._async:
             entry = self.take()
-            return None if entry is None else self._call(
-                self.callback, *(entry if self.raw else entry[:1]))
+            return (
+                None
+                if entry is None
+                else self._call(self.callback, *(entry if self.raw else entry[:1]))
+            )
         self._deliver_batch(_BATCH if batch else 1, stop)
         return None
 
@@ -136,7 +156,7 @@ class Subscription(EndpointOwner, Executable):
                     break
                 attachment = sample.attachment
                 if attachment is None:
-                    continue   # rmw_zenoh drops samples without an attachment
+                    continue  # rmw_zenoh drops samples without an attachment
                 callback(sample.payload.to_bytes(), _info(attachment.to_bytes(), received))
                 if stop is not None and stop():
                     break
@@ -161,12 +181,12 @@ class Subscription(EndpointOwner, Executable):
     def destroy(self) -> None:
         self._destroyed = True
         self._buffer.clear()
-        self._ep._undeclare(self._receiver)   # ends the receive thread too
+        self._ep._undeclare(self._receiver)  # ends the receive thread too
 
     def get_publisher_count(self) -> int:
         from ros2lite.graph import count
-        return count(self._ep.node.context.graph.entities(), self.topic_name,
-                     EntityKind.PUBLISHER)
+
+        return count(self._ep.node.context.graph.entities(), self.topic_name, EntityKind.PUBLISHER)
 
 
 class _SubscriptionEndpoint(Endpoint):

@@ -98,9 +98,15 @@ class Task(Future):
     task asks to be called again once it is (`reschedule`). Exceptions end the task and are
     kept as its exception."""
 
-    def __init__(self, handler: Callable[..., Any], args: tuple[Any, ...] = (),
-                 kwargs: dict[str, Any] | None = None, *, executor: Any = None,
-                 reschedule: Callable[[Task], None] | None = None) -> None:
+    def __init__(
+        self,
+        handler: Callable[..., Any],
+        args: tuple[Any, ...] = (),
+        kwargs: dict[str, Any] | None = None,
+        *,
+        executor: Any = None,
+        reschedule: Callable[[Task], None] | None = None,
+    ) -> None:
         super().__init__(executor=executor)
         self._handler: Callable[..., Any] | None = handler
         self._args = args

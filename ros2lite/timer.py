@@ -18,8 +18,15 @@ class Timer(Executable):
 
     is_timer = True
 
-    def __init__(self, period_sec: float, callback: Callable[[], Any], clock: Any = None, *,
-                 node: Any = None, callback_group: CallbackGroup | None = None) -> None:
+    def __init__(
+        self,
+        period_sec: float,
+        callback: Callable[[], Any],
+        clock: Any = None,
+        *,
+        node: Any = None,
+        callback_group: CallbackGroup | None = None,
+    ) -> None:
         if period_sec < 0:
             raise ValueError('timer period must not be negative')
         super().__init__(node, callback_group)
@@ -27,7 +34,7 @@ class Timer(Executable):
         self.callback = callback
         self._clock = clock
         self._canceled = False
-        self._sim = False           # which time base `_next` is on
+        self._sim = False  # which time base `_next` is on
         self._next = self._now() + self.timer_period_ns
 
     def _now(self) -> int:
@@ -44,7 +51,7 @@ class Timer(Executable):
     def time_until_next_call(self) -> float | None:
         if self._canceled:
             return None
-        now = self._now()   # first: it may re-base `_next`
+        now = self._now()  # first: it may re-base `_next`
         return (self._next - now) / 1e9
 
     def is_ready(self) -> bool:

@@ -26,9 +26,15 @@ __all__ = ['MatchedQoS', 'MonitoredSubscription', 'match_publishers_qos', 'topic
 
 def topic_types(entities: Iterable[Entity], topic: str) -> list[str]:
     """Every type any endpoint (publisher or subscription) uses on `topic`, sorted."""
-    return sorted({e.type_name for e in entities
-                   if e.kind in (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION)
-                   and e.topic_name == topic and e.type_name})
+    return sorted(
+        {
+            e.type_name
+            for e in entities
+            if e.kind in (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION)
+            and e.topic_name == topic
+            and e.type_name
+        }
+    )
 
 
 @dataclass(frozen=True)
@@ -36,12 +42,13 @@ class MatchedQoS:
     """The profile to subscribe with, and which policies had to be weakened."""
 
     profile: QoSProfile
-    reliability_fell_back: bool   # some but not all publishers are RELIABLE
-    durability_fell_back: bool    # some but not all publishers are TRANSIENT_LOCAL
+    reliability_fell_back: bool  # some but not all publishers are RELIABLE
+    durability_fell_back: bool  # some but not all publishers are TRANSIENT_LOCAL
 
 
-def match_publishers_qos(profile: QoSProfile, publishers: Iterable[QoSProfile | None]
-                         ) -> MatchedQoS:
+def match_publishers_qos(
+    profile: QoSProfile, publishers: Iterable[QoSProfile | None]
+) -> MatchedQoS:
     """Ask for RELIABLE / TRANSIENT_LOCAL only when every publisher offers it.
 
     That is rmw's BEST_AVAILABLE rule for a subscription (transport.qos owns it): the
@@ -53,17 +60,21 @@ def match_publishers_qos(profile: QoSProfile, publishers: Iterable[QoSProfile | 
     if not offered:
         return MatchedQoS(profile, False, False)
     chosen = resolve_best_available(
-        profile.replace(reliability=ReliabilityPolicy.BEST_AVAILABLE,
-                        durability=DurabilityPolicy.BEST_AVAILABLE),
-        offered, for_publisher=False)
+        profile.replace(
+            reliability=ReliabilityPolicy.BEST_AVAILABLE, durability=DurabilityPolicy.BEST_AVAILABLE
+        ),
+        offered,
+        for_publisher=False,
+    )
     n = len(offered)
     reliable = sum(q.reliability == ReliabilityPolicy.RELIABLE for q in offered)
     latched = sum(q.durability == DurabilityPolicy.TRANSIENT_LOCAL for q in offered)
     return MatchedQoS(chosen, 0 < reliable < n, 0 < latched < n)
 
 
-_WEAKEST = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT,
-                      durability=DurabilityPolicy.VOLATILE)
+_WEAKEST = QoSProfile(
+    reliability=ReliabilityPolicy.BEST_EFFORT, durability=DurabilityPolicy.VOLATILE
+)
 
 
 class MonitoredSubscription(Subscription):
@@ -80,27 +91,37 @@ class MonitoredSubscription(Subscription):
     payload itself on the same thread (what `bag record` keeps, never decoded).
     """
 
-    def __init__(self, node: Any, msg_type: Any, topic: str,
-                 callback: Callable[[bytes, Any], Any] | None, qos: QoSProfile, *,
-                 on_arrival: Callable[[int, bytes, int], Any] | None = None,
-                 on_payload: Callable[[bytes, bytes, int], Any] | None = None) -> None:
+    def __init__(
+        self,
+        node: Any,
+        msg_type: Any,
+        topic: str,
+        callback: Callable[[bytes, Any], Any] | None,
+        qos: QoSProfile,
+        *,
+        on_arrival: Callable[[int, bytes, int], Any] | None = None,
+        on_payload: Callable[[bytes, bytes, int], Any] | None = None,
+    ) -> None:
         if (on_arrival is None) == (on_payload is None):
             raise TypeError('give exactly one of on_arrival and on_payload')
         self._on_arrival = on_arrival
         self._on_payload = on_payload
         self._deliver = callback is not None
         super().__init__(node, msg_type, topic, callback or _ignore, qos, raw=True)
-        node.subscriptions.append(self)   # destroyed with the node, like its own ones
+        node.subscriptions.append(self)  # destroyed with the node, like its own ones
 
     def _on_sample(self, sample: Any) -> None:
         attachment = sample.attachment
         if attachment is None:
-            return   # rmw_zenoh ignores samples without one
+            return  # rmw_zenoh ignores samples without one
         if self._on_payload is not None:
             self._on_payload(sample.payload.to_bytes(), attachment.to_bytes(), time.time_ns())
         else:
-            self._on_arrival(len(sample.payload), attachment.to_bytes(),  # type: ignore[misc]
-                             time.time_ns())
+            self._on_arrival(
+                len(sample.payload),
+                attachment.to_bytes(),  # type: ignore[misc]
+                time.time_ns(),
+            )
         if self._deliver:
             super()._on_sample(sample)
 

@@ -68,9 +68,9 @@ class RateStats:
         self.window = window
         self._lock = threading.Lock()
         self._gaps: deque[int] = deque(maxlen=window)
-        self._first = -1          # time of the sample that started this run of gaps
-        self._last = 0            # time of the newest sample
-        self._reported = 0        # newest sample time when a summary was last handed out
+        self._first = -1  # time of the sample that started this run of gaps
+        self._last = 0  # time of the newest sample
+        self._reported = 0  # newest sample time when a summary was last handed out
 
     def add(self, now_ns: int) -> bool:
         """Record one sample seen at `now_ns`; True when a clock reset cleared the window.
@@ -144,8 +144,9 @@ class BandwidthStats:
             sizes = [s for _, s in self._samples]
         total = sum(sizes)
         n = len(sizes)
-        return BandwidthSummary(total * _NS / (now_ns - first), n, total / n, min(sizes),
-                                max(sizes))
+        return BandwidthSummary(
+            total * _NS / (now_ns - first), n, total / n, min(sizes), max(sizes)
+        )
 
 
 class DelayStats:
@@ -229,6 +230,7 @@ class LostMessageCounter:
                 self.observe(seq, gid)
                 return
         from ros2lite.transport.attachment import decode_attachment
+
         try:
             a = decode_attachment(attachment)
         except ValueError:

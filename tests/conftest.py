@@ -22,17 +22,25 @@ from tests.spinning import free_port, wait_until
 __all__ = ['free_port', 'wait_until']
 
 
-
-
 @pytest.fixture(scope='session')
 def ros_router() -> Iterator[str]:
     """A real router for the whole session; yields its endpoint."""
     import zenoh
 
     from ros2lite.transport.config import router_config
-    saved = {k: os.environ.get(k) for k in (
-        'ROS2LITE_ROUTER', 'ROS_DOMAIN_ID', 'ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI',
-        'ZENOH_ROUTER_CONFIG_URI', 'XDG_RUNTIME_DIR', 'ROS2LITE_NO_DAEMON')}
+
+    saved = {
+        k: os.environ.get(k)
+        for k in (
+            'ROS2LITE_ROUTER',
+            'ROS_DOMAIN_ID',
+            'ZENOH_CONFIG_OVERRIDE',
+            'ZENOH_SESSION_CONFIG_URI',
+            'ZENOH_ROUTER_CONFIG_URI',
+            'XDG_RUNTIME_DIR',
+            'ROS2LITE_NO_DAEMON',
+        )
+    }
     endpoint = f'tcp/127.0.0.1:{free_port()}'
     for key in ('ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI', 'ZENOH_ROUTER_CONFIG_URI'):
         os.environ.pop(key, None)
@@ -57,11 +65,12 @@ def alien_session(ros_router: str) -> Iterator[Any]:
     """A plain zenoh client session with a hand-written config: the other side of tests that
     check our wire format against the reference, not against our own code."""
     import zenoh
+
     conf = zenoh.Config()
     conf.insert_json5('mode', '"client"')
     conf.insert_json5('connect/endpoints', f'["{ros_router}"]')
     conf.insert_json5('scouting/multicast/enabled', 'false')
-    conf.insert_json5('timestamping/enabled', 'true')   # advanced publishers need it
+    conf.insert_json5('timestamping/enabled', 'true')  # advanced publishers need it
     session = zenoh.open(conf)
     try:
         yield session
@@ -73,6 +82,7 @@ def alien_session(ros_router: str) -> Iterator[Any]:
 def ros_context(ros_router: str) -> Iterator[Any]:
     """An initialised ros2lite context of this test process."""
     from ros2lite.context import Context
+
     ctx = Context()
     ctx.init([])
     try:

@@ -20,8 +20,12 @@ def free_port() -> int:
             return port
 
 
-def wait_until(predicate: Callable[[], Any], timeout: float = 10.0, interval: float = 0.05,
-               step: Callable[[], Any] | None = None) -> Any:
+def wait_until(
+    predicate: Callable[[], Any],
+    timeout: float = 10.0,
+    interval: float = 0.05,
+    step: Callable[[], Any] | None = None,
+) -> Any:
     """Until predicate() is truthy, sleep `interval` (or run `step`); returns its value or
     fails the test on timeout."""
     deadline = time.monotonic() + timeout
@@ -62,16 +66,16 @@ class Listener:
     """Collects a topic's messages (or, raw, its CDR bytes and arrival times) on an
     executor thread of the test's context."""
 
-    def __init__(self, ctx: Any, topic: str, type_name: Any, qos: Any, raw: bool = False
-                 ) -> None:
+    def __init__(self, ctx: Any, topic: str, type_name: Any, qos: Any, raw: bool = False) -> None:
         import threading
         import uuid
 
         from ros2lite.executors import SingleThreadedExecutor
         from ros2lite.node import Node
+
         self.node = Node(f'listener_{uuid.uuid4().hex[:6]}', context=ctx, enable_rosout=False)
         self.messages: list[Any] = []
-        self.arrivals: list[int] = []   # raw only: when each sample arrived (ns, wall clock)
+        self.arrivals: list[int] = []  # raw only: when each sample arrived (ns, wall clock)
 
         def keep(data: bytes, info: Any) -> None:
             self.arrivals.append(info.received_timestamp)

@@ -37,12 +37,11 @@ def parse_cdr_string(data: bytes) -> str:
     assert data[:4] == b'\x00\x01\x00\x00'
     (n,) = struct.unpack_from('<I', data, 4)
     assert data[8 + n - 1] == 0 and len(data) >= 8 + n
-    return data[8:8 + n - 1].decode()
+    return data[8 : 8 + n - 1].decode()
 
 
 def attachment(seq: int, ts: int, gid: bytes) -> bytes:
     return struct.pack('<qqB', seq, ts, 16) + gid
-
 
 
 def test_ros2lite_sees_and_hears_the_alien(ros_context: Any, alien_session: Any) -> None:
@@ -51,17 +50,18 @@ def test_ros2lite_sees_and_hears_the_alien(ros_context: Any, alien_session: Any)
     ns, name, topic = '%alien_ns', 'alien_node', '%alien_ns%alien_chatter'
     nn = alien_session.liveliness().declare_token(f'@ros2_lv/{d}/{zid}/0/0/NN/%/{ns}/{name}')
     mp = alien_session.liveliness().declare_token(
-        f'@ros2_lv/{d}/{zid}/0/1/MP/%/{ns}/{name}/{topic}/{STRING_TYPE}/{STRING_HASH}/'
-        f'2::,7:,:,:,,')
+        f'@ros2_lv/{d}/{zid}/0/1/MP/%/{ns}/{name}/{topic}/{STRING_TYPE}/{STRING_HASH}/2::,7:,:,:,,'
+    )
     data_key = f'{d}/alien_ns/alien_chatter/{STRING_TYPE}/{STRING_HASH}'
     alien_pub = alien_session.declare_publisher(data_key)
     try:
         node = Node('lite_node', context=ros_context)
         deadline = time.monotonic() + 15
         # the node's token and its publisher's token arrive one after the other: wait for both
-        while ('alien_node', '/alien_ns') not in node.get_node_names_and_namespaces() or \
-                ('/alien_ns/alien_chatter', ['std_msgs/msg/String']) not in \
-                node.get_topic_names_and_types():
+        while ('alien_node', '/alien_ns') not in node.get_node_names_and_namespaces() or (
+            '/alien_ns/alien_chatter',
+            ['std_msgs/msg/String'],
+        ) not in node.get_topic_names_and_types():
             assert time.monotonic() < deadline, node.get_topic_names_and_types()
             time.sleep(0.05)
         [info] = node.get_publishers_info_by_topic('/alien_ns/alien_chatter')
@@ -69,14 +69,21 @@ def test_ros2lite_sees_and_hears_the_alien(ros_context: Any, alien_session: Any)
         assert info.qos_profile is not None and info.qos_profile.depth == 7
         assert info.qos_profile.reliability.name == 'BEST_EFFORT'
         assert node.get_publisher_names_and_types_by_node('alien_node', '/alien_ns') == [
-            ('/alien_ns/alien_chatter', ['std_msgs/msg/String'])]
+            ('/alien_ns/alien_chatter', ['std_msgs/msg/String'])
+        ]
 
         typed: list[str] = []
         raw: list[tuple[bytes, MessageInfo]] = []
-        node.create_subscription('std_msgs/msg/String', '/alien_ns/alien_chatter',
-                                 lambda m: typed.append(m.data), 10)
-        node.create_subscription('std_msgs/msg/String', '/alien_ns/alien_chatter',
-                                 lambda b, i: raw.append((b, i)), 10, raw=True)
+        node.create_subscription(
+            'std_msgs/msg/String', '/alien_ns/alien_chatter', lambda m: typed.append(m.data), 10
+        )
+        node.create_subscription(
+            'std_msgs/msg/String',
+            '/alien_ns/alien_chatter',
+            lambda b, i: raw.append((b, i)),
+            10,
+            raw=True,
+        )
         ex = SingleThreadedExecutor(context=ros_context)
         ex.add_node(node)
         seq = 0
@@ -84,8 +91,9 @@ def test_ros2lite_sees_and_hears_the_alien(ros_context: Any, alien_session: Any)
         def sent_and_heard() -> bool:
             nonlocal seq
             seq += 1
-            alien_pub.put(cdr_string(f'alien {seq}'),
-                          attachment=attachment(seq, time.time_ns(), ALIEN_GID))
+            alien_pub.put(
+                cdr_string(f'alien {seq}'), attachment=attachment(seq, time.time_ns(), ALIEN_GID)
+            )
             ex.spin_once(timeout_sec=0.05)
             return bool(typed) and bool(raw)
 
@@ -116,7 +124,8 @@ def test_alien_hears_ros2lite(ros_context: Any, alien_session: Any) -> None:
     # the alien announces its subscription, so the ros2lite side can wait for it in the graph
     token = alien_session.liveliness().declare_token(
         f'@ros2_lv/{d}/{alien_session.info.zid()}/0/0/MS/%/%/alien_listener/%from_lite/'
-        f'{STRING_TYPE}/{STRING_HASH}/::,10:,:,:,,')
+        f'{STRING_TYPE}/{STRING_HASH}/::,10:,:,:,,'
+    )
     try:
         node = Node('lite_talker', context=ros_context)
         pub = node.create_publisher('std_msgs/msg/String', 'from_lite', 10)
@@ -146,41 +155,47 @@ def test_alien_hears_ros2lite(ros_context: Any, alien_session: Any) -> None:
 
 def test_liveliness_tokens_have_the_rmw_zenoh_shape(ros_context: Any, alien_session: Any) -> None:
     import zenoh
+
     d = ros_context.domain_id
     node = Node('lite_node', context=ros_context)
     node.create_publisher('std_msgs/msg/String', 'chatter', 7)
     node.create_subscription('std_msgs/msg/String', '/robot1/chatter', lambda m: None, 10)
     zid = ros_context.zid
     assert zid == str(ros_context.session.info.zid())
-    hashes = json.loads((Path(__file__).parent / 'interfaces' / 'data' /
-                         'rihs01_jazzy.json').read_text())
+    hashes = json.loads(
+        (Path(__file__).parent / 'interfaces' / 'data' / 'rihs01_jazzy.json').read_text()
+    )
     expected = {
         f'@ros2_lv/{d}/{zid}/0/0/NN/%/%/lite_node',
-        f'@ros2_lv/{d}/{zid}/0/1/MP/%/%/lite_node/%rosout/{LOG_TYPE}/{LOG_HASH}/'
-        ':1:,1000:,:10,0:,,',
+        f'@ros2_lv/{d}/{zid}/0/1/MP/%/%/lite_node/%rosout/{LOG_TYPE}/{LOG_HASH}/:1:,1000:,:10,0:,,',
         # every node publishes /parameter_events and serves the six parameter services
         f'@ros2_lv/{d}/{zid}/0/2/MP/%/%/lite_node/%parameter_events/'
         'rcl_interfaces::msg::dds_::ParameterEvent_/'
         f"{hashes['rcl_interfaces/msg/ParameterEvent']}/::,1000:,:,:,,",
-        *(f'@ros2_lv/{d}/{zid}/0/{3 + i}/SS/%/%/lite_node/%lite_node%{service}/'
-          f'rcl_interfaces::srv::dds_::{srv}_/{hashes["rcl_interfaces/srv/" + srv]}/'
-          '::,1000:,:,:,,'
-          for i, (service, srv) in enumerate([
-              ('describe_parameters', 'DescribeParameters'),
-              ('get_parameters', 'GetParameters'),
-              ('get_parameter_types', 'GetParameterTypes'),
-              ('list_parameters', 'ListParameters'),
-              ('set_parameters', 'SetParameters'),
-              ('set_parameters_atomically', 'SetParametersAtomically')])),
-        f'@ros2_lv/{d}/{zid}/0/9/MP/%/%/lite_node/%chatter/{STRING_TYPE}/{STRING_HASH}/'
-        '::,7:,:,:,,',
+        *(
+            f'@ros2_lv/{d}/{zid}/0/{3 + i}/SS/%/%/lite_node/%lite_node%{service}/'
+            f'rcl_interfaces::srv::dds_::{srv}_/{hashes["rcl_interfaces/srv/" + srv]}/'
+            '::,1000:,:,:,,'
+            for i, (service, srv) in enumerate(
+                [
+                    ('describe_parameters', 'DescribeParameters'),
+                    ('get_parameters', 'GetParameters'),
+                    ('get_parameter_types', 'GetParameterTypes'),
+                    ('list_parameters', 'ListParameters'),
+                    ('set_parameters', 'SetParameters'),
+                    ('set_parameters_atomically', 'SetParametersAtomically'),
+                ]
+            )
+        ),
+        f'@ros2_lv/{d}/{zid}/0/9/MP/%/%/lite_node/%chatter/{STRING_TYPE}/{STRING_HASH}/::,7:,:,:,,',
         f'@ros2_lv/{d}/{zid}/0/10/MS/%/%/lite_node/%robot1%chatter/{STRING_TYPE}/{STRING_HASH}/'
         '::,10:,:,:,,',
     }
 
     def tokens_of_ours() -> set[str]:
-        replies = alien_session.liveliness().get(f'@ros2_lv/{d}/**',
-                                         zenoh.handlers.FifoChannel(1024), timeout=5)
+        replies = alien_session.liveliness().get(
+            f'@ros2_lv/{d}/**', zenoh.handlers.FifoChannel(1024), timeout=5
+        )
         keys = {str(r.ok.key_expr) for r in replies if r.ok is not None}
         return {k for k in keys if f'/{zid}/' in k}
 

@@ -54,11 +54,12 @@ def test_call_async_completes_on_the_executor(ros_context: Any) -> None:
     for future in futures:
         executor.spin_until_future_complete(future, timeout_sec=10)
     assert [f.result().sum for f in futures] == [100, 101, 102, 103, 104]
-    assert threads_seen == {threading.get_ident()}   # done-callbacks ran on the executor
+    assert threads_seen == {threading.get_ident()}  # done-callbacks ran on the executor
 
 
-def test_blocking_call_needs_no_executor_for_a_remote_server(ros_context: Any, background: Any
-                                                             ) -> None:
+def test_blocking_call_needs_no_executor_for_a_remote_server(
+    ros_context: Any, background: Any
+) -> None:
     server = Node('remote_server', context=ros_context)
     server.create_service(AddTwoInts, 'add_two_ints', add)
     background(SingleThreadedExecutor(context=ros_context)).add_node(server)
@@ -135,8 +136,9 @@ def _outer_calling_inner(node: Node, group: Any) -> Any:
     return node.create_client(AddTwoInts, 'outer')
 
 
-def test_service_calling_a_service_on_a_multithreaded_executor(ros_context: Any,
-                                                               background: Any) -> None:
+def test_service_calling_a_service_on_a_multithreaded_executor(
+    ros_context: Any, background: Any
+) -> None:
     node = Node('classic_mt', context=ros_context)
     outer = _outer_calling_inner(node, ReentrantCallbackGroup())
     background(MultiThreadedExecutor(4, context=ros_context)).add_node(node)
@@ -152,8 +154,11 @@ def test_the_same_on_one_thread_is_a_clear_error_not_a_hang(ros_context: Any) ->
     executor = SingleThreadedExecutor(context=ros_context)
     executor.add_node(node)
     start = time.monotonic()
-    with pytest.raises(RuntimeError, match=r"Client.call\('/inner'\) inside a callback would "
-                                           'deadlock'):
+    with pytest.raises(
+        RuntimeError,
+        match=r"Client.call\('/inner'\) inside a callback would "
+        'deadlock',
+    ):
         executor.spin_until_future_complete(future, timeout_sec=10)
     assert time.monotonic() - start < 5
 
@@ -177,8 +182,7 @@ def test_async_service_callback_awaits_another_service_on_one_thread(ros_context
     """The coroutine way: no second thread needed, as long as the inner server is in
     another callback group (the awaiting callback keeps its own group, as in rclpy)."""
     node = Node('async_classic', context=ros_context)
-    node.create_service(AddTwoInts, 'inner', add,
-                        callback_group=MutuallyExclusiveCallbackGroup())
+    node.create_service(AddTwoInts, 'inner', add, callback_group=MutuallyExclusiveCallbackGroup())
     inner = node.create_client(AddTwoInts, 'inner')
 
     async def outer(request: Any, response: Any) -> Any:

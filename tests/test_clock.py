@@ -55,18 +55,19 @@ def clock_pub(ros_context: Any) -> Any:
 
 
 def test_sim_time_follows_clock_topic(ros_context: Any, clock_pub: Any) -> None:
-    node = Node('simulated', context=ros_context,
-                cli_args=['--ros-args', '-p', 'use_sim_time:=true'])
+    node = Node(
+        'simulated', context=ros_context, cli_args=['--ros-args', '-p', 'use_sim_time:=true']
+    )
     assert node.get_parameter('use_sim_time').value is True
     clock = node.get_clock()
     assert clock.ros_time_is_active
-    assert clock.now().nanoseconds == 0     # no /clock yet
+    assert clock.now().nanoseconds == 0  # no /clock yet
     ex = SingleThreadedExecutor(context=ros_context)
     ex.add_node(node)
     target = 42 * 1_000_000_000 + 5
 
     def sent_and_seen() -> bool:
-        publish_clock(clock_pub, target)   # repeat: the first may precede discovery
+        publish_clock(clock_pub, target)  # repeat: the first may precede discovery
         spin_for(ex, 0.02)
         return clock.now().nanoseconds == target
 
@@ -79,13 +80,16 @@ def test_sim_time_follows_clock_topic(ros_context: Any, clock_pub: Any) -> None:
 
 
 def test_timers_follow_sim_time(ros_context: Any, clock_pub: Any) -> None:
-    node = Node('sim_timer', context=ros_context,
-                parameter_overrides=[Parameter('use_sim_time', value=True)])
+    node = Node(
+        'sim_timer',
+        context=ros_context,
+        parameter_overrides=[Parameter('use_sim_time', value=True)],
+    )
     calls: list[int] = []
     node.create_timer(1.0, lambda: calls.append(node.get_clock().now().nanoseconds))
     ex = SingleThreadedExecutor(context=ros_context)
     ex.add_node(node)
-    spin_for(ex, 1.2)     # a second of wall time is nothing in sim time
+    spin_for(ex, 1.2)  # a second of wall time is nothing in sim time
     assert calls == []
 
     def advanced() -> bool:
@@ -117,6 +121,7 @@ def test_sleep_for_under_sim_time() -> None:
     clock._enable_sim_time(True)
     clock._set_sim_time(1_000_000_000)
     import threading
+
     threading.Timer(0.1, clock._set_sim_time, args=(3_000_000_000,)).start()
     start = time.monotonic()
     clock.sleep_for(Duration.from_seconds(1.5))

@@ -16,9 +16,11 @@ from tests.conftest import free_port
 
 
 def test_client_mode_init_without_router_fails_fast_and_clearly(
-        ros_router: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    ros_router: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
     # a node runs without a router (see tests/test_router_survival.py); a client cannot
     from ros2lite.transport.config import RouterUnavailableError
+
     monkeypatch.setenv('ZENOH_CONFIG_OVERRIDE', 'mode="client"')
     endpoint = f'tcp/127.0.0.1:{free_port()}'
     ctx = Context()
@@ -38,13 +40,13 @@ def test_lifecycle(ros_router: str) -> None:
         Node('early', context=ctx)
     assert ros2lite.init([], context=ctx) is ctx
     assert ctx.ok() and ros2lite.ok(context=ctx)
-    assert 0 < len(ctx.zid) <= 32 and int(ctx.zid, 16) > 0   # zenoh drops leading zeros
+    assert 0 < len(ctx.zid) <= 32 and int(ctx.zid, 16) > 0  # zenoh drops leading zeros
     with pytest.raises(RuntimeError, match='once'):
         ctx.init([])
     ros2lite.shutdown(context=ctx)
     assert not ctx.ok()
     ros2lite.try_shutdown(context=ctx)  # a second shutdown is harmless
-    ctx.init([])    # and the context can be used again
+    ctx.init([])  # and the context can be used again
     assert ctx.ok()
     ctx.shutdown()
 
@@ -55,12 +57,13 @@ def test_with_statement_shuts_down(ros_router: str) -> None:
         node = Node('scoped', context=ctx)
         assert ctx.ok()
     assert not ctx.ok()
-    assert node._token is None   # nodes are destroyed with their context
+    assert node._token is None  # nodes are destroyed with their context
 
 
 def test_args_none_means_sys_argv(ros_router: str, monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr('sys.argv', ['prog', 'user_arg', '--ros-args', '-r', '__node:=renamed',
-                                     '-p', 'answer:=42'])
+    monkeypatch.setattr(
+        'sys.argv', ['prog', 'user_arg', '--ros-args', '-r', '__node:=renamed', '-p', 'answer:=42']
+    )
     ctx = Context()
     ctx.init(None)
     try:
@@ -69,7 +72,7 @@ def test_args_none_means_sys_argv(ros_router: str, monkeypatch: pytest.MonkeyPat
         assert node.declare_parameter('answer', 0).value == 42
     finally:
         ctx.shutdown()
-    ctx.init([])   # an explicit list ignores sys.argv
+    ctx.init([])  # an explicit list ignores sys.argv
     try:
         assert Node('original', context=ctx).get_name() == 'original'
     finally:
@@ -105,6 +108,7 @@ def test_process_exits_cleanly_without_shutdown(ros_router: str) -> None:
     # a live subscription's threads must not hang or abort the interpreter at exit
     import subprocess
     import sys
+
     code = (
         'import ros2lite\n'
         'from ros2lite.msgs.std_msgs.msg import String\n'
@@ -112,9 +116,9 @@ def test_process_exits_cleanly_without_shutdown(ros_router: str) -> None:
         "n = ros2lite.Node('exiter')\n"
         "n.create_subscription(String, '/exit_test', print, 10)\n"
         "n.create_publisher(String, '/exit_test', 10).publish(String(data='x'))\n"
-        'raise SystemExit(3)\n')
-    proc = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
-                          timeout=20)
+        'raise SystemExit(3)\n'
+    )
+    proc = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, timeout=20)
     assert proc.returncode == 3, proc.stderr
 
 
@@ -142,10 +146,13 @@ if mode == 'after':
 '''
 
 
-@pytest.mark.parametrize(('mode', 'said', 'code'), [
-    ('spin', 'external shutdown', 0), ('loop', 'left loop', 0), ('after', 'shut down', -15)])
+@pytest.mark.parametrize(
+    ('mode', 'said', 'code'),
+    [('spin', 'external shutdown', 0), ('loop', 'left loop', 0), ('after', 'shut down', -15)],
+)
 def test_sigterm(processes: Any, mode: str, said: str, code: int) -> None:
     import signal
+
     proc = processes.python(SIGTERM_PROGRAM, mode)
     assert proc.stdout.readline() == 'ready\n'
     if mode == 'after':

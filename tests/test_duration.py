@@ -21,7 +21,7 @@ def test_constructor_is_rclpy_shaped() -> None:
     assert Duration(seconds=1.5).nanoseconds == 1_500_000_000
     assert Duration(seconds=1, nanoseconds=5).nanoseconds == 1_000_000_005
     assert Duration().nanoseconds == 0 and Duration().is_unspecified
-    assert Duration(seconds=0.1).nanoseconds == 100_000_000     # rounded, not truncated
+    assert Duration(seconds=0.1).nanoseconds == 100_000_000  # rounded, not truncated
     with pytest.raises(TypeError):
         Duration(5)  # type: ignore[misc]
 
@@ -31,7 +31,7 @@ def test_rmw_time_view() -> None:
     assert (d.sec, d.nsec) == (2, 1)
     assert (DURATION_INFINITE.sec, DURATION_INFINITE.nsec) == (9223372036, 854775807)
     neg = Duration(nanoseconds=-1)
-    assert (neg.sec, neg.nsec) == (-1, 999_999_999)   # floor, so sec * 1e9 + nsec holds
+    assert (neg.sec, neg.nsec) == (-1, 999_999_999)  # floor, so sec * 1e9 + nsec holds
 
 
 def test_arithmetic_order_and_hash() -> None:

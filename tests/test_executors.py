@@ -57,8 +57,9 @@ def test_spin_until_future_complete_with_timer(ros_context: Any) -> None:
 
     node.create_timer(0.02, tick)
     start = time.monotonic()
-    ros2lite.spin_until_future_complete(node, fut, executor=SingleThreadedExecutor(
-        context=ros_context), timeout_sec=5)
+    ros2lite.spin_until_future_complete(
+        node, fut, executor=SingleThreadedExecutor(context=ros_context), timeout_sec=5
+    )
     assert fut.result() == 'done' and len(calls) == 3
     assert time.monotonic() - start < 1.0
 
@@ -97,8 +98,9 @@ def test_spin_once_honours_timeout(ros_context: Any) -> None:
 def test_callbacks_run_on_the_spinning_thread(ros_context: Any) -> None:
     node = Node('threads', context=ros_context)
     threads: list[int] = []
-    node.create_subscription('std_msgs/msg/String', 'thr', lambda m: threads.append(
-        threading.get_ident()), 10)
+    node.create_subscription(
+        'std_msgs/msg/String', 'thr', lambda m: threads.append(threading.get_ident()), 10
+    )
     pub = node.create_publisher('std_msgs/msg/String', 'thr', 10)
     wait_matched(pub)
     pub.publish(get_interface('std_msgs/msg/String')(data='x'))
@@ -140,7 +142,7 @@ def _buffered(ros_context: Any, n: int, depth: int = 100) -> tuple[Node, Any, li
     for i in range(n):
         pub.publish(String(data=str(i)))
     deadline = time.monotonic() + 5
-    while len(sub._buffer) < n:   # (white box) all arrived, none taken
+    while len(sub._buffer) < n:  # (white box) all arrived, none taken
         assert time.monotonic() < deadline
         time.sleep(0.01)
     return node, sub, got
@@ -172,7 +174,7 @@ def test_spin_until_future_complete_stops_at_the_completing_callback(ros_context
     ex.add_node(node)
     ex.spin_until_future_complete(fut, timeout_sec=5)
     assert fut.result() == '1' and got == ['0', '1']
-    spin_until(ex, lambda: len(got) == 6)   # the rest is still delivered later, in order
+    spin_until(ex, lambda: len(got) == 6)  # the rest is still delivered later, in order
     assert got == [str(i) for i in range(6)]
 
 
@@ -192,12 +194,13 @@ def test_timers_are_not_starved_by_a_busy_subscription(ros_context: Any) -> None
     ex = SingleThreadedExecutor(context=ros_context)
     ex.add_node(node)
     ex.spin_until_future_complete(fut, timeout_sec=5)
-    assert len(got) < 300          # still busy with the backlog…
-    assert len(ticks) >= 8         # …yet the 10 ms timer kept firing
+    assert len(got) < 300  # still busy with the backlog…
+    assert len(ticks) >= 8  # …yet the 10 ms timer kept firing
     assert max(b - a for a, b in itertools.pairwise(ticks)) < 0.03
 
 
 # -- rclpy's concurrency model: executors own their nodes' work, callback groups, tasks --------
+
 
 def test_each_executor_runs_only_its_own_nodes(ros_context: Any) -> None:
     a, b = Node('exec_a', context=ros_context), Node('exec_b', context=ros_context)
@@ -249,6 +252,7 @@ def _overlap(executor: Any, node: Node, group_a: Any, group_b: Any) -> int:
 def test_multithreaded_executor_honours_mutually_exclusive_groups(ros_context: Any) -> None:
     from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup
     from ros2lite.executors import MultiThreadedExecutor
+
     node = Node('mutex', context=ros_context)
     group = MutuallyExclusiveCallbackGroup()
     assert _overlap(MultiThreadedExecutor(4, context=ros_context), node, group, group) == 1
@@ -257,6 +261,7 @@ def test_multithreaded_executor_honours_mutually_exclusive_groups(ros_context: A
 def test_multithreaded_executor_runs_reentrant_callbacks_in_parallel(ros_context: Any) -> None:
     from ros2lite.callback_groups import ReentrantCallbackGroup
     from ros2lite.executors import MultiThreadedExecutor
+
     node = Node('reentrant', context=ros_context)
     group = ReentrantCallbackGroup()
     assert _overlap(MultiThreadedExecutor(4, context=ros_context), node, group, group) == 2
@@ -264,6 +269,7 @@ def test_multithreaded_executor_runs_reentrant_callbacks_in_parallel(ros_context
 
 def test_single_threaded_executor_never_overlaps(ros_context: Any) -> None:
     from ros2lite.callback_groups import ReentrantCallbackGroup
+
     node = Node('single', context=ros_context)
     group = ReentrantCallbackGroup()
     assert _overlap(SingleThreadedExecutor(context=ros_context), node, group, group) == 1
@@ -332,6 +338,7 @@ def test_async_timer_callback_keeps_its_group_until_it_ends(ros_context: Any) ->
 def test_shutting_down_a_multithreaded_executor_while_it_spins(ros_context: Any) -> None:
     """shutdown() from another thread ends spin() quietly, even with work still coming in."""
     from ros2lite.executors import MultiThreadedExecutor
+
     node = Node('busy_mt', context=ros_context)
     ticks = itertools.count()
     node.create_timer(0.0005, lambda: next(ticks))
@@ -342,7 +349,7 @@ def test_shutting_down_a_multithreaded_executor_while_it_spins(ros_context: Any)
     def spin() -> None:
         try:
             executor.spin()
-        except BaseException as e:   # what an unhandled thread exception would be
+        except BaseException as e:  # what an unhandled thread exception would be
             errors.append(e)
 
     thread = threading.Thread(target=spin)
@@ -360,6 +367,7 @@ def test_work_taken_just_before_shutdown_is_dropped_cleanly(ros_context: Any) ->
     thread shut the pool down: no 'cannot schedule new futures', and the entity's group
     and flag are left free for whoever runs the node next."""
     from ros2lite.executors import MultiThreadedExecutor
+
     node = Node('late_work', context=ros_context)
     timer = node.create_timer(10.0, lambda: None)
     executor = MultiThreadedExecutor(2, context=ros_context)

@@ -83,23 +83,36 @@ def test_by_node_queries(ros_context: Any, remote: Context) -> None:
     node = Node('worker', namespace='/team', context=remote)
     node.create_publisher('std_msgs/msg/String', 'out', 10)
     node.create_subscription('geometry_msgs/msg/Twist', 'cmd_vel', lambda m: None, 10)
-    node.create_publisher('std_msgs/msg/Bool', '/status',
-                          QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
+    node.create_publisher(
+        'std_msgs/msg/Bool',
+        '/status',
+        QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL),
+    )
 
     def check() -> None:
         pubs = observer.get_publisher_names_and_types_by_node('worker', '/team')
-        assert pubs == [('/parameter_events', ['rcl_interfaces/msg/ParameterEvent']),
-                        ('/rosout', ['rcl_interfaces/msg/Log']),
-                        ('/status', ['std_msgs/msg/Bool']),
-                        ('/team/out', ['std_msgs/msg/String'])]
+        assert pubs == [
+            ('/parameter_events', ['rcl_interfaces/msg/ParameterEvent']),
+            ('/rosout', ['rcl_interfaces/msg/Log']),
+            ('/status', ['std_msgs/msg/Bool']),
+            ('/team/out', ['std_msgs/msg/String']),
+        ]
         assert observer.get_subscriber_names_and_types_by_node('worker', '/team') == [
-            ('/team/cmd_vel', ['geometry_msgs/msg/Twist'])]
+            ('/team/cmd_vel', ['geometry_msgs/msg/Twist'])
+        ]
         # the six parameter services, under the node's name
         services = observer.get_service_names_and_types_by_node('worker', '/team')
         assert [name for name, _ in services] == [
-            f'/team/worker/{s}' for s in ('describe_parameters', 'get_parameter_types',
-                                          'get_parameters', 'list_parameters',
-                                          'set_parameters', 'set_parameters_atomically')]
+            f'/team/worker/{s}'
+            for s in (
+                'describe_parameters',
+                'get_parameter_types',
+                'get_parameters',
+                'list_parameters',
+                'set_parameters',
+                'set_parameters_atomically',
+            )
+        ]
         assert observer.get_client_names_and_types_by_node('worker', '/team') == []
         assert observer.get_publisher_names_and_types_by_node('worker', '/') == []
 
@@ -114,9 +127,8 @@ def test_graph_forgets_what_goes_away(ros_context: Any, remote: Context) -> None
     node.destroy_publisher(pub)
     eventually(lambda: _assert(observer.count_publishers('/fleeting') == 0))
     assert ('ephemeral', '/') in observer.get_node_names_and_namespaces()
-    remote.shutdown()   # a whole process going away
-    eventually(lambda: _assert(('ephemeral', '/') not in
-                               observer.get_node_names_and_namespaces()))
+    remote.shutdown()  # a whole process going away
+    eventually(lambda: _assert(('ephemeral', '/') not in observer.get_node_names_and_namespaces()))
 
 
 def test_snapshot_sees_everything_at_once(ros_context: Any, remote: Context) -> None:

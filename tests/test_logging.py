@@ -20,8 +20,11 @@ LINE = re.compile(r'^\[(DEBUG|INFO|WARN|ERROR|FATAL)\] \[(\d+)\.(\d{9})\] \[([\w
 
 @pytest.fixture(autouse=True)
 def clean_levels(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
-    for var in ('RCUTILS_CONSOLE_OUTPUT_FORMAT', 'RCUTILS_LOGGING_USE_STDOUT',
-                'RCUTILS_COLORIZED_OUTPUT'):
+    for var in (
+        'RCUTILS_CONSOLE_OUTPUT_FORMAT',
+        'RCUTILS_LOGGING_USE_STDOUT',
+        'RCUTILS_COLORIZED_OUTPUT',
+    ):
         monkeypatch.delenv(var, raising=False)
     saved = dict(rlog._levels)
     yield
@@ -55,14 +58,15 @@ def test_severities_and_levels(ros_context: Any, capsys: pytest.CaptureFixture[s
     assert [LINE.match(x).group(1) for x in err] == ['WARN', 'WARN', 'ERROR', 'FATAL']  # type: ignore[union-attr]
     logger.set_level(rlog.DEBUG)
     assert logger.get_effective_level() == rlog.DEBUG
-    assert logger.get_child('child').is_enabled_for(rlog.DEBUG)   # children inherit
+    assert logger.get_child('child').is_enabled_for(rlog.DEBUG)  # children inherit
     assert logger.debug('shown')
     assert '[DEBUG]' in capsys.readouterr().err
 
 
 def test_log_level_argument(ros_context: Any, capsys: pytest.CaptureFixture[str]) -> None:
-    node = Node('verbose', context=ros_context,
-                cli_args=['--ros-args', '--log-level', 'verbose:=debug'])
+    node = Node(
+        'verbose', context=ros_context, cli_args=['--ros-args', '--log-level', 'verbose:=debug']
+    )
     assert node.get_logger().debug('dbg')
     quiet = Node('quiet', context=ros_context)
     assert not quiet.get_logger().debug('nope')
@@ -80,23 +84,31 @@ def test_filters(capsys: pytest.CaptureFixture[str]) -> None:
     assert capsys.readouterr().err.count('\n') == 4
 
 
-def test_output_format_and_stdout(monkeypatch: pytest.MonkeyPatch,
-                                  capsys: pytest.CaptureFixture[str]) -> None:
-    monkeypatch.setenv('RCUTILS_CONSOLE_OUTPUT_FORMAT',
-                       '{severity}|{name}|{function_name}|{line_number}|{message}')
+def test_output_format_and_stdout(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.setenv(
+        'RCUTILS_CONSOLE_OUTPUT_FORMAT', '{severity}|{name}|{function_name}|{line_number}|{message}'
+    )
     monkeypatch.setenv('RCUTILS_LOGGING_USE_STDOUT', '1')
     rlog.get_logger('fmt').warn('hi')
     out, err = capsys.readouterr()
     assert err == ''
     severity, name, function, line, message = out.strip().split('|')
     assert (severity, name, function, message) == (
-        'WARN', 'fmt', 'test_output_format_and_stdout', 'hi')
+        'WARN',
+        'fmt',
+        'test_output_format_and_stdout',
+        'hi',
+    )
     assert int(line) > 0
 
 
-def test_rosout_message_reaches_a_late_subscriber(ros_context: Any,
-                                                  capsys: pytest.CaptureFixture[str]) -> None:
+def test_rosout_message_reaches_a_late_subscriber(
+    ros_context: Any, capsys: pytest.CaptureFixture[str]
+) -> None:
     from ros2lite.context import Context
+
     node = Node('chatty', namespace='/logs', context=ros_context)
     node.get_logger().warn('remember me')
     line_no = _this_line() - 1
@@ -128,8 +140,12 @@ def test_rosout_can_be_disabled(ros_context: Any) -> None:
     ex = SingleThreadedExecutor(context=ros_context)
     ex.add_node(node)
     got: list[Any] = []
-    node.create_subscription('rcl_interfaces/msg/Log', '/rosout',
-                             lambda m: got.append(m) if m.name == 'silent' else None, ROSOUT_QOS)
+    node.create_subscription(
+        'rcl_interfaces/msg/Log',
+        '/rosout',
+        lambda m: got.append(m) if m.name == 'silent' else None,
+        ROSOUT_QOS,
+    )
     node.get_logger().info('console only')
     spin_for(ex, 0.3)
     assert got == []
@@ -137,15 +153,19 @@ def test_rosout_can_be_disabled(ros_context: Any) -> None:
 
 def _this_line() -> int:
     import inspect
+
     frame = inspect.currentframe()
     assert frame is not None and frame.f_back is not None
     return frame.f_back.f_lineno
 
 
-def test_direct_log_call_reports_its_caller(monkeypatch: pytest.MonkeyPatch,
-                                            capsys: pytest.CaptureFixture[str]) -> None:
-    monkeypatch.setenv('RCUTILS_CONSOLE_OUTPUT_FORMAT',
-                       '{function_name}|{line_number}|{date_time_with_ms}|{time_as_nanoseconds}')
+def test_direct_log_call_reports_its_caller(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.setenv(
+        'RCUTILS_CONSOLE_OUTPUT_FORMAT',
+        '{function_name}|{line_number}|{date_time_with_ms}|{time_as_nanoseconds}',
+    )
     rlog.get_logger('direct').log('x', rlog.WARN)
     line_no = _this_line() - 1
     function, line, date_time, nanos = capsys.readouterr().err.strip().split('|')
@@ -154,8 +174,7 @@ def test_direct_log_call_reports_its_caller(monkeypatch: pytest.MonkeyPatch,
     assert abs(int(nanos) - time.time_ns()) < 10_000_000_000
 
 
-def test_logging_cost_does_not_grow_with_stack_depth(capsys: pytest.CaptureFixture[str]
-                                                     ) -> None:
+def test_logging_cost_does_not_grow_with_stack_depth(capsys: pytest.CaptureFixture[str]) -> None:
     logger = rlog.get_logger('cheap')
 
     def deep(n: int) -> float:
@@ -166,5 +185,5 @@ def test_logging_cost_does_not_grow_with_stack_depth(capsys: pytest.CaptureFixtu
             logger.info('x')
         return time.perf_counter() - start
 
-    assert deep(60) < 0.2   # walking the stack per call took ~1 ms each here
+    assert deep(60) < 0.2  # walking the stack per call took ~1 ms each here
     capsys.readouterr()

@@ -43,14 +43,13 @@ def test_invalid_namespaces_are_rejected(ros_context: Any, namespace: str) -> No
 
 
 def test_node_and_namespace_remapping(ros_context: Any) -> None:
-    node = Node('talker', context=ros_context,
-                cli_args=ros_args('-r', '__node:=speaker', '-r', '__ns:=/ns'))
+    node = Node(
+        'talker', context=ros_context, cli_args=ros_args('-r', '__node:=speaker', '-r', '__ns:=/ns')
+    )
     assert node.get_fully_qualified_name() == '/ns/speaker'
-    assert node.create_publisher('std_msgs/msg/String', 'chatter', 10).topic_name == \
-        '/ns/chatter'
+    assert node.create_publisher('std_msgs/msg/String', 'chatter', 10).topic_name == '/ns/chatter'
     # `__name` is the older spelling of `__node`
-    assert Node('x', context=ros_context,
-                cli_args=ros_args('-r', '__name:=y')).get_name() == 'y'
+    assert Node('x', context=ros_context, cli_args=ros_args('-r', '__name:=y')).get_name() == 'y'
 
 
 def test_remapped_name_is_validated(ros_context: Any) -> None:
@@ -59,11 +58,14 @@ def test_remapped_name_is_validated(ros_context: Any) -> None:
 
 
 def test_topic_remapping(ros_context: Any) -> None:
-    node = Node('talker', namespace='/ns', context=ros_context,
-                cli_args=ros_args('-r', 'chatter:=/other', '-r', '/abs:=rel',
-                                  '-r', '~/priv:=moved'))
+    node = Node(
+        'talker',
+        namespace='/ns',
+        context=ros_context,
+        cli_args=ros_args('-r', 'chatter:=/other', '-r', '/abs:=rel', '-r', '~/priv:=moved'),
+    )
     assert node.resolve_topic_name('chatter') == '/other'
-    assert node.resolve_topic_name('/ns/chatter') == '/other'   # matches after expansion
+    assert node.resolve_topic_name('/ns/chatter') == '/other'  # matches after expansion
     assert node.resolve_topic_name('/abs') == '/ns/rel'
     assert node.resolve_topic_name('~/priv') == '/ns/moved'
     assert node.resolve_topic_name('untouched') == '/ns/untouched'
@@ -73,8 +75,16 @@ def test_topic_remapping(ros_context: Any) -> None:
 
 
 def test_node_specific_rules_only_hit_that_node(ros_context: Any) -> None:
-    args = ros_args('-r', 'talker:chatter:=/for_talker', '-r', 'other:__node:=renamed',
-                    '-p', 'talker:rate:=5', '-r', 'renamed:chatter:=/for_renamed')
+    args = ros_args(
+        '-r',
+        'talker:chatter:=/for_talker',
+        '-r',
+        'other:__node:=renamed',
+        '-p',
+        'talker:rate:=5',
+        '-r',
+        'renamed:chatter:=/for_renamed',
+    )
     talker = Node('talker', context=ros_context, cli_args=args)
     other = Node('other', context=ros_context, cli_args=args)
     assert talker.get_name() == 'talker' and other.get_name() == 'renamed'
@@ -87,13 +97,16 @@ def test_node_specific_rules_only_hit_that_node(ros_context: Any) -> None:
 
 def test_global_arguments_and_opting_out(ros_router: str) -> None:
     from ros2lite.context import Context
+
     ctx = Context().init(ros_args('-r', '__ns:=/global'))
     try:
         assert Node('a', context=ctx).get_namespace() == '/global'
         assert Node('b', context=ctx, use_global_arguments=False).get_namespace() == '/'
         # node-local arguments win over global ones
-        assert Node('c', context=ctx,
-                    cli_args=ros_args('-r', '__ns:=/local')).get_namespace() == '/local'
+        assert (
+            Node('c', context=ctx, cli_args=ros_args('-r', '__ns:=/local')).get_namespace()
+            == '/local'
+        )
     finally:
         ctx.shutdown()
 
@@ -106,12 +119,18 @@ def test_invalid_remap_target_topic(ros_context: Any) -> None:
 
 def test_parameters(ros_context: Any, tmp_path: Path) -> None:
     params = tmp_path / 'params.yaml'
-    params.write_text('/**:\n  ros__parameters:\n    from_file: 1\n    nested:\n      k: v\n'
-                      'talker:\n  ros__parameters:\n    from_file: 2\n')
-    node = Node('talker', context=ros_context,
-                cli_args=ros_args('-p', 'rate:=2.5', '-p', 'name:=hi', '-p', 'flag:=true',
-                                  '--params-file', str(params)),
-                parameter_overrides=[Parameter('override', value=[1, 2])])
+    params.write_text(
+        '/**:\n  ros__parameters:\n    from_file: 1\n    nested:\n      k: v\n'
+        'talker:\n  ros__parameters:\n    from_file: 2\n'
+    )
+    node = Node(
+        'talker',
+        context=ros_context,
+        cli_args=ros_args(
+            '-p', 'rate:=2.5', '-p', 'name:=hi', '-p', 'flag:=true', '--params-file', str(params)
+        ),
+        parameter_overrides=[Parameter('override', value=[1, 2])],
+    )
     assert node.declare_parameter('rate', 1.0).value == 2.5
     assert node.declare_parameter('name', '').value == 'hi'
     assert node.declare_parameter('flag', False).value is True
@@ -134,9 +153,13 @@ def test_parameters(ros_context: Any, tmp_path: Path) -> None:
 
 
 def test_automatic_declaration_from_overrides(ros_context: Any) -> None:
-    node = Node('auto', context=ros_context, cli_args=ros_args('-p', 'x:=3'),
-                automatically_declare_parameters_from_overrides=True,
-                allow_undeclared_parameters=True)
+    node = Node(
+        'auto',
+        context=ros_context,
+        cli_args=ros_args('-p', 'x:=3'),
+        automatically_declare_parameters_from_overrides=True,
+        allow_undeclared_parameters=True,
+    )
     assert node.get_parameter('x').value == 3
     assert node.get_parameter('missing').type_ == Parameter.Type.NOT_SET
 
@@ -145,8 +168,10 @@ def test_node_token_lives_with_the_node(ros_context: Any) -> None:
     node = Node('short_lived', namespace='/tmp_ns', context=ros_context)
 
     def present() -> bool:
-        return any(e.node_name == 'short_lived' and e.namespace == '/tmp_ns' and e.is_node
-                   for e in snapshot(ros_context.session, ros_context.domain_id))
+        return any(
+            e.node_name == 'short_lived' and e.namespace == '/tmp_ns' and e.is_node
+            for e in snapshot(ros_context.session, ros_context.domain_id)
+        )
 
     deadline = time.monotonic() + 5
     while not present():
@@ -162,5 +187,5 @@ def test_node_token_lives_with_the_node(ros_context: Any) -> None:
 def test_logging_after_destroy_node(ros_context: Any, capsys: Any) -> None:
     node = Node('logs_late', context=ros_context)
     node.destroy_node()
-    node.get_logger().info('still heard')   # on the console; /rosout is gone with the node
+    node.get_logger().info('still heard')  # on the console; /rosout is gone with the node
     assert 'still heard' in capsys.readouterr().err

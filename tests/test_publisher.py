@@ -31,15 +31,21 @@ class Tap:
     def _on(self, sample: Any) -> None:
         att = sample.attachment
         with self._cond:
-            self.samples.append((str(sample.key_expr), sample.payload.to_bytes(),
-                                 None if att is None else att.to_bytes()))
+            self.samples.append(
+                (
+                    str(sample.key_expr),
+                    sample.payload.to_bytes(),
+                    None if att is None else att.to_bytes(),
+                )
+            )
             self._cond.notify_all()
 
     def wait(self, n: int, timeout: float = 5.0) -> list[tuple[str, bytes, bytes | None]]:
         return self.wait_for(lambda got: len(got) >= n, timeout)
 
-    def wait_for(self, predicate: Any, timeout: float = 5.0
-                 ) -> list[tuple[str, bytes, bytes | None]]:
+    def wait_for(
+        self, predicate: Any, timeout: float = 5.0
+    ) -> list[tuple[str, bytes, bytes | None]]:
         with self._cond:
             assert self._cond.wait_for(lambda: predicate(self.samples), timeout), self.samples
             return list(self.samples)
@@ -48,6 +54,7 @@ class Tap:
 @pytest.fixture
 def bare_session(ros_router: str) -> Iterator[Any]:
     from ros2lite.transport.config import open_session
+
     session = open_session()
     try:
         yield session
@@ -78,10 +85,13 @@ def test_wire_format(ros_context: Any, node: Node, bare_session: Any) -> None:
     samples = tap.wait_for(lambda got: len([s for s in got if s[1] != probe_cdr]) == 3)
     samples = [s for s in samples if s[1] != probe_cdr]
     after = time.time_ns()
-    token = (f'@ros2_lv/{domain}/{ros_context.zid}/{node.node_id}/{pub._ep.entity_id}/MP/%/'
-             f'%robot1/pub_test/%robot1%chatter/std_msgs::msg::dds_::String_/{STRING_HASH}/'
-             f'::,7:,:,:,,')
+    token = (
+        f'@ros2_lv/{domain}/{ros_context.zid}/{node.node_id}/{pub._ep.entity_id}/MP/%/'
+        f'%robot1/pub_test/%robot1%chatter/std_msgs::msg::dds_::String_/{STRING_HASH}/'
+        f'::,7:,:,:,,'
+    )
     import xxhash
+
     gid = xxhash.xxh3_128_intdigest(token.encode()).to_bytes(16, 'little')
     assert pub.gid == gid
     for i, (k, payload, att) in enumerate(samples):

@@ -11,29 +11,47 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def test_ruff_clean() -> None:
-    proc = subprocess.run([sys.executable, '-m', 'ruff', 'check', 'ros2lite', 'tests',
-                           'benchmarks'], cwd=ROOT, capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, '-m', 'ruff', 'check', 'ros2lite', 'tests', 'benchmarks'],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+
+
+def test_ruff_format_clean() -> None:
+    proc = subprocess.run(
+        [sys.executable, '-m', 'ruff', 'format', '--check', 'ros2lite', 'tests', 'benchmarks'],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
     assert proc.returncode == 0, proc.stdout + proc.stderr
 
 
 def test_mypy_clean() -> None:
-    proc = subprocess.run([sys.executable, '-m', 'mypy'], cwd=ROOT, capture_output=True,
-                          text=True)
+    proc = subprocess.run([sys.executable, '-m', 'mypy'], cwd=ROOT, capture_output=True, text=True)
     assert proc.returncode == 0, proc.stdout + proc.stderr
 
 
 def test_only_cli_imports_click_or_rich() -> None:
     pattern = re.compile(r'^\s*(import|from)\s+(click|rich)\b', re.MULTILINE)
-    offenders = [str(p.relative_to(ROOT)) for p in (ROOT / 'ros2lite').rglob('*.py')
-                 if 'cli' not in p.relative_to(ROOT / 'ros2lite').parts[:1]
-                 and pattern.search(p.read_text())]
+    offenders = [
+        str(p.relative_to(ROOT))
+        for p in (ROOT / 'ros2lite').rglob('*.py')
+        if 'cli' not in p.relative_to(ROOT / 'ros2lite').parts[:1] and pattern.search(p.read_text())
+    ]
     assert offenders == []
 
 
 def test_only_transport_imports_zenoh() -> None:
     """One seam to Zenoh: every declaration, put, query and session lives in transport/."""
     pattern = re.compile(r'^\s*(import|from)\s+zenoh\b', re.MULTILINE)
-    offenders = [str(p.relative_to(ROOT)) for p in (ROOT / 'ros2lite').rglob('*.py')
-                 if p.relative_to(ROOT / 'ros2lite').parts[0] != 'transport'
-                 and pattern.search(p.read_text())]
+    offenders = [
+        str(p.relative_to(ROOT))
+        for p in (ROOT / 'ros2lite').rglob('*.py')
+        if p.relative_to(ROOT / 'ros2lite').parts[0] != 'transport'
+        and pattern.search(p.read_text())
+    ]
     assert offenders == []

@@ -73,8 +73,13 @@ class Node:
     """A node process whose stdout lines are collected by a thread as they arrive."""
 
     def __init__(self, code: str, name: str, env: dict[str, str]) -> None:
-        self.proc = subprocess.Popen([sys.executable, '-c', code, name], env=env, text=True,
-                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.proc = subprocess.Popen(
+            [sys.executable, '-c', code, name],
+            env=env,
+            text=True,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+        )
         self.lines: list[str] = []
         self._reader = threading.Thread(target=self._read, daemon=True)
         self._reader.start()
@@ -107,12 +112,20 @@ def private(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[dict[st
     """A free endpoint, runtime dir and domain (here and for children); the daemon a test
     leaves behind is stopped."""
     endpoint = f'tcp/127.0.0.1:{free_port()}'
-    env = {'ROS2LITE_ROUTER': endpoint, 'XDG_RUNTIME_DIR': str(tmp_path),
-           'ROS_DOMAIN_ID': str(random.randint(100, 232))}
+    env = {
+        'ROS2LITE_ROUTER': endpoint,
+        'XDG_RUNTIME_DIR': str(tmp_path),
+        'ROS_DOMAIN_ID': str(random.randint(100, 232)),
+    }
     for key, value in env.items():
         monkeypatch.setenv(key, value)
-    for var in ('ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI', 'ZENOH_ROUTER_CONFIG_URI',
-                'ZENOH_ROUTER_CHECK_ATTEMPTS', 'ROS2LITE_NO_DAEMON'):
+    for var in (
+        'ZENOH_CONFIG_OVERRIDE',
+        'ZENOH_SESSION_CONFIG_URI',
+        'ZENOH_ROUTER_CONFIG_URI',
+        'ZENOH_ROUTER_CHECK_ATTEMPTS',
+        'ROS2LITE_NO_DAEMON',
+    ):
         monkeypatch.delenv(var, raising=False)
     yield env
     info = daemon.status(endpoint).info
@@ -127,6 +140,7 @@ def node_names(endpoint: str) -> set[str]:
     """Node names as a CLI verb sees them: one client session asking the router."""
     from ros2lite.graph import node_names_and_namespaces, snapshot
     from ros2lite.transport.config import domain_id, open_session
+
     session = open_session(endpoint)
     try:
         entities = snapshot(session, domain_id())
@@ -152,7 +166,8 @@ def test_talk_through_a_router_outage_and_rediscover_quickly(private: dict[str, 
         assert stop.code == 0, stop.err
         assert stop.out.splitlines()[:2] == [
             'The daemon has been stopped',
-            '3 sessions were connected to it (nodes: /doomed, /listener, /talker)']
+            '3 sessions were connected to it (nodes: /doomed, /listener, /talker)',
+        ]
         assert '3 peer sessions keep exchanging data' in stop.out
         heard_at_stop = len(listener.numbers())
 
@@ -162,19 +177,20 @@ def test_talk_through_a_router_outage_and_rediscover_quickly(private: dict[str, 
         nodes.append(late)
         wait_until(late.ready, timeout=20)
         time.sleep(2.0)
-        assert len(listener.numbers()) >= heard_at_stop + 25   # 50 Hz for 2 s
+        assert len(listener.numbers()) >= heard_at_stop + 25  # 50 Hz for 2 s
 
         assert daemon.start(endpoint).started
         back = time.monotonic()
-        names = wait_until(lambda: (n := node_names(endpoint)) and '/late' in n and n,
-                           timeout=5, interval=0.01)
+        names = wait_until(
+            lambda: (n := node_names(endpoint)) and '/late' in n and n, timeout=5, interval=0.01
+        )
         assert time.monotonic() - back < 1.0
-        assert names == {'/listener', '/talker', '/late'}   # /doomed is gone
-        wait_until(lambda: len(late.numbers()) >= 3, timeout=5)   # introduced to the talker
+        assert names == {'/listener', '/talker', '/late'}  # /doomed is gone
+        wait_until(lambda: len(late.numbers()) >= 3, timeout=5)  # introduced to the talker
     finally:
         errors = [node.stop() for node in nodes]
     heard = listener.numbers()
-    assert heard == list(range(heard[0], heard[-1] + 1))   # no message lost, none repeated
+    assert heard == list(range(heard[0], heard[-1] + 1))  # no message lost, none repeated
     assert not any('Traceback' in err for err in errors), errors
     assert 'no Zenoh router answers at' in errors[-1] and 'running without one' in errors[-1]
 
@@ -182,16 +198,32 @@ def test_talk_through_a_router_outage_and_rediscover_quickly(private: dict[str, 
 def test_run_with_no_router_starts_the_daemon(private: dict[str, str]) -> None:
     endpoint = private['ROS2LITE_ROUTER']
     assert not daemon.status(endpoint).running
-    proc = subprocess.Popen([sys.executable, '-m', 'ros2lite', 'run', 'demo_nodes_py', 'talker'],
-                            env={**os.environ, **private}, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [sys.executable, '-m', 'ros2lite', 'run', 'demo_nodes_py', 'talker'],
+        env={**os.environ, **private},
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     try:
         wait_until(lambda: daemon.status(endpoint).ours, timeout=20)
         # typed, so echo waits for the talker even if its publisher is not in the graph yet
-        heard = subprocess.run([sys.executable, '-m', 'ros2lite', 'topic', 'echo', '--once',
-                                '/chatter', 'std_msgs/msg/String'],
-                               env={**os.environ, **private}, timeout=30,
-                               capture_output=True, text=True)
+        heard = subprocess.run(
+            [
+                sys.executable,
+                '-m',
+                'ros2lite',
+                'topic',
+                'echo',
+                '--once',
+                '/chatter',
+                'std_msgs/msg/String',
+            ],
+            env={**os.environ, **private},
+            timeout=30,
+            capture_output=True,
+            text=True,
+        )
         assert heard.stdout.startswith("data: 'Hello World: ")
     finally:
         proc.send_signal(signal.SIGINT)
@@ -201,16 +233,25 @@ def test_run_with_no_router_starts_the_daemon(private: dict[str, str]) -> None:
     assert f'no Zenoh router answered at {endpoint}: started the ros2lite daemon' in err
 
 
-@pytest.mark.parametrize('attempts, waits, lines', [
-    (None, 0.0, ['running without one']),
-    ('2', 1.0, ['waiting for up to 2 s', 'running without one']),
-    ('-1', 0.0, []),
-])
-def test_node_with_no_router_and_no_daemon(private: dict[str, str], capfd: Any,
-                                           monkeypatch: pytest.MonkeyPatch, attempts: str | None,
-                                           waits: float, lines: list[str]) -> None:
+@pytest.mark.parametrize(
+    'attempts, waits, lines',
+    [
+        (None, 0.0, ['running without one']),
+        ('2', 1.0, ['waiting for up to 2 s', 'running without one']),
+        ('-1', 0.0, []),
+    ],
+)
+def test_node_with_no_router_and_no_daemon(
+    private: dict[str, str],
+    capfd: Any,
+    monkeypatch: pytest.MonkeyPatch,
+    attempts: str | None,
+    waits: float,
+    lines: list[str],
+) -> None:
     """rmw_zenoh's behaviour: ZENOH_ROUTER_CHECK_ATTEMPTS checks, one clear line, go on."""
     from ros2lite.context import Context
+
     if attempts is None:
         monkeypatch.setenv('ROS2LITE_NO_DAEMON', '1')
     else:
@@ -240,6 +281,7 @@ def test_rmw_zenoh_peer_keeps_hearing_a_node_without_router(private: dict[str, s
     from ros2lite.context import Context
     from ros2lite.interfaces import get_interface
     from ros2lite.node import Node as RosNode
+
     endpoint = private['ROS2LITE_ROUTER']
     daemon.start(endpoint)
     conf = zenoh.Config()
@@ -251,15 +293,19 @@ def test_rmw_zenoh_peer_keeps_hearing_a_node_without_router(private: dict[str, s
         ('scouting/gossip/enabled', 'true'),
         ('scouting/gossip/target', '{router: ["router", "peer"], peer: ["router"]}'),
         ('scouting/gossip/autoconnect', '{router: [], peer: ["router", "peer"]}'),
-        ('scouting/gossip/autoconnect_strategy',
-         '{peer: {to_router: "always", to_peer: "greater-zid"}}'),
+        (
+            'scouting/gossip/autoconnect_strategy',
+            '{peer: {to_router: "always", to_peer: "greater-zid"}}',
+        ),
         ('timestamping/enabled', 'true'),
     ]:
         conf.insert_json5(key, value)
     alien = zenoh.open(conf)
     heard: list[bytes] = []
-    key = (f"{private['ROS_DOMAIN_ID']}/outage_chatter/std_msgs::msg::dds_::String_/"
-           'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18')
+    key = (
+        f"{private['ROS_DOMAIN_ID']}/outage_chatter/std_msgs::msg::dds_::String_/"
+        'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18'
+    )
     sub = alien.declare_subscriber(key, lambda s: heard.append(s.payload.to_bytes()))
     ctx = Context().init([])
     stop = threading.Event()
@@ -276,7 +322,7 @@ def test_rmw_zenoh_peer_keeps_hearing_a_node_without_router(private: dict[str, s
         assert daemon.stop(endpoint).stopped
         before = len(heard)
         time.sleep(1.0)
-        assert len(heard) >= before + 20    # 50 Hz, no router
+        assert len(heard) >= before + 20  # 50 Hz, no router
         assert heard[-1] == b'\x00\x01\x00\x00\x03\x00\x00\x00hi\x00'
     finally:
         stop.set()

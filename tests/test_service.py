@@ -21,8 +21,9 @@ from ros2lite.node import Node
 from ros2lite.transport.keys import EntityKind
 from tests.spinning import wait_until
 
-HASHES = json.loads((Path(__file__).parent / 'interfaces' / 'data' / 'rihs01_jazzy.json')
-                    .read_text())
+HASHES = json.loads(
+    (Path(__file__).parent / 'interfaces' / 'data' / 'rihs01_jazzy.json').read_text()
+)
 ADD_HASH = HASHES['example_interfaces/srv/AddTwoInts']
 ADD_TYPE = 'example_interfaces::srv::dds_::AddTwoInts_'
 CLIENT_GID = bytes(range(0x30, 0x40))
@@ -30,7 +31,6 @@ CLIENT_GID = bytes(range(0x30, 0x40))
 
 def header(seq: int, ts: int, gid: bytes) -> bytes:
     return struct.pack('<qqB', seq, ts, 16) + gid
-
 
 
 @pytest.fixture
@@ -54,24 +54,35 @@ def served(ros_context: Any) -> Iterator[tuple[Node, list[Any]]]:
     thread.join(timeout=5)
 
 
-def alien_call(session: Any, domain: int, payload: bytes, attachment: bytes | None
-               ) -> list[Any]:
+def alien_call(session: Any, domain: int, payload: bytes, attachment: bytes | None) -> list[Any]:
     import zenoh
+
     key = f'{domain}/add_two_ints/{ADD_TYPE}/{ADD_HASH}'
-    replies = session.get(key, payload=payload, attachment=attachment,
-                          target=zenoh.QueryTarget.ALL_COMPLETE,
-                          consolidation=zenoh.ConsolidationMode.NONE, timeout=10)
+    replies = session.get(
+        key,
+        payload=payload,
+        attachment=attachment,
+        target=zenoh.QueryTarget.ALL_COMPLETE,
+        consolidation=zenoh.ConsolidationMode.NONE,
+        timeout=10,
+    )
     return [r.ok for r in replies if r.ok is not None]
 
 
-def test_reply_echoes_sequence_number_and_client_gid(served: Any, alien_session: Any,
-                                                     ros_context: Any) -> None:
+def test_reply_echoes_sequence_number_and_client_gid(
+    served: Any, alien_session: Any, ros_context: Any
+) -> None:
     request = b'\x00\x01\x00\x00' + struct.pack('<qq', 20, 22)
     before = time.time_ns()
-    wait_until(lambda: any(e.kind == EntityKind.SERVICE for e in
-                           snapshot(ros_context.session, ros_context.domain_id)))
-    (reply,) = alien_call(alien_session, ros_context.domain_id, request,
-                          header(42, time.time_ns(), CLIENT_GID))
+    wait_until(
+        lambda: any(
+            e.kind == EntityKind.SERVICE
+            for e in snapshot(ros_context.session, ros_context.domain_id)
+        )
+    )
+    (reply,) = alien_call(
+        alien_session, ros_context.domain_id, request, header(42, time.time_ns(), CLIENT_GID)
+    )
     assert reply.payload.to_bytes() == b'\x00\x01\x00\x00' + struct.pack('<q', 42)
     seq, stamp, n = struct.unpack_from('<qqB', reply.attachment.to_bytes())
     assert (seq, n) == (42, 16)
@@ -80,20 +91,39 @@ def test_reply_echoes_sequence_number_and_client_gid(served: Any, alien_session:
     assert served[1][-1] == AddTwoInts.Request(a=20, b=22)
 
 
-def test_requests_without_a_valid_attachment_are_dropped(served: Any, alien_session: Any,
-                                                         ros_context: Any) -> None:
+def test_requests_without_a_valid_attachment_are_dropped(
+    served: Any, alien_session: Any, ros_context: Any
+) -> None:
     request = b'\x00\x01\x00\x00' + struct.pack('<qq', 1, 2)
-    wait_until(lambda: any(e.kind == EntityKind.SERVICE for e in
-                           snapshot(ros_context.session, ros_context.domain_id)))
+    wait_until(
+        lambda: any(
+            e.kind == EntityKind.SERVICE
+            for e in snapshot(ros_context.session, ros_context.domain_id)
+        )
+    )
     assert alien_call(alien_session, ros_context.domain_id, request, None) == []
-    assert alien_call(alien_session, ros_context.domain_id, request,
-                      header(-1, time.time_ns(), CLIENT_GID)) == []
-    assert alien_call(alien_session, ros_context.domain_id, b'\x00\x01', header(
-        1, time.time_ns(), CLIENT_GID)) == []   # undecodable CDR
+    assert (
+        alien_call(
+            alien_session, ros_context.domain_id, request, header(-1, time.time_ns(), CLIENT_GID)
+        )
+        == []
+    )
+    assert (
+        alien_call(
+            alien_session, ros_context.domain_id, b'\x00\x01', header(1, time.time_ns(), CLIENT_GID)
+        )
+        == []
+    )  # undecodable CDR
     assert served[1] == []
     # and the server still answers a good one afterwards
-    assert len(alien_call(alien_session, ros_context.domain_id, request,
-                          header(2, time.time_ns(), CLIENT_GID))) == 1
+    assert (
+        len(
+            alien_call(
+                alien_session, ros_context.domain_id, request, header(2, time.time_ns(), CLIENT_GID)
+            )
+        )
+        == 1
+    )
 
 
 def test_server_and_client_tokens(ros_context: Any) -> None:
@@ -102,8 +132,11 @@ def test_server_and_client_tokens(ros_context: Any) -> None:
     node.create_client(AddTwoInts, '~/private_add')
 
     def found() -> list[Any]:
-        return [e for e in snapshot(ros_context.session, ros_context.domain_id)
-                if e.node_name == 'tokens' and e.kind in (EntityKind.SERVICE, EntityKind.CLIENT)]
+        return [
+            e
+            for e in snapshot(ros_context.session, ros_context.domain_id)
+            if e.node_name == 'tokens' and e.kind in (EntityKind.SERVICE, EntityKind.CLIENT)
+        ]
 
     entities = wait_until(lambda: len(found()) == 2 and found())
     by_kind = {e.kind: e for e in entities}
@@ -118,6 +151,7 @@ def test_alien_server_called_by_our_client(alien_session: Any, ros_context: Any)
     """A queryable written from the reference; our client's requests carry seq 1, 2, … and the
     client's GID, and the reply is matched back to the right call."""
     import zenoh
+
     domain = ros_context.domain_id
     key = f'{domain}/alien_add/{ADD_TYPE}/{ADD_HASH}'
     seen: list[tuple[int, bytes]] = []
@@ -128,13 +162,17 @@ def test_alien_server_called_by_our_client(alien_session: Any, ros_context: Any)
             seq, _ts, _n = struct.unpack_from('<qqB', att)
             seen.append((seq, att[17:]))
             a, b = struct.unpack_from('<qq', query.payload.to_bytes(), 4)
-            query.reply(key, b'\x00\x01\x00\x00' + struct.pack('<q', a * b),
-                        attachment=header(seq, time.time_ns(), att[17:]))
+            query.reply(
+                key,
+                b'\x00\x01\x00\x00' + struct.pack('<q', a * b),
+                attachment=header(seq, time.time_ns(), att[17:]),
+            )
 
     queryable = alien_session.declare_queryable(key, zenoh.handlers.Callback(serve), complete=True)
     token = alien_session.liveliness().declare_token(
         f'@ros2_lv/{domain}/{alien_session.info.zid()}/0/1/SS/%/%/alien/%alien_add/'
-        f'example_interfaces%srv%AddTwoInts/{ADD_HASH}/::,10:,:,:,,')
+        f'example_interfaces%srv%AddTwoInts/{ADD_HASH}/::,10:,:,:,,'
+    )
     try:
         node = Node('caller', context=ros_context)
         client = node.create_client(AddTwoInts, '/alien_add')

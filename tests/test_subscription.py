@@ -53,11 +53,13 @@ def test_type_given_by_name(node: Node, executor: SingleThreadedExecutor) -> Non
     assert got[0].data == 'x'
 
 
-def test_raw_subscription_gets_cdr_and_message_info(node: Node,
-                                                    executor: SingleThreadedExecutor) -> None:
+def test_raw_subscription_gets_cdr_and_message_info(
+    node: Node, executor: SingleThreadedExecutor
+) -> None:
     got: list[tuple[bytes, MessageInfo]] = []
-    node.create_subscription(String, 'raw', lambda data, info: got.append((data, info)), 10,
-                             raw=True)
+    node.create_subscription(
+        String, 'raw', lambda data, info: got.append((data, info)), 10, raw=True
+    )
     pub = node.create_publisher(String, 'raw', 10)
     wait_matched(pub)
     msgs = [String(data=f'raw {i}' * (i + 1)) for i in range(3)]
@@ -74,8 +76,9 @@ def test_raw_subscription_gets_cdr_and_message_info(node: Node,
     assert all(i.source_timestamp <= i.received_timestamp <= after for i in infos)
 
 
-def test_publishing_cdr_bytes_passes_them_through(node: Node,
-                                                  executor: SingleThreadedExecutor) -> None:
+def test_publishing_cdr_bytes_passes_them_through(
+    node: Node, executor: SingleThreadedExecutor
+) -> None:
     got: list[Any] = []
     node.create_subscription(String, 'bytes_in', got.append, 10)
     pub = node.create_publisher(String, 'bytes_in', 10)
@@ -85,8 +88,9 @@ def test_publishing_cdr_bytes_passes_them_through(node: Node,
     assert got[0].data == 'pre-encoded'
 
 
-def test_keep_last_keeps_only_the_newest_depth_samples(ros_context: Any, node: Node,
-                                                       executor: SingleThreadedExecutor) -> None:
+def test_keep_last_keeps_only_the_newest_depth_samples(
+    ros_context: Any, node: Node, executor: SingleThreadedExecutor
+) -> None:
     got: list[str] = []
     sub = node.create_subscription(String, 'depth', lambda m: got.append(m.data), 3)
     pub = node.create_publisher(String, 'depth', QoSProfile(depth=20))
@@ -103,8 +107,9 @@ def test_keep_last_keeps_only_the_newest_depth_samples(ros_context: Any, node: N
     assert got == ['7', '8', '9']
 
 
-def test_keep_all_loses_nothing(ros_context: Any, node: Node,
-                                executor: SingleThreadedExecutor) -> None:
+def test_keep_all_loses_nothing(
+    ros_context: Any, node: Node, executor: SingleThreadedExecutor
+) -> None:
     got: list[str] = []
     qos = QoSProfile(history=HistoryPolicy.KEEP_ALL)
     node.create_subscription(String, 'keep_all', lambda m: got.append(m.data), qos)
@@ -117,13 +122,15 @@ def test_keep_all_loses_nothing(ros_context: Any, node: Node,
 
 
 def test_transient_local_late_subscriber_gets_the_last_depth(
-        ros_context: Any, node: Node, executor: SingleThreadedExecutor) -> None:
+    ros_context: Any, node: Node, executor: SingleThreadedExecutor
+) -> None:
     tl = QoSProfile(depth=5, durability=DurabilityPolicy.TRANSIENT_LOCAL)
     pub = node.create_publisher(String, 'latched', tl)
     for i in range(8):
         pub.publish(String(data=f'Hello World: {i}'))
     # the late joiner lives in another session, as it would in another process
     from ros2lite.context import Context
+
     other = Context().init([])
     try:
         late = Node('late', context=other)
@@ -136,15 +143,16 @@ def test_transient_local_late_subscriber_gets_the_last_depth(
         spin_until(ex, lambda: len(got) >= 5)
         spin_for(ex, 0.2)
         assert got == [f'Hello World: {i}' for i in range(3, 8)]
-        assert volatile == []   # a volatile subscription gets no history
+        assert volatile == []  # a volatile subscription gets no history
         pub.publish(String(data='live'))
         spin_until(ex, lambda: got[-1:] == ['live'] and volatile == ['live'])
     finally:
         other.shutdown()
 
 
-def test_samples_without_attachment_are_dropped(ros_context: Any, node: Node,
-                                                executor: SingleThreadedExecutor) -> None:
+def test_samples_without_attachment_are_dropped(
+    ros_context: Any, node: Node, executor: SingleThreadedExecutor
+) -> None:
     got: list[str] = []
     sub = node.create_subscription(String, 'no_att', lambda m: got.append(m.data), 10)
     key = sub._ep.key
@@ -154,12 +162,14 @@ def test_samples_without_attachment_are_dropped(ros_context: Any, node: Node,
     spin_for(executor, 0.3)
     assert got == []
     from ros2lite.transport.attachment import encode_attachment
+
     session.put(key, payload, attachment=encode_attachment(1, None, bytes(16)))
     spin_until(executor, lambda: got == ['bare'])
 
 
-def test_destroyed_subscription_stops_receiving(node: Node,
-                                                executor: SingleThreadedExecutor) -> None:
+def test_destroyed_subscription_stops_receiving(
+    node: Node, executor: SingleThreadedExecutor
+) -> None:
     got: list[str] = []
     sub = node.create_subscription(String, 'gone', lambda m: got.append(m.data), 10)
     pub = node.create_publisher(String, 'gone', 10)
@@ -192,8 +202,9 @@ ros2lite.shutdown()
 '''
 
 
-def test_messages_from_another_process(processes: Any, node: Node,
-                                       executor: SingleThreadedExecutor) -> None:
+def test_messages_from_another_process(
+    processes: Any, node: Node, executor: SingleThreadedExecutor
+) -> None:
     got: list[str] = []
     qos = QoSProfile(history=HistoryPolicy.KEEP_ALL)
     node.create_subscription(String, 'across', lambda m: got.append(m.data), qos)

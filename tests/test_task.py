@@ -52,8 +52,8 @@ def test_a_call_while_a_step_runs_is_not_lost() -> None:
     class CompletesWhileRegistering(Future):
         def add_done_callback(self, callback: Any) -> None:
             super().add_done_callback(callback)
-            self.set_result(5)      # runs the callback: the task is re-queued…
-            queued.pop()()          # …and called at once, while its step is still running
+            self.set_result(5)  # runs the callback: the task is re-queued…
+            queued.pop()()  # …and called at once, while its step is still running
 
     async def work() -> int:
         return int(await CompletesWhileRegistering())

@@ -77,7 +77,7 @@ def test_destroy_timer(node: Node, executor: SingleThreadedExecutor) -> None:
 def test_missed_periods_are_skipped_not_burst() -> None:
     calls: list[int] = []
     timer = Timer(0.01, lambda: calls.append(1))
-    time.sleep(0.055)   # five periods late
+    time.sleep(0.055)  # five periods late
     assert timer.is_ready()
     timer.execute()
     assert calls == [1] and not timer.is_ready()
@@ -93,6 +93,7 @@ def test_period_validation() -> None:
 
 def test_switching_time_base_rebases_the_next_call() -> None:
     from ros2lite.clock import Clock, ClockType
+
     clock = Clock(ClockType.ROS_TIME)
     timer = Timer(1.0, lambda: None, clock)
     assert timer.time_until_next_call() == pytest.approx(1.0, abs=0.1)

@@ -41,8 +41,9 @@ class ClientGoalHandle:
         self._status = GoalStatus.STATUS_UNKNOWN
 
     def __eq__(self, other: object) -> bool:
-        return isinstance(other, ClientGoalHandle) and \
-            goal_key(self._goal_id) == goal_key(other._goal_id)
+        return isinstance(other, ClientGoalHandle) and goal_key(self._goal_id) == goal_key(
+            other._goal_id
+        )
 
     def __ne__(self, other: object) -> bool:
         return not self == other
@@ -51,8 +52,10 @@ class ClientGoalHandle:
         return hash(goal_key(self._goal_id))
 
     def __repr__(self) -> str:
-        return (f'ClientGoalHandle <id: {list(goal_key(self._goal_id))}, '
-                f'accepted: {self.accepted}, status: {self.status}>')
+        return (
+            f'ClientGoalHandle <id: {list(goal_key(self._goal_id))}, '
+            f'accepted: {self.accepted}, status: {self.status}>'
+        )
 
     @property
     def goal_id(self) -> Any:
@@ -88,19 +91,25 @@ class ClientGoalHandle:
 class ActionClient(Executable):
     """Sends goals to one action (rclpy.action.ActionClient's arguments and defaults)."""
 
-    def __init__(self, node: Any, action_type: Any, action_name: str, *,
-                 callback_group: Any = None,
-                 goal_service_qos_profile: QoSProfile = qos_profile_services_default,
-                 result_service_qos_profile: QoSProfile = qos_profile_services_default,
-                 cancel_service_qos_profile: QoSProfile = qos_profile_services_default,
-                 feedback_sub_qos_profile: QoSProfile = QoSProfile(depth=10),  # noqa: B008
-                 status_sub_qos_profile: QoSProfile = qos_profile_action_status_default
-                 ) -> None:
+    def __init__(
+        self,
+        node: Any,
+        action_type: Any,
+        action_name: str,
+        *,
+        callback_group: Any = None,
+        goal_service_qos_profile: QoSProfile = qos_profile_services_default,
+        result_service_qos_profile: QoSProfile = qos_profile_services_default,
+        cancel_service_qos_profile: QoSProfile = qos_profile_services_default,
+        feedback_sub_qos_profile: QoSProfile = QoSProfile(depth=10),  # noqa: B008
+        status_sub_qos_profile: QoSProfile = qos_profile_action_status_default,
+    ) -> None:
         self._node = node
         self._action_type = resolve_action_type(action_type)
         self._action_name = action_name
-        self._names = ActionNames(node.resolve_topic_name(action_name),
-                                  self._action_type._TYPE_NAME)
+        self._names = ActionNames(
+            node.resolve_topic_name(action_name), self._action_type._TYPE_NAME
+        )
         self._lock = threading.Lock()
         self._feedback_callbacks: dict[bytes, Callable[[Any], Any]] = {}
         self._goal_handles: dict[bytes, weakref.ref[ClientGoalHandle]] = {}
@@ -114,25 +123,42 @@ class ActionClient(Executable):
         impl = self._action_type.Impl
         names = self._names
         self._goal_client = node.create_client(
-            impl.SendGoalService, names.send_goal, qos_profile=goal_service_qos_profile,
-            callback_group=group)
+            impl.SendGoalService,
+            names.send_goal,
+            qos_profile=goal_service_qos_profile,
+            callback_group=group,
+        )
         self._cancel_client = node.create_client(
-            impl.CancelGoalService, names.cancel_goal, qos_profile=cancel_service_qos_profile,
-            callback_group=group)
+            impl.CancelGoalService,
+            names.cancel_goal,
+            qos_profile=cancel_service_qos_profile,
+            callback_group=group,
+        )
         self._result_client = node.create_client(
-            impl.GetResultService, names.get_result, qos_profile=result_service_qos_profile,
-            callback_group=group)
+            impl.GetResultService,
+            names.get_result,
+            qos_profile=result_service_qos_profile,
+            callback_group=group,
+        )
         self._feedback_sub = node.create_subscription(
-            impl.FeedbackMessage, names.feedback, self._on_feedback, feedback_sub_qos_profile,
-            callback_group=group)
+            impl.FeedbackMessage,
+            names.feedback,
+            self._on_feedback,
+            feedback_sub_qos_profile,
+            callback_group=group,
+        )
         self._status_sub = node.create_subscription(
-            impl.GoalStatusMessage, names.status, self._on_status, status_sub_qos_profile,
-            callback_group=group)
+            impl.GoalStatusMessage,
+            names.status,
+            self._on_status,
+            status_sub_qos_profile,
+            callback_group=group,
+        )
         self._destroyed = False
         node.add_waitable(self)
 
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
-        return None   # never has work of its own
+        return None  # never has work of its own
 
     @property
     def action_type(self) -> Any:
@@ -167,14 +193,19 @@ class ActionClient(Executable):
                     del self._goal_handles[key]
 
     # -- goals -------------------------------------------------------------------------------
-    def send_goal_async(self, goal: Any, feedback_callback: Callable[[Any], Any] | None = None,
-                        goal_uuid: Any = None) -> Future:
+    def send_goal_async(
+        self,
+        goal: Any,
+        feedback_callback: Callable[[Any], Any] | None = None,
+        goal_uuid: Any = None,
+    ) -> Future:
         """Send a goal; the future gives its ClientGoalHandle once the server answers.
 
         `feedback_callback(feedback_message)` gets this goal's `<A>_FeedbackMessage`s."""
         if not isinstance(goal, self._action_type.Goal):
-            raise TypeError(f'goal must be a {self._action_type.Goal.__name__}, '
-                            f'got {type(goal).__name__}')
+            raise TypeError(
+                f'goal must be a {self._action_type.Goal.__name__}, got {type(goal).__name__}'
+            )
         goal_id = new_goal_id() if goal_uuid is None else goal_uuid
         request = self._action_type.Impl.SendGoalService.Request(goal_id=goal_id, goal=goal)
         key = goal_key(goal_id)
@@ -208,18 +239,24 @@ class ActionClient(Executable):
             if not handle.accepted:
                 self._drop_feedback(key)
             future.set_result(handle)
+
         call.add_done_callback(answered)
         return future
 
-    def send_goal(self, goal: Any, feedback_callback: Callable[[Any], Any] | None = None,
-                  goal_uuid: Any = None) -> Any:
+    def send_goal(
+        self,
+        goal: Any,
+        feedback_callback: Callable[[Any], Any] | None = None,
+        goal_uuid: Any = None,
+    ) -> Any:
         """Send a goal and block until its GetResult response (None if it was rejected).
 
         The replies wake this thread directly, so no executor is needed for that; feedback
         callbacks still run only where the node is spun."""
         if not isinstance(goal, self._action_type.Goal):
-            raise TypeError(f'goal must be a {self._action_type.Goal.__name__}, '
-                            f'got {type(goal).__name__}')
+            raise TypeError(
+                f'goal must be a {self._action_type.Goal.__name__}, got {type(goal).__name__}'
+            )
         goal_id = new_goal_id() if goal_uuid is None else goal_uuid
         key = goal_key(goal_id)
         with self._lock:
@@ -228,7 +265,8 @@ class ActionClient(Executable):
             self._unanswered[key] = GoalStatus.STATUS_UNKNOWN
         try:
             response = self._goal_client.call(
-                self._action_type.Impl.SendGoalService.Request(goal_id=goal_id, goal=goal))
+                self._action_type.Impl.SendGoalService.Request(goal_id=goal_id, goal=goal)
+            )
             handle = ClientGoalHandle(self, goal_id, response)
             if not handle.accepted:
                 return None
@@ -279,6 +317,7 @@ class ActionClient(Executable):
                 status = f.result().status
                 if status in TERMINAL_STATES:
                     goal_handle._status = status
+
         future.add_done_callback(done)
         return future
 
@@ -286,7 +325,8 @@ class ActionClient(Executable):
         if not goal_handle.accepted:
             raise TypeError('Action goal was not accepted')
         response = self._result_client.call(
-            self._action_type.Impl.GetResultService.Request(goal_id=goal_handle.goal_id))
+            self._action_type.Impl.GetResultService.Request(goal_id=goal_handle.goal_id)
+        )
         self._drop_feedback(goal_key(goal_handle.goal_id))
         if response.status in TERMINAL_STATES:
             goal_handle._status = response.status
@@ -296,11 +336,13 @@ class ActionClient(Executable):
     def server_is_ready(self) -> bool:
         """All three services answer and the feedback and status topics have a publisher
         (what rcl_action_server_is_available checks)."""
-        return (self._goal_client.service_is_ready() and
-                self._cancel_client.service_is_ready() and
-                self._result_client.service_is_ready() and
-                self._feedback_sub.get_publisher_count() > 0 and
-                self._status_sub.get_publisher_count() > 0)
+        return (
+            self._goal_client.service_is_ready()
+            and self._cancel_client.service_is_ready()
+            and self._result_client.service_is_ready()
+            and self._feedback_sub.get_publisher_count() > 0
+            and self._status_sub.get_publisher_count() > 0
+        )
 
     def wait_for_server(self, timeout_sec: float | None = None) -> bool:
         """Wait until the server is ready; False on timeout (None: wait forever)."""

@@ -22,15 +22,20 @@ GoalStatusArray: Any = get_interface('action_msgs/msg/GoalStatusArray')
 CancelGoal: Any = get_interface('action_msgs/srv/CancelGoal')
 UUID: Any = get_interface('unique_identifier_msgs/msg/UUID')
 
-ACTIVE_STATES = frozenset({
-    GoalStatus.STATUS_ACCEPTED, GoalStatus.STATUS_EXECUTING, GoalStatus.STATUS_CANCELING})
-TERMINAL_STATES = frozenset({
-    GoalStatus.STATUS_SUCCEEDED, GoalStatus.STATUS_CANCELED, GoalStatus.STATUS_ABORTED})
+ACTIVE_STATES = frozenset(
+    {GoalStatus.STATUS_ACCEPTED, GoalStatus.STATUS_EXECUTING, GoalStatus.STATUS_CANCELING}
+)
+TERMINAL_STATES = frozenset(
+    {GoalStatus.STATUS_SUCCEEDED, GoalStatus.STATUS_CANCELED, GoalStatus.STATUS_ABORTED}
+)
 
 _STATUS_NAMES = {
-    GoalStatus.STATUS_ACCEPTED: 'ACCEPTED', GoalStatus.STATUS_EXECUTING: 'EXECUTING',
-    GoalStatus.STATUS_CANCELING: 'CANCELING', GoalStatus.STATUS_SUCCEEDED: 'SUCCEEDED',
-    GoalStatus.STATUS_CANCELED: 'CANCELED', GoalStatus.STATUS_ABORTED: 'ABORTED',
+    GoalStatus.STATUS_ACCEPTED: 'ACCEPTED',
+    GoalStatus.STATUS_EXECUTING: 'EXECUTING',
+    GoalStatus.STATUS_CANCELING: 'CANCELING',
+    GoalStatus.STATUS_SUCCEEDED: 'SUCCEEDED',
+    GoalStatus.STATUS_CANCELED: 'CANCELED',
+    GoalStatus.STATUS_ABORTED: 'ABORTED',
 }
 
 
@@ -40,6 +45,7 @@ def status_name(status: int) -> str:
 
 
 # -- names ---------------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class ActionNames:
@@ -105,6 +111,7 @@ def resolve_action_type(action_type: Any) -> Any:
 
 # -- goal ids ------------------------------------------------------------------------------
 
+
 def new_goal_id() -> Any:
     """A random (version 4) goal UUID message, as rclpy's ActionClient makes them."""
     return UUID(uuid=list(_uuid.uuid4().bytes))
@@ -122,6 +129,7 @@ def goal_id_hex(goal_id: Any) -> str:
 
 
 # -- the goal state machine ----------------------------------------------------------------
+
 
 class GoalEvent(enum.Enum):
     """What may happen to a goal (rcl_action's goal events)."""
@@ -156,7 +164,8 @@ def next_state(state: int, event: GoalEvent) -> int:
     except KeyError:
         raise InvalidGoalTransition(
             f'Failed to update goal state: goal in state {status_name(state)} can not take '
-            f'event {event.name}') from None
+            f'event {event.name}'
+        ) from None
 
 
 def is_cancelable(state: int) -> bool:
@@ -165,11 +174,12 @@ def is_cancelable(state: int) -> bool:
 
 # -- the server's goals --------------------------------------------------------------------
 
+
 @dataclass
 class GoalEntry:
     """One accepted goal as the server tracks it until its result expires."""
 
-    info: Any                     # action_msgs/GoalInfo (id and acceptance stamp)
+    info: Any  # action_msgs/GoalInfo (id and acceptance stamp)
     state: int = GoalStatus.STATUS_ACCEPTED
     ended_at: float | None = None  # time.monotonic() when its result became known
     stamp_ns: int = field(init=False)
@@ -223,16 +233,20 @@ class GoalTable:
     def expire(self, now: float | None = None) -> list[bytes]:
         """Forget goals that ended more than `result_timeout` seconds ago; returns their keys."""
         now = time.monotonic() if now is None else now
-        gone = [k for k, e in self._goals.items()
-                if e.ended_at is not None and now - e.ended_at >= self.result_timeout]
+        gone = [
+            k
+            for k, e in self._goals.items()
+            if e.ended_at is not None and now - e.ended_at >= self.result_timeout
+        ]
         for k in gone:
             del self._goals[k]
         return gone
 
     def status_array(self) -> Any:
         """action_msgs/GoalStatusArray of every goal still tracked, oldest first."""
-        return GoalStatusArray(status_list=[
-            GoalStatus(goal_info=e.info, status=e.state) for e in self._goals.values()])
+        return GoalStatusArray(
+            status_list=[GoalStatus(goal_info=e.info, status=e.state) for e in self._goals.values()]
+        )
 
     def select_cancel(self, request: Any) -> tuple[int, list[Any]]:
         """rcl_action's reading of a CancelGoal request: (return code, GoalInfos to cancel).
@@ -252,12 +266,19 @@ class GoalTable:
             if target is not None:
                 candidates.append(target)
         if stamp_ns or not any(want):
-            candidates += [e for e in self._goals.values() if e not in candidates and
-                           (stamp_ns == 0 or e.stamp_ns <= stamp_ns)]
+            candidates += [
+                e
+                for e in self._goals.values()
+                if e not in candidates and (stamp_ns == 0 or e.stamp_ns <= stamp_ns)
+            ]
         chosen = [e.info for e in candidates if is_cancelable(e.state)]
         if chosen:
             return CancelGoal.Response.ERROR_NONE, chosen
-        if any(want) and len(candidates) == 1 and candidates[0].key == want \
-                and candidates[0].state in TERMINAL_STATES:
+        if (
+            any(want)
+            and len(candidates) == 1
+            and candidates[0].key == want
+            and candidates[0].state in TERMINAL_STATES
+        ):
             return CancelGoal.Response.ERROR_GOAL_TERMINATED, []
         return CancelGoal.Response.ERROR_REJECTED, []

@@ -100,8 +100,11 @@ class ServerGoalHandle:
 
     @property
     def is_active(self) -> bool:
-        return self.status in (GoalStatus.STATUS_ACCEPTED, GoalStatus.STATUS_EXECUTING,
-                               GoalStatus.STATUS_CANCELING)
+        return self.status in (
+            GoalStatus.STATUS_ACCEPTED,
+            GoalStatus.STATUS_EXECUTING,
+            GoalStatus.STATUS_CANCELING,
+        )
 
     @property
     def is_cancel_requested(self) -> bool:
@@ -121,12 +124,15 @@ class ServerGoalHandle:
     def publish_feedback(self, feedback: Any) -> None:
         server = self._action_server
         if not isinstance(feedback, server._action_type.Feedback):
-            raise TypeError(f'feedback must be a {server._action_type.Feedback.__name__}, '
-                            f'got {type(feedback).__name__}')
+            raise TypeError(
+                f'feedback must be a {server._action_type.Feedback.__name__}, '
+                f'got {type(feedback).__name__}'
+            )
         if self._destroyed:
             return
         message = server._action_type.Impl.FeedbackMessage(
-            goal_id=self._goal_info.goal_id, feedback=feedback)
+            goal_id=self._goal_info.goal_id, feedback=feedback
+        )
         server._feedback_pub.publish(message)
 
     def succeed(self) -> None:
@@ -149,24 +155,32 @@ class ServerGoalHandle:
 class ActionServer(Executable):
     """Serves one action on a node (rclpy.action.ActionServer's arguments and defaults)."""
 
-    def __init__(self, node: Any, action_type: Any, action_name: str,
-                 execute_callback: Callable[..., Any], *,
-                 callback_group: Any = None,
-                 goal_callback: Callable[[Any], Any] = default_goal_callback,
-                 handle_accepted_callback: Callable[[ServerGoalHandle], Any] =
-                 default_handle_accepted_callback,
-                 cancel_callback: Callable[[ServerGoalHandle], Any] = default_cancel_callback,
-                 goal_service_qos_profile: QoSProfile = qos_profile_services_default,
-                 result_service_qos_profile: QoSProfile = qos_profile_services_default,
-                 cancel_service_qos_profile: QoSProfile = qos_profile_services_default,
-                 feedback_pub_qos_profile: QoSProfile = QoSProfile(depth=10),  # noqa: B008
-                 status_pub_qos_profile: QoSProfile = qos_profile_action_status_default,
-                 result_timeout: float = 900) -> None:
+    def __init__(
+        self,
+        node: Any,
+        action_type: Any,
+        action_name: str,
+        execute_callback: Callable[..., Any],
+        *,
+        callback_group: Any = None,
+        goal_callback: Callable[[Any], Any] = default_goal_callback,
+        handle_accepted_callback: Callable[
+            [ServerGoalHandle], Any
+        ] = default_handle_accepted_callback,
+        cancel_callback: Callable[[ServerGoalHandle], Any] = default_cancel_callback,
+        goal_service_qos_profile: QoSProfile = qos_profile_services_default,
+        result_service_qos_profile: QoSProfile = qos_profile_services_default,
+        cancel_service_qos_profile: QoSProfile = qos_profile_services_default,
+        feedback_pub_qos_profile: QoSProfile = QoSProfile(depth=10),  # noqa: B008
+        status_pub_qos_profile: QoSProfile = qos_profile_action_status_default,
+        result_timeout: float = 900,
+    ) -> None:
         self._node = node
         self._action_type = resolve_action_type(action_type)
         self._action_name = action_name
-        self._names = ActionNames(node.resolve_topic_name(action_name),
-                                  self._action_type._TYPE_NAME)
+        self._names = ActionNames(
+            node.resolve_topic_name(action_name), self._action_type._TYPE_NAME
+        )
         self._logger = node.get_logger()
         self._lock = threading.RLock()
         self._goals = GoalTable(result_timeout)
@@ -184,23 +198,40 @@ class ActionServer(Executable):
         names = self._names
         # rcl_action's order: the three services, then feedback and status publishers
         self._goal_service = node.create_service(
-            impl.SendGoalService, names.send_goal, self._execute_goal_request,
-            qos_profile=goal_service_qos_profile, callback_group=group, deferred=True)
+            impl.SendGoalService,
+            names.send_goal,
+            self._execute_goal_request,
+            qos_profile=goal_service_qos_profile,
+            callback_group=group,
+            deferred=True,
+        )
         self._cancel_service = node.create_service(
-            impl.CancelGoalService, names.cancel_goal, self._execute_cancel_request,
-            qos_profile=cancel_service_qos_profile, callback_group=group, deferred=True)
+            impl.CancelGoalService,
+            names.cancel_goal,
+            self._execute_cancel_request,
+            qos_profile=cancel_service_qos_profile,
+            callback_group=group,
+            deferred=True,
+        )
         self._result_service = node.create_service(
-            impl.GetResultService, names.get_result, self._on_result_request,
-            qos_profile=result_service_qos_profile, callback_group=group, deferred=True)
+            impl.GetResultService,
+            names.get_result,
+            self._on_result_request,
+            qos_profile=result_service_qos_profile,
+            callback_group=group,
+            deferred=True,
+        )
         self._feedback_pub = node.create_publisher(
-            impl.FeedbackMessage, names.feedback, feedback_pub_qos_profile)
+            impl.FeedbackMessage, names.feedback, feedback_pub_qos_profile
+        )
         self._status_pub = node.create_publisher(
-            impl.GoalStatusMessage, names.status, status_pub_qos_profile)
+            impl.GoalStatusMessage, names.status, status_pub_qos_profile
+        )
         self._destroyed = False
         node.add_waitable(self)
 
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
-        return None   # never has work of its own
+        return None  # never has work of its own
 
     # -- rclpy's registration API ---------------------------------------------------------------
     def register_execute_callback(self, execute_callback: Callable[..., Any]) -> None:
@@ -212,12 +243,15 @@ class ActionServer(Executable):
         self._goal_callback = goal_callback or default_goal_callback
 
     def register_handle_accepted_callback(
-            self, handle_accepted_callback: Callable[[ServerGoalHandle], Any] | None) -> None:
-        self._handle_accepted_callback = handle_accepted_callback or \
-            default_handle_accepted_callback
+        self, handle_accepted_callback: Callable[[ServerGoalHandle], Any] | None
+    ) -> None:
+        self._handle_accepted_callback = (
+            handle_accepted_callback or default_handle_accepted_callback
+        )
 
     def register_cancel_callback(
-            self, cancel_callback: Callable[[ServerGoalHandle], Any] | None) -> None:
+        self, cancel_callback: Callable[[ServerGoalHandle], Any] | None
+    ) -> None:
         self._cancel_callback = cancel_callback or default_cancel_callback
 
     @property
@@ -241,20 +275,21 @@ class ActionServer(Executable):
         else:
             try:
                 response = await await_or_execute(self._goal_callback, request.goal)
-            except Exception as e:   # the client still gets an answer: rejected
+            except Exception as e:  # the client still gets an answer: rejected
                 self._logger.error(f'Error raised in goal callback: {e!r}; rejecting goal')
                 response = GoalResponse.REJECT
             if isinstance(response, GoalResponse):
                 accepted = response == GoalResponse.ACCEPT
             else:
-                self._logger.warning('Goal request callback did not return a GoalResponse '
-                                     'type. Rejecting goal.')
+                self._logger.warning(
+                    'Goal request callback did not return a GoalResponse type. Rejecting goal.'
+                )
         info = GoalInfo(goal_id=request.goal_id)
         goal_handle = None
         if accepted:
             info.stamp = self._node.get_clock().now().to_msg()
             with self._lock:
-                if key in self._goals:   # the same id accepted meanwhile
+                if key in self._goals:  # the same id accepted meanwhile
                     accepted = False
                 else:
                     self._goals.add(info)
@@ -262,7 +297,8 @@ class ActionServer(Executable):
                     self._goal_handles[key] = goal_handle
                     self._result_futures[key] = Future()
         response_msg = self._action_type.Impl.SendGoalService.Response(
-            accepted=accepted, stamp=info.stamp)
+            accepted=accepted, stamp=info.stamp
+        )
         self._goal_service.send_response(response_msg, header)
         if goal_handle is None:
             return
@@ -279,19 +315,20 @@ class ActionServer(Executable):
                 continue
             try:
                 answer = await await_or_execute(self._cancel_callback, goal_handle)
-            except Exception as e:   # the client still gets an answer: not canceled
+            except Exception as e:  # the client still gets an answer: not canceled
                 self._logger.error(f'Error raised in cancel callback: {e!r}')
                 answer = CancelResponse.REJECT
             if answer == CancelResponse.ACCEPT:
                 try:
                     goal_handle._update_state(GoalEvent.CANCEL_GOAL)
                 except RuntimeError:
-                    continue   # it ended while the callback ran
+                    continue  # it ended while the callback ran
                 canceling.append(info)
         if infos and not canceling:
-            code = CancelGoal.Response.ERROR_REJECTED   # the user turned every goal down
+            code = CancelGoal.Response.ERROR_REJECTED  # the user turned every goal down
         self._cancel_service.send_response(
-            CancelGoal.Response(return_code=code, goals_canceling=canceling), header)
+            CancelGoal.Response(return_code=code, goals_canceling=canceling), header
+        )
 
     def _on_result_request(self, request: Any, header: Any) -> None:
         key = goal_key(request.goal_id)
@@ -301,7 +338,8 @@ class ActionServer(Executable):
             future = self._result_futures.get(key)
         if future is None:
             response = self._action_type.Impl.GetResultService.Response(
-                status=GoalStatus.STATUS_UNKNOWN)
+                status=GoalStatus.STATUS_UNKNOWN
+            )
             self._result_service.send_response(response, header)
             return
         # answered now if the goal is over, or the moment it ends
@@ -309,10 +347,10 @@ class ActionServer(Executable):
 
     def _send_result(self, response: Any, header: Any) -> None:
         if self._destroyed:
-            return   # the service is gone, and with it the request
+            return  # the service is gone, and with it the request
         try:
             self._result_service.send_response(response, header)
-        except Exception as e:   # e.g. the session closed meanwhile
+        except Exception as e:  # e.g. the session closed meanwhile
             self._logger.debug(f'could not send a result: {e}')
 
     # -- goal bookkeeping ---------------------------------------------------------------------
@@ -324,7 +362,7 @@ class ActionServer(Executable):
     def _update_goal(self, key: bytes, event: GoalEvent) -> None:
         with self._lock:
             if key not in self._goals:
-                return   # expired already
+                return  # expired already
             self._goals.update(key, event)
         self._publish_status()
 
@@ -341,17 +379,20 @@ class ActionServer(Executable):
             self._forget_expired()
             self._status_pub.publish(self._goals.status_array())
 
-    def _notify_execute(self, goal_handle: ServerGoalHandle,
-                        execute_callback: Callable[..., Any] | None) -> None:
+    def _notify_execute(
+        self, goal_handle: ServerGoalHandle, execute_callback: Callable[..., Any] | None
+    ) -> None:
         callback = execute_callback or self._execute_callback
         executor = self._node.executor
         if executor is None:
-            raise RuntimeError('the action server\'s node must be added to an executor to '
-                               'execute goals')
+            raise RuntimeError(
+                'the action server\'s node must be added to an executor to execute goals'
+            )
         executor.create_task(self._execute_goal, callback, goal_handle)
 
-    async def _execute_goal(self, execute_callback: Callable[..., Any],
-                            goal_handle: ServerGoalHandle) -> None:
+    async def _execute_goal(
+        self, execute_callback: Callable[..., Any], goal_handle: ServerGoalHandle
+    ) -> None:
         key = goal_handle._key
         result_type = self._action_type.Result
         try:
@@ -361,15 +402,17 @@ class ActionServer(Executable):
             traceback.print_exc()
             result = result_type()
         if not isinstance(result, result_type):
-            self._logger.error(f'Execute callback returned {type(result).__name__}, not a '
-                               f'{result_type.__name__}; sending an empty result')
+            self._logger.error(
+                f'Execute callback returned {type(result).__name__}, not a '
+                f'{result_type.__name__}; sending an empty result'
+            )
             result = result_type()
         if goal_handle.is_active:
             self._logger.warning(f'Goal state not set, assuming aborted. Goal ID: {key.hex()}')
             goal_handle.abort()
         status = goal_handle.status
         if status not in TERMINAL_STATES:
-            return   # expired or destroyed meanwhile: nobody can ask for the result
+            return  # expired or destroyed meanwhile: nobody can ask for the result
         response = self._action_type.Impl.GetResultService.Response(status=status, result=result)
         with self._lock:
             future = self._result_futures.get(key)

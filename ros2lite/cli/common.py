@@ -18,24 +18,42 @@ from .errors import CliError
 
 F = TypeVar('F', bound=Callable[..., Any])
 
-QOS_PROFILES = ['unknown', 'default', 'system_default', 'sensor_data', 'services_default',
-                'parameters', 'parameter_events', 'action_status_default', 'best_available']
+QOS_PROFILES = [
+    'unknown',
+    'default',
+    'system_default',
+    'sensor_data',
+    'services_default',
+    'parameters',
+    'parameter_events',
+    'action_status_default',
+    'best_available',
+]
 
 
 def strategy_options(*, no_daemon: bool = True) -> Callable[[F], F]:
     """--spin-time, -s/--use-sim-time and (for graph queries) --no-daemon."""
+
     def decorate(fn: F) -> F:
-        fn = click.option('-s', '--use-sim-time', is_flag=True,
-                          help='Enable ROS simulation time')(fn)
+        fn = click.option('-s', '--use-sim-time', is_flag=True, help='Enable ROS simulation time')(
+            fn
+        )
         # accepted so ros2cli command lines keep working, then dropped here once
-        fn = click.option('--spin-time', type=float, default=0.5, show_default=True,
-                          expose_value=False,
-                          help='Accepted for ros2cli compatibility; graph queries here are '
-                               'complete without spinning')(fn)
+        fn = click.option(
+            '--spin-time',
+            type=float,
+            default=0.5,
+            show_default=True,
+            expose_value=False,
+            help='Accepted for ros2cli compatibility; graph queries here are '
+            'complete without spinning',
+        )(fn)
         if no_daemon:
-            fn = click.option('--no-daemon', is_flag=True,
-                              help='Do not spawn nor use an already running daemon')(fn)
+            fn = click.option(
+                '--no-daemon', is_flag=True, help='Do not spawn nor use an already running daemon'
+            )(fn)
         return fn
+
     return decorate
 
 
@@ -51,12 +69,15 @@ class CliSession:
     def __enter__(self) -> CliSession:
         from ros2lite.context import Context
         from ros2lite.transport.config import RouterUnavailableError
+
         if not self.no_daemon:
             from ros2lite.daemon.probe import router_answers
             from ros2lite.transport.config import router_endpoint
+
             # the usual case (a router answers) skips importing the daemon machinery
             if not router_answers(router_endpoint()):
                 from ros2lite import daemon
+
                 try:
                     daemon.ensure_running()
                 except daemon.DaemonError as e:
@@ -75,6 +96,7 @@ class CliSession:
     def entities(self) -> list[Any]:
         """Every entity in the domain, from one complete query."""
         from ros2lite.graph import snapshot
+
         entities: list[Any] = snapshot(self.context.session, self.context.domain_id)
         return entities
 
@@ -83,52 +105,87 @@ class CliSession:
         if self._node is None:
             from ros2lite.node import Node
             from ros2lite.parameter import Parameter
-            self._node = Node(name or f'_ros2lite_{os.getpid()}', context=self.context,
-                              enable_rosout=False, use_global_arguments=False,
-                              start_parameter_services=False,
-                              parameter_overrides=[Parameter('use_sim_time',
-                                                             value=self.use_sim_time)])
+
+            self._node = Node(
+                name or f'_ros2lite_{os.getpid()}',
+                context=self.context,
+                enable_rosout=False,
+                use_global_arguments=False,
+                start_parameter_services=False,
+                parameter_overrides=[Parameter('use_sim_time', value=self.use_sim_time)],
+            )
         return self._node
 
 
 def qos_options(default_profile: str) -> Callable[[F], F]:
     """The `--qos-*` options of `topic pub`/`echo` (ros2cli's add_qos_arguments)."""
+
     def decorate(fn: F) -> F:
         opts = [
-            click.option('--qos-liveliness-lease-duration-seconds', type=float,
-                         help='Quality of service liveliness lease duration in seconds'),
-            click.option('--qos-liveliness', type=click.Choice(
-                ['system_default', 'automatic', 'manual_by_topic', 'unknown',
-                 'best_available']), help='Quality of service liveliness setting'),
-            click.option('--qos-durability', type=click.Choice(
-                ['system_default', 'transient_local', 'volatile', 'unknown', 'best_available']),
-                help='Quality of service durability setting'),
-            click.option('--qos-reliability', type=click.Choice(
-                ['system_default', 'reliable', 'best_effort', 'unknown', 'best_available']),
-                help='Quality of service reliability setting'),
-            click.option('--qos-history', type=click.Choice(
-                ['system_default', 'keep_last', 'keep_all', 'unknown']),
-                help='Quality of service history setting'),
-            click.option('--qos-depth', type=click.IntRange(min=0),
-                         help='Queue size setting (overrides depth value of '
-                              '--qos-profile option)'),
-            click.option('--qos-profile', type=click.Choice(QOS_PROFILES),
-                         default=default_profile, show_default=True,
-                         help='Quality of service preset profile'),
+            click.option(
+                '--qos-liveliness-lease-duration-seconds',
+                type=float,
+                help='Quality of service liveliness lease duration in seconds',
+            ),
+            click.option(
+                '--qos-liveliness',
+                type=click.Choice(
+                    ['system_default', 'automatic', 'manual_by_topic', 'unknown', 'best_available']
+                ),
+                help='Quality of service liveliness setting',
+            ),
+            click.option(
+                '--qos-durability',
+                type=click.Choice(
+                    ['system_default', 'transient_local', 'volatile', 'unknown', 'best_available']
+                ),
+                help='Quality of service durability setting',
+            ),
+            click.option(
+                '--qos-reliability',
+                type=click.Choice(
+                    ['system_default', 'reliable', 'best_effort', 'unknown', 'best_available']
+                ),
+                help='Quality of service reliability setting',
+            ),
+            click.option(
+                '--qos-history',
+                type=click.Choice(['system_default', 'keep_last', 'keep_all', 'unknown']),
+                help='Quality of service history setting',
+            ),
+            click.option(
+                '--qos-depth',
+                type=click.IntRange(min=0),
+                help='Queue size setting (overrides depth value of --qos-profile option)',
+            ),
+            click.option(
+                '--qos-profile',
+                type=click.Choice(QOS_PROFILES),
+                default=default_profile,
+                show_default=True,
+                help='Quality of service preset profile',
+            ),
         ]
         for opt in opts:
             fn = opt(fn)
         return fn
+
     return decorate
 
 
-def qos_from_options(qos_profile: str, qos_depth: int | None, qos_history: str | None,
-                     qos_reliability: str | None, qos_durability: str | None,
-                     qos_liveliness: str | None = None,
-                     qos_liveliness_lease_duration_seconds: float | None = None,
-                     **_: Any) -> Any:
+def qos_from_options(
+    qos_profile: str,
+    qos_depth: int | None,
+    qos_history: str | None,
+    qos_reliability: str | None,
+    qos_durability: str | None,
+    qos_liveliness: str | None = None,
+    qos_liveliness_lease_duration_seconds: float | None = None,
+    **_: Any,
+) -> Any:
     """The profile the `--qos-*` options describe (unset options keep the preset's value)."""
     from ros2lite.transport import qos as q
+
     profile = q.preset(qos_profile)
     changes: dict[str, Any] = {}
     if qos_history is not None:
@@ -141,20 +198,31 @@ def qos_from_options(qos_profile: str, qos_depth: int | None, qos_history: str |
         changes['liveliness'] = q.LivelinessPolicy.from_short_key(qos_liveliness)
     if qos_liveliness_lease_duration_seconds is not None:
         changes['liveliness_lease_duration'] = q.Duration.from_seconds(
-            qos_liveliness_lease_duration_seconds)
+            qos_liveliness_lease_duration_seconds
+        )
     if qos_depth is not None:
         changes['depth'] = qos_depth
-    elif changes.get('durability', profile.durability) == q.DurabilityPolicy.TRANSIENT_LOCAL \
-            and profile.depth == 0:
+    elif (
+        changes.get('durability', profile.durability) == q.DurabilityPolicy.TRANSIENT_LOCAL
+        and profile.depth == 0
+    ):
         changes['depth'] = 1
     return profile.replace(**changes) if changes else profile
 
 
 def explicit_qos(**options: Any) -> bool:
     """True when any `--qos-*` override (other than the profile) was given."""
-    return any(options.get(k) is not None for k in (
-        'qos_depth', 'qos_history', 'qos_reliability', 'qos_durability', 'qos_liveliness',
-        'qos_liveliness_lease_duration_seconds'))
+    return any(
+        options.get(k) is not None
+        for k in (
+            'qos_depth',
+            'qos_history',
+            'qos_reliability',
+            'qos_durability',
+            'qos_liveliness',
+            'qos_liveliness_lease_duration_seconds',
+        )
+    )
 
 
 def include_hidden(ctx: click.Context, flag: bool = False) -> bool:
@@ -163,11 +231,11 @@ def include_hidden(ctx: click.Context, flag: bool = False) -> bool:
     return flag or bool((ctx.obj or {}).get('include_hidden_topics'))
 
 
-def interface_type_name(name: str, kind: str, *, invalid: str, not_kind: str | None = None
-                        ) -> str:
+def interface_type_name(name: str, kind: str, *, invalid: str, not_kind: str | None = None) -> str:
     """A user-given 'pkg/Name' or 'pkg/<kind>/Name' as the full name of an existing
     interface of that kind; ros2cli's messages (`invalid`, `not_kind`) otherwise."""
     from ros2lite.interfaces import InterfaceError, get_interface
+
     parts = name.split('/')
     if len(parts) == 2:
         parts = [parts[0], kind, parts[1]]
@@ -183,11 +251,16 @@ def interface_type_name(name: str, kind: str, *, invalid: str, not_kind: str | N
     return full
 
 
-def print_types_of(ctx: click.Context, name: str, no_daemon: bool,
-                   names_and_types: Callable[[list[Any]], list[tuple[str, list[str]]]]) -> None:
+def print_types_of(
+    ctx: click.Context,
+    name: str,
+    no_daemon: bool,
+    names_and_types: Callable[[list[Any]], list[tuple[str, list[str]]]],
+) -> None:
     """What `topic/service/action type` share: the type(s) of `name` in the graph, or exit 1
     without a word, as ros2cli does (a name that cannot be valid is just an unknown one)."""
     from ros2lite.transport.keys import expand_topic_name
+
     try:
         full = expand_topic_name(name, 'ros2lite', '/')
     except ValueError:

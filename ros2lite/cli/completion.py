@@ -26,6 +26,7 @@ Completer = Callable[[click.Context, click.Parameter, str], list[CompletionItem]
 def shell_complete(instruction: str) -> int:
     """Answer one completion request from the shell (`_ROS2LITE_COMPLETE` is set)."""
     from .main import cli
+
     return click_complete(cli, {}, 'ros2lite', COMPLETE_VAR, instruction)
 
 
@@ -36,12 +37,15 @@ def _matching(names: Iterable[str], incomplete: str) -> list[CompletionItem]:
 def _quietly(fn: Callable[[click.Context, str], list[CompletionItem]]) -> Completer:
     """A completer that completes nothing instead of failing: a traceback in the middle of
     the user's command line is worse than no suggestions."""
-    def complete(ctx: click.Context, _param: click.Parameter, incomplete: str
-                 ) -> list[CompletionItem]:
+
+    def complete(
+        ctx: click.Context, _param: click.Parameter, incomplete: str
+    ) -> list[CompletionItem]:
         try:
             return fn(ctx, incomplete)
         except Exception:
             return []
+
     return complete
 
 
@@ -50,6 +54,7 @@ def _graph_entities(ctx: click.Context) -> list[Any]:
     from ros2lite.daemon.probe import router_answers
     from ros2lite.graph import snapshot
     from ros2lite.transport.config import domain_id, open_session, router_endpoint
+
     # a `--router` typed on the line being completed counts (no group callback runs here)
     router = ctx.find_root().params.get('router')
     if not router_answers(router_endpoint(router), timeout=0.3):
@@ -70,6 +75,7 @@ def _hidden_wanted(incomplete: str) -> bool:
 @_quietly
 def topics(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
     from ros2lite.graph import topic_names_and_types
+
     names = topic_names_and_types(_graph_entities(ctx), _hidden_wanted(incomplete))
     return _matching((name for name, _ in names), incomplete)
 
@@ -77,6 +83,7 @@ def topics(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
 @_quietly
 def services(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
     from ros2lite.graph import service_names_and_types
+
     names = service_names_and_types(_graph_entities(ctx), _hidden_wanted(incomplete))
     return _matching((name for name, _ in names), incomplete)
 
@@ -84,6 +91,7 @@ def services(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
 @_quietly
 def actions(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
     from ros2lite.graph import action_names_and_types
+
     names = action_names_and_types(_graph_entities(ctx))
     return _matching((name for name, _ in names), incomplete)
 
@@ -91,12 +99,14 @@ def actions(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
 @_quietly
 def nodes(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
     from ros2lite.graph import node_full_names
+
     entities = _graph_entities(ctx)
     return _matching(node_full_names(entities, _hidden_wanted(incomplete)), incomplete)
 
 
 def _interfaces(kind: str | None, incomplete: str) -> list[CompletionItem]:
     from ros2lite.interfaces.registry import default_registry
+
     names = default_registry().all_interfaces()
     if kind is not None:
         names = [n for n in names if n.split('/')[1] == kind]
@@ -126,18 +136,21 @@ def interface_types(_ctx: click.Context, incomplete: str) -> list[CompletionItem
 @_quietly
 def interface_packages(_ctx: click.Context, incomplete: str) -> list[CompletionItem]:
     from ros2lite.interfaces.registry import default_registry
+
     return _matching(default_registry().packages(), incomplete)
 
 
 @_quietly
 def executable_packages(_ctx: click.Context, incomplete: str) -> list[CompletionItem]:
     from ros2lite.pkg.executables import list_packages
+
     return _matching(list_packages(), incomplete)
 
 
 @_quietly
 def executables(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
     from ros2lite.pkg.executables import get_executables
+
     package = ctx.params.get('package_name')
     if not package:
         return []

@@ -13,20 +13,24 @@ import click
 
 def command_group(name: str, doc: str, verbs: dict[str, tuple[str, str]]) -> click.Group:
     """A `ros2lite <name>` group of lazily imported verbs; bare `<name>` prints its help."""
+
     @click.pass_context
     def callback(ctx: click.Context) -> None:
         if ctx.invoked_subcommand is None:
             click.echo(ctx.get_help())
+
     callback.__doc__ = doc
-    return click.group(name, cls=LazyGroup, lazy=verbs, invoke_without_command=True,
-                       help=doc)(callback)
+    return click.group(name, cls=LazyGroup, lazy=verbs, invoke_without_command=True, help=doc)(
+        callback
+    )
 
 
 class LazyGroup(click.Group):
     """`lazy` maps a command name to ('module.path', 'one-line help')."""
 
-    def __init__(self, *args: Any, lazy: dict[str, tuple[str, str]] | None = None,
-                 **kwargs: Any) -> None:
+    def __init__(
+        self, *args: Any, lazy: dict[str, tuple[str, str]] | None = None, **kwargs: Any
+    ) -> None:
         super().__init__(*args, **kwargs)
         self.lazy = lazy or {}
 

@@ -42,12 +42,18 @@ def debug_enabled() -> bool:
     return os.environ.get('ROS2LITE_DEBUG', '') not in ('', '0', 'false', 'no')
 
 
-@click.group(cls=LazyGroup, lazy=COMMANDS, invoke_without_command=True,
-             context_settings={'help_option_names': ['-h', '--help']})
+@click.group(
+    cls=LazyGroup,
+    lazy=COMMANDS,
+    invoke_without_command=True,
+    context_settings={'help_option_names': ['-h', '--help']},
+)
 @click.option('--debug', is_flag=True, help='Show full tracebacks on errors.')
-@click.option('--router', metavar='ENDPOINT',
-              help='Zenoh router endpoint to use (default $ROS2LITE_ROUTER or '
-                   'tcp/127.0.0.1:7447).')
+@click.option(
+    '--router',
+    metavar='ENDPOINT',
+    help='Zenoh router endpoint to use (default $ROS2LITE_ROUTER or tcp/127.0.0.1:7447).',
+)
 @click.version_option(package_name='ros2lite', prog_name='ros2lite')
 @click.pass_context
 def cli(ctx: click.Context, debug: bool, router: str | None) -> None:
@@ -67,6 +73,7 @@ def main(argv: list[str] | None = None) -> Any:
     instruction = os.environ.get(COMPLETE_VAR)
     if instruction:
         from .completion import shell_complete
+
         return shell_complete(instruction)
     if '--debug' in args[:1]:
         os.environ['ROS2LITE_DEBUG'] = '1'
@@ -74,7 +81,7 @@ def main(argv: list[str] | None = None) -> Any:
         sys.stdout.reconfigure(line_buffering=True)  # type: ignore[union-attr]
     try:
         previous_term = signal.signal(signal.SIGTERM, _raise_terminated)
-    except ValueError:   # not the main thread (e.g. a test harness): leave signals alone
+    except ValueError:  # not the main thread (e.g. a test harness): leave signals alone
         return _main(args)
     try:
         return _main(args)

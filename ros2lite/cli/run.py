@@ -22,23 +22,31 @@ from . import completion
 from .errors import CliError
 
 
-@click.command('run', context_settings={
-    'ignore_unknown_options': True, 'allow_interspersed_args': False,
-    'help_option_names': ['-h', '--help']})
-@click.option('--prefix', metavar='CMD',
-              help="Prefix command, which should go before the executable. Command must be "
-                   "wrapped in quotes if it contains spaces (e.g. --prefix 'gdb -ex run --args').")
+@click.command(
+    'run',
+    context_settings={
+        'ignore_unknown_options': True,
+        'allow_interspersed_args': False,
+        'help_option_names': ['-h', '--help'],
+    },
+)
+@click.option(
+    '--prefix',
+    metavar='CMD',
+    help="Prefix command, which should go before the executable. Command must be "
+    "wrapped in quotes if it contains spaces (e.g. --prefix 'gdb -ex run --args').",
+)
 @click.argument('package_name', shell_complete=completion.executable_packages)
 @click.argument('executable_name', shell_complete=completion.executables)
 @click.argument('argv', nargs=-1, type=click.UNPROCESSED)
-def cli(prefix: str | None, package_name: str, executable_name: str,
-        argv: tuple[str, ...]) -> None:
+def cli(prefix: str | None, package_name: str, executable_name: str, argv: tuple[str, ...]) -> None:
     """Run a package specific executable."""
     from ros2lite.pkg.executables import (
         MultipleExecutablesError,
         PackageNotFoundError,
         find_executable,
     )
+
     try:
         exe = find_executable(package_name, executable_name)
     except (PackageNotFoundError, MultipleExecutablesError) as e:
@@ -87,8 +95,11 @@ def run_child(cmd: list[str]) -> int:
     def forward_int(_signum: int, _frame: Any) -> None:
         nonlocal interrupts
         interrupts += 1
-        if proc is not None and proc.poll() is None and (
-                interrupts > 1 or not _terminal_signals_child()):
+        if (
+            proc is not None
+            and proc.poll() is None
+            and (interrupts > 1 or not _terminal_signals_child())
+        ):
             proc.send_signal(signal.SIGINT)
 
     def forward_term(signum: int, _frame: Any) -> None:

@@ -42,7 +42,9 @@ def _run(args: argparse.Namespace, ready_fd: int | None) -> int:
     from ros2lite.daemon.router import serve
 
     return serve(
-        args.router, args.listen, args.connect,
+        args.router,
+        args.listen,
+        args.connect,
         pid_path=Path(args.pid_file) if args.pid_file else None,
         log_path=Path(args.log_file) if args.log_file else None,
         ready_fd=ready_fd,

@@ -44,6 +44,7 @@ def router_answers(endpoint: str, timeout: float = 0.5) -> bool:
 
 def _zenoh_probe(endpoint: str, timeout: float) -> bool:
     from ros2lite.transport.config import router_reachable
+
     return router_reachable(endpoint, timeout)
 
 

@@ -91,8 +91,10 @@ class StartResult:
             return "The daemon has been started"
         if self.ours:
             return "The daemon is already running"
-        return ("The daemon is already running (a Zenoh router not started by ros2lite "
-                f"answers at {self.endpoint})")
+        return (
+            "The daemon is already running (a Zenoh router not started by ros2lite "
+            f"answers at {self.endpoint})"
+        )
 
 
 @dataclass(frozen=True)
@@ -109,8 +111,7 @@ class StopResult:
         if self.stopped:
             return "The daemon has been stopped"
         if self.foreign:
-            return (f"The router at {self.endpoint} was not started by ros2lite; "
-                    "not stopping it")
+            return f"The router at {self.endpoint} was not started by ros2lite; not stopping it"
         return "The daemon is not running"
 
 
@@ -132,11 +133,13 @@ class DaemonStatus:
         if self.running and self.ours:
             return "The daemon is running"
         if self.running:
-            return ("The daemon is running (a Zenoh router not started by ros2lite at "
-                    f"{self.endpoint})")
+            return (
+                f"The daemon is running (a Zenoh router not started by ros2lite at {self.endpoint})"
+            )
         if self.ours:
-            return (f"The daemon process (pid {self.pid}) exists but does not answer at "
-                    f"{self.endpoint}")
+            return (
+                f"The daemon process (pid {self.pid}) exists but does not answer at {self.endpoint}"
+            )
         return "The daemon is not running"
 
 
@@ -279,8 +282,12 @@ def serve(
         tell(f"error {msg}")
         return 1
     info = DaemonInfo(
-        pid=os.getpid(), endpoint=endpoint, listen=list(listen) or [endpoint],
-        connect=list(connect), zid=str(session.zid()), started_at=time.time(),
+        pid=os.getpid(),
+        endpoint=endpoint,
+        listen=list(listen) or [endpoint],
+        connect=list(connect),
+        zid=str(session.zid()),
+        started_at=time.time(),
         log_file=str(log_path) if log_path else None,
     )
     path = pid_path or pid_file(endpoint)
@@ -314,11 +321,13 @@ def status(router: str | None = None, *, sessions: bool = False) -> DaemonStatus
     return DaemonStatus(endpoint, running, info is not None, info, connected)
 
 
-def connected_sessions(router: str | None = None, timeout: float = 2.0
-                       ) -> list[ConnectedSession] | None:
+def connected_sessions(
+    router: str | None = None, timeout: float = 2.0
+) -> list[ConnectedSession] | None:
     """The sessions linked to the router at the endpoint, with their node names; None when
     no router answers or its admin space is closed (e.g. a foreign router's)."""
     from ros2lite.transport.admin import router_sessions
+
     try:
         session = open_session(router_endpoint(router), mode="client", timeout=timeout)
     except SessionError:
@@ -348,8 +357,14 @@ def start(
     with _start_lock(endpoint, timeout):
         info = _read_info(pid_file(endpoint))
         if router_answers(endpoint) or (info is not None and wait_answers(endpoint, timeout)):
-            return StartResult(endpoint, False, True, info is not None,
-                               info.pid if info else None, info.log_file if info else None)
+            return StartResult(
+                endpoint,
+                False,
+                True,
+                info is not None,
+                info.pid if info else None,
+                info.log_file if info else None,
+            )
         if info is not None:
             raise DaemonError(
                 f"ros2lite daemon pid {info.pid} runs but does not answer at {endpoint}; "
@@ -361,8 +376,17 @@ def start(
 
 def _spawn(endpoint: str, listen: list[str], connect: list[str], timeout: float) -> int:
     log = log_file(endpoint)
-    cmd = [sys.executable, "-m", "ros2lite.daemon", "--router", endpoint,
-           "--pid-file", str(pid_file(endpoint)), "--log-file", str(log)]
+    cmd = [
+        sys.executable,
+        "-m",
+        "ros2lite.daemon",
+        "--router",
+        endpoint,
+        "--pid-file",
+        str(pid_file(endpoint)),
+        "--log-file",
+        str(log),
+    ]
     for ep in listen:
         cmd += ["--listen", ep]
     for ep in connect:
@@ -377,8 +401,14 @@ def _spawn(endpoint: str, listen: list[str], connect: list[str], timeout: float)
     if src_root not in _site_dirs():
         env["PYTHONPATH"] = os.pathsep.join(p for p in (src_root, env.get("PYTHONPATH")) if p)
     proc = subprocess.Popen(
-        cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-        cwd="/", env=env, close_fds=True, text=True,
+        cmd,
+        stdin=subprocess.DEVNULL,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        cwd="/",
+        env=env,
+        close_fds=True,
+        text=True,
     )
     try:
         out, err = proc.communicate(timeout=timeout)
@@ -393,12 +423,15 @@ def _spawn(endpoint: str, listen: list[str], connect: list[str], timeout: float)
     if proc.returncode != 0 or "ready" not in lines:
         _kill_pid_from(out)
         why = next((ln[6:] for ln in lines if ln.startswith("error ")), "") or err.strip()
-        raise DaemonError(f"could not start a router at {endpoint}: {why or 'unknown error'}"
-                          f" (log: {log})")
+        raise DaemonError(
+            f"could not start a router at {endpoint}: {why or 'unknown error'} (log: {log})"
+        )
     pid = _pid_from(out) or 0
     if not wait_answers(endpoint, timeout):
-        raise DaemonError(f"the router (pid {pid}) started but does not answer at {endpoint}; "
-                          f"check --listen (log: {log})")
+        raise DaemonError(
+            f"the router (pid {pid}) started but does not answer at {endpoint}; "
+            f"check --listen (log: {log})"
+        )
     return pid
 
 
@@ -480,6 +513,12 @@ def ensure_running(router: str | None = None, *, timeout: float = START_TIMEOUT)
     endpoint = router_endpoint(router)
     if router_answers(endpoint):
         info = _read_info(pid_file(endpoint))
-        return StartResult(endpoint, False, True, info is not None,
-                           info.pid if info else None, info.log_file if info else None)
+        return StartResult(
+            endpoint,
+            False,
+            True,
+            info is not None,
+            info.pid if info else None,
+            info.log_file if info else None,
+        )
     return start(endpoint, timeout=timeout)

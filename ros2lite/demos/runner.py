@@ -16,6 +16,7 @@ from typing import Any
 def run_node(make_node: Callable[[], Any], args: list[str] | None = None) -> int:
     """Spin the node `make_node()` builds until Ctrl-C or shutdown; returns the exit status."""
     import ros2lite
+
     return run_main(lambda: ros2lite.spin(make_node()), args)
 
 
@@ -25,6 +26,7 @@ def run_main(body: Callable[[], Any], args: list[str] | None = None) -> int:
     from ros2lite.exceptions import ParameterException
     from ros2lite.executors import ExternalShutdownException
     from ros2lite.transport.config import SessionError
+
     try:
         with ros2lite.init(args=args):
             body()

@@ -16,10 +16,24 @@ from .parser import InterfaceError, UnknownInterfaceError
 from .registry import Registry, default_registry, normalize_name
 
 __all__ = [
-    'ActionType', 'CdrError', 'FieldError', 'InterfaceError', 'Message', 'Registry',
-    'ServiceType', 'UnknownInterfaceError', 'definition_text', 'deserialize', 'get_interface',
-    'list_interfaces', 'message_to_csv', 'message_to_dict', 'message_to_yaml', 'serialize',
-    'set_message_fields', 'type_hash',
+    'ActionType',
+    'CdrError',
+    'FieldError',
+    'InterfaceError',
+    'Message',
+    'Registry',
+    'ServiceType',
+    'UnknownInterfaceError',
+    'definition_text',
+    'deserialize',
+    'get_interface',
+    'list_interfaces',
+    'message_to_csv',
+    'message_to_dict',
+    'message_to_yaml',
+    'serialize',
+    'set_message_fields',
+    'type_hash',
 ]
 
 
@@ -47,8 +61,7 @@ def serialize(msg: Message) -> bytes:
 _BY_NAME: dict[Any, Any] = {}
 
 
-def deserialize(type_or_name: str | type[Message], data: bytes | bytearray | memoryview
-                ) -> Any:
+def deserialize(type_or_name: str | type[Message], data: bytes | bytearray | memoryview) -> Any:
     """Decode CDR bytes of either byte order into a message object."""
     c = _BY_NAME.get(type_or_name)
     if c is None or c.reg is not default_registry():
@@ -66,21 +79,25 @@ def list_interfaces() -> list[str]:
 def definition_text(name: str) -> str:
     """The rosbag2 'ros2msg' schema text: the type's file plus every dependency once."""
     from .text import definition_text as _definition_text
+
     return _definition_text(normalize_name(name), default_registry())
 
 
 def message_to_dict(msg: Message, **opts: Any) -> dict[str, Any]:
     from .convert import message_to_dict as _f
+
     return _f(msg, **opts)
 
 
 def message_to_yaml(msg: Message, **opts: Any) -> str:
     from .convert import message_to_yaml as _f
+
     return _f(msg, **opts)
 
 
 def message_to_csv(msg: Message, **opts: Any) -> str:
     from .convert import message_to_csv as _f
+
     return _f(msg, **opts)
 
 
@@ -90,4 +107,5 @@ def set_message_fields(msg: Message, values: dict[str, Any] | str, **opts: Any) 
     Returns the stamp setters that 'header: auto' / 'stamp: now' asked for.
     """
     from .convert import set_message_fields as _f
+
     return _f(msg, values, **opts)

@@ -19,9 +19,19 @@ from .registry import Registry
 
 HEADER_LE = b'\x00\x01\x00\x00'
 _FMT = {
-    'bool': '?', 'byte': 'c', 'char': 'B', 'int8': 'b', 'uint8': 'B', 'int16': 'h',
-    'uint16': 'H', 'int32': 'i', 'uint32': 'I', 'int64': 'q', 'uint64': 'Q',
-    'float32': 'f', 'float64': 'd',
+    'bool': '?',
+    'byte': 'c',
+    'char': 'B',
+    'int8': 'b',
+    'uint8': 'B',
+    'int16': 'h',
+    'uint16': 'H',
+    'int32': 'i',
+    'uint32': 'I',
+    'int64': 'q',
+    'uint64': 'Q',
+    'float32': 'f',
+    'float64': 'd',
 }
 _SIZE = {k: struct.calcsize('<' + v) for k, v in _FMT.items()}
 _DUMMY = Field('structure_needs_at_least_one_member', FieldType('uint8'))
@@ -48,7 +58,7 @@ class _Gen:
         self.mod = 8
         self.rem = 0
         self.run_fmt = ''
-        self.run_items: list[tuple[str, str]] = []   # (kind, expression/target)
+        self.run_items: list[tuple[str, str]] = []  # (kind, expression/target)
 
     def name(self, prefix: str) -> str:
         self.counter += 1
@@ -183,8 +193,12 @@ class _SerGen(_Gen):
             else:
                 self.struct(self.element_def(ft), expr)
             return
-        if ft.container == 'array' and base in _FMT and base != 'byte' and \
-                ft.size <= _INLINE_ARRAY_MAX:
+        if (
+            ft.container == 'array'
+            and base in _FMT
+            and base != 'byte'
+            and ft.size <= _INLINE_ARRAY_MAX
+        ):
             self.add(f'{ft.size}{_FMT[base]}', ft.size * _SIZE[base], _SIZE[base], '*' + expr)
             return
         if ft.container == 'array' and base == 'byte':
@@ -193,8 +207,10 @@ class _SerGen(_Gen):
         n = self.name('n')
         if ft.container == 'array':
             self.emit(f'{n} = {ft.size}')
-            self.emit(f'if len({expr}) != {ft.size}: '
-                      f'raise _CdrError("array field needs {ft.size} elements")')
+            self.emit(
+                f'if len({expr}) != {ft.size}: '
+                f'raise _CdrError("array field needs {ft.size} elements")'
+            )
         else:
             self.emit(f'{n} = len({expr})')
             if ft.container == 'bounded':
@@ -331,8 +347,13 @@ class _DesGen(_Gen):
             return
         if ft.container == 'array' and base in TYPECODES and ft.size <= _INLINE_ARRAY_MAX:
             code = TYPECODES[base]
-            self.add(f'{ft.size}{_FMT[base]}', ft.size * _SIZE[base], _SIZE[base],
-                     f'a:{ft.size}:{code}', target)
+            self.add(
+                f'{ft.size}{_FMT[base]}',
+                ft.size * _SIZE[base],
+                _SIZE[base],
+                f'a:{ft.size}:{code}',
+                target,
+            )
             return
         if ft.container == 'array' and base in ('bool', 'byte'):
             self.add(f'{ft.size}{_FMT[base]}', ft.size, 1, f'a:{ft.size}:list', target)
@@ -433,8 +454,9 @@ def build_serializer(name: str, reg: Registry) -> Callable[[Any], bytes]:
 _Des = Callable[[bytes, int], tuple[Any, int]]
 
 
-def _des_body(name: str, reg: Registry, little: bool, lenient: bool,
-              indent: int) -> tuple[_DesGen, str]:
+def _des_body(
+    name: str, reg: Registry, little: bool, lenient: bool, indent: int
+) -> tuple[_DesGen, str]:
     """Generated lines that build one `name` message from `d` at offset `o`, and the variable
     that holds it at the end."""
     gen = _DesGen(reg, '<' if little else '>', lenient)
@@ -447,8 +469,9 @@ def _des_body(name: str, reg: Registry, little: bool, lenient: bool,
     return gen, v
 
 
-def build_deserializer(name: str, reg: Registry, little: bool = True,
-                       lenient: bool = False) -> _Des:
+def build_deserializer(
+    name: str, reg: Registry, little: bool = True, lenient: bool = False
+) -> _Des:
     gen, v = _des_body(name, reg, little, lenient, 1)
     src = 'def des(d, o):\n' + '\n'.join(gen.lines) + f'\n    return {v}, o'
     exec(compile(src, f'<cdr des {name}>', 'exec'), gen.ns)
@@ -457,24 +480,27 @@ def build_deserializer(name: str, reg: Registry, little: bool = True,
     return fn
 
 
-def build_fast_decoder(name: str, reg: Registry, slow: Callable[[bytes], Any]
-                       ) -> Callable[[bytes], Any]:
+def build_fast_decoder(
+    name: str, reg: Registry, slow: Callable[[bytes], Any]
+) -> Callable[[bytes], Any]:
     """`decode(d)` for whole little-endian payloads with the header check inlined (one call
     per message on the subscription hot path); anything unusual goes to `slow`, which gives
     the precise error or handles big-endian and bad UTF-8."""
     gen, v = _des_body(name, reg, True, False, 2)
     gen.ns['_slow'] = slow
-    src = '\n'.join([
-        'def decode(d):',
-        '    try:',
-        '        if d[1] != 1 or d[0]:',
-        '            raise ValueError',
-        '        o = 4',
-        *gen.lines,
-        '    except Exception:',
-        '        return _slow(d)',
-        f'    return {v} if o <= len(d) else _slow(d)',
-    ])
+    src = '\n'.join(
+        [
+            'def decode(d):',
+            '    try:',
+            '        if d[1] != 1 or d[0]:',
+            '            raise ValueError',
+            '        o = 4',
+            *gen.lines,
+            '    except Exception:',
+            '        return _slow(d)',
+            f'    return {v} if o <= len(d) else _slow(d)',
+        ]
+    )
     exec(compile(src, f'<cdr decode {name}>', 'exec'), gen.ns)
     fn: Callable[[bytes], Any] = gen.ns['decode']
     fn.__doc__ = src

@@ -17,12 +17,25 @@ from .registry import Registry, default_registry, normalize_name
 
 # array typecodes for primitive sequences/arrays (as rclpy: array.array for numbers)
 TYPECODES = {
-    'int8': 'b', 'uint8': 'B', 'char': 'B', 'int16': 'h', 'uint16': 'H', 'int32': 'i',
-    'uint32': 'I', 'int64': 'q', 'uint64': 'Q', 'float32': 'f', 'float64': 'd',
+    'int8': 'b',
+    'uint8': 'B',
+    'char': 'B',
+    'int16': 'h',
+    'uint16': 'H',
+    'int32': 'i',
+    'uint32': 'I',
+    'int64': 'q',
+    'uint64': 'Q',
+    'float32': 'f',
+    'float64': 'd',
 }
 # rosidl names as get_fields_and_field_types() reports them
 ROSIDL_NAMES = {
-    'bool': 'boolean', 'byte': 'octet', 'char': 'uint8', 'float32': 'float', 'float64': 'double',
+    'bool': 'boolean',
+    'byte': 'octet',
+    'char': 'uint8',
+    'float32': 'float',
+    'float64': 'double',
 }
 FLOAT32_MAX = 3.4028234663852886e38  # exact FLT_MAX
 
@@ -137,8 +150,7 @@ def _check_scalar_source(ft: FieldType, name: str, var: str) -> list[str]:
     if base in INT_RANGES and base != 'byte':
         lo, hi = INT_RANGES[base]
         return [
-            f'if not isinstance({var}, int):'
-            f' raise _err({name!r}, "must be of type \'int\'")',
+            f'if not isinstance({var}, int): raise _err({name!r}, "must be of type \'int\'")',
             f'if not {lo} <= {var} <= {hi}:'
             f' raise _err({name!r}, "must be an integer in [{lo}, {hi}]")',
         ]
@@ -157,14 +169,16 @@ def _check_scalar_source(ft: FieldType, name: str, var: str) -> list[str]:
         if base == 'float32':
             lines.append(
                 f'if ({var} < -{FLOAT32_MAX!r} or {var} > {FLOAT32_MAX!r}) and not _isinf({var}):'
-                f' raise _err({name!r}, "must be a float in [-{FLOAT32_MAX!r}, {FLOAT32_MAX!r}]")')
+                f' raise _err({name!r}, "must be a float in [-{FLOAT32_MAX!r}, {FLOAT32_MAX!r}]")'
+            )
         return lines
     if base in ('string', 'wstring'):
         lines = [f'if not isinstance({var}, str): raise _err({name!r}, "must be of type \'str\'")']
         if ft.string_bound:
             lines.append(
                 f'if len({var}) > {ft.string_bound}: raise _err({name!r},'
-                f' "must be string value not longer than {ft.string_bound}")')
+                f' "must be string value not longer than {ft.string_bound}")'
+            )
         return lines
     return [
         f'if type({var}) is not _C[{base!r}] and not _same_type({var}, {base!r}):'
@@ -178,12 +192,16 @@ def _setter_source(name: str, ft: FieldType) -> list[str]:
     if not ft.is_container:
         body += _check_scalar_source(ft, name, 'v')
     else:
-        body.append('if isinstance(v, (str, dict)) or not hasattr(v, "__len__"):'
-                    f' raise _err({name!r}, "must be a set or sequence")')
+        body.append(
+            'if isinstance(v, (str, dict)) or not hasattr(v, "__len__"):'
+            f' raise _err({name!r}, "must be a set or sequence")'
+        )
         if ft.base in TYPECODES:
             code = TYPECODES[ft.base]
-            body.append(f'if type(v) is not _array or v.typecode != {code!r}:'
-                        f' v = _to_array({code!r}, v, {name!r}, {ft.base == "float32"})')
+            body.append(
+                f'if type(v) is not _array or v.typecode != {code!r}:'
+                f' v = _to_array({code!r}, v, {name!r}, {ft.base == "float32"})'
+            )
         else:
             if ft.base == 'byte':
                 body.append('if isinstance(v, (bytes, bytearray)): v = [bytes((x,)) for x in v]')
@@ -193,11 +211,15 @@ def _setter_source(name: str, ft: FieldType) -> list[str]:
             body += ['    ' + s for s in inner]
             body.append('    v[i] = e')
         if ft.container == 'array':
-            body.append(f'if len(v) != {ft.size}: raise _err({name!r},'
-                        f' "must have exactly {ft.size} elements")')
+            body.append(
+                f'if len(v) != {ft.size}: raise _err({name!r},'
+                f' "must have exactly {ft.size} elements")'
+            )
         elif ft.container == 'bounded':
-            body.append(f'if len(v) > {ft.size}: raise _err({name!r},'
-                        f' "must have at most {ft.size} elements")')
+            body.append(
+                f'if len(v) > {ft.size}: raise _err({name!r},'
+                f' "must have at most {ft.size} elements")'
+            )
     body.append(f'self._{name} = v')
     return lines + ['    ' + s for s in body]
 
@@ -209,12 +231,14 @@ def _err(name: str, what: str) -> FieldError:
 def _to_array(code: str, value: Any, name: str, f32: bool) -> array:
     try:
         if code in 'fd':
-            value = [float(x) if isinstance(x, int) and not isinstance(x, bool) else x
-                     for x in value]
+            value = [
+                float(x) if isinstance(x, int) and not isinstance(x, bool) else x for x in value
+            ]
             if not all(isinstance(x, float) for x in value):
                 raise TypeError
-            if f32 and any((x < -FLOAT32_MAX or x > FLOAT32_MAX) and not math.isinf(x)
-                           for x in value):
+            if f32 and any(
+                (x < -FLOAT32_MAX or x > FLOAT32_MAX) and not math.isinf(x) for x in value
+            ):
                 raise OverflowError
         elif not all(isinstance(x, int) for x in value):
             raise TypeError
@@ -253,8 +277,7 @@ class ClassFactory:
     def _build(self, mdef: MessageDef) -> type[Message]:
         short = mdef.short_name
         names = [f.name for f in mdef.fields]
-        src = [f'class {short}(_Message):',
-               f'    __slots__ = {tuple("_" + n for n in names)!r}']
+        src = [f'class {short}(_Message):', f'    __slots__ = {tuple("_" + n for n in names)!r}']
         for c in mdef.constants:
             src.append(f'    {c.name} = {c.value!r}')
         params = ''.join(f', {n}=_MISSING' for n in names)
@@ -268,12 +291,20 @@ class ClassFactory:
         for f in mdef.fields:
             src += ['    ' + s for s in _setter_source(f.name, f.type)]
             # a C-level getter: reading a field costs a third less than through a lambda
-            src.append(f"    {f.name} = property(_getter('_{f.name}'), _set_{f.name}, "
-                       f"doc={rosidl_type_string(f.type)!r})")
+            src.append(
+                f"    {f.name} = property(_getter('_{f.name}'), _set_{f.name}, "
+                f"doc={rosidl_type_string(f.type)!r})"
+            )
         ns: dict[str, Any] = {
-            '_Message': Message, '_MISSING': _MISSING, '_C': self.classes, '_array': array,
-            '_err': _err, '_to_array': _to_array, '_isinf': math.isinf,
-            '_same_type': self.same_type, '_getter': operator.attrgetter,
+            '_Message': Message,
+            '_MISSING': _MISSING,
+            '_C': self.classes,
+            '_array': array,
+            '_err': _err,
+            '_to_array': _to_array,
+            '_isinf': math.isinf,
+            '_same_type': self.same_type,
+            '_getter': operator.attrgetter,
         }
         exec(compile('\n'.join(src), f'<ros2lite {mdef.name}>', 'exec'), ns)
         cls: type[Message] = ns[short]
@@ -356,24 +387,32 @@ def _action_class(name: str, fac: ClassFactory) -> type[ActionType]:
         send_goal = _service_class(name + '_SendGoal', fac)
         get_result = _service_class(name + '_GetResult', fac)
         feedback_message = fac.message_class(name + '_FeedbackMessage')
-        impl = type('Impl', (), {
-            'SendGoalService': send_goal,
-            'GetResultService': get_result,
-            'FeedbackMessage': feedback_message,
-            'CancelGoalService': _service_class('action_msgs/srv/CancelGoal', fac),
-            'GoalStatusMessage': fac.message_class('action_msgs/msg/GoalStatusArray'),
-        })
+        impl = type(
+            'Impl',
+            (),
+            {
+                'SendGoalService': send_goal,
+                'GetResultService': get_result,
+                'FeedbackMessage': feedback_message,
+                'CancelGoalService': _service_class('action_msgs/srv/CancelGoal', fac),
+                'GoalStatusMessage': fac.message_class('action_msgs/msg/GoalStatusArray'),
+            },
+        )
         pkg, kind, short = name.split('/')
-        cls = type(short, (ActionType,), {
-            '_TYPE_NAME': name,
-            'Goal': fac.message_class(name + '_Goal'),
-            'Result': fac.message_class(name + '_Result'),
-            'Feedback': fac.message_class(name + '_Feedback'),
-            'FeedbackMessage': feedback_message,
-            'SendGoal': send_goal,
-            'GetResult': get_result,
-            'Impl': impl,
-        })
+        cls = type(
+            short,
+            (ActionType,),
+            {
+                '_TYPE_NAME': name,
+                'Goal': fac.message_class(name + '_Goal'),
+                'Result': fac.message_class(name + '_Result'),
+                'Feedback': fac.message_class(name + '_Feedback'),
+                'FeedbackMessage': feedback_message,
+                'SendGoal': send_goal,
+                'GetResult': get_result,
+                'Impl': impl,
+            },
+        )
         cls.__module__ = f'ros2lite.msgs.{pkg}.{kind}'
         fac.classes[name] = cls
     return cls  # type: ignore[return-value]

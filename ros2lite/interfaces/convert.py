@@ -38,8 +38,9 @@ def abbreviate_array(value: Any, ft: FieldType) -> str:
     return f'<sequence type: {name}, length: {len(value)}>'
 
 
-def _convert(value: Any, ft: FieldType | None, trunc: int | None, no_arr: bool,
-             no_str: bool) -> Any:
+def _convert(
+    value: Any, ft: FieldType | None, trunc: int | None, no_arr: bool, no_str: bool
+) -> Any:
     if isinstance(value, bytes):
         if trunc is not None and len(value) > trunc:
             return ''.join(chr(c) for c in value[:trunc]) + '...'
@@ -66,8 +67,9 @@ def _convert(value: Any, ft: FieldType | None, trunc: int | None, no_arr: bool,
     return value
 
 
-def message_to_dict(msg: Message, *, truncate_length: int | None = None, no_arr: bool = False,
-                    no_str: bool = False) -> dict[str, Any]:
+def message_to_dict(
+    msg: Message, *, truncate_length: int | None = None, no_arr: bool = False, no_str: bool = False
+) -> dict[str, Any]:
     """Nested plain dict/list/scalar form of a message, in field order."""
     return {
         name: _convert(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
@@ -76,7 +78,7 @@ def message_to_dict(msg: Message, *, truncate_length: int | None = None, no_arr:
 
 
 _DUMPERS: dict[bool, Any] = {}
-_C_MAX_WIDTH = 2**31 - 1   # libyaml keeps the width in a C int
+_C_MAX_WIDTH = 2**31 - 1  # libyaml keeps the width in a C int
 
 
 def _dumper(fast: bool = False) -> Any:
@@ -88,6 +90,7 @@ def _dumper(fast: bool = False) -> Any:
     dumper = _DUMPERS.get(fast)
     if dumper is None:
         import yaml
+
         base = getattr(yaml, 'CSafeDumper', yaml.SafeDumper) if fast else yaml.SafeDumper
 
         class Dumper(base):  # type: ignore[valid-type,misc]
@@ -117,19 +120,33 @@ def _plain(value: Any) -> bool:
     return True
 
 
-def message_to_yaml(msg: Message, *, truncate_length: int | None = None, no_arr: bool = False,
-                    no_str: bool = False, flow_style: bool = False, fast: bool = True) -> str:
+def message_to_yaml(
+    msg: Message,
+    *,
+    truncate_length: int | None = None,
+    no_arr: bool = False,
+    no_str: bool = False,
+    flow_style: bool = False,
+    fast: bool = True,
+) -> str:
     """YAML text exactly as `ros2 topic echo` prints a message."""
     import yaml
+
     data = message_to_dict(msg, truncate_length=truncate_length, no_arr=no_arr, no_str=no_str)
     use_c = fast and _plain(data)
-    return yaml.dump(data, Dumper=_dumper(use_c), allow_unicode=True,
-                     width=_C_MAX_WIDTH if use_c else sys.maxsize,
-                     default_flow_style=flow_style, sort_keys=False)
+    return yaml.dump(
+        data,
+        Dumper=_dumper(use_c),
+        allow_unicode=True,
+        width=_C_MAX_WIDTH if use_c else sys.maxsize,
+        default_flow_style=flow_style,
+        sort_keys=False,
+    )
 
 
-def _csv_value(val: Any, ft: FieldType | None, trunc: int | None, no_arr: bool,
-               no_str: bool) -> str:
+def _csv_value(
+    val: Any, ft: FieldType | None, trunc: int | None, no_arr: bool, no_str: bool
+) -> str:
     if isinstance(val, (list, tuple, array)):
         if no_arr and ft is not None and ft.is_container:
             return abbreviate_array(val, ft)
@@ -151,12 +168,14 @@ def _csv_value(val: Any, ft: FieldType | None, trunc: int | None, no_arr: bool,
     return str(val)
 
 
-def message_to_csv(msg: Message, *, truncate_length: int | None = None, no_arr: bool = False,
-                   no_str: bool = False) -> str:
+def message_to_csv(
+    msg: Message, *, truncate_length: int | None = None, no_arr: bool = False, no_str: bool = False
+) -> str:
     """Comma-separated leaf values, depth first, as `ros2 topic echo --csv` prints them."""
     return ','.join(
         _csv_value(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
-        for name, ft in zip(msg._fields_and_field_types, msg.SLOT_TYPES, strict=True))
+        for name, ft in zip(msg._fields_and_field_types, msg.SLOT_TYPES, strict=True)
+    )
 
 
 class PopulateError(ValueError):
@@ -174,24 +193,33 @@ def _coerce(current: Any, value: Any, ft: FieldType) -> Any:
     return type(current)(value)
 
 
-def _populate(msg: Message, values: Any, setters: list[_Setter], header_auto: bool,
-              time_now: bool) -> None:
+def _populate(
+    msg: Message, values: Any, setters: list[_Setter], header_auto: bool, time_now: bool
+) -> None:
     if not isinstance(values, dict):
-        raise PopulateError(f"Value '{values}' is expected to be a dictionary but is a "
-                            f'{type(values).__name__}')
+        raise PopulateError(
+            f"Value '{values}' is expected to be a dictionary but is a {type(values).__name__}"
+        )
     types = dict(zip(msg._fields_and_field_types, msg.SLOT_TYPES, strict=True))
     for name, value in values.items():
         if name not in types:
-            raise PopulateError(
-                f"'{type(msg).__name__}' object has no attribute '{name}'")
+            raise PopulateError(f"'{type(msg).__name__}' object has no attribute '{name}'")
         ft = types[name]
         current = getattr(msg, name)
-        if header_auto and value == 'auto' and ft.base == 'std_msgs/msg/Header' and \
-                not ft.is_container:
+        if (
+            header_auto
+            and value == 'auto'
+            and ft.base == 'std_msgs/msg/Header'
+            and not ft.is_container
+        ):
             setters.append(partial(setattr, current, 'stamp'))
             continue
-        if time_now and value == 'now' and ft.base == 'builtin_interfaces/msg/Time' and \
-                not ft.is_container:
+        if (
+            time_now
+            and value == 'now'
+            and ft.base == 'builtin_interfaces/msg/Time'
+            and not ft.is_container
+        ):
             setters.append(partial(setattr, msg, name))
             continue
         coerced: Any
@@ -220,9 +248,13 @@ def _populate(msg: Message, values: Any, setters: list[_Setter], header_auto: bo
             raise PopulateError(str(e)) from None
 
 
-def set_message_fields(msg: Message, values: dict[str, Any] | str | None, *,
-                       expand_header_auto: bool = False, expand_time_now: bool = False
-                       ) -> list[_Setter]:
+def set_message_fields(
+    msg: Message,
+    values: dict[str, Any] | str | None,
+    *,
+    expand_header_auto: bool = False,
+    expand_time_now: bool = False,
+) -> list[_Setter]:
     """Fill `msg` from a dict or YAML text; returns setters for 'auto'/'now' stamps.
 
     Raises PopulateError with a one-line reason; ros2cli prints it after
@@ -230,6 +262,7 @@ def set_message_fields(msg: Message, values: dict[str, Any] | str | None, *,
     """
     if isinstance(values, str):
         import yaml
+
         try:
             values = yaml.safe_load(values)
         except yaml.YAMLError as e:

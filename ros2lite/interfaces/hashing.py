@@ -14,9 +14,21 @@ from .parser import Field, FieldType
 from .registry import Registry, default_registry, normalize_name
 
 _TYPE_IDS = {
-    'int8': 2, 'uint8': 3, 'int16': 4, 'uint16': 5, 'int32': 6, 'uint32': 7,
-    'int64': 8, 'uint64': 9, 'float32': 10, 'float64': 11, 'char': 3, 'bool': 15,
-    'byte': 16, 'string': 17, 'wstring': 18,
+    'int8': 2,
+    'uint8': 3,
+    'int16': 4,
+    'uint16': 5,
+    'int32': 6,
+    'uint32': 7,
+    'int64': 8,
+    'uint64': 9,
+    'float32': 10,
+    'float64': 11,
+    'char': 3,
+    'bool': 15,
+    'byte': 16,
+    'string': 17,
+    'wstring': 18,
 }
 _NESTED = 1
 _BOUNDED_STRING = {'string': 21, 'wstring': 22}
@@ -49,16 +61,20 @@ def _top_fields(name: str, reg: Registry) -> list[Field]:
     """Fields of one description; services and actions are described as structs."""
     kind = reg.kind_of(name)
     if kind == 'service':
-        return [Field('request_message', FieldType(name + '_Request')),
-                Field('response_message', FieldType(name + '_Response')),
-                Field('event_message', FieldType(name + '_Event'))]
+        return [
+            Field('request_message', FieldType(name + '_Request')),
+            Field('response_message', FieldType(name + '_Response')),
+            Field('event_message', FieldType(name + '_Event')),
+        ]
     if kind == 'action':
-        return [Field('goal', FieldType(name + '_Goal')),
-                Field('result', FieldType(name + '_Result')),
-                Field('feedback', FieldType(name + '_Feedback')),
-                Field('send_goal_service', FieldType(name + '_SendGoal')),
-                Field('get_result_service', FieldType(name + '_GetResult')),
-                Field('feedback_message', FieldType(name + '_FeedbackMessage'))]
+        return [
+            Field('goal', FieldType(name + '_Goal')),
+            Field('result', FieldType(name + '_Result')),
+            Field('feedback', FieldType(name + '_Feedback')),
+            Field('send_goal_service', FieldType(name + '_SendGoal')),
+            Field('get_result_service', FieldType(name + '_GetResult')),
+            Field('feedback_message', FieldType(name + '_FeedbackMessage')),
+        ]
     return reg.message(name).fields
 
 
@@ -79,7 +95,8 @@ def type_description(name: str, reg: Registry | None = None) -> dict[str, Any]:
     return {
         'type_description': _description(name, top),
         'referenced_type_descriptions': [
-            _description(n, referenced[n]) for n in sorted(referenced)],
+            _description(n, referenced[n]) for n in sorted(referenced)
+        ],
     }
 
 
@@ -92,8 +109,6 @@ def type_hash(name: str, reg: Registry | None = None) -> str:
     key = (id(reg), name)
     h = _CACHE.get(key)
     if h is None:
-        text = json.dumps(type_description(name, reg), separators=(', ', ': '),
-                          ensure_ascii=True)
+        text = json.dumps(type_description(name, reg), separators=(', ', ': '), ensure_ascii=True)
         h = _CACHE[key] = 'RIHS01_' + hashlib.sha256(text.encode()).hexdigest()
     return h
-

@@ -10,17 +10,37 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-PRIMITIVES = frozenset({
-    'bool', 'byte', 'char', 'int8', 'uint8', 'int16', 'uint16', 'int32', 'uint32',
-    'int64', 'uint64', 'float32', 'float64', 'string', 'wstring',
-})
+PRIMITIVES = frozenset(
+    {
+        'bool',
+        'byte',
+        'char',
+        'int8',
+        'uint8',
+        'int16',
+        'uint16',
+        'int32',
+        'uint32',
+        'int64',
+        'uint64',
+        'float32',
+        'float64',
+        'string',
+        'wstring',
+    }
+)
 STRING_TYPES = frozenset({'string', 'wstring'})
 INT_RANGES: dict[str, tuple[int, int]] = {
-    'byte': (0, 255), 'char': (0, 255),
-    'int8': (-2**7, 2**7 - 1), 'uint8': (0, 2**8 - 1),
-    'int16': (-2**15, 2**15 - 1), 'uint16': (0, 2**16 - 1),
-    'int32': (-2**31, 2**31 - 1), 'uint32': (0, 2**32 - 1),
-    'int64': (-2**63, 2**63 - 1), 'uint64': (0, 2**64 - 1),
+    'byte': (0, 255),
+    'char': (0, 255),
+    'int8': (-(2**7), 2**7 - 1),
+    'uint8': (0, 2**8 - 1),
+    'int16': (-(2**15), 2**15 - 1),
+    'uint16': (0, 2**16 - 1),
+    'int32': (-(2**31), 2**31 - 1),
+    'uint32': (0, 2**32 - 1),
+    'int64': (-(2**63), 2**63 - 1),
+    'uint64': (0, 2**64 - 1),
 }
 FLOAT_TYPES = frozenset({'float32', 'float64'})
 
@@ -49,10 +69,10 @@ class UnknownInterfaceError(InterfaceError, LookupError):
 class FieldType:
     """The type of one field: a primitive or nested message, optionally in a container."""
 
-    base: str                 # primitive name, or 'pkg/msg/Name' for nested messages
-    string_bound: int = 0     # 'string<=N' bound; 0 means unbounded
-    container: str = ''       # '' | 'array' (T[N]) | 'bounded' (T[<=N]) | 'sequence' (T[])
-    size: int = 0             # array length or sequence bound
+    base: str  # primitive name, or 'pkg/msg/Name' for nested messages
+    string_bound: int = 0  # 'string<=N' bound; 0 means unbounded
+    container: str = ''  # '' | 'array' (T[N]) | 'bounded' (T[<=N]) | 'sequence' (T[])
+    size: int = 0  # array length or sequence bound
 
     @property
     def is_primitive(self) -> bool:
@@ -78,8 +98,12 @@ class FieldType:
         return f'{pkg}/{name}'
 
     def __str__(self) -> str:
-        suffix = {'': '', 'array': f'[{self.size}]', 'bounded': f'[<={self.size}]',
-                  'sequence': '[]'}[self.container]
+        suffix = {
+            '': '',
+            'array': f'[{self.size}]',
+            'bounded': f'[<={self.size}]',
+            'sequence': '[]',
+        }[self.container]
         return self.base_text() + suffix
 
 
@@ -87,19 +111,19 @@ class FieldType:
 class Field:
     name: str
     type: FieldType
-    default: Any = None       # parsed default value, None when the .msg gives none
+    default: Any = None  # parsed default value, None when the .msg gives none
 
 
 @dataclass(frozen=True)
 class Constant:
     name: str
-    type: str                 # a primitive type name
+    type: str  # a primitive type name
     value: Any
 
 
 @dataclass
 class MessageDef:
-    name: str                 # 'pkg/msg/Name' (or a generated 'pkg/srv/S_Request' …)
+    name: str  # 'pkg/msg/Name' (or a generated 'pkg/srv/S_Request' …)
     fields: list[Field] = field(default_factory=list)
     constants: list[Constant] = field(default_factory=list)
 
@@ -139,7 +163,7 @@ def split_comment(line: str) -> tuple[str, str | None]:
         elif ch in '"\'':
             quote = ch
         elif ch == '#':
-            return line[:i], line[i + 1:]
+            return line[:i], line[i + 1 :]
     return line, None
 
 
@@ -262,8 +286,10 @@ def parse_default(ftype: FieldType, text: str) -> Any:
         raise ValueError('nested message fields cannot have default values')
     if not ftype.is_container:
         return parse_primitive_value(ftype.base, text, ftype.string_bound)
-    values = [parse_primitive_value(ftype.base, item, ftype.string_bound)
-              for item in _split_array_items(text)]
+    values = [
+        parse_primitive_value(ftype.base, item, ftype.string_bound)
+        for item in _split_array_items(text)
+    ]
     if ftype.container == 'array' and len(values) != ftype.size:
         raise ValueError(f'array default needs exactly {ftype.size} values, got {len(values)}')
     if ftype.container == 'bounded' and len(values) > ftype.size:
@@ -289,8 +315,11 @@ def parse_line(code: str, package: str) -> Field | Constant:
         if not ftype.is_primitive or ftype.is_container:
             raise ValueError(f"constant '{name}' must have a primitive, non-array type")
         if ftype.is_string:
-            return Constant(name, ftype.base, parse_primitive_value(
-                ftype.base, value.strip(), ftype.string_bound))
+            return Constant(
+                name,
+                ftype.base,
+                parse_primitive_value(ftype.base, value.strip(), ftype.string_bound),
+            )
         return Constant(name, ftype.base, parse_primitive_value(ftype.base, value))
     name, _, default_text = rest.partition(' ')
     if '\t' in name:
@@ -303,8 +332,9 @@ def parse_line(code: str, package: str) -> Field | Constant:
     return Field(name, ftype, default)
 
 
-def parse_message(text: str, name: str, source: str = '<string>', first_line: int = 1
-                  ) -> MessageDef:
+def parse_message(
+    text: str, name: str, source: str = '<string>', first_line: int = 1
+) -> MessageDef:
     """Parse message text; `name` is the full type name, e.g. 'std_msgs/msg/String'."""
     package = name.split('/')[0]
     msg = MessageDef(name)
@@ -337,23 +367,28 @@ def _sections(text: str, count: int, source: str) -> list[tuple[str, int]]:
             sections[-1][0].append(raw)
     if len(sections) != count:
         raise InterfaceError(
-            f"{source}: expected {count - 1} '---' separator(s), found {len(sections) - 1}")
+            f"{source}: expected {count - 1} '---' separator(s), found {len(sections) - 1}"
+        )
     return [('\n'.join(lines), start) for lines, start in sections]
 
 
 def parse_service(text: str, name: str, source: str = '<string>') -> ServiceDef:
     (req, l1), (resp, l2) = _sections(text, 2, source)
-    return ServiceDef(name,
-                      parse_message(req, name + '_Request', source, l1),
-                      parse_message(resp, name + '_Response', source, l2))
+    return ServiceDef(
+        name,
+        parse_message(req, name + '_Request', source, l1),
+        parse_message(resp, name + '_Response', source, l2),
+    )
 
 
 def parse_action(text: str, name: str, source: str = '<string>') -> ActionDef:
     (goal, l1), (result, l2), (feedback, l3) = _sections(text, 3, source)
-    return ActionDef(name,
-                     parse_message(goal, name + '_Goal', source, l1),
-                     parse_message(result, name + '_Result', source, l2),
-                     parse_message(feedback, name + '_Feedback', source, l3))
+    return ActionDef(
+        name,
+        parse_message(goal, name + '_Goal', source, l1),
+        parse_message(result, name + '_Result', source, l2),
+        parse_message(feedback, name + '_Feedback', source, l3),
+    )
 
 
 def validate_type_name(name: str) -> tuple[str, str, str]:
@@ -362,7 +397,10 @@ def validate_type_name(name: str) -> tuple[str, str, str]:
     if len(parts) != 3:
         raise InterfaceError(f"Invalid name '{name}'. Expected three parts separated by '/'")
     pkg, kind, short = parts
-    if not _PKG_RE.match(pkg) or kind not in ('msg', 'srv', 'action') or not re.match(
-            r'^[A-Z][A-Za-z0-9_]*$', short):
+    if (
+        not _PKG_RE.match(pkg)
+        or kind not in ('msg', 'srv', 'action')
+        or not re.match(r'^[A-Z][A-Za-z0-9_]*$', short)
+    ):
         raise InterfaceError(f"Invalid interface name '{name}'")
     return pkg, kind, short

@@ -31,9 +31,18 @@ EXTENSIONS = {'msg': '.msg', 'srv': '.srv', 'action': '.action'}
 
 # Generated action sub-types, longest suffix first so '_SendGoal_Request' beats '_Request'.
 ACTION_SUFFIXES = (
-    '_SendGoal_Request', '_SendGoal_Response', '_SendGoal_Event',
-    '_GetResult_Request', '_GetResult_Response', '_GetResult_Event',
-    '_FeedbackMessage', '_SendGoal', '_GetResult', '_Goal', '_Result', '_Feedback',
+    '_SendGoal_Request',
+    '_SendGoal_Response',
+    '_SendGoal_Event',
+    '_GetResult_Request',
+    '_GetResult_Response',
+    '_GetResult_Event',
+    '_FeedbackMessage',
+    '_SendGoal',
+    '_GetResult',
+    '_Goal',
+    '_Result',
+    '_Feedback',
 )
 SERVICE_SUFFIXES = ('_Request', '_Response', '_Event')
 
@@ -154,8 +163,8 @@ class Registry:
             return parse_message(path.read_text(encoding='utf-8'), name, str(path))
         if kind == 'srv':
             for suffix in SERVICE_SUFFIXES:
-                if short.endswith(suffix) and self.exists(name[:-len(suffix)]):
-                    svc = self.service(name[:-len(suffix)])
+                if short.endswith(suffix) and self.exists(name[: -len(suffix)]):
+                    svc = self.service(name[: -len(suffix)])
                     if suffix == '_Request':
                         return svc.request
                     if suffix == '_Response':
@@ -163,8 +172,8 @@ class Registry:
                     return event_message(svc.name, svc.request.name, svc.response.name)
             raise UnknownInterfaceError(f"Unknown interface '{name}'")
         for suffix in ACTION_SUFFIXES:
-            if short.endswith(suffix) and self.exists(name[:-len(suffix)]):
-                return action_part(self.action(name[:-len(suffix)]), suffix)
+            if short.endswith(suffix) and self.exists(name[: -len(suffix)]):
+                return action_part(self.action(name[: -len(suffix)]), suffix)
         raise UnknownInterfaceError(f"Unknown interface '{name}'")
 
     def kind_of(self, name: str) -> str:
@@ -191,11 +200,14 @@ def normalize_name(name: str) -> str:
 
 def event_message(service: str, request: str, response: str) -> MessageDef:
     """The `<S>_Event` message rosidl generates for service introspection."""
-    return MessageDef(service + '_Event', [
-        Field('info', _EVENT_INFO),
-        Field('request', FieldType(request, 0, 'bounded', 1)),
-        Field('response', FieldType(response, 0, 'bounded', 1)),
-    ])
+    return MessageDef(
+        service + '_Event',
+        [
+            Field('info', _EVENT_INFO),
+            Field('request', FieldType(request, 0, 'bounded', 1)),
+            Field('response', FieldType(response, 0, 'bounded', 1)),
+        ],
+    )
 
 
 def action_part(action: ActionDef, suffix: str) -> MessageDef:
@@ -205,19 +217,28 @@ def action_part(action: ActionDef, suffix: str) -> MessageDef:
         '_Goal': action.goal,
         '_Result': action.result,
         '_Feedback': action.feedback,
-        '_SendGoal_Request': MessageDef(n + '_SendGoal_Request', [
-            Field('goal_id', _UUID), Field('goal', FieldType(n + '_Goal'))]),
-        '_SendGoal_Response': MessageDef(n + '_SendGoal_Response', [
-            Field('accepted', FieldType('bool')), Field('stamp', _TIME)]),
+        '_SendGoal_Request': MessageDef(
+            n + '_SendGoal_Request',
+            [Field('goal_id', _UUID), Field('goal', FieldType(n + '_Goal'))],
+        ),
+        '_SendGoal_Response': MessageDef(
+            n + '_SendGoal_Response', [Field('accepted', FieldType('bool')), Field('stamp', _TIME)]
+        ),
         '_GetResult_Request': MessageDef(n + '_GetResult_Request', [Field('goal_id', _UUID)]),
-        '_GetResult_Response': MessageDef(n + '_GetResult_Response', [
-            Field('status', FieldType('int8')), Field('result', FieldType(n + '_Result'))]),
-        '_FeedbackMessage': MessageDef(n + '_FeedbackMessage', [
-            Field('goal_id', _UUID), Field('feedback', FieldType(n + '_Feedback'))]),
+        '_GetResult_Response': MessageDef(
+            n + '_GetResult_Response',
+            [Field('status', FieldType('int8')), Field('result', FieldType(n + '_Result'))],
+        ),
+        '_FeedbackMessage': MessageDef(
+            n + '_FeedbackMessage',
+            [Field('goal_id', _UUID), Field('feedback', FieldType(n + '_Feedback'))],
+        ),
         '_SendGoal_Event': event_message(
-            n + '_SendGoal', n + '_SendGoal_Request', n + '_SendGoal_Response'),
+            n + '_SendGoal', n + '_SendGoal_Request', n + '_SendGoal_Response'
+        ),
         '_GetResult_Event': event_message(
-            n + '_GetResult', n + '_GetResult_Request', n + '_GetResult_Response'),
+            n + '_GetResult', n + '_GetResult_Request', n + '_GetResult_Response'
+        ),
     }
     if suffix not in parts:
         raise UnknownInterfaceError(f"'{n}{suffix}' is a service, not a message")

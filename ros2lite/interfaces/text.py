@@ -73,8 +73,8 @@ def definition_text(name: str, reg: Registry) -> str:
             out += '\n' + SEPARATOR + f'MSG: {dep}\n' + expand(_message_text(dep, reg), dep_pkg)
         return out
 
-    if kind == 'srv' and short.endswith('_Event') and reg.exists(name[:-len('_Event')]):
-        name = name[:-len('_Event')]
+    if kind == 'srv' and short.endswith('_Event') and reg.exists(name[: -len('_Event')]):
+        name = name[: -len('_Event')]
     if kind == 'srv' and reg.exists(name):
         return SEPARATOR + f'SRV: {name}\n' + expand(reg.interface_text(name), pkg)
     reg.message(name)  # raises a clear error for unknown names
@@ -109,8 +109,9 @@ def _classify(raw: str, package: str) -> _Line:
     return line
 
 
-def show_lines(name: str, reg: Registry, *, all_comments: bool = False,
-               no_comments: bool = False) -> list[str]:
+def show_lines(
+    name: str, reg: Registry, *, all_comments: bool = False, no_comments: bool = False
+) -> list[str]:
     """Lines of `ros2 interface show`: nested types expanded with one tab per level."""
     parts = name.split('/')
     if len(parts) != 3:
@@ -148,6 +149,7 @@ def proto_yaml(name: str, reg: Registry) -> str:
     """Default-valued YAML of a message, a service request or an action goal."""
     from .classes import get_interface
     from .convert import message_to_yaml
+
     name = normalize_name(name)
     kind = reg.kind_of(name)
     cls = get_interface(name, reg)

@@ -28,22 +28,22 @@ from pathlib import Path
 
 ENTRY_POINT_GROUP = 'ros2lite.executables'
 
+# the demos bundled with ros2lite: package -> executables, each `main()` of
+# ros2lite.demos.<package>.<executable>
+_DEMOS = {
+    'action_tutorials_py': ['fibonacci_action_client', 'fibonacci_action_server'],
+    'demo_nodes_py': [
+        'add_two_ints_client',
+        'add_two_ints_client_async',
+        'add_two_ints_server',
+        'listener',
+        'parameter_blackboard',
+        'talker',
+    ],
+}
 BUNDLED: dict[str, dict[str, str]] = {
-    'action_tutorials_py': {
-        'fibonacci_action_client':
-            'ros2lite.demos.action_tutorials_py.fibonacci_action_client:main',
-        'fibonacci_action_server':
-            'ros2lite.demos.action_tutorials_py.fibonacci_action_server:main',
-    },
-    'demo_nodes_py': {
-        'add_two_ints_client': 'ros2lite.demos.demo_nodes_py.add_two_ints_client:main',
-        'add_two_ints_client_async':
-            'ros2lite.demos.demo_nodes_py.add_two_ints_client_async:main',
-        'add_two_ints_server': 'ros2lite.demos.demo_nodes_py.add_two_ints_server:main',
-        'listener': 'ros2lite.demos.demo_nodes_py.listener:main',
-        'parameter_blackboard': 'ros2lite.demos.demo_nodes_py.parameter_blackboard:main',
-        'talker': 'ros2lite.demos.demo_nodes_py.talker:main',
-    },
+    package: {name: f'ros2lite.demos.{package}.{name}:main' for name in names}
+    for package, names in _DEMOS.items()
 }
 
 _ORIGIN_ENTRY_POINT = 'entry point'
@@ -69,8 +69,8 @@ class Executable:
 
     package: str
     name: str
-    target: str     # 'module:attr' for entry points and bundled ones, a file path for ament
-    origin: str     # 'entry point', 'ament' or 'bundled'
+    target: str  # 'module:attr' for entry points and bundled ones, a file path for ament
+    origin: str  # 'entry point', 'ament' or 'bundled'
 
     @property
     def is_python(self) -> bool:
@@ -101,15 +101,18 @@ def _python_launcher(target: str, name: str) -> str:
 
 # -- the three sources --------------------------------------------------------------------------
 
+
 def _entry_point_packages() -> dict[str, list[Executable]]:
     from importlib.metadata import entry_points
+
     found: dict[str, list[Executable]] = {}
     for ep in entry_points(group=ENTRY_POINT_GROUP):
         package, dot, exe = ep.name.partition('.')
         if not dot or not package or not exe:
             continue  # malformed name: ignore rather than break every `run`
-        found.setdefault(package, []).append(Executable(package, exe, f'{ep.module}:{ep.attr}',
-                                                        _ORIGIN_ENTRY_POINT))
+        found.setdefault(package, []).append(
+            Executable(package, exe, f'{ep.module}:{ep.attr}', _ORIGIN_ENTRY_POINT)
+        )
     return found
 
 
@@ -147,11 +150,14 @@ def _ament_packages(prefixes: Iterable[Path]) -> set[str]:
 
 
 def _bundled(package: str) -> list[Executable]:
-    return [Executable(package, name, target, _ORIGIN_BUNDLED)
-            for name, target in sorted(BUNDLED[package].items())]
+    return [
+        Executable(package, name, target, _ORIGIN_BUNDLED)
+        for name, target in sorted(BUNDLED[package].items())
+    ]
 
 
 # -- queries ------------------------------------------------------------------------------------
+
 
 def get_executables(package: str, env: Mapping[str, str] | None = None) -> list[Executable]:
     """All executables of `package` from the first source that has it."""
@@ -166,8 +172,9 @@ def get_executables(package: str, env: Mapping[str, str] | None = None) -> list[
     raise PackageNotFoundError(package)
 
 
-def find_executable(package: str, name: str, env: Mapping[str, str] | None = None
-                    ) -> Executable | None:
+def find_executable(
+    package: str, name: str, env: Mapping[str, str] | None = None
+) -> Executable | None:
     """The executable `name` of `package`; None when the package has none by that name.
 
     Raises PackageNotFoundError, or MultipleExecutablesError when an ament package has several

@@ -94,9 +94,13 @@ def encode_legacy_attachment(sequence_number: int, source_timestamp: int, gid: b
     if len(gid) != GID_SIZE:
         raise ValueError(f"GID must be {GID_SIZE} bytes, got {len(gid)}")
     return (
-        _K_SEQ + _I64.pack(sequence_number)
-        + _K_TS + _I64.pack(source_timestamp)
-        + _K_GID + bytes([GID_SIZE]) + bytes(gid)
+        _K_SEQ
+        + _I64.pack(sequence_number)
+        + _K_TS
+        + _I64.pack(source_timestamp)
+        + _K_GID
+        + bytes([GID_SIZE])
+        + bytes(gid)
     )
 
 

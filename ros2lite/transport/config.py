@@ -117,8 +117,7 @@ def router_endpoint(router: str | None = None, env: Mapping[str, str] | None = N
     value = value.strip()
     if "/" not in value or not value.split("/", 1)[1]:
         raise ConfigError(
-            f"bad router endpoint {value!r}: expected <protocol>/<address>, "
-            f"e.g. {DEFAULT_ROUTER}"
+            f"bad router endpoint {value!r}: expected <protocol>/<address>, e.g. {DEFAULT_ROUTER}"
         )
     return value
 
@@ -257,8 +256,9 @@ def is_local_endpoint(endpoint: str) -> bool:
     return host in ("localhost", "::1", "::", "0.0.0.0") or host.startswith("127.")
 
 
-def node_session_mode(router: str | None = None, env: Mapping[str, str] | None = None
-                      ) -> SessionMode:
+def node_session_mode(
+    router: str | None = None, env: Mapping[str, str] | None = None
+) -> SessionMode:
     """The mode a long-lived node opens: peer when the router it connects to (after config
     files and overrides) is on this host, else client."""
     return "peer" if is_local_endpoint(session_endpoint(router, env)) else "client"
@@ -277,8 +277,10 @@ def session_config(
     if config is None:
         config = zenoh.Config()
         endpoint = endpoint or router_endpoint(None, env)
-        retry = (f"{{period_init_ms: {RETRY_INIT_MS}, period_max_ms: {RETRY_MAX_MS}, "
-                 "period_increase_factor: 2}")
+        retry = (
+            f"{{period_init_ms: {RETRY_INIT_MS}, period_max_ms: {RETRY_MAX_MS}, "
+            "period_increase_factor: 2}"
+        )
         defaults = [
             ("mode", json.dumps(mode)),
             # Clients ignore "listen"; a peer listens on loopback like rmw_zenoh's sessions.
@@ -291,8 +293,10 @@ def session_config(
             ("scouting/gossip/enabled", "true"),
             ("scouting/gossip/target", '{router: ["router", "peer"], peer: ["router"]}'),
             ("scouting/gossip/autoconnect", '{router: [], peer: ["router", "peer"]}'),
-            ("scouting/gossip/autoconnect_strategy",
-             '{peer: {to_router: "always", to_peer: "greater-zid"}}'),
+            (
+                "scouting/gossip/autoconnect_strategy",
+                '{peer: {to_router: "always", to_peer: "greater-zid"}}',
+            ),
             ("timestamping/enabled", "true"),
             ("queries_default_timeout", "600000"),
             ("transport/shared_memory/enabled", "false"),

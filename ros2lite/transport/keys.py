@@ -54,9 +54,7 @@ def _check_tokens(name: str, what: str, shown: str | None = None) -> None:
     label = shown if shown is not None else repr(name)
     for token in name.split("/"):
         if token and token[0].isdigit():
-            raise ValueError(
-                f"invalid {what} {label}: token {token!r} must not start with a digit"
-            )
+            raise ValueError(f"invalid {what} {label}: token {token!r} must not start with a digit")
 
 
 def validate_topic_name(name: str) -> None:
@@ -275,10 +273,18 @@ def node_token(
     domain_id: int, zid: str, nid: int, namespace: str, node_name: str, enclave: str = "/"
 ) -> str:
     """The NN token; the entity-id field repeats the node id."""
-    return "/".join([
-        liveliness_prefix(domain_id), _chunk(zid, "zid"), str(nid), str(nid), EntityKind.NODE.value,
-        _chunk(enclave, "enclave"), _chunk(namespace, "namespace"), _chunk(node_name, "node name"),
-    ])
+    return "/".join(
+        [
+            liveliness_prefix(domain_id),
+            _chunk(zid, "zid"),
+            str(nid),
+            str(nid),
+            EntityKind.NODE.value,
+            _chunk(enclave, "enclave"),
+            _chunk(namespace, "namespace"),
+            _chunk(node_name, "node name"),
+        ]
+    )
 
 
 def endpoint_token(
@@ -299,12 +305,22 @@ def endpoint_token(
     kind = EntityKind(kind)
     if kind is EntityKind.NODE:
         raise ValueError("use node_token() for NN tokens")
-    return "/".join([
-        liveliness_prefix(domain_id), _chunk(zid, "zid"), str(nid), str(eid), kind.value,
-        _chunk(enclave, "enclave"), _chunk(namespace, "namespace"), _chunk(node_name, "node name"),
-        _chunk(topic_name, "topic name"), _chunk(dds_type_name(type_name), "type"),
-        _chunk(type_hash, "type hash"), encode_qos(qos),
-    ])
+    return "/".join(
+        [
+            liveliness_prefix(domain_id),
+            _chunk(zid, "zid"),
+            str(nid),
+            str(eid),
+            kind.value,
+            _chunk(enclave, "enclave"),
+            _chunk(namespace, "namespace"),
+            _chunk(node_name, "node name"),
+            _chunk(topic_name, "topic name"),
+            _chunk(dds_type_name(type_name), "type"),
+            _chunk(type_hash, "type hash"),
+            encode_qos(qos),
+        ]
+    )
 
 
 @dataclass(frozen=True)
@@ -338,16 +354,26 @@ class Entity:
     def to_token(self) -> str:
         """Rebuild the token (without ``extra``); handy for GIDs and tests."""
         if self.kind is EntityKind.NODE:
-            return node_token(self.domain_id, self.zid, self.nid, self.namespace,
-                              self.node_name, self.enclave)
+            return node_token(
+                self.domain_id, self.zid, self.nid, self.namespace, self.node_name, self.enclave
+            )
         assert self.topic_name and self.type_hash and self.qos_chunk is not None
-        base = "/".join([
-            liveliness_prefix(self.domain_id), self.zid, str(self.nid), str(self.eid),
-            self.kind.value, mangle(self.enclave), mangle(self.namespace), mangle(self.node_name),
-            mangle(self.topic_name),
-            mangle(self.dds_type_name or dds_type_name(self.type_name or "")),
-            mangle(self.type_hash), self.qos_chunk,
-        ])
+        base = "/".join(
+            [
+                liveliness_prefix(self.domain_id),
+                self.zid,
+                str(self.nid),
+                str(self.eid),
+                self.kind.value,
+                mangle(self.enclave),
+                mangle(self.namespace),
+                mangle(self.node_name),
+                mangle(self.topic_name),
+                mangle(self.dds_type_name or dds_type_name(self.type_name or "")),
+                mangle(self.type_hash),
+                self.qos_chunk,
+            ]
+        )
         return base
 
 
@@ -387,8 +413,17 @@ def parse_token(key: str, *, strict: bool = False) -> Entity | None:
         return None
     enclave, namespace, node_name = (demangle(p) for p in parts[6:9])
     if kind is EntityKind.NODE:
-        return Entity(domain_id, parts[2], nid, eid, kind, enclave, namespace, node_name,
-                      extra=tuple(parts[9:]))
+        return Entity(
+            domain_id,
+            parts[2],
+            nid,
+            eid,
+            kind,
+            enclave,
+            namespace,
+            node_name,
+            extra=tuple(parts[9:]),
+        )
     if len(parts) < 13 or any(not p for p in parts[9:12]):
         _fail(strict, key, "endpoint tokens need topic, type, hash and QoS chunks")
         return None
@@ -401,7 +436,19 @@ def parse_token(key: str, *, strict: bool = False) -> Entity | None:
             raise
         qos = None
     return Entity(
-        domain_id, parts[2], nid, eid, kind, enclave, namespace, node_name,
-        topic_name=demangle(parts[9]), type_name=ros_type_name(dds), dds_type_name=dds,
-        type_hash=demangle(parts[11]), qos=qos, qos_chunk=parts[12], extra=tuple(parts[13:]),
+        domain_id,
+        parts[2],
+        nid,
+        eid,
+        kind,
+        enclave,
+        namespace,
+        node_name,
+        topic_name=demangle(parts[9]),
+        type_name=ros_type_name(dds),
+        dds_type_name=dds,
+        type_hash=demangle(parts[11]),
+        qos=qos,
+        qos_chunk=parts[12],
+        extra=tuple(parts[13:]),
     )

@@ -105,7 +105,7 @@ class LivelinessPolicy(_Policy):
 
 
 DURATION_UNSPECIFIED = Duration()
-DURATION_INFINITE = Duration(nanoseconds=2**63 - 1)           # rmw's {INT64_MAX ns}
+DURATION_INFINITE = Duration(nanoseconds=2**63 - 1)  # rmw's {INT64_MAX ns}
 DURATION_BEST_AVAILABLE = Duration(nanoseconds=2**63 - 2)
 
 
@@ -173,7 +173,10 @@ qos_profile_best_available = QoSProfile(
     liveliness_lease_duration=DURATION_BEST_AVAILABLE,
 )
 qos_profile_unknown = QoSProfile(
-    reliability=_R.UNKNOWN, durability=_D.UNKNOWN, history=_H.UNKNOWN, depth=0,
+    reliability=_R.UNKNOWN,
+    durability=_D.UNKNOWN,
+    history=_H.UNKNOWN,
+    depth=0,
     liveliness=_L.UNKNOWN,
 )
 
@@ -192,7 +195,6 @@ PRESETS: dict[str, QoSProfile] = {
 }
 
 
-
 class QoSPresetProfiles(enum.Enum):
     """rclpy's enum of the presets: ``QoSPresetProfiles.SENSOR_DATA.value`` is the profile."""
 
@@ -207,7 +209,7 @@ class QoSPresetProfiles(enum.Enum):
 
     @classmethod
     def short_keys(cls) -> list[str]:
-        return [name.lower() for name in cls.__members__]   # aliases too (equal profiles)
+        return [name.lower() for name in cls.__members__]  # aliases too (equal profiles)
 
     @classmethod
     def get_from_short_key(cls, name: str) -> QoSProfile:
@@ -255,16 +257,15 @@ def best_available_qos(profile: QoSProfile) -> QoSProfile:
         if getattr(profile, field) == unknown:
             raise ValueError(f"QoS {field} UNKNOWN is not supported")
     return QoSProfile(
-        reliability=d.reliability if profile.reliability == _R.SYSTEM_DEFAULT
+        reliability=d.reliability
+        if profile.reliability == _R.SYSTEM_DEFAULT
         else profile.reliability,
-        durability=d.durability if profile.durability == _D.SYSTEM_DEFAULT
-        else profile.durability,
+        durability=d.durability if profile.durability == _D.SYSTEM_DEFAULT else profile.durability,
         history=d.history if profile.history == _H.SYSTEM_DEFAULT else profile.history,
         depth=d.depth if profile.depth == 0 else profile.depth,
         deadline=d.deadline if profile.deadline.is_unspecified else profile.deadline,
         lifespan=d.lifespan if profile.lifespan.is_unspecified else profile.lifespan,
-        liveliness=d.liveliness if profile.liveliness == _L.SYSTEM_DEFAULT
-        else profile.liveliness,
+        liveliness=d.liveliness if profile.liveliness == _L.SYSTEM_DEFAULT else profile.liveliness,
         liveliness_lease_duration=(
             d.liveliness_lease_duration
             if profile.liveliness_lease_duration.is_unspecified
@@ -465,9 +466,11 @@ def _warnings(pub: QoSProfile, sub: QoSProfile) -> list[str]:
                 f"{s.short_key};"
             )
         elif p in unknown and s == strict_sub:
-            out.append(f"WARNING: Subscription {field} is {s.short_key}, but publisher is "
-                       f"{p.short_key};")
+            out.append(
+                f"WARNING: Subscription {field} is {s.short_key}, but publisher is {p.short_key};"
+            )
         elif p == weak_pub and s in unknown:
-            out.append(f"WARNING: Publisher {field} is {p.short_key}, but subscription is "
-                       f"{s.short_key};")
+            out.append(
+                f"WARNING: Publisher {field} is {p.short_key}, but subscription is {s.short_key};"
+            )
     return out

@@ -75,8 +75,9 @@ def declare_token(session: Any, key: str) -> Handle:
 def liveliness_keys(session: Any, domain_id: int, timeout: float = 5.0) -> list[str]:
     """Keys of every live token of the domain, from one complete liveliness query."""
     # an explicit large channel: the default handler can stall past a few hundred replies
-    replies = session.liveliness().get(liveliness_subscription_key(domain_id),
-                                       zenoh.handlers.FifoChannel(1 << 16), timeout=timeout)
+    replies = session.liveliness().get(
+        liveliness_subscription_key(domain_id), zenoh.handlers.FifoChannel(1 << 16), timeout=timeout
+    )
     keys = []
     for reply in replies:
         sample = reply.ok
@@ -85,8 +86,9 @@ def liveliness_keys(session: Any, domain_id: int, timeout: float = 5.0) -> list[
     return keys
 
 
-def declare_liveliness_subscriber(session: Any, domain_id: int,
-                                  on_change: Callable[[str, bool], None]) -> Handle:
+def declare_liveliness_subscriber(
+    session: Any, domain_id: int, on_change: Callable[[str, bool], None]
+) -> Handle:
     """`on_change(key, alive)` for every token of the domain appearing or going away,
     starting with the ones alive now (history)."""
     put = zenoh.SampleKind.PUT
@@ -95,7 +97,8 @@ def declare_liveliness_subscriber(session: Any, domain_id: int,
         on_change(str(sample.key_expr), sample.kind == put)
 
     sub: Handle = session.liveliness().declare_subscriber(
-        liveliness_subscription_key(domain_id), zenoh.handlers.Callback(callback), history=True)
+        liveliness_subscription_key(domain_id), zenoh.handlers.Callback(callback), history=True
+    )
     return sub
 
 
@@ -116,17 +119,26 @@ def declare_publisher(session: Any, key: str, qos: QoSProfile) -> Any:
     block = reliable and qos.history == HistoryPolicy.KEEP_ALL
     options: dict[str, Any] = {
         "reliability": zenoh.Reliability.RELIABLE if reliable else zenoh.Reliability.BEST_EFFORT,
-        "congestion_control": zenoh.CongestionControl.BLOCK if block
+        "congestion_control": zenoh.CongestionControl.BLOCK
+        if block
         else zenoh.CongestionControl.DROP,
     }
     if _transient_local(qos):
         # as rmw_zenoh: reliable + transient local also announces its last sequence number
         # (sporadic heartbeat), which subscribers' heartbeat recovery relies on
-        miss = zenoh.ext.MissDetectionConfig(heartbeat=None, sporadic_heartbeat=0.5) \
-            if reliable else None
+        miss = (
+            zenoh.ext.MissDetectionConfig(heartbeat=None, sporadic_heartbeat=0.5)
+            if reliable
+            else None
+        )
         return zenoh.ext.declare_advanced_publisher(
-            session, key, cache=zenoh.ext.CacheConfig(max(qos.depth, 1)),
-            sample_miss_detection=miss, publisher_detection=True, **options)
+            session,
+            key,
+            cache=zenoh.ext.CacheConfig(max(qos.depth, 1)),
+            sample_miss_detection=miss,
+            publisher_detection=True,
+            **options,
+        )
     return session.declare_publisher(key, **options)
 
 
@@ -149,22 +161,43 @@ class SampleReceiver:
     buffer entirely (monitors that must see every sample at arrival).
     """
 
-    def __init__(self, session: Any, key: str, qos: QoSProfile, buffer: deque[Any],
-                 on_batch: Callable[[], None], *, stamp: bool = False,
-                 hook: Callable[[Any], None] | None = None, name: str = "") -> None:
+    def __init__(
+        self,
+        session: Any,
+        key: str,
+        qos: QoSProfile,
+        buffer: deque[Any],
+        on_batch: Callable[[], None],
+        *,
+        stamp: bool = False,
+        hook: Callable[[Any], None] | None = None,
+        name: str = "",
+    ) -> None:
         import time
+
         keep_all = qos.history == HistoryPolicy.KEEP_ALL
         capacity = max(qos.depth, _CHANNEL_CAPACITY)
-        handler = zenoh.handlers.FifoChannel(capacity) if keep_all \
-            else zenoh.handlers.RingChannel(capacity)   # KEEP_LAST may drop the oldest
+        handler = (
+            zenoh.handlers.FifoChannel(capacity)
+            if keep_all
+            else zenoh.handlers.RingChannel(capacity)
+        )  # KEEP_LAST may drop the oldest
         if _transient_local(qos):
-            recovery = zenoh.ext.RecoveryConfig(periodic_queries=None, heartbeat=True) \
-                if _reliable(qos) else None
+            recovery = (
+                zenoh.ext.RecoveryConfig(periodic_queries=None, heartbeat=True)
+                if _reliable(qos)
+                else None
+            )
             self._sub: Any = zenoh.ext.declare_advanced_subscriber(
-                session, key, handler,
-                history=zenoh.ext.HistoryConfig(detect_late_publishers=True,
-                                                max_samples=max(qos.depth, 1)),
-                recovery=recovery, subscriber_detection=True)
+                session,
+                key,
+                handler,
+                history=zenoh.ext.HistoryConfig(
+                    detect_late_publishers=True, max_samples=max(qos.depth, 1)
+                ),
+                recovery=recovery,
+                subscriber_detection=True,
+            )
         else:
             self._sub = session.declare_subscriber(key, handler)
         self._buffer = buffer
@@ -172,8 +205,9 @@ class SampleReceiver:
         self._stamp = stamp
         self._hook = hook
         self._now = time.time_ns
-        self._thread = threading.Thread(target=self._pump, args=(self._sub.handler,),
-                                        daemon=True, name=f"ros2lite-sub {name}")
+        self._thread = threading.Thread(
+            target=self._pump, args=(self._sub.handler,), daemon=True, name=f"ros2lite-sub {name}"
+        )
         self._thread.start()
 
     def _pump(self, channel: Any) -> None:
@@ -186,7 +220,7 @@ class SampleReceiver:
             try:
                 first = recv()
             except Exception:
-                return   # channel closed: subscription destroyed or session closed
+                return  # channel closed: subscription destroyed or session closed
             # what else is waiting, up to a channel's worth: try_recv until it gives None
             rest = islice(iter(channel.try_recv, None), _CHANNEL_CAPACITY - 1)
             try:
@@ -196,6 +230,7 @@ class SampleReceiver:
                             hook(sample)
                         except Exception:
                             import traceback
+
                             traceback.print_exc()
                     continue
                 if stamp:
@@ -204,13 +239,13 @@ class SampleReceiver:
                         append((sample, now()))
                 else:
                     append(first)
-                    extend(rest)   # the whole batch moves without a Python loop
+                    extend(rest)  # the whole batch moves without a Python loop
             except Exception:
-                pass   # closed mid-batch; the next recv() ends the thread
+                pass  # closed mid-batch; the next recv() ends the thread
             on_batch()
 
     def undeclare(self) -> None:
-        undeclare_quietly(self._sub)   # closes the channel, which ends the pump thread
+        undeclare_quietly(self._sub)  # closes the channel, which ends the pump thread
         if self._thread is not threading.current_thread():
             # a pump still inside zenoh when the interpreter finalises aborts the process
             self._thread.join(timeout=1.0)
@@ -251,8 +286,8 @@ def declare_queryable(session: Any, key: str, on_request: Callable[[Request], No
     """A service server's queryable: `complete=True`, because rmw_zenoh clients query with
     target ALL_COMPLETE and would never reach an incomplete one."""
     queryable: Handle = session.declare_queryable(
-        key, zenoh.handlers.Callback(lambda query: on_request(Request(query, key))),
-        complete=True)
+        key, zenoh.handlers.Callback(lambda query: on_request(Request(query, key))), complete=True
+    )
     return queryable
 
 
@@ -268,9 +303,13 @@ class Querier:
             options["timeout"] = timeout
         self._querier = session.declare_querier(key, **options)
 
-    def get(self, payload: bytes, attachment: bytes,
-            on_reply: Callable[[bytes, bytes | None], None],
-            on_end: Callable[[str | None], None]) -> None:
+    def get(
+        self,
+        payload: bytes,
+        attachment: bytes,
+        on_reply: Callable[[bytes, bytes | None], None],
+        on_end: Callable[[str | None], None],
+    ) -> None:
         """Send one request. `on_reply(payload, attachment)` per answer; `on_end(error)` once
         the query is over (error: the text of an error reply or timeout, else None)."""
         error: list[str] = []
@@ -279,14 +318,20 @@ class Querier:
             ok = r.ok
             if ok is None:
                 err = r.err
-                error.append(err.payload.to_bytes().decode("utf-8", "replace")
-                             if err is not None else "error reply")
+                error.append(
+                    err.payload.to_bytes().decode("utf-8", "replace")
+                    if err is not None
+                    else "error reply"
+                )
                 return
             att = ok.attachment
             on_reply(ok.payload.to_bytes(), att.to_bytes() if att is not None else None)
 
-        self._querier.get(zenoh.handlers.Callback(reply, lambda: on_end(
-            error[0] if error else None)), payload=payload, attachment=attachment)
+        self._querier.get(
+            zenoh.handlers.Callback(reply, lambda: on_end(error[0] if error else None)),
+            payload=payload,
+            attachment=attachment,
+        )
 
     def undeclare(self) -> None:
         undeclare_quietly(self._querier)

@@ -59,9 +59,16 @@ def reply_attachment(query_attachment: bytes) -> bytes:
 
 
 class AlienFibonacciServer:
-    def __init__(self, session: Any, domain_id: int, action: str = 'alien_fib',
-                 node: str = 'alien_action_server', step: float = 0.05) -> None:
+    def __init__(
+        self,
+        session: Any,
+        domain_id: int,
+        action: str = 'alien_fib',
+        node: str = 'alien_action_server',
+        step: float = 0.05,
+    ) -> None:
         import zenoh.ext
+
         self.session, self.step = session, step
         d, zid = domain_id, str(session.info.zid())
         self.goals: dict[bytes, dict[str, Any]] = {}
@@ -72,8 +79,7 @@ class AlienFibonacciServer:
         base = f'{d}/{action}/_action'
         mangled = '%' + action.replace('/', '%') + '%_action'
         lv = f'@ros2_lv/{d}/{zid}/0'
-        self.entities: list[Any] = [
-            session.liveliness().declare_token(f'{lv}/0/NN/%/%/{node}')]
+        self.entities: list[Any] = [session.liveliness().declare_token(f'{lv}/0/NN/%/%/{node}')]
         services = [
             ('send_goal', f'{FIB}_SendGoal_', SEND_GOAL_HASH, self._on_send_goal),
             ('cancel_goal', CANCEL_TYPE, CANCEL_HASH, self._on_cancel),
@@ -81,30 +87,44 @@ class AlienFibonacciServer:
         ]
         eid = 1
         for name, dds, hsh, cb in services:
-            self.entities.append(session.declare_queryable(
-                f'{base}/{name}/{dds}/{hsh}', cb, complete=True))
-            self.entities.append(session.liveliness().declare_token(
-                f'{lv}/{eid}/SS/%/%/{node}/{mangled}%{name}/{dds}/{hsh}/{SERVICE_QOS}'))
+            self.entities.append(
+                session.declare_queryable(f'{base}/{name}/{dds}/{hsh}', cb, complete=True)
+            )
+            self.entities.append(
+                session.liveliness().declare_token(
+                    f'{lv}/{eid}/SS/%/%/{node}/{mangled}%{name}/{dds}/{hsh}/{SERVICE_QOS}'
+                )
+            )
             eid += 1
         self.feedback = session.declare_publisher(
-            f'{base}/feedback/{FIB}_FeedbackMessage_/{FEEDBACK_HASH}')
-        self.entities.append(session.liveliness().declare_token(
-            f'{lv}/{eid}/MP/%/%/{node}/{mangled}%feedback/{FIB}_FeedbackMessage_/'
-            f'{FEEDBACK_HASH}/::,10:,:,:,,'))
+            f'{base}/feedback/{FIB}_FeedbackMessage_/{FEEDBACK_HASH}'
+        )
+        self.entities.append(
+            session.liveliness().declare_token(
+                f'{lv}/{eid}/MP/%/%/{node}/{mangled}%feedback/{FIB}_FeedbackMessage_/'
+                f'{FEEDBACK_HASH}/::,10:,:,:,,'
+            )
+        )
         # transient local status: an advanced publisher with a one-sample cache (§8.3)
         self.status = zenoh.ext.declare_advanced_publisher(
-            session, f'{base}/status/{STATUS_TYPE}/{STATUS_HASH}',
-            cache=zenoh.ext.CacheConfig(1), publisher_detection=True)
-        self.entities.append(session.liveliness().declare_token(
-            f'{lv}/{eid + 1}/MP/%/%/{node}/{mangled}%status/{STATUS_TYPE}/{STATUS_HASH}/'
-            ':1:,1:,:,:,,'))
+            session,
+            f'{base}/status/{STATUS_TYPE}/{STATUS_HASH}',
+            cache=zenoh.ext.CacheConfig(1),
+            publisher_detection=True,
+        )
+        self.entities.append(
+            session.liveliness().declare_token(
+                f'{lv}/{eid + 1}/MP/%/%/{node}/{mangled}%status/{STATUS_TYPE}/{STATUS_HASH}/'
+                ':1:,1:,:,:,,'
+            )
+        )
         self.entities += [self.feedback, self.status]
 
     def close(self) -> None:
         if self.closed:
             return
         self.closed = True
-        with self.lock:   # no goal thread is publishing from here on
+        with self.lock:  # no goal thread is publishing from here on
             for entity in reversed(self.entities):
                 entity.undeclare()
 
@@ -128,13 +148,22 @@ class AlienFibonacciServer:
         now = time.time_ns()
         sec, nanosec = divmod(now, 1_000_000_000)
         accepted = order >= 0
-        query.reply(query.key_expr, Cdr().put('?', accepted).put('iI', sec, nanosec).bytes(),
-                    attachment=reply_attachment(query.attachment.to_bytes()))
+        query.reply(
+            query.key_expr,
+            Cdr().put('?', accepted).put('iI', sec, nanosec).bytes(),
+            attachment=reply_attachment(query.attachment.to_bytes()),
+        )
         if accepted:
             with self.lock:
-                self.goals[uuid] = {'sec': sec, 'nanosec': nanosec, 'status': EXECUTING,
-                                    'order': order, 'result': None, 'waiting': [],
-                                    'cancel': False}
+                self.goals[uuid] = {
+                    'sec': sec,
+                    'nanosec': nanosec,
+                    'status': EXECUTING,
+                    'order': order,
+                    'result': None,
+                    'waiting': [],
+                    'cancel': False,
+                }
             threading.Thread(target=self._execute, args=(uuid,), daemon=True).start()
 
     def _execute(self, uuid: bytes) -> None:
@@ -144,7 +173,7 @@ class AlienFibonacciServer:
         for i in range(1, goal['order']):
             if goal['cancel'] or self.closed:
                 break
-            seq.append((seq[i] + seq[i - 1]) % 2**31)   # long goals stay int32
+            seq.append((seq[i] + seq[i - 1]) % 2**31)  # long goals stay int32
             fb = Cdr().raw(uuid).put('I', len(seq)).put(f'{len(seq)}i', *seq)
             with self.lock:
                 if not self.closed:
@@ -161,8 +190,9 @@ class AlienFibonacciServer:
     def _reply_result(self, query: Any, goal: dict[str, Any]) -> None:
         seq = goal['result']
         cdr = Cdr().put('b', goal['status']).put('I', len(seq)).put(f'{len(seq)}i', *seq)
-        query.reply(query.key_expr, cdr.bytes(),
-                    attachment=reply_attachment(query.attachment.to_bytes()))
+        query.reply(
+            query.key_expr, cdr.bytes(), attachment=reply_attachment(query.attachment.to_bytes())
+        )
         query.drop()
 
     def _on_get_result(self, query: Any) -> None:
@@ -171,9 +201,9 @@ class AlienFibonacciServer:
         with self.lock:
             goal = self.goals.get(uuid)
             if goal is not None and goal['result'] is None:
-                goal['waiting'].append(query)   # answered when the goal ends
+                goal['waiting'].append(query)  # answered when the goal ends
                 return
-        if goal is None:   # unknown goal: status UNKNOWN and an empty result
+        if goal is None:  # unknown goal: status UNKNOWN and an empty result
             goal = {'status': 0, 'result': []}
         self._reply_result(query, goal)
 
@@ -188,11 +218,11 @@ class AlienFibonacciServer:
         cdr = Cdr().put('b', 0 if ok else 1).put('I', int(ok))
         if ok:
             cdr.raw(uuid).put('iI', goal['sec'], goal['nanosec'])
-        query.reply(query.key_expr, cdr.bytes(),
-                    attachment=reply_attachment(query.attachment.to_bytes()))
+        query.reply(
+            query.key_expr, cdr.bytes(), attachment=reply_attachment(query.attachment.to_bytes())
+        )
         if ok:
             self._publish_status()
-
 
 
 @pytest.fixture

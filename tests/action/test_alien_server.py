@@ -14,8 +14,7 @@ from tests.action.alien import AlienFibonacciServer
 from tests.spinning import spin_until
 
 
-def test_client_against_alien_server(ros_context: Any,
-                                     alien_server: AlienFibonacciServer) -> None:
+def test_client_against_alien_server(ros_context: Any, alien_server: AlienFibonacciServer) -> None:
     node = Node('client_of_alien', context=ros_context)
     client = ActionClient(node, Fibonacci, 'alien_fib')
     assert client.wait_for_server(timeout_sec=15)
@@ -41,8 +40,9 @@ def test_client_against_alien_server(ros_context: Any,
     spin_until(ex, lambda: long_goal.status == GoalStatus.STATUS_EXECUTING, timeout=15)
     cancel_future = long_goal.cancel_goal_async()
     spin_until(ex, cancel_future.done, timeout=15)
-    assert [bytes(g.goal_id.uuid) for g in cancel_future.result().goals_canceling] == \
-        [bytes(long_goal.goal_id.uuid)]
+    assert [bytes(g.goal_id.uuid) for g in cancel_future.result().goals_canceling] == [
+        bytes(long_goal.goal_id.uuid)
+    ]
     result_future = long_goal.get_result_async()
     spin_until(ex, result_future.done, timeout=15)
     assert result_future.result().status == GoalStatus.STATUS_CANCELED

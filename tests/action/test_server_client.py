@@ -38,8 +38,14 @@ class Fixture:
         self.release = threading.Event()
 
     def server(self, execute: Any = None, **kwargs: Any) -> ActionServer:
-        return ActionServer(self.server_node, Fibonacci, 'fib', execute or self.execute,
-                            callback_group=ReentrantCallbackGroup(), **kwargs)
+        return ActionServer(
+            self.server_node,
+            Fibonacci,
+            'fib',
+            execute or self.execute,
+            callback_group=ReentrantCallbackGroup(),
+            **kwargs,
+        )
 
     def client(self) -> ActionClient:
         client = ActionClient(self.client_node, Fibonacci, 'fib')
@@ -86,10 +92,11 @@ def test_goal_feedback_and_result(fx: Fixture) -> None:
     feedback: list[Any] = []
     uuid = Fibonacci.Impl.SendGoalService.Request().goal_id
     uuid.uuid = list(range(16))
-    handle = fx.wait(client.send_goal_async(Fibonacci.Goal(order=4), feedback.append,
-                                            goal_uuid=uuid))
+    handle = fx.wait(
+        client.send_goal_async(Fibonacci.Goal(order=4), feedback.append, goal_uuid=uuid)
+    )
     assert handle.accepted and bytes(handle.goal_id.uuid) == bytes(range(16))
-    result_future = handle.get_result_async()   # asked before the goal ends
+    result_future = handle.get_result_async()  # asked before the goal ends
     wait_until(lambda: len(feedback) == 3)
     wait_until(lambda: handle.status == GoalStatus.STATUS_EXECUTING)
     assert not result_future.done()
@@ -98,7 +105,10 @@ def test_goal_feedback_and_result(fx: Fixture) -> None:
     assert response.status == GoalStatus.STATUS_SUCCEEDED
     assert list(response.result.sequence) == [0, 1, 1, 2, 3]
     assert [list(m.feedback.sequence) for m in feedback] == [
-        [0, 1, 1], [0, 1, 1, 2], [0, 1, 1, 2, 3]]
+        [0, 1, 1],
+        [0, 1, 1, 2],
+        [0, 1, 1, 2, 3],
+    ]
     assert all(bytes(m.goal_id.uuid) == bytes(range(16)) for m in feedback)
     wait_until(lambda: handle.status == GoalStatus.STATUS_SUCCEEDED)
     # the same result again, now answered at once
@@ -108,7 +118,7 @@ def test_goal_feedback_and_result(fx: Fixture) -> None:
 def test_rejected_goal(fx: Fixture) -> None:
     def goal_callback(goal: Any) -> GoalResponse:
         if goal.order == 7:
-            raise ValueError('no sevens')   # answered as a rejection, the server lives on
+            raise ValueError('no sevens')  # answered as a rejection, the server lives on
         return GoalResponse.REJECT if goal.order > 5 else GoalResponse.ACCEPT
 
     fx.server(goal_callback=goal_callback)
@@ -130,8 +140,7 @@ def test_cancel_accepted_and_rejected(fx: Fixture) -> None:
     wait_until(lambda: handle.status == GoalStatus.STATUS_EXECUTING)
     response = fx.wait(handle.cancel_goal_async())
     assert response.return_code == CancelGoal.Response.ERROR_NONE
-    assert [bytes(i.goal_id.uuid) for i in response.goals_canceling] == \
-        [bytes(handle.goal_id.uuid)]
+    assert [bytes(i.goal_id.uuid) for i in response.goals_canceling] == [bytes(handle.goal_id.uuid)]
     result = fx.wait(handle.get_result_async())
     assert result.status == GoalStatus.STATUS_CANCELED and list(result.result.sequence) == [-1]
     # canceling an ended goal
@@ -157,7 +166,7 @@ def test_abort_and_failing_execute(fx: Fixture) -> None:
             return Fibonacci.Result(sequence=[7])
         if goal_handle.request.order == 2:
             raise RuntimeError('boom')
-        return Fibonacci.Result()   # no terminal state set: aborted for the user
+        return Fibonacci.Result()  # no terminal state set: aborted for the user
 
     fx.server(execute)
     client = fx.client()
@@ -199,8 +208,12 @@ def test_late_status_subscriber_gets_the_latched_status(fx: Fixture) -> None:
     fx.wait(handle.get_result_async())
     late = Node('late_status_listener', context=fx.context)
     got: list[Any] = []
-    late.create_subscription(Fibonacci.Impl.GoalStatusMessage, '/fib/_action/status',
-                             got.append, qos_profile_action_status_default)
+    late.create_subscription(
+        Fibonacci.Impl.GoalStatusMessage,
+        '/fib/_action/status',
+        got.append,
+        qos_profile_action_status_default,
+    )
     fx.executor.add_node(late)
     wait_until(lambda: got, timeout=15)
     [status] = got[-1].status_list
@@ -233,7 +246,7 @@ def test_destroying_the_server_ends_execute_loops(fx: Fixture) -> None:
     def execute(goal_handle: ServerGoalHandle) -> Any:
         while not goal_handle.is_cancel_requested:
             time.sleep(0.01)
-        goal_handle.canceled()   # a no-op once the server is gone
+        goal_handle.canceled()  # a no-op once the server is gone
         ended.set()
         return Fibonacci.Result()
 

@@ -12,15 +12,18 @@ from typing import Any
 from ros2lite.action import ActionClient, ActionServer
 from ros2lite.node import Node
 
-TABLE = json.loads((Path(__file__).parents[1] / 'interfaces' / 'data' /
-                    'rihs01_jazzy.json').read_text())
+TABLE = json.loads(
+    (Path(__file__).parents[1] / 'interfaces' / 'data' / 'rihs01_jazzy.json').read_text()
+)
 FIB = 'example_interfaces/action/Fibonacci'
 
 
 def tokens_of(alien: Any, domain: int, zid: str, nid: int) -> set[str]:
     import zenoh
-    replies = alien.liveliness().get(f'@ros2_lv/{domain}/**',
-                                     zenoh.handlers.FifoChannel(4096), timeout=5)
+
+    replies = alien.liveliness().get(
+        f'@ros2_lv/{domain}/**', zenoh.handlers.FifoChannel(4096), timeout=5
+    )
     keys = {str(r.ok.key_expr) for r in replies if r.ok is not None}
     return {k for k in keys if k.split('/')[2:4] == [zid, str(nid)]}
 
@@ -30,27 +33,52 @@ def expected_tokens(node: Node, kinds: tuple[str, str]) -> set[str]:
     service, topic = kinds
     name = node.get_name()
     parts = [
-        (service, 'send_goal', 'example_interfaces::action::dds_::Fibonacci_SendGoal_',
-         TABLE[FIB + '_SendGoal'], '::,10:,:,:,,'),
-        (service, 'cancel_goal', 'action_msgs::srv::dds_::CancelGoal_',
-         TABLE['action_msgs/srv/CancelGoal'], '::,10:,:,:,,'),
-        (service, 'get_result', 'example_interfaces::action::dds_::Fibonacci_GetResult_',
-         TABLE[FIB + '_GetResult'], '::,10:,:,:,,'),
-        (topic, 'feedback', 'example_interfaces::action::dds_::Fibonacci_FeedbackMessage_',
-         TABLE[FIB + '_FeedbackMessage'], '::,10:,:,:,,'),
-        (topic, 'status', 'action_msgs::msg::dds_::GoalStatusArray_',
-         TABLE['action_msgs/msg/GoalStatusArray'], ':1:,1:,:,:,,'),
+        (
+            service,
+            'send_goal',
+            'example_interfaces::action::dds_::Fibonacci_SendGoal_',
+            TABLE[FIB + '_SendGoal'],
+            '::,10:,:,:,,',
+        ),
+        (
+            service,
+            'cancel_goal',
+            'action_msgs::srv::dds_::CancelGoal_',
+            TABLE['action_msgs/srv/CancelGoal'],
+            '::,10:,:,:,,',
+        ),
+        (
+            service,
+            'get_result',
+            'example_interfaces::action::dds_::Fibonacci_GetResult_',
+            TABLE[FIB + '_GetResult'],
+            '::,10:,:,:,,',
+        ),
+        (
+            topic,
+            'feedback',
+            'example_interfaces::action::dds_::Fibonacci_FeedbackMessage_',
+            TABLE[FIB + '_FeedbackMessage'],
+            '::,10:,:,:,,',
+        ),
+        (
+            topic,
+            'status',
+            'action_msgs::msg::dds_::GoalStatusArray_',
+            TABLE['action_msgs/msg/GoalStatusArray'],
+            ':1:,1:,:,:,,',
+        ),
     ]
-    return {f'{kind}/%/%robot/{name}/%robot%fib%_action%{entity}/{dds}/{hsh}/{qos}'
-            for kind, entity, dds, hsh, qos in parts}
+    return {
+        f'{kind}/%/%robot/{name}/%robot%fib%_action%{entity}/{dds}/{hsh}/{qos}'
+        for kind, entity, dds, hsh, qos in parts
+    }
 
 
 def test_sub_entities_tokens(ros_context: Any, alien_session: Any) -> None:
     d, zid = ros_context.domain_id, ros_context.zid
-    server_node = Node('wire_server', namespace='/robot', context=ros_context,
-                       enable_rosout=False)
-    client_node = Node('wire_client', namespace='/robot', context=ros_context,
-                       enable_rosout=False)
+    server_node = Node('wire_server', namespace='/robot', context=ros_context, enable_rosout=False)
+    client_node = Node('wire_client', namespace='/robot', context=ros_context, enable_rosout=False)
     server = ActionServer(server_node, FIB, 'fib', lambda handle: None)
     client = ActionClient(client_node, FIB, 'fib')
 
@@ -62,8 +90,10 @@ def test_sub_entities_tokens(ros_context: Any, alien_session: Any) -> None:
     want_server = expected_tokens(server_node, ('SS', 'MP'))
     want_client = expected_tokens(client_node, ('SC', 'MS'))
     deadline = time.monotonic() + 15
-    while (endpoint_tokens(server_node), endpoint_tokens(client_node)) != \
-            (want_server, want_client):
+    while (endpoint_tokens(server_node), endpoint_tokens(client_node)) != (
+        want_server,
+        want_client,
+    ):
         assert time.monotonic() < deadline, (endpoint_tokens(server_node), want_server)
         time.sleep(0.1)
     assert client.server_is_ready()
@@ -79,14 +109,19 @@ def test_bundled_tutorial_hashes_match_rosbags() -> None:
     from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
     from ros2lite import interfaces
+
     store = get_typestore(Stores.ROS2_JAZZY)
     base = 'action_tutorials_interfaces/action/Fibonacci'
-    store.register({
-        **get_types_from_msg('int32 order', base + '_Goal'),
-        **get_types_from_msg('int32[] sequence', base + '_Result'),
-        **get_types_from_msg('int32[] partial_sequence', base + '_Feedback'),
-        **get_types_from_msg('unique_identifier_msgs/UUID goal_id\n'
-                             f'{base}_Feedback feedback', base + '_FeedbackMessage'),
-    })
+    store.register(
+        {
+            **get_types_from_msg('int32 order', base + '_Goal'),
+            **get_types_from_msg('int32[] sequence', base + '_Result'),
+            **get_types_from_msg('int32[] partial_sequence', base + '_Feedback'),
+            **get_types_from_msg(
+                f'unique_identifier_msgs/UUID goal_id\n{base}_Feedback feedback',
+                base + '_FeedbackMessage',
+            ),
+        }
+    )
     for suffix in ('_Goal', '_Result', '_Feedback', '_FeedbackMessage'):
         assert interfaces.type_hash(base + suffix) == store.hash_rihs01(base + suffix)

@@ -37,33 +37,59 @@ def private_domain(monkeypatch: pytest.MonkeyPatch) -> int:
 def fake_hash(type_name: str) -> str:
     """A well-formed, per-type RIHS01 string (the graph only carries it around)."""
     import hashlib
+
     return 'RIHS01_' + hashlib.sha256(type_name.encode()).hexdigest()
 
 
 class FakeNode:
     """One node's tokens in a TokenGraph."""
 
-    def __init__(self, graph: TokenGraph, namespace: str, name: str, zid: str, nid: int
-                 ) -> None:
+    def __init__(self, graph: TokenGraph, namespace: str, name: str, zid: str, nid: int) -> None:
         self.graph, self.namespace, self.name, self.zid, self.nid = graph, namespace, name, zid, nid
         self.tokens: dict[str, Any] = {}
         graph.declare(node_token(graph.domain, zid, nid, namespace, name))
 
-    def endpoint(self, kind: EntityKind, topic: str, type_name: str,
-                 qos: QoSProfile | None = None, type_hash: str | None = None) -> str:
+    def endpoint(
+        self,
+        kind: EntityKind,
+        topic: str,
+        type_name: str,
+        qos: QoSProfile | None = None,
+        type_hash: str | None = None,
+    ) -> str:
         """Declare an MP/MS/SS/SC token; returns its key."""
-        key = endpoint_token(self.graph.domain, self.zid, self.nid, self.graph.next_id(), kind,
-                             self.namespace, self.name, topic, type_name,
-                             type_hash or fake_hash(type_name), qos or QoSProfile())
+        key = endpoint_token(
+            self.graph.domain,
+            self.zid,
+            self.nid,
+            self.graph.next_id(),
+            kind,
+            self.namespace,
+            self.name,
+            topic,
+            type_name,
+            type_hash or fake_hash(type_name),
+            qos or QoSProfile(),
+        )
         self.graph.declare(key)
         return key
 
-    def pub(self, topic: str, type_name: str = STRING, qos: QoSProfile | None = None,
-            type_hash: str | None = None) -> str:
+    def pub(
+        self,
+        topic: str,
+        type_name: str = STRING,
+        qos: QoSProfile | None = None,
+        type_hash: str | None = None,
+    ) -> str:
         return self.endpoint(EntityKind.PUBLISHER, topic, type_name, qos, type_hash)
 
-    def sub(self, topic: str, type_name: str = STRING, qos: QoSProfile | None = None,
-            type_hash: str | None = None) -> str:
+    def sub(
+        self,
+        topic: str,
+        type_name: str = STRING,
+        qos: QoSProfile | None = None,
+        type_hash: str | None = None,
+    ) -> str:
         return self.endpoint(EntityKind.SUBSCRIPTION, topic, type_name, qos, type_hash)
 
     def server(self, service: str, type_name: str) -> str:
@@ -95,6 +121,7 @@ class TokenGraph:
 
     def __init__(self, domain: int) -> None:
         from ros2lite.transport.config import open_session
+
         self.domain = domain
         self.session = open_session()
         self.zid = str(self.session.info.zid())
@@ -153,11 +180,13 @@ ros2lite.shutdown()
 '''
 
 
-def start_node(processes: Any, name: str, namespace: str, *items: str
-               ) -> tuple[subprocess.Popen[str], dict[str, str]]:
+def start_node(
+    processes: Any, name: str, namespace: str, *items: str
+) -> tuple[subprocess.Popen[str], dict[str, str]]:
     """Start NODE_SCRIPT; returns the process and {topic: gid hex} once it is ready."""
     import queue
     import threading
+
     proc = processes.python(NODE_SCRIPT, name, namespace, *items, stdin=subprocess.PIPE)
     lines: queue.SimpleQueue[str] = queue.SimpleQueue()
     out = proc.stdout
@@ -170,6 +199,7 @@ def start_node(processes: Any, name: str, namespace: str, *items: str
         except (OSError, ValueError):
             pass  # closed by Processes.stop() at teardown
         lines.put('')
+
     threading.Thread(target=pump, daemon=True).start()
     gids: dict[str, str] = {}
     while True:
@@ -189,15 +219,21 @@ def start_node(processes: Any, name: str, namespace: str, *items: str
 
 
 def dotted(gid_hex: str) -> str:
-    return '.'.join(gid_hex[i:i + 2] for i in range(0, len(gid_hex), 2))
+    return '.'.join(gid_hex[i : i + 2] for i in range(0, len(gid_hex), 2))
 
 
-def settle(run: Any, *args: str, expected: str | None = None,
-           until: Callable[[str], bool] | None = None, timeout: float = 10.0) -> Any:
+def settle(
+    run: Any,
+    *args: str,
+    expected: str | None = None,
+    until: Callable[[str], bool] | None = None,
+    timeout: float = 10.0,
+) -> Any:
     """Run `ros2lite ARGS` until stdout equals `expected` (or `until(stdout)` holds) or the
     timeout passes, since tokens take a moment to reach the router; returns the last result
     for the test to assert on."""
     import time
+
     done = until or (lambda out: out == expected)
     deadline = time.monotonic() + timeout
     while True:

@@ -14,16 +14,20 @@ from .conftest import run_process
 
 def complete(words: str, env: dict[str, str] | None = None) -> list[str]:
     """What `ros2lite` offers for the last word of `words`, as the bash hook would ask."""
-    result = run_process(env={**(env or {}), '_ROS2LITE_COMPLETE': 'bash_complete',
-                              'COMP_WORDS': words,
-                              'COMP_CWORD': str(len(words.split(' ')) - 1)})
+    result = run_process(
+        env={
+            **(env or {}),
+            '_ROS2LITE_COMPLETE': 'bash_complete',
+            'COMP_WORDS': words,
+            'COMP_CWORD': str(len(words.split(' ')) - 1),
+        }
+    )
     assert (result.code, result.err) == (0, '')
     return [line.split(',', 1)[1] for line in result.out.splitlines() if line]
 
 
 def test_topics_and_nodes_come_from_the_live_graph(ros_context: Any) -> None:
-    node = Node('completion_probe', namespace='/cmp', context=ros_context,
-                enable_rosout=False)
+    node = Node('completion_probe', namespace='/cmp', context=ros_context, enable_rosout=False)
     try:
         node.create_publisher('std_msgs/msg/String', 'cmp_chatter', 10)
         node.create_publisher('std_msgs/msg/String', '_cmp_hidden', 10)
@@ -41,15 +45,22 @@ def test_services_and_actions_come_from_the_live_graph(ros_context: Any) -> None
     from ros2lite.action import ActionServer
     from ros2lite.msgs.action_tutorials_interfaces.action import Fibonacci
     from ros2lite.msgs.example_interfaces.srv import AddTwoInts
-    node = Node('completion_services', namespace='/cmps', context=ros_context,
-                enable_rosout=False, start_parameter_services=False)
+
+    node = Node(
+        'completion_services',
+        namespace='/cmps',
+        context=ros_context,
+        enable_rosout=False,
+        start_parameter_services=False,
+    )
     try:
         node.create_service(AddTwoInts, 'cmp_add', lambda req, resp: resp)
         server = ActionServer(node, Fibonacci, 'cmp_fib', lambda goal: Fibonacci.Result())
         assert complete('ros2lite service call /cmps/cmp_') == ['/cmps/cmp_add']
         assert complete('ros2lite action send_goal /cmps/cmp_') == ['/cmps/cmp_fib']
         assert 'example_interfaces/srv/AddTwoInts' in complete(
-            'ros2lite service call /cmps/cmp_add example_interfaces/srv/Add')
+            'ros2lite service call /cmps/cmp_add example_interfaces/srv/Add'
+        )
         server.destroy()
     finally:
         node.destroy_node()
@@ -57,15 +68,23 @@ def test_services_and_actions_come_from_the_live_graph(ros_context: Any) -> None
 
 def test_types_packages_and_executables() -> None:
     assert complete('ros2lite topic pub /x geometry_msgs/msg/Twist') == [
-        'geometry_msgs/msg/Twist', 'geometry_msgs/msg/TwistStamped',
-        'geometry_msgs/msg/TwistWithCovariance', 'geometry_msgs/msg/TwistWithCovarianceStamped']
-    assert complete('ros2lite topic find std_srvs/') == []          # services are not topics
+        'geometry_msgs/msg/Twist',
+        'geometry_msgs/msg/TwistStamped',
+        'geometry_msgs/msg/TwistWithCovariance',
+        'geometry_msgs/msg/TwistWithCovarianceStamped',
+    ]
+    assert complete('ros2lite topic find std_srvs/') == []  # services are not topics
     assert 'std_srvs/srv/SetBool' in complete('ros2lite interface show std_srvs/')
     assert complete('ros2lite interface package geometry_') == ['geometry_msgs']
     assert complete('ros2lite run demo_nodes_') == ['demo_nodes_py']
     assert complete('ros2lite run demo_nodes_py ') == [
-        'add_two_ints_client', 'add_two_ints_client_async', 'add_two_ints_server', 'listener',
-        'parameter_blackboard', 'talker']
+        'add_two_ints_client',
+        'add_two_ints_client_async',
+        'add_two_ints_server',
+        'listener',
+        'parameter_blackboard',
+        'talker',
+    ]
     assert complete('ros2lite run no_such_pkg ') == []
     assert complete('ros2lite top') == ['topic']
 

@@ -50,8 +50,9 @@ def in_domain(big_graph: TokenGraph, monkeypatch: pytest.MonkeyPatch) -> TokenGr
     return big_graph
 
 
-EXPECTED_TOPICS = sorted(f'{topic(n, i)} [{TYPES[i % 2]}]'
-                         for n in range(NODES) for i in range(PER_NODE // 2))
+EXPECTED_TOPICS = sorted(
+    f'{topic(n, i)} [{TYPES[i % 2]}]' for n in range(NODES) for i in range(PER_NODE // 2)
+)
 EXPECTED_NODES = sorted('/'.join(node_name(n)) for n in range(NODES))
 
 
@@ -93,6 +94,8 @@ def test_find_and_info_at_scale(run: Run, in_domain: TokenGraph) -> None:
     assert info.out == 'Type: std_msgs/msg/Int32\nPublisher count: 1\nSubscription count: 1\n'
     node = run('node', 'info', '/ns_2/node_042').out
     assert node.split('  Publishers:\n')[1].split('  Service Servers:')[0] == ''.join(
-        f'    {topic(42, i)}: {TYPES[i % 2]}\n' for i in range(5))
+        f'    {topic(42, i)}: {TYPES[i % 2]}\n' for i in range(5)
+    )
     assert node.split('  Subscribers:\n')[1].split('  Publishers:')[0] == ''.join(
-        f'    {topic(43, i)}: {TYPES[i % 2]}\n' for i in range(5))
+        f'    {topic(43, i)}: {TYPES[i % 2]}\n' for i in range(5)
+    )

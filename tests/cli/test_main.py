@@ -12,13 +12,16 @@ from .conftest import run_process
 
 
 def test_help_imports_nothing_heavy() -> None:
-    code = ('import sys\nfrom ros2lite.cli.main import main\n'
-            'import contextlib, io\n'
-            'with contextlib.redirect_stdout(io.StringIO()): main(["--help"])\n'
-            'heavy = [m for m in ("zenoh", "yaml", "mcap", "rich", "ros2lite.interfaces") '
-            'if m in sys.modules]\nprint(heavy)')
-    out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
-                         check=True).stdout
+    code = (
+        'import sys\nfrom ros2lite.cli.main import main\n'
+        'import contextlib, io\n'
+        'with contextlib.redirect_stdout(io.StringIO()): main(["--help"])\n'
+        'heavy = [m for m in ("zenoh", "yaml", "mcap", "rich", "ros2lite.interfaces") '
+        'if m in sys.modules]\nprint(heavy)'
+    )
+    out = subprocess.run(
+        [sys.executable, '-c', code], capture_output=True, text=True, check=True
+    ).stdout
     assert out.strip() == '[]'
 
 
@@ -45,11 +48,13 @@ def test_errors_are_one_line_without_traceback_unless_debug() -> None:
 
 def test_broken_definition_is_one_line(tmp_path: object) -> None:
     from pathlib import Path
+
     root = Path(str(tmp_path))
     (root / 'bad_pkg' / 'msg').mkdir(parents=True)
     (root / 'bad_pkg' / 'msg' / 'Bad.msg').write_text('int32 ok\nint33 broken\n')
-    result = run_process('interface', 'hash', 'bad_pkg/msg/Bad',
-                         env={'ROS2LITE_INTERFACE_PATH': str(root)})
+    result = run_process(
+        'interface', 'hash', 'bad_pkg/msg/Bad', env={'ROS2LITE_INTERFACE_PATH': str(root)}
+    )
     assert result.code == 1
     assert result.err.count('\n') == 1
     assert 'Bad.msg:2:' in result.err and "invalid type name 'int33'" in result.err
@@ -61,34 +66,49 @@ def test_sigterm_leaves_with_status_15(processes: Any, ros_context: Any) -> None
 
     from ros2lite.graph import snapshot
     from tests.spinning import wait_until
+
     proc = processes.cli('topic', 'echo', '/sigterm_topic', 'std_msgs/msg/String')
     # once echo's subscription is in the graph, it is past start-up
-    wait_until(lambda: any(e.topic_name == '/sigterm_topic' for e in
-                           snapshot(ros_context.session, ros_context.domain_id)), timeout=15)
+    wait_until(
+        lambda: any(
+            e.topic_name == '/sigterm_topic'
+            for e in snapshot(ros_context.session, ros_context.domain_id)
+        ),
+        timeout=15,
+    )
     proc.send_signal(signal.SIGTERM)
     _out, err = proc.communicate(timeout=10)
     assert proc.returncode == 15
     assert 'Traceback' not in err
 
 
-@pytest.mark.parametrize('verb', [
-    ['topic', 'echo', '/sigint_topic', 'std_msgs/msg/String'],
-    ['topic', 'hz', '/sigint_topic'],
-    ['topic', 'bw', '/sigint_topic'],
-    ['topic', 'delay', '/sigint_topic'],
-    ['topic', 'pub', '/sigint_topic', 'std_msgs/msg/String'],
-], ids=lambda v: v[1])
+@pytest.mark.parametrize(
+    'verb',
+    [
+        ['topic', 'echo', '/sigint_topic', 'std_msgs/msg/String'],
+        ['topic', 'hz', '/sigint_topic'],
+        ['topic', 'bw', '/sigint_topic'],
+        ['topic', 'delay', '/sigint_topic'],
+        ['topic', 'pub', '/sigint_topic', 'std_msgs/msg/String'],
+    ],
+    ids=lambda v: v[1],
+)
 def test_ctrl_c_leaves_with_status_2(processes: Any, ros_context: Any, verb: list[str]) -> None:
     """ros2cli's KeyboardInterrupt status, in every verb that runs until interrupted."""
     import signal
 
     from ros2lite.graph import snapshot
     from tests.spinning import wait_until
+
     proc = processes.cli(*verb)
     hidden = f'_ros2lite_{proc.pid}'
     # once the verb's hidden node is in the graph, it is past start-up
-    wait_until(lambda: any(e.node_name == hidden for e in
-                           snapshot(ros_context.session, ros_context.domain_id)), timeout=15)
+    wait_until(
+        lambda: any(
+            e.node_name == hidden for e in snapshot(ros_context.session, ros_context.domain_id)
+        ),
+        timeout=15,
+    )
     proc.send_signal(signal.SIGINT)
     _out, err = proc.communicate(timeout=10)
     assert (proc.returncode, err) == (2, '')

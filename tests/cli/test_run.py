@@ -23,13 +23,18 @@ from tests.spinning import spin_until, wait_until
 @pytest.fixture
 def scripts(tmp_path: Path) -> dict[str, str]:
     """An ament prefix with small shell executables; returns the env pointing at it."""
-    prefix = make_ament_prefix(tmp_path, 'tools', {
-        'fail3': '#!/bin/sh\nexit 3\n',
-        'segv': '#!/bin/sh\nkill -SEGV $$\n',
-        'echo_args': '#!/bin/sh\nprintf "%s|" "$@"\necho "FOO=$FOO"\n',
-        'a/dup': '#!/bin/sh\n', 'b/dup': '#!/bin/sh\n',
-        'wait_term': '#!/bin/sh\necho ready\nexec sleep 30\n',
-    })
+    prefix = make_ament_prefix(
+        tmp_path,
+        'tools',
+        {
+            'fail3': '#!/bin/sh\nexit 3\n',
+            'segv': '#!/bin/sh\nkill -SEGV $$\n',
+            'echo_args': '#!/bin/sh\nprintf "%s|" "$@"\necho "FOO=$FOO"\n',
+            'a/dup': '#!/bin/sh\n',
+            'b/dup': '#!/bin/sh\n',
+            'wait_term': '#!/bin/sh\necho ready\nexec sleep 30\n',
+        },
+    )
     return {'AMENT_PREFIX_PATH': str(prefix)}
 
 
@@ -51,8 +56,9 @@ def test_multiple_executables(scripts: dict[str, str]) -> None:
     result = run_process('run', 'tools', 'dup', env=scripts)
     prefix = Path(scripts['AMENT_PREFIX_PATH'])
     assert result.code == 1
-    assert result.err == (f'Multiple executables found:\n- {prefix}/lib/tools/a/dup\n'
-                          f'- {prefix}/lib/tools/b/dup\n')
+    assert result.err == (
+        f'Multiple executables found:\n- {prefix}/lib/tools/a/dup\n- {prefix}/lib/tools/b/dup\n'
+    )
 
 
 def test_child_failure_status(scripts: dict[str, str]) -> None:
@@ -68,9 +74,21 @@ def test_child_killed_by_signal(scripts: dict[str, str]) -> None:
 
 
 def test_arguments_and_prefix_pass_through(scripts: dict[str, str]) -> None:
-    result = run_process('run', '--prefix', 'env FOO=from_prefix', 'tools', 'echo_args',
-                         '--ros-args', '-r', 'chatter:=/x', '--help', '-h', '--prefix', 'p',
-                         env=scripts)
+    result = run_process(
+        'run',
+        '--prefix',
+        'env FOO=from_prefix',
+        'tools',
+        'echo_args',
+        '--ros-args',
+        '-r',
+        'chatter:=/x',
+        '--help',
+        '-h',
+        '--prefix',
+        'p',
+        env=scripts,
+    )
     assert result.code == 0, result.err
     assert result.out == '--ros-args|-r|chatter:=/x|--help|-h|--prefix|p|FOO=from_prefix\n'
     assert result.err == ''
@@ -78,44 +96,59 @@ def test_arguments_and_prefix_pass_through(scripts: dict[str, str]) -> None:
 
 def start_run(processes: Any, *args: str, **kw: Any) -> subprocess.Popen[str]:
     # a new session: no controlling terminal, like a script or a service manager
-    return processes.start([sys.executable, '-m', 'ros2lite', 'run', *args],
-                           stdin=subprocess.DEVNULL, start_new_session=True, **kw)
+    return processes.start(
+        [sys.executable, '-m', 'ros2lite', 'run', *args],
+        stdin=subprocess.DEVNULL,
+        start_new_session=True,
+        **kw,
+    )
 
 
 def test_run_talker_then_ctrl_c(ros_context: Any, processes: Any) -> None:
     node = Node('run_probe', context=ros_context)
     got: list[str] = []
-    node.create_subscription('std_msgs/msg/String', '/run_chatter',
-                             lambda m: got.append(m.data), 10)
+    node.create_subscription(
+        'std_msgs/msg/String', '/run_chatter', lambda m: got.append(m.data), 10
+    )
     ex = SingleThreadedExecutor(context=ros_context)
     ex.add_node(node)
-    proc = start_run(processes, 'demo_nodes_py', 'talker', '--ros-args',
-                     '-r', 'chatter:=/run_chatter', '-r', '__node:=run_talker')
+    proc = start_run(
+        processes,
+        'demo_nodes_py',
+        'talker',
+        '--ros-args',
+        '-r',
+        'chatter:=/run_chatter',
+        '-r',
+        '__node:=run_talker',
+    )
     spin_until(ex, lambda: got, timeout=10)
     assert got[0] == 'Hello World: 0'
     # peers send data directly while their tokens go through the router: the graph may show
     # the talker a moment after its first message (discovery is eventually consistent)
     spin_until(ex, lambda: ('run_talker', '/') in node.get_node_names_and_namespaces())
-    _out, err = processes.stop(proc)      # SIGINT to `ros2lite run` only
+    _out, err = processes.stop(proc)  # SIGINT to `ros2lite run` only
     assert proc.returncode == 0, err
     assert '[talker]' not in err and '[run_talker]: Publishing: "Hello World: 0"' in err
     assert 'Traceback' not in err and '[ros2run]' not in err
 
 
-def test_sigterm_is_forwarded_and_the_demo_leaves_cleanly(ros_context: Any,
-                                                           processes: Any) -> None:
+def test_sigterm_is_forwarded_and_the_demo_leaves_cleanly(ros_context: Any, processes: Any) -> None:
     probe = Node('sigterm_probe', context=ros_context, enable_rosout=False)
-    proc = start_run(processes, 'demo_nodes_py', 'listener', '--ros-args',
-                     '-r', '__node:=sigterm_listener')
-    wait_until(lambda: ('sigterm_listener', '/') in probe.get_node_names_and_namespaces(),
-               timeout=10)
+    proc = start_run(
+        processes, 'demo_nodes_py', 'listener', '--ros-args', '-r', '__node:=sigterm_listener'
+    )
+    wait_until(
+        lambda: ('sigterm_listener', '/') in probe.get_node_names_and_namespaces(), timeout=10
+    )
     proc.send_signal(signal.SIGTERM)
     _out, err = proc.communicate(timeout=10)
     # as an rclpy demo: SIGTERM ends spinning (ExternalShutdownException), status 0
     assert proc.returncode == 0, err
     assert 'Traceback' not in err and '[ros2run]' not in err
-    wait_until(lambda: ('sigterm_listener', '/') not in probe.get_node_names_and_namespaces(),
-               timeout=5)
+    wait_until(
+        lambda: ('sigterm_listener', '/') not in probe.get_node_names_and_namespaces(), timeout=5
+    )
 
 
 def test_sigterm_death_of_the_child(scripts: dict[str, str], processes: Any) -> None:
@@ -133,9 +166,17 @@ def test_ctrl_c_in_a_terminal_reaches_the_child_once(tmp_path: Path) -> None:
     import fcntl
     import pty
     import termios
-    prefix = make_ament_prefix(tmp_path, 'tools', {'count_int': (
-        '#!/bin/sh\nn=0\ntrap \'n=$((n+1))\' INT\necho ready\n'
-        'i=0; while [ $i -lt 15 ]; do sleep 0.1; i=$((i+1)); done\necho "interrupts=$n"\n')})
+
+    prefix = make_ament_prefix(
+        tmp_path,
+        'tools',
+        {
+            'count_int': (
+                '#!/bin/sh\nn=0\ntrap \'n=$((n+1))\' INT\necho ready\n'
+                'i=0; while [ $i -lt 15 ]; do sleep 0.1; i=$((i+1)); done\necho "interrupts=$n"\n'
+            )
+        },
+    )
     master, slave = pty.openpty()
 
     def take_terminal() -> None:
@@ -144,12 +185,17 @@ def test_ctrl_c_in_a_terminal_reaches_the_child_once(tmp_path: Path) -> None:
     try:
         proc = subprocess.Popen(
             [sys.executable, '-m', 'ros2lite', 'run', 'tools', 'count_int'],
-            stdin=slave, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-            start_new_session=True, preexec_fn=take_terminal,
-            env={**os.environ, 'AMENT_PREFIX_PATH': str(prefix)})
+            stdin=slave,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            start_new_session=True,
+            preexec_fn=take_terminal,
+            env={**os.environ, 'AMENT_PREFIX_PATH': str(prefix)},
+        )
         assert proc.stdout is not None
         assert proc.stdout.readline() == 'ready\n'
-        os.killpg(proc.pid, signal.SIGINT)      # what the terminal does on Ctrl-C
+        os.killpg(proc.pid, signal.SIGINT)  # what the terminal does on Ctrl-C
         out, err = proc.communicate(timeout=10)
     finally:
         os.close(master)

@@ -17,8 +17,14 @@ from tests.spinning import free_port
 def runtime(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     """Point the daemon's pid/lock/log files at a temporary directory."""
     monkeypatch.setenv("XDG_RUNTIME_DIR", str(tmp_path))
-    for var in ("ZENOH_CONFIG_OVERRIDE", "ZENOH_SESSION_CONFIG_URI", "ZENOH_ROUTER_CONFIG_URI",
-                "ROS2LITE_ROUTER", "ROS2LITE_NO_DAEMON", "ZENOH_ROUTER_CHECK_ATTEMPTS"):
+    for var in (
+        "ZENOH_CONFIG_OVERRIDE",
+        "ZENOH_SESSION_CONFIG_URI",
+        "ZENOH_ROUTER_CONFIG_URI",
+        "ROS2LITE_ROUTER",
+        "ROS2LITE_NO_DAEMON",
+        "ZENOH_ROUTER_CHECK_ATTEMPTS",
+    ):
         monkeypatch.delenv(var, raising=False)
     monkeypatch.setenv("ROS_DOMAIN_ID", "231")
     return tmp_path / "ros2lite"

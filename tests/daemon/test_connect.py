@@ -13,21 +13,24 @@ from ros2lite.daemon.connect import autostart_enabled, open_node_session
 from .conftest import free_port
 
 
-@pytest.mark.parametrize("env, enabled", [
-    ({}, True),
-    ({"ROS2LITE_NO_DAEMON": "0"}, True),
-    ({"ROS2LITE_NO_DAEMON": "1"}, False),
-    ({"ROS2LITE_NO_DAEMON": "yes"}, False),
-    ({"ZENOH_ROUTER_CHECK_ATTEMPTS": "0"}, False),   # the rmw_zenoh way: the user's router
-    ({"ZENOH_ROUTER_CHECK_ATTEMPTS": ""}, True),
-])
+@pytest.mark.parametrize(
+    "env, enabled",
+    [
+        ({}, True),
+        ({"ROS2LITE_NO_DAEMON": "0"}, True),
+        ({"ROS2LITE_NO_DAEMON": "1"}, False),
+        ({"ROS2LITE_NO_DAEMON": "yes"}, False),
+        ({"ZENOH_ROUTER_CHECK_ATTEMPTS": "0"}, False),  # the rmw_zenoh way: the user's router
+        ({"ZENOH_ROUTER_CHECK_ATTEMPTS": ""}, True),
+    ],
+)
 def test_autostart_enabled(env: dict[str, str], enabled: bool) -> None:
     assert autostart_enabled(env) is enabled
 
 
-def test_node_starts_the_daemon_at_its_endpoint(endpoint: str, runtime: Path,
-                                                monkeypatch: pytest.MonkeyPatch,
-                                                capfd: Any) -> None:
+def test_node_starts_the_daemon_at_its_endpoint(
+    endpoint: str, runtime: Path, monkeypatch: pytest.MonkeyPatch, capfd: Any
+) -> None:
     monkeypatch.setenv("ROS2LITE_ROUTER", endpoint)
     session = open_node_session()
     try:
@@ -41,9 +44,9 @@ def test_node_starts_the_daemon_at_its_endpoint(endpoint: str, runtime: Path,
     assert err.count("\n") == 1 and "started the ros2lite daemon" in err
 
 
-def test_no_daemon_for_a_router_the_config_names(endpoint: str, runtime: Path,
-                                                 monkeypatch: pytest.MonkeyPatch,
-                                                 capfd: Any) -> None:
+def test_no_daemon_for_a_router_the_config_names(
+    endpoint: str, runtime: Path, monkeypatch: pytest.MonkeyPatch, capfd: Any
+) -> None:
     """An override or config file that names the router makes it the user's to run."""
     elsewhere = f"tcp/127.0.0.1:{free_port()}"
     monkeypatch.setenv("ROS2LITE_ROUTER", endpoint)

@@ -22,19 +22,32 @@ def test_fibonacci_server_and_client(ros_context: Any, processes: Any) -> None:
     while ('/fibonacci', [FIB]) not in get_action_names_and_types(observer):
         assert time.monotonic() < deadline, get_action_names_and_types(observer)
         time.sleep(0.05)
-    assert get_action_server_names_and_types_by_node(
-        observer, 'fibonacci_action_server', '/') == [('/fibonacci', [FIB])]
+    assert get_action_server_names_and_types_by_node(observer, 'fibonacci_action_server', '/') == [
+        ('/fibonacci', [FIB])
+    ]
 
     client = processes.cli('run', 'action_tutorials_py', 'fibonacci_action_client')
     out, err = client.communicate(timeout=40)
     assert client.returncode == 0, err
     name = 'fibonacci_action_client'
     expected = [
-        'Waiting for action server...', 'Sending goal request...', 'Goal accepted :)',
-        *[f"Received feedback: array('i', {seq})" for seq in (
-            [0, 1, 1], [0, 1, 1, 2], [0, 1, 1, 2, 3], [0, 1, 1, 2, 3, 5],
-            [0, 1, 1, 2, 3, 5, 8], [0, 1, 1, 2, 3, 5, 8, 13], [0, 1, 1, 2, 3, 5, 8, 13, 21],
-            [0, 1, 1, 2, 3, 5, 8, 13, 21, 34], [0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55])],
+        'Waiting for action server...',
+        'Sending goal request...',
+        'Goal accepted :)',
+        *[
+            f"Received feedback: array('i', {seq})"
+            for seq in (
+                [0, 1, 1],
+                [0, 1, 1, 2],
+                [0, 1, 1, 2, 3],
+                [0, 1, 1, 2, 3, 5],
+                [0, 1, 1, 2, 3, 5, 8],
+                [0, 1, 1, 2, 3, 5, 8, 13],
+                [0, 1, 1, 2, 3, 5, 8, 13, 21],
+                [0, 1, 1, 2, 3, 5, 8, 13, 21, 34],
+                [0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55],
+            )
+        ],
         "Goal succeeded! Result: array('i', [0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55])",
     ]
     lines = err.splitlines()
@@ -47,10 +60,19 @@ def test_fibonacci_server_and_client(ros_context: Any, processes: Any) -> None:
     assert server.returncode == 0 and 'Traceback' not in server_err
     server_lines = server_err.splitlines()
     name = 'fibonacci_action_server'
-    for line, text in zip(server_lines, [
-            'Received goal request', 'Executing goal...',
-            "Publishing feedback: array('i', [0, 1, 1])"], strict=False):
+    for line, text in zip(
+        server_lines,
+        [
+            'Received goal request',
+            'Executing goal...',
+            "Publishing feedback: array('i', [0, 1, 1])",
+        ],
+        strict=False,
+    ):
         assert re.fullmatch(log_line(name, re.escape(text)), line), (line, text)
-    assert re.fullmatch(log_line(name, re.escape(
-        "Returning result: array('i', [0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55])")),
-        server_lines[-1]), server_err
+    assert re.fullmatch(
+        log_line(
+            name, re.escape("Returning result: array('i', [0, 1, 1, 2, 3, 5, 8, 13, 21, 34, 55])")
+        ),
+        server_lines[-1],
+    ), server_err

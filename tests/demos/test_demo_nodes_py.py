@@ -24,8 +24,7 @@ def log_line(name: str, text: str) -> str:
 
 
 def demo(processes: Any, exe: str, *args: str) -> Any:
-    return processes.start([sys.executable, '-m', f'ros2lite.demos.demo_nodes_py.{exe}',
-                            *args])
+    return processes.start([sys.executable, '-m', f'ros2lite.demos.demo_nodes_py.{exe}', *args])
 
 
 def wait_for_node(node: Node, name: str, namespace: str = '/', timeout: float = 10) -> None:
@@ -67,15 +66,25 @@ def test_talker_publishes_with_depth_10(ros_context: Any, processes: Any) -> Non
 def test_listener_with_remapping(ros_context: Any, processes: Any) -> None:
     node = Node('test_talker', context=ros_context)
     pub = node.create_publisher(String, '/other', 10)
-    proc = demo(processes, 'listener', '--ros-args', '-r', 'chatter:=/other',
-                '-r', '__node:=lis', '-r', '__ns:=/ns')
+    proc = demo(
+        processes,
+        'listener',
+        '--ros-args',
+        '-r',
+        'chatter:=/other',
+        '-r',
+        '__node:=lis',
+        '-r',
+        '__ns:=/ns',
+    )
     wait_for_node(node, 'lis', '/ns')
     deadline = time.monotonic() + 5
     while pub.get_subscription_count() < 1:
         assert time.monotonic() < deadline
         time.sleep(0.02)
     assert node.get_subscriber_names_and_types_by_node('lis', '/ns') == [
-        ('/other', ['std_msgs/msg/String'])]
+        ('/other', ['std_msgs/msg/String'])
+    ]
     for i in range(3):
         pub.publish(String(data=f'Hello World: {i}'))
     time.sleep(0.5)
@@ -103,7 +112,7 @@ def test_parameters_reach_the_node(ros_context: Any, processes: Any) -> None:
     start = time.monotonic()
     while time.monotonic() - start < 1.5:
         ex.spin_once(timeout_sec=0.05)
-    assert got == []   # 1.5 s of wall time, but sim time has not moved
+    assert got == []  # 1.5 s of wall time, but sim time has not moved
 
     def tick() -> bool:
         clock_pub.publish(Clock(clock=Time(sec=100)))
@@ -127,9 +136,15 @@ def test_no_router_in_client_mode_is_one_line(processes: Any) -> None:
     # nodes start the daemon or run without a router (tests/test_router_survival.py); a
     # client-mode session has no such way out
     from tests.conftest import free_port
-    proc = processes.start([sys.executable, '-m', 'ros2lite.demos.demo_nodes_py.talker'],
-                           env={**_env(), 'ROS2LITE_ROUTER': f'tcp/127.0.0.1:{free_port()}',
-                                'ZENOH_CONFIG_OVERRIDE': 'mode="client"'})
+
+    proc = processes.start(
+        [sys.executable, '-m', 'ros2lite.demos.demo_nodes_py.talker'],
+        env={
+            **_env(),
+            'ROS2LITE_ROUTER': f'tcp/127.0.0.1:{free_port()}',
+            'ZENOH_CONFIG_OVERRIDE': 'mode="client"',
+        },
+    )
     _out, err = proc.communicate(timeout=10)
     assert proc.returncode == 1
     assert err.count('\n') == 1 and 'No Zenoh router answers' in err
@@ -139,8 +154,10 @@ def test_parameter_blackboard(ros_context: Any, processes: Any) -> None:
     """Holds every override and anything set later, as ROS's demo does."""
     from ros2lite.parameter import Parameter, parameter_value_to_python
     from ros2lite.parameters.remote import RemoteParameters
-    proc = demo(processes, 'parameter_blackboard', '--ros-args', '-p', 'speed:=2.5',
-                '-p', 'names:=[a, b]')
+
+    proc = demo(
+        processes, 'parameter_blackboard', '--ros-args', '-p', 'speed:=2.5', '-p', 'names:=[a, b]'
+    )
     client = Node('_blackboard_client', context=ros_context, start_parameter_services=False)
     remote = RemoteParameters(client, '/parameter_blackboard', service_timeout=10.0)
     assert remote.wait_for_services(10.0)
@@ -150,17 +167,27 @@ def test_parameter_blackboard(ros_context: Any, processes: Any) -> None:
     assert [parameter_value_to_python(v) for v in values] == [2.5, ['a', 'b'], 7]
     _out, err = processes.stop(proc)
     assert proc.returncode == 0
-    assert re.fullmatch(log_line('parameter_blackboard', re.escape(
-        "Parameter blackboard node named '/parameter_blackboard' ready, and serving '3' "
-        "parameters already!")), err.splitlines()[0]), err
+    assert re.fullmatch(
+        log_line(
+            'parameter_blackboard',
+            re.escape(
+                "Parameter blackboard node named '/parameter_blackboard' ready, and serving '3' "
+                "parameters already!"
+            ),
+        ),
+        err.splitlines()[0],
+    ), err
 
 
-@pytest.mark.parametrize('args, message', [
-    (['--ros-args', '-r', '__node:=1bad'], 'invalid node name'),
-    (['--ros-args', '--bogus'], "Unknown ROS argument '--bogus'"),
-    # an override of another type than the declared default: rclpy's exception, one line
-    (['--ros-args', '-p', 'use_sim_time:=3'], "expecting type 'BOOL'"),
-])
+@pytest.mark.parametrize(
+    'args, message',
+    [
+        (['--ros-args', '-r', '__node:=1bad'], 'invalid node name'),
+        (['--ros-args', '--bogus'], "Unknown ROS argument '--bogus'"),
+        # an override of another type than the declared default: rclpy's exception, one line
+        (['--ros-args', '-p', 'use_sim_time:=3'], "expecting type 'BOOL'"),
+    ],
+)
 def test_bad_arguments_are_one_line(processes: Any, args: list[str], message: str) -> None:
     proc = demo(processes, 'listener', *args)
     _out, err = proc.communicate(timeout=10)
@@ -170,19 +197,24 @@ def test_bad_arguments_are_one_line(processes: Any, args: list[str], message: st
 
 def _env() -> dict[str, str]:
     import os
+
     return dict(os.environ)
 
 
 def test_add_two_ints_server_and_clients(processes: Any) -> None:
     server = demo(processes, 'add_two_ints_server')
-    for exe, line in (('add_two_ints_client', 'for 2 \\+ 3 = 5'),
-                      ('add_two_ints_client_async', 'for 41 \\+ 1 = 42')):
+    for exe, line in (
+        ('add_two_ints_client', 'for 2 \\+ 3 = 5'),
+        ('add_two_ints_client_async', 'for 41 \\+ 1 = 42'),
+    ):
         client = demo(processes, exe)
         out, err = client.communicate(timeout=30)
         assert client.returncode == 0, err
-        assert re.search(log_line('add_two_ints_client', 'Result of add_two_ints: ' + line),
-                         err + out), err + out
+        assert re.search(
+            log_line('add_two_ints_client', 'Result of add_two_ints: ' + line), err + out
+        ), err + out
     out, err = processes.stop(server)
     assert server.returncode == 0 and 'Traceback' not in err
-    assert re.search(log_line('add_two_ints_server', 'Incoming request') + '\na: 2 b: 3',
-                     err + out), err + out
+    assert re.search(
+        log_line('add_two_ints_server', 'Incoming request') + '\na: 2 b: 3', err + out
+    ), err + out

@@ -32,8 +32,9 @@ def _scalar(ft: FieldType) -> st.SearchStrategy[Any]:
     if base in ('string', 'wstring'):
         s = _text
         if ft.string_bound:
-            s = st.text(st.characters(codec='utf-8', exclude_characters='\x00'),
-                        max_size=ft.string_bound)
+            s = st.text(
+                st.characters(codec='utf-8', exclude_characters='\x00'), max_size=ft.string_bound
+            )
         return s
     return message(base)
 
@@ -57,6 +58,7 @@ def message(name: str) -> st.SearchStrategy[Any]:
     if name not in _CACHE:
         mdef = default_registry().message(name)
         cls = get_interface(name)
-        _CACHE[name] = st.deferred(lambda: st.builds(
-            cls, **{f.name: _value(f.type) for f in mdef.fields}))
+        _CACHE[name] = st.deferred(
+            lambda: st.builds(cls, **{f.name: _value(f.type) for f in mdef.fields})
+        )
     return _CACHE[name]

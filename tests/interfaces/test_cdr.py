@@ -19,8 +19,18 @@ from .strategies import message
 ROSBAGS = get_typestore(Stores.ROS2_JAZZY)
 OURS = set(interfaces.list_interfaces())
 SHARED = sorted(n for n in ROSBAGS.types if n in OURS and '/msg/' in n)
-_NP = {'b': np.int8, 'B': np.uint8, 'h': np.int16, 'H': np.uint16, 'i': np.int32,
-       'I': np.uint32, 'q': np.int64, 'Q': np.uint64, 'f': np.float32, 'd': np.float64}
+_NP = {
+    'b': np.int8,
+    'B': np.uint8,
+    'h': np.int16,
+    'H': np.uint16,
+    'i': np.int32,
+    'I': np.uint32,
+    'q': np.int64,
+    'Q': np.uint64,
+    'f': np.float32,
+    'd': np.float64,
+}
 
 
 def to_rosbags(msg: Any) -> Any:
@@ -43,7 +53,8 @@ def to_rosbags(msg: Any) -> Any:
             v = to_rosbags(v)
         kwargs[f] = v
     if not kwargs and 'structure_needs_at_least_one_member' in getattr(
-            cls, '__dataclass_fields__', {}):
+        cls, '__dataclass_fields__', {}
+    ):
         kwargs['structure_needs_at_least_one_member'] = 0
     return cls(**kwargs)
 
@@ -66,14 +77,15 @@ def test_bytes_equal_rosbags(name: str, data: st.DataObject) -> None:
 
 
 def test_empty_message_is_one_byte() -> None:
-    assert interfaces.serialize(interfaces.get_interface('std_msgs/msg/Empty')()) == \
-        b'\x00\x01\x00\x00\x00'
+    assert (
+        interfaces.serialize(interfaces.get_interface('std_msgs/msg/Empty')())
+        == b'\x00\x01\x00\x00\x00'
+    )
 
 
 def test_string_literal_bytes() -> None:
     msg = interfaces.get_interface('std_msgs/msg/String')(data='Hello World: 1')
-    assert interfaces.serialize(msg) == \
-        b'\x00\x01\x00\x00\x0f\x00\x00\x00Hello World: 1\x00'
+    assert interfaces.serialize(msg) == b'\x00\x01\x00\x00\x0f\x00\x00\x00Hello World: 1\x00'
 
 
 def test_empty_double_sequence_is_not_aligned() -> None:
@@ -90,8 +102,10 @@ def test_wstring_round_trip() -> None:
     assert interfaces.deserialize('example_interfaces/msg/WString', data) == msg
 
 
-@pytest.mark.parametrize('bad', [b'', b'\x00\x01', b'\x00\x01\x00\x00\x10\x00\x00\x00ab',
-                                 b'\x01\x01\x00\x00\x00\x00\x00\x00'])
+@pytest.mark.parametrize(
+    'bad',
+    [b'', b'\x00\x01', b'\x00\x01\x00\x00\x10\x00\x00\x00ab', b'\x01\x01\x00\x00\x00\x00\x00\x00'],
+)
 def test_truncated_or_bad_payload_raises(bad: bytes) -> None:
     with pytest.raises(CdrError):
         interfaces.deserialize('std_msgs/msg/String', bad)
@@ -100,14 +114,14 @@ def test_truncated_or_bad_payload_raises(bad: bytes) -> None:
 def test_fast_paths_agree_and_fall_back_to_precise_errors() -> None:
     from ros2lite.interfaces.cdr import codec
     from ros2lite.interfaces.registry import default_registry
+
     c = codec('std_msgs/msg/String', default_registry())
     msg = interfaces.get_interface('std_msgs/msg/String')(data='fast')
     data = c.raw_serializer()(msg)
     assert data == interfaces.serialize(msg)
     decode = c.fast_deserializer()
     assert decode(data) == msg
-    big = bytes(ROSBAGS.serialize_cdr(to_rosbags(msg), 'std_msgs/msg/String',
-                                      little_endian=False))
+    big = bytes(ROSBAGS.serialize_cdr(to_rosbags(msg), 'std_msgs/msg/String', little_endian=False))
     assert decode(big) == msg
     with pytest.raises(CdrError):
         decode(b'\x00\x01\x00\x00\x10\x00\x00\x00ab')

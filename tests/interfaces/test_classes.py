@@ -13,7 +13,8 @@ def test_keyword_constructor_defaults_and_repr() -> None:
     twist = get_interface('geometry_msgs/msg/Twist')()
     assert repr(twist) == (
         'geometry_msgs.msg.Twist(linear=geometry_msgs.msg.Vector3(x=0.0, y=0.0, z=0.0), '
-        'angular=geometry_msgs.msg.Vector3(x=0.0, y=0.0, z=0.0))')
+        'angular=geometry_msgs.msg.Vector3(x=0.0, y=0.0, z=0.0))'
+    )
     assert get_interface('geometry_msgs/msg/Quaternion')().w == 1.0
     with pytest.raises(TypeError):
         get_interface('std_msgs/msg/String')(nope=1)
@@ -22,26 +23,34 @@ def test_keyword_constructor_defaults_and_repr() -> None:
 def test_constants_and_field_types() -> None:
     status = get_interface('action_msgs/msg/GoalStatus')
     assert status.STATUS_SUCCEEDED == 4
-    assert get_interface('sensor_msgs/msg/LaserScan').get_fields_and_field_types()['ranges'] == \
-        'sequence<float>'
+    assert (
+        get_interface('sensor_msgs/msg/LaserScan').get_fields_and_field_types()['ranges']
+        == 'sequence<float>'
+    )
     fields = get_interface('sensor_msgs/msg/Imu').get_fields_and_field_types()
     assert fields['orientation_covariance'] == 'double[9]'
     assert fields['header'] == 'std_msgs/Header'
 
 
-@pytest.mark.parametrize(('type_name', 'field', 'value', 'message'), [
-    ('std_msgs/msg/Int8', 'data', 128, "The 'data' field must be an integer in [-128, 127]"),
-    ('std_msgs/msg/Int8', 'data', 'x', "The 'data' field must be of type 'int'"),
-    ('std_msgs/msg/String', 'data', 5, "The 'data' field must be of type 'str'"),
-    ('std_msgs/msg/Bool', 'data', 1, "The 'data' field must be of type 'bool'"),
-    ('std_msgs/msg/Float32', 'data', 1e39, "The 'data' field must be a float in"),
-    ('sensor_msgs/msg/Imu', 'orientation_covariance', [0.0], 'exactly 9 elements'),
-    ('geometry_msgs/msg/Twist', 'linear', 3, "must be a sub message of type"),
-    ('type_description_interfaces/msg/FieldType', 'nested_type_name', 'x' * 300,
-     'not longer than'),
-])
-def test_validation_on_assignment(type_name: str, field: str, value: object,
-                                  message: str) -> None:
+@pytest.mark.parametrize(
+    ('type_name', 'field', 'value', 'message'),
+    [
+        ('std_msgs/msg/Int8', 'data', 128, "The 'data' field must be an integer in [-128, 127]"),
+        ('std_msgs/msg/Int8', 'data', 'x', "The 'data' field must be of type 'int'"),
+        ('std_msgs/msg/String', 'data', 5, "The 'data' field must be of type 'str'"),
+        ('std_msgs/msg/Bool', 'data', 1, "The 'data' field must be of type 'bool'"),
+        ('std_msgs/msg/Float32', 'data', 1e39, "The 'data' field must be a float in"),
+        ('sensor_msgs/msg/Imu', 'orientation_covariance', [0.0], 'exactly 9 elements'),
+        ('geometry_msgs/msg/Twist', 'linear', 3, "must be a sub message of type"),
+        (
+            'type_description_interfaces/msg/FieldType',
+            'nested_type_name',
+            'x' * 300,
+            'not longer than',
+        ),
+    ],
+)
+def test_validation_on_assignment(type_name: str, field: str, value: object, message: str) -> None:
     msg = get_interface(type_name)()
     with pytest.raises(FieldError) as err:
         setattr(msg, field, value)
@@ -75,5 +84,7 @@ def test_service_and_action_namespaces() -> None:
     assert act.SendGoal.Request().goal == act.Goal()
     assert act.GetResult.Response().result == act.Result()
     assert act.FeedbackMessage().feedback == act.Feedback()
-    assert get_interface('example_interfaces/action/Fibonacci_SendGoal_Request') is \
-        act.SendGoal.Request
+    assert (
+        get_interface('example_interfaces/action/Fibonacci_SendGoal_Request')
+        is act.SendGoal.Request
+    )

@@ -14,21 +14,30 @@ def msg(name: str, **kwargs: object) -> Any:
     return I.get_interface(name)(**kwargs)
 
 
-@pytest.mark.parametrize(('value', 'text'), [
-    ('Hello World: 1', "data: 'Hello World: 1'\n"),
-    ('', "data: ''\n"),
-    ('yes', "data: 'yes'\n"),
-    ('123', "data: '123'\n"),
-    ('plain', 'data: plain\n'),
-])
+@pytest.mark.parametrize(
+    ('value', 'text'),
+    [
+        ('Hello World: 1', "data: 'Hello World: 1'\n"),
+        ('', "data: ''\n"),
+        ('yes', "data: 'yes'\n"),
+        ('123', "data: '123'\n"),
+        ('plain', 'data: plain\n'),
+    ],
+)
 def test_string_quoting(value: str, text: str) -> None:
     assert I.message_to_yaml(msg('std_msgs/msg/String', data=value)) == text
 
 
-@pytest.mark.parametrize(('value', 'text'), [
-    (0.0, 'data: 0.0\n'), (2.5e-07, 'data: 2.5e-07\n'), (float('inf'), 'data: .inf\n'),
-    (float('nan'), 'data: .nan\n'), (1e-07, 'data: 1.0e-07\n'),
-])
+@pytest.mark.parametrize(
+    ('value', 'text'),
+    [
+        (0.0, 'data: 0.0\n'),
+        (2.5e-07, 'data: 2.5e-07\n'),
+        (float('inf'), 'data: .inf\n'),
+        (float('nan'), 'data: .nan\n'),
+        (1e-07, 'data: 1.0e-07\n'),
+    ],
+)
 def test_float_forms(value: float, text: str) -> None:
     assert I.message_to_yaml(msg('std_msgs/msg/Float64', data=value)) == text
 
@@ -43,29 +52,37 @@ def test_nested_block_and_flow_style() -> None:
     twist = msg('geometry_msgs/msg/Twist')
     twist.linear.x = 2.0
     assert I.message_to_yaml(twist) == (
-        'linear:\n  x: 2.0\n  y: 0.0\n  z: 0.0\nangular:\n  x: 0.0\n  y: 0.0\n  z: 0.0\n')
-    assert I.message_to_yaml(msg('std_msgs/msg/String', data='Hello World: 1'),
-                             flow_style=True) == "{data: 'Hello World: 1'}\n"
+        'linear:\n  x: 2.0\n  y: 0.0\n  z: 0.0\nangular:\n  x: 0.0\n  y: 0.0\n  z: 0.0\n'
+    )
+    assert (
+        I.message_to_yaml(msg('std_msgs/msg/String', data='Hello World: 1'), flow_style=True)
+        == "{data: 'Hello World: 1'}\n"
+    )
     seq = msg('std_msgs/msg/Int32MultiArray', data=[1, 2])
-    assert I.message_to_yaml(seq) == (
-        'layout:\n  dim: []\n  data_offset: 0\ndata:\n- 1\n- 2\n')
+    assert I.message_to_yaml(seq) == ('layout:\n  dim: []\n  data_offset: 0\ndata:\n- 1\n- 2\n')
 
 
 def test_truncation_and_placeholders() -> None:
     arr = msg('std_msgs/msg/Float64MultiArray', data=[float(i) for i in range(5)])
-    assert I.message_to_yaml(arr, truncate_length=2).endswith(
-        "data:\n- 0.0\n- 1.0\n- '...'\n")
-    assert I.message_to_yaml(msg('std_msgs/msg/String', data='abcdef'),
-                             truncate_length=3) == 'data: abc...\n'
+    assert I.message_to_yaml(arr, truncate_length=2).endswith("data:\n- 0.0\n- 1.0\n- '...'\n")
+    assert (
+        I.message_to_yaml(msg('std_msgs/msg/String', data='abcdef'), truncate_length=3)
+        == 'data: abc...\n'
+    )
     assert "data: '<sequence type: double, length: 5>'" in I.message_to_yaml(arr, no_arr=True)
     imu = msg('sensor_msgs/msg/Imu')
-    assert "orientation_covariance: '<array type: double[9]>'" in \
-        I.message_to_yaml(imu, no_arr=True)
+    assert "orientation_covariance: '<array type: double[9]>'" in I.message_to_yaml(
+        imu, no_arr=True
+    )
     bounded = msg('rcl_interfaces/msg/ParameterDescriptor')
-    assert "floating_point_range: '<sequence type: rcl_interfaces/msg/FloatingPointRange[1], " \
+    assert (
+        "floating_point_range: '<sequence type: rcl_interfaces/msg/FloatingPointRange[1], "
         "length: 0>'" in I.message_to_yaml(bounded, no_arr=True)
-    assert I.message_to_yaml(msg('std_msgs/msg/String', data='hey'), no_str=True) == \
-        "data: '<string length: <3>>'\n"
+    )
+    assert (
+        I.message_to_yaml(msg('std_msgs/msg/String', data='hey'), no_str=True)
+        == "data: '<string length: <3>>'\n"
+    )
 
 
 def test_csv() -> None:
@@ -75,12 +92,16 @@ def test_csv() -> None:
     assert I.message_to_csv(scan, truncate_length=2).endswith(',1.0,2.0,...,')
     assert I.message_to_csv(msg('std_msgs/msg/Bool', data=True)) == 'True'
     assert I.message_to_csv(scan, no_arr=True).endswith(
-        '<sequence type: float, length: 3>,<sequence type: float, length: 0>')
+        '<sequence type: float, length: 3>,<sequence type: float, length: 0>'
+    )
 
 
 def test_dict() -> None:
-    assert I.message_to_dict(msg('geometry_msgs/msg/Point', x=1.0)) == \
-        {'x': 1.0, 'y': 0.0, 'z': 0.0}
+    assert I.message_to_dict(msg('geometry_msgs/msg/Point', x=1.0)) == {
+        'x': 1.0,
+        'y': 0.0,
+        'z': 0.0,
+    }
 
 
 def test_set_fields_coercions_and_nesting() -> None:
@@ -98,13 +119,16 @@ def test_set_fields_coercions_and_nesting() -> None:
     assert list(arr.data) == [1, 2, 3] and arr.layout.dim[0].label == 'x'
 
 
-@pytest.mark.parametrize(('values', 'reason'), [
-    ('{linear: 3}', "Value '3' is expected to be a dictionary but is a int"),
-    ('{nope: 1}', "'Twist' object has no attribute 'nope'"),
-    ('{linear: {x: abc}}', "could not convert string to float: 'abc'"),
-    ('[1, 2]', "Value '[1, 2]' is expected to be a dictionary but is a list"),
-    ('{linear: {x: [1', 'invalid YAML'),
-])
+@pytest.mark.parametrize(
+    ('values', 'reason'),
+    [
+        ('{linear: 3}', "Value '3' is expected to be a dictionary but is a int"),
+        ('{nope: 1}', "'Twist' object has no attribute 'nope'"),
+        ('{linear: {x: abc}}', "could not convert string to float: 'abc'"),
+        ('[1, 2]', "Value '[1, 2]' is expected to be a dictionary but is a list"),
+        ('{linear: {x: [1', 'invalid YAML'),
+    ],
+)
 def test_set_fields_errors(values: str, reason: str) -> None:
     with pytest.raises(PopulateError) as err:
         I.set_message_fields(msg('geometry_msgs/msg/Twist'), values)
@@ -124,15 +148,42 @@ def test_header_auto_and_stamp_now() -> None:
     setters[0](stamp)
     assert pose.header.stamp.sec == 5 and pose.header.frame_id == ''
     pose2 = msg('geometry_msgs/msg/PoseStamped')
-    setters = I.set_message_fields(pose2, '{header: {stamp: now, frame_id: map}}',
-                                   expand_time_now=True)
+    setters = I.set_message_fields(
+        pose2, '{header: {stamp: now, frame_id: map}}', expand_time_now=True
+    )
     assert len(setters) == 1 and pose2.header.frame_id == 'map'
 
 
 # -- the libyaml fast path must be byte-identical to PyYAML's Python emitter -----------------
 
-_TRICKY = ['yes', 'no', 'null', '~', '123', '1.5', '0x1f', '- a', 'a: b', '#x', "it's", '"q"',
-           ' lead', 'trail ', '', '*a', '&b', '!t', '%p', '@x', '`y', '{', '[', ',', '?', '|']
+_TRICKY = [
+    'yes',
+    'no',
+    'null',
+    '~',
+    '123',
+    '1.5',
+    '0x1f',
+    '- a',
+    'a: b',
+    '#x',
+    "it's",
+    '"q"',
+    ' lead',
+    'trail ',
+    '',
+    '*a',
+    '&b',
+    '!t',
+    '%p',
+    '@x',
+    '`y',
+    '{',
+    '[',
+    ',',
+    '?',
+    '|',
+]
 
 
 def _ascii_message_strategy() -> Any:
@@ -142,12 +193,16 @@ def _ascii_message_strategy() -> Any:
 
     from ros2lite.interfaces.parser import INT_RANGES, FieldType
     from ros2lite.interfaces.registry import default_registry
+
     text = st.one_of(st.sampled_from(_TRICKY), st.text(string.printable.strip(), max_size=12))
 
     def value(ft: FieldType) -> Any:
         if ft.is_container:
-            return st.lists(scalar(ft.element), min_size=ft.size if ft.container == 'array'
-                            else 0, max_size=ft.size if ft.container != 'sequence' else 4)
+            return st.lists(
+                scalar(ft.element),
+                min_size=ft.size if ft.container == 'array' else 0,
+                max_size=ft.size if ft.container != 'sequence' else 4,
+            )
         return scalar(ft)
 
     def scalar(ft: FieldType) -> Any:
@@ -176,6 +231,7 @@ def test_fast_yaml_path_is_byte_identical(name: str) -> None:
     from hypothesis import strategies as st
 
     from ros2lite.interfaces.parser import FieldType
+
     strategy = _ascii_message_strategy()(FieldType(name))
 
     @settings(max_examples=8, deadline=None, suppress_health_check=list(HealthCheck))
@@ -184,6 +240,8 @@ def test_fast_yaml_path_is_byte_identical(name: str) -> None:
         m = data.draw(strategy)
         for flow in (False, True):
             for trunc in (None, 2):
-                assert I.message_to_yaml(m, flow_style=flow, truncate_length=trunc) == \
-                    I.message_to_yaml(m, flow_style=flow, truncate_length=trunc, fast=False)
+                assert I.message_to_yaml(
+                    m, flow_style=flow, truncate_length=trunc
+                ) == I.message_to_yaml(m, flow_style=flow, truncate_length=trunc, fast=False)
+
     check()

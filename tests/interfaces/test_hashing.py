@@ -27,12 +27,19 @@ def test_all_410_reference_hashes_match() -> None:
     assert wrong == {}
 
 
-@pytest.mark.parametrize(('name', 'expected'), [
-    ('std_msgs/msg/String',
-     'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18'),
-    ('example_interfaces/srv/AddTwoInts',
-     'RIHS01_e118de6bf5eeb66a2491b5bda11202e7b68f198d6f67922cf30364858239c81a'),
-])
+@pytest.mark.parametrize(
+    ('name', 'expected'),
+    [
+        (
+            'std_msgs/msg/String',
+            'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18',
+        ),
+        (
+            'example_interfaces/srv/AddTwoInts',
+            'RIHS01_e118de6bf5eeb66a2491b5bda11202e7b68f198d6f67922cf30364858239c81a',
+        ),
+    ],
+)
 def test_published_hashes(name: str, expected: str) -> None:
     # the two values quoted by rmw_zenoh's design document; no table needed
     assert type_hash(name) == expected
@@ -45,24 +52,39 @@ def test_short_message_name_is_accepted() -> None:
 def test_description_of_service_lists_sorted_references() -> None:
     d = type_description('example_interfaces/srv/AddTwoInts')
     assert [f['name'] for f in d['type_description']['fields']] == [
-        'request_message', 'response_message', 'event_message']
+        'request_message',
+        'response_message',
+        'event_message',
+    ]
     names = [r['type_name'] for r in d['referenced_type_descriptions']]
-    assert names == sorted(names) == [
-        'builtin_interfaces/msg/Time', 'example_interfaces/srv/AddTwoInts_Event',
-        'example_interfaces/srv/AddTwoInts_Request', 'example_interfaces/srv/AddTwoInts_Response',
-        'service_msgs/msg/ServiceEventInfo']
+    assert (
+        names
+        == sorted(names)
+        == [
+            'builtin_interfaces/msg/Time',
+            'example_interfaces/srv/AddTwoInts_Event',
+            'example_interfaces/srv/AddTwoInts_Request',
+            'example_interfaces/srv/AddTwoInts_Response',
+            'service_msgs/msg/ServiceEventInfo',
+        ]
+    )
 
 
 def test_char_maps_to_uint8_and_empty_struct_gets_dummy() -> None:
     char = type_description('std_msgs/msg/Char')['type_description']['fields'][0]
     assert char['type']['type_id'] == 3
     empty = type_description('std_msgs/msg/Empty')['type_description']['fields']
-    assert empty == [{'name': 'structure_needs_at_least_one_member', 'type': {
-        'type_id': 3, 'capacity': 0, 'string_capacity': 0, 'nested_type_name': ''}}]
+    assert empty == [
+        {
+            'name': 'structure_needs_at_least_one_member',
+            'type': {'type_id': 3, 'capacity': 0, 'string_capacity': 0, 'nested_type_name': ''},
+        }
+    ]
 
 
 def test_rosbags_agrees_on_ordinary_messages() -> None:
     from rosbags.typesys import Stores, get_typestore
+
     store = get_typestore(Stores.ROS2_JAZZY)
     for name in ('geometry_msgs/msg/Twist', 'sensor_msgs/msg/Imu', 'tf2_msgs/msg/TFMessage'):
         assert store.hash_rihs01(name) == type_hash(name)

@@ -57,9 +57,11 @@ def test_full_grammar() -> None:
     assert f['header'].type.base == 'std_msgs/msg/Header'
     assert f['p'].type.base == 'geometry_msgs/msg/Point'
     assert f['other'].type.base == 'demo/msg/Other'
-    assert m.constants == [Constant('ANSWER', 'int32', 42),
-                           Constant('GREETING', 'string', 'hello world'),
-                           Constant('YES', 'bool', True)]
+    assert m.constants == [
+        Constant('ANSWER', 'int32', 42),
+        Constant('GREETING', 'string', 'hello world'),
+        Constant('YES', 'bool', True),
+    ]
     assert str(f['tiny'].type) == 'string<=3[<=2]'
     assert str(f['p'].type) == 'geometry_msgs/Point'
 
@@ -71,23 +73,26 @@ def test_service_and_action_sections() -> None:
     assert a.result.fields == [] and a.feedback.fields[0].name == 'seq'
 
 
-@pytest.mark.parametrize(('text', 'problem'), [
-    ('int32', "expected '<type> <name>'"),
-    ('int33 x', "invalid type name 'int33'"),
-    ('int8 x 300', 'out of range for int8'),
-    ('bool x maybe', 'is not a bool'),
-    ('int32 BadName', 'invalid field name'),
-    ('int32 lower = 1', 'invalid constant name'),
-    ('int32[2] x [1]', 'exactly 2 values'),
-    ('int32[<=1] x [1, 2]', 'bound is 1'),
-    ('string<=2 x "abc"', 'exceeds its bound'),
-    ('int32[0] x', 'array size must be positive'),
-    ('int32<=3 x', 'only strings can be bounded'),
-    ('geometry_msgs/Point p 5', 'cannot have default values'),
-    ('int32 x\nint32 x', "duplicate name 'x'"),
-    ('int32[] X = 1', 'primitive, non-array type'),
-    ('float32 x abc', 'is not a number'),
-])
+@pytest.mark.parametrize(
+    ('text', 'problem'),
+    [
+        ('int32', "expected '<type> <name>'"),
+        ('int33 x', "invalid type name 'int33'"),
+        ('int8 x 300', 'out of range for int8'),
+        ('bool x maybe', 'is not a bool'),
+        ('int32 BadName', 'invalid field name'),
+        ('int32 lower = 1', 'invalid constant name'),
+        ('int32[2] x [1]', 'exactly 2 values'),
+        ('int32[<=1] x [1, 2]', 'bound is 1'),
+        ('string<=2 x "abc"', 'exceeds its bound'),
+        ('int32[0] x', 'array size must be positive'),
+        ('int32<=3 x', 'only strings can be bounded'),
+        ('geometry_msgs/Point p 5', 'cannot have default values'),
+        ('int32 x\nint32 x', "duplicate name 'x'"),
+        ('int32[] X = 1', 'primitive, non-array type'),
+        ('float32 x abc', 'is not a number'),
+    ],
+)
 def test_errors_name_file_line_and_problem(text: str, problem: str) -> None:
     with pytest.raises(InterfaceError) as err:
         parse_message('# header\n' + text, 'demo/msg/Bad', source='Bad.msg')

@@ -56,10 +56,14 @@ def test_environment_search_path_in_a_fresh_process(tmp_path: Path) -> None:
         print(Age(years=4), Point2(x=1.0))
         print(interfaces.type_hash('my_pkg/msg/Age'))
     """)
-    env = {'ROS2LITE_INTERFACE_PATH': str(tmp_path / 'ws'), 'AMENT_PREFIX_PATH': str(prefix),
-           'PATH': '/usr/bin:/bin'}
-    out = subprocess.run([sys.executable, '-c', code], env=env, capture_output=True, text=True,
-                         check=True).stdout.splitlines()
+    env = {
+        'ROS2LITE_INTERFACE_PATH': str(tmp_path / 'ws'),
+        'AMENT_PREFIX_PATH': str(prefix),
+        'PATH': '/usr/bin:/bin',
+    }
+    out = subprocess.run(
+        [sys.executable, '-c', code], env=env, capture_output=True, text=True, check=True
+    ).stdout.splitlines()
     assert out[0] == 'my_pkg.msg.Age(years=4) other_pkg.msg.Point2(x=1.0, y=0.0)'
     assert out[1].startswith('RIHS01_') and len(out[1]) == 71
 
@@ -69,10 +73,12 @@ def test_import_hook_modules() -> None:
     from ros2lite.msgs.example_interfaces.action import Fibonacci  # type: ignore[attr-defined]
     from ros2lite.msgs.example_interfaces.srv import AddTwoInts  # type: ignore[attr-defined]
     from ros2lite.msgs.std_msgs.msg import String  # type: ignore[attr-defined]
+
     assert String(data='x').data == 'x'
     assert AddTwoInts.Request(a=1, b=2).b == 2
     assert Fibonacci.Impl.SendGoalService.Request().goal.order == 0
     import ros2lite.msgs.std_msgs.msg as std
+
     assert 'Header' in dir(std)
     with pytest.raises(ImportError):
         from ros2lite.msgs.std_msgs.msg import Missing  # type: ignore[attr-defined]  # noqa: F401

@@ -13,9 +13,19 @@ from .strategies import message
 SERVICES = [n for n in I.list_interfaces() if '/srv/' in n]
 ACTIONS = [n for n in I.list_interfaces() if '/action/' in n]
 SUBTYPES = [s + suffix for s in SERVICES for suffix in ('_Request', '_Response', '_Event')] + [
-    a + suffix for a in ACTIONS for suffix in (
-        '_Goal', '_Result', '_Feedback', '_FeedbackMessage', '_SendGoal_Request',
-        '_SendGoal_Response', '_GetResult_Request', '_GetResult_Response')]
+    a + suffix
+    for a in ACTIONS
+    for suffix in (
+        '_Goal',
+        '_Result',
+        '_Feedback',
+        '_FeedbackMessage',
+        '_SendGoal_Request',
+        '_SendGoal_Response',
+        '_GetResult_Request',
+        '_GetResult_Response',
+    )
+]
 
 
 def test_counts() -> None:

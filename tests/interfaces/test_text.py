@@ -10,8 +10,9 @@ from ros2lite.interfaces.registry import default_registry
 from ros2lite.interfaces.text import SEPARATOR, show_lines
 
 # mcap-ros2-support has no wstring reader, so types using wstring are checked elsewhere
-MESSAGES = [n for n in I.list_interfaces()
-            if '/msg/' in n and 'wstring' not in I.definition_text(n)]
+MESSAGES = [
+    n for n in I.list_interfaces() if '/msg/' in n and 'wstring' not in I.definition_text(n)
+]
 
 
 def test_concatenation_order_and_names() -> None:
@@ -20,15 +21,21 @@ def test_concatenation_order_and_names() -> None:
     assert parts[0] == 'std_msgs/Header header\nPose pose\n'
     headers = [p.split('\n', 1)[0] for p in parts[1:]]
     # depth first, siblings sorted, each once, named as written in the referencing file
-    assert headers == ['MSG: geometry_msgs/Pose', 'MSG: geometry_msgs/Point',
-                       'MSG: geometry_msgs/Quaternion', 'MSG: std_msgs/Header',
-                       'MSG: builtin_interfaces/Time']
+    assert headers == [
+        'MSG: geometry_msgs/Pose',
+        'MSG: geometry_msgs/Point',
+        'MSG: geometry_msgs/Quaternion',
+        'MSG: std_msgs/Header',
+        'MSG: builtin_interfaces/Time',
+    ]
 
 
 def test_service_event_uses_srv_text() -> None:
     text = I.definition_text('example_interfaces/srv/AddTwoInts_Event')
-    assert text == SEPARATOR + 'SRV: example_interfaces/srv/AddTwoInts\n' \
+    assert (
+        text == SEPARATOR + 'SRV: example_interfaces/srv/AddTwoInts\n'
         'int64 a\nint64 b\n---\nint64 sum\n'
+    )
 
 
 @pytest.mark.parametrize('name', MESSAGES)
@@ -47,32 +54,54 @@ def test_generated_action_types_get_synthesized_text() -> None:
     assert text == (
         'unique_identifier_msgs/UUID goal_id\nexample_interfaces/Fibonacci_Feedback feedback\n'
         '\n' + SEPARATOR + 'MSG: example_interfaces/Fibonacci_Feedback\nint32[] sequence\n'
-        '\n' + SEPARATOR + 'MSG: unique_identifier_msgs/UUID\nuint8[16] uuid\n')
+        '\n' + SEPARATOR + 'MSG: unique_identifier_msgs/UUID\nuint8[16] uuid\n'
+    )
 
 
 def test_show_expands_nested_types_with_tabs() -> None:
     lines = show_lines('geometry_msgs/msg/PoseStamped', default_registry())
-    assert lines[:5] == ['std_msgs/Header header', '\tbuiltin_interfaces/Time stamp',
-                         '\t\tint32 sec', '\t\tuint32 nanosec', '\tstring frame_id']
+    assert lines[:5] == [
+        'std_msgs/Header header',
+        '\tbuiltin_interfaces/Time stamp',
+        '\t\tint32 sec',
+        '\t\tuint32 nanosec',
+        '\tstring frame_id',
+    ]
 
 
 def test_show_comment_modes(tmp_path: pytest.TempPathFactory) -> None:
     from pathlib import Path
 
     from ros2lite.interfaces.registry import BUNDLED, Registry
+
     root = Path(str(tmp_path))
     (root / 'demo' / 'msg').mkdir(parents=True)
     (root / 'demo' / 'msg' / 'Outer.msg').write_text(
         '# A short, varied, and nested type\nInner inner # Comment - nesting\n\n'
-        'int32 X=1 # const comment\n# Trailing comment\n')
+        'int32 X=1 # const comment\n# Trailing comment\n'
+    )
     (root / 'demo' / 'msg' / 'Inner.msg').write_text('# inner doc\n\nbool flag # a flag\n')
     reg = Registry([root, BUNDLED])
     assert show_lines('demo/msg/Outer', reg) == [
-        '# A short, varied, and nested type', 'Inner inner # Comment - nesting',
-        '\tbool flag', '', 'int32 X=1 # const comment', '# Trailing comment']
+        '# A short, varied, and nested type',
+        'Inner inner # Comment - nesting',
+        '\tbool flag',
+        '',
+        'int32 X=1 # const comment',
+        '# Trailing comment',
+    ]
     assert show_lines('demo/msg/Outer', reg, all_comments=True) == [
-        '# A short, varied, and nested type', 'Inner inner # Comment - nesting',
-        '\t# inner doc', '', '\tbool flag # a flag', '', 'int32 X=1 # const comment',
-        '# Trailing comment']
+        '# A short, varied, and nested type',
+        'Inner inner # Comment - nesting',
+        '\t# inner doc',
+        '',
+        '\tbool flag # a flag',
+        '',
+        'int32 X=1 # const comment',
+        '# Trailing comment',
+    ]
     assert show_lines('demo/msg/Outer', reg, no_comments=True) == [
-        'Inner inner', '\tbool flag', 'int32 X=1 # const comment']
+        'Inner inner',
+        '\tbool flag',
+        'int32 X=1 # const comment',
+    ]

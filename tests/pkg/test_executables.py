@@ -51,8 +51,13 @@ def make_entry_points(root: Path, entries: dict[str, str]) -> Path:
 def test_bundled_demos() -> None:
     exes = get_executables('demo_nodes_py')
     assert [e.name for e in exes] == [
-        'add_two_ints_client', 'add_two_ints_client_async', 'add_two_ints_server', 'listener',
-        'parameter_blackboard', 'talker']
+        'add_two_ints_client',
+        'add_two_ints_client_async',
+        'add_two_ints_server',
+        'listener',
+        'parameter_blackboard',
+        'talker',
+    ]
     talker = find_executable('demo_nodes_py', 'talker')
     assert talker is not None and talker.origin == 'bundled' and talker.is_python
     assert find_executable('demo_nodes_py', 'nope') is None
@@ -62,33 +67,46 @@ def test_bundled_demos() -> None:
 
 
 def test_python_command_runs_like_a_console_script(tmp_path: Path) -> None:
-    (tmp_path / 'shadow_mod.py').write_text('import sys\n'
-                                             'def main():\n'
-                                             '    print(sys.argv)\n'
-                                             '    return 3\n')
+    (tmp_path / 'shadow_mod.py').write_text(
+        'import sys\ndef main():\n    print(sys.argv)\n    return 3\n'
+    )
     from ros2lite.pkg.executables import Executable
+
     exe = Executable('pkg', 'shown_name', 'shadow_mod:main', 'entry point')
     cmd = exe.command(['--ros-args', '-r', 'a:=b'])
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=30,
-                          env={**os.environ, 'PYTHONPATH': str(tmp_path)})
+    proc = subprocess.run(
+        cmd,
+        capture_output=True,
+        text=True,
+        timeout=30,
+        env={**os.environ, 'PYTHONPATH': str(tmp_path)},
+    )
     assert proc.returncode == 3
     assert proc.stdout.strip() == "['shown_name', '--ros-args', '-r', 'a:=b']"
     # the working directory is not importable (as with console scripts)
     (tmp_path / 'cwd_only.py').write_text('def main():\n    return 0\n')
     missing = Executable('pkg', 'x', 'cwd_only:main', 'entry point')
-    proc = subprocess.run(missing.command(), capture_output=True, text=True, timeout=30,
-                          cwd=tmp_path)
+    proc = subprocess.run(
+        missing.command(), capture_output=True, text=True, timeout=30, cwd=tmp_path
+    )
     assert proc.returncode == 1 and 'ModuleNotFoundError' in proc.stderr
 
 
 def test_ament_prefix(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    first = make_ament_prefix(tmp_path / 'ws', 'my_pkg', {
-        'node': '#!/bin/sh\n', 'sub/tool': '#!/bin/sh\n', 'data.txt': 'not executable',
-        '.hidden/node2': '#!/bin/sh\n'})
+    first = make_ament_prefix(
+        tmp_path / 'ws',
+        'my_pkg',
+        {
+            'node': '#!/bin/sh\n',
+            'sub/tool': '#!/bin/sh\n',
+            'data.txt': 'not executable',
+            '.hidden/node2': '#!/bin/sh\n',
+        },
+    )
     second = make_ament_prefix(tmp_path / 'opt', 'my_pkg', {'other': '#!/bin/sh\n'})
     make_ament_prefix(tmp_path / 'opt', 'demo_nodes_py', {'talker': '#!/bin/sh\n'})
     monkeypatch.setenv('AMENT_PREFIX_PATH', f'{first}{os.pathsep}{second}')
-    exes = get_executables('my_pkg')   # the first prefix owns the package
+    exes = get_executables('my_pkg')  # the first prefix owns the package
     assert sorted(e.name for e in exes) == ['node', 'tool']
     node = find_executable('my_pkg', 'node')
     assert node is not None and node.origin == 'ament' and not node.is_python
@@ -100,20 +118,25 @@ def test_ament_prefix(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def test_multiple_executables(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    prefix = make_ament_prefix(tmp_path, 'dup', {'a/run': '#!/bin/sh\n',
-                                                 'b/run': '#!/bin/sh\n'})
+    prefix = make_ament_prefix(tmp_path, 'dup', {'a/run': '#!/bin/sh\n', 'b/run': '#!/bin/sh\n'})
     monkeypatch.setenv('AMENT_PREFIX_PATH', str(prefix))
     with pytest.raises(MultipleExecutablesError) as info:
         find_executable('dup', 'run')
-    assert str(info.value) == ('Multiple executables found:\n'
-                               f'- {prefix}/lib/dup/a/run\n- {prefix}/lib/dup/b/run')
+    assert str(info.value) == (
+        f'Multiple executables found:\n- {prefix}/lib/dup/a/run\n- {prefix}/lib/dup/b/run'
+    )
 
 
 def test_entry_points(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    make_entry_points(tmp_path, {'ep_pkg.hello': 'hello_mod:main',
-                                 'ep_pkg.deep.name': 'hello_mod:Obj.run',
-                                 'demo_nodes_py.talker': 'hello_mod:main',
-                                 'no_dot_name': 'hello_mod:main'})
+    make_entry_points(
+        tmp_path,
+        {
+            'ep_pkg.hello': 'hello_mod:main',
+            'ep_pkg.deep.name': 'hello_mod:Obj.run',
+            'demo_nodes_py.talker': 'hello_mod:main',
+            'no_dot_name': 'hello_mod:main',
+        },
+    )
     monkeypatch.syspath_prepend(str(tmp_path))
     hello = find_executable('ep_pkg', 'hello')
     assert hello is not None and hello.origin == 'entry point'

@@ -20,8 +20,12 @@ def private_domain(monkeypatch: pytest.MonkeyPatch) -> int:
     """A ROS_DOMAIN_ID no other test run is likely to use, and a clean Zenoh environment."""
     domain = random.randint(100, 232)
     monkeypatch.setenv("ROS_DOMAIN_ID", str(domain))
-    for var in ("ZENOH_CONFIG_OVERRIDE", "ZENOH_SESSION_CONFIG_URI", "ZENOH_ROUTER_CONFIG_URI",
-                "ROS2LITE_ROUTER"):
+    for var in (
+        "ZENOH_CONFIG_OVERRIDE",
+        "ZENOH_SESSION_CONFIG_URI",
+        "ZENOH_ROUTER_CONFIG_URI",
+        "ROS2LITE_ROUTER",
+    ):
         monkeypatch.delenv(var, raising=False)
     return domain
 

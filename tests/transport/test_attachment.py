@@ -26,7 +26,7 @@ TALKER_TOKEN = (
 def test_reference_example_bytes() -> None:
     raw = encode_attachment(1, 1700000000123456789, GID)
     assert len(raw) == ATTACHMENT_SIZE
-    expected = bytes.fromhex("0100000000000000" "15cd853dfe9c9717" "10") + GID
+    expected = bytes.fromhex("010000000000000015cd853dfe9c971710") + GID
     assert raw == expected
     assert decode_attachment(raw) == Attachment(1, 1700000000123456789, GID)
 

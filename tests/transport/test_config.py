@@ -74,30 +74,37 @@ def test_node_sessions_are_peers_that_retry_the_router_often() -> None:
     assert get(config, "mode") == "peer"
     # a peer opens without a router and keeps retrying it; a client gives up at once
     assert get(config, "connect/exit_on_failure") == {
-        "router": False, "peer": False, "client": True}
+        "router": False,
+        "peer": False,
+        "client": True,
+    }
     assert get(config, "connect/timeout_ms") == {"router": -1, "peer": -1, "client": 1000}
     retry = get(config, "connect/retry")
     assert isinstance(retry, dict) and retry["period_max_ms"] <= 500
-    assert get(config, "scouting/gossip/autoconnect") == {
-        "router": [], "peer": ["router", "peer"]}
+    assert get(config, "scouting/gossip/autoconnect") == {"router": [], "peer": ["router", "peer"]}
 
 
-@pytest.mark.parametrize("endpoint, mode", [
-    ("tcp/127.0.0.1:7447", "peer"),
-    ("tcp/localhost:7447", "peer"),
-    ("tcp/[::1]:7447", "peer"),
-    ("tcp/0.0.0.0:7447", "peer"),
-    ("unixsock-stream//tmp/router.sock", "peer"),
-    ("tcp/10.0.0.1:7447", "client"),
-    ("tcp/robot.local:7447", "client"),
-    ("udp/127.0.0.1:7447", "peer"),
-])
+@pytest.mark.parametrize(
+    "endpoint, mode",
+    [
+        ("tcp/127.0.0.1:7447", "peer"),
+        ("tcp/localhost:7447", "peer"),
+        ("tcp/[::1]:7447", "peer"),
+        ("tcp/0.0.0.0:7447", "peer"),
+        ("unixsock-stream//tmp/router.sock", "peer"),
+        ("tcp/10.0.0.1:7447", "client"),
+        ("tcp/robot.local:7447", "client"),
+        ("udp/127.0.0.1:7447", "peer"),
+    ],
+)
 def test_node_mode_is_peer_only_with_a_router_on_this_host(endpoint: str, mode: str) -> None:
     # our peers listen on loopback only, so a remote router could not introduce them
     assert cfg.node_session_mode(endpoint, env={}) == mode
     # the router the session really connects to decides
-    override = {"ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["{endpoint}"]',
-                "ROS2LITE_ROUTER": "tcp/127.0.0.1:7447"}
+    override = {
+        "ZENOH_CONFIG_OVERRIDE": f'connect/endpoints=["{endpoint}"]',
+        "ROS2LITE_ROUTER": "tcp/127.0.0.1:7447",
+    }
     assert cfg.node_session_mode(env=override) == mode
 
 
@@ -124,7 +131,8 @@ def test_config_override_is_applied() -> None:
     # The explicit router (the CLI's --router) beats the environment ...
     env2 = {"ZENOH_CONFIG_OVERRIDE": 'connect/endpoints=["tcp/127.0.0.1:2"]'}
     assert get(cfg.session_config("tcp/127.0.0.1:1", env=env2), "connect/endpoints") == [
-        "tcp/127.0.0.1:1"]
+        "tcp/127.0.0.1:1"
+    ]
     # ... while the override beats ROS2LITE_ROUTER.
     env2["ROS2LITE_ROUTER"] = "tcp/127.0.0.1:3"
     assert get(cfg.session_config(env=env2), "connect/endpoints") == ["tcp/127.0.0.1:2"]
@@ -142,8 +150,10 @@ def test_config_override_is_applied() -> None:
 
 def test_session_config_file_replaces_defaults(tmp_path: Path) -> None:
     path = tmp_path / "session.json5"
-    path.write_text('{ mode: "peer", connect: { endpoints: ["tcp/127.0.0.1:4242"] },'
-                    ' queries_default_timeout: 4321 }')
+    path.write_text(
+        '{ mode: "peer", connect: { endpoints: ["tcp/127.0.0.1:4242"] },'
+        ' queries_default_timeout: 4321 }'
+    )
     config = cfg.session_config(env={"ZENOH_SESSION_CONFIG_URI": str(path)})
     assert get(config, "mode") == "peer"
     assert get(config, "queries_default_timeout") == 4321
@@ -182,7 +192,8 @@ def test_open_session_fails_fast_without_router(private_domain: int, dead_endpoi
         open_session(dead_endpoint)
     assert time.monotonic() - start < 3.0
     assert str(err.value) == (
-        f"No Zenoh router answers at {dead_endpoint} (start one with 'ros2lite daemon start')")
+        f"No Zenoh router answers at {dead_endpoint} (start one with 'ros2lite daemon start')"
+    )
     assert err.value.endpoint == dead_endpoint
 
 
@@ -216,14 +227,16 @@ def test_pub_sub_and_liveliness_through_router(
 
         sub = b.declare_subscriber(key, on_sample)
         token = a.liveliness().declare_token(
-            node_token(private_domain, str(a.zid()), 0, "/", "talker"))
+            node_token(private_domain, str(a.zid()), 0, "/", "talker")
+        )
         deadline = time.monotonic() + 5
         while not arrived.is_set() and time.monotonic() < deadline:
             a.put(key, b"\x00\x01\x00\x00hello")
             arrived.wait(0.05)
         assert got and got[0] == b"\x00\x01\x00\x00hello"
-        replies = b.liveliness().get(liveliness_subscription_key(private_domain),
-                                     zenoh.handlers.FifoChannel(1024), timeout=2)
+        replies = b.liveliness().get(
+            liveliness_subscription_key(private_domain), zenoh.handlers.FifoChannel(1024), timeout=2
+        )
         keys = [str(r.ok.key_expr) for r in replies if r.ok is not None]
         assert keys == [f"@ros2_lv/{private_domain}/{a.zid()}/0/0/NN/%/%/talker"]
         token.undeclare()

@@ -27,31 +27,76 @@ MP_TALKER = (
 
 def test_build_reference_tokens() -> None:
     assert k.node_token(0, "aac3178e146ba6f1fc6e6a4085e77f21", 0, "/", "listener") == NN_LISTENER
-    assert k.endpoint_token(
-        0, "aac3178e146ba6f1fc6e6a4085e77f21", 0, 10, EntityKind.SUBSCRIPTION, "/", "listener",
-        "/chatter", "std_msgs/msg/String", STRING_HASH, QoSProfile(depth=10),
-    ) == MS_LISTENER
-    assert k.endpoint_token(
-        0, "f9980ee0495eaafb3e38f0d19e2eae12", 0, 10, "SS", "/", "add_two_ints_server",
-        "/add_two_ints", "example_interfaces/srv/AddTwoInts", ADD_HASH, QoSProfile(),
-    ) == SS_ADD
-    assert k.endpoint_token(
-        0, "8b20917502ee955ac4476e0266340d5c", 0, 10, EntityKind.PUBLISHER, "/robot1", "talker",
-        "/robot1/chatter", "std_msgs::msg::dds_::String_", STRING_HASH, QoSProfile(depth=7),
-    ) == MP_TALKER
+    assert (
+        k.endpoint_token(
+            0,
+            "aac3178e146ba6f1fc6e6a4085e77f21",
+            0,
+            10,
+            EntityKind.SUBSCRIPTION,
+            "/",
+            "listener",
+            "/chatter",
+            "std_msgs/msg/String",
+            STRING_HASH,
+            QoSProfile(depth=10),
+        )
+        == MS_LISTENER
+    )
+    assert (
+        k.endpoint_token(
+            0,
+            "f9980ee0495eaafb3e38f0d19e2eae12",
+            0,
+            10,
+            "SS",
+            "/",
+            "add_two_ints_server",
+            "/add_two_ints",
+            "example_interfaces/srv/AddTwoInts",
+            ADD_HASH,
+            QoSProfile(),
+        )
+        == SS_ADD
+    )
+    assert (
+        k.endpoint_token(
+            0,
+            "8b20917502ee955ac4476e0266340d5c",
+            0,
+            10,
+            EntityKind.PUBLISHER,
+            "/robot1",
+            "talker",
+            "/robot1/chatter",
+            "std_msgs::msg::dds_::String_",
+            STRING_HASH,
+            QoSProfile(depth=7),
+        )
+        == MP_TALKER
+    )
 
 
 def test_parse_reference_tokens() -> None:
     nn = parse_token(NN_LISTENER)
-    assert nn == Entity(0, "aac3178e146ba6f1fc6e6a4085e77f21", 0, 0, EntityKind.NODE, "/", "/",
-                        "listener")
+    assert nn == Entity(
+        0, "aac3178e146ba6f1fc6e6a4085e77f21", 0, 0, EntityKind.NODE, "/", "/", "listener"
+    )
     assert nn.is_node and nn.node_fqn == "/listener"
     mp = parse_token(MP_TALKER)
     assert mp is not None
-    assert (mp.zid, mp.nid, mp.eid, mp.kind) == ("8b20917502ee955ac4476e0266340d5c", 0, 10,
-                                                 EntityKind.PUBLISHER)
-    assert (mp.enclave, mp.namespace, mp.node_name, mp.node_fqn) == ("/", "/robot1", "talker",
-                                                                     "/robot1/talker")
+    assert (mp.zid, mp.nid, mp.eid, mp.kind) == (
+        "8b20917502ee955ac4476e0266340d5c",
+        0,
+        10,
+        EntityKind.PUBLISHER,
+    )
+    assert (mp.enclave, mp.namespace, mp.node_name, mp.node_fqn) == (
+        "/",
+        "/robot1",
+        "talker",
+        "/robot1/talker",
+    )
     assert mp.topic_name == "/robot1/chatter"
     assert mp.type_name == "std_msgs/msg/String"
     assert mp.dds_type_name == "std_msgs::msg::dds_::String_"
@@ -104,11 +149,14 @@ def test_bad_qos_chunk_is_lenient_unless_strict() -> None:
 def test_data_keys() -> None:
     # Reference §1 examples.
     assert k.topic_key(0, "/chatter", "std_msgs/msg/String", STRING_HASH) == (
-        f"0/chatter/std_msgs::msg::dds_::String_/{STRING_HASH}")
+        f"0/chatter/std_msgs::msg::dds_::String_/{STRING_HASH}"
+    )
     assert k.topic_key(0, "/robot1/chatter", "std_msgs/msg/String", STRING_HASH) == (
-        f"0/robot1/chatter/std_msgs::msg::dds_::String_/{STRING_HASH}")
+        f"0/robot1/chatter/std_msgs::msg::dds_::String_/{STRING_HASH}"
+    )
     assert k.topic_key(2, "/add_two_ints", "example_interfaces/srv/AddTwoInts", ADD_HASH) == (
-        f"2/add_two_ints/example_interfaces::srv::dds_::AddTwoInts_/{ADD_HASH}")
+        f"2/add_two_ints/example_interfaces::srv::dds_::AddTwoInts_/{ADD_HASH}"
+    )
     assert k.topic_key(0, "/x", "a/msg/B", "TypeHashNotSupported").endswith("/TypeHashNotSupported")
     with pytest.raises(ValueError):
         k.topic_key(0, "/", "std_msgs/msg/String", STRING_HASH)
@@ -121,10 +169,14 @@ def test_data_keys() -> None:
     [
         ("std_msgs/msg/String", "std_msgs::msg::dds_::String_"),
         ("example_interfaces/srv/AddTwoInts", "example_interfaces::srv::dds_::AddTwoInts_"),
-        ("example_interfaces/action/Fibonacci_SendGoal",
-         "example_interfaces::action::dds_::Fibonacci_SendGoal_"),
-        ("example_interfaces/action/Fibonacci_FeedbackMessage",
-         "example_interfaces::action::dds_::Fibonacci_FeedbackMessage_"),
+        (
+            "example_interfaces/action/Fibonacci_SendGoal",
+            "example_interfaces::action::dds_::Fibonacci_SendGoal_",
+        ),
+        (
+            "example_interfaces/action/Fibonacci_FeedbackMessage",
+            "example_interfaces::action::dds_::Fibonacci_FeedbackMessage_",
+        ),
         ("action_msgs/srv/CancelGoal", "action_msgs::srv::dds_::CancelGoal_"),
     ],
 )

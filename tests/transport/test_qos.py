@@ -83,8 +83,10 @@ def test_lenient_decode_of_old_default_durability() -> None:
     assert decode_qos("2::,5") == decode_qos("2::,5:,:,:,,")
 
 
-@pytest.mark.parametrize("chunk", ["", "abc", "x::,:,:,:,,", "::,ten:,:,:,,", "9::,:,:,:,,",
-                                   "::,:,:,:,,:", "::,1,2:,:,:,,"])
+@pytest.mark.parametrize(
+    "chunk",
+    ["", "abc", "x::,:,:,:,,", "::,ten:,:,:,,", "9::,:,:,:,,", "::,:,:,:,,:", "::,1,2:,:,:,,"],
+)
 def test_garbage_chunks_raise(chunk: str) -> None:
     with pytest.raises(ValueError, match="QoS chunk"):
         decode_qos(chunk)
@@ -97,8 +99,9 @@ def test_presets_and_short_keys() -> None:
     assert preset("parameters").depth == preset("parameter_events").depth == 1000
     assert preset("action_status_default").durability == DurabilityPolicy.TRANSIENT_LOCAL
     assert preset("system_default").reliability == ReliabilityPolicy.SYSTEM_DEFAULT
-    assert QoSProfile() == QoSProfile(ReliabilityPolicy.RELIABLE, DurabilityPolicy.VOLATILE,
-                                      HistoryPolicy.KEEP_LAST, 10)
+    assert QoSProfile() == QoSProfile(
+        ReliabilityPolicy.RELIABLE, DurabilityPolicy.VOLATILE, HistoryPolicy.KEEP_LAST, 10
+    )
     with pytest.raises(ValueError, match="sensor_data"):
         preset("nope")
     assert ReliabilityPolicy.from_short_key("best_effort") is ReliabilityPolicy.BEST_EFFORT
@@ -136,16 +139,36 @@ R, D, L = ReliabilityPolicy, DurabilityPolicy, LivelinessPolicy
         (QoSProfile(), QoSProfile(durability=D.TRANSIENT_LOCAL), False, "Volatile publisher"),
         (QoSProfile(durability=D.TRANSIENT_LOCAL), QoSProfile(), True, ""),
         (QoSProfile(), QoSProfile(deadline=Duration(seconds=1)), False, "publisher does not"),
-        (QoSProfile(deadline=Duration(seconds=2)), QoSProfile(deadline=Duration(seconds=1)), False,
-         "deadline is less"),
-        (QoSProfile(deadline=Duration(seconds=1)), QoSProfile(deadline=Duration(seconds=2)),
-         True, ""),
-        (QoSProfile(liveliness=L.AUTOMATIC), QoSProfile(liveliness=L.MANUAL_BY_TOPIC), False,
-         "manual by topic"),
-        (QoSProfile(), QoSProfile(liveliness_lease_duration=Duration(seconds=1)), False,
-         "lease duration, but publisher does not"),
-        (QoSProfile(liveliness_lease_duration=Duration(seconds=3)),
-         QoSProfile(liveliness_lease_duration=Duration(seconds=1)), False, "less than publisher"),
+        (
+            QoSProfile(deadline=Duration(seconds=2)),
+            QoSProfile(deadline=Duration(seconds=1)),
+            False,
+            "deadline is less",
+        ),
+        (
+            QoSProfile(deadline=Duration(seconds=1)),
+            QoSProfile(deadline=Duration(seconds=2)),
+            True,
+            "",
+        ),
+        (
+            QoSProfile(liveliness=L.AUTOMATIC),
+            QoSProfile(liveliness=L.MANUAL_BY_TOPIC),
+            False,
+            "manual by topic",
+        ),
+        (
+            QoSProfile(),
+            QoSProfile(liveliness_lease_duration=Duration(seconds=1)),
+            False,
+            "lease duration, but publisher does not",
+        ),
+        (
+            QoSProfile(liveliness_lease_duration=Duration(seconds=3)),
+            QoSProfile(liveliness_lease_duration=Duration(seconds=1)),
+            False,
+            "less than publisher",
+        ),
         # Tokens carry "infinite" where users write "unspecified": both mean no deadline.
         (decode_qos("::,10:,:,:,,"), QoSProfile(), True, ""),
         (QoSProfile(), decode_qos("::,10:,:,:,,"), True, ""),
@@ -163,11 +186,16 @@ def test_compatibility(pub: QoSProfile, sub: QoSProfile, ok: bool, fragment: str
 def test_resolve_best_available() -> None:
     ba = q.qos_profile_best_available
     pub = resolve_best_available(ba, [], for_publisher=True)
-    assert (pub.reliability, pub.durability, pub.liveliness) == (R.RELIABLE, D.TRANSIENT_LOCAL,
-                                                                 L.AUTOMATIC)
+    assert (pub.reliability, pub.durability, pub.liveliness) == (
+        R.RELIABLE,
+        D.TRANSIENT_LOCAL,
+        L.AUTOMATIC,
+    )
     assert pub.deadline.is_unspecified
-    pubs = [QoSProfile(reliability=R.BEST_EFFORT, deadline=Duration(seconds=2)),
-            QoSProfile(durability=D.TRANSIENT_LOCAL, deadline=Duration(seconds=5))]
+    pubs = [
+        QoSProfile(reliability=R.BEST_EFFORT, deadline=Duration(seconds=2)),
+        QoSProfile(durability=D.TRANSIENT_LOCAL, deadline=Duration(seconds=5)),
+    ]
     sub = resolve_best_available(ba, pubs, for_publisher=False)
     assert (sub.reliability, sub.durability) == (R.BEST_EFFORT, D.VOLATILE)
     assert sub.deadline == Duration(seconds=5)

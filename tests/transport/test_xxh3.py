@@ -17,6 +17,7 @@ from ros2lite.transport.attachment import gid_from_token
 def xxh3_128_hexdigest(data: bytes) -> str:
     return xxhash.xxh3_128_hexdigest(data)
 
+
 PATTERN_VECTORS = {
     0: "99aa06d3014798d86001c324468d497f",
     1: "22bbb76b211a39ba13e608bc156defed",

@@ -11,20 +11,35 @@ from ..common import CliSession, strategy_options
 @click.command('find')
 @strategy_options()
 @click.argument('action_type', shell_complete=completion.action_types)
-@click.option('-c', '--count-actions', is_flag=True,
-              help='Only display the number of actions discovered')
-@click.option('--include-hidden-actions', '-a', '--all', 'include_hidden_actions',
-              is_flag=True,
-              help="Also match hidden actions (a name part starts with '_')")
-def cli(action_type: str, count_actions: bool, include_hidden_actions: bool, no_daemon: bool,
-        use_sim_time: bool) -> None:
+@click.option(
+    '-c', '--count-actions', is_flag=True, help='Only display the number of actions discovered'
+)
+@click.option(
+    '--include-hidden-actions',
+    '-a',
+    '--all',
+    'include_hidden_actions',
+    is_flag=True,
+    help="Also match hidden actions (a name part starts with '_')",
+)
+def cli(
+    action_type: str,
+    count_actions: bool,
+    include_hidden_actions: bool,
+    no_daemon: bool,
+    use_sim_time: bool,
+) -> None:
     """Find actions from type."""
     from ros2lite.graph import action_names_and_types
     from ros2lite.transport.keys import is_hidden_name
+
     with CliSession(no_daemon=no_daemon) as session:
         entities = session.entities()
-    found = [name for name, types in action_names_and_types(entities)
-             if action_type in types and (include_hidden_actions or not is_hidden_name(name))]
+    found = [
+        name
+        for name, types in action_names_and_types(entities)
+        if action_type in types and (include_hidden_actions or not is_hidden_name(name))
+    ]
     if count_actions:
         click.echo(len(found))
     elif found:

@@ -9,12 +9,15 @@ from ..common import CliSession, strategy_options
 from ..errors import CliError
 
 
-def _section(title: str, rows: list[tuple[str, list[str]]], show_types: bool,
-             count: bool) -> list[str]:
+def _section(
+    title: str, rows: list[tuple[str, list[str]]], show_types: bool, count: bool
+) -> list[str]:
     lines = [f'{title}: {len(rows)}']
     if not count:
-        lines += [f'    {node} [{", ".join(types)}]' if show_types else f'    {node}'
-                  for node, types in rows]
+        lines += [
+            f'    {node} [{", ".join(types)}]' if show_types else f'    {node}'
+            for node, types in rows
+        ]
     return lines
 
 
@@ -22,13 +25,19 @@ def _section(title: str, rows: list[tuple[str, list[str]]], show_types: bool,
 @strategy_options()
 @click.argument('action_name', shell_complete=completion.actions)
 @click.option('-t', '--show-types', is_flag=True, help='Additionally show the action type')
-@click.option('-c', '--count', is_flag=True,
-              help='Only display the number of action clients and action servers')
-def cli(action_name: str, show_types: bool, count: bool, no_daemon: bool,
-        use_sim_time: bool) -> None:
+@click.option(
+    '-c',
+    '--count',
+    is_flag=True,
+    help='Only display the number of action clients and action servers',
+)
+def cli(
+    action_name: str, show_types: bool, count: bool, no_daemon: bool, use_sim_time: bool
+) -> None:
     """Print information about an action."""
     from ros2lite.graph import action_endpoints
     from ros2lite.transport.keys import expand_topic_name, validate_full_topic_name
+
     try:
         name = expand_topic_name(action_name, 'ros2lite', '/')
         validate_full_topic_name(name)

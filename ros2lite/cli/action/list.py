@@ -10,22 +10,40 @@ from ..common import CliSession, strategy_options
 @click.command('list')
 @strategy_options()
 @click.option('-t', '--show-types', is_flag=True, help='Additionally show the action type')
-@click.option('-c', '--count-actions', is_flag=True,
-              help='Only display the number of actions discovered')
-@click.option('--include-hidden-actions', '-a', '--all', 'include_hidden_actions',
-              is_flag=True,
-              help="Also list hidden actions (a name part starts with '_')")
-def cli(show_types: bool, count_actions: bool, include_hidden_actions: bool, no_daemon: bool,
-        use_sim_time: bool) -> None:
+@click.option(
+    '-c', '--count-actions', is_flag=True, help='Only display the number of actions discovered'
+)
+@click.option(
+    '--include-hidden-actions',
+    '-a',
+    '--all',
+    'include_hidden_actions',
+    is_flag=True,
+    help="Also list hidden actions (a name part starts with '_')",
+)
+def cli(
+    show_types: bool,
+    count_actions: bool,
+    include_hidden_actions: bool,
+    no_daemon: bool,
+    use_sim_time: bool,
+) -> None:
     """Output a list of action names."""
     from ros2lite.graph import action_names_and_types
     from ros2lite.transport.keys import is_hidden_name
+
     with CliSession(no_daemon=no_daemon) as session:
         entities = session.entities()
-    actions = [(name, types) for name, types in action_names_and_types(entities)
-               if include_hidden_actions or not is_hidden_name(name)]
+    actions = [
+        (name, types)
+        for name, types in action_names_and_types(entities)
+        if include_hidden_actions or not is_hidden_name(name)
+    ]
     if count_actions:
         click.echo(len(actions))
     elif actions:
-        click.echo('\n'.join(f'{name} [{", ".join(types)}]' if show_types else name
-                             for name, types in actions))
+        click.echo(
+            '\n'.join(
+                f'{name} [{", ".join(types)}]' if show_types else name for name, types in actions
+            )
+        )

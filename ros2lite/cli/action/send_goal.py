@@ -20,6 +20,7 @@ def action_class(action_type: str) -> tuple[str, Any]:
     """('pkg/action/Name', class) for 'pkg/action/Name' or 'pkg/Name'."""
     from ros2lite.action.goals import resolve_action_type
     from ros2lite.interfaces import InterfaceError
+
     try:
         cls = resolve_action_type(action_type)
     except (InterfaceError, ValueError, TypeError, LookupError):
@@ -31,11 +32,12 @@ def build_goal(cls: Any, values: str) -> Any:
     import yaml
 
     from ros2lite.interfaces import set_message_fields
+
     goal = cls.Goal()
     try:
         fields = yaml.safe_load(values)
         set_message_fields(goal, fields)
-    except Exception as e:   # any reason the values do not fit, as ros2cli reports it
+    except Exception as e:  # any reason the values do not fit, as ros2cli reports it
         raise CliError(f'Failed to populate message fields: {e!r}') from None
     return goal
 
@@ -61,6 +63,7 @@ class FeedbackPrinter:
     @staticmethod
     def _print(message: Any) -> None:
         from ros2lite.interfaces import message_to_yaml
+
         click.echo(f'Feedback:\n    {message_to_yaml(message.feedback)}')
 
 
@@ -70,11 +73,20 @@ class FeedbackPrinter:
 @click.argument('goal', required=False)
 @click.option('--stdin', 'use_stdin', is_flag=True, help='Read the goal from standard input')
 @click.option('-f', '--feedback', is_flag=True, help='Echo feedback messages for the goal')
-@click.option('--timeout', type=click.FloatRange(min=0), metavar='SECONDS',
-              help='Give up when no action server shows up within this time '
-                   '(default: wait forever)')
-def cli(action_name: str, action_type: str, goal: str | None, use_stdin: bool, feedback: bool,
-        timeout: float | None) -> None:
+@click.option(
+    '--timeout',
+    type=click.FloatRange(min=0),
+    metavar='SECONDS',
+    help='Give up when no action server shows up within this time (default: wait forever)',
+)
+def cli(
+    action_name: str,
+    action_type: str,
+    goal: str | None,
+    use_stdin: bool,
+    feedback: bool,
+    timeout: float | None,
+) -> None:
     """Send an action goal.
 
     GOAL fills the goal message in YAML (e.g. '{order: 5}').
@@ -87,19 +99,34 @@ def cli(action_name: str, action_type: str, goal: str | None, use_stdin: bool, f
     pkg, _, name = type_name.split('/')
     with CliSession() as session:
         node = session.node(f'_ros2lite_send_goal_{pkg}_action_{name}')
-        send_goal(session, node, cls, action_name, goal_msg,
-                  FeedbackPrinter() if feedback else None, timeout)
+        send_goal(
+            session,
+            node,
+            cls,
+            action_name,
+            goal_msg,
+            FeedbackPrinter() if feedback else None,
+            timeout,
+        )
 
 
-def send_goal(session: CliSession, node: Any, cls: Any, action_name: str, goal: Any,
-              feedback: FeedbackPrinter | None, timeout: float | None) -> None:
+def send_goal(
+    session: CliSession,
+    node: Any,
+    cls: Any,
+    action_name: str,
+    goal: Any,
+    feedback: FeedbackPrinter | None,
+    timeout: float | None,
+) -> None:
     from ros2lite.action import ActionClient
     from ros2lite.action.goals import GoalStatus, goal_id_hex, status_name
     from ros2lite.executors import SingleThreadedExecutor
     from ros2lite.interfaces import message_to_yaml
+
     try:
         client = ActionClient(node, cls, action_name)
-    except ValueError as e:   # an invalid action name
+    except ValueError as e:  # an invalid action name
         raise CliError(str(e)) from None
     executor = SingleThreadedExecutor(context=session.context)
     executor.add_node(node)
@@ -125,9 +152,12 @@ def send_goal(session: CliSession, node: Any, cls: Any, action_name: str, goal: 
         # Ctrl-C (or SIGTERM) while the goal is active cancels it, as ros2cli does; a goal
         # whose first status has not arrived yet is just as alive. A failure such as the
         # server going away is reported as it is, with no cancel that could not succeed.
-        if not isinstance(e, Exception) and goal_handle is not None and \
-                goal_handle.status in (GoalStatus.STATUS_UNKNOWN, GoalStatus.STATUS_ACCEPTED,
-                                       GoalStatus.STATUS_EXECUTING):
+        if (
+            not isinstance(e, Exception)
+            and goal_handle is not None
+            and goal_handle.status
+            in (GoalStatus.STATUS_UNKNOWN, GoalStatus.STATUS_ACCEPTED, GoalStatus.STATUS_EXECUTING)
+        ):
             _cancel(executor, goal_handle)
         raise
     finally:
@@ -144,6 +174,7 @@ def _outcome(executor: Any, future: Any, doing: str) -> Any:
 
 def _cancel(executor: Any, goal_handle: Any) -> None:
     from ros2lite.action.goals import goal_key
+
     click.echo('Canceling goal...')
     response = _outcome(executor, goal_handle.cancel_goal_async(), 'canceling goal')
     canceling = response.goals_canceling

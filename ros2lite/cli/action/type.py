@@ -16,4 +16,5 @@ from ..common import print_types_of, strategy_options
 def cli(ctx: click.Context, action_name: str, no_daemon: bool, use_sim_time: bool) -> None:
     """Print a action's type."""
     from ros2lite.graph import action_names_and_types
+
     print_types_of(ctx, action_name, no_daemon, action_names_and_types)

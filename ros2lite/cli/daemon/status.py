@@ -12,6 +12,7 @@ def cli() -> None:
     from ros2lite import daemon
 
     from .sessions import table
+
     st = daemon.status(sessions=True)
     click.echo('The daemon is running' if st.running else 'The daemon is not running')
     if st.running and st.ours:
@@ -19,8 +20,9 @@ def cli() -> None:
     elif st.running:
         click.echo(f'Serving {st.endpoint} (a Zenoh router not started by ros2lite)')
     elif st.ours:
-        click.echo(f'The ros2lite daemon (pid {st.pid}) exists but does not answer at '
-                   f'{st.endpoint}')
+        click.echo(
+            f'The ros2lite daemon (pid {st.pid}) exists but does not answer at {st.endpoint}'
+        )
     else:
         click.echo(f'No Zenoh router answers at {st.endpoint}')
     if st.running:

@@ -12,6 +12,7 @@ from ..errors import CliError
 def cli() -> None:
     """Stop the daemon if it is running."""
     from ros2lite import daemon
+
     try:
         result = daemon.stop()
     except daemon.DaemonError as e:
@@ -19,8 +20,10 @@ def cli() -> None:
     click.echo('The daemon has been stopped' if result.stopped else 'The daemon is not running')
     if result.stopped and result.sessions is not None:
         from .sessions import consequences
+
         for line in consequences(result.sessions):
             click.echo(line)
     if result.foreign:
-        click.echo(f'A Zenoh router not started by ros2lite answers at {result.endpoint}; '
-                   'not stopping it')
+        click.echo(
+            f'A Zenoh router not started by ros2lite answers at {result.endpoint}; not stopping it'
+        )

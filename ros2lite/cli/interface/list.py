@@ -24,6 +24,7 @@ def print_sections(kinds: list[str], names: list[str]) -> None:
 @click.option('-a', '--only-actions', is_flag=True, help='Print out only the action types')
 def cli(only_msgs: bool, only_srvs: bool, only_actions: bool) -> None:
     """List all interface types available."""
-    chosen = [k for k, flag in (('msg', only_msgs), ('srv', only_srvs), ('action', only_actions))
-              if flag]
+    chosen = [
+        k for k, flag in (('msg', only_msgs), ('srv', only_srvs), ('action', only_actions)) if flag
+    ]
     print_sections(chosen or ['msg', 'srv', 'action'], list_interfaces())

@@ -10,12 +10,12 @@ from ros2lite.interfaces import list_interfaces
 @click.command('packages')
 @click.option('-m', '--only-msgs', is_flag=True, help='Only list packages that generate messages')
 @click.option('-s', '--only-srvs', is_flag=True, help='Only list packages that generate services')
-@click.option('-a', '--only-actions', is_flag=True,
-              help='Only list packages that generate actions')
+@click.option('-a', '--only-actions', is_flag=True, help='Only list packages that generate actions')
 def cli(only_msgs: bool, only_srvs: bool, only_actions: bool) -> None:
     """Output a list of packages which contain interfaces."""
     kind = 'msg' if only_msgs else 'srv' if only_srvs else 'action' if only_actions else None
-    packages = {n.split('/')[0] for n in list_interfaces()
-                if kind is None or n.split('/')[1] == kind}
+    packages = {
+        n.split('/')[0] for n in list_interfaces() if kind is None or n.split('/')[1] == kind
+    }
     for name in sorted(packages):
         click.echo(name)

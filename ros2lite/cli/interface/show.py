@@ -25,14 +25,16 @@ def read_type_argument(value: str) -> str:
 
 @click.command('show')
 @click.argument('type_name', metavar='TYPE', shell_complete=completion.interface_types)
-@click.option('--all-comments', is_flag=True,
-              help='Show all comments, including for nested interface definitions')
+@click.option(
+    '--all-comments',
+    is_flag=True,
+    help='Show all comments, including for nested interface definitions',
+)
 @click.option('--no-comments', is_flag=True, help='Show no comments or whitespace')
 def cli(type_name: str, all_comments: bool, no_comments: bool) -> None:
     """Output the interface definition (TYPE '-' reads it from stdin)."""
     if all_comments and no_comments:
         raise click.UsageError('--all-comments and --no-comments are mutually exclusive')
     name = read_type_argument(type_name)
-    lines = show_lines(name, default_registry(), all_comments=all_comments,
-                       no_comments=no_comments)
+    lines = show_lines(name, default_registry(), all_comments=all_comments, no_comments=no_comments)
     click.echo('\n'.join(lines))

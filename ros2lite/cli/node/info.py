@@ -18,29 +18,39 @@ def _section(title: str, items: list[tuple[str, list[str]]]) -> str:
 @click.command('info')
 @strategy_options()
 @click.argument('node_name', shell_complete=completion.nodes)
-@click.option('--include-hidden', is_flag=True,
-              help='Also show hidden topics, services and actions')
+@click.option(
+    '--include-hidden', is_flag=True, help='Also show hidden topics, services and actions'
+)
 def cli(node_name: str, include_hidden: bool, no_daemon: bool, use_sim_time: bool) -> None:
     """Output information about a node."""
     from ros2lite.graph import node_full_names, node_info
     from ros2lite.transport.keys import split_fqn
+
     full = node_name if node_name.startswith('/') else '/' + node_name
     with CliSession(no_daemon=no_daemon) as session:
         entities = session.entities()
     count = node_full_names(entities, include_hidden=include_hidden).count(full)
     if count > 1:
-        click.echo(f'There are {count} nodes in the graph with the exact name "{full}". '
-                   'You are seeing information about only one of them.', err=True)
+        click.echo(
+            f'There are {count} nodes in the graph with the exact name "{full}". '
+            'You are seeing information about only one of them.',
+            err=True,
+        )
     namespace, name = split_fqn(full)
     info = node_info(entities, name, namespace, include_hidden) if count else None
     if info is None:
         raise CliError(f"Unable to find node '{full}'")
-    click.echo(''.join([
-        full + '\n',
-        _section('Subscribers', info.subscribers),
-        _section('Publishers', info.publishers),
-        _section('Service Servers', info.service_servers),
-        _section('Service Clients', info.service_clients),
-        _section('Action Servers', info.action_servers),
-        _section('Action Clients', info.action_clients),
-    ]), nl=False)
+    click.echo(
+        ''.join(
+            [
+                full + '\n',
+                _section('Subscribers', info.subscribers),
+                _section('Publishers', info.publishers),
+                _section('Service Servers', info.service_servers),
+                _section('Service Clients', info.service_clients),
+                _section('Action Servers', info.action_servers),
+                _section('Action Clients', info.action_clients),
+            ]
+        ),
+        nl=False,
+    )

@@ -6,19 +6,29 @@ import click
 
 from ..common import CliSession, strategy_options
 
-DUPLICATE_WARNING = ('WARNING: Be aware that there are nodes in the graph that share an exact '
-                     'name, which can have unintended side effects.')
+DUPLICATE_WARNING = (
+    'WARNING: Be aware that there are nodes in the graph that share an exact '
+    'name, which can have unintended side effects.'
+)
 
 
 @click.command('list')
 @strategy_options()
-@click.option('-a', '--all', 'show_all', is_flag=True,
-              help="Also list hidden nodes (name starts with '_')")
-@click.option('-c', '--count-nodes', '--count', 'count_nodes', is_flag=True,
-              help='Print only how many nodes there are')
+@click.option(
+    '-a', '--all', 'show_all', is_flag=True, help="Also list hidden nodes (name starts with '_')"
+)
+@click.option(
+    '-c',
+    '--count-nodes',
+    '--count',
+    'count_nodes',
+    is_flag=True,
+    help='Print only how many nodes there are',
+)
 def cli(show_all: bool, count_nodes: bool, no_daemon: bool, use_sim_time: bool) -> None:
     """Output a list of available nodes."""
     from ros2lite.graph import node_full_names
+
     with CliSession(no_daemon=no_daemon) as session:
         names = node_full_names(session.entities(), include_hidden=show_all)
     if count_nodes:

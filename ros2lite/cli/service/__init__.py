@@ -16,8 +16,7 @@ VERBS = {
 
 
 @click.group(cls=LazyGroup, lazy=VERBS, invoke_without_command=True)
-@click.option('--include-hidden-services', is_flag=True,
-              help='Consider hidden services as well')
+@click.option('--include-hidden-services', is_flag=True, help='Consider hidden services as well')
 @click.pass_context
 def cli(ctx: click.Context, include_hidden_services: bool) -> None:
     """Various service related sub-commands."""

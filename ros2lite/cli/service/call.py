@@ -18,31 +18,46 @@ from ..errors import CliError
 @click.argument('service_type', shell_complete=completion.service_types)
 @click.argument('values', required=False)
 @click.option('--stdin', 'use_stdin', is_flag=True, help='Read values from standard input')
-@click.option('-r', '--rate', type=float, metavar='N',
-              help='Repeat the call at a specific rate in Hz')
-@click.option('--timeout', type=click.FloatRange(min=0, min_open=True), metavar='SECONDS',
-              help='Give up if the service is not available, or does not answer, within '
-                   'this many seconds (default: wait forever, as ros2cli does)')
-def cli(service_name: str, service_type: str, values: str | None, use_stdin: bool,
-        rate: float | None, timeout: float | None) -> None:
+@click.option(
+    '-r', '--rate', type=float, metavar='N', help='Repeat the call at a specific rate in Hz'
+)
+@click.option(
+    '--timeout',
+    type=click.FloatRange(min=0, min_open=True),
+    metavar='SECONDS',
+    help='Give up if the service is not available, or does not answer, within '
+    'this many seconds (default: wait forever, as ros2cli does)',
+)
+def cli(
+    service_name: str,
+    service_type: str,
+    values: str | None,
+    use_stdin: bool,
+    rate: float | None,
+    timeout: float | None,
+) -> None:
     """Call a service.
 
     VALUES fills the request in YAML (e.g. '{a: 1, b: 2}').
     """
     from ros2lite.interfaces import get_interface, set_message_fields
+
     if use_stdin and values is not None:
         raise click.UsageError('argument --stdin: not allowed with argument values')
     if rate is not None and rate <= 0:
         raise CliError('rate must be greater than zero')
-    type_name = interface_type_name(service_type, 'srv',
-                                    invalid='The passed service type is invalid',
-                                    not_kind='The passed type is not a service')
+    type_name = interface_type_name(
+        service_type,
+        'srv',
+        invalid='The passed service type is invalid',
+        not_kind='The passed type is not a service',
+    )
     srv_class = get_interface(type_name)
     fields = _parse_values(sys.stdin.read() if use_stdin else values or '{}')
     request = srv_class.Request()
     try:
         set_message_fields(request, fields)
-    except Exception as e:   # any reason the values do not fit, as ros2cli reports it
+    except Exception as e:  # any reason the values do not fit, as ros2cli reports it
         raise CliError(f'Failed to populate field: {e}') from None
     package, _, name = type_name.split('/')
     with CliSession() as session:
@@ -61,6 +76,7 @@ def cli(service_name: str, service_type: str, values: str | None, use_stdin: boo
 
 def _parse_values(values: str) -> dict[str, Any]:
     import yaml
+
     try:
         parsed = yaml.safe_load(values)
     except yaml.YAMLError:
@@ -77,16 +93,17 @@ def _wait(client: Any, timeout: float | None) -> None:
         return
     click.echo('waiting for service to become available...')
     if not client.wait_for_service(timeout_sec=timeout):
-        raise CliError(f"Timed out after {timeout:g} s waiting for service "
-                       f"'{client.srv_name}'")
+        raise CliError(f"Timed out after {timeout:g} s waiting for service '{client.srv_name}'")
 
 
 def _call(client: Any, request: Any, timeout: float | None) -> Any:
     from ros2lite.client import ServiceCallError
+
     try:
         return client.call(request, timeout_sec=timeout)
     except TimeoutError:
-        raise CliError(f"Timed out after {timeout:g} s waiting for a response from "
-                       f"'{client.srv_name}'") from None
+        raise CliError(
+            f"Timed out after {timeout:g} s waiting for a response from '{client.srv_name}'"
+        ) from None
     except ServiceCallError as e:
         raise CliError(f'Exception while calling service: {e!r}') from None

@@ -17,6 +17,7 @@ def cli(ctx: click.Context, service_name: str, no_daemon: bool, use_sim_time: bo
     """Print information about a service."""
     from ros2lite.graph import count, service_names_and_types
     from ros2lite.transport.keys import EntityKind, expand_topic_name
+
     try:
         name = expand_topic_name(service_name, 'ros2lite', '/')
     except ValueError:

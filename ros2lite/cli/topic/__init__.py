@@ -20,8 +20,7 @@ VERBS = {
 
 
 @click.group(cls=LazyGroup, lazy=VERBS, invoke_without_command=True)
-@click.option('--include-hidden-topics', is_flag=True,
-              help='Consider hidden topics as well')
+@click.option('--include-hidden-topics', is_flag=True, help='Consider hidden topics as well')
 @click.pass_context
 def cli(ctx: click.Context, include_hidden_topics: bool) -> None:
     """Various topic related sub-commands."""

@@ -26,15 +26,23 @@ def _scaled(bytes_per_s: float) -> Callable[[float], str]:
 
 def bw_line(s: Any) -> str:
     fmt = _scaled(s.bytes_per_second)
-    return (f'{fmt(s.bytes_per_second)}/s from {s.count} messages\n'
-            f'\tMessage size mean: {fmt(s.mean)} min: {fmt(s.min)} max: {fmt(s.max)}')
+    return (
+        f'{fmt(s.bytes_per_second)}/s from {s.count} messages\n'
+        f'\tMessage size mean: {fmt(s.mean)} min: {fmt(s.min)} max: {fmt(s.max)}'
+    )
 
 
 @click.command('bw')
 @click.argument('topic', shell_complete=completion.topics)
-@click.option('-w', '--window', type=click.IntRange(min=1), default=DEFAULT_WINDOW_SIZE,
-              show_default=True, metavar='WINDOW',
-              help='maximum window size, in # of messages, for calculating rate')
+@click.option(
+    '-w',
+    '--window',
+    type=click.IntRange(min=1),
+    default=DEFAULT_WINDOW_SIZE,
+    show_default=True,
+    metavar='WINDOW',
+    help='maximum window size, in # of messages, for calculating rate',
+)
 @strategy_options(no_daemon=False)
 def cli(topic: str, window: int, use_sim_time: bool) -> None:
     """Display bandwidth used by topic."""
@@ -42,6 +50,7 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
     from ros2lite.topic_monitor import MonitoredSubscription
     from ros2lite.topic_stats import BandwidthStats
     from ros2lite.transport.qos import qos_profile_sensor_data
+
     stats = BandwidthStats(window)
     with CliSession(use_sim_time=use_sim_time) as session:
         node = session.node()
@@ -62,8 +71,9 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
                 click.echo(bw_line(summary))
 
         # sizes are taken as samples arrive, so none is missed and none is decoded
-        MonitoredSubscription(node, type_name, full_name, None, qos_profile_sensor_data,
-                              on_arrival=on_arrival)
+        MonitoredSubscription(
+            node, type_name, full_name, None, qos_profile_sensor_data, on_arrival=on_arrival
+        )
         click.echo(f'Subscribed to [{topic}]')
         node.create_timer(1.0, report)
         executor = SingleThreadedExecutor(context=session.context)

@@ -15,14 +15,22 @@ DEFAULT_WINDOW_SIZE = 10000
 
 
 def delay_line(s: Any) -> str:
-    return (f'average delay: {s.mean * 1e-9:.3f}\n\tmin: {s.min * 1e-9:.3f}s '
-            f'max: {s.max * 1e-9:.3f}s std dev: {s.std_dev * 1e-9:.5f}s window: {s.count}')
+    return (
+        f'average delay: {s.mean * 1e-9:.3f}\n\tmin: {s.min * 1e-9:.3f}s '
+        f'max: {s.max * 1e-9:.3f}s std dev: {s.std_dev * 1e-9:.5f}s window: {s.count}'
+    )
 
 
 @click.command('delay')
 @click.argument('topic', shell_complete=completion.topics)
-@click.option('-w', '--window', type=click.IntRange(min=0), default=DEFAULT_WINDOW_SIZE,
-              show_default=True, help='window size, in # of messages, for calculating rate')
+@click.option(
+    '-w',
+    '--window',
+    type=click.IntRange(min=0),
+    default=DEFAULT_WINDOW_SIZE,
+    show_default=True,
+    help='window size, in # of messages, for calculating rate',
+)
 @strategy_options(no_daemon=False)
 def cli(topic: str, window: int, use_sim_time: bool) -> None:
     """Display delay of topic from timestamp in header."""
@@ -30,6 +38,7 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
     from ros2lite.interfaces import deserialize, get_interface
     from ros2lite.topic_stats import DelayStats
     from ros2lite.transport.qos import qos_profile_sensor_data
+
     stats = DelayStats(window)
     with CliSession(use_sim_time=use_sim_time) as session:
         node = session.node()
@@ -41,8 +50,7 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
 
         def on_sample(data: bytes, info: Any) -> None:
             stamp = deserialize(type_name, data).header.stamp
-            now = clock.now().nanoseconds if clock.ros_time_is_active \
-                else info.received_timestamp
+            now = clock.now().nanoseconds if clock.ros_time_is_active else info.received_timestamp
             if stats.add(now, stamp.sec * 1_000_000_000 + stamp.nanosec):
                 click.echo('time has reset, resetting counters')
 
@@ -52,8 +60,7 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
             summary = stats.summary()
             click.echo('no new messages' if summary is None else delay_line(summary))
 
-        node.create_subscription(type_name, full_name, on_sample, qos_profile_sensor_data,
-                                 raw=True)
+        node.create_subscription(type_name, full_name, on_sample, qos_profile_sensor_data, raw=True)
         node.create_timer(1.0, report)
         executor = SingleThreadedExecutor(context=session.context)
         executor.add_node(node)

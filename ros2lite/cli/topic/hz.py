@@ -25,13 +25,21 @@ HEADER = ['topic', 'rate', 'min_delta', 'max_delta', 'std_dev', 'window']
 
 
 def hz_line(s: Any) -> str:
-    return (f'average rate: {s.rate:.3f}\n\tmin: {s.min * 1e-9:.3f}s '
-            f'max: {s.max * 1e-9:.3f}s std dev: {s.std_dev * 1e-9:.5f}s window: {s.count}')
+    return (
+        f'average rate: {s.rate:.3f}\n\tmin: {s.min * 1e-9:.3f}s '
+        f'max: {s.max * 1e-9:.3f}s std dev: {s.std_dev * 1e-9:.5f}s window: {s.count}'
+    )
 
 
 def table_cells(topic: str, s: Any) -> list[str]:
-    return [topic, f'{s.rate:.3f}', f'{s.min * 1e-9:.3f}', f'{s.max * 1e-9:.3f}',
-            f'{s.std_dev * 1e-9:.5f}', str(s.count)]
+    return [
+        topic,
+        f'{s.rate:.3f}',
+        f'{s.min * 1e-9:.3f}',
+        f'{s.max * 1e-9:.3f}',
+        f'{s.std_dev * 1e-9:.5f}',
+        str(s.count),
+    ]
 
 
 def ascii_table(rows: list[list[str]]) -> str:
@@ -39,8 +47,7 @@ def ascii_table(rows: list[list[str]]) -> str:
     widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(HEADER)]
     head = '   '.join(h.center(w) for h, w in zip(HEADER, widths, strict=True))
     rule = '=' * (sum(widths) + 3 * (len(widths) - 1))
-    body = '\n'.join('   '.join(c.ljust(w) for c, w in zip(r, widths, strict=True))
-                     for r in rows)
+    body = '\n'.join('   '.join(c.ljust(w) for c, w in zip(r, widths, strict=True)) for r in rows)
     return f'{head}\n{rule}\n{body}\n'
 
 
@@ -49,12 +56,14 @@ class RichTable:
 
     def __init__(self) -> None:
         from rich.live import Live
+
         self._rows: dict[str, list[str]] = {}
         self._live = Live(auto_refresh=False, transient=False)
         self._live.start()
 
     def show(self, rows: list[list[str]]) -> None:
         from rich.table import Table
+
         for row in rows:
             self._rows[row[0]] = row
         table = Table(*HEADER)
@@ -82,29 +91,55 @@ def ros_or_arrival_time(node: Any, wall_time: bool) -> Callable[[int], int]:
             now: int = clock.now().nanoseconds
             return now
         return arrived
+
     return ros_time
 
 
 @click.command('hz')
-@click.argument('topic_names', metavar='TOPIC_NAME...', nargs=-1, required=True,
-                shell_complete=completion.topics)
-@click.option('-w', '--window', 'window_size', type=click.IntRange(min=1),
-              default=DEFAULT_WINDOW_SIZE, show_default=True, metavar='WINDOW',
-              help='window size, in # of messages, for calculating rate')
-@click.option('--filter', 'filter_expr', metavar='EXPR',
-              help='only measure messages matching the specified Python expression')
-@click.option('--wall-time', is_flag=True,
-              help='calculates rate using wall time which can be helpful when clock is not '
-                   'published during simulation')
+@click.argument(
+    'topic_names',
+    metavar='TOPIC_NAME...',
+    nargs=-1,
+    required=True,
+    shell_complete=completion.topics,
+)
+@click.option(
+    '-w',
+    '--window',
+    'window_size',
+    type=click.IntRange(min=1),
+    default=DEFAULT_WINDOW_SIZE,
+    show_default=True,
+    metavar='WINDOW',
+    help='window size, in # of messages, for calculating rate',
+)
+@click.option(
+    '--filter',
+    'filter_expr',
+    metavar='EXPR',
+    help='only measure messages matching the specified Python expression',
+)
+@click.option(
+    '--wall-time',
+    is_flag=True,
+    help='calculates rate using wall time which can be helpful when clock is not '
+    'published during simulation',
+)
 @strategy_options(no_daemon=False)
-def cli(topic_names: tuple[str, ...], window_size: int, filter_expr: str | None,
-        wall_time: bool, use_sim_time: bool) -> None:
+def cli(
+    topic_names: tuple[str, ...],
+    window_size: int,
+    filter_expr: str | None,
+    wall_time: bool,
+    use_sim_time: bool,
+) -> None:
     """Print the average receiving rate to screen.
 
     The rate is measured where the subscription receives samples, so it can differ from the
     publisher's rate when resources or QoS get in the way.
     """
     from ros2lite.topic_stats import RateStats
+
     filter_fn = compile_filter(filter_expr)
     with CliSession(use_sim_time=use_sim_time) as session:
         node = session.node()
@@ -121,8 +156,14 @@ def cli(topic_names: tuple[str, ...], window_size: int, filter_expr: str | None,
         _report_every_second(session, node, stats)
 
 
-def _subscribe(node: Any, type_name: str, topic: str, rate: Any, stamp: Callable[[int], int],
-               filter_fn: Callable[[Any], Any] | None) -> None:
+def _subscribe(
+    node: Any,
+    type_name: str,
+    topic: str,
+    rate: Any,
+    stamp: Callable[[int], int],
+    filter_fn: Callable[[Any], Any] | None,
+) -> None:
     """Count samples on arrival (Zenoh thread, nothing queued or decoded) unless a filter
     needs the message; then decode on the executor and use the arrival stamp it carries."""
     from ros2lite.transport.qos import qos_profile_sensor_data
@@ -133,20 +174,28 @@ def _subscribe(node: Any, type_name: str, topic: str, rate: Any, stamp: Callable
 
     if filter_fn is None:
         from ros2lite.topic_monitor import MonitoredSubscription
-        MonitoredSubscription(node, type_name, topic, None, qos_profile_sensor_data,
-                              on_arrival=lambda _size, _att, arrived: record(arrived))
+
+        MonitoredSubscription(
+            node,
+            type_name,
+            topic,
+            None,
+            qos_profile_sensor_data,
+            on_arrival=lambda _size, _att, arrived: record(arrived),
+        )
         return
     from ros2lite.interfaces import deserialize
 
     def count_matching(data: bytes, info: Any) -> None:
         if filter_fn(deserialize(type_name, data)):
             record(info.received_timestamp)
-    node.create_subscription(type_name, topic, count_matching, qos_profile_sensor_data,
-                             raw=True)
+
+    node.create_subscription(type_name, topic, count_matching, qos_profile_sensor_data, raw=True)
 
 
 def _report_every_second(session: CliSession, node: Any, stats: dict[str, Any]) -> None:
     from ros2lite.executors import SingleThreadedExecutor
+
     executor = SingleThreadedExecutor(context=session.context)
     executor.add_node(node)
     fancy = RichTable() if len(stats) > 1 and use_rich() else None

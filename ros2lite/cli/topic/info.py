@@ -12,9 +12,12 @@ from ..errors import CliError
 @click.command('info')
 @strategy_options()
 @click.argument('topic_name', shell_complete=completion.topics)
-@click.option('-v', '--verbose', is_flag=True,
-              help='Also describe every publisher and subscription: node, type hash, GID '
-                   'and QoS')
+@click.option(
+    '-v',
+    '--verbose',
+    is_flag=True,
+    help='Also describe every publisher and subscription: node, type hash, GID and QoS',
+)
 def cli(topic_name: str, verbose: bool, no_daemon: bool, use_sim_time: bool) -> None:
     """Print information about a topic."""
     from ros2lite.graph import (
@@ -24,6 +27,7 @@ def cli(topic_name: str, verbose: bool, no_daemon: bool, use_sim_time: bool) -> 
         topic_names_and_types,
     )
     from ros2lite.transport.keys import EntityKind, expand_topic_name
+
     try:
         name = expand_topic_name(topic_name, 'ros2lite', '/')
     except ValueError as e:
@@ -36,11 +40,15 @@ def cli(topic_name: str, verbose: bool, no_daemon: bool, use_sim_time: bool) -> 
         raise CliError(f"Unknown topic '{name}'")
     end = '\n\n' if verbose else '\n'
     out = [f'Type: {types[0] if len(types) == 1 else types}' + end]
-    for kind, label in ((EntityKind.PUBLISHER, 'Publisher'),
-                        (EntityKind.SUBSCRIPTION, 'Subscription')):
+    for kind, label in (
+        (EntityKind.PUBLISHER, 'Publisher'),
+        (EntityKind.SUBSCRIPTION, 'Subscription'),
+    ):
         out.append(f'{label} count: {count(entities, name, kind)}' + end)
         if verbose:
-            endpoints = sorted(endpoints_by_topic(entities, name, kind),
-                               key=lambda i: (i.node_namespace, i.node_name, i.endpoint_gid))
+            endpoints = sorted(
+                endpoints_by_topic(entities, name, kind),
+                key=lambda i: (i.node_namespace, i.node_name, i.endpoint_gid),
+            )
             out += [format_endpoint_info(info) + end for info in endpoints]
     click.echo(''.join(out), nl=False)

@@ -11,24 +11,47 @@ def _section(rows: list[tuple[str, list[str], int]], publishers: bool) -> str:
     """ros2cli's `-v` block: heading, one ` * ` line per topic with endpoints, blank line."""
     what = 'publisher' if publishers else 'subscriber'
     lines = [('Published' if publishers else 'Subscribed') + ' topics:']
-    lines += [f' * {name} [{", ".join(types)}] {n} {what}{"s" if n > 1 else ""}'
-              for name, types, n in rows if n]
+    lines += [
+        f' * {name} [{", ".join(types)}] {n} {what}{"s" if n > 1 else ""}'
+        for name, types, n in rows
+        if n
+    ]
     return '\n'.join(lines) + '\n'
 
 
 @click.command('list')
 @strategy_options()
 @click.option('-t', '--show-types', is_flag=True, help="Also print each topic's type(s)")
-@click.option('-c', '--count-topics', '--count', 'count_topics', is_flag=True,
-              help='Print only how many topics there are')
-@click.option('--include-hidden-topics', '-a', '--all', 'include_hidden_topics', is_flag=True,
-              help="Also list hidden topics (a name part starts with '_')")
+@click.option(
+    '-c',
+    '--count-topics',
+    '--count',
+    'count_topics',
+    is_flag=True,
+    help='Print only how many topics there are',
+)
+@click.option(
+    '--include-hidden-topics',
+    '-a',
+    '--all',
+    'include_hidden_topics',
+    is_flag=True,
+    help="Also list hidden topics (a name part starts with '_')",
+)
 @click.option('-v', '--verbose', is_flag=True, help='Count publishers and subscribers per topic')
 @click.pass_context
-def cli(ctx: click.Context, show_types: bool, count_topics: bool, include_hidden_topics: bool,
-        verbose: bool, no_daemon: bool, use_sim_time: bool) -> None:
+def cli(
+    ctx: click.Context,
+    show_types: bool,
+    count_topics: bool,
+    include_hidden_topics: bool,
+    verbose: bool,
+    no_daemon: bool,
+    use_sim_time: bool,
+) -> None:
     """Output a list of available topics."""
     from ros2lite.graph import topic_counts, topic_names_and_types
+
     with CliSession(no_daemon=no_daemon) as session:
         entities = session.entities()
     topics = topic_names_and_types(entities, include_hidden(ctx, include_hidden_topics))

@@ -13,7 +13,7 @@ from ..common import CliSession, qos_from_options, qos_options, strategy_options
 from ..errors import CliError
 from .echo import message_type_name
 
-WAIT_STEP = 0.1   # seconds between subscription-count checks while waiting
+WAIT_STEP = 0.1  # seconds between subscription-count checks while waiting
 
 
 @click.command('pub')
@@ -21,29 +21,73 @@ WAIT_STEP = 0.1   # seconds between subscription-count checks while waiting
 @click.argument('message_type', shell_complete=completion.message_types)
 @click.argument('values', required=False)
 @click.option('--stdin', 'use_stdin', is_flag=True, help='Read values from standard input')
-@click.option('-r', '--rate', type=click.FloatRange(min=0, min_open=True), default=1.0,
-              metavar='N', show_default=True, help='Publishing rate in Hz')
-@click.option('-p', '--print', 'print_nth', type=int, default=1, metavar='N',
-              show_default=True, help='Only print every N-th published message (0: never)')
+@click.option(
+    '-r',
+    '--rate',
+    type=click.FloatRange(min=0, min_open=True),
+    default=1.0,
+    metavar='N',
+    show_default=True,
+    help='Publishing rate in Hz',
+)
+@click.option(
+    '-p',
+    '--print',
+    'print_nth',
+    type=int,
+    default=1,
+    metavar='N',
+    show_default=True,
+    help='Only print every N-th published message (0: never)',
+)
 @click.option('-1', '--once', is_flag=True, help='Publish one message and exit')
-@click.option('-t', '--times', type=click.IntRange(min=0), default=0, show_default=True,
-              help='Publish this number of times and then exit (0: forever)')
-@click.option('-w', '--wait-matching-subscriptions', type=click.IntRange(min=0),
-              help='Wait until finding the specified number of matching subscriptions. '
-                   'Defaults to 1 when using "-1"/"--once"/"--times", otherwise to 0.')
-@click.option('--max-wait-time-secs', type=click.FloatRange(min=0, min_open=True),
-              help='Maximum wait time in seconds for --wait-matching-subscriptions '
-                   '(default: wait forever)')
-@click.option('--keep-alive', type=click.FloatRange(min=0, min_open=True), default=0.1,
-              metavar='N', show_default=True,
-              help='Keep publishing node alive for N seconds after the last msg')
+@click.option(
+    '-t',
+    '--times',
+    type=click.IntRange(min=0),
+    default=0,
+    show_default=True,
+    help='Publish this number of times and then exit (0: forever)',
+)
+@click.option(
+    '-w',
+    '--wait-matching-subscriptions',
+    type=click.IntRange(min=0),
+    help='Wait until finding the specified number of matching subscriptions. '
+    'Defaults to 1 when using "-1"/"--once"/"--times", otherwise to 0.',
+)
+@click.option(
+    '--max-wait-time-secs',
+    type=click.FloatRange(min=0, min_open=True),
+    help='Maximum wait time in seconds for --wait-matching-subscriptions (default: wait forever)',
+)
+@click.option(
+    '--keep-alive',
+    type=click.FloatRange(min=0, min_open=True),
+    default=0.1,
+    metavar='N',
+    show_default=True,
+    help='Keep publishing node alive for N seconds after the last msg',
+)
 @click.option('-n', '--node-name', help='Name of the created publishing node')
 @qos_options('default')
 @strategy_options(no_daemon=False)
-def cli(topic_name: str, message_type: str, values: str | None, use_stdin: bool, rate: float,
-        print_nth: int, once: bool, times: int, wait_matching_subscriptions: int | None,
-        max_wait_time_secs: float | None, keep_alive: float, node_name: str | None,
-        use_sim_time: bool, **qos: Any) -> None:
+def cli(
+    topic_name: str,
+    message_type: str,
+    values: str | None,
+    use_stdin: bool,
+    rate: float,
+    print_nth: int,
+    once: bool,
+    times: int,
+    wait_matching_subscriptions: int | None,
+    max_wait_time_secs: float | None,
+    keep_alive: float,
+    node_name: str | None,
+    use_sim_time: bool,
+    **qos: Any,
+) -> None:
     """Publish a message to a topic.
 
     VALUES fills the message in YAML (e.g. 'data: Hello World'); 'now' sets a time field and
@@ -57,18 +101,31 @@ def cli(topic_name: str, message_type: str, values: str | None, use_stdin: bool,
         values = sys.stdin.read()
     if once:
         times = 1
-    wait_for = wait_matching_subscriptions if wait_matching_subscriptions is not None \
-        else int(times != 0)
+    wait_for = (
+        wait_matching_subscriptions if wait_matching_subscriptions is not None else int(times != 0)
+    )
     profile = qos_from_options(**qos)
     with CliSession(use_sim_time=use_sim_time) as session:
         node = session.node(node_name)
-        publish_loop(session, node, topic_name, message_type, '{}' if values is None else values,
-                     1.0 / rate, print_nth, times, wait_for, max_wait_time_secs, profile,
-                     keep_alive)
+        publish_loop(
+            session,
+            node,
+            topic_name,
+            message_type,
+            '{}' if values is None else values,
+            1.0 / rate,
+            print_nth,
+            times,
+            wait_for,
+            max_wait_time_secs,
+            profile,
+            keep_alive,
+        )
 
 
 def parse_values(values: str) -> dict[str, Any]:
     import yaml
+
     try:
         parsed = yaml.safe_load(values)
     except yaml.YAMLError:
@@ -78,34 +135,51 @@ def parse_values(values: str) -> dict[str, Any]:
     return parsed
 
 
-def publish_loop(session: CliSession, node: Any, topic: str, message_type: str, values: str,
-                 period: float, print_nth: int, times: int, wait_for: int,
-                 max_wait: float | None, profile: Any, keep_alive: float) -> None:
+def publish_loop(
+    session: CliSession,
+    node: Any,
+    topic: str,
+    message_type: str,
+    values: str,
+    period: float,
+    print_nth: int,
+    times: int,
+    wait_for: int,
+    max_wait: float | None,
+    profile: Any,
+    keep_alive: float,
+) -> None:
     """ros2cli's order: check the type and YAML, wait for subscribers, fill, publish."""
     from ros2lite.interfaces import get_interface, set_message_fields
+
     type_name = message_type_name(message_type)
     fields = parse_values(values)
     pub = node.create_publisher(type_name, topic, profile)
     if wait_for == 0 and max_wait is not None:
-        raise CliError('--max-wait-time-secs option is only effective with '
-                       '--wait-matching-subscriptions, --once or --times')
+        raise CliError(
+            '--max-wait-time-secs option is only effective with '
+            '--wait-matching-subscriptions, --once or --times'
+        )
     waited = 0.0
     ticks = 0
     while pub.get_subscription_count() < wait_for:
-        if not ticks:   # say so once a second, look ten times a second
+        if not ticks:  # say so once a second, look ten times a second
             click.echo(f'Waiting for at least {wait_for} matching subscription(s)...')
         if max_wait is not None and max_wait <= waited:
-            raise CliError(f'Timed out waiting for subscribers: Expected {wait_for} subcribers '
-                           f'but only got {pub.get_subscription_count()} subscribers')
+            raise CliError(
+                f'Timed out waiting for subscribers: Expected {wait_for} subcribers '
+                f'but only got {pub.get_subscription_count()} subscribers'
+            )
         ticks = (ticks + 1) % 10
         time.sleep(WAIT_STEP)
         waited += WAIT_STEP
 
     msg = get_interface(type_name)()
     try:
-        stamp_setters = set_message_fields(msg, fields, expand_header_auto=True,
-                                           expand_time_now=True)
-    except Exception as e:   # any reason the values do not fit, as ros2cli reports it
+        stamp_setters = set_message_fields(
+            msg, fields, expand_header_auto=True, expand_time_now=True
+        )
+    except Exception as e:  # any reason the values do not fit, as ros2cli reports it
         raise CliError(f'Failed to populate field: {e}') from None
     click.echo('publisher: beginning loop')
     count = 0
@@ -126,10 +200,11 @@ def publish_loop(session: CliSession, node: Any, topic: str, message_type: str, 
     publish_one()
     if times != 1:
         from ros2lite.executors import SingleThreadedExecutor
+
         executor = SingleThreadedExecutor(context=session.context)
         executor.add_node(node)
         timer = node.create_timer(period, publish_one)
         while session.context.ok() and (times == 0 or count < times):
             executor.spin_once(None)
         node.destroy_timer(timer)
-    time.sleep(keep_alive)   # let the last samples reach the wire before the session closes
+    time.sleep(keep_alive)  # let the last samples reach the wire before the session closes

@@ -15,5 +15,10 @@ from ..common import include_hidden, print_types_of, strategy_options
 def cli(ctx: click.Context, topic_name: str, no_daemon: bool, use_sim_time: bool) -> None:
     """Print a topic's type."""
     from ros2lite.graph import topic_names_and_types
-    print_types_of(ctx, topic_name, no_daemon,
-                   lambda entities: topic_names_and_types(entities, include_hidden(ctx)))
+
+    print_types_of(
+        ctx,
+        topic_name,
+        no_daemon,
+        lambda entities: topic_names_and_types(entities, include_hidden(ctx)),
+    )

@@ -39,7 +39,7 @@ class FibonacciActionClient(Node):
             self.get_logger().info(f'Goal succeeded! Result: {result.sequence}')
         else:
             self.get_logger().info(f'Goal failed with status: {status}')
-        ros2lite.shutdown(context=self.context)   # leave after the result, as the demo does
+        ros2lite.shutdown(context=self.context)  # leave after the result, as the demo does
 
     def send_goal(self) -> None:
         self.get_logger().info('Waiting for action server...')
@@ -48,7 +48,8 @@ class FibonacciActionClient(Node):
         goal_msg.order = 10
         self.get_logger().info('Sending goal request...')
         self._send_goal_future = self._action_client.send_goal_async(
-            goal_msg, feedback_callback=self.feedback_callback)
+            goal_msg, feedback_callback=self.feedback_callback
+        )
         self._send_goal_future.add_done_callback(self.goal_response_callback)
 
 

@@ -23,11 +23,14 @@ class FibonacciActionServer(Node):
     def __init__(self) -> None:
         super().__init__('fibonacci_action_server')
         self._action_server = ActionServer(
-            self, Fibonacci, 'fibonacci',
+            self,
+            Fibonacci,
+            'fibonacci',
             execute_callback=self.execute_callback,
             callback_group=ReentrantCallbackGroup(),
             goal_callback=self.goal_callback,
-            cancel_callback=self.cancel_callback)
+            cancel_callback=self.cancel_callback,
+        )
 
     def destroy(self) -> None:
         self._action_server.destroy()
@@ -52,10 +55,11 @@ class FibonacciActionServer(Node):
                 self.get_logger().info('Goal canceled')
                 return Fibonacci.Result()
             feedback_msg.partial_sequence.append(
-                feedback_msg.partial_sequence[i] + feedback_msg.partial_sequence[i - 1])
+                feedback_msg.partial_sequence[i] + feedback_msg.partial_sequence[i - 1]
+            )
             self.get_logger().info(f'Publishing feedback: {feedback_msg.partial_sequence}')
             goal_handle.publish_feedback(feedback_msg)
-            time.sleep(1)   # for demonstration, as the ROS demo does
+            time.sleep(1)  # for demonstration, as the ROS demo does
         goal_handle.succeed()
         result = Fibonacci.Result()
         result.sequence = feedback_msg.partial_sequence
@@ -70,6 +74,7 @@ def main(args: list[str] | None = None) -> int:
     def body() -> None:
         # a multi-threaded executor, so goals are processed concurrently
         ros2lite.spin(FibonacciActionServer(), executor=MultiThreadedExecutor())
+
     return run_main(body, args)
 
 

@@ -21,7 +21,8 @@ def request_once(a: int, b: int) -> None:
         node.get_logger().info(f'Service call failed {e!r}')
     else:
         node.get_logger().info(
-            f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}')
+            f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}'
+        )
     node.destroy_node()
 
 

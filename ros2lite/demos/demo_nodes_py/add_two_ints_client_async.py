@@ -24,7 +24,8 @@ def request_async() -> None:
                 node.get_logger().info(f'Service call failed {e!r}')
             else:
                 node.get_logger().info(
-                    f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}')
+                    f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}'
+                )
             break
     node.destroy_node()
 

@@ -16,8 +16,9 @@ from tests.cli.conftest import run_process
 FIB = 'example_interfaces/action/Fibonacci'
 
 
-def test_send_goal_with_feedback(run: Callable[..., Any],
-                                 alien_server: AlienFibonacciServer) -> None:
+def test_send_goal_with_feedback(
+    run: Callable[..., Any], alien_server: AlienFibonacciServer
+) -> None:
     result = run('action', 'send_goal', '/alien_fib', FIB, '{order: 3}', '-f')
     assert result.code == 0, result.err
     goal_id = re.search(r'Goal accepted with ID: ([0-9a-f]{32})\n', result.out)
@@ -29,13 +30,15 @@ def test_send_goal_with_feedback(run: Callable[..., Any],
         'Feedback:\n    sequence:\n- 0\n- 1\n- 1\n\n'
         'Feedback:\n    sequence:\n- 0\n- 1\n- 1\n- 2\n\n'
         'Result:\n    sequence:\n- 0\n- 1\n- 1\n- 2\n\n'
-        'Goal finished with status: SUCCEEDED\n')
+        'Goal finished with status: SUCCEEDED\n'
+    )
     assert alien_server.requests[:2] == ['send_goal', 'get_result']
     # the short type form works too, and without -f no feedback is printed
     quiet = run('action', 'send_goal', 'alien_fib', 'example_interfaces/Fibonacci', 'order: 1')
     assert quiet.code == 0 and 'Feedback' not in quiet.out
-    assert quiet.out.endswith('Result:\n    sequence:\n- 0\n- 1\n\n'
-                              'Goal finished with status: SUCCEEDED\n')
+    assert quiet.out.endswith(
+        'Result:\n    sequence:\n- 0\n- 1\n\nGoal finished with status: SUCCEEDED\n'
+    )
 
 
 def test_rejected_goal(run: Callable[..., Any], alien_server: AlienFibonacciServer) -> None:
@@ -49,7 +52,10 @@ def test_bad_input(run: Callable[..., Any]) -> None:
     for bad_type in ('nope/action/Nope', 'example_interfaces/msg/String', 'Fibonacci'):
         result = run('action', 'send_goal', '/fib', bad_type, '{}')
         assert (result.code, result.out, result.err) == (
-            1, '', 'The passed action type is invalid\n')
+            1,
+            '',
+            'The passed action type is invalid\n',
+        )
     result = run('action', 'send_goal', '/fib', FIB, '{ordr: 1}')
     assert result.code == 1 and result.out == ''
     assert result.err.startswith('Failed to populate message fields: ')
@@ -85,8 +91,9 @@ class Lines:
 
     def wait_for(self, text: str, timeout: float) -> None:
         with self._cond:
-            assert self._cond.wait_for(lambda: any(text in line for line in self.lines),
-                                       timeout), self.lines
+            assert self._cond.wait_for(lambda: any(text in line for line in self.lines), timeout), (
+                self.lines
+            )
 
     def all(self, timeout: float) -> str:
         """The whole output, once the pipe closed (the child exited)."""
@@ -97,8 +104,14 @@ class Lines:
 def test_ctrl_c_cancels_the_goal(processes: Any) -> None:
     server = processes.cli('run', 'action_tutorials_py', 'fibonacci_action_server')
     server_log = Lines(server.stderr)
-    proc = processes.cli('action', 'send_goal', '-f', 'fibonacci',
-                         'action_tutorials_interfaces/action/Fibonacci', '{order: 30}')
+    proc = processes.cli(
+        'action',
+        'send_goal',
+        '-f',
+        'fibonacci',
+        'action_tutorials_interfaces/action/Fibonacci',
+        '{order: 30}',
+    )
     out = Lines(proc.stdout)
     out.wait_for('Feedback:', timeout=30)
     proc.send_signal(signal.SIGINT)
@@ -110,8 +123,7 @@ def test_ctrl_c_cancels_the_goal(processes: Any) -> None:
 
 
 def test_send_goal_runs_as_a_process(alien_server: AlienFibonacciServer) -> None:
-    result = run_process('action', 'send_goal', '/alien_fib', FIB, '--stdin',
-                         stdin='order: 2')
+    result = run_process('action', 'send_goal', '/alien_fib', FIB, '--stdin', stdin='order: 2')
     assert result.code == 0, result.err
     assert result.out.endswith('Goal finished with status: SUCCEEDED\n')
 

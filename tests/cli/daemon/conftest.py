@@ -31,9 +31,9 @@ def private(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[Private
     monkeypatch.setenv('ROS2LITE_ROUTER', endpoint)
     for var in ('ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI', 'ZENOH_ROUTER_CONFIG_URI'):
         monkeypatch.delenv(var, raising=False)
-    yield Private(endpoint, runtime, {'XDG_RUNTIME_DIR': str(runtime),
-                                      'ROS2LITE_ROUTER': endpoint})
+    yield Private(endpoint, runtime, {'XDG_RUNTIME_DIR': str(runtime), 'ROS2LITE_ROUTER': endpoint})
     from ros2lite import daemon
+
     info = daemon.status(endpoint).info
     if info is not None:
         with contextlib.suppress(Exception):

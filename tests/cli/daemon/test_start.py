@@ -32,8 +32,9 @@ def test_debug_tells_where_the_log_is(private: Private) -> None:
 def test_global_router_option_and_listen(private: Private) -> None:
     # --router picks the endpoint (over the environment); --listen sets what the router opens
     env = {**private.env, 'ROS2LITE_ROUTER': 'tcp/127.0.0.1:1'}
-    result = run_process('--router', private.endpoint, 'daemon', 'start',
-                         '--listen', private.endpoint, env=env)
+    result = run_process(
+        '--router', private.endpoint, 'daemon', 'start', '--listen', private.endpoint, env=env
+    )
     assert (result.code, result.out) == (0, 'The daemon has been started\n')
     st = daemon.status(private.endpoint)
     assert st.running and st.info is not None and st.info.listen == [private.endpoint]
@@ -41,10 +42,12 @@ def test_global_router_option_and_listen(private: Private) -> None:
 
 def test_connect_meshes_two_routers(private: Private) -> None:
     from tests.conftest import free_port
+
     second = f'tcp/127.0.0.1:{free_port()}'
     assert run_process('daemon', 'start', env=private.env).code == 0
-    result = run_process('--router', second, 'daemon', 'start', '--connect', private.endpoint,
-                         env=private.env)
+    result = run_process(
+        '--router', second, 'daemon', 'start', '--connect', private.endpoint, env=private.env
+    )
     try:
         assert (result.code, result.out) == (0, 'The daemon has been started\n')
         info = daemon.status(second).info

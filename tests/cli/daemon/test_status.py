@@ -15,37 +15,47 @@ from .conftest import Private
 def test_not_running(private: Private) -> None:
     result = run_process('daemon', 'status', env=private.env)
     assert (result.code, result.err) == (0, '')
-    assert result.out == ('The daemon is not running\n'
-                          f'No Zenoh router answers at {private.endpoint}\n')
+    assert result.out == (
+        f'The daemon is not running\nNo Zenoh router answers at {private.endpoint}\n'
+    )
 
 
 def test_running(private: Private) -> None:
     started = daemon.start(private.endpoint)
     result = run_process('daemon', 'status', env=private.env)
     assert (result.code, result.err) == (0, '')
-    assert result.out == ('The daemon is running\n'
-                          f'Serving {private.endpoint} (ros2lite daemon, pid {started.pid})\n'
-                          'Connected sessions: 0\n')
+    assert result.out == (
+        'The daemon is running\n'
+        f'Serving {private.endpoint} (ros2lite daemon, pid {started.pid})\n'
+        'Connected sessions: 0\n'
+    )
 
 
 def test_foreign_router(private: Private) -> None:
     import zenoh
 
     from ros2lite.transport.config import router_config
+
     router = zenoh.open(router_config(private.endpoint, env={}))
     try:
         result = run_process('daemon', 'status', env=private.env)
-        assert result.out == ('The daemon is running\n'
-                              f'Serving {private.endpoint} (a Zenoh router not started by '
-                              'ros2lite)\nConnected sessions: 0\n')
+        assert result.out == (
+            'The daemon is running\n'
+            f'Serving {private.endpoint} (a Zenoh router not started by '
+            'ros2lite)\nConnected sessions: 0\n'
+        )
         start = run_process('daemon', 'start', env=private.env)
-        assert start.out == ('The daemon is already running\n'
-                             'A Zenoh router not started by ros2lite answers at '
-                             f'{private.endpoint}\n')
+        assert start.out == (
+            'The daemon is already running\n'
+            'A Zenoh router not started by ros2lite answers at '
+            f'{private.endpoint}\n'
+        )
         stop = run_process('daemon', 'stop', env=private.env)
-        assert stop.out == ('The daemon is not running\n'
-                            f'A Zenoh router not started by ros2lite answers at '
-                            f'{private.endpoint}; not stopping it\n')
+        assert stop.out == (
+            'The daemon is not running\n'
+            f'A Zenoh router not started by ros2lite answers at '
+            f'{private.endpoint}; not stopping it\n'
+        )
         assert all(r.code == 0 for r in (result, start, stop))
         assert daemon.router_answers(private.endpoint)  # left alone
     finally:
@@ -67,13 +77,18 @@ def test_sessions_and_their_nodes(private: Private) -> None:
     """A peer node and a client session are both listed, the node by name; the status
     command's own session is not counted."""
     from ros2lite.transport.config import open_session
+
     daemon.start(private.endpoint)
-    node = subprocess.Popen([sys.executable, '-c', NODE], stdout=subprocess.PIPE, text=True,
-                            env={**os.environ, **private.env})
+    node = subprocess.Popen(
+        [sys.executable, '-c', NODE],
+        stdout=subprocess.PIPE,
+        text=True,
+        env={**os.environ, **private.env},
+    )
     try:
         assert node.stdout is not None
         node_zid = node.stdout.readline().strip()
-        client = open_session(private.endpoint)   # e.g. a CLI verb, or zenoh tooling
+        client = open_session(private.endpoint)  # e.g. a CLI verb, or zenoh tooling
         try:
             result = run_process('daemon', 'status', env=private.env)
         finally:
@@ -85,5 +100,7 @@ def test_sessions_and_their_nodes(private: Private) -> None:
     lines = result.out.splitlines()
     assert lines[2] == 'Connected sessions: 2', result.out
     rows = sorted(line.split() for line in lines[3:])
-    assert rows == [['client', str(client.zid()), '(no', 'nodes)'],
-                    ['peer', node_zid, '/status_probe']]
+    assert rows == [
+        ['client', str(client.zid()), '(no', 'nodes)'],
+        ['peer', node_zid, '/status_probe'],
+    ]

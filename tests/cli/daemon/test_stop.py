@@ -32,14 +32,17 @@ def test_cycle(private: Private) -> None:
 
 def test_stop_says_who_was_connected(private: Private) -> None:
     from ros2lite.transport.config import open_session
+
     daemon.start(private.endpoint)
-    client = open_session(private.endpoint)   # a CLI verb or a client-mode node
+    client = open_session(private.endpoint)  # a CLI verb or a client-mode node
     try:
         result = run_process('daemon', 'stop', env=private.env)
     finally:
         client.close()
     assert (result.code, result.err) == (0, '')
-    assert result.out == ('The daemon has been stopped\n'
-                          '1 session was connected to it\n'
-                          '1 client session (CLI verbs, client-mode nodes) lost the connection '
-                          'until a router runs again\n')
+    assert result.out == (
+        'The daemon has been stopped\n'
+        '1 session was connected to it\n'
+        '1 client session (CLI verbs, client-mode nodes) lost the connection '
+        'until a router runs again\n'
+    )

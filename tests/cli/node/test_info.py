@@ -35,8 +35,9 @@ def graph(ros_router: str, monkeypatch: pytest.MonkeyPatch) -> Any:
         server = g.node('fib_server', '/demo')
         server.action_server('/fibonacci', FIB)
         server.server('/demo/fib_server/get_parameters', 'rcl_interfaces/srv/GetParameters')
-        server.server('/demo/fib_server/describe_parameters',
-                      'rcl_interfaces/srv/DescribeParameters')
+        server.server(
+            '/demo/fib_server/describe_parameters', 'rcl_interfaces/srv/DescribeParameters'
+        )
         server.client('/add_two_ints', 'example_interfaces/srv/AddTwoInts')
         server.pub('/rosout', 'rcl_interfaces/msg/Log')
         server.pub('/chatter')
@@ -121,8 +122,10 @@ def test_include_hidden(run: Run, graph: TokenGraph) -> None:
     assert (result.code, result.out, result.err) == (0, expected, '')
     server = run('node', 'info', '/demo/fib_server', '--include-hidden').out
     assert '    /_hidden_input: std_msgs/msg/String\n' in server
-    assert '    /fibonacci/_action/feedback: ' \
-           'example_interfaces/action/Fibonacci_FeedbackMessage\n' in server
+    assert (
+        '    /fibonacci/_action/feedback: '
+        'example_interfaces/action/Fibonacci_FeedbackMessage\n' in server
+    )
 
 
 def test_node_without_endpoints(run: Run, graph: TokenGraph) -> None:
@@ -138,8 +141,9 @@ def test_hidden_node_needs_include_hidden(run: Run, graph: TokenGraph) -> None:
     assert (hidden.code, hidden.out, hidden.err) == (1, '', "Unable to find node '/_hidden_node'\n")
     shown = run('node', 'info', '/_hidden_node', '--include-hidden')
     assert shown.code == 0
-    assert shown.out.startswith('/_hidden_node\n  Subscribers:\n\n  Publishers:\n'
-                                '    /chatter: std_msgs/msg/String\n')
+    assert shown.out.startswith(
+        '/_hidden_node\n  Subscribers:\n\n  Publishers:\n    /chatter: std_msgs/msg/String\n'
+    )
 
 
 def test_unknown_node(run: Run, graph: TokenGraph) -> None:
@@ -154,30 +158,49 @@ def test_shared_name_warning(run: Run, graph: TokenGraph) -> None:
     settle(run, 'node', 'list', '-c', expected='4\n')
     result = run('node', 'info', '/demo/fib_server')
     assert result.code == 0
-    assert result.err == ('There are 2 nodes in the graph with the exact name '
-                          '"/demo/fib_server". You are seeing information about only one of '
-                          'them.\n')
+    assert result.err == (
+        'There are 2 nodes in the graph with the exact name '
+        '"/demo/fib_server". You are seeing information about only one of '
+        'them.\n'
+    )
     # one instance is described, never a merge of both
     twin_info = EMPTY.format(name='/demo/fib_server').replace(
-        '  Publishers:\n\n', '  Publishers:\n    /twin_only: std_msgs/msg/String\n')
+        '  Publishers:\n\n', '  Publishers:\n    /twin_only: std_msgs/msg/String\n'
+    )
     assert result.out in (SERVER_INFO, twin_info)
 
 
 def test_real_node_process(run: Run, processes: Any, monkeypatch: pytest.MonkeyPatch) -> None:
     private_domain(monkeypatch)
-    start_node(processes, 'talker', '/robot1', f'pub:chatter:{STRING}:7',
-               'sub:/numbers:std_msgs/msg/Int32:10', f'sub:/_internal:{STRING}:10')
-    result = settle(run, 'node', 'info', '/robot1/talker',
-                    until=lambda out: '/numbers' in out and '/robot1/chatter' in out)
+    start_node(
+        processes,
+        'talker',
+        '/robot1',
+        f'pub:chatter:{STRING}:7',
+        'sub:/numbers:std_msgs/msg/Int32:10',
+        f'sub:/_internal:{STRING}:10',
+    )
+    result = settle(
+        run,
+        'node',
+        'info',
+        '/robot1/talker',
+        until=lambda out: '/numbers' in out and '/robot1/chatter' in out,
+    )
     assert result.code == 0 and result.err == ''
     lines = result.out.splitlines()
     headings = [ln for ln in lines if not ln.startswith('    ')]
     assert headings[0] == '/robot1/talker'
     assert [h for h in headings[1:] if h] == [
-        '  Subscribers:', '  Publishers:', '  Service Servers:', '  Service Clients:',
-        '  Action Servers:', '  Action Clients:']
-    subs = lines[lines.index('  Subscribers:') + 1:lines.index('  Publishers:')]
-    pubs = lines[lines.index('  Publishers:') + 1:lines.index('  Service Servers:')]
+        '  Subscribers:',
+        '  Publishers:',
+        '  Service Servers:',
+        '  Service Clients:',
+        '  Action Servers:',
+        '  Action Clients:',
+    ]
+    subs = lines[lines.index('  Subscribers:') + 1 : lines.index('  Publishers:')]
+    pubs = lines[lines.index('  Publishers:') + 1 : lines.index('  Service Servers:')]
     assert subs == ['    /numbers: std_msgs/msg/Int32']
     assert '    /robot1/chatter: std_msgs/msg/String' in pubs
     assert result.out.endswith('  Action Servers:\n\n  Action Clients:\n\n')

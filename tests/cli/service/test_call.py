@@ -15,23 +15,45 @@ RESPONSE = 'response:\nexample_interfaces.srv.AddTwoInts_Response(sum=42)\n\n'
 
 
 def test_call_prints_request_and_response(adder: Any) -> None:
-    result = run_process('service', 'call', '/add_two_ints', 'example_interfaces/srv/AddTwoInts',
-                         '{a: 2, b: 40}')
+    result = run_process(
+        'service', 'call', '/add_two_ints', 'example_interfaces/srv/AddTwoInts', '{a: 2, b: 40}'
+    )
     assert (result.code, result.out, result.err) == (0, REQUEST + RESPONSE, '')
-    short = run_process('service', 'call', 'math/add', 'example_interfaces/AddTwoInts',
-                        '{a: 2, b: 40}')
+    short = run_process(
+        'service', 'call', 'math/add', 'example_interfaces/AddTwoInts', '{a: 2, b: 40}'
+    )
     assert short.out == REQUEST + RESPONSE
-    stdin = run_process('service', 'call', '/math/add', 'example_interfaces/AddTwoInts',
-                        '--stdin', stdin='a: 2\nb: 40\n')
+    stdin = run_process(
+        'service',
+        'call',
+        '/math/add',
+        'example_interfaces/AddTwoInts',
+        '--stdin',
+        stdin='a: 2\nb: 40\n',
+    )
     assert stdin.out == REQUEST + RESPONSE
 
 
 def test_call_at_a_rate_until_ctrl_c(adder: Any) -> None:
-    proc = subprocess.Popen([sys.executable, '-m', 'ros2lite', 'service', 'call', '/math/add',
-                             'example_interfaces/srv/AddTwoInts', '{a: 2, b: 40}', '-r', '20'],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            '-m',
+            'ros2lite',
+            'service',
+            'call',
+            '/math/add',
+            'example_interfaces/srv/AddTwoInts',
+            '{a: 2, b: 40}',
+            '-r',
+            '20',
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     assert proc.stdout is not None
-    lines = [proc.stdout.readline() for _ in range(3 * 5)]   # three calls, five lines each
+    lines = [proc.stdout.readline() for _ in range(3 * 5)]  # three calls, five lines each
     proc.send_signal(signal.SIGINT)
     _out, err = proc.communicate(timeout=10)
     assert ''.join(lines) == (REQUEST + RESPONSE) * 3
@@ -42,12 +64,18 @@ def test_call_errors(adder: Any) -> None:
     cases = [
         (('/math/add', 'foo/Bar'), 'The passed service type is invalid'),
         (('/math/add', 'std_msgs/msg/String'), 'The passed type is not a service'),
-        (('/math/add', 'example_interfaces/AddTwoInts', '{a: x}'),
-         "Failed to populate field: invalid literal for int() with base 10: 'x'"),
-        (('/math/add', 'example_interfaces/AddTwoInts', '[1, 2]'),
-         'The passed value needs to be a dictionary in YAML format'),
-        (('/math/add', 'example_interfaces/AddTwoInts', '-r', '0'),
-         'rate must be greater than zero'),
+        (
+            ('/math/add', 'example_interfaces/AddTwoInts', '{a: x}'),
+            "Failed to populate field: invalid literal for int() with base 10: 'x'",
+        ),
+        (
+            ('/math/add', 'example_interfaces/AddTwoInts', '[1, 2]'),
+            'The passed value needs to be a dictionary in YAML format',
+        ),
+        (
+            ('/math/add', 'example_interfaces/AddTwoInts', '-r', '0'),
+            'rate must be greater than zero',
+        ),
     ]
     for args, message in cases:
         result = run_process('service', 'call', *args)

@@ -31,6 +31,7 @@ def test_find(adder: Any, run: Any) -> None:
 
 def test_info(adder: Any, run: Any) -> None:
     assert run('service', 'info', '/add_two_ints').out == (
-        'Type: example_interfaces/srv/AddTwoInts\nClients count: 1\nServices count: 1\n')
+        'Type: example_interfaces/srv/AddTwoInts\nClients count: 1\nServices count: 1\n'
+    )
     unknown = run('service', 'info', '/nope')
     assert (unknown.code, unknown.err) == (1, "Unknown service '/nope'\n")

@@ -21,8 +21,17 @@ from tests.spinning import Listener
 class Talker:
     """Publishes `make(i)` for i = 1, 2, … at a steady rate (absolute schedule, no drift)."""
 
-    def __init__(self, ctx: Any, topic: str, type_name: str, make: Callable[[int], Any],
-                 rate: float, qos: Any, node_name: str, count: int | None) -> None:
+    def __init__(
+        self,
+        ctx: Any,
+        topic: str,
+        type_name: str,
+        make: Callable[[int], Any],
+        rate: float,
+        qos: Any,
+        node_name: str,
+        count: int | None,
+    ) -> None:
         self.node = Node(node_name, context=ctx, enable_rosout=False)
         self.pub = self.node.create_publisher(type_name, topic, qos)
         self.make = make
@@ -51,11 +60,20 @@ def talker(ros_context: Any) -> Iterator[Callable[..., Talker]]:
     """Factory: talker(topic, type_name, make, rate=50, qos=10, node_name='talker')."""
     made: list[Talker] = []
 
-    def start(topic: str, type_name: str, make: Callable[[int], Any], *, rate: float = 50.0,
-              qos: Any = 10, node_name: str = 'talker', count: int | None = None) -> Talker:
+    def start(
+        topic: str,
+        type_name: str,
+        make: Callable[[int], Any],
+        *,
+        rate: float = 50.0,
+        qos: Any = 10,
+        node_name: str = 'talker',
+        count: int | None = None,
+    ) -> Talker:
         t = Talker(ros_context, topic, type_name, make, rate, qos, node_name, count)
         made.append(t)
         return t
+
     yield start
     for t in made:
         t.stop()
@@ -70,6 +88,7 @@ def listener(ros_context: Any) -> Iterator[Callable[..., Listener]]:
         lst = Listener(ros_context, topic, type_name, qos)
         made.append(lst)
         return lst
+
     yield start
     for lst in made:
         lst.stop()
@@ -83,13 +102,18 @@ def topic() -> str:
 
 def graph(ctx: Any) -> list[Any]:
     from ros2lite.graph import snapshot
+
     return snapshot(ctx.session, ctx.domain_id)
 
 
 def has_endpoint(ctx: Any, topic: str, kind: str, node_name: str | None = None) -> bool:
     """True once the graph shows a publisher ('MP') / subscription ('MS') on the topic."""
-    return any(e.kind.value == kind and e.topic_name == topic
-               and (node_name is None or e.node_name == node_name) for e in graph(ctx))
+    return any(
+        e.kind.value == kind
+        and e.topic_name == topic
+        and (node_name is None or e.node_name == node_name)
+        for e in graph(ctx)
+    )
 
 
 class Watch:
@@ -112,6 +136,7 @@ class Watch:
     def interrupt(self) -> tuple[int, str]:
         """Ctrl-C; returns (exit status, stderr)."""
         import signal
+
         if self.proc.poll() is None:
             self.proc.send_signal(signal.SIGINT)
         try:

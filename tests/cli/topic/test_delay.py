@@ -15,8 +15,10 @@ from .conftest import Watch
 
 PointStamped = get_interface('geometry_msgs/msg/PointStamped')
 Time = get_interface('builtin_interfaces/msg/Time')
-BLOCK = re.compile(r'average delay: (-?\d+\.\d{3})\n\tmin: (-?\d+\.\d{3})s max: (-?\d+\.\d{3})s '
-                   r'std dev: (\d+\.\d{5})s window: (\d+)\n')
+BLOCK = re.compile(
+    r'average delay: (-?\d+\.\d{3})\n\tmin: (-?\d+\.\d{3})s max: (-?\d+\.\d{3})s '
+    r'std dev: (\d+\.\d{5})s window: (\d+)\n'
+)
 
 
 def stamped(age: float) -> Callable[[int], Any]:
@@ -25,6 +27,7 @@ def stamped(age: float) -> Callable[[int], Any]:
         msg = PointStamped()
         msg.header.stamp = Time(sec=ns // 10**9, nanosec=ns % 10**9)
         return msg
+
     return make
 
 

@@ -41,8 +41,10 @@ def test_count(run: Run, graph: TokenGraph) -> None:
 
 def test_hidden(run: Run, graph: TokenGraph) -> None:
     expected = '/_hidden/chatter\n/a_chatter\n/b_chatter\n/mixed\n'
-    assert settle(run, 'topic', 'find', STRING, '--include-hidden-topics',
-                  expected=expected).out == expected
+    assert (
+        settle(run, 'topic', 'find', STRING, '--include-hidden-topics', expected=expected).out
+        == expected
+    )
     assert run('topic', '--include-hidden-topics', 'find', STRING).out == expected
 
 

@@ -13,8 +13,10 @@ from .conftest import Watch
 
 String = get_interface('std_msgs/msg/String')
 Int32 = get_interface('std_msgs/msg/Int32')
-BLOCK = re.compile(r'average rate: (\d+\.\d{3})\n\tmin: (\d+\.\d{3})s max: (\d+\.\d{3})s '
-                   r'std dev: (\d+\.\d{5})s window: (\d+)\n')
+BLOCK = re.compile(
+    r'average rate: (\d+\.\d{3})\n\tmin: (\d+\.\d{3})s max: (\d+\.\d{3})s '
+    r'std dev: (\d+\.\d{5})s window: (\d+)\n'
+)
 HEADER = ['topic', 'rate', 'min_delta', 'max_delta', 'std_dev', 'window']
 
 
@@ -23,14 +25,14 @@ def test_single_topic_rate_and_format(processes: Any, talker: Any, topic: str) -
     hz = Watch(processes.cli('topic', 'hz', topic))
     wait_until(lambda: len(BLOCK.findall(hz.text)) >= 2, timeout=15)
     code, err = hz.interrupt()
-    assert (code, err) == (2, '')                      # Ctrl-C: ros2cli's status 2
-    assert BLOCK.sub('', hz.text) == ''                # nothing but the reports
+    assert (code, err) == (2, '')  # Ctrl-C: ros2cli's status 2
+    assert BLOCK.sub('', hz.text) == ''  # nothing but the reports
     blocks = BLOCK.findall(hz.text)
     for rate, low, high, _std, _window in blocks:
         assert abs(float(rate) - 50) < 50 * 0.03, hz.text
         assert float(low) <= 0.02 <= float(high)
     windows = [int(b[4]) for b in blocks]
-    assert windows == sorted(windows) and windows[0] >= 30    # one gap per message so far
+    assert windows == sorted(windows) and windows[0] >= 30  # one gap per message so far
 
 
 def test_waits_for_topic_filters_and_window(processes: Any, talker: Any, topic: str) -> None:
@@ -42,10 +44,10 @@ def test_waits_for_topic_filters_and_window(processes: Any, talker: Any, topic: 
     code, _ = hz.interrupt()
     assert code == 2
     assert hz.text.startswith(warning)
-    blocks = BLOCK.findall(hz.text[len(warning):])
-    assert BLOCK.sub('', hz.text[len(warning):]) == ''
+    blocks = BLOCK.findall(hz.text[len(warning) :])
+    assert BLOCK.sub('', hz.text[len(warning) :]) == ''
     for rate, _low, _high, _std, window in blocks:
-        assert abs(float(rate) - 25) < 25 * 0.05       # every other message passes
+        assert abs(float(rate) - 25) < 25 * 0.05  # every other message passes
         assert window == '10'
 
 
@@ -77,8 +79,8 @@ def test_several_topics_print_a_table(processes: Any, talker: Any, topic: str) -
     assert code == 2
     head = f'Subscribed to [{fast}]\nSubscribed to [{slow}]\n'
     assert hz.text.startswith(head)
-    body = hz.text[len(head):]
-    complete = body[:body.rindex('\n\n') + 2]           # drop a table cut by Ctrl-C
+    body = hz.text[len(head) :]
+    complete = body[: body.rindex('\n\n') + 2]  # drop a table cut by Ctrl-C
     rows = check_table(complete, [fast, slow])
     rates = {r['topic']: float(r['rate']) for r in rows}
     assert abs(rates[fast] - 50) < 1.5 and abs(rates[slow] - 20) < 0.6
@@ -91,13 +93,18 @@ def test_table_on_a_terminal(processes: Any, talker: Any, topic: str) -> None:
     import subprocess
     import sys
     import time
+
     fast, slow = topic + '_a', topic + '_b'
     talker(fast, 'std_msgs/msg/String', lambda i: String(data='a'), rate=50)
     talker(slow, 'std_msgs/msg/String', lambda i: String(data='b'), rate=20, node_name='b')
     leader, follower = pty.openpty()
     env = {k: v for k, v in os.environ.items() if k != 'NO_COLOR'}
-    proc = processes.start([sys.executable, '-m', 'ros2lite', 'topic', 'hz', fast, slow],
-                           stdout=follower, stderr=subprocess.PIPE, env=env)
+    proc = processes.start(
+        [sys.executable, '-m', 'ros2lite', 'topic', 'hz', fast, slow],
+        stdout=follower,
+        stderr=subprocess.PIPE,
+        env=env,
+    )
     os.close(follower)
     seen = b''
     deadline = time.monotonic() + 15
@@ -108,4 +115,4 @@ def test_table_on_a_terminal(processes: Any, talker: Any, topic: str) -> None:
     os.close(leader)
     assert b'min_delta' in seen, seen
     assert fast.encode() in seen and proc.returncode == 2, err
-    assert '━'.encode() in seen and b'=====' not in seen     # rich's table, not the ASCII one
+    assert '━'.encode() in seen and b'=====' not in seen  # rich's table, not the ASCII one

@@ -52,13 +52,16 @@ def test_counts(run: Run, graph: TokenGraph) -> None:
 
 
 def test_verbose_blocks(run: Run, graph: TokenGraph) -> None:
-    pub_key = graph.node('talker').pub('/chatter', qos=QoSProfile(depth=7),
-                                       type_hash=STRING_HASH)
-    odd = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT,
-                     durability=DurabilityPolicy.TRANSIENT_LOCAL, history=HistoryPolicy.KEEP_ALL,
-                     lifespan=Duration(seconds=10), deadline=Duration(nanoseconds=500),
-                     liveliness=LivelinessPolicy.MANUAL_BY_TOPIC,
-                     liveliness_lease_duration=Duration(seconds=2, nanoseconds=5))
+    pub_key = graph.node('talker').pub('/chatter', qos=QoSProfile(depth=7), type_hash=STRING_HASH)
+    odd = QoSProfile(
+        reliability=ReliabilityPolicy.BEST_EFFORT,
+        durability=DurabilityPolicy.TRANSIENT_LOCAL,
+        history=HistoryPolicy.KEEP_ALL,
+        lifespan=Duration(seconds=10),
+        deadline=Duration(nanoseconds=500),
+        liveliness=LivelinessPolicy.MANUAL_BY_TOPIC,
+        liveliness_lease_duration=Duration(seconds=2, nanoseconds=5),
+    )
     sub_key = graph.node('listener', '/robot1').sub('/chatter', qos=odd, type_hash=STRING_HASH)
     expected = f'''Type: std_msgs/msg/String
 
@@ -106,10 +109,13 @@ QoS profile:
 
 def test_verbose_with_no_endpoints_of_one_kind(run: Run, graph: TokenGraph) -> None:
     graph.node('listener').sub('/lonely', type_hash=STRING_HASH)
-    result = settle(run, 'topic', 'info', '/lonely', '-v',
-                    until=lambda out: 'Subscription count: 1' in out)
-    assert result.out.startswith('Type: std_msgs/msg/String\n\nPublisher count: 0\n\n'
-                                 'Subscription count: 1\n\nNode name: listener\n')
+    result = settle(
+        run, 'topic', 'info', '/lonely', '-v', until=lambda out: 'Subscription count: 1' in out
+    )
+    assert result.out.startswith(
+        'Type: std_msgs/msg/String\n\nPublisher count: 0\n\n'
+        'Subscription count: 1\n\nNode name: listener\n'
+    )
     assert result.out.endswith('Liveliness lease duration: Infinite\n\n')
 
 
@@ -117,8 +123,10 @@ def test_several_types_print_as_a_list(run: Run, graph: TokenGraph) -> None:
     node = graph.node('mixer')
     node.pub('/mixed', 'std_msgs/msg/Int32')
     node.pub('/mixed', STRING)
-    expected = ("Type: ['std_msgs/msg/Int32', 'std_msgs/msg/String']\n"
-                'Publisher count: 2\nSubscription count: 0\n')
+    expected = (
+        "Type: ['std_msgs/msg/Int32', 'std_msgs/msg/String']\n"
+        'Publisher count: 2\nSubscription count: 0\n'
+    )
     assert settle(run, 'topic', 'info', '/mixed', expected=expected).out == expected
 
 
@@ -141,17 +149,25 @@ def test_invalid_topic_name_is_one_line(run: Run, graph: TokenGraph) -> None:
     assert result.err.count('\n') == 1 and "'/bad name'" in result.err
 
 
-def test_real_publisher_and_subscriber(run: Run, processes: Any,
-                                       monkeypatch: pytest.MonkeyPatch) -> None:
+def test_real_publisher_and_subscriber(
+    run: Run, processes: Any, monkeypatch: pytest.MonkeyPatch
+) -> None:
     private_domain(monkeypatch)
     _, gids = start_node(processes, 'talker', '/robot1', f'pub:chatter:{STRING}:7')
     start_node(processes, 'listener', '/', f'sub:/robot1/chatter:{STRING}:10')
-    result = settle(run, 'topic', 'info', '/robot1/chatter', '-v',
-                    until=lambda out: 'Subscription count: 1' in out
-                    and 'Publisher count: 1' in out)
+    result = settle(
+        run,
+        'topic',
+        'info',
+        '/robot1/chatter',
+        '-v',
+        until=lambda out: 'Subscription count: 1' in out and 'Publisher count: 1' in out,
+    )
     assert result.code == 0
     pub_block, sub_block = result.out.split('Subscription count: 1\n\n')
-    assert pub_block == f'''Type: std_msgs/msg/String
+    assert (
+        pub_block
+        == f'''Type: std_msgs/msg/String
 
 Publisher count: 1
 
@@ -171,5 +187,6 @@ QoS profile:
   Liveliness lease duration: Infinite
 
 '''
+    )
     assert sub_block.startswith('Node name: listener\nNode namespace: /\n')
     assert '  History (Depth): KEEP_LAST (10)\n' in sub_block

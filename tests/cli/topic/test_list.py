@@ -41,9 +41,11 @@ def test_plain_list_is_sorted_and_hides_hidden_names(run: Run, graph: TokenGraph
 
 
 def test_show_types(run: Run, graph: TokenGraph) -> None:
-    expected = ('/mixed [std_msgs/msg/Int32, std_msgs/msg/String]\n'
-                '/other [std_msgs/msg/String]\n'
-                '/robot1/chatter [std_msgs/msg/String]\n')
+    expected = (
+        '/mixed [std_msgs/msg/Int32, std_msgs/msg/String]\n'
+        '/other [std_msgs/msg/String]\n'
+        '/robot1/chatter [std_msgs/msg/String]\n'
+    )
     result = settle(run, 'topic', 'list', '-t', expected=expected)
     assert (result.code, result.out) == (0, expected)
     assert run('topic', 'list', '--show-types').out == expected
@@ -69,14 +71,16 @@ def test_include_hidden_topics_on_verb_or_group(run: Run, graph: TokenGraph) -> 
 
 
 def test_verbose(run: Run, graph: TokenGraph) -> None:
-    expected = ('Published topics:\n'
-                ' * /mixed [std_msgs/msg/Int32, std_msgs/msg/String] 3 publishers\n'
-                ' * /robot1/chatter [std_msgs/msg/String] 1 publisher\n'
-                '\n'
-                'Subscribed topics:\n'
-                ' * /other [std_msgs/msg/String] 1 subscriber\n'
-                ' * /robot1/chatter [std_msgs/msg/String] 2 subscribers\n'
-                '\n')
+    expected = (
+        'Published topics:\n'
+        ' * /mixed [std_msgs/msg/Int32, std_msgs/msg/String] 3 publishers\n'
+        ' * /robot1/chatter [std_msgs/msg/String] 1 publisher\n'
+        '\n'
+        'Subscribed topics:\n'
+        ' * /other [std_msgs/msg/String] 1 subscriber\n'
+        ' * /robot1/chatter [std_msgs/msg/String] 2 subscribers\n'
+        '\n'
+    )
     result = settle(run, 'topic', 'list', '-v', expected=expected)
     assert (result.code, result.out, result.err) == (0, expected, '')
     # -v ignores -t, as ros2cli does
@@ -102,8 +106,9 @@ def test_topics_disappear_with_their_tokens(run: Run, graph: TokenGraph) -> None
     assert settle(run, 'topic', 'list', expected=expected).out == expected
 
 
-def test_empty_graph_prints_nothing(run: Run, ros_router: str,
-                                    monkeypatch: pytest.MonkeyPatch) -> None:
+def test_empty_graph_prints_nothing(
+    run: Run, ros_router: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
     private_domain(monkeypatch)
     for args in (['topic', 'list'], ['topic', 'list', '-t'], ['topic', 'list', '-v']):
         result = run(*args)
@@ -113,9 +118,15 @@ def test_empty_graph_prints_nothing(run: Run, ros_router: str,
 
 def test_real_node_processes(run: Run, processes: Any, monkeypatch: pytest.MonkeyPatch) -> None:
     private_domain(monkeypatch)
-    start_node(processes, 'talker', '/robot1', f'pub:chatter:{STRING}:7',
-               'sub:/numbers:std_msgs/msg/Int32:10')
+    start_node(
+        processes,
+        'talker',
+        '/robot1',
+        f'pub:chatter:{STRING}:7',
+        'sub:/numbers:std_msgs/msg/Int32:10',
+    )
     start_node(processes, 'listener', '/', f'sub:/robot1/chatter:{STRING}:10')
+
     # ros2lite nodes add their own built-in topics (e.g. /rosout); only ours are asserted here
     def ours(out: str) -> list[str]:
         return [ln for ln in out.splitlines() if 'chatter' in ln or 'numbers' in ln]
@@ -130,6 +141,7 @@ def test_real_node_processes(run: Run, processes: Any, monkeypatch: pytest.Monke
     assert '/numbers' not in verbose.split('Subscribed topics:')[0]
     # the same answer from a separate process
     from ..conftest import run_process
+
     assert ours(run_process('topic', 'list', '-t').out) == want
 
 
@@ -137,13 +149,17 @@ def test_graph_verbs_stay_light(ros_router: str) -> None:
     """No YAML, rich, MCAP or type system for graph queries: they only read tokens."""
     import subprocess
     import sys
-    code = ('import sys\nfrom ros2lite.cli.main import main\n'
-            "for args in (['topic', 'list', '-v'], ['topic', 'info', '-v', '/x'],\n"
-            "             ['topic', 'type', '/x'], ['topic', 'find', 'a/msg/B'],\n"
-            "             ['node', 'list'], ['node', 'info', '/x']):\n"
-            '    main(args)\n'
-            "print('heavy:', sorted(m for m in sys.modules if m.split('.')[0] in "
-            "('yaml', 'rich', 'mcap') or m.startswith('ros2lite.interfaces')))")
-    out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
-                         timeout=60).stdout
+
+    code = (
+        'import sys\nfrom ros2lite.cli.main import main\n'
+        "for args in (['topic', 'list', '-v'], ['topic', 'info', '-v', '/x'],\n"
+        "             ['topic', 'type', '/x'], ['topic', 'find', 'a/msg/B'],\n"
+        "             ['node', 'list'], ['node', 'info', '/x']):\n"
+        '    main(args)\n'
+        "print('heavy:', sorted(m for m in sys.modules if m.split('.')[0] in "
+        "('yaml', 'rich', 'mcap') or m.startswith('ros2lite.interfaces')))"
+    )
+    out = subprocess.run(
+        [sys.executable, '-c', code], capture_output=True, text=True, timeout=60
+    ).stdout
     assert out.splitlines()[-1] == 'heavy: []'

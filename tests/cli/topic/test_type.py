@@ -42,7 +42,8 @@ def test_unknown_is_silent_exit_1(run: Run, graph: TokenGraph) -> None:
 
 
 def test_hidden_topic_needs_the_group_flag(run: Run, graph: TokenGraph) -> None:
-    result = settle(run, 'topic', '--include-hidden-topics', 'type', '/_secret',
-                    expected='std_msgs/msg/Int32\n')
+    result = settle(
+        run, 'topic', '--include-hidden-topics', 'type', '/_secret', expected='std_msgs/msg/Int32\n'
+    )
     assert (result.code, result.out) == (0, 'std_msgs/msg/Int32\n')
     assert run('topic', 'type', '/_secret').code == 1
