@@ -183,7 +183,8 @@ class Client(Executable):
     def _refuse_deadlock(self) -> None:
         """Inside a callback, a server of ours on the same executor may be unable to run
         until that callback returns: then waiting would never end, so say so instead."""
-        from ros2lite.executors import MultiThreadedExecutor, current_execution
+        from ros2lite.executable import current_execution
+        from ros2lite.executors import MultiThreadedExecutor
 
         executor, entity = current_execution()
         if executor is None:

@@ -5,6 +5,7 @@ node was added to, at most once until it has run them.
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
@@ -13,7 +14,16 @@ from ros2lite.callback_groups import CallbackGroup
 if TYPE_CHECKING:
     from ros2lite.task import Task
 
-__all__ = ['Executable', 'GuardCondition']
+__all__ = ['Executable', 'GuardCondition', 'current_execution']
+
+# which executor and entity the current thread runs a callback for (set by the executor):
+# coroutine callbacks continue on it, and blocking calls check it for deadlocks
+_running = threading.local()
+
+
+def current_execution() -> tuple[Any, Executable | None]:
+    """(executor, entity) whose callback this thread is running, or (None, None)."""
+    return getattr(_running, 'executor', None), getattr(_running, 'entity', None)
 
 
 class Executable:
@@ -61,9 +71,7 @@ class Executable:
         """Run a user callback on the executor's terms (a coroutine becomes a Task). That is
         the executor running this entity now: a multi-threaded one may run it after the node
         has moved on (spin_once's helper removes the node once the work is handed over)."""
-        from ros2lite.executors import current_execution
-
-        executor = current_execution()[0]
+        executor = getattr(_running, 'executor', None)
         if executor is None and self._node is not None:
             executor = self._node._executor
         if executor is not None:

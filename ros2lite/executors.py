@@ -25,7 +25,7 @@ from concurrent.futures import ThreadPoolExecutor
 from typing import TYPE_CHECKING, Any
 
 from ros2lite.context import Context, default_context
-from ros2lite.executable import Executable
+from ros2lite.executable import Executable, _running, current_execution
 from ros2lite.task import Future, Task
 
 if TYPE_CHECKING:
@@ -52,15 +52,6 @@ class ExternalShutdownException(Exception):
 
 class ShutdownException(Exception):
     """The executor was shut down."""
-
-
-# which executor and entity the current thread is running a callback for (deadlock checks)
-_running = threading.local()
-
-
-def current_execution() -> tuple[Executor | None, Executable | None]:
-    """(executor, entity) whose callback this thread is running, or (None, None)."""
-    return getattr(_running, 'executor', None), getattr(_running, 'entity', None)
 
 
 class Executor:

@@ -148,7 +148,8 @@ class Node(ParameterMixin):
 
     def add_waitable(self, waitable: Executable) -> None:
         self.waitables.append(waitable)
-        waitable._notify() if waitable._has_work() else None
+        if waitable._has_work():
+            waitable._notify()
 
     def remove_waitable(self, waitable: Executable) -> None:
         if waitable in self.waitables:
@@ -314,7 +315,7 @@ class Node(ParameterMixin):
             timer.cancel()
         for guard in self.guards:
             guard.destroy()
-        for waitable in self.waitables:
+        for waitable in list(self.waitables):  # destroying one may remove it from the list
             destroy: Callable[[], Any] | None = getattr(waitable, 'destroy', None)
             if destroy is not None:
                 destroy()

@@ -358,8 +358,7 @@ class ActionClient(Executable):
             return
         self._destroyed = True
         node = self._node
-        # a new list, not remove(): destroy_node() may be iterating over the old one
-        node.waitables = [w for w in node.waitables if w is not self]
+        node.remove_waitable(self)
         for client in (self._goal_client, self._cancel_client, self._result_client):
             node.destroy_client(client)
         node.destroy_subscription(self._feedback_sub)

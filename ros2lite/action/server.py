@@ -426,8 +426,7 @@ class ActionServer(Executable):
             return
         self._destroyed = True
         node = self._node
-        # a new list, not remove(): destroy_node() may be iterating over the old one
-        node.waitables = [w for w in node.waitables if w is not self]
+        node.remove_waitable(self)
         for service in (self._goal_service, self._cancel_service, self._result_service):
             node.destroy_service(service)
         node.destroy_publisher(self._feedback_pub)
