@@ -217,9 +217,12 @@ def _action_names(names_and_types: list[tuple[str, list[str]]]) -> list[tuple[st
     ]
 
 
-def action_names_and_types(entities: Iterable[Entity]) -> list[tuple[str, list[str]]]:
+def action_names_and_types(
+    entities: Iterable[Entity], include_hidden: bool = False
+) -> list[tuple[str, list[str]]]:
     """Every action in the graph (servers and clients alike), by name."""
-    return _action_names(_names_and_types(entities, _TOPIC_KINDS))
+    result = _action_names(_names_and_types(entities, _TOPIC_KINDS))
+    return result if include_hidden else [r for r in result if not is_hidden_name(r[0])]
 
 
 def action_endpoints(

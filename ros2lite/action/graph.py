@@ -9,7 +9,7 @@ def get_action_names_and_types(node: Any) -> list[tuple[str, list[str]]]:
     """Every action with a server or a client, with its type(s)."""
     from ros2lite.graph import action_names_and_types
 
-    return action_names_and_types(node.context.graph.entities())
+    return action_names_and_types(node.context.graph.entities(), include_hidden=True)
 
 
 def _by_node(

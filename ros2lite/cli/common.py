@@ -251,6 +251,23 @@ def interface_type_name(name: str, kind: str, *, invalid: str, not_kind: str | N
     return full
 
 
+def print_names_of_type(
+    type_name: str,
+    count: bool,
+    no_daemon: bool,
+    names_and_types: Callable[[list[Any]], list[tuple[str, list[str]]]],
+) -> None:
+    """What `topic/service/action find` share: the names in the graph with `type_name`
+    among their types, one a line, or only how many (`count`)."""
+    with CliSession(no_daemon=no_daemon) as session:
+        entities = session.entities()
+    found = [name for name, types in names_and_types(entities) if type_name in types]
+    if count:
+        click.echo(len(found))
+    elif found:
+        click.echo('\n'.join(found))
+
+
 def print_types_of(
     ctx: click.Context,
     name: str,

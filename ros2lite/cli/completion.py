@@ -92,7 +92,7 @@ def services(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
 def actions(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
     from ros2lite.graph import action_names_and_types
 
-    names = action_names_and_types(_graph_entities(ctx))
+    names = action_names_and_types(_graph_entities(ctx), _hidden_wanted(incomplete))
     return _matching((name for name, _ in names), incomplete)
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import CliSession, strategy_options
+from ..common import print_names_of_type, strategy_options
 
 
 @click.command('find')
@@ -31,16 +31,10 @@ def cli(
 ) -> None:
     """Find actions from type."""
     from ros2lite.graph import action_names_and_types
-    from ros2lite.transport.keys import is_hidden_name
 
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
-    found = [
-        name
-        for name, types in action_names_and_types(entities)
-        if action_type in types and (include_hidden_actions or not is_hidden_name(name))
-    ]
-    if count_actions:
-        click.echo(len(found))
-    elif found:
-        click.echo('\n'.join(found))
+    print_names_of_type(
+        action_type,
+        count_actions,
+        no_daemon,
+        lambda entities: action_names_and_types(entities, include_hidden_actions),
+    )

@@ -30,15 +30,10 @@ def cli(
 ) -> None:
     """Output a list of action names."""
     from ros2lite.graph import action_names_and_types
-    from ros2lite.transport.keys import is_hidden_name
 
     with CliSession(no_daemon=no_daemon) as session:
         entities = session.entities()
-    actions = [
-        (name, types)
-        for name, types in action_names_and_types(entities)
-        if include_hidden_actions or not is_hidden_name(name)
-    ]
+    actions = action_names_and_types(entities, include_hidden_actions)
     if count_actions:
         click.echo(len(actions))
     elif actions:

@@ -17,4 +17,9 @@ def cli(ctx: click.Context, action_name: str, no_daemon: bool, use_sim_time: boo
     """Print a action's type."""
     from ros2lite.graph import action_names_and_types
 
-    print_types_of(ctx, action_name, no_daemon, action_names_and_types)
+    print_types_of(
+        ctx,
+        action_name,
+        no_daemon,
+        lambda entities: action_names_and_types(entities, include_hidden=True),
+    )

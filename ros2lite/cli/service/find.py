@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import CliSession, strategy_options
+from ..common import print_names_of_type, strategy_options
 from . import hidden_wanted
 
 
@@ -28,16 +28,11 @@ def cli(
     """Output a list of available services of a given type."""
     from ros2lite.graph import service_names_and_types
 
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
-    found = [
-        name
-        for name, types in service_names_and_types(
+    print_names_of_type(
+        service_type,
+        count_services,
+        no_daemon,
+        lambda entities: service_names_and_types(
             entities, hidden_wanted(ctx, include_hidden_services)
-        )
-        if service_type in types
-    ]
-    if count_services:
-        click.echo(len(found))
-    elif found:
-        click.echo('\n'.join(found))
+        ),
+    )

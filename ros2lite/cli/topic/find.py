@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import CliSession, include_hidden, strategy_options
+from ..common import include_hidden, print_names_of_type, strategy_options
 
 
 @click.command('find')
@@ -29,16 +29,11 @@ def cli(
     """Output a list of available topics of a given type."""
     from ros2lite.graph import topic_names_and_types
 
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
-    found = [
-        name
-        for name, types in topic_names_and_types(
+    print_names_of_type(
+        topic_type,
+        count_topics,
+        no_daemon,
+        lambda entities: topic_names_and_types(
             entities, include_hidden(ctx, include_hidden_topics)
-        )
-        if topic_type in types
-    ]
-    if count_topics:
-        click.echo(len(found))
-    elif found:
-        click.echo('\n'.join(found))
+        ),
+    )
