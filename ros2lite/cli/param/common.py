@@ -91,8 +91,15 @@ class GreedyOption(click.Option):
         )
 
 
-def connect(session: CliSession, node_name: str, include_hidden_nodes: bool, timeout: float) -> Any:
-    """The remote node's parameters, once the node is in the graph (else 'Node not found')."""
+def connect(
+    session: CliSession,
+    node_name: str,
+    include_hidden_nodes: bool,
+    timeout: float,
+    service_timeout: float | None,
+) -> Any:
+    """The remote node's parameters, once the node is in the graph (else 'Node not found');
+    each of its service calls waits up to `service_timeout` (None: the library default)."""
     from ros2lite.graph import node_full_names
     from ros2lite.parameters.remote import RemoteParameters, absolute_node_name, wait_for_node
 
@@ -105,7 +112,7 @@ def connect(session: CliSession, node_name: str, include_hidden_nodes: bool, tim
     )
     if not found:
         raise CliError("Node not found")
-    return RemoteParameters(session.node(), fqn)
+    return RemoteParameters(session.node(), fqn, service_timeout=service_timeout)
 
 
 def complete_parameter_names(

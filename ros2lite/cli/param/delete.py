@@ -22,8 +22,7 @@ def cli(
 ) -> None:
     """Delete parameter."""
     with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        remote = connect(session, node_name, include_hidden_nodes, timeout)
-        remote.service_timeout = service_timeout
+        remote = connect(session, node_name, include_hidden_nodes, timeout, service_timeout)
         result = remote.delete_parameters([parameter_name])[0]
     text = "Deleted parameter successfully" if result.successful else "Deleting parameter failed"
     click.echo(f"{text}: {result.reason}" if result.reason else text, err=not result.successful)

@@ -24,8 +24,7 @@ def cli(
 ) -> None:
     """Show descriptive information about declared parameters."""
     with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        remote = connect(session, node_name, include_hidden_nodes, timeout)
-        remote.service_timeout = service_timeout
+        remote = connect(session, node_name, include_hidden_nodes, timeout, service_timeout)
         descriptors = remote.describe_parameters(list(parameter_names))
     # as ros2cli: a name the node does not know empties the reply, which prints nothing
     for descriptor in descriptors:

@@ -33,8 +33,7 @@ def cli(
     from ros2lite.parameters.files import dump_file_name
 
     with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        remote = connect(session, node_name, include_hidden_nodes, timeout)
-        remote.service_timeout = service_timeout
+        remote = connect(session, node_name, include_hidden_nodes, timeout, service_timeout)
         text = remote.dump_yaml()
     if output_dir is None:
         click.echo(text)  # yaml's text ends with a newline: a blank line follows, as ros2cli

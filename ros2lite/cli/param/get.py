@@ -40,8 +40,7 @@ def cli(
 ) -> None:
     """Get parameter."""
     with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        remote = connect(session, node_name, include_hidden_nodes, timeout)
-        remote.service_timeout = service_timeout
+        remote = connect(session, node_name, include_hidden_nodes, timeout, service_timeout)
         values = remote.get_parameters([parameter_name])
     if not values:
         raise CliError("Parameter not set")

@@ -32,8 +32,7 @@ def cli(
     from ros2lite.parameters.files import ParamsFileError
 
     with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        remote = connect(session, node_name, include_hidden_nodes, timeout)
-        remote.service_timeout = service_timeout
+        remote = connect(session, node_name, include_hidden_nodes, timeout, service_timeout)
         try:
             results = remote.load_parameter_file(parameter_file, use_wildcard=not no_use_wildcard)
         except ParamsFileError as e:

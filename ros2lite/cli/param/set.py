@@ -41,8 +41,7 @@ def cli(
     msg_type = get_interface("rcl_interfaces/msg/Parameter")
     params = [msg_type(name=name, value=get_parameter_value(text)) for name, text in pairs]
     with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        remote = connect(session, node_name, include_hidden_nodes, timeout)
-        remote.service_timeout = service_timeout
+        remote = connect(session, node_name, include_hidden_nodes, timeout, service_timeout)
         if atomic:
             outcome = remote.set_parameters_atomically(params)
             results = None
