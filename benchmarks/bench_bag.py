@@ -47,7 +47,7 @@ import sys, time
 from ros2lite.context import Context
 from ros2lite.node import Node
 from ros2lite.interfaces import get_interface, serialize
-from ros2lite.transport.qos import HistoryPolicy, QoSProfile
+from ros2lite.qos import HistoryPolicy, QoSProfile
 topic, n, size = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 String = get_interface('std_msgs/msg/String')
 if size:

@@ -26,7 +26,7 @@ import sys
 import zenoh
 from ros2lite.transport.config import node_session_mode, open_session, router_config
 from ros2lite.transport.keys import EntityKind, endpoint_token, node_token
-from ros2lite.transport.qos import QoSProfile
+from ros2lite.qos import QoSProfile
 
 endpoint, domain = sys.argv[1], int(sys.argv[2])
 router = zenoh.open(router_config(endpoint, env={{}}))

@@ -51,7 +51,7 @@ from ros2lite import interfaces
 String = interfaces.get_interface('std_msgs/msg/String')
 if mode == 'node':
     import ros2lite
-    from ros2lite.transport.qos import HistoryPolicy, QoSProfile
+    from ros2lite.qos import HistoryPolicy, QoSProfile
     ros2lite.init([])
     node = ros2lite.Node('bench_pub', enable_rosout=False)
     pub = node.create_publisher(String, 'bench_chatter',
@@ -276,7 +276,7 @@ def node_run(key: str, string_type: Any) -> float:
     from ros2lite.context import Context
     from ros2lite.executors import SingleThreadedExecutor
     from ros2lite.node import Node
-    from ros2lite.transport.qos import HistoryPolicy, QoSProfile
+    from ros2lite.qos import HistoryPolicy, QoSProfile
 
     ctx = Context()
     ctx.init([])

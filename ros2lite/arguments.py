@@ -11,6 +11,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ros2lite.exceptions import Ros2liteError
+
 LOG_LEVELS = {
     'debug': 10,
     'info': 20,
@@ -22,7 +24,7 @@ LOG_LEVELS = {
 }
 
 
-class RosArgsError(ValueError):
+class RosArgsError(Ros2liteError, ValueError):
     """Malformed --ros-args; the message says which argument and why."""
 
 

@@ -17,11 +17,12 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from ros2lite.endpoint import Endpoint
+from ros2lite.exceptions import Ros2liteError
 from ros2lite.executable import Executable
+from ros2lite.qos import QoSProfile
 from ros2lite.task import Future
 from ros2lite.transport.attachment import pack_attachment
 from ros2lite.transport.keys import EntityKind
-from ros2lite.transport.qos import QoSProfile
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
@@ -34,7 +35,7 @@ __all__ = ['Client', 'ServiceCallError']
 _UNLIMITED = 10 * 365 * 24 * 3600.0
 
 
-class ServiceCallError(RuntimeError):
+class ServiceCallError(Ros2liteError, RuntimeError):
     """A request ended without a response (no server answered, or the query failed)."""
 
 

@@ -18,11 +18,7 @@ import weakref
 from typing import Any
 
 from ros2lite.arguments import RosArgs, parse_ros_args
-
-
-class NotInitializedError(RuntimeError):
-    def __init__(self) -> None:
-        super().__init__('ros2lite is not initialized: call ros2lite.init() first')
+from ros2lite.exceptions import NotInitializedException
 
 
 class Context:
@@ -97,7 +93,7 @@ class Context:
 
     def require(self) -> Any:
         if self.session is None:
-            raise NotInitializedError()
+            raise NotInitializedException()
         return self.session
 
     def next_entity_id(self) -> int:

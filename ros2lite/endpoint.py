@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from ros2lite.qos import QoSProfile
 from ros2lite.transport.keys import EntityKind, endpoint_token, topic_key
-from ros2lite.transport.qos import QoSProfile
 
 
 def resolve_type(msg_type: Any) -> tuple[str, Any]:

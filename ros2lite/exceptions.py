@@ -1,13 +1,63 @@
-"""Exceptions with rclpy's names and messages, so `except rclpy.exceptions.X` code carries over."""
+"""The one base of every ros2lite error, and rclpy's exception names.
+
+Every error the library raises on purpose derives from :class:`Ros2liteError`, so the CLI
+(and a script) can tell "something the user can fix, said in one line" from a bug. Where an
+rclpy name replaces a built-in exception, it also derives from that built-in, so code written
+as ``except ValueError`` keeps working. Subpackages keep their own errors (``bag.errors``,
+``interfaces.errors``, ``transport.errors``) under this base.
+"""
 
 from __future__ import annotations
 
 from typing import Any
 
+
+class Ros2liteError(Exception):
+    """Base of every error ros2lite raises on purpose; its message is one line for a user."""
+
+
+class NotInitializedException(Ros2liteError, RuntimeError):
+    """A node or entity was created before `ros2lite.init()` (rclpy's name)."""
+
+    def __init__(self, message: str = 'ros2lite is not initialized: call ros2lite.init() first'):
+        super().__init__(message)
+
+
+class ROSInterruptException(Ros2liteError):
+    """An operation was interrupted by the context shutting down (rclpy's name)."""
+
+
+class NoTypeSupportImportedException(Ros2liteError, TypeError):
+    """Something given as a message, service or action type is not one (rclpy's name)."""
+
+
+# -- names -------------------------------------------------------------------------------------
+
+
+class NameValidationException(Ros2liteError, ValueError):
+    """A ROS name breaks rcl's rules; the message says which rule and where."""
+
+
+class InvalidNamespaceException(NameValidationException):
+    """A namespace is not a valid absolute ROS namespace."""
+
+
+class InvalidNodeNameException(NameValidationException):
+    """A node name is not a valid ROS node name."""
+
+
+class InvalidTopicNameException(NameValidationException):
+    """A topic name is not valid (before or after expansion)."""
+
+
+class InvalidServiceNameException(NameValidationException):
+    """A service name is not valid (before or after expansion)."""
+
+
 # -- parameters --------------------------------------------------------------------------------
 
 
-class ParameterException(Exception):
+class ParameterException(Ros2liteError):
     """Base of every parameter error; the message ends with the parameter name(s)."""
 
     def __init__(self, error_msg: str, parameters: str | list[str]) -> None:
@@ -22,6 +72,8 @@ class ParameterNotDeclaredException(ParameterException):
 
 
 class ParameterAlreadyDeclaredException(ParameterException):
+    """A parameter was declared twice."""
+
     def __init__(self, parameters: str | list[str]) -> None:
         super().__init__("Parameter(s) already declared", parameters)
 

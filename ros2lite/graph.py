@@ -12,8 +12,9 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from ros2lite.transport.keys import Entity, EntityKind, is_hidden_name, parse_token
-from ros2lite.transport.qos import QoSProfile
+from ros2lite.names import is_hidden_name
+from ros2lite.qos import QoSProfile
+from ros2lite.transport.keys import Entity, EntityKind, parse_token
 
 _TOPIC_KINDS = (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION)
 _SERVICE_KINDS = (EntityKind.SERVICE, EntityKind.CLIENT)
@@ -184,7 +185,7 @@ def node_full_names(entities: Iterable[Entity], include_hidden: bool = False) ->
     Like ros2cli, a node is hidden when its own name starts with '_' (the namespace is not
     looked at).
     """
-    from ros2lite.transport.keys import node_fqn
+    from ros2lite.names import node_fqn
 
     return sorted(
         node_fqn(ns, name)
@@ -233,7 +234,7 @@ def action_endpoints(
     As rcl_action sees it, servers publish `<action>/_action/feedback` and clients subscribe
     to it; hidden nodes (the CLI's own) count too, as in `ros2 action info`.
     """
-    from ros2lite.transport.keys import node_fqn
+    from ros2lite.names import node_fqn
 
     feedback = action_name + ACTION_FEEDBACK_SUFFIX
     found: dict[EntityKind, dict[tuple[str, int], tuple[str, set[str]]]] = {
@@ -308,7 +309,7 @@ def format_gid(gid: bytes) -> str:
 
 def format_endpoint_info(info: TopicEndpointInfo) -> str:
     """One endpoint as rclpy's `TopicEndpointInfo.__str__` prints it (no trailing newline)."""
-    from ros2lite.transport.qos import HistoryPolicy, qos_profile_unknown
+    from ros2lite.qos import HistoryPolicy, qos_profile_unknown
 
     qos = info.qos_profile or qos_profile_unknown
     history = qos.history.name

@@ -7,6 +7,7 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+from ros2lite import names
 from ros2lite.arguments import RosArgs, parse_ros_args
 from ros2lite.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup
 from ros2lite.client import Client
@@ -17,16 +18,16 @@ from ros2lite.logging import RcutilsLogger, set_logger_level
 from ros2lite.parameter import Parameter
 from ros2lite.parameters.node_api import ParameterMixin
 from ros2lite.publisher import Publisher
-from ros2lite.service import Service
-from ros2lite.subscription import Subscription
-from ros2lite.timer import Timer
-from ros2lite.transport import keys
-from ros2lite.transport.qos import (
+from ros2lite.qos import (
     QoSProfile,
     ReliabilityPolicy,
     qos_profile_rosout_default,
     qos_profile_services_default,
 )
+from ros2lite.service import Service
+from ros2lite.subscription import Subscription
+from ros2lite.timer import Timer
+from ros2lite.transport import keys
 
 # rcl's rosout profile, lifespan 10 s included: the token must read `:1:,1000:,:10,0:,,`
 ROSOUT_QOS = qos_profile_rosout_default
@@ -57,10 +58,9 @@ class Node(ParameterMixin):
         name = self._args.node_name_override(node_name) or node_name
         ns = self._args.namespace_override(node_name)
         namespace = ns if ns is not None else namespace
-        keys.validate_node_name(name)
+        names.validate_node_name(name)
         self._name = name
-        self._namespace = keys.normalize_namespace(namespace)
-        keys.validate_namespace(self._namespace)
+        self._namespace = names.normalize_namespace(namespace)
         self.node_id = self.context.next_entity_id()
         self.publishers: list[Publisher] = []
         self.subscriptions: list[Subscription] = []
@@ -109,22 +109,29 @@ class Node(ParameterMixin):
         return self._namespace
 
     def get_fully_qualified_name(self) -> str:
-        return keys.node_fqn(self._namespace, self._name)
+        return names.node_fqn(self._namespace, self._name)
 
     def get_logger_name(self) -> str:
         ns = self._namespace.strip('/').replace('/', '.')
         return f'{ns}.{self._name}' if ns else self._name
 
-    def resolve_topic_name(self, topic: str) -> str:
+    def resolve_topic_name(self, topic: str, *, only_expand: bool = False) -> str:
         """Expand a relative/private name and apply remapping rules, as rcl does."""
-        full = keys.expand_topic_name(topic, self._name, self._namespace)
+        return self._resolve(topic, only_expand, is_service=False)
+
+    def _resolve(self, name: str, only_expand: bool, *, is_service: bool) -> str:
+        full = names.expand_topic_name(name, self._name, self._namespace, is_service=is_service)
+        if only_expand:
+            return full
         for rule in self._args.remaps:
             if rule.node not in (None, self._name) or rule.source.startswith('__'):
                 continue
-            if keys.expand_topic_name(rule.source, self._name, self._namespace) == full:
-                full = keys.expand_topic_name(rule.target, self._name, self._namespace)
+            if names.expand_topic_name(rule.source, self._name, self._namespace) == full:
+                full = names.expand_topic_name(
+                    rule.target, self._name, self._namespace, is_service=is_service
+                )
                 break
-        keys.validate_full_topic_name(full)
+        names.validate_full_topic_name(full, is_service=is_service)
         return full
 
     # -- executor and callback groups --------------------------------------------------------
@@ -169,11 +176,7 @@ class Node(ParameterMixin):
 
     def resolve_service_name(self, service: str, *, only_expand: bool = False) -> str:
         """Services resolve (expansion, remapping) exactly as topics do."""
-        if only_expand:
-            full = keys.expand_topic_name(service, self._name, self._namespace)
-            keys.validate_full_topic_name(full)
-            return full
-        return self.resolve_topic_name(service)
+        return self._resolve(service, only_expand, is_service=True)
 
     # -- entities -----------------------------------------------------------------------------
     def create_publisher(

@@ -6,9 +6,9 @@ import time
 from typing import Any
 
 from ros2lite.endpoint import Endpoint, EndpointOwner
+from ros2lite.qos import QoSProfile
 from ros2lite.transport.attachment import pack_attachment
 from ros2lite.transport.keys import EntityKind
-from ros2lite.transport.qos import QoSProfile
 
 
 class Publisher(EndpointOwner):
@@ -41,7 +41,7 @@ class Publisher(EndpointOwner):
             try:
                 data = ser(msg)
             except Exception as e:  # the raw generated function: name the type here
-                from ros2lite.interfaces.cdr import CdrError
+                from ros2lite.interfaces.errors import CdrError
 
                 raise CdrError(f'cannot serialize {self._ep.type_name}: {e}') from None
         elif isinstance(msg, (bytes, bytearray, memoryview)):

@@ -15,9 +15,9 @@ from typing import TYPE_CHECKING, Any
 
 from ros2lite.endpoint import Endpoint
 from ros2lite.executable import Executable
+from ros2lite.qos import QoSProfile
 from ros2lite.transport.attachment import pack_attachment, unpack_attachment
 from ros2lite.transport.keys import EntityKind
-from ros2lite.transport.qos import QoSProfile
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup

@@ -11,9 +11,9 @@ from typing import TYPE_CHECKING, Any
 
 from ros2lite.endpoint import Endpoint, EndpointOwner
 from ros2lite.executable import Executable
+from ros2lite.qos import HistoryPolicy, QoSProfile
 from ros2lite.transport.attachment import unpack_attachment
 from ros2lite.transport.keys import EntityKind
-from ros2lite.transport.qos import HistoryPolicy, QoSProfile
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup

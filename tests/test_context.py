@@ -10,7 +10,8 @@ from typing import Any
 import pytest
 
 import ros2lite
-from ros2lite.context import Context, NotInitializedError
+from ros2lite.context import Context
+from ros2lite.exceptions import NotInitializedException
 from ros2lite.node import Node
 from tests.conftest import free_port
 
@@ -19,7 +20,7 @@ def test_client_mode_init_without_router_fails_fast_and_clearly(
     ros_router: str, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     # a node runs without a router (see tests/test_router_survival.py); a client cannot
-    from ros2lite.transport.config import RouterUnavailableError
+    from ros2lite.transport.errors import RouterUnavailableError
 
     monkeypatch.setenv('ZENOH_CONFIG_OVERRIDE', 'mode="client"')
     endpoint = f'tcp/127.0.0.1:{free_port()}'
@@ -36,7 +37,7 @@ def test_client_mode_init_without_router_fails_fast_and_clearly(
 def test_lifecycle(ros_router: str) -> None:
     ctx = Context()
     assert not ctx.ok()
-    with pytest.raises(NotInitializedError):
+    with pytest.raises(NotInitializedException):
         Node('early', context=ctx)
     assert ros2lite.init([], context=ctx) is ctx
     assert ctx.ok() and ros2lite.ok(context=ctx)

@@ -9,8 +9,8 @@ from ros2lite.clock import Duration as ClockDuration
 from ros2lite.clock import Time
 from ros2lite.duration import Duration
 from ros2lite.interfaces import get_interface
-from ros2lite.transport.qos import DURATION_INFINITE, QoSProfile
-from ros2lite.transport.qos import Duration as QosDuration
+from ros2lite.qos import DURATION_INFINITE, QoSProfile
+from ros2lite.qos import Duration as QosDuration
 
 
 def test_one_type_everywhere() -> None:

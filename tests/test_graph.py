@@ -13,7 +13,7 @@ import pytest
 from ros2lite.context import Context
 from ros2lite.graph import snapshot
 from ros2lite.node import Node
-from ros2lite.transport.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from ros2lite.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 
 
 @pytest.fixture

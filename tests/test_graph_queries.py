@@ -11,8 +11,8 @@ from ros2lite.graph import (
     node_info,
     topic_counts,
 )
+from ros2lite.qos import HistoryPolicy, QoSProfile
 from ros2lite.transport.keys import Entity, EntityKind, endpoint_token, node_token, parse_token
-from ros2lite.transport.qos import HistoryPolicy, QoSProfile
 
 ZID_A = 'aac3178e146ba6f1fc6e6a4085e77f21'
 ZID_B = '8b20917502ee955ac4476e0266340d5c'

@@ -13,7 +13,7 @@ import pytest
 
 from ros2lite import interfaces
 from ros2lite.node import Node
-from ros2lite.transport.qos import QoSProfile, ReliabilityPolicy
+from ros2lite.qos import QoSProfile, ReliabilityPolicy
 from tests.spinning import wait_matched
 
 String = interfaces.get_interface('std_msgs/msg/String')

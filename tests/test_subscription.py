@@ -11,8 +11,8 @@ import pytest
 from ros2lite import interfaces
 from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
+from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
 from ros2lite.subscription import MessageInfo
-from ros2lite.transport.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
 from tests.spinning import spin_for, spin_until, wait_matched
 
 String = interfaces.get_interface('std_msgs/msg/String')
@@ -188,7 +188,7 @@ CROSS_PROCESS_PUBLISHER = '''
 import sys, time
 import ros2lite
 from ros2lite.msgs.std_msgs.msg import String
-from ros2lite.transport.qos import HistoryPolicy, QoSProfile
+from ros2lite.qos import HistoryPolicy, QoSProfile
 ros2lite.init()
 node = ros2lite.Node('remote_pub')
 pub = node.create_publisher(String, 'across', QoSProfile(history=HistoryPolicy.KEEP_ALL))

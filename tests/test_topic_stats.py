@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import statistics
 
+from ros2lite.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
 from ros2lite.topic_monitor import match_publishers_qos
 from ros2lite.topic_stats import (
     BandwidthStats,
@@ -14,12 +15,6 @@ from ros2lite.topic_stats import (
     summarize,
 )
 from ros2lite.transport.attachment import encode_attachment
-from ros2lite.transport.qos import (
-    DurabilityPolicy,
-    QoSProfile,
-    ReliabilityPolicy,
-    qos_profile_sensor_data,
-)
 
 MS = 1_000_000
 

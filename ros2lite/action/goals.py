@@ -13,6 +13,7 @@ import uuid as _uuid
 from dataclasses import dataclass, field
 from typing import Any
 
+from ros2lite.exceptions import Ros2liteError
 from ros2lite.interfaces import get_interface
 
 # action_msgs is where the status values are defined; they are read from there, not repeated
@@ -153,7 +154,7 @@ _TRANSITIONS: dict[tuple[int, GoalEvent], int] = {
 }
 
 
-class InvalidGoalTransition(RuntimeError):
+class InvalidGoalTransition(Ros2liteError, RuntimeError):
     """An event that the goal's current state does not allow (e.g. succeed() before
     execute()); rclpy raises a RuntimeError here too."""
 

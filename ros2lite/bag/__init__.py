@@ -13,9 +13,9 @@
 
 from __future__ import annotations
 
-from ros2lite.bag.metadata import BagMetadata, MetadataError, TopicMetadata
+from ros2lite.bag.errors import BagError, MetadataError
+from ros2lite.bag.metadata import BagMetadata, TopicMetadata
 from ros2lite.bag.reader import Reader
-from ros2lite.bag.storage import BagError
 from ros2lite.bag.writer import Writer
 
 __all__ = ["BagError", "BagMetadata", "MetadataError", "Reader", "TopicMetadata", "Writer"]

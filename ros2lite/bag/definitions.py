@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import re
 
-from ros2lite.interfaces.parser import InterfaceError, MessageDef, parse_message, parse_service
+from ros2lite.interfaces.errors import InterfaceError
+from ros2lite.interfaces.parser import MessageDef, parse_message, parse_service
 from ros2lite.interfaces.registry import Registry, default_registry, event_message, normalize_name
 
 __all__ = ["BagTypes", "parse_definition"]

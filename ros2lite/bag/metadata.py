@@ -12,8 +12,9 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
+from ros2lite.bag.errors import MetadataError
 from ros2lite.duration import Duration
-from ros2lite.transport.qos import (
+from ros2lite.qos import (
     DURATION_INFINITE,
     DurabilityPolicy,
     HistoryPolicy,
@@ -44,10 +45,6 @@ METADATA_VERSION = 9
 # what rosbag2 writes as the start of a bag that has no message yet (INT64_MAX)
 EMPTY_STARTING_TIME = 2**63 - 1
 ROS_DISTRO = "jazzy"
-
-
-class MetadataError(ValueError):
-    """metadata.yaml (or a `rosbag2` record) is unreadable or misses a required key."""
 
 
 @dataclass

@@ -24,12 +24,7 @@ from typing import Any
 
 from ros2lite.bag.metadata import TopicMetadata
 from ros2lite.bag.reader import Reader
-from ros2lite.transport.qos import (
-    DurabilityPolicy,
-    HistoryPolicy,
-    QoSProfile,
-    ReliabilityPolicy,
-)
+from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 __all__ = ["PlayOptions", "Player", "playback_qos"]
 
@@ -364,7 +359,7 @@ class Player:
 
         clock_type = get_interface("rosgraph_msgs/msg/Clock")
         time_type = get_interface("builtin_interfaces/msg/Time")
-        from ros2lite.transport.qos import QoSProfile as Q
+        from ros2lite.qos import QoSProfile as Q
 
         pub = self.node.create_publisher(clock_type, "/clock", Q(depth=1))
         period = 1.0 / self.options.clock_hz

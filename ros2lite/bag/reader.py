@@ -15,16 +15,16 @@ from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
+from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import (
     METADATA_FILENAME,
     BagMetadata,
     FileInformation,
-    MetadataError,
     TopicInformation,
     TopicMetadata,
     read_metadata_file,
 )
-from ros2lite.bag.storage import BagError, FileSummary, open_storage_reader, plugin_for
+from ros2lite.bag.storage import FileSummary, open_storage_reader, plugin_for
 
 __all__ = ["Reader", "bag_files", "metadata_from_files"]
 

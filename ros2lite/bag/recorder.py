@@ -24,9 +24,9 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from ros2lite.bag.storage import BagError
+from ros2lite.bag.errors import BagError
 from ros2lite.bag.writer import Writer
-from ros2lite.transport.qos import HistoryPolicy, QoSProfile
+from ros2lite.qos import HistoryPolicy, QoSProfile
 
 __all__ = ["DEFAULT_MAX_CACHE_SIZE", "RecordOptions", "Recorder", "TopicStats"]
 
@@ -214,7 +214,7 @@ class Recorder:
         if topic.endswith(SERVICE_EVENT_SUFFIX):
             return o.all_services or bool(self._include and self._include.search(topic))
         if not o.include_hidden_topics:
-            from ros2lite.transport.keys import is_hidden_name
+            from ros2lite.names import is_hidden_name
 
             if is_hidden_name(topic):
                 return False

@@ -11,9 +11,10 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from ros2lite.bag.errors import BagError
 from ros2lite.bag.metadata import BagMetadata, write_metadata_file
 from ros2lite.bag.reader import bag_files, metadata_from_files
-from ros2lite.bag.storage import BagError, open_storage_reader, plugin_for
+from ros2lite.bag.storage import open_storage_reader, plugin_for
 
 __all__ = ["reindex"]
 

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from ros2lite.bag.errors import BagError
 from ros2lite.bag.metadata import (
     EMPTY_STARTING_TIME,
     BagMetadata,
@@ -25,9 +26,8 @@ from ros2lite.bag.metadata import (
     TopicMetadata,
     write_metadata_file,
 )
-from ros2lite.bag.storage import BagError
 from ros2lite.bag.storage.mcap import DEFAULT_CHUNK_SIZE, PRESETS, McapStorageWriter
-from ros2lite.transport.qos import QoSProfile
+from ros2lite.qos import QoSProfile
 
 __all__ = ["MIN_SPLIT_SIZE", "Writer", "type_definition"]
 

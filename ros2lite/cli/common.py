@@ -68,7 +68,7 @@ class CliSession:
 
     def __enter__(self) -> CliSession:
         from ros2lite.context import Context
-        from ros2lite.transport.config import RouterUnavailableError
+        from ros2lite.transport.errors import RouterUnavailableError
 
         if not self.no_daemon:
             from ros2lite.daemon.probe import router_answers
@@ -184,7 +184,7 @@ def qos_from_options(
     **_: Any,
 ) -> Any:
     """The profile the `--qos-*` options describe (unset options keep the preset's value)."""
-    from ros2lite.transport import qos as q
+    from ros2lite import qos as q
 
     profile = q.preset(qos_profile)
     changes: dict[str, Any] = {}
@@ -276,7 +276,7 @@ def print_types_of(
 ) -> None:
     """What `topic/service/action type` share: the type(s) of `name` in the graph, or exit 1
     without a word, as ros2cli does (a name that cannot be valid is just an unknown one)."""
-    from ros2lite.transport.keys import expand_topic_name
+    from ros2lite.names import expand_topic_name
 
     try:
         full = expand_topic_name(name, 'ros2lite', '/')

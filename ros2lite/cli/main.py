@@ -10,6 +10,8 @@ from typing import Any
 
 import click
 
+from ros2lite.exceptions import Ros2liteError
+
 from .errors import CliError
 from .lazy import LazyGroup
 
@@ -111,11 +113,11 @@ def _main(args: list[str]) -> Any:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return 0
-    except CliError as e:
+    except Ros2liteError as e:  # the library's and the CLI's own: their message is the line
         if debug_enabled():
             raise
         click.echo(str(e), err=True)
-        return e.code
+        return e.code if isinstance(e, CliError) else 1
     except Exception as e:  # any library failure: one line, no traceback
         if debug_enabled():
             raise

@@ -27,13 +27,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ros2lite.daemon.probe import router_answers, wait_answers
-from ros2lite.transport.config import (
-    SessionError,
-    domain_id,
-    open_session,
-    router_config,
-    router_endpoint,
-)
+from ros2lite.exceptions import Ros2liteError
+from ros2lite.transport.config import domain_id, open_session, router_config, router_endpoint
+from ros2lite.transport.errors import SessionError
 
 if TYPE_CHECKING:
     from ros2lite.transport.admin import ConnectedSession
@@ -59,7 +55,7 @@ STOP_TIMEOUT = 5.0
 _CMDLINE_MARK = b"ros2lite.daemon"
 
 
-class DaemonError(RuntimeError):
+class DaemonError(Ros2liteError, RuntimeError):
     """The daemon could not be started or stopped; the message says why (and where the log is)."""
 
 

@@ -25,7 +25,7 @@ def run_main(body: Callable[[], Any], args: list[str] | None = None) -> int:
     import ros2lite
     from ros2lite.exceptions import ParameterException
     from ros2lite.executors import ExternalShutdownException
-    from ros2lite.transport.config import SessionError
+    from ros2lite.transport.errors import SessionError
 
     try:
         with ros2lite.init(args=args):

@@ -8,11 +8,11 @@ from __future__ import annotations
 
 from typing import Any
 
-from .cdr import CdrError, codec
-from .classes import ActionType, FieldError, Message, ServiceType
+from .cdr import codec
+from .classes import ActionType, Message, ServiceType
 from .classes import get_interface as _get_interface
+from .errors import CdrError, FieldError, InterfaceError, UnknownInterfaceError
 from .hashing import type_hash as _type_hash
-from .parser import InterfaceError, UnknownInterfaceError
 from .registry import Registry, default_registry, normalize_name
 
 __all__ = [

@@ -14,6 +14,7 @@ from collections.abc import Callable
 from typing import Any
 
 from .classes import TYPECODES, factory
+from .errors import CdrError
 from .parser import Field, FieldType, MessageDef
 from .registry import Registry
 
@@ -38,10 +39,6 @@ _DUMMY = Field('structure_needs_at_least_one_member', FieldType('uint8'))
 _ZEROS = tuple(b'\x00' * i for i in range(8))
 # Fixed primitive arrays longer than this leave the packed run and copy as one buffer.
 _INLINE_ARRAY_MAX = 16
-
-
-class CdrError(ValueError):
-    """Bytes that are not a valid CDR encoding of the expected type."""
 
 
 class _Gen:

@@ -12,6 +12,7 @@ import operator
 from array import array
 from typing import TYPE_CHECKING, Any
 
+from .errors import FieldError
 from .parser import INT_RANGES, PRIMITIVES, FieldType, MessageDef
 from .registry import Registry, default_registry, normalize_name
 
@@ -38,10 +39,6 @@ ROSIDL_NAMES = {
     'float64': 'double',
 }
 FLOAT32_MAX = 3.4028234663852886e38  # exact FLT_MAX
-
-
-class FieldError(TypeError, ValueError):
-    """A value does not fit a field (wrong type, out of range, too long)."""
 
 
 class MessageMeta(type):

@@ -14,7 +14,8 @@ from collections.abc import Callable
 from functools import partial
 from typing import Any
 
-from .classes import ROSIDL_NAMES, FieldError, Message, get_interface
+from .classes import ROSIDL_NAMES, Message, get_interface
+from .errors import FieldError, PopulateError
 from .parser import FieldType
 
 _Setter = Callable[[Any], None]
@@ -176,10 +177,6 @@ def message_to_csv(
         _csv_value(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
         for name, ft in zip(msg._fields_and_field_types, msg.SLOT_TYPES, strict=True)
     )
-
-
-class PopulateError(ValueError):
-    """Input values do not fit the message; str() is the reason ros2cli would print."""
 
 
 def _coerce(current: Any, value: Any, ft: FieldType) -> Any:

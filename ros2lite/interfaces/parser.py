@@ -10,6 +10,8 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
+from .errors import InterfaceError
+
 PRIMITIVES = frozenset(
     {
         'bool',
@@ -55,14 +57,6 @@ _TYPE_RE = re.compile(
     r'(?:<=(?P<sbound>\d+))?'
     r'(?:\[(?P<arr>(?:<=)?\d*)\])?$'
 )
-
-
-class InterfaceError(ValueError):
-    """A definition is broken; the message names the file, the line and the problem."""
-
-
-class UnknownInterfaceError(InterfaceError, LookupError):
-    """A package or type that no search path provides."""
 
 
 @dataclass(frozen=True)

@@ -11,14 +11,13 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from .errors import InterfaceError, UnknownInterfaceError
 from .parser import (
     ActionDef,
     Field,
     FieldType,
-    InterfaceError,
     MessageDef,
     ServiceDef,
-    UnknownInterfaceError,
     parse_action,
     parse_message,
     parse_service,

@@ -9,16 +9,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from .parser import (
-    PRIMITIVES,
-    SERVICE_SEPARATOR,
-    Constant,
-    InterfaceError,
-    MessageDef,
-    UnknownInterfaceError,
-    parse_line,
-    split_comment,
-)
+from .errors import InterfaceError, UnknownInterfaceError
+from .parser import PRIMITIVES, SERVICE_SEPARATOR, Constant, MessageDef, parse_line, split_comment
 from .registry import Registry, normalize_name
 
 SEPARATOR = '=' * 80 + '\n'

@@ -25,7 +25,7 @@ class _InterfaceModule(types.ModuleType):
         if attr.startswith('__'):
             raise AttributeError(attr)
         from ros2lite.interfaces import get_interface
-        from ros2lite.interfaces.parser import InterfaceError
+        from ros2lite.interfaces.errors import InterfaceError
         pkg, kind = self.__name__[len(_PREFIX):].split('.')
         try:
             cls = get_interface(f'{pkg}/{kind}/{attr}')

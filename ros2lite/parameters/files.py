@@ -13,13 +13,14 @@ import re
 from pathlib import Path
 from typing import Any
 
+from ros2lite.exceptions import Ros2liteError
 from ros2lite.parameter import PARAMETER_SEPARATOR_STRING
 
 PARAMS_KEY = "ros__parameters"
 WILDCARD = "/**"
 
 
-class ParamsFileError(ValueError):
+class ParamsFileError(Ros2liteError, ValueError):
     """The file cannot be read or is not a ROS 2 parameters file; the message says why."""
 
 

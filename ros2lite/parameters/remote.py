@@ -15,6 +15,7 @@ from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
+from ros2lite.exceptions import Ros2liteError
 from ros2lite.parameter import Parameter, parameter_value_to_python
 from ros2lite.parameters.files import dump_yaml, values_for_node
 from ros2lite.parameters.services import SERVICES, TYPES
@@ -22,7 +23,7 @@ from ros2lite.parameters.services import SERVICES, TYPES
 SERVICE_WAIT = 5.0  # how long ros2cli waits for a node's parameter services
 
 
-class ParameterServiceError(RuntimeError):
+class ParameterServiceError(Ros2liteError, RuntimeError):
     """A parameter service did not answer; the message is the one ros2cli prints."""
 
 

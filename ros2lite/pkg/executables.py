@@ -26,6 +26,8 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from ros2lite.exceptions import Ros2liteError
+
 ENTRY_POINT_GROUP = 'ros2lite.executables'
 
 # the demos bundled with ros2lite: package -> executables, each `main()` of
@@ -51,13 +53,13 @@ _ORIGIN_AMENT = 'ament'
 _ORIGIN_BUNDLED = 'bundled'
 
 
-class PackageNotFoundError(LookupError):
+class PackageNotFoundError(Ros2liteError, LookupError):
     def __init__(self, package: str) -> None:
         super().__init__(f"Package '{package}' not found")
         self.package = package
 
 
-class MultipleExecutablesError(LookupError):
+class MultipleExecutablesError(Ros2liteError, LookupError):
     def __init__(self, locations: Sequence[str]) -> None:
         super().__init__('Multiple executables found:' + ''.join(f'\n- {p}' for p in locations))
         self.locations = list(locations)

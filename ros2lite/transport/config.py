@@ -34,6 +34,8 @@ from typing import Literal
 
 import zenoh
 
+from ros2lite.transport.errors import ConfigError, RouterUnavailableError, SessionError
+
 __all__ = [
     "DEFAULT_ROUTER",
     "ROUTER_ENV",
@@ -79,25 +81,6 @@ CONNECT_TIMEOUT_MS = 1000
 # connect costs microseconds, so retrying often is cheap.
 RETRY_INIT_MS = 100
 RETRY_MAX_MS = 400
-
-
-class ConfigError(ValueError):
-    """A bad environment variable, config file or override; the message says which."""
-
-
-class SessionError(RuntimeError):
-    """A Zenoh session could not be opened (other than for a missing router)."""
-
-
-class RouterUnavailableError(SessionError):
-    """No Zenoh router answers at the endpoint a session was told to use."""
-
-    def __init__(self, endpoint: str, detail: str = "") -> None:
-        self.endpoint = endpoint
-        self.detail = detail
-        super().__init__(
-            f"No Zenoh router answers at {endpoint} (start one with 'ros2lite daemon start')"
-        )
 
 
 def _env(env: Mapping[str, str] | None) -> Mapping[str, str]:

@@ -1,20 +1,21 @@
-"""ROS names and the Zenoh keys rmw_zenoh builds from them.
+"""The Zenoh keys rmw_zenoh builds from ROS names and types.
 
-Three things live here because they must agree byte for byte with rmw_zenoh_cpp:
-name validation/expansion (so we reject what rcl rejects), the data key expression
-``<domain>/<name>/<dds type>/<hash>``, and the ``@ros2_lv`` liveliness tokens that make up
-the ROS graph.  Token parsing is lenient: peers from other releases add chunks or use old
-QoS defaults, and a graph view must not fall over on one odd token.
+Two things live here because they must agree byte for byte with rmw_zenoh_cpp: the data key
+expression ``<domain>/<name>/<dds type>/<hash>``, and the ``@ros2_lv`` liveliness tokens that
+make up the ROS graph (the rules for the names themselves are :mod:`ros2lite.names`'). Token
+parsing is lenient: peers from other releases add chunks or use old QoS defaults, and a graph
+view must not fall over on one odd token.
 """
 
 from __future__ import annotations
 
 import enum
 import functools
-import re
 from dataclasses import dataclass
 
-from ros2lite.transport.qos import QoSProfile, decode_qos, encode_qos
+from ros2lite.names import node_fqn
+from ros2lite.qos import QoSProfile
+from ros2lite.transport.qos import decode_qos, encode_qos
 
 __all__ = [
     "LIVELINESS_PREFIX",
@@ -23,180 +24,16 @@ __all__ = [
     "dds_type_name",
     "demangle",
     "endpoint_token",
-    "expand_topic_name",
-    "is_hidden_name",
     "liveliness_prefix",
     "liveliness_subscription_key",
     "mangle",
-    "node_fqn",
     "node_token",
-    "normalize_namespace",
     "parse_token",
     "ros_type_name",
-    "split_fqn",
     "topic_key",
-    "validate_full_topic_name",
-    "validate_namespace",
-    "validate_node_name",
-    "validate_topic_name",
 ]
 
 LIVELINESS_PREFIX = "@ros2_lv"
-
-_TOKEN_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
-_SUBST_RE = re.compile(r"\{([^{}]*)\}")
-
-
-# --------------------------------------------------------------------------- names
-
-
-def _check_tokens(name: str, what: str, shown: str | None = None) -> None:
-    label = shown if shown is not None else repr(name)
-    for token in name.split("/"):
-        if token and token[0].isdigit():
-            raise ValueError(f"invalid {what} {label}: token {token!r} must not start with a digit")
-
-
-def validate_topic_name(name: str) -> None:
-    """Check a topic/service name as a user may write it (relative, ``~`` and ``{}`` allowed).
-
-    Raises ``ValueError`` saying what is wrong, like ``rcl_validate_topic_name``.
-    """
-    what = "topic name"
-    if not name:
-        raise ValueError(f"invalid {what}: must not be empty")
-    bad = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c in "_/~{}"))})
-    if bad:
-        raise ValueError(
-            f"invalid {what} {name!r}: character(s) {''.join(bad)!r} not allowed "
-            "(use letters, digits, '_', '/', '~', '{}')"
-        )
-    if name[0].isdigit():
-        raise ValueError(f"invalid {what} {name!r}: must not start with a digit")
-    if name.endswith("/"):
-        raise ValueError(f"invalid {what} {name!r}: must not end with '/'")
-    if "//" in name:
-        raise ValueError(f"invalid {what} {name!r}: must not contain '//'")
-    if "~" in name[1:] or (name.startswith("~") and len(name) > 1 and name[1] != "/"):
-        raise ValueError(
-            f"invalid {what} {name!r}: '~' is only allowed as '~' or '~/…' at the start"
-        )
-    depth = 0
-    for c in name:
-        if c == "{":
-            depth += 1
-            if depth > 1:
-                raise ValueError(f"invalid {what} {name!r}: nested '{{'")
-        elif c == "}":
-            depth -= 1
-            if depth < 0:
-                raise ValueError(f"invalid {what} {name!r}: unbalanced '}}'")
-    if depth:
-        raise ValueError(f"invalid {what} {name!r}: unbalanced '{{'")
-    for m in _SUBST_RE.finditer(name):
-        if not _TOKEN_RE.fullmatch(m.group(1)):
-            raise ValueError(f"invalid {what} {name!r}: bad substitution {m.group(0)!r}")
-    _check_tokens(_SUBST_RE.sub("x", name.replace("~", "x")), what, repr(name))
-
-
-def validate_full_topic_name(name: str) -> None:
-    """Check an expanded, absolute topic/service name (``/ns/name``), as rmw does."""
-    _check_absolute(name, "topic name")
-
-
-def _check_absolute(name: str, what: str) -> None:
-    """Rules shared by absolute topic names and namespaces."""
-    if not name:
-        raise ValueError(f"invalid {what}: must not be empty")
-    if not name.startswith("/"):
-        raise ValueError(f"invalid {what} {name!r}: must be absolute (start with '/')")
-    if name == "/" and what == "namespace":
-        return
-    bad = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c in "_/"))})
-    if bad:
-        raise ValueError(
-            f"invalid {what} {name!r}: character(s) {''.join(bad)!r} not allowed "
-            "(use letters, digits, '_', '/')"
-        )
-    if name.endswith("/"):
-        raise ValueError(f"invalid {what} {name!r}: must not end with '/'")
-    if "//" in name:
-        raise ValueError(f"invalid {what} {name!r}: must not contain '//'")
-    _check_tokens(name, what)
-
-
-def validate_node_name(name: str) -> None:
-    """A node name is one token: letters, digits and '_', not starting with a digit."""
-    if not name:
-        raise ValueError("invalid node name: must not be empty")
-    bad = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c == "_"))})
-    if bad:
-        raise ValueError(
-            f"invalid node name {name!r}: character(s) {''.join(bad)!r} not allowed "
-            "(use letters, digits, '_')"
-        )
-    if name[0].isdigit():
-        raise ValueError(f"invalid node name {name!r}: must not start with a digit")
-
-
-def validate_namespace(namespace: str) -> None:
-    """An absolute namespace: ``/`` or ``/a/b`` (no trailing '/', no '//')."""
-    _check_absolute(namespace, "namespace")
-
-
-def normalize_namespace(namespace: str | None) -> str:
-    """rclpy's leniency: ``None``/``""`` → ``/`` and ``robot1`` → ``/robot1``; then validate."""
-    ns = namespace or "/"
-    if not ns.startswith("/"):
-        ns = "/" + ns
-    if len(ns) > 1:
-        ns = ns.rstrip("/") or "/"
-    validate_namespace(ns)
-    return ns
-
-
-def node_fqn(namespace: str, node_name: str) -> str:
-    """``/ns`` + ``name`` → ``/ns/name`` (and ``/`` + ``name`` → ``/name``)."""
-    return ("" if namespace == "/" else namespace) + "/" + node_name
-
-
-def split_fqn(fqn: str) -> tuple[str, str]:
-    """``/a/b/name`` → (``/a/b``, ``name``); ``/name`` → (``/``, ``name``)."""
-    head, _, tail = fqn.rpartition("/")
-    return (head or "/"), tail
-
-
-def expand_topic_name(name: str, node_name: str, namespace: str) -> str:
-    """Expand a user-written name into the absolute one, like ``rcl_expand_topic_name``.
-
-    ``~`` becomes the node's fully qualified name, ``{node}``/``{ns}``/``{namespace}`` are
-    substituted, and relative names are put under the node's namespace.
-    """
-    validate_topic_name(name)
-    validate_node_name(node_name)
-    validate_namespace(namespace)
-    if name.startswith("~"):
-        name = node_fqn(namespace, node_name) + name[1:]
-    subs = {"node": node_name, "ns": namespace, "namespace": namespace}
-
-    def repl(m: re.Match[str]) -> str:
-        key = m.group(1)
-        if key not in subs:
-            raise ValueError(f"invalid topic name {name!r}: unknown substitution {{{key}}}")
-        return subs[key]
-
-    name = _SUBST_RE.sub(repl, name)
-    if not name.startswith("/"):
-        name = ("" if namespace == "/" else namespace) + "/" + name
-    name = re.sub(r"/{2,}", "/", name)
-    validate_full_topic_name(name)
-    return name
-
-
-def is_hidden_name(name: str) -> bool:
-    """Hidden topics/services/nodes have a token starting with '_' (ros2cli hides them)."""
-    return any(tok.startswith("_") for tok in name.split("/") if tok)
-
 
 # --------------------------------------------------------------------------- types and keys
 

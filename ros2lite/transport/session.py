@@ -21,8 +21,8 @@ from typing import Any, Protocol
 import zenoh
 import zenoh.ext
 
+from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from ros2lite.transport.keys import liveliness_subscription_key
-from ros2lite.transport.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 __all__ = [
     "Handle",

@@ -15,12 +15,7 @@ from ros2lite.bag import Reader, Writer
 from ros2lite.bag.player import Player, PlayOptions, playback_qos
 from ros2lite.interfaces import get_interface
 from ros2lite.node import Node
-from ros2lite.transport.qos import (
-    DurabilityPolicy,
-    HistoryPolicy,
-    QoSProfile,
-    ReliabilityPolicy,
-)
+from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from tests.spinning import wait_until
 
 String = get_interface("std_msgs/msg/String")

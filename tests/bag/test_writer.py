@@ -20,7 +20,7 @@ from ros2lite.bag.metadata import (
 )
 from ros2lite.bag.reindex import reindex
 from ros2lite.interfaces import definition_text, get_interface, type_hash
-from ros2lite.transport.qos import (
+from ros2lite.qos import (
     DURATION_INFINITE,
     DurabilityPolicy,
     HistoryPolicy,

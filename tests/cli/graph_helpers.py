@@ -16,8 +16,8 @@ from typing import Any
 
 import pytest
 
+from ros2lite.qos import DurabilityPolicy, QoSProfile
 from ros2lite.transport.keys import EntityKind, endpoint_token, node_token
-from ros2lite.transport.qos import DurabilityPolicy, QoSProfile
 
 STRING = 'std_msgs/msg/String'
 STRING_HASH = 'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18'

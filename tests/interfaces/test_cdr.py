@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 from rosbags.typesys import Stores, get_typestore
 
 from ros2lite import interfaces
-from ros2lite.interfaces.cdr import CdrError
 from ros2lite.interfaces.classes import TYPECODES
+from ros2lite.interfaces.errors import CdrError
 
 from .strategies import message
 

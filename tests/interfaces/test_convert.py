@@ -7,7 +7,7 @@ from typing import Any
 import pytest
 
 from ros2lite import interfaces as I
-from ros2lite.interfaces.convert import PopulateError
+from ros2lite.interfaces.errors import PopulateError
 
 
 def msg(name: str, **kwargs: object) -> Any:

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import pytest
 
+from ros2lite.interfaces.errors import InterfaceError
 from ros2lite.interfaces.parser import (
     Constant,
     FieldType,
-    InterfaceError,
     parse_action,
     parse_message,
     parse_service,

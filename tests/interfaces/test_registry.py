@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from ros2lite.interfaces import classes, registry
-from ros2lite.interfaces.parser import UnknownInterfaceError
+from ros2lite.interfaces.errors import UnknownInterfaceError
 
 
 def make_pkg(root: Path, pkg: str, files: dict[str, str]) -> None:

@@ -2,9 +2,10 @@ from __future__ import annotations
 
 import pytest
 
+from ros2lite.qos import QoSProfile
 from ros2lite.transport import keys as k
 from ros2lite.transport.keys import Entity, EntityKind, parse_token
-from ros2lite.transport.qos import QoSProfile, decode_qos
+from ros2lite.transport.qos import decode_qos
 
 STRING_HASH = "RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18"
 ADD_HASH = "RIHS01_e118de6bf5eeb66a2491b5bda11202e7b68f198d6f67922cf30364858239c81a"
@@ -201,89 +202,3 @@ def test_mangling_and_prefix() -> None:
         k.node_token(0, "zid", 0, "", "n")
     with pytest.raises(ValueError, match="node_token"):
         k.endpoint_token(0, "z", 0, 1, "NN", "/", "n", "/t", "a/msg/B", "h", QoSProfile())
-
-
-@pytest.mark.parametrize(
-    "name", ["chatter", "/chatter", "~", "~/foo", "a/b_c/D9", "{node}/x", "/ns/{ns}", "_hidden"]
-)
-def test_valid_topic_names(name: str) -> None:
-    k.validate_topic_name(name)
-
-
-@pytest.mark.parametrize(
-    ("name", "why"),
-    [
-        ("", "empty"),
-        ("/foo/", "end with '/'"),
-        ("foo//bar", "'//'"),
-        ("9foo", "digit"),
-        ("/foo/9bar", "digit"),
-        ("foo bar", "not allowed"),
-        ("foo-bar", "not allowed"),
-        ("a/~", "'~'"),
-        ("~foo", "'~'"),
-        ("{a", "unbalanced"),
-        ("a}", "unbalanced"),
-        ("{a-b}", "not allowed"),
-        ("{}", "substitution"),
-    ],
-)
-def test_invalid_topic_names(name: str, why: str) -> None:
-    with pytest.raises(ValueError, match="invalid topic name") as err:
-        k.validate_topic_name(name)
-    assert why in str(err.value)
-
-
-def test_full_names_nodes_namespaces() -> None:
-    k.validate_full_topic_name("/a/b")
-    for bad in ("a/b", "/a/", "/a//b", "/~", "/1a"):
-        with pytest.raises(ValueError):
-            k.validate_full_topic_name(bad)
-    k.validate_node_name("talker_1")
-    for bad in ("", "1talker", "tal/ker", "tal-ker"):
-        with pytest.raises(ValueError, match="node name"):
-            k.validate_node_name(bad)
-    k.validate_namespace("/")
-    k.validate_namespace("/a/b")
-    for bad in ("", "a", "/a/", "/a//b", "/1a", "/a-b"):
-        with pytest.raises(ValueError, match="namespace"):
-            k.validate_namespace(bad)
-    assert k.normalize_namespace(None) == "/"
-    assert k.normalize_namespace("") == "/"
-    assert k.normalize_namespace("robot1") == "/robot1"
-    assert k.normalize_namespace("/robot1/") == "/robot1"
-
-
-@pytest.mark.parametrize(
-    ("name", "node", "ns", "expected"),
-    [
-        ("chatter", "talker", "/", "/chatter"),
-        ("chatter", "talker", "/robot1", "/robot1/chatter"),
-        ("/abs", "talker", "/robot1", "/abs"),
-        ("~", "talker", "/ns", "/ns/talker"),
-        ("~/foo", "talker", "/ns", "/ns/talker/foo"),
-        ("~/foo", "talker", "/", "/talker/foo"),
-        ("{node}/x", "talker", "/ns", "/ns/talker/x"),
-        ("{ns}/x", "talker", "/ns", "/ns/x"),
-        ("{namespace}/x", "talker", "/", "/x"),
-    ],
-)
-def test_expand_topic_name(name: str, node: str, ns: str, expected: str) -> None:
-    assert k.expand_topic_name(name, node, ns) == expected
-
-
-def test_expand_rejects_bad_input() -> None:
-    with pytest.raises(ValueError, match="unknown substitution"):
-        k.expand_topic_name("{robot}/x", "talker", "/")
-    with pytest.raises(ValueError, match="node name"):
-        k.expand_topic_name("x", "9talker", "/")
-
-
-def test_fqn_helpers() -> None:
-    assert k.node_fqn("/", "n") == "/n"
-    assert k.node_fqn("/a/b", "n") == "/a/b/n"
-    assert k.split_fqn("/a/b/n") == ("/a/b", "n")
-    assert k.split_fqn("/n") == ("/", "n")
-    assert k.is_hidden_name("/_ros2cli_123")
-    assert k.is_hidden_name("/a/_b/c")
-    assert not k.is_hidden_name("/a/b_c")

@@ -2,9 +2,8 @@ from __future__ import annotations
 
 import pytest
 
-from ros2lite.transport import qos as q
-from ros2lite.transport.qos import (
-    DURATION_BEST_AVAILABLE,
+from ros2lite import qos as q
+from ros2lite.qos import (
     DURATION_INFINITE,
     DurabilityPolicy,
     Duration,
@@ -12,13 +11,9 @@ from ros2lite.transport.qos import (
     LivelinessPolicy,
     QoSProfile,
     ReliabilityPolicy,
-    best_available_qos,
-    check_compatible,
-    decode_qos,
-    encode_qos,
-    preset,
-    resolve_best_available,
 )
+from ros2lite.transport import qos as wire
+from ros2lite.transport.qos import best_available_qos, decode_qos, encode_qos
 
 # The worked values of the rmw_zenoh reference, §2.2.
 WORKED = [
@@ -40,10 +35,10 @@ def test_worked_values(profile: QoSProfile, chunk: str) -> None:
 
 
 def test_rmw_zenoh_defaults_encode_empty() -> None:
-    assert encode_qos(q.ZENOH_DEFAULT_QOS) == "::,:,:,:,,"
+    assert encode_qos(wire.ZENOH_DEFAULT_QOS) == "::,:,:,:,,"
     # SYSTEM_DEFAULT everywhere and depth 0 normalise to those defaults.
     assert encode_qos(q.qos_profile_system_default) == "::,:,:,:,,"
-    assert decode_qos("::,:,:,:,,") == q.ZENOH_DEFAULT_QOS
+    assert decode_qos("::,:,:,:,,") == wire.ZENOH_DEFAULT_QOS
 
 
 def test_best_available_normalisation() -> None:
@@ -90,116 +85,3 @@ def test_lenient_decode_of_old_default_durability() -> None:
 def test_garbage_chunks_raise(chunk: str) -> None:
     with pytest.raises(ValueError, match="QoS chunk"):
         decode_qos(chunk)
-
-
-def test_presets_and_short_keys() -> None:
-    assert preset("sensor_data") is q.qos_profile_sensor_data
-    assert preset("qos_profile_sensor_data") is q.qos_profile_sensor_data
-    assert preset("rosout_default").lifespan == Duration(seconds=10)
-    assert preset("parameters").depth == preset("parameter_events").depth == 1000
-    assert preset("action_status_default").durability == DurabilityPolicy.TRANSIENT_LOCAL
-    assert preset("system_default").reliability == ReliabilityPolicy.SYSTEM_DEFAULT
-    assert QoSProfile() == QoSProfile(
-        ReliabilityPolicy.RELIABLE, DurabilityPolicy.VOLATILE, HistoryPolicy.KEEP_LAST, 10
-    )
-    with pytest.raises(ValueError, match="sensor_data"):
-        preset("nope")
-    assert ReliabilityPolicy.from_short_key("best_effort") is ReliabilityPolicy.BEST_EFFORT
-    assert DurabilityPolicy.from_short_key("transient_local") is DurabilityPolicy.TRANSIENT_LOCAL
-    assert HistoryPolicy.from_short_key("KEEP_ALL") is HistoryPolicy.KEEP_ALL
-    assert ReliabilityPolicy.RELIABLE.short_key == "reliable"
-    assert "system_default" in ReliabilityPolicy.short_keys()
-    with pytest.raises(ValueError, match="reliable, best_effort"):
-        ReliabilityPolicy.from_short_key("sometimes")
-
-
-def test_profile_accepts_ints_and_checks_depth() -> None:
-    assert QoSProfile(reliability=2).reliability is ReliabilityPolicy.BEST_EFFORT  # type: ignore[arg-type]
-    assert QoSProfile().replace(depth=3).depth == 3
-    with pytest.raises(ValueError):
-        QoSProfile(depth=-1)
-
-
-def test_duration_helpers() -> None:
-    assert Duration.from_seconds(10) == Duration(seconds=10)
-    assert Duration.from_nanoseconds(1_500_000_000) == Duration(seconds=1, nanoseconds=500000000)
-    assert str(DURATION_INFINITE) == "Infinite"
-    assert str(Duration(seconds=1, nanoseconds=5)) == "1000000005 nanoseconds"
-    assert Duration(seconds=1) < Duration(seconds=1, nanoseconds=1) < Duration(seconds=2)
-
-
-R, D, L = ReliabilityPolicy, DurabilityPolicy, LivelinessPolicy
-
-
-@pytest.mark.parametrize(
-    ("pub", "sub", "ok", "fragment"),
-    [
-        (QoSProfile(reliability=R.BEST_EFFORT), QoSProfile(), False, "Best effort publisher"),
-        (QoSProfile(), QoSProfile(reliability=R.BEST_EFFORT), True, ""),
-        (QoSProfile(), QoSProfile(durability=D.TRANSIENT_LOCAL), False, "Volatile publisher"),
-        (QoSProfile(durability=D.TRANSIENT_LOCAL), QoSProfile(), True, ""),
-        (QoSProfile(), QoSProfile(deadline=Duration(seconds=1)), False, "publisher does not"),
-        (
-            QoSProfile(deadline=Duration(seconds=2)),
-            QoSProfile(deadline=Duration(seconds=1)),
-            False,
-            "deadline is less",
-        ),
-        (
-            QoSProfile(deadline=Duration(seconds=1)),
-            QoSProfile(deadline=Duration(seconds=2)),
-            True,
-            "",
-        ),
-        (
-            QoSProfile(liveliness=L.AUTOMATIC),
-            QoSProfile(liveliness=L.MANUAL_BY_TOPIC),
-            False,
-            "manual by topic",
-        ),
-        (
-            QoSProfile(),
-            QoSProfile(liveliness_lease_duration=Duration(seconds=1)),
-            False,
-            "lease duration, but publisher does not",
-        ),
-        (
-            QoSProfile(liveliness_lease_duration=Duration(seconds=3)),
-            QoSProfile(liveliness_lease_duration=Duration(seconds=1)),
-            False,
-            "less than publisher",
-        ),
-        # Tokens carry "infinite" where users write "unspecified": both mean no deadline.
-        (decode_qos("::,10:,:,:,,"), QoSProfile(), True, ""),
-        (QoSProfile(), decode_qos("::,10:,:,:,,"), True, ""),
-        (q.qos_profile_system_default, q.qos_profile_system_default, True, "WARNING"),
-    ],
-)
-def test_compatibility(pub: QoSProfile, sub: QoSProfile, ok: bool, fragment: str) -> None:
-    compatible, reason = check_compatible(pub, sub)
-    assert compatible is ok
-    assert fragment in reason
-    if not fragment:
-        assert reason == "" or reason.startswith("WARNING")
-
-
-def test_resolve_best_available() -> None:
-    ba = q.qos_profile_best_available
-    pub = resolve_best_available(ba, [], for_publisher=True)
-    assert (pub.reliability, pub.durability, pub.liveliness) == (
-        R.RELIABLE,
-        D.TRANSIENT_LOCAL,
-        L.AUTOMATIC,
-    )
-    assert pub.deadline.is_unspecified
-    pubs = [
-        QoSProfile(reliability=R.BEST_EFFORT, deadline=Duration(seconds=2)),
-        QoSProfile(durability=D.TRANSIENT_LOCAL, deadline=Duration(seconds=5)),
-    ]
-    sub = resolve_best_available(ba, pubs, for_publisher=False)
-    assert (sub.reliability, sub.durability) == (R.BEST_EFFORT, D.VOLATILE)
-    assert sub.deadline == Duration(seconds=5)
-    assert sub.liveliness_lease_duration.is_unspecified
-    tl = resolve_best_available(ba, [q.qos_profile_rosout_default], for_publisher=False)
-    assert (tl.reliability, tl.durability) == (R.RELIABLE, D.TRANSIENT_LOCAL)
-    assert ba.deadline == DURATION_BEST_AVAILABLE

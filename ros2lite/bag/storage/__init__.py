@@ -10,6 +10,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
+from ros2lite.bag.errors import BagError
 from ros2lite.bag.metadata import BagMetadata, TopicMetadata
 
 __all__ = [
@@ -20,10 +21,6 @@ __all__ = [
     "open_storage_reader",
     "plugin_for",
 ]
-
-
-class BagError(Exception):
-    """A bag cannot be read or written; the message says which file and why."""
 
 
 @dataclass

@@ -18,16 +18,16 @@ import os
 from collections.abc import Iterator
 from typing import Any
 
+from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import (
     BagMetadata,
-    MetadataError,
     TopicMetadata,
     dump_metadata,
     dump_qos_list,
     parse_metadata,
     parse_qos_list,
 )
-from ros2lite.bag.storage import BagError, FileSummary
+from ros2lite.bag.storage import FileSummary
 
 __all__ = [
     "COMPRESSIONS",

@@ -12,8 +12,9 @@ import sqlite3
 from collections.abc import Iterator
 from typing import Any
 
-from ros2lite.bag.metadata import MetadataError, TopicMetadata, parse_metadata, parse_qos_list
-from ros2lite.bag.storage import BagError, FileSummary
+from ros2lite.bag.errors import BagError, MetadataError
+from ros2lite.bag.metadata import TopicMetadata, parse_metadata, parse_qos_list
+from ros2lite.bag.storage import FileSummary
 
 __all__ = ["Sqlite3StorageReader", "open_reader"]
 

@@ -36,7 +36,7 @@ def cli(
 ) -> None:
     """Print information about an action."""
     from ros2lite.graph import action_endpoints
-    from ros2lite.transport.keys import expand_topic_name, validate_full_topic_name
+    from ros2lite.names import expand_topic_name, validate_full_topic_name
 
     try:
         name = expand_topic_name(action_name, 'ros2lite', '/')

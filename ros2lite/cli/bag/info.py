@@ -152,8 +152,8 @@ def message_sizes(reader: Any) -> dict[str, int]:
 )
 def cli(bag_path: str, storage: str | None, topic_name: bool, verbose: bool, sort: str) -> None:
     """Print information about a bag to the screen."""
+    from ros2lite.bag.errors import BagError
     from ros2lite.bag.reader import Reader
-    from ros2lite.bag.storage import BagError
 
     path = Path(bag_path)
     if not path.exists():

@@ -108,9 +108,9 @@ def cli(
     """Play back ROS data from a bag."""
     import re
 
+    from ros2lite.bag.errors import BagError
     from ros2lite.bag.player import Player, PlayOptions
     from ros2lite.bag.reader import Reader
-    from ros2lite.bag.storage import BagError
 
     if not Path(bag_path).exists():
         raise bag_error(f"Bag path '{bag_path}' does not exist!")
@@ -180,7 +180,7 @@ def _absolute(node: Any, names: Any) -> list[str]:
 
 
 def _play(player: Any, log: Any, keyboard: bool) -> None:
-    from ros2lite.bag.storage import BagError
+    from ros2lite.bag.errors import BagError
 
     keys = None
     from . import keyboard as keys_module

@@ -178,8 +178,8 @@ def cli(
     """Record ROS data to a bag."""
     import re
 
+    from ros2lite.bag.errors import BagError
     from ros2lite.bag.recorder import RecordOptions
-    from ros2lite.bag.storage import BagError
     from ros2lite.bag.writer import Writer
 
     if positional_topics:
@@ -261,7 +261,7 @@ def cli(
 
 def _absolute(names: list[str], node_name: str) -> list[str]:
     """Topic names as the recorder node resolves them (it lives in the root namespace)."""
-    from ros2lite.transport.keys import expand_topic_name
+    from ros2lite.names import expand_topic_name
 
     try:
         return [expand_topic_name(n, node_name, "/") for n in names]
@@ -282,7 +282,8 @@ def _custom_data(pairs: tuple[str, ...]) -> dict[str, str] | None:
 def _qos_overrides(path: str | None) -> dict[str, Any]:
     if path is None:
         return {}
-    from ros2lite.bag.metadata import MetadataError, parse_qos_overrides
+    from ros2lite.bag.errors import MetadataError
+    from ros2lite.bag.metadata import parse_qos_overrides
 
     try:
         with open(path, encoding="utf-8") as f:

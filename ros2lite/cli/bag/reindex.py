@@ -17,8 +17,8 @@ from .options import bag_error
 )
 def cli(bag_path: str, storage: str | None) -> None:
     """Reconstruct metadata file for a bag."""
+    from ros2lite.bag.errors import BagError
     from ros2lite.bag.reindex import reindex
-    from ros2lite.bag.storage import BagError
 
     try:
         reindex(bag_path, storage)

@@ -24,7 +24,7 @@ def _section(title: str, items: list[tuple[str, list[str]]]) -> str:
 def cli(node_name: str, include_hidden: bool, no_daemon: bool, use_sim_time: bool) -> None:
     """Output information about a node."""
     from ros2lite.graph import node_full_names, node_info
-    from ros2lite.transport.keys import split_fqn
+    from ros2lite.names import split_fqn
 
     full = node_name if node_name.startswith('/') else '/' + node_name
     with CliSession(no_daemon=no_daemon) as session:

@@ -16,7 +16,8 @@ from ..errors import CliError
 def cli(ctx: click.Context, service_name: str, no_daemon: bool, use_sim_time: bool) -> None:
     """Print information about a service."""
     from ros2lite.graph import count, service_names_and_types
-    from ros2lite.transport.keys import EntityKind, expand_topic_name
+    from ros2lite.names import expand_topic_name
+    from ros2lite.transport.keys import EntityKind
 
     try:
         name = expand_topic_name(service_name, 'ros2lite', '/')

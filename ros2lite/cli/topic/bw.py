@@ -47,9 +47,9 @@ def bw_line(s: Any) -> str:
 def cli(topic: str, window: int, use_sim_time: bool) -> None:
     """Display bandwidth used by topic."""
     from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.qos import qos_profile_sensor_data
     from ros2lite.topic_monitor import MonitoredSubscription
     from ros2lite.topic_stats import BandwidthStats
-    from ros2lite.transport.qos import qos_profile_sensor_data
 
     stats = BandwidthStats(window)
     with CliSession(use_sim_time=use_sim_time) as session:

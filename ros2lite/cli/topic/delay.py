@@ -36,8 +36,8 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
     """Display delay of topic from timestamp in header."""
     from ros2lite.executors import SingleThreadedExecutor
     from ros2lite.interfaces import deserialize, get_interface
+    from ros2lite.qos import qos_profile_sensor_data
     from ros2lite.topic_stats import DelayStats
-    from ros2lite.transport.qos import qos_profile_sensor_data
 
     stats = DelayStats(window)
     with CliSession(use_sim_time=use_sim_time) as session:

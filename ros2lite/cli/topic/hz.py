@@ -166,7 +166,7 @@ def _subscribe(
 ) -> None:
     """Count samples on arrival (Zenoh thread, nothing queued or decoded) unless a filter
     needs the message; then decode on the executor and use the arrival stamp it carries."""
-    from ros2lite.transport.qos import qos_profile_sensor_data
+    from ros2lite.qos import qos_profile_sensor_data
 
     def record(arrived: int) -> None:
         if rate.add(stamp(arrived)):

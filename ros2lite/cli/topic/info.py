@@ -26,7 +26,8 @@ def cli(topic_name: str, verbose: bool, no_daemon: bool, use_sim_time: bool) -> 
         format_endpoint_info,
         topic_names_and_types,
     )
-    from ros2lite.transport.keys import EntityKind, expand_topic_name
+    from ros2lite.names import expand_topic_name
+    from ros2lite.transport.keys import EntityKind
 
     try:
         name = expand_topic_name(topic_name, 'ros2lite', '/')

@@ -138,7 +138,7 @@ def test_recorded_qos_and_overrides_reach_the_publishers(
     tmp_path: Path, ros_context: Any, topic: str
 ) -> None:
     from ros2lite.graph import snapshot
-    from ros2lite.transport.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+    from ros2lite.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 
     latched = QoSProfile(durability=DurabilityPolicy.TRANSIENT_LOCAL, depth=4)
     with Writer(tmp_path / "bag") as bag:

@@ -14,7 +14,7 @@ from typing import Any
 from ros2lite.bag import Reader
 from ros2lite.bag.metadata import read_metadata_file
 from ros2lite.interfaces import get_interface, serialize
-from ros2lite.transport.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
+from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
 
 from ..conftest import run_process
 from .conftest import play, subscribed, wait_until
@@ -328,7 +328,7 @@ def test_topic_types_hidden_topics_and_qos_overrides(
     wait_until(lambda: subscribed(ros_context, f"{topic}/_hidden"), timeout=20)
     wait_until(lambda: subscribed(ros_context, f"{topic}/typed"), timeout=20)
     from ros2lite.graph import snapshot
-    from ros2lite.transport.qos import ReliabilityPolicy
+    from ros2lite.qos import ReliabilityPolicy
 
     subs = [
         e

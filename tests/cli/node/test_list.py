@@ -64,8 +64,8 @@ def test_duplicate_names_warn_on_stderr(run: Run, graph: TokenGraph) -> None:
 
 def test_node_known_only_from_an_endpoint_token(run: Run, graph: TokenGraph) -> None:
     # rmw_zenoh creates a node from its endpoint tokens even without an NN token
+    from ros2lite.qos import QoSProfile
     from ros2lite.transport.keys import EntityKind, endpoint_token
-    from ros2lite.transport.qos import QoSProfile
 
     key = endpoint_token(
         graph.domain,

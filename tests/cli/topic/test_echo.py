@@ -7,7 +7,7 @@ from collections.abc import Callable
 from typing import Any
 
 from ros2lite.interfaces import get_interface, serialize
-from ros2lite.transport.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from ros2lite.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 
 from ...conftest import wait_until
 from ..conftest import Result

@@ -7,8 +7,7 @@ from typing import Any
 
 import pytest
 
-from ros2lite.transport.attachment import gid_from_token
-from ros2lite.transport.qos import (
+from ros2lite.qos import (
     DurabilityPolicy,
     Duration,
     HistoryPolicy,
@@ -16,6 +15,7 @@ from ros2lite.transport.qos import (
     QoSProfile,
     ReliabilityPolicy,
 )
+from ros2lite.transport.attachment import gid_from_token
 
 from ..graph_helpers import (
     STRING,

@@ -7,7 +7,7 @@ from typing import Any
 
 import pytest
 
-from ros2lite.transport.qos import QoSProfile
+from ros2lite.qos import QoSProfile
 
 from ..graph_helpers import STRING, TokenGraph, private_domain, settle, start_node
 

@@ -1,0 +1,200 @@
+"""ROS names: validation, expansion and hidden names, with rcl's rules and rclpy's exceptions.
+
+A name is rejected here exactly when rcl would reject it, because the graph, the data keys
+and remapping all depend on names agreeing byte for byte between ros2lite and real ROS nodes.
+The wire encoding of names (mangling into key chunks) is :mod:`ros2lite.transport.keys`' job.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ros2lite.exceptions import (
+    InvalidNamespaceException,
+    InvalidNodeNameException,
+    InvalidServiceNameException,
+    InvalidTopicNameException,
+    NameValidationException,
+)
+
+__all__ = [
+    'absolute_node_name',
+    'expand_topic_name',
+    'is_hidden_name',
+    'node_fqn',
+    'normalize_namespace',
+    'split_fqn',
+    'topic_or_service_is_hidden',
+    'validate_full_topic_name',
+    'validate_namespace',
+    'validate_node_name',
+    'validate_topic_name',
+]
+
+_TOKEN_RE = re.compile(r'[A-Za-z_][A-Za-z0-9_]*')
+_SUBST_RE = re.compile(r'\{([^{}]*)\}')
+
+
+def _name_error(is_service: bool) -> type[NameValidationException]:
+    return InvalidServiceNameException if is_service else InvalidTopicNameException
+
+
+def _check_tokens(
+    name: str, what: str, error: type[NameValidationException], shown: str | None = None
+) -> None:
+    label = shown if shown is not None else repr(name)
+    for token in name.split('/'):
+        if token and token[0].isdigit():
+            raise error(f'invalid {what} {label}: token {token!r} must not start with a digit')
+
+
+def validate_topic_name(name: str, *, is_service: bool = False) -> None:
+    """Check a topic/service name as a user may write it (relative, ``~`` and ``{}`` allowed),
+    as ``rcl_validate_topic_name`` does; the exception says what is wrong."""
+    what = 'service name' if is_service else 'topic name'
+    error = _name_error(is_service)
+    if not name:
+        raise error(f'invalid {what}: must not be empty')
+    bad = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c in '_/~{}'))})
+    if bad:
+        raise error(
+            f"invalid {what} {name!r}: character(s) {''.join(bad)!r} not allowed "
+            "(use letters, digits, '_', '/', '~', '{}')"
+        )
+    if name[0].isdigit():
+        raise error(f'invalid {what} {name!r}: must not start with a digit')
+    if name.endswith('/'):
+        raise error(f"invalid {what} {name!r}: must not end with '/'")
+    if '//' in name:
+        raise error(f"invalid {what} {name!r}: must not contain '//'")
+    if '~' in name[1:] or (name.startswith('~') and len(name) > 1 and name[1] != '/'):
+        raise error(f"invalid {what} {name!r}: '~' is only allowed as '~' or '~/…' at the start")
+    depth = 0
+    for c in name:
+        if c == '{':
+            depth += 1
+            if depth > 1:
+                raise error(f"invalid {what} {name!r}: nested '{{'")
+        elif c == '}':
+            depth -= 1
+            if depth < 0:
+                raise error(f"invalid {what} {name!r}: unbalanced '}}'")
+    if depth:
+        raise error(f"invalid {what} {name!r}: unbalanced '{{'")
+    for m in _SUBST_RE.finditer(name):
+        if not _TOKEN_RE.fullmatch(m.group(1)):
+            raise error(f'invalid {what} {name!r}: bad substitution {m.group(0)!r}')
+    _check_tokens(_SUBST_RE.sub('x', name.replace('~', 'x')), what, error, repr(name))
+
+
+def validate_full_topic_name(name: str, *, is_service: bool = False) -> None:
+    """Check an expanded, absolute topic/service name (``/ns/name``), as rmw does."""
+    _check_absolute(name, 'service name' if is_service else 'topic name', _name_error(is_service))
+
+
+def _check_absolute(name: str, what: str, error: type[NameValidationException]) -> None:
+    """Rules shared by absolute topic names and namespaces."""
+    if not name:
+        raise error(f'invalid {what}: must not be empty')
+    if not name.startswith('/'):
+        raise error(f"invalid {what} {name!r}: must be absolute (start with '/')")
+    if name == '/' and what == 'namespace':
+        return
+    bad = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c in '_/'))})
+    if bad:
+        raise error(
+            f"invalid {what} {name!r}: character(s) {''.join(bad)!r} not allowed "
+            "(use letters, digits, '_', '/')"
+        )
+    if name.endswith('/'):
+        raise error(f"invalid {what} {name!r}: must not end with '/'")
+    if '//' in name:
+        raise error(f"invalid {what} {name!r}: must not contain '//'")
+    _check_tokens(name, what, error)
+
+
+def validate_node_name(name: str) -> None:
+    """A node name is one token: letters, digits and '_', not starting with a digit."""
+    if not name:
+        raise InvalidNodeNameException('invalid node name: must not be empty')
+    bad = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c == '_'))})
+    if bad:
+        raise InvalidNodeNameException(
+            f"invalid node name {name!r}: character(s) {''.join(bad)!r} not allowed "
+            "(use letters, digits, '_')"
+        )
+    if name[0].isdigit():
+        raise InvalidNodeNameException(f'invalid node name {name!r}: must not start with a digit')
+
+
+def validate_namespace(namespace: str) -> None:
+    """An absolute namespace: ``/`` or ``/a/b`` (no trailing '/', no '//')."""
+    _check_absolute(namespace, 'namespace', InvalidNamespaceException)
+
+
+def normalize_namespace(namespace: str | None) -> str:
+    """rclpy's leniency: ``None``/``""`` → ``/`` and ``robot1`` → ``/robot1``; then validate."""
+    ns = namespace or '/'
+    if not ns.startswith('/'):
+        ns = '/' + ns
+    if len(ns) > 1:
+        ns = ns.rstrip('/') or '/'
+    validate_namespace(ns)
+    return ns
+
+
+def node_fqn(namespace: str, node_name: str) -> str:
+    """``/ns`` + ``name`` → ``/ns/name`` (and ``/`` + ``name`` → ``/name``)."""
+    return ('' if namespace == '/' else namespace) + '/' + node_name
+
+
+def split_fqn(fqn: str) -> tuple[str, str]:
+    """``/a/b/name`` → (``/a/b``, ``name``); ``/name`` → (``/``, ``name``)."""
+    head, _, tail = fqn.rpartition('/')
+    return (head or '/'), tail
+
+
+def absolute_node_name(name: str) -> str:
+    """A node name as users type it (``talker`` or ``/ns/talker``) made absolute."""
+    return name if name.startswith('/') else '/' + name
+
+
+def expand_topic_name(
+    name: str, node_name: str, namespace: str, *, is_service: bool = False
+) -> str:
+    """Expand a user-written name into the absolute one, like ``rcl_expand_topic_name``.
+
+    ``~`` becomes the node's fully qualified name, ``{node}``/``{ns}``/``{namespace}`` are
+    substituted, and relative names are put under the node's namespace.
+    """
+    validate_topic_name(name, is_service=is_service)
+    validate_node_name(node_name)
+    validate_namespace(namespace)
+    if name.startswith('~'):
+        name = node_fqn(namespace, node_name) + name[1:]
+    subs = {'node': node_name, 'ns': namespace, 'namespace': namespace}
+
+    def repl(m: re.Match[str]) -> str:
+        key = m.group(1)
+        if key not in subs:
+            what = 'service name' if is_service else 'topic name'
+            raise _name_error(is_service)(
+                f'invalid {what} {name!r}: unknown substitution {{{key}}}'
+            )
+        return subs[key]
+
+    name = _SUBST_RE.sub(repl, name)
+    if not name.startswith('/'):
+        name = ('' if namespace == '/' else namespace) + '/' + name
+    name = re.sub(r'/{2,}', '/', name)
+    validate_full_topic_name(name, is_service=is_service)
+    return name
+
+
+def is_hidden_name(name: str) -> bool:
+    """Hidden topics, services and nodes have a token starting with '_' (ros2cli hides them)."""
+    return any(tok.startswith('_') for tok in name.split('/') if tok)
+
+
+# rclpy's name for the same rule
+topic_or_service_is_hidden = is_hidden_name

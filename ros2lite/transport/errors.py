@@ -1,0 +1,26 @@
+"""Errors of the Zenoh seam, under ros2lite's one base (importing this loads no zenoh)."""
+
+from __future__ import annotations
+
+from ros2lite.exceptions import Ros2liteError
+
+__all__ = ['ConfigError', 'RouterUnavailableError', 'SessionError']
+
+
+class ConfigError(Ros2liteError, ValueError):
+    """A bad environment variable, config file or override; the message says which."""
+
+
+class SessionError(Ros2liteError, RuntimeError):
+    """A Zenoh session could not be opened (other than for a missing router)."""
+
+
+class RouterUnavailableError(SessionError):
+    """No Zenoh router answers at the endpoint a session was told to use."""
+
+    def __init__(self, endpoint: str, detail: str = '') -> None:
+        self.endpoint = endpoint
+        self.detail = detail
+        super().__init__(
+            f"No Zenoh router answers at {endpoint} (start one with 'ros2lite daemon start')"
+        )
