@@ -185,7 +185,6 @@ class Client(Executable):
         """Inside a callback, a server of ours on the same executor may be unable to run
         until that callback returns: then waiting would never end, so say so instead."""
         from ros2lite.executable import current_execution
-        from ros2lite.executors import MultiThreadedExecutor
 
         executor, entity = current_execution()
         if executor is None:
@@ -193,7 +192,8 @@ class Client(Executable):
         server = self._node.context.local_services.get(self._ep.key)
         if server is None or server._node._executor is not executor:
             return
-        blocked = not isinstance(executor, MultiThreadedExecutor) or executor.num_threads < 2
+        # only a multi-threaded executor has threads to spare
+        blocked = getattr(executor, 'num_threads', 1) < 2
         group = server.callback_group
         if not blocked and entity is not None and group is entity.callback_group:
             from ros2lite.callback_groups import ReentrantCallbackGroup

@@ -16,6 +16,29 @@ from ros2lite.names import is_hidden_name
 from ros2lite.qos import QoSProfile
 from ros2lite.transport.keys import Entity, EntityKind, parse_token
 
+# Entity and EntityKind are the graph's vocabulary; other modules import them from here
+__all__ = [
+    'Entity',
+    'EntityKind',
+    'GraphCache',
+    'NodeInfo',
+    'TopicEndpointInfo',
+    'action_endpoints',
+    'action_names_and_types',
+    'count',
+    'endpoints_by_topic',
+    'format_endpoint_info',
+    'format_gid',
+    'names_and_types_by_node',
+    'node_full_names',
+    'node_info',
+    'node_names_and_namespaces',
+    'service_names_and_types',
+    'snapshot',
+    'topic_counts',
+    'topic_names_and_types',
+]
+
 _TOPIC_KINDS = (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION)
 _SERVICE_KINDS = (EntityKind.SERVICE, EntityKind.CLIENT)
 

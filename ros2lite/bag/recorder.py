@@ -26,7 +26,7 @@ from typing import Any
 
 from ros2lite.bag.errors import BagError
 from ros2lite.bag.writer import Writer
-from ros2lite.qos import HistoryPolicy, QoSProfile
+from ros2lite.qos import QoSProfile
 
 __all__ = ["DEFAULT_MAX_CACHE_SIZE", "RecordOptions", "Recorder", "TopicStats"]
 
@@ -155,6 +155,41 @@ class Recorder:
         """False once stopped, or once a write error ended recording."""
         return self._running and self.error is None
 
+    def run(
+        self,
+        stop: threading.Event,
+        *,
+        spin: Callable[[float], object] | None = None,
+        on_tick: Callable[[], object] | None = None,
+    ) -> None:
+        """Record until `stop` is set (a signal), recording fails or the context ends; the
+        bag is always finished. `spin(seconds)` runs the node's callbacks for up to that long:
+        needed under sim time, where recording starts with the first /clock."""
+        from ros2lite.logging import get_logger
+
+        clock = self.node.get_clock()
+        try:
+            if spin is not None and clock.ros_time_is_active:
+                self._log("use_sim_time set, waiting for /clock before starting recording...")
+                while clock.now().nanoseconds == 0 and not stop.is_set():
+                    spin(0.1)
+            if stop.is_set():
+                return
+            self.start()
+            while not stop.is_set() and self.running and self.node.context.ok():
+                if spin is not None:
+                    spin(0.25)
+                else:
+                    stop.wait(0.25)
+                if on_tick is not None:
+                    on_tick()
+        finally:
+            get_logger("rosbag2_cpp").info(
+                "Writing remaining messages from cache to the bag. It may take a while"
+            )
+            self.stop()
+            self._log("Recording stopped")
+
     def queued(self) -> int:
         """Messages received and not written yet."""
         return len(self._queue)
@@ -247,16 +282,12 @@ class Recorder:
             self._subscribe(topic, types[0], pubs)
 
     def _subscribe(self, topic: str, type_name: str, pubs: list[Any]) -> None:
+        from ros2lite.bag.qos import recording_qos
         from ros2lite.interfaces import InterfaceError, get_interface
-        from ros2lite.topic_monitor import MonitoredSubscription, match_publishers_qos
+        from ros2lite.monitor.subscription import MonitoredSubscription
 
         offered = [p.qos for p in pubs if p.qos is not None]
-        qos = self.options.qos_overrides.get(topic)
-        if qos is None:
-            depth = max([q.depth for q in offered] + [1])
-            qos = match_publishers_qos(
-                QoSProfile(history=HistoryPolicy.KEEP_ALL, depth=depth), offered
-            ).profile
+        qos = self.options.qos_overrides.get(topic) or recording_qos(topic, offered, self._warn)
         hashes = {p.type_hash for p in pubs if p.type_hash}
         msg_type: Any = type_name
         try:

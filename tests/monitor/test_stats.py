@@ -5,15 +5,15 @@ from __future__ import annotations
 import math
 import statistics
 
-from ros2lite.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
-from ros2lite.topic_monitor import match_publishers_qos
-from ros2lite.topic_stats import (
+from ros2lite.monitor.stats import (
     BandwidthStats,
     DelayStats,
     LostMessageCounter,
     RateStats,
     summarize,
 )
+from ros2lite.monitor.subscription import match_publishers_qos
+from ros2lite.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
 from ros2lite.transport.attachment import encode_attachment
 
 MS = 1_000_000

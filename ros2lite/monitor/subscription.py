@@ -12,9 +12,9 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any
 
+from ros2lite.graph import Entity, EntityKind
 from ros2lite.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, resolve_best_available
 from ros2lite.subscription import Subscription
-from ros2lite.transport.keys import Entity, EntityKind
 
 __all__ = ['MatchedQoS', 'MonitoredSubscription', 'match_publishers_qos', 'topic_types']
 
