@@ -12,7 +12,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from ros2lite.names import is_hidden_name
+from ros2lite.names import action_entity_name, is_hidden_name
 from ros2lite.qos import QoSProfile
 from ros2lite.transport.keys import Entity, EntityKind, parse_token
 
@@ -188,7 +188,7 @@ def count(entities: Iterable[Entity], topic: str, kind: EntityKind) -> int:
 # rcl_action has no entity kinds of its own: an action shows up as a node publishing (server) or
 # subscribing (client) `<action>/_action/feedback`, typed `<pkg>/action/<Name>_FeedbackMessage`.
 
-ACTION_FEEDBACK_SUFFIX = '/_action/feedback'
+ACTION_FEEDBACK_SUFFIX = action_entity_name('', 'feedback')
 ACTION_FEEDBACK_TYPE_SUFFIX = '_FeedbackMessage'
 
 

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import contextlib
 import re
-import struct
 import threading
 import time
 from collections import deque
@@ -27,11 +26,11 @@ from typing import Any
 from ros2lite.bag.errors import BagError
 from ros2lite.bag.writer import Writer
 from ros2lite.qos import QoSProfile
+from ros2lite.transport.attachment import unpack_attachment
 
 __all__ = ["DEFAULT_MAX_CACHE_SIZE", "RecordOptions", "Recorder", "TopicStats"]
 
 DEFAULT_MAX_CACHE_SIZE = 100 * 1024 * 1024
-_STAMP = struct.Struct("<q")
 SERVICE_EVENT_SUFFIX = "/_service_event"
 # how long a finished chunk may wait in memory before it is put on disk anyway (seconds)
 _FLUSH_PERIOD = 1.0
@@ -350,7 +349,7 @@ class Recorder:
     def _write_loop(self) -> None:
         queue, writer = self._queue, self.writer
         popleft, write_raw = queue.popleft, writer.write_raw
-        stamp = _STAMP.unpack_from
+        unpack = unpack_attachment
         stats = self._stats_by_tid
         last_flush = time.monotonic()
         dirty = False
@@ -371,8 +370,9 @@ class Recorder:
                     self._wake.clear()
                     self._writer_idle = False
                     continue
-                # the publisher's send time travels in the attachment (bytes 8-16)
-                sent = stamp(attachment, 8)[0] if len(attachment) >= 16 else received
+                # the publisher's send time travels in the attachment (either layout)
+                fields = unpack(attachment)
+                sent = fields[1] if fields is not None else received
                 write_raw(tid, data, received, sent)
                 stats[tid].written_bytes += len(data)
                 dirty = True

@@ -15,14 +15,9 @@ from dataclasses import dataclass
 
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.graph import Entity, EntityKind, endpoints_by_topic
-from ros2lite.monitor.subscription import (
-    MatchedQoS,
-    MonitoredSubscription,
-    match_publishers_qos,
-    topic_types,
-)
+from ros2lite.monitor.subscription import MonitoredSubscription, topic_types
 from ros2lite.node import Node
-from ros2lite.qos import QoSProfile
+from ros2lite.qos import MatchedQoS, QoSProfile, match_publishers_qos
 from ros2lite.subscription import MessageInfo, Subscription
 
 __all__ = ['MultipleTypesError', 'TopicMonitor', 'TypeMismatch', 'type_mismatch']
