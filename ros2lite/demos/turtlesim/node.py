@@ -72,9 +72,7 @@ class _TurtleInterface:
         self.node = node
         self.turtle = turtle
         name = turtle.name
-        self.cmd_vel = node.create_subscription(
-            Twist, f'{name}/cmd_vel', self._on_twist, TOPIC_QOS
-        )
+        self.cmd_vel = node.create_subscription(Twist, f'{name}/cmd_vel', self._on_twist, TOPIC_QOS)
         self.pose = node.create_publisher(Pose, f'{name}/pose', TOPIC_QOS)
         self.color = node.create_publisher(Color, f'{name}/color_sensor', TOPIC_QOS)
         self.services = [
@@ -210,12 +208,8 @@ class TurtlesimNode(Node):
         self.revision = 0  # bumped on every change a view could show
         r, g, b = sim.DEFAULT_BACKGROUND
         self.declare_parameter('background_r', r, _channel('Red channel of the background color'))
-        self.declare_parameter(
-            'background_g', g, _channel('Green channel of the background color')
-        )
-        self.declare_parameter(
-            'background_b', b, _channel('Blue channel of the background color')
-        )
+        self.declare_parameter('background_g', g, _channel('Green channel of the background color'))
+        self.declare_parameter('background_b', b, _channel('Blue channel of the background color'))
         self.declare_parameter(
             'holonomic',
             False,
@@ -291,9 +285,7 @@ class TurtlesimNode(Node):
 
     def _on_kill(self, request: Any, response: Any) -> Any:
         if not self.world.kill(request.name):
-            self.get_logger().error(
-                f'Tried to kill turtle [{request.name}], which does not exist'
-            )
+            self.get_logger().error(f'Tried to kill turtle [{request.name}], which does not exist')
             return response
         self._interfaces.pop(request.name).destroy()
         self.revision += 1

@@ -227,8 +227,10 @@ class Canvas:
         return (self.pixels[i], self.pixels[i + 1], self.pixels[i + 2])
 
     def is_drawn(self, px: int, py: int) -> bool:
-        return 0 <= px < self.size and 0 <= py < self.size and bool(
-            self.pixels[(py * self.size + px) * 4 + 3]
+        return (
+            0 <= px < self.size
+            and 0 <= py < self.size
+            and bool(self.pixels[(py * self.size + px) * 4 + 3])
         )
 
     def draw_line(

@@ -55,7 +55,7 @@ def run_with_display(node: Any, requested: str) -> None:
     def spin() -> None:
         try:
             executor.spin()
-        except BaseException as e:  # noqa: BLE001  # ExternalShutdownException on SIGTERM
+        except BaseException as e:  # ExternalShutdownException on SIGTERM
             failure.append(e)
 
     thread = threading.Thread(target=spin, name='turtlesim-executor', daemon=True)
