@@ -15,11 +15,14 @@ from tests.demos.test_demo_nodes_py import log_line
 __all__ = ['log_line', 'start_turtlesim', 'wait_for_log']
 
 
-def wait_for_log(proc: Any, lines: list[str], pattern: str, timeout: float = 20.0) -> str:
-    """Read the process's stderr into `lines` until a line matches `pattern`."""
+def wait_for_log(
+    proc: Any, lines: list[str], pattern: str, timeout: float = 20.0, start: int = 0
+) -> str:
+    """Read the process's stderr into `lines` until a line (from index `start` on) matches
+    `pattern`."""
     deadline = time.monotonic() + timeout
     regex = re.compile(pattern)
-    for line in lines:
+    for line in lines[start:]:
         if regex.search(line):
             return line
     while time.monotonic() < deadline:
