@@ -42,6 +42,7 @@ from ros2lite.task import Future
 
 # turtlesim's topic QoS (keep last 10, reliable), and its /parameter_events subscription's
 TOPIC_QOS = 10
+STATS_PERIOD = 5.0  # s between the debug lines with step and render rates
 PARAMETER_EVENTS_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.BEST_EFFORT)
 
 
@@ -234,10 +235,13 @@ class TurtlesimNode(Node):
         self.frame = Frame((), self.world.background, 0)
         # step timing, for the measured real-time claim: (wall time, steps) at start
         self.step_seconds = 0.0
+        self.render_frames = 0  # a view counts its redraws here
         self._started = (time.monotonic(), self.world.steps)
+        self._last_stats = (time.monotonic(), self.world.steps, 0, 0.0)
         self._spawn('', sim.WIDTH / 2.0, sim.HEIGHT / 2.0, 0.0)
         self._update_frame()
         self.step_timer = self.create_timer(sim.DT, self.step)
+        self.stats_timer = self.create_timer(STATS_PERIOD, self._log_stats)
 
     # -- parameters ---------------------------------------------------------------------------
     def _apply_parameters(self, parameters: list[Parameter]) -> None:
@@ -333,6 +337,23 @@ class TurtlesimNode(Node):
             interface.publish(update)
         self._update_frame()
         self.step_seconds += time.perf_counter() - began
+
+    def _log_stats(self) -> None:
+        """At debug level (`--ros-args --log-level turtlesim:=debug`): step and redraw rates
+        and the time a step takes, over the last period."""
+        now = time.monotonic()
+        t0, steps0, frames0, busy0 = self._last_stats
+        self._last_stats = (now, self.world.steps, self.render_frames, self.step_seconds)
+        elapsed = now - t0
+        steps = self.world.steps - steps0
+        if elapsed <= 0 or steps <= 0:
+            return
+        self.get_logger().debug(
+            f'step rate {steps / elapsed:.2f} Hz, render rate '
+            f'{(self.render_frames - frames0) / elapsed:.2f} Hz, step time '
+            f'{1000 * (self.step_seconds - busy0) / steps:.3f} ms, '
+            f'turtles {len(self.world.turtles)}'
+        )
 
     def step_rate(self) -> float:
         """Steps per second of wall time since the node started."""
