@@ -250,6 +250,9 @@ class Canvas:
         if self.keep_strokes:
             self._strokes.append(('line', x0, y0, x1, y1, rgb, width))
 
+    def has_strokes(self) -> bool:
+        return bool(self._strokes)
+
     def drain(self) -> list[tuple[Any, ...]]:
         """Strokes drawn since the last call: ('line', x0, y0, x1, y1, rgb, width) or ('clear',)."""
         out = []

@@ -13,7 +13,7 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from ros2lite.demos.display import DisplayError
+from ros2lite.demos.display import DisplayError, window_possible
 from ros2lite.demos.turtlesim import sim, sprite
 
 FRAME_SECONDS = sim.DT  # redraw as often as the world steps
@@ -27,6 +27,8 @@ class WindowView:
             import tkinter
         except ImportError:
             raise DisplayError('cannot open a window: tkinter is not installed') from None
+        if not window_possible():
+            raise DisplayError('cannot open a window: no display (DISPLAY is not set)')
         try:
             self.root = tkinter.Tk(className='turtlesim')
         except tkinter.TclError as e:
