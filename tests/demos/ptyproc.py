@@ -15,6 +15,8 @@ import threading
 import time
 from typing import Any
 
+ANSI = re.compile(r'\x1b\[[0-9;?]*[A-Za-z]')
+
 
 class PtyProcess:
     """`argv` as the session leader of a new pseudo-terminal of `rows` x `cols`."""
@@ -61,21 +63,29 @@ class PtyProcess:
         with self._lock:
             return bytes(self._output)
 
+    @property
+    def plain(self) -> str:
+        """The output without terminal escape sequences (what the characters say)."""
+        return ANSI.sub('', self.output)
+
     def send(self, data: str | bytes) -> None:
         os.write(self.fd, data.encode() if isinstance(data, str) else data)
 
-    def expect(self, pattern: str, timeout: float = 20.0, start: int = 0) -> re.Match[str]:
-        """Wait until the output (from character `start`) matches `pattern`."""
+    def expect(
+        self, pattern: str, timeout: float = 20.0, start: int = 0, plain: bool = False
+    ) -> re.Match[str]:
+        """Wait until the output (from character `start`; without escapes if `plain`)
+        matches `pattern`."""
         regex = re.compile(pattern)
         deadline = time.monotonic() + timeout
         while True:
-            match = regex.search(self.output, start)
+            match = regex.search(self.plain if plain else self.output, start)
             if match:
                 return match
             if time.monotonic() > deadline or (self.poll() is not None and not match):
                 # one last look: the reader may still hold the final bytes
                 time.sleep(0.2)
-                match = regex.search(self.output, start)
+                match = regex.search(self.plain if plain else self.output, start)
                 if match:
                     return match
                 raise AssertionError(f'{pattern!r} not in output:\n{self.output[-3000:]}')
