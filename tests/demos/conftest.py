@@ -14,6 +14,10 @@ import pytest
 @pytest.fixture
 def xdisplay() -> Iterator[str]:
     """`:N` of a fresh 24-bit Xvfb screen, gone after the test."""
+    try:
+        import tkinter  # noqa: F401
+    except ImportError:
+        pytest.skip('tkinter is not installed: no window to test (apt-get install python3-tk)')
     missing = [tool for tool in ('Xvfb', 'xwd') if shutil.which(tool) is None]
     if missing:
         pytest.skip(
