@@ -23,16 +23,15 @@ def run_node(make_node: Callable[[], Any], args: list[str] | None = None) -> int
 def run_main(body: Callable[[], Any], args: list[str] | None = None) -> int:
     """Run `body()` in an initialised context (demos that do something and end)."""
     import ros2lite
-    from ros2lite.exceptions import ParameterException
+    from ros2lite.exceptions import Ros2liteError
     from ros2lite.executors import ExternalShutdownException
-    from ros2lite.transport.errors import SessionError
 
     try:
         with ros2lite.init(args=args):
             body()
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
-    except (SessionError, ValueError, ParameterException) as e:
+    except (Ros2liteError, ValueError) as e:  # something the user can fix: one line
         print(str(e), file=sys.stderr, flush=True)
         return 1
     return 0

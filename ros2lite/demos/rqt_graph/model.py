@@ -11,12 +11,9 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
+from ros2lite.names import is_hidden_name
+
 DEBUG_TOPICS = frozenset({'/rosout', '/parameter_events'})
-
-
-def is_hidden(name: str) -> bool:
-    """A ROS name with a part starting with '_' (hidden, as ros2cli hides it)."""
-    return any(part.startswith('_') for part in name.split('/') if part)
 
 
 @dataclass(frozen=True)
@@ -46,14 +43,14 @@ class Graph:
 
 def build(nodes: Iterable[str], endpoints: Iterable[Endpoint], options: Options) -> Graph:
     """The graph of `nodes` (fully qualified names) and their `endpoints`, filtered."""
-    shown_nodes = sorted({n for n in nodes if options.include_hidden or not is_hidden(n)})
+    shown_nodes = sorted({n for n in nodes if options.include_hidden or not is_hidden_name(n)})
     keep = set(shown_nodes)
     pubs: dict[str, set[str]] = {}
     subs: dict[str, set[str]] = {}
     for e in endpoints:
         if e.node not in keep:
             continue
-        if not options.include_hidden and is_hidden(e.topic):
+        if not options.include_hidden and is_hidden_name(e.topic):
             continue
         if not options.show_debug and e.topic in DEBUG_TOPICS:
             continue

@@ -29,7 +29,8 @@ def lesson_graph(ros_context: Any, processes: Any) -> Iterator[None]:
     teleop = Node('teleop_turtle', context=ros_context)
     pub = teleop.create_publisher(Twist, 'turtle1/cmd_vel', 1)
     deadline = time.monotonic() + 10
-    while pub.get_subscription_count() < 1:
+    # every edge the tests look for is in the graph before any of them looks
+    while pub.get_subscription_count() < 1 or teleop.count_publishers('/turtle1/pose') < 1:
         assert time.monotonic() < deadline
         time.sleep(0.05)
     yield
