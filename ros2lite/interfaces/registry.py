@@ -8,8 +8,9 @@ never mixes with ours.
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
+
+from ros2lite.pkg.index import BUNDLED_INTERFACES, interface_roots
 
 from .errors import InterfaceError, UnknownInterfaceError
 from .parser import (
@@ -24,7 +25,7 @@ from .parser import (
     validate_type_name,
 )
 
-BUNDLED = Path(__file__).resolve().parent.parent / 'msgs'
+BUNDLED = BUNDLED_INTERFACES
 KINDS = ('msg', 'srv', 'action')
 EXTENSIONS = {'msg': '.msg', 'srv': '.srv', 'action': '.action'}
 
@@ -50,19 +51,6 @@ _TIME = FieldType('builtin_interfaces/msg/Time')
 _EVENT_INFO = FieldType('service_msgs/msg/ServiceEventInfo')
 
 
-def search_roots() -> list[Path]:
-    """Directories whose children are package directories, in priority order."""
-    roots: list[Path] = []
-    for entry in os.environ.get('ROS2LITE_INTERFACE_PATH', '').split(os.pathsep):
-        if entry:
-            roots.append(Path(entry))
-    for prefix in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep):
-        if prefix:
-            roots.append(Path(prefix) / 'share')
-    roots.append(BUNDLED)
-    return roots
-
-
 def _is_interface_package(path: Path) -> bool:
     return any((path / kind).is_dir() for kind in KINDS)
 
@@ -71,7 +59,7 @@ class Registry:
     """Finds, parses and caches definitions; one per search path configuration."""
 
     def __init__(self, roots: list[Path] | None = None) -> None:
-        self.roots = roots if roots is not None else search_roots()
+        self.roots = roots if roots is not None else interface_roots()
         self._packages: dict[str, Path] | None = None
         self._messages: dict[str, MessageDef] = {}
         self._services: dict[str, ServiceDef] = {}
