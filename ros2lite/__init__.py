@@ -116,10 +116,10 @@ _EXPORTS = {
 def init(
     args: list[str] | None = None,
     *,
-    context: Any = None,
+    context: Context | None = None,
     router: str | None = None,
     domain_id: int | None = None,
-) -> Any:
+) -> Context:
     """Open the node's Zenoh session (a peer; with no router it starts the daemon, or runs on
     without one: see `ros2lite.daemon.connect`).
 
@@ -134,25 +134,29 @@ def init(
     return ctx
 
 
-def shutdown(*, context: Any = None) -> None:
+def shutdown(*, context: Context | None = None) -> None:
+    """Close the context's session; its nodes leave the graph."""
     from ros2lite.context import default_context
 
     (context or default_context()).shutdown()
 
 
-def try_shutdown(*, context: Any = None) -> None:
+def try_shutdown(*, context: Context | None = None) -> None:
+    """shutdown() if the context is still open."""
     from ros2lite.context import default_context
 
     (context or default_context()).try_shutdown()
 
 
-def ok(*, context: Any = None) -> bool:
+def ok(*, context: Context | None = None) -> bool:
+    """Whether the context is open and no SIGTERM asked it to stop."""
     from ros2lite.context import default_context
 
     return (context or default_context()).ok()
 
 
-def create_node(node_name: str, **kwargs: Any) -> Any:
+def create_node(node_name: str, **kwargs: Any) -> Node:
+    """A Node (rclpy's factory function; the keyword arguments are Node's)."""
     from ros2lite.node import Node
 
     return Node(node_name, **kwargs)

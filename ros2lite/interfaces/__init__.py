@@ -6,14 +6,17 @@ YAML helpers when they are called.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from .cdr import codec
+from .cdr import Codec, codec
 from .classes import ActionType, Message, ServiceType
 from .classes import get_interface as _get_interface
 from .errors import CdrError, FieldError, InterfaceError, UnknownInterfaceError
 from .hashing import type_hash as _type_hash
 from .registry import Registry, default_registry, normalize_name
+
+if TYPE_CHECKING:
+    from ros2lite.type_support import Msg
 
 __all__ = [
     'ActionType',
@@ -47,13 +50,12 @@ def type_hash(name: str) -> str:
     return _type_hash(normalize_name(name))
 
 
-def serialize(msg: Message) -> bytes:
+def serialize(msg: Msg) -> bytes:
     """CDR bytes (little-endian, with the 4-byte encapsulation header) of a message."""
-    try:
-        c = type(msg)._CODEC  # type: ignore[attr-defined]
-    except AttributeError:
-        if not isinstance(msg, Message):
-            raise TypeError(f'not a ros2lite message: {msg!r}') from None
+    if not isinstance(msg, Message):
+        raise TypeError(f'not a ros2lite message: {msg!r}')
+    c: Codec | None = getattr(type(msg), '_CODEC', None)
+    if c is None:
         c = codec(msg._TYPE_NAME)
     return c.serialize(msg)
 

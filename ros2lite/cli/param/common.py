@@ -197,7 +197,8 @@ def _remote_parameter_names(ctx: click.Context) -> list[str]:
             return []
         future = client.list_parameters()
         conn.spin_until_future_complete(future, 1.0)
-        return list(future.result().result.names) if future.done() else []
+        response = future.result() if future.done() else None
+        return list(response.result.names) if response is not None else []
 
 
 def type_name(type_number: int) -> str:

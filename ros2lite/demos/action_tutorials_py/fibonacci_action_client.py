@@ -8,8 +8,8 @@ from typing import Any
 import ros2lite
 from ros2lite.action import ActionClient
 from ros2lite.demos.runner import run_node
-from ros2lite.msgs.action_msgs.msg import GoalStatus  # type: ignore[attr-defined]
-from ros2lite.msgs.action_tutorials_interfaces.action import (  # type: ignore[attr-defined]
+from ros2lite.msgs.action_msgs.msg import GoalStatus
+from ros2lite.msgs.action_tutorials_interfaces.action import (
     Fibonacci,
 )
 from ros2lite.node import Node

@@ -13,7 +13,7 @@ from ros2lite.action import ActionServer, CancelResponse, GoalResponse
 from ros2lite.action.server import ServerGoalHandle
 from ros2lite.callback_groups import ReentrantCallbackGroup
 from ros2lite.demos.runner import run_main
-from ros2lite.msgs.action_tutorials_interfaces.action import (  # type: ignore[attr-defined]
+from ros2lite.msgs.action_tutorials_interfaces.action import (
     Fibonacci,
 )
 from ros2lite.node import Node

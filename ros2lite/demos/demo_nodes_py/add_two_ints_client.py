@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import ros2lite
 from ros2lite.demos.runner import run_main
-from ros2lite.msgs.example_interfaces.srv import AddTwoInts  # type: ignore[attr-defined]
+from ros2lite.msgs.example_interfaces.srv import AddTwoInts
 
 
 def request_once(a: int, b: int) -> None:
@@ -19,10 +19,11 @@ def request_once(a: int, b: int) -> None:
         result = future.result()
     except Exception as e:
         node.get_logger().info(f'Service call failed {e!r}')
-    else:
-        node.get_logger().info(
-            f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}'
-        )
+    else:  # None only if the call was cancelled, which nothing here does
+        if result is not None:
+            node.get_logger().info(
+                f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}'
+            )
     node.destroy_node()
 
 

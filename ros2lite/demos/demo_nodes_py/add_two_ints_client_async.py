@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import ros2lite
 from ros2lite.demos.runner import run_main
-from ros2lite.msgs.example_interfaces.srv import AddTwoInts  # type: ignore[attr-defined]
+from ros2lite.msgs.example_interfaces.srv import AddTwoInts
 
 
 def request_async() -> None:
@@ -22,10 +22,11 @@ def request_async() -> None:
                 result = future.result()
             except Exception as e:
                 node.get_logger().info(f'Service call failed {e!r}')
-            else:
-                node.get_logger().info(
-                    f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}'
-                )
+            else:  # None only if the call was cancelled, which nothing here does
+                if result is not None:
+                    node.get_logger().info(
+                        f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}'
+                    )
             break
     node.destroy_node()
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from ros2lite.demos.runner import run_node
-from ros2lite.msgs.example_interfaces.srv import AddTwoInts  # type: ignore[attr-defined]
+from ros2lite.msgs.example_interfaces.srv import AddTwoInts
 from ros2lite.node import Node
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from ros2lite.demos.runner import run_node
-from ros2lite.msgs.std_msgs.msg import String  # type: ignore[attr-defined]  # import hook
+from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.node import Node
 
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ros2lite.demos.runner import run_node
-from ros2lite.msgs.std_msgs.msg import String  # type: ignore[attr-defined]  # import hook
+from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.node import Node
 
 

@@ -88,11 +88,11 @@ class TeleopTwistKeyboard:
         if not self.stamped and self.frame_id:
             raise ValueError("'frame_id' can only be set when 'stamped' is True")
         if self.stamped:
-            from ros2lite.msgs.geometry_msgs.msg import TwistStamped  # type: ignore[attr-defined]
+            from ros2lite.msgs.geometry_msgs.msg import TwistStamped
 
             self._msg_type: Any = TwistStamped
         else:
-            from ros2lite.msgs.geometry_msgs.msg import Twist  # type: ignore[attr-defined]
+            from ros2lite.msgs.geometry_msgs.msg import Twist
 
             self._msg_type = Twist
         self.pub = self.node.create_publisher(self._msg_type, 'cmd_vel', 10)

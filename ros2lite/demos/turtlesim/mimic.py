@@ -10,8 +10,8 @@ import sys
 from typing import Any
 
 from ros2lite.demos.runner import run_node
-from ros2lite.msgs.geometry_msgs.msg import Twist  # type: ignore[attr-defined]
-from ros2lite.msgs.turtlesim.msg import Pose  # type: ignore[attr-defined]
+from ros2lite.msgs.geometry_msgs.msg import Twist
+from ros2lite.msgs.turtlesim.msg import Pose
 from ros2lite.node import Node
 
 

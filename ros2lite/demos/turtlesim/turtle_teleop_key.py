@@ -41,8 +41,8 @@ class TeleopTurtle:
 
     def __init__(self) -> None:
         from ros2lite.action import ActionClient
-        from ros2lite.msgs.geometry_msgs.msg import Twist  # type: ignore[attr-defined]
-        from ros2lite.msgs.turtlesim.action import RotateAbsolute  # type: ignore[attr-defined]
+        from ros2lite.msgs.geometry_msgs.msg import Twist
+        from ros2lite.msgs.turtlesim.action import RotateAbsolute
         from ros2lite.node import Node
 
         self.node = Node('teleop_turtle')
