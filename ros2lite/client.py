@@ -51,6 +51,7 @@ class Client(Executable, Generic[SrvRequestT, SrvResponseT]):
     # completing a future runs no user callback here: it must not wait for the group, or a
     # coroutine holding that group while awaiting this very future would never resume
     needs_group = False
+    _node: Node  # a client always belongs to a node
 
     def __init__(
         self,

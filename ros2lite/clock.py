@@ -9,9 +9,12 @@ import enum
 import threading
 import time
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, overload
 
 from ros2lite.duration import Duration
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.builtin_interfaces import msg as _builtin_msg
 
 _NS = 1_000_000_000
 
@@ -29,20 +32,27 @@ class Time:
     clock_type: ClockType = ClockType.SYSTEM_TIME
 
     @classmethod
-    def from_msg(cls, msg: Any, clock_type: ClockType = ClockType.ROS_TIME) -> Time:
+    def from_msg(cls, msg: _builtin_msg.Time, clock_type: ClockType = ClockType.ROS_TIME) -> Time:
         return cls(msg.sec * _NS + msg.nanosec, clock_type)
 
     @property
     def seconds_nanoseconds(self) -> tuple[int, int]:
         return divmod(self.nanoseconds, _NS)
 
-    def to_msg(self) -> Any:
+    def to_msg(self) -> _builtin_msg.Time:
         from ros2lite.interfaces import get_interface
 
         sec, nsec = divmod(self.nanoseconds, _NS)
-        return get_interface('builtin_interfaces/msg/Time')(sec=sec, nanosec=nsec)
+        time_type: type[_builtin_msg.Time] = get_interface('builtin_interfaces/msg/Time')
+        return time_type(sec=sec, nanosec=nsec)
 
-    def __sub__(self, other: Time | Duration) -> Any:
+    @overload
+    def __sub__(self, other: Time) -> Duration: ...
+
+    @overload
+    def __sub__(self, other: Duration) -> Time: ...
+
+    def __sub__(self, other: Time | Duration) -> Duration | Time:
         if isinstance(other, Time):
             return Duration(nanoseconds=self.nanoseconds - other.nanoseconds)
         return Time(self.nanoseconds - other.nanoseconds, self.clock_type)

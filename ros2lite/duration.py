@@ -9,7 +9,10 @@ client library can use it.
 from __future__ import annotations
 
 from functools import total_ordering
-from typing import Any
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.builtin_interfaces import msg as _builtin_msg
 
 _NS = 1_000_000_000
 
@@ -32,7 +35,7 @@ class Duration:
         return cls(nanoseconds=nanoseconds)
 
     @classmethod
-    def from_msg(cls, msg: Any) -> Duration:
+    def from_msg(cls, msg: _builtin_msg.Duration | _builtin_msg.Time) -> Duration:
         """From a `builtin_interfaces/msg/Duration` (or anything with sec/nanosec)."""
         return cls(nanoseconds=msg.sec * _NS + msg.nanosec)
 
@@ -61,10 +64,13 @@ class Duration:
     def to_seconds(self) -> float:
         return self._ns / _NS
 
-    def to_msg(self) -> Any:
+    def to_msg(self) -> _builtin_msg.Duration:
         from ros2lite.interfaces import get_interface
 
-        return get_interface('builtin_interfaces/msg/Duration')(sec=self.sec, nanosec=self.nsec)
+        duration_type: type[_builtin_msg.Duration] = get_interface(
+            'builtin_interfaces/msg/Duration'
+        )
+        return duration_type(sec=self.sec, nanosec=self.nsec)
 
     def __eq__(self, other: object) -> bool:
         return isinstance(other, Duration) and self._ns == other._ns

@@ -62,7 +62,7 @@ class Executor:
         self._nodes: list[Node] = []
         self._lock = threading.RLock()
         # entities and tasks with work; None is a bare wake-up
-        self._queue: queue.SimpleQueue[Any] = queue.SimpleQueue()
+        self._queue: queue.SimpleQueue[Executable | Task | None] = queue.SimpleQueue()
         self._enqueue = self._queue.put
         # entities whose callback group was busy, re-queued when the group frees
         self._blocked: list[Executable] = []
@@ -115,7 +115,10 @@ class Executor:
         self._queue.put(None)
 
     def create_task(
-        self, callback: Callable[..., Any] | Coroutine[Any, Any, Any], *args: Any, **kwargs: Any
+        self,
+        callback: Callable[..., object] | Coroutine[object, object, object],
+        *args: object,
+        **kwargs: object,
     ) -> Task:
         """Run `callback(*args, **kwargs)` (or a coroutine) on this executor as a Task."""
         if inspect.iscoroutine(callback):
@@ -231,7 +234,9 @@ class Executor:
                 wait = remaining if wait is None else min(wait, remaining)
         return None, wait
 
-    def _next(self, timeout: float | None, stop: Callable[[], bool] | None) -> Any:
+    def _next(
+        self, timeout: float | None, stop: Callable[[], bool] | None
+    ) -> Executable | Task | None:
         """The next entity, task or due timer; None when the timeout passed, `stop()` holds
         or the executor/context shut down. A bare wake-up is not work: waiting goes on."""
         work = self._queue
@@ -273,11 +278,13 @@ class Executor:
                 return None
 
     # -- running work ----------------------------------------------------------------------------
-    def _dispatch(self, item: Any, batch: bool, stop: Callable[[], bool] | None) -> None:
+    def _dispatch(
+        self, item: Executable | Task, batch: bool, stop: Callable[[], bool] | None
+    ) -> None:
         if type(item) is Task:
             self._run_task(item)
             return
-        node = item._node
+        node: Node = item._node  # type: ignore[assignment]  # queued entities have a node
         if node._executor is not self:
             # its node left: if it comes back here, add_node queues the entity again; if it
             # went to another executor, that one has taken the entity over
@@ -335,7 +342,10 @@ class Executor:
             self.wake()  # due timers of the group may run now
 
     def _run_callback(
-        self, callback: Callable[..., Any], *args: Any, then: Callable[[Any], None] | None = None
+        self,
+        callback: Callable[..., object],
+        *args: object,
+        then: Callable[[Any], None] | None = None,  # gets what the user's callback returned
     ) -> Task | None:
         """Call a user callback; a coroutine it returns goes on as a Task of this executor
         (first step now). `then(result)` gets the result, now or when the task ends."""
@@ -356,8 +366,9 @@ class SingleThreadedExecutor(Executor):
     """Runs every callback on the thread that spins it."""
 
 
-# queued by a worker whose callback raised, so the spinning thread raises it promptly
-_WORKER_FAILED = object()
+# queued by a worker whose callback raised, so the spinning thread raises it promptly (a task
+# that is never run: only its arrival counts)
+_WORKER_FAILED = Task(lambda: None)
 
 
 class MultiThreadedExecutor(Executor):
@@ -388,13 +399,15 @@ class MultiThreadedExecutor(Executor):
             return
         raise error
 
-    def _next(self, timeout: float | None, stop: Callable[[], bool] | None) -> Any:
+    def _next(
+        self, timeout: float | None, stop: Callable[[], bool] | None
+    ) -> Executable | Task | None:
         self._raise_errors()
         item = super()._next(timeout, stop)
         self._raise_errors()
         return item
 
-    def _submit(self, fn: Callable[..., None], *args: Any) -> bool:
+    def _submit(self, fn: Callable[..., None], *args: object) -> bool:
         """Hand `fn(*args)` to a worker; False if the executor was shut down meanwhile (by
         another thread, while this one was still spinning)."""
         # never queue more work in the pool than it has threads: what waits stays in our
@@ -429,7 +442,9 @@ class MultiThreadedExecutor(Executor):
             if entity.needs_group:
                 group.ending_execution(entity)
 
-    def _dispatch(self, item: Any, batch: bool, stop: Callable[[], bool] | None) -> None:
+    def _dispatch(
+        self, item: Executable | Task, batch: bool, stop: Callable[[], bool] | None
+    ) -> None:
         if item is _WORKER_FAILED:
             self._raise_errors()
             return

@@ -10,11 +10,14 @@ from __future__ import annotations
 import threading
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.names import action_entity_name, is_hidden_name
 from ros2lite.qos import QoSProfile
 from ros2lite.transport.keys import Entity, EntityKind, parse_token
+
+if TYPE_CHECKING:
+    from ros2lite.transport.handles import Session
 
 # Entity and EntityKind are the graph's vocabulary; other modules import them from here
 __all__ = [
@@ -56,7 +59,7 @@ class TopicEndpointInfo:
     qos_profile: QoSProfile | None
 
 
-def snapshot(session: Any, domain_id: int, timeout: float = 5.0) -> list[Entity]:
+def snapshot(session: Session, domain_id: int, timeout: float = 5.0) -> list[Entity]:
     """All entities in the domain, from one complete liveliness query."""
     from ros2lite.transport.session import liveliness_keys
 
@@ -68,7 +71,7 @@ def snapshot(session: Any, domain_id: int, timeout: float = 5.0) -> list[Entity]
 class GraphCache:
     """Entities kept current from a liveliness subscriber with history."""
 
-    def __init__(self, session: Any, domain_id: int) -> None:
+    def __init__(self, session: Session, domain_id: int) -> None:
         from ros2lite.transport.session import declare_liveliness_subscriber
 
         self._entities: dict[str, Entity] = {}

@@ -30,8 +30,11 @@ from ros2lite.timer import Timer
 from ros2lite.transport import keys
 
 if TYPE_CHECKING:
+    from ros2lite.executable import Destroyable
     from ros2lite.executors import Executor
     from ros2lite.graph import Entity, TopicEndpointInfo
+    from ros2lite.msgs.rcl_interfaces.msg import Log
+    from ros2lite.msgs.rosgraph_msgs.msg import Clock as ClockMsg
     from ros2lite.service import ServiceCallback
     from ros2lite.subscription import MessageInfo, SubscriptionCallback
     from ros2lite.transport.handles import Handle
@@ -94,8 +97,8 @@ class Node(ParameterMixin):
             ),
         )
         self._clock = Clock(ClockType.ROS_TIME)
-        self._clock_sub: Subscription[Any] | None = None
-        self._rosout: Publisher[Any] | None = None
+        self._clock_sub: Subscription[ClockMsg] | None = None
+        self._rosout: Publisher[Log] | None = None
         if enable_rosout:
             self._rosout = self.create_publisher('rcl_interfaces/msg/Log', '/rosout', ROSOUT_QOS)
         self._logger = RcutilsLogger(
@@ -224,7 +227,7 @@ class Node(ParameterMixin):
         *,
         callback_group: CallbackGroup | None = None,
         event_callbacks: object = None,
-    ) -> Publisher[Any]:
+    ) -> Publisher[MsgT]:
         """Publish `msg_type` (a class, or 'pkg/msg/Name') on `topic` (a depth is a
         KEEP_LAST profile of that depth)."""
         pub = Publisher(self, msg_type, topic, qos_profile)
@@ -280,7 +283,7 @@ class Node(ParameterMixin):
         callback_group: CallbackGroup | None = None,
         event_callbacks: object = None,
         raw: bool = False,
-    ) -> Subscription[Any]:
+    ) -> Subscription[MsgT]:
         """Call `callback(msg)` on the executor for each message on `topic`; with `raw`,
         `callback(cdr_bytes, MessageInfo)` without decoding."""
         self._remember_group(callback_group)
@@ -343,7 +346,7 @@ class Node(ParameterMixin):
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
         deferred: bool = False,
-    ) -> Service[Any, Any]:
+    ) -> Service[SrvRequestT, SrvResponseT]:
         """Serve `srv_name`: `callback(request, response)` returns the response (or, with
         `deferred=True`, `callback(request, header)` answers later via `send_response`)."""
         self._remember_group(callback_group)
@@ -386,7 +389,7 @@ class Node(ParameterMixin):
         *,
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
-    ) -> Client[Any, Any]:
+    ) -> Client[SrvRequestT, SrvResponseT]:
         """A client of `srv_name`; `call()` blocks for the response, `call_async()` gives
         a future the node's executor completes."""
         self._remember_group(callback_group)
@@ -446,9 +449,7 @@ class Node(ParameterMixin):
         # logging still works once the node is gone (e.g. from a goal thread finishing
         # during shutdown): it just no longer reaches /rosout
         self._rosout = None
-        entities: list[
-            Publisher[Any] | Subscription[Any] | Service[Any, Any] | Client[Any, Any]
-        ] = [
+        entities: list[Destroyable] = [
             *self.subscriptions,
             *self.publishers,
             *self.services,

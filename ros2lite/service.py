@@ -58,6 +58,8 @@ class Service(Executable, Generic[SrvRequestT, SrvResponseT]):
     With `deferred=True` the callback is `callback(request, header)` and the owner answers
     later with `send_response(response, header)` (the action server's get_result does)."""
 
+    _node: Node  # a server always belongs to a node
+
     def __init__(
         self,
         node: Node,

@@ -7,7 +7,7 @@ from __future__ import annotations
 import inspect
 import threading
 from collections.abc import Callable, Coroutine, Generator
-from typing import TYPE_CHECKING, Any, Generic, TypeVar
+from typing import TYPE_CHECKING, Any, Generic, TypeVar, final
 
 if TYPE_CHECKING:
     from ros2lite.executors import Executor
@@ -102,6 +102,7 @@ class Future(Generic[T]):
         return event.wait(timeout)
 
 
+@final  # executors tell tasks from entities by `type(item) is Task`
 class Task(Future[Any]):
     """Runs `handler(*args)`; if that is (or returns) a coroutine, one step per call.
 

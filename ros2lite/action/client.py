@@ -124,6 +124,8 @@ class ClientGoalHandle(Generic[GoalT, ResultT, FeedbackT]):
 class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
     """Sends goals to one action (rclpy.action.ActionClient's arguments and defaults)."""
 
+    _node: Node
+
     def __init__(
         self,
         node: Node,

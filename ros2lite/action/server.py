@@ -214,6 +214,8 @@ CancelCallback = Callable[
 class ActionServer(Executable, Generic[GoalT, ResultT, FeedbackT]):
     """Serves one action on a node (rclpy.action.ActionServer's arguments and defaults)."""
 
+    _node: Node
+
     def __init__(
         self,
         node: Node,

@@ -24,7 +24,7 @@ import time
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TextIO
 
 from ros2lite.daemon.probe import router_answers, wait_answers
 from ros2lite.exceptions import Ros2liteError
@@ -199,7 +199,7 @@ def _read_info(path: Path) -> DaemonInfo | None:
             fcntl.flock(fh, fcntl.LOCK_SH | fcntl.LOCK_NB)
         except BlockingIOError:
             try:
-                data: dict[str, Any] = json.loads(fh.read() or "{}")
+                data: dict[str, Any] = json.loads(fh.read() or "{}")  # JSON: checked below
                 return DaemonInfo(
                     pid=int(data["pid"]),
                     endpoint=str(data["endpoint"]),
@@ -232,7 +232,7 @@ def _is_our_process(pid: int) -> bool:
         return False
 
 
-def _write_pid_file(path: Path, info: DaemonInfo) -> Any:
+def _write_pid_file(path: Path, info: DaemonInfo) -> TextIO:
     """Write the pid file atomically and return its handle, locked for the process' life."""
     tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
     fh = os.fdopen(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600), "w")

@@ -12,8 +12,8 @@ from __future__ import annotations
 import math
 import threading
 from collections import deque
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
 from ros2lite.transport.attachment import unpack_attachment
 
@@ -46,7 +46,7 @@ class IntervalSummary:
         return _NS / self.mean if self.mean > 0 else 0.0
 
 
-def summarize(values: Any) -> IntervalSummary:
+def summarize(values: Sequence[int]) -> IntervalSummary:
     """Summary of a non-empty sequence of integer nanosecond values."""
     n = len(values)
     total = sum(values)

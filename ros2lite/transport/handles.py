@@ -59,6 +59,10 @@ class Payload(Protocol):
         """The bytes, copied into Python."""
         ...
 
+    def __len__(self) -> int:
+        """How many bytes (without copying them)."""
+        ...
+
 
 class Sample(Protocol):
     """What a received sample offers (``zenoh.Sample``): its payload and attachment."""
