@@ -21,12 +21,17 @@ import time
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.bag.errors import BagError
 from ros2lite.bag.writer import Writer
 from ros2lite.qos import QoSProfile
 from ros2lite.transport.attachment import unpack_attachment
+
+if TYPE_CHECKING:
+    from ros2lite.graph import Entity
+    from ros2lite.monitor.subscription import MonitoredSubscription
+    from ros2lite.node import Node
 
 __all__ = ["DEFAULT_MAX_CACHE_SIZE", "RecordOptions", "Recorder", "TopicStats"]
 
@@ -78,12 +83,12 @@ class Recorder:
 
     def __init__(
         self,
-        node: Any,
+        node: Node,
         writer: Writer,
         options: RecordOptions,
         *,
-        log: Callable[[str], Any] | None = None,
-        warn: Callable[[str], Any] | None = None,
+        log: Callable[[str], object] | None = None,
+        warn: Callable[[str], object] | None = None,
     ) -> None:
         self.node = node
         self.writer = writer
@@ -97,7 +102,7 @@ class Recorder:
         self._stats_by_tid: dict[int, TopicStats] = {}
         self._by_name: dict[str, int] = {}
         self._skipped: set[str] = set()
-        self._subscriptions: list[Any] = []
+        self._subscriptions: list[MonitoredSubscription] = []
         self._queue: deque[tuple[int, bytes, int, bytes]] = deque()
         self._wake = threading.Event()
         self._writer_idle = False
@@ -262,14 +267,14 @@ class Recorder:
         """Subscribe to every wanted topic that has publishers and no subscription yet."""
         from ros2lite.transport.keys import EntityKind
 
-        publishers: dict[str, list[Any]] = {}
+        publishers: dict[str, list[Entity]] = {}
         for e in self.node.context.graph.entities():
             if e.kind == EntityKind.PUBLISHER and e.topic_name and e.type_name:
                 publishers.setdefault(e.topic_name, []).append(e)
         for topic, pubs in sorted(publishers.items()):
             if topic in self._by_name or topic in self._skipped:
                 continue
-            types = sorted({p.type_name for p in pubs})
+            types = sorted({p.type_name or '' for p in pubs})  # (all named: see above)
             if not any(self.wanted(topic, t) for t in types):
                 continue
             if len(types) > 1:
@@ -280,7 +285,7 @@ class Recorder:
                 continue
             self._subscribe(topic, types[0], pubs)
 
-    def _subscribe(self, topic: str, type_name: str, pubs: list[Any]) -> None:
+    def _subscribe(self, topic: str, type_name: str, pubs: list[Entity]) -> None:
         from ros2lite.bag.qos import recording_qos
         from ros2lite.interfaces import InterfaceError, get_interface
         from ros2lite.monitor.subscription import MonitoredSubscription
@@ -288,7 +293,7 @@ class Recorder:
         offered = [p.qos for p in pubs if p.qos is not None]
         qos = self.options.qos_overrides.get(topic) or recording_qos(topic, offered, self._warn)
         hashes = {p.type_hash for p in pubs if p.type_hash}
-        msg_type: Any = type_name
+        msg_type: type | str = type_name
         try:
             get_interface(type_name)
         except (InterfaceError, LookupError, ValueError) as e:

@@ -67,7 +67,7 @@ class _Gen:
     def emit(self, line: str) -> None:
         self.lines.append('    ' * self.indent + line)
 
-    def const(self, prefix: str, value: Any) -> str:
+    def const(self, prefix: str, value: object) -> str:
         n = self.name(prefix)
         self.ns[n] = value
         return n

@@ -252,7 +252,7 @@ class ClassFactory:
         self.registry = registry
         self.classes: dict[str, type[Message]] = {}
 
-    def same_type(self, value: Any, name: str) -> bool:
+    def same_type(self, value: object, name: str) -> bool:
         return getattr(type(value), '_TYPE_NAME', None) == name
 
     def message_class(self, name: str) -> type[Message]:

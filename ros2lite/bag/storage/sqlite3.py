@@ -10,7 +10,6 @@ from __future__ import annotations
 import contextlib
 import sqlite3
 from collections.abc import Iterator
-from typing import Any
 
 from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import TopicMetadata, parse_metadata, parse_qos_list
@@ -137,7 +136,7 @@ class Sqlite3StorageReader:
         names = {tid: t.name for tid, t in self._topic_rows()}
         query = "SELECT topic_id, timestamp, data FROM messages"
         where: list[str] = []
-        args: list[Any] = []
+        args: list[int] = []
         if start is not None:
             where.append("timestamp >= ?")
             args.append(start)

@@ -14,6 +14,7 @@ from ..errors import CliError
 from .common import compile_filter, graph_type, message_type_name, monitor
 
 if TYPE_CHECKING:
+    from ros2lite.interfaces.convert import FormatOptions
     from ros2lite.monitor.topic import TopicMonitor
     from ros2lite.qos import QoSProfile
 
@@ -52,7 +53,11 @@ class Printer:
         self.type_name = type_name
         self.csv = csv
         self.field = field
-        self.fmt = {'truncate_length': truncate_length, 'no_arr': no_arr, 'no_str': no_str}
+        self.fmt: FormatOptions = {
+            'truncate_length': truncate_length,
+            'no_arr': no_arr,
+            'no_str': no_str,
+        }
         self.flow_style = flow_style
         self.raw = raw
         self.filter_fn = filter_fn
