@@ -9,7 +9,10 @@ from __future__ import annotations
 
 import os
 import sys
-from typing import Any, TextIO
+from typing import TYPE_CHECKING, TextIO
+
+if TYPE_CHECKING:
+    import argparse
 
 CHOICES = ('auto', 'window', 'terminal', 'none')
 
@@ -54,7 +57,7 @@ class DisplayError(ValueError):
     """A display that was asked for cannot be opened (one line for the user)."""
 
 
-def add_display_argument(parser: Any) -> None:
+def add_display_argument(parser: argparse.ArgumentParser) -> None:
     """`--display auto|window|terminal|none` on a demo's argparse parser."""
     parser.add_argument(
         '--display',

@@ -3,7 +3,7 @@ the result, then exits."""
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 import ros2lite
 from ros2lite.action import ActionClient
@@ -14,27 +14,36 @@ from ros2lite.msgs.action_tutorials_interfaces.action import (
 )
 from ros2lite.node import Node
 
+if TYPE_CHECKING:
+    from ros2lite.action import ClientGoalHandle
+    from ros2lite.task import Future
+    from ros2lite.type_support import FeedbackMessage, GetResultResponse
+
+    _Handle = ClientGoalHandle[Fibonacci.Goal, Fibonacci.Result, Fibonacci.Feedback]
+
 
 class FibonacciActionClient(Node):
     def __init__(self) -> None:
         super().__init__('fibonacci_action_client')
         self._action_client = ActionClient(self, Fibonacci, 'fibonacci')
 
-    def goal_response_callback(self, future: Any) -> None:
+    def goal_response_callback(self, future: Future[_Handle]) -> None:
         goal_handle = future.result()
-        if not goal_handle.accepted:
+        if goal_handle is None or not goal_handle.accepted:
             self.get_logger().info('Goal rejected :(')
             return
         self.get_logger().info('Goal accepted :)')
         self._get_result_future = goal_handle.get_result_async()
         self._get_result_future.add_done_callback(self.get_result_callback)
 
-    def feedback_callback(self, feedback: Any) -> None:
+    def feedback_callback(self, feedback: FeedbackMessage[Fibonacci.Feedback]) -> None:
         self.get_logger().info(f'Received feedback: {feedback.feedback.partial_sequence}')
 
-    def get_result_callback(self, future: Any) -> None:
-        result = future.result().result
-        status = future.result().status
+    def get_result_callback(self, future: Future[GetResultResponse[Fibonacci.Result]]) -> None:
+        response = future.result()
+        assert response is not None  # the client never cancels this future
+        result = response.result
+        status = response.status
         if status == GoalStatus.STATUS_SUCCEEDED:
             self.get_logger().info(f'Goal succeeded! Result: {result.sequence}')
         else:

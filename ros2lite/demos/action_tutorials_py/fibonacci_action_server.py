@@ -7,7 +7,7 @@ as in the ROS demo.
 from __future__ import annotations
 
 import time
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.action import ActionServer, CancelResponse, GoalResponse
 from ros2lite.action.server import ServerGoalHandle
@@ -17,6 +17,9 @@ from ros2lite.msgs.action_tutorials_interfaces.action import (
     Fibonacci,
 )
 from ros2lite.node import Node
+
+if TYPE_CHECKING:
+    _Handle = ServerGoalHandle[Fibonacci.Goal, Fibonacci.Result, Fibonacci.Feedback]
 
 
 class FibonacciActionServer(Node):
@@ -36,16 +39,16 @@ class FibonacciActionServer(Node):
         self._action_server.destroy()
         super().destroy_node()
 
-    def goal_callback(self, goal_request: Any) -> GoalResponse:
+    def goal_callback(self, goal_request: Fibonacci.Goal) -> GoalResponse:
         # this server takes several goals at once
         self.get_logger().info('Received goal request')
         return GoalResponse.ACCEPT
 
-    def cancel_callback(self, goal_handle: ServerGoalHandle) -> CancelResponse:
+    def cancel_callback(self, goal_handle: _Handle) -> CancelResponse:
         self.get_logger().info('Received cancel request')
         return CancelResponse.ACCEPT
 
-    async def execute_callback(self, goal_handle: ServerGoalHandle) -> Any:
+    async def execute_callback(self, goal_handle: _Handle) -> Fibonacci.Result:
         self.get_logger().info('Executing goal...')
         feedback_msg = Fibonacci.Feedback()
         feedback_msg.partial_sequence = [0, 1]

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 from ros2lite.demos.runner import run_node
 from ros2lite.msgs.example_interfaces.srv import AddTwoInts
 from ros2lite.node import Node
@@ -14,7 +12,9 @@ class AddTwoIntsServer(Node):
         super().__init__('add_two_ints_server')
         self.srv = self.create_service(AddTwoInts, 'add_two_ints', self.add_two_ints_callback)
 
-    def add_two_ints_callback(self, request: Any, response: Any) -> Any:
+    def add_two_ints_callback(
+        self, request: AddTwoInts.Request, response: AddTwoInts.Response
+    ) -> AddTwoInts.Response:
         response.sum = request.a + request.b
         self.get_logger().info(f'Incoming request\na: {request.a} b: {request.b}')
         return response

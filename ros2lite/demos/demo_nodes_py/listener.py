@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 from ros2lite.demos.runner import run_node
 from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.node import Node
@@ -14,7 +12,7 @@ class Listener(Node):
         super().__init__('listener')
         self.sub = self.create_subscription(String, 'chatter', self.chatter_callback, 10)
 
-    def chatter_callback(self, msg: Any) -> None:
+    def chatter_callback(self, msg: String) -> None:
         self.get_logger().info(f'I heard: [{msg.data}]')
 
 

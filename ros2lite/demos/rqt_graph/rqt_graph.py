@@ -11,11 +11,14 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.demos.display import DisplayError, add_display_argument, choose, own_arguments
 from ros2lite.demos.rqt_graph import model
 from ros2lite.demos.runner import run_main
+
+if TYPE_CHECKING:
+    from ros2lite.node import Node
 
 REFRESH_SECONDS = 1.0
 OUTPUTS = ('.svg', '.dot', '.gv')
@@ -38,7 +41,8 @@ def write_output(path: str, graph: model.Graph) -> None:
         f.write(text)
 
 
-def graph_node() -> Any:
+def graph_node() -> Node:
+    """The hidden node the graph is read through."""
     from ros2lite.node import Node
 
     return Node(

@@ -7,11 +7,14 @@ from __future__ import annotations
 import sys
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.demos.display import DisplayError
 from ros2lite.demos.rqt_graph.layout import Layout, layout
 from ros2lite.demos.rqt_graph.model import Graph
+
+if TYPE_CHECKING:  # rich itself is imported where it draws
+    from rich.text import Text
 
 
 def cell_layout(graph: Graph) -> Layout:
@@ -99,7 +102,7 @@ class GraphTerminal:
         if not sys.stdout.isatty():
             raise DisplayError('cannot draw on the terminal: standard output is not a terminal')
 
-    def picture(self, graph: Graph) -> Any:
+    def picture(self, graph: Graph) -> Text:
         from rich.text import Text
 
         text = Text(no_wrap=True, overflow='crop')

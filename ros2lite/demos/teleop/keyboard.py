@@ -16,7 +16,6 @@ import contextlib
 import os
 import select
 import sys
-from typing import Any
 
 ARROWS = {'A': 'up', 'B': 'down', 'C': 'right', 'D': 'left'}
 ESCAPE_WAIT = 0.05  # s: how long the rest of an escape sequence may take to arrive
@@ -28,7 +27,7 @@ class Keyboard:
     def __init__(self, fd: int | None = None, *, raw: bool = False) -> None:
         self.fd = sys.stdin.fileno() if fd is None else fd
         self.raw = raw
-        self._saved: list[Any] | None = None
+        self._saved: list[int | list[bytes | int]] | None = None  # termios attributes
 
     def __enter__(self) -> Keyboard:
         if not os.isatty(self.fd):

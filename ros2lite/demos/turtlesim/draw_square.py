@@ -30,7 +30,7 @@ class DrawSquare(Node):
         self.reset_client = self.create_client(Empty, 'reset')
         self.timer = self.create_timer(0.016, self.on_timer)
         self.reset_done = self.reset_client.call_async(Empty.Request())
-        self.pose: Any = None
+        self.pose: Any = None  # a turtlesim Pose once one came after the reset
         self.goal = Pose()
         self.state = FORWARD
         self.first_goal_set = False

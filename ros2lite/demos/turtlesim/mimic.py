@@ -7,7 +7,6 @@ angular velocity on `output/cmd_vel`; remap both to pair two turtles.
 from __future__ import annotations
 
 import sys
-from typing import Any
 
 from ros2lite.demos.runner import run_node
 from ros2lite.msgs.geometry_msgs.msg import Twist
@@ -21,7 +20,7 @@ class Mimic(Node):
         self.twist_pub = self.create_publisher(Twist, 'output/cmd_vel', 1)
         self.pose_sub = self.create_subscription(Pose, 'input/pose', self.on_pose, 1)
 
-    def on_pose(self, pose: Any) -> None:
+    def on_pose(self, pose: Pose) -> None:
         twist = Twist()
         twist.angular.z = pose.angular_velocity
         twist.linear.x = pose.linear_velocity

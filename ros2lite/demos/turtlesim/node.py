@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 from ros2lite.action import ActionServer, CancelResponse
 from ros2lite.action.server import ServerGoalHandle
@@ -157,12 +157,13 @@ class _TurtleInterface:
         return CancelResponse.ACCEPT
 
     def feedback(self, goal: sim.RotateGoal, remaining: float) -> None:
-        goal.token.publish_feedback(RotateAbsolute.Feedback(remaining=remaining))
+        handle = cast('_RotateHandle', goal.token)  # the token is the goal's handle
+        handle.publish_feedback(RotateAbsolute.Feedback(remaining=remaining))
 
     def finish(self, goal: sim.RotateGoal, outcome: str) -> None:
         """End the goal's ROS side: its state, then its result (`delta`) to the waiting
         execute callback."""
-        handle: _RotateHandle = goal.token
+        handle = cast('_RotateHandle', goal.token)
         transition = {
             'succeeded': handle.succeed,
             'canceled': handle.canceled,
@@ -205,7 +206,7 @@ class _TurtleInterface:
         self.rotate.destroy()
 
 
-def _channel(description: str) -> Any:
+def _channel(description: str) -> ParameterDescriptor:
     return ParameterDescriptor(
         description=description,
         integer_range=[IntegerRange(from_value=0, to_value=255, step=1)],
@@ -216,7 +217,7 @@ class TurtlesimNode(Node):
     """Jazzy's `/turtlesim`: parameters, the four world services, and one interface per
     turtle, stepped every 16 ms."""
 
-    def __init__(self, *, world: sim.World | None = None, **kwargs: Any) -> None:
+    def __init__(self, *, world: sim.World | None = None, **kwargs: Any) -> None:  # Node's
         super().__init__('turtlesim', **kwargs)
         self.world = world or sim.World()
         self.revision = 0  # bumped on every change a view could show
@@ -271,7 +272,7 @@ class TurtlesimNode(Node):
         self.world.background = (r, g, b)
         self.revision += 1
 
-    def _on_parameter_event(self, event: Any) -> None:
+    def _on_parameter_event(self, event: ParameterEvent) -> None:
         if event.node == self.get_fully_qualified_name():
             self._update_frame()  # turtlesim repaints on its own parameter events
 
@@ -293,14 +294,14 @@ class TurtlesimNode(Node):
         self.revision += 1
         return real_name
 
-    def _on_spawn(self, request: Any, response: Any) -> Any:
+    def _on_spawn(self, request: Spawn.Request, response: Spawn.Response) -> Spawn.Response:
         name = self._spawn(request.name, request.x, request.y, request.theta)
         if not name and request.name in self.world.turtles:
             self.get_logger().error(f'A turtle named [{request.name}] already exists')
         response.name = name
         return response
 
-    def _on_kill(self, request: Any, response: Any) -> Any:
+    def _on_kill(self, request: Kill.Request, response: Kill.Response) -> Kill.Response:
         if not self.world.kill(request.name):
             self.get_logger().error(f'Tried to kill turtle [{request.name}], which does not exist')
             return response
@@ -308,13 +309,13 @@ class TurtlesimNode(Node):
         self.revision += 1
         return response
 
-    def _on_clear(self, request: Any, response: Any) -> Any:
+    def _on_clear(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
         self.get_logger().info('Clearing turtlesim.')
         self.world.clear()
         self.revision += 1
         return response
 
-    def _on_reset(self, request: Any, response: Any) -> Any:
+    def _on_reset(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
         self.get_logger().info('Resetting turtlesim.')
         for interface in self._interfaces.values():
             interface.destroy()

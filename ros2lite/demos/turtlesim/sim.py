@@ -18,7 +18,7 @@ import struct
 from collections import deque
 from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Literal
 
 # turtlesim's own (rounded) pi: angles are normalised with it, so keep it for equal results
 PI = 3.14159265
@@ -90,7 +90,7 @@ class RotateGoal:
 
     theta: float
     start_theta: float = 0.0
-    token: Any = None
+    token: object = None
     cancel_requested: bool = False
     delta: float = 0.0  # turned so far (start - now), the action's result
 
@@ -122,6 +122,10 @@ class WallHit:
     y: float
 
 
+Event = GoalFeedback | GoalDone | WallHit
+"""Something a step did that the node reports (feedback, a goal's end, a wall)."""
+
+
 @dataclass
 class TurtleUpdate:
     """What one step did to one turtle: everything the node publishes or logs for it."""
@@ -129,7 +133,7 @@ class TurtleUpdate:
     name: str
     pose: Pose
     color: tuple[int, int, int]
-    events: list[Any] = field(default_factory=list)
+    events: list[Event] = field(default_factory=list)
 
 
 @dataclass(frozen=True)
@@ -202,6 +206,13 @@ class Turtle:
         return GoalDone(self.name, previous, 'aborted') if previous is not None else None
 
 
+Stroke = (
+    tuple[Literal['clear']]
+    | tuple[Literal['line'], float, float, float, float, tuple[int, int, int], int]
+)
+"""What a view replays: ('line', x0, y0, x1, y1, rgb, width) or ('clear',)."""
+
+
 class Canvas:
     """The path image (500x500 RGBA, transparent where nothing was drawn) and, for a view, the
     log of what was drawn since it last looked (`drain()`)."""
@@ -210,7 +221,7 @@ class Canvas:
         self.size = size
         self.pixels = bytearray(size * size * 4)
         self.keep_strokes = False  # a view sets it, then must drain()
-        self._strokes: deque[tuple[Any, ...]] = deque()
+        self._strokes: deque[Stroke] = deque()
         self.clear()
 
     def clear(self) -> None:
@@ -253,7 +264,7 @@ class Canvas:
     def has_strokes(self) -> bool:
         return bool(self._strokes)
 
-    def drain(self) -> list[tuple[Any, ...]]:
+    def drain(self) -> list[Stroke]:
         """Strokes drawn since the last call: ('line', x0, y0, x1, y1, rgb, width) or ('clear',)."""
         out = []
         while True:
@@ -344,7 +355,7 @@ class World:
         return [self._update(self.turtles[name]) for name in sorted(self.turtles)]
 
     def _update(self, t: Turtle) -> TurtleUpdate:
-        events: list[Any] = []
+        events: list[Event] = []
         canvas = self.canvas
         # teleports first, in order, each drawn with the pen
         for req in t._teleports:

@@ -9,9 +9,16 @@ to the orientation they sit at from F, F cancels the goal, Q quits. Its node is
 from __future__ import annotations
 
 import sys
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.demos.runner import run_main
+
+if TYPE_CHECKING:
+    from ros2lite.action import ClientGoalHandle
+    from ros2lite.msgs.turtlesim.action import RotateAbsolute
+    from ros2lite.task import Future
+
+    _Handle = ClientGoalHandle[RotateAbsolute.Goal, RotateAbsolute.Result, RotateAbsolute.Feedback]
 
 INSTRUCTIONS = (
     'Reading from keyboard\n'
@@ -52,7 +59,7 @@ class TeleopTurtle:
         self._rotate = RotateAbsolute
         self.twist_pub = self.node.create_publisher(Twist, 'turtle1/cmd_vel', 1)
         self.rotate_client = ActionClient(self.node, RotateAbsolute, 'turtle1/rotate_absolute')
-        self.goal_handle: Any = None
+        self.goal_handle: _Handle | None = None
 
     def key(self, key: str) -> bool:
         key = key.lower() if len(key) == 1 else key
@@ -74,7 +81,7 @@ class TeleopTurtle:
         future = self.rotate_client.send_goal_async(self._rotate.Goal(theta=theta))
         future.add_done_callback(self._on_goal_response)
 
-    def _on_goal_response(self, future: Any) -> None:
+    def _on_goal_response(self, future: Future[_Handle]) -> None:
         self.node.get_logger().debug('Goal response received')
         self.goal_handle = future.result()
 
