@@ -162,7 +162,7 @@ def create_node(node_name: str, **kwargs: Any) -> Node:
     return Node(node_name, **kwargs)
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> object:
     module = _EXPORTS.get(name)
     if module is None:
         raise AttributeError(f"module 'ros2lite' has no attribute '{name}'")

@@ -23,7 +23,7 @@ from ros2lite.task import Future
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
     from ros2lite.client import Client
-    from ros2lite.interfaces import ServiceType
+    from ros2lite.interfaces import Message, ServiceType
     from ros2lite.msgs.rcl_interfaces import srv
     from ros2lite.msgs.rcl_interfaces.msg import Parameter as ParameterMsg
     from ros2lite.node import Node
@@ -57,9 +57,9 @@ class AsyncParameterClient:
         self.remote_node_name = absolute_node_name(remote_node_name)
         self._qos = qos_profile
         self._group = callback_group
-        self._clients: dict[str, Client[Any, Any]] = {}
+        self._clients: dict[str, Client[Message, Message]] = {}
 
-    def _client(self, service: str) -> Client[Any, Any]:
+    def _client(self, service: str) -> Client[Message, Message]:
         client = self._clients.get(service)
         if client is None:
             client = self._clients[service] = self._node.create_client(

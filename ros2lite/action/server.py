@@ -15,7 +15,7 @@ import inspect
 import threading
 import traceback
 from collections.abc import Awaitable, Callable
-from typing import TYPE_CHECKING, Any, Generic, Protocol, TypeVar, cast
+from typing import TYPE_CHECKING, Generic, Protocol, TypeVar, cast
 
 from ros2lite.action.goals import (
     TERMINAL_STATES,
@@ -78,7 +78,9 @@ def default_goal_callback(goal_request: object) -> GoalResponse:
     return GoalResponse.ACCEPT
 
 
-def default_handle_accepted_callback(goal_handle: ServerGoalHandle[Any, Any, Any]) -> None:
+def default_handle_accepted_callback(
+    goal_handle: ServerGoalHandle[GoalT, ResultT, FeedbackT],
+) -> None:
     """Start executing an accepted goal at once (rclpy's default)."""
     goal_handle.execute()
 

@@ -6,7 +6,6 @@ import contextlib
 import os
 import signal
 import sys
-from typing import Any
 
 import click
 
@@ -60,7 +59,7 @@ def cli(ctx: click.Context, debug: bool, router: str | None) -> None:
         click.echo(ctx.get_help())
 
 
-def main(argv: list[str] | None = None) -> Any:
+def main(argv: list[str] | None = None) -> int:
     """Run the CLI; returns the process exit status."""
     args = sys.argv[1:] if argv is None else argv
     instruction = os.environ.get(COMPLETE_VAR)
@@ -83,7 +82,7 @@ def main(argv: list[str] | None = None) -> Any:
         return signal.SIGTERM.value
 
 
-def _main(args: list[str]) -> Any:
+def _main(args: list[str]) -> int:
     try:
         # invoke directly (not cli.main) so our handlers see every exception, including
         # BrokenPipeError, which click.main would turn into a bare exit 1

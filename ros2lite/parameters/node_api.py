@@ -7,7 +7,7 @@ overrides from `--ros-args`, /parameter_events, the parameter services and `use_
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, cast
 
 from ros2lite.parameter import AllowableParameterValue, Parameter
@@ -219,14 +219,15 @@ def _check_use_sim_time(parameters: list[Parameter]) -> SetParametersResult:
     return result(True)
 
 
-def _override_parameters(values: dict[str, AllowableParameterValue]) -> dict[str, Parameter]:
+def _override_parameters(values: Mapping[str, object]) -> dict[str, Parameter]:
     """`-p`/params-file values as Parameters; a value no parameter type can hold is an error."""
     from ros2lite.arguments import RosArgsError
 
     out: dict[str, Parameter] = {}
     for name, value in values.items():
         try:
-            out[name] = Parameter(name, value=value)
+            # Parameter() checks that the value is one a parameter can hold
+            out[name] = Parameter(name, value=cast('AllowableParameterValue', value))
         except (TypeError, ValueError) as e:
             raise RosArgsError(f"Invalid value for parameter override '{name}': {e}") from None
     return out

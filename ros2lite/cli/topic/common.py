@@ -4,7 +4,7 @@ through the library's TopicMonitor with ros2cli's words around it."""
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import click
 
@@ -30,7 +30,7 @@ def message_type_name(name: str) -> str:
     return full
 
 
-def compile_filter(expr: str | None) -> Callable[[Any], Any] | None:
+def compile_filter(expr: str | None) -> Callable[[object], object] | None:
     """`--filter EXPR` as a function of the message `m` (Python builtins available), as
     ros2cli has it: the user's own expression, run in this process."""
     if not expr:
@@ -40,7 +40,7 @@ def compile_filter(expr: str | None) -> Callable[[Any], Any] | None:
     except SyntaxError as e:
         raise CliError(f"Invalid filter expression '{expr}': {e.msg}") from None
 
-    def check(m: Any) -> Any:
+    def check(m: object) -> object:
         return eval(code, {'__builtins__': __builtins__}, {'m': m})
 
     return check

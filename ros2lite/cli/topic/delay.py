@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Protocol, cast
+from typing import TYPE_CHECKING, Protocol, cast
 
 import click
 
@@ -14,6 +14,7 @@ from .common import graph_type, monitor
 if TYPE_CHECKING:
     from ros2lite.monitor.stats import IntervalSummary
     from ros2lite.msgs.std_msgs.msg import Header
+    from ros2lite.subscription import MessageInfo
 
 
 class _Stamped(Protocol):
@@ -59,7 +60,7 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
             raise CliError('msg does not have header')
         clock = conn.node().get_clock()
 
-        def on_sample(data: bytes, info: Any) -> None:
+        def on_sample(data: bytes, info: MessageInfo) -> None:
             stamp = cast(_Stamped, deserialize(type_name, data)).header.stamp
             now = clock.now().nanoseconds if clock.ros_time_is_active else info.received_timestamp
             if stats.add(now, stamp.sec * 1_000_000_000 + stamp.nanosec):
