@@ -30,6 +30,8 @@ class RosArgsError(Ros2liteError, ValueError):
 
 @dataclass
 class Remap:
+    """One `-r from:=to` rule (for one node when `node` is given)."""
+
     node: str | None  # only applies to this node name when given
     source: str
     target: str
@@ -37,6 +39,8 @@ class Remap:
 
 @dataclass
 class RosArgs:
+    """What `--ros-args` said: remaps, parameters, params files, log levels, enclave."""
+
     remaps: list[Remap] = field(default_factory=list)
     # node → name → value (as the YAML reads; a Parameter checks it)
     params: dict[str | None, dict[str, object]] = field(default_factory=dict)
@@ -59,9 +63,11 @@ class RosArgs:
         return merged
 
     def node_name_override(self, node: str) -> str | None:
+        """The name `__node:=` gives this node, if any."""
         return self._special(node, ('__node', '__name'))
 
     def namespace_override(self, node: str) -> str | None:
+        """The namespace `__ns:=` gives this node, if any."""
         return self._special(node, ('__ns',))
 
     def _special(self, node: str, keys: tuple[str, ...]) -> str | None:

@@ -91,14 +91,17 @@ class Context:
         self.try_shutdown()
 
     def ok(self) -> bool:
+        """Whether the session is open and no SIGTERM asked it to stop."""
         return self.session is not None and not self.terminating
 
     def require(self) -> Session:
+        """The session; NotInitializedException before init()."""
         if self.session is None:
             raise NotInitializedException()
         return self.session
 
     def next_entity_id(self) -> int:
+        """A fresh id for a node or endpoint (rmw_zenoh numbers both from one counter)."""
         with self._lock:
             return next(self._ids)
 
@@ -113,18 +116,22 @@ class Context:
             return self._graph
 
     def add_node(self, node: Node) -> None:
+        """Remember a node, to destroy it at shutdown."""
         with self._lock:
             self._nodes.append(node)
 
     def remove_node(self, node: Node) -> None:
+        """Forget a destroyed node."""
         with self._lock:
             if node in self._nodes:
                 self._nodes.remove(node)
 
     def on_shutdown(self, fn: Callable[[], object]) -> None:
+        """Call `fn()` when the context shuts down."""
         self._on_shutdown.append(fn)
 
     def add_executor(self, executor: Executor) -> None:
+        """Remember an executor, to wake it at shutdown."""
         self._executors.add(executor)
 
     def wake(self) -> None:
@@ -133,6 +140,7 @@ class Context:
             executor.wake()
 
     def shutdown(self) -> None:
+        """Destroy the nodes, close the session and wake the executors."""
         if self.session is None:
             return
         for fn in self._on_shutdown:
@@ -150,6 +158,7 @@ class Context:
             self._ids = itertools.count()
 
     def try_shutdown(self) -> None:
+        """shutdown() unless already shut down."""
         if self.session is not None:
             self.shutdown()
 
@@ -215,4 +224,5 @@ _default = Context()
 
 
 def default_context() -> Context:
+    """The process' context (the one `ros2lite.init()` opens)."""
     return _default

@@ -28,10 +28,12 @@ class Duration:
 
     @classmethod
     def from_seconds(cls, seconds: float) -> Duration:
+        """A duration of `seconds` (rounded to ns)."""
         return cls(seconds=seconds)
 
     @classmethod
     def from_nanoseconds(cls, nanoseconds: int) -> Duration:
+        """A duration of `nanoseconds`."""
         return cls(nanoseconds=nanoseconds)
 
     @classmethod
@@ -41,6 +43,7 @@ class Duration:
 
     @property
     def nanoseconds(self) -> int:
+        """The length in nanoseconds."""
         return self._ns
 
     @property
@@ -55,16 +58,20 @@ class Duration:
 
     @property
     def is_unspecified(self) -> bool:
+        """Whether it is zero (QoS: the middleware's default)."""
         return self._ns == 0
 
     @property
     def is_infinite(self) -> bool:
+        """Whether it is QoS's "infinite"."""
         return self._ns == _INFINITE_NS
 
     def to_seconds(self) -> float:
+        """The length in seconds."""
         return self._ns / _NS
 
     def to_msg(self) -> _builtin_msg.Duration:
+        """As a builtin_interfaces/Duration."""
         from ros2lite.interfaces import get_interface
 
         duration_type: type[_builtin_msg.Duration] = get_interface(

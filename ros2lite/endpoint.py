@@ -105,6 +105,7 @@ class Endpoint:
 
     @property
     def gid(self) -> bytes:
+        """The 16-byte global id rmw_zenoh derives from the endpoint's token."""
         from ros2lite.transport.attachment import gid_from_token
 
         return gid_from_token(self.token_key)

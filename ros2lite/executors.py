@@ -74,6 +74,7 @@ class Executor:
 
     @property
     def context(self) -> Context:
+        """The context whose nodes this executor runs."""
         return self._context
 
     # -- nodes and tasks -----------------------------------------------------------------------
@@ -100,6 +101,7 @@ class Executor:
         return True
 
     def remove_node(self, node: Node) -> None:
+        """Stop running `node`'s callbacks."""
         with self._lock:
             if node not in self._nodes:
                 return
@@ -108,10 +110,12 @@ class Executor:
             node._executor = None
 
     def get_nodes(self) -> list[Node]:
+        """The nodes added to this executor."""
         with self._lock:
             return list(self._nodes)
 
     def wake(self) -> None:
+        """Any thread: make a waiting spin look again (at ok(), timers, conditions)."""
         self._queue.put(None)
 
     def create_task(
@@ -131,6 +135,7 @@ class Executor:
         return task
 
     def shutdown(self, timeout_sec: float | None = None) -> bool:
+        """Remove every node and stop spinning (True: done)."""
         self._is_shutdown = True
         for node in self.get_nodes():
             self.remove_node(node)
@@ -146,6 +151,7 @@ class Executor:
             raise ExternalShutdownException()
 
     def spin(self) -> None:
+        """Run callbacks until the context shuts down or shutdown() is called."""
         self._spinning += 1
         try:
             while self._ok():
@@ -169,6 +175,7 @@ class Executor:
         self._check_terminating()
 
     def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None) -> None:
+        """Run callbacks until `future` is done or `timeout_sec` passes."""
         future.add_done_callback(lambda _f: self.wake())
         deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
         self._spinning += 1
@@ -212,6 +219,7 @@ class Executor:
     def spin_once_until_future_complete(
         self, future: Future, timeout_sec: float | None = None
     ) -> None:
+        """Run one callback, waking early when `future` completes."""
         future.add_done_callback(lambda _f: self.wake())
         self.spin_once(timeout_sec)
 
@@ -390,6 +398,7 @@ class MultiThreadedExecutor(Executor):
 
     @property
     def num_threads(self) -> int:
+        """How many callbacks may run at once."""
         return self._num_threads
 
     def _raise_errors(self) -> None:
@@ -454,6 +463,7 @@ class MultiThreadedExecutor(Executor):
         super()._dispatch(item, batch, stop)
 
     def shutdown(self, timeout_sec: float | None = None) -> bool:
+        """Stop, and shut the thread pool down (waiting for it unless timeout_sec is 0)."""
         super().shutdown(timeout_sec)
         self._pool.shutdown(wait=timeout_sec is None or timeout_sec > 0)
         return True
@@ -465,6 +475,7 @@ _global_lock = threading.Lock()
 
 
 def get_global_executor(context: Context | None = None) -> SingleThreadedExecutor:
+    """The context's shared single-threaded executor (what ros2lite.spin uses)."""
     ctx = context or default_context()
     with _global_lock:
         executor = _global.get(ctx)
@@ -480,6 +491,7 @@ def _executor_for(node: Node, executor: Executor | None) -> Executor:
 def spin_once(
     node: Node, *, executor: Executor | None = None, timeout_sec: float | None = None
 ) -> None:
+    """Run one callback of `node` (on the global executor unless one is given)."""
     ex = _executor_for(node, executor)
     added = ex.add_node(node)
     try:
@@ -503,6 +515,7 @@ def spin(node: Node, executor: Executor | None = None) -> None:
 def spin_until_future_complete(
     node: Node, future: Future, executor: Executor | None = None, timeout_sec: float | None = None
 ) -> None:
+    """Spin `node` until `future` is done or `timeout_sec` passes."""
     ex = _executor_for(node, executor)
     added = ex.add_node(node)
     try:

@@ -94,6 +94,7 @@ class GraphCache:
             self._cond.notify_all()
 
     def entities(self) -> list[Entity]:
+        """Every entity on the graph now (a copy)."""
         with self._cond:
             return list(self._entities.values())
 
@@ -111,6 +112,7 @@ class GraphCache:
         return True
 
     def close(self) -> None:
+        """Stop following the graph."""
         from ros2lite.transport.session import undeclare_quietly
 
         undeclare_quietly(self._sub)
@@ -140,6 +142,7 @@ def _names_and_types(
 def topic_names_and_types(
     entities: Iterable[Entity], include_hidden: bool = False
 ) -> list[tuple[str, list[str]]]:
+    """(topic, types) of the graph's publishers and subscriptions, sorted."""
     result = _names_and_types(entities, _TOPIC_KINDS)
     return result if include_hidden else [r for r in result if not is_hidden_name(r[0])]
 
@@ -147,6 +150,7 @@ def topic_names_and_types(
 def service_names_and_types(
     entities: Iterable[Entity], include_hidden: bool = False
 ) -> list[tuple[str, list[str]]]:
+    """(service, types) of the graph's servers and clients, sorted."""
     result = _names_and_types(entities, _SERVICE_KINDS)
     return result if include_hidden else [r for r in result if not is_hidden_name(r[0])]
 
@@ -159,12 +163,14 @@ def _of_node(entities: Iterable[Entity], node: str, namespace: str) -> list[Enti
 def names_and_types_by_node(
     entities: Iterable[Entity], node: str, namespace: str, kind: EntityKind
 ) -> list[tuple[str, list[str]]]:
+    """(name, types) of one node's entities of `kind`."""
     return _names_and_types(_of_node(entities, node, namespace), (kind,))
 
 
 def endpoints_by_topic(
     entities: Iterable[Entity], topic: str, kind: EntityKind
 ) -> list[TopicEndpointInfo]:
+    """Node, type, GID and QoS of each endpoint of `kind` on `topic`."""
     from ros2lite.transport.attachment import gid_from_token
 
     label = 'PUBLISHER' if kind == EntityKind.PUBLISHER else 'SUBSCRIPTION'
@@ -184,6 +190,7 @@ def endpoints_by_topic(
 
 
 def count(entities: Iterable[Entity], topic: str, kind: EntityKind) -> int:
+    """How many entities of `kind` the graph has on `topic`."""
     return sum(1 for e in entities if e.kind == kind and e.topic_name == topic)
 
 

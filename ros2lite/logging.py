@@ -89,15 +89,19 @@ class RcutilsLogger:
         self._last: dict[tuple[str, int], float] = {}
 
     def get_child(self, suffix: str) -> RcutilsLogger:
+        """A logger named `<this>.<suffix>` (publishing where this one does)."""
         return RcutilsLogger(f'{self.name}.{suffix}' if self.name else suffix, self._publish)
 
     def set_level(self, level: int) -> None:
+        """Set this logger's level (and its children's, unless they have their own)."""
         set_logger_level(self.name, int(level))
 
     def get_effective_level(self) -> int:
+        """The level that applies to this logger."""
         return get_logger_level(self.name)
 
     def is_enabled_for(self, severity: int) -> bool:
+        """Whether a message of `severity` would be logged."""
         return severity >= self.get_effective_level()
 
     def log(

@@ -157,6 +157,7 @@ class Node(ParameterMixin):
 
     @executor.setter
     def executor(self, new_executor: Executor | None) -> None:
+        """Move the node to another executor (None: to none)."""
         if new_executor is self._executor:
             return
         if self._executor is not None:
@@ -206,7 +207,8 @@ class Node(ParameterMixin):
         *,
         callback_group: CallbackGroup | None = None,
         event_callbacks: object = None,
-    ) -> Publisher[MsgT]: ...
+    ) -> Publisher[MsgT]:
+        """A message class gives a publisher typed with it."""
 
     @overload
     def create_publisher(
@@ -217,7 +219,8 @@ class Node(ParameterMixin):
         *,
         callback_group: CallbackGroup | None = None,
         event_callbacks: object = None,
-    ) -> Publisher[Any]: ...
+    ) -> Publisher[Any]:
+        """A 'pkg/msg/Name' gives a publisher of that type, loosely typed."""
 
     def create_publisher(
         self,
@@ -245,7 +248,8 @@ class Node(ParameterMixin):
         callback_group: CallbackGroup | None = None,
         event_callbacks: object = None,
         raw: Literal[False] = False,
-    ) -> Subscription[MsgT]: ...
+    ) -> Subscription[MsgT]:
+        """A message class gives a subscription typed with it."""
 
     @overload
     def create_subscription(
@@ -258,7 +262,8 @@ class Node(ParameterMixin):
         callback_group: CallbackGroup | None = None,
         event_callbacks: object = None,
         raw: Literal[False] = False,
-    ) -> Subscription[Any]: ...
+    ) -> Subscription[Any]:
+        """A 'pkg/msg/Name' gives a subscription of that type, loosely typed."""
 
     @overload
     def create_subscription(
@@ -271,7 +276,8 @@ class Node(ParameterMixin):
         callback_group: CallbackGroup | None = None,
         event_callbacks: object = None,
         raw: Literal[True],
-    ) -> Subscription[MsgT]: ...
+    ) -> Subscription[MsgT]:
+        """raw=True: the callback gets CDR bytes and MessageInfo, undecoded."""
 
     def create_subscription(
         self,
@@ -323,7 +329,8 @@ class Node(ParameterMixin):
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
         deferred: bool = False,
-    ) -> Service[SrvRequestT, SrvResponseT]: ...
+    ) -> Service[SrvRequestT, SrvResponseT]:
+        """A service class gives a server typed with its request and response."""
 
     @overload
     def create_service(
@@ -335,7 +342,8 @@ class Node(ParameterMixin):
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
         deferred: bool = False,
-    ) -> Service[Any, Any]: ...
+    ) -> Service[Any, Any]:
+        """A 'pkg/srv/Name' gives a server of that type, loosely typed."""
 
     def create_service(
         self,
@@ -370,7 +378,8 @@ class Node(ParameterMixin):
         *,
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
-    ) -> Client[SrvRequestT, SrvResponseT]: ...
+    ) -> Client[SrvRequestT, SrvResponseT]:
+        """A service class gives a client whose call() returns its Response."""
 
     @overload
     def create_client(
@@ -380,7 +389,8 @@ class Node(ParameterMixin):
         *,
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
-    ) -> Client[Any, Any]: ...
+    ) -> Client[Any, Any]:
+        """A 'pkg/srv/Name' gives a client of that type, loosely typed."""
 
     def create_client(
         self,

@@ -80,6 +80,7 @@ class BagTypes(Registry):
         return normalize_name(type_name) in defs
 
     def message(self, name: str) -> MessageDef:
+        """A definition from the bag, else from the fallback registry."""
         found = self._messages.get(name)
         if found is not None:
             return found

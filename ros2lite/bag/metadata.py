@@ -62,12 +62,16 @@ class TopicMetadata:
 
 @dataclass
 class TopicInformation:
+    """One topic of a bag and how many messages it has."""
+
     topic_metadata: TopicMetadata
     message_count: int = 0
 
 
 @dataclass
 class FileInformation:
+    """One file of a bag: its path, time span and message count."""
+
     path: str
     starting_time: int = EMPTY_STARTING_TIME  # ns since the epoch
     duration: int = 0  # ns
@@ -76,6 +80,8 @@ class FileInformation:
 
 @dataclass
 class BagMetadata:
+    """metadata.yaml (rosbag2's `rosbag2_bagfile_information`) as data."""
+
     version: int = METADATA_VERSION
     storage_identifier: str = "mcap"
     duration: int = 0  # ns, last minus first log time
@@ -90,6 +96,7 @@ class BagMetadata:
     ros_distro: str = ROS_DISTRO
 
     def topic(self, name: str) -> TopicInformation | None:
+        """The entry of one topic, if the bag has it."""
         for info in self.topics_with_message_count:
             if info.topic_metadata.name == name:
                 return info

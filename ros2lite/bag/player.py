@@ -175,15 +175,18 @@ class Player:
 
     @property
     def topics(self) -> list[str]:
+        """The bag topics being played, sorted."""
         return sorted(self._publishers)
 
     # -- control -------------------------------------------------------------------------------
     @property
     def paused(self) -> bool:
+        """Whether playback is paused."""
         return self._paused
 
     @property
     def rate(self) -> float:
+        """The playback rate (1.0: real time)."""
         return self._rate
 
     def _reanchor(self) -> None:
@@ -192,6 +195,7 @@ class Player:
         self._anchor_wall = time.monotonic_ns()
 
     def pause(self) -> None:
+        """Hold playback (any thread)."""
         with self._cv:
             if not self._paused:
                 self._bag_now = self.bag_time()
@@ -200,6 +204,7 @@ class Player:
                 self._log("Pausing play.")
 
     def resume(self) -> None:
+        """Go on playing from where it was paused (any thread)."""
         with self._cv:
             if self._paused:
                 self._paused = False
@@ -208,6 +213,7 @@ class Player:
                 self._log("Resuming play.")
 
     def toggle_paused(self) -> None:
+        """Pause or resume, as the space key does."""
         if self._paused:
             self.resume()
         else:
@@ -221,6 +227,7 @@ class Player:
                 self._cv.notify_all()
 
     def set_rate(self, rate: float) -> bool:
+        """Change the playback rate from now on (False if not positive)."""
         if rate <= 0:
             return False
         with self._cv:
@@ -232,12 +239,14 @@ class Player:
         return True
 
     def stop(self) -> None:
+        """End playback; play() returns."""
         with self._cv:
             self._stopped = True
             self._cv.notify_all()
 
     @property
     def stopped(self) -> bool:
+        """Whether stop() was called."""
         return self._stopped
 
     def bag_time(self) -> int:

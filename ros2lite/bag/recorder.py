@@ -60,6 +60,7 @@ class RecordOptions:
     discovery: bool = True  # keep looking for new topics while recording
 
     def selects_by_pattern(self) -> bool:
+        """Whether topics are chosen by a rule (all, regex, types) rather than by name."""
         return self.all_topics or self.all_services or bool(self.regex) or bool(self.topic_types)
 
 
@@ -117,6 +118,7 @@ class Recorder:
 
     # -- control -------------------------------------------------------------------------------
     def start(self) -> None:
+        """Open the bag, subscribe to what is wanted now and (with discovery) keep looking."""
         self._running = True
         self.writer.open()
         self._writer_thread = threading.Thread(
@@ -136,19 +138,23 @@ class Recorder:
 
     @property
     def paused(self) -> bool:
+        """Whether recording is paused (messages are dropped meanwhile)."""
         return self._paused
 
     def pause(self) -> None:
+        """Stop writing messages until resume()."""
         if not self._paused:
             self._paused = True
             self._log("Pausing recording.")
 
     def resume(self) -> None:
+        """Write messages again."""
         if self._paused:
             self._paused = False
             self._log("Resuming recording.")
 
     def toggle_paused(self) -> None:
+        """Pause or resume, as the space key does."""
         if self._paused:
             self.resume()
         else:
@@ -245,6 +251,7 @@ class Recorder:
                 return
 
     def wanted(self, topic: str, type_name: str) -> bool:
+        """Whether the options ask for `topic` of this type."""
         o = self.options
         if topic in o.exclude_topics or (self._exclude and self._exclude.search(topic)):
             return False

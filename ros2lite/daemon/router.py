@@ -74,6 +74,8 @@ class DaemonInfo:
 
 @dataclass(frozen=True)
 class StartResult:
+    """What `daemon start` found or did at an endpoint."""
+
     endpoint: str
     started: bool  # True when this call spawned the router
     already_running: bool  # something already answered at the endpoint
@@ -83,6 +85,7 @@ class StartResult:
 
     @property
     def message(self) -> str:
+        """The line `daemon start` prints."""
         if self.started:
             return "The daemon has been started"
         if self.ours:
@@ -95,6 +98,8 @@ class StartResult:
 
 @dataclass(frozen=True)
 class StopResult:
+    """What `daemon stop` found or did at an endpoint."""
+
     endpoint: str
     stopped: bool
     foreign: bool = False  # a router answers there, but it is not ours to stop
@@ -104,6 +109,7 @@ class StopResult:
 
     @property
     def message(self) -> str:
+        """The line `daemon stop` prints."""
         if self.stopped:
             return "The daemon has been stopped"
         if self.foreign:
@@ -113,6 +119,8 @@ class StopResult:
 
 @dataclass(frozen=True)
 class DaemonStatus:
+    """What `daemon status` found at an endpoint."""
+
     endpoint: str
     running: bool  # something answers at the endpoint
     ours: bool  # a live ros2lite daemon owns the endpoint
@@ -122,10 +130,12 @@ class DaemonStatus:
 
     @property
     def pid(self) -> int | None:
+        """The daemon's process id, when it is ours."""
         return self.info.pid if self.info else None
 
     @property
     def message(self) -> str:
+        """The line `daemon status` prints."""
         if self.running and self.ours:
             return "The daemon is running"
         if self.running:
@@ -156,10 +166,12 @@ def _stem(endpoint: str) -> str:
 
 
 def pid_file(endpoint: str) -> Path:
+    """The daemon's pid and lock file for an endpoint."""
     return runtime_dir() / (_stem(endpoint) + ".pid")
 
 
 def log_file(endpoint: str) -> Path:
+    """The daemon's log file for an endpoint."""
     return runtime_dir() / (_stem(endpoint) + ".log")
 
 

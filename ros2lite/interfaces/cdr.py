@@ -428,6 +428,7 @@ class _DesGen(_Gen):
 def build_serializer(name: str, reg: Registry) -> Callable[[Msg], bytes]:
     # the cheapest shape the type allows: straight-line without offset, straight-line with
     # offset, and the general list-building form (which always tracks the offset)
+    """Generate and compile `ser(msg) -> bytes` for one type."""
     for straight, track_offset in ((True, False), (True, True), (False, True)):
         gen = _SerGen(reg, straight, track_offset)
         try:
@@ -472,6 +473,7 @@ def _des_body(
 def build_deserializer(
     name: str, reg: Registry, little: bool = True, lenient: bool = False
 ) -> _Des:
+    """Generate and compile `des(data, offset) -> (msg, end)` for one type and byte order."""
     gen, v = _des_body(name, reg, little, lenient, 1)
     src = 'def des(d, o):\n' + '\n'.join(gen.lines) + f'\n    return {v}, o'
     exec(compile(src, f'<cdr des {name}>', 'exec'), gen.ns)

@@ -56,6 +56,7 @@ class Message(metaclass=MessageMeta):
 
     @classmethod
     def get_fields_and_field_types(cls) -> dict[str, str]:
+        """Field name → rosidl type text, in definition order (rclpy's)."""
         return dict(cls._fields_and_field_types)
 
     def __repr__(self) -> str:
@@ -253,9 +254,11 @@ class ClassFactory:
         self.classes: dict[str, type[Message]] = {}
 
     def same_type(self, value: object, name: str) -> bool:
+        """Whether `value` is a message of type `name` (of whichever factory)."""
         return getattr(type(value), '_TYPE_NAME', None) == name
 
     def message_class(self, name: str) -> type[Message]:
+        """The class of a message type, built (with its nested types) on first use."""
         cls = self.classes.get(name)
         if cls is not None:
             return cls
@@ -372,6 +375,7 @@ _FACTORIES: dict[int, ClassFactory] = {}
 
 
 def factory(reg: Registry | None = None) -> ClassFactory:
+    """The class factory of a registry (the default one unless given)."""
     reg = reg or default_registry()
     f = _FACTORIES.get(id(reg))
     if f is None or f.registry is not reg:

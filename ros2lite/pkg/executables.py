@@ -58,12 +58,16 @@ _ORIGIN_BUNDLED = 'bundled'
 
 
 class PackageNotFoundError(Ros2liteError, LookupError):
+    """No package of that name anywhere on the package path."""
+
     def __init__(self, package: str) -> None:
         super().__init__(f"Package '{package}' not found")
         self.package = package
 
 
 class MultipleExecutablesError(Ros2liteError, LookupError):
+    """More than one executable answers to the name (ros2cli's error)."""
+
     def __init__(self, locations: Sequence[str]) -> None:
         super().__init__('Multiple executables found:' + ''.join(f'\n- {p}' for p in locations))
         self.locations = list(locations)
@@ -80,6 +84,7 @@ class PackageExecutable:
 
     @property
     def is_python(self) -> bool:
+        """Whether it is run with a Python interpreter (not an ament binary)."""
         return self.origin != _ORIGIN_AMENT
 
     def command(self, argv: Sequence[str] = (), python: str | None = None) -> list[str]:

@@ -256,6 +256,7 @@ class SampleReceiver:
             on_batch()
 
     def undeclare(self) -> None:
+        """Stop receiving; the pump thread ends."""
         undeclare_quietly(self._sub)  # closes the channel, which ends the pump thread
         if self._thread is not threading.current_thread():
             # a pump still inside zenoh when the interpreter finalises aborts the process
@@ -351,6 +352,7 @@ class Querier:
         )
 
     def undeclare(self) -> None:
+        """Withdraw the querier."""
         undeclare_quietly(self._querier)
 
 

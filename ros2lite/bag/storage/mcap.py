@@ -147,6 +147,7 @@ class McapStorageWriter:
         return self._file.tell()
 
     def add_schema(self, type_name: str, encoding: str, text: str) -> int:
+        """Register a type's definition once; its schema id."""
         sid = self._schemas.get(type_name)
         if sid is None:
             sid = self._schemas[type_name] = self._writer.register_schema(
@@ -155,6 +156,7 @@ class McapStorageWriter:
         return sid
 
     def add_channel(self, topic: TopicMetadata, schema_id: int) -> int:
+        """Register a topic with its QoS and type hash; its channel id."""
         cid: int = self._writer.register_channel(
             topic.name,
             topic.serialization_format,
@@ -167,6 +169,7 @@ class McapStorageWriter:
         return cid
 
     def add_rosbag2_metadata(self, metadata: BagMetadata) -> None:
+        """Store the bag's metadata as known now in a `rosbag2` record."""
         self._writer.add_metadata(
             "rosbag2", {"serialized_metadata": dump_metadata(metadata, top_key=False)}
         )

@@ -19,6 +19,8 @@ __all__ = ["Sqlite3StorageReader", "open_reader"]
 
 
 class Sqlite3StorageReader:
+    """One `.db3` file of an older rosbag2 bag, read with SQL."""
+
     def __init__(self, path: str) -> None:
         import os
 
@@ -44,6 +46,7 @@ class Sqlite3StorageReader:
         raise BagError(f"'{path}' is not a readable sqlite3 bag ({error})")
 
     def close(self) -> None:
+        """Close the database."""
         self._db.close()
 
     def _tables(self) -> set[str]:
@@ -78,6 +81,7 @@ class Sqlite3StorageReader:
         return out
 
     def summary(self) -> FileSummary:
+        """Topics, counts and times from SQL aggregates (no message data read)."""
         try:
             return self._summary()
         except sqlite3.DatabaseError as e:
@@ -133,6 +137,7 @@ class Sqlite3StorageReader:
     def messages(
         self, topics: set[str] | None = None, start: int | None = None, stop: int | None = None
     ) -> Iterator[tuple[str, bytes, int, int]]:
+        """(topic, data, log time, log time) in time order, `start <= t < stop`."""
         names = {tid: t.name for tid, t in self._topic_rows()}
         query = "SELECT topic_id, timestamp, data FROM messages"
         where: list[str] = []
@@ -156,4 +161,5 @@ class Sqlite3StorageReader:
 
 
 def open_reader(path: str) -> Sqlite3StorageReader:
+    """The plugin's reader of one file."""
     return Sqlite3StorageReader(path)
