@@ -32,6 +32,7 @@ def window_possible(environ: dict[str, str] | None = None) -> bool:
 
 
 def terminal_possible(stream: TextIO | None = None) -> bool:
+    """Whether `stream` (stdout by default) is a terminal a view can draw on."""
     stream = sys.stdout if stream is None else stream
     try:
         return stream.isatty()

@@ -13,7 +13,7 @@ from collections.abc import Iterator
 
 from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import TopicMetadata, parse_metadata, parse_qos_list
-from ros2lite.bag.storage import FileSummary
+from ros2lite.bag.storage import FileSummary, StorageReader
 
 __all__ = ["Sqlite3StorageReader", "open_reader"]
 
@@ -160,6 +160,6 @@ class Sqlite3StorageReader:
             raise BagError(f"'{self.path}' is not a readable sqlite3 bag ({e})") from None
 
 
-def open_reader(path: str) -> Sqlite3StorageReader:
+def open_reader(path: str) -> StorageReader:
     """The plugin's reader of one file."""
     return Sqlite3StorageReader(path)

@@ -23,11 +23,14 @@ if TYPE_CHECKING:
 
 
 class FibonacciActionClient(Node):
+    """action_tutorials_py's client: one goal, its feedback and result logged."""
+
     def __init__(self) -> None:
         super().__init__('fibonacci_action_client')
         self._action_client = ActionClient(self, Fibonacci, 'fibonacci')
 
     def goal_response_callback(self, future: Future[_Handle]) -> None:
+        """The server answered: ask for the result of an accepted goal."""
         goal_handle = future.result()
         if goal_handle is None or not goal_handle.accepted:
             self.get_logger().info('Goal rejected :(')
@@ -37,9 +40,11 @@ class FibonacciActionClient(Node):
         self._get_result_future.add_done_callback(self.get_result_callback)
 
     def feedback_callback(self, feedback: FeedbackMessage[Fibonacci.Feedback]) -> None:
+        """Log each partial sequence."""
         self.get_logger().info(f'Received feedback: {feedback.feedback.partial_sequence}')
 
     def get_result_callback(self, future: Future[GetResultResponse[Fibonacci.Result]]) -> None:
+        """Log the result, then leave."""
         response = future.result()
         assert response is not None  # the client never cancels this future
         result = response.result
@@ -51,6 +56,7 @@ class FibonacciActionClient(Node):
         ros2lite.shutdown(context=self.context)  # leave after the result, as the demo does
 
     def send_goal(self) -> None:
+        """Wait for the server and send a goal of order 10."""
         self.get_logger().info('Waiting for action server...')
         self._action_client.wait_for_server()
         goal_msg = Fibonacci.Goal()
@@ -69,6 +75,7 @@ def _make() -> FibonacciActionClient:
 
 
 def main(args: list[str] | None = None) -> int:
+    """`fibonacci_action_client`'s entry point."""
     return run_node(_make, args)
 
 

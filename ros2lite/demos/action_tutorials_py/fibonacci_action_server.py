@@ -23,6 +23,8 @@ if TYPE_CHECKING:
 
 
 class FibonacciActionServer(Node):
+    """action_tutorials_py's server: Fibonacci sequences, one number a second."""
+
     def __init__(self) -> None:
         super().__init__('fibonacci_action_server')
         self._action_server = ActionServer(
@@ -36,19 +38,23 @@ class FibonacciActionServer(Node):
         )
 
     def destroy(self) -> None:
+        """Withdraw the action server, then the node."""
         self._action_server.destroy()
         super().destroy_node()
 
     def goal_callback(self, goal_request: Fibonacci.Goal) -> GoalResponse:
         # this server takes several goals at once
+        """Accept every goal."""
         self.get_logger().info('Received goal request')
         return GoalResponse.ACCEPT
 
     def cancel_callback(self, goal_handle: _Handle) -> CancelResponse:
+        """Accept every cancel request."""
         self.get_logger().info('Received cancel request')
         return CancelResponse.ACCEPT
 
     async def execute_callback(self, goal_handle: _Handle) -> Fibonacci.Result:
+        """Compute the sequence, publishing it as it grows; honour cancels."""
         self.get_logger().info('Executing goal...')
         feedback_msg = Fibonacci.Feedback()
         feedback_msg.partial_sequence = [0, 1]
@@ -71,6 +77,7 @@ class FibonacciActionServer(Node):
 
 
 def main(args: list[str] | None = None) -> int:
+    """`fibonacci_action_server`'s entry point."""
     import ros2lite
     from ros2lite.executors import MultiThreadedExecutor
 

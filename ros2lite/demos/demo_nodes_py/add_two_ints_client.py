@@ -8,6 +8,7 @@ from ros2lite.msgs.example_interfaces.srv import AddTwoInts
 
 
 def request_once(a: int, b: int) -> None:
+    """Ask `add_two_ints` for a + b once, waiting for the server."""
     node = ros2lite.create_node('add_two_ints_client')
     client = node.create_client(AddTwoInts, 'add_two_ints')
     request = AddTwoInts.Request(a=a, b=b)
@@ -28,6 +29,7 @@ def request_once(a: int, b: int) -> None:
 
 
 def main(args: list[str] | None = None) -> int:
+    """`add_two_ints_client`'s entry point."""
     return run_main(lambda: request_once(2, 3), args)
 
 

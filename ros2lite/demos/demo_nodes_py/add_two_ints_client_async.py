@@ -9,6 +9,7 @@ from ros2lite.msgs.example_interfaces.srv import AddTwoInts
 
 
 def request_async() -> None:
+    """Ask `add_two_ints` for 41 + 1, spinning until the answer comes."""
     node = ros2lite.create_node('add_two_ints_client')
     client = node.create_client(AddTwoInts, 'add_two_ints')
     while not client.wait_for_service(timeout_sec=1.0):
@@ -32,6 +33,7 @@ def request_async() -> None:
 
 
 def main(args: list[str] | None = None) -> int:
+    """`add_two_ints_client_async`'s entry point."""
     return run_main(request_async, args)
 
 

@@ -8,15 +8,19 @@ from ros2lite.node import Node
 
 
 class Listener(Node):
+    """demo_nodes_py's listener of `chatter`."""
+
     def __init__(self) -> None:
         super().__init__('listener')
         self.sub = self.create_subscription(String, 'chatter', self.chatter_callback, 10)
 
     def chatter_callback(self, msg: String) -> None:
+        """Log what was heard."""
         self.get_logger().info(f'I heard: [{msg.data}]')
 
 
 def main(args: list[str] | None = None) -> int:
+    """`listener`'s entry point."""
     return run_node(Listener, args)
 
 

@@ -8,6 +8,8 @@ from ros2lite.node import Node
 
 
 class Talker(Node):
+    """demo_nodes_py's talker on `chatter`."""
+
     def __init__(self) -> None:
         super().__init__('talker')
         self.i = 0
@@ -15,6 +17,7 @@ class Talker(Node):
         self.tmr = self.create_timer(1.0, self.timer_callback)
 
     def timer_callback(self) -> None:
+        """Publish the next 'Hello World: N'."""
         msg = String(data=f'Hello World: {self.i}')
         self.i += 1
         self.get_logger().info(f'Publishing: "{msg.data}"')
@@ -22,6 +25,7 @@ class Talker(Node):
 
 
 def main(args: list[str] | None = None) -> int:
+    """`talker`'s entry point."""
     return run_node(Talker, args)
 
 

@@ -27,6 +27,8 @@ class Endpoint:
 
 @dataclass(frozen=True)
 class Options:
+    """Which nodes and topics the picture leaves out (rqt_graph's check boxes)."""
+
     include_hidden: bool = False
     show_debug: bool = False
     show_leaf_topics: bool = False

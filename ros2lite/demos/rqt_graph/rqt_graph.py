@@ -51,6 +51,7 @@ def graph_node() -> Node:
 
 
 def run(options: argparse.Namespace) -> None:
+    """Show the live graph (or write it to a file) as the options say."""
     node = graph_node()
     filters = model.Options(
         include_hidden=options.include_hidden,
@@ -87,6 +88,7 @@ def run(options: argparse.Namespace) -> None:
 
 
 def main(args: list[str] | None = None) -> int:
+    """`rqt_graph`'s entry point."""
     parser = argparse.ArgumentParser(
         prog='rqt_graph', description='Show the ROS graph: nodes, topics and who talks to whom.'
     )

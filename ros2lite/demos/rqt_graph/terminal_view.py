@@ -18,6 +18,7 @@ if TYPE_CHECKING:  # rich itself is imported where it draws
 
 
 def cell_layout(graph: Graph) -> Layout:
+    """The graph laid out in terminal cells."""
     return layout(graph, lambda name, _t: (len(name) + 4, 3), layer_gap=4, node_gap=1, margin=1)
 
 
@@ -103,6 +104,7 @@ class GraphTerminal:
             raise DisplayError('cannot draw on the terminal: standard output is not a terminal')
 
     def picture(self, graph: Graph) -> Text:
+        """The graph as rich text, one row per text line."""
         from rich.text import Text
 
         text = Text(no_wrap=True, overflow='crop')
@@ -121,6 +123,7 @@ class GraphTerminal:
         return text
 
     def run(self, current: Callable[[], Graph], ok: Callable[[], bool], period: float) -> None:
+        """Redraw whenever `current()` changes, every `period` s, while `ok()`."""
         from rich.console import Console
         from rich.live import Live
 

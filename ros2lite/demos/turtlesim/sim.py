@@ -68,6 +68,7 @@ class Pen:
 
     @property
     def rgb(self) -> tuple[int, int, int]:
+        """The pen's colour."""
         return (self.r, self.g, self.b)
 
 
@@ -97,6 +98,8 @@ class RotateGoal:
 
 @dataclass(frozen=True)
 class GoalFeedback:
+    """A rotate goal's progress after a step (what the action publishes)."""
+
     turtle: str
     goal: RotateGoal
     remaining: float
@@ -163,6 +166,7 @@ class Turtle:
         self._teleports: list[_Teleport] = []
 
     def pose(self) -> Pose:
+        """The pose /pose publishes (float32 values, as turtlesim's message)."""
         return Pose(
             f32(self.x),
             f32(self.y),
@@ -193,9 +197,11 @@ class Turtle:
         self.pen = Pen(r, g, b, width if width != 0 else 1, False)
 
     def teleport_absolute(self, x: float, y: float, theta: float) -> None:
+        """Move to (x, y, theta) at the next step, drawing if the pen is down."""
         self._teleports.append(_Teleport(x, y, theta, 0.0, False))
 
     def teleport_relative(self, linear: float, angular: float) -> None:
+        """Turn, then move `linear` ahead, at the next step."""
         self._teleports.append(_Teleport(0.0, 0.0, angular, linear, True))
 
     def start_goal(self, goal: RotateGoal) -> GoalDone | None:
@@ -225,6 +231,7 @@ class Canvas:
         self.clear()
 
     def clear(self) -> None:
+        """Wipe every path (a view replays it as 'clear')."""
         self.pixels[:] = bytes((*EMPTY_PIXEL, 0)) * (self.size * self.size)
         if self.keep_strokes:
             self._strokes.append(('clear',))
@@ -238,6 +245,7 @@ class Canvas:
         return (self.pixels[i], self.pixels[i + 1], self.pixels[i + 2])
 
     def is_drawn(self, px: int, py: int) -> bool:
+        """Whether a path crossed this pixel."""
         return (
             0 <= px < self.size
             and 0 <= py < self.size
@@ -262,6 +270,7 @@ class Canvas:
             self._strokes.append(('line', x0, y0, x1, y1, rgb, width))
 
     def has_strokes(self) -> bool:
+        """Whether strokes wait for a view to drain them."""
         return bool(self._strokes)
 
     def drain(self) -> list[Stroke]:
@@ -327,9 +336,11 @@ class World:
         return name
 
     def kill(self, name: str) -> bool:
+        """Remove a turtle; False if there is none of that name."""
         return self.turtles.pop(name, None) is not None
 
     def clear(self) -> None:
+        """Wipe the paths (the turtles stay)."""
         self.canvas.clear()
 
     def remove_all(self) -> list[Turtle]:

@@ -44,6 +44,7 @@ class LogLines:
         self._lines: deque[str] = deque()
 
     def write(self, text: str) -> int:
+        """Queue the complete lines of `text` (the rest waits for its newline)."""
         with self._lock:
             text = self._partial + text
             *lines, self._partial = text.split('\n')
@@ -51,18 +52,22 @@ class LogLines:
         return len(text)
 
     def flush(self) -> None:
+        """Nothing to do: lines are shown when the view draws."""
         pass
 
     def isatty(self) -> bool:
+        """Loggers may colour their output: it ends up on the terminal."""
         return True
 
     def drain(self) -> list[str]:
+        """The complete lines queued since the last call."""
         with self._lock:
             lines = list(self._lines)
             self._lines.clear()
             return lines
 
     def rest(self) -> str:
+        """What was written after the last newline."""
         with self._lock:
             return self._partial
 

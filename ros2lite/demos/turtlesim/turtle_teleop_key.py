@@ -62,6 +62,7 @@ class TeleopTurtle:
         self.goal_handle: _Handle | None = None
 
     def key(self, key: str) -> bool:
+        """Act on one key (move, rotate, cancel); False for Q (quit)."""
         key = key.lower() if len(key) == 1 else key
         if key == 'q':
             return False
@@ -78,6 +79,7 @@ class TeleopTurtle:
         return True
 
     def send_goal(self, theta: float) -> None:
+        """Ask rotate_absolute to turn turtle1 to `theta`."""
         future = self.rotate_client.send_goal_async(self._rotate.Goal(theta=theta))
         future.add_done_callback(self._on_goal_response)
 
@@ -86,6 +88,7 @@ class TeleopTurtle:
         self.goal_handle = future.result()
 
     def cancel_goal(self) -> None:
+        """Cancel the last rotate goal, if any."""
         if self.goal_handle is not None:
             self.node.get_logger().debug('Sending cancel request')
             self.goal_handle.cancel_goal_async()
@@ -109,6 +112,7 @@ def key_loop(teleop: TeleopTurtle) -> None:
 
 
 def main(args: list[str] | None = None) -> int:
+    """`turtle_teleop_key`'s entry point."""
     return run_main(lambda: key_loop(TeleopTurtle()), args)
 
 

@@ -73,6 +73,7 @@ def run_with_display(node: TurtlesimNode, requested: str) -> None:
 
 
 def main(args: list[str] | None = None) -> int:
+    """`turtlesim_node`'s entry point (`--display auto|window|terminal|none`)."""
     parser = argparse.ArgumentParser(
         prog='turtlesim_node', description='The turtlesim node (Jazzy\'s interface).'
     )
