@@ -510,16 +510,6 @@ def stop(router: str | None = None, *, timeout: float = STOP_TIMEOUT) -> StopRes
 
 
 def ensure_running(router: str | None = None, *, timeout: float = START_TIMEOUT) -> StartResult:
-    """For CLI verbs: make sure a router answers, starting our daemon if none does."""
-    endpoint = router_endpoint(router)
-    if router_answers(endpoint):
-        info = _read_info(pid_file(endpoint))
-        return StartResult(
-            endpoint,
-            False,
-            True,
-            info is not None,
-            info.pid if info else None,
-            info.log_file if info else None,
-        )
-    return start(endpoint, timeout=timeout)
+    """Make sure a router answers, starting our daemon if none does (what `start` does when
+    something already answers: it says so and starts nothing)."""
+    return start(router, timeout=timeout)
