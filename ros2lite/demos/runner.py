@@ -2,8 +2,8 @@
 
 Demos are run by `ros2lite run` and by hand, where Ctrl-C (or SIGTERM from a supervisor) is
 the normal way out, so either ends with status 0 and no traceback (as the rclpy demos do).
-Start-up errors a user can fix — no router, bad `--ros-args`, an invalid remapped name —
-become one line on stderr and status 1.
+Start-up errors a user can fix — no router, missing security material, bad `--ros-args`, an
+invalid remapped name — become one line on stderr and status 1.
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ def run_main(body: Callable[[], Any], args: list[str] | None = None) -> int:
     import ros2lite
     from ros2lite.exceptions import ParameterException
     from ros2lite.executors import ExternalShutdownException
+    from ros2lite.security.errors import SecurityError
     from ros2lite.transport.errors import SessionError
 
     try:
@@ -32,7 +33,7 @@ def run_main(body: Callable[[], Any], args: list[str] | None = None) -> int:
             body()
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
-    except (SessionError, ValueError, ParameterException) as e:
+    except (SessionError, SecurityError, ValueError, ParameterException) as e:
         print(str(e), file=sys.stderr, flush=True)
         return 1
     return 0
