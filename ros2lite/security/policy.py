@@ -289,31 +289,33 @@ def add_node_access(policy: ET.Element, nodes: Iterable[NodeAccess]) -> None:
 
 
 def graph_access(entities: Iterable[object]) -> list[NodeAccess]:
-    """What every visible node of a graph snapshot does (hidden nodes are left out, as
-    sros2's ``generate_policy`` does), in name order."""
-    from ros2lite.graph import names_and_types_by_node
+    """What every visible node of a graph snapshot does, one entry per node instance with
+    its own enclave (hidden nodes are left out, as sros2's ``generate_policy`` does)."""
     from ros2lite.transport.keys import Entity, EntityKind
 
     listed = [e for e in entities if isinstance(e, Entity)]
-    nodes: dict[tuple[str, str], Entity] = {}
-    for entity in listed:
-        if entity.is_node and entity.node_name and not entity.node_name.startswith('_'):
-            nodes.setdefault((entity.namespace, entity.node_name), entity)
-    result = []
-    for (namespace, name), node in sorted(nodes.items()):
+    nodes = {
+        (e.zid, e.nid): e
+        for e in listed
+        if e.is_node and e.node_name and not e.node_name.startswith('_')
+    }
+    names: dict[tuple[str, int, EntityKind], set[str]] = {}
+    for e in listed:
+        if not e.is_node and e.topic_name and (e.zid, e.nid) in nodes:
+            names.setdefault((e.zid, e.nid, e.kind), set()).add(e.topic_name)
 
-        def of(kind: EntityKind, name: str = name, namespace: str = namespace) -> list[str]:
-            return [topic for topic, _ in names_and_types_by_node(listed, name, namespace, kind)]
+    def of(node: Entity, kind: EntityKind) -> list[str]:
+        return sorted(names.get((node.zid, node.nid, kind), ()))
 
-        result.append(
-            NodeAccess(
-                name,
-                namespace,
-                node.enclave,
-                publishes=of(EntityKind.PUBLISHER),
-                subscribes=of(EntityKind.SUBSCRIPTION),
-                serves=of(EntityKind.SERVICE),
-                calls=of(EntityKind.CLIENT),
-            )
+    return [
+        NodeAccess(
+            node.node_name,
+            node.namespace,
+            node.enclave,
+            publishes=of(node, EntityKind.PUBLISHER),
+            subscribes=of(node, EntityKind.SUBSCRIPTION),
+            serves=of(node, EntityKind.SERVICE),
+            calls=of(node, EntityKind.CLIENT),
         )
-    return result
+        for node in sorted(nodes.values(), key=lambda n: (n.namespace, n.node_name, n.enclave))
+    ]

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import sys
+import xml.etree.ElementTree as ET
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -46,9 +47,9 @@ def test_round_trip(
     try:
         domain = int(os.environ['ROS_DOMAIN_ID'])
 
-        def both_visible() -> bool:
-            names = {e.node_name for e in snapshot(session, domain) if e.is_node}
-            return {'talker', 'listener'} <= names
+        def both_visible() -> bool:  # by enclave: other tests' talkers may still be about
+            enclaves = {e.enclave for e in snapshot(session, domain) if e.is_node}
+            return {'/gp/talker', '/gp/listener'} <= enclaves
 
         wait_until(both_visible, timeout=20)
     finally:
@@ -56,11 +57,20 @@ def test_round_trip(
     policy = tmp_path / 'policy.xml'
     result = run('security', 'generate_policy', str(policy))
     assert result.code == 0, result.err
-    text = policy.read_text()
-    assert '<enclave path="/gp/talker">' in text and '<enclave path="/gp/listener">' in text
-    assert '<topics publish="ALLOW">\n            <topic>chatter</topic>' in text
-    assert '<topics subscribe="ALLOW">\n            <topic>chatter</topic>' in text
-    assert '<service>~/get_parameters</service>' in text
+    root = ET.fromstring(policy.read_text())
+
+    def listed(enclave: str, node: str, path: str) -> list[str]:
+        found = root.find(f'enclaves/enclave[@path="{enclave}"]/profiles/profile[@node="{node}"]')
+        assert found is not None, policy.read_text()
+        return [e.text or '' for e in found.findall(path)]
+
+    assert listed('/gp/talker', 'talker', 'topics[@publish="ALLOW"]/topic') == [
+        'chatter',
+        'parameter_events',
+        'rosout',
+    ]
+    assert listed('/gp/listener', 'listener', 'topics[@subscribe="ALLOW"]/topic') == ['chatter']
+    assert '~/get_parameters' in listed('/gp/talker', 'talker', 'services[@reply="ALLOW"]/service')
     for proc in processes.procs:
         processes.stop(proc)
 
