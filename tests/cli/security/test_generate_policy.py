@@ -48,8 +48,8 @@ def test_round_trip(
         domain = int(os.environ['ROS_DOMAIN_ID'])
 
         def both_visible() -> bool:  # by enclave: other tests' talkers may still be about
-            enclaves = {e.enclave for e in snapshot(session, domain) if e.is_node}
-            return {'/gp/talker', '/gp/listener'} <= enclaves
+            seen = {(e.enclave, e.kind.value, e.topic_name) for e in snapshot(session, domain)}
+            return {('/gp/talker', 'MP', '/chatter'), ('/gp/listener', 'MS', '/chatter')} <= seen
 
         wait_until(both_visible, timeout=20)
     finally:
