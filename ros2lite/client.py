@@ -26,6 +26,7 @@ from ros2lite.transport.keys import EntityKind
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.interfaces.cdr import Codec
     from ros2lite.task import Task
 
 __all__ = ['Client', 'ServiceCallError']
@@ -68,8 +69,7 @@ class Client(Executable):
         self._pending: dict[int, Future] = {}
         # (sequence number, response bytes or None, error text) from Zenoh threads
         self._responses: deque[tuple[int, bytes | None, str]] = deque()
-        self._request_codec: Any = None
-        self._response_codec: Any = None
+        self._codec_pair: tuple[Codec, Codec] | None = None
         timeout = _UNLIMITED if '/_action/get_result' in self.srv_name else None
         self._querier: Any = declare_querier(node.context.session, self._ep.key, timeout)
         self._ep._announce()
@@ -78,15 +78,13 @@ class Client(Executable):
     def service_name(self) -> str:
         return self.srv_name
 
-    def _codecs(self) -> tuple[Any, Any]:
-        if self._request_codec is None:
-            from ros2lite.interfaces.cdr import codec
-            from ros2lite.interfaces.registry import default_registry
+    def _codecs(self) -> tuple[Codec, Codec]:
+        """(request codec, response codec), looked up on first use."""
+        if self._codec_pair is None:
+            from ros2lite.interfaces.cdr import service_codecs
 
-            name = self._ep.type_name
-            self._request_codec = codec(f'{name}_Request', default_registry())
-            self._response_codec = codec(f'{name}_Response', default_registry())
-        return self._request_codec, self._response_codec
+            self._codec_pair = service_codecs(self._ep.type_name)
+        return self._codec_pair
 
     def _send(
         self,
@@ -185,7 +183,6 @@ class Client(Executable):
         """Inside a callback, a server of ours on the same executor may be unable to run
         until that callback returns: then waiting would never end, so say so instead."""
         from ros2lite.executable import current_execution
-        from ros2lite.executors import MultiThreadedExecutor
 
         executor, entity = current_execution()
         if executor is None:
@@ -193,7 +190,8 @@ class Client(Executable):
         server = self._node.context.local_services.get(self._ep.key)
         if server is None or server._node._executor is not executor:
             return
-        blocked = not isinstance(executor, MultiThreadedExecutor) or executor.num_threads < 2
+        # only a multi-threaded executor has threads to spare
+        blocked = getattr(executor, 'num_threads', 1) < 2
         group = server.callback_group
         if not blocked and entity is not None and group is entity.callback_group:
             from ros2lite.callback_groups import ReentrantCallbackGroup

@@ -54,10 +54,14 @@ class Context:
         router: str | None = None,
         domain_id: int | None = None,
         short_lived: bool = False,
+        autostart: bool = True,
     ) -> Context:
         """Open the session; `args=None` means `sys.argv`, as rclpy.init does, so
-        `--ros-args` given to a node's process reach its nodes. `short_lived` (CLI verbs)
-        opens a client session that fails fast without a router, instead of a node's."""
+        `--ros-args` given to a node's process reach its nodes. `short_lived` (tools: CLI
+        verbs) opens a client session that fails fast without a router, instead of a
+        node's; such a tool starts the daemon only with `autostart`
+        (see :func:`ros2lite.daemon.connect.connect`)."""
+        from ros2lite.daemon.connect import connect
         from ros2lite.transport.config import domain_id as env_domain_id
 
         if self.session is not None:
@@ -72,21 +76,10 @@ class Context:
         self.enclave = self.args.enclave or '/'
         self.domain_id = env_domain_id() if domain_id is None else domain_id
         self.router = router
-        self.session = self._open_session(router, short_lived)
+        self.session = connect(router, tool=short_lived, autostart=autostart)
         self.zid = str(self.session.info.zid())
         _live.add(self)
         return self
-
-    @staticmethod
-    def _open_session(router: str | None, short_lived: bool) -> Any:
-        """A node's peer session (daemon started on demand), or a CLI verb's client one."""
-        if short_lived:
-            from ros2lite.transport.config import open_session
-
-            return open_session(router, mode='client')
-        from ros2lite.daemon.connect import open_node_session
-
-        return open_node_session(router)
 
     # `with ros2lite.init():` shuts the context down on the way out, as rclpy allows
     def __enter__(self) -> Context:

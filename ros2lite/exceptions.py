@@ -89,9 +89,8 @@ class InvalidParameterTypeException(ParameterException):
     """A statically typed parameter was given a value of another type."""
 
     def __init__(self, desired_parameter: Any, expected_type: Any) -> None:
-        from ros2lite.parameter import Parameter
-
-        got = Parameter.Type.from_parameter_value(desired_parameter.value).name
+        # the Parameter's own Type enum names what it got (no import of ros2lite.parameter)
+        got = type(desired_parameter).Type.from_parameter_value(desired_parameter.value).name
         super().__init__(
             f"Trying to set parameter '{desired_parameter.name}' to "
             f"'{desired_parameter.value}' of type '{got}', expecting type '{expected_type}'",

@@ -182,6 +182,30 @@ class Executor:
         if not future.done():
             self._check_terminating()
 
+    def spin_until(
+        self, condition: Callable[[], bool] | None = None, timeout_sec: float | None = None
+    ) -> bool:
+        """Run callbacks until `condition()` holds or `timeout_sec` passes (None: until
+        shutdown); True when the condition ended it. The condition is checked between
+        callbacks and whenever the executor is woken, so a callback or another thread (which
+        should then call `wake()`) can end the wait at once."""
+        deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
+        self._spinning += 1
+        try:
+            while self._ok():
+                if condition is not None and condition():
+                    return True
+                remaining = None if deadline is None else deadline - time.monotonic()
+                if remaining is not None and remaining <= 0:
+                    return False
+                item = self._next(remaining, condition)
+                if item is not None:
+                    self._dispatch(item, True, condition)
+        finally:
+            self._spinning -= 1
+        self._check_terminating()
+        return condition is not None and condition()
+
     def spin_once_until_future_complete(
         self, future: Future, timeout_sec: float | None = None
     ) -> None:

@@ -12,9 +12,32 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any
 
-from ros2lite.names import is_hidden_name
+from ros2lite.names import action_entity_name, is_hidden_name
 from ros2lite.qos import QoSProfile
 from ros2lite.transport.keys import Entity, EntityKind, parse_token
+
+# Entity and EntityKind are the graph's vocabulary; other modules import them from here
+__all__ = [
+    'Entity',
+    'EntityKind',
+    'GraphCache',
+    'NodeInfo',
+    'TopicEndpointInfo',
+    'action_endpoints',
+    'action_names_and_types',
+    'count',
+    'endpoints_by_topic',
+    'format_endpoint_info',
+    'format_gid',
+    'names_and_types_by_node',
+    'node_full_names',
+    'node_info',
+    'node_names_and_namespaces',
+    'service_names_and_types',
+    'snapshot',
+    'topic_counts',
+    'topic_names_and_types',
+]
 
 _TOPIC_KINDS = (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION)
 _SERVICE_KINDS = (EntityKind.SERVICE, EntityKind.CLIENT)
@@ -165,7 +188,7 @@ def count(entities: Iterable[Entity], topic: str, kind: EntityKind) -> int:
 # rcl_action has no entity kinds of its own: an action shows up as a node publishing (server) or
 # subscribing (client) `<action>/_action/feedback`, typed `<pkg>/action/<Name>_FeedbackMessage`.
 
-ACTION_FEEDBACK_SUFFIX = '/_action/feedback'
+ACTION_FEEDBACK_SUFFIX = action_entity_name('', 'feedback')
 ACTION_FEEDBACK_TYPE_SUFFIX = '_FeedbackMessage'
 
 

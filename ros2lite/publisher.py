@@ -57,9 +57,8 @@ class Publisher(EndpointOwner):
 
     def _codec_serializer(self) -> Any:
         from ros2lite.interfaces.cdr import codec
-        from ros2lite.interfaces.registry import default_registry
 
-        return codec(self._ep.type_name, default_registry()).raw_serializer()
+        return codec(self._ep.type_name).raw_serializer()
 
     def get_subscription_count(self) -> int:
         from ros2lite.graph import count

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import enum
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import NamedTuple, TypeVar
 
@@ -25,6 +25,7 @@ __all__ = [
     "Duration",
     "HistoryPolicy",
     "LivelinessPolicy",
+    "MatchedQoS",
     "QoSDurabilityPolicy",
     "QoSHistoryPolicy",
     "QoSLivelinessPolicy",
@@ -33,6 +34,7 @@ __all__ = [
     "QoSReliabilityPolicy",
     "ReliabilityPolicy",
     "check_compatible",
+    "match_publishers_qos",
     "preset",
     "qos_profile_action_status_default",
     "qos_profile_best_available",
@@ -273,6 +275,46 @@ def resolve_best_available(
             given = [getattr(o, field) for o in others if not _no_duration(getattr(o, field))]
             changes[field] = pick(given) if given else DURATION_UNSPECIFIED
     return dataclasses.replace(profile, **changes)  # type: ignore[arg-type]
+
+
+@dataclass(frozen=True)
+class MatchedQoS:
+    """The profile to subscribe with, and which policies had to be weakened."""
+
+    profile: QoSProfile
+    reliability_fell_back: bool  # some but not all publishers are RELIABLE
+    durability_fell_back: bool  # some but not all publishers are TRANSIENT_LOCAL
+
+
+def match_publishers_qos(
+    profile: QoSProfile, publishers: Iterable[QoSProfile | None]
+) -> MatchedQoS:
+    """Ask for RELIABLE / TRANSIENT_LOCAL only when every publisher offers it.
+
+    That is rmw"s BEST_AVAILABLE rule for a subscription (:func:`resolve_best_available`): the
+    strongest request still compatible with all of them, and TRANSIENT_LOCAL is what
+    receives a latched publisher"s history. A publisher whose QoS is unknown counts as the
+    weakest. With no publishers the profile is returned unchanged.
+    """
+    offered = [q if q is not None else _WEAKEST for q in publishers]
+    if not offered:
+        return MatchedQoS(profile, False, False)
+    chosen = resolve_best_available(
+        profile.replace(
+            reliability=ReliabilityPolicy.BEST_AVAILABLE, durability=DurabilityPolicy.BEST_AVAILABLE
+        ),
+        offered,
+        for_publisher=False,
+    )
+    n = len(offered)
+    reliable = sum(q.reliability == ReliabilityPolicy.RELIABLE for q in offered)
+    latched = sum(q.durability == DurabilityPolicy.TRANSIENT_LOCAL for q in offered)
+    return MatchedQoS(chosen, 0 < reliable < n, 0 < latched < n)
+
+
+_WEAKEST = QoSProfile(
+    reliability=ReliabilityPolicy.BEST_EFFORT, durability=DurabilityPolicy.VOLATILE
+)
 
 
 class Compatibility(NamedTuple):

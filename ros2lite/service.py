@@ -21,6 +21,7 @@ from ros2lite.transport.keys import EntityKind
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.interfaces.cdr import Codec
     from ros2lite.task import Task
     from ros2lite.transport.session import Request
 
@@ -67,8 +68,7 @@ class Service(Executable):
         self._deferred = deferred
         self._requests: deque[Request] = deque()
         self._destroyed = False
-        self._request_codec: Any = None
-        self._response_codec: Any = None
+        self._codec_pair: tuple[Codec, Codec] | None = None
         self._queryable: Any = declare_queryable(
             node.context.session, self._ep.key, self._on_request
         )
@@ -90,15 +90,13 @@ class Service(Executable):
     def _has_work(self) -> bool:
         return bool(self._requests)
 
-    def _codecs(self) -> tuple[Any, Any]:
-        if self._request_codec is None:
-            from ros2lite.interfaces.cdr import codec
-            from ros2lite.interfaces.registry import default_registry
+    def _codecs(self) -> tuple[Codec, Codec]:
+        """(request codec, response codec), looked up on first use."""
+        if self._codec_pair is None:
+            from ros2lite.interfaces.cdr import service_codecs
 
-            name = self._ep.type_name
-            self._request_codec = codec(f'{name}_Request', default_registry())
-            self._response_codec = codec(f'{name}_Response', default_registry())
-        return self._request_codec, self._response_codec
+            self._codec_pair = service_codecs(self._ep.type_name)
+        return self._codec_pair
 
     def _take(self) -> tuple[Any, RequestHeader] | None:
         """The next well-formed request as (message, header); malformed ones are dropped

@@ -101,11 +101,8 @@ class Subscription(EndpointOwner, Executable):
         des = self._deserialize
         if des is None:
             from ros2lite.interfaces.cdr import codec
-            from ros2lite.interfaces.registry import default_registry
 
-            des = self._deserialize = codec(
-                self._ep.type_name, default_registry()
-            ).fast_deserializer()
+            des = self._deserialize = codec(self._ep.type_name).fast_deserializer()
         return des
 
     def take(self) -> tuple[Any, MessageInfo] | None:

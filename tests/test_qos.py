@@ -139,3 +139,23 @@ def test_rclpy_policy_aliases() -> None:
     assert q.QoSHistoryPolicy.KEEP_ALL is HistoryPolicy.KEEP_ALL
     assert q.QoSDurabilityPolicy is DurabilityPolicy
     assert q.QoSLivelinessPolicy is LivelinessPolicy
+
+
+def test_qos_matching_publishers() -> None:
+    rel = QoSProfile()
+    be = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT)
+    tl = QoSProfile(durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    base = q.qos_profile_sensor_data
+    assert q.match_publishers_qos(base, []).profile == base
+    all_rel = q.match_publishers_qos(base, [rel, tl])
+    assert all_rel.profile.reliability == ReliabilityPolicy.RELIABLE
+    assert all_rel.profile.durability == DurabilityPolicy.VOLATILE
+    assert (all_rel.reliability_fell_back, all_rel.durability_fell_back) == (False, True)
+    mixed = q.match_publishers_qos(base, [rel, be])
+    assert mixed.profile.reliability == ReliabilityPolicy.BEST_EFFORT
+    assert (mixed.reliability_fell_back, mixed.durability_fell_back) == (True, False)
+    latched = q.match_publishers_qos(base, [tl])
+    assert latched.profile.durability == DurabilityPolicy.TRANSIENT_LOCAL
+    assert latched.profile.depth == base.depth
+    unknown = q.match_publishers_qos(base, [None])
+    assert unknown.profile.reliability == ReliabilityPolicy.BEST_EFFORT

@@ -15,6 +15,7 @@ from typing import Any
 
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.interfaces import get_interface
+from ros2lite.names import action_entity_name
 
 # action_msgs is where the status values are defined; they are read from there, not repeated
 GoalStatus: Any = get_interface('action_msgs/msg/GoalStatus')
@@ -57,23 +58,23 @@ class ActionNames:
 
     @property
     def send_goal(self) -> str:
-        return self.action + '/_action/send_goal'
+        return action_entity_name(self.action, 'send_goal')
 
     @property
     def cancel_goal(self) -> str:
-        return self.action + '/_action/cancel_goal'
+        return action_entity_name(self.action, 'cancel_goal')
 
     @property
     def get_result(self) -> str:
-        return self.action + '/_action/get_result'
+        return action_entity_name(self.action, 'get_result')
 
     @property
     def feedback(self) -> str:
-        return self.action + '/_action/feedback'
+        return action_entity_name(self.action, 'feedback')
 
     @property
     def status(self) -> str:
-        return self.action + '/_action/status'
+        return action_entity_name(self.action, 'status')
 
     def entities(self) -> list[tuple[str, str, str]]:
         """(role, name, type) of each sub-entity; role 'service' or 'topic'."""

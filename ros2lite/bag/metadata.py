@@ -104,7 +104,7 @@ def _duration_dict(d: Duration) -> dict[str, int]:
     return {"sec": d.sec, "nsec": d.nsec}
 
 
-def _qos_dict(q: QoSProfile, names: bool) -> dict[str, Any]:
+def qos_to_dict(q: QoSProfile, names: bool) -> dict[str, Any]:
     def policy(p: Any) -> Any:
         return p.short_key if names else int(p)
 
@@ -197,7 +197,7 @@ def dump_qos_list(profiles: list[QoSProfile], names: bool = True) -> str:
     """The channel-metadata string: the profile list in block YAML, no trailing newline."""
     if not profiles:
         return ""
-    return "\n".join(_emit([_qos_dict(q, names) for q in profiles], 0))
+    return "\n".join(_emit([qos_to_dict(q, names) for q in profiles], 0))
 
 
 # -- YAML emission in yaml-cpp's block style ----------------------------------------------------
@@ -260,7 +260,7 @@ def _as_tree(m: BagMetadata) -> dict[str, Any]:
                     "name": t.name,
                     "type": t.type,
                     "serialization_format": t.serialization_format,
-                    "offered_qos_profiles": [_qos_dict(q, True) for q in t.offered_qos_profiles],
+                    "offered_qos_profiles": [qos_to_dict(q, True) for q in t.offered_qos_profiles],
                     "type_description_hash": t.type_description_hash,
                 },
                 "message_count": info.message_count,
@@ -408,46 +408,3 @@ def write_metadata_file(directory: Any, m: BagMetadata) -> None:
         f.flush()
         os.fsync(f.fileno())
     os.replace(tmp, path)
-
-
-_QOS_KEYS = {
-    "history",
-    "depth",
-    "reliability",
-    "durability",
-    "deadline",
-    "lifespan",
-    "liveliness",
-    "liveliness_lease_duration",
-    "avoid_ros_namespace_conventions",
-}
-
-
-def parse_qos_overrides(text: str) -> dict[str, QoSProfile]:
-    """A `--qos-profile-overrides-path` file: topic name → profile (names or numbers for the
-    policies; durations as {sec, nsec}). Keys left out keep rclpy's defaults."""
-    import yaml
-
-    try:
-        doc = yaml.safe_load(text)
-    except yaml.YAMLError as e:
-        raise MetadataError(f"QoS override file is not valid YAML: {e}") from None
-    if doc is None:
-        return {}
-    if not isinstance(doc, dict):
-        raise MetadataError("QoS override file must map topic names to profiles")
-    out: dict[str, QoSProfile] = {}
-    defaults = QoSProfile()
-    for topic, profile in doc.items():
-        if not isinstance(profile, dict):
-            raise MetadataError(f"QoS override of {topic!r} must be a mapping")
-        for key in profile:
-            if key not in _QOS_KEYS:
-                raise MetadataError(f"Unexpected key `{key}` for QoS profile.")
-        for key in ("deadline", "lifespan", "liveliness_lease_duration"):
-            value = profile.get(key)
-            if value is not None and (not isinstance(value, dict) or set(value) != {"sec", "nsec"}):
-                raise MetadataError(f"QoS override {key} of {topic!r} needs both sec and nsec")
-        full = {**_qos_dict(defaults, True), **profile}
-        out[str(topic)] = qos_from_dict(full)
-    return out

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import queue
 import re
-import sys
 import threading
 import time
 from collections.abc import Callable
@@ -23,13 +22,17 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ros2lite.bag.metadata import TopicMetadata
+from ros2lite.bag.qos import playback_qos
 from ros2lite.bag.reader import Reader
-from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from ros2lite.qos import QoSProfile
 
-__all__ = ["PlayOptions", "Player", "playback_qos"]
+__all__ = ["SWITCH_INTERVAL", "PlayOptions", "Player"]
 
 _SPIN = 300_000  # ns spent spinning (not sleeping) before each deadline
-_SWITCH_INTERVAL = 0.0002  # s, while playing (see play())
+# The read-ahead thread must not keep the GIL for long while a message is due: with Python's
+# default 5 ms switch interval it could make a message that late. The switch interval is the
+# process' to set (see ros2lite.process.switch_interval), so this is what players ask for.
+SWITCH_INTERVAL = 0.0002
 _END = object()
 
 
@@ -51,24 +54,6 @@ class PlayOptions:
     read_ahead_queue_size: int = 1000
     qos_overrides: dict[str, QoSProfile] = field(default_factory=dict)
     record_timing: bool = False  # keep each message's lateness (benchmarks)
-
-
-def playback_qos(offered: list[QoSProfile]) -> QoSProfile:
-    """rosbag2's choice: the recorded publishers' reliability and durability when all of
-    them agree on the stronger one, keep-last at least 10 deep; keep-all when every one of
-    them kept all (so Zenoh blocks rather than drops, as it did for the originals)."""
-    if not offered:
-        return QoSProfile()
-    reliable = all(q.reliability == ReliabilityPolicy.RELIABLE for q in offered)
-    latched = all(q.durability == DurabilityPolicy.TRANSIENT_LOCAL for q in offered)
-    keep_all = all(q.history == HistoryPolicy.KEEP_ALL for q in offered)
-    depth = max([10] + [q.depth for q in offered])
-    return QoSProfile(
-        reliability=ReliabilityPolicy.RELIABLE if reliable else ReliabilityPolicy.BEST_EFFORT,
-        durability=DurabilityPolicy.TRANSIENT_LOCAL if latched else DurabilityPolicy.VOLATILE,
-        history=HistoryPolicy.KEEP_ALL if keep_all else HistoryPolicy.KEEP_LAST,
-        depth=depth,
-    )
 
 
 class Player:
@@ -154,7 +139,9 @@ class Player:
                         f"holds no definition of it; not playing it"
                     )
                     continue
-            qos = self.options.qos_overrides.get(t.name) or playback_qos(t.offered_qos_profiles)
+            qos = self.options.qos_overrides.get(t.name) or playback_qos(
+                t.name, t.offered_qos_profiles, self._warn
+            )
             target = self.options.remap.get(t.name, t.name)
             self._publishers[t.name] = self.node.create_publisher(msg_type, target, qos)
 
@@ -259,22 +246,41 @@ class Player:
                 target=self._clock_loop, daemon=True, name="ros2lite-bag-clock"
             )
             self._clock_thread.start()
-        # the read-ahead thread must not keep the GIL for long while a message is due: with
-        # the default 5 ms switch interval it could make a message that late
-        previous = sys.getswitchinterval()
-        sys.setswitchinterval(min(previous, _SWITCH_INTERVAL))
         try:
             while not self._stopped:
                 self._play_once()
                 if not self.options.loop:
                     break
         finally:
-            sys.setswitchinterval(previous)
             with self._cv:
                 self._stopped = True
                 self._cv.notify_all()
             if self._clock_thread is not None:
                 self._clock_thread.join(timeout=1)
+
+    def run(self, stop: threading.Event, on_tick: Callable[[], object] | None = None) -> None:
+        """Play on a thread of its own until the end, `stop` is set (a signal) or it fails
+        (the failure is raised here); `on_tick()` about ten times a second meanwhile."""
+        errors: list[BaseException] = []
+
+        def play() -> None:
+            try:
+                self.play()
+            except BaseException as e:
+                errors.append(e)
+
+        thread = threading.Thread(target=play, daemon=True, name="ros2lite-bag-player")
+        thread.start()
+        try:
+            while thread.is_alive() and not stop.is_set():
+                thread.join(0.1)
+                if on_tick is not None:
+                    on_tick()
+        finally:
+            self.stop()
+            thread.join(timeout=2)
+        if errors:
+            raise errors[0]
 
     def _reader_thread(self, out: queue.Queue[Any], start: int) -> None:
         put = out.put

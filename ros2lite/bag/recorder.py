@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import contextlib
 import re
-import struct
 import threading
 import time
 from collections import deque
@@ -26,12 +25,12 @@ from typing import Any
 
 from ros2lite.bag.errors import BagError
 from ros2lite.bag.writer import Writer
-from ros2lite.qos import HistoryPolicy, QoSProfile
+from ros2lite.qos import QoSProfile
+from ros2lite.transport.attachment import unpack_attachment
 
 __all__ = ["DEFAULT_MAX_CACHE_SIZE", "RecordOptions", "Recorder", "TopicStats"]
 
 DEFAULT_MAX_CACHE_SIZE = 100 * 1024 * 1024
-_STAMP = struct.Struct("<q")
 SERVICE_EVENT_SUFFIX = "/_service_event"
 # how long a finished chunk may wait in memory before it is put on disk anyway (seconds)
 _FLUSH_PERIOD = 1.0
@@ -155,6 +154,41 @@ class Recorder:
         """False once stopped, or once a write error ended recording."""
         return self._running and self.error is None
 
+    def run(
+        self,
+        stop: threading.Event,
+        *,
+        spin: Callable[[float], object] | None = None,
+        on_tick: Callable[[], object] | None = None,
+    ) -> None:
+        """Record until `stop` is set (a signal), recording fails or the context ends; the
+        bag is always finished. `spin(seconds)` runs the node's callbacks for up to that long:
+        needed under sim time, where recording starts with the first /clock."""
+        from ros2lite.logging import get_logger
+
+        clock = self.node.get_clock()
+        try:
+            if spin is not None and clock.ros_time_is_active:
+                self._log("use_sim_time set, waiting for /clock before starting recording...")
+                while clock.now().nanoseconds == 0 and not stop.is_set():
+                    spin(0.1)
+            if stop.is_set():
+                return
+            self.start()
+            while not stop.is_set() and self.running and self.node.context.ok():
+                if spin is not None:
+                    spin(0.25)
+                else:
+                    stop.wait(0.25)
+                if on_tick is not None:
+                    on_tick()
+        finally:
+            get_logger("rosbag2_cpp").info(
+                "Writing remaining messages from cache to the bag. It may take a while"
+            )
+            self.stop()
+            self._log("Recording stopped")
+
     def queued(self) -> int:
         """Messages received and not written yet."""
         return len(self._queue)
@@ -247,16 +281,12 @@ class Recorder:
             self._subscribe(topic, types[0], pubs)
 
     def _subscribe(self, topic: str, type_name: str, pubs: list[Any]) -> None:
+        from ros2lite.bag.qos import recording_qos
         from ros2lite.interfaces import InterfaceError, get_interface
-        from ros2lite.topic_monitor import MonitoredSubscription, match_publishers_qos
+        from ros2lite.monitor.subscription import MonitoredSubscription
 
         offered = [p.qos for p in pubs if p.qos is not None]
-        qos = self.options.qos_overrides.get(topic)
-        if qos is None:
-            depth = max([q.depth for q in offered] + [1])
-            qos = match_publishers_qos(
-                QoSProfile(history=HistoryPolicy.KEEP_ALL, depth=depth), offered
-            ).profile
+        qos = self.options.qos_overrides.get(topic) or recording_qos(topic, offered, self._warn)
         hashes = {p.type_hash for p in pubs if p.type_hash}
         msg_type: Any = type_name
         try:
@@ -319,7 +349,7 @@ class Recorder:
     def _write_loop(self) -> None:
         queue, writer = self._queue, self.writer
         popleft, write_raw = queue.popleft, writer.write_raw
-        stamp = _STAMP.unpack_from
+        unpack = unpack_attachment
         stats = self._stats_by_tid
         last_flush = time.monotonic()
         dirty = False
@@ -340,8 +370,9 @@ class Recorder:
                     self._wake.clear()
                     self._writer_idle = False
                     continue
-                # the publisher's send time travels in the attachment (bytes 8-16)
-                sent = stamp(attachment, 8)[0] if len(attachment) >= 16 else received
+                # the publisher's send time travels in the attachment (either layout)
+                fields = unpack(attachment)
+                sent = fields[1] if fields is not None else received
                 write_raw(tid, data, received, sent)
                 stats[tid].written_bytes += len(data)
                 dirty = True

@@ -1,5 +1,5 @@
-"""Pieces every graph verb shares: connecting (with daemon auto-start), the hidden CLI node,
-graph snapshots and the `--qos-*` options.
+"""Pieces every graph verb shares: connecting (the library's Connection: daemon auto-start,
+the hidden CLI node, graph snapshots, spinning) and the `--qos-*` options.
 
 ros2cli's strategy options are accepted with the same names. `--spin-time` is accepted for
 compatibility only: ros2lite answers graph questions from a complete liveliness query, so there
@@ -8,13 +8,17 @@ is nothing to wait for.
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 
 from .errors import CliError
+
+if TYPE_CHECKING:
+    from ros2lite.connection import Connection
+    from ros2lite.graph import Entity
+    from ros2lite.qos import QoSProfile
 
 F = TypeVar('F', bound=Callable[..., Any])
 
@@ -57,64 +61,12 @@ def strategy_options(*, no_daemon: bool = True) -> Callable[[F], F]:
     return decorate
 
 
-class CliSession:
-    """One CLI run's connection: ensures a router, opens a context, makes a hidden node."""
+def connect(*, no_daemon: bool = False, use_sim_time: bool = False) -> Connection:
+    """This run's connection to the graph (the daemon started on demand unless
+    `--no-daemon`); use it as a context manager."""
+    from ros2lite.connection import Connection
 
-    def __init__(self, *, no_daemon: bool = False, use_sim_time: bool = False) -> None:
-        self.no_daemon = no_daemon
-        self.use_sim_time = use_sim_time
-        self.context: Any = None
-        self._node: Any = None
-
-    def __enter__(self) -> CliSession:
-        from ros2lite.context import Context
-        from ros2lite.transport.errors import RouterUnavailableError
-
-        if not self.no_daemon:
-            from ros2lite.daemon.probe import router_answers
-            from ros2lite.transport.config import router_endpoint
-
-            # the usual case (a router answers) skips importing the daemon machinery
-            if not router_answers(router_endpoint()):
-                from ros2lite import daemon
-
-                try:
-                    daemon.ensure_running()
-                except daemon.DaemonError as e:
-                    raise CliError(str(e)) from None
-        self.context = Context()
-        try:
-            self.context.init([], short_lived=True)
-        except RouterUnavailableError as e:
-            raise CliError(str(e)) from None
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        if self.context is not None:
-            self.context.try_shutdown()
-
-    def entities(self) -> list[Any]:
-        """Every entity in the domain, from one complete query."""
-        from ros2lite.graph import snapshot
-
-        entities: list[Any] = snapshot(self.context.session, self.context.domain_id)
-        return entities
-
-    def node(self, name: str | None = None) -> Any:
-        """The hidden node this run uses for its publishers/subscriptions."""
-        if self._node is None:
-            from ros2lite.node import Node
-            from ros2lite.parameter import Parameter
-
-            self._node = Node(
-                name or f'_ros2lite_{os.getpid()}',
-                context=self.context,
-                enable_rosout=False,
-                use_global_arguments=False,
-                start_parameter_services=False,
-                parameter_overrides=[Parameter('use_sim_time', value=self.use_sim_time)],
-            )
-        return self._node
+    return Connection(autostart=not no_daemon, use_sim_time=use_sim_time)
 
 
 def qos_options(default_profile: str) -> Callable[[F], F]:
@@ -182,7 +134,7 @@ def qos_from_options(
     qos_liveliness: str | None = None,
     qos_liveliness_lease_duration_seconds: float | None = None,
     **_: Any,
-) -> Any:
+) -> QoSProfile:
     """The profile the `--qos-*` options describe (unset options keep the preset's value)."""
     from ros2lite import qos as q
 
@@ -255,12 +207,12 @@ def print_names_of_type(
     type_name: str,
     count: bool,
     no_daemon: bool,
-    names_and_types: Callable[[list[Any]], list[tuple[str, list[str]]]],
+    names_and_types: Callable[[list[Entity]], list[tuple[str, list[str]]]],
 ) -> None:
     """What `topic/service/action find` share: the names in the graph with `type_name`
     among their types, one a line, or only how many (`count`)."""
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
+    with connect(no_daemon=no_daemon) as conn:
+        entities = conn.entities()
     found = [name for name, types in names_and_types(entities) if type_name in types]
     if count:
         click.echo(len(found))
@@ -272,7 +224,7 @@ def print_types_of(
     ctx: click.Context,
     name: str,
     no_daemon: bool,
-    names_and_types: Callable[[list[Any]], list[tuple[str, list[str]]]],
+    names_and_types: Callable[[list[Entity]], list[tuple[str, list[str]]]],
 ) -> None:
     """What `topic/service/action type` share: the type(s) of `name` in the graph, or exit 1
     without a word, as ros2cli does (a name that cannot be valid is just an unknown one)."""
@@ -282,8 +234,8 @@ def print_types_of(
         full = expand_topic_name(name, 'ros2lite', '/')
     except ValueError:
         ctx.exit(1)
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
+    with connect(no_daemon=no_daemon) as conn:
+        entities = conn.entities()
     types = dict(names_and_types(entities)).get(full)
     if types is None:
         ctx.exit(1)

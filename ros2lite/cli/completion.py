@@ -10,24 +10,17 @@ fish_source work too).
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
-from typing import Any
+from typing import TYPE_CHECKING
 
 import click
 from click.shell_completion import CompletionItem
-from click.shell_completion import shell_complete as click_complete
 
-from .main import COMPLETE_VAR
+if TYPE_CHECKING:
+    from ros2lite.graph import Entity
 
 _GRAPH_TIMEOUT = 1.0
 
 Completer = Callable[[click.Context, click.Parameter, str], list[CompletionItem]]
-
-
-def shell_complete(instruction: str) -> int:
-    """Answer one completion request from the shell (`_ROS2LITE_COMPLETE` is set)."""
-    from .main import cli
-
-    return click_complete(cli, {}, 'ros2lite', COMPLETE_VAR, instruction)
 
 
 def _matching(names: Iterable[str], incomplete: str) -> list[CompletionItem]:
@@ -49,22 +42,14 @@ def _quietly(fn: Callable[[click.Context, str], list[CompletionItem]]) -> Comple
     return complete
 
 
-def _graph_entities(ctx: click.Context) -> list[Any]:
+def _graph_entities(ctx: click.Context) -> list[Entity]:
     """The domain's entities if a router answers now; [] otherwise (no daemon start)."""
-    from ros2lite.daemon.probe import router_answers
-    from ros2lite.graph import snapshot
-    from ros2lite.transport.config import domain_id, open_session, router_endpoint
+    from ros2lite.connection import Connection
 
     # a `--router` typed on the line being completed counts (no group callback runs here)
     router = ctx.find_root().params.get('router')
-    if not router_answers(router_endpoint(router), timeout=0.3):
-        return []
-    session = open_session(router, timeout=_GRAPH_TIMEOUT)
-    try:
-        entities: list[Any] = snapshot(session, domain_id(), timeout=_GRAPH_TIMEOUT)
-        return entities
-    finally:
-        session.close()
+    with Connection(router=router, autostart=False) as conn:
+        return conn.entities(timeout=_GRAPH_TIMEOUT)
 
 
 def _hidden_wanted(incomplete: str) -> bool:

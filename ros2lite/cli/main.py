@@ -32,15 +32,6 @@ COMMANDS: dict[str, tuple[str, str]] = {
 COMPLETE_VAR = '_ROS2LITE_COMPLETE'
 
 
-class _Terminated(BaseException):
-    """SIGTERM, raised where the main thread is so `with` blocks close sessions on the way
-    out (ros2cli leaves with status 15 through rclpy's ExternalShutdownException)."""
-
-
-def _raise_terminated(_signum: int, _frame: Any) -> None:
-    raise _Terminated()
-
-
 def debug_enabled() -> bool:
     return os.environ.get('ROS2LITE_DEBUG', '') not in ('', '0', 'false', 'no')
 
@@ -75,23 +66,22 @@ def main(argv: list[str] | None = None) -> Any:
     args = sys.argv[1:] if argv is None else argv
     instruction = os.environ.get(COMPLETE_VAR)
     if instruction:
-        from .completion import shell_complete
+        from click.shell_completion import shell_complete
 
-        return shell_complete(instruction)
+        # the completers themselves are in cli/completion.py, attached to each argument
+        return shell_complete(cli, {}, 'ros2lite', COMPLETE_VAR, instruction)
     if '--debug' in args[:1]:
         os.environ['ROS2LITE_DEBUG'] = '1'
     with contextlib.suppress(AttributeError, ValueError):
         sys.stdout.reconfigure(line_buffering=True)  # type: ignore[union-attr]
+    from ros2lite.process import Terminated, sigterm_raises
+
+    # ros2cli leaves with status 15 on SIGTERM, through rclpy's ExternalShutdownException
     try:
-        previous_term = signal.signal(signal.SIGTERM, _raise_terminated)
-    except ValueError:  # not the main thread (e.g. a test harness): leave signals alone
-        return _main(args)
-    try:
-        return _main(args)
-    except _Terminated:
+        with sigterm_raises():
+            return _main(args)
+    except Terminated:
         return signal.SIGTERM.value
-    finally:
-        signal.signal(signal.SIGTERM, previous_term or signal.SIG_DFL)
 
 
 def _main(args: list[str]) -> Any:

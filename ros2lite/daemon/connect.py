@@ -1,4 +1,8 @@
-"""How a long-lived node gets its session: start the daemon on demand, then open a peer.
+"""The one way ros2lite opens a session: :func:`connect`, for nodes and for tools.
+
+Tools (CLI verbs, completion, scripts inspecting the graph) open a *client* session: one cheap
+probe of the router endpoint, the daemon started when nothing answers (unless told not to),
+then one link that fails fast with :class:`RouterUnavailableError` when no router is there.
 
 A node is started from a tutorial, a launch file or a service manager, often before any CLI
 verb has started the daemon, so a missing router must not be fatal.  In order:
@@ -24,6 +28,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ros2lite.transport.config import (
+    CONNECT_TIMEOUT_MS,
     ROUTER_CHECK_ENV,
     check_router,
     configured_mode,
@@ -35,8 +40,9 @@ from ros2lite.transport.config import (
     session_config,
     session_endpoint,
 )
+from ros2lite.transport.errors import RouterUnavailableError
 
-__all__ = ["NO_DAEMON_ENV", "autostart_enabled", "open_node_session"]
+__all__ = ["NO_DAEMON_ENV", "autostart_enabled", "connect", "open_node_session"]
 
 NO_DAEMON_ENV = "ROS2LITE_NO_DAEMON"
 LOGGER_NAME = "ros2lite"
@@ -77,7 +83,7 @@ def _autostart(router: str | None) -> None:
     from ros2lite.daemon.router import DaemonError, start
 
     try:
-        result = start(endpoint)
+        result = start(endpoint, known_absent=True)
     except DaemonError as exc:
         _log("warn", f"could not start the ros2lite daemon: {exc}")
         return
@@ -121,3 +127,32 @@ def open_node_session(router: str | None = None) -> Any:
             "joins the graph as soon as a router runs ('ros2lite daemon start')",
         )
     return session
+
+
+def connect(
+    router: str | None = None,
+    *,
+    tool: bool = False,
+    autostart: bool = True,
+    timeout: float = CONNECT_TIMEOUT_MS / 1000,
+) -> Any:
+    """Open this process' session: a node's (peer, module doc) or, with `tool`, a client's.
+
+    A tool probes the router endpoint once: when nothing answers it starts the daemon there
+    (`autostart`) or fails at once with RouterUnavailableError; an endpoint that
+    ``ZENOH_SESSION_CONFIG_URI``/``ZENOH_CONFIG_OVERRIDE`` replaced is the user's and is
+    connected to as configured. Raises ConfigError, SessionError or DaemonError.
+    """
+    if not tool:
+        return open_node_session(router)
+    endpoint = router_endpoint(router)
+    if session_endpoint(router) == endpoint:
+        from ros2lite.daemon.probe import router_answers
+
+        if not router_answers(endpoint, timeout=min(timeout, 0.5)):
+            if not autostart:
+                raise RouterUnavailableError(endpoint, "nothing listens there")
+            from ros2lite.daemon.router import start
+
+            start(endpoint, known_absent=True)
+    return open_session(router, mode="client", timeout=timeout)

@@ -341,19 +341,24 @@ def start(
     connect: Sequence[str] = (),
     *,
     timeout: float = START_TIMEOUT,
+    known_absent: bool = False,
 ) -> StartResult:
     """Spawn a detached router for the endpoint unless something already answers there.
 
     ``listen`` defaults to the endpoint itself (loopback-only for the default endpoint);
     pass e.g. ``tcp/0.0.0.0:7447`` to open it to the network.  ``connect`` lists other
     routers to mesh with.  Waits up to ``timeout`` s for the router to answer.
+    ``known_absent``: the caller has just probed the endpoint and nothing answered, so only
+    a daemon that another process started meanwhile (its pid file) is waited for.
     """
     endpoint = router_endpoint(router)
     # Validate config and env up front so mistakes surface here, not in a log file.
     router_config(endpoint, listen=list(listen) or None, connect=list(connect))
     with _start_lock(endpoint, timeout):
         info = _read_info(pid_file(endpoint))
-        if router_answers(endpoint) or (info is not None and wait_answers(endpoint, timeout)):
+        if (not known_absent and router_answers(endpoint)) or (
+            info is not None and wait_answers(endpoint, timeout)
+        ):
             return StartResult(
                 endpoint,
                 False,

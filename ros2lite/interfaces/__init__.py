@@ -54,7 +54,7 @@ def serialize(msg: Message) -> bytes:
     except AttributeError:
         if not isinstance(msg, Message):
             raise TypeError(f'not a ros2lite message: {msg!r}') from None
-        c = codec(msg._TYPE_NAME, default_registry())
+        c = codec(msg._TYPE_NAME)
     return c.serialize(msg)
 
 

@@ -566,11 +566,21 @@ class Codec:
         return msg
 
 
-def codec(name: str, reg: Registry) -> Codec:
-    """The codec of a type, cached on its class so lookups cost one attribute access."""
+def codec(name: str, reg: Registry | None = None) -> Codec:
+    """The codec of a type (from the default registry unless told), cached on its class so
+    lookups cost one attribute access."""
+    if reg is None:
+        from .registry import default_registry
+
+        reg = default_registry()
     cls = factory(reg).message_class(name)
     c: Codec | None = cls.__dict__.get('_CODEC')
     if c is None:
         c = Codec(cls._TYPE_NAME, reg)
         cls._CODEC = c  # type: ignore[attr-defined]
     return c
+
+
+def service_codecs(service_type: str) -> tuple[Codec, Codec]:
+    """(request codec, response codec) of a service type 'pkg/srv/Name'."""
+    return codec(f'{service_type}_Request'), codec(f'{service_type}_Response')

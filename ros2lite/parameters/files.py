@@ -105,6 +105,26 @@ def values_for_node(
     return values
 
 
+def parameters_for_node(path: str | Path, node_fqn: str, use_wildcard: bool) -> list[Any]:
+    """The file's parameters for the node as Parameters; an error naming the nodes the file
+    has when it has none for this one, or naming a value that cannot be a parameter."""
+    from ros2lite.parameter import Parameter
+
+    values = values_for_node(path, node_fqn, use_wildcard=use_wildcard)
+    if not values:
+        nodes = [name for name, _ in read_params_file(path)]
+        raise ParamsFileError(
+            f"Param file does not contain parameters for {node_fqn}, only for nodes: {nodes}"
+        )
+    params = []
+    for name, value in values.items():
+        try:
+            params.append(Parameter(name, value=value))
+        except (TypeError, ValueError) as e:
+            raise ParamsFileError(f"Parameter '{name}' in '{path}': {e}") from None
+    return params
+
+
 def dump_tree(values: dict[str, Any]) -> dict[str, Any]:
     """Dotted names back into nested maps (what `param dump` writes)."""
     tree: dict[str, Any] = {}

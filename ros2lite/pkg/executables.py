@@ -42,6 +42,9 @@ _DEMOS = {
         'parameter_blackboard',
         'talker',
     ],
+    'rqt_graph': ['rqt_graph'],
+    'teleop_twist_keyboard': ['teleop_twist_keyboard'],
+    'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
 }
 BUNDLED: dict[str, dict[str, str]] = {
     package: {name: f'ros2lite.demos.{package}.{name}:main' for name in names}

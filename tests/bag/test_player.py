@@ -12,10 +12,9 @@ from typing import Any
 import pytest
 
 from ros2lite.bag import Reader, Writer
-from ros2lite.bag.player import Player, PlayOptions, playback_qos
+from ros2lite.bag.player import Player, PlayOptions
 from ros2lite.interfaces import get_interface
 from ros2lite.node import Node
-from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from tests.spinning import wait_until
 
 String = get_interface("std_msgs/msg/String")
@@ -82,23 +81,3 @@ def test_stop_ends_a_loop(tmp_path: Path, node: Node) -> None:
     player.stop()
     thread.join(2)
     assert not thread.is_alive() and player.stopped
-
-
-def test_playback_qos_from_recorded_offers() -> None:
-    latched = QoSProfile(durability=DurabilityPolicy.TRANSIENT_LOCAL, depth=20)
-    best_effort = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT, depth=5)
-    keep_all = QoSProfile(history=HistoryPolicy.KEEP_ALL)
-    assert playback_qos([]) == QoSProfile()
-    q = playback_qos([latched])
-    assert (q.durability, q.reliability, q.depth) == (
-        DurabilityPolicy.TRANSIENT_LOCAL,
-        ReliabilityPolicy.RELIABLE,
-        20,
-    )
-    q = playback_qos([latched, best_effort])
-    assert (q.durability, q.reliability) == (
-        DurabilityPolicy.VOLATILE,
-        ReliabilityPolicy.BEST_EFFORT,
-    )
-    assert playback_qos([keep_all]).history == HistoryPolicy.KEEP_ALL
-    assert playback_qos([keep_all, latched]).history == HistoryPolicy.KEEP_LAST

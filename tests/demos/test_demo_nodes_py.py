@@ -153,17 +153,28 @@ def test_no_router_in_client_mode_is_one_line(processes: Any) -> None:
 def test_parameter_blackboard(ros_context: Any, processes: Any) -> None:
     """Holds every override and anything set later, as ROS's demo does."""
     from ros2lite.parameter import Parameter, parameter_value_to_python
-    from ros2lite.parameters.remote import RemoteParameters
+    from ros2lite.parameter_client import AsyncParameterClient
 
     proc = demo(
         processes, 'parameter_blackboard', '--ros-args', '-p', 'speed:=2.5', '-p', 'names:=[a, b]'
     )
     client = Node('_blackboard_client', context=ros_context, start_parameter_services=False)
-    remote = RemoteParameters(client, '/parameter_blackboard', service_timeout=10.0)
+    remote = AsyncParameterClient(client, '/parameter_blackboard')
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(client)
+
+    def wait(future: Any) -> Any:
+        executor.spin_until_future_complete(future, 10.0)
+        return future.result()
+
     assert remote.wait_for_services(10.0)
-    assert sorted(remote.list_parameters().names) == ['names', 'speed', 'use_sim_time']
-    assert remote.set_parameters([Parameter('brand_new', value=7)])[0].successful
-    values = remote.get_parameters(['speed', 'names', 'brand_new'])
+    assert sorted(wait(remote.list_parameters()).result.names) == [
+        'names',
+        'speed',
+        'use_sim_time',
+    ]
+    assert wait(remote.set_parameters([Parameter('brand_new', value=7)])).results[0].successful
+    values = wait(remote.get_parameters(['speed', 'names', 'brand_new'])).values
     assert [parameter_value_to_python(v) for v in values] == [2.5, ['a', 'b'], 7]
     _out, err = processes.stop(proc)
     assert proc.returncode == 0

@@ -8,9 +8,10 @@ from typing import Any
 
 import pytest
 
+from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
 from ros2lite.parameter import Parameter, parameter_value_to_python
-from ros2lite.parameters.remote import RemoteParameters
+from ros2lite.parameter_client import AsyncParameterClient
 
 NODE_CODE = """
 import sys
@@ -32,51 +33,71 @@ with ros2lite.init(args=sys.argv):
 """
 
 
+class Remote:
+    """The parameter client's calls, each waited for: `remote.get_parameters([...])` is the
+    response."""
+
+    def __init__(self, node: Node) -> None:
+        self.node = node
+        self.client = AsyncParameterClient(node, "/svc/served")
+        self.executor = SingleThreadedExecutor(context=node.context)
+        self.executor.add_node(node)
+
+    def __getattr__(self, name: str) -> Any:
+        def call(*args: Any, **kwargs: Any) -> Any:
+            future = getattr(self.client, name)(*args, **kwargs)
+            self.executor.spin_until_future_complete(future, 10.0)
+            assert future.done(), name
+            return future.result()
+
+        return call
+
+
 @pytest.fixture
-def remote(ros_context: Any, processes: Any) -> Iterator[RemoteParameters]:
+def remote(ros_context: Any, processes: Any) -> Iterator[Remote]:
     proc = processes.python(NODE_CODE)
     assert proc.stdout.readline() == "ready\n"
     client_node = Node("_param_client", context=ros_context, start_parameter_services=False)
-    remote = RemoteParameters(client_node, "/svc/served", service_timeout=10.0)
-    assert remote.wait_for_services(10.0)
+    remote = Remote(client_node)
+    assert remote.client.wait_for_services(10.0)
     yield remote
 
 
-def test_read_services(remote: RemoteParameters) -> None:
-    values = remote.get_parameters(["a.x", "a.b.y"])
+def test_read_services(remote: Remote) -> None:
+    values = remote.get_parameters(["a.x", "a.b.y"]).values
     assert [parameter_value_to_python(v) for v in values] == [1, "text"]
-    assert remote.get_parameters(["a.x", "unknown"]) == []
-    assert remote.get_parameter_types(["a.x", "a.b.y", "use_sim_time"]) == [2, 4, 1]
-    assert remote.get_parameter_types(["unknown"]) == []
-    described = remote.describe_parameters(["limit"])
+    assert remote.get_parameters(["a.x", "unknown"]).values == []
+    assert list(remote.get_parameter_types(["a.x", "a.b.y", "use_sim_time"]).types) == [2, 4, 1]
+    assert list(remote.get_parameter_types(["unknown"]).types) == []
+    described = remote.describe_parameters(["limit"]).descriptors
     assert described[0].name == "limit" and described[0].integer_range[0].to_value == 5
-    assert remote.describe_parameters(["limit", "unknown"]) == []
-    everything = remote.list_parameters()
+    assert remote.describe_parameters(["limit", "unknown"]).descriptors == []
+    everything = remote.list_parameters().result
     assert sorted(everything.names) == ["a.b.y", "a.x", "limit", "use_sim_time"]
     assert sorted(everything.prefixes) == ["a", "a.b"]
-    assert remote.list_parameters(["a"], depth=1).names == ["a.x"]
+    assert remote.list_parameters(["a"], depth=1).result.names == ["a.x"]
 
 
-def test_write_services(remote: RemoteParameters) -> None:
+def test_write_services(remote: Remote) -> None:
     results = remote.set_parameters(
         [Parameter("limit", value=4), Parameter("limit", value=9), Parameter("nope", value=1)]
-    )
+    ).results
     assert [r.successful for r in results] == [True, False, False]
     assert results[1].reason == "Parameter limit out of range. Min: 0, Max: 5, value: 9"
     assert results[2].reason == "Invalid access to undeclared parameter(s): ['nope']"
     atomic = remote.set_parameters_atomically(
         [Parameter("a.x", value=7), Parameter("limit", value=9)]
-    )
+    ).result
     assert not atomic.successful
-    assert parameter_value_to_python(remote.get_parameters(["a.x"])[0]) == 1
+    assert parameter_value_to_python(remote.get_parameters(["a.x"]).values[0]) == 1
     assert remote.set_parameters_atomically(
         [Parameter("a.x", value=7), Parameter("limit", value=0)]
-    ).successful
-    assert [parameter_value_to_python(v) for v in remote.get_parameters(["a.x", "limit"])] == [7, 0]
-    assert remote.get_values()["limit"] == 0
+    ).result.successful
+    values = remote.get_parameters(["a.x", "limit"]).values
+    assert [parameter_value_to_python(v) for v in values] == [7, 0]
 
 
-def test_services_appear_in_the_graph(remote: RemoteParameters) -> None:
+def test_services_appear_in_the_graph(remote: Remote) -> None:
     services = dict(remote.node.get_service_names_and_types())
     for name in (
         "describe_parameters",

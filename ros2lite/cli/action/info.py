@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import CliSession, strategy_options
+from ..common import connect, strategy_options
 from ..errors import CliError
 
 
@@ -43,8 +43,8 @@ def cli(
         validate_full_topic_name(name)
     except ValueError as e:
         raise CliError(str(e)) from None
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
+    with connect(no_daemon=no_daemon) as conn:
+        entities = conn.entities()
     clients, servers = action_endpoints(entities, name)
     # ros2cli echoes the name as it was given
     lines = [f'Action: {action_name}']

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from ..common import CliSession, strategy_options
+from ..common import connect, strategy_options
 
 
 @click.command('list')
@@ -31,8 +31,8 @@ def cli(
     """Output a list of action names."""
     from ros2lite.graph import action_names_and_types
 
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
+    with connect(no_daemon=no_daemon) as conn:
+        entities = conn.entities()
     actions = action_names_and_types(entities, include_hidden_actions)
     if count_actions:
         click.echo(len(actions))

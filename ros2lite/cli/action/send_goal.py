@@ -7,13 +7,17 @@ then leaves with status 2, as ros2cli does.
 from __future__ import annotations
 
 import sys
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
 from .. import completion
-from ..common import CliSession
+from ..common import connect
 from ..errors import CliError
+
+if TYPE_CHECKING:
+    from ros2lite.connection import Connection
+    from ros2lite.task import Future
 
 
 def action_class(action_type: str) -> tuple[str, Any]:
@@ -97,11 +101,10 @@ def cli(
     type_name, cls = action_class(action_type)
     goal_msg = build_goal(cls, values)
     pkg, _, name = type_name.split('/')
-    with CliSession() as session:
-        node = session.node(f'_ros2lite_send_goal_{pkg}_action_{name}')
+    with connect() as conn:
+        conn.node(f'_ros2lite_send_goal_{pkg}_action_{name}')
         send_goal(
-            session,
-            node,
+            conn,
             cls,
             action_name,
             goal_msg,
@@ -111,8 +114,7 @@ def cli(
 
 
 def send_goal(
-    session: CliSession,
-    node: Any,
+    conn: Connection,
     cls: Any,
     action_name: str,
     goal: Any,
@@ -121,15 +123,12 @@ def send_goal(
 ) -> None:
     from ros2lite.action import ActionClient
     from ros2lite.action.goals import GoalStatus, goal_id_hex, status_name
-    from ros2lite.executors import SingleThreadedExecutor
     from ros2lite.interfaces import message_to_yaml
 
     try:
-        client = ActionClient(node, cls, action_name)
+        client = ActionClient(conn.node(), cls, action_name)
     except ValueError as e:  # an invalid action name
         raise CliError(str(e)) from None
-    executor = SingleThreadedExecutor(context=session.context)
-    executor.add_node(node)
     click.echo('Waiting for an action server to become available...')
     if not client.wait_for_server(timeout_sec=timeout):
         raise CliError(f"No action server for '{client.action_name}' after {timeout} s")
@@ -137,7 +136,7 @@ def send_goal(
     goal_handle = None
     try:
         goal_future = client.send_goal_async(goal, feedback)
-        goal_handle = _outcome(executor, goal_future, 'sending goal')
+        goal_handle = _outcome(conn, goal_future, 'sending goal')
         if not goal_handle.accepted:
             click.echo('Goal was rejected.')
             return
@@ -145,7 +144,7 @@ def send_goal(
         if feedback is not None:
             feedback.release()
         result_future = goal_handle.get_result_async()
-        result = _outcome(executor, result_future, 'getting result')
+        result = _outcome(conn, result_future, 'getting result')
         click.echo(f'Result:\n    {message_to_yaml(result.result)}')
         click.echo(f'Goal finished with status: {status_name(result.status)}')
     except BaseException as e:
@@ -158,25 +157,25 @@ def send_goal(
             and goal_handle.status
             in (GoalStatus.STATUS_UNKNOWN, GoalStatus.STATUS_ACCEPTED, GoalStatus.STATUS_EXECUTING)
         ):
-            _cancel(executor, goal_handle)
+            _cancel(conn, goal_handle)
         raise
     finally:
         client.destroy()
 
 
-def _outcome(executor: Any, future: Any, doing: str) -> Any:
+def _outcome(conn: Connection, future: Future, doing: str) -> Any:
     """Spin until `future` is done; its result, or ros2cli's error naming what failed."""
-    executor.spin_until_future_complete(future)
+    conn.spin_until_future_complete(future)
     if future.cancelled() or future.exception() is not None:
         raise CliError(f'Exception while {doing}: {future.exception()!r}')
     return future.result()
 
 
-def _cancel(executor: Any, goal_handle: Any) -> None:
+def _cancel(conn: Connection, goal_handle: Any) -> None:
     from ros2lite.action.goals import goal_key
 
     click.echo('Canceling goal...')
-    response = _outcome(executor, goal_handle.cancel_goal_async(), 'canceling goal')
+    response = _outcome(conn, goal_handle.cancel_goal_async(), 'canceling goal')
     canceling = response.goals_canceling
     if not canceling:
         raise CliError('Failed to cancel goal')

@@ -1,12 +1,15 @@
-"""Option helpers shared by the bag verbs: argparse-style `nargs='+'` options and errors."""
+"""What the bag verbs share: argparse-style `nargs='+'` options, errors, QoS overrides."""
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
 from ..errors import CliError
+
+if TYPE_CHECKING:
+    from ros2lite.qos import QoSProfile
 
 
 class ManyValues(click.Option):
@@ -42,3 +45,16 @@ def bag_error(message: str) -> CliError:
 
 def warn(message: str) -> None:
     click.echo(f"[WARN] [ros2bag]: {message}", err=True)
+
+
+def qos_overrides(path: str | None) -> dict[str, QoSProfile]:
+    """The `--qos-profile-overrides-path` file, read by the library (bag.qos)."""
+    if path is None:
+        return {}
+    from ros2lite.bag.errors import BagError
+    from ros2lite.bag.qos import read_qos_overrides
+
+    try:
+        return read_qos_overrides(path)
+    except BagError as e:
+        raise bag_error(str(e)) from None

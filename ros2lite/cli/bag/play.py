@@ -7,17 +7,20 @@ On a terminal: a progress line on stderr and keys (SPACE pause/resume, → next 
 from __future__ import annotations
 
 import sys
-import threading
 import time
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
-from .. import completion
-from ..common import CliSession
-from .options import ManyValues, bag_error
-from .record import _qos_overrides, _StopSignals
+from .. import completion, render
+from .. import keyboard as keys_module
+from ..common import connect
+from .options import ManyValues, bag_error, qos_overrides
+
+if TYPE_CHECKING:
+    from ros2lite.bag.player import Player
+    from ros2lite.logging import RcutilsLogger
 
 
 @click.command("play")
@@ -126,7 +129,7 @@ def cli(
         if not sep or not old or not new:
             raise bag_error(f"Remapping '{rule}' is not OLD:=NEW")
         remaps[old] = new
-    overrides = _qos_overrides(qos_profile_overrides_path)
+    overrides = qos_overrides(qos_profile_overrides_path)
     try:
         reader = Reader(bag_path, storage)
     except BagError as e:
@@ -134,8 +137,8 @@ def cli(
     from ros2lite.logging import get_logger
 
     log = get_logger(node_name)
-    with reader, CliSession() as session:
-        node = session.node(node_name)
+    with reader, connect() as conn:
+        node = conn.node(node_name)
         try:
             names = _absolute(node, topics) if topics else None
             options = PlayOptions(
@@ -179,22 +182,19 @@ def _absolute(node: Any, names: Any) -> list[str]:
     return out
 
 
-def _play(player: Any, log: Any, keyboard: bool) -> None:
+def _play(player: Player, log: RcutilsLogger, keyboard: bool) -> None:
     from ros2lite.bag.errors import BagError
+    from ros2lite.bag.player import SWITCH_INTERVAL
+    from ros2lite.process import StopSignals, switch_interval
 
     keys = None
-    from . import keyboard as keys_module
-
-    tty = keys_module.available() and sys.stderr.isatty()
-    if keyboard and tty:
-        from .keyboard import Keyboard
-
+    if keyboard and keys_module.available() and sys.stderr.isatty():
         log.info("Adding keyboard callbacks.")
         log.info("Press SPACE for Pause/Resume")
         log.info("Press CURSOR_RIGHT for Play Next Message")
         log.info("Press CURSOR_UP for Increase Rate 10%")
         log.info("Press CURSOR_DOWN for Decrease Rate 10%")
-        keys = Keyboard(
+        keys = keys_module.Keyboard(
             {
                 " ": player.toggle_paused,
                 "right": player.play_next,
@@ -203,45 +203,29 @@ def _play(player: Any, log: Any, keyboard: bool) -> None:
             }
         )
     log.info("Playback until timestamp: -1")
-    errors: list[BaseException] = []
-
-    def run() -> None:
-        try:
-            player.play()
-        except BaseException as e:
-            errors.append(e)
-
-    thread = threading.Thread(target=run, daemon=True, name="ros2lite-bag-player")
-    progress = _Progress(player) if sys.stderr.isatty() else None
-    with _StopSignals() as stop:
-        thread.start()
-        try:
-            while thread.is_alive() and not stop.event.is_set():
-                thread.join(0.1)
-                if progress is not None:
-                    progress.update()
-        finally:
-            player.stop()
-            thread.join(timeout=2)
-            if progress is not None:
-                progress.close()
-            if keys is not None:
-                keys.close()
-    if errors:
-        e = errors[0]
-        if isinstance(e, (BagError, OSError, ValueError)):
-            raise bag_error(str(e)) from None
-        raise e
+    progress = _Progress(player) if render.fancy(sys.stderr) else None
+    try:
+        # this process plays on time: a message due must not wait for the read-ahead thread
+        with switch_interval(SWITCH_INTERVAL), StopSignals() as stop:
+            player.run(stop.event, on_tick=progress.update if progress is not None else None)
+    except (BagError, OSError, ValueError) as e:
+        raise bag_error(str(e)) from None
+    finally:
+        if progress is not None:
+            progress.close()
+        if keys is not None:
+            keys.close()
 
 
 class _Progress:
     """One status line on stderr: bag time, elapsed/total and state."""
 
-    def __init__(self, player: Any) -> None:
+    def __init__(self, player: Player) -> None:
         self.player = player
         self.start = player.reader.start_time
         self.total = max(player.reader.metadata.duration, 1)
         self._last = 0.0
+        self._line = render.ProgressLine()
 
     def update(self) -> None:
         now = time.monotonic()
@@ -254,14 +238,11 @@ class _Progress:
         filled = int(width * done / self.total)
         state = "P" if self.player.paused else "R"
         sec, nsec = divmod(t, 1_000_000_000)
-        line = (
-            f"\r[{'#' * filled}{'-' * (width - filled)}] [{sec}.{nsec // 1_000_000:03d}] "
+        self._line.show(
+            f"[{'#' * filled}{'-' * (width - filled)}] [{sec}.{nsec // 1_000_000:03d}] "
             f"Duration {done / 1e9:.2f}/{self.total / 1e9:.2f} [{state}] "
             f"x{self.player.rate:g}  "
         )
-        sys.stderr.write(line)
-        sys.stderr.flush()
 
     def close(self) -> None:
-        sys.stderr.write("\n")
-        sys.stderr.flush()
+        self._line.close()

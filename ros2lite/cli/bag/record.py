@@ -8,17 +8,20 @@ keeps a live per-topic status and takes SPACE to pause/resume.
 from __future__ import annotations
 
 import os
-import signal
-import sys
-import threading
 import time
-from typing import Any
+from typing import TYPE_CHECKING
 
 import click
 
-from .. import completion
-from ..common import CliSession
-from .options import ManyValues, bag_error, warn
+from .. import completion, render
+from .. import keyboard as keys_module
+from ..common import connect
+from .options import ManyValues, bag_error, qos_overrides, warn
+
+if TYPE_CHECKING:
+    from ros2lite.bag.recorder import Recorder, RecordOptions
+    from ros2lite.bag.writer import Writer
+    from ros2lite.connection import Connection
 
 SELECTION_ERROR = (
     "Need to specify at least one option out of --all, --all-topics, "
@@ -214,7 +217,7 @@ def cli(
         exclude_topics=_absolute(list(exclude_topics) + excluded_events, node_name),
         topic_types=list(topic_types),
         include_hidden_topics=include_hidden_topics,
-        qos_overrides=_qos_overrides(qos_profile_overrides_path),
+        qos_overrides=qos_overrides(qos_profile_overrides_path),
         polling_interval=polling_interval / 1000,
         max_cache_size=max_cache_size,
         start_paused=start_paused,
@@ -235,22 +238,14 @@ def cli(
         ).open()
     except BagError as e:
         raise bag_error(str(e)) from None
+    conn = connect(use_sim_time=use_sim_time)
     try:
-        session = CliSession(use_sim_time=use_sim_time).__enter__()
+        conn.open()
     except BaseException:
         writer.discard()  # no graph to record from: leave nothing behind
         raise
-    try:
-        recorder = _record(
-            session,
-            writer,
-            options,
-            node_name,
-            use_sim_time,
-            keyboard=not disable_keyboard_controls,
-        )
-    finally:
-        session.__exit__(None, None, None)
+    with conn:
+        recorder = _record(conn, writer, options, node_name, keyboard=not disable_keyboard_controls)
     if recorder.error is not None:
         raise bag_error(
             f"{recorder.error}. Messages written before this are kept in "
@@ -279,104 +274,40 @@ def _custom_data(pairs: tuple[str, ...]) -> dict[str, str] | None:
     return out or None
 
 
-def _qos_overrides(path: str | None) -> dict[str, Any]:
-    if path is None:
-        return {}
-    from ros2lite.bag.errors import MetadataError
-    from ros2lite.bag.metadata import parse_qos_overrides
-
-    try:
-        with open(path, encoding="utf-8") as f:
-            return parse_qos_overrides(f.read())
-    except OSError as e:
-        raise bag_error(f"Cannot read '{path}': {e.strerror or e}") from None
-    except MetadataError as e:
-        raise bag_error(str(e)) from None
-
-
-class _StopSignals:
-    """SIGINT and SIGTERM only ask the recorder to stop: a second Ctrl-C while the bag is
-    being finished must not cut the file short."""
-
-    def __init__(self) -> None:
-        self.event = threading.Event()
-        self._previous: dict[int, Any] = {}
-
-    def __enter__(self) -> _StopSignals:
-        if threading.current_thread() is threading.main_thread():
-            for sig in (signal.SIGINT, signal.SIGTERM):
-                self._previous[sig] = signal.signal(sig, self._handle)
-        return self
-
-    def _handle(self, _signum: int, _frame: Any) -> None:
-        self.event.set()
-
-    def __exit__(self, *exc: object) -> None:
-        for sig, handler in self._previous.items():
-            signal.signal(sig, handler)
-
-
 def _record(
-    session: CliSession,
-    writer: Any,
-    options: Any,
+    conn: Connection,
+    writer: Writer,
+    options: RecordOptions,
     node_name: str,
-    use_sim_time: bool,
     keyboard: bool,
-) -> Any:
+) -> Recorder:
     """Run the recorder until a signal (or a write error); returns it, stopped."""
     from ros2lite.bag.recorder import Recorder
     from ros2lite.logging import get_logger
+    from ros2lite.process import StopSignals
 
     log = get_logger(node_name)
-    node = session.node(node_name)
+    node = conn.node(node_name)
     recorder = Recorder(
         node, writer, options, log=lambda m: log.info(m), warn=lambda m: log.warn(m)
     )
-    executor = None
-    if use_sim_time:
-        from ros2lite.executors import SingleThreadedExecutor
-
-        executor = SingleThreadedExecutor(context=session.context)
-        executor.add_node(node)
-    status = _LiveStatus(recorder) if sys.stdout.isatty() and "NO_COLOR" not in os.environ else None
-    with _StopSignals() as stop:
-        keys = None
-        from . import keyboard as keys_module
-
-        if keyboard and keys_module.available():
-            from .keyboard import Keyboard
-
-            log.info("Press SPACE for pausing/resuming")
-            keys = Keyboard({" ": recorder.toggle_paused})
-        try:
-            if executor is not None:
-                log.info("use_sim_time set, waiting for /clock before starting recording...")
-                clock = node.get_clock()
-                while not clock.ros_time_is_active and not stop.event.is_set():
-                    executor.spin_once(0.1)
-            if stop.event.is_set():
-                return recorder
-            recorder.start()
-            while not stop.event.is_set() and recorder.running and session.context.ok():
-                if executor is not None:
-                    executor.spin_once(0.25)
-                else:
-                    stop.event.wait(0.25)
-                if status is not None:
-                    status.update()
-        finally:
-            if keys is not None:
-                keys.close()
-            if status is not None:
-                status.close()
-            from ros2lite.logging import get_logger
-
-            get_logger("rosbag2_cpp").info(
-                "Writing remaining messages from cache to the bag. It may take a while"
+    status = _LiveStatus(recorder) if render.fancy() else None
+    keys = None
+    if keyboard and keys_module.available():
+        log.info("Press SPACE for pausing/resuming")
+        keys = keys_module.Keyboard({" ": recorder.toggle_paused})
+    try:
+        with StopSignals() as stop:
+            recorder.run(
+                stop.event,
+                spin=(lambda t: conn.spin_until(timeout=t)) if conn.use_sim_time else None,
+                on_tick=status.update if status is not None else None,
             )
-            recorder.stop()
-            log.info("Recording stopped")
+    finally:
+        if keys is not None:
+            keys.close()
+        if status is not None:
+            status.close()
     return recorder
 
 
@@ -391,28 +322,17 @@ def _size(n: float) -> str:
 class _LiveStatus:
     """Per-topic count, bytes and rate, redrawn in place on a terminal."""
 
-    def __init__(self, recorder: Any) -> None:
-        from rich.console import Console
-        from rich.live import Live
-
+    def __init__(self, recorder: Recorder) -> None:
         self.recorder = recorder
         self._last: dict[str, tuple[float, int]] = {}
         self._rates: dict[str, float] = {}
-        self._live = Live(console=Console(), auto_refresh=False, transient=True)
-        self._live.start()
+        self._table = render.LiveTable(
+            ("topic", "type", "messages", "size", "rate"), transient=True
+        )
 
     def update(self) -> None:
-        from rich.table import Table
-
         now = time.monotonic()
-        table = Table(
-            "topic",
-            "type",
-            "messages",
-            "size",
-            "rate",
-            title="Paused" if self.recorder.paused else "Recording",
-        )
+        rows = []
         for s in list(self.recorder.stats):
             then, count = self._last.get(s.name, (now, s.received))
             if now - then >= 1.0:
@@ -420,14 +340,16 @@ class _LiveStatus:
                 self._last[s.name] = (now, s.received)
             else:
                 self._last.setdefault(s.name, (now, s.received))
-            table.add_row(
-                s.name,
-                s.type,
-                str(s.received),
-                _size(s.bytes),
-                f"{self._rates.get(s.name, 0.0):.1f} Hz",
+            rows.append(
+                (
+                    s.name,
+                    s.type,
+                    str(s.received),
+                    _size(s.bytes),
+                    f"{self._rates.get(s.name, 0.0):.1f} Hz",
+                )
             )
-        self._live.update(table, refresh=True)
+        self._table.show(rows, title="Paused" if self.recorder.paused else "Recording")
 
     def close(self) -> None:
-        self._live.stop()
+        self._table.close()

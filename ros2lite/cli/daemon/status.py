@@ -11,7 +11,7 @@ def cli() -> None:
     """Output the status of the daemon."""
     from ros2lite import daemon
 
-    from .sessions import table
+    from .common import table
 
     st = daemon.status(sessions=True)
     click.echo('The daemon is running' if st.running else 'The daemon is not running')

@@ -19,7 +19,7 @@ def cli() -> None:
         raise CliError(str(e)) from None
     click.echo('The daemon has been stopped' if result.stopped else 'The daemon is not running')
     if result.stopped and result.sessions is not None:
-        from .sessions import consequences
+        from .common import consequences
 
         for line in consequences(result.sessions):
             click.echo(line)

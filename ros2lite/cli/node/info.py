@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import CliSession, strategy_options
+from ..common import connect, strategy_options
 from ..errors import CliError
 
 
@@ -27,8 +27,8 @@ def cli(node_name: str, include_hidden: bool, no_daemon: bool, use_sim_time: boo
     from ros2lite.names import split_fqn
 
     full = node_name if node_name.startswith('/') else '/' + node_name
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
+    with connect(no_daemon=no_daemon) as conn:
+        entities = conn.entities()
     count = node_full_names(entities, include_hidden=include_hidden).count(full)
     if count > 1:
         click.echo(

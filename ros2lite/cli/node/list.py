@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from ..common import CliSession, strategy_options
+from ..common import connect, strategy_options
 
 DUPLICATE_WARNING = (
     'WARNING: Be aware that there are nodes in the graph that share an exact '
@@ -29,8 +29,8 @@ def cli(show_all: bool, count_nodes: bool, no_daemon: bool, use_sim_time: bool) 
     """Output a list of available nodes."""
     from ros2lite.graph import node_full_names
 
-    with CliSession(no_daemon=no_daemon) as session:
-        names = node_full_names(session.entities(), include_hidden=show_all)
+    with connect(no_daemon=no_daemon) as conn:
+        names = node_full_names(conn.entities(), include_hidden=show_all)
     if count_nodes:
         click.echo(len(names))
         return

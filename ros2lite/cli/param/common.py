@@ -1,17 +1,27 @@
-"""What the `param` verbs share: their options, finding the node, and type names."""
+"""What the `param` verbs share: their options, one body (connect, find the node, call its
+parameter services through the library's client), completion and type names."""
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
-from typing import Any, TypeVar
+from dataclasses import dataclass, fields
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 
 from .. import completion
-from ..common import CliSession, strategy_options
+from ..common import connect, strategy_options
 from ..errors import CliError
 
+if TYPE_CHECKING:
+    from ros2lite.connection import Connection
+    from ros2lite.task import Future
+
 F = TypeVar("F", bound=Callable[..., Any])
+T = TypeVar("T")
+
+SERVICE_WAIT = 5.0  # how long ros2cli waits for a node's parameter services
 
 # rcl_interfaces/msg/ParameterType number → how ros2cli names it
 TYPE_NAMES = {
@@ -28,34 +38,57 @@ TYPE_NAMES = {
 }
 
 
+@dataclass(frozen=True)
+class Target:
+    """The node a param verb talks to, and how: ros2cli's options shared by every verb."""
+
+    node_name: str | None
+    include_hidden_nodes: bool
+    no_daemon: bool
+    use_sim_time: bool
+    timeout: float = 1.0
+    service_timeout: float | None = None
+
+
+_TARGET_OPTIONS = tuple(f.name for f in fields(Target))
+
+
 def node_options(*, timeout: bool = True, node_required: bool = True) -> Callable[[F], F]:
-    """node_name, --include-hidden-nodes, the strategy options and (but for list) --timeout."""
+    """node_name, --include-hidden-nodes, the strategy options and (but for list) --timeout
+    and --service-timeout, handed to the verb as one `target: Target`."""
 
     def decorate(fn: F) -> F:
+        @functools.wraps(fn)
+        def verb(**kwargs: Any) -> Any:
+            shared = {k: kwargs.pop(k) for k in _TARGET_OPTIONS if k in kwargs}
+            return fn(target=Target(**shared), **kwargs)
+
+        cmd: Any = verb
         if timeout:
-            fn = click.option(
+            cmd = click.option(
                 "--service-timeout",
                 metavar="N",
                 type=float,
                 default=None,
                 help="Maximum time to wait for service response in seconds "
                 "(default: waits indefinitely)",
-            )(fn)
-            fn = click.option(
+            )(cmd)
+            cmd = click.option(
                 "--timeout",
                 metavar="N",
                 type=int,
                 default=1,
                 show_default=True,
                 help="Wait for N seconds until node becomes available",
-            )(fn)
-        fn = click.option(
+            )(cmd)
+        cmd = click.option(
             "--include-hidden-nodes", is_flag=True, help="Consider hidden nodes as well"
-        )(fn)
-        fn = click.argument("node_name", required=node_required, shell_complete=completion.nodes)(
-            fn
+        )(cmd)
+        cmd = click.argument("node_name", required=node_required, shell_complete=completion.nodes)(
+            cmd
         )
-        return strategy_options()(fn)
+        decorated: F = strategy_options()(cmd)
+        return decorated
 
     return decorate
 
@@ -91,28 +124,49 @@ class GreedyOption(click.Option):
         )
 
 
-def connect(
-    session: CliSession,
-    node_name: str,
-    include_hidden_nodes: bool,
-    timeout: float,
-    service_timeout: float | None,
-) -> Any:
-    """The remote node's parameters, once the node is in the graph (else 'Node not found');
-    each of its service calls waits up to `service_timeout` (None: the library default)."""
-    from ros2lite.graph import node_full_names
-    from ros2lite.parameters.remote import RemoteParameters, absolute_node_name, wait_for_node
+class Remote:
+    """A verb's blocking view of one node's parameter services, through the library's one
+    client; failures become ros2cli's lines."""
 
-    fqn = absolute_node_name(node_name)
-    found = wait_for_node(
-        lambda: node_full_names(session.entities(), include_hidden=True),
-        fqn,
-        include_hidden_nodes,
-        timeout,
-    )
-    if not found:
-        raise CliError("Node not found")
-    return RemoteParameters(session.node(), fqn, service_timeout=service_timeout)
+    def __init__(self, conn: Connection, fqn: str, service_timeout: float | None) -> None:
+        from ros2lite.parameter_client import AsyncParameterClient
+
+        self.conn = conn
+        self.fqn = fqn
+        self.service_timeout = service_timeout
+        self.client = AsyncParameterClient(conn.node(), fqn)
+
+    def call(self, service: str, *args: Any) -> Any:
+        """Wait for `service`, call the client's method of that name with `args`, return the
+        response."""
+        if not self.client.wait_for_services(SERVICE_WAIT, [service]):
+            raise CliError(
+                f"Wait for service timed out waiting for parameter services for node {self.fqn}"
+            )
+        future: Future = getattr(self.client, service)(*args)
+        self.conn.spin_until_future_complete(future, self.service_timeout)
+        if not future.done():
+            why = f"service '{self.fqn}/{service}' did not answer within {self.service_timeout} s"
+        elif future.exception() is not None:
+            why = str(future.exception())
+        else:
+            return future.result()
+        raise CliError(f"Exception while calling service of node '{self.fqn}': {why}")
+
+
+def with_remote(target: Target, body: Callable[[Remote], T]) -> T:
+    """What every single-node verb does: connect, find the node (else 'Node not found'),
+    and run `body` against its parameter services."""
+    from ros2lite.names import absolute_node_name
+
+    assert target.node_name is not None
+    fqn = absolute_node_name(target.node_name)
+    with connect(no_daemon=target.no_daemon, use_sim_time=target.use_sim_time) as conn:
+        if not conn.wait_for_node(
+            fqn, include_hidden=target.include_hidden_nodes, timeout=target.timeout
+        ):
+            raise CliError("Node not found")
+        return body(Remote(conn, fqn, target.service_timeout))
 
 
 def complete_parameter_names(
@@ -130,31 +184,20 @@ def complete_parameter_names(
 
 
 def _remote_parameter_names(ctx: click.Context) -> list[str]:
-    from ros2lite.context import Context
-    from ros2lite.daemon.probe import router_answers
-    from ros2lite.node import Node
-    from ros2lite.parameters.remote import RemoteParameters
-    from ros2lite.transport.config import router_endpoint
+    from ros2lite.connection import Connection
+    from ros2lite.parameter_client import AsyncParameterClient
 
     node_name = ctx.params.get("node_name")
-    router = ctx.find_root().params.get("router")
-    if not node_name or not router_answers(router_endpoint(router), timeout=0.3):
+    if not node_name:
         return []
-    context = Context().init([], router=router)
-    try:
-        node = Node(
-            "_ros2lite_completion",
-            context=context,
-            enable_rosout=False,
-            use_global_arguments=False,
-            start_parameter_services=False,
-        )
-        remote = RemoteParameters(node, node_name, service_timeout=1.0)
-        if not remote.wait_for_services(1.0, ["list_parameters"]):
+    router = ctx.find_root().params.get("router")
+    with Connection(router=router, autostart=False) as conn:
+        client = AsyncParameterClient(conn.node("_ros2lite_completion"), node_name)
+        if not client.wait_for_services(1.0, ["list_parameters"]):
             return []
-        return list(remote.list_parameters().names)
-    finally:
-        context.try_shutdown()
+        future = client.list_parameters()
+        conn.spin_until_future_complete(future, 1.0)
+        return list(future.result().result.names) if future.done() else []
 
 
 def type_name(type_number: int) -> str:

@@ -4,25 +4,22 @@ from __future__ import annotations
 
 import click
 
-from ..common import CliSession
-from .common import complete_parameter_names, connect, node_options
+from .common import Target, complete_parameter_names, node_options, with_remote
 
 
 @click.command("delete")
 @node_options()
 @click.argument("parameter_name", shell_complete=complete_parameter_names)
 def cli(
-    node_name: str,
     parameter_name: str,
-    include_hidden_nodes: bool,
-    timeout: int,
-    service_timeout: float | None,
-    no_daemon: bool,
-    use_sim_time: bool,
+    target: Target,
 ) -> None:
     """Delete parameter."""
-    with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        remote = connect(session, node_name, include_hidden_nodes, timeout, service_timeout)
-        result = remote.delete_parameters([parameter_name])[0]
+    from ros2lite.parameter import Parameter
+
+    result = with_remote(
+        target,
+        lambda r: r.call("set_parameters", [Parameter(parameter_name)]),
+    ).results[0]
     text = "Deleted parameter successfully" if result.successful else "Deleting parameter failed"
     click.echo(f"{text}: {result.reason}" if result.reason else text, err=not result.successful)

@@ -6,26 +6,21 @@ from typing import Any
 
 import click
 
-from ..common import CliSession
-from .common import complete_parameter_names, connect, node_options, type_name
+from .common import Target, complete_parameter_names, node_options, type_name, with_remote
 
 
 @click.command("describe")
 @node_options()
 @click.argument("parameter_names", nargs=-1, required=True, shell_complete=complete_parameter_names)
 def cli(
-    node_name: str,
     parameter_names: tuple[str, ...],
-    include_hidden_nodes: bool,
-    timeout: int,
-    service_timeout: float | None,
-    no_daemon: bool,
-    use_sim_time: bool,
+    target: Target,
 ) -> None:
     """Show descriptive information about declared parameters."""
-    with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        remote = connect(session, node_name, include_hidden_nodes, timeout, service_timeout)
-        descriptors = remote.describe_parameters(list(parameter_names))
+    descriptors = with_remote(
+        target,
+        lambda r: r.call("describe_parameters", list(parameter_names)),
+    ).descriptors
     # as ros2cli: a name the node does not know empties the reply, which prints nothing
     for descriptor in descriptors:
         click.echo("\n".join(render(descriptor)))

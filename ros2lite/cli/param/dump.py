@@ -6,9 +6,8 @@ from pathlib import Path
 
 import click
 
-from ..common import CliSession
 from ..errors import CliError
-from .common import connect, node_options
+from .common import Remote, Target, node_options, with_remote
 
 
 @click.command("dump")
@@ -21,26 +20,30 @@ from .common import connect, node_options
     "instead of printing it",
 )
 def cli(
-    node_name: str,
     output_dir: Path | None,
-    include_hidden_nodes: bool,
-    timeout: int,
-    service_timeout: float | None,
-    no_daemon: bool,
-    use_sim_time: bool,
+    target: Target,
 ) -> None:
     """Show all of the parameters of a node in a YAML file format."""
     from ros2lite.parameters.files import dump_file_name
 
-    with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        remote = connect(session, node_name, include_hidden_nodes, timeout, service_timeout)
-        text = remote.dump_yaml()
+    fqn, text = with_remote(target, dump)
     if output_dir is None:
         click.echo(text)  # yaml's text ends with a newline: a blank line follows, as ros2cli
         return
-    path = output_dir / dump_file_name(remote.fqn)
+    path = output_dir / dump_file_name(fqn)
     try:
         output_dir.mkdir(parents=True, exist_ok=True)
         path.write_text(text, encoding="utf-8")
     except OSError as e:
         raise CliError(f"Couldn't write '{path}': {e.strerror or e}") from None
+
+
+def dump(remote: Remote) -> tuple[str, str]:
+    """(node name, its parameters as a parameters file), as ros2cli dumps them."""
+    from ros2lite.parameter import parameter_value_to_python
+    from ros2lite.parameters.files import dump_yaml
+
+    names = sorted(remote.call("list_parameters").result.names)
+    values = remote.call("get_parameters", names).values if names else []
+    python = {n: parameter_value_to_python(v) for n, v in zip(names, values, strict=False)}
+    return remote.fqn, dump_yaml(remote.fqn, python)

@@ -6,9 +6,8 @@ from typing import Any
 
 import click
 
-from ..common import CliSession
 from ..errors import CliError
-from .common import complete_parameter_names, connect, node_options
+from .common import Target, complete_parameter_names, node_options, with_remote
 
 # ParameterType number → the label before the value
 LABELS = {
@@ -29,19 +28,12 @@ LABELS = {
 @click.argument("parameter_name", shell_complete=complete_parameter_names)
 @click.option("--hide-type", is_flag=True, help="Hide the type information")
 def cli(
-    node_name: str,
     parameter_name: str,
     hide_type: bool,
-    include_hidden_nodes: bool,
-    timeout: int,
-    service_timeout: float | None,
-    no_daemon: bool,
-    use_sim_time: bool,
+    target: Target,
 ) -> None:
     """Get parameter."""
-    with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        remote = connect(session, node_name, include_hidden_nodes, timeout, service_timeout)
-        values = remote.get_parameters([parameter_name])
+    values = with_remote(target, lambda r: r.call("get_parameters", [parameter_name])).values
     if not values:
         raise CliError("Parameter not set")
     click.echo(render(values[0], hide_type))

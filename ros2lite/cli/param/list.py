@@ -6,9 +6,9 @@ import re
 
 import click
 
-from ..common import CliSession
+from ..common import connect
 from ..errors import CliError
-from .common import GreedyOption, node_options, type_name
+from .common import GreedyOption, Remote, Target, node_options, type_name
 
 
 @click.command("list")
@@ -27,31 +27,24 @@ from .common import GreedyOption, node_options, type_name
 )
 @click.option("--param-type", is_flag=True, help="Print parameter types with parameter names")
 def cli(
-    node_name: str | None,
     filter_regex: str | None,
     param_prefixes: tuple[str, ...],
     param_type: bool,
-    include_hidden_nodes: bool,
-    no_daemon: bool,
-    use_sim_time: bool,
+    target: Target,
 ) -> None:
     """Output a list of available parameters."""
     from ros2lite.graph import node_full_names, service_names_and_types
-    from ros2lite.parameters.remote import (
-        ParameterServiceError,
-        RemoteParameters,
-        absolute_node_name,
-    )
+    from ros2lite.names import absolute_node_name
 
     try:
         pattern = re.compile(filter_regex) if filter_regex is not None else None
     except re.error as e:
         raise CliError(f"Invalid regular expression '{filter_regex}': {e}") from None
-    with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        entities = session.entities()
-        nodes = sorted(set(node_full_names(entities, include_hidden=include_hidden_nodes)))
-        if node_name is not None:
-            wanted = absolute_node_name(node_name)
+    with connect(no_daemon=target.no_daemon, use_sim_time=target.use_sim_time) as conn:
+        entities = conn.entities()
+        nodes = sorted(set(node_full_names(entities, include_hidden=target.include_hidden_nodes)))
+        if target.node_name is not None:
+            wanted = absolute_node_name(target.node_name)
             if wanted not in nodes:
                 raise CliError("Node not found")
             nodes = [wanted]
@@ -59,18 +52,19 @@ def cli(
         for fqn in nodes:
             if f"{fqn}/list_parameters" not in services:
                 continue  # a node without parameter services (e.g. another CLI's)
-            remote = RemoteParameters(session.node(), fqn)
+            remote = Remote(conn, fqn, None)
             try:
-                names = sorted(remote.list_parameters(param_prefixes).names)
+                names = sorted(remote.call("list_parameters", param_prefixes).result.names)
                 if pattern is not None:
                     names = [n for n in names if pattern.match(n)]
                 types = {}
                 if param_type and names:
-                    types = {d.name: type_name(d.type) for d in remote.describe_parameters(names)}
-            except ParameterServiceError as e:
+                    descriptors = remote.call("describe_parameters", names).descriptors
+                    types = {d.name: type_name(d.type) for d in descriptors}
+            except CliError as e:
                 click.echo(str(e), err=True)
                 continue
-            if node_name is None:
+            if target.node_name is None:
                 click.echo(f"{fqn}:")
             for name in names:
                 click.echo(

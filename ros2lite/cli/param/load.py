@@ -3,11 +3,11 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import click
 
-from ..common import CliSession
-from ..errors import CliError
-from .common import connect, node_options
+from .common import Remote, Target, node_options, with_remote
 
 
 @click.command("load")
@@ -19,25 +19,18 @@ from .common import connect, node_options
     help="Do not load parameters in the '/**' namespace into the node",
 )
 def cli(
-    node_name: str,
     parameter_file: str,
     no_use_wildcard: bool,
-    include_hidden_nodes: bool,
-    timeout: int,
-    service_timeout: float | None,
-    no_daemon: bool,
-    use_sim_time: bool,
+    target: Target,
 ) -> None:
     """Load parameter file for a node."""
-    from ros2lite.parameters.files import ParamsFileError
 
-    with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        remote = connect(session, node_name, include_hidden_nodes, timeout, service_timeout)
-        try:
-            results = remote.load_parameter_file(parameter_file, use_wildcard=not no_use_wildcard)
-        except ParamsFileError as e:
-            raise CliError(str(e)) from None
-    for name, result in results:
+    def load(remote: Remote) -> list[tuple[str, Any]]:
+        params = remote.client.file_parameters(parameter_file, not no_use_wildcard)
+        response = remote.call("set_parameters", params)
+        return list(zip([p.name for p in params], response.results, strict=False))
+
+    for name, result in with_remote(target, load):
         text = (
             f"Set parameter {name} successful"
             if result.successful

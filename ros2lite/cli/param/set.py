@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import click
 
-from ..common import CliSession
 from ..errors import CliError
-from .common import connect, node_options
+from .common import Target, node_options, with_remote
 
 
 @click.command("set")
@@ -19,14 +18,9 @@ from .common import connect, node_options
     "Either all parameters are set successfully or none are changed.",
 )
 def cli(
-    node_name: str,
     params_and_values: tuple[str, ...],
     atomic: bool,
-    include_hidden_nodes: bool,
-    timeout: int,
-    service_timeout: float | None,
-    no_daemon: bool,
-    use_sim_time: bool,
+    target: Target,
 ) -> None:
     """Set parameter."""
     from ros2lite.interfaces import get_interface
@@ -40,13 +34,14 @@ def cli(
     pairs = list(zip(params_and_values[::2], params_and_values[1::2], strict=False))
     msg_type = get_interface("rcl_interfaces/msg/Parameter")
     params = [msg_type(name=name, value=get_parameter_value(text)) for name, text in pairs]
-    with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        remote = connect(session, node_name, include_hidden_nodes, timeout, service_timeout)
-        if atomic:
-            outcome = remote.set_parameters_atomically(params)
-            results = None
-        else:
-            results = remote.set_parameters(params)
+    if atomic:
+        outcome = with_remote(
+            target,
+            lambda r: r.call("set_parameters_atomically", params),
+        ).result
+        results = None
+    else:
+        results = with_remote(target, lambda r: r.call("set_parameters", params)).results
     if results is None:
         if outcome.successful:
             click.echo(_message("Set parameters atomically successful", outcome.reason))

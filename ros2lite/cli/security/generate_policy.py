@@ -7,7 +7,7 @@ from pathlib import Path
 
 import click
 
-from ..common import CliSession, strategy_options
+from ..common import connect, strategy_options
 from ..errors import CliError
 
 
@@ -30,8 +30,8 @@ def cli(policy_file_path: Path, use_sim_time: bool, no_daemon: bool) -> None:
         policy = load_policy(policy_file_path) if policy_file_path.is_file() else new_policy()
     except SecurityError as e:
         raise CliError(str(e)) from None
-    with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        nodes = graph_access(session.entities())
+    with connect(no_daemon=no_daemon, use_sim_time=use_sim_time) as conn:
+        nodes = graph_access(conn.entities())
     if not nodes:
         raise CliError('No nodes detected in the ROS graph. No policy file was generated.')
     add_node_access(policy, nodes)

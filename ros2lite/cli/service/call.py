@@ -9,7 +9,7 @@ from typing import Any
 import click
 
 from .. import completion
-from ..common import CliSession, interface_type_name
+from ..common import connect, interface_type_name
 from ..errors import CliError
 
 
@@ -60,8 +60,8 @@ def cli(
     except Exception as e:  # any reason the values do not fit, as ros2cli reports it
         raise CliError(f'Failed to populate field: {e}') from None
     package, _, name = type_name.split('/')
-    with CliSession() as session:
-        node = session.node(f'_ros2lite_requester_{package}_{name}')
+    with connect() as conn:
+        node = conn.node(f'_ros2lite_requester_{package}_{name}')
         client = node.create_client(srv_class, service_name)
         _wait(client, timeout)
         period = None if rate is None else 1.0 / rate
@@ -69,7 +69,7 @@ def cli(
             last_call = time.monotonic()
             click.echo(f'requester: making request: {request!r}\n')
             click.echo(f'response:\n{_call(client, request, timeout)!r}\n')
-            if period is None or not session.context.ok():
+            if period is None or not conn.context.ok():
                 return
             time.sleep(max(0.0, last_call + period - time.monotonic()))
 

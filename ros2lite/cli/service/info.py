@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import CliSession, strategy_options
+from ..common import connect, strategy_options
 from ..errors import CliError
 
 
@@ -15,16 +15,15 @@ from ..errors import CliError
 @click.pass_context
 def cli(ctx: click.Context, service_name: str, no_daemon: bool, use_sim_time: bool) -> None:
     """Print information about a service."""
-    from ros2lite.graph import count, service_names_and_types
+    from ros2lite.graph import EntityKind, count, service_names_and_types
     from ros2lite.names import expand_topic_name
-    from ros2lite.transport.keys import EntityKind
 
     try:
         name = expand_topic_name(service_name, 'ros2lite', '/')
     except ValueError:
         raise CliError(f"Unknown service '{service_name}'") from None
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
+    with connect(no_daemon=no_daemon) as conn:
+        entities = conn.entities()
     types = dict(service_names_and_types(entities, include_hidden=True)).get(name)
     if types is None:
         raise CliError(f"Unknown service '{name}'")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from ..common import CliSession, strategy_options
+from ..common import connect, strategy_options
 from . import hidden_wanted
 
 
@@ -27,8 +27,8 @@ def cli(
     """Output a list of available services."""
     from ros2lite.graph import service_names_and_types
 
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
+    with connect(no_daemon=no_daemon) as conn:
+        entities = conn.entities()
     services = service_names_and_types(entities, hidden_wanted(ctx, include_hidden_services))
     if count_services:
         click.echo(len(services))

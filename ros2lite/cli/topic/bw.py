@@ -4,13 +4,16 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING
 
 import click
 
 from .. import completion
-from ..common import CliSession, strategy_options
-from .echo import resolve_topic, wait_for_type
+from ..common import connect, strategy_options
+from .common import graph_type, monitor
+
+if TYPE_CHECKING:
+    from ros2lite.monitor.stats import BandwidthSummary
 
 DEFAULT_WINDOW_SIZE = 100
 
@@ -24,7 +27,8 @@ def _scaled(bytes_per_s: float) -> Callable[[float], str]:
     return lambda n: f'{n / 1000 / 1000:.2f} MB'
 
 
-def bw_line(s: Any) -> str:
+def bw_line(s: BandwidthSummary) -> str:
+    """ros2cli's two lines: the rate, then the message sizes."""
     fmt = _scaled(s.bytes_per_second)
     return (
         f'{fmt(s.bytes_per_second)}/s from {s.count} messages\n'
@@ -46,17 +50,15 @@ def bw_line(s: Any) -> str:
 @strategy_options(no_daemon=False)
 def cli(topic: str, window: int, use_sim_time: bool) -> None:
     """Display bandwidth used by topic."""
-    from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.monitor.stats import BandwidthStats
     from ros2lite.qos import qos_profile_sensor_data
-    from ros2lite.topic_monitor import MonitoredSubscription
-    from ros2lite.topic_stats import BandwidthStats
 
     stats = BandwidthStats(window)
-    with CliSession(use_sim_time=use_sim_time) as session:
-        node = session.node()
-        full_name = resolve_topic(node, topic)
-        type_name = wait_for_type(session, topic, full_name)
-        clock = node.get_clock()
+    with connect(use_sim_time=use_sim_time) as conn:
+        watch = monitor(conn, topic)
+        type_name = graph_type(watch, wait=True)
+        assert type_name is not None
+        clock = conn.node().get_clock()
 
         def now_ns() -> int:
             t: int = clock.now().nanoseconds if use_sim_time else time.time_ns()
@@ -71,11 +73,7 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
                 click.echo(bw_line(summary))
 
         # sizes are taken as samples arrive, so none is missed and none is decoded
-        MonitoredSubscription(
-            node, type_name, full_name, None, qos_profile_sensor_data, on_arrival=on_arrival
-        )
+        watch.on_arrival(type_name, qos_profile_sensor_data, on_arrival)
         click.echo(f'Subscribed to [{topic}]')
-        node.create_timer(1.0, report)
-        executor = SingleThreadedExecutor(context=session.context)
-        executor.add_node(node)
-        executor.spin()
+        conn.node().create_timer(1.0, report)
+        conn.spin()

@@ -2,19 +2,23 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
 from .. import completion
-from ..common import CliSession, strategy_options
+from ..common import connect, strategy_options
 from ..errors import CliError
-from .echo import resolve_topic, wait_for_type
+from .common import graph_type, monitor
+
+if TYPE_CHECKING:
+    from ros2lite.monitor.stats import IntervalSummary
 
 DEFAULT_WINDOW_SIZE = 10000
 
 
-def delay_line(s: Any) -> str:
+def delay_line(s: IntervalSummary) -> str:
+    """ros2cli's two lines for the delays in the window."""
     return (
         f'average delay: {s.mean * 1e-9:.3f}\n\tmin: {s.min * 1e-9:.3f}s '
         f'max: {s.max * 1e-9:.3f}s std dev: {s.std_dev * 1e-9:.5f}s window: {s.count}'
@@ -34,19 +38,18 @@ def delay_line(s: Any) -> str:
 @strategy_options(no_daemon=False)
 def cli(topic: str, window: int, use_sim_time: bool) -> None:
     """Display delay of topic from timestamp in header."""
-    from ros2lite.executors import SingleThreadedExecutor
     from ros2lite.interfaces import deserialize, get_interface
+    from ros2lite.monitor.stats import DelayStats
     from ros2lite.qos import qos_profile_sensor_data
-    from ros2lite.topic_stats import DelayStats
 
     stats = DelayStats(window)
-    with CliSession(use_sim_time=use_sim_time) as session:
-        node = session.node()
-        full_name = resolve_topic(node, topic)
-        type_name = wait_for_type(session, topic, full_name)
+    with connect(use_sim_time=use_sim_time) as conn:
+        watch = monitor(conn, topic)
+        type_name = graph_type(watch, wait=True)
+        assert type_name is not None
         if 'header' not in get_interface(type_name).get_fields_and_field_types():
             raise CliError('msg does not have header')
-        clock = node.get_clock()
+        clock = conn.node().get_clock()
 
         def on_sample(data: bytes, info: Any) -> None:
             stamp = deserialize(type_name, data).header.stamp
@@ -60,8 +63,6 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
             summary = stats.summary()
             click.echo('no new messages' if summary is None else delay_line(summary))
 
-        node.create_subscription(type_name, full_name, on_sample, qos_profile_sensor_data, raw=True)
-        node.create_timer(1.0, report)
-        executor = SingleThreadedExecutor(context=session.context)
-        executor.add_node(node)
-        executor.spin()
+        watch.on_sample(type_name, qos_profile_sensor_data, on_sample)
+        conn.node().create_timer(1.0, report)
+        conn.spin()

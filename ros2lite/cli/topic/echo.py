@@ -3,104 +3,22 @@
 from __future__ import annotations
 
 import sys
-import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
 from .. import completion
-from ..common import CliSession, explicit_qos, qos_from_options, qos_options, strategy_options
+from ..common import connect, explicit_qos, qos_from_options, qos_options, strategy_options
 from ..errors import CliError
+from .common import compile_filter, graph_type, message_type_name, monitor
+
+if TYPE_CHECKING:
+    from ros2lite.monitor.topic import TopicMonitor
+    from ros2lite.qos import QoSProfile
 
 DEFAULT_TRUNCATE_LENGTH = 128
 CLEAR_SCREEN = '\x1b[H\x1b[2J'
-
-
-# -- helpers shared by echo, hz, bw and delay ---------------------------------------------------
-
-
-def resolve_topic(node: Any, topic: str) -> str:
-    """The fully qualified name of `topic` as the CLI node sees it; bad names are errors."""
-    try:
-        name: str = node.resolve_topic_name(topic)
-    except ValueError as e:
-        raise CliError(str(e)) from None
-    return name
-
-
-def graph_type(session: CliSession, topic: str, full_name: str) -> str | None:
-    """The one type the graph knows for a topic (None if no endpoint uses it yet)."""
-    from ros2lite.topic_monitor import topic_types
-
-    types = topic_types(session.entities(), full_name)
-    if len(types) > 1:
-        raise CliError(
-            f"Cannot echo topic '{topic}', as it contains more than one type: [{', '.join(types)}]"
-        )
-    return types[0] if types else None
-
-
-def wait_for_type(session: CliSession, topic: str, full_name: str) -> str:
-    """Block until some endpoint announces the topic, warning once, as ros2cli does."""
-    found = graph_type(session, topic, full_name)
-    if found is None:
-        click.echo(f'WARNING: topic [{topic}] does not appear to be published yet')
-        while found is None:
-            time.sleep(0.1)
-            found = graph_type(session, topic, full_name)
-    return found
-
-
-def message_type_name(name: str) -> str:
-    """Validate a user-given message type ('pkg/msg/Name' or 'pkg/Name')."""
-    from ros2lite.interfaces import InterfaceError, get_interface
-    from ros2lite.interfaces.registry import normalize_name
-
-    try:
-        full = normalize_name(name)
-        if full.split('/')[1] != 'msg':
-            raise ValueError(name)
-        get_interface(full)
-    except (InterfaceError, ValueError, LookupError):
-        raise CliError('The passed message type is invalid') from None
-    return full
-
-
-def compile_filter(expr: str | None) -> Callable[[Any], Any] | None:
-    """`--filter EXPR` as a function of the message `m` (Python builtins available)."""
-    if not expr:
-        return None
-    try:
-        code = compile(expr, '<filter>', 'eval')
-    except SyntaxError as e:
-        raise CliError(f"Invalid filter expression '{expr}': {e.msg}") from None
-
-    def check(m: Any) -> Any:
-        return eval(code, {'__builtins__': __builtins__}, {'m': m})
-
-    return check
-
-
-def spin(
-    session: CliSession,
-    node: Any,
-    done: Callable[[], bool] | None = None,
-    deadline: float | None = None,
-) -> None:
-    """Run the node's callbacks until `done()` holds or the monotonic `deadline` passes."""
-    from ros2lite.executors import SingleThreadedExecutor
-
-    executor = SingleThreadedExecutor(context=session.context)
-    executor.add_node(node)
-    while session.context.ok() and not (done is not None and done()):
-        if deadline is None:
-            executor.spin_once(0.5)
-            continue
-        remaining = deadline - time.monotonic()
-        if remaining <= 0:
-            return
-        executor.spin_once(min(remaining, 0.5))
 
 
 # -- echo -----------------------------------------------------------------------------------------
@@ -287,22 +205,20 @@ def cli(
         if not fields:
             raise CliError(f"Invalid field value '{field}'")
     filter_fn = compile_filter(filter_expr)
-    deadline = None if timeout is None else time.monotonic() + timeout
-    with CliSession(no_daemon=no_daemon, use_sim_time=use_sim_time) as session:
-        node = session.node(node_name)
-        full_name = resolve_topic(node, topic_name)
-        profile = choose_qos(session, full_name, qos)
+    with connect(no_daemon=no_daemon, use_sim_time=use_sim_time) as conn:
+        watch = monitor(conn, topic_name, node_name)
+        profile = choose_qos(watch, qos)
         if message_type is None:
-            type_name = graph_type(session, topic_name, full_name)
+            type_name = graph_type(watch)
             if type_name is None:
                 click.echo(f'WARNING: topic [{topic_name}] does not appear to be published yet')
                 raise CliError('Could not determine the type for the passed topic')
         else:
             type_name = message_type_name(message_type)
-            warn_type_mismatch(session, full_name, type_name)
+            warn_type_mismatch(watch, type_name)
         lost = None
         if not no_lost_messages:
-            from ros2lite.topic_stats import LostMessageCounter
+            from ros2lite.monitor.stats import LostMessageCounter
 
             lost = LostMessageCounter()
         printer = Printer(
@@ -321,60 +237,44 @@ def cli(
             lost=lost,
         )
         if lost is not None:
-            from ros2lite.topic_monitor import MonitoredSubscription
-
             counter = lost
-            MonitoredSubscription(
-                node,
+            watch.on_arrival(
                 type_name,
-                full_name,
-                printer,
                 profile,
-                on_arrival=lambda _n, att, _t: counter.observe_attachment(att),
+                lambda _n, att, _t: counter.observe_attachment(att),
+                callback=printer,
             )
         else:
-            node.create_subscription(type_name, full_name, printer, profile, raw=True)
-        spin(session, node, lambda: printer.done, deadline)
+            watch.on_sample(type_name, profile, printer)
+        conn.spin_until(lambda: printer.done, timeout)
 
 
-def warn_type_mismatch(session: CliSession, full_name: str, type_name: str) -> None:
-    """Say at once when no publisher uses the asked type (or its hash): the data key holds
-    both, so such a subscription would wait forever in silence."""
-    from ros2lite.graph import endpoints_by_topic
-    from ros2lite.interfaces import type_hash
-    from ros2lite.transport.keys import EntityKind
-
-    pubs = endpoints_by_topic(session.entities(), full_name, EntityKind.PUBLISHER)
-    ours = type_hash(type_name)
-    if not pubs or any(p.topic_type == type_name and p.topic_type_hash == ours for p in pubs):
+def warn_type_mismatch(watch: TopicMonitor, type_name: str) -> None:
+    """Say at once when no publisher uses the asked type (or its hash): such a subscription
+    would wait forever in silence."""
+    mismatch = watch.type_mismatch(type_name)
+    if mismatch is None:
         return
-    names = sorted({p.topic_type for p in pubs})
-    if type_name in names:
-        hashes = sorted({p.topic_type_hash for p in pubs if p.topic_type == type_name})
+    if mismatch.same_name:
         why = (
-            f'as {type_name} with type hash {", ".join(hashes)}, not {ours} (another '
-            'definition of the type)'
+            f'as {type_name} with type hash {", ".join(mismatch.published_hashes)}, not '
+            f'{mismatch.type_hash} (another definition of the type)'
         )
     else:
-        why = f'as {", ".join(names)}, not {type_name}'
+        why = f'as {", ".join(mismatch.published_types)}, not {type_name}'
     click.echo(
-        f"WARNING: topic '{full_name}' is published {why}; nothing will arrive until a "
+        f"WARNING: topic '{watch.topic}' is published {why}; nothing will arrive until a "
         f'matching publisher appears',
         err=True,
     )
 
 
-def choose_qos(session: CliSession, full_name: str, options: dict[str, Any]) -> Any:
+def choose_qos(watch: TopicMonitor, options: dict[str, Any]) -> QoSProfile:
     """The `--qos-*` profile, or the preset adapted to what every publisher offers."""
     profile = qos_from_options(**options)
     if explicit_qos(**options):
         return profile
-    from ros2lite.graph import endpoints_by_topic
-    from ros2lite.topic_monitor import match_publishers_qos
-    from ros2lite.transport.keys import EntityKind
-
-    pubs = endpoints_by_topic(session.entities(), full_name, EntityKind.PUBLISHER)
-    matched = match_publishers_qos(profile, [p.qos_profile for p in pubs])
+    matched = watch.matched_qos(profile)
     if matched.reliability_fell_back:
         click.echo(
             'Some, but not all, publishers are offering QoSReliabilityPolicy.RELIABLE. '

@@ -1,37 +1,41 @@
 """`topic hz`: receive rate of one or more topics, counted on raw samples.
 
 Samples are never decoded unless `--filter` needs the message: each one only adds its arrival
-time, taken on the Zenoh thread as it comes in (`topic_monitor.MonitoredSubscription`), to a
-`topic_stats.RateStats`. Nothing is queued, so a busy consumer can neither delay the stamps
+time, taken on the Zenoh thread as it comes in (`TopicMonitor.on_arrival`), to a
+`monitor.stats.RateStats`. Nothing is queued, so a busy consumer can neither delay the stamps
 nor drop samples, and the rate stays exact at 10 kHz.
 """
 
 from __future__ import annotations
 
-import os
-import sys
-import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
-from .. import completion
-from ..common import CliSession, strategy_options
-from .echo import compile_filter, resolve_topic, wait_for_type
+from .. import completion, render
+from ..common import connect, strategy_options
+from .common import compile_filter, graph_type, monitor
+
+if TYPE_CHECKING:
+    from ros2lite.monitor.stats import IntervalSummary, RateStats
+    from ros2lite.monitor.topic import TopicMonitor
+    from ros2lite.node import Node
 
 DEFAULT_WINDOW_SIZE = 10000
 HEADER = ['topic', 'rate', 'min_delta', 'max_delta', 'std_dev', 'window']
 
 
-def hz_line(s: Any) -> str:
+def hz_line(s: IntervalSummary) -> str:
+    """ros2cli's two lines for one topic."""
     return (
         f'average rate: {s.rate:.3f}\n\tmin: {s.min * 1e-9:.3f}s '
         f'max: {s.max * 1e-9:.3f}s std dev: {s.std_dev * 1e-9:.5f}s window: {s.count}'
     )
 
 
-def table_cells(topic: str, s: Any) -> list[str]:
+def table_cells(topic: str, s: IntervalSummary) -> list[str]:
+    """One row of ros2cli's table for several topics."""
     return [
         topic,
         f'{s.rate:.3f}',
@@ -42,44 +46,7 @@ def table_cells(topic: str, s: Any) -> list[str]:
     ]
 
 
-def ascii_table(rows: list[list[str]]) -> str:
-    """ros2cli's table: centred headers, left-justified cells, 3-space gaps, '=' rule."""
-    widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(HEADER)]
-    head = '   '.join(h.center(w) for h, w in zip(HEADER, widths, strict=True))
-    rule = '=' * (sum(widths) + 3 * (len(widths) - 1))
-    body = '\n'.join('   '.join(c.ljust(w) for c, w in zip(r, widths, strict=True)) for r in rows)
-    return f'{head}\n{rule}\n{body}\n'
-
-
-class RichTable:
-    """The multi-topic table as a live rich table (terminal only, colour allowed)."""
-
-    def __init__(self) -> None:
-        from rich.live import Live
-
-        self._rows: dict[str, list[str]] = {}
-        self._live = Live(auto_refresh=False, transient=False)
-        self._live.start()
-
-    def show(self, rows: list[list[str]]) -> None:
-        from rich.table import Table
-
-        for row in rows:
-            self._rows[row[0]] = row
-        table = Table(*HEADER)
-        for row in self._rows.values():
-            table.add_row(*row)
-        self._live.update(table, refresh=True)
-
-    def close(self) -> None:
-        self._live.stop()
-
-
-def use_rich() -> bool:
-    return sys.stdout.isatty() and 'NO_COLOR' not in os.environ
-
-
-def ros_or_arrival_time(node: Any, wall_time: bool) -> Callable[[int], int]:
+def ros_or_arrival_time(node: Node, wall_time: bool) -> Callable[[int], int]:
     """When a sample counts as received, given its arrival time: that time itself (wall
     clock, which is ROS time too unless sim time is on), or the node's sim time."""
     clock = node.get_clock()
@@ -138,29 +105,33 @@ def cli(
     The rate is measured where the subscription receives samples, so it can differ from the
     publisher's rate when resources or QoS get in the way.
     """
-    from ros2lite.topic_stats import RateStats
+    from ros2lite.monitor.stats import RateStats
 
     filter_fn = compile_filter(filter_expr)
-    with CliSession(use_sim_time=use_sim_time) as session:
-        node = session.node()
-        stamp = ros_or_arrival_time(node, wall_time)
+    with connect(use_sim_time=use_sim_time) as conn:
+        stamp = ros_or_arrival_time(conn.node(), wall_time)
         stats: dict[str, RateStats] = {}
         # Ctrl-C, hz's usual end, leaves with status 2 as in every other verb (ros2cli's)
         for topic in topic_names:
-            full_name = resolve_topic(node, topic)
-            type_name = wait_for_type(session, topic, full_name)
+            watch = monitor(conn, topic)
+            type_name = graph_type(watch, wait=True)
+            assert type_name is not None
             stats[topic] = rate = RateStats(window_size)
-            _subscribe(node, type_name, full_name, rate, stamp, filter_fn)
+            _subscribe(watch, type_name, rate, stamp, filter_fn)
             if len(topic_names) > 1:
                 click.echo(f'Subscribed to [{topic}]')
-        _report_every_second(session, node, stats)
+        report = _Report(stats)
+        try:
+            conn.every(1.0, report)
+            conn.spin()
+        finally:
+            report.close()
 
 
 def _subscribe(
-    node: Any,
+    watch: TopicMonitor,
     type_name: str,
-    topic: str,
-    rate: Any,
+    rate: RateStats,
     stamp: Callable[[int], int],
     filter_fn: Callable[[Any], Any] | None,
 ) -> None:
@@ -173,15 +144,8 @@ def _subscribe(
             click.echo('time has reset, resetting counters')
 
     if filter_fn is None:
-        from ros2lite.topic_monitor import MonitoredSubscription
-
-        MonitoredSubscription(
-            node,
-            type_name,
-            topic,
-            None,
-            qos_profile_sensor_data,
-            on_arrival=lambda _size, _att, arrived: record(arrived),
+        watch.on_arrival(
+            type_name, qos_profile_sensor_data, lambda _size, _att, arrived: record(arrived)
         )
         return
     from ros2lite.interfaces import deserialize
@@ -190,39 +154,34 @@ def _subscribe(
         if filter_fn(deserialize(type_name, data)):
             record(info.received_timestamp)
 
-    node.create_subscription(type_name, topic, count_matching, qos_profile_sensor_data, raw=True)
+    watch.on_sample(type_name, qos_profile_sensor_data, count_matching)
 
 
-def _report_every_second(session: CliSession, node: Any, stats: dict[str, Any]) -> None:
-    from ros2lite.executors import SingleThreadedExecutor
+class _Report:
+    """Once a second: one topic's summary line, or a table of several (live on a terminal)."""
 
-    executor = SingleThreadedExecutor(context=session.context)
-    executor.add_node(node)
-    fancy = RichTable() if len(stats) > 1 and use_rich() else None
-    try:
-        next_report = time.monotonic() + 1.0
-        while session.context.ok():
-            remaining = next_report - time.monotonic()
-            if remaining > 0:
-                executor.spin_once(remaining)
-                continue
-            next_report = max(next_report + 1.0, time.monotonic() + 0.5)
-            if len(stats) == 1:
-                summary = next(iter(stats.values())).summary()
-                if summary is not None:
-                    click.echo(hz_line(summary))
-                continue
-            rows = []
-            for topic, rate in stats.items():
-                summary = rate.summary()
-                if summary is not None:
-                    rows.append(table_cells(topic, summary))
-            if not rows:
-                continue
-            if fancy is not None:
-                fancy.show(rows)
-            else:
-                click.echo(ascii_table(rows))
-    finally:
-        if fancy is not None:
-            fancy.close()
+    def __init__(self, stats: dict[str, RateStats]) -> None:
+        self.stats = stats
+        self.live = render.LiveTable(HEADER) if len(stats) > 1 and render.fancy() else None
+
+    def __call__(self) -> None:
+        if len(self.stats) == 1:
+            summary = next(iter(self.stats.values())).summary()
+            if summary is not None:
+                click.echo(hz_line(summary))
+            return
+        rows = []
+        for topic, rate in self.stats.items():
+            summary = rate.summary()
+            if summary is not None:
+                rows.append(table_cells(topic, summary))
+        if not rows:
+            return
+        if self.live is not None:
+            self.live.show(rows)
+        else:
+            click.echo(render.ascii_table(HEADER, rows))
+
+    def close(self) -> None:
+        if self.live is not None:
+            self.live.close()

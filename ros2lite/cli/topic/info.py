@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import CliSession, strategy_options
+from ..common import connect, strategy_options
 from ..errors import CliError
 
 
@@ -21,20 +21,20 @@ from ..errors import CliError
 def cli(topic_name: str, verbose: bool, no_daemon: bool, use_sim_time: bool) -> None:
     """Print information about a topic."""
     from ros2lite.graph import (
+        EntityKind,
         count,
         endpoints_by_topic,
         format_endpoint_info,
         topic_names_and_types,
     )
     from ros2lite.names import expand_topic_name
-    from ros2lite.transport.keys import EntityKind
 
     try:
         name = expand_topic_name(topic_name, 'ros2lite', '/')
     except ValueError as e:
         raise CliError(str(e)) from None
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
+    with connect(no_daemon=no_daemon) as conn:
+        entities = conn.entities()
     # hidden topics are always looked up here, as in ros2cli
     types = dict(topic_names_and_types(entities, include_hidden=True)).get(name)
     if types is None:

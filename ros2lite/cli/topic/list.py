@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from ..common import CliSession, include_hidden, strategy_options
+from ..common import connect, include_hidden, strategy_options
 
 
 def _section(rows: list[tuple[str, list[str], int]], publishers: bool) -> str:
@@ -52,8 +52,8 @@ def cli(
     """Output a list of available topics."""
     from ros2lite.graph import topic_counts, topic_names_and_types
 
-    with CliSession(no_daemon=no_daemon) as session:
-        entities = session.entities()
+    with connect(no_daemon=no_daemon) as conn:
+        entities = conn.entities()
     topics = topic_names_and_types(entities, include_hidden(ctx, include_hidden_topics))
     if count_topics:
         click.echo(len(topics))

@@ -4,14 +4,18 @@ from __future__ import annotations
 
 import sys
 import time
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
 from .. import completion
-from ..common import CliSession, qos_from_options, qos_options, strategy_options
+from ..common import connect, qos_from_options, qos_options, strategy_options
 from ..errors import CliError
-from .echo import message_type_name
+from .common import message_type_name
+
+if TYPE_CHECKING:
+    from ros2lite.connection import Connection
+    from ros2lite.qos import QoSProfile
 
 WAIT_STEP = 0.1  # seconds between subscription-count checks while waiting
 
@@ -105,11 +109,10 @@ def cli(
         wait_matching_subscriptions if wait_matching_subscriptions is not None else int(times != 0)
     )
     profile = qos_from_options(**qos)
-    with CliSession(use_sim_time=use_sim_time) as session:
-        node = session.node(node_name)
+    with connect(use_sim_time=use_sim_time) as conn:
+        conn.node(node_name)
         publish_loop(
-            session,
-            node,
+            conn,
             topic_name,
             message_type,
             '{}' if values is None else values,
@@ -136,8 +139,7 @@ def parse_values(values: str) -> dict[str, Any]:
 
 
 def publish_loop(
-    session: CliSession,
-    node: Any,
+    conn: Connection,
     topic: str,
     message_type: str,
     values: str,
@@ -146,7 +148,7 @@ def publish_loop(
     times: int,
     wait_for: int,
     max_wait: float | None,
-    profile: Any,
+    profile: QoSProfile,
     keep_alive: float,
 ) -> None:
     """ros2cli's order: check the type and YAML, wait for subscribers, fill, publish."""
@@ -154,6 +156,7 @@ def publish_loop(
 
     type_name = message_type_name(message_type)
     fields = parse_values(values)
+    node = conn.node()
     pub = node.create_publisher(type_name, topic, profile)
     if wait_for == 0 and max_wait is not None:
         raise CliError(
@@ -199,12 +202,7 @@ def publish_loop(
 
     publish_one()
     if times != 1:
-        from ros2lite.executors import SingleThreadedExecutor
-
-        executor = SingleThreadedExecutor(context=session.context)
-        executor.add_node(node)
         timer = node.create_timer(period, publish_one)
-        while session.context.ok() and (times == 0 or count < times):
-            executor.spin_once(None)
+        conn.spin_until(lambda: times != 0 and count >= times)
         node.destroy_timer(timer)
     time.sleep(keep_alive)  # let the last samples reach the wire before the session closes

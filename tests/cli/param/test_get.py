@@ -45,7 +45,7 @@ def test_node_without_parameter_services(
     from ros2lite.node import Node
 
     Node("no_param_services", context=ros_context, start_parameter_services=False)
-    monkeypatch.setattr("ros2lite.parameters.remote.SERVICE_WAIT", 0.3)  # ros2cli waits 5 s
+    monkeypatch.setattr("ros2lite.cli.param.common.SERVICE_WAIT", 0.3)  # ros2cli waits 5 s
     result = run("param", "get", "/no_param_services", "x")
     assert (result.code, result.out) == (1, "")
     assert result.err == (

@@ -7,7 +7,7 @@ from typing import Any
 
 from ros2lite.cli.topic.bw import bw_line
 from ros2lite.interfaces import get_interface, serialize
-from ros2lite.topic_stats import BandwidthSummary
+from ros2lite.monitor.stats import BandwidthSummary
 
 from ...conftest import wait_until
 from .conftest import Watch

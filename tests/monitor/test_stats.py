@@ -5,9 +5,7 @@ from __future__ import annotations
 import math
 import statistics
 
-from ros2lite.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
-from ros2lite.topic_monitor import match_publishers_qos
-from ros2lite.topic_stats import (
+from ros2lite.monitor.stats import (
     BandwidthStats,
     DelayStats,
     LostMessageCounter,
@@ -92,23 +90,3 @@ def test_lost_messages_per_publisher() -> None:
     assert lost.drain() == [(2, 2), (2, 4)]
     assert lost.drain() == []
     lost.observe_attachment(b'not an attachment')  # ignored, not fatal
-
-
-def test_qos_matching_publishers() -> None:
-    rel = QoSProfile()
-    be = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT)
-    tl = QoSProfile(durability=DurabilityPolicy.TRANSIENT_LOCAL)
-    base = qos_profile_sensor_data
-    assert match_publishers_qos(base, []).profile == base
-    all_rel = match_publishers_qos(base, [rel, tl])
-    assert all_rel.profile.reliability == ReliabilityPolicy.RELIABLE
-    assert all_rel.profile.durability == DurabilityPolicy.VOLATILE
-    assert (all_rel.reliability_fell_back, all_rel.durability_fell_back) == (False, True)
-    mixed = match_publishers_qos(base, [rel, be])
-    assert mixed.profile.reliability == ReliabilityPolicy.BEST_EFFORT
-    assert (mixed.reliability_fell_back, mixed.durability_fell_back) == (True, False)
-    latched = match_publishers_qos(base, [tl])
-    assert latched.profile.durability == DurabilityPolicy.TRANSIENT_LOCAL
-    assert latched.profile.depth == base.depth
-    unknown = match_publishers_qos(base, [None])
-    assert unknown.profile.reliability == ReliabilityPolicy.BEST_EFFORT

@@ -9,14 +9,13 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass
 from typing import Any
 
-from ros2lite.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, resolve_best_available
+from ros2lite.graph import Entity, EntityKind
+from ros2lite.qos import QoSProfile
 from ros2lite.subscription import Subscription
-from ros2lite.transport.keys import Entity, EntityKind
 
-__all__ = ['MatchedQoS', 'MonitoredSubscription', 'match_publishers_qos', 'topic_types']
+__all__ = ['MonitoredSubscription', 'topic_types']
 
 
 def topic_types(entities: Iterable[Entity], topic: str) -> list[str]:
@@ -30,46 +29,6 @@ def topic_types(entities: Iterable[Entity], topic: str) -> list[str]:
             and e.type_name
         }
     )
-
-
-@dataclass(frozen=True)
-class MatchedQoS:
-    """The profile to subscribe with, and which policies had to be weakened."""
-
-    profile: QoSProfile
-    reliability_fell_back: bool  # some but not all publishers are RELIABLE
-    durability_fell_back: bool  # some but not all publishers are TRANSIENT_LOCAL
-
-
-def match_publishers_qos(
-    profile: QoSProfile, publishers: Iterable[QoSProfile | None]
-) -> MatchedQoS:
-    """Ask for RELIABLE / TRANSIENT_LOCAL only when every publisher offers it.
-
-    That is rmw's BEST_AVAILABLE rule for a subscription (transport.qos owns it): the
-    strongest request still compatible with all of them, and TRANSIENT_LOCAL is what
-    receives a latched publisher's history. A publisher whose QoS is unknown counts as the
-    weakest. With no publishers the profile is returned unchanged.
-    """
-    offered = [q if q is not None else _WEAKEST for q in publishers]
-    if not offered:
-        return MatchedQoS(profile, False, False)
-    chosen = resolve_best_available(
-        profile.replace(
-            reliability=ReliabilityPolicy.BEST_AVAILABLE, durability=DurabilityPolicy.BEST_AVAILABLE
-        ),
-        offered,
-        for_publisher=False,
-    )
-    n = len(offered)
-    reliable = sum(q.reliability == ReliabilityPolicy.RELIABLE for q in offered)
-    latched = sum(q.durability == DurabilityPolicy.TRANSIENT_LOCAL for q in offered)
-    return MatchedQoS(chosen, 0 < reliable < n, 0 < latched < n)
-
-
-_WEAKEST = QoSProfile(
-    reliability=ReliabilityPolicy.BEST_EFFORT, durability=DurabilityPolicy.VOLATILE
-)
 
 
 class MonitoredSubscription(Subscription):

@@ -10,11 +10,12 @@ printer reads the results, hence the locks.
 from __future__ import annotations
 
 import math
-import struct
 import threading
 from collections import deque
 from dataclasses import dataclass
 from typing import Any
+
+from ros2lite.transport.attachment import unpack_attachment
 
 __all__ = [
     'BandwidthStats',
@@ -195,9 +196,6 @@ class DelayStats:
         return summarize(delays)
 
 
-_SEQ_GID = struct.Struct('<q8xB16s')
-
-
 class LostMessageCounter:
     """Sequence-number gaps per publisher GID, as rmw_zenoh reports 'message lost' events.
 
@@ -223,19 +221,10 @@ class LostMessageCounter:
                 self._events.append((jump - 1, self.total))
 
     def observe_attachment(self, attachment: bytes) -> None:
-        """Parse rmw_zenoh's 33-byte attachment (other layouts are decoded the slow way)."""
-        if len(attachment) == 33:
-            seq, size, gid = _SEQ_GID.unpack(attachment)
-            if size == 16:
-                self.observe(seq, gid)
-                return
-        from ros2lite.transport.attachment import decode_attachment
-
-        try:
-            a = decode_attachment(attachment)
-        except ValueError:
-            return
-        self.observe(a.sequence_number, a.source_gid)
+        """Count the sample whose rmw_zenoh attachment this is (unreadable ones are not)."""
+        fields = unpack_attachment(attachment)
+        if fields is not None:
+            self.observe(fields[0], fields[2])
 
     def drain(self) -> list[tuple[int, int]]:
         with self._lock:

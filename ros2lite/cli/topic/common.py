@@ -1,0 +1,71 @@
+"""What the topic verbs share: parsing a message type and a `--filter`, and watching a topic
+through the library's TopicMonitor with ros2cli's words around it."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+import click
+
+from ..errors import CliError
+
+if TYPE_CHECKING:
+    from ros2lite.connection import Connection
+    from ros2lite.monitor.topic import TopicMonitor
+
+
+def message_type_name(name: str) -> str:
+    """Validate a user-given message type ('pkg/msg/Name' or 'pkg/Name')."""
+    from ros2lite.interfaces import InterfaceError, get_interface
+    from ros2lite.interfaces.registry import normalize_name
+
+    try:
+        full = normalize_name(name)
+        if full.split('/')[1] != 'msg':
+            raise ValueError(name)
+        get_interface(full)
+    except (InterfaceError, ValueError, LookupError):
+        raise CliError('The passed message type is invalid') from None
+    return full
+
+
+def compile_filter(expr: str | None) -> Callable[[Any], Any] | None:
+    """`--filter EXPR` as a function of the message `m` (Python builtins available), as
+    ros2cli has it: the user's own expression, run in this process."""
+    if not expr:
+        return None
+    try:
+        code = compile(expr, '<filter>', 'eval')
+    except SyntaxError as e:
+        raise CliError(f"Invalid filter expression '{expr}': {e.msg}") from None
+
+    def check(m: Any) -> Any:
+        return eval(code, {'__builtins__': __builtins__}, {'m': m})
+
+    return check
+
+
+def monitor(conn: Connection, topic: str, node_name: str | None = None) -> TopicMonitor:
+    """A monitor of `topic` from this run's hidden node."""
+    from ros2lite.monitor.topic import TopicMonitor
+
+    return TopicMonitor(conn.node(node_name), topic, conn.entities)
+
+
+def graph_type(watch: TopicMonitor, *, wait: bool = False) -> str | None:
+    """The topic's one type in the graph (waiting for it with ros2cli's warning if asked),
+    or None; ros2cli's error when it has several."""
+    from ros2lite.monitor.topic import MultipleTypesError
+
+    try:
+        if not wait:
+            return watch.graph_type()
+        return watch.wait_for_type(
+            lambda: click.echo(f'WARNING: topic [{watch.name}] does not appear to be published yet')
+        )
+    except MultipleTypesError as e:
+        raise CliError(
+            f"Cannot echo topic '{watch.name}', as it contains more than one type: "
+            f'[{", ".join(e.types)}]'
+        ) from None

@@ -1,0 +1,151 @@
+"""A tool's connection to the graph: what a CLI verb, a completion or a script inspecting the
+graph needs, in one object.
+
+It opens a client session (the daemon started on demand, see
+:func:`ros2lite.daemon.connect.connect`), answers graph questions from one complete
+liveliness query, makes a hidden node for the tool's publishers and subscriptions, and owns
+the executor that runs that node's callbacks, so no caller builds or spins executors itself::
+
+    with Connection() as conn:
+        node = conn.node()
+        node.create_subscription(String, '/chatter', print, 10)
+        conn.spin_until(timeout=5.0)
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable, Iterable
+from types import TracebackType
+
+from ros2lite.context import Context
+from ros2lite.executors import SingleThreadedExecutor
+from ros2lite.graph import Entity
+from ros2lite.names import is_hidden_name
+from ros2lite.node import Node
+from ros2lite.task import Future
+from ros2lite.timer import Timer
+
+__all__ = ['Connection', 'wait_for_name']
+
+HIDDEN_NODE_PREFIX = '_ros2lite_'
+
+
+class Connection:
+    """One tool run's place on the graph: session, graph snapshots, hidden node, executor."""
+
+    def __init__(
+        self,
+        *,
+        router: str | None = None,
+        autostart: bool = True,
+        use_sim_time: bool = False,
+    ) -> None:
+        self.router = router
+        self.autostart = autostart
+        self.use_sim_time = use_sim_time
+        self.context = Context()
+        self._node: Node | None = None
+        self._executor: SingleThreadedExecutor | None = None
+
+    def open(self) -> Connection:
+        """Connect (see the module doc) unless already connected; raises a Ros2liteError
+        saying why it could not."""
+        if self.context.session is None:
+            self.context.init([], router=self.router, short_lived=True, autostart=self.autostart)
+        return self
+
+    def close(self) -> None:
+        """Leave the graph: the node's endpoints and the session go."""
+        if self._executor is not None:
+            self._executor.shutdown()
+            self._executor = None
+        self.context.try_shutdown()
+
+    def __enter__(self) -> Connection:
+        return self.open()
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        self.close()
+
+    # -- the graph ---------------------------------------------------------------------------
+    def entities(self, timeout: float = 5.0) -> list[Entity]:
+        """Every entity in the domain, from one complete query."""
+        from ros2lite.graph import snapshot
+
+        return snapshot(self.context.require(), self.context.domain_id, timeout)
+
+    def wait_for_node(self, fqn: str, *, include_hidden: bool, timeout: float) -> bool:
+        """Whether the node `fqn` is (or appears within `timeout` s) in the graph; a hidden
+        node counts only with `include_hidden`, as ros2cli's node lookups do."""
+        from ros2lite.graph import node_full_names
+
+        if is_hidden_name(fqn) and not include_hidden:
+            return False
+        return wait_for_name(
+            lambda: node_full_names(self.entities(), include_hidden=True), fqn, timeout
+        )
+
+    # -- the tool's own node -----------------------------------------------------------------
+    def node(self, name: str | None = None) -> Node:
+        """The hidden node this run uses for its publishers, subscriptions and clients
+        (made on first use; `name` only counts then)."""
+        if self._node is None:
+            from ros2lite.parameter import Parameter
+
+            self._node = Node(
+                name or f'{HIDDEN_NODE_PREFIX}{os.getpid()}',
+                context=self.context,
+                enable_rosout=False,
+                use_global_arguments=False,
+                start_parameter_services=False,
+                parameter_overrides=[Parameter('use_sim_time', value=self.use_sim_time)],
+            )
+        return self._node
+
+    @property
+    def executor(self) -> SingleThreadedExecutor:
+        """The executor that runs the node's callbacks (on the thread that spins it)."""
+        if self._executor is None:
+            self._executor = SingleThreadedExecutor(context=self.context)
+            self._executor.add_node(self.node())
+        return self._executor
+
+    def every(self, period: float, callback: Callable[[], object]) -> Timer:
+        """Call `callback()` on the executor every `period` s of steady time (reports of a
+        tool, which must tick even when sim time stands still)."""
+        from ros2lite.clock import Clock, ClockType
+
+        return self.node().create_timer(period, callback, clock=Clock(ClockType.STEADY_TIME))
+
+    def spin(self) -> None:
+        """Run the node's callbacks until the context shuts down (Ctrl-C raises as usual)."""
+        self.executor.spin_until(None)
+
+    def spin_until(
+        self, condition: Callable[[], bool] | None = None, timeout: float | None = None
+    ) -> bool:
+        """Run the node's callbacks until `condition()` holds or `timeout` s pass; True when
+        the condition ended it."""
+        return self.executor.spin_until(condition, timeout)
+
+    def spin_until_future_complete(self, future: Future, timeout: float | None = None) -> None:
+        """Run the node's callbacks until `future` is done (or `timeout` s pass)."""
+        self.executor.spin_until_future_complete(future, timeout)
+
+
+def wait_for_name(names: Callable[[], Iterable[str]], name: str, timeout: float) -> bool:
+    """Poll `names()` until `name` is among them or `timeout` s pass (0: look once)."""
+    deadline = time.monotonic() + max(0.0, timeout)
+    while True:
+        if name in set(names()):
+            return True
+        if time.monotonic() >= deadline:
+            return False
+        time.sleep(0.05)
