@@ -23,6 +23,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     'node': ('ros2lite.cli.node', 'Various node related sub-commands'),
     'param': ('ros2lite.cli.param', 'Various param related sub-commands'),
     'run': ('ros2lite.cli.run', 'Run a package specific executable'),
+    'security': ('ros2lite.cli.security', 'Various security related sub-commands'),
     'service': ('ros2lite.cli.service', 'Various service related sub-commands'),
     'topic': ('ros2lite.cli.topic', 'Various topic related sub-commands'),
 }
