@@ -15,6 +15,18 @@ if TYPE_CHECKING:
 F = TypeVar("F", bound=Callable[..., Any])
 
 
+def bag_argument(fn: F) -> F:
+    """BAG_PATH and `-s/--storage`, as every verb reading a bag takes them."""
+    fn = click.option(
+        "-s",
+        "--storage",
+        type=click.Choice(["mcap", "sqlite3"]),
+        help="Storage identifier (default: from the file extension).",
+    )(fn)
+    decorated: F = click.argument("bag_path", type=click.Path())(fn)
+    return decorated
+
+
 def shared_options(verb: str, qos_source: str, *paused_flags: str) -> Callable[[F], F]:
     """The options record and play both have: -e/-x patterns, --exclude-topics, the QoS
     override file, --start-paused (also under `paused_flags`) and --disable-keyboard-controls

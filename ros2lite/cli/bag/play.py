@@ -16,7 +16,7 @@ import click
 from .. import completion, render
 from .. import keyboard as keys_module
 from ..common import ManyValues, connect
-from .options import bag_error, check_patterns, qos_overrides, shared_options
+from .options import bag_argument, bag_error, check_patterns, qos_overrides, shared_options
 
 if TYPE_CHECKING:
     from ros2lite.bag.player import Player
@@ -24,13 +24,7 @@ if TYPE_CHECKING:
 
 
 @click.command("play")
-@click.argument("bag_path", type=click.Path())
-@click.option(
-    "-s",
-    "--storage",
-    type=click.Choice(["mcap", "sqlite3"]),
-    help="Storage identifier (default: from the file extension).",
-)
+@bag_argument
 @click.option(
     "--read-ahead-queue-size",
     type=click.IntRange(min=1),

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from ..errors import CliError
+from .common import create
 
 
 @click.command('create_enclave')
@@ -14,10 +14,4 @@ from ..errors import CliError
 @click.argument('name', metavar='NAME')
 def cli(root: Path, name: str) -> None:
     """Create enclave."""
-    from ros2lite.security import SecurityError
-    from ros2lite.security.keystore import create_enclave
-
-    try:
-        create_enclave(root, name)
-    except SecurityError as e:
-        raise CliError(f'Unable to create enclave: {e}') from None
+    create(root, name, 'enclave')
