@@ -38,10 +38,15 @@ _DEMOS = {
         'add_two_ints_client',
         'add_two_ints_client_async',
         'add_two_ints_server',
+        'introspection_client',
+        'introspection_service',
         'listener',
         'parameter_blackboard',
         'talker',
     ],
+    'lifecycle': ['lifecycle_listener'],
+    'lifecycle_py': ['lifecycle_talker'],
+    'rclpy_components': ['component_container', 'component_container_mt'],
 }
 BUNDLED: dict[str, dict[str, str]] = {
     package: {name: f'ros2lite.demos.{package}.{name}:main' for name in names}
