@@ -20,6 +20,7 @@ __all__ = [
     'HELLO',
     'ZENOH_SCOUTING',
     'MulticastError',
+    'check_settings',
     'receive',
     'send',
 ]
@@ -34,7 +35,11 @@ class MulticastError(Ros2liteError, OSError):
     """Bad multicast settings, or the system refused the socket operation."""
 
 
-def _check(group: str, port: int, interface: str | None, ttl: int | None = None) -> None:
+def check_settings(
+    group: str, port: int, interface: str | None = None, ttl: int | None = None
+) -> None:
+    """MulticastError unless `group` is an IPv4 multicast address, `port` and `ttl` in
+    range and `interface` an IPv4 address."""
     try:
         address = ipaddress.IPv4Address(group)
     except ValueError:
@@ -74,7 +79,7 @@ def send(
 ) -> None:
     """Send one datagram to `group`:`port` from `interface` (default: the routed one).
     TTL 0 keeps it on this host; None leaves the system default (1: this subnet)."""
-    _check(group, port, interface, ttl)
+    check_settings(group, port, interface, ttl)
     sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM, socket.IPPROTO_UDP)
     try:
         if ttl is not None:
@@ -97,7 +102,7 @@ def receive(
 ) -> tuple[bytes, tuple[str, int]]:
     """Wait for one datagram to `group`:`port` (joined on `interface`, default: any) and
     return it with the sender's (host, port); TimeoutError after `timeout` s."""
-    _check(group, port, interface)
+    check_settings(group, port, interface)
     sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM, socket.IPPROTO_UDP)
     try:
         sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)

@@ -10,21 +10,6 @@ from __future__ import annotations
 import click
 
 
-def verb_groups() -> dict[str, tuple[str, dict[str, tuple[str, str]]]]:
-    """ros2cli's group name → (command, its verb table) for every command with verbs."""
-    import importlib
-
-    from .main import COMMANDS
-
-    groups = {}
-    for command, (module_name, _help) in COMMANDS.items():
-        verbs = getattr(importlib.import_module(module_name), 'VERBS', None)
-        if verbs:
-            group = 'ros2cli.daemon.verb' if command == 'daemon' else f'ros2{command}.verb'
-            groups[group] = (command, verbs)
-    return groups
-
-
 @click.command('extension_points')
 @click.option(
     '-a',
@@ -38,8 +23,10 @@ def verb_groups() -> dict[str, tuple[str, dict[str, tuple[str, str]]]]:
 )
 def cli(show_all: bool, verbose: bool) -> None:
     """List extension points."""
+    from .main import verb_tables
+
     points = {'ros2cli.command': ("'command' extensions", 'ros2lite.cli.main', 'COMMANDS')}
-    for group, (command, _verbs) in verb_groups().items():
+    for group, (command, _verbs) in verb_tables().items():
         points[group] = (f"'{command}' verb extensions", f'ros2lite.cli.{command}', 'VERBS')
     for name in sorted(points):
         what, module, attribute = points[name]

@@ -18,15 +18,14 @@ def cli(show_all: bool, verbose: bool) -> None:
     """List extensions."""
     from importlib.metadata import PackageNotFoundError, version
 
-    from .extension_points import verb_groups
-    from .main import COMMANDS
+    from .main import COMMANDS, verb_tables
 
     try:
         distribution = f'ros2lite {version("ros2lite")}'
     except PackageNotFoundError:
         distribution = 'ros2lite'
     groups = {'ros2cli.command': COMMANDS}
-    groups.update({group: verbs for group, (_command, verbs) in verb_groups().items()})
+    groups.update({group: verbs for group, (_command, verbs) in verb_tables().items()})
     for group in sorted(groups):
         click.echo(group)
         table = groups[group]

@@ -53,6 +53,21 @@ LACKING: dict[str, str] = {
     'bag convert': f"'ros2lite bag convert' {_NOT_YET}",
 }
 
+
+def verb_tables() -> dict[str, tuple[str, dict[str, tuple[str, str]]]]:
+    """ros2cli's extension group name (`ros2<command>.verb`) → (command, its VERBS table),
+    for every command that has verbs (imports each command's package, not its verbs)."""
+    import importlib
+
+    groups = {}
+    for command, (module_name, _help) in COMMANDS.items():
+        verbs = getattr(importlib.import_module(module_name), 'VERBS', None)
+        if verbs:
+            group = 'ros2cli.daemon.verb' if command == 'daemon' else f'ros2{command}.verb'
+            groups[group] = (command, verbs)
+    return groups
+
+
 # set by the shell's completion hook (see cli/completion.py)
 COMPLETE_VAR = '_ROS2LITE_COMPLETE'
 

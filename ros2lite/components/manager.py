@@ -151,7 +151,7 @@ class ComponentManager(Node):
                 parameters=parameters,
                 extra_arguments=extra,
             )
-        except (ComponentLoadError, ValueError, TypeError) as e:
+        except Exception as e:  # whatever the request or the component did: answer, go on
             self.get_logger().error(f'Failed to load component: {e}')
             response.success = False
             response.error_message = str(e)

@@ -19,8 +19,9 @@ from .common import address_options
 )
 def cli(group: str, port: int, interface: str | None, timeout: float | None) -> None:
     """Receive a single UDP multicast packet."""
-    from ros2lite.multicast import ZENOH_SCOUTING, receive
+    from ros2lite.multicast import ZENOH_SCOUTING, check_settings, receive
 
+    check_settings(group, port, interface)
     click.echo('Waiting for UDP multicast datagram...')
     try:
         data, (host, sender_port) = receive(

@@ -16,7 +16,8 @@ from .common import address_options
 )
 def cli(group: str, port: int, interface: str | None, ttl: int | None) -> None:
     """Send a single UDP multicast packet."""
-    from ros2lite.multicast import send
+    from ros2lite.multicast import check_settings, send
 
+    check_settings(group, port, interface, ttl)
     click.echo('Sending one UDP multicast datagram...')
     send(group=group, port=port, ttl=ttl, interface=interface)
