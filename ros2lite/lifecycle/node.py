@@ -51,9 +51,12 @@ def _msg(name: str) -> Any:
 class LifecycleNodeMixin:
     """The lifecycle part of a node: state machine, callbacks, managed entities, services.
 
-    Mixed into a :class:`ros2lite.node.Node` (after the node is built), as rclpy does."""
+    Mixed into a :class:`ros2lite.node.Node` (after the node is built), as rclpy does; the
+    services run in `callback_group` (default: the node's)."""
 
-    def __init__(self, *, enable_communication_interface: bool = True) -> None:
+    def __init__(
+        self, *, enable_communication_interface: bool = True, callback_group: Any = None
+    ) -> None:
         if not isinstance(enable_communication_interface, bool):
             raise TypeError('enable_communication_interface must be a bool')
         node: Node = self  # type: ignore[assignment]
@@ -74,30 +77,30 @@ class LifecycleNodeMixin:
         self._transition_event_pub = node.create_publisher(
             _msg('msg/TransitionEvent'), '~/transition_event', TRANSITION_EVENT_QOS
         )
-        qos = qos_profile_services_default
+        options = {'qos_profile': qos_profile_services_default, 'callback_group': callback_group}
         self._service_change_state = node.create_service(
-            _msg('srv/ChangeState'), '~/change_state', self._on_change_state, qos_profile=qos
+            _msg('srv/ChangeState'), '~/change_state', self._on_change_state, **options
         )
         self._service_get_state = node.create_service(
-            _msg('srv/GetState'), '~/get_state', self._on_get_state, qos_profile=qos
+            _msg('srv/GetState'), '~/get_state', self._on_get_state, **options
         )
         self._service_get_available_states = node.create_service(
             _msg('srv/GetAvailableStates'),
             '~/get_available_states',
             self._on_get_available_states,
-            qos_profile=qos,
+            **options,
         )
         self._service_get_available_transitions = node.create_service(
             _msg('srv/GetAvailableTransitions'),
             '~/get_available_transitions',
             self._on_get_available_transitions,
-            qos_profile=qos,
+            **options,
         )
         self._service_get_transition_graph = node.create_service(
             _msg('srv/GetAvailableTransitions'),
             '~/get_transition_graph',
             self._on_get_transition_graph,
-            qos_profile=qos,
+            **options,
         )
 
     # -- the user's side ------------------------------------------------------------------------
