@@ -131,6 +131,12 @@ def test_rendering_and_state_names() -> None:
     assert text.startswith('info:\n  event_type: RESPONSE_SENT\n  stamp:\n    sec: 0\n')
     assert text.endswith('sequence_number: 7\nrequest: []\nresponse:\n- sum: 3\n')
     assert format_event(event, flow_style=True).startswith('{info: {event_type: RESPONSE_SENT, ')
+    short = format_event(event, no_arr=True)
+    assert "  client_gid: '<array type: uint8[16]>'\n" in short
+    assert (
+        "response: '<sequence type: example_interfaces/srv/AddTwoInts_Response[1], length: 1>'"
+        in short
+    )
     assert format_event(event, csv=True) == '2,0,0,' + ','.join(map(str, range(16))) + ',7,,3'
     assert state_from_name('contents') == ServiceIntrospectionState.CONTENTS
     with pytest.raises(ValueError, match='must be one of'):
