@@ -343,6 +343,14 @@ class ActionClient(Executable):
             time.sleep(_POLL)
         return self.server_is_ready()
 
+    def configure_introspection(
+        self, clock: Any, service_event_qos_profile: QoSProfile, introspection_state: Any
+    ) -> None:
+        """Report the action's three service clients on their `_service_event` topics (see
+        :mod:`ros2lite.service_introspection`; what `action echo` shows)."""
+        for client in (self._goal_client, self._cancel_client, self._result_client):
+            client.configure_introspection(clock, service_event_qos_profile, introspection_state)
+
     def destroy(self) -> None:
         if self._destroyed:
             return

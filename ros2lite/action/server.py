@@ -234,6 +234,14 @@ class ActionServer(Executable):
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
         return None  # never has work of its own
 
+    def configure_introspection(
+        self, clock: Any, service_event_qos_profile: QoSProfile, introspection_state: Any
+    ) -> None:
+        """Report the action's three services on their `_service_event` topics (see
+        :mod:`ros2lite.service_introspection`; what `action echo` shows)."""
+        for service in (self._goal_service, self._cancel_service, self._result_service):
+            service.configure_introspection(clock, service_event_qos_profile, introspection_state)
+
     # -- rclpy's registration API ---------------------------------------------------------------
     def register_execute_callback(self, execute_callback: Callable[..., Any]) -> None:
         if not callable(execute_callback):

@@ -26,12 +26,12 @@ from typing import Any
 from ros2lite.bag.errors import BagError
 from ros2lite.bag.writer import Writer
 from ros2lite.qos import QoSProfile
+from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
 from ros2lite.transport.attachment import unpack_attachment
 
 __all__ = ["DEFAULT_MAX_CACHE_SIZE", "RecordOptions", "Recorder", "TopicStats"]
 
 DEFAULT_MAX_CACHE_SIZE = 100 * 1024 * 1024
-SERVICE_EVENT_SUFFIX = "/_service_event"
 # how long a finished chunk may wait in memory before it is put on disk anyway (seconds)
 _FLUSH_PERIOD = 1.0
 

@@ -14,10 +14,11 @@ from typing import Any
 
 import click
 
+from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
+
 from .options import bag_argument, bag_error, warn
 
 LABEL = 19
-SERVICE_EVENT_SUFFIX = "/_service_event"
 
 
 def format_size(size: float) -> str:
