@@ -20,6 +20,7 @@ from ros2lite.endpoint import Endpoint
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile
+from ros2lite.service_introspection import IntrospectionMixin, ServiceEventType
 from ros2lite.task import Future
 from ros2lite.transport.attachment import pack_attachment
 from ros2lite.transport.keys import EntityKind
@@ -45,7 +46,7 @@ class ServiceCallError(Ros2liteError, RuntimeError):
     """A request ended without a response (no server answered, or the query failed)."""
 
 
-class Client(Executable, Generic[SrvRequestT, SrvResponseT]):
+class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]):
     """Calls the service `srv_name` of type `srv_type`; `call()` gives its Response."""
 
     # completing a future runs no user callback here: it must not wait for the group, or a
@@ -134,6 +135,7 @@ class Client(Executable, Generic[SrvRequestT, SrvResponseT]):
             with self._lock:
                 self._pending.pop(seq, None)
             raise
+        self._introspect(ServiceEventType.REQUEST_SENT, seq, self._gid, request)
 
     # -- asynchronous: completed by the executor ---------------------------------------------------
     def call_async(self, request: SrvRequestT) -> Future[SrvResponseT]:
@@ -164,6 +166,7 @@ class Client(Executable, Generic[SrvRequestT, SrvResponseT]):
             except Exception as e:
                 future.set_exception(ServiceCallError(f'undecodable response: {e}'))
                 continue
+            self._introspect(ServiceEventType.RESPONSE_RECEIVED, seq, self._gid, response)
             future.set_result(cast('SrvResponseT', response))
         return None
 
@@ -179,19 +182,21 @@ class Client(Executable, Generic[SrvRequestT, SrvResponseT]):
         """Send and wait for the response; TimeoutError when `timeout_sec` passes first."""
         self._refuse_deadlock()
         done = threading.Event()
-        outcome: list[tuple[bytes | None, str]] = []
+        outcome: list[tuple[int, bytes | None, str]] = []
 
         def on_response(seq: int, data: bytes | None, error: str) -> None:
-            outcome.append((data, error))
+            outcome.append((seq, data, error))
             done.set()
 
         self._send(request, on_response)
         if not done.wait(timeout_sec):
             raise TimeoutError(f"service '{self.srv_name}' did not answer within {timeout_sec} s")
-        data, error = outcome[0]
+        seq, data, error = outcome[0]
         if data is None:
             raise ServiceCallError(error)
-        return cast('SrvResponseT', self._codecs()[1].deserialize(data))
+        response = self._codecs()[1].deserialize(data)
+        self._introspect(ServiceEventType.RESPONSE_RECEIVED, seq, self._gid, response)
+        return cast('SrvResponseT', response)
 
     def _refuse_deadlock(self) -> None:
         """Inside a callback, a server of ours on the same executor may be unable to run
@@ -245,6 +250,7 @@ class Client(Executable, Generic[SrvRequestT, SrvResponseT]):
 
     def destroy(self) -> None:
         """Cancel pending calls and withdraw the querier and its token."""
+        self._destroy_introspection()
         with self._lock:
             pending, self._pending = self._pending, {}
         for future in pending.values():

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Generic, cast
 from ros2lite.endpoint import Endpoint
 from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile
+from ros2lite.service_introspection import IntrospectionMixin, ServiceEventType
 from ros2lite.transport.attachment import pack_attachment, unpack_attachment
 from ros2lite.transport.keys import EntityKind
 from ros2lite.type_support import SrvRequestT, SrvResponseT
@@ -52,7 +53,7 @@ ServiceCallback = (
 `deferred=True`, `callback(request, header)` that answers later with `send_response`."""
 
 
-class Service(Executable, Generic[SrvRequestT, SrvResponseT]):
+class Service(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]):
     """Serves `srv_name`; `callback(request, response)` returns the response to send.
 
     With `deferred=True` the callback is `callback(request, header)` and the owner answers
@@ -140,6 +141,9 @@ class Service(Executable, Generic[SrvRequestT, SrvResponseT]):
         if taken is None:
             return None
         message, header = taken
+        self._introspect(
+            ServiceEventType.REQUEST_RECEIVED, header.sequence_number, header.client_gid, message
+        )
         try:
             if self._deferred:
                 return self._call(self.callback, message, header)
@@ -178,10 +182,14 @@ class Service(Executable, Generic[SrvRequestT, SrvResponseT]):
         request.reply(
             data, pack_attachment(header.sequence_number, time.time_ns(), header.client_gid)
         )
+        self._introspect(
+            ServiceEventType.RESPONSE_SENT, header.sequence_number, header.client_gid, response
+        )
 
     def destroy(self) -> None:
         """Stop serving: queued requests end unanswered; the queryable and token go."""
         self._destroyed = True
+        self._destroy_introspection()
         self._node.context.local_services.pop(self._ep.key, None)
         while self._requests:
             self._requests.popleft().drop()

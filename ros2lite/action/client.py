@@ -30,12 +30,14 @@ from ros2lite.type_support import FeedbackT, GoalT, ResultT
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.clock import Clock
     from ros2lite.interfaces import Message
     from ros2lite.msgs.action_msgs.msg import GoalStatusArray
     from ros2lite.msgs.action_msgs.srv import CancelGoal_Response
     from ros2lite.msgs.builtin_interfaces.msg import Time
     from ros2lite.msgs.unique_identifier_msgs.msg import UUID
     from ros2lite.node import Node
+    from ros2lite.service_introspection import ServiceIntrospectionState
     from ros2lite.type_support import Action, FeedbackMessage, GetResultResponse
 
 # how often wait_for_server looks at the graph
@@ -159,23 +161,13 @@ class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
         group = self.callback_group
         impl = self._action_type.Impl
         names = self._names
-        self._goal_client = node.create_client(
-            impl.SendGoalService,
-            names.send_goal,
-            qos_profile=goal_service_qos_profile,
-            callback_group=group,
-        )
-        self._cancel_client = node.create_client(
-            impl.CancelGoalService,
-            names.cancel_goal,
-            qos_profile=cancel_service_qos_profile,
-            callback_group=group,
-        )
-        self._result_client = node.create_client(
-            impl.GetResultService,
-            names.get_result,
-            qos_profile=result_service_qos_profile,
-            callback_group=group,
+        self._goal_client, self._cancel_client, self._result_client = (
+            node.create_client(srv_type, name, qos_profile=qos, callback_group=group)
+            for srv_type, name, qos in (
+                (impl.SendGoalService, names.send_goal, goal_service_qos_profile),
+                (impl.CancelGoalService, names.cancel_goal, cancel_service_qos_profile),
+                (impl.GetResultService, names.get_result, result_service_qos_profile),
+            )
         )
         self._feedback_sub = node.create_subscription(
             impl.FeedbackMessage,
@@ -402,6 +394,17 @@ class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
                 break
             time.sleep(_POLL)
         return self.server_is_ready()
+
+    def configure_introspection(
+        self,
+        clock: Clock,
+        service_event_qos_profile: QoSProfile,
+        introspection_state: ServiceIntrospectionState,
+    ) -> None:
+        """Report the action's three service clients on their `_service_event` topics (see
+        :mod:`ros2lite.service_introspection`; what `action echo` shows)."""
+        for client in (self._goal_client, self._cancel_client, self._result_client):
+            client.configure_introspection(clock, service_event_qos_profile, introspection_state)
 
     def destroy(self) -> None:
         """Withdraw the five entities from the graph."""

@@ -35,12 +35,14 @@ from ros2lite.type_support import FeedbackT, GoalT, ResultT
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.clock import Clock
     from ros2lite.interfaces import Message
     from ros2lite.msgs.action_msgs.msg import GoalInfo as GoalInfoMsg
     from ros2lite.msgs.action_msgs.srv import CancelGoal_Request
     from ros2lite.msgs.unique_identifier_msgs.msg import UUID
     from ros2lite.node import Node
     from ros2lite.service import RequestHeader
+    from ros2lite.service_introspection import ServiceIntrospectionState
     from ros2lite.type_support import Action
 
 _T = TypeVar('_T')
@@ -260,29 +262,30 @@ class ActionServer(Executable, Generic[GoalT, ResultT, FeedbackT]):
         impl = self._action_type.Impl
         names = self._names
         # rcl_action's order: the three services, then feedback and status publishers
-        self._goal_service = node.create_service(
-            impl.SendGoalService,
-            names.send_goal,
-            self._execute_goal_request,
-            qos_profile=goal_service_qos_profile,
-            callback_group=group,
-            deferred=True,
-        )
-        self._cancel_service = node.create_service(
-            impl.CancelGoalService,
-            names.cancel_goal,
-            self._execute_cancel_request,
-            qos_profile=cancel_service_qos_profile,
-            callback_group=group,
-            deferred=True,
-        )
-        self._result_service = node.create_service(
-            impl.GetResultService,
-            names.get_result,
-            self._on_result_request,
-            qos_profile=result_service_qos_profile,
-            callback_group=group,
-            deferred=True,
+        self._goal_service, self._cancel_service, self._result_service = (
+            node.create_service(
+                srv_type, name, handler, qos_profile=qos, callback_group=group, deferred=True
+            )
+            for srv_type, name, handler, qos in (
+                (
+                    impl.SendGoalService,
+                    names.send_goal,
+                    self._execute_goal_request,
+                    goal_service_qos_profile,
+                ),
+                (
+                    impl.CancelGoalService,
+                    names.cancel_goal,
+                    self._execute_cancel_request,
+                    cancel_service_qos_profile,
+                ),
+                (
+                    impl.GetResultService,
+                    names.get_result,
+                    self._on_result_request,
+                    result_service_qos_profile,
+                ),
+            )
         )
         self._feedback_pub = node.create_publisher(
             impl.FeedbackMessage, names.feedback, feedback_pub_qos_profile
@@ -295,6 +298,17 @@ class ActionServer(Executable, Generic[GoalT, ResultT, FeedbackT]):
 
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
         return None  # never has work of its own
+
+    def configure_introspection(
+        self,
+        clock: Clock,
+        service_event_qos_profile: QoSProfile,
+        introspection_state: ServiceIntrospectionState,
+    ) -> None:
+        """Report the action's three services on their `_service_event` topics (see
+        :mod:`ros2lite.service_introspection`; what `action echo` shows)."""
+        for service in (self._goal_service, self._cancel_service, self._result_service):
+            service.configure_introspection(clock, service_event_qos_profile, introspection_state)
 
     # -- rclpy's registration API ---------------------------------------------------------------
     def register_execute_callback(

@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING
 from ros2lite.bag.errors import BagError
 from ros2lite.bag.writer import Writer
 from ros2lite.qos import QoSProfile
+from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
 from ros2lite.transport.attachment import unpack_attachment
 
 if TYPE_CHECKING:
@@ -36,7 +37,6 @@ if TYPE_CHECKING:
 __all__ = ["DEFAULT_MAX_CACHE_SIZE", "RecordOptions", "Recorder", "TopicStats"]
 
 DEFAULT_MAX_CACHE_SIZE = 100 * 1024 * 1024
-SERVICE_EVENT_SUFFIX = "/_service_event"
 # how long a finished chunk may wait in memory before it is put on disk anyway (seconds)
 _FLUSH_PERIOD = 1.0
 

@@ -145,9 +145,15 @@ def message_to_yaml(
     fast: bool = True,
 ) -> str:
     """YAML text exactly as `ros2 topic echo` prints a message."""
+    data = message_to_dict(msg, truncate_length=truncate_length, no_arr=no_arr, no_str=no_str)
+    return dict_to_yaml(data, flow_style=flow_style, fast=fast)
+
+
+def dict_to_yaml(data: dict[str, Any], *, flow_style: bool = False, fast: bool = True) -> str:
+    """YAML text of a message's dict form (`message_to_dict`, perhaps edited, as `service
+    echo` names event types), dumped exactly as rosidl_runtime_py dumps messages."""
     import yaml
 
-    data = message_to_dict(msg, truncate_length=truncate_length, no_arr=no_arr, no_str=no_str)
     use_c = fast and _plain(data)
     return yaml.dump(
         data,

@@ -14,13 +14,14 @@ from typing import TYPE_CHECKING
 
 import click
 
-from .options import bag_error, warn
+from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
+
+from .options import bag_argument, bag_error, warn
 
 if TYPE_CHECKING:
     from ros2lite.bag.reader import Reader
 
 LABEL = 19
-SERVICE_EVENT_SUFFIX = "/_service_event"
 
 
 def format_size(size: float) -> str:
@@ -132,13 +133,7 @@ def message_sizes(reader: Reader) -> dict[str, int]:
 
 
 @click.command("info")
-@click.argument("bag_path", type=click.Path())
-@click.option(
-    "-s",
-    "--storage",
-    type=click.Choice(["mcap", "sqlite3"]),
-    help="Storage identifier (default: from the file extension).",
-)
+@bag_argument
 @click.option("-t", "--topic-name", is_flag=True, help="Only print topic names.")
 @click.option(
     "-v",

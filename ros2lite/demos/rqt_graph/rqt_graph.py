@@ -60,7 +60,12 @@ def run(options: argparse.Namespace) -> None:
     )
 
     def current() -> model.Graph:
-        return model.from_node(node, filters)
+        # one complete liveliness query per picture: a graph cache that has just started
+        # may not have heard every token yet
+        from ros2lite.graph import snapshot
+
+        context = node.context
+        return model.from_entities(snapshot(context.require(), context.domain_id), filters)
 
     if options.output:
         write_output(options.output, current())

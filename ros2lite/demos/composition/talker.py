@@ -1,0 +1,24 @@
+"""`composition::Talker`: publishes `Hello World: N` on `chatter` every second, from 1."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ros2lite.msgs.std_msgs.msg import String
+from ros2lite.node import Node
+
+
+class Talker(Node):
+    """The node `talker`."""
+
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__('talker', **kwargs)
+        self.count = 0
+        self.pub = self.create_publisher(String, 'chatter', 10)
+        self.timer = self.create_timer(1.0, self.on_timer)
+
+    def on_timer(self) -> None:
+        self.count += 1
+        msg = String(data=f'Hello World: {self.count}')
+        self.get_logger().info(f"Publishing: '{msg.data}'")
+        self.pub.publish(msg)
