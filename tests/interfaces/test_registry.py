@@ -81,7 +81,7 @@ def test_import_hook_modules() -> None:
 
     assert 'Header' in dir(std)
     with pytest.raises(ImportError):
-        from ros2lite.msgs.std_msgs.msg import Missing
+        from ros2lite.msgs.std_msgs.msg import Missing  # type: ignore[attr-defined]  # noqa: F401
     with pytest.raises(ImportError):
         import ros2lite.msgs.no_such_pkg.msg  # noqa: F401
 
