@@ -12,11 +12,13 @@ Names are re-exported lazily so `import ros2lite` (and `ros2lite --help`) stays 
 from __future__ import annotations
 
 import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 __version__ = '0.1.0'
 
 if TYPE_CHECKING:  # what type checkers see; at run time the names load lazily
+    from typing_extensions import Unpack
+
     from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
     from ros2lite.clock import Clock
     from ros2lite.context import Context, default_context
@@ -33,6 +35,7 @@ if TYPE_CHECKING:  # what type checkers see; at run time the names load lazily
     )
     from ros2lite.logging import get_logger
     from ros2lite.node import Node
+    from ros2lite.node_options import NodeOptions
     from ros2lite.parameter import Parameter
     from ros2lite.qos import (
         DurabilityPolicy,
@@ -155,7 +158,7 @@ def ok(*, context: Context | None = None) -> bool:
     return (context or default_context()).ok()
 
 
-def create_node(node_name: str, **kwargs: Any) -> Node:
+def create_node(node_name: str, **kwargs: Unpack[NodeOptions]) -> Node:
     """A Node (rclpy's factory function; the keyword arguments are Node's)."""
     from ros2lite.node import Node
 

@@ -17,7 +17,12 @@ from ros2lite.qos import QoSProfile
 
 if TYPE_CHECKING:
     from ros2lite.clock import Clock
+    from ros2lite.endpoint import Endpoint
+    from ros2lite.interfaces import Message
+    from ros2lite.interfaces.convert import FormatOptions
+    from ros2lite.node import Node
     from ros2lite.publisher import Publisher
+    from ros2lite.type_support import Msg
 
 __all__ = [
     'EVENT_TOPIC_SUFFIX',
@@ -73,7 +78,11 @@ def event_topic(service_name: str) -> str:
 
 
 def event_to_dict(
-    event: Any, *, truncate_length: int | None = None, no_arr: bool = False, no_str: bool = False
+    event: Message,
+    *,
+    truncate_length: int | None = None,
+    no_arr: bool = False,
+    no_str: bool = False,
 ) -> dict[str, Any]:
     """A `<Srv>_Event` message as a dict, its event type by name (`REQUEST_SENT`…): what
     `service echo` prints."""
@@ -87,7 +96,7 @@ def event_to_dict(
 
 
 def format_event(
-    message: Any,
+    message: Message,
     *,
     csv: bool = False,
     flow_style: bool = False,
@@ -100,7 +109,7 @@ def format_event(
     from ros2lite.interfaces import message_to_csv
     from ros2lite.interfaces.convert import dict_to_yaml
 
-    fmt: dict[str, Any] = {'truncate_length': truncate_length, 'no_arr': no_arr, 'no_str': no_str}
+    fmt: FormatOptions = {'truncate_length': truncate_length, 'no_arr': no_arr, 'no_str': no_str}
     if csv:
         return message_to_csv(message, **fmt)
     return dict_to_yaml(event_to_dict(message, **fmt), flow_style=flow_style)
@@ -109,7 +118,7 @@ def format_event(
 class _EventPublisher:
     """The `_service_event` publisher of one client or service, and its settings."""
 
-    def __init__(self, node: Any, type_name: str, service_name: str, qos: QoSProfile) -> None:
+    def __init__(self, node: Node, type_name: str, service_name: str, qos: QoSProfile) -> None:
         from ros2lite.interfaces import get_interface
 
         self.node = node
@@ -122,8 +131,13 @@ class _EventPublisher:
         self.contents = False
 
     def publish(
-        self, event_type: ServiceEventType, sequence_number: int, gid: bytes, message: Any
+        self,
+        event_type: ServiceEventType,
+        sequence_number: int,
+        gid: bytes,
+        message: Msg | None,
     ) -> None:
+        """Publish one event (with `message` when the contents are reported)."""
         clock = self.clock if self.clock is not None else self.node.get_clock()
         gid16 = bytes(gid[:GID_SIZE]).ljust(GID_SIZE, b'\0')
         info = self.info_class(
@@ -150,8 +164,8 @@ class IntrospectionMixin:
     `_node`, `srv_name` and `_ep.type_name` (the `pkg/srv/Name` of its type)."""
 
     _introspection: _EventPublisher | None = None
-    _node: Any
-    _ep: Any
+    _node: Node
+    _ep: Endpoint
     srv_name: str
 
     def configure_introspection(
@@ -173,7 +187,11 @@ class IntrospectionMixin:
         self._introspection.contents = state == ServiceIntrospectionState.CONTENTS
 
     def _introspect(
-        self, event_type: ServiceEventType, sequence_number: int, gid: bytes, message: Any
+        self,
+        event_type: ServiceEventType,
+        sequence_number: int,
+        gid: bytes,
+        message: Msg | None,
     ) -> None:
         """Publish one event if introspection is on (any thread)."""
         events = self._introspection

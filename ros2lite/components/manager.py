@@ -12,10 +12,17 @@ nothing named on the wire is imported unless some installed package registered i
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ros2lite.components.registry import ComponentLoadError, find_component, load_class
 from ros2lite.node import Node
+
+if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+    from ros2lite.msgs.composition_interfaces import srv
+    from ros2lite.node_options import NodeOptions
+    from ros2lite.parameter import Parameter
 
 __all__ = ['ComponentManager', 'LoadedComponent']
 
@@ -23,7 +30,7 @@ __all__ = ['ComponentManager', 'LoadedComponent']
 LOG_LEVELS = {10, 20, 30, 40, 50}
 
 
-def _srv(name: str) -> Any:
+def _srv(name: str) -> Any:  # the composition_interfaces service class `name`
     from ros2lite.interfaces import get_interface
 
     return get_interface(f'composition_interfaces/srv/{name}')
@@ -42,7 +49,7 @@ class ComponentManager(Node):
     """The container node (named `ComponentManager`, as rclcpp's). Add it to an executor
     before loading anything: components join the executor the manager is on."""
 
-    def __init__(self, node_name: str = 'ComponentManager', **kwargs: Any) -> None:
+    def __init__(self, node_name: str = 'ComponentManager', **kwargs: Unpack[NodeOptions]) -> None:
         super().__init__(node_name, **kwargs)
         self.components: dict[int, LoadedComponent] = {}
         self._next_id = 1
@@ -60,8 +67,8 @@ class ComponentManager(Node):
         node_namespace: str = '',
         log_level: int = 0,
         remap_rules: list[str] | None = None,
-        parameters: list[Any] | None = None,
-        extra_arguments: list[Any] | None = None,
+        parameters: list[Parameter] | None = None,
+        extra_arguments: list[Parameter] | None = None,
     ) -> LoadedComponent:
         """Build the component and add it to the executor; ComponentLoadError (with the
         reason a client sees) when it cannot be. `parameters` and `extra_arguments` are
@@ -116,11 +123,12 @@ class ComponentManager(Node):
             self.unload(unique_id)
 
     def destroy_node(self) -> None:
+        """Destroy the loaded components first, then the container."""
         self.unload_all()
         super().destroy_node()
 
     @staticmethod
-    def _global_arguments(extra_arguments: list[Any]) -> bool:
+    def _global_arguments(extra_arguments: list[Parameter]) -> bool:
         """rclcpp's extra arguments: `use_intra_process_comms` (accepted; ros2lite has no
         intra-process shortcut, so it changes nothing) and `forward_global_arguments`."""
         forward = False
@@ -135,7 +143,9 @@ class ComponentManager(Node):
         return forward
 
     # -- the services ---------------------------------------------------------------------------
-    def _on_load_node(self, request: Any, response: Any) -> Any:
+    def _on_load_node(
+        self, request: srv.LoadNode.Request, response: srv.LoadNode.Response
+    ) -> srv.LoadNode.Response:
         from ros2lite.parameter import Parameter
 
         try:
@@ -161,7 +171,9 @@ class ComponentManager(Node):
         response.unique_id = loaded.unique_id
         return response
 
-    def _on_unload_node(self, request: Any, response: Any) -> Any:
+    def _on_unload_node(
+        self, request: srv.UnloadNode.Request, response: srv.UnloadNode.Response
+    ) -> srv.UnloadNode.Response:
         try:
             self.unload(request.unique_id)
         except ComponentLoadError as e:
@@ -172,7 +184,9 @@ class ComponentManager(Node):
         response.success = True
         return response
 
-    def _on_list_nodes(self, request: Any, response: Any) -> Any:
+    def _on_list_nodes(
+        self, request: srv.ListNodes.Request, response: srv.ListNodes.Response
+    ) -> srv.ListNodes.Response:
         response.unique_ids = list(self.components)
         response.full_node_names = [
             c.node.get_fully_qualified_name() for c in self.components.values()

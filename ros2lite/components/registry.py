@@ -27,7 +27,7 @@ from __future__ import annotations
 import importlib
 import os
 import sys
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -83,6 +83,7 @@ class ComponentType:
 
     @property
     def is_python(self) -> bool:
+        """Whether ros2lite's container can load it (a Python class, not a C++ plugin)."""
         return self.origin != ORIGIN_AMENT_CPP
 
 
@@ -167,7 +168,7 @@ def find_component(
     raise ComponentLoadError(UNKNOWN_PLUGIN)
 
 
-def load_class(component: ComponentType) -> Any:
+def load_class(component: ComponentType) -> Callable[..., object]:
     """Import the component's class; ComponentLoadError saying why it cannot be."""
     if not component.is_python:
         raise ComponentLoadError(

@@ -9,11 +9,14 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.graph import Entity, EntityKind
 from ros2lite.node import Node
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.rcl_interfaces.msg import Parameter as ParameterMsg
 
 __all__ = [
     'ContainerError',
@@ -58,13 +61,13 @@ def container_node_names(entities: Iterable[Entity]) -> list[str]:
     return sorted(name for name, found in offered.items() if len(found) == len(CONTAINER_SERVICES))
 
 
-def parse_assignments(items: Iterable[str]) -> list[Any]:
+def parse_assignments(items: Iterable[str]) -> list[ParameterMsg]:
     """'name:=value' strings as rcl_interfaces/msg/Parameter messages, values typed the
     YAML way (what `ros2 component load -p/-e` sends)."""
     from ros2lite.interfaces import get_interface
     from ros2lite.parameter import get_parameter_value
 
-    param = get_interface('rcl_interfaces/msg/Parameter')
+    param: type[ParameterMsg] = get_interface('rcl_interfaces/msg/Parameter')
     result = []
     for item in items:
         name, sep, value = item.partition(':=')
@@ -84,7 +87,7 @@ class RemoteContainer:
         self.target = target
         self.timeout = timeout
 
-    def _call(self, service: str, **fields: Any) -> Any:
+    def _call(self, service: str, **fields: object) -> Any:  # the response of `service`
         from ros2lite.client import ServiceCallError
         from ros2lite.interfaces import get_interface
 
@@ -114,8 +117,8 @@ class RemoteContainer:
         node_namespace: str | None = None,
         log_level: int = 0,
         remap_rules: list[str] | None = None,
-        parameters: list[Any] | None = None,
-        extra_arguments: list[Any] | None = None,
+        parameters: list[ParameterMsg] | None = None,
+        extra_arguments: list[ParameterMsg] | None = None,
     ) -> LoadedNode:
         """Load a component; ContainerError('Failed to load component: …') if refused."""
         response = self._call(

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable
-from typing import Any, TypeVar
+from typing import Any, TypeVar, overload
 
 from ros2lite.lifecycle.state_machine import LifecycleState, TransitionCallbackReturn
 
@@ -38,23 +38,39 @@ class SimpleManagedEntity(ManagedEntity):
         return self._enabled
 
     def on_activate(self, state: LifecycleState) -> TransitionCallbackReturn:
+        """Enable the entity."""
         self._enabled = True
         return TransitionCallbackReturn.SUCCESS
 
     def on_deactivate(self, state: LifecycleState) -> TransitionCallbackReturn:
+        """Disable the entity."""
         self._enabled = False
         return TransitionCallbackReturn.SUCCESS
 
+    @overload
+    @staticmethod
+    def when_enabled(wrapped: F, *, when_not_enabled: Callable[[], object] | None = None) -> F:
+        """`@when_enabled` on a method."""
+
+    @overload
     @staticmethod
     def when_enabled(
-        wrapped: F | None = None, *, when_not_enabled: Callable[[], Any] | None = None
-    ) -> Any:
+        wrapped: None = None, *, when_not_enabled: Callable[[], object] | None = None
+    ) -> Callable[[F], F]:
+        """`@when_enabled(when_not_enabled=…)` on a method."""
+
+    @staticmethod
+    def when_enabled(
+        wrapped: F | None = None, *, when_not_enabled: Callable[[], object] | None = None
+    ) -> F | Callable[[F], F]:
         """Decorate a method so it runs only while the entity is enabled; otherwise
         `when_not_enabled()` (if given) runs instead and the call returns None."""
 
         def decorator(method: F) -> F:
             @functools.wraps(method)
-            def only_when_enabled(self: SimpleManagedEntity, *args: Any, **kwargs: Any) -> Any:
+            def only_when_enabled(
+                self: SimpleManagedEntity, *args: object, **kwargs: object
+            ) -> object:
                 if not self._enabled:
                     if when_not_enabled is not None:
                         when_not_enabled()

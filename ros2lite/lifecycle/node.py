@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ros2lite.lifecycle.managed_entity import ManagedEntity
 from ros2lite.lifecycle.publisher import LifecyclePublisher
@@ -34,6 +34,16 @@ from ros2lite.lifecycle.state_machine import (
 from ros2lite.node import Node
 from ros2lite.qos import QoSProfile, qos_profile_services_default
 
+if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+    from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.msgs.lifecycle_msgs import msg as lc_msg
+    from ros2lite.msgs.lifecycle_msgs import srv as lc_srv
+    from ros2lite.node_options import NodeOptions
+    from ros2lite.publisher import Publisher
+    from ros2lite.type_support import MsgT
+
 __all__ = ['LifecycleNode', 'LifecycleNodeMixin']
 
 TransitionCallback = Callable[[LifecycleState], TransitionCallbackReturn]
@@ -42,7 +52,7 @@ TransitionCallback = Callable[[LifecycleState], TransitionCallbackReturn]
 TRANSITION_EVENT_QOS = QoSProfile(depth=10)
 
 
-def _msg(name: str) -> Any:
+def _msg(name: str) -> Any:  # the lifecycle_msgs class of 'msg/Name' or 'srv/Name'
     from ros2lite.interfaces import get_interface
 
     return get_interface(f'lifecycle_msgs/{name}')
@@ -55,7 +65,10 @@ class LifecycleNodeMixin:
     services run in `callback_group` (default: the node's)."""
 
     def __init__(
-        self, *, enable_communication_interface: bool = True, callback_group: Any = None
+        self,
+        *,
+        enable_communication_interface: bool = True,
+        callback_group: CallbackGroup | None = None,
     ) -> None:
         if not isinstance(enable_communication_interface, bool):
             raise TypeError('enable_communication_interface must be a bool')
@@ -71,13 +84,16 @@ class LifecycleNodeMixin:
             DEACTIVATING: self.on_deactivate,
             ERRORPROCESSING: self.on_error,
         }
-        self._transition_event_pub: Any = None
+        self._transition_event_pub: Publisher[lc_msg.TransitionEvent] | None = None
         if not enable_communication_interface:
             return
         self._transition_event_pub = node.create_publisher(
             _msg('msg/TransitionEvent'), '~/transition_event', TRANSITION_EVENT_QOS
         )
-        options = {'qos_profile': qos_profile_services_default, 'callback_group': callback_group}
+        options: dict[str, Any] = {  # the keywords of create_service
+            'qos_profile': qos_profile_services_default,
+            'callback_group': callback_group,
+        }
         self._service_change_state = node.create_service(
             _msg('srv/ChangeState'), '~/change_state', self._on_change_state, **options
         )
@@ -125,8 +141,8 @@ class LifecycleNodeMixin:
         self._managed_entities.add(entity)
 
     def create_lifecycle_publisher(
-        self, msg_type: Any, topic: str, qos_profile: QoSProfile | int, **_: Any
-    ) -> LifecyclePublisher:
+        self, msg_type: type[MsgT] | str, topic: str, qos_profile: QoSProfile | int, **_: object
+    ) -> LifecyclePublisher[MsgT]:
         """A publisher that publishes only while the node is active."""
         node: Node = self  # type: ignore[assignment]
         pub = LifecyclePublisher(node, msg_type, topic, qos_profile)
@@ -134,7 +150,7 @@ class LifecycleNodeMixin:
         self._managed_entities.add(pub)
         return pub
 
-    def destroy_lifecycle_publisher(self, publisher: LifecyclePublisher) -> None:
+    def destroy_lifecycle_publisher(self, publisher: LifecyclePublisher[MsgT]) -> None:
         """Destroy a publisher made by :meth:`create_lifecycle_publisher`."""
         self._managed_entities.discard(publisher)
         node: Node = self  # type: ignore[assignment]
@@ -238,7 +254,9 @@ class LifecycleNodeMixin:
         return result
 
     # -- the services ---------------------------------------------------------------------------
-    def _on_change_state(self, request: Any, response: Any) -> Any:
+    def _on_change_state(
+        self, request: lc_srv.ChangeState.Request, response: lc_srv.ChangeState.Response
+    ) -> lc_srv.ChangeState.Response:
         requested = request.transition
         logger = self.get_logger()  # type: ignore[attr-defined]
         with self._transition_lock:
@@ -255,35 +273,51 @@ class LifecycleNodeMixin:
         response.success = result == TransitionCallbackReturn.SUCCESS
         return response
 
-    def _on_get_state(self, request: Any, response: Any) -> Any:
+    def _on_get_state(
+        self, request: lc_srv.GetState.Request, response: lc_srv.GetState.Response
+    ) -> lc_srv.GetState.Response:
         response.current_state = _state_msg(self._state_machine.current)
         return response
 
-    def _on_get_available_states(self, request: Any, response: Any) -> Any:
+    def _on_get_available_states(
+        self,
+        request: lc_srv.GetAvailableStates.Request,
+        response: lc_srv.GetAvailableStates.Response,
+    ) -> lc_srv.GetAvailableStates.Response:
         response.available_states = [_state_msg(state_id) for state_id in STATES]
         return response
 
-    def _on_get_available_transitions(self, request: Any, response: Any) -> Any:
+    def _on_get_available_transitions(
+        self,
+        request: lc_srv.GetAvailableTransitions.Request,
+        response: lc_srv.GetAvailableTransitions.Response,
+    ) -> lc_srv.GetAvailableTransitions.Response:
         response.available_transitions = [
             _description(t) for t in self._state_machine.available_transitions()
         ]
         return response
 
-    def _on_get_transition_graph(self, request: Any, response: Any) -> Any:
+    def _on_get_transition_graph(
+        self,
+        request: lc_srv.GetAvailableTransitions.Request,
+        response: lc_srv.GetAvailableTransitions.Response,
+    ) -> lc_srv.GetAvailableTransitions.Response:
         response.available_transitions = [_description(t) for t in TRANSITIONS]
         return response
 
 
-def _state_msg(state_id: int) -> Any:
-    return _msg('msg/State')(id=state_id, label=STATES[state_id])
+def _state_msg(state_id: int) -> lc_msg.State:
+    state: lc_msg.State = _msg('msg/State')(id=state_id, label=STATES[state_id])
+    return state
 
 
-def _description(t: TransitionDef) -> Any:
-    return _msg('msg/TransitionDescription')(
+def _description(t: TransitionDef) -> lc_msg.TransitionDescription:
+    description: lc_msg.TransitionDescription = _msg('msg/TransitionDescription')(
         transition=_msg('msg/Transition')(id=t.id, label=t.label),
         start_state=_state_msg(t.start),
         goal_state=_state_msg(t.goal),
     )
+    return description
 
 
 class LifecycleNode(LifecycleNodeMixin, Node):
@@ -293,7 +327,11 @@ class LifecycleNode(LifecycleNodeMixin, Node):
     events (the node is then driven only by `trigger_*()` calls)."""
 
     def __init__(
-        self, node_name: str, *, enable_communication_interface: bool = True, **kwargs: Any
+        self,
+        node_name: str,
+        *,
+        enable_communication_interface: bool = True,
+        **kwargs: Unpack[NodeOptions],
     ) -> None:
         if not isinstance(enable_communication_interface, bool):
             raise TypeError('enable_communication_interface must be a bool')

@@ -8,11 +8,16 @@ speaks only lifecycle_msgs over the standard `<node>/get_state`, `get_available_
 from __future__ import annotations
 
 from collections.abc import Iterable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ros2lite.graph import Entity, EntityKind
 from ros2lite.lifecycle.state_machine import LifecycleState, TransitionDef
 from ros2lite.node import Node
+
+if TYPE_CHECKING:
+    from ros2lite.client import Client
+    from ros2lite.interfaces import Message
+    from ros2lite.msgs.lifecycle_msgs.msg import State, TransitionDescription
 
 __all__ = ['RemoteLifecycle', 'has_lifecycle', 'lifecycle_node_names']
 
@@ -40,7 +45,7 @@ def has_lifecycle(entities: Iterable[Entity], node: str) -> bool:
     return node in lifecycle_node_names(entities, include_hidden=True)
 
 
-def _definition(description: Any) -> TransitionDef:
+def _definition(description: TransitionDescription) -> TransitionDef:
     return TransitionDef(
         description.transition.id,
         description.transition.label,
@@ -59,10 +64,12 @@ class RemoteLifecycle:
     def __init__(self, node: Node, target: str) -> None:
         self.node = node
         self.target = target.rstrip('/') or '/'
-        self._clients: dict[str, Any] = {}
+        self._clients: dict[str, Client[Message, Message]] = {}
         self.state_labels: dict[int, str] = {}
 
-    def _call(self, service: str, type_name: str, timeout: float | None, **fields: Any) -> Any:
+    def _call(
+        self, service: str, type_name: str, timeout: float | None, **fields: object
+    ) -> Any:  # the response of the lifecycle_msgs service `type_name`
         from ros2lite.interfaces import get_interface
 
         srv = get_interface(type_name)
@@ -72,7 +79,7 @@ class RemoteLifecycle:
             self._clients[service] = client
         return client.call(srv.Request(**fields), timeout_sec=timeout)
 
-    def _remember(self, state: Any) -> None:
+    def _remember(self, state: State) -> None:
         self.state_labels[state.id] = state.label
 
     def get_state(self, timeout: float | None = None) -> LifecycleState:

@@ -4,13 +4,16 @@ its feedback and its status — as Kilted's `ros2 action echo` does."""
 from __future__ import annotations
 
 import sys
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
 from .. import completion
 from ..common import connect, interface_type_name, strategy_options
 from ..errors import CliError
+
+if TYPE_CHECKING:
+    from ros2lite.subscription import MessageInfo
 
 DEFAULT_TRUNCATE_LENGTH = 128
 
@@ -99,7 +102,7 @@ def cli(
             if not types:
                 raise CliError(f"Could not load the action type for '{action_name}'")
             type_name = types[0]
-        fmt: dict[str, Any] = {
+        fmt: dict[str, Any] = {  # format_event's keywords
             'csv': csv,
             'flow_style': flow_style,
             'truncate_length': None if full_length else truncate_length,
@@ -111,7 +114,10 @@ def cli(
                 continue
 
             def show(
-                data: bytes, _info: Any, name: str = watched.interface, t: str = watched.type_name
+                data: bytes,
+                _info: MessageInfo,
+                name: str = watched.interface,
+                t: str = watched.type_name,
             ) -> None:
                 text = format_event(deserialize(t, data), **fmt)
                 sys.stdout.write(f'interface: {name}\n{text}' + ('\n' if csv else '---\n'))

@@ -3,13 +3,20 @@
 from __future__ import annotations
 
 import sys
-from typing import Any
+from typing import TYPE_CHECKING
 
 import click
 
 from .. import completion
 from ..common import connect, interface_type_name, qos_from_options, qos_options, strategy_options
 from ..errors import CliError
+
+if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+    from ros2lite.subscription import MessageInfo
+
+    from ..common import QosOptions
 
 DEFAULT_TRUNCATE_LENGTH = 128
 
@@ -56,7 +63,7 @@ def cli(
     flow_style: bool,
     no_daemon: bool,
     use_sim_time: bool,
-    **qos: Any,
+    **qos: Unpack[QosOptions],
 ) -> None:
     """Echo a service.
 
@@ -96,7 +103,7 @@ def cli(
                 'server enabled?'
             )
 
-        def show(data: bytes, _info: Any) -> None:
+        def show(data: bytes, _info: MessageInfo) -> None:
             text = format_event(
                 deserialize(event_type, data),
                 csv=csv,

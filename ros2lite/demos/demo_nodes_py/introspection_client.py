@@ -21,6 +21,7 @@ class IntrospectionClientNode(Node):
         self.timer = self.create_timer(0.5, self.timer_callback)
 
     def timer_callback(self) -> None:
+        """Log the answer to the last request, or send the next one."""
         if not self.cli.service_is_ready():
             return
         if self.future is None:
@@ -37,6 +38,7 @@ class IntrospectionClientNode(Node):
 
 
 def main(args: list[str] | None = None) -> int:
+    """`introspection_client`'s entry point."""
     return run_node(IntrospectionClientNode, args)
 
 

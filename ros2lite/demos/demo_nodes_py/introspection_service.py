@@ -5,7 +5,7 @@ at run time with `ros2lite param set`). Watch with `ros2lite service echo /add_t
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.demos.runner import run_node
 from ros2lite.msgs.example_interfaces.srv import AddTwoInts
@@ -14,15 +14,25 @@ from ros2lite.parameter import Parameter
 from ros2lite.qos import qos_profile_system_default
 from ros2lite.service_introspection import state_from_name
 
+if TYPE_CHECKING:
+    from ros2lite.clock import Clock
+    from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
+    from ros2lite.qos import QoSProfile
+    from ros2lite.service_introspection import ServiceIntrospectionState
 
-def follow_parameter(node: Node, name: str, configure: Callable[..., Any]) -> None:
+
+def follow_parameter(
+    node: Node,
+    name: str,
+    configure: Callable[[Clock, QoSProfile, ServiceIntrospectionState], object],
+) -> None:
     """Check every new value of the string parameter `name` and reconfigure introspection
     with it once set (what both introspection demos do)."""
     from ros2lite.interfaces import get_interface
 
-    result_type = get_interface('rcl_interfaces/msg/SetParametersResult')
+    result_type: type[SetParametersResult] = get_interface('rcl_interfaces/msg/SetParametersResult')
 
-    def check(parameters: list[Parameter]) -> Any:
+    def check(parameters: list[Parameter]) -> SetParametersResult:
         for param in parameters:
             if param.name != name:
                 continue
@@ -54,13 +64,17 @@ class IntrospectionServiceNode(Node):
         self.srv = self.create_service(AddTwoInts, 'add_two_ints', self.add_two_ints_callback)
         follow_parameter(self, 'service_configure_introspection', self.srv.configure_introspection)
 
-    def add_two_ints_callback(self, request: Any, response: Any) -> Any:
+    def add_two_ints_callback(
+        self, request: AddTwoInts.Request, response: AddTwoInts.Response
+    ) -> AddTwoInts.Response:
+        """Answer a + b, and log the request."""
         response.sum = request.a + request.b
         self.get_logger().info(f'Incoming request\na: {request.a} b: {request.b}')
         return response
 
 
 def main(args: list[str] | None = None) -> int:
+    """`introspection_service`'s entry point."""
     return run_node(IntrospectionServiceNode, args)
 
 

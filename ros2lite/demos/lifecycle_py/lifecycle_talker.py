@@ -8,18 +8,23 @@ publishing.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.demos.runner import run_node
 from ros2lite.lifecycle import LifecycleNode, LifecyclePublisher, State, TransitionCallbackReturn
 from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.timer import Timer
 
+if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+    from ros2lite.node_options import NodeOptions
+
 
 class LifecycleTalker(LifecycleNode):
     """The demo's talker: publisher and timer exist between configure and cleanup."""
 
-    def __init__(self, node_name: str = 'lc_talker', **kwargs: Any) -> None:
+    def __init__(self, node_name: str = 'lc_talker', **kwargs: Unpack[NodeOptions]) -> None:
         self._count = 0
         self._pub: LifecyclePublisher | None = None
         self._timer: Timer | None = None
@@ -37,16 +42,19 @@ class LifecycleTalker(LifecycleNode):
             self._pub.publish(msg)
 
     def on_configure(self, state: State) -> TransitionCallbackReturn:
+        """Make the lifecycle publisher and the 1 s timer."""
         self._pub = self.create_lifecycle_publisher(String, 'lifecycle_chatter', 10)
         self._timer = self.create_timer(1.0, self.publish)
         self.get_logger().info('on_configure() is called.')
         return TransitionCallbackReturn.SUCCESS
 
     def on_activate(self, state: State) -> TransitionCallbackReturn:
+        """Log, then activate the publisher."""
         self.get_logger().info('on_activate() is called.')
         return super().on_activate(state)
 
     def on_deactivate(self, state: State) -> TransitionCallbackReturn:
+        """Log, then deactivate the publisher."""
         self.get_logger().info('on_deactivate() is called.')
         return super().on_deactivate(state)
 
@@ -59,17 +67,20 @@ class LifecycleTalker(LifecycleNode):
             self._pub = None
 
     def on_cleanup(self, state: State) -> TransitionCallbackReturn:
+        """Drop the publisher and the timer."""
         self._release()
         self.get_logger().info('on_cleanup() is called.')
         return TransitionCallbackReturn.SUCCESS
 
     def on_shutdown(self, state: State) -> TransitionCallbackReturn:
+        """Drop the publisher and the timer before finalizing."""
         self._release()
         self.get_logger().info('on_shutdown() is called.')
         return TransitionCallbackReturn.SUCCESS
 
 
 def main(args: list[str] | None = None) -> int:
+    """`lifecycle_talker`'s entry point."""
     return run_node(LifecycleTalker, args)
 
 

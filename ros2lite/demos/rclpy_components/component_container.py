@@ -33,6 +33,7 @@ def run_container(*, multi_threaded: bool, args: list[str] | None = None) -> int
 
 
 def main(args: list[str] | None = None) -> int:
+    """`component_container`'s entry point (one thread)."""
     return run_container(multi_threaded=False, args=args)
 
 

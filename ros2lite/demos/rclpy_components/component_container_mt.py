@@ -7,6 +7,7 @@ from ros2lite.demos.rclpy_components.component_container import run_container
 
 
 def main(args: list[str] | None = None) -> int:
+    """`component_container_mt`'s entry point."""
     return run_container(multi_threaded=True, args=args)
 
 

@@ -67,6 +67,9 @@ class Frame:
 
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+    from ros2lite.node_options import NodeOptions
     from ros2lite.service import Service
 
     _RotateHandle = ServerGoalHandle[
@@ -217,7 +220,7 @@ class TurtlesimNode(Node):
     """Jazzy's `/turtlesim`: parameters, the four world services, and one interface per
     turtle, stepped every 16 ms."""
 
-    def __init__(self, *, world: sim.World | None = None, **kwargs: Any) -> None:  # Node's
+    def __init__(self, *, world: sim.World | None = None, **kwargs: Unpack[NodeOptions]) -> None:
         super().__init__('turtlesim', **kwargs)
         self.world = world or sim.World()
         self.revision = 0  # bumped on every change a view could show
