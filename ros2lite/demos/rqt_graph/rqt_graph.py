@@ -3,7 +3,7 @@ publisher to topic to subscriber, redrawn as the graph changes.
 
 It shows itself in a window when there is a display, on the terminal otherwise; with
 `--output graph.svg` (or `.dot`) it writes the graph once and exits, and with neither a
-display nor a terminal it prints the DOT text. Its own node is hidden.
+display nor a terminal it prints the DOT text.
 """
 
 from __future__ import annotations
@@ -11,14 +11,14 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from typing import TYPE_CHECKING
+from collections.abc import Callable
 
 from ros2lite.demos.display import DisplayError, add_display_argument, choose, own_arguments
 from ros2lite.demos.rqt_graph import model
-from ros2lite.demos.runner import run_main
+from ros2lite.exceptions import Ros2liteError
 
 if TYPE_CHECKING:
-    from ros2lite.node import Node
+    pass
 
 REFRESH_SECONDS = 1.0
 OUTPUTS = ('.svg', '.dot', '.gv')
@@ -41,32 +41,25 @@ def write_output(path: str, graph: model.Graph) -> None:
         f.write(text)
 
 
-def graph_node() -> Node:
-    """The hidden node the graph is read through."""
-    from ros2lite.node import Node
-
-    return Node(
-        f'_ros2lite_rqt_graph_{os.getpid()}', enable_rosout=False, start_parameter_services=False
-    )
-
-
 def run(options: argparse.Namespace) -> None:
     """Show the live graph (or write it to a file) as the options say."""
-    node = graph_node()
+    from ros2lite.connection import Connection
+
     filters = model.Options(
         include_hidden=options.include_hidden,
         show_debug=options.show_debug,
         show_leaf_topics=options.show_leaf_topics,
     )
+    # a tool's client session: it is linked to the router once open, so every picture is one
+    # complete liveliness query (a node's fresh peer session or graph cache may still be
+    # joining the graph)
+    with Connection() as conn:
+        _show(options, lambda: model.from_entities(conn.entities(), filters), conn.context.ok)
 
-    def current() -> model.Graph:
-        # one complete liveliness query per picture: a graph cache that has just started
-        # may not have heard every token yet
-        from ros2lite.graph import snapshot
 
-        context = node.context
-        return model.from_entities(snapshot(context.require(), context.domain_id), filters)
-
+def _show(
+    options: argparse.Namespace, current: Callable[[], model.Graph], ok: Callable[[], bool]
+) -> None:
     if options.output:
         write_output(options.output, current())
         return
@@ -75,12 +68,12 @@ def run(options: argparse.Namespace) -> None:
             if kind == 'window':
                 from ros2lite.demos.rqt_graph.window_view import GraphWindow
 
-                GraphWindow().run(current, node.context.ok, REFRESH_SECONDS)
+                GraphWindow().run(current, ok, REFRESH_SECONDS)
                 return
             if kind == 'terminal':
                 from ros2lite.demos.rqt_graph.terminal_view import GraphTerminal
 
-                GraphTerminal().run(current, node.context.ok, REFRESH_SECONDS)
+                GraphTerminal().run(current, ok, REFRESH_SECONDS)
                 return
         except DisplayError:
             if options.display != 'auto':
@@ -113,7 +106,14 @@ def main(args: list[str] | None = None) -> int:
         help='show topics that have no publisher or no subscriber',
     )
     options = parser.parse_args(own_arguments(args))
-    return run_main(lambda: run(options), args)
+    try:
+        run(options)
+    except KeyboardInterrupt:
+        pass
+    except (Ros2liteError, ValueError) as e:  # no router, a file that cannot be written…
+        print(str(e), file=sys.stderr, flush=True)
+        return 1
+    return 0
 
 
 if __name__ == '__main__':
