@@ -17,9 +17,6 @@ from ros2lite.demos.display import DisplayError, add_display_argument, choose, o
 from ros2lite.demos.rqt_graph import model
 from ros2lite.exceptions import Ros2liteError
 
-if TYPE_CHECKING:
-    pass
-
 REFRESH_SECONDS = 1.0
 OUTPUTS = ('.svg', '.dot', '.gv')
 
