@@ -110,6 +110,7 @@ class Player:
 
     def _prepare(self) -> None:
         from ros2lite.interfaces import InterfaceError, get_interface
+        from ros2lite.interfaces.parser import validate_type_name
         from ros2lite.interfaces.registry import normalize_name
 
         for t in self.reader.topics:
@@ -121,6 +122,11 @@ class Player:
                 )
                 continue
             type_name = normalize_name(t.type)
+            try:
+                validate_type_name(type_name)
+            except InterfaceError as e:
+                self._warn(f"Topic '{t.name}': {e}; not playing it")
+                continue
             msg_type: Any = type_name
             try:
                 get_interface(type_name)

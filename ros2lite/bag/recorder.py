@@ -285,6 +285,14 @@ class Recorder:
         from ros2lite.interfaces import InterfaceError, get_interface
         from ros2lite.monitor.subscription import MonitoredSubscription
 
+        from ros2lite.interfaces.parser import validate_type_name
+
+        try:
+            validate_type_name(type_name)  # it came from the wire: it is written into the bag
+        except InterfaceError as e:
+            self._skipped.add(topic)
+            self._warn(f"Cannot record '{topic}': {e}")
+            return
         offered = [p.qos for p in pubs if p.qos is not None]
         qos = self.options.qos_overrides.get(topic) or recording_qos(topic, offered, self._warn)
         hashes = {p.type_hash for p in pubs if p.type_hash}
