@@ -283,9 +283,8 @@ class Recorder:
     def _subscribe(self, topic: str, type_name: str, pubs: list[Any]) -> None:
         from ros2lite.bag.qos import recording_qos
         from ros2lite.interfaces import InterfaceError, get_interface
-        from ros2lite.monitor.subscription import MonitoredSubscription
-
         from ros2lite.interfaces.parser import validate_type_name
+        from ros2lite.monitor.subscription import MonitoredSubscription
 
         try:
             validate_type_name(type_name)  # it came from the wire: it is written into the bag

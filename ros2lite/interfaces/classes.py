@@ -12,8 +12,7 @@ import operator
 from array import array
 from typing import TYPE_CHECKING, Any
 
-from .errors import FieldError
-from .errors import InterfaceError
+from .errors import FieldError, InterfaceError
 from .parser import INT_RANGES, PRIMITIVES, FieldType, MessageDef, check_definition
 from .registry import Registry, default_registry, normalize_name
 

@@ -3,6 +3,8 @@ decoding any bytes as any bundled type gives a message or a CdrError, nothing el
 
 from __future__ import annotations
 
+import contextlib
+
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -135,8 +137,9 @@ BUNDLED = _bundled_messages()
     name=st.sampled_from(BUNDLED),
     header=st.sampled_from([b'\x00\x01\x00\x00', b'\x00\x00\x00\x00', b'']),
     body=st.binary(max_size=256)
-    | st.lists(st.sampled_from([b'\xff\xff\xff\xff', b'\x00' * 4, b'\x01', b'\xff']), max_size=40)
-    .map(b''.join),
+    | st.lists(
+        st.sampled_from([b'\xff\xff\xff\xff', b'\x00' * 4, b'\x01', b'\xff']), max_size=40
+    ).map(b''.join),
 )
 def test_random_bytes_decode_to_a_message_or_a_cdr_error(
     name: str, header: bytes, body: bytes
@@ -150,17 +153,13 @@ def test_random_bytes_decode_to_a_message_or_a_cdr_error(
         pass
     else:
         assert type(msg).__name__ == name.rsplit('/', 1)[1]
-    try:
+    with contextlib.suppress(CdrError):
         c.fast_deserializer()(data)
-    except CdrError:
-        pass
 
 
-def test_every_bundled_type_rejects_empty_and_truncated_payloads() -> None:
+def test_every_bundled_type_rejects_payloads_without_a_header() -> None:
     for name in BUNDLED:
         c = codec(name)
-        for data in (b'', b'\x00', b'\x00\x01\x00', b'\x00\x01\x00\x00\xff\xff\xff\xff'):
-            try:
+        for data in (b'', b'\x00', b'\x00\x01\x00', b'\x01\x01\x00\x00'):
+            with pytest.raises(CdrError):
                 c.deserialize(data)
-            except CdrError:
-                continue
