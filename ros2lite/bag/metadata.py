@@ -398,13 +398,9 @@ def read_metadata_file(path: Any) -> BagMetadata:
 def write_metadata_file(directory: Any, m: BagMetadata) -> None:
     """Write metadata.yaml atomically (a temp file renamed over it), so a crash mid-write
     never leaves half a file."""
-    import os
     from pathlib import Path
 
-    path = Path(directory) / METADATA_FILENAME
-    tmp = path.with_name(path.name + ".tmp")
-    with open(tmp, "w", encoding="utf-8") as f:
-        f.write(dump_metadata(m))
-        f.flush()
-        os.fsync(f.fileno())
-    os.replace(tmp, path)
+    from ros2lite.files import replace_file
+
+    # a randomly named temporary file, renamed over the old one: never through a symlink
+    replace_file(Path(directory) / METADATA_FILENAME, dump_metadata(m))

@@ -144,12 +144,13 @@ class DaemonStatus:
 
 
 def runtime_dir() -> Path:
-    """Per-user directory for pid, lock and log files (created 0700 on first use)."""
-    xdg = os.environ.get("XDG_RUNTIME_DIR", "")
-    base = Path(xdg) if xdg and os.path.isdir(xdg) else Path.home() / ".cache"
-    path = base / "ros2lite"
-    path.mkdir(mode=0o700, parents=True, exist_ok=True)
-    return path
+    """Per-user directory for pid, lock and log files (created 0700 on first use).
+
+    ``$XDG_RUNTIME_DIR/ros2lite`` only when both are ours and closed to others; a shared or
+    foreign one falls back to ``~/.cache/ros2lite`` (see :func:`ros2lite.files.private_dir`)."""
+    from ros2lite.files import private_dir
+
+    return private_dir(os.environ.get("XDG_RUNTIME_DIR", ""))
 
 
 def _stem(endpoint: str) -> str:
@@ -171,7 +172,10 @@ def _lock_file(endpoint: str) -> Path:
 @contextlib.contextmanager
 def _start_lock(endpoint: str, timeout: float) -> Iterator[None]:
     """Serialise start/stop for one endpoint so two auto-starting CLIs don't race."""
-    with open(_lock_file(endpoint), "a+") as fh:
+    from ros2lite.files import NOFOLLOW
+
+    fd = os.open(_lock_file(endpoint), os.O_RDWR | os.O_CREAT | NOFOLLOW | os.O_CLOEXEC, 0o600)
+    with os.fdopen(fd, "r+") as fh:
         deadline = time.monotonic() + timeout
         while True:
             try:
@@ -235,8 +239,10 @@ def _is_our_process(pid: int) -> bool:
 
 def _write_pid_file(path: Path, info: DaemonInfo) -> Any:
     """Write the pid file atomically and return its handle, locked for the process' life."""
-    tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
-    fh = os.fdopen(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600), "w")
+    from ros2lite.files import temp_beside
+
+    fd, tmp = temp_beside(path)
+    fh = os.fdopen(fd, "w")
     fcntl.flock(fh, fcntl.LOCK_EX)
     json.dump(info.__dict__, fh)
     fh.flush()

@@ -66,7 +66,9 @@ class _DirectFile:
 
     def __init__(self, path: str) -> None:
         self.path = path
-        self._fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
+        from ros2lite.files import create_new
+
+        self._fd = create_new(path)
         self._pos = 0
 
     def write(self, data: Any) -> int:
@@ -401,10 +403,25 @@ def recover(path: str) -> int:
 
     The new file is written beside the old one and renamed over it, so an interrupted
     recovery leaves the original untouched."""
+    from ros2lite.files import temp_beside
+
+    fd, tmp = temp_beside(path, ".recovering")  # a fresh name: no planted file is written
+    try:
+        os.fchmod(fd, 0o644)
+        kept = _copy_readable(path, os.fdopen(fd, "wb"))
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+    os.replace(tmp, path)
+    return kept
+
+
+def _copy_readable(path: str, dst: Any) -> int:
+    """Copy every readable message of `path` into a complete MCAP written to `dst`."""
     from mcap.writer import CompressionType, IndexType, Writer
 
-    tmp = path + ".recovering"
-    with open(path, "rb") as src, open(tmp, "wb") as dst:
+    with open(path, "rb") as src, dst:
         writer = Writer(
             dst,
             chunk_size=DEFAULT_CHUNK_SIZE,
@@ -435,7 +452,6 @@ def recover(path: str) -> int:
         for record in metadata:
             writer.add_metadata(record.name, dict(record.metadata))
         writer.finish()
-    os.replace(tmp, path)
     return kept
 
 
