@@ -9,6 +9,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from ros2lite.bad_samples import BadSamples, gid_of
 from ros2lite.endpoint import Endpoint, EndpointOwner
 from ros2lite.executable import Executable
 from ros2lite.qos import HistoryPolicy, QoSProfile
@@ -72,6 +73,8 @@ class Subscription(EndpointOwner, Executable):
         self._buffer: deque[Any] = deque(maxlen=None if keep_all else max(ep.qos.depth, 1))
         self._deserialize: Any = None
         self._destroyed = False
+        # undecodable samples so far (None until the first one)
+        self.bad_samples: BadSamples | None = None
         # a subclass hook (e.g. topic monitors) sees every sample instead of the buffer
         hook = None if type(self)._on_sample is Subscription._on_sample else self._on_sample
         self._receiver = SampleReceiver(
@@ -119,7 +122,12 @@ class Subscription(EndpointOwner, Executable):
                 continue  # rmw_zenoh drops samples without an attachment
             data = sample.payload.to_bytes()
             info = _info(attachment.to_bytes(), received)
-            return (data if self.raw else self._deserializer()(data)), info
+            if self.raw:
+                return data, info
+            try:
+                return self._deserializer()(data), info
+            except ValueError as e:  # a CdrError (imported lazily: tools stay light)
+                self._bad_sample(data, info.publisher_gid, e)  # dropped: take the next one
 
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         """Deliver the oldest sample, or in spin()/spin_until_future_complete() a batch of
@@ -169,11 +177,28 @@ class Subscription(EndpointOwner, Executable):
                 break
             if self._destroyed:
                 break
-            if sample.attachment is None:
+            attachment = sample.attachment
+            if attachment is None:
                 continue
-            callback(des(sample.payload.to_bytes()))
+            data = sample.payload.to_bytes()
+            try:
+                msg = des(data)
+            except ValueError as e:  # CdrError; free until raised: nothing outside kills a node
+                self._bad_sample(data, gid_of(attachment.to_bytes()), e)
+                continue
+            callback(msg)
             if stop is not None and stop():
                 break
+
+    def _bad_sample(self, data: bytes, gid: bytes, error: Exception) -> None:
+        """A sample that is not the topic's type: dropped, counted, reported (rate-limited)."""
+        bad = self.bad_samples
+        if bad is None:
+            node = self._ep.node
+            bad = self.bad_samples = BadSamples(
+                self._ep.topic_name, self._ep.type_name, node.get_logger().warn
+            )
+        bad.add(gid, error, len(data))
 
     def destroy(self) -> None:
         self._destroyed = True

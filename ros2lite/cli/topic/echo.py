@@ -18,6 +18,7 @@ if TYPE_CHECKING:
     from ros2lite.qos import QoSProfile
 
 DEFAULT_TRUNCATE_LENGTH = 128
+PRUNE_PERIOD = 5.0  # seconds between prunings of the lost-message table
 CLEAR_SCREEN = '\x1b[H\x1b[2J'
 
 
@@ -43,7 +44,10 @@ class Printer:
         include_info: bool,
         clear: bool,
         lost: Any,
+        warn: Callable[[str], object],
+        topic: str = '',
     ) -> None:
+        from ros2lite.bad_samples import BadSamples
         from ros2lite.interfaces import deserialize
         from ros2lite.interfaces.classes import Message
 
@@ -62,6 +66,7 @@ class Printer:
         self.lost = lost
         self.done = False
         self.out = sys.stdout
+        self.bad = BadSamples(topic, type_name, warn)
 
     def report_lost(self) -> None:
         for change, total in self.lost.drain():
@@ -72,7 +77,13 @@ class Printer:
     def __call__(self, data: bytes, info: Any) -> None:
         if self.lost is not None:
             self.report_lost()
-        value: Any = data if self.raw else self._deserialize(self.type_name, data)
+        from ros2lite.interfaces import CdrError
+
+        try:
+            value: Any = data if self.raw else self._deserialize(self.type_name, data)
+        except CdrError as e:
+            self.bad_sample(data, info, e)
+            return
         if self.field is not None:
             for name in self.field:
                 try:
@@ -84,6 +95,20 @@ class Printer:
         if self.once:
             self.done = True
         self.out.write(self.render(value, info))
+
+    def bad_sample(self, data: bytes, info: Any, error: Exception) -> None:
+        """A sample that is not the type: dropped with a (rate-limited) warning, or shown
+        with its message info when the user asked for message info."""
+        from ros2lite.bad_samples import describe_publisher
+
+        self.bad.add(info.publisher_gid, error, len(data))
+        if not self.include_info:
+            return
+        head = ''.join(f'{k}: {v}\n' for k, v in sorted(info_dict(info).items()))
+        self.out.write(
+            f'{head}---\n# dropped: not a valid {self.type_name} from '
+            f'{describe_publisher(info.publisher_gid)} ({len(data)} bytes: {error})\n---\n'
+        )
 
     def render(self, value: Any, info: Any) -> str:
         from ros2lite.interfaces import message_to_csv, message_to_yaml
@@ -235,9 +260,13 @@ def cli(
             include_info=include_message_info,
             clear=clear,
             lost=lost,
+            warn=watch.node.get_logger().warn,
+            topic=watch.topic,
         )
         if lost is not None:
             counter = lost
+            # publishers that left are forgotten, so the table follows the graph
+            conn.every(PRUNE_PERIOD, lambda: counter.prune(watch.publisher_gids()))
             watch.on_arrival(
                 type_name,
                 profile,
