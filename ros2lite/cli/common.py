@@ -61,12 +61,14 @@ def strategy_options(*, no_daemon: bool = True) -> Callable[[F], F]:
     return decorate
 
 
-def connect(*, no_daemon: bool = False, use_sim_time: bool = False) -> Connection:
+def connect(
+    *, no_daemon: bool = False, use_sim_time: bool = False, as_node: bool = False
+) -> Connection:
     """This run's connection to the graph (the daemon started on demand unless
-    `--no-daemon`); use it as a context manager."""
+    `--no-daemon`; a node's peer session with `as_node`); use it as a context manager."""
     from ros2lite.connection import Connection
 
-    return Connection(autostart=not no_daemon, use_sim_time=use_sim_time)
+    return Connection(autostart=not no_daemon, use_sim_time=use_sim_time, as_node=as_node)
 
 
 def qos_options(default_profile: str) -> Callable[[F], F]:

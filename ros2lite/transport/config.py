@@ -557,6 +557,14 @@ def open_router(
         raise SessionError(zerror_message(exc)) from None
 
 
+def router_connected(session: zenoh.Session) -> bool:
+    """Whether `session` is linked to a router now (a peer goes on without one)."""
+    try:
+        return bool(session.info.routers_zid())
+    except zenoh.ZError:
+        return False
+
+
 def router_reachable(endpoint: str, timeout: float) -> bool:
     """Whether a client session to `endpoint` finds a router there (for protocols a plain
     socket connect cannot probe)."""

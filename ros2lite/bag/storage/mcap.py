@@ -298,13 +298,16 @@ class McapStorageReader:
     ) -> Iterator[tuple[str, bytes, int, int]]:
         """(topic, data, log_time, publish_time) in log-time order, `start <= t < stop`."""
         if self._mcap_summary() is None:
-            for _schemas, channel, m in _scan(self._stream):
-                if (
-                    (topics is None or channel.topic in topics)
-                    and (start is None or m.log_time >= start)
-                    and (stop is None or m.log_time < stop)
-                ):
-                    yield channel.topic, m.data, m.log_time, m.publish_time
+            # a stream of its own: a summary scan while this generator is paused must not
+            # move its position
+            with open(self.path, "rb") as stream:
+                for _schemas, channel, m in _scan(stream):
+                    if (
+                        (topics is None or channel.topic in topics)
+                        and (start is None or m.log_time >= start)
+                        and (stop is None or m.log_time < stop)
+                    ):
+                        yield channel.topic, m.data, m.log_time, m.publish_time
             return
         for _schema, channel, m in self._reader.iter_messages(
             topics=list(topics) if topics is not None else None,

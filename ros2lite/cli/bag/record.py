@@ -129,6 +129,15 @@ SELECTION_ERROR = (
     help="Milliseconds between topic discovery passes.",
 )
 @click.option(
+    "--flush-interval",
+    type=click.IntRange(min=1, max=3_600_000),
+    default=100,
+    show_default=True,
+    metavar="MS",
+    help="Milliseconds a received message may wait in memory before its chunk is written: "
+    "what a recorder killed outright (SIGKILL, power loss) can lose at most.",
+)
+@click.option(
     "--node-name", default="rosbag2_recorder", show_default=True, help="Name of the recorder node."
 )
 @click.option(
@@ -163,6 +172,7 @@ def cli(
     use_sim_time: bool,
     no_discovery: bool,
     polling_interval: int,
+    flush_interval: int,
     node_name: str,
     custom_data: tuple[str, ...],
     disable_keyboard_controls: bool,
@@ -205,6 +215,7 @@ def cli(
         max_cache_size=max_cache_size,
         start_paused=start_paused,
         discovery=not no_discovery,
+        flush_interval=flush_interval / 1000,
     )
     custom = _custom_data(custom_data)
     uri = output or time.strftime("rosbag2_%Y_%m_%d-%H_%M_%S")
@@ -221,7 +232,8 @@ def cli(
         ).open()
     except BagError as e:
         raise bag_error(str(e)) from None
-    conn = connect(use_sim_time=use_sim_time)
+    # the recorder is a node: a peer session keeps it hearing publishers through a router outage
+    conn = connect(use_sim_time=use_sim_time, as_node=True)
     try:
         conn.open()
     except BaseException:
