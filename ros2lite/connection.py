@@ -4,7 +4,8 @@ graph needs, in one object.
 It opens a client session (the daemon started on demand, see
 :func:`ros2lite.daemon.connect.connect`), or with ``as_node=True`` a node's peer session,
 answers graph questions from one complete liveliness query, makes a hidden node for the
-tool's publishers and subscriptions, and owns the executor that runs that node's callbacks, so no caller builds or spins executors itself::
+tool's publishers and subscriptions, and owns the executor that runs that node's callbacks,
+so no caller builds or spins executors itself::
 
     with Connection() as conn:
         node = conn.node()
