@@ -180,12 +180,12 @@ def parse_qos_list(value: Any) -> list[QoSProfile]:
     if value is None or value == "":
         return []
     if isinstance(value, str):
-        import yaml
+        from ros2lite.safe_yaml import YamlInputError, load
 
         try:
-            value = yaml.safe_load(value)
-        except yaml.YAMLError as e:
-            raise MetadataError(f"bad offered_qos_profiles: {e}") from None
+            value = load(value, "offered_qos_profiles")
+        except YamlInputError as e:
+            raise MetadataError(str(e)) from None
         if value is None:
             return []
     if not isinstance(value, list):
@@ -319,12 +319,12 @@ def _int(value: Any, what: str) -> int:
 
 def parse_metadata(text: str, *, top_key: bool = True) -> BagMetadata:
     """Parse metadata.yaml (any version 1-9) or a `serialized_metadata` string."""
-    import yaml
+    from ros2lite.safe_yaml import YamlInputError, load
 
     try:
-        doc = yaml.safe_load(text)
-    except yaml.YAMLError as e:
-        raise MetadataError(f"metadata is not valid YAML: {e}") from None
+        doc = load(text, "metadata")
+    except YamlInputError as e:
+        raise MetadataError(str(e)) from None
     if top_key:
         if not isinstance(doc, dict) or "rosbag2_bagfile_information" not in doc:
             raise MetadataError("metadata lacks 'rosbag2_bagfile_information'")

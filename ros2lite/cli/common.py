@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 
+from . import numbers
 from .errors import CliError
 
 if TYPE_CHECKING:
@@ -45,7 +46,7 @@ def strategy_options(*, no_daemon: bool = True) -> Callable[[F], F]:
         # accepted so ros2cli command lines keep working, then dropped here once
         fn = click.option(
             '--spin-time',
-            type=float,
+            type=numbers.seconds(),
             default=0.5,
             show_default=True,
             expose_value=False,
@@ -78,7 +79,7 @@ def qos_options(default_profile: str) -> Callable[[F], F]:
         opts = [
             click.option(
                 '--qos-liveliness-lease-duration-seconds',
-                type=float,
+                type=numbers.seconds(),
                 help='Quality of service liveliness lease duration in seconds',
             ),
             click.option(
@@ -109,7 +110,7 @@ def qos_options(default_profile: str) -> Callable[[F], F]:
             ),
             click.option(
                 '--qos-depth',
-                type=click.IntRange(min=0),
+                type=numbers.Count(min=0),
                 help='Queue size setting (overrides depth value of --qos-profile option)',
             ),
             click.option(

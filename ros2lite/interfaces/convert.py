@@ -258,12 +258,12 @@ def set_message_fields(
     'Failed to populate field: '.
     """
     if isinstance(values, str):
-        import yaml
+        from ros2lite.safe_yaml import YamlInputError, load
 
         try:
-            values = yaml.safe_load(values)
-        except yaml.YAMLError as e:
-            raise PopulateError(f'invalid YAML: {" ".join(str(e).split())}') from None
+            values = load(values, 'the values')
+        except YamlInputError as e:
+            raise PopulateError(f'invalid YAML: {e.detail}' if e.syntax else str(e)) from None
     if values is None:
         values = {}
     setters: list[_Setter] = []

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
-from .. import completion
+from .. import completion, numbers
 from ..common import connect
 from ..errors import CliError
 
@@ -33,16 +33,13 @@ def action_class(action_type: str) -> tuple[str, Any]:
 
 
 def build_goal(cls: Any, values: str) -> Any:
-    import yaml
-
     from ros2lite.interfaces import set_message_fields
 
     goal = cls.Goal()
     try:
-        fields = yaml.safe_load(values)
-        set_message_fields(goal, fields)
-    except Exception as e:  # any reason the values do not fit, as ros2cli reports it
-        raise CliError(f'Failed to populate message fields: {e!r}') from None
+        set_message_fields(goal, values)
+    except Exception as e:  # any reason the values do not fit, in one line
+        raise CliError(f'Failed to populate message fields: {e}') from None
     return goal
 
 
@@ -79,7 +76,7 @@ class FeedbackPrinter:
 @click.option('-f', '--feedback', is_flag=True, help='Echo feedback messages for the goal')
 @click.option(
     '--timeout',
-    type=click.FloatRange(min=0),
+    type=numbers.seconds(),
     metavar='SECONDS',
     help='Give up when no action server shows up within this time (default: wait forever)',
 )

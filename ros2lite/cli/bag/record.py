@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 
 import click
 
-from .. import completion, render
+from .. import completion, numbers, render
 from .. import keyboard as keys_module
 from ..common import ManyValues, connect
 from .options import bag_error, check_patterns, qos_overrides, shared_options, warn
@@ -81,20 +81,20 @@ SELECTION_ERROR = (
 @click.option(
     "-b",
     "--max-bag-size",
-    type=click.IntRange(min=0),
+    type=numbers.Count(min=0, max=2**63 - 1),
     default=0,
     help="Split the bag at this many bytes (0: no splitting).",
 )
 @click.option(
     "-d",
     "--max-bag-duration",
-    type=click.FloatRange(min=0),
+    type=numbers.seconds(),
     default=0,
     help="Split the bag after this many seconds (0: no splitting).",
 )
 @click.option(
     "--max-cache-size",
-    type=click.IntRange(min=0),
+    type=numbers.Count(min=0, max=2**63 - 1),
     default=100 * 1024 * 1024,
     show_default=True,
     help="Bytes per topic kept in memory while the disk catches up; past it the "
@@ -123,14 +123,14 @@ SELECTION_ERROR = (
 @click.option(
     "-p",
     "--polling-interval",
-    type=click.IntRange(min=1),
+    type=numbers.Count(min=1, max=3_600_000),
     default=100,
     show_default=True,
     help="Milliseconds between topic discovery passes.",
 )
 @click.option(
     "--flush-interval",
-    type=click.IntRange(min=1, max=3_600_000),
+    type=numbers.Count(min=1, max=3_600_000),
     default=100,
     show_default=True,
     metavar="MS",

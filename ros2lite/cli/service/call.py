@@ -8,7 +8,7 @@ from typing import Any
 
 import click
 
-from .. import completion
+from .. import completion, numbers
 from ..common import connect, interface_type_name
 from ..errors import CliError
 
@@ -19,11 +19,15 @@ from ..errors import CliError
 @click.argument('values', required=False)
 @click.option('--stdin', 'use_stdin', is_flag=True, help='Read values from standard input')
 @click.option(
-    '-r', '--rate', type=float, metavar='N', help='Repeat the call at a specific rate in Hz'
+    '-r',
+    '--rate',
+    type=numbers.rate(),
+    metavar='N',
+    help='Repeat the call at a specific rate in Hz',
 )
 @click.option(
     '--timeout',
-    type=click.FloatRange(min=0, min_open=True),
+    type=numbers.seconds(min_open=True),
     metavar='SECONDS',
     help='Give up if the service is not available, or does not answer, within '
     'this many seconds (default: wait forever, as ros2cli does)',
@@ -75,11 +79,13 @@ def cli(
 
 
 def _parse_values(values: str) -> dict[str, Any]:
-    import yaml
+    from ros2lite.safe_yaml import YamlInputError, load
 
     try:
-        parsed = yaml.safe_load(values)
-    except yaml.YAMLError:
+        parsed = load(values, 'the passed value')
+    except YamlInputError as e:
+        if not e.syntax:
+            raise CliError(str(e)) from None
         raise CliError('The passed value needs to be in YAML string or a dictionary') from None
     if parsed is None:
         return {}

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
-from .. import completion
+from .. import completion, numbers
 from ..common import connect, explicit_qos, qos_from_options, qos_options, strategy_options
 from ..errors import CliError
 from .common import compile_filter, graph_type, message_type_name, monitor
@@ -168,7 +168,7 @@ def info_dict(info: Any) -> dict[str, int]:
 @click.option(
     '-l',
     '--truncate-length',
-    type=click.IntRange(min=0),
+    type=numbers.Count(min=0),
     default=DEFAULT_TRUNCATE_LENGTH,
     show_default=True,
     help='The length to truncate arrays, bytes, and strings to',
@@ -192,7 +192,7 @@ def info_dict(info: Any) -> dict[str, int]:
 @click.option('--once', is_flag=True, help='Print the first message received and then exit')
 @click.option(
     '--timeout',
-    type=click.FloatRange(min=0, min_open=True),
+    type=numbers.seconds(min_open=True),
     metavar='N',
     help='Stop after N seconds (exit status 0)',
 )
