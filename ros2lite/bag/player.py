@@ -21,6 +21,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from ros2lite.bag.errors import BagError
 from ros2lite.bag.metadata import TopicMetadata
 from ros2lite.bag.qos import playback_qos
 from ros2lite.bag.reader import Reader
@@ -112,6 +113,23 @@ class Player:
         from ros2lite.interfaces import InterfaceError, get_interface
         from ros2lite.interfaces.parser import validate_type_name
         from ros2lite.interfaces.registry import normalize_name
+
+        for problem in self.reader.shortfalls():
+            self._warn(problem)
+        if self.options.topics is not None:
+            in_bag = {t.name for t in self.reader.topics}
+            missing = [
+                t
+                for t in self.options.topics
+                if t.startswith("/") and t not in in_bag and t[1:] not in in_bag
+            ]
+            if missing and not any(t in in_bag for t in self.options.topics):
+                raise BagError(
+                    f"None of the topics to play ({', '.join(missing)}) is in the bag; "
+                    f"it has: {', '.join(sorted(in_bag)) or 'no topics'}"
+                )
+            for name in missing:
+                self._warn(f"Topic '{name}' is not in the bag; nothing to play for it")
 
         for t in self.reader.topics:
             if not self._selected(t):
@@ -290,8 +308,14 @@ class Player:
 
     def _reader_thread(self, out: queue.Queue[Any], start: int) -> None:
         put = out.put
+        first, last = self.reader.start_time, self.reader.end_time
+        refused = 0
         try:
             for item in self.reader.raw_messages(self._publishers, start=start):
+                if not first <= item[2] <= last:
+                    # a corrupt time (the year 2500, say) would have playback wait for it
+                    refused += 1
+                    continue
                 while not self._stopped:
                     try:
                         put(item, timeout=0.1)
@@ -303,6 +327,12 @@ class Player:
         except Exception as e:
             put(e)
             return
+        finally:
+            if refused:
+                self._warn(
+                    f"{refused} message(s) have log times outside the bag's own range "
+                    f"[{first}, {last}] ns (corrupt); not playing them"
+                )
         put(_END)
 
     def _play_once(self) -> None:
