@@ -49,6 +49,17 @@ def status_name(status: int) -> str:
 # -- names ---------------------------------------------------------------------------------
 
 
+def resolve_action_name(node: Any, name: str) -> str:
+    """`name` resolved as the node resolves topics; a bad one is said to be an action name."""
+    from ros2lite.names import NameValidationException
+
+    try:
+        resolved: str = node.resolve_topic_name(name)
+    except NameValidationException as e:
+        raise type(e)(str(e).replace('invalid topic name', 'invalid action name', 1)) from None
+    return resolved
+
+
 @dataclass(frozen=True)
 class ActionNames:
     """Full names and types of the five entities rcl_action builds an action from."""

@@ -237,20 +237,22 @@ def print_types_of(
     name: str,
     no_daemon: bool,
     names_and_types: Callable[[list[Entity]], list[tuple[str, list[str]]]],
+    kind: str = 'topic',
 ) -> None:
-    """What `topic/service/action type` share: the type(s) of `name` in the graph, or exit 1
-    without a word, as ros2cli does (a name that cannot be valid is just an unknown one)."""
+    """What `topic/service/action type` share: the type(s) of `name` in the graph. Exit 1 as
+    ros2cli does when there is none, with nothing on stdout (scripts read it) and one line
+    on stderr saying why (ros2cli says nothing at all)."""
     from ros2lite.names import expand_topic_name
 
     try:
-        full = expand_topic_name(name, 'ros2lite', '/')
-    except ValueError:
-        ctx.exit(1)
+        full = expand_topic_name(name, 'ros2lite', '/', is_service=kind == 'service')
+    except ValueError as e:
+        raise CliError(str(e).replace('topic name', f'{kind} name', 1)) from None
     with connect(no_daemon=no_daemon) as conn:
         entities = conn.entities()
     types = dict(names_and_types(entities)).get(full)
     if types is None:
-        ctx.exit(1)
+        raise CliError(f"Unknown {kind} '{full}' (not in the graph now)")
     click.echo('\n'.join(types))
 
 
