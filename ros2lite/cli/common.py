@@ -256,6 +256,40 @@ def print_types_of(
     click.echo('\n'.join(types))
 
 
+def wait_saying_other_types(
+    ready: Callable[[float], bool],
+    timeout: float | None,
+    kind: str,
+    name: str,
+    type_name: str,
+    served_types: Callable[[], list[tuple[str, list[str]]]],
+) -> bool:
+    """Wait up to `timeout` s (None: for ever) until `ready(step)` holds, saying once on
+    stderr when `name` is served with another type than `type_name` (such a wait would
+    otherwise go on in silence, as ros2cli's does). True when ready."""
+    import time
+
+    deadline = None if timeout is None else time.monotonic() + timeout
+    warned = False
+    while True:
+        left = None if deadline is None else max(0.0, deadline - time.monotonic())
+        if ready(0.5 if left is None else min(0.5, left)):
+            return True
+        if not warned:
+            others = sorted(
+                {t for n, types in served_types() if n == name for t in types if t != type_name}
+            )
+            if others:
+                warned = True
+                click.echo(
+                    f"WARNING: {kind} '{name}' is served as {', '.join(others)}, not "
+                    f'{type_name}; nothing will answer until a server of {type_name} appears',
+                    err=True,
+                )
+        if deadline is not None and time.monotonic() >= deadline:
+            return False
+
+
 class ManyValues(click.Option):
     '''An option that takes every following word up to the next option, as argparse's
     `nargs='+'` does (`--topics /a /b -o out`). It may also be repeated.'''

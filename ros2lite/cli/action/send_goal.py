@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from .. import completion, numbers
-from ..common import connect
+from ..common import connect, wait_saying_other_types
 from ..errors import CliError
 
 if TYPE_CHECKING:
@@ -126,8 +126,18 @@ def send_goal(
         client = ActionClient(conn.node(), cls, action_name)
     except ValueError as e:  # an invalid action name
         raise CliError(str(e)) from None
+    from ros2lite.action.graph import get_action_names_and_types
+
     click.echo('Waiting for an action server to become available...')
-    if not client.wait_for_server(timeout_sec=timeout):
+    node = conn.node()
+    if not wait_saying_other_types(
+        lambda step: client.wait_for_server(timeout_sec=step),
+        timeout,
+        'action',
+        client.action_name,
+        cls._TYPE_NAME,
+        lambda: get_action_names_and_types(node),
+    ):
         raise CliError(f"No action server for '{client.action_name}' after {timeout} s")
     click.echo(f'Sending goal:\n     {message_to_yaml(goal)}')
     goal_handle = None

@@ -9,7 +9,7 @@ from typing import Any
 import click
 
 from .. import completion, numbers
-from ..common import connect, interface_type_name
+from ..common import connect, interface_type_name, wait_saying_other_types
 from ..errors import CliError
 
 
@@ -21,7 +21,8 @@ from ..errors import CliError
 @click.option(
     '-r',
     '--rate',
-    type=numbers.rate(),
+    # <= 0 is ros2cli's own error (exit 1) below; nan, inf and absurd rates are usage errors
+    type=numbers.Finite(max=numbers.MAX_RATE),
     metavar='N',
     help='Repeat the call at a specific rate in Hz',
 )
@@ -67,7 +68,7 @@ def cli(
     with connect() as conn:
         node = conn.node(f'_ros2lite_requester_{package}_{name}')
         client = node.create_client(srv_class, service_name)
-        _wait(client, timeout)
+        _wait(client, timeout, node, type_name)
         period = None if rate is None else 1.0 / rate
         while True:
             last_call = time.monotonic()
@@ -94,11 +95,18 @@ def _parse_values(values: str) -> dict[str, Any]:
     return parsed
 
 
-def _wait(client: Any, timeout: float | None) -> None:
+def _wait(client: Any, timeout: float | None, node: Any, type_name: str) -> None:
     if client.service_is_ready():
         return
     click.echo('waiting for service to become available...')
-    if not client.wait_for_service(timeout_sec=timeout):
+    if not wait_saying_other_types(
+        lambda step: client.wait_for_service(timeout_sec=step),
+        timeout,
+        'service',
+        client.srv_name,
+        type_name,
+        node.get_service_names_and_types,
+    ):
         raise CliError(f"Timed out after {timeout:g} s waiting for service '{client.srv_name}'")
 
 
