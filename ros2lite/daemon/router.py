@@ -120,6 +120,7 @@ class DaemonStatus:
     info: DaemonInfo | None = None
     # other sessions connected to the router, when asked for and its admin space answers
     sessions: list[ConnectedSession] | None = None
+    answers_zenoh: bool = True  # False: something listens, but no Zenoh router answers
 
     @property
     def pid(self) -> int | None:
@@ -127,6 +128,10 @@ class DaemonStatus:
 
     @property
     def message(self) -> str:
+        if self.running and not self.answers_zenoh:
+            from ros2lite.daemon.probe import not_a_router
+
+            return not_a_router(self.endpoint, self.pid)
         if self.running and self.ours:
             return "The daemon is running"
         if self.running:
@@ -314,14 +319,27 @@ def serve(
 # --------------------------------------------------------------------------- verbs
 
 
+def daemon_pid(router: str | None = None) -> int | None:
+    """The pid of our live daemon for the endpoint, if there is one (reads its pid file)."""
+    try:
+        info = _read_info(pid_file(router_endpoint(router)))
+    except OSError:
+        return None
+    return info.pid if info is not None else None
+
+
 def status(router: str | None = None, *, sessions: bool = False) -> DaemonStatus:
     """Is a router answering at the endpoint, and is it ours?  With ``sessions``, also
-    which sessions are connected to it (one short client session asks its admin space)."""
+    which sessions are connected to it (one short client session asks its admin space).
+    A listener that does not answer as a Zenoh router is told apart (``answers_zenoh``)."""
+    from ros2lite.daemon.probe import speaks_zenoh
+
     endpoint = router_endpoint(router)
     info = _read_info(pid_file(endpoint))
     running = router_answers(endpoint)
-    connected = connected_sessions(endpoint) if running and sessions else None
-    return DaemonStatus(endpoint, running, info is not None, info, connected)
+    zenoh = not running or speaks_zenoh(endpoint)
+    connected = connected_sessions(endpoint) if running and zenoh and sessions else None
+    return DaemonStatus(endpoint, running, info is not None, info, connected, zenoh)
 
 
 def connected_sessions(
@@ -365,6 +383,10 @@ def start(
         if (not known_absent and router_answers(endpoint)) or (
             info is not None and wait_answers(endpoint, timeout)
         ):
+            from ros2lite.daemon.probe import not_a_router, speaks_zenoh
+
+            if not speaks_zenoh(endpoint):  # a frozen router, or not a router at all
+                raise DaemonError(not_a_router(endpoint, info.pid if info else None))
             return StartResult(
                 endpoint,
                 False,
