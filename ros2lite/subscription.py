@@ -166,29 +166,37 @@ class Subscription(EndpointOwner, Executable):
                 if stop is not None and stop():
                     break
             return
-        # typed: the hot loop of a busy subscriber, kept to the bare minimum per sample
+        # typed: the hot loop of a busy subscriber, kept to the bare minimum per sample. A
+        # sample that does not decode raises out of it; the handler (free until something
+        # raises) tells a bad sample, which is dropped, from the callback's own error
         des = self._deserialize or self._deserializer()
-        for i in range(limit):
-            if i & 7 == 7 and perf_counter() > deadline:
-                break
+        first = 0
+        while True:
             try:
-                sample = popleft()
-            except IndexError:
-                break
-            if self._destroyed:
-                break
-            attachment = sample.attachment
-            if attachment is None:
-                continue
-            data = sample.payload.to_bytes()
-            try:
-                msg = des(data)
-            except ValueError as e:  # CdrError; free until raised: nothing outside kills a node
-                self._bad_sample(data, gid_of(attachment.to_bytes()), e)
-                continue
-            callback(msg)
-            if stop is not None and stop():
-                break
+                for i in range(first, limit):
+                    if i & 7 == 7 and perf_counter() > deadline:
+                        return
+                    try:
+                        sample = popleft()
+                    except IndexError:
+                        return
+                    if self._destroyed:
+                        return
+                    if sample.attachment is None:
+                        continue
+                    callback(des(sample.payload.to_bytes()))
+                    if stop is not None and stop():
+                        return
+                return
+            except ValueError as e:  # a CdrError (imported lazily: tools stay light)?
+                data = sample.payload.to_bytes()
+                try:
+                    des(data)
+                except ValueError:
+                    self._bad_sample(data, gid_of(sample.attachment.to_bytes()), e)
+                else:
+                    raise  # it decodes: the error is the callback's
+                first = i + 1
 
     def _bad_sample(self, data: bytes, gid: bytes, error: Exception) -> None:
         """A sample that is not the topic's type: dropped, counted, reported (rate-limited)."""

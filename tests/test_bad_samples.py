@@ -168,3 +168,32 @@ def test_listener_demo_and_topic_echo_go_on(processes: Any, alien_session: Any) 
     text = ''.join(lines)
     assert '# dropped: not a valid std_msgs/msg/String from publisher 07.07' in text
     assert 'data: hello after garbage' in text
+
+
+def test_a_callbacks_own_value_error_still_reaches_the_caller(
+    ros_context: Any, alien_session: Any
+) -> None:
+    import pytest
+
+    node = Node('raiser', context=ros_context)
+
+    def callback(msg: Any) -> None:
+        raise ValueError(f'user bug on {msg.data}')
+
+    sub = node.create_subscription('std_msgs/msg/String', '/raiser', callback, 100)
+    probe = node.create_publisher('std_msgs/msg/String', '/raiser', 10)
+    wait_until(lambda: probe.get_subscription_count() > 0)
+    key = f'{ros_context.domain_id}/raiser/std_msgs::msg::dds_::String_/{STRING_HASH}'
+    _publish(
+        alien_session,
+        key,
+        [(b'junk', attachment(1, gid(9))), (cdr_string('x'), attachment(2, gid(9)))],
+    )
+    wait_until(lambda: len(sub._buffer) == 2)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(node)
+    with pytest.raises(ValueError, match='user bug on x'):
+        executor.spin_once(timeout_sec=5)
+        executor.spin_once(timeout_sec=5)
+    assert sub.bad_samples is not None and sub.bad_samples.total == 1
+    executor.shutdown()
