@@ -101,11 +101,11 @@ def _split_assignment(text: str, what: str) -> tuple[str | None, str, str]:
 
 def parse_value(text: str) -> object:
     """A parameter value from the command line, typed the YAML way ('1' → int)."""
-    import yaml
+    from ros2lite.safe_yaml import YamlInputError, load
 
     try:
-        return yaml.safe_load(text)
-    except yaml.YAMLError:
+        return load(text, "the value")
+    except YamlInputError:
         return text
 
 

@@ -71,7 +71,9 @@ class Endpoint:
         # a type known only by name and hash (no local definition: `bag play` of a bag's own
         # types, `bag record` of a remote node's) may carry its hash along
         self.type_hash = getattr(msg_type, '_TYPE_HASH', None) or type_hash(self.type_name)
-        self.topic_name = node.resolve_topic_name(topic)
+        # a service's or client's name is validated as one (errors say 'service name')
+        service = self.kind in (EntityKind.SERVICE, EntityKind.CLIENT)
+        self.topic_name = (node.resolve_service_name if service else node.resolve_topic_name)(topic)
         self.qos = as_qos(qos)
         ctx = node.context
         self.key = topic_key(ctx.domain_id, self.topic_name, self.type_name, self.type_hash)

@@ -199,11 +199,11 @@ def get_parameter_value(string_value: str) -> _rcl_msg.ParameterValue:
     text 5); anything else (mixed lists, maps, null) is the text as written — what rclpy's
     `ros2 param set` sends.
     """
-    import yaml
+    from ros2lite.safe_yaml import YamlInputError, load
 
     try:
-        loaded = yaml.safe_load(string_value)
-    except yaml.YAMLError:
+        loaded = load(string_value, "the value")
+    except YamlInputError:
         loaded = string_value
     if isinstance(loaded, list) and not loaded:  # [] holds no type: rclpy sends bool[]
         return _value_msg(Parameter.Type.BOOL_ARRAY.value)

@@ -9,6 +9,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Generic, cast
 
+from ros2lite.bad_samples import BadSamples, gid_of
 from ros2lite.endpoint import Endpoint, EndpointOwner
 from ros2lite.executable import Executable
 from ros2lite.qos import HistoryPolicy, QoSProfile
@@ -79,6 +80,8 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self._buffer: deque[Any] = deque(maxlen=None if keep_all else max(ep.qos.depth, 1))
         self._deserialize: Callable[[bytes], MsgT] | None = None
         self._destroyed = False
+        # undecodable samples so far (None until the first one)
+        self.bad_samples: BadSamples | None = None
         # a subclass hook (e.g. topic monitors) sees every sample instead of the buffer
         hook = None if type(self)._on_sample is Subscription._on_sample else self._on_sample
         self._receiver = SampleReceiver(
@@ -129,7 +132,12 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
                 continue  # rmw_zenoh drops samples without an attachment
             data = sample.payload.to_bytes()
             info = _info(attachment.to_bytes(), received)
-            return (data if self.raw else self._deserializer()(data)), info
+            if self.raw:
+                return data, info
+            try:
+                return self._deserializer()(data), info
+            except ValueError as e:  # a CdrError (imported lazily: tools stay light)
+                self._bad_sample(data, info.publisher_gid, e)  # dropped: take the next one
 
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         """Deliver the oldest sample, or in spin()/spin_until_future_complete() a batch of
@@ -170,22 +178,47 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
                 if stop is not None and stop():
                     break
             return
-        # typed: the hot loop of a busy subscriber, kept to the bare minimum per sample
+        # typed: the hot loop of a busy subscriber, kept to the bare minimum per sample. A
+        # sample that does not decode raises out of it; the handler (free until something
+        # raises) tells a bad sample, which is dropped, from the callback's own error
         des = self._deserialize or self._deserializer()
-        for i in range(limit):
-            if i & 7 == 7 and perf_counter() > deadline:
-                break
+        first = 0
+        while True:
             try:
-                sample = popleft()
-            except IndexError:
-                break
-            if self._destroyed:
-                break
-            if sample.attachment is None:
-                continue
-            callback(des(sample.payload.to_bytes()))
-            if stop is not None and stop():
-                break
+                for i in range(first, limit):
+                    if i & 7 == 7 and perf_counter() > deadline:
+                        return
+                    try:
+                        sample = popleft()
+                    except IndexError:
+                        return
+                    if self._destroyed:
+                        return
+                    if sample.attachment is None:
+                        continue
+                    callback(des(sample.payload.to_bytes()))
+                    if stop is not None and stop():
+                        return
+                return
+            except ValueError as e:  # a CdrError (imported lazily: tools stay light)?
+                data = sample.payload.to_bytes()
+                try:
+                    des(data)
+                except ValueError:
+                    self._bad_sample(data, gid_of(sample.attachment.to_bytes()), e)
+                else:
+                    raise  # it decodes: the error is the callback's
+                first = i + 1
+
+    def _bad_sample(self, data: bytes, gid: bytes, error: Exception) -> None:
+        """A sample that is not the topic's type: dropped, counted, reported (rate-limited)."""
+        bad = self.bad_samples
+        if bad is None:
+            node = self._ep.node
+            bad = self.bad_samples = BadSamples(
+                self._ep.topic_name, self._ep.type_name, node.get_logger().warn
+            )
+        bad.add(gid, error, len(data))
 
     def destroy(self) -> None:
         """Stop receiving: buffered samples are dropped and the token withdrawn."""

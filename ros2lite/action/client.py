@@ -20,6 +20,7 @@ from ros2lite.action.goals import (
     GoalStatus,
     goal_key,
     new_goal_id,
+    resolve_action_name,
     resolve_action_type,
 )
 from ros2lite.action.server import await_or_execute
@@ -145,7 +146,7 @@ class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
         self._action_type = resolve_action_type(action_type)
         self._action_name = action_name
         self._names = ActionNames(
-            node.resolve_topic_name(action_name), self._action_type._TYPE_NAME
+            resolve_action_name(node, action_name), self._action_type._TYPE_NAME
         )
         self._lock = threading.Lock()
         self._feedback_callbacks: dict[bytes, FeedbackCallback[FeedbackT]] = {}

@@ -23,6 +23,7 @@ if TYPE_CHECKING:
     from ros2lite.msgs.action_msgs import msg as _action_msgs_msg
     from ros2lite.msgs.action_msgs import srv as _action_msgs_srv
     from ros2lite.msgs.unique_identifier_msgs import msg as _uuid_msg
+    from ros2lite.node import Node
 
 # action_msgs is where the status values are defined; they are read from there, not repeated
 GoalStatus: type[_action_msgs_msg.GoalStatus] = get_interface('action_msgs/msg/GoalStatus')
@@ -56,6 +57,17 @@ def status_name(status: int) -> str:
 
 
 # -- names ---------------------------------------------------------------------------------
+
+
+def resolve_action_name(node: Node, name: str) -> str:
+    """`name` resolved as the node resolves topics; a bad one is said to be an action name."""
+    from ros2lite.names import NameValidationException
+
+    try:
+        resolved: str = node.resolve_topic_name(name)
+    except NameValidationException as e:
+        raise type(e)(str(e).replace('invalid topic name', 'invalid action name', 1)) from None
+    return resolved
 
 
 @dataclass(frozen=True)

@@ -26,6 +26,7 @@ from ros2lite.action.goals import (
     GoalStatus,
     GoalTable,
     goal_key,
+    resolve_action_name,
     resolve_action_type,
 )
 from ros2lite.executable import Executable
@@ -244,7 +245,7 @@ class ActionServer(Executable, Generic[GoalT, ResultT, FeedbackT]):
         self._action_type = resolve_action_type(action_type)
         self._action_name = action_name
         self._names = ActionNames(
-            node.resolve_topic_name(action_name), self._action_type._TYPE_NAME
+            resolve_action_name(node, action_name), self._action_type._TYPE_NAME
         )
         self._logger = node.get_logger()
         self._lock = threading.RLock()

@@ -197,12 +197,12 @@ def parse_qos_list(value: object) -> list[QoSProfile]:
     if value is None or value == "":
         return []
     if isinstance(value, str):
-        import yaml
+        from ros2lite.safe_yaml import YamlInputError, load
 
         try:
-            value = yaml.safe_load(value)
-        except yaml.YAMLError as e:
-            raise MetadataError(f"bad offered_qos_profiles: {e}") from None
+            value = load(value, "offered_qos_profiles")
+        except YamlInputError as e:
+            raise MetadataError(str(e)) from None
         if value is None:
             return []
     if not isinstance(value, list):
@@ -336,12 +336,12 @@ def _int(value: Any, what: str) -> int:
 
 def parse_metadata(text: str, *, top_key: bool = True) -> BagMetadata:
     """Parse metadata.yaml (any version 1-9) or a `serialized_metadata` string."""
-    import yaml
+    from ros2lite.safe_yaml import YamlInputError, load
 
     try:
-        doc = yaml.safe_load(text)
-    except yaml.YAMLError as e:
-        raise MetadataError(f"metadata is not valid YAML: {e}") from None
+        doc = load(text, "metadata")
+    except YamlInputError as e:
+        raise MetadataError(str(e)) from None
     if top_key:
         if not isinstance(doc, dict) or "rosbag2_bagfile_information" not in doc:
             raise MetadataError("metadata lacks 'rosbag2_bagfile_information'")
@@ -418,10 +418,7 @@ def write_metadata_file(directory: str | os.PathLike[str], m: BagMetadata) -> No
     never leaves half a file."""
     from pathlib import Path
 
-    path = Path(directory) / METADATA_FILENAME
-    tmp = path.with_name(path.name + ".tmp")
-    with open(tmp, "w", encoding="utf-8") as f:
-        f.write(dump_metadata(m))
-        f.flush()
-        os.fsync(f.fileno())
-    os.replace(tmp, path)
+    from ros2lite.files import replace_file
+
+    # a randomly named temporary file, renamed over the old one: never through a symlink
+    replace_file(Path(directory) / METADATA_FILENAME, dump_metadata(m))

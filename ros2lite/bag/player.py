@@ -21,6 +21,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from ros2lite.bag.errors import BagError
 from ros2lite.bag.metadata import TopicMetadata
 from ros2lite.bag.qos import playback_qos
 from ros2lite.bag.reader import Reader
@@ -119,7 +120,25 @@ class Player:
 
     def _prepare(self) -> None:
         from ros2lite.interfaces import InterfaceError, get_interface
+        from ros2lite.interfaces.parser import validate_type_name
         from ros2lite.interfaces.registry import normalize_name
+
+        for problem in self.reader.shortfalls():
+            self._warn(problem)
+        if self.options.topics is not None:
+            in_bag = {t.name for t in self.reader.topics}
+            missing = [
+                t
+                for t in self.options.topics
+                if t.startswith("/") and t not in in_bag and t[1:] not in in_bag
+            ]
+            if missing and not any(t in in_bag for t in self.options.topics):
+                raise BagError(
+                    f"None of the topics to play ({', '.join(missing)}) is in the bag; "
+                    f"it has: {', '.join(sorted(in_bag)) or 'no topics'}"
+                )
+            for name in missing:
+                self._warn(f"Topic '{name}' is not in the bag; nothing to play for it")
 
         for t in self.reader.topics:
             if not self._selected(t):
@@ -130,6 +149,11 @@ class Player:
                 )
                 continue
             type_name = normalize_name(t.type)
+            try:
+                validate_type_name(type_name)
+            except InterfaceError as e:
+                self._warn(f"Topic '{t.name}': {e}; not playing it")
+                continue
             msg_type: type[Msg] | str = type_name
             try:
                 get_interface(type_name)
@@ -303,8 +327,14 @@ class Player:
 
     def _reader_thread(self, out: queue.Queue[_Ahead], start: int) -> None:
         put = out.put
+        first, last = self.reader.start_time, self.reader.end_time
+        refused = 0
         try:
             for item in self.reader.raw_messages(self._publishers, start=start):
+                if not first <= item[2] <= last:
+                    # a corrupt time (the year 2500, say) would have playback wait for it
+                    refused += 1
+                    continue
                 while not self._stopped:
                     try:
                         put(item, timeout=0.1)
@@ -316,6 +346,12 @@ class Player:
         except Exception as e:
             put(e)
             return
+        finally:
+            if refused:
+                self._warn(
+                    f"{refused} message(s) have log times outside the bag's own range "
+                    f"[{first}, {last}] ns (corrupt); not playing them"
+                )
         put(_END)
 
     def _play_once(self) -> None:

@@ -117,12 +117,12 @@ _QOS_KEYS = {
 def parse_qos_overrides(text: str) -> dict[str, QoSProfile]:
     """A `--qos-profile-overrides-path` file: topic name → profile (names or numbers for the
     policies; durations as {sec, nsec}). Keys left out keep rclpy's defaults."""
-    import yaml
+    from ros2lite.safe_yaml import YamlInputError, load
 
     try:
-        doc = yaml.safe_load(text)
-    except yaml.YAMLError as e:
-        raise QoSOverrideError(f"QoS override file is not valid YAML: {e}") from None
+        doc = load(text, "QoS override file")
+    except YamlInputError as e:
+        raise QoSOverrideError(str(e)) from None
     if doc is None:
         return {}
     if not isinstance(doc, dict):

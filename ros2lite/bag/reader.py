@@ -219,6 +219,29 @@ class Reader:
         """Log time (ns) of the last message."""
         return self.metadata.starting_time + self.metadata.duration
 
+    def shortfalls(self) -> list[str]:
+        """One line per file that cannot give what metadata.yaml promises (a recording cut
+        short, a truncated copy): how many messages were promised and how many are readable.
+        Reads only summaries, except for files without one (those are scanned)."""
+        promised = {Path(f.path).name: f.message_count for f in self.metadata.files}
+        out = []
+        for f in self.files:
+            try:
+                summary = self.summary(f)
+            except BagError as e:
+                out.append(f"'{f}' cannot be read: {e}")
+                continue
+            want = promised.get(f.name)
+            if want is None or (summary.complete and summary.message_count >= want):
+                continue
+            if summary.message_count < want:
+                out.append(
+                    f"'{f}' is incomplete: metadata.yaml promises {want} messages, "
+                    f"{summary.message_count} are readable (a recording cut short or a "
+                    "truncated copy; `ros2lite bag reindex` rewrites the metadata)"
+                )
+        return out
+
     # -- messages ------------------------------------------------------------------------------
     def raw_messages(
         self, topics: Iterable[str] | None = None, start: int | None = None, stop: int | None = None

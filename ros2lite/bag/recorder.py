@@ -34,11 +34,22 @@ if TYPE_CHECKING:
     from ros2lite.monitor.subscription import MonitoredSubscription
     from ros2lite.node import Node
 
-__all__ = ["DEFAULT_MAX_CACHE_SIZE", "RecordOptions", "Recorder", "TopicStats"]
+__all__ = [
+    "DEFAULT_FLUSH_INTERVAL",
+    "DEFAULT_MAX_CACHE_SIZE",
+    "RecordOptions",
+    "Recorder",
+    "TopicStats",
+]
 
 DEFAULT_MAX_CACHE_SIZE = 100 * 1024 * 1024
-# how long a finished chunk may wait in memory before it is put on disk anyway (seconds)
-_FLUSH_PERIOD = 1.0
+# how long received messages may wait in memory before the chunk holding them is put on disk
+# anyway (seconds): what a recorder killed outright (SIGKILL, power loss) can lose at most
+DEFAULT_FLUSH_INTERVAL = 0.1
+# how often the writer looks at the clock while busy (messages)
+_CLOCK_EVERY = 64
+# how often the router link is looked at (seconds)
+_ROUTER_CHECK_PERIOD = 1.0
 
 
 @dataclass
@@ -58,6 +69,7 @@ class RecordOptions:
     max_cache_size: int = DEFAULT_MAX_CACHE_SIZE
     start_paused: bool = False
     discovery: bool = True  # keep looking for new topics while recording
+    flush_interval: float = DEFAULT_FLUSH_INTERVAL  # seconds a message may wait for the disk
 
     def selects_by_pattern(self) -> bool:
         """Whether topics are chosen by a rule (all, regex, types) rather than by name."""
@@ -115,6 +127,8 @@ class Recorder:
         self._discovery_thread: threading.Thread | None = None
         self._discovery_done = threading.Event()
         self.error: BaseException | None = None
+        self._router_seen = True  # as far as we know: a warning comes when it goes
+        self._router_checked = 0.0
 
     # -- control -------------------------------------------------------------------------------
     def start(self) -> None:
@@ -191,6 +205,7 @@ class Recorder:
                     spin(0.25)
                 else:
                     stop.wait(0.25)
+                self._watch_router()
                 if on_tick is not None:
                     on_tick()
         finally:
@@ -199,6 +214,31 @@ class Recorder:
             )
             self.stop()
             self._log("Recording stopped")
+
+    def _watch_router(self) -> None:
+        """Say when the graph becomes unreachable (no router) and when it is back. Recording
+        goes on meanwhile: the node's peer session still hears every publisher it has met."""
+        now = time.monotonic()
+        if now - self._router_checked < _ROUTER_CHECK_PERIOD:
+            return
+        self._router_checked = now
+        session = self.node.context.session
+        if session is None:
+            return
+        from ros2lite.transport.config import router_connected
+
+        connected = router_connected(session)
+        if connected == self._router_seen:
+            return
+        self._router_seen = connected
+        if connected:
+            self._log("The Zenoh router is back: topics that appear are picked up again.")
+        else:
+            self._warn(
+                "The graph is unreachable: no Zenoh router answers. Still recording the "
+                "publishers this node already hears (peer to peer); new topics are picked up "
+                "when a router answers again."
+            )
 
     def queued(self) -> int:
         """Messages received and not written yet."""
@@ -295,8 +335,15 @@ class Recorder:
     def _subscribe(self, topic: str, type_name: str, pubs: list[Entity]) -> None:
         from ros2lite.bag.qos import recording_qos
         from ros2lite.interfaces import InterfaceError, get_interface
+        from ros2lite.interfaces.parser import validate_type_name
         from ros2lite.monitor.subscription import MonitoredSubscription
 
+        try:
+            validate_type_name(type_name)  # it came from the wire: it is written into the bag
+        except InterfaceError as e:
+            self._skipped.add(topic)
+            self._warn(f"Cannot record '{topic}': {e}")
+            return
         offered = [p.qos for p in pubs if p.qos is not None]
         qos = self.options.qos_overrides.get(topic) or recording_qos(topic, offered, self._warn)
         hashes = {p.type_hash for p in pubs if p.type_hash}
@@ -363,8 +410,12 @@ class Recorder:
         popleft, write_raw = queue.popleft, writer.write_raw
         unpack = unpack_attachment
         stats = self._stats_by_tid
-        last_flush = time.monotonic()
+        interval = max(self.options.flush_interval, 0.001)
+        idle_wait = min(0.05, interval / 2)
+        monotonic = time.monotonic
+        last_flush = monotonic()
         dirty = False
+        n = 0
         try:
             while True:
                 try:
@@ -372,16 +423,22 @@ class Recorder:
                 except IndexError:
                     if not self._running and not queue:
                         break
-                    now = time.monotonic()
-                    if dirty and now - last_flush >= _FLUSH_PERIOD:
+                    now = monotonic()
+                    if dirty and now - last_flush >= interval:
                         writer.flush()
                         last_flush, dirty = now, False
                     self._writer_idle = True
                     if not queue:
-                        self._wake.wait(0.05)
+                        self._wake.wait(idle_wait)
                     self._wake.clear()
                     self._writer_idle = False
                     continue
+                n += 1
+                if n % _CLOCK_EVERY == 0 and dirty:  # busy: the disk must not fall behind
+                    now = monotonic()
+                    if now - last_flush >= interval:
+                        writer.flush()
+                        last_flush, dirty = now, False
                 # the publisher's send time travels in the attachment (either layout)
                 fields = unpack(attachment)
                 sent = fields[1] if fields is not None else received

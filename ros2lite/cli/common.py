@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any, TypedDict, TypeVar
 
 import click
 
+from . import numbers
 from .errors import CliError
 
 if TYPE_CHECKING:
@@ -60,7 +61,7 @@ def strategy_options(*, no_daemon: bool = True) -> Callable[[F], F]:
         # accepted so ros2cli command lines keep working, then dropped here once
         fn = click.option(
             '--spin-time',
-            type=float,
+            type=numbers.seconds(),
             default=0.5,
             show_default=True,
             expose_value=False,
@@ -76,12 +77,14 @@ def strategy_options(*, no_daemon: bool = True) -> Callable[[F], F]:
     return decorate
 
 
-def connect(*, no_daemon: bool = False, use_sim_time: bool = False) -> Connection:
+def connect(
+    *, no_daemon: bool = False, use_sim_time: bool = False, as_node: bool = False
+) -> Connection:
     """This run's connection to the graph (the daemon started on demand unless
-    `--no-daemon`); use it as a context manager."""
+    `--no-daemon`; a node's peer session with `as_node`); use it as a context manager."""
     from ros2lite.connection import Connection
 
-    return Connection(autostart=not no_daemon, use_sim_time=use_sim_time)
+    return Connection(autostart=not no_daemon, use_sim_time=use_sim_time, as_node=as_node)
 
 
 def qos_options(default_profile: str) -> Callable[[F], F]:
@@ -91,7 +94,7 @@ def qos_options(default_profile: str) -> Callable[[F], F]:
         opts = [
             click.option(
                 '--qos-liveliness-lease-duration-seconds',
-                type=float,
+                type=numbers.seconds(),
                 help='Quality of service liveliness lease duration in seconds',
             ),
             click.option(
@@ -122,7 +125,7 @@ def qos_options(default_profile: str) -> Callable[[F], F]:
             ),
             click.option(
                 '--qos-depth',
-                type=click.IntRange(min=0),
+                type=numbers.Count(min=0),
                 help='Queue size setting (overrides depth value of --qos-profile option)',
             ),
             click.option(
@@ -249,21 +252,57 @@ def print_types_of(
     name: str,
     no_daemon: bool,
     names_and_types: Callable[[list[Entity]], list[tuple[str, list[str]]]],
+    kind: str = 'topic',
 ) -> None:
-    """What `topic/service/action type` share: the type(s) of `name` in the graph, or exit 1
-    without a word, as ros2cli does (a name that cannot be valid is just an unknown one)."""
+    """What `topic/service/action type` share: the type(s) of `name` in the graph. Exit 1 as
+    ros2cli does when there is none, with nothing on stdout (scripts read it) and one line
+    on stderr saying why (ros2cli says nothing at all)."""
     from ros2lite.names import expand_topic_name
 
     try:
-        full = expand_topic_name(name, 'ros2lite', '/')
-    except ValueError:
-        ctx.exit(1)
+        full = expand_topic_name(name, 'ros2lite', '/', is_service=kind == 'service')
+    except ValueError as e:
+        raise CliError(str(e).replace('topic name', f'{kind} name', 1)) from None
     with connect(no_daemon=no_daemon) as conn:
         entities = conn.entities()
     types = dict(names_and_types(entities)).get(full)
     if types is None:
-        ctx.exit(1)
+        raise CliError(f"Unknown {kind} '{full}' (not in the graph now)")
     click.echo('\n'.join(types))
+
+
+def wait_saying_other_types(
+    ready: Callable[[float], bool],
+    timeout: float | None,
+    kind: str,
+    name: str,
+    type_name: str,
+    served_types: Callable[[], list[tuple[str, list[str]]]],
+) -> bool:
+    """Wait up to `timeout` s (None: for ever) until `ready(step)` holds, saying once on
+    stderr when `name` is served with another type than `type_name` (such a wait would
+    otherwise go on in silence, as ros2cli's does). True when ready."""
+    import time
+
+    deadline = None if timeout is None else time.monotonic() + timeout
+    warned = False
+    while True:
+        left = None if deadline is None else max(0.0, deadline - time.monotonic())
+        if ready(0.5 if left is None else min(0.5, left)):
+            return True
+        if not warned:
+            others = sorted(
+                {t for n, types in served_types() if n == name for t in types if t != type_name}
+            )
+            if others:
+                warned = True
+                click.echo(
+                    f"WARNING: {kind} '{name}' is served as {', '.join(others)}, not "
+                    f'{type_name}; nothing will answer until a server of {type_name} appears',
+                    err=True,
+                )
+        if deadline is not None and time.monotonic() >= deadline:
+            return False
 
 
 class ManyValues(click.Option):

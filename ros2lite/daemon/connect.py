@@ -158,4 +158,22 @@ def connect(
             from ros2lite.daemon.router import start
 
             start(endpoint, known_absent=True)
-    return open_session(router, mode="client", timeout=timeout)
+    try:
+        return open_session(router, mode="client", timeout=timeout)
+    except RouterUnavailableError as exc:
+        raise _diagnosed(exc) from None
+
+
+def _diagnosed(exc: RouterUnavailableError) -> RouterUnavailableError:
+    """The error, saying why when something does listen at the endpoint (where 'start one
+    with daemon start' would only get 'already running' back)."""
+    from ros2lite.daemon.probe import not_a_router, router_answers
+
+    if not router_answers(exc.endpoint):
+        return exc
+    from ros2lite.daemon.router import daemon_pid
+
+    pid = daemon_pid(exc.endpoint)
+    better = RouterUnavailableError(exc.endpoint, exc.detail)
+    better.args = (not_a_router(exc.endpoint, pid),)
+    return better

@@ -128,6 +128,7 @@ class DaemonStatus:
     info: DaemonInfo | None = None
     # other sessions connected to the router, when asked for and its admin space answers
     sessions: list[ConnectedSession] | None = None
+    answers_zenoh: bool = True  # False: something listens, but no Zenoh router answers
 
     @property
     def pid(self) -> int | None:
@@ -137,6 +138,10 @@ class DaemonStatus:
     @property
     def message(self) -> str:
         """The line `daemon status` prints."""
+        if self.running and not self.answers_zenoh:
+            from ros2lite.daemon.probe import not_a_router
+
+            return not_a_router(self.endpoint, self.pid)
         if self.running and self.ours:
             return "The daemon is running"
         if self.running:
@@ -154,12 +159,13 @@ class DaemonStatus:
 
 
 def runtime_dir() -> Path:
-    """Per-user directory for pid, lock and log files (created 0700 on first use)."""
-    xdg = os.environ.get("XDG_RUNTIME_DIR", "")
-    base = Path(xdg) if xdg and os.path.isdir(xdg) else Path.home() / ".cache"
-    path = base / "ros2lite"
-    path.mkdir(mode=0o700, parents=True, exist_ok=True)
-    return path
+    """Per-user directory for pid, lock and log files (created 0700 on first use).
+
+    ``$XDG_RUNTIME_DIR/ros2lite`` only when both are ours and closed to others; a shared or
+    foreign one falls back to ``~/.cache/ros2lite`` (see :func:`ros2lite.files.private_dir`)."""
+    from ros2lite.files import private_dir
+
+    return private_dir(os.environ.get("XDG_RUNTIME_DIR", ""))
 
 
 def _stem(endpoint: str) -> str:
@@ -183,7 +189,10 @@ def _lock_file(endpoint: str) -> Path:
 @contextlib.contextmanager
 def _start_lock(endpoint: str, timeout: float) -> Iterator[None]:
     """Serialise start/stop for one endpoint so two auto-starting CLIs don't race."""
-    with open(_lock_file(endpoint), "a+") as fh:
+    from ros2lite.files import NOFOLLOW
+
+    fd = os.open(_lock_file(endpoint), os.O_RDWR | os.O_CREAT | NOFOLLOW | os.O_CLOEXEC, 0o600)
+    with os.fdopen(fd, "r+") as fh:
         deadline = time.monotonic() + timeout
         while True:
             try:
@@ -247,8 +256,10 @@ def _is_our_process(pid: int) -> bool:
 
 def _write_pid_file(path: Path, info: DaemonInfo) -> TextIO:
     """Write the pid file atomically and return its handle, locked for the process' life."""
-    tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
-    fh = os.fdopen(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600), "w")
+    from ros2lite.files import temp_beside
+
+    fd, tmp = temp_beside(path)
+    fh = os.fdopen(fd, "w")
     fcntl.flock(fh, fcntl.LOCK_EX)
     json.dump(info.__dict__, fh)
     fh.flush()
@@ -320,14 +331,27 @@ def serve(
 # --------------------------------------------------------------------------- verbs
 
 
+def daemon_pid(router: str | None = None) -> int | None:
+    """The pid of our live daemon for the endpoint, if there is one (reads its pid file)."""
+    try:
+        info = _read_info(pid_file(router_endpoint(router)))
+    except OSError:
+        return None
+    return info.pid if info is not None else None
+
+
 def status(router: str | None = None, *, sessions: bool = False) -> DaemonStatus:
     """Is a router answering at the endpoint, and is it ours?  With ``sessions``, also
-    which sessions are connected to it (one short client session asks its admin space)."""
+    which sessions are connected to it (one short client session asks its admin space).
+    A listener that does not answer as a Zenoh router is told apart (``answers_zenoh``)."""
+    from ros2lite.daemon.probe import speaks_zenoh
+
     endpoint = router_endpoint(router)
     info = _read_info(pid_file(endpoint))
     running = router_answers(endpoint)
-    connected = connected_sessions(endpoint) if running and sessions else None
-    return DaemonStatus(endpoint, running, info is not None, info, connected)
+    zenoh = not running or speaks_zenoh(endpoint)
+    connected = connected_sessions(endpoint) if running and zenoh and sessions else None
+    return DaemonStatus(endpoint, running, info is not None, info, connected, zenoh)
 
 
 def connected_sessions(
@@ -371,6 +395,10 @@ def start(
         if (not known_absent and router_answers(endpoint)) or (
             info is not None and wait_answers(endpoint, timeout)
         ):
+            from ros2lite.daemon.probe import not_a_router, speaks_zenoh
+
+            if not speaks_zenoh(endpoint):  # a frozen router, or not a router at all
+                raise DaemonError(not_a_router(endpoint, info.pid if info else None))
             return StartResult(
                 endpoint,
                 False,

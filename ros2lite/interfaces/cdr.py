@@ -380,7 +380,8 @@ class _DesGen(_Gen):
             self.forget()
             return
         if base == 'byte':
-            self.emit(f'{target} = [d[i:i + 1] for i in range(o, o + {n})]')
+            # over the slice, not a range: a hostile length cannot outrun the data
+            self.emit(f'{target} = [bytes((x,)) for x in d[o:o + {n}]]')
             self.emit(f'o += {n}')
             self.forget()
             return
@@ -499,13 +500,14 @@ def build_fast_decoder(
 class Codec:
     """Serializer and deserializers of one type; each is generated on its first call."""
 
-    __slots__ = ('_des_be', '_des_le', '_ser', 'name', 'reg')
+    __slots__ = ('_des_be', '_des_le', '_des_lenient', '_ser', 'name', 'reg')
 
     def __init__(self, name: str, reg: Registry) -> None:
         self.name, self.reg = name, reg
         self._ser: Callable[[Msg], bytes] = self._first_ser
         self._des_le: _Des = self._first_des_le
         self._des_be: _Des = self._first_des_be
+        self._des_lenient: dict[bool, _Des] = {}
 
     def _first_ser(self, msg: Msg) -> bytes:
         self._ser = build_serializer(self.name, self.reg)
@@ -538,26 +540,41 @@ class Codec:
             raise CdrError(f'cannot serialize {self.name}: {e}') from None
 
     def deserialize(self, data: bytes | bytearray | memoryview) -> Message:
-        """The message in CDR bytes of either byte order; CdrError if they do not hold one."""
+        """Decode one payload; anything that is not a valid encoding of this type (however
+        it came: short, garbage, huge lengths) raises CdrError, never another error."""
         if type(data) is not bytes:
             data = bytes(data)
         try:
-            if data[1] == 1 and data[0] == 0:
-                msg, end = self._des_le(data, 4)
-            elif data[1] == 0 and data[0] == 0:
-                msg, end = self._des_be(data, 4)
-            else:
-                raise CdrError(f'not a CDR payload for {self.name} (bad encapsulation header)')
-        except UnicodeDecodeError:
-            des = build_deserializer(self.name, self.reg, data[1] == 1, lenient=True)
-            msg, end = des(data, 4)
-        except (struct.error, IndexError, ValueError) as e:
-            if isinstance(e, CdrError):
-                raise
+            try:
+                if data[1] == 1 and data[0] == 0:
+                    msg, end = self._des_le(data, 4)
+                elif data[1] == 0 and data[0] == 0:
+                    msg, end = self._des_be(data, 4)
+                else:
+                    raise CdrError(f'not a CDR payload for {self.name} (bad encapsulation header)')
+            except UnicodeDecodeError:
+                msg, end = self._lenient(data[1] == 1)(data, 4)
+        except CdrError:
+            raise
+        except (struct.error, IndexError, ValueError, OverflowError, MemoryError) as e:
+            if isinstance(e, IndexError) and len(data) < 4:
+                raise CdrError(
+                    f'truncated {self.name} payload: {len(data)} bytes, not even a CDR header'
+                ) from None
             raise CdrError(f'truncated or corrupt {self.name} payload: {e}') from None
         if end > len(data):
             raise CdrError(f'truncated {self.name} payload: needs {end} bytes, got {len(data)}')
         return msg
+
+    def _lenient(self, little: bool) -> _Des:
+        """The decoder that replaces bad UTF-8 (built once per byte order: a stream of such
+        samples must not compile code per sample)."""
+        des = self._des_lenient.get(little)
+        if des is None:
+            des = self._des_lenient[little] = build_deserializer(
+                self.name, self.reg, little, lenient=True
+            )
+        return des
 
 
 def codec(name: str, reg: Registry | None = None) -> Codec:

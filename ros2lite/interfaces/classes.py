@@ -12,8 +12,8 @@ import operator
 from array import array
 from typing import TYPE_CHECKING, Any, ClassVar
 
-from .errors import FieldError
-from .parser import INT_RANGES, PRIMITIVES, FieldType, MessageDef
+from .errors import FieldError, InterfaceError
+from .parser import INT_RANGES, PRIMITIVES, FieldType, MessageDef, check_definition
 from .registry import Registry, default_registry, normalize_name
 
 # array typecodes for primitive sequences/arrays (as rclpy: array.array for numbers)
@@ -39,6 +39,9 @@ ROSIDL_NAMES = {
     'float64': 'double',
 }
 FLOAT32_MAX = 3.4028234663852886e38  # exact FLT_MAX
+# deepest nesting of message types accepted (real ones nest a handful of levels; the codecs
+# inline nested types, so this also bounds the generated code)
+MAX_NESTING = 32
 
 
 class MessageMeta(type):
@@ -262,10 +265,24 @@ class ClassFactory:
         cls = self.classes.get(name)
         if cls is not None:
             return cls
+        return self._message_class(name, [])
+
+    def _message_class(self, name: str, outer: list[str]) -> type[Message]:
+        """Build `name` after the types it nests; `outer` are the types that contain it, so a
+        type that contains itself (a crafted bag can say so) is an error, not a recursion."""
+        cls = self.classes.get(name)
+        if cls is not None:
+            return cls
+        if name in outer or len(outer) >= MAX_NESTING:
+            chain = ' -> '.join([*outer, name])
+            why = 'contains itself' if name in outer else f'nests deeper than {MAX_NESTING} levels'
+            raise InterfaceError(f"type '{outer[0]}' {why} ({chain})")
         mdef = self.registry.message(name)
+        outer.append(name)
         for f in mdef.fields:
             if not f.type.is_primitive:
-                self.message_class(f.type.base)
+                self._message_class(f.type.base, outer)
+        outer.pop()
         cls = self._build(mdef)
         self.classes[name] = cls
         if mdef.name != name:
@@ -273,6 +290,7 @@ class ClassFactory:
         return cls
 
     def _build(self, mdef: MessageDef) -> type[Message]:
+        check_definition(mdef)  # only identifiers ever reach the generated source
         short = mdef.short_name
         names = [f.name for f in mdef.fields]
         src = [f'class {short}(_Message):', f'    __slots__ = {tuple("_" + n for n in names)!r}']

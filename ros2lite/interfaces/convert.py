@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, TypedDict
 
 from .classes import ROSIDL_NAMES, Message, get_interface
 from .errors import FieldError, PopulateError
-from .parser import FieldType
+from .parser import INT_RANGES, FieldType
 
 if TYPE_CHECKING:
     import yaml
@@ -210,6 +210,24 @@ def _coerce(current: Any, value: Any, ft: FieldType) -> Any:
     return type(current)(value)
 
 
+def _reason(name: str, value: Any, ft: FieldType, e: Exception) -> str:
+    """Why `value` does not fit field `name`, in the user's terms where Python's own words
+    would say nothing to them (NaN to int, str to bytes, a string for an array); rosidl's
+    own messages otherwise, as ros2cli prints them."""
+    shown = repr(value) if len(repr(value)) <= 60 else repr(value)[:57] + '...'
+    if isinstance(value, str) and ft.is_container:
+        return f"field '{name}' is a list of {_element_name(ft)} ({ft}), not the string {shown}"
+    if isinstance(value, str) and ft.base == 'byte':
+        return f"field '{name}' is a byte (an integer 0-255 or one-byte bytes), not {shown}"
+    if isinstance(value, float) and ft.base in INT_RANGES:
+        return f"field '{name}' is an integer ({ft}); {shown} is not one"
+    if isinstance(e, OverflowError):
+        return f"field '{name}' ({ft}): {shown} is out of range"
+    if isinstance(e, TypeError) and ft.is_container and ft.is_primitive and not ft.is_string:
+        return f"field '{name}' ({ft}) takes numbers; {shown} holds something else"
+    return str(e)
+
+
 def _populate(
     msg: Message, values: object, setters: list[_Setter], header_auto: bool, time_now: bool
 ) -> None:
@@ -247,7 +265,7 @@ def _populate(
             try:
                 coerced = _coerce(current, value, ft)
             except (TypeError, ValueError, OverflowError) as e:
-                raise PopulateError(str(e)) from None
+                raise PopulateError(_reason(name, value, ft, e)) from None
         if ft.is_container and not ft.is_primitive:
             cls = get_interface(ft.base)
             built = []
@@ -278,12 +296,12 @@ def set_message_fields(
     'Failed to populate field: '.
     """
     if isinstance(values, str):
-        import yaml
+        from ros2lite.safe_yaml import YamlInputError, load
 
         try:
-            values = yaml.safe_load(values)
-        except yaml.YAMLError as e:
-            raise PopulateError(f'invalid YAML: {" ".join(str(e).split())}') from None
+            values = load(values, 'the values')
+        except YamlInputError as e:
+            raise PopulateError(f'invalid YAML: {e.detail}' if e.syntax else str(e)) from None
     if values is None:
         values = {}
     setters: list[_Setter] = []

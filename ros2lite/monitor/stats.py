@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 import threading
-from collections import deque
+from collections import OrderedDict, deque
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -204,26 +204,51 @@ class LostMessageCounter:
     """Sequence-number gaps per publisher GID, as rmw_zenoh reports 'message lost' events.
 
     Feed it every attachment on arrival; `drain()` returns the (count change, total) events
-    seen since the previous call.
+    seen since the previous call. The table of publishers is bounded: `prune()` forgets the
+    ones that left the graph, and past `max_publishers` the least recently heard is dropped
+    (a peer inventing a GID per sample costs nothing but that).
     """
 
-    def __init__(self) -> None:
+    MAX_PUBLISHERS = 1024
+    MAX_EVENTS = 10_000
+
+    def __init__(self, max_publishers: int = MAX_PUBLISHERS) -> None:
         self._lock = threading.Lock()
-        self._last: dict[bytes, int] = {}
+        self._last: OrderedDict[bytes, int] = OrderedDict()
+        self._max = max(1, max_publishers)
         self.total = 0
         self._events: list[tuple[int, int]] = []
+
+    @property
+    def publishers(self) -> int:
+        """Publishers in the table now."""
+        return len(self._last)
+
+    def prune(self, keep: set[bytes]) -> None:
+        """Forget every publisher whose GID is not in `keep` (those in the graph now)."""
+        with self._lock:
+            for gid in [g for g in self._last if g not in keep]:
+                del self._last[gid]
 
     def observe(self, sequence_number: int, gid: bytes) -> None:
         """Note a sample's sequence number; gaps per publisher count as lost."""
         with self._lock:
-            last = self._last.get(gid)
-            self._last[gid] = sequence_number
+            table = self._last
+            last = table.get(gid)
+            table[gid] = sequence_number
             if last is None:
+                if len(table) > self._max:
+                    table.popitem(last=False)
                 return
+            table.move_to_end(gid)
             jump = abs(sequence_number - last)
             if jump > 1:
                 self.total += jump - 1
-                self._events.append((jump - 1, self.total))
+                events = self._events
+                if len(events) >= self.MAX_EVENTS:  # nobody drained: merge into the newest
+                    events[-1] = (events[-1][0] + jump - 1, self.total)
+                else:
+                    events.append((jump - 1, self.total))
 
     def observe_attachment(self, attachment: bytes) -> None:
         """Count the sample whose rmw_zenoh attachment this is (unreadable ones are not)."""

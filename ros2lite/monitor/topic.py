@@ -102,6 +102,11 @@ class TopicMonitor:
         pubs = endpoints_by_topic(self._entities(), self.topic, EntityKind.PUBLISHER)
         return match_publishers_qos(profile, [p.qos_profile for p in pubs])
 
+    def publisher_gids(self) -> set[bytes]:
+        """The GIDs of the topic's publishers in the graph now."""
+        pubs = endpoints_by_topic(self._entities(), self.topic, EntityKind.PUBLISHER)
+        return {p.endpoint_gid for p in pubs}
+
     def type_mismatch(self, type_name: str) -> TypeMismatch | None:
         """See :func:`type_mismatch`."""
         return type_mismatch(self._entities(), self.topic, type_name)

@@ -33,13 +33,14 @@ class ParamsFileError(Ros2liteError, ValueError):
 
 def read_params_file(path: str | Path) -> list[tuple[str, Values]]:
     """Every (node name, flattened parameters) entry of the file, in file order."""
-    import yaml
+    from ros2lite.safe_yaml import YamlInputError, load
 
     path = Path(path)
     try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, yaml.YAMLError) as e:
-        raise ParamsFileError(f"Couldn't read parameters file '{path}': {e}") from None
+        data = load(path.read_text(encoding="utf-8"), "the file")
+    except (OSError, UnicodeDecodeError, YamlInputError) as e:
+        why = (e.strerror if isinstance(e, OSError) else None) or e
+        raise ParamsFileError(f"Couldn't read parameters file '{path}': {why}") from None
     if data is None:
         return []
     if not isinstance(data, dict):

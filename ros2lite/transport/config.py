@@ -35,6 +35,7 @@ from typing import Literal
 import zenoh
 
 from ros2lite.transport.errors import ConfigError, RouterUnavailableError, SessionError
+from ros2lite.transport.handles import Session
 
 __all__ = [
     "DEFAULT_ROUTER",
@@ -555,6 +556,14 @@ def open_router(
         return zenoh.open(router_config(endpoint, listen=listen, connect=list(connect)))
     except zenoh.ZError as exc:
         raise SessionError(zerror_message(exc)) from None
+
+
+def router_connected(session: Session) -> bool:
+    """Whether `session` is linked to a router now (a peer goes on without one)."""
+    try:
+        return bool(session.info.routers_zid())
+    except zenoh.ZError:
+        return False
 
 
 def router_reachable(endpoint: str, timeout: float) -> bool:

@@ -16,7 +16,7 @@ from __future__ import annotations
 import contextlib
 import os
 from collections.abc import Callable, Iterator
-from typing import IO, TYPE_CHECKING
+from typing import IO, TYPE_CHECKING, BinaryIO
 
 from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import (
@@ -30,7 +30,7 @@ from ros2lite.bag.metadata import (
 from ros2lite.bag.storage import FileSummary, StorageReader, StorageWriter
 
 if TYPE_CHECKING:
-    from mcap.records import Channel, Metadata, Schema
+    from mcap.records import Channel, McapRecord, Metadata, Schema
     from mcap.records import Message as McapMessage
     from mcap.summary import Summary
 
@@ -71,7 +71,9 @@ class _DirectFile:
 
     def __init__(self, path: str) -> None:
         self.path = path
-        self._fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
+        from ros2lite.files import create_new
+
+        self._fd = create_new(path)
         self._pos = 0
 
     def write(self, data: bytes | bytearray | memoryview) -> int:
@@ -306,21 +308,89 @@ class McapStorageReader:
     ) -> Iterator[tuple[str, bytes, int, int]]:
         """(topic, data, log_time, publish_time) in log-time order, `start <= t < stop`."""
         if self._mcap_summary() is None:
-            for _schemas, channel, m in _scan(self._stream):
-                if (
-                    (topics is None or channel.topic in topics)
-                    and (start is None or m.log_time >= start)
-                    and (stop is None or m.log_time < stop)
-                ):
-                    yield channel.topic, m.data, m.log_time, m.publish_time
+            # a stream of its own: a summary scan while this generator is paused must not
+            # move its position
+            with open(self.path, "rb") as stream:
+                for _schemas, channel, m in _scan(stream):
+                    if (
+                        (topics is None or channel.topic in topics)
+                        and (start is None or m.log_time >= start)
+                        and (stop is None or m.log_time < stop)
+                    ):
+                        yield channel.topic, m.data, m.log_time, m.publish_time
             return
-        for _schema, channel, m in self._reader.iter_messages(
-            topics=list(topics) if topics is not None else None,
-            starting_at=start,
-            ending_before=stop,
-            log_time_order=True,
-        ):
-            yield channel.topic, m.data, m.log_time, m.publish_time
+        yield from self._indexed_messages(topics, start, stop)
+
+    def _indexed_messages(
+        self, topics: set[str] | None, start: int | None, stop: int | None
+    ) -> Iterator[tuple[str, bytes, int, int]]:
+        """Messages through the chunk indexes, in log-time order, each chunk's CRC checked:
+        a corrupt chunk is reported (file, offset) and skipped, the others are still read.
+        A message whose time lies outside its chunk's indexed range (a flipped byte in a
+        chunk without CRC) is refused the same way."""
+        import heapq
+
+        from mcap.data_stream import ReadDataStream
+        from mcap.records import Chunk, Message
+        from mcap.stream_reader import breakup_chunk
+
+        summary = self._summary
+        assert summary is not None  # only indexed files are read this way
+        channels = summary.channels
+        wanted = {cid for cid, c in channels.items() if topics is None or c.topic in topics}
+        chunks = sorted(
+            (
+                c
+                for c in summary.chunk_indexes
+                if (stop is None or c.message_start_time < stop)
+                and (start is None or c.message_end_time >= start)
+                and (not c.message_index_offsets or wanted & set(c.message_index_offsets))
+            ),
+            key=lambda c: (c.message_start_time, c.chunk_start_offset),
+        )
+        pending: list[tuple[int, int, int, str, bytes, int]] = []
+        for i, index in enumerate(chunks):
+            where = index.chunk_start_offset
+            try:
+                self._stream.seek(where + 1 + 8)
+                records = breakup_chunk(Chunk.read(ReadDataStream(self._stream)), validate_crc=True)
+            except Exception as e:  # CRC mismatch, bad compression, cut short: skip it
+                _warn(
+                    f"'{self.path}': corrupt chunk at offset {where} skipped "
+                    f"({e or type(e).__name__}); the other chunks are read"
+                )
+                continue
+            lo, hi = index.message_start_time, index.message_end_time
+            refused = 0
+            for pos, record in enumerate(records):
+                if not isinstance(record, Message) or record.channel_id not in wanted:
+                    continue
+                t = record.log_time
+                if not lo <= t <= hi:
+                    refused += 1
+                    continue
+                if (start is not None and t < start) or (stop is not None and t >= stop):
+                    continue
+                heapq.heappush(
+                    pending,
+                    (
+                        t,
+                        i,
+                        pos,
+                        channels[record.channel_id].topic,
+                        record.data,
+                        record.publish_time,
+                    ),
+                )
+            if refused:
+                _warn(
+                    f"'{self.path}': {refused} message(s) in the chunk at offset {where} have "
+                    "log times outside the chunk's own range (corrupt); skipped"
+                )
+            horizon = chunks[i + 1].message_start_time if i + 1 < len(chunks) else None
+            while pending and (horizon is None or pending[0][0] <= horizon):
+                t, _, _, topic, data, publish_time = heapq.heappop(pending)
+                yield topic, data, t, publish_time
 
     def _scan_summary(self) -> FileSummary:
         """Summary of a file without one, from its records up to the first broken one."""
@@ -364,6 +434,13 @@ class McapStorageReader:
         )
 
 
+def _warn(message: str) -> None:
+    """A problem found while reading (a corrupt chunk): said once, reading goes on."""
+    from ros2lite.logging import get_logger
+
+    get_logger("rosbag2_storage").warn(message)
+
+
 def _text(data: bytes) -> str:
     return data.decode("utf-8", errors="replace")
 
@@ -375,20 +452,31 @@ def _scan(
 ) -> Iterator[tuple[dict[int, Schema], Channel, McapMessage]]:
     """Every message record in file order, stopping quietly at the first record that cannot
     be read (a truncated chunk at the end of a killed recording)."""
-    from mcap.records import Channel, Message, Metadata, Schema
-    from mcap.stream_reader import StreamReader
+    from mcap.records import Channel, Chunk, Message, Metadata, Schema
+    from mcap.stream_reader import StreamReader, breakup_chunk
 
     stream.seek(0)
     schemas: dict[int, Schema] = {}
     channels: dict[int, Channel] = {}
-    records = StreamReader(stream, skip_magic=False).records
+    records = StreamReader(stream, skip_magic=False, emit_chunks=True).records
+    queue: list[McapRecord] = []
     while True:
-        try:
-            record = next(records)
-        except StopIteration:
-            return
-        except Exception:
-            return  # truncated or corrupt from here on
+        if queue:
+            record = queue.pop()
+        else:
+            try:
+                record = next(records)
+            except StopIteration:
+                return
+            except Exception:
+                return  # truncated or corrupt from here on
+        if isinstance(record, Chunk):
+            try:
+                queue = breakup_chunk(record, validate_crc=True)[::-1]
+            except Exception as e:
+                where = getattr(stream, "name", "the file")
+                _warn(f"'{where}': a corrupt chunk skipped ({e or type(e).__name__})")
+            continue
         if isinstance(record, Message):
             channel = channels.get(record.channel_id)
             if channel is not None:
@@ -421,10 +509,25 @@ def recover(path: str) -> int:
 
     The new file is written beside the old one and renamed over it, so an interrupted
     recovery leaves the original untouched."""
+    from ros2lite.files import temp_beside
+
+    fd, tmp = temp_beside(path, ".recovering")  # a fresh name: no planted file is written
+    try:
+        os.fchmod(fd, 0o644)
+        kept = _copy_readable(path, os.fdopen(fd, "wb"))
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+    os.replace(tmp, path)
+    return kept
+
+
+def _copy_readable(path: str, dst: BinaryIO) -> int:
+    """Copy every readable message of `path` into a complete MCAP written to `dst`."""
     from mcap.writer import CompressionType, IndexType, Writer
 
-    tmp = path + ".recovering"
-    with open(path, "rb") as src, open(tmp, "wb") as dst:
+    with open(path, "rb") as src, dst:
         writer = Writer(
             dst,
             chunk_size=DEFAULT_CHUNK_SIZE,
@@ -455,7 +558,6 @@ def recover(path: str) -> int:
         for record in metadata:
             writer.add_metadata(record.name, dict(record.metadata))
         writer.finish()
-    os.replace(tmp, path)
     return kept
 
 

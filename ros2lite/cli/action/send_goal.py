@@ -11,8 +11,8 @@ from typing import TYPE_CHECKING, TypeVar
 
 import click
 
-from .. import completion
-from ..common import connect
+from .. import completion, numbers
+from ..common import connect, wait_saying_other_types
 from ..errors import CliError
 
 if TYPE_CHECKING:
@@ -38,16 +38,13 @@ def action_class(action_type: str) -> tuple[str, type[ActionType]]:
 
 
 def build_goal(cls: type[ActionType], values: str) -> Message:
-    import yaml
-
     from ros2lite.interfaces import set_message_fields
 
     goal = cls.Goal()
     try:
-        fields = yaml.safe_load(values)
-        set_message_fields(goal, fields)
-    except Exception as e:  # any reason the values do not fit, as ros2cli reports it
-        raise CliError(f'Failed to populate message fields: {e!r}') from None
+        set_message_fields(goal, values)
+    except Exception as e:  # any reason the values do not fit, in one line
+        raise CliError(f'Failed to populate message fields: {e}') from None
     return goal
 
 
@@ -84,7 +81,7 @@ class FeedbackPrinter:
 @click.option('-f', '--feedback', is_flag=True, help='Echo feedback messages for the goal')
 @click.option(
     '--timeout',
-    type=click.FloatRange(min=0),
+    type=numbers.seconds(),
     metavar='SECONDS',
     help='Give up when no action server shows up within this time (default: wait forever)',
 )
@@ -134,8 +131,18 @@ def send_goal(
         client = ActionClient(conn.node(), cls, action_name)
     except ValueError as e:  # an invalid action name
         raise CliError(str(e)) from None
+    from ros2lite.action.graph import get_action_names_and_types
+
     click.echo('Waiting for an action server to become available...')
-    if not client.wait_for_server(timeout_sec=timeout):
+    node = conn.node()
+    if not wait_saying_other_types(
+        lambda step: client.wait_for_server(timeout_sec=step),
+        timeout,
+        'action',
+        client.action_name,
+        cls._TYPE_NAME,
+        lambda: get_action_names_and_types(node),
+    ):
         raise CliError(f"No action server for '{client.action_name}' after {timeout} s")
     click.echo(f'Sending goal:\n     {message_to_yaml(goal)}')
     goal_handle = None

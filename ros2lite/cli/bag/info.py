@@ -169,6 +169,8 @@ def cli(bag_path: str, storage: str | None, topic_name: bool, verbose: bool, sor
                 click.echo("".join(n + "\n" for n in names), nl=False)
                 return
             sizes = message_sizes(reader) if verbose else None
+            for problem in reader.shortfalls():
+                warn(problem)
             click.echo(render(path, reader, verbose=verbose, sort=sort, sizes=sizes), nl=False)
     except BagError as e:
         raise bag_error(str(e)) from None

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 
 import click
 
-from .. import completion, render
+from .. import completion, numbers, render
 from .. import keyboard as keys_module
 from ..common import ManyValues, connect
 from .options import bag_argument, bag_error, check_patterns, qos_overrides, shared_options
@@ -30,7 +30,7 @@ if TYPE_CHECKING:
 @bag_argument
 @click.option(
     "--read-ahead-queue-size",
-    type=click.IntRange(min=1),
+    type=numbers.Count(min=1, max=1_000_000),
     default=1000,
     show_default=True,
     help="Messages read ahead of playback.",
@@ -38,7 +38,7 @@ if TYPE_CHECKING:
 @click.option(
     "-r",
     "--rate",
-    type=click.FloatRange(min=0, min_open=True),
+    type=numbers.Finite(min=0, max=1e6, min_open=True),
     default=1.0,
     show_default=True,
     help="Rate at which to play back messages.",
@@ -56,7 +56,7 @@ if TYPE_CHECKING:
 @click.option(
     "--clock",
     "clock_hz",
-    type=click.FloatRange(min=0),
+    type=numbers.Finite(min=0, max=numbers.MAX_RATE),
     is_flag=False,
     flag_value=40.0,
     default=0.0,
@@ -66,13 +66,13 @@ if TYPE_CHECKING:
 @click.option(
     "-d",
     "--delay",
-    type=click.FloatRange(min=0),
+    type=numbers.seconds(),
     default=0.0,
     help="Seconds to wait before playing (again before each loop).",
 )
 @click.option(
     "--start-offset",
-    type=click.FloatRange(min=0),
+    type=numbers.seconds(),
     default=0.0,
     help="Start this many seconds into the bag.",
 )

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 
 import click
 
-from .. import completion, render
+from .. import completion, numbers, render
 from .. import keyboard as keys_module
 from ..common import ManyValues, connect
 from .options import bag_error, check_patterns, qos_overrides, shared_options, warn
@@ -81,20 +81,20 @@ SELECTION_ERROR = (
 @click.option(
     "-b",
     "--max-bag-size",
-    type=click.IntRange(min=0),
+    type=numbers.Count(min=0, max=2**63 - 1),
     default=0,
     help="Split the bag at this many bytes (0: no splitting).",
 )
 @click.option(
     "-d",
     "--max-bag-duration",
-    type=click.FloatRange(min=0),
+    type=numbers.seconds(),
     default=0,
     help="Split the bag after this many seconds (0: no splitting).",
 )
 @click.option(
     "--max-cache-size",
-    type=click.IntRange(min=0),
+    type=numbers.Count(min=0, max=2**63 - 1),
     default=100 * 1024 * 1024,
     show_default=True,
     help="Bytes per topic kept in memory while the disk catches up; past it the "
@@ -123,10 +123,19 @@ SELECTION_ERROR = (
 @click.option(
     "-p",
     "--polling-interval",
-    type=click.IntRange(min=1),
+    type=numbers.Count(min=1, max=3_600_000),
     default=100,
     show_default=True,
     help="Milliseconds between topic discovery passes.",
+)
+@click.option(
+    "--flush-interval",
+    type=numbers.Count(min=1, max=3_600_000),
+    default=100,
+    show_default=True,
+    metavar="MS",
+    help="Milliseconds a received message may wait in memory before its chunk is written: "
+    "what a recorder killed outright (SIGKILL, power loss) can lose at most.",
 )
 @click.option(
     "--node-name", default="rosbag2_recorder", show_default=True, help="Name of the recorder node."
@@ -163,6 +172,7 @@ def cli(
     use_sim_time: bool,
     no_discovery: bool,
     polling_interval: int,
+    flush_interval: int,
     node_name: str,
     custom_data: tuple[str, ...],
     disable_keyboard_controls: bool,
@@ -207,6 +217,7 @@ def cli(
         max_cache_size=max_cache_size,
         start_paused=start_paused,
         discovery=not no_discovery,
+        flush_interval=flush_interval / 1000,
     )
     custom = _custom_data(custom_data)
     uri = output or time.strftime("rosbag2_%Y_%m_%d-%H_%M_%S")
@@ -223,7 +234,8 @@ def cli(
         ).open()
     except BagError as e:
         raise bag_error(str(e)) from None
-    conn = connect(use_sim_time=use_sim_time)
+    # the recorder is a node: a peer session keeps it hearing publishers through a router outage
+    conn = connect(use_sim_time=use_sim_time, as_node=True)
     try:
         conn.open()
     except BaseException:

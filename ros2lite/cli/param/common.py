@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 
-from .. import completion
+from .. import completion, numbers
 from ..common import connect, strategy_options
 from ..errors import CliError
 
@@ -70,7 +70,7 @@ def node_options(*, timeout: bool = True, node_required: bool = True) -> Callabl
             cmd = click.option(
                 "--service-timeout",
                 metavar="N",
-                type=float,
+                type=numbers.seconds(min_open=True),
                 default=None,
                 help="Maximum time to wait for service response in seconds "
                 "(default: waits indefinitely)",
@@ -78,7 +78,7 @@ def node_options(*, timeout: bool = True, node_required: bool = True) -> Callabl
             cmd = click.option(
                 "--timeout",
                 metavar="N",
-                type=int,
+                type=numbers.Count(min=0, max=int(numbers.MAX_SECONDS)),
                 default=1,
                 show_default=True,
                 help="Wait for N seconds until node becomes available",

@@ -11,9 +11,10 @@ import click
 if TYPE_CHECKING:
     from ros2lite.client import Client
     from ros2lite.interfaces import Message, ServiceType
+    from ros2lite.node import Node
 
-from .. import completion
-from ..common import connect, interface_type_name
+from .. import completion, numbers
+from ..common import connect, interface_type_name, wait_saying_other_types
 from ..errors import CliError
 
 
@@ -23,11 +24,16 @@ from ..errors import CliError
 @click.argument('values', required=False)
 @click.option('--stdin', 'use_stdin', is_flag=True, help='Read values from standard input')
 @click.option(
-    '-r', '--rate', type=float, metavar='N', help='Repeat the call at a specific rate in Hz'
+    '-r',
+    '--rate',
+    # <= 0 is ros2cli's own error (exit 1) below; nan, inf and absurd rates are usage errors
+    type=numbers.Finite(max=numbers.MAX_RATE),
+    metavar='N',
+    help='Repeat the call at a specific rate in Hz',
 )
 @click.option(
     '--timeout',
-    type=click.FloatRange(min=0, min_open=True),
+    type=numbers.seconds(min_open=True),
     metavar='SECONDS',
     help='Give up if the service is not available, or does not answer, within '
     'this many seconds (default: wait forever, as ros2cli does)',
@@ -67,7 +73,7 @@ def cli(
     with connect() as conn:
         node = conn.node(f'_ros2lite_requester_{package}_{name}')
         client = node.create_client(srv_class, service_name)
-        _wait(client, timeout)
+        _wait(client, timeout, node, type_name)
         period = None if rate is None else 1.0 / rate
         while True:
             last_call = time.monotonic()
@@ -79,11 +85,13 @@ def cli(
 
 
 def _parse_values(values: str) -> dict[str, object]:  # field values, from YAML
-    import yaml
+    from ros2lite.safe_yaml import YamlInputError, load
 
     try:
-        parsed = yaml.safe_load(values)
-    except yaml.YAMLError:
+        parsed = load(values, 'the passed value')
+    except YamlInputError as e:
+        if not e.syntax:
+            raise CliError(str(e)) from None
         raise CliError('The passed value needs to be in YAML string or a dictionary') from None
     if parsed is None:
         return {}
@@ -92,11 +100,20 @@ def _parse_values(values: str) -> dict[str, object]:  # field values, from YAML
     return parsed
 
 
-def _wait(client: Client[Message, Message], timeout: float | None) -> None:
+def _wait(
+    client: Client[Message, Message], timeout: float | None, node: Node, type_name: str
+) -> None:
     if client.service_is_ready():
         return
     click.echo('waiting for service to become available...')
-    if not client.wait_for_service(timeout_sec=timeout):
+    if not wait_saying_other_types(
+        lambda step: client.wait_for_service(timeout_sec=step),
+        timeout,
+        'service',
+        client.srv_name,
+        type_name,
+        node.get_service_names_and_types,
+    ):
         raise CliError(f"Timed out after {timeout:g} s waiting for service '{client.srv_name}'")
 
 

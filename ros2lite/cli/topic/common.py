@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 
+from .. import numbers
 from ..errors import CliError
 
 F = TypeVar('F', bound=Callable[..., Any])
@@ -54,7 +55,7 @@ def window_option(default: int, what: str, minimum: int = 1) -> Callable[[F], F]
         '-w',
         '--window',
         'window',
-        type=click.IntRange(min=minimum),
+        type=numbers.Count(min=minimum, max=10_000_000),
         default=default,
         show_default=True,
         metavar='WINDOW',

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 
 import click
 
-from .. import completion
+from .. import completion, numbers
 from ..common import connect, explicit_qos, qos_from_options, qos_options, strategy_options
 from ..errors import CliError
 from .common import compile_filter, graph_type, message_type_name, monitor
@@ -25,6 +25,7 @@ if TYPE_CHECKING:
     from ..common import QosOptions
 
 DEFAULT_TRUNCATE_LENGTH = 128
+PRUNE_PERIOD = 5.0  # seconds between prunings of the lost-message table
 CLEAR_SCREEN = '\x1b[H\x1b[2J'
 
 
@@ -50,7 +51,10 @@ class Printer:
         include_info: bool,
         clear: bool,
         lost: LostMessageCounter | None,
+        warn: Callable[[str], object],
+        topic: str = '',
     ) -> None:
+        from ros2lite.bad_samples import BadSamples
         from ros2lite.interfaces import deserialize
         from ros2lite.interfaces.classes import Message
 
@@ -73,6 +77,7 @@ class Printer:
         self.lost = lost
         self.done = False
         self.out = sys.stdout
+        self.bad = BadSamples(topic, type_name, warn)
 
     def report_lost(self) -> None:
         """Print ros2cli's lines for messages lost since the last call."""
@@ -86,7 +91,13 @@ class Printer:
     def __call__(self, data: bytes, info: MessageInfo) -> None:
         if self.lost is not None:
             self.report_lost()
-        value: object = data if self.raw else self._deserialize(self.type_name, data)
+        from ros2lite.interfaces import CdrError
+
+        try:
+            value: object = data if self.raw else self._deserialize(self.type_name, data)
+        except CdrError as e:
+            self.bad_sample(data, info, e)
+            return
         if self.field is not None:
             for name in self.field:
                 try:
@@ -98,6 +109,20 @@ class Printer:
         if self.once:
             self.done = True
         self.out.write(self.render(value, info))
+
+    def bad_sample(self, data: bytes, info: MessageInfo, error: Exception) -> None:
+        """A sample that is not the type: dropped with a (rate-limited) warning, or shown
+        with its message info when the user asked for message info."""
+        from ros2lite.bad_samples import describe_publisher
+
+        self.bad.add(info.publisher_gid, error, len(data))
+        if not self.include_info:
+            return
+        head = ''.join(f'{k}: {v}\n' for k, v in sorted(info_dict(info).items()))
+        self.out.write(
+            f'{head}---\n# dropped: not a valid {self.type_name} from '
+            f'{describe_publisher(info.publisher_gid)} ({len(data)} bytes: {error})\n---\n'
+        )
 
     def render(self, value: object, info: MessageInfo) -> str:
         from ros2lite.interfaces import message_to_csv, message_to_yaml
@@ -157,7 +182,7 @@ def info_dict(info: MessageInfo) -> dict[str, int]:
 @click.option(
     '-l',
     '--truncate-length',
-    type=click.IntRange(min=0),
+    type=numbers.Count(min=0),
     default=DEFAULT_TRUNCATE_LENGTH,
     show_default=True,
     help='The length to truncate arrays, bytes, and strings to',
@@ -181,7 +206,7 @@ def info_dict(info: MessageInfo) -> dict[str, int]:
 @click.option('--once', is_flag=True, help='Print the first message received and then exit')
 @click.option(
     '--timeout',
-    type=click.FloatRange(min=0, min_open=True),
+    type=numbers.seconds(min_open=True),
     metavar='N',
     help='Stop after N seconds (exit status 0)',
 )
@@ -249,9 +274,13 @@ def cli(
             include_info=include_message_info,
             clear=clear,
             lost=lost,
+            warn=watch.node.get_logger().warn,
+            topic=watch.topic,
         )
         if lost is not None:
             counter = lost
+            # publishers that left are forgotten, so the table follows the graph
+            conn.every(PRUNE_PERIOD, lambda: counter.prune(watch.publisher_gids()))
             watch.on_arrival(
                 type_name,
                 profile,
