@@ -15,7 +15,7 @@ from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.interfaces import get_interface
 from ros2lite.node import Node
 from ros2lite.task import Future
-from tests.spinning import spin_until, wait_matched
+from tests.spinning import queued, spin_until, wait_matched
 
 
 def test_future_result_and_callbacks() -> None:
@@ -142,7 +142,7 @@ def _buffered(ros_context: Any, n: int, depth: int = 100) -> tuple[Node, Any, li
     for i in range(n):
         pub.publish(String(data=str(i)))
     deadline = time.monotonic() + 5
-    while len(sub._buffer) < n:  # (white box) all arrived, none taken
+    while len(queued(sub)) < n:  # all arrived, none taken
         assert time.monotonic() < deadline
         time.sleep(0.01)
     return node, sub, got
