@@ -24,6 +24,8 @@ if TYPE_CHECKING:
 HEADER_LE = b'\x00\x01\x00\x00'
 # its first two bytes read as a little-endian uint16 (the options that follow are ignored)
 HEADER_LE_WORD = 0x0100
+# all four bytes as a little-endian uint32 (what the serializers pack in front of the body)
+HEADER_LE_UINT32 = 0x0100
 # struct formats of the primitives: the array typecodes, plus bool and byte
 _FMT = {**TYPECODES, 'bool': '?', 'byte': 'c'}
 _SIZE = {k: struct.calcsize('<' + v) for k, v in _FMT.items()}
@@ -99,6 +101,7 @@ class _SerGen(_Gen):
         self.straight = straight
         self.track_offset = track_offset
         self.parts: list[str] = []
+        self.header_written = False
 
     def chunk(self, expr: str) -> None:
         if self.straight:
@@ -122,12 +125,19 @@ class _SerGen(_Gen):
 
     def flush(self) -> None:
         if not self.run_fmt:
+            if not self.header_written:  # a blob or loop comes first: the header goes alone
+                self.header_written = True
+                self.chunk('_HEADER')
             return
-        st = struct.Struct(self.endian + self.run_fmt)
+        fmt, args = self.run_fmt, ', '.join(e for _, e in self.run_items)
+        header = not self.header_written  # the first run carries the encapsulation header
+        if header:
+            fmt, args = 'I' + fmt, f'{HEADER_LE_UINT32}, {args}'
+            self.header_written = True
+        st = struct.Struct(self.endian + fmt)
         s = self.const('_S', st.pack)
-        args = ', '.join(e for _, e in self.run_items)
         self.chunk(f'{s}({args})')
-        self.moved(st.size)
+        self.moved(st.size - 4 if header else st.size)  # offsets count from the body
         self.run_fmt, self.run_items = '', []
 
     def align_now(self, align: int) -> None:
@@ -440,10 +450,14 @@ def build_serializer(name: str, reg: Registry) -> Callable[[Msg], bytes]:
     gen.ns['_NUL'] = b'\x00'
     gen.ns['_HEADER'] = HEADER_LE
     head = ['    o = 0'] if track_offset else []
+    # every type has a first run of primitives (a length at least), which packs the header
+    assert gen.header_written
     if straight:
-        body = [*head, *gen.lines, f'    return _join(({", ".join(["_HEADER", *gen.parts])},))']
+        parts = gen.parts
+        done = parts[0] if len(parts) == 1 else f'_join(({", ".join(parts)},))'
+        body = [*head, *gen.lines, f'    return {done}']
     else:
-        body = ['    p = [_HEADER]', *head, *gen.lines, '    return _join(p)']
+        body = ['    p = []', *head, *gen.lines, '    return _join(p)']
     src = 'def ser(m):\n' + '\n'.join(body)
     exec(compile(src, f'<cdr ser {name}>', 'exec'), gen.ns)
     fn: Callable[[Msg], bytes] = gen.ns['ser']
