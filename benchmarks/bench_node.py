@@ -23,7 +23,9 @@ control BLOCK), otherwise the run fails instead of reporting a lossy rate.
   GID), which zenoh-python charges on both ends. `node_pubsub_string_raw_attachment` shows
   that cost: the same raw pair with the attachment put on every sample (ratio vs raw).
 * image: `sensor_msgs/Image` 512x512 rgba8 (1 MiB of `data`); the callback reads
-  `len(msg.data)`, the raw side `len(payload.to_bytes())`. Reported in MB/s (10^6 B).
+  `len(msg.data)`, the raw side `len(payload.to_bytes())`. Reported in MB/s (10^6 B). Every
+  process here, raw ones included, runs with the allocator setting a node makes
+  (`ros2lite.memory`: large buffers reused instead of mapped and unmapped per message).
 * latency: ping-pong, the child echoing each `std_msgs/String` ping back on a second topic
   (node: a subscription callback publishing; raw: a FIFO-channel loop putting); this process
   sends the next ping when the pong of the last arrives. Round-trip p50 and p99 in µs over
@@ -52,7 +54,7 @@ from common import report
 N_MESSAGES = 200_000
 N_IMAGES = 400
 N_PINGS = 2000
-RUNS = 5
+RUNS = int(os.environ.get('BENCH_RUNS', 5))  # interleaved runs per side (median)
 WARMUP = 'warmup'
 VERBOSE = bool(os.environ.get('BENCH_NODE_VERBOSE'))
 STRING = 'std_msgs/msg/String'
@@ -86,7 +88,9 @@ if mode == 'node':
     send = pub.publish
 else:
     import zenoh
+    from ros2lite.memory import keep_large_buffers
     from ros2lite.transport.attachment import pack_attachment
+    keep_large_buffers()  # the allocator setting a node has: the same terms for both
     from ros2lite.transport.config import node_session_mode, open_session
     session = open_session(mode=node_session_mode())
     zpub = session.declare_publisher(key, reliability=zenoh.Reliability.RELIABLE,
@@ -128,7 +132,9 @@ if mode == 'node':
 else:
     import threading
     import zenoh
+    from ros2lite.memory import keep_large_buffers
     from ros2lite.transport.config import node_session_mode, open_session
+    keep_large_buffers()
     session = open_session(mode=node_session_mode())
     pub = session.declare_publisher(pong_key)
     sub = session.declare_subscriber(ping_key, zenoh.handlers.FifoChannel(64))
@@ -210,6 +216,9 @@ def private_router() -> Iterator[None]:
     """
     import socket
 
+    from ros2lite.memory import keep_large_buffers
+
+    keep_large_buffers()  # as nodes do: the raw side measured here gets it too
     with socket.socket() as sock:
         sock.bind(('127.0.0.1', 0))
         port = sock.getsockname()[1]
