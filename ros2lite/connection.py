@@ -19,14 +19,17 @@ import os
 import time
 from collections.abc import Callable, Iterable
 from types import TracebackType
+from typing import TYPE_CHECKING
 
 from ros2lite.context import Context
-from ros2lite.executors import SingleThreadedExecutor
-from ros2lite.graph import Entity
 from ros2lite.names import is_hidden_name
-from ros2lite.node import Node
-from ros2lite.task import Future
-from ros2lite.timer import Timer
+
+if TYPE_CHECKING:  # loaded when a verb needs them: `topic list` only asks the graph
+    from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.graph import Entity
+    from ros2lite.node import Node
+    from ros2lite.task import Future
+    from ros2lite.timer import Timer
 
 __all__ = ['Connection', 'wait_for_name']
 
@@ -104,6 +107,7 @@ class Connection:
         """The hidden node this run uses for its publishers, subscriptions and clients
         (made on first use; `name` only counts then)."""
         if self._node is None:
+            from ros2lite.node import Node
             from ros2lite.parameter import Parameter
 
             self._node = Node(
@@ -120,6 +124,8 @@ class Connection:
     def executor(self) -> SingleThreadedExecutor:
         """The executor that runs the node's callbacks (on the thread that spins it)."""
         if self._executor is None:
+            from ros2lite.executors import SingleThreadedExecutor
+
             self._executor = SingleThreadedExecutor(context=self.context)
             self._executor.add_node(self.node())
         return self._executor
