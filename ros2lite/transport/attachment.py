@@ -25,6 +25,7 @@ __all__ = [
     "gid_from_token",
     "is_legacy_attachment",
     "pack_attachment",
+    "source_timestamp",
     "unpack_attachment",
 ]
 
@@ -88,6 +89,18 @@ def unpack_attachment(data: bytes) -> tuple[int, int, bytes] | None:
     except ValueError:
         return None
     return a.sequence_number, a.source_timestamp, a.source_gid
+
+
+_TIMESTAMP = struct.Struct("<q").unpack_from
+
+
+def source_timestamp(data: bytes) -> int | None:
+    """The publisher's timestamp of an attachment of either layout, or None when it is
+    neither (the bag recorder asks this per message: the current layout costs no tuple)."""
+    if len(data) == ATTACHMENT_SIZE and data[16] == GID_SIZE:
+        return int(_TIMESTAMP(data, 8)[0])
+    fields = unpack_attachment(data)
+    return fields[1] if fields is not None else None
 
 
 def encode_legacy_attachment(sequence_number: int, source_timestamp: int, gid: bytes) -> bytes:
