@@ -74,14 +74,18 @@ def sigterm_raises() -> Iterator[None]:
 
 class StopSignals:
     """SIGINT and SIGTERM only set :attr:`event` inside the block: a long job (recording a
-    bag) finishes cleanly instead of being cut short by a second Ctrl-C."""
+    bag) finishes cleanly instead of being cut short by a second Ctrl-C. `on_stop()` also
+    runs (in the main thread, between two of its steps) for work that polls no event."""
 
-    def __init__(self) -> None:
+    def __init__(self, on_stop: Callable[[], object] | None = None) -> None:
         self.event = threading.Event()
+        self._on_stop = on_stop
         self._block: contextlib.ExitStack | None = None
 
     def _handle(self, _signum: int, _frame: FrameType | None) -> None:
         self.event.set()
+        if self._on_stop is not None:
+            self._on_stop()
 
     def __enter__(self) -> StopSignals:
         self._block = contextlib.ExitStack()

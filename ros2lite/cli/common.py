@@ -309,23 +309,41 @@ class ManyValues(click.Option):
     '''An option that takes every following word up to the next option, as argparse's
     `nargs='+'` does (`--topics /a /b -o out`). It may also be repeated.'''
 
+    grouped = False  # each occurrence one tuple of its words, not words one by one
+
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         kwargs.setdefault('multiple', True)
         super().__init__(*args, **kwargs)
 
     def add_to_parser(self, parser: Any, ctx: click.Context) -> None:
         super().add_to_parser(parser, ctx)
+        patched: set[int] = set()  # `-i` and `--input` are one parser option: patch it once
         for name in self.opts:
             opt = parser._long_opt.get(name) or parser._short_opt.get(name)
-            if opt is None:
+            if opt is None or id(opt) in patched:
                 continue
+            patched.add(id(opt))
             previous = opt.process
 
             def process(value: Any, state: Any, previous: Any = previous) -> None:
                 values = [value]
                 while state.rargs and not state.rargs[0].startswith('-'):
                     values.append(state.rargs.pop(0))
+                if self.grouped:
+                    previous(tuple(values), state)
+                    return
                 for v in values:
                     previous(v, state)
 
             opt.process = process
+
+
+class ValueGroups(ManyValues):
+    '''Like ManyValues, but each occurrence stays one tuple: `-i a mcap -i b` gives
+    (('a', 'mcap'), ('b',)) — argparse's `action='append', nargs='+'`.'''
+
+    grouped = True
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault('type', click.UNPROCESSED)
+        super().__init__(*args, **kwargs)

@@ -48,8 +48,6 @@ LACKING: dict[str, str] = {
     'pkg': f"'ros2lite pkg' {_NOT_YET}",
     'test': "'ros2 test' is launch_testing's runner for launch-based tests; ros2lite has no "
     'launch_testing, so run such tests with pytest',
-    'bag burst': f"'ros2lite bag burst' {_NOT_YET}",
-    'bag convert': f"'ros2lite bag convert' {_NOT_YET}",
 }
 
 

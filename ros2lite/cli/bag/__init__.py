@@ -5,6 +5,11 @@ from __future__ import annotations
 from ..lazy import command_group
 
 VERBS = {
+    "burst": (__name__ + ".burst", "Burst data from a bag"),
+    "convert": (
+        __name__ + ".convert",
+        "Given an input bag, write out a new bag with different settings",
+    ),
     "info": (__name__ + ".info", "Print information about a bag to the screen"),
     "list": (__name__ + ".list", "Print information about available plugins to the screen"),
     "play": (__name__ + ".play", "Play back ROS data from a bag"),

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
@@ -10,6 +10,7 @@ import click
 from ..errors import CliError
 
 if TYPE_CHECKING:
+    from ros2lite.node import Node
     from ros2lite.qos import QoSProfile
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -105,3 +106,37 @@ def qos_overrides(path: str | None) -> dict[str, QoSProfile]:
         return read_qos_overrides(path)
     except BagError as e:
         raise bag_error(str(e)) from None
+
+
+def parse_remaps(rules: Iterable[str]) -> dict[str, str]:
+    """`-m/--remap OLD:=NEW...` as a mapping (ros2bag's error for a malformed rule)."""
+    remaps = {}
+    for rule in rules:
+        old, sep, new = rule.partition(":=")
+        if not sep or not old or not new:
+            raise bag_error(f"Remapping '{rule}' is not OLD:=NEW")
+        remaps[old] = new
+    return remaps
+
+
+def bag_names(node: Node, names: Iterable[str]) -> list[str]:
+    """Every form a given name may have in the bag: resolved (`/ns/x`) and, for relative
+    names, as written (rosbag2 test bags hold names such as 'AAA')."""
+    out = []
+    for n in names:
+        try:
+            out.append(node.resolve_topic_name(n))
+        except ValueError:
+            out.append(n)  # rosbag2 bags may hold names ROS would not accept (e.g. 'AAA')
+        if not n.startswith("/"):
+            out.append(n)
+    return out
+
+
+def resolve_remaps(node: Node, remaps: dict[str, str]) -> dict[str, str]:
+    """Remappings with every form the old name may have in the bag and the new one resolved."""
+    return {
+        old: node.resolve_topic_name(new)
+        for given, new in remaps.items()
+        for old in bag_names(node, [given])
+    }

@@ -16,14 +16,20 @@ import click
 from .. import completion, numbers, render
 from .. import keyboard as keys_module
 from ..common import ManyValues, connect
-from .options import bag_argument, bag_error, check_patterns, qos_overrides, shared_options
+from .options import (
+    bag_argument,
+    bag_error,
+    bag_names,
+    check_patterns,
+    parse_remaps,
+    qos_overrides,
+    resolve_remaps,
+    shared_options,
+)
 
 if TYPE_CHECKING:
-    from collections.abc import Iterable
-
     from ros2lite.bag.player import Player
     from ros2lite.logging import RcutilsLogger
-    from ros2lite.node import Node
 
 
 @click.command("play")
@@ -104,12 +110,7 @@ def cli(
     if not Path(bag_path).exists():
         raise bag_error(f"Bag path '{bag_path}' does not exist!")
     check_patterns(regex, exclude_regex)
-    remaps = {}
-    for rule in remap:
-        old, sep, new = rule.partition(":=")
-        if not sep or not old or not new:
-            raise bag_error(f"Remapping '{rule}' is not OLD:=NEW")
-        remaps[old] = new
+    remaps = parse_remaps(remap)
     overrides = qos_overrides(qos_profile_overrides_path)
     try:
         reader = Reader(bag_path, storage)
@@ -121,19 +122,15 @@ def cli(
     with reader, connect() as conn:
         node = conn.node(node_name)
         try:
-            names = _absolute(node, topics) if topics else None
+            names = bag_names(node, topics) if topics else None
             options = PlayOptions(
                 rate=rate,
                 loop=loop,
                 topics=names,
-                exclude_topics=_absolute(node, exclude_topics),
+                exclude_topics=bag_names(node, exclude_topics),
                 regex=regex,
                 exclude_regex=exclude_regex,
-                remap={
-                    old: node.resolve_topic_name(new)
-                    for k, new in remaps.items()
-                    for old in _absolute(node, [k])
-                },
+                remap=resolve_remaps(node, remaps),
                 start_offset=start_offset,
                 delay=delay,
                 clock_hz=clock_hz,
@@ -147,20 +144,6 @@ def cli(
         except (BagError, ValueError) as e:
             raise bag_error(str(e)) from None
         _play(player, log, keyboard=not disable_keyboard_controls)
-
-
-def _absolute(node: Node, names: Iterable[str]) -> list[str]:
-    """Every form a given name may have in the bag: resolved (`/ns/x`) and, for relative
-    names, as written (rosbag2 test bags hold names such as 'AAA')."""
-    out = []
-    for n in names:
-        try:
-            out.append(node.resolve_topic_name(n))
-        except ValueError:
-            out.append(n)  # rosbag2 bags may hold names ROS would not accept (e.g. 'AAA')
-        if not n.startswith("/"):
-            out.append(n)
-    return out
 
 
 def _play(player: Player, log: RcutilsLogger, keyboard: bool) -> None:

@@ -49,6 +49,12 @@ SELECTION_ERROR = (
 @click.option(
     "--topic-types", cls=ManyValues, metavar="TYPE...", help="Record topics of these types."
 )
+@click.option(
+    "--exclude-topic-types",
+    cls=ManyValues,
+    metavar="TYPE...",
+    help="Do not record topics of these types.",
+)
 @shared_options("record", "offered")
 @click.option("-a", "--all", "all_", is_flag=True, help="Record all topics and services.")
 @click.option("--all-topics", is_flag=True, help="Record all topics (no services).")
@@ -151,6 +157,7 @@ def cli(
     topics: tuple[str, ...],
     services: tuple[str, ...],
     topic_types: tuple[str, ...],
+    exclude_topic_types: tuple[str, ...],
     all_: bool,
     all_topics: bool,
     all_services: bool,
@@ -211,6 +218,7 @@ def cli(
         exclude_regex=exclude_regex,
         exclude_topics=_absolute(list(exclude_topics) + excluded_events, node_name),
         topic_types=list(topic_types),
+        exclude_topic_types=list(exclude_topic_types),
         include_hidden_topics=include_hidden_topics,
         qos_overrides=qos_overrides(qos_profile_overrides_path),
         polling_interval=polling_interval / 1000,

@@ -315,10 +315,14 @@ def test_topic_types_hidden_topics_and_qos_overrides(
     typed = node.create_publisher(Int32, f"{topic}/typed", KEEP_ALL)
     hidden = node.create_publisher(String, f"{topic}/_hidden", KEEP_ALL)
     other = node.create_publisher(String, f"{topic}/other", KEEP_ALL)
+    Bool = get_interface("std_msgs/msg/Bool")
+    excluded = node.create_publisher(Bool, f"{topic}/_flag", KEEP_ALL)  # matches -e
     rec = recording(
         tmp_path / "bag",
         "--topic-types",
         "std_msgs/msg/Int32",
+        "--exclude-topic-types",
+        "std_msgs/msg/Bool",
         "-e",
         f"^{topic}/_",
         "--include-hidden-topics",
@@ -344,6 +348,8 @@ def test_topic_types_hidden_topics_and_qos_overrides(
         typed.publish(Int32(data=i))
     publish_all(hidden, 5)
     publish_all(other, 5)
+    for _ in range(5):
+        excluded.publish(Bool(data=True))
     time.sleep(0.5)
     code, _out, err = rec.finish()
     assert code == 0, err
