@@ -195,12 +195,6 @@ def explicit_qos(**options: Unpack[QosOptions]) -> bool:
     )
 
 
-def include_hidden(ctx: click.Context, flag: bool = False) -> bool:
-    """--include-hidden-topics given on the verb or on `topic` itself (whose flag reaches
-    the verb through click's shared context object)."""
-    return flag or bool((ctx.obj or {}).get('include_hidden_topics'))
-
-
 def interface_type_name(name: str, kind: str, *, invalid: str, not_kind: str | None = None) -> str:
     """A user-given 'pkg/Name' or 'pkg/<kind>/Name' as the full name of an existing
     interface of that kind; ros2cli's messages (`invalid`, `not_kind`) otherwise."""

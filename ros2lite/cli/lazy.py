@@ -11,18 +11,38 @@ from typing import Any
 import click
 
 
-def command_group(name: str, doc: str, verbs: dict[str, tuple[str, str]]) -> click.Group:
-    """A `ros2lite <name>` group of lazily imported verbs; bare `<name>` prints its help."""
+def command_group(
+    package: str, doc: str, verbs: dict[str, str], *, hidden: str | None = None
+) -> click.Group:
+    """The `ros2lite <command>` group of the command package `package` (its `__name__`):
+    `verbs` maps each verb to its one-line help, and the verb lives in module
+    `<package>.<verb>`, imported only when run. Bare `<command>` prints the help.
+
+    `hidden` ('topics', 'services') adds the group's own `--include-hidden-<hidden>` flag,
+    which reaches the verbs through the context object (see `include_hidden`)."""
 
     @click.pass_context
-    def callback(ctx: click.Context) -> None:
+    def callback(ctx: click.Context, **flags: bool) -> None:
+        ctx.ensure_object(dict).update(flags)
         if ctx.invoked_subcommand is None:
             click.echo(ctx.get_help())
 
     callback.__doc__ = doc
-    return click.group(name, cls=LazyGroup, lazy=verbs, invoke_without_command=True, help=doc)(
+    if hidden is not None:
+        callback = click.option(
+            f'--include-hidden-{hidden}', is_flag=True, help=f'Consider hidden {hidden} as well'
+        )(callback)
+    lazy = {verb: (f'{package}.{verb}', summary) for verb, summary in verbs.items()}
+    name = package.rpartition('.')[2]
+    return click.group(name, cls=LazyGroup, lazy=lazy, invoke_without_command=True, help=doc)(
         callback
     )
+
+
+def include_hidden(ctx: click.Context, kind: str, flag: bool = False) -> bool:
+    """`--include-hidden-<kind>` given on the verb (`flag`) or on its group (`command_group`'s
+    `hidden`), whose flag reaches the verb through click's shared context object."""
+    return flag or bool((ctx.obj or {}).get(f'include_hidden_{kind}'))
 
 
 class LazyGroup(click.Group):

@@ -6,7 +6,7 @@ import click
 
 from .. import completion
 from ..common import print_names_of_type, strategy_options
-from . import hidden_wanted
+from ..lazy import include_hidden
 
 
 @click.command('find')
@@ -33,6 +33,6 @@ def cli(
         count_services,
         no_daemon,
         lambda entities: service_names_and_types(
-            entities, hidden_wanted(ctx, include_hidden_services)
+            entities, include_hidden(ctx, 'services', include_hidden_services)
         ),
     )

@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from ..common import connect, print_names, strategy_options
-from . import hidden_wanted
+from ..lazy import include_hidden
 
 
 @click.command('list')
@@ -29,5 +29,7 @@ def cli(
 
     with connect(no_daemon=no_daemon) as conn:
         entities = conn.entities()
-    services = service_names_and_types(entities, hidden_wanted(ctx, include_hidden_services))
+    services = service_names_and_types(
+        entities, include_hidden(ctx, 'services', include_hidden_services)
+    )
     print_names(services, count_services, show_types)

@@ -5,7 +5,8 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import include_hidden, print_names_of_type, strategy_options
+from ..common import print_names_of_type, strategy_options
+from ..lazy import include_hidden
 
 
 @click.command('find')
@@ -34,6 +35,6 @@ def cli(
         count_topics,
         no_daemon,
         lambda entities: topic_names_and_types(
-            entities, include_hidden(ctx, include_hidden_topics)
+            entities, include_hidden(ctx, 'topics', include_hidden_topics)
         ),
     )
