@@ -8,8 +8,9 @@ is nothing to wait for.
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, TypedDict, TypeVar
+import functools
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any, TypedDict, TypeVar, cast
 
 import click
 
@@ -139,6 +140,83 @@ def qos_options(default_profile: str) -> Callable[[F], F]:
         for opt in opts:
             fn = opt(fn)
         return fn
+
+    return decorate
+
+
+class MessageFormat(TypedDict):
+    """How an echo verb prints a message, from `format_options()`: the keywords of the
+    library's `format_event` (and of `topic echo`'s printer)."""
+
+    csv: bool
+    flow_style: bool
+    truncate_length: int | None
+    no_arr: bool
+    no_str: bool
+
+
+DEFAULT_TRUNCATE_LENGTH = 128
+CSV_HELP = 'Output all recursive fields separated by commas (e.g. for plotting)'
+
+
+def format_options(
+    *, csv_help: str = CSV_HELP, after_csv: Sequence[Callable[[Any], Any]] = ()
+) -> Callable[[F], F]:
+    """The echo verbs' message-format options (--csv, then `after_csv`, -f/--full-length,
+    -l/--truncate-length, --no-arr, --no-str, --flow-style), handed to the verb as one
+    `fmt: MessageFormat` argument (the truncation already None with --full-length)."""
+
+    def decorate(fn: F) -> F:
+        @functools.wraps(fn)
+        def verb(
+            *args: Any,
+            csv: bool,
+            full_length: bool,
+            truncate_length: int,
+            no_arr: bool,
+            no_str: bool,
+            flow_style: bool,
+            **kwargs: Any,
+        ) -> Any:
+            fmt: MessageFormat = {
+                'csv': csv,
+                'flow_style': flow_style,
+                'truncate_length': None if full_length else truncate_length,
+                'no_arr': no_arr,
+                'no_str': no_str,
+            }
+            return fn(*args, fmt=fmt, **kwargs)
+
+        opts = [
+            click.option('--csv', is_flag=True, help=csv_help),
+            *after_csv,
+            click.option(
+                '-f',
+                '--full-length',
+                is_flag=True,
+                help='Output all elements of arrays, bytes and strings longer than '
+                '--truncate-length',
+            ),
+            click.option(
+                '-l',
+                '--truncate-length',
+                type=numbers.Count(min=0),
+                default=DEFAULT_TRUNCATE_LENGTH,
+                show_default=True,
+                help='The length to truncate arrays, bytes, and strings to',
+            ),
+            click.option('--no-arr', is_flag=True, help="Don't print array fields of messages"),
+            click.option('--no-str', is_flag=True, help="Don't print string fields of messages"),
+            click.option(
+                '--flow-style',
+                is_flag=True,
+                help='Print collections in the flow style (not available with csv format)',
+            ),
+        ]
+        decorated: Any = verb
+        for opt in reversed(opts):
+            decorated = opt(decorated)
+        return cast(F, decorated)
 
     return decorate
 

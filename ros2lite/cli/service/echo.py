@@ -8,7 +8,14 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion
-from ..common import connect, interface_type_name, qos_from_options, qos_options, strategy_options
+from ..common import (
+    connect,
+    format_options,
+    interface_type_name,
+    qos_from_options,
+    qos_options,
+    strategy_options,
+)
 from ..errors import CliError
 
 if TYPE_CHECKING:
@@ -16,9 +23,7 @@ if TYPE_CHECKING:
 
     from ros2lite.subscription import MessageInfo
 
-    from ..common import QosOptions
-
-DEFAULT_TRUNCATE_LENGTH = 128
+    from ..common import MessageFormat, QosOptions
 
 
 @click.command('echo')
@@ -26,41 +31,11 @@ DEFAULT_TRUNCATE_LENGTH = 128
 @click.argument('service_type', required=False, shell_complete=completion.service_types)
 @strategy_options()
 @qos_options('services_default')
-@click.option(
-    '--csv',
-    is_flag=True,
-    help='Output all recursive fields separated by commas (e.g. for plotting)',
-)
-@click.option(
-    '-f',
-    '--full-length',
-    is_flag=True,
-    help='Output all elements of arrays, bytes and strings longer than --truncate-length',
-)
-@click.option(
-    '-l',
-    '--truncate-length',
-    type=click.IntRange(min=0),
-    default=DEFAULT_TRUNCATE_LENGTH,
-    show_default=True,
-    help='The length to truncate arrays, bytes, and strings to',
-)
-@click.option('--no-arr', is_flag=True, help="Don't print array fields of messages")
-@click.option('--no-str', is_flag=True, help="Don't print string fields of messages")
-@click.option(
-    '--flow-style',
-    is_flag=True,
-    help='Print collections in the flow style (not available with csv format)',
-)
+@format_options()
 def cli(
     service_name: str,
     service_type: str | None,
-    csv: bool,
-    full_length: bool,
-    truncate_length: int,
-    no_arr: bool,
-    no_str: bool,
-    flow_style: bool,
+    fmt: MessageFormat,
     no_daemon: bool,
     use_sim_time: bool,
     **qos: Unpack[QosOptions],
@@ -104,15 +79,8 @@ def cli(
             )
 
         def show(data: bytes, _info: MessageInfo) -> None:
-            text = format_event(
-                deserialize(event_type, data),
-                csv=csv,
-                flow_style=flow_style,
-                truncate_length=None if full_length else truncate_length,
-                no_arr=no_arr,
-                no_str=no_str,
-            )
-            sys.stdout.write(text + ('\n' if csv else '---\n'))
+            text = format_event(deserialize(event_type, data), **fmt)
+            sys.stdout.write(text + ('\n' if fmt['csv'] else '---\n'))
 
         node.create_subscription(event_type, topic, show, qos_from_options(**qos), raw=True)
         conn.spin()
