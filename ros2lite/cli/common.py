@@ -78,6 +78,33 @@ def strategy_options(*, no_daemon: bool = True) -> Callable[[F], F]:
     return decorate
 
 
+def count_option(kind: str) -> Callable[[F], F]:
+    """`-c/--count-<kind>` of the list and find verbs, in ros2cli's words."""
+    return click.option(
+        '-c', f'--count-{kind}', is_flag=True, help=f'Only display the number of {kind} discovered'
+    )
+
+
+def values_argument(name: str = 'values', what: str = 'values') -> Callable[[F], F]:
+    """The optional YAML argument `name` of pub/call/send_goal and its `--stdin` alternative
+    (`what` the help reads: 'values', 'the goal'); see `check_stdin`."""
+
+    def decorate(fn: F) -> F:
+        fn = click.option(
+            '--stdin', 'use_stdin', is_flag=True, help=f'Read {what} from standard input'
+        )(fn)
+        decorated: F = click.argument(name, required=False)(fn)
+        return decorated
+
+    return decorate
+
+
+def check_stdin(values: str | None, use_stdin: bool, name: str = 'values') -> None:
+    """ros2cli's usage error when both the YAML argument `name` and --stdin are given."""
+    if use_stdin and values is not None:
+        raise click.UsageError(f'argument --stdin: not allowed with argument {name}')
+
+
 def connect(
     *, no_daemon: bool = False, use_sim_time: bool = False, as_node: bool = False
 ) -> Connection:

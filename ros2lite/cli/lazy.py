@@ -6,9 +6,12 @@ Help text comes from the table itself, so `ros2lite --help` imports no verb modu
 from __future__ import annotations
 
 import importlib
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 import click
+
+F = TypeVar('F', bound=Callable[..., Any])
 
 
 def command_group(
@@ -29,14 +32,25 @@ def command_group(
 
     callback.__doc__ = doc
     if hidden is not None:
-        callback = click.option(
-            f'--include-hidden-{hidden}', is_flag=True, help=f'Consider hidden {hidden} as well'
-        )(callback)
+        callback = include_hidden_option(hidden)(callback)
     lazy = {verb: (f'{package}.{verb}', summary) for verb, summary in verbs.items()}
     name = package.rpartition('.')[2]
     return click.group(name, cls=LazyGroup, lazy=lazy, invoke_without_command=True, help=doc)(
         callback
     )
+
+
+def include_hidden_option(
+    kind: str, verb: str | None = None, *, all_alias: bool = False
+) -> Callable[[F], F]:
+    """The `--include-hidden-<kind>` flag of a group or a verb (also `-a/--all` with
+    `all_alias`). Its help is ros2cli's "Consider hidden <kind> as well", or with `verb`
+    ('list', 'match') "Also <verb> hidden <kind> (…)"."""
+    help = f'Consider hidden {kind} as well'
+    if verb is not None:
+        help = f"Also {verb} hidden {kind} (a name part starts with '_')"
+    aliases = ('-a', '--all', f'include_hidden_{kind}') if all_alias else ()
+    return click.option(f'--include-hidden-{kind}', *aliases, is_flag=True, help=help)
 
 
 def include_hidden(ctx: click.Context, kind: str, flag: bool = False) -> bool:

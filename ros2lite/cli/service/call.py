@@ -14,15 +14,20 @@ if TYPE_CHECKING:
     from ros2lite.node import Node
 
 from .. import completion, numbers
-from ..common import connect, interface_type_name, wait_saying_other_types
+from ..common import (
+    check_stdin,
+    connect,
+    interface_type_name,
+    values_argument,
+    wait_saying_other_types,
+)
 from ..errors import CliError
 
 
 @click.command('call')
 @click.argument('service_name', shell_complete=completion.services)
 @click.argument('service_type', shell_complete=completion.service_types)
-@click.argument('values', required=False)
-@click.option('--stdin', 'use_stdin', is_flag=True, help='Read values from standard input')
+@values_argument()
 @click.option(
     '-r',
     '--rate',
@@ -52,8 +57,7 @@ def cli(
     """
     from ros2lite.interfaces import get_interface, set_message_fields
 
-    if use_stdin and values is not None:
-        raise click.UsageError('argument --stdin: not allowed with argument values')
+    check_stdin(values, use_stdin)
     if rate is not None and rate <= 0:
         raise CliError('rate must be greater than zero')
     type_name = interface_type_name(

@@ -4,17 +4,15 @@ from __future__ import annotations
 
 import click
 
-from ..common import connect, print_names, strategy_options
-from ..lazy import include_hidden
+from ..common import connect, count_option, print_names, strategy_options
+from ..lazy import include_hidden, include_hidden_option
 
 
 @click.command('list')
 @strategy_options()
 @click.option('-t', '--show-types', is_flag=True, help='Additionally show the service type')
-@click.option(
-    '-c', '--count-services', is_flag=True, help='Only display the number of services discovered'
-)
-@click.option('--include-hidden-services', is_flag=True, help='Consider hidden services as well')
+@count_option('services')
+@include_hidden_option('services')
 @click.pass_context
 def cli(
     ctx: click.Context,

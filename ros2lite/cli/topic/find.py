@@ -6,18 +6,14 @@ import click
 
 from .. import completion
 from ..common import print_names_of_type, strategy_options
-from ..lazy import include_hidden
+from ..lazy import include_hidden, include_hidden_option
 
 
 @click.command('find')
 @strategy_options()
 @click.argument('topic_type', shell_complete=completion.message_types)
 @click.option('-c', '--count-topics', is_flag=True, help='Print only how many topics match')
-@click.option(
-    '--include-hidden-topics',
-    is_flag=True,
-    help="Also match hidden topics (a name part starts with '_')",
-)
+@include_hidden_option('topics', 'match')
 @click.pass_context
 def cli(
     ctx: click.Context,

@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from ..common import connect, print_names, strategy_options
-from ..lazy import include_hidden
+from ..lazy import include_hidden, include_hidden_option
 
 
 def _section(rows: list[tuple[str, list[str], int]], publishers: bool) -> str:
@@ -31,14 +31,7 @@ def _section(rows: list[tuple[str, list[str], int]], publishers: bool) -> str:
     is_flag=True,
     help='Print only how many topics there are',
 )
-@click.option(
-    '--include-hidden-topics',
-    '-a',
-    '--all',
-    'include_hidden_topics',
-    is_flag=True,
-    help="Also list hidden topics (a name part starts with '_')",
-)
+@include_hidden_option('topics', 'list', all_alias=True)
 @click.option('-v', '--verbose', is_flag=True, help='Count publishers and subscribers per topic')
 @click.pass_context
 def cli(

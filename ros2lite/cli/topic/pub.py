@@ -9,7 +9,14 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion, numbers
-from ..common import connect, qos_from_options, qos_options, strategy_options
+from ..common import (
+    check_stdin,
+    connect,
+    qos_from_options,
+    qos_options,
+    strategy_options,
+    values_argument,
+)
 from ..errors import CliError
 from .common import message_type_name
 
@@ -27,8 +34,7 @@ WAIT_STEP = 0.1  # seconds between subscription-count checks while waiting
 @click.command('pub')
 @click.argument('topic_name', shell_complete=completion.topics)
 @click.argument('message_type', shell_complete=completion.message_types)
-@click.argument('values', required=False)
-@click.option('--stdin', 'use_stdin', is_flag=True, help='Read values from standard input')
+@values_argument()
 @click.option(
     '-r',
     '--rate',
@@ -101,8 +107,7 @@ def cli(
     VALUES fills the message in YAML (e.g. 'data: Hello World'); 'now' sets a time field and
     'header: auto' a header to the current time on every publish.
     """
-    if use_stdin and values is not None:
-        raise click.UsageError('argument --stdin: not allowed with argument values')
+    check_stdin(values, use_stdin)
     if once and times:
         raise click.UsageError('argument -t/--times: not allowed with argument -1/--once')
     if use_stdin:
