@@ -22,7 +22,15 @@ if TYPE_CHECKING:
 
     from ros2lite.connection import Connection
     from ros2lite.graph import Entity
-    from ros2lite.qos import QoSProfile
+    from ros2lite.qos import (
+        DurabilityPolicy,
+        HistoryPolicy,
+        LivelinessPolicy,
+        QoSProfile,
+        ReliabilityPolicy,
+    )
+
+    Policy = HistoryPolicy | ReliabilityPolicy | DurabilityPolicy | LivelinessPolicy
 
 
 class QosOptions(TypedDict):
@@ -115,47 +123,24 @@ def connect(
     return Connection(autostart=not no_daemon, use_sim_time=use_sim_time, as_node=as_node)
 
 
+def _policies() -> list[tuple[str, type[Policy]]]:
+    """The `--qos-<name>` policy options, in ros2cli's order, with the library's enums
+    (whose short keys are the choices)."""
+    from ros2lite import qos as q
+
+    return [
+        ('history', q.HistoryPolicy),
+        ('reliability', q.ReliabilityPolicy),
+        ('durability', q.DurabilityPolicy),
+        ('liveliness', q.LivelinessPolicy),
+    ]
+
+
 def qos_options(default_profile: str) -> Callable[[F], F]:
     """The `--qos-*` options of `topic pub`/`echo` (ros2cli's add_qos_arguments)."""
 
     def decorate(fn: F) -> F:
         opts = [
-            click.option(
-                '--qos-liveliness-lease-duration-seconds',
-                type=numbers.seconds(),
-                help='Quality of service liveliness lease duration in seconds',
-            ),
-            click.option(
-                '--qos-liveliness',
-                type=click.Choice(
-                    ['system_default', 'automatic', 'manual_by_topic', 'unknown', 'best_available']
-                ),
-                help='Quality of service liveliness setting',
-            ),
-            click.option(
-                '--qos-durability',
-                type=click.Choice(
-                    ['system_default', 'transient_local', 'volatile', 'unknown', 'best_available']
-                ),
-                help='Quality of service durability setting',
-            ),
-            click.option(
-                '--qos-reliability',
-                type=click.Choice(
-                    ['system_default', 'reliable', 'best_effort', 'unknown', 'best_available']
-                ),
-                help='Quality of service reliability setting',
-            ),
-            click.option(
-                '--qos-history',
-                type=click.Choice(['system_default', 'keep_last', 'keep_all', 'unknown']),
-                help='Quality of service history setting',
-            ),
-            click.option(
-                '--qos-depth',
-                type=numbers.Count(min=0),
-                help='Queue size setting (overrides depth value of --qos-profile option)',
-            ),
             click.option(
                 '--qos-profile',
                 type=click.Choice(QOS_PROFILES),
@@ -163,8 +148,30 @@ def qos_options(default_profile: str) -> Callable[[F], F]:
                 show_default=True,
                 help='Quality of service preset profile',
             ),
+            click.option(
+                '--qos-depth',
+                type=numbers.Count(min=0),
+                help='Queue size setting (overrides depth value of --qos-profile option)',
+            ),
         ]
-        for opt in opts:
+        for name, policy in _policies():
+            # manual_by_node is deprecated in rmw: ros2cli does not offer it
+            keys = [k for k in policy.short_keys() if k != 'manual_by_node']
+            opts.append(
+                click.option(
+                    f'--qos-{name}',
+                    type=click.Choice(keys),
+                    help=f'Quality of service {name} setting',
+                )
+            )
+        opts.append(
+            click.option(
+                '--qos-liveliness-lease-duration-seconds',
+                type=numbers.seconds(),
+                help='Quality of service liveliness lease duration in seconds',
+            )
+        )
+        for opt in reversed(opts):
             fn = opt(fn)
         return fn
 
@@ -262,15 +269,17 @@ def qos_from_options(
     from ros2lite import qos as q
 
     profile = q.preset(qos_profile)
-    changes: dict[str, object] = {}
-    if qos_history is not None:
-        changes['history'] = q.HistoryPolicy.from_short_key(qos_history)
-    if qos_reliability is not None:
-        changes['reliability'] = q.ReliabilityPolicy.from_short_key(qos_reliability)
-    if qos_durability is not None:
-        changes['durability'] = q.DurabilityPolicy.from_short_key(qos_durability)
-    if qos_liveliness is not None:
-        changes['liveliness'] = q.LivelinessPolicy.from_short_key(qos_liveliness)
+    given = {
+        'history': qos_history,
+        'reliability': qos_reliability,
+        'durability': qos_durability,
+        'liveliness': qos_liveliness,
+    }
+    changes: dict[str, object] = {
+        name: policy.from_short_key(key)
+        for name, policy in _policies()
+        if (key := given[name]) is not None
+    }
     if qos_liveliness_lease_duration_seconds is not None:
         changes['liveliness_lease_duration'] = q.Duration.from_seconds(
             qos_liveliness_lease_duration_seconds

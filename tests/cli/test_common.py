@@ -4,11 +4,12 @@ verb receives, and what the help lists in which order."""
 from __future__ import annotations
 
 import json
+from typing import Any
 
 import click
 from click.testing import CliRunner
 
-from ros2lite.cli.common import MessageFormat, format_options
+from ros2lite.cli.common import MessageFormat, format_options, qos_from_options, qos_options
 
 
 @click.command()
@@ -69,3 +70,48 @@ def test_format_options_refuse_a_negative_length_and_keep_their_order() -> None:
         '--once',
         '--help',
     ]
+
+
+@click.command()
+@qos_options('sensor_data')
+def subscribe(**qos: Any) -> None:
+    profile = qos_from_options(**qos)
+    click.echo(
+        ' '.join(
+            str(v)
+            for v in (
+                profile.history.short_key,
+                profile.depth,
+                profile.reliability.short_key,
+                profile.durability.short_key,
+                profile.liveliness.short_key,
+                profile.liveliness_lease_duration.nanoseconds,
+            )
+        )
+    )
+
+
+def test_qos_options_build_the_profile_from_the_preset() -> None:
+    runner = CliRunner()
+    # the preset as it is: sensor_data is keep_last 5, best effort, volatile
+    assert runner.invoke(subscribe, []).output.split()[:4] == [
+        'keep_last',
+        '5',
+        'best_effort',
+        'volatile',
+    ]
+    args = ['--qos-history', 'keep_all', '--qos-reliability', 'reliable']
+    args += ['--qos-durability', 'transient_local', '--qos-liveliness', 'manual_by_topic']
+    args += ['--qos-liveliness-lease-duration-seconds', '1.5', '--qos-depth', '7']
+    assert runner.invoke(subscribe, args).output == (
+        'keep_all 7 reliable transient_local manual_by_topic 1500000000\n'
+    )
+
+
+def test_qos_options_offer_ros2cli_choices_only() -> None:
+    refused = CliRunner().invoke(subscribe, ['--qos-liveliness', 'manual_by_node'])
+    assert refused.exit_code == 2
+    assert (
+        "'system_default', 'automatic', 'manual_by_topic', 'unknown', 'best_available'"
+        in refused.output
+    )
