@@ -22,6 +22,7 @@ if TYPE_CHECKING:
 
     from ros2lite.connection import Connection
     from ros2lite.graph import Entity
+    from ros2lite.node import Node
     from ros2lite.qos import (
         DurabilityPolicy,
         HistoryPolicy,
@@ -111,6 +112,25 @@ def check_stdin(values: str | None, use_stdin: bool, name: str = 'values') -> No
     """ros2cli's usage error when both the YAML argument `name` and --stdin are given."""
     if use_stdin and values is not None:
         raise click.UsageError(f'argument --stdin: not allowed with argument {name}')
+
+
+def yaml_fields(values: str, *, allow_empty: bool = False) -> dict[str, object]:
+    """The field values given in YAML (VALUES or --stdin) as a mapping, or ros2cli's line
+    saying why they are not one (`allow_empty`: empty text means no fields, as in
+    `service call`)."""
+    from ros2lite.safe_yaml import YamlInputError, load
+
+    try:
+        parsed = load(values, 'the passed value')
+    except YamlInputError as e:
+        if not e.syntax:
+            raise CliError(str(e)) from None
+        raise CliError('The passed value needs to be in YAML string or a dictionary') from None
+    if parsed is None and allow_empty:
+        return {}
+    if not isinstance(parsed, dict):
+        raise CliError('The passed value needs to be a dictionary in YAML format')
+    return parsed
 
 
 def connect(
@@ -307,6 +327,16 @@ def explicit_qos(**options: Unpack[QosOptions]) -> bool:
             'qos_liveliness_lease_duration_seconds',
         )
     )
+
+
+def resolved_name(node: Node, name: str, kind: str) -> str:
+    """`name` resolved by the CLI's node as a `kind` ('service', 'action') name, or ros2cli's
+    line saying it is invalid."""
+    resolve = node.resolve_service_name if kind == 'service' else node.resolve_topic_name
+    try:
+        return resolve(name)
+    except ValueError:
+        raise CliError(f"The {kind} name '{name}' is invalid") from None
 
 
 def interface_type_name(name: str, kind: str, *, invalid: str, not_kind: str | None = None) -> str:

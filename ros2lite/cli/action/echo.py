@@ -9,7 +9,13 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion
-from ..common import connect, format_options, interface_type_name, strategy_options
+from ..common import (
+    connect,
+    format_options,
+    interface_type_name,
+    resolved_name,
+    strategy_options,
+)
 from ..errors import CliError
 
 if TYPE_CHECKING:
@@ -59,10 +65,7 @@ def cli(
             wanted.add(name.strip().upper())
     with connect(no_daemon=no_daemon, use_sim_time=use_sim_time) as conn:
         node = conn.node()
-        try:
-            full = node.resolve_topic_name(action_name)
-        except ValueError:
-            raise CliError(f"The action name '{action_name}' is invalid") from None
+        full = resolved_name(node, action_name, 'action')
         if action_type is not None:
             type_name = interface_type_name(
                 action_type, 'action', invalid=f"The service type '{action_type}' is invalid"

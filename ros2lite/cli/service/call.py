@@ -20,6 +20,7 @@ from ..common import (
     interface_type_name,
     values_argument,
     wait_saying_other_types,
+    yaml_fields,
 )
 from ..errors import CliError
 
@@ -67,7 +68,7 @@ def cli(
         not_kind='The passed type is not a service',
     )
     srv_class: type[ServiceType] = get_interface(type_name)
-    fields = _parse_values(sys.stdin.read() if use_stdin else values or '{}')
+    fields = yaml_fields(sys.stdin.read() if use_stdin else values or '{}', allow_empty=True)
     request = srv_class.Request()
     try:
         set_message_fields(request, fields)
@@ -86,22 +87,6 @@ def cli(
             if period is None or not conn.context.ok():
                 return
             time.sleep(max(0.0, last_call + period - time.monotonic()))
-
-
-def _parse_values(values: str) -> dict[str, object]:  # field values, from YAML
-    from ros2lite.safe_yaml import YamlInputError, load
-
-    try:
-        parsed = load(values, 'the passed value')
-    except YamlInputError as e:
-        if not e.syntax:
-            raise CliError(str(e)) from None
-        raise CliError('The passed value needs to be in YAML string or a dictionary') from None
-    if parsed is None:
-        return {}
-    if not isinstance(parsed, dict):
-        raise CliError('The passed value needs to be a dictionary in YAML format')
-    return parsed
 
 
 def _wait(

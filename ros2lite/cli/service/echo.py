@@ -14,6 +14,7 @@ from ..common import (
     interface_type_name,
     qos_from_options,
     qos_options,
+    resolved_name,
     strategy_options,
 )
 from ..errors import CliError
@@ -52,10 +53,7 @@ def cli(
 
     with connect(no_daemon=no_daemon, use_sim_time=use_sim_time) as conn:
         node = conn.node()
-        try:
-            full = node.resolve_service_name(service_name)
-        except ValueError:
-            raise CliError(f"The service name '{service_name}' is invalid") from None
+        full = resolved_name(node, service_name, 'service')
         topic = event_topic(full)
         entities = conn.entities()
         if service_type is not None:

@@ -16,6 +16,7 @@ from ..common import (
     qos_options,
     strategy_options,
     values_argument,
+    yaml_fields,
 )
 from ..errors import CliError
 from .common import message_type_name
@@ -135,20 +136,6 @@ def cli(
         )
 
 
-def parse_values(values: str) -> dict[str, object]:
-    from ros2lite.safe_yaml import YamlInputError, load
-
-    try:
-        parsed = load(values, 'the passed value')
-    except YamlInputError as e:
-        if not e.syntax:
-            raise CliError(str(e)) from None
-        raise CliError('The passed value needs to be in YAML string or a dictionary') from None
-    if not isinstance(parsed, dict):
-        raise CliError('The passed value needs to be a dictionary in YAML format')
-    return parsed
-
-
 def publish_loop(
     conn: Connection,
     topic: str,
@@ -166,7 +153,7 @@ def publish_loop(
     from ros2lite.interfaces import get_interface, set_message_fields
 
     type_name = message_type_name(message_type)
-    fields = parse_values(values)
+    fields = yaml_fields(values)
     node = conn.node()
     pub = node.create_publisher(type_name, topic, profile)
     if wait_for == 0 and max_wait is not None:
