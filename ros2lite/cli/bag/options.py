@@ -4,7 +4,6 @@ overrides, and the player that play and burst set up alike."""
 from __future__ import annotations
 
 import contextlib
-import dataclasses
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
@@ -218,6 +217,8 @@ def bag_player(
     bag opened and the player node made. `patterns` (-e/-x) are checked after the bag path.
     `options(node)` gives the verb's own play options
     (names resolve against the node); remappings and QoS overrides are filled in here."""
+    import dataclasses
+
     from ros2lite.bag.errors import BagError
     from ros2lite.bag.player import Player
     from ros2lite.bag.reader import Reader
