@@ -52,16 +52,17 @@ LACKING: dict[str, str] = {
 
 
 def verb_tables() -> dict[str, tuple[str, dict[str, tuple[str, str]]]]:
-    """ros2cli's extension group name (`ros2<command>.verb`) → (command, its VERBS table),
-    for every command that has verbs (imports each command's package, not its verbs)."""
+    """ros2cli's extension group name (`ros2<command>.verb`) → (command, its verbs as
+    verb → (module, help)), for every command that has verbs (imports each command's
+    package, not its verbs)."""
     import importlib
 
     groups = {}
     for command, (module_name, _help) in COMMANDS.items():
-        verbs = getattr(importlib.import_module(module_name), 'VERBS', None)
-        if verbs:
-            group = 'ros2cli.daemon.verb' if command == 'daemon' else f'ros2{command}.verb'
-            groups[group] = (command, verbs)
+        group = importlib.import_module(module_name).cli
+        if isinstance(group, LazyGroup) and group.lazy:
+            name = 'ros2cli.daemon.verb' if command == 'daemon' else f'ros2{command}.verb'
+            groups[name] = (command, group.lazy)
     return groups
 
 

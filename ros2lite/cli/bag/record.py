@@ -16,7 +16,15 @@ import click
 from .. import completion, numbers, render
 from .. import keyboard as keys_module
 from ..common import ManyValues, connect
-from .options import bag_error, check_patterns, qos_overrides, shared_options, warn
+from .options import (
+    bag_error,
+    check_patterns,
+    qos_overrides,
+    services_option,
+    shared_options,
+    topics_option,
+    warn,
+)
 
 if TYPE_CHECKING:
     from ros2lite.bag.recorder import Recorder, RecordOptions
@@ -33,19 +41,8 @@ SELECTION_ERROR = (
 @click.argument(
     "positional_topics", metavar="[TOPICS]...", nargs=-1, shell_complete=completion.topics
 )
-@click.option(
-    "--topics",
-    cls=ManyValues,
-    metavar="TOPIC...",
-    shell_complete=completion.topics,
-    help="List of topics to record.",
-)
-@click.option(
-    "--services",
-    cls=ManyValues,
-    metavar="SERVICE...",
-    help="List of services to record (their service-event topics).",
-)
+@topics_option("List of topics to record.")
+@services_option("List of services to record (their service-event topics).")
 @click.option(
     "--topic-types", cls=ManyValues, metavar="TYPE...", help="Record topics of these types."
 )
