@@ -42,6 +42,9 @@ class RosArgs:
     params_files: list[Path] = field(default_factory=list)
     log_levels: dict[str | None, int] = field(default_factory=dict)
     enclave: str | None = None
+    # --enable/--disable-rosout-logs and -stdout-logs; None: not given (enabled)
+    rosout_logs: bool | None = None
+    stdout_logs: bool | None = None
 
     def merge(self, other: RosArgs) -> RosArgs:
         """Node-local arguments (`other`) take precedence over global ones."""
@@ -51,6 +54,8 @@ class RosArgs:
             self.params_files + other.params_files,
             {**self.log_levels, **other.log_levels},
             other.enclave or self.enclave,
+            other.rosout_logs if other.rosout_logs is not None else self.rosout_logs,
+            other.stdout_logs if other.stdout_logs is not None else self.stdout_logs,
         )
         for source in (self.params, other.params):
             for node, values in source.items():
@@ -123,6 +128,14 @@ def split_ros_args(argv: list[str]) -> tuple[list[str], list[list[str]]]:
     return user, blocks
 
 
+def remove_ros_args(args: list[str] | None = None) -> list[str]:
+    """The arguments (default: `sys.argv`) without their `--ros-args` blocks: what a
+    program's own argument parser should see."""
+    import sys
+
+    return split_ros_args(list(sys.argv if args is None else args))[0]
+
+
 def parse_ros_args(argv: list[str] | None) -> RosArgs:
     """Parse every `--ros-args` block found in argv."""
     result = RosArgs()
@@ -154,15 +167,12 @@ def parse_ros_args(argv: list[str] | None) -> RosArgs:
                 result.log_levels[logger] = level
             elif arg in ('-e', '--enclave'):
                 result.enclave = _next(it, arg)
-            elif arg in (
-                '--enable-rosout-logs',
-                '--disable-rosout-logs',
-                '--enable-stdout-logs',
-                '--disable-stdout-logs',
-                '--enable-external-lib-logs',
-                '--disable-external-lib-logs',
-            ):
-                continue
+            elif arg in ('--enable-rosout-logs', '--disable-rosout-logs'):
+                result.rosout_logs = arg.startswith('--enable')
+            elif arg in ('--enable-stdout-logs', '--disable-stdout-logs'):
+                result.stdout_logs = arg.startswith('--enable')
+            elif arg in ('--enable-external-lib-logs', '--disable-external-lib-logs'):
+                continue  # there is no external logging library to switch
             else:
                 raise RosArgsError(f"Unknown ROS argument '{arg}'")
     return result

@@ -122,7 +122,9 @@ class Connection:
         tool, which must tick even when sim time stands still)."""
         from ros2lite.clock import Clock, ClockType
 
-        return self.node().create_timer(period, callback, clock=Clock(ClockType.STEADY_TIME))
+        return self.node().create_timer(
+            period, callback, clock=Clock(clock_type=ClockType.STEADY_TIME)
+        )
 
     def spin(self) -> None:
         """Run the node's callbacks until the context shuts down (Ctrl-C raises as usual)."""

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import atexit
 import contextlib
+import enum
 import itertools
 import os
 import signal
@@ -18,7 +19,11 @@ import weakref
 from typing import Any
 
 from ros2lite.arguments import RosArgs, parse_ros_args
-from ros2lite.exceptions import NotInitializedException
+from ros2lite.exceptions import NotInitializedException, Ros2liteError
+
+
+class InvalidDomainIdError(Ros2liteError, RuntimeError):
+    """A domain id outside what ROS allows."""
 
 
 class Context:
@@ -64,9 +69,18 @@ class Context:
 
         if self.session is not None:
             raise RuntimeError('Context.init() must only be called once')
+        if domain_id is not None and (not isinstance(domain_id, int) or domain_id < 0):
+            raise InvalidDomainIdError(f'invalid domain id {domain_id!r}: it must not be negative')
         self.terminating = False
-        self.argv = list(sys.argv if args is None else args)
+        argv = list(sys.argv if args is None else args)
+        for arg in argv:
+            arg.encode('utf-8')  # rcl takes C strings: undecodable arguments fail here, as there
+        self.argv = argv
         self.args = parse_ros_args(self.argv)
+        if self.args.stdout_logs is not None:
+            from ros2lite.logging import set_console_output
+
+            set_console_output(self.args.stdout_logs)
         self.domain_id = env_domain_id() if domain_id is None else domain_id
         self.router = router
         self.session = connect(router, tool=short_lived, autostart=autostart)
@@ -74,8 +88,11 @@ class Context:
         _live.add(self)
         return self
 
-    # `with ros2lite.init():` shuts the context down on the way out, as rclpy allows
+    # `with Context():` initialises it (as rclpy's does) and `with ros2lite.init():` uses the
+    # one just initialised; both shut it down on the way out
     def __enter__(self) -> Context:
+        if self.session is None:
+            self.init()
         return self
 
     def __exit__(self, *exc: object) -> None:
@@ -83,6 +100,11 @@ class Context:
 
     def ok(self) -> bool:
         return self.session is not None and not self.terminating
+
+    def get_domain_id(self) -> int:
+        """The ROS domain of this context (rclpy's accessor)."""
+        self.require()
+        return self.domain_id
 
     def require(self) -> Any:
         if self.session is None:
@@ -113,7 +135,15 @@ class Context:
                 self._nodes.remove(node)
 
     def on_shutdown(self, fn: Any) -> None:
-        self._on_shutdown.append(fn)
+        """Call `fn()` when this context shuts down."""
+        with self._lock:
+            self._on_shutdown.append(fn)
+
+    def remove_on_shutdown(self, fn: Any) -> None:
+        """Forget a callback given to :meth:`on_shutdown` (a sleeper that woke up)."""
+        with self._lock:
+            if fn in self._on_shutdown:
+                self._on_shutdown.remove(fn)
 
     def add_executor(self, executor: Any) -> None:
         self._executors.add(executor)
@@ -124,9 +154,13 @@ class Context:
             executor.wake()
 
     def shutdown(self) -> None:
+        """Destroy the nodes and close the session; a context that is not initialised
+        cannot be shut down (RuntimeError, as in rclpy; :meth:`try_shutdown` does not mind)."""
         if self.session is None:
-            return
-        for fn in self._on_shutdown:
+            raise RuntimeError('Context must be initialized before it can be shutdown')
+        with self._lock:
+            callbacks, self._on_shutdown = self._on_shutdown, []
+        for fn in callbacks:
             fn()
         for node in list(self._nodes):
             node.destroy_node()
@@ -143,6 +177,10 @@ class Context:
     def try_shutdown(self) -> None:
         if self.session is not None:
             self.shutdown()
+
+    def destroy(self) -> None:
+        """Release the context for good (rclpy's); shuts it down first if it still runs."""
+        self.try_shutdown()
 
     def _terminate(self) -> None:
         self.terminating = True
@@ -169,35 +207,78 @@ if _register_early is not None:
     _register_early(_shutdown_live_contexts)
 
 
-_previous_sigterm: Any = signal.SIG_DFL
+class SignalHandlerOptions(enum.IntEnum):
+    """Which of ros2lite's signal handlers are installed (rclpy's names)."""
+
+    NO = 0
+    SigInt = 1
+    SigTerm = 2
+    ALL = 3
 
 
-def _on_sigterm(signum: int, frame: Any) -> None:
-    """SIGTERM as rclpy handles it: open contexts stop being ok() and spinning executors
-    raise ExternalShutdownException, so `main()` can leave through its normal clean-up.
-    Doing the shutdown itself here could interrupt a zenoh call on this very thread."""
+_previous: dict[int, Any] = {}
+
+
+def _stop_open_contexts(signum: int, frame: Any) -> None:
+    """SIGINT and SIGTERM as rclpy handles them: open contexts stop being ok() and spinning
+    executors end (SIGTERM: with ExternalShutdownException), so `main()` can leave through its
+    normal clean-up; the handler that was there before still runs (Ctrl-C still raises
+    KeyboardInterrupt). Doing the shutdown itself here could interrupt a zenoh call on this
+    very thread."""
     open_contexts = [ctx for ctx in list(_live) if ctx.ok()]
     for ctx in open_contexts:
         ctx._terminate()
-    if callable(_previous_sigterm):
-        _previous_sigterm(signum, frame)
-    elif not open_contexts and _previous_sigterm == signal.SIG_DFL:
+    previous = _previous.get(signum, signal.SIG_DFL)
+    if callable(previous):
+        previous(signum, frame)
+    elif not open_contexts and previous == signal.SIG_DFL:
         # nothing of ours to stop: die of the signal as if we had never been installed
-        signal.signal(signal.SIGTERM, signal.SIG_DFL)
-        os.kill(os.getpid(), signal.SIGTERM)
+        signal.signal(signum, signal.SIG_DFL)
+        os.kill(os.getpid(), signum)
 
 
-def install_signal_handlers() -> None:
-    """Route SIGTERM through `_on_sigterm` (main thread only; a handler already there is
-    still called after ours)."""
-    global _previous_sigterm
+def _wanted(options: SignalHandlerOptions) -> list[signal.Signals]:
+    return [
+        sig
+        for sig, flag in (
+            (signal.SIGINT, SignalHandlerOptions.SigInt),
+            (signal.SIGTERM, SignalHandlerOptions.SigTerm),
+        )
+        if options & flag
+    ]
+
+
+def install_signal_handlers(options: SignalHandlerOptions = SignalHandlerOptions.ALL) -> None:
+    """Route the chosen signals through ros2lite's handler (main thread only; the handler
+    already there is still called after ours)."""
     if threading.current_thread() is not threading.main_thread():
         return
-    current = signal.getsignal(signal.SIGTERM)
-    if current is _on_sigterm:
+    for sig in _wanted(SignalHandlerOptions(options)):
+        current = signal.getsignal(sig)
+        if current is _stop_open_contexts:
+            continue
+        _previous[sig] = current
+        signal.signal(sig, _stop_open_contexts)
+
+
+def uninstall_signal_handlers() -> None:
+    """Put back the handlers that were there before :func:`install_signal_handlers`."""
+    if threading.current_thread() is not threading.main_thread():
         return
-    _previous_sigterm = current
-    signal.signal(signal.SIGTERM, _on_sigterm)
+    for sig, previous in list(_previous.items()):
+        if signal.getsignal(sig) is _stop_open_contexts:
+            signal.signal(sig, previous if previous is not None else signal.SIG_DFL)
+        del _previous[sig]
+
+
+def get_current_signal_handlers_options() -> SignalHandlerOptions:
+    """Which of ros2lite's handlers are installed now."""
+    options = SignalHandlerOptions.NO
+    if signal.getsignal(signal.SIGINT) is _stop_open_contexts:
+        options |= SignalHandlerOptions.SigInt
+    if signal.getsignal(signal.SIGTERM) is _stop_open_contexts:
+        options |= SignalHandlerOptions.SigTerm
+    return SignalHandlerOptions(options)
 
 
 _default = Context()

@@ -220,7 +220,7 @@ class Executor:
             for timer in node.timers:
                 if timer._scheduled:
                     continue
-                remaining = timer.time_until_next_call()
+                remaining = timer._seconds_until_next_call()
                 if remaining is None:
                     continue
                 if remaining <= 0:

@@ -11,7 +11,7 @@ from ros2lite import names
 from ros2lite.arguments import RosArgs, parse_ros_args
 from ros2lite.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup
 from ros2lite.client import Client
-from ros2lite.clock import Clock, ClockType
+from ros2lite.clock import Clock, ROSClock
 from ros2lite.context import Context, default_context
 from ros2lite.executable import Executable, GuardCondition
 from ros2lite.logging import RcutilsLogger, set_logger_level
@@ -20,10 +20,10 @@ from ros2lite.parameters.node_api import ParameterMixin
 from ros2lite.publisher import Publisher
 from ros2lite.qos import (
     QoSProfile,
-    ReliabilityPolicy,
     qos_profile_rosout_default,
     qos_profile_services_default,
 )
+from ros2lite.rate import Rate
 from ros2lite.service import Service
 from ros2lite.subscription import Subscription
 from ros2lite.timer import Timer
@@ -31,7 +31,6 @@ from ros2lite.transport import keys
 
 # rcl's rosout profile, lifespan 10 s included: the token must read `:1:,1000:,:10,0:,,`
 ROSOUT_QOS = qos_profile_rosout_default
-CLOCK_QOS = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT, depth=1)
 
 
 class Node(ParameterMixin):
@@ -50,6 +49,7 @@ class Node(ParameterMixin):
         allow_undeclared_parameters: bool = False,
         automatically_declare_parameters_from_overrides: bool = False,
         start_parameter_services: bool = True,
+        enable_logger_service: bool = False,
     ) -> None:
         self.context = context or default_context()
         self.context.require()
@@ -68,6 +68,7 @@ class Node(ParameterMixin):
         self.services: list[Service] = []
         self.clients: list[Client] = []
         self.guards: list[GuardCondition] = []
+        self.rates: list[Rate] = []
         self.waitables: list[Executable] = []
         self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
         self._callback_groups: list[CallbackGroup] = [self.default_callback_group]
@@ -85,9 +86,9 @@ class Node(ParameterMixin):
                 self.context.domain_id, self.context.zid, self.node_id, self._namespace, self._name
             ),
         )
-        self._clock = Clock(ClockType.ROS_TIME)
-        self._clock_sub: Subscription | None = None
+        self._clock = ROSClock()
         self._rosout: Publisher | None = None
+        enable_rosout = enable_rosout and self._args.rosout_logs is not False
         if enable_rosout:
             self._rosout = self.create_publisher('rcl_interfaces/msg/Log', '/rosout', ROSOUT_QOS)
         self._logger = RcutilsLogger(
@@ -99,6 +100,16 @@ class Node(ParameterMixin):
             automatically_declare_parameters_from_overrides,
             start_parameter_services,
         )
+        from ros2lite.time_source import TimeSource
+
+        # use_sim_time (declared here unless an override did) and /clock, as rclpy's nodes do
+        self._time_source = TimeSource(node=self)
+        self._time_source.attach_clock(self._clock)
+        self._logger_service: Any = None
+        if enable_logger_service:
+            from ros2lite.logging_service import LoggingService
+
+            self._logger_service = LoggingService(self)
         self.context.add_node(self)
 
     # -- names --------------------------------------------------------------------------------
@@ -216,7 +227,10 @@ class Node(ParameterMixin):
         callback: Callable[[], Any],
         callback_group: CallbackGroup | None = None,
         clock: Clock | None = None,
+        autostart: bool = True,
     ) -> Timer:
+        """Call `callback()` every `timer_period_sec` (of ROS time unless `clock` says
+        otherwise); `autostart=False` leaves it canceled until `reset()`."""
         self._remember_group(callback_group)
         timer = Timer(
             timer_period_sec,
@@ -224,10 +238,24 @@ class Node(ParameterMixin):
             clock or self._clock,
             node=self,
             callback_group=callback_group,
+            autostart=autostart,
         )
         self.timers.append(timer)
         self._wake_executor()
         return timer
+
+    def create_rate(self, frequency: float, clock: Clock | None = None) -> Rate:
+        """A Rate ticking at `frequency` Hz on this node (which another thread spins)."""
+        rate = Rate(self, frequency, clock)
+        self.rates.append(rate)
+        return rate
+
+    def destroy_rate(self, rate: Rate) -> bool:
+        if rate not in self.rates:
+            return False
+        self.rates.remove(rate)
+        rate.destroy()
+        return True
 
     def create_service(
         self,
@@ -314,6 +342,9 @@ class Node(ParameterMixin):
         entities: list[Any] = [*self.subscriptions, *self.publishers, *self.services, *self.clients]
         for entity in entities:
             entity.destroy()
+        for rate in self.rates:
+            rate.destroy()
+        self.rates.clear()
         for timer in self.timers:
             timer.cancel()
         for guard in self.guards:
@@ -341,16 +372,6 @@ class Node(ParameterMixin):
 
     def get_logger(self) -> RcutilsLogger:
         return self._logger
-
-    def _enable_sim_time(self) -> None:
-        self._clock._enable_sim_time(True)
-        if self._clock_sub is None:
-            self._clock_sub = self.create_subscription(
-                'rosgraph_msgs/msg/Clock',
-                '/clock',
-                lambda m: self._clock._set_sim_time(m.clock.sec * 1_000_000_000 + m.clock.nanosec),
-                CLOCK_QOS,
-            )
 
     def _publish_rosout(
         self, severity: int, name: str, text: str, caller: inspect.Traceback

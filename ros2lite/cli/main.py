@@ -19,6 +19,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     'action': ('ros2lite.cli.action', 'Various action related sub-commands'),
     'bag': ('ros2lite.cli.bag', 'Various rosbag related sub-commands'),
     'daemon': ('ros2lite.cli.daemon', 'Various daemon related sub-commands'),
+    'env': ('ros2lite.cli.env', 'Print shell lines that let code written for rclpy run'),
     'interface': ('ros2lite.cli.interface', 'Show information about ROS interfaces'),
     'node': ('ros2lite.cli.node', 'Various node related sub-commands'),
     'param': ('ros2lite.cli.param', 'Various param related sub-commands'),

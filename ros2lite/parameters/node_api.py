@@ -16,10 +16,7 @@ from ros2lite.parameters.store import (
     ParameterStore,
     PostSetCallback,
     PreSetCallback,
-    result,
 )
-
-USE_SIM_TIME = "use_sim_time"
 
 
 class ParameterMixin:
@@ -52,12 +49,6 @@ class ParameterMixin:
                 [(name, p.value, _descriptor()) for name, p in overrides.items()],
                 ignore_override=True,
             )
-        # use_sim_time, as rclpy's TimeSource handles it
-        if not self.has_parameter(USE_SIM_TIME):
-            self.declare_parameter(USE_SIM_TIME, False)
-        self._apply_use_sim_time(self._parameter_store.get_parameter_or(USE_SIM_TIME))
-        self._parameter_store.add_on_set_parameters_callback(_check_use_sim_time)
-        self._parameter_store.add_post_set_parameters_callback(self._on_use_sim_time_set)
         if start_parameter_services:
             self._start_parameter_services()
 
@@ -65,20 +56,6 @@ class ParameterMixin:
         from ros2lite.parameters.services import ParameterService
 
         self._parameter_service = ParameterService(self)
-
-    def _on_use_sim_time_set(self, parameters: list[Parameter]) -> None:
-        for p in parameters:
-            if p.name == USE_SIM_TIME:
-                self._apply_use_sim_time(p)
-
-    def _apply_use_sim_time(self, param: Parameter) -> None:
-        node: Any = self
-        if param.type_ != Parameter.Type.BOOL:
-            return
-        if param.value:
-            node._enable_sim_time()
-        else:
-            node.get_clock()._enable_sim_time(False)
 
     # -- declare -----------------------------------------------------------------------------
     def declare_parameter(
@@ -168,13 +145,6 @@ def _descriptor() -> Any:
     from ros2lite.parameters.store import descriptor
 
     return descriptor()
-
-
-def _check_use_sim_time(parameters: list[Parameter]) -> Any:
-    for p in parameters:
-        if p.name == USE_SIM_TIME and p.type_ not in (Parameter.Type.BOOL, Parameter.Type.NOT_SET):
-            return result(False, f"{USE_SIM_TIME} parameter set to something besides a bool")
-    return result(True)
 
 
 def _override_parameters(values: dict[str, Any]) -> dict[str, Parameter]:
