@@ -273,7 +273,7 @@ def uninstall_signal_handlers() -> None:
 
 def get_current_signal_handlers_options() -> SignalHandlerOptions:
     """Which of ros2lite's handlers are installed now."""
-    options = SignalHandlerOptions.NO
+    options = 0
     if signal.getsignal(signal.SIGINT) is _stop_open_contexts:
         options |= SignalHandlerOptions.SigInt
     if signal.getsignal(signal.SIGTERM) is _stop_open_contexts:

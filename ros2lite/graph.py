@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ros2lite.names import is_hidden_name
-from ros2lite.qos import QoSProfile
+from ros2lite.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum, format_gid
 from ros2lite.transport.keys import Entity, EntityKind, parse_token
 
 # Entity and EntityKind are the graph's vocabulary; other modules import them from here
@@ -41,19 +41,6 @@ __all__ = [
 
 _TOPIC_KINDS = (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION)
 _SERVICE_KINDS = (EntityKind.SERVICE, EntityKind.CLIENT)
-
-
-@dataclass(frozen=True)
-class TopicEndpointInfo:
-    """What `ros2 topic info -v` prints for one endpoint (rclpy's TopicEndpointInfo)."""
-
-    node_name: str
-    node_namespace: str
-    topic_type: str
-    topic_type_hash: str
-    endpoint_type: str  # 'PUBLISHER' or 'SUBSCRIPTION'
-    endpoint_gid: bytes
-    qos_profile: QoSProfile | None
 
 
 def snapshot(session: Any, domain_id: int, timeout: float = 5.0) -> list[Entity]:
@@ -164,7 +151,11 @@ def endpoints_by_topic(
 ) -> list[TopicEndpointInfo]:
     from ros2lite.transport.attachment import gid_from_token
 
-    label = 'PUBLISHER' if kind == EntityKind.PUBLISHER else 'SUBSCRIPTION'
+    label = (
+        TopicEndpointTypeEnum.PUBLISHER
+        if kind == EntityKind.PUBLISHER
+        else TopicEndpointTypeEnum.SUBSCRIPTION
+    )
     return [
         TopicEndpointInfo(
             e.node_name,
@@ -325,34 +316,6 @@ def node_info(
     )
 
 
-def format_gid(gid: bytes) -> str:
-    """rclpy's dotted lower-case hex, e.g. `01.0f.2a.…`."""
-    return '.'.join(f'{b:02x}' for b in gid)
-
-
 def format_endpoint_info(info: TopicEndpointInfo) -> str:
     """One endpoint as rclpy's `TopicEndpointInfo.__str__` prints it (no trailing newline)."""
-    from ros2lite.qos import HistoryPolicy, qos_profile_unknown
-
-    qos = info.qos_profile or qos_profile_unknown
-    history = qos.history.name
-    if qos.history == HistoryPolicy.KEEP_LAST:
-        history += f' ({qos.depth})'
-    return '\n'.join(
-        [
-            f'Node name: {info.node_name}',
-            f'Node namespace: {info.node_namespace}',
-            f'Topic type: {info.topic_type}',
-            f'Topic type hash: {info.topic_type_hash}',
-            f'Endpoint type: {info.endpoint_type}',
-            f'GID: {format_gid(info.endpoint_gid)}',
-            'QoS profile:',
-            f'  Reliability: {qos.reliability.name}',
-            f'  History (Depth): {history}',
-            f'  Durability: {qos.durability.name}',
-            f'  Lifespan: {qos.lifespan}',
-            f'  Deadline: {qos.deadline}',
-            f'  Liveliness: {qos.liveliness.name}',
-            f'  Liveliness lease duration: {qos.liveliness_lease_duration}',
-        ]
-    )
+    return str(info)

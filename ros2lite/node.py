@@ -165,6 +165,10 @@ class Node(ParameterMixin):
         return list(self._callback_groups)
 
     def add_waitable(self, waitable: Executable) -> None:
+        """Run `waitable` with this node's entities (its executor, its groups)."""
+        if waitable._node is None:
+            waitable._node = self
+            self._remember_group(waitable.callback_group)
         self.waitables.append(waitable)
         if waitable._has_work():
             waitable._notify()

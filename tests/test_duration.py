@@ -53,4 +53,4 @@ def test_message_round_trip() -> None:
 
 def test_qos_rejects_negative_durations() -> None:
     with pytest.raises(ValueError, match='lifespan must not be negative'):
-        QoSProfile(lifespan=Duration(seconds=-1))
+        QoSProfile(depth=10, lifespan=Duration(seconds=-1))

@@ -66,13 +66,13 @@ def test_nodes_topics_and_endpoints(ros_context: Any, remote: Context) -> None:
     assert (info.node_name, info.node_namespace) == ('g_talker', '/robot1')
     assert info.topic_type == 'std_msgs/msg/String'
     assert info.topic_type_hash.startswith('RIHS01_df668c74')
-    assert info.endpoint_type == 'PUBLISHER'
+    assert info.endpoint_type.name == 'PUBLISHER'
     assert info.endpoint_gid == pub.gid
     assert info.qos_profile is not None and info.qos_profile.depth == 7
     assert info.qos_profile.reliability == ReliabilityPolicy.BEST_EFFORT
     subs = observer.get_subscriptions_info_by_topic('/robot1/chatter')
     assert sorted(s.topic_type for s in subs) == ['std_msgs/msg/Int32', 'std_msgs/msg/String']
-    assert {s.endpoint_type for s in subs} == {'SUBSCRIPTION'}
+    assert {s.endpoint_type.name for s in subs} == {'SUBSCRIPTION'}
     # relative names resolve against the querying node's namespace
     robot_observer = Node('robot_observer', namespace='/robot1', context=ros_context)
     assert robot_observer.count_publishers('chatter') == 1

@@ -28,8 +28,11 @@ def test_presets_and_short_keys() -> None:
     assert preset("parameters").depth == preset("parameter_events").depth == 1000
     assert preset("action_status_default").durability == DurabilityPolicy.TRANSIENT_LOCAL
     assert preset("system_default").reliability == ReliabilityPolicy.SYSTEM_DEFAULT
-    assert QoSProfile() == QoSProfile(
-        ReliabilityPolicy.RELIABLE, DurabilityPolicy.VOLATILE, HistoryPolicy.KEEP_LAST, 10
+    assert QoSProfile(depth=10) == QoSProfile(
+        reliability=ReliabilityPolicy.RELIABLE,
+        durability=DurabilityPolicy.VOLATILE,
+        history=HistoryPolicy.KEEP_LAST,
+        depth=10,
     )
     with pytest.raises(ValueError, match="sensor_data"):
         preset("nope")
@@ -43,8 +46,8 @@ def test_presets_and_short_keys() -> None:
 
 
 def test_profile_accepts_ints_and_checks_depth() -> None:
-    assert QoSProfile(reliability=2).reliability is ReliabilityPolicy.BEST_EFFORT  # type: ignore[arg-type]
-    assert QoSProfile().replace(depth=3).depth == 3
+    assert QoSProfile(depth=10, reliability=2).reliability is ReliabilityPolicy.BEST_EFFORT  # type: ignore[arg-type]
+    assert QoSProfile(depth=10).replace(depth=3).depth == 3
     with pytest.raises(ValueError):
         QoSProfile(depth=-1)
 
@@ -63,44 +66,59 @@ R, D, L = ReliabilityPolicy, DurabilityPolicy, LivelinessPolicy
 @pytest.mark.parametrize(
     ("pub", "sub", "ok", "fragment"),
     [
-        (QoSProfile(reliability=R.BEST_EFFORT), QoSProfile(), False, "Best effort publisher"),
-        (QoSProfile(), QoSProfile(reliability=R.BEST_EFFORT), True, ""),
-        (QoSProfile(), QoSProfile(durability=D.TRANSIENT_LOCAL), False, "Volatile publisher"),
-        (QoSProfile(durability=D.TRANSIENT_LOCAL), QoSProfile(), True, ""),
-        (QoSProfile(), QoSProfile(deadline=Duration(seconds=1)), False, "publisher does not"),
         (
-            QoSProfile(deadline=Duration(seconds=2)),
-            QoSProfile(deadline=Duration(seconds=1)),
+            QoSProfile(depth=10, reliability=R.BEST_EFFORT),
+            QoSProfile(depth=10),
+            False,
+            "Best effort publisher",
+        ),
+        (QoSProfile(depth=10), QoSProfile(depth=10, reliability=R.BEST_EFFORT), True, ""),
+        (
+            QoSProfile(depth=10),
+            QoSProfile(depth=10, durability=D.TRANSIENT_LOCAL),
+            False,
+            "Volatile publisher",
+        ),
+        (QoSProfile(depth=10, durability=D.TRANSIENT_LOCAL), QoSProfile(depth=10), True, ""),
+        (
+            QoSProfile(depth=10),
+            QoSProfile(depth=10, deadline=Duration(seconds=1)),
+            False,
+            "publisher does not",
+        ),
+        (
+            QoSProfile(depth=10, deadline=Duration(seconds=2)),
+            QoSProfile(depth=10, deadline=Duration(seconds=1)),
             False,
             "deadline is less",
         ),
         (
-            QoSProfile(deadline=Duration(seconds=1)),
-            QoSProfile(deadline=Duration(seconds=2)),
+            QoSProfile(depth=10, deadline=Duration(seconds=1)),
+            QoSProfile(depth=10, deadline=Duration(seconds=2)),
             True,
             "",
         ),
         (
-            QoSProfile(liveliness=L.AUTOMATIC),
-            QoSProfile(liveliness=L.MANUAL_BY_TOPIC),
+            QoSProfile(depth=10, liveliness=L.AUTOMATIC),
+            QoSProfile(depth=10, liveliness=L.MANUAL_BY_TOPIC),
             False,
             "manual by topic",
         ),
         (
-            QoSProfile(),
-            QoSProfile(liveliness_lease_duration=Duration(seconds=1)),
+            QoSProfile(depth=10),
+            QoSProfile(depth=10, liveliness_lease_duration=Duration(seconds=1)),
             False,
             "lease duration, but publisher does not",
         ),
         (
-            QoSProfile(liveliness_lease_duration=Duration(seconds=3)),
-            QoSProfile(liveliness_lease_duration=Duration(seconds=1)),
+            QoSProfile(depth=10, liveliness_lease_duration=Duration(seconds=3)),
+            QoSProfile(depth=10, liveliness_lease_duration=Duration(seconds=1)),
             False,
             "less than publisher",
         ),
         # Tokens carry "infinite" where users write "unspecified": both mean no deadline.
-        (decode_qos("::,10:,:,:,,"), QoSProfile(), True, ""),
-        (QoSProfile(), decode_qos("::,10:,:,:,,"), True, ""),
+        (decode_qos("::,10:,:,:,,"), QoSProfile(depth=10), True, ""),
+        (QoSProfile(depth=10), decode_qos("::,10:,:,:,,"), True, ""),
         (q.qos_profile_system_default, q.qos_profile_system_default, True, "WARNING"),
     ],
 )
@@ -122,8 +140,8 @@ def test_resolve_best_available() -> None:
     )
     assert pub.deadline.is_unspecified
     pubs = [
-        QoSProfile(reliability=R.BEST_EFFORT, deadline=Duration(seconds=2)),
-        QoSProfile(durability=D.TRANSIENT_LOCAL, deadline=Duration(seconds=5)),
+        QoSProfile(depth=10, reliability=R.BEST_EFFORT, deadline=Duration(seconds=2)),
+        QoSProfile(depth=10, durability=D.TRANSIENT_LOCAL, deadline=Duration(seconds=5)),
     ]
     sub = resolve_best_available(ba, pubs, for_publisher=False)
     assert (sub.reliability, sub.durability) == (R.BEST_EFFORT, D.VOLATILE)

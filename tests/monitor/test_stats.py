@@ -95,9 +95,9 @@ def test_lost_messages_per_publisher() -> None:
 
 
 def test_qos_matching_publishers() -> None:
-    rel = QoSProfile()
-    be = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT)
-    tl = QoSProfile(durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    rel = QoSProfile(depth=10)
+    be = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT)
+    tl = QoSProfile(depth=10, durability=DurabilityPolicy.TRANSIENT_LOCAL)
     base = qos_profile_sensor_data
     assert match_publishers_qos(base, []).profile == base
     all_rel = match_publishers_qos(base, [rel, tl])

@@ -47,7 +47,10 @@ def test_best_available_normalisation() -> None:
     assert norm.deadline == norm.lifespan == norm.liveliness_lease_duration == DURATION_INFINITE
     assert norm.liveliness == LivelinessPolicy.AUTOMATIC
     # BEST_AVAILABLE is advertised unresolved, like rmw_zenoh does.
-    assert encode_qos(QoSProfile(reliability=ReliabilityPolicy.BEST_AVAILABLE)) == "4::,10:,:,:,,"
+    assert (
+        encode_qos(QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_AVAILABLE))
+        == "4::,10:,:,:,,"
+    )
     with pytest.raises(ValueError, match="UNKNOWN"):
         best_available_qos(q.qos_profile_unknown)
 
