@@ -6,6 +6,10 @@ attachment (rmw_zenoh.md §5).
 awaiting coroutines run there. `call` does not need an executor at all: the reply wakes the
 calling thread directly, which is why it also works inside a callback; it refuses only where
 waiting could never end (the server is ours and cannot run until the caller returns).
+
+A request that no server answers stays pending, as with rclpy on rmw_zenoh (a server may come
+later; `remove_pending_request` gives up on it). Tools that would rather know at once create
+the client with `fail_without_server=True`: such a request then ends in ServiceCallError.
 """
 
 from __future__ import annotations
@@ -54,10 +58,12 @@ class Client(Executable):
         qos: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
+        fail_without_server: bool = False,
     ) -> None:
         from ros2lite.transport.session import declare_querier
 
         super().__init__(node, callback_group)
+        self.fail_without_server = fail_without_server
         self._ep = _ClientEndpoint(node, srv_type, srv_name, qos)
         self.srv_type: Any = self._ep.msg_class
         self.srv_name = self._ep.topic_name
@@ -114,7 +120,8 @@ class Client(Executable):
                 on_response(seq, payload, '')
 
         def end(error: str | None) -> None:
-            if not answered.is_set():
+            # the query ended without a reply: no server (or it dropped the request)
+            if not answered.is_set() and self.fail_without_server:
                 answered.set()
                 on_response(seq, None, error or f"no server of '{self.srv_name}' answered")
 
@@ -164,7 +171,8 @@ class Client(Executable):
 
     # -- synchronous: the reply wakes the caller ---------------------------------------------------
     def call(self, request: Any, timeout_sec: float | None = None) -> Any:
-        """Send and wait for the response; TimeoutError when `timeout_sec` passes first."""
+        """Send and wait for the response; None when `timeout_sec` passes first (as rclpy).
+        Unlike rclpy, no executor needs to spin the node meanwhile."""
         self._refuse_deadlock()
         done = threading.Event()
         outcome: list[tuple[bytes | None, str]] = []
@@ -175,7 +183,7 @@ class Client(Executable):
 
         self._send(request, on_response)
         if not done.wait(timeout_sec):
-            raise TimeoutError(f"service '{self.srv_name}' did not answer within {timeout_sec} s")
+            return None
         data, error = outcome[0]
         if data is None:
             raise ServiceCallError(error)

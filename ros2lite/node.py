@@ -148,8 +148,10 @@ class Node(ParameterMixin):
     # -- executor and callback groups --------------------------------------------------------
     @property
     def executor(self) -> Any:
-        """The executor this node was added to, or None."""
-        return self._executor
+        """The executor this node was last added to, or None. It stays after the node is
+        removed from it (as in rclpy), so tasks created there, such as a deferred action
+        goal's execution, run when that executor spins again."""
+        return self._executor if self._executor is not None else self._last_executor
 
     @executor.setter
     def executor(self, new_executor: Any) -> None:
@@ -293,9 +295,19 @@ class Node(ParameterMixin):
         *,
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
+        fail_without_server: bool = False,
     ) -> Client:
+        """A client of `srv_name`; see :class:`~ros2lite.client.Client` for
+        `fail_without_server` (a ros2lite extra for tools)."""
         self._remember_group(callback_group)
-        client = Client(self, srv_type, srv_name, qos_profile, callback_group=callback_group)
+        client = Client(
+            self,
+            srv_type,
+            srv_name,
+            qos_profile,
+            callback_group=callback_group,
+            fail_without_server=fail_without_server,
+        )
         self.clients.append(client)
         return client
 
@@ -412,6 +424,27 @@ class Node(ParameterMixin):
         from ros2lite.graph import node_names_and_namespaces
 
         return node_names_and_namespaces(self._entities())
+
+    def get_fully_qualified_node_names(self) -> list[str]:
+        """`/ns/name` of every node in the graph (this one included)."""
+        from ros2lite.graph import node_full_names
+
+        return node_full_names(self._entities(), include_hidden=True)
+
+    def wait_for_node(self, fully_qualified_node_name: str, timeout: float) -> bool:
+        """Wait until a node of that name is in the graph; False if `timeout` s passed first
+        (rclpy's; the name is made absolute if it is not)."""
+        from ros2lite.graph import node_full_names
+
+        fqn = names.absolute_node_name(fully_qualified_node_name)
+        context = self.context
+        context.graph.wait_for(
+            lambda entities: (
+                fqn in node_full_names(entities, include_hidden=True) or not context.ok()
+            ),
+            timeout,
+        )
+        return fqn in self.get_fully_qualified_node_names()
 
     def get_topic_names_and_types(
         self, include_hidden_topics: bool = False

@@ -46,8 +46,11 @@ class AsyncParameterClient:
         remote_node_name: str,
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
+        *,
+        fail_without_server: bool = False,
     ) -> None:
         self._node = node
+        self._fail_without_server = fail_without_server
         self.remote_node_name = absolute_node_name(remote_node_name)
         self._qos = qos_profile
         self._group = callback_group
@@ -61,6 +64,7 @@ class AsyncParameterClient:
                 f'{self.remote_node_name}/{service}',
                 qos_profile=self._qos,
                 callback_group=self._group,
+                fail_without_server=self._fail_without_server,
             )
         return client
 

@@ -61,6 +61,18 @@ class Publisher(EndpointOwner):
 
         return codec(self._ep.type_name, default_registry()).raw_serializer()
 
+    def wait_for_all_acked(self, timeout: Any = None) -> bool:
+        """rclpy's wait for every subscription to acknowledge what was published. Zenoh has no
+        per-message acknowledgements (a reliable link delivers or fails), so, like
+        rmw_zenoh_cpp, there is nothing to wait for: True."""
+        if self._pub is None:
+            raise RuntimeError('publisher has been destroyed')
+        return True
+
+    def assert_liveliness(self) -> None:
+        """Liveliness is the endpoint's token, kept alive by the session (rmw_zenoh's way):
+        nothing to assert by hand."""
+
     def get_subscription_count(self) -> int:
         from ros2lite.graph import count
 

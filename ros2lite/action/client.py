@@ -26,6 +26,7 @@ from ros2lite.action.server import await_or_execute
 from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
 from ros2lite.task import Future
+from ros2lite.waitable import NumberOfEntities
 
 # how often wait_for_server looks at the graph
 _POLL = 0.05
@@ -160,6 +161,10 @@ class ActionClient(Executable):
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
         return None  # never has work of its own
 
+    def get_num_entities(self) -> NumberOfEntities:
+        """What rcl_action counts: the feedback and status subscriptions, three clients."""
+        return NumberOfEntities(num_subscriptions=2, num_clients=3)
+
     @property
     def action_type(self) -> Any:
         return self._action_type
@@ -240,7 +245,7 @@ class ActionClient(Executable):
                 self._drop_feedback(key)
             future.set_result(handle)
 
-        call.add_done_callback(answered)
+        call._add_done_callback_now(answered)
         return future
 
     def send_goal(
@@ -318,7 +323,7 @@ class ActionClient(Executable):
                 if status in TERMINAL_STATES:
                     goal_handle._status = status
 
-        future.add_done_callback(done)
+        future._add_done_callback_now(done)
         return future
 
     def _get_result(self, goal_handle: ClientGoalHandle) -> Any:

@@ -62,7 +62,7 @@ def cli(
     package, _, name = type_name.split('/')
     with connect() as conn:
         node = conn.node(f'_ros2lite_requester_{package}_{name}')
-        client = node.create_client(srv_class, service_name)
+        client = node.create_client(srv_class, service_name, fail_without_server=True)
         _wait(client, timeout)
         period = None if rate is None else 1.0 / rate
         while True:
@@ -100,10 +100,11 @@ def _call(client: Any, request: Any, timeout: float | None) -> Any:
     from ros2lite.client import ServiceCallError
 
     try:
-        return client.call(request, timeout_sec=timeout)
-    except TimeoutError:
-        raise CliError(
-            f"Timed out after {timeout:g} s waiting for a response from '{client.srv_name}'"
-        ) from None
+        response = client.call(request, timeout_sec=timeout)
     except ServiceCallError as e:
         raise CliError(f'Exception while calling service: {e!r}') from None
+    if response is None:
+        raise CliError(
+            f"Timed out after {timeout:g} s waiting for a response from '{client.srv_name}'"
+        )
+    return response
