@@ -45,6 +45,9 @@ class RosArgs:
     # --enable/--disable-rosout-logs and -stdout-logs; None: not given (enabled)
     rosout_logs: bool | None = None
     stdout_logs: bool | None = None
+    # -p rules and params files in the order given: a later one wins, as in rcl
+    # (('param', (node or None, name, value)) or ('file', path))
+    param_sources: list[tuple[str, Any]] = field(default_factory=list)
 
     def merge(self, other: RosArgs) -> RosArgs:
         """Node-local arguments (`other`) take precedence over global ones."""
@@ -56,6 +59,7 @@ class RosArgs:
             other.enclave or self.enclave,
             other.rosout_logs if other.rosout_logs is not None else self.rosout_logs,
             other.stdout_logs if other.stdout_logs is not None else self.stdout_logs,
+            self.param_sources + other.param_sources,
         )
         for source in (self.params, other.params):
             for node, values in source.items():
@@ -76,12 +80,16 @@ class RosArgs:
         return found
 
     def parameter_overrides(self, node_fqn: str, node_name: str) -> dict[str, Any]:
-        """Values for one node: params files (in order), then -p, node-specific last."""
+        """Values for one node from -p rules and params files, in the order they were given
+        (global arguments before the node's own): a later one wins, as in rcl."""
         values: dict[str, Any] = {}
-        for path in self.params_files:
-            values.update(load_params_file(path, node_fqn, node_name))
-        values.update(self.params.get(None, {}))
-        values.update(self.params.get(node_name, {}))
+        for kind, source in self.param_sources:
+            if kind == 'file':
+                values.update(load_params_file(source, node_fqn, node_name))
+            else:
+                node, name, value = source
+                if node in (None, node_name):
+                    values[name] = value
         return values
 
 
@@ -151,11 +159,13 @@ def parse_ros_args(argv: list[str] | None) -> RosArgs:
             elif arg in ('-p', '--param'):
                 node, name, value = _split_assignment(_next(it, arg), 'parameter')
                 result.params.setdefault(node, {})[name] = parse_value(value)
+                result.param_sources.append(('param', (node, name, parse_value(value))))
             elif arg == '--params-file':
                 path = Path(_next(it, arg))
                 if not path.is_file():
                     raise RosArgsError(f"Couldn't read parameters file '{path}'")
                 result.params_files.append(path)
+                result.param_sources.append(('file', path))
             elif arg == '--log-level':
                 text = _next(it, arg)
                 logger: str | None = None

@@ -105,7 +105,11 @@ class Connection:
                 enable_rosout=False,
                 use_global_arguments=False,
                 start_parameter_services=False,
-                parameter_overrides=[Parameter('use_sim_time', value=self.use_sim_time)],
+                parameter_overrides=[
+                    Parameter('use_sim_time', value=self.use_sim_time),
+                    # a tool's node needs no type description service of its own
+                    Parameter('start_type_description_service', value=False),
+                ],
             )
         return self._node
 

@@ -125,6 +125,13 @@ class Context:
                 self._graph = GraphCache(self.require(), self.domain_id)
             return self._graph
 
+    def graph_changed_locally(self, token_key: str, alive: bool) -> None:
+        """An entity of this process appeared or went: the graph cache (if one is kept)
+        learns it now, not when the liveliness subscription reports it back."""
+        graph = self._graph
+        if graph is not None:
+            graph._on_change(token_key, alive)
+
     def add_node(self, node: Any) -> None:
         with self._lock:
             self._nodes.append(node)

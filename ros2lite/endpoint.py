@@ -24,9 +24,11 @@ def resolve_type(msg_type: Any) -> tuple[str, Any]:
 
 def as_qos(qos: QoSProfile | int) -> QoSProfile:
     """rclpy accepts a depth wherever a profile goes."""
-    if isinstance(qos, int):
+    if isinstance(qos, QoSProfile):
+        return qos
+    if isinstance(qos, int) and not isinstance(qos, bool):
         return QoSProfile(depth=qos)
-    return qos
+    raise TypeError(f'Expected QoSProfile or int, but received {type(qos)!r}')
 
 
 class EndpointOwner:
@@ -64,7 +66,10 @@ class Endpoint:
         # a type known only by name and hash (no local definition: `bag play` of a bag's own
         # types, `bag record` of a remote node's) may carry its hash along
         self.type_hash = getattr(msg_type, '_TYPE_HASH', None) or type_hash(self.type_name)
-        self.topic_name = node.resolve_topic_name(topic)
+        if self.kind in (EntityKind.SERVICE, EntityKind.CLIENT):
+            self.topic_name = node.resolve_service_name(topic)
+        else:
+            self.topic_name = node.resolve_topic_name(topic)
         self.qos = as_qos(qos)
         ctx = node.context
         self.key = topic_key(ctx.domain_id, self.topic_name, self.type_name, self.type_hash)
@@ -89,10 +94,14 @@ class Endpoint:
         from ros2lite.transport.session import declare_token
 
         self._token = declare_token(self.node.context.session, self.token_key)
+        # this process' graph sees its own new endpoint at once (rcl's does)
+        self.node.context.graph_changed_locally(self.token_key, True)
 
     def _undeclare(self, *entities: Any) -> None:
         from ros2lite.transport.session import undeclare_quietly
 
+        if self._token is not None:
+            self.node.context.graph_changed_locally(self.token_key, False)
         undeclare_quietly(self._token, *entities)
         self._token = None
 

@@ -105,6 +105,9 @@ class Node(ParameterMixin):
         # use_sim_time (declared here unless an override did) and /clock, as rclpy's nodes do
         self._time_source = TimeSource(node=self)
         self._time_source.attach_clock(self._clock)
+        from ros2lite.type_description_service import TypeDescriptionService
+
+        self._type_description_service = TypeDescriptionService(self)
         self._logger_service: Any = None
         if enable_logger_service:
             from ros2lite.logging_service import LoggingService
@@ -155,12 +158,16 @@ class Node(ParameterMixin):
 
     @executor.setter
     def executor(self, new_executor: Any) -> None:
-        if new_executor is self._executor:
+        """Move the node to `new_executor` (None: to no executor at all)."""
+        current = self.executor
+        if new_executor is current:
             return
-        if self._executor is not None:
-            self._executor.remove_node(self)
+        if current is not None:
+            current.remove_node(self)
+        self._last_executor = None
         if new_executor is not None:
             new_executor.add_node(self)
+            self._last_executor = new_executor
 
     @property
     def callback_groups(self) -> list[CallbackGroup]:
@@ -425,6 +432,13 @@ class Node(ParameterMixin):
 
         return node_names_and_namespaces(self._entities())
 
+    def get_node_names_and_namespaces_with_enclaves(self) -> list[tuple[str, str, str]]:
+        """(name, namespace, enclave) of every node in the graph."""
+        seen: dict[tuple[str, int], tuple[str, str, str]] = {}
+        for e in self._entities():
+            seen.setdefault((e.zid, e.nid), (e.node_name, e.namespace, e.enclave))
+        return sorted(seen.values(), key=lambda n: n[1].rstrip('/') + '/' + n[0])
+
     def get_fully_qualified_node_names(self) -> list[str]:
         """`/ns/name` of every node in the graph (this one included)."""
         from ros2lite.graph import node_full_names
@@ -447,8 +461,11 @@ class Node(ParameterMixin):
         return fqn in self.get_fully_qualified_node_names()
 
     def get_topic_names_and_types(
-        self, include_hidden_topics: bool = False
+        self, no_demangle: bool = False, *, include_hidden_topics: bool = True
     ) -> list[tuple[str, list[str]]]:
+        """Every topic in the graph with its types, hidden ones too (as rcl lists them;
+        tools filter those out). `no_demangle` is rclpy's DDS option: rmw_zenoh's names are
+        never mangled."""
         from ros2lite.graph import topic_names_and_types
 
         return topic_names_and_types(self._entities(), include_hidden_topics)

@@ -195,7 +195,9 @@ class QoSProfile:
         if isinstance(value, bool) or not isinstance(value, int):
             raise TypeError(f"QoS depth must be an int, not {type(value).__name__}")
         if value < 0:
-            raise InvalidQoSProfileException(f"QoS depth must not be negative: {value}")
+            raise InvalidQoSProfileException(
+                f"history depth must be greater than or equal to zero: {value}"
+            )
         if self._history == HistoryPolicy.KEEP_LAST and value == 0:
             warnings.warn(
                 "A zero depth with KEEP_LAST doesn't make sense; no data could be stored. "

@@ -84,8 +84,8 @@ def test_nodes_and_endpoints_share_one_id_counter(ros_context: Any) -> None:
     a = Node('a', context=ros_context, enable_rosout=False, start_parameter_services=False)
     pub = a.create_publisher('std_msgs/msg/String', 'x', 10)
     b = Node('b', context=ros_context, enable_rosout=False)
-    # id 1 is a's /parameter_events publisher
-    assert (a.node_id, pub._ep.entity_id, b.node_id) == (0, 2, 3)
+    # ids 1 and 2 are a's /parameter_events publisher and ~/get_type_description service
+    assert (a.node_id, pub._ep.entity_id, b.node_id) == (0, 3, 4)
 
 
 def test_shutdown_from_another_thread_ends_spin(ros_router: str) -> None:

@@ -53,11 +53,11 @@ def test_nodes_topics_and_endpoints(ros_context: Any, remote: Context) -> None:
         assert ('g_talker', '/robot1') in nodes and ('g_listener', '/') in nodes
         assert ('observer', '/') in nodes
         assert 'g_talker' in observer.get_node_names()
-        topics = dict(observer.get_topic_names_and_types())
+        topics = dict(observer.get_topic_names_and_types(include_hidden_topics=False))
         assert topics['/robot1/chatter'] == ['std_msgs/msg/Int32', 'std_msgs/msg/String']
         assert topics['/rosout'] == ['rcl_interfaces/msg/Log']
         assert '/_hidden/topic' not in topics
-        assert '/_hidden/topic' in dict(observer.get_topic_names_and_types(True))
+        assert '/_hidden/topic' in dict(observer.get_topic_names_and_types())  # as rcl
         assert observer.count_publishers('/robot1/chatter') == 1
         assert observer.count_subscribers('/robot1/chatter') == 2
 
@@ -100,7 +100,7 @@ def test_by_node_queries(ros_context: Any, remote: Context) -> None:
         assert observer.get_subscriber_names_and_types_by_node('worker', '/team') == [
             ('/team/cmd_vel', ['geometry_msgs/msg/Twist'])
         ]
-        # the six parameter services, under the node's name
+        # the six parameter services and the type description service, under the node's name
         services = observer.get_service_names_and_types_by_node('worker', '/team')
         assert [name for name, _ in services] == [
             f'/team/worker/{s}'
@@ -108,6 +108,7 @@ def test_by_node_queries(ros_context: Any, remote: Context) -> None:
                 'describe_parameters',
                 'get_parameter_types',
                 'get_parameters',
+                'get_type_description',
                 'list_parameters',
                 'set_parameters',
                 'set_parameters_atomically',

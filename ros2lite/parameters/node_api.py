@@ -122,6 +122,19 @@ class ParameterMixin:
         return self._parameter_store.set_descriptor(name, descriptor, alternative_value)
 
     # -- callbacks ---------------------------------------------------------------------------
+    # rclpy's names for the registered callbacks, newest first (read-only views)
+    @property
+    def _pre_set_parameters_callbacks(self) -> list[PreSetCallback]:
+        return list(self._parameter_store._pre_set)
+
+    @property
+    def _on_set_parameters_callbacks(self) -> list[OnSetCallback]:
+        return list(self._parameter_store._on_set)
+
+    @property
+    def _post_set_parameters_callbacks(self) -> list[PostSetCallback]:
+        return list(self._parameter_store._post_set)
+
     def add_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
         self._parameter_store.add_pre_set_parameters_callback(callback)
 

@@ -127,7 +127,7 @@ class ParameterStore:
                 f"when declaring parameter named '{name}', declaring a parameter "
                 "only providing its name is deprecated: give a default value, a "
                 "Parameter.Type or a descriptor with dynamic_typing=True",
-                DeprecationWarning,
+                UserWarning,
                 stacklevel=4,
             )
             desc.dynamic_typing = True

@@ -20,11 +20,13 @@ from ros2lite import (
     spin_until_future_complete,
     try_shutdown,
 )
+from ros2lite.context import Context
 from ros2lite.context import default_context as get_default_context
 
 from . import context, exceptions, node, qos, utilities
 
 __all__ = [
+    'Context',
     'context',
     'create_node',
     'exceptions',
