@@ -34,6 +34,7 @@ SHELLS = ('bash', 'zsh', 'fish')
 # compat sitecustomize can reach them when that version matches
 SITE_VAR = 'ROS2LITE_PYTHON_SITE'
 VERSION_VAR = 'ROS2LITE_PYTHON_VERSION'
+CHECK_FIELDS_VAR = 'ROS_PYTHON_CHECK_FIELDS'
 
 
 class UnknownShellError(Ros2liteError, ValueError):
@@ -57,11 +58,16 @@ def ros_environment(base: Mapping[str, str] | None = None) -> dict[str, str]:
     env = os.environ if base is None else base
     compat = str(COMPAT_DIR)
     rest = [p for p in env.get('PYTHONPATH', '').split(os.pathsep) if p and p != compat]
-    return {
+    changes = {
         'PYTHONPATH': os.pathsep.join([compat, *rest]),
         SITE_VAR: os.pathsep.join(_python_site()),
         VERSION_VAR: f'{sys.version_info[0]}.{sys.version_info[1]}',
     }
+    # Jazzy's message classes check field assignments only when asked to (=1); ros2lite's
+    # check unless told not to (=0): a ROS shell gets Jazzy's default unless it chose
+    if CHECK_FIELDS_VAR not in env:
+        changes[CHECK_FIELDS_VAR] = '0'
+    return changes
 
 
 def shell_lines(shell: str = 'bash', base: Mapping[str, str] | None = None) -> str:

@@ -211,7 +211,13 @@ class Node(ParameterMixin):
         *,
         callback_group: CallbackGroup | None = None,
         event_callbacks: Any = None,
+        qos_overriding_options: Any = None,
     ) -> Publisher:
+        """Publish `msg_type` on `topic`; with `qos_overriding_options` its QoS may be
+        overridden by parameters (see :mod:`ros2lite.qos_overriding_options`)."""
+        qos_profile = self._qos_with_overrides(
+            Publisher, topic, qos_profile, qos_overriding_options
+        )
         pub = Publisher(self, msg_type, topic, qos_profile)
         self.publishers.append(pub)
         return pub
@@ -225,14 +231,34 @@ class Node(ParameterMixin):
         *,
         callback_group: CallbackGroup | None = None,
         event_callbacks: Any = None,
+        qos_overriding_options: Any = None,
         raw: bool = False,
     ) -> Subscription:
+        """Call `callback(msg)` (or `callback(msg, info)`) for each message on `topic`."""
+        qos_profile = self._qos_with_overrides(
+            Subscription, topic, qos_profile, qos_overriding_options
+        )
         self._remember_group(callback_group)
         sub = Subscription(
             self, msg_type, topic, callback, qos_profile, raw=raw, callback_group=callback_group
         )
         self.subscriptions.append(sub)
         return sub
+
+    def _qos_with_overrides(
+        self, entity_type: type, topic: str, qos: QoSProfile | int, options: Any
+    ) -> QoSProfile:
+        from ros2lite.endpoint import as_qos
+
+        profile = as_qos(qos)
+        if options is not None and options.policy_kinds:
+            from ros2lite.qos_overriding_options import _declare_qos_parameters
+
+            profile = profile.replace()  # the caller's profile stays as it was
+            _declare_qos_parameters(
+                entity_type, self, self.resolve_topic_name(topic), profile, options
+            )
+        return profile
 
     def create_timer(
         self,
