@@ -111,6 +111,8 @@ class Connection:
                     Parameter('start_type_description_service', value=False),
                 ],
             )
+            # a tool reports what it sees its own way, not with rclpy's QoS event warnings
+            self._node._default_event_callbacks = False
         return self._node
 
     @property

@@ -35,6 +35,13 @@ class EndpointOwner:
     """What publishers and subscriptions expose about their endpoint (`self._ep`)."""
 
     _ep: Endpoint
+    # QoS event handlers, set by the node that made the endpoint (rclpy's attribute)
+    event_handlers: list[Any] = []
+
+    def _destroy_event_handlers(self) -> None:
+        handlers, self.event_handlers = self.event_handlers, []
+        for handler in handlers:
+            handler.destroy()
 
     @property
     def topic_name(self) -> str:

@@ -64,18 +64,39 @@ class GraphCache:
         # after creation already sees the graph; the subscriber then keeps it current
         for entity in snapshot(session, domain_id):
             self._entities[entity.to_token()] = entity
+        # called with (entity, alive) for each change, on the thread that saw it
+        self._listeners: list[Callable[[Entity, bool], None]] = []
         self._sub = declare_liveliness_subscriber(session, domain_id, self._on_change)
 
     def _on_change(self, key: str, alive: bool) -> None:
         with self._cond:
             if alive:
+                if key in self._entities:
+                    return  # known already (our own entities are added at once)
                 entity = parse_token(key)
                 if entity is None:
                     return
                 self._entities[key] = entity
             else:
-                self._entities.pop(key, None)
+                gone = self._entities.pop(key, None)
+                if gone is None:
+                    return
+                entity = gone
             self._cond.notify_all()
+            listeners = list(self._listeners)
+        for listener in listeners:
+            listener(entity, alive)
+
+    def add_listener(self, listener: Callable[[Entity, bool], None]) -> list[Entity]:
+        """Call `listener(entity, alive)` on every later change; returns the entities now."""
+        with self._cond:
+            self._listeners.append(listener)
+            return list(self._entities.values())
+
+    def remove_listener(self, listener: Callable[[Entity, bool], None]) -> None:
+        with self._cond:
+            if listener in self._listeners:
+                self._listeners.remove(listener)
 
     def entities(self) -> list[Entity]:
         with self._cond:

@@ -69,6 +69,8 @@ class Node(ParameterMixin):
         self.clients: list[Client] = []
         self.guards: list[GuardCondition] = []
         self.rates: list[Rate] = []
+        # rclpy's default QoS event callbacks (warnings); a tool's node turns them off
+        self._default_event_callbacks = True
         self.waitables: list[Executable] = []
         self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
         self._callback_groups: list[CallbackGroup] = [self.default_callback_group]
@@ -90,7 +92,8 @@ class Node(ParameterMixin):
         self._rosout: Publisher | None = None
         enable_rosout = enable_rosout and self._args.rosout_logs is not False
         if enable_rosout:
-            self._rosout = self.create_publisher('rcl_interfaces/msg/Log', '/rosout', ROSOUT_QOS)
+            # rcl's own publisher: not one of the node's `publishers`, no event handlers
+            self._rosout = Publisher(self, 'rcl_interfaces/msg/Log', '/rosout', ROSOUT_QOS)
         self._logger = RcutilsLogger(
             self.get_logger_name(), self._publish_rosout if enable_rosout else None
         )
@@ -220,6 +223,7 @@ class Node(ParameterMixin):
         )
         pub = Publisher(self, msg_type, topic, qos_profile)
         self.publishers.append(pub)
+        self._add_event_handlers(pub, event_callbacks, callback_group, topic)
         return pub
 
     def create_subscription(
@@ -243,7 +247,26 @@ class Node(ParameterMixin):
             self, msg_type, topic, callback, qos_profile, raw=raw, callback_group=callback_group
         )
         self.subscriptions.append(sub)
+        self._add_event_handlers(sub, event_callbacks, callback_group, topic)
         return sub
+
+    def _add_event_handlers(
+        self, entity: Any, callbacks: Any, group: CallbackGroup | None, topic: str
+    ) -> None:
+        """The entity's QoS event handlers (rclpy's defaults warn of incompatible QoS and
+        types; tools' hidden nodes go without them)."""
+        from ros2lite.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
+
+        if callbacks is None:
+            defaults = self._default_event_callbacks
+            callbacks = (
+                PublisherEventCallbacks(use_default_callbacks=defaults)
+                if isinstance(entity, Publisher)
+                else SubscriptionEventCallbacks(use_default_callbacks=defaults)
+            )
+        entity.event_handlers = callbacks.create_event_handlers(group, entity, topic)
+        for handler in entity.event_handlers:
+            self.add_waitable(handler)
 
     def _qos_with_overrides(
         self, entity_type: type, topic: str, qos: QoSProfile | int, options: Any
@@ -352,42 +375,62 @@ class Node(ParameterMixin):
         self.guards.append(guard)
         return guard
 
-    def destroy_publisher(self, pub: Publisher) -> None:
-        if pub in self.publishers:
-            self.publishers.remove(pub)
+    def destroy_publisher(self, pub: Publisher) -> bool:
+        """Destroy it; True if it was this node's (rclpy's answer)."""
+        if pub not in self.publishers:
+            return False
+        self.publishers.remove(pub)
         pub.destroy()
+        return True
 
-    def destroy_subscription(self, sub: Subscription) -> None:
-        if sub in self.subscriptions:
-            self.subscriptions.remove(sub)
+    def destroy_subscription(self, sub: Subscription) -> bool:
+        """Destroy it; True if it was this node's (rclpy's answer)."""
+        if sub not in self.subscriptions:
+            return False
+        self.subscriptions.remove(sub)
         sub.destroy()
+        return True
 
-    def destroy_timer(self, timer: Timer) -> None:
+    def destroy_timer(self, timer: Timer) -> bool:
+        """Cancel and forget it; True if it was this node's."""
         timer.cancel()
-        if timer in self.timers:
-            self.timers.remove(timer)
+        if timer not in self.timers:
+            return False
+        self.timers.remove(timer)
+        return True
 
-    def destroy_service(self, srv: Service) -> None:
-        if srv in self.services:
-            self.services.remove(srv)
+    def destroy_service(self, srv: Service) -> bool:
+        """Destroy it; True if it was this node's (rclpy's answer)."""
+        if srv not in self.services:
+            return False
+        self.services.remove(srv)
         srv.destroy()
+        return True
 
-    def destroy_client(self, client: Client) -> None:
-        if client in self.clients:
-            self.clients.remove(client)
+    def destroy_client(self, client: Client) -> bool:
+        """Destroy it; True if it was this node's (rclpy's answer)."""
+        if client not in self.clients:
+            return False
+        self.clients.remove(client)
         client.destroy()
+        return True
 
-    def destroy_guard_condition(self, guard: GuardCondition) -> None:
-        if guard in self.guards:
-            self.guards.remove(guard)
+    def destroy_guard_condition(self, guard: GuardCondition) -> bool:
+        """Destroy it; True if it was this node's (rclpy's answer)."""
+        if guard not in self.guards:
+            return False
+        self.guards.remove(guard)
         guard.destroy()
+        return True
 
     def destroy_node(self) -> None:
         from ros2lite.transport.session import undeclare_quietly
 
         # logging still works once the node is gone (e.g. from a goal thread finishing
         # during shutdown): it just no longer reaches /rosout
-        self._rosout = None
+        rosout, self._rosout = self._rosout, None
+        if rosout is not None:
+            rosout.destroy()
         entities: list[Any] = [*self.subscriptions, *self.publishers, *self.services, *self.clients]
         for entity in entities:
             entity.destroy()

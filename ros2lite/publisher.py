@@ -66,7 +66,7 @@ class Publisher(EndpointOwner):
         per-message acknowledgements (a reliable link delivers or fails), so, like
         rmw_zenoh_cpp, there is nothing to wait for: True."""
         if self._pub is None:
-            raise RuntimeError('publisher has been destroyed')
+            _destroyed()
         return True
 
     def assert_liveliness(self) -> None:
@@ -81,13 +81,16 @@ class Publisher(EndpointOwner):
         )
 
     def destroy(self) -> None:
+        self._destroy_event_handlers()
         self._ep._undeclare(self._pub)
         self._pub = None
         self._put = _destroyed
 
 
 def _destroyed(*_: Any, **__: Any) -> None:
-    raise RuntimeError('publisher has been destroyed')
+    from ros2lite.exceptions import InvalidHandle
+
+    raise InvalidHandle('publisher has been destroyed')
 
 
 class _PublisherEndpoint(Endpoint):

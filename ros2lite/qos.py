@@ -36,6 +36,7 @@ __all__ = [
     "QoSReliabilityPolicy",
     "ReliabilityPolicy",
     "check_compatible",
+    "incompatible_policy",
     "preset",
     "qos_check_compatible",
     "qos_policy_name_from_kind",
@@ -481,6 +482,43 @@ def check_compatible(publisher: QoSProfile, subscription: QoSProfile) -> Compati
     if errors:
         return Compatibility(False, " ".join(errors))
     return Compatibility(True, " ".join(_warnings(pub, sub)))
+
+
+def incompatible_policy(publisher: QoSProfile, subscription: QoSProfile) -> QoSPolicyKind | None:
+    """The last policy (in rmw's order of checks) that makes the pair incompatible, or None:
+    what QoS-incompatibility events report."""
+    found = None
+    for policy, error in _policy_errors(publisher, subscription):
+        if error:
+            found = policy
+    return found
+
+
+def _policy_errors(pub: QoSProfile, sub: QoSProfile) -> list[tuple[QoSPolicyKind, bool]]:
+    pl, sl = pub.liveliness_lease_duration, sub.liveliness_lease_duration
+    return [
+        (
+            QoSPolicyKind.RELIABILITY,
+            pub.reliability == _R.BEST_EFFORT and sub.reliability == _R.RELIABLE,
+        ),
+        (
+            QoSPolicyKind.DURABILITY,
+            pub.durability == _D.VOLATILE and sub.durability == _D.TRANSIENT_LOCAL,
+        ),
+        (
+            QoSPolicyKind.DEADLINE,
+            not _no_duration(sub.deadline)
+            and (_no_duration(pub.deadline) or sub.deadline < pub.deadline),
+        ),
+        (
+            QoSPolicyKind.LIVELINESS,
+            pub.liveliness == _L.AUTOMATIC and sub.liveliness == _L.MANUAL_BY_TOPIC,
+        ),
+        (
+            QoSPolicyKind.LIVELINESS_LEASE_DURATION,
+            not _no_duration(sl) and (_no_duration(pl) or sl < pl),
+        ),
+    ]
 
 
 class QoSCompatibility(enum.IntEnum):

@@ -238,6 +238,7 @@ class Subscription(EndpointOwner, Executable):
                 break
 
     def destroy(self) -> None:
+        self._destroy_event_handlers()
         self._destroyed = True
         self._buffer.clear()
         self._ep._undeclare(self._receiver)  # ends the receive thread too

@@ -1,6 +1,7 @@
 """rclpy.exceptions: ros2lite's errors under rclpy's names."""
 
 from ros2lite.exceptions import (
+    InvalidHandle,
     InvalidNamespaceException,
     InvalidNodeNameException,
     InvalidParameterException,
@@ -20,6 +21,7 @@ from ros2lite.exceptions import (
 )
 
 __all__ = [
+    'InvalidHandle',
     'InvalidNamespaceException',
     'InvalidNodeNameException',
     'InvalidParameterException',

@@ -1,27 +1,8 @@
-"""rclpy.logging."""
+"""rclpy.logging: this module *is* :mod:`ros2lite.logging` (assigning `_root_logger` here,
+as some code does, reaches the library's loggers)."""
 
-from ros2lite.logging import (
-    LoggingSeverity,
-    RcutilsLogger,
-    _root_logger,
-    clear_config,
-    get_logger,
-    get_logger_effective_level,
-    get_logger_level,
-    get_logging_directory,
-    get_logging_severity_from_string,
-    set_logger_level,
-)
+import sys
 
-__all__ = [
-    'LoggingSeverity',
-    'RcutilsLogger',
-    '_root_logger',
-    'clear_config',
-    'get_logger',
-    'get_logger_effective_level',
-    'get_logger_level',
-    'get_logging_directory',
-    'get_logging_severity_from_string',
-    'set_logger_level',
-]
+import ros2lite.logging
+
+sys.modules[__name__] = ros2lite.logging
