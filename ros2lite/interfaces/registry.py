@@ -8,7 +8,6 @@ never mixes with ours.
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 from .errors import InterfaceError, UnknownInterfaceError
@@ -24,7 +23,7 @@ from .parser import (
     validate_type_name,
 )
 
-BUNDLED = Path(__file__).resolve().parent.parent / 'msgs'
+BUNDLED = Path(__file__).resolve().parent.parent / 'msgs'  # == ros2lite.msgs' own directory
 KINDS = ('msg', 'srv', 'action')
 EXTENSIONS = {'msg': '.msg', 'srv': '.srv', 'action': '.action'}
 
@@ -51,16 +50,11 @@ _EVENT_INFO = FieldType('service_msgs/msg/ServiceEventInfo')
 
 
 def search_roots() -> list[Path]:
-    """Directories whose children are package directories, in priority order."""
-    roots: list[Path] = []
-    for entry in os.environ.get('ROS2LITE_INTERFACE_PATH', '').split(os.pathsep):
-        if entry:
-            roots.append(Path(entry))
-    for prefix in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep):
-        if prefix:
-            roots.append(Path(prefix) / 'share')
-    roots.append(BUNDLED)
-    return roots
+    """Directories whose children are package directories, in priority order (the rule
+    itself lives with the import hook, which must apply it without importing this)."""
+    from ros2lite.msgs import search_root_dirs
+
+    return [Path(d) for d in search_root_dirs()]
 
 
 def _is_interface_package(path: Path) -> bool:

@@ -1,20 +1,20 @@
-"""Bundled interface definitions, importable rclpy-style.
+"""Bundled interface definitions, where interface packages come from, and the import hook.
 
 `from ros2lite.msgs.std_msgs.msg import String` works for every package on the search path
-(bundled, ``ROS2LITE_INTERFACE_PATH``, ``AMENT_PREFIX_PATH``): a meta-path finder builds the
-`<pkg>` and `<pkg>.msg|srv|action` modules on first import, and classes on first attribute access.
+(:func:`search_root_dirs`): a meta-path finder builds the `<pkg>` and `<pkg>.msg|srv|action`
+modules on first import, and classes on first attribute access.
 
 :func:`install_top_level` adds the same finder without the prefix, so that code written for
 rclpy imports `from std_msgs.msg import String`. Only ``ros2lite env`` (its compat directory)
 and the children of ``ros2lite run`` install it: a plain ``import ros2lite`` never serves
-names that belong to a real ROS install. Where packages come from is the registry's one rule
-(:func:`ros2lite.interfaces.registry.search_roots`); a new source of packages plugs in there.
+names that belong to a real ROS install. That finder is consulted for every import of such a
+process, so it answers "not mine" from a few cached directory checks, importing nothing.
 """
 
 from __future__ import annotations
 
-import importlib.abc
 import importlib.machinery
+import os
 import sys
 import types
 from collections.abc import Sequence
@@ -22,6 +22,35 @@ from typing import Any
 
 _PREFIX = __name__ + '.'
 _KINDS = ('msg', 'srv', 'action')
+_HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def search_root_dirs() -> list[str]:
+    """Directories whose children are interface packages, in priority order (first package
+    match wins): each of ``ROS2LITE_INTERFACE_PATH``, ``share/`` of each
+    ``AMENT_PREFIX_PATH`` prefix, then the bundled set. A new source of packages plugs in
+    here (the registry and both finders follow)."""
+    roots = [e for e in os.environ.get('ROS2LITE_INTERFACE_PATH', '').split(os.pathsep) if e]
+    for prefix in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep):
+        if prefix:
+            roots.append(os.path.join(prefix, 'share'))
+    roots.append(_HERE)
+    return roots
+
+
+# name → could it be an interface package (a directory with msg/srv/action in some root)
+_maybe: dict[tuple[tuple[str, ...], str], bool] = {}
+
+
+def _may_be_package(name: str) -> bool:
+    roots = tuple(search_root_dirs())
+    key = (roots, name)
+    hit = _maybe.get(key)
+    if hit is None:
+        hit = _maybe[key] = any(
+            os.path.isdir(os.path.join(root, name, kind)) for root in roots for kind in _KINDS
+        )
+    return hit
 
 
 def _split(module: str, prefix: str) -> tuple[str, str]:
@@ -59,7 +88,9 @@ class _InterfaceModule(types.ModuleType):
         return [n.rsplit('/', 1)[1] for n in names if n.split('/')[1] == kind]
 
 
-class _Loader(importlib.abc.Loader):
+class _Loader:
+    """Makes the package and kind modules (nothing to execute)."""
+
     def __init__(self, prefix: str) -> None:
         self.prefix = prefix
 
@@ -77,8 +108,9 @@ class _Loader(importlib.abc.Loader):
         return None
 
 
-class InterfaceFinder(importlib.abc.MetaPathFinder):
-    """Claims `<prefix><pkg>` and `<prefix><pkg>.<kind>` for known interface packages."""
+class InterfaceFinder:
+    """A meta-path finder: claims `<prefix><pkg>` and `<prefix><pkg>.<kind>` for known
+    interface packages."""
 
     def __init__(self, prefix: str) -> None:
         self.prefix = prefix
@@ -94,15 +126,16 @@ class InterfaceFinder(importlib.abc.MetaPathFinder):
         parts = fullname[len(self.prefix) :].split('.')
         if len(parts) > 2 or (len(parts) == 2 and parts[1] not in _KINDS):
             return None
-        if not self.prefix and parts[0] in sys.stdlib_module_names:
-            return None  # the common case of every import, answered without a lookup
+        if not self.prefix and (
+            parts[0] in sys.stdlib_module_names or not _may_be_package(parts[0])
+        ):
+            return None  # every other import of the process: answered without the registry
         from ros2lite.interfaces.registry import default_registry
 
         if parts[0] not in default_registry().packages():
             return None
-        spec = importlib.machinery.ModuleSpec(
-            fullname, _Loader(self.prefix), is_package=len(parts) == 1
-        )
+        loader: Any = _Loader(self.prefix)  # a loader by protocol (importlib.abc costs ~10 ms)
+        spec = importlib.machinery.ModuleSpec(fullname, loader, is_package=len(parts) == 1)
         if len(parts) == 1 and not self.prefix:
             # a Python package of the same name elsewhere on the path keeps its other modules
             # importable (`my_interfaces.helpers`); its msg/srv/action are ours
