@@ -128,3 +128,64 @@ def test_sleep_for_under_sim_time(ros_context: Any) -> None:
     assert clock.sleep_for(Duration.from_seconds(1.5), context=ros_context)
     assert 0.05 < time.monotonic() - start < 1.0
     assert clock.now().nanoseconds == 3_000_000_000
+
+
+def test_clock_types_and_ros_clock() -> None:
+    from ros2lite.clock import ROSClock
+
+    assert isinstance(Clock(clock_type=ClockType.ROS_TIME), ROSClock)
+    assert not Clock(clock_type=ClockType.STEADY_TIME).ros_time_is_active
+    with pytest.raises(TypeError):
+        Clock(clock_type='STEADY_TIME')  # type: ignore[arg-type]
+
+
+def test_jump_callbacks_follow_their_thresholds() -> None:
+    from ros2lite.clock import ClockChange, JumpThreshold, ROSClock
+
+    with pytest.raises(ValueError, match='min_forward'):
+        JumpThreshold(min_forward=Duration(), min_backward=None)
+    with pytest.raises(ValueError, match='must be enabled'):
+        JumpThreshold(min_forward=None, min_backward=None, on_clock_change=False)
+    clock = ROSClock()
+    forward: list[Any] = []
+    changes: list[Any] = []
+    pre: list[int] = []
+    jump = JumpThreshold(min_forward=Duration(seconds=1), min_backward=None, on_clock_change=False)
+    handle = clock.create_jump_callback(
+        jump, pre_callback=lambda: pre.append(1), post_callback=forward.append
+    )
+    with clock.create_jump_callback(
+        JumpThreshold(min_forward=None, min_backward=None), post_callback=changes.append
+    ):
+        clock.set_ros_time_override(Time(seconds=10, clock_type=ClockType.ROS_TIME))
+        assert forward == []  # ROS time is not active yet: no jump
+        clock._set_ros_time_is_active(True)
+        assert [c.clock_change for c in changes] == [ClockChange.ROS_TIME_ACTIVATED]
+    clock.set_ros_time_override(Time(seconds=10.5, clock_type=ClockType.ROS_TIME))
+    assert forward == []  # below the threshold
+    clock.set_ros_time_override(Time(seconds=12, clock_type=ClockType.ROS_TIME))
+    assert [j.delta for j in forward] == [Duration(seconds=1.5)] and pre == [1]
+    handle.unregister()
+    clock._set_ros_time_is_active(False)  # the `with` handle is gone too
+    assert len(changes) == 1
+
+
+def test_sleep_ends_false_when_the_context_shuts_down(ros_router: str) -> None:
+    from ros2lite.context import Context
+    from ros2lite.exceptions import NotInitializedException
+
+    clock = Clock()
+    with pytest.raises(NotInitializedException):
+        clock.sleep_for(Duration(nanoseconds=10_000_000), context=Context())
+    ctx = Context().init([])
+    result: list[bool] = []
+    import threading
+
+    sleeper = threading.Thread(
+        target=lambda: result.append(clock.sleep_for(Duration(seconds=30), context=ctx))
+    )
+    sleeper.start()
+    time.sleep(0.1)
+    ctx.shutdown()
+    sleeper.join(5)
+    assert result == [False]

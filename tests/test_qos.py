@@ -157,3 +157,46 @@ def test_rclpy_policy_aliases() -> None:
     assert q.QoSHistoryPolicy.KEEP_ALL is HistoryPolicy.KEEP_ALL
     assert q.QoSDurabilityPolicy is DurabilityPolicy
     assert q.QoSLivelinessPolicy is LivelinessPolicy
+
+
+def test_rclpy_profile_rules() -> None:
+    from ros2lite.qos import InvalidQoSProfileException
+
+    with pytest.raises(InvalidQoSProfileException):
+        QoSProfile()
+    with pytest.raises(InvalidQoSProfileException):
+        QoSProfile(history=HistoryPolicy.KEEP_LAST)
+    assert QoSProfile(history=HistoryPolicy.KEEP_ALL).depth == 0
+    profile = QoSProfile(depth=1)
+    profile.reliability = 2  # type: ignore[assignment]  # rmw's numbers are accepted
+    assert profile.reliability is ReliabilityPolicy.BEST_EFFORT
+    with pytest.warns(UserWarning, match="zero depth with KEEP_LAST"):
+        profile.depth = 0
+    with pytest.raises(ValueError, match="greater than or equal to zero"):
+        QoSProfile(depth=-1)
+    copy = QoSProfile(**profile.get_c_qos_profile().to_dict())  # type: ignore[arg-type]
+    assert copy == profile and copy is not profile
+    assert HistoryPolicy.get_from_short_key("KEEP_all") == HistoryPolicy.KEEP_ALL.value
+
+
+def test_rclpy_compatibility_verdicts() -> None:
+    from ros2lite.qos import (
+        QoSCompatibility,
+        QoSPolicyKind,
+        incompatible_policy,
+        qos_check_compatible,
+        qos_profile_system_default,
+    )
+
+    reliable = QoSProfile(depth=1, liveliness=L.AUTOMATIC)
+    best_effort = QoSProfile(depth=1, reliability=R.BEST_EFFORT)
+    assert qos_check_compatible(reliable, reliable) == (QoSCompatibility.OK, "")
+    verdict, reason = qos_check_compatible(best_effort, reliable)
+    assert verdict == QoSCompatibility.ERROR and reason
+    assert qos_check_compatible(qos_profile_system_default, reliable)[0] == (
+        QoSCompatibility.WARNING
+    )
+    assert incompatible_policy(best_effort, reliable) == QoSPolicyKind.RELIABILITY
+    transient = QoSProfile(depth=1, durability=D.TRANSIENT_LOCAL)
+    assert incompatible_policy(best_effort, transient) == QoSPolicyKind.DURABILITY  # the last
+    assert incompatible_policy(reliable, best_effort) is None
