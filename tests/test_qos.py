@@ -172,6 +172,7 @@ def test_rclpy_profile_rules() -> None:
     assert profile.reliability is ReliabilityPolicy.BEST_EFFORT
     with pytest.warns(UserWarning, match="zero depth with KEEP_LAST"):
         profile.depth = 0
+    profile.depth = 3
     with pytest.raises(ValueError, match="greater than or equal to zero"):
         QoSProfile(depth=-1)
     copy = QoSProfile(**profile.get_c_qos_profile().to_dict())  # type: ignore[arg-type]
