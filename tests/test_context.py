@@ -163,3 +163,27 @@ def test_sigterm(processes: Any, mode: str, said: str, code: int) -> None:
     out, err = proc.communicate(timeout=10)
     assert (out.strip(), proc.returncode) == (said, code), err
     assert 'Traceback' not in err
+
+
+def test_rclpy_context_rules(ros_router: str) -> None:
+    from ros2lite.context import (
+        SignalHandlerOptions,
+        get_current_signal_handlers_options,
+    )
+
+    ctx = Context()
+    with pytest.raises(RuntimeError, match='initialized'):
+        ctx.shutdown()  # a context never initialised cannot be shut down
+    with pytest.raises(RuntimeError):
+        Context().init([], domain_id=-1)
+    with pytest.raises(UnicodeEncodeError):
+        Context().init(['prog', 'undecodable \udcc3'])
+    with ctx:  # a `with` initialises it (as rclpy's does)
+        assert ctx.ok() and ctx.get_domain_id() == ctx.domain_id
+    assert not ctx.ok()
+    ros2lite.init([])
+    try:
+        assert get_current_signal_handlers_options() == SignalHandlerOptions.ALL
+    finally:
+        ros2lite.shutdown()
+    assert get_current_signal_handlers_options() == SignalHandlerOptions.NO
