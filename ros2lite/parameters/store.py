@@ -52,9 +52,12 @@ def result(successful: bool, reason: str = "") -> Any:
     return _iface("SetParametersResult")(successful=successful, reason=reason)
 
 
-def validate_parameter_name(name: str) -> None:
+def validate_parameter_name(name: str) -> bool:
+    """A parameter name is a non-empty string without white space; True if it is (rclpy's
+    answer), InvalidParameterException otherwise."""
     if not isinstance(name, str) or not name or any(c.isspace() for c in name):
         raise InvalidParameterException(name)
+    return True
 
 
 class ParameterStore:

@@ -22,11 +22,15 @@ from ros2lite import (
 )
 from ros2lite.context import Context
 from ros2lite.context import default_context as get_default_context
+from ros2lite.parameter import Parameter
+from ros2lite.task import Future
 
 from . import context, exceptions, node, qos, utilities
 
 __all__ = [
     'Context',
+    'Future',
+    'Parameter',
     'context',
     'create_node',
     'exceptions',
