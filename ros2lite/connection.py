@@ -32,6 +32,13 @@ __all__ = ['Connection', 'wait_for_name']
 HIDDEN_NODE_PREFIX = '_ros2lite_'
 
 
+class _ToolNode(Node):
+    """A tool's node: it reports what it sees its own way, not with rclpy's QoS event
+    warnings, and answers graph questions from snapshots, not from a graph cache."""
+
+    _default_event_callbacks = False
+
+
 class Connection:
     """One tool run's place on the graph: session, graph snapshots, hidden node, executor."""
 
@@ -99,7 +106,7 @@ class Connection:
         if self._node is None:
             from ros2lite.parameter import Parameter
 
-            self._node = Node(
+            self._node = _ToolNode(
                 name or f'{HIDDEN_NODE_PREFIX}{os.getpid()}',
                 context=self.context,
                 enable_rosout=False,
@@ -111,8 +118,6 @@ class Connection:
                     Parameter('start_type_description_service', value=False),
                 ],
             )
-            # a tool reports what it sees its own way, not with rclpy's QoS event warnings
-            self._node._default_event_callbacks = False
         return self._node
 
     @property

@@ -36,6 +36,10 @@ ROSOUT_QOS = qos_profile_rosout_default
 class Node(ParameterMixin):
     """rclpy-shaped node. Create after `ros2lite.init()`; destroy with `destroy_node()`."""
 
+    # rclpy's default QoS event callbacks (warnings, fed by the live graph); a tool's node
+    # (ros2lite.connection) goes without them, and without a graph cache of its own
+    _default_event_callbacks = True
+
     def __init__(
         self,
         node_name: str,
@@ -69,8 +73,6 @@ class Node(ParameterMixin):
         self.clients: list[Client] = []
         self.guards: list[GuardCondition] = []
         self.rates: list[Rate] = []
-        # rclpy's default QoS event callbacks (warnings); a tool's node turns them off
-        self._default_event_callbacks = True
         self.waitables: list[Executable] = []
         self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
         self._callback_groups: list[CallbackGroup] = [self.default_callback_group]

@@ -104,7 +104,10 @@ class ActionClient(Executable):
         cancel_service_qos_profile: QoSProfile = qos_profile_services_default,
         feedback_sub_qos_profile: QoSProfile = QoSProfile(depth=10),  # noqa: B008
         status_sub_qos_profile: QoSProfile = qos_profile_action_status_default,
+        fail_without_server: bool = False,
     ) -> None:
+        """rclpy's arguments; `fail_without_server=True` (a ros2lite extra, for tools) ends a
+        request the server never answers in an error instead of leaving it pending."""
         self._node = node
         self._action_type = resolve_action_type(action_type)
         self._action_name = action_name
@@ -128,18 +131,21 @@ class ActionClient(Executable):
             names.send_goal,
             qos_profile=goal_service_qos_profile,
             callback_group=group,
+            fail_without_server=fail_without_server,
         )
         self._cancel_client = node.create_client(
             impl.CancelGoalService,
             names.cancel_goal,
             qos_profile=cancel_service_qos_profile,
             callback_group=group,
+            fail_without_server=fail_without_server,
         )
         self._result_client = node.create_client(
             impl.GetResultService,
             names.get_result,
             qos_profile=result_service_qos_profile,
             callback_group=group,
+            fail_without_server=fail_without_server,
         )
         self._feedback_sub = node.create_subscription(
             impl.FeedbackMessage,

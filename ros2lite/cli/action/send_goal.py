@@ -126,7 +126,8 @@ def send_goal(
     from ros2lite.interfaces import message_to_yaml
 
     try:
-        client = ActionClient(conn.node(), cls, action_name)
+        # a server that vanishes mid-goal is reported, not waited for forever
+        client = ActionClient(conn.node(), cls, action_name, fail_without_server=True)
     except ValueError as e:  # an invalid action name
         raise CliError(str(e)) from None
     click.echo('Waiting for an action server to become available...')
