@@ -330,12 +330,18 @@ def test_topic_types_hidden_topics_and_qos_overrides(
     from ros2lite.graph import snapshot
     from ros2lite.qos import ReliabilityPolicy
 
-    subs = [
-        e
-        for e in snapshot(ros_context.session, ros_context.domain_id)
-        if e.kind.value == "MS" and e.topic_name == f"{topic}/typed"
-    ]
-    assert subs[0].qos.reliability == ReliabilityPolicy.BEST_EFFORT and subs[0].qos.depth == 7
+    def overridden() -> bool:
+        # a snapshot is one liveliness query: ask again rather than trust a single one
+        subs = [
+            e
+            for e in snapshot(ros_context.session, ros_context.domain_id)
+            if e.kind.value == "MS" and e.topic_name == f"{topic}/typed"
+        ]
+        return bool(subs) and all(
+            s.qos.reliability == ReliabilityPolicy.BEST_EFFORT and s.qos.depth == 7 for s in subs
+        )
+
+    wait_until(overridden, timeout=20)
     for i in range(5):
         typed.publish(Int32(data=i))
     publish_all(hidden, 5)
