@@ -42,7 +42,9 @@ def test_rmw_zenoh_defaults_encode_empty() -> None:
 
 
 def test_best_available_normalisation() -> None:
-    norm = best_available_qos(QoSProfile(depth=0))
+    with pytest.warns(UserWarning, match="zero depth"):  # rclpy's warning for KEEP_LAST 0
+        zero = QoSProfile(depth=0)
+    norm = best_available_qos(zero)
     assert norm.depth == 42
     assert norm.deadline == norm.lifespan == norm.liveliness_lease_duration == DURATION_INFINITE
     assert norm.liveliness == LivelinessPolicy.AUTOMATIC
