@@ -7,9 +7,9 @@ Supported: ``-r/--remap [node:]from:=to`` (including ``__node``/``__name`` and `
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
 
 from ros2lite.exceptions import Ros2liteError
 
@@ -30,6 +30,8 @@ class RosArgsError(Ros2liteError, ValueError):
 
 @dataclass
 class Remap:
+    """One `-r from:=to` rule (for one node when `node` is given)."""
+
     node: str | None  # only applies to this node name when given
     source: str
     target: str
@@ -37,8 +39,11 @@ class Remap:
 
 @dataclass
 class RosArgs:
+    """What `--ros-args` said: remaps, parameters, params files, log levels, enclave."""
+
     remaps: list[Remap] = field(default_factory=list)
-    params: dict[str | None, dict[str, Any]] = field(default_factory=dict)  # node → name → value
+    # node → name → value (as the YAML reads; a Parameter checks it)
+    params: dict[str | None, dict[str, object]] = field(default_factory=dict)
     params_files: list[Path] = field(default_factory=list)
     log_levels: dict[str | None, int] = field(default_factory=dict)
     enclave: str | None = None
@@ -46,8 +51,8 @@ class RosArgs:
     rosout_logs: bool | None = None
     stdout_logs: bool | None = None
     # -p rules and params files in the order given: a later one wins, as in rcl
-    # (('param', (node or None, name, value)) or ('file', path))
-    param_sources: list[tuple[str, Any]] = field(default_factory=list)
+    # (a params file's path, or a -p rule's (node or None, name, value))
+    param_sources: list[Path | tuple[str | None, str, object]] = field(default_factory=list)
 
     def merge(self, other: RosArgs) -> RosArgs:
         """Node-local arguments (`other`) take precedence over global ones."""
@@ -67,9 +72,11 @@ class RosArgs:
         return merged
 
     def node_name_override(self, node: str) -> str | None:
+        """The name `__node:=` gives this node, if any."""
         return self._special(node, ('__node', '__name'))
 
     def namespace_override(self, node: str) -> str | None:
+        """The namespace `__ns:=` gives this node, if any."""
         return self._special(node, ('__ns',))
 
     def _special(self, node: str, keys: tuple[str, ...]) -> str | None:
@@ -79,12 +86,12 @@ class RosArgs:
                 found = r.target
         return found
 
-    def parameter_overrides(self, node_fqn: str, node_name: str) -> dict[str, Any]:
+    def parameter_overrides(self, node_fqn: str, node_name: str) -> dict[str, object]:
         """Values for one node from -p rules and params files, in the order they were given
         (global arguments before the node's own): a later one wins, as in rcl."""
-        values: dict[str, Any] = {}
-        for kind, source in self.param_sources:
-            if kind == 'file':
+        values: dict[str, object] = {}
+        for source in self.param_sources:
+            if isinstance(source, Path):
                 values.update(load_params_file(source, node_fqn, node_name))
             else:
                 node, name, value = source
@@ -105,13 +112,13 @@ def _split_assignment(text: str, what: str) -> tuple[str | None, str, str]:
     return node, left, right
 
 
-def parse_value(text: str) -> Any:
+def parse_value(text: str) -> object:
     """A parameter value from the command line, typed the YAML way ('1' → int)."""
-    import yaml
+    from ros2lite.safe_yaml import YamlInputError, load
 
     try:
-        return yaml.safe_load(text)
-    except yaml.YAMLError:
+        return load(text, "the value")
+    except YamlInputError:
         return text
 
 
@@ -158,14 +165,15 @@ def parse_ros_args(argv: list[str] | None) -> RosArgs:
                 result.remaps.append(Remap(node, src, dst))
             elif arg in ('-p', '--param'):
                 node, name, value = _split_assignment(_next(it, arg), 'parameter')
-                result.params.setdefault(node, {})[name] = parse_value(value)
-                result.param_sources.append(('param', (node, name, parse_value(value))))
+                parsed = parse_value(value)
+                result.params.setdefault(node, {})[name] = parsed
+                result.param_sources.append((node, name, parsed))
             elif arg == '--params-file':
                 path = Path(_next(it, arg))
                 if not path.is_file():
                     raise RosArgsError(f"Couldn't read parameters file '{path}'")
                 result.params_files.append(path)
-                result.param_sources.append(('file', path))
+                result.param_sources.append(path)
             elif arg == '--log-level':
                 text = _next(it, arg)
                 logger: str | None = None
@@ -188,7 +196,7 @@ def parse_ros_args(argv: list[str] | None) -> RosArgs:
     return result
 
 
-def _next(it: Any, flag: str) -> str:
+def _next(it: Iterator[str], flag: str) -> str:
     try:
         value: str = next(it)
     except StopIteration:
@@ -196,7 +204,7 @@ def _next(it: Any, flag: str) -> str:
     return value
 
 
-def load_params_file(path: Path, node_fqn: str, node_name: str | None = None) -> dict[str, Any]:
+def load_params_file(path: Path, node_fqn: str, node_name: str | None = None) -> dict[str, object]:
     """Parameters for one node from a ROS 2 YAML params file (rules: parameters/files.py)."""
     from ros2lite.parameters.files import ParamsFileError, values_for_node
 

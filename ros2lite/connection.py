@@ -2,9 +2,10 @@
 graph needs, in one object.
 
 It opens a client session (the daemon started on demand, see
-:func:`ros2lite.daemon.connect.connect`), answers graph questions from one complete
-liveliness query, makes a hidden node for the tool's publishers and subscriptions, and owns
-the executor that runs that node's callbacks, so no caller builds or spins executors itself::
+:func:`ros2lite.daemon.connect.connect`), or with ``as_node=True`` a node's peer session,
+answers graph questions from one complete liveliness query, makes a hidden node for the
+tool's publishers and subscriptions, and owns the executor that runs that node's callbacks,
+so no caller builds or spins executors itself::
 
     with Connection() as conn:
         node = conn.node()
@@ -48,9 +49,13 @@ class Connection:
         router: str | None = None,
         autostart: bool = True,
         use_sim_time: bool = False,
+        as_node: bool = False,
     ) -> None:
         self.router = router
         self.autostart = autostart
+        # a node's peer session (a recorder's: it must keep hearing publishers while the
+        # router is away) instead of a tool's client session
+        self.as_node = as_node
         self.use_sim_time = use_sim_time
         self.context = Context()
         self._node: Node | None = None
@@ -60,7 +65,9 @@ class Connection:
         """Connect (see the module doc) unless already connected; raises a Ros2liteError
         saying why it could not."""
         if self.context.session is None:
-            self.context.init([], router=self.router, short_lived=True, autostart=self.autostart)
+            self.context.init(
+                [], router=self.router, short_lived=not self.as_node, autostart=self.autostart
+            )
         return self
 
     def close(self) -> None:

@@ -16,10 +16,19 @@ import signal
 import sys
 import threading
 import weakref
-from typing import Any
+from collections.abc import Callable
+from types import FrameType
+from typing import TYPE_CHECKING, Any
 
 from ros2lite.arguments import RosArgs, parse_ros_args
 from ros2lite.exceptions import NotInitializedException, Ros2liteError
+
+if TYPE_CHECKING:
+    from ros2lite.executors import Executor
+    from ros2lite.graph import GraphCache
+    from ros2lite.node import Node
+    from ros2lite.service import Service
+    from ros2lite.transport.handles import Session
 
 
 class InvalidDomainIdError(Ros2liteError, RuntimeError):
@@ -30,22 +39,24 @@ class Context:
     """Owns the session; nodes, endpoints and executors of a process share it."""
 
     def __init__(self) -> None:
-        self.session: Any = None
+        self.session: Session | None = None
         self.domain_id = 0
         self.zid = ''
         self.router: str | None = None
+        # the enclave named by `--ros-args --enclave` ('/' if none), announced in every token
+        self.enclave = '/'
         self.args = RosArgs()
         self.argv: list[str] = []
         # executors of this context, woken when it shuts down or is told to terminate
-        self._executors: weakref.WeakSet[Any] = weakref.WeakSet()
+        self._executors: weakref.WeakSet[Executor] = weakref.WeakSet()
         # service servers of this process by key, so a blocking call can tell when waiting
         # for one of them would deadlock
-        self.local_services: dict[str, Any] = {}
+        self.local_services: dict[str, Service[Any, Any]] = {}
         self._ids = itertools.count()
         self._lock = threading.Lock()
-        self._nodes: list[Any] = []
-        self._on_shutdown: list[Any] = []
-        self._graph: Any = None
+        self._nodes: list[Node] = []
+        self._on_shutdown: list[Callable[[], object]] = []
+        self._graph: GraphCache | None = None
         # set by SIGTERM: ok() turns False at once and spinning executors raise
         # ExternalShutdownException; the session itself closes on the way out
         self.terminating = False
@@ -81,6 +92,11 @@ class Context:
             from ros2lite.logging import set_console_output
 
             set_console_output(self.args.stdout_logs)
+        if self.args.enclave is not None:
+            from ros2lite.security.environment import use_enclave
+
+            use_enclave(self.args.enclave)  # the security material this process loads
+        self.enclave = self.args.enclave or '/'
         self.domain_id = env_domain_id() if domain_id is None else domain_id
         self.router = router
         self.session = connect(router, tool=short_lived, autostart=autostart)
@@ -99,6 +115,7 @@ class Context:
         self.try_shutdown()
 
     def ok(self) -> bool:
+        """Whether the session is open and no SIGTERM asked it to stop."""
         return self.session is not None and not self.terminating
 
     def get_domain_id(self) -> int:
@@ -106,17 +123,19 @@ class Context:
         self.require()
         return self.domain_id
 
-    def require(self) -> Any:
+    def require(self) -> Session:
+        """The session; NotInitializedException before init()."""
         if self.session is None:
             raise NotInitializedException()
         return self.session
 
     def next_entity_id(self) -> int:
+        """A fresh id for a node or endpoint (rmw_zenoh numbers both from one counter)."""
         with self._lock:
             return next(self._ids)
 
     @property
-    def graph(self) -> Any:
+    def graph(self) -> GraphCache:
         """The live graph cache, created on first use (CLI snapshots don't need it)."""
         with self._lock:
             if self._graph is None:
@@ -132,27 +151,30 @@ class Context:
         if graph is not None:
             graph._on_change(token_key, alive)
 
-    def add_node(self, node: Any) -> None:
+    def add_node(self, node: Node) -> None:
+        """Remember a node, to destroy it at shutdown."""
         with self._lock:
             self._nodes.append(node)
 
-    def remove_node(self, node: Any) -> None:
+    def remove_node(self, node: Node) -> None:
+        """Forget a destroyed node."""
         with self._lock:
             if node in self._nodes:
                 self._nodes.remove(node)
 
-    def on_shutdown(self, fn: Any) -> None:
+    def on_shutdown(self, fn: Callable[[], object]) -> None:
         """Call `fn()` when this context shuts down."""
         with self._lock:
             self._on_shutdown.append(fn)
 
-    def remove_on_shutdown(self, fn: Any) -> None:
+    def remove_on_shutdown(self, fn: Callable[[], object]) -> None:
         """Forget a callback given to :meth:`on_shutdown` (a sleeper that woke up)."""
         with self._lock:
             if fn in self._on_shutdown:
                 self._on_shutdown.remove(fn)
 
-    def add_executor(self, executor: Any) -> None:
+    def add_executor(self, executor: Executor) -> None:
+        """Remember an executor, to wake it at shutdown."""
         self._executors.add(executor)
 
     def wake(self) -> None:
@@ -161,8 +183,9 @@ class Context:
             executor.wake()
 
     def shutdown(self) -> None:
-        """Destroy the nodes and close the session; a context that is not initialised
-        cannot be shut down (RuntimeError, as in rclpy; :meth:`try_shutdown` does not mind)."""
+        """Destroy the nodes, close the session and wake the executors; a context that is
+        not initialised cannot be shut down (RuntimeError, as in rclpy; :meth:`try_shutdown`
+        does not mind)."""
         if self.session is None:
             raise RuntimeError('Context must be initialized before it can be shutdown')
         with self._lock:
@@ -182,6 +205,7 @@ class Context:
             self._ids = itertools.count()
 
     def try_shutdown(self) -> None:
+        """shutdown() unless already shut down."""
         if self.session is not None:
             self.shutdown()
 
@@ -223,10 +247,12 @@ class SignalHandlerOptions(enum.IntEnum):
     ALL = 3
 
 
-_previous: dict[int, Any] = {}
+# a handler signal.getsignal() may give back
+_Handler = Callable[[int, FrameType | None], object] | int | signal.Handlers | None
+_previous: dict[int, _Handler] = {}
 
 
-def _stop_open_contexts(signum: int, frame: Any) -> None:
+def _stop_open_contexts(signum: int, frame: FrameType | None) -> None:
     """SIGINT and SIGTERM as rclpy handles them: open contexts stop being ok() and spinning
     executors end (SIGTERM: with ExternalShutdownException), so `main()` can leave through its
     normal clean-up; the handler that was there before still runs (Ctrl-C still raises
@@ -292,4 +318,5 @@ _default = Context()
 
 
 def default_context() -> Context:
+    """The process' context (the one `ros2lite.init()` opens)."""
     return _default

@@ -2,14 +2,19 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.qos import QoSProfile
 from ros2lite.transport.keys import EntityKind, endpoint_token, topic_key
 
+if TYPE_CHECKING:
+    from ros2lite.event_handler import EventHandler
+    from ros2lite.node import Node
+    from ros2lite.transport.handles import Handle
 
-def resolve_type(msg_type: Any) -> tuple[str, Any]:
-    """(type name, class or None) from a message class or a 'pkg/msg/Name' string."""
+
+def resolve_type(msg_type: type | str) -> tuple[str, type]:
+    """(type name, class) from a message or service class or a 'pkg/msg/Name' string."""
     from ros2lite.interfaces import get_interface
     from ros2lite.interfaces.registry import normalize_name
 
@@ -36,7 +41,7 @@ class EndpointOwner:
 
     _ep: Endpoint
     # QoS event handlers, set by the node that made the endpoint (rclpy's attribute)
-    event_handlers: list[Any] = []
+    event_handlers: list[EventHandler] = []
 
     def _destroy_event_handlers(self) -> None:
         handlers, self.event_handlers = self.event_handlers, []
@@ -45,14 +50,17 @@ class EndpointOwner:
 
     @property
     def topic_name(self) -> str:
+        """The fully resolved topic (or service) name."""
         return self._ep.topic_name
 
     @property
-    def msg_type(self) -> Any:
+    def msg_type(self) -> type:
+        """The message class (or the stand-in of a type known only by name and hash)."""
         return self._ep.msg_class
 
     @property
     def qos_profile(self) -> QoSProfile:
+        """The QoS this endpoint was created with (a depth becomes a KEEP_LAST profile)."""
         return self._ep.qos
 
     def destroy(self) -> None:
@@ -65,7 +73,7 @@ class Endpoint:
 
     kind: EntityKind
 
-    def __init__(self, node: Any, msg_type: Any, topic: str, qos: QoSProfile | int) -> None:
+    def __init__(self, node: Node, msg_type: type | str, topic: str, qos: QoSProfile | int) -> None:
         from ros2lite.interfaces import type_hash
 
         self.node = node
@@ -73,10 +81,9 @@ class Endpoint:
         # a type known only by name and hash (no local definition: `bag play` of a bag's own
         # types, `bag record` of a remote node's) may carry its hash along
         self.type_hash = getattr(msg_type, '_TYPE_HASH', None) or type_hash(self.type_name)
-        if self.kind in (EntityKind.SERVICE, EntityKind.CLIENT):
-            self.topic_name = node.resolve_service_name(topic)
-        else:
-            self.topic_name = node.resolve_topic_name(topic)
+        # a service's or client's name is validated as one (errors say 'service name')
+        service = self.kind in (EntityKind.SERVICE, EntityKind.CLIENT)
+        self.topic_name = (node.resolve_service_name if service else node.resolve_topic_name)(topic)
         self.qos = as_qos(qos)
         ctx = node.context
         self.key = topic_key(ctx.domain_id, self.topic_name, self.type_name, self.type_hash)
@@ -93,18 +100,19 @@ class Endpoint:
             self.type_name,
             self.type_hash,
             self.qos,
+            ctx.enclave,
         )
-        self._token: Any = None
+        self._token: Handle | None = None
 
     def _announce(self) -> None:
         # rmw_zenoh declares the data entity first, then the token
         from ros2lite.transport.session import declare_token
 
-        self._token = declare_token(self.node.context.session, self.token_key)
+        self._token = declare_token(self.node.context.require(), self.token_key)
         # this process' graph sees its own new endpoint at once (rcl's does)
         self.node.context.graph_changed_locally(self.token_key, True)
 
-    def _undeclare(self, *entities: Any) -> None:
+    def _undeclare(self, *entities: Handle | None) -> None:
         from ros2lite.transport.session import undeclare_quietly
 
         if self._token is not None:
@@ -114,6 +122,7 @@ class Endpoint:
 
     @property
     def gid(self) -> bytes:
+        """The 16-byte global id rmw_zenoh derives from the endpoint's token."""
         from ros2lite.transport.attachment import gid_from_token
 
         return gid_from_token(self.token_key)

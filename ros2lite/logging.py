@@ -17,9 +17,15 @@ import inspect
 import os
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any
+from types import CodeType, FrameType
+from typing import TYPE_CHECKING, TypedDict, cast
+
+if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+    from ros2lite.clock import Clock
 
 __all__ = [
     'DEBUG',
@@ -27,6 +33,7 @@ __all__ = [
     'FATAL',
     'INFO',
     'WARN',
+    'LogOptions',
     'LoggingSeverity',
     'RcutilsLogger',
     'clear_config',
@@ -48,6 +55,16 @@ class LoggingSeverity(enum.IntEnum):
     WARN = 30
     ERROR = 40
     FATAL = 50
+
+
+class LogOptions(TypedDict, total=False):
+    """The keyword options of `log()` and the level methods (rclpy's)."""
+
+    once: bool
+    skip_first: bool
+    throttle_duration_sec: float | None
+    throttle_time_source_type: Clock  # the clock the throttle reads (system time if absent)
+    name: str  # log under another logger name
 
 
 DEBUG, INFO, WARN, ERROR, FATAL = 10, 20, 30, 40, 50
@@ -163,7 +180,7 @@ _REQUIRED = {'throttle': 'throttle_duration_sec', 'skip_first': 'skip_first', 'o
 _RECOGNIZED = {p for params in _FILTER_PARAMS.values() for p in params} | {'name'}
 
 
-def _filters(kwargs: dict[str, Any]) -> list[str]:
+def _filters(kwargs: Mapping[str, object]) -> list[str]:
     """The filters a call asks for (in the order they are applied); TypeError for arguments
     that belong to no filter, or a filter asked for without its required parameter."""
     for key in kwargs:
@@ -192,7 +209,9 @@ class _CallSite:
 
     __slots__ = ('filters', 'last_logged', 'logged', 'name', 'params', 'seen', 'severity')
 
-    def __init__(self, name: str, severity: int, filters: list[str], params: dict[str, Any]):
+    def __init__(
+        self, name: str, severity: int, filters: list[str], params: dict[str, object]
+    ) -> None:
         self.name = name
         self.severity = severity
         self.filters = filters
@@ -212,7 +231,7 @@ class RcutilsLogger:
     ) -> None:
         self.name = name
         self._publish = publish
-        self._sites: dict[tuple[Any, int], _CallSite] = {}
+        self._sites: dict[tuple[CodeType, int], _CallSite] = {}
 
     def get_child(self, name: str) -> RcutilsLogger:
         """The logger `<this name>.<name>` (it publishes to /rosout if this one does)."""
@@ -221,15 +240,18 @@ class RcutilsLogger:
         return RcutilsLogger(f'{self.name}.{name}' if self.name else name, self._publish)
 
     def set_level(self, level: int) -> None:
+        """Set this logger's level (and its children's, unless they have their own)."""
         set_logger_level(self.name, level)
 
     def get_effective_level(self) -> LoggingSeverity:
+        """The level that applies to this logger."""
         return get_logger_effective_level(self.name)
 
     def is_enabled_for(self, severity: int) -> bool:
+        """Whether a message of `severity` would be logged."""
         return severity >= get_logger_effective_level(self.name)
 
-    def log(self, message: Any, severity: int, **kwargs: Any) -> bool:
+    def log(self, message: object, severity: int, **kwargs: Unpack[LogOptions]) -> bool:
         """Log `message` at `severity` unless a filter or the level stops it; True if it
         was logged. Filters: `once`, `skip_first`, `throttle_duration_sec` (with
         `throttle_time_source_type`, a clock; system time by default); `name` logs under
@@ -258,7 +280,9 @@ class RcutilsLogger:
             self._publish(severity, name, text, caller)
         return True
 
-    def _call_site(self, frame: Any, name: str, severity: int, kwargs: dict[str, Any]) -> _CallSite:
+    def _call_site(
+        self, frame: FrameType, name: str, severity: int, kwargs: Mapping[str, object]
+    ) -> _CallSite:
         """The call site's state; its logger name, severity and filter arguments may not
         change between calls (as in rclpy)."""
         filters = _filters(kwargs) if kwargs else []
@@ -277,13 +301,14 @@ class RcutilsLogger:
         return site
 
     @staticmethod
-    def _pass_filters(site: _CallSite, kwargs: dict[str, Any]) -> bool:
+    def _pass_filters(site: _CallSite, kwargs: LogOptions) -> bool:
         """Apply the filters in order; the first that stops the call ends it."""
         for name in site.filters:
             if name == 'throttle':
                 clock = kwargs.get('throttle_time_source_type')
                 now = clock.now().nanoseconds if clock is not None else time.time_ns()
-                if now - site.last_logged < kwargs['throttle_duration_sec'] * 1e9:
+                period = cast(float, kwargs.get('throttle_duration_sec'))  # _filters required it
+                if now - site.last_logged < period * 1e9:
                     return False
                 site.last_logged = now
             elif name == 'skip_first':
@@ -296,22 +321,28 @@ class RcutilsLogger:
                 site.logged = True
         return True
 
-    def debug(self, message: Any, **kwargs: Any) -> bool:
+    def debug(self, message: object, **kwargs: Unpack[LogOptions]) -> bool:
+        """log() at DEBUG."""
         return self.log(message, DEBUG, **kwargs)
 
-    def info(self, message: Any, **kwargs: Any) -> bool:
+    def info(self, message: object, **kwargs: Unpack[LogOptions]) -> bool:
+        """log() at INFO."""
         return self.log(message, INFO, **kwargs)
 
-    def warning(self, message: Any, **kwargs: Any) -> bool:
+    def warning(self, message: object, **kwargs: Unpack[LogOptions]) -> bool:
+        """log() at WARN (rclpy has both spellings)."""
         return self.log(message, WARN, **kwargs)
 
-    def warn(self, message: Any, **kwargs: Any) -> bool:
+    def warn(self, message: object, **kwargs: Unpack[LogOptions]) -> bool:
+        """log() at WARN."""
         return self.log(message, WARN, **kwargs)
 
-    def error(self, message: Any, **kwargs: Any) -> bool:
+    def error(self, message: object, **kwargs: Unpack[LogOptions]) -> bool:
+        """log() at ERROR."""
         return self.log(message, ERROR, **kwargs)
 
-    def fatal(self, message: Any, **kwargs: Any) -> bool:
+    def fatal(self, message: object, **kwargs: Unpack[LogOptions]) -> bool:
+        """log() at FATAL."""
         return self.log(message, FATAL, **kwargs)
 
 

@@ -18,7 +18,9 @@ from ros2lite.exceptions import (
 )
 
 __all__ = [
+    'ACTION_NAMESPACE',
     'absolute_node_name',
+    'action_entity_name',
     'expand_topic_name',
     'is_hidden_name',
     'node_fqn',
@@ -195,6 +197,16 @@ def expand_topic_name(
     name = re.sub(r'/{2,}', '/', name)
     validate_full_topic_name(name, is_service=is_service)
     return name
+
+
+# rcl_action puts an action's three services and two topics under `<action>/_action/`
+ACTION_NAMESPACE = '/_action/'
+
+
+def action_entity_name(action: str, entity: str) -> str:
+    """The full name of one of an action's entities: `/fib` + `feedback` →
+    `/fib/_action/feedback`."""
+    return f'{action}{ACTION_NAMESPACE}{entity}'
 
 
 def is_hidden_name(name: str) -> bool:

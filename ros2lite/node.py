@@ -5,7 +5,7 @@ from __future__ import annotations
 import inspect
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 from ros2lite import names
 from ros2lite.arguments import RosArgs, parse_ros_args
@@ -28,6 +28,19 @@ from ros2lite.service import Service
 from ros2lite.subscription import Subscription
 from ros2lite.timer import Timer
 from ros2lite.transport import keys
+
+if TYPE_CHECKING:
+    from ros2lite.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
+    from ros2lite.executable import Destroyable
+    from ros2lite.executors import Executor
+    from ros2lite.graph import Entity, TopicEndpointInfo
+    from ros2lite.logging_service import LoggingService
+    from ros2lite.msgs.rcl_interfaces.msg import Log
+    from ros2lite.qos_overriding_options import QoSOverridingOptions
+    from ros2lite.service import ServiceCallback
+    from ros2lite.subscription import MessageInfo, SubscriptionCallback
+    from ros2lite.transport.handles import Handle
+    from ros2lite.type_support import MsgT, Srv, SrvRequestT, SrvResponseT
 
 # rcl's rosout profile, lifespan 10 s included: the token must read `:1:,1000:,:10,0:,,`
 ROSOUT_QOS = qos_profile_rosout_default
@@ -66,11 +79,11 @@ class Node(ParameterMixin):
         self._name = name
         self._namespace = names.normalize_namespace(namespace)
         self.node_id = self.context.next_entity_id()
-        self.publishers: list[Publisher] = []
-        self.subscriptions: list[Subscription] = []
+        self.publishers: list[Publisher[Any]] = []
+        self.subscriptions: list[Subscription[Any]] = []
         self.timers: list[Timer] = []
-        self.services: list[Service] = []
-        self.clients: list[Client] = []
+        self.services: list[Service[Any, Any]] = []
+        self.clients: list[Client[Any, Any]] = []
         self.guards: list[GuardCondition] = []
         self.rates: list[Rate] = []
         self.waitables: list[Executable] = []
@@ -78,20 +91,25 @@ class Node(ParameterMixin):
         self._callback_groups: list[CallbackGroup] = [self.default_callback_group]
         # the executor this node was added to (it owns the node's work), and the last one
         # (whose queue may still hold entries of its entities)
-        self._executor: Any = None
-        self._last_executor: Any = None
+        self._executor: Executor | None = None
+        self._last_executor: Executor | None = None
         for level_name, level in self._args.log_levels.items():
             set_logger_level(level_name, level)
         from ros2lite.transport.session import declare_token
 
-        self._token: Any = declare_token(
-            self.context.session,
+        self._token: Handle | None = declare_token(
+            self.context.require(),
             keys.node_token(
-                self.context.domain_id, self.context.zid, self.node_id, self._namespace, self._name
+                self.context.domain_id,
+                self.context.zid,
+                self.node_id,
+                self._namespace,
+                self._name,
+                self.context.enclave,
             ),
         )
         self._clock = ROSClock()
-        self._rosout: Publisher | None = None
+        self._rosout: Publisher[Log] | None = None
         enable_rosout = enable_rosout and self._args.rosout_logs is not False
         if enable_rosout:
             # rcl's own publisher: not one of the node's `publishers`, no event handlers
@@ -113,7 +131,7 @@ class Node(ParameterMixin):
         from ros2lite.type_description_service import TypeDescriptionService
 
         self._type_description_service = TypeDescriptionService(self)
-        self._logger_service: Any = None
+        self._logger_service: LoggingService | None = None
         if enable_logger_service:
             from ros2lite.logging_service import LoggingService
 
@@ -122,15 +140,19 @@ class Node(ParameterMixin):
 
     # -- names --------------------------------------------------------------------------------
     def get_name(self) -> str:
+        """The node's name, after any `__node:=` remapping."""
         return self._name
 
     def get_namespace(self) -> str:
+        """The node's namespace ('/' for none), after any `__ns:=` remapping."""
         return self._namespace
 
     def get_fully_qualified_name(self) -> str:
+        """'/namespace/name', as the graph lists the node."""
         return names.node_fqn(self._namespace, self._name)
 
     def get_logger_name(self) -> str:
+        """The logger name rcl gives the node: namespace dots, then the name."""
         ns = self._namespace.strip('/').replace('/', '.')
         return f'{ns}.{self._name}' if ns else self._name
 
@@ -155,14 +177,14 @@ class Node(ParameterMixin):
 
     # -- executor and callback groups --------------------------------------------------------
     @property
-    def executor(self) -> Any:
+    def executor(self) -> Executor | None:
         """The executor this node was last added to, or None. It stays after the node is
         removed from it (as in rclpy), so tasks created there, such as a deferred action
         goal's execution, run when that executor spins again."""
         return self._executor if self._executor is not None else self._last_executor
 
     @executor.setter
-    def executor(self, new_executor: Any) -> None:
+    def executor(self, new_executor: Executor | None) -> None:
         """Move the node to `new_executor` (None: to no executor at all)."""
         current = self.executor
         if new_executor is current:
@@ -176,10 +198,12 @@ class Node(ParameterMixin):
 
     @property
     def callback_groups(self) -> list[CallbackGroup]:
+        """The groups of this node's entities, its default group first."""
         return list(self._callback_groups)
 
     def add_waitable(self, waitable: Executable) -> None:
-        """Run `waitable` with this node's entities (its executor, its groups)."""
+        """Run `waitable` with this node's entities (its executor, its groups); action
+        clients and servers are such waitables."""
         if waitable._node is None:
             waitable._node = self
             self._remember_group(waitable.callback_group)
@@ -188,6 +212,7 @@ class Node(ParameterMixin):
             waitable._notify()
 
     def remove_waitable(self, waitable: Executable) -> None:
+        """Stop running `waitable` with this node."""
         if waitable in self.waitables:
             self.waitables.remove(waitable)
 
@@ -208,17 +233,44 @@ class Node(ParameterMixin):
         return self._resolve(service, only_expand, is_service=True)
 
     # -- entities -----------------------------------------------------------------------------
+    @overload
     def create_publisher(
         self,
-        msg_type: Any,
+        msg_type: type[MsgT],
         topic: str,
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
-        event_callbacks: Any = None,
-        qos_overriding_options: Any = None,
-    ) -> Publisher:
-        """Publish `msg_type` on `topic`; with `qos_overriding_options` its QoS may be
+        event_callbacks: PublisherEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
+    ) -> Publisher[MsgT]:
+        """A message class gives a publisher typed with it."""
+
+    @overload
+    def create_publisher(
+        self,
+        msg_type: str,
+        topic: str,
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: PublisherEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
+    ) -> Publisher[Any]:
+        """A 'pkg/msg/Name' gives a publisher of that type, loosely typed."""
+
+    def create_publisher(
+        self,
+        msg_type: type[MsgT] | str,
+        topic: str,
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: PublisherEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
+    ) -> Publisher[MsgT]:
+        """Publish `msg_type` (a class, or 'pkg/msg/Name') on `topic` (a depth is a
+        KEEP_LAST profile of that depth); with `qos_overriding_options` its QoS may be
         overridden by parameters (see :mod:`ros2lite.qos_overriding_options`)."""
         qos_profile = self._qos_with_overrides(
             Publisher, topic, qos_profile, qos_overriding_options
@@ -228,19 +280,66 @@ class Node(ParameterMixin):
         self._add_event_handlers(pub, event_callbacks, callback_group, topic)
         return pub
 
+    @overload
     def create_subscription(
         self,
-        msg_type: Any,
+        msg_type: type[MsgT],
         topic: str,
-        callback: Callable[..., Any],
+        callback: Callable[[MsgT], object] | Callable[[MsgT, MessageInfo], object],
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
-        event_callbacks: Any = None,
-        qos_overriding_options: Any = None,
+        event_callbacks: SubscriptionEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
+        raw: Literal[False] = False,
+    ) -> Subscription[MsgT]:
+        """A message class gives a subscription typed with it."""
+
+    @overload
+    def create_subscription(
+        self,
+        msg_type: str,
+        topic: str,
+        callback: Callable[[Any], object] | Callable[[Any, MessageInfo], object],
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: SubscriptionEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
+        raw: Literal[False] = False,
+    ) -> Subscription[Any]:
+        """A 'pkg/msg/Name' gives a subscription of that type, loosely typed."""
+
+    @overload
+    def create_subscription(
+        self,
+        msg_type: type[MsgT] | str,
+        topic: str,
+        callback: Callable[[bytes, MessageInfo], object],
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: SubscriptionEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
+        raw: Literal[True],
+    ) -> Subscription[MsgT]:
+        """raw=True: the callback gets CDR bytes and MessageInfo, undecoded."""
+
+    def create_subscription(
+        self,
+        msg_type: type[MsgT] | str,
+        topic: str,
+        callback: SubscriptionCallback[MsgT],
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: SubscriptionEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
         raw: bool = False,
-    ) -> Subscription:
-        """Call `callback(msg)` (or `callback(msg, info)`) for each message on `topic`."""
+    ) -> Subscription[MsgT]:
+        """Call `callback(msg)` (or `callback(msg, info)`, told apart by its signature) on
+        the executor for each message on `topic`; with `raw`, the message is its CDR bytes,
+        undecoded."""
         qos_profile = self._qos_with_overrides(
             Subscription, topic, qos_profile, qos_overriding_options
         )
@@ -253,7 +352,11 @@ class Node(ParameterMixin):
         return sub
 
     def _add_event_handlers(
-        self, entity: Any, callbacks: Any, group: CallbackGroup | None, topic: str
+        self,
+        entity: Publisher[MsgT] | Subscription[MsgT],
+        callbacks: PublisherEventCallbacks | SubscriptionEventCallbacks | None,
+        group: CallbackGroup | None,
+        topic: str,
     ) -> None:
         """The entity's QoS event handlers (rclpy's defaults warn of incompatible QoS and
         types; tools' hidden nodes go without them)."""
@@ -271,7 +374,11 @@ class Node(ParameterMixin):
             self.add_waitable(handler)
 
     def _qos_with_overrides(
-        self, entity_type: type, topic: str, qos: QoSProfile | int, options: Any
+        self,
+        entity_type: type,
+        topic: str,
+        qos: QoSProfile | int,
+        options: QoSOverridingOptions | None,
     ) -> QoSProfile:
         from ros2lite.endpoint import as_qos
 
@@ -288,13 +395,13 @@ class Node(ParameterMixin):
     def create_timer(
         self,
         timer_period_sec: float,
-        callback: Callable[[], Any],
+        callback: Callable[[], object],
         callback_group: CallbackGroup | None = None,
         clock: Clock | None = None,
         autostart: bool = True,
     ) -> Timer:
-        """Call `callback()` every `timer_period_sec` (of ROS time unless `clock` says
-        otherwise); `autostart=False` leaves it canceled until `reset()`."""
+        """Call `callback()` every `timer_period_sec` of `clock` (the node's ROS clock by
+        default); `autostart=False` leaves it canceled until `reset()`."""
         self._remember_group(callback_group)
         timer = Timer(
             timer_period_sec,
@@ -315,22 +422,49 @@ class Node(ParameterMixin):
         return rate
 
     def destroy_rate(self, rate: Rate) -> bool:
+        """Destroy it; True if it was this node's (rclpy's answer)."""
         if rate not in self.rates:
             return False
         self.rates.remove(rate)
         rate.destroy()
         return True
 
+    @overload
     def create_service(
         self,
-        srv_type: Any,
+        srv_type: type[Srv[SrvRequestT, SrvResponseT]],
         srv_name: str,
-        callback: Callable[..., Any],
+        callback: ServiceCallback[SrvRequestT, SrvResponseT],
         *,
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
         deferred: bool = False,
-    ) -> Service:
+    ) -> Service[SrvRequestT, SrvResponseT]:
+        """A service class gives a server typed with its request and response."""
+
+    @overload
+    def create_service(
+        self,
+        srv_type: str,
+        srv_name: str,
+        callback: ServiceCallback[Any, Any],
+        *,
+        qos_profile: QoSProfile = qos_profile_services_default,
+        callback_group: CallbackGroup | None = None,
+        deferred: bool = False,
+    ) -> Service[Any, Any]:
+        """A 'pkg/srv/Name' gives a server of that type, loosely typed."""
+
+    def create_service(
+        self,
+        srv_type: type[Srv[SrvRequestT, SrvResponseT]] | str,
+        srv_name: str,
+        callback: ServiceCallback[SrvRequestT, SrvResponseT],
+        *,
+        qos_profile: QoSProfile = qos_profile_services_default,
+        callback_group: CallbackGroup | None = None,
+        deferred: bool = False,
+    ) -> Service[SrvRequestT, SrvResponseT]:
         """Serve `srv_name`: `callback(request, response)` returns the response (or, with
         `deferred=True`, `callback(request, header)` answers later via `send_response`)."""
         self._remember_group(callback_group)
@@ -346,16 +480,41 @@ class Node(ParameterMixin):
         self.services.append(srv)
         return srv
 
+    @overload
     def create_client(
         self,
-        srv_type: Any,
+        srv_type: type[Srv[SrvRequestT, SrvResponseT]],
         srv_name: str,
         *,
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
         fail_without_server: bool = False,
-    ) -> Client:
-        """A client of `srv_name`; see :class:`~ros2lite.client.Client` for
+    ) -> Client[SrvRequestT, SrvResponseT]:
+        """A service class gives a client whose call() returns its Response."""
+
+    @overload
+    def create_client(
+        self,
+        srv_type: str,
+        srv_name: str,
+        *,
+        qos_profile: QoSProfile = qos_profile_services_default,
+        callback_group: CallbackGroup | None = None,
+        fail_without_server: bool = False,
+    ) -> Client[Any, Any]:
+        """A 'pkg/srv/Name' gives a client of that type, loosely typed."""
+
+    def create_client(
+        self,
+        srv_type: type[Srv[SrvRequestT, SrvResponseT]] | str,
+        srv_name: str,
+        *,
+        qos_profile: QoSProfile = qos_profile_services_default,
+        callback_group: CallbackGroup | None = None,
+        fail_without_server: bool = False,
+    ) -> Client[SrvRequestT, SrvResponseT]:
+        """A client of `srv_name`; `call()` blocks for the response, `call_async()` gives
+        a future the node's executor completes. See :class:`~ros2lite.client.Client` for
         `fail_without_server` (a ros2lite extra for tools)."""
         self._remember_group(callback_group)
         client = Client(
@@ -370,23 +529,25 @@ class Node(ParameterMixin):
         return client
 
     def create_guard_condition(
-        self, callback: Callable[[], Any], callback_group: CallbackGroup | None = None
+        self, callback: Callable[[], object], callback_group: CallbackGroup | None = None
     ) -> GuardCondition:
+        """A guard whose `trigger()` (from any thread) runs `callback()` on the executor."""
         self._remember_group(callback_group)
         guard = GuardCondition(self, callback, callback_group)
         self.guards.append(guard)
         return guard
 
-    def destroy_publisher(self, pub: Publisher) -> bool:
-        """Destroy it; True if it was this node's (rclpy's answer)."""
+    def destroy_publisher(self, pub: Publisher[MsgT]) -> bool:
+        """Withdraw a publisher of this node; True if it was this node's (rclpy's answer)."""
         if pub not in self.publishers:
             return False
         self.publishers.remove(pub)
         pub.destroy()
         return True
 
-    def destroy_subscription(self, sub: Subscription) -> bool:
-        """Destroy it; True if it was this node's (rclpy's answer)."""
+    def destroy_subscription(self, sub: Subscription[MsgT]) -> bool:
+        """Withdraw a subscription of this node; True if it was this node's (rclpy's
+        answer)."""
         if sub not in self.subscriptions:
             return False
         self.subscriptions.remove(sub)
@@ -394,23 +555,25 @@ class Node(ParameterMixin):
         return True
 
     def destroy_timer(self, timer: Timer) -> bool:
-        """Cancel and forget it; True if it was this node's."""
+        """Cancel a timer and forget it; True if it was this node's."""
         timer.cancel()
         if timer not in self.timers:
             return False
         self.timers.remove(timer)
         return True
 
-    def destroy_service(self, srv: Service) -> bool:
-        """Destroy it; True if it was this node's (rclpy's answer)."""
+    def destroy_service(self, srv: Service[SrvRequestT, SrvResponseT]) -> bool:
+        """Withdraw a service server of this node; True if it was this node's (rclpy's
+        answer)."""
         if srv not in self.services:
             return False
         self.services.remove(srv)
         srv.destroy()
         return True
 
-    def destroy_client(self, client: Client) -> bool:
-        """Destroy it; True if it was this node's (rclpy's answer)."""
+    def destroy_client(self, client: Client[SrvRequestT, SrvResponseT]) -> bool:
+        """Withdraw a service client of this node (its pending calls are cancelled); True if
+        it was this node's (rclpy's answer)."""
         if client not in self.clients:
             return False
         self.clients.remove(client)
@@ -418,7 +581,8 @@ class Node(ParameterMixin):
         return True
 
     def destroy_guard_condition(self, guard: GuardCondition) -> bool:
-        """Destroy it; True if it was this node's (rclpy's answer)."""
+        """Forget a guard condition of this node; True if it was this node's (rclpy's
+        answer)."""
         if guard not in self.guards:
             return False
         self.guards.remove(guard)
@@ -426,6 +590,7 @@ class Node(ParameterMixin):
         return True
 
     def destroy_node(self) -> None:
+        """Leave the graph: every entity, timer and waitable of the node goes."""
         from ros2lite.transport.session import undeclare_quietly
 
         # logging still works once the node is gone (e.g. from a goal thread finishing
@@ -433,7 +598,12 @@ class Node(ParameterMixin):
         rosout, self._rosout = self._rosout, None
         if rosout is not None:
             rosout.destroy()
-        entities: list[Any] = [*self.subscriptions, *self.publishers, *self.services, *self.clients]
+        entities: list[Destroyable] = [
+            *self.subscriptions,
+            *self.publishers,
+            *self.services,
+            *self.clients,
+        ]
         for entity in entities:
             entity.destroy()
         for rate in self.rates:
@@ -444,7 +614,7 @@ class Node(ParameterMixin):
         for guard in self.guards:
             guard.destroy()
         for waitable in list(self.waitables):  # destroying one may remove it from the list
-            destroy: Callable[[], Any] | None = getattr(waitable, 'destroy', None)
+            destroy: Callable[[], object] | None = getattr(waitable, 'destroy', None)
             if destroy is not None:
                 destroy()
         self.subscriptions.clear()
@@ -462,9 +632,11 @@ class Node(ParameterMixin):
 
     # -- time and logging ---------------------------------------------------------------------
     def get_clock(self) -> Clock:
+        """The node's ROS clock (simulated time with use_sim_time)."""
         return self._clock
 
     def get_logger(self) -> RcutilsLogger:
+        """The node's logger: console and /rosout."""
         return self._logger
 
     def _publish_rosout(
@@ -491,14 +663,16 @@ class Node(ParameterMixin):
         )
 
     # -- graph --------------------------------------------------------------------------------
-    def _entities(self) -> list[Any]:
-        entities: list[Any] = self.context.graph.entities()
+    def _entities(self) -> list[Entity]:
+        entities: list[Entity] = self.context.graph.entities()
         return entities
 
     def get_node_names(self) -> list[str]:
+        """Names of the nodes on the graph."""
         return [n for n, _ in self.get_node_names_and_namespaces()]
 
     def get_node_names_and_namespaces(self) -> list[tuple[str, str]]:
+        """(name, namespace) of the nodes on the graph."""
         from ros2lite.graph import node_names_and_namespaces
 
         return node_names_and_namespaces(self._entities())
@@ -542,6 +716,7 @@ class Node(ParameterMixin):
         return topic_names_and_types(self._entities(), include_hidden_topics)
 
     def get_service_names_and_types(self) -> list[tuple[str, list[str]]]:
+        """(service, types) on the graph."""
         from ros2lite.graph import service_names_and_types
 
         return service_names_and_types(self._entities(), include_hidden=True)
@@ -556,31 +731,37 @@ class Node(ParameterMixin):
     def get_publisher_names_and_types_by_node(
         self, node_name: str, node_namespace: str
     ) -> list[tuple[str, list[str]]]:
+        """(topic, types) that node publishes."""
         return self._by_node(node_name, node_namespace, keys.EntityKind.PUBLISHER)
 
     def get_subscriber_names_and_types_by_node(
         self, node_name: str, node_namespace: str
     ) -> list[tuple[str, list[str]]]:
+        """(topic, types) that node subscribes to."""
         return self._by_node(node_name, node_namespace, keys.EntityKind.SUBSCRIPTION)
 
     def get_service_names_and_types_by_node(
         self, node_name: str, node_namespace: str
     ) -> list[tuple[str, list[str]]]:
+        """(service, types) that node serves."""
         return self._by_node(node_name, node_namespace, keys.EntityKind.SERVICE)
 
     def get_client_names_and_types_by_node(
         self, node_name: str, node_namespace: str
     ) -> list[tuple[str, list[str]]]:
+        """(service, types) that node has clients of."""
         return self._by_node(node_name, node_namespace, keys.EntityKind.CLIENT)
 
-    def get_publishers_info_by_topic(self, topic_name: str) -> list[Any]:
+    def get_publishers_info_by_topic(self, topic_name: str) -> list[TopicEndpointInfo]:
+        """Node, type, GID and QoS of each publisher of a topic."""
         from ros2lite.graph import endpoints_by_topic
 
         return endpoints_by_topic(
             self._entities(), self.resolve_topic_name(topic_name), keys.EntityKind.PUBLISHER
         )
 
-    def get_subscriptions_info_by_topic(self, topic_name: str) -> list[Any]:
+    def get_subscriptions_info_by_topic(self, topic_name: str) -> list[TopicEndpointInfo]:
+        """Node, type, GID and QoS of each subscription of a topic."""
         from ros2lite.graph import endpoints_by_topic
 
         return endpoints_by_topic(
@@ -588,12 +769,15 @@ class Node(ParameterMixin):
         )
 
     def count_publishers(self, topic_name: str) -> int:
+        """How many publishers a topic has on the graph."""
         return len(self.get_publishers_info_by_topic(topic_name))
 
     def count_subscribers(self, topic_name: str) -> int:
+        """How many subscriptions a topic has on the graph."""
         return len(self.get_subscriptions_info_by_topic(topic_name))
 
     def count_services(self, service_name: str) -> int:
+        """How many servers a service has on the graph."""
         from ros2lite.graph import count
 
         return count(
@@ -601,6 +785,7 @@ class Node(ParameterMixin):
         )
 
     def count_clients(self, service_name: str) -> int:
+        """How many clients a service has on the graph."""
         from ros2lite.graph import count
 
         return count(

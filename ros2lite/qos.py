@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import enum
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 from typing import NamedTuple, TypeVar
 
 from ros2lite.duration import Duration
@@ -26,6 +27,7 @@ __all__ = [
     "HistoryPolicy",
     "InvalidQoSProfileException",
     "LivelinessPolicy",
+    "MatchedQoS",
     "QoSCompatibility",
     "QoSDurabilityPolicy",
     "QoSHistoryPolicy",
@@ -37,6 +39,7 @@ __all__ = [
     "ReliabilityPolicy",
     "check_compatible",
     "incompatible_policy",
+    "match_publishers_qos",
     "preset",
     "qos_check_compatible",
     "qos_policy_name_from_kind",
@@ -83,6 +86,8 @@ class _Policy(enum.IntEnum):
 
 
 class ReliabilityPolicy(_Policy):
+    """Whether delivery is retried (RELIABLE) or may drop (BEST_EFFORT)."""
+
     SYSTEM_DEFAULT = 0
     RELIABLE = 1
     BEST_EFFORT = 2
@@ -91,6 +96,8 @@ class ReliabilityPolicy(_Policy):
 
 
 class DurabilityPolicy(_Policy):
+    """Whether late subscribers get earlier samples (TRANSIENT_LOCAL)."""
+
     SYSTEM_DEFAULT = 0
     TRANSIENT_LOCAL = 1
     VOLATILE = 2
@@ -99,6 +106,8 @@ class DurabilityPolicy(_Policy):
 
 
 class HistoryPolicy(_Policy):
+    """Whether `depth` bounds the queue (KEEP_LAST) or not (KEEP_ALL)."""
+
     SYSTEM_DEFAULT = 0
     KEEP_LAST = 1
     KEEP_ALL = 2
@@ -106,6 +115,8 @@ class HistoryPolicy(_Policy):
 
 
 class LivelinessPolicy(_Policy):
+    """How an endpoint shows it is alive."""
+
     SYSTEM_DEFAULT = 0
     AUTOMATIC = 1
     MANUAL_BY_NODE = 2  # deprecated in rmw, kept so old tokens still decode
@@ -294,6 +305,7 @@ class QoSProfile:
 
     @property
     def is_transient_local(self) -> bool:
+        """Whether late subscribers get the last samples."""
         return self.durability == DurabilityPolicy.TRANSIENT_LOCAL
 
 
@@ -384,10 +396,12 @@ class QoSPresetProfiles(enum.Enum):
 
     @classmethod
     def short_keys(cls) -> list[str]:
+        """The presets' names as the CLI spells them."""
         return [name.lower() for name in cls.__members__]  # aliases too (equal profiles)
 
     @classmethod
     def get_from_short_key(cls, name: str) -> QoSProfile:
+        """The preset profile of a CLI name."""
         return cls[name.upper()].value
 
 
@@ -442,6 +456,46 @@ def resolve_best_available(
             given = [getattr(o, field) for o in others if not _no_duration(getattr(o, field))]
             changes[field] = pick(given) if given else DURATION_UNSPECIFIED
     return profile.replace(**changes)
+
+
+@dataclass(frozen=True)
+class MatchedQoS:
+    """The profile to subscribe with, and which policies had to be weakened."""
+
+    profile: QoSProfile
+    reliability_fell_back: bool  # some but not all publishers are RELIABLE
+    durability_fell_back: bool  # some but not all publishers are TRANSIENT_LOCAL
+
+
+def match_publishers_qos(
+    profile: QoSProfile, publishers: Iterable[QoSProfile | None]
+) -> MatchedQoS:
+    """Ask for RELIABLE / TRANSIENT_LOCAL only when every publisher offers it.
+
+    That is rmw"s BEST_AVAILABLE rule for a subscription (:func:`resolve_best_available`): the
+    strongest request still compatible with all of them, and TRANSIENT_LOCAL is what
+    receives a latched publisher"s history. A publisher whose QoS is unknown counts as the
+    weakest. With no publishers the profile is returned unchanged.
+    """
+    offered = [q if q is not None else _WEAKEST for q in publishers]
+    if not offered:
+        return MatchedQoS(profile, False, False)
+    chosen = resolve_best_available(
+        profile.replace(
+            reliability=ReliabilityPolicy.BEST_AVAILABLE, durability=DurabilityPolicy.BEST_AVAILABLE
+        ),
+        offered,
+        for_publisher=False,
+    )
+    n = len(offered)
+    reliable = sum(q.reliability == ReliabilityPolicy.RELIABLE for q in offered)
+    latched = sum(q.durability == DurabilityPolicy.TRANSIENT_LOCAL for q in offered)
+    return MatchedQoS(chosen, 0 < reliable < n, 0 < latched < n)
+
+
+_WEAKEST = QoSProfile(
+    depth=10, reliability=ReliabilityPolicy.BEST_EFFORT, durability=DurabilityPolicy.VOLATILE
+)
 
 
 class Compatibility(NamedTuple):

@@ -8,17 +8,21 @@ import time
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Generic, cast
 
+from ros2lite.bad_samples import BadSamples, gid_of
 from ros2lite.endpoint import Endpoint, EndpointOwner
 from ros2lite.executable import Executable
 from ros2lite.qos import HistoryPolicy, QoSProfile
 from ros2lite.transport.attachment import unpack_attachment
 from ros2lite.transport.keys import EntityKind
+from ros2lite.type_support import MsgT
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.node import Node
     from ros2lite.task import Task
+    from ros2lite.transport.handles import Sample
 
 
 @dataclass(frozen=True)
@@ -31,16 +35,18 @@ class MessageInfo:
     publication_sequence_number: int
     publisher_gid: bytes
 
-    def __getitem__(self, key: str) -> Any:
+    def __getitem__(self, key: str) -> int | bytes:
         try:
             return getattr(self, key)
         except AttributeError:
             raise KeyError(key) from None
 
-    def get(self, key: str, default: Any = None) -> Any:
+    def get(self, key: str, default: object = None) -> object:
+        """A field by name, or `default` (rclpy's info is a dict)."""
         return getattr(self, key, default)
 
     def keys(self) -> list[str]:
+        """The field names, as the keys of rclpy's info dict."""
         return list(self.__dataclass_fields__)
 
 
@@ -51,7 +57,7 @@ class CallbackType(enum.Enum):
     WithMessageInfo = 1
 
 
-def callback_type(callback: Callable[..., Any]) -> CallbackType:
+def callback_type(callback: Callable[..., object]) -> CallbackType:
     """Tell `callback(msg)` from `callback(msg, info)`, as rclpy does (RuntimeError for
     anything else)."""
     try:
@@ -82,7 +88,16 @@ def _info(attachment: bytes, received: int) -> MessageInfo:
     return MessageInfo(stamp, received, seq, gid)
 
 
-class Subscription(EndpointOwner, Executable):
+SubscriptionCallback = (
+    Callable[[MsgT], object]
+    | Callable[[MsgT, MessageInfo], object]
+    | Callable[[bytes, MessageInfo], object]
+)
+"""`callback(msg)` or `callback(msg, info)` (told apart by the signature, as rclpy does), and
+with raw=True the message is its CDR bytes; `async def` ones too."""
+
+
+class Subscription(EndpointOwner, Executable, Generic[MsgT]):
     """Calls `callback(msg)` or `callback(msg, MessageInfo)` (told apart by its signature);
     with raw=True the message is its CDR bytes."""
 
@@ -90,10 +105,10 @@ class Subscription(EndpointOwner, Executable):
 
     def __init__(
         self,
-        node: Any,
-        msg_type: Any,
+        node: Node,
+        msg_type: type[MsgT] | str,
         topic: str,
-        callback: Callable[..., Any],
+        callback: SubscriptionCallback[MsgT],
         qos: QoSProfile | int,
         *,
         raw: bool = False,
@@ -114,12 +129,14 @@ class Subscription(EndpointOwner, Executable):
         # for raw ones (tools like `topic hz` need arrival times). Bytes are copied out on the
         # executor thread, keeping the pump thread's share of the GIL small.
         self._buffer: deque[Any] = deque(maxlen=None if keep_all else max(ep.qos.depth, 1))
-        self._deserialize: Any = None
+        self._deserialize: Callable[[bytes], MsgT] | None = None
         self._destroyed = False
+        # undecodable samples so far (None until the first one)
+        self.bad_samples: BadSamples | None = None
         # a subclass hook (e.g. topic monitors) sees every sample instead of the buffer
         hook = None if type(self)._on_sample is Subscription._on_sample else self._on_sample
         self._receiver = SampleReceiver(
-            node.context.session,
+            node.context.require(),
             ep.key,
             ep.qos,
             self._buffer,
@@ -130,7 +147,7 @@ class Subscription(EndpointOwner, Executable):
         )
         ep._announce()
 
-    def _on_sample(self, sample: Any) -> None:
+    def _on_sample(self, sample: Sample) -> None:
         """Receive thread: keep the sample and make sure the executor will come for it.
         Samples without an attachment, which rmw_zenoh ignores, are dropped when taken."""
         if self._destroyed:
@@ -141,18 +158,18 @@ class Subscription(EndpointOwner, Executable):
     def _has_work(self) -> bool:
         return bool(self._buffer) and not self._destroyed
 
-    def _deserializer(self) -> Any:
+    def _deserializer(self) -> Callable[[bytes], MsgT]:
         des = self._deserialize
         if des is None:
             from ros2lite.interfaces.cdr import codec
-            from ros2lite.interfaces.registry import default_registry
 
-            des = self._deserialize = codec(
-                self._ep.type_name, default_registry()
-            ).fast_deserializer()
+            # the codec of this subscription's own type builds MsgT messages
+            des = self._deserialize = cast(
+                'Callable[[bytes], MsgT]', codec(self._ep.type_name).fast_deserializer()
+            )
         return des
 
-    def take(self) -> tuple[Any, MessageInfo] | None:
+    def take(self) -> tuple[MsgT | bytes, MessageInfo] | None:
         """The oldest buffered sample as (message or bytes, info), or None. For typed
         subscriptions `received_timestamp` is the time of the take."""
         while True:
@@ -166,7 +183,12 @@ class Subscription(EndpointOwner, Executable):
                 continue  # rmw_zenoh drops samples without an attachment
             data = sample.payload.to_bytes()
             info = _info(attachment.to_bytes(), received)
-            return (data if self.raw else self._deserializer()(data)), info
+            if self.raw:
+                return data, info
+            try:
+                return self._deserializer()(data), info
+            except ValueError as e:  # a CdrError (imported lazily: tools stay light)
+                self._bad_sample(data, info.publisher_gid, e)  # dropped: take the next one
 
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         """Deliver the oldest sample, or in spin()/spin_until_future_complete() a batch of
@@ -184,36 +206,65 @@ class Subscription(EndpointOwner, Executable):
 
     def _deliver_batch(self, limit: int, stop: Callable[[], bool] | None) -> None:
         """MessageInfo is only built for callbacks that take it."""
-        buffer, callback = self._buffer, self.callback
+        # (msg) for the hot typed loop; the others go through _deliver_with_info
+        callback: Callable[..., object] = self.callback
+        buffer = self._buffer
         popleft, perf_counter = buffer.popleft, time.perf_counter
         # a batch also ends after _BATCH_TIME, so slow callbacks can't starve timers
         deadline = perf_counter() + _BATCH_TIME if limit > 1 else 0.0
         if self.raw or self._with_info:
             self._deliver_with_info(limit, stop, deadline)
             return
-        # typed: the hot loop of a busy subscriber, kept to the bare minimum per sample
+        # typed: the hot loop of a busy subscriber, kept to the bare minimum per sample. A
+        # sample that does not decode raises out of it; the handler (free until something
+        # raises) tells a bad sample, which is dropped, from the callback's own error
         des = self._deserialize or self._deserializer()
-        for i in range(limit):
-            if i & 7 == 7 and perf_counter() > deadline:
-                break
+        first = 0
+        while True:
             try:
-                sample = popleft()
-            except IndexError:
-                break
-            if self._destroyed:
-                break
-            if sample.attachment is None:
-                continue
-            callback(des(sample.payload.to_bytes()))
-            if stop is not None and stop():
-                break
+                for i in range(first, limit):
+                    if i & 7 == 7 and perf_counter() > deadline:
+                        return
+                    try:
+                        sample = popleft()
+                    except IndexError:
+                        return
+                    if self._destroyed:
+                        return
+                    if sample.attachment is None:
+                        continue
+                    callback(des(sample.payload.to_bytes()))
+                    if stop is not None and stop():
+                        return
+                return
+            except ValueError as e:  # a CdrError (imported lazily: tools stay light)?
+                data = sample.payload.to_bytes()
+                try:
+                    des(data)
+                except ValueError:
+                    self._bad_sample(data, gid_of(sample.attachment.to_bytes()), e)
+                else:
+                    raise  # it decodes: the error is the callback's
+                first = i + 1
+
+    def _bad_sample(self, data: bytes, gid: bytes, error: Exception) -> None:
+        """A sample that is not the topic's type: dropped, counted, reported (rate-limited)."""
+        bad = self.bad_samples
+        if bad is None:
+            node = self._ep.node
+            bad = self.bad_samples = BadSamples(
+                self._ep.topic_name, self._ep.type_name, node.get_logger().warn
+            )
+        bad.add(gid, error, len(data))
 
     def _deliver_with_info(
         self, limit: int, stop: Callable[[], bool] | None, deadline: float
     ) -> None:
         """Raw bytes and/or MessageInfo: the slower loop (raw samples carry their arrival
-        time; typed ones are stamped when taken)."""
-        popleft, perf_counter, callback = self._buffer.popleft, time.perf_counter, self.callback
+        time; typed ones are stamped when taken). A typed sample that does not decode is
+        dropped and reported, as in the hot loop."""
+        popleft, perf_counter = self._buffer.popleft, time.perf_counter
+        callback: Callable[..., object] = self.callback
         des = None if self.raw else (self._deserialize or self._deserializer())
         for i in range(limit):
             if i & 7 == 7 and perf_counter() > deadline:
@@ -229,7 +280,14 @@ class Subscription(EndpointOwner, Executable):
             if attachment is None:
                 continue  # rmw_zenoh drops samples without an attachment
             data = sample.payload.to_bytes()
-            message = data if des is None else des(data)
+            if des is None:
+                message: object = data
+            else:
+                try:
+                    message = des(data)
+                except ValueError as e:  # a CdrError (imported lazily: tools stay light)
+                    self._bad_sample(data, gid_of(attachment.to_bytes()), e)
+                    continue
             if self._with_info:
                 callback(message, _info(attachment.to_bytes(), received))
             else:
@@ -238,12 +296,14 @@ class Subscription(EndpointOwner, Executable):
                 break
 
     def destroy(self) -> None:
+        """Stop receiving: buffered samples are dropped and the token withdrawn."""
         self._destroy_event_handlers()
         self._destroyed = True
         self._buffer.clear()
         self._ep._undeclare(self._receiver)  # ends the receive thread too
 
     def get_publisher_count(self) -> int:
+        """How many publishers on the graph match this topic name."""
         from ros2lite.graph import count
 
         return count(self._ep.node.context.graph.entities(), self.topic_name, EntityKind.PUBLISHER)

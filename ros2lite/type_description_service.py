@@ -8,7 +8,22 @@ RIHS01 hashes (:mod:`ros2lite.interfaces.hashing`), so a description always matc
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, TypedDict, cast
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.type_description_interfaces.msg import (
+        Field,
+        FieldType,
+        IndividualTypeDescription,
+        TypeDescription,
+        TypeSource,
+    )
+    from ros2lite.msgs.type_description_interfaces.srv import (
+        GetTypeDescription_Request,
+        GetTypeDescription_Response,
+    )
+    from ros2lite.node import Node
+    from ros2lite.service import Service
 
 __all__ = ['START_TYPE_DESCRIPTION_SERVICE_PARAM', 'TypeDescriptionService']
 
@@ -20,11 +35,12 @@ _ENCODING = {'msg': 'msg', 'srv': 'srv', 'action': 'action'}
 class TypeDescriptionService:
     """Declares the parameter and, if it is true, serves the descriptions on `node`."""
 
-    def __init__(self, node: Any) -> None:
+    def __init__(self, node: Node) -> None:
         from ros2lite.parameters.store import descriptor
 
         self._node = node
-        self._service: Any = None
+        self._service: Service[GetTypeDescription_Request, GetTypeDescription_Response] | None
+        self._service = None
         param = node.declare_parameter(
             START_TYPE_DESCRIPTION_SERVICE_PARAM,
             True,
@@ -40,10 +56,13 @@ class TypeDescriptionService:
 
     def _types_in_use(self) -> set[str]:
         node = self._node
-        endpoints = [*node.publishers, *node.subscriptions, *node.services, *node.clients]
-        return {e._ep.type_name for e in endpoints}
+        topics = [*node.publishers, *node.subscriptions]
+        services = [*node.services, *node.clients]
+        return {e._ep.type_name for e in topics} | {e._ep.type_name for e in services}
 
-    def _describe(self, request: Any, response: Any) -> Any:
+    def _describe(
+        self, request: GetTypeDescription_Request, response: GetTypeDescription_Response
+    ) -> GetTypeDescription_Response:
         from ros2lite.interfaces import type_hash
         from ros2lite.interfaces.errors import InterfaceError
 
@@ -69,40 +88,61 @@ class TypeDescriptionService:
         return response
 
     def destroy(self) -> None:
+        """Withdraw the service (the node is going away)."""
         if self._service is not None:
             self._node.destroy_service(self._service)
             self._service = None
 
 
-def description_message(name: str) -> Any:
+class _FieldTypeFields(TypedDict):
+    """A field's type as :func:`ros2lite.interfaces.hashing.type_description` gives it."""
+
+    type_id: int
+    capacity: int
+    string_capacity: int
+    nested_type_name: str
+
+
+def description_message(name: str) -> TypeDescription:
     """type_description_interfaces/msg/TypeDescription of `name` and what it refers to."""
     from ros2lite.interfaces import get_interface
     from ros2lite.interfaces.hashing import type_description
 
-    field_type = get_interface('type_description_interfaces/msg/FieldType')
-    field = get_interface('type_description_interfaces/msg/Field')
-    individual = get_interface('type_description_interfaces/msg/IndividualTypeDescription')
+    field_type: type[FieldType] = get_interface('type_description_interfaces/msg/FieldType')
+    field: type[Field] = get_interface('type_description_interfaces/msg/Field')
+    individual: type[IndividualTypeDescription] = get_interface(
+        'type_description_interfaces/msg/IndividualTypeDescription'
+    )
 
-    def convert(desc: dict[str, Any]) -> Any:
+    def convert(desc: object) -> IndividualTypeDescription:
+        d = cast('dict[str, object]', desc)
+        fields = cast('list[dict[str, object]]', d['fields'])
         return individual(
-            type_name=desc['type_name'],
-            fields=[field(name=f['name'], type=field_type(**f['type'])) for f in desc['fields']],
+            type_name=str(d['type_name']),
+            fields=[
+                field(name=str(f['name']), type=field_type(**cast(_FieldTypeFields, f['type'])))
+                for f in fields
+            ],
         )
 
     tree = type_description(name)
-    return get_interface('type_description_interfaces/msg/TypeDescription')(
+    referenced = cast('list[object]', tree['referenced_type_descriptions'])
+    description: type[TypeDescription] = get_interface(
+        'type_description_interfaces/msg/TypeDescription'
+    )
+    return description(
         type_description=convert(tree['type_description']),
-        referenced_type_descriptions=[convert(d) for d in tree['referenced_type_descriptions']],
+        referenced_type_descriptions=[convert(d) for d in referenced],
     )
 
 
-def type_sources(description: Any) -> list[Any]:
+def type_sources(description: TypeDescription) -> list[TypeSource]:
     """The definition file of each type in a description; types generated from a service or
     an action file (requests, goals, …) have none of their own: 'implicit', as in rcl."""
     from ros2lite.interfaces import get_interface
     from ros2lite.interfaces.registry import default_registry
 
-    source = get_interface('type_description_interfaces/msg/TypeSource')
+    source: type[TypeSource] = get_interface('type_description_interfaces/msg/TypeSource')
     registry = default_registry()
     out = []
     for desc in [description.type_description, *description.referenced_type_descriptions]:

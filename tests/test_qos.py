@@ -201,3 +201,23 @@ def test_rclpy_compatibility_verdicts() -> None:
     transient = QoSProfile(depth=1, durability=D.TRANSIENT_LOCAL)
     assert incompatible_policy(best_effort, transient) == QoSPolicyKind.DURABILITY  # the last
     assert incompatible_policy(reliable, best_effort) is None
+
+
+def test_qos_matching_publishers() -> None:
+    rel = QoSProfile(depth=10)
+    be = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT)
+    tl = QoSProfile(depth=10, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    base = q.qos_profile_sensor_data
+    assert q.match_publishers_qos(base, []).profile == base
+    all_rel = q.match_publishers_qos(base, [rel, tl])
+    assert all_rel.profile.reliability == ReliabilityPolicy.RELIABLE
+    assert all_rel.profile.durability == DurabilityPolicy.VOLATILE
+    assert (all_rel.reliability_fell_back, all_rel.durability_fell_back) == (False, True)
+    mixed = q.match_publishers_qos(base, [rel, be])
+    assert mixed.profile.reliability == ReliabilityPolicy.BEST_EFFORT
+    assert (mixed.reliability_fell_back, mixed.durability_fell_back) == (True, False)
+    latched = q.match_publishers_qos(base, [tl])
+    assert latched.profile.durability == DurabilityPolicy.TRANSIENT_LOCAL
+    assert latched.profile.depth == base.depth
+    unknown = q.match_publishers_qos(base, [None])
+    assert unknown.profile.reliability == ReliabilityPolicy.BEST_EFFORT

@@ -19,12 +19,22 @@ import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING
 
+from ros2lite.bag.errors import BagError
 from ros2lite.bag.metadata import TopicMetadata
 from ros2lite.bag.qos import playback_qos
 from ros2lite.bag.reader import Reader
 from ros2lite.qos import QoSProfile
+
+if TYPE_CHECKING:
+    from ros2lite.node import Node
+    from ros2lite.publisher import Publisher
+    from ros2lite.type_support import Msg
+
+# what the read-ahead thread hands over: a message (topic, CDR bytes, log and publish time),
+# the error that ended reading, or _END
+_Ahead = tuple[str, bytes, int, int] | BaseException | None
 
 __all__ = ["SWITCH_INTERVAL", "PlayOptions", "Player"]
 
@@ -33,7 +43,7 @@ _SPIN = 300_000  # ns spent spinning (not sleeping) before each deadline
 # default 5 ms switch interval it could make a message that late. The switch interval is the
 # process' to set (see ros2lite.process.switch_interval), so this is what players ask for.
 SWITCH_INTERVAL = 0.0002
-_END = object()
+_END = None  # what the read-ahead thread puts after the last message
 
 
 @dataclass
@@ -65,12 +75,12 @@ class Player:
 
     def __init__(
         self,
-        node: Any,
+        node: Node,
         reader: Reader,
         options: PlayOptions,
         *,
-        log: Callable[[str], Any] | None = None,
-        warn: Callable[[str], Any] | None = None,
+        log: Callable[[str], object] | None = None,
+        warn: Callable[[str], object] | None = None,
     ) -> None:
         if options.rate <= 0:
             raise ValueError("rate must be greater than 0")
@@ -90,7 +100,7 @@ class Player:
         self._end = reader.end_time
         self.published = 0
         self.lateness: list[int] = []
-        self._publishers: dict[str, Any] = {}
+        self._publishers: dict[str, Publisher[Msg]] = {}
         self._clock_thread: threading.Thread | None = None
         self._prepare()
 
@@ -110,7 +120,25 @@ class Player:
 
     def _prepare(self) -> None:
         from ros2lite.interfaces import InterfaceError, get_interface
+        from ros2lite.interfaces.parser import validate_type_name
         from ros2lite.interfaces.registry import normalize_name
+
+        for problem in self.reader.shortfalls():
+            self._warn(problem)
+        if self.options.topics is not None:
+            in_bag = {t.name for t in self.reader.topics}
+            missing = [
+                t
+                for t in self.options.topics
+                if t.startswith("/") and t not in in_bag and t[1:] not in in_bag
+            ]
+            if missing and not any(t in in_bag for t in self.options.topics):
+                raise BagError(
+                    f"None of the topics to play ({', '.join(missing)}) is in the bag; "
+                    f"it has: {', '.join(sorted(in_bag)) or 'no topics'}"
+                )
+            for name in missing:
+                self._warn(f"Topic '{name}' is not in the bag; nothing to play for it")
 
         for t in self.reader.topics:
             if not self._selected(t):
@@ -121,7 +149,12 @@ class Player:
                 )
                 continue
             type_name = normalize_name(t.type)
-            msg_type: Any = type_name
+            try:
+                validate_type_name(type_name)
+            except InterfaceError as e:
+                self._warn(f"Topic '{t.name}': {e}; not playing it")
+                continue
+            msg_type: type[Msg] | str = type_name
             try:
                 get_interface(type_name)
                 from ros2lite.interfaces import type_hash
@@ -132,20 +165,21 @@ class Player:
             if local_hash is None or (
                 t.type_description_hash and t.type_description_hash != local_hash
             ):
-                msg_type = self._bag_type(t, type_name)
-                if msg_type is None:
+                ref = self._bag_type(t, type_name)
+                if ref is None:
                     self._warn(
                         f"Topic '{t.name}': type {t.type} is unknown here and the bag "
                         f"holds no definition of it; not playing it"
                     )
                     continue
+                msg_type = ref
             qos = self.options.qos_overrides.get(t.name) or playback_qos(
                 t.name, t.offered_qos_profiles, self._warn
             )
             target = self.options.remap.get(t.name, t.name)
             self._publishers[t.name] = self.node.create_publisher(msg_type, target, qos)
 
-    def _bag_type(self, t: TopicMetadata, type_name: str) -> Any:
+    def _bag_type(self, t: TopicMetadata, type_name: str) -> type[Msg] | None:
         """A publishable stand-in for a type known only from the bag (hash from the bag, or
         computed from its definition)."""
         from ros2lite.bag.definitions import type_ref
@@ -165,15 +199,18 @@ class Player:
 
     @property
     def topics(self) -> list[str]:
+        """The bag topics being played, sorted."""
         return sorted(self._publishers)
 
     # -- control -------------------------------------------------------------------------------
     @property
     def paused(self) -> bool:
+        """Whether playback is paused."""
         return self._paused
 
     @property
     def rate(self) -> float:
+        """The playback rate (1.0: real time)."""
         return self._rate
 
     def _reanchor(self) -> None:
@@ -182,6 +219,7 @@ class Player:
         self._anchor_wall = time.monotonic_ns()
 
     def pause(self) -> None:
+        """Hold playback (any thread)."""
         with self._cv:
             if not self._paused:
                 self._bag_now = self.bag_time()
@@ -190,6 +228,7 @@ class Player:
                 self._log("Pausing play.")
 
     def resume(self) -> None:
+        """Go on playing from where it was paused (any thread)."""
         with self._cv:
             if self._paused:
                 self._paused = False
@@ -198,6 +237,7 @@ class Player:
                 self._log("Resuming play.")
 
     def toggle_paused(self) -> None:
+        """Pause or resume, as the space key does."""
         if self._paused:
             self.resume()
         else:
@@ -211,6 +251,7 @@ class Player:
                 self._cv.notify_all()
 
     def set_rate(self, rate: float) -> bool:
+        """Change the playback rate from now on (False if not positive)."""
         if rate <= 0:
             return False
         with self._cv:
@@ -222,12 +263,14 @@ class Player:
         return True
 
     def stop(self) -> None:
+        """End playback; play() returns."""
         with self._cv:
             self._stopped = True
             self._cv.notify_all()
 
     @property
     def stopped(self) -> bool:
+        """Whether stop() was called."""
         return self._stopped
 
     def bag_time(self) -> int:
@@ -282,10 +325,16 @@ class Player:
         if errors:
             raise errors[0]
 
-    def _reader_thread(self, out: queue.Queue[Any], start: int) -> None:
+    def _reader_thread(self, out: queue.Queue[_Ahead], start: int) -> None:
         put = out.put
+        first, last = self.reader.start_time, self.reader.end_time
+        refused = 0
         try:
             for item in self.reader.raw_messages(self._publishers, start=start):
+                if not first <= item[2] <= last:
+                    # a corrupt time (the year 2500, say) would have playback wait for it
+                    refused += 1
+                    continue
                 while not self._stopped:
                     try:
                         put(item, timeout=0.1)
@@ -297,11 +346,17 @@ class Player:
         except Exception as e:
             put(e)
             return
+        finally:
+            if refused:
+                self._warn(
+                    f"{refused} message(s) have log times outside the bag's own range "
+                    f"[{first}, {last}] ns (corrupt); not playing them"
+                )
         put(_END)
 
     def _play_once(self) -> None:
         start = self.reader.start_time + int(self.options.start_offset * 1e9)
-        ahead: queue.Queue[Any] = queue.Queue(max(self.options.read_ahead_queue_size, 1))
+        ahead: queue.Queue[_Ahead] = queue.Queue(max(self.options.read_ahead_queue_size, 1))
         feeder = threading.Thread(
             target=self._reader_thread,
             args=(ahead, start),

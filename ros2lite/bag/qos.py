@@ -14,12 +14,7 @@ from pathlib import Path
 
 from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import qos_from_dict, qos_to_dict
-from ros2lite.qos import (
-    DurabilityPolicy,
-    HistoryPolicy,
-    QoSProfile,
-    ReliabilityPolicy,
-)
+from ros2lite.qos import HistoryPolicy, QoSProfile, match_publishers_qos
 
 __all__ = [
     "QoSOverrideError",
@@ -36,39 +31,25 @@ class QoSOverrideError(MetadataError):
     """A QoS override file that cannot be used; the message says what is wrong."""
 
 
-def _mixed(topic: str, offered: Sequence[QoSProfile], warn: Warn | None) -> tuple[bool, bool]:
-    """(all reliable, all transient local), warning about each policy only some offer."""
-    n = len(offered)
-    reliable = sum(q.reliability == ReliabilityPolicy.RELIABLE for q in offered)
-    latched = sum(q.durability == DurabilityPolicy.TRANSIENT_LOCAL for q in offered)
-    if warn is not None and 0 < reliable < n:
-        warn(
-            f"Publishers of '{topic}' differ in reliability: recording best effort so that "
-            "all of them connect (messages of the reliable ones may be dropped)"
-        )
-    if warn is not None and 0 < latched < n:
-        warn(
-            f"Publishers of '{topic}' differ in durability: recording volatile so that all "
-            "of them connect (samples they published earlier are not retrieved)"
-        )
-    return reliable == n, latched == n
-
-
 def recording_qos(
     topic: str, offered: Sequence[QoSProfile], warn: Warn | None = None
 ) -> QoSProfile:
     """What the recorder asks for: reliable / transient local only when every publisher
-    offers it, and KEEP_ALL (as deep as the deepest offer) so Zenoh queues rather than drops
-    while the writer catches up."""
+    offers it (:func:`ros2lite.qos.match_publishers_qos`), and KEEP_ALL (as deep as the
+    deepest offer) so Zenoh queues rather than drops while the writer catches up."""
     depth = max([q.depth for q in offered] + [1])
-    request = QoSProfile(history=HistoryPolicy.KEEP_ALL, depth=depth)
-    if not offered:
-        return request
-    reliable, latched = _mixed(topic, offered, warn)
-    return request.replace(
-        reliability=ReliabilityPolicy.RELIABLE if reliable else ReliabilityPolicy.BEST_EFFORT,
-        durability=DurabilityPolicy.TRANSIENT_LOCAL if latched else DurabilityPolicy.VOLATILE,
-    )
+    matched = match_publishers_qos(QoSProfile(history=HistoryPolicy.KEEP_ALL, depth=depth), offered)
+    if warn is not None and matched.reliability_fell_back:
+        warn(
+            f"Publishers of '{topic}' differ in reliability: recording best effort so that "
+            "all of them connect (messages of the reliable ones may be dropped)"
+        )
+    if warn is not None and matched.durability_fell_back:
+        warn(
+            f"Publishers of '{topic}' differ in durability: recording volatile so that all "
+            "of them connect (samples they published earlier are not retrieved)"
+        )
+    return matched.profile
 
 
 def _same_offer(a: QoSProfile, b: QoSProfile) -> bool:
@@ -136,12 +117,12 @@ _QOS_KEYS = {
 def parse_qos_overrides(text: str) -> dict[str, QoSProfile]:
     """A `--qos-profile-overrides-path` file: topic name → profile (names or numbers for the
     policies; durations as {sec, nsec}). Keys left out keep rclpy's defaults."""
-    import yaml
+    from ros2lite.safe_yaml import YamlInputError, load
 
     try:
-        doc = yaml.safe_load(text)
-    except yaml.YAMLError as e:
-        raise QoSOverrideError(f"QoS override file is not valid YAML: {e}") from None
+        doc = load(text, "QoS override file")
+    except YamlInputError as e:
+        raise QoSOverrideError(str(e)) from None
     if doc is None:
         return {}
     if not isinstance(doc, dict):

@@ -16,25 +16,40 @@ from __future__ import annotations
 
 import contextlib
 import re
-import struct
 import threading
 import time
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.bag.errors import BagError
 from ros2lite.bag.writer import Writer
 from ros2lite.qos import QoSProfile
+from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
+from ros2lite.transport.attachment import unpack_attachment
 
-__all__ = ["DEFAULT_MAX_CACHE_SIZE", "RecordOptions", "Recorder", "TopicStats"]
+if TYPE_CHECKING:
+    from ros2lite.graph import Entity
+    from ros2lite.monitor.subscription import MonitoredSubscription
+    from ros2lite.node import Node
+
+__all__ = [
+    "DEFAULT_FLUSH_INTERVAL",
+    "DEFAULT_MAX_CACHE_SIZE",
+    "RecordOptions",
+    "Recorder",
+    "TopicStats",
+]
 
 DEFAULT_MAX_CACHE_SIZE = 100 * 1024 * 1024
-_STAMP = struct.Struct("<q")
-SERVICE_EVENT_SUFFIX = "/_service_event"
-# how long a finished chunk may wait in memory before it is put on disk anyway (seconds)
-_FLUSH_PERIOD = 1.0
+# how long received messages may wait in memory before the chunk holding them is put on disk
+# anyway (seconds): what a recorder killed outright (SIGKILL, power loss) can lose at most
+DEFAULT_FLUSH_INTERVAL = 0.1
+# how often the writer looks at the clock while busy (messages)
+_CLOCK_EVERY = 64
+# how often the router link is looked at (seconds)
+_ROUTER_CHECK_PERIOD = 1.0
 
 
 @dataclass
@@ -54,8 +69,10 @@ class RecordOptions:
     max_cache_size: int = DEFAULT_MAX_CACHE_SIZE
     start_paused: bool = False
     discovery: bool = True  # keep looking for new topics while recording
+    flush_interval: float = DEFAULT_FLUSH_INTERVAL  # seconds a message may wait for the disk
 
     def selects_by_pattern(self) -> bool:
+        """Whether topics are chosen by a rule (all, regex, types) rather than by name."""
         return self.all_topics or self.all_services or bool(self.regex) or bool(self.topic_types)
 
 
@@ -79,12 +96,12 @@ class Recorder:
 
     def __init__(
         self,
-        node: Any,
+        node: Node,
         writer: Writer,
         options: RecordOptions,
         *,
-        log: Callable[[str], Any] | None = None,
-        warn: Callable[[str], Any] | None = None,
+        log: Callable[[str], object] | None = None,
+        warn: Callable[[str], object] | None = None,
     ) -> None:
         self.node = node
         self.writer = writer
@@ -98,7 +115,7 @@ class Recorder:
         self._stats_by_tid: dict[int, TopicStats] = {}
         self._by_name: dict[str, int] = {}
         self._skipped: set[str] = set()
-        self._subscriptions: list[Any] = []
+        self._subscriptions: list[MonitoredSubscription] = []
         self._queue: deque[tuple[int, bytes, int, bytes]] = deque()
         self._wake = threading.Event()
         self._writer_idle = False
@@ -110,9 +127,12 @@ class Recorder:
         self._discovery_thread: threading.Thread | None = None
         self._discovery_done = threading.Event()
         self.error: BaseException | None = None
+        self._router_seen = True  # as far as we know: a warning comes when it goes
+        self._router_checked = 0.0
 
     # -- control -------------------------------------------------------------------------------
     def start(self) -> None:
+        """Open the bag, subscribe to what is wanted now and (with discovery) keep looking."""
         self._running = True
         self.writer.open()
         self._writer_thread = threading.Thread(
@@ -132,19 +152,23 @@ class Recorder:
 
     @property
     def paused(self) -> bool:
+        """Whether recording is paused (messages are dropped meanwhile)."""
         return self._paused
 
     def pause(self) -> None:
+        """Stop writing messages until resume()."""
         if not self._paused:
             self._paused = True
             self._log("Pausing recording.")
 
     def resume(self) -> None:
+        """Write messages again."""
         if self._paused:
             self._paused = False
             self._log("Resuming recording.")
 
     def toggle_paused(self) -> None:
+        """Pause or resume, as the space key does."""
         if self._paused:
             self.resume()
         else:
@@ -181,6 +205,7 @@ class Recorder:
                     spin(0.25)
                 else:
                     stop.wait(0.25)
+                self._watch_router()
                 if on_tick is not None:
                     on_tick()
         finally:
@@ -189,6 +214,31 @@ class Recorder:
             )
             self.stop()
             self._log("Recording stopped")
+
+    def _watch_router(self) -> None:
+        """Say when the graph becomes unreachable (no router) and when it is back. Recording
+        goes on meanwhile: the node's peer session still hears every publisher it has met."""
+        now = time.monotonic()
+        if now - self._router_checked < _ROUTER_CHECK_PERIOD:
+            return
+        self._router_checked = now
+        session = self.node.context.session
+        if session is None:
+            return
+        from ros2lite.transport.config import router_connected
+
+        connected = router_connected(session)
+        if connected == self._router_seen:
+            return
+        self._router_seen = connected
+        if connected:
+            self._log("The Zenoh router is back: topics that appear are picked up again.")
+        else:
+            self._warn(
+                "The graph is unreachable: no Zenoh router answers. Still recording the "
+                "publishers this node already hears (peer to peer); new topics are picked up "
+                "when a router answers again."
+            )
 
     def queued(self) -> int:
         """Messages received and not written yet."""
@@ -241,6 +291,7 @@ class Recorder:
                 return
 
     def wanted(self, topic: str, type_name: str) -> bool:
+        """Whether the options ask for `topic` of this type."""
         o = self.options
         if topic in o.exclude_topics or (self._exclude and self._exclude.search(topic)):
             return False
@@ -263,14 +314,14 @@ class Recorder:
         """Subscribe to every wanted topic that has publishers and no subscription yet."""
         from ros2lite.transport.keys import EntityKind
 
-        publishers: dict[str, list[Any]] = {}
+        publishers: dict[str, list[Entity]] = {}
         for e in self.node.context.graph.entities():
             if e.kind == EntityKind.PUBLISHER and e.topic_name and e.type_name:
                 publishers.setdefault(e.topic_name, []).append(e)
         for topic, pubs in sorted(publishers.items()):
             if topic in self._by_name or topic in self._skipped:
                 continue
-            types = sorted({p.type_name for p in pubs})
+            types = sorted({p.type_name or '' for p in pubs})  # (all named: see above)
             if not any(self.wanted(topic, t) for t in types):
                 continue
             if len(types) > 1:
@@ -281,15 +332,22 @@ class Recorder:
                 continue
             self._subscribe(topic, types[0], pubs)
 
-    def _subscribe(self, topic: str, type_name: str, pubs: list[Any]) -> None:
+    def _subscribe(self, topic: str, type_name: str, pubs: list[Entity]) -> None:
         from ros2lite.bag.qos import recording_qos
         from ros2lite.interfaces import InterfaceError, get_interface
+        from ros2lite.interfaces.parser import validate_type_name
         from ros2lite.monitor.subscription import MonitoredSubscription
 
+        try:
+            validate_type_name(type_name)  # it came from the wire: it is written into the bag
+        except InterfaceError as e:
+            self._skipped.add(topic)
+            self._warn(f"Cannot record '{topic}': {e}")
+            return
         offered = [p.qos for p in pubs if p.qos is not None]
         qos = self.options.qos_overrides.get(topic) or recording_qos(topic, offered, self._warn)
         hashes = {p.type_hash for p in pubs if p.type_hash}
-        msg_type: Any = type_name
+        msg_type: type | str = type_name
         try:
             get_interface(type_name)
         except (InterfaceError, LookupError, ValueError) as e:
@@ -350,10 +408,14 @@ class Recorder:
     def _write_loop(self) -> None:
         queue, writer = self._queue, self.writer
         popleft, write_raw = queue.popleft, writer.write_raw
-        stamp = _STAMP.unpack_from
+        unpack = unpack_attachment
         stats = self._stats_by_tid
-        last_flush = time.monotonic()
+        interval = max(self.options.flush_interval, 0.001)
+        idle_wait = min(0.05, interval / 2)
+        monotonic = time.monotonic
+        last_flush = monotonic()
         dirty = False
+        n = 0
         try:
             while True:
                 try:
@@ -361,18 +423,25 @@ class Recorder:
                 except IndexError:
                     if not self._running and not queue:
                         break
-                    now = time.monotonic()
-                    if dirty and now - last_flush >= _FLUSH_PERIOD:
+                    now = monotonic()
+                    if dirty and now - last_flush >= interval:
                         writer.flush()
                         last_flush, dirty = now, False
                     self._writer_idle = True
                     if not queue:
-                        self._wake.wait(0.05)
+                        self._wake.wait(idle_wait)
                     self._wake.clear()
                     self._writer_idle = False
                     continue
-                # the publisher's send time travels in the attachment (bytes 8-16)
-                sent = stamp(attachment, 8)[0] if len(attachment) >= 16 else received
+                n += 1
+                if n % _CLOCK_EVERY == 0 and dirty:  # busy: the disk must not fall behind
+                    now = monotonic()
+                    if now - last_flush >= interval:
+                        writer.flush()
+                        last_flush, dirty = now, False
+                # the publisher's send time travels in the attachment (either layout)
+                fields = unpack(attachment)
+                sent = fields[1] if fields is not None else received
                 write_raw(tid, data, received, sent)
                 stats[tid].written_bytes += len(data)
                 dirty = True

@@ -22,8 +22,10 @@ __all__ = ["reindex"]
 def reindex(directory: str | os.PathLike[str], storage_id: str | None = None) -> BagMetadata:
     """Recover unfinished MCAP files and write metadata.yaml; returns the new metadata."""
     path = Path(directory)
+    if not path.exists():
+        raise BagError(f"Bag directory '{directory}' does not exist")
     if not path.is_dir():
-        raise BagError("Must specify a bag directory")
+        raise BagError("Must specify a bag directory")  # ros2cli's words for a file
     files = bag_files(path)
     if storage_id is not None:
         files = [f for f in files if plugin_for(f.name) == storage_id]

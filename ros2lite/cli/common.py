@@ -9,16 +9,32 @@ is nothing to wait for.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypedDict, TypeVar
 
 import click
 
+from . import numbers
 from .errors import CliError
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
     from ros2lite.connection import Connection
     from ros2lite.graph import Entity
     from ros2lite.qos import QoSProfile
+
+
+class QosOptions(TypedDict):
+    """The values of the `--qos-*` options `qos_options()` adds."""
+
+    qos_profile: str
+    qos_depth: int | None
+    qos_history: str | None
+    qos_reliability: str | None
+    qos_durability: str | None
+    qos_liveliness: str | None
+    qos_liveliness_lease_duration_seconds: float | None
+
 
 F = TypeVar('F', bound=Callable[..., Any])
 
@@ -45,7 +61,7 @@ def strategy_options(*, no_daemon: bool = True) -> Callable[[F], F]:
         # accepted so ros2cli command lines keep working, then dropped here once
         fn = click.option(
             '--spin-time',
-            type=float,
+            type=numbers.seconds(),
             default=0.5,
             show_default=True,
             expose_value=False,
@@ -61,12 +77,14 @@ def strategy_options(*, no_daemon: bool = True) -> Callable[[F], F]:
     return decorate
 
 
-def connect(*, no_daemon: bool = False, use_sim_time: bool = False) -> Connection:
+def connect(
+    *, no_daemon: bool = False, use_sim_time: bool = False, as_node: bool = False
+) -> Connection:
     """This run's connection to the graph (the daemon started on demand unless
-    `--no-daemon`); use it as a context manager."""
+    `--no-daemon`; a node's peer session with `as_node`); use it as a context manager."""
     from ros2lite.connection import Connection
 
-    return Connection(autostart=not no_daemon, use_sim_time=use_sim_time)
+    return Connection(autostart=not no_daemon, use_sim_time=use_sim_time, as_node=as_node)
 
 
 def qos_options(default_profile: str) -> Callable[[F], F]:
@@ -76,7 +94,7 @@ def qos_options(default_profile: str) -> Callable[[F], F]:
         opts = [
             click.option(
                 '--qos-liveliness-lease-duration-seconds',
-                type=float,
+                type=numbers.seconds(),
                 help='Quality of service liveliness lease duration in seconds',
             ),
             click.option(
@@ -107,7 +125,7 @@ def qos_options(default_profile: str) -> Callable[[F], F]:
             ),
             click.option(
                 '--qos-depth',
-                type=click.IntRange(min=0),
+                type=numbers.Count(min=0),
                 help='Queue size setting (overrides depth value of --qos-profile option)',
             ),
             click.option(
@@ -133,13 +151,13 @@ def qos_from_options(
     qos_durability: str | None,
     qos_liveliness: str | None = None,
     qos_liveliness_lease_duration_seconds: float | None = None,
-    **_: Any,
+    **_: object,
 ) -> QoSProfile:
     """The profile the `--qos-*` options describe (unset options keep the preset's value)."""
     from ros2lite import qos as q
 
     profile = q.preset(qos_profile)
-    changes: dict[str, Any] = {}
+    changes: dict[str, object] = {}
     if qos_history is not None:
         changes['history'] = q.HistoryPolicy.from_short_key(qos_history)
     if qos_reliability is not None:
@@ -162,7 +180,7 @@ def qos_from_options(
     return profile.replace(**changes) if changes else profile
 
 
-def explicit_qos(**options: Any) -> bool:
+def explicit_qos(**options: Unpack[QosOptions]) -> bool:
     """True when any `--qos-*` override (other than the profile) was given."""
     return any(
         options.get(k) is not None
@@ -203,6 +221,15 @@ def interface_type_name(name: str, kind: str, *, invalid: str, not_kind: str | N
     return full
 
 
+def print_names(names_and_types: list[tuple[str, list[str]]], count: bool, types: bool) -> None:
+    """What the list and find verbs print: how many there are, or one name a line (with
+    `[type, …]` when asked)."""
+    if count:
+        click.echo(len(names_and_types))
+    elif names_and_types:
+        click.echo('\n'.join(f'{n} [{", ".join(t)}]' if types else n for n, t in names_and_types))
+
+
 def print_names_of_type(
     type_name: str,
     count: bool,
@@ -213,11 +240,11 @@ def print_names_of_type(
     among their types, one a line, or only how many (`count`)."""
     with connect(no_daemon=no_daemon) as conn:
         entities = conn.entities()
-    found = [name for name, types in names_and_types(entities) if type_name in types]
-    if count:
-        click.echo(len(found))
-    elif found:
-        click.echo('\n'.join(found))
+    print_names(
+        [(name, types) for name, types in names_and_types(entities) if type_name in types],
+        count,
+        types=False,
+    )
 
 
 def print_types_of(
@@ -225,18 +252,80 @@ def print_types_of(
     name: str,
     no_daemon: bool,
     names_and_types: Callable[[list[Entity]], list[tuple[str, list[str]]]],
+    kind: str = 'topic',
 ) -> None:
-    """What `topic/service/action type` share: the type(s) of `name` in the graph, or exit 1
-    without a word, as ros2cli does (a name that cannot be valid is just an unknown one)."""
+    """What `topic/service/action type` share: the type(s) of `name` in the graph. Exit 1 as
+    ros2cli does when there is none, with nothing on stdout (scripts read it) and one line
+    on stderr saying why (ros2cli says nothing at all)."""
     from ros2lite.names import expand_topic_name
 
     try:
-        full = expand_topic_name(name, 'ros2lite', '/')
-    except ValueError:
-        ctx.exit(1)
+        full = expand_topic_name(name, 'ros2lite', '/', is_service=kind == 'service')
+    except ValueError as e:
+        raise CliError(str(e).replace('topic name', f'{kind} name', 1)) from None
     with connect(no_daemon=no_daemon) as conn:
         entities = conn.entities()
     types = dict(names_and_types(entities)).get(full)
     if types is None:
-        ctx.exit(1)
+        raise CliError(f"Unknown {kind} '{full}' (not in the graph now)")
     click.echo('\n'.join(types))
+
+
+def wait_saying_other_types(
+    ready: Callable[[float], bool],
+    timeout: float | None,
+    kind: str,
+    name: str,
+    type_name: str,
+    served_types: Callable[[], list[tuple[str, list[str]]]],
+) -> bool:
+    """Wait up to `timeout` s (None: for ever) until `ready(step)` holds, saying once on
+    stderr when `name` is served with another type than `type_name` (such a wait would
+    otherwise go on in silence, as ros2cli's does). True when ready."""
+    import time
+
+    deadline = None if timeout is None else time.monotonic() + timeout
+    warned = False
+    while True:
+        left = None if deadline is None else max(0.0, deadline - time.monotonic())
+        if ready(0.5 if left is None else min(0.5, left)):
+            return True
+        if not warned:
+            others = sorted(
+                {t for n, types in served_types() if n == name for t in types if t != type_name}
+            )
+            if others:
+                warned = True
+                click.echo(
+                    f"WARNING: {kind} '{name}' is served as {', '.join(others)}, not "
+                    f'{type_name}; nothing will answer until a server of {type_name} appears',
+                    err=True,
+                )
+        if deadline is not None and time.monotonic() >= deadline:
+            return False
+
+
+class ManyValues(click.Option):
+    '''An option that takes every following word up to the next option, as argparse's
+    `nargs='+'` does (`--topics /a /b -o out`). It may also be repeated.'''
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault('multiple', True)
+        super().__init__(*args, **kwargs)
+
+    def add_to_parser(self, parser: Any, ctx: click.Context) -> None:
+        super().add_to_parser(parser, ctx)
+        for name in self.opts:
+            opt = parser._long_opt.get(name) or parser._short_opt.get(name)
+            if opt is None:
+                continue
+            previous = opt.process
+
+            def process(value: Any, state: Any, previous: Any = previous) -> None:
+                values = [value]
+                while state.rargs and not state.rargs[0].startswith('-'):
+                    values.append(state.rargs.pop(0))
+                for v in values:
+                    previous(v, state)
+
+            opt.process = process

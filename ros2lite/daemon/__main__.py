@@ -30,7 +30,12 @@ def _detach(log_path: str | None) -> None:
     os.setsid()
     os.chdir("/")
     devnull = os.open(os.devnull, os.O_RDWR)
-    out = os.open(log_path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600) if log_path else devnull
+    if log_path:
+        from ros2lite.files import open_for_writing
+
+        out = open_for_writing(log_path, 0o600)  # never through a planted symlink
+    else:
+        out = devnull
     os.dup2(devnull, 0)
     os.dup2(out, 1)
     os.dup2(out, 2)
@@ -52,6 +57,7 @@ def _run(args: argparse.Namespace, ready_fd: int | None) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """`python -m ros2lite.daemon`: run the router (detached unless --foreground)."""
     args = _parse(argv)
     if args.foreground:
         return _run(args, None)

@@ -8,7 +8,7 @@ import time
 
 from ros2lite.transport.config import endpoint_host_port
 
-__all__ = ["router_answers", "wait_answers"]
+__all__ = ["not_a_router", "router_answers", "speaks_zenoh", "wait_answers"]
 
 
 def router_answers(endpoint: str, timeout: float = 0.5) -> bool:
@@ -42,6 +42,27 @@ def router_answers(endpoint: str, timeout: float = 0.5) -> bool:
     return _zenoh_probe(endpoint, timeout)
 
 
+def speaks_zenoh(endpoint: str, timeout: float = 1.0) -> bool:
+    """Does a Zenoh router answer at `endpoint` (a session completes its handshake)? Dearer
+    than :func:`router_answers`: only asked when a listener is there but something is off."""
+    return _zenoh_probe(endpoint, timeout)
+
+
+def not_a_router(endpoint: str, pid: int | None = None) -> str:
+    """What to tell a user when something listens at `endpoint` but no Zenoh router answers
+    (a frozen router, or another program on the port)."""
+    if pid is not None:
+        return (
+            f"The ros2lite daemon (pid {pid}) listens at {endpoint} but does not answer as a "
+            "Zenoh router (frozen or overloaded?); 'ros2lite daemon stop' ends it"
+        )
+    return (
+        f"Something listens at {endpoint} but does not answer as a Zenoh router (a frozen "
+        "router, or another program on that port): stop it, or choose another endpoint "
+        "(ROS2LITE_ROUTER)"
+    )
+
+
 def _zenoh_probe(endpoint: str, timeout: float) -> bool:
     from ros2lite.transport.config import router_reachable
 
@@ -49,6 +70,7 @@ def _zenoh_probe(endpoint: str, timeout: float) -> bool:
 
 
 def wait_answers(endpoint: str, timeout: float) -> bool:
+    """Whether a router answers at `endpoint` within `timeout` seconds."""
     deadline = time.monotonic() + timeout
     while True:
         if router_answers(endpoint, timeout=0.2):

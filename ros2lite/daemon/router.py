@@ -24,10 +24,11 @@ import time
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TextIO
 
 from ros2lite.daemon.probe import router_answers, wait_answers
 from ros2lite.exceptions import Ros2liteError
+from ros2lite.security.errors import SecurityError
 from ros2lite.transport.config import domain_id, open_session, router_config, router_endpoint
 from ros2lite.transport.errors import SessionError
 
@@ -74,6 +75,8 @@ class DaemonInfo:
 
 @dataclass(frozen=True)
 class StartResult:
+    """What `daemon start` found or did at an endpoint."""
+
     endpoint: str
     started: bool  # True when this call spawned the router
     already_running: bool  # something already answered at the endpoint
@@ -83,6 +86,7 @@ class StartResult:
 
     @property
     def message(self) -> str:
+        """The line `daemon start` prints."""
         if self.started:
             return "The daemon has been started"
         if self.ours:
@@ -95,6 +99,8 @@ class StartResult:
 
 @dataclass(frozen=True)
 class StopResult:
+    """What `daemon stop` found or did at an endpoint."""
+
     endpoint: str
     stopped: bool
     foreign: bool = False  # a router answers there, but it is not ours to stop
@@ -104,6 +110,7 @@ class StopResult:
 
     @property
     def message(self) -> str:
+        """The line `daemon stop` prints."""
         if self.stopped:
             return "The daemon has been stopped"
         if self.foreign:
@@ -113,19 +120,28 @@ class StopResult:
 
 @dataclass(frozen=True)
 class DaemonStatus:
+    """What `daemon status` found at an endpoint."""
+
     endpoint: str
     running: bool  # something answers at the endpoint
     ours: bool  # a live ros2lite daemon owns the endpoint
     info: DaemonInfo | None = None
     # other sessions connected to the router, when asked for and its admin space answers
     sessions: list[ConnectedSession] | None = None
+    answers_zenoh: bool = True  # False: something listens, but no Zenoh router answers
 
     @property
     def pid(self) -> int | None:
+        """The daemon's process id, when it is ours."""
         return self.info.pid if self.info else None
 
     @property
     def message(self) -> str:
+        """The line `daemon status` prints."""
+        if self.running and not self.answers_zenoh:
+            from ros2lite.daemon.probe import not_a_router
+
+            return not_a_router(self.endpoint, self.pid)
         if self.running and self.ours:
             return "The daemon is running"
         if self.running:
@@ -143,12 +159,13 @@ class DaemonStatus:
 
 
 def runtime_dir() -> Path:
-    """Per-user directory for pid, lock and log files (created 0700 on first use)."""
-    xdg = os.environ.get("XDG_RUNTIME_DIR", "")
-    base = Path(xdg) if xdg and os.path.isdir(xdg) else Path.home() / ".cache"
-    path = base / "ros2lite"
-    path.mkdir(mode=0o700, parents=True, exist_ok=True)
-    return path
+    """Per-user directory for pid, lock and log files (created 0700 on first use).
+
+    ``$XDG_RUNTIME_DIR/ros2lite`` only when both are ours and closed to others; a shared or
+    foreign one falls back to ``~/.cache/ros2lite`` (see :func:`ros2lite.files.private_dir`)."""
+    from ros2lite.files import private_dir
+
+    return private_dir(os.environ.get("XDG_RUNTIME_DIR", ""))
 
 
 def _stem(endpoint: str) -> str:
@@ -156,10 +173,12 @@ def _stem(endpoint: str) -> str:
 
 
 def pid_file(endpoint: str) -> Path:
+    """The daemon's pid and lock file for an endpoint."""
     return runtime_dir() / (_stem(endpoint) + ".pid")
 
 
 def log_file(endpoint: str) -> Path:
+    """The daemon's log file for an endpoint."""
     return runtime_dir() / (_stem(endpoint) + ".log")
 
 
@@ -170,7 +189,10 @@ def _lock_file(endpoint: str) -> Path:
 @contextlib.contextmanager
 def _start_lock(endpoint: str, timeout: float) -> Iterator[None]:
     """Serialise start/stop for one endpoint so two auto-starting CLIs don't race."""
-    with open(_lock_file(endpoint), "a+") as fh:
+    from ros2lite.files import NOFOLLOW
+
+    fd = os.open(_lock_file(endpoint), os.O_RDWR | os.O_CREAT | NOFOLLOW | os.O_CLOEXEC, 0o600)
+    with os.fdopen(fd, "r+") as fh:
         deadline = time.monotonic() + timeout
         while True:
             try:
@@ -199,7 +221,7 @@ def _read_info(path: Path) -> DaemonInfo | None:
             fcntl.flock(fh, fcntl.LOCK_SH | fcntl.LOCK_NB)
         except BlockingIOError:
             try:
-                data: dict[str, Any] = json.loads(fh.read() or "{}")
+                data: dict[str, Any] = json.loads(fh.read() or "{}")  # JSON: checked below
                 return DaemonInfo(
                     pid=int(data["pid"]),
                     endpoint=str(data["endpoint"]),
@@ -232,10 +254,12 @@ def _is_our_process(pid: int) -> bool:
         return False
 
 
-def _write_pid_file(path: Path, info: DaemonInfo) -> Any:
+def _write_pid_file(path: Path, info: DaemonInfo) -> TextIO:
     """Write the pid file atomically and return its handle, locked for the process' life."""
-    tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
-    fh = os.fdopen(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600), "w")
+    from ros2lite.files import temp_beside
+
+    fd, tmp = temp_beside(path)
+    fh = os.fdopen(fd, "w")
     fcntl.flock(fh, fcntl.LOCK_EX)
     json.dump(info.__dict__, fh)
     fh.flush()
@@ -307,14 +331,27 @@ def serve(
 # --------------------------------------------------------------------------- verbs
 
 
+def daemon_pid(router: str | None = None) -> int | None:
+    """The pid of our live daemon for the endpoint, if there is one (reads its pid file)."""
+    try:
+        info = _read_info(pid_file(router_endpoint(router)))
+    except OSError:
+        return None
+    return info.pid if info is not None else None
+
+
 def status(router: str | None = None, *, sessions: bool = False) -> DaemonStatus:
     """Is a router answering at the endpoint, and is it ours?  With ``sessions``, also
-    which sessions are connected to it (one short client session asks its admin space)."""
+    which sessions are connected to it (one short client session asks its admin space).
+    A listener that does not answer as a Zenoh router is told apart (``answers_zenoh``)."""
+    from ros2lite.daemon.probe import speaks_zenoh
+
     endpoint = router_endpoint(router)
     info = _read_info(pid_file(endpoint))
     running = router_answers(endpoint)
-    connected = connected_sessions(endpoint) if running and sessions else None
-    return DaemonStatus(endpoint, running, info is not None, info, connected)
+    zenoh = not running or speaks_zenoh(endpoint)
+    connected = connected_sessions(endpoint) if running and zenoh and sessions else None
+    return DaemonStatus(endpoint, running, info is not None, info, connected, zenoh)
 
 
 def connected_sessions(
@@ -326,7 +363,7 @@ def connected_sessions(
 
     try:
         session = open_session(router_endpoint(router), mode="client", timeout=timeout)
-    except SessionError:
+    except (SessionError, SecurityError):  # e.g. no enclave of our own on a secured graph
         return None
     try:
         return router_sessions(session, domain_id(), timeout)
@@ -358,6 +395,10 @@ def start(
         if (not known_absent and router_answers(endpoint)) or (
             info is not None and wait_answers(endpoint, timeout)
         ):
+            from ros2lite.daemon.probe import not_a_router, speaks_zenoh
+
+            if not speaks_zenoh(endpoint):  # a frozen router, or not a router at all
+                raise DaemonError(not_a_router(endpoint, info.pid if info else None))
             return StartResult(
                 endpoint,
                 False,
@@ -510,16 +551,6 @@ def stop(router: str | None = None, *, timeout: float = STOP_TIMEOUT) -> StopRes
 
 
 def ensure_running(router: str | None = None, *, timeout: float = START_TIMEOUT) -> StartResult:
-    """For CLI verbs: make sure a router answers, starting our daemon if none does."""
-    endpoint = router_endpoint(router)
-    if router_answers(endpoint):
-        info = _read_info(pid_file(endpoint))
-        return StartResult(
-            endpoint,
-            False,
-            True,
-            info is not None,
-            info.pid if info else None,
-            info.log_file if info else None,
-        )
-    return start(endpoint, timeout=timeout)
+    """Make sure a router answers, starting our daemon if none does (what `start` does when
+    something already answers: it says so and starts nothing)."""
+    return start(router, timeout=timeout)

@@ -11,29 +11,19 @@ from __future__ import annotations
 import struct
 from array import array
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from .classes import TYPECODES, factory
+from .classes import TYPECODES, Message, factory
 from .errors import CdrError
 from .parser import Field, FieldType, MessageDef
 from .registry import Registry
 
+if TYPE_CHECKING:
+    from ros2lite.type_support import Msg
+
 HEADER_LE = b'\x00\x01\x00\x00'
-_FMT = {
-    'bool': '?',
-    'byte': 'c',
-    'char': 'B',
-    'int8': 'b',
-    'uint8': 'B',
-    'int16': 'h',
-    'uint16': 'H',
-    'int32': 'i',
-    'uint32': 'I',
-    'int64': 'q',
-    'uint64': 'Q',
-    'float32': 'f',
-    'float64': 'd',
-}
+# struct formats of the primitives: the array typecodes, plus bool and byte
+_FMT = {**TYPECODES, 'bool': '?', 'byte': 'c'}
 _SIZE = {k: struct.calcsize('<' + v) for k, v in _FMT.items()}
 _DUMMY = Field('structure_needs_at_least_one_member', FieldType('uint8'))
 _ZEROS = tuple(b'\x00' * i for i in range(8))
@@ -64,7 +54,7 @@ class _Gen:
     def emit(self, line: str) -> None:
         self.lines.append('    ' * self.indent + line)
 
-    def const(self, prefix: str, value: Any) -> str:
+    def const(self, prefix: str, value: object) -> str:
         n = self.name(prefix)
         self.ns[n] = value
         return n
@@ -390,7 +380,8 @@ class _DesGen(_Gen):
             self.forget()
             return
         if base == 'byte':
-            self.emit(f'{target} = [d[i:i + 1] for i in range(o, o + {n})]')
+            # over the slice, not a range: a hostile length cannot outrun the data
+            self.emit(f'{target} = [bytes((x,)) for x in d[o:o + {n}]]')
             self.emit(f'o += {n}')
             self.forget()
             return
@@ -422,9 +413,10 @@ class _DesGen(_Gen):
         self.forget(4)
 
 
-def build_serializer(name: str, reg: Registry) -> Callable[[Any], bytes]:
+def build_serializer(name: str, reg: Registry) -> Callable[[Msg], bytes]:
     # the cheapest shape the type allows: straight-line without offset, straight-line with
     # offset, and the general list-building form (which always tracks the offset)
+    """Generate and compile `ser(msg) -> bytes` for one type."""
     for straight, track_offset in ((True, False), (True, True), (False, True)):
         gen = _SerGen(reg, straight, track_offset)
         try:
@@ -443,12 +435,12 @@ def build_serializer(name: str, reg: Registry) -> Callable[[Any], bytes]:
         body = ['    p = [_HEADER]', *head, *gen.lines, '    return _join(p)']
     src = 'def ser(m):\n' + '\n'.join(body)
     exec(compile(src, f'<cdr ser {name}>', 'exec'), gen.ns)
-    fn: Callable[[Any], bytes] = gen.ns['ser']
+    fn: Callable[[Msg], bytes] = gen.ns['ser']
     fn.__doc__ = src
     return fn
 
 
-_Des = Callable[[bytes, int], tuple[Any, int]]
+_Des = Callable[[bytes, int], tuple[Message, int]]
 
 
 def _des_body(
@@ -469,6 +461,7 @@ def _des_body(
 def build_deserializer(
     name: str, reg: Registry, little: bool = True, lenient: bool = False
 ) -> _Des:
+    """Generate and compile `des(data, offset) -> (msg, end)` for one type and byte order."""
     gen, v = _des_body(name, reg, little, lenient, 1)
     src = 'def des(d, o):\n' + '\n'.join(gen.lines) + f'\n    return {v}, o'
     exec(compile(src, f'<cdr des {name}>', 'exec'), gen.ns)
@@ -478,8 +471,8 @@ def build_deserializer(
 
 
 def build_fast_decoder(
-    name: str, reg: Registry, slow: Callable[[bytes], Any]
-) -> Callable[[bytes], Any]:
+    name: str, reg: Registry, slow: Callable[[bytes], Message]
+) -> Callable[[bytes], Message]:
     """`decode(d)` for whole little-endian payloads with the header check inlined (one call
     per message on the subscription hot path); anything unusual goes to `slow`, which gives
     the precise error or handles big-endian and bad UTF-8."""
@@ -499,7 +492,7 @@ def build_fast_decoder(
         ]
     )
     exec(compile(src, f'<cdr decode {name}>', 'exec'), gen.ns)
-    fn: Callable[[bytes], Any] = gen.ns['decode']
+    fn: Callable[[bytes], Message] = gen.ns['decode']
     fn.__doc__ = src
     return fn
 
@@ -507,70 +500,98 @@ def build_fast_decoder(
 class Codec:
     """Serializer and deserializers of one type; each is generated on its first call."""
 
-    __slots__ = ('_des_be', '_des_le', '_ser', 'name', 'reg')
+    __slots__ = ('_des_be', '_des_le', '_des_lenient', '_ser', 'name', 'reg')
 
     def __init__(self, name: str, reg: Registry) -> None:
         self.name, self.reg = name, reg
-        self._ser: Callable[[Any], bytes] = self._first_ser
+        self._ser: Callable[[Msg], bytes] = self._first_ser
         self._des_le: _Des = self._first_des_le
         self._des_be: _Des = self._first_des_be
+        self._des_lenient: dict[bool, _Des] = {}
 
-    def _first_ser(self, msg: Any) -> bytes:
+    def _first_ser(self, msg: Msg) -> bytes:
         self._ser = build_serializer(self.name, self.reg)
         return self._ser(msg)
 
-    def _first_des_le(self, data: bytes, o: int) -> tuple[Any, int]:
+    def _first_des_le(self, data: bytes, o: int) -> tuple[Message, int]:
         self._des_le = build_deserializer(self.name, self.reg, True)
         return self._des_le(data, o)
 
-    def _first_des_be(self, data: bytes, o: int) -> tuple[Any, int]:
+    def _first_des_be(self, data: bytes, o: int) -> tuple[Message, int]:
         self._des_be = build_deserializer(self.name, self.reg, False)
         return self._des_be(data, o)
 
-    def raw_serializer(self) -> Callable[[Any], bytes]:
+    def raw_serializer(self) -> Callable[[Msg], bytes]:
         """The generated function itself, for hot loops that handle errors themselves."""
         if self._ser == self._first_ser:
             self._ser = build_serializer(self.name, self.reg)
         return self._ser
 
-    def fast_deserializer(self) -> Callable[[bytes], Any]:
+    def fast_deserializer(self) -> Callable[[bytes], Message]:
         """A lean decoder for the common case (little-endian, well-formed bytes); anything
         else falls back to `deserialize`, which gives the precise error."""
         return build_fast_decoder(self.name, self.reg, self.deserialize)
 
-    def serialize(self, msg: Any) -> bytes:
+    def serialize(self, msg: Msg) -> bytes:
+        """CDR bytes with the little-endian encapsulation header; CdrError on bad fields."""
         try:
             return self._ser(msg)
         except (struct.error, AttributeError, TypeError, UnicodeEncodeError) as e:
             raise CdrError(f'cannot serialize {self.name}: {e}') from None
 
-    def deserialize(self, data: bytes | bytearray | memoryview) -> Any:
+    def deserialize(self, data: bytes | bytearray | memoryview) -> Message:
+        """Decode one payload; anything that is not a valid encoding of this type (however
+        it came: short, garbage, huge lengths) raises CdrError, never another error."""
         if type(data) is not bytes:
             data = bytes(data)
         try:
-            if data[1] == 1 and data[0] == 0:
-                msg, end = self._des_le(data, 4)
-            elif data[1] == 0 and data[0] == 0:
-                msg, end = self._des_be(data, 4)
-            else:
-                raise CdrError(f'not a CDR payload for {self.name} (bad encapsulation header)')
-        except UnicodeDecodeError:
-            des = build_deserializer(self.name, self.reg, data[1] == 1, lenient=True)
-            msg, end = des(data, 4)
-        except (struct.error, IndexError, ValueError) as e:
-            if isinstance(e, CdrError):
-                raise
+            try:
+                if data[1] == 1 and data[0] == 0:
+                    msg, end = self._des_le(data, 4)
+                elif data[1] == 0 and data[0] == 0:
+                    msg, end = self._des_be(data, 4)
+                else:
+                    raise CdrError(f'not a CDR payload for {self.name} (bad encapsulation header)')
+            except UnicodeDecodeError:
+                msg, end = self._lenient(data[1] == 1)(data, 4)
+        except CdrError:
+            raise
+        except (struct.error, IndexError, ValueError, OverflowError, MemoryError) as e:
+            if isinstance(e, IndexError) and len(data) < 4:
+                raise CdrError(
+                    f'truncated {self.name} payload: {len(data)} bytes, not even a CDR header'
+                ) from None
             raise CdrError(f'truncated or corrupt {self.name} payload: {e}') from None
         if end > len(data):
             raise CdrError(f'truncated {self.name} payload: needs {end} bytes, got {len(data)}')
         return msg
 
+    def _lenient(self, little: bool) -> _Des:
+        """The decoder that replaces bad UTF-8 (built once per byte order: a stream of such
+        samples must not compile code per sample)."""
+        des = self._des_lenient.get(little)
+        if des is None:
+            des = self._des_lenient[little] = build_deserializer(
+                self.name, self.reg, little, lenient=True
+            )
+        return des
 
-def codec(name: str, reg: Registry) -> Codec:
-    """The codec of a type, cached on its class so lookups cost one attribute access."""
+
+def codec(name: str, reg: Registry | None = None) -> Codec:
+    """The codec of a type (from the default registry unless told), cached on its class so
+    lookups cost one attribute access."""
+    if reg is None:
+        from .registry import default_registry
+
+        reg = default_registry()
     cls = factory(reg).message_class(name)
     c: Codec | None = cls.__dict__.get('_CODEC')
     if c is None:
         c = Codec(cls._TYPE_NAME, reg)
         cls._CODEC = c  # type: ignore[attr-defined]
     return c
+
+
+def service_codecs(service_type: str) -> tuple[Codec, Codec]:
+    """(request codec, response codec) of a service type 'pkg/srv/Name'."""
+    return codec(f'{service_type}_Request'), codec(f'{service_type}_Response')

@@ -13,10 +13,10 @@ import operator
 import os
 from array import array
 from collections.abc import Iterator
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
-from .errors import FieldError
-from .parser import INT_RANGES, PRIMITIVES, FieldType, MessageDef
+from .errors import FieldError, InterfaceError
+from .parser import INT_RANGES, PRIMITIVES, FieldType, MessageDef, check_definition
 from .registry import Registry, default_registry, normalize_name
 
 # array typecodes for primitive sequences/arrays (as rclpy: array.array for numbers)
@@ -42,6 +42,9 @@ ROSIDL_NAMES = {
     'float64': 'double',
 }
 FLOAT32_MAX = 3.4028234663852886e38  # exact FLT_MAX
+# deepest nesting of message types accepted (real ones nest a handful of levels; the codecs
+# inline nested types, so this also bounds the generated code)
+MAX_NESTING = 32
 
 
 class MessageMeta(type):
@@ -52,13 +55,14 @@ class Message(metaclass=MessageMeta):
     """Base of every generated message class."""
 
     __slots__ = ()
-    _TYPE_NAME = ''
-    _DEF: MessageDef
+    _TYPE_NAME: ClassVar[str] = ''
+    _DEF: ClassVar[MessageDef]
     SLOT_TYPES: tuple[FieldType, ...] = ()
     _fields_and_field_types: dict[str, str] = {}
 
     @classmethod
     def get_fields_and_field_types(cls) -> dict[str, str]:
+        """Field name → rosidl type text, in definition order (rclpy's)."""
         return dict(cls._fields_and_field_types)
 
     def __repr__(self) -> str:
@@ -83,8 +87,6 @@ class Message(metaclass=MessageMeta):
     if TYPE_CHECKING:
         # fields are generated per type, so type checkers treat messages as dynamic
         def __init__(self, **kwargs: Any) -> None: ...
-
-        def __getattr__(self, name: str) -> Any: ...
 
 
 def rosidl_type_string(ft: FieldType) -> str:
@@ -299,17 +301,33 @@ class ClassFactory:
         self.registry = registry
         self.classes: dict[str, type[Message]] = {}
 
-    def same_type(self, value: Any, name: str) -> bool:
+    def same_type(self, value: object, name: str) -> bool:
+        """Whether `value` is a message of type `name` (of whichever factory)."""
         return getattr(type(value), '_TYPE_NAME', None) == name
 
     def message_class(self, name: str) -> type[Message]:
+        """The class of a message type, built (with its nested types) on first use."""
         cls = self.classes.get(name)
         if cls is not None:
             return cls
+        return self._message_class(name, [])
+
+    def _message_class(self, name: str, outer: list[str]) -> type[Message]:
+        """Build `name` after the types it nests; `outer` are the types that contain it, so a
+        type that contains itself (a crafted bag can say so) is an error, not a recursion."""
+        cls = self.classes.get(name)
+        if cls is not None:
+            return cls
+        if name in outer or len(outer) >= MAX_NESTING:
+            chain = ' -> '.join([*outer, name])
+            why = 'contains itself' if name in outer else f'nests deeper than {MAX_NESTING} levels'
+            raise InterfaceError(f"type '{outer[0]}' {why} ({chain})")
         mdef = self.registry.message(name)
+        outer.append(name)
         for f in mdef.fields:
             if not f.type.is_primitive:
-                self.message_class(f.type.base)
+                self._message_class(f.type.base, outer)
+        outer.pop()
         cls = self._build(mdef)
         self.classes[name] = cls
         if mdef.name != name:
@@ -317,6 +335,7 @@ class ClassFactory:
         return cls
 
     def _build(self, mdef: MessageDef) -> type[Message]:
+        check_definition(mdef)  # only identifiers ever reach the generated source
         short = mdef.short_name
         names = [f.name for f in mdef.fields]
         src = [f'class {short}(_Message):', f'    __slots__ = {tuple("_" + n for n in names)!r}']
@@ -372,7 +391,7 @@ _MISSING = _Missing()
 class ServiceType:
     """A service class: a namespace holding Request, Response and Event like rosidl's."""
 
-    _TYPE_NAME = ''
+    _TYPE_NAME: ClassVar[str] = ''
     Request: type[Message]
     Response: type[Message]
     Event: type[Message]
@@ -381,17 +400,36 @@ class ServiceType:
         raise NotImplementedError('Service classes can not be instantiated')
 
 
+def as_service_class(cls: object) -> type[ServiceType]:
+    """`cls` itself, checked to be a service class (library code reads its parts through
+    this nominal type; users' code sees the :class:`ros2lite.type_support.Srv` protocol)."""
+    if isinstance(cls, type) and issubclass(cls, ServiceType):
+        return cls
+    raise TypeError(f'not a ros2lite service type: {cls!r}')
+
+
+class ActionImpl:
+    """What rcl_action builds an action from (rosidl's `<Action>.Impl`): its three services
+    and two topics' types."""
+
+    SendGoalService: type[ServiceType]
+    GetResultService: type[ServiceType]
+    CancelGoalService: type[ServiceType]
+    FeedbackMessage: type[Message]
+    GoalStatusMessage: type[Message]
+
+
 class ActionType:
     """An action class: Goal/Result/Feedback plus the generated transport types."""
 
-    _TYPE_NAME = ''
+    _TYPE_NAME: ClassVar[str] = ''
     Goal: type[Message]
     Result: type[Message]
     Feedback: type[Message]
     FeedbackMessage: type[Message]
     SendGoal: type[ServiceType]
     GetResult: type[ServiceType]
-    Impl: type
+    Impl: type[ActionImpl]
 
     def __init__(self) -> None:
         raise NotImplementedError('Action classes can not be instantiated')
@@ -401,6 +439,7 @@ _FACTORIES: dict[int, ClassFactory] = {}
 
 
 def factory(reg: Registry | None = None) -> ClassFactory:
+    """The class factory of a registry (the default one unless given)."""
     reg = reg or default_registry()
     f = _FACTORIES.get(id(reg))
     if f is None or f.registry is not reg:
@@ -432,7 +471,7 @@ def _action_class(name: str, fac: ClassFactory) -> type[ActionType]:
         feedback_message = fac.message_class(name + '_FeedbackMessage')
         impl = type(
             'Impl',
-            (),
+            (ActionImpl,),
             {
                 'SendGoalService': send_goal,
                 'GetResultService': get_result,

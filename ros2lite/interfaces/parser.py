@@ -6,6 +6,7 @@ elsewhere, so the grammar lives in exactly one place.
 
 from __future__ import annotations
 
+import keyword
 import re
 from dataclasses import dataclass, field
 from typing import Any
@@ -47,6 +48,10 @@ INT_RANGES: dict[str, tuple[int, int]] = {
 FLOAT_TYPES = frozenset({'float32', 'float64'})
 
 SERVICE_SEPARATOR = '---'
+# CDR lengths are uint32, so no bound can exceed it; a fixed array is built in full by every
+# constructor, so a definition (perhaps a bag's) may not ask for more elements than this
+MAX_BOUND = 2**32 - 1
+MAX_ARRAY_SIZE = 1 << 20
 
 _PKG_RE = re.compile(r'^[a-z][a-z0-9_]*$')
 _TYPE_NAME_RE = re.compile(r'^[A-Z][A-Za-z0-9]*$')
@@ -70,18 +75,22 @@ class FieldType:
 
     @property
     def is_primitive(self) -> bool:
+        """Whether the element type is a primitive (not a message)."""
         return self.base in PRIMITIVES
 
     @property
     def is_string(self) -> bool:
+        """Whether the element type is string or wstring."""
         return self.base in STRING_TYPES
 
     @property
     def is_container(self) -> bool:
+        """Whether it is an array or a sequence."""
         return self.container != ''
 
     @property
     def element(self) -> FieldType:
+        """The type of one element (the container dropped)."""
         return FieldType(self.base, self.string_bound)
 
     def base_text(self) -> str:
@@ -103,6 +112,8 @@ class FieldType:
 
 @dataclass(frozen=True)
 class Field:
+    """One field of a message: name, type and default."""
+
     name: str
     type: FieldType
     default: Any = None  # parsed default value, None when the .msg gives none
@@ -110,6 +121,8 @@ class Field:
 
 @dataclass(frozen=True)
 class Constant:
+    """One constant of a message: name, primitive type and value."""
+
     name: str
     type: str  # a primitive type name
     value: Any
@@ -117,21 +130,27 @@ class Constant:
 
 @dataclass
 class MessageDef:
+    """A parsed message definition: its fields and constants."""
+
     name: str  # 'pkg/msg/Name' (or a generated 'pkg/srv/S_Request' …)
     fields: list[Field] = field(default_factory=list)
     constants: list[Constant] = field(default_factory=list)
 
     @property
     def package(self) -> str:
+        """The package the type belongs to."""
         return self.name.split('/')[0]
 
     @property
     def short_name(self) -> str:
+        """The type's name without package and kind."""
         return self.name.rsplit('/', 1)[1]
 
 
 @dataclass
 class ServiceDef:
+    """A parsed service: its request and response messages."""
+
     name: str
     request: MessageDef
     response: MessageDef
@@ -139,6 +158,8 @@ class ServiceDef:
 
 @dataclass
 class ActionDef:
+    """A parsed action: its goal, result and feedback messages."""
+
     name: str
     goal: MessageDef
     result: MessageDef
@@ -185,6 +206,8 @@ def parse_field_type(token: str, package: str) -> FieldType:
         string_bound = int(sbound) if sbound is not None else 0
         if sbound is not None and string_bound == 0:
             raise ValueError(f"string bound must be positive in '{token}'")
+        if string_bound > MAX_BOUND:
+            raise ValueError(f"string bound {string_bound} exceeds {MAX_BOUND} in '{token}'")
     else:
         if sbound is not None:
             raise ValueError(f"invalid type '{token}'")
@@ -200,10 +223,15 @@ def parse_field_type(token: str, package: str) -> FieldType:
     if arr.startswith('<='):
         if arr == '<=':
             raise ValueError(f"missing sequence bound in '{token}'")
-        return FieldType(base, string_bound, 'bounded', int(arr[2:]))
+        bound = int(arr[2:])
+        if bound > MAX_BOUND:
+            raise ValueError(f"sequence bound {bound} exceeds {MAX_BOUND} in '{token}'")
+        return FieldType(base, string_bound, 'bounded', bound)
     size = int(arr)
     if size == 0:
         raise ValueError(f"array size must be positive in '{token}'")
+    if size > MAX_ARRAY_SIZE:
+        raise ValueError(f"array size {size} exceeds {MAX_ARRAY_SIZE} in '{token}'")
     return FieldType(base, string_bound, 'array', size)
 
 
@@ -291,6 +319,8 @@ def parse_default(ftype: FieldType, text: str) -> Any:
     return values
 
 
+# names a generated class cannot use for a field (its constructor's own parameter)
+_RESERVED_FIELDS = frozenset({'self'})
 _LINE_RE = re.compile(r'^\s*(?P<type>\S+)\s+(?P<rest>.*)$')
 
 
@@ -322,6 +352,8 @@ def parse_line(code: str, package: str) -> Field | Constant:
     default_text = default_text.strip()
     if not _FIELD_RE.match(name) or '__' in name or name.endswith('_'):
         raise ValueError(f"invalid field name '{name}' (lower_case expected)")
+    if keyword.iskeyword(name) or name in _RESERVED_FIELDS:
+        raise ValueError(f"field name '{name}' is reserved (a Python keyword)")
     default = parse_default(ftype, default_text) if default_text else None
     return Field(name, ftype, default)
 
@@ -329,8 +361,9 @@ def parse_line(code: str, package: str) -> Field | Constant:
 def parse_message(
     text: str, name: str, source: str = '<string>', first_line: int = 1
 ) -> MessageDef:
-    """Parse message text; `name` is the full type name, e.g. 'std_msgs/msg/String'."""
-    package = name.split('/')[0]
+    """Parse message text; `name` is the full type name, e.g. 'std_msgs/msg/String'. The name
+    is checked first: it may come from a bag or the wire, and classes are generated from it."""
+    package, _, _ = validate_type_name(name)
     msg = MessageDef(name)
     seen: set[str] = set()
     for lineno, raw in enumerate(text.splitlines(), start=first_line):
@@ -367,6 +400,8 @@ def _sections(text: str, count: int, source: str) -> list[tuple[str, int]]:
 
 
 def parse_service(text: str, name: str, source: str = '<string>') -> ServiceDef:
+    """Parse `.srv` text into its request and response definitions."""
+    validate_type_name(name)
     (req, l1), (resp, l2) = _sections(text, 2, source)
     return ServiceDef(
         name,
@@ -376,6 +411,8 @@ def parse_service(text: str, name: str, source: str = '<string>') -> ServiceDef:
 
 
 def parse_action(text: str, name: str, source: str = '<string>') -> ActionDef:
+    """Parse `.action` text into its goal, result and feedback definitions."""
+    validate_type_name(name)
     (goal, l1), (result, l2), (feedback, l3) = _sections(text, 3, source)
     return ActionDef(
         name,
@@ -385,16 +422,58 @@ def parse_action(text: str, name: str, source: str = '<string>') -> ActionDef:
     )
 
 
+_SHORT_RE = re.compile(r'^[A-Z][A-Za-z0-9_]*$')
+# longest type name accepted (ROS caps topic names at 255 characters; a type is shorter)
+MAX_TYPE_NAME_LENGTH = 255
+
+
+def _shown(text: str) -> str:
+    """A name as an error message may quote it: printable, and not a page long."""
+    if not text.isprintable():
+        text = text.encode('unicode_escape').decode('ascii')
+    return text if len(text) <= 80 else text[:77] + '...'
+
+
 def validate_type_name(name: str) -> tuple[str, str, str]:
-    """Split 'pkg/kind/Name' and check each part, raising InterfaceError on bad input."""
+    """Split 'pkg/kind/Name' and check each part, raising InterfaceError on bad input.
+
+    Every name from outside (a bag, the wire, the command line, a definition file) passes here
+    before a class or codec is generated for it, so it can only ever be a plain identifier."""
+    if not isinstance(name, str):
+        raise InterfaceError(f'Invalid interface name {name!r}: not a string')
+    shown = _shown(name)
     parts = name.split('/')
     if len(parts) != 3:
-        raise InterfaceError(f"Invalid name '{name}'. Expected three parts separated by '/'")
+        raise InterfaceError(
+            f"Invalid interface name '{shown}': expected 'package/msg|srv|action/Name'"
+        )
     pkg, kind, short = parts
-    if (
-        not _PKG_RE.match(pkg)
-        or kind not in ('msg', 'srv', 'action')
-        or not re.match(r'^[A-Z][A-Za-z0-9_]*$', short)
-    ):
-        raise InterfaceError(f"Invalid interface name '{name}'")
-    return pkg, kind, short
+    if len(name) > MAX_TYPE_NAME_LENGTH:
+        raise InterfaceError(
+            f"Invalid interface name '{shown}': longer than {MAX_TYPE_NAME_LENGTH} characters"
+        )
+    if not _PKG_RE.match(pkg):
+        why = f"package '{_shown(pkg)}' must be lower_case (a-z, 0-9, _), starting with a letter"
+    elif kind not in ('msg', 'srv', 'action'):
+        why = f"'{_shown(kind)}' is not one of msg, srv, action"
+    elif not _SHORT_RE.match(short):
+        why = f"'{_shown(short)}' must be CamelCase (A-Z, a-z, 0-9), starting with a capital letter"
+    else:
+        return pkg, kind, short
+    raise InterfaceError(f"Invalid interface name '{shown}': {why}")
+
+
+def check_definition(mdef: MessageDef) -> None:
+    """Refuse a definition whose names could not be Python identifiers in generated code.
+
+    The parser only makes valid ones; this guards definitions built by other means before any
+    source text is generated from them."""
+    validate_type_name(mdef.name)
+    for f in mdef.fields:
+        if not _FIELD_RE.match(f.name) or '__' in f.name or keyword.iskeyword(f.name):
+            raise InterfaceError(f"{mdef.name}: invalid field name {f.name!r}")
+        if not f.type.is_primitive:
+            validate_type_name(f.type.base)
+    for c in mdef.constants:
+        if not _CONST_RE.match(c.name):
+            raise InterfaceError(f"{mdef.name}: invalid constant name {c.name!r}")

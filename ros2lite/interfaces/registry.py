@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ros2lite.pkg.index import BUNDLED_INTERFACES, interface_roots
+
 from .errors import InterfaceError, UnknownInterfaceError
 from .parser import (
     ActionDef,
@@ -23,7 +25,7 @@ from .parser import (
     validate_type_name,
 )
 
-BUNDLED = Path(__file__).resolve().parent.parent / 'msgs'  # == ros2lite.msgs' own directory
+BUNDLED = BUNDLED_INTERFACES
 KINDS = ('msg', 'srv', 'action')
 EXTENSIONS = {'msg': '.msg', 'srv': '.srv', 'action': '.action'}
 
@@ -49,14 +51,6 @@ _TIME = FieldType('builtin_interfaces/msg/Time')
 _EVENT_INFO = FieldType('service_msgs/msg/ServiceEventInfo')
 
 
-def search_roots() -> list[Path]:
-    """Directories whose children are package directories, in priority order (the rule
-    itself lives with the import hook, which must apply it without importing this)."""
-    from ros2lite.msgs import search_root_dirs
-
-    return [Path(d) for d in search_root_dirs()]
-
-
 def _is_interface_package(path: Path) -> bool:
     return any((path / kind).is_dir() for kind in KINDS)
 
@@ -65,7 +59,7 @@ class Registry:
     """Finds, parses and caches definitions; one per search path configuration."""
 
     def __init__(self, roots: list[Path] | None = None) -> None:
-        self.roots = roots if roots is not None else search_roots()
+        self.roots = roots if roots is not None else interface_roots()
         self._packages: dict[str, Path] | None = None
         self._messages: dict[str, MessageDef] = {}
         self._services: dict[str, ServiceDef] = {}
@@ -88,6 +82,7 @@ class Registry:
         return self._packages
 
     def package_dir(self, package: str) -> Path:
+        """The directory of a package (UnknownInterfaceError if none)."""
         try:
             return self.packages()[package]
         except KeyError:
@@ -104,6 +99,7 @@ class Registry:
         return sorted(names)
 
     def all_interfaces(self) -> list[str]:
+        """Every 'pkg/kind/Name' on the search path, by package."""
         return [n for pkg in sorted(self.packages()) for n in self.package_interfaces(pkg)]
 
     def interface_path(self, name: str) -> Path:
@@ -115,9 +111,11 @@ class Registry:
         return path
 
     def interface_text(self, name: str) -> str:
+        """The definition file's text."""
         return self.interface_path(name).read_text(encoding='utf-8')
 
     def exists(self, name: str) -> bool:
+        """Whether a definition file for 'pkg/kind/Name' exists."""
         try:
             self.interface_path(name)
         except InterfaceError:
@@ -126,6 +124,7 @@ class Registry:
 
     # -- definitions -----------------------------------------------------------------------
     def service(self, name: str) -> ServiceDef:
+        """The parsed definition of a service (cached)."""
         svc = self._services.get(name)
         if svc is None:
             path = self.interface_path(name)
@@ -134,6 +133,7 @@ class Registry:
         return svc
 
     def action(self, name: str) -> ActionDef:
+        """The parsed definition of an action (cached)."""
         act = self._actions.get(name)
         if act is None:
             path = self.interface_path(name)

@@ -10,11 +10,12 @@ printer reads the results, hence the locks.
 from __future__ import annotations
 
 import math
-import struct
 import threading
-from collections import deque
+from collections import OrderedDict, deque
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+
+from ros2lite.transport.attachment import unpack_attachment
 
 __all__ = [
     'BandwidthStats',
@@ -45,7 +46,7 @@ class IntervalSummary:
         return _NS / self.mean if self.mean > 0 else 0.0
 
 
-def summarize(values: Any) -> IntervalSummary:
+def summarize(values: Sequence[int]) -> IntervalSummary:
     """Summary of a non-empty sequence of integer nanosecond values."""
     n = len(values)
     total = sum(values)
@@ -109,6 +110,8 @@ class RateStats:
 
 @dataclass(frozen=True)
 class BandwidthSummary:
+    """`topic bw`'s figures over its window."""
+
     bytes_per_second: float
     count: int
     mean: float
@@ -126,6 +129,7 @@ class BandwidthStats:
         self._samples: deque[tuple[int, int]] = deque(maxlen=window)
 
     def add(self, now_ns: int, size: int) -> None:
+        """Count one message of `size` bytes that arrived at `now_ns`."""
         with self._lock:
             self._samples.append((now_ns, size))
 
@@ -182,6 +186,7 @@ class DelayStats:
 
     @property
     def empty(self) -> bool:
+        """Whether no delay has been measured yet."""
         with self._lock:
             return not self._delays
 
@@ -195,49 +200,64 @@ class DelayStats:
         return summarize(delays)
 
 
-_SEQ_GID = struct.Struct('<q8xB16s')
-
-
 class LostMessageCounter:
     """Sequence-number gaps per publisher GID, as rmw_zenoh reports 'message lost' events.
 
     Feed it every attachment on arrival; `drain()` returns the (count change, total) events
-    seen since the previous call.
+    seen since the previous call. The table of publishers is bounded: `prune()` forgets the
+    ones that left the graph, and past `max_publishers` the least recently heard is dropped
+    (a peer inventing a GID per sample costs nothing but that).
     """
 
-    def __init__(self) -> None:
+    MAX_PUBLISHERS = 1024
+    MAX_EVENTS = 10_000
+
+    def __init__(self, max_publishers: int = MAX_PUBLISHERS) -> None:
         self._lock = threading.Lock()
-        self._last: dict[bytes, int] = {}
+        self._last: OrderedDict[bytes, int] = OrderedDict()
+        self._max = max(1, max_publishers)
         self.total = 0
         self._events: list[tuple[int, int]] = []
 
-    def observe(self, sequence_number: int, gid: bytes) -> None:
+    @property
+    def publishers(self) -> int:
+        """Publishers in the table now."""
+        return len(self._last)
+
+    def prune(self, keep: set[bytes]) -> None:
+        """Forget every publisher whose GID is not in `keep` (those in the graph now)."""
         with self._lock:
-            last = self._last.get(gid)
-            self._last[gid] = sequence_number
+            for gid in [g for g in self._last if g not in keep]:
+                del self._last[gid]
+
+    def observe(self, sequence_number: int, gid: bytes) -> None:
+        """Note a sample's sequence number; gaps per publisher count as lost."""
+        with self._lock:
+            table = self._last
+            last = table.get(gid)
+            table[gid] = sequence_number
             if last is None:
+                if len(table) > self._max:
+                    table.popitem(last=False)
                 return
+            table.move_to_end(gid)
             jump = abs(sequence_number - last)
             if jump > 1:
                 self.total += jump - 1
-                self._events.append((jump - 1, self.total))
+                events = self._events
+                if len(events) >= self.MAX_EVENTS:  # nobody drained: merge into the newest
+                    events[-1] = (events[-1][0] + jump - 1, self.total)
+                else:
+                    events.append((jump - 1, self.total))
 
     def observe_attachment(self, attachment: bytes) -> None:
-        """Parse rmw_zenoh's 33-byte attachment (other layouts are decoded the slow way)."""
-        if len(attachment) == 33:
-            seq, size, gid = _SEQ_GID.unpack(attachment)
-            if size == 16:
-                self.observe(seq, gid)
-                return
-        from ros2lite.transport.attachment import decode_attachment
-
-        try:
-            a = decode_attachment(attachment)
-        except ValueError:
-            return
-        self.observe(a.sequence_number, a.source_gid)
+        """Count the sample whose rmw_zenoh attachment this is (unreadable ones are not)."""
+        fields = unpack_attachment(attachment)
+        if fields is not None:
+            self.observe(fields[0], fields[2])
 
     def drain(self) -> list[tuple[int, int]]:
+        """(change, total) of each loss noticed since the last call."""
         with self._lock:
             events, self._events = self._events, []
         return events

@@ -9,14 +9,17 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.graph import Entity, EntityKind
-from ros2lite.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, resolve_best_available
-from ros2lite.subscription import Subscription
+from ros2lite.qos import QoSProfile
+from ros2lite.subscription import MessageInfo, Subscription
 
-__all__ = ['MatchedQoS', 'MonitoredSubscription', 'match_publishers_qos', 'topic_types']
+if TYPE_CHECKING:
+    from ros2lite.node import Node
+    from ros2lite.transport.handles import Sample
+
+__all__ = ['MonitoredSubscription', 'topic_types']
 
 
 def topic_types(entities: Iterable[Entity], topic: str) -> list[str]:
@@ -30,46 +33,6 @@ def topic_types(entities: Iterable[Entity], topic: str) -> list[str]:
             and e.type_name
         }
     )
-
-
-@dataclass(frozen=True)
-class MatchedQoS:
-    """The profile to subscribe with, and which policies had to be weakened."""
-
-    profile: QoSProfile
-    reliability_fell_back: bool  # some but not all publishers are RELIABLE
-    durability_fell_back: bool  # some but not all publishers are TRANSIENT_LOCAL
-
-
-def match_publishers_qos(
-    profile: QoSProfile, publishers: Iterable[QoSProfile | None]
-) -> MatchedQoS:
-    """Ask for RELIABLE / TRANSIENT_LOCAL only when every publisher offers it.
-
-    That is rmw's BEST_AVAILABLE rule for a subscription (transport.qos owns it): the
-    strongest request still compatible with all of them, and TRANSIENT_LOCAL is what
-    receives a latched publisher's history. A publisher whose QoS is unknown counts as the
-    weakest. With no publishers the profile is returned unchanged.
-    """
-    offered = [q if q is not None else _WEAKEST for q in publishers]
-    if not offered:
-        return MatchedQoS(profile, False, False)
-    chosen = resolve_best_available(
-        profile.replace(
-            reliability=ReliabilityPolicy.BEST_AVAILABLE, durability=DurabilityPolicy.BEST_AVAILABLE
-        ),
-        offered,
-        for_publisher=False,
-    )
-    n = len(offered)
-    reliable = sum(q.reliability == ReliabilityPolicy.RELIABLE for q in offered)
-    latched = sum(q.durability == DurabilityPolicy.TRANSIENT_LOCAL for q in offered)
-    return MatchedQoS(chosen, 0 < reliable < n, 0 < latched < n)
-
-
-_WEAKEST = QoSProfile(
-    depth=10, reliability=ReliabilityPolicy.BEST_EFFORT, durability=DurabilityPolicy.VOLATILE
-)
 
 
 class MonitoredSubscription(Subscription):
@@ -88,14 +51,14 @@ class MonitoredSubscription(Subscription):
 
     def __init__(
         self,
-        node: Any,
-        msg_type: Any,
+        node: Node,
+        msg_type: type | str,
         topic: str,
-        callback: Callable[[bytes, Any], Any] | None,
+        callback: Callable[[bytes, MessageInfo], object] | None,
         qos: QoSProfile,
         *,
-        on_arrival: Callable[[int, bytes, int], Any] | None = None,
-        on_payload: Callable[[bytes, bytes, int], Any] | None = None,
+        on_arrival: Callable[[int, bytes, int], object] | None = None,
+        on_payload: Callable[[bytes, bytes, int], object] | None = None,
     ) -> None:
         if (on_arrival is None) == (on_payload is None):
             raise TypeError('give exactly one of on_arrival and on_payload')
@@ -105,7 +68,7 @@ class MonitoredSubscription(Subscription):
         super().__init__(node, msg_type, topic, callback or _ignore, qos, raw=True)
         node.subscriptions.append(self)  # destroyed with the node, like its own ones
 
-    def _on_sample(self, sample: Any) -> None:
+    def _on_sample(self, sample: Sample) -> None:
         attachment = sample.attachment
         if attachment is None:
             return  # rmw_zenoh ignores samples without one
@@ -121,5 +84,5 @@ class MonitoredSubscription(Subscription):
             super()._on_sample(sample)
 
 
-def _ignore(*_: Any) -> None:
+def _ignore(*_: object) -> None:
     """Callback of a subscription whose samples are never queued."""

@@ -15,14 +15,9 @@ from dataclasses import dataclass
 
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.graph import Entity, EntityKind, endpoints_by_topic
-from ros2lite.monitor.subscription import (
-    MatchedQoS,
-    MonitoredSubscription,
-    match_publishers_qos,
-    topic_types,
-)
+from ros2lite.monitor.subscription import MonitoredSubscription, topic_types
 from ros2lite.node import Node
-from ros2lite.qos import QoSProfile
+from ros2lite.qos import MatchedQoS, QoSProfile, match_publishers_qos
 from ros2lite.subscription import MessageInfo, Subscription
 
 __all__ = ['MultipleTypesError', 'TopicMonitor', 'TypeMismatch', 'type_mismatch']
@@ -106,6 +101,11 @@ class TopicMonitor:
         offers (rmw's BEST_AVAILABLE rule)."""
         pubs = endpoints_by_topic(self._entities(), self.topic, EntityKind.PUBLISHER)
         return match_publishers_qos(profile, [p.qos_profile for p in pubs])
+
+    def publisher_gids(self) -> set[bytes]:
+        """The GIDs of the topic's publishers in the graph now."""
+        pubs = endpoints_by_topic(self._entities(), self.topic, EntityKind.PUBLISHER)
+        return {p.endpoint_gid for p in pubs}
 
     def type_mismatch(self, type_name: str) -> TypeMismatch | None:
         """See :func:`type_mismatch`."""

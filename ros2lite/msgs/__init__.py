@@ -22,21 +22,25 @@ from typing import Any
 
 _PREFIX = __name__ + '.'
 _KINDS = ('msg', 'srv', 'action')
-_HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def search_root_dirs() -> list[str]:
-    """Directories whose children are interface packages, in priority order (first package
-    match wins): each of ``ROS2LITE_INTERFACE_PATH``, ``share/`` of each
-    ``AMENT_PREFIX_PATH`` prefix, then the bundled set. A new source of packages plugs in
-    here (the registry and both finders follow)."""
-    roots = [e for e in os.environ.get('ROS2LITE_INTERFACE_PATH', '').split(os.pathsep) if e]
-    for prefix in os.environ.get('AMENT_PREFIX_PATH', '').split(os.pathsep):
-        if prefix:
-            roots.append(os.path.join(prefix, 'share'))
-    roots.append(_HERE)
-    return roots
+    """Directories whose children are interface packages, in priority order, as strings:
+    :func:`ros2lite.pkg.index.interface_roots` owns the rule (the registry follows it too).
+    Worked out once per value of the variables it reads, since the top-level finder asks on
+    every import of the process."""
+    from ros2lite.pkg.index import INTERFACE_PATH_ENV, interface_roots
 
+    key = (os.environ.get(INTERFACE_PATH_ENV), os.environ.get('AMENT_PREFIX_PATH'))
+    roots = _roots.get(key)
+    if roots is None:
+        _roots.clear()
+        roots = _roots[key] = [str(root) for root in interface_roots()]
+    return list(roots)
+
+
+# the variables' values → the roots they give
+_roots: dict[tuple[str | None, str | None], list[str]] = {}
 
 # name → could it be an interface package (a directory with msg/srv/action in some root)
 _maybe: dict[tuple[tuple[str, ...], str], bool] = {}

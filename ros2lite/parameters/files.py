@@ -9,12 +9,23 @@ alone matches every node). Nested parameter maps become dotted names (``a: {b: 1
 
 from __future__ import annotations
 
+import functools
 import re
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, cast
 
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.parameter import PARAMETER_SEPARATOR_STRING
+
+if TYPE_CHECKING:
+    import yaml
+
+    from ros2lite.msgs.rcl_interfaces import msg as _rcl_msg
+    from ros2lite.parameter import AllowableParameterValue, Parameter
+
+# values are whatever the YAML holds until a Parameter is made of them (which checks them)
+Values = dict[str, object]
 
 PARAMS_KEY = "ros__parameters"
 WILDCARD = "/**"
@@ -24,15 +35,16 @@ class ParamsFileError(Ros2liteError, ValueError):
     """The file cannot be read or is not a ROS 2 parameters file; the message says why."""
 
 
-class _Entries(dict[Any, Any]):
+class _Entries(dict[object, object]):
     """A YAML mapping that also keeps every (key, value) pair in file order: rcl reads a
     parameters file as a stream, so a node key written twice contributes both entries."""
 
-    pairs: list[tuple[Any, Any]]
+    pairs: list[tuple[object, object]]
 
 
-def _load_yaml(text: str) -> Any:
-    """`yaml.safe_load`, except that mappings remember repeated keys (see `_Entries`)."""
+@functools.cache
+def _entries_loader() -> type[yaml.SafeLoader]:
+    """A SafeLoader whose mappings remember repeated keys (see `_Entries`)."""
     import yaml
 
     class Loader(yaml.SafeLoader):
@@ -50,30 +62,31 @@ def _load_yaml(text: str) -> Any:
         return entries
 
     Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, mapping)
-    return yaml.load(text, Loader=Loader)
+    return Loader
 
 
-def read_params_file(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
+def read_params_file(path: str | Path) -> list[tuple[str, Values]]:
     """Every (node name, flattened parameters) entry of the file, in file order (a node key
     that appears twice gives two entries, as rcl reads it)."""
-    import yaml
+    from ros2lite.safe_yaml import YamlInputError, load
 
     path = Path(path)
     try:
-        data = _load_yaml(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, yaml.YAMLError) as e:
-        raise ParamsFileError(f"Couldn't read parameters file '{path}': {e}") from None
+        data = load(path.read_text(encoding="utf-8"), "the file", loader_class=_entries_loader())
+    except (OSError, UnicodeDecodeError, YamlInputError) as e:
+        why = (e.strerror if isinstance(e, OSError) else None) or e
+        raise ParamsFileError(f"Couldn't read parameters file '{path}': {why}") from None
     if data is None:
         return []
     if not isinstance(data, dict):
         raise ParamsFileError(f"Parameters file '{path}' must map node names to parameters")
-    entries: list[tuple[str, dict[str, Any]]] = []
+    entries: list[tuple[str, Values]] = []
     _collect(path, data, "", entries)
     return entries
 
 
 def _collect(
-    path: Path, tree: dict[Any, Any], prefix: str, out: list[tuple[str, dict[str, Any]]]
+    path: Path, tree: Mapping[object, object], prefix: str, out: list[tuple[str, Values]]
 ) -> None:
     for key, section in getattr(tree, "pairs", tree.items()):
         name = f"{prefix}/{str(key).strip('/')}" if prefix else _absolute(str(key))
@@ -97,9 +110,9 @@ def _absolute(name: str) -> str:
     return name if name.startswith("/") else "/" + name
 
 
-def flatten(tree: dict[Any, Any], prefix: str = "") -> dict[str, Any]:
+def flatten(tree: Mapping[object, object], prefix: str = "") -> Values:
     """Nested maps as dotted names: {'a': {'b': 1}} → {'a.b': 1}."""
-    out: dict[str, Any] = {}
+    out: Values = {}
     for key, value in tree.items():
         name = f"{prefix}{key}"
         if isinstance(value, dict):
@@ -119,14 +132,13 @@ def node_pattern(name: str) -> re.Pattern[str]:
 
 
 def matches(pattern: str, node_fqn: str) -> bool:
+    """Whether a file's node name (maybe with wildcards) stands for `node_fqn`."""
     return node_pattern(pattern).fullmatch(node_fqn) is not None
 
 
-def values_for_node(
-    path: str | Path, node_fqn: str, *, use_wildcard: bool = True
-) -> dict[str, Any]:
+def values_for_node(path: str | Path, node_fqn: str, *, use_wildcard: bool = True) -> Values:
     """The parameters this file gives the node (`use_wildcard=False` skips pattern entries)."""
-    values: dict[str, Any] = {}
+    values: Values = {}
     for name, params in read_params_file(path):
         if "*" in name and not use_wildcard:
             continue
@@ -135,7 +147,7 @@ def values_for_node(
     return values
 
 
-def parameters_for_node(path: str | Path, node_fqn: str, use_wildcard: bool) -> list[Any]:
+def parameters_for_node(path: str | Path, node_fqn: str, use_wildcard: bool) -> list[Parameter]:
     """The file's parameters for the node as Parameters; an error naming the nodes the file
     has when it has none for this one, or naming a value that cannot be a parameter."""
     from ros2lite.parameter import Parameter
@@ -149,7 +161,8 @@ def parameters_for_node(path: str | Path, node_fqn: str, use_wildcard: bool) -> 
     params = []
     for name, value in values.items():
         try:
-            params.append(Parameter(name, value=value))
+            # Parameter() checks that the YAML value is one a parameter can hold
+            params.append(Parameter(name, value=cast("AllowableParameterValue", value)))
         except (TypeError, ValueError) as e:
             raise ParamsFileError(f"Parameter '{name}' in '{path}': {e}") from None
     return params
@@ -160,7 +173,7 @@ def parameter_dict_from_yaml_file(
     use_wildcard: bool = False,
     target_nodes: list[str] | None = None,
     namespace: str = "",
-) -> dict[str, Any]:
+) -> dict[str, _rcl_msg.Parameter]:
     """rclpy's reading of a parameters file: name → rcl_interfaces/msg/Parameter of the
     entries of `target_nodes` (every node's when None), after the `/**` ones when
     `use_wildcard`; names get `namespace.` in front. FileNotFoundError for a missing file,
@@ -186,22 +199,23 @@ def parameter_dict_from_yaml_file(
         chosen += [(n, p) for n, p in entries if n != WILDCARD]
     if not chosen:
         raise RuntimeError("Param file does not contain selected parameters")
-    values: dict[str, Any] = {}
+    values: Values = {}
     for _, params in chosen:
         values.update(params)
     prefix = namespace + PARAMETER_SEPARATOR_STRING if namespace else ""
-    out = {}
+    out: dict[str, _rcl_msg.Parameter] = {}
     for name, value in values.items():
         try:
-            out[prefix + name] = Parameter(prefix + name, value=value).to_parameter_msg()
+            parameter = Parameter(prefix + name, value=cast("AllowableParameterValue", value))
+            out[prefix + name] = parameter.to_parameter_msg()
         except (TypeError, ValueError) as e:
             raise ParamsFileError(f"Parameter '{name}' in '{path}': {e}") from None
     return out
 
 
-def dump_tree(values: dict[str, Any]) -> dict[str, Any]:
+def dump_tree(values: Mapping[str, object]) -> dict[str, object]:
     """Dotted names back into nested maps (what `param dump` writes)."""
-    tree: dict[str, Any] = {}
+    tree: dict[str, object] = {}
     for name in sorted(values):
         node = tree
         *parents, leaf = name.split(PARAMETER_SEPARATOR_STRING)
@@ -215,7 +229,7 @@ def dump_tree(values: dict[str, Any]) -> dict[str, Any]:
     return tree
 
 
-def dump_yaml(node_fqn: str, values: dict[str, Any]) -> str:
+def dump_yaml(node_fqn: str, values: Mapping[str, object]) -> str:
     """A parameters file for one node, as `ros2 param dump` prints it (keys sorted)."""
     import yaml
 

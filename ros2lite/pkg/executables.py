@@ -27,6 +27,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ros2lite.exceptions import Ros2liteError
+from ros2lite.pkg.index import ament_prefixes
 
 ENTRY_POINT_GROUP = 'ros2lite.executables'
 
@@ -38,10 +39,18 @@ _DEMOS = {
         'add_two_ints_client',
         'add_two_ints_client_async',
         'add_two_ints_server',
+        'introspection_client',
+        'introspection_service',
         'listener',
         'parameter_blackboard',
         'talker',
     ],
+    'lifecycle': ['lifecycle_listener'],
+    'lifecycle_py': ['lifecycle_talker'],
+    'rclpy_components': ['component_container', 'component_container_mt'],
+    'rqt_graph': ['rqt_graph'],
+    'teleop_twist_keyboard': ['teleop_twist_keyboard'],
+    'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
 }
 BUNDLED: dict[str, dict[str, str]] = {
     package: {name: f'ros2lite.demos.{package}.{name}:main' for name in names}
@@ -54,19 +63,23 @@ _ORIGIN_BUNDLED = 'bundled'
 
 
 class PackageNotFoundError(Ros2liteError, LookupError):
+    """No package of that name anywhere on the package path."""
+
     def __init__(self, package: str) -> None:
         super().__init__(f"Package '{package}' not found")
         self.package = package
 
 
 class MultipleExecutablesError(Ros2liteError, LookupError):
+    """More than one executable answers to the name (ros2cli's error)."""
+
     def __init__(self, locations: Sequence[str]) -> None:
         super().__init__('Multiple executables found:' + ''.join(f'\n- {p}' for p in locations))
         self.locations = list(locations)
 
 
 @dataclass(frozen=True)
-class Executable:
+class PackageExecutable:
     """One runnable thing of a package: a Python `module:function` or a file."""
 
     package: str
@@ -76,6 +89,7 @@ class Executable:
 
     @property
     def is_python(self) -> bool:
+        """Whether it is run with a Python interpreter (not an ament binary)."""
         return self.origin != _ORIGIN_AMENT
 
     def command(self, argv: Sequence[str] = (), python: str | None = None) -> list[str]:
@@ -104,23 +118,18 @@ def _python_launcher(target: str, name: str) -> str:
 # -- the three sources --------------------------------------------------------------------------
 
 
-def _entry_point_packages() -> dict[str, list[Executable]]:
+def _entry_point_packages() -> dict[str, list[PackageExecutable]]:
     from importlib.metadata import entry_points
 
-    found: dict[str, list[Executable]] = {}
+    found: dict[str, list[PackageExecutable]] = {}
     for ep in entry_points(group=ENTRY_POINT_GROUP):
         package, dot, exe = ep.name.partition('.')
         if not dot or not package or not exe:
             continue  # malformed name: ignore rather than break every `run`
         found.setdefault(package, []).append(
-            Executable(package, exe, f'{ep.module}:{ep.attr}', _ORIGIN_ENTRY_POINT)
+            PackageExecutable(package, exe, f'{ep.module}:{ep.attr}', _ORIGIN_ENTRY_POINT)
         )
     return found
-
-
-def ament_prefixes(env: Mapping[str, str] | None = None) -> list[Path]:
-    value = (os.environ if env is None else env).get('AMENT_PREFIX_PATH', '')
-    return [Path(p) for p in value.split(os.pathsep) if p]
 
 
 def _ament_prefix(package: str, prefixes: Iterable[Path]) -> Path | None:
@@ -130,15 +139,15 @@ def _ament_prefix(package: str, prefixes: Iterable[Path]) -> Path | None:
     return None
 
 
-def _ament_executables(package: str, prefix: Path) -> list[Executable]:
-    """Executable files under `<prefix>/lib/<package>`, skipping hidden directories."""
+def _ament_executables(package: str, prefix: Path) -> list[PackageExecutable]:
+    """PackageExecutable files under `<prefix>/lib/<package>`, skipping hidden directories."""
     found = []
     for dirpath, dirnames, filenames in os.walk(prefix / 'lib' / package):
         dirnames[:] = sorted(d for d in dirnames if not d.startswith('.'))
         for filename in sorted(filenames):
             path = os.path.join(dirpath, filename)
             if os.access(path, os.X_OK):
-                found.append(Executable(package, filename, path, _ORIGIN_AMENT))
+                found.append(PackageExecutable(package, filename, path, _ORIGIN_AMENT))
     return found
 
 
@@ -151,9 +160,9 @@ def _ament_packages(prefixes: Iterable[Path]) -> set[str]:
     return names
 
 
-def _bundled(package: str) -> list[Executable]:
+def _bundled(package: str) -> list[PackageExecutable]:
     return [
-        Executable(package, name, target, _ORIGIN_BUNDLED)
+        PackageExecutable(package, name, target, _ORIGIN_BUNDLED)
         for name, target in sorted(BUNDLED[package].items())
     ]
 
@@ -161,7 +170,7 @@ def _bundled(package: str) -> list[Executable]:
 # -- queries ------------------------------------------------------------------------------------
 
 
-def get_executables(package: str, env: Mapping[str, str] | None = None) -> list[Executable]:
+def get_executables(package: str, env: Mapping[str, str] | None = None) -> list[PackageExecutable]:
     """All executables of `package` from the first source that has it."""
     entry = _entry_point_packages().get(package)
     if entry is not None:
@@ -176,7 +185,7 @@ def get_executables(package: str, env: Mapping[str, str] | None = None) -> list[
 
 def find_executable(
     package: str, name: str, env: Mapping[str, str] | None = None
-) -> Executable | None:
+) -> PackageExecutable | None:
     """The executable `name` of `package`; None when the package has none by that name.
 
     Raises PackageNotFoundError, or MultipleExecutablesError when an ament package has several

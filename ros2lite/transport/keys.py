@@ -80,10 +80,12 @@ def mangle(name: str) -> str:
 
 
 def demangle(chunk: str) -> str:
+    """A name chunk of a key or token back to the ROS name ('%' → '/')."""
     return chunk.replace("%", "/")
 
 
 def liveliness_prefix(domain_id: int) -> str:
+    """The liveliness key prefix of a domain."""
     return f"{LIVELINESS_PREFIX}/{int(domain_id)}"
 
 
@@ -93,6 +95,8 @@ def liveliness_subscription_key(domain_id: int) -> str:
 
 
 class EntityKind(str, enum.Enum):
+    """The kind of a liveliness token (rmw_zenoh's two-letter codes)."""
+
     NODE = "NN"
     PUBLISHER = "MP"
     SUBSCRIPTION = "MS"
@@ -182,10 +186,12 @@ class Entity:
 
     @property
     def node_fqn(self) -> str:
+        """'/namespace/name' of the node owning the entity."""
         return node_fqn(self.namespace, self.node_name)
 
     @property
     def is_node(self) -> bool:
+        """Whether the token stands for a node (not one of its endpoints)."""
         return self.kind is EntityKind.NODE
 
     def to_token(self) -> str:
@@ -249,18 +255,9 @@ def parse_token(key: str, *, strict: bool = False) -> Entity | None:
         _fail(strict, key, "empty chunk")
         return None
     enclave, namespace, node_name = (demangle(p) for p in parts[6:9])
+    who = (domain_id, parts[2], nid, eid, kind, enclave, namespace, node_name)
     if kind is EntityKind.NODE:
-        return Entity(
-            domain_id,
-            parts[2],
-            nid,
-            eid,
-            kind,
-            enclave,
-            namespace,
-            node_name,
-            extra=tuple(parts[9:]),
-        )
+        return Entity(*who, extra=tuple(parts[9:]))
     if len(parts) < 13 or any(not p for p in parts[9:12]):
         _fail(strict, key, "endpoint tokens need topic, type, hash and QoS chunks")
         return None
@@ -273,14 +270,7 @@ def parse_token(key: str, *, strict: bool = False) -> Entity | None:
             raise
         qos = None
     return Entity(
-        domain_id,
-        parts[2],
-        nid,
-        eid,
-        kind,
-        enclave,
-        namespace,
-        node_name,
+        *who,
         topic_name=demangle(parts[9]),
         type_name=ros_type_name(dds),
         dds_type_name=dds,

@@ -12,8 +12,6 @@ from ros2lite.monitor.stats import (
     RateStats,
     summarize,
 )
-from ros2lite.monitor.subscription import match_publishers_qos
-from ros2lite.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
 from ros2lite.transport.attachment import encode_attachment
 
 MS = 1_000_000
@@ -92,23 +90,3 @@ def test_lost_messages_per_publisher() -> None:
     assert lost.drain() == [(2, 2), (2, 4)]
     assert lost.drain() == []
     lost.observe_attachment(b'not an attachment')  # ignored, not fatal
-
-
-def test_qos_matching_publishers() -> None:
-    rel = QoSProfile(depth=10)
-    be = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT)
-    tl = QoSProfile(depth=10, durability=DurabilityPolicy.TRANSIENT_LOCAL)
-    base = qos_profile_sensor_data
-    assert match_publishers_qos(base, []).profile == base
-    all_rel = match_publishers_qos(base, [rel, tl])
-    assert all_rel.profile.reliability == ReliabilityPolicy.RELIABLE
-    assert all_rel.profile.durability == DurabilityPolicy.VOLATILE
-    assert (all_rel.reliability_fell_back, all_rel.durability_fell_back) == (False, True)
-    mixed = match_publishers_qos(base, [rel, be])
-    assert mixed.profile.reliability == ReliabilityPolicy.BEST_EFFORT
-    assert (mixed.reliability_fell_back, mixed.durability_fell_back) == (True, False)
-    latched = match_publishers_qos(base, [tl])
-    assert latched.profile.durability == DurabilityPolicy.TRANSIENT_LOCAL
-    assert latched.profile.depth == base.depth
-    unknown = match_publishers_qos(base, [None])
-    assert unknown.profile.reliability == ReliabilityPolicy.BEST_EFFORT

@@ -54,6 +54,8 @@ def test_bundled_demos() -> None:
         'add_two_ints_client',
         'add_two_ints_client_async',
         'add_two_ints_server',
+        'introspection_client',
+        'introspection_service',
         'listener',
         'parameter_blackboard',
         'talker',
@@ -70,9 +72,9 @@ def test_python_command_runs_like_a_console_script(tmp_path: Path) -> None:
     (tmp_path / 'shadow_mod.py').write_text(
         'import sys\ndef main():\n    print(sys.argv)\n    return 3\n'
     )
-    from ros2lite.pkg.executables import Executable
+    from ros2lite.pkg.executables import PackageExecutable
 
-    exe = Executable('pkg', 'shown_name', 'shadow_mod:main', 'entry point')
+    exe = PackageExecutable('pkg', 'shown_name', 'shadow_mod:main', 'entry point')
     cmd = exe.command(['--ros-args', '-r', 'a:=b'])
     proc = subprocess.run(
         cmd,
@@ -85,7 +87,7 @@ def test_python_command_runs_like_a_console_script(tmp_path: Path) -> None:
     assert proc.stdout.strip() == "['shown_name', '--ros-args', '-r', 'a:=b']"
     # the working directory is not importable (as with console scripts)
     (tmp_path / 'cwd_only.py').write_text('def main():\n    return 0\n')
-    missing = Executable('pkg', 'x', 'cwd_only:main', 'entry point')
+    missing = PackageExecutable('pkg', 'x', 'cwd_only:main', 'entry point')
     proc = subprocess.run(
         missing.command(), capture_output=True, text=True, timeout=30, cwd=tmp_path
     )

@@ -15,8 +15,8 @@ from __future__ import annotations
 
 import contextlib
 import os
-from collections.abc import Iterator
-from typing import Any
+from collections.abc import Callable, Iterator
+from typing import IO, TYPE_CHECKING, BinaryIO
 
 from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import (
@@ -27,7 +27,12 @@ from ros2lite.bag.metadata import (
     parse_metadata,
     parse_qos_list,
 )
-from ros2lite.bag.storage import FileSummary
+from ros2lite.bag.storage import FileSummary, StorageReader, StorageWriter
+
+if TYPE_CHECKING:
+    from mcap.records import Channel, McapRecord, Metadata, Schema
+    from mcap.records import Message as McapMessage
+    from mcap.summary import Summary
 
 __all__ = [
     "COMPRESSIONS",
@@ -66,10 +71,12 @@ class _DirectFile:
 
     def __init__(self, path: str) -> None:
         self.path = path
-        self._fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
+        from ros2lite.files import create_new
+
+        self._fd = create_new(path)
         self._pos = 0
 
-    def write(self, data: Any) -> int:
+    def write(self, data: bytes | bytearray | memoryview) -> int:
         view = memoryview(data).cast("B")
         n = len(view)
         done = 0
@@ -142,6 +149,7 @@ class McapStorageWriter:
         return self._file.tell()
 
     def add_schema(self, type_name: str, encoding: str, text: str) -> int:
+        """Register a type's definition once; its schema id."""
         sid = self._schemas.get(type_name)
         if sid is None:
             sid = self._schemas[type_name] = self._writer.register_schema(
@@ -150,6 +158,7 @@ class McapStorageWriter:
         return sid
 
     def add_channel(self, topic: TopicMetadata, schema_id: int) -> int:
+        """Register a topic with its QoS and type hash; its channel id."""
         cid: int = self._writer.register_channel(
             topic.name,
             topic.serialization_format,
@@ -162,6 +171,7 @@ class McapStorageWriter:
         return cid
 
     def add_rosbag2_metadata(self, metadata: BagMetadata) -> None:
+        """Store the bag's metadata as known now in a `rosbag2` record."""
         self._writer.add_metadata(
             "rosbag2", {"serialized_metadata": dump_metadata(metadata, top_key=False)}
         )
@@ -193,7 +203,7 @@ class McapStorageWriter:
 # -- reading -------------------------------------------------------------------------------------
 
 
-def _topic(channel: Any, schema: Any) -> TopicMetadata:
+def _topic(channel: Channel, schema: Schema | None) -> TopicMetadata:
     meta = channel.metadata or {}
     try:
         qos = parse_qos_list(meta.get("offered_qos_profiles"))
@@ -208,7 +218,7 @@ def _topic(channel: Any, schema: Any) -> TopicMetadata:
     )
 
 
-def _rosbag2_record(record: Any) -> tuple[BagMetadata | None, str]:
+def _rosbag2_record(record: Metadata) -> tuple[BagMetadata | None, str]:
     data = record.metadata
     text = data.get("serialized_metadata")
     if text:
@@ -235,13 +245,14 @@ class McapStorageReader:
         except Exception as e:
             self._stream.close()
             raise BagError(f"'{path}' is not an MCAP file ({e or type(e).__name__})") from None
-        self._summary: Any = None
+        self._summary: Summary | None = None
         self._indexed: bool | None = None
 
     def close(self) -> None:
+        """Close the file."""
         self._stream.close()
 
-    def _mcap_summary(self) -> Any:
+    def _mcap_summary(self) -> Summary | None:
         """mcap's Summary, or None for a file that has none (or a broken end)."""
         if self._indexed is None:
             try:
@@ -252,10 +263,11 @@ class McapStorageReader:
         return self._summary if self._indexed else None
 
     def summary(self) -> FileSummary:
+        """From the summary section; a file without one is scanned."""
         s = self._mcap_summary()
-        if s is None:
+        stats = s.statistics if s is not None else None
+        if s is None or stats is None:  # (a summary counts only with its statistics)
             return self._scan_summary()
-        stats = s.statistics
         by_channel: dict[int, TopicMetadata] = {}
         topics: dict[str, TopicMetadata] = {}
         definitions: dict[str, tuple[str, str]] = {}
@@ -285,7 +297,7 @@ class McapStorageReader:
             ros_distro=distro,
         )
 
-    def _metadata_records(self) -> Iterator[Any]:
+    def _metadata_records(self) -> Iterator[Metadata]:
         s = self._summary
         if s is None or not s.metadata_indexes:
             return iter(())
@@ -296,30 +308,98 @@ class McapStorageReader:
     ) -> Iterator[tuple[str, bytes, int, int]]:
         """(topic, data, log_time, publish_time) in log-time order, `start <= t < stop`."""
         if self._mcap_summary() is None:
-            for _schemas, channel, m in _scan(self._stream):
-                if (
-                    (topics is None or channel.topic in topics)
-                    and (start is None or m.log_time >= start)
-                    and (stop is None or m.log_time < stop)
-                ):
-                    yield channel.topic, m.data, m.log_time, m.publish_time
+            # a stream of its own: a summary scan while this generator is paused must not
+            # move its position
+            with open(self.path, "rb") as stream:
+                for _schemas, channel, m in _scan(stream):
+                    if (
+                        (topics is None or channel.topic in topics)
+                        and (start is None or m.log_time >= start)
+                        and (stop is None or m.log_time < stop)
+                    ):
+                        yield channel.topic, m.data, m.log_time, m.publish_time
             return
-        for _schema, channel, m in self._reader.iter_messages(
-            topics=list(topics) if topics is not None else None,
-            starting_at=start,
-            ending_before=stop,
-            log_time_order=True,
-        ):
-            yield channel.topic, m.data, m.log_time, m.publish_time
+        yield from self._indexed_messages(topics, start, stop)
+
+    def _indexed_messages(
+        self, topics: set[str] | None, start: int | None, stop: int | None
+    ) -> Iterator[tuple[str, bytes, int, int]]:
+        """Messages through the chunk indexes, in log-time order, each chunk's CRC checked:
+        a corrupt chunk is reported (file, offset) and skipped, the others are still read.
+        A message whose time lies outside its chunk's indexed range (a flipped byte in a
+        chunk without CRC) is refused the same way."""
+        import heapq
+
+        from mcap.data_stream import ReadDataStream
+        from mcap.records import Chunk, Message
+        from mcap.stream_reader import breakup_chunk
+
+        summary = self._summary
+        assert summary is not None  # only indexed files are read this way
+        channels = summary.channels
+        wanted = {cid for cid, c in channels.items() if topics is None or c.topic in topics}
+        chunks = sorted(
+            (
+                c
+                for c in summary.chunk_indexes
+                if (stop is None or c.message_start_time < stop)
+                and (start is None or c.message_end_time >= start)
+                and (not c.message_index_offsets or wanted & set(c.message_index_offsets))
+            ),
+            key=lambda c: (c.message_start_time, c.chunk_start_offset),
+        )
+        pending: list[tuple[int, int, int, str, bytes, int]] = []
+        for i, index in enumerate(chunks):
+            where = index.chunk_start_offset
+            try:
+                self._stream.seek(where + 1 + 8)
+                records = breakup_chunk(Chunk.read(ReadDataStream(self._stream)), validate_crc=True)
+            except Exception as e:  # CRC mismatch, bad compression, cut short: skip it
+                _warn(
+                    f"'{self.path}': corrupt chunk at offset {where} skipped "
+                    f"({e or type(e).__name__}); the other chunks are read"
+                )
+                continue
+            lo, hi = index.message_start_time, index.message_end_time
+            refused = 0
+            for pos, record in enumerate(records):
+                if not isinstance(record, Message) or record.channel_id not in wanted:
+                    continue
+                t = record.log_time
+                if not lo <= t <= hi:
+                    refused += 1
+                    continue
+                if (start is not None and t < start) or (stop is not None and t >= stop):
+                    continue
+                heapq.heappush(
+                    pending,
+                    (
+                        t,
+                        i,
+                        pos,
+                        channels[record.channel_id].topic,
+                        record.data,
+                        record.publish_time,
+                    ),
+                )
+            if refused:
+                _warn(
+                    f"'{self.path}': {refused} message(s) in the chunk at offset {where} have "
+                    "log times outside the chunk's own range (corrupt); skipped"
+                )
+            horizon = chunks[i + 1].message_start_time if i + 1 < len(chunks) else None
+            while pending and (horizon is None or pending[0][0] <= horizon):
+                t, _, _, topic, data, publish_time = heapq.heappop(pending)
+                yield topic, data, t, publish_time
 
     def _scan_summary(self) -> FileSummary:
         """Summary of a file without one, from its records up to the first broken one."""
         topics: dict[str, TopicMetadata] = {}
         definitions: dict[str, tuple[str, str]] = {}
         counts: dict[str, int] = {}
-        records: list[Any] = []
+        records: list[Metadata] = []
 
-        def on_channel(channel: Any, schema: Any) -> None:
+        def on_channel(channel: Channel, schema: Schema | None) -> None:
             t = _topic(channel, schema)
             topics.setdefault(t.name, t)
             counts.setdefault(t.name, 0)
@@ -354,29 +434,49 @@ class McapStorageReader:
         )
 
 
+def _warn(message: str) -> None:
+    """A problem found while reading (a corrupt chunk): said once, reading goes on."""
+    from ros2lite.logging import get_logger
+
+    get_logger("rosbag2_storage").warn(message)
+
+
 def _text(data: bytes) -> str:
     return data.decode("utf-8", errors="replace")
 
 
 def _scan(
-    stream: Any, on_metadata: Any = None, on_channel: Any = None
-) -> Iterator[tuple[dict[int, Any], Any, Any]]:
+    stream: IO[bytes],
+    on_metadata: Callable[[Metadata], object] | None = None,
+    on_channel: Callable[[Channel, Schema | None], object] | None = None,
+) -> Iterator[tuple[dict[int, Schema], Channel, McapMessage]]:
     """Every message record in file order, stopping quietly at the first record that cannot
     be read (a truncated chunk at the end of a killed recording)."""
-    from mcap.records import Channel, Message, Metadata, Schema
-    from mcap.stream_reader import StreamReader
+    from mcap.records import Channel, Chunk, Message, Metadata, Schema
+    from mcap.stream_reader import StreamReader, breakup_chunk
 
     stream.seek(0)
-    schemas: dict[int, Any] = {}
-    channels: dict[int, Any] = {}
-    records = StreamReader(stream, skip_magic=False).records
+    schemas: dict[int, Schema] = {}
+    channels: dict[int, Channel] = {}
+    records = StreamReader(stream, skip_magic=False, emit_chunks=True).records
+    queue: list[McapRecord] = []
     while True:
-        try:
-            record = next(records)
-        except StopIteration:
-            return
-        except Exception:
-            return  # truncated or corrupt from here on
+        if queue:
+            record = queue.pop()
+        else:
+            try:
+                record = next(records)
+            except StopIteration:
+                return
+            except Exception:
+                return  # truncated or corrupt from here on
+        if isinstance(record, Chunk):
+            try:
+                queue = breakup_chunk(record, validate_crc=True)[::-1]
+            except Exception as e:
+                where = getattr(stream, "name", "the file")
+                _warn(f"'{where}': a corrupt chunk skipped ({e or type(e).__name__})")
+            continue
         if isinstance(record, Message):
             channel = channels.get(record.channel_id)
             if channel is not None:
@@ -391,8 +491,16 @@ def _scan(
             on_metadata(record)
 
 
-def open_reader(path: str) -> McapStorageReader:
+def open_reader(path: str) -> StorageReader:
+    """The plugin's reader of one file."""
     return McapStorageReader(path)
+
+
+def open_writer(
+    path: str, *, compression: str = "none", chunk_size: int = DEFAULT_CHUNK_SIZE
+) -> StorageWriter:
+    """The plugin's writer of one new file."""
+    return McapStorageWriter(path, compression=compression, chunk_size=chunk_size)
 
 
 def recover(path: str) -> int:
@@ -401,10 +509,25 @@ def recover(path: str) -> int:
 
     The new file is written beside the old one and renamed over it, so an interrupted
     recovery leaves the original untouched."""
+    from ros2lite.files import temp_beside
+
+    fd, tmp = temp_beside(path, ".recovering")  # a fresh name: no planted file is written
+    try:
+        os.fchmod(fd, 0o644)
+        kept = _copy_readable(path, os.fdopen(fd, "wb"))
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+    os.replace(tmp, path)
+    return kept
+
+
+def _copy_readable(path: str, dst: BinaryIO) -> int:
+    """Copy every readable message of `path` into a complete MCAP written to `dst`."""
     from mcap.writer import CompressionType, IndexType, Writer
 
-    tmp = path + ".recovering"
-    with open(path, "rb") as src, open(tmp, "wb") as dst:
+    with open(path, "rb") as src, dst:
         writer = Writer(
             dst,
             chunk_size=DEFAULT_CHUNK_SIZE,
@@ -414,7 +537,7 @@ def recover(path: str) -> int:
         writer.start(profile="ros2", library=_library())
         schema_ids: dict[int, int] = {}
         channel_ids: dict[int, int] = {}
-        metadata: list[Any] = []
+        metadata: list[Metadata] = []
         kept = 0
         for schemas, channel, m in _scan(src, on_metadata=metadata.append):
             cid = channel_ids.get(channel.id)
@@ -435,7 +558,6 @@ def recover(path: str) -> int:
         for record in metadata:
             writer.add_metadata(record.name, dict(record.metadata))
         writer.finish()
-    os.replace(tmp, path)
     return kept
 
 

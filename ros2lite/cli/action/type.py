@@ -1,5 +1,4 @@
-"""`action type`: the type(s) of one action; like ros2cli it fails silently (exit 1) if
-unknown."""
+"""`action type`: the type(s) of one action; exit 1 with one line on stderr if unknown."""
 
 from __future__ import annotations
 
@@ -22,4 +21,5 @@ def cli(ctx: click.Context, action_name: str, no_daemon: bool, use_sim_time: boo
         action_name,
         no_daemon,
         lambda entities: action_names_and_types(entities, include_hidden=True),
+        'action',
     )

@@ -10,14 +10,18 @@ from __future__ import annotations
 import os
 import time
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 import click
 
-from .options import bag_error, warn
+from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
+
+from .options import bag_argument, bag_error, warn
+
+if TYPE_CHECKING:
+    from ros2lite.bag.reader import Reader
 
 LABEL = 19
-SERVICE_EVENT_SUFFIX = "/_service_event"
 
 
 def format_size(size: float) -> str:
@@ -62,7 +66,7 @@ def _lines(label: str, items: list[str], indent: int = LABEL) -> list[str]:
 
 
 def render(
-    path: Path, reader: Any, *, verbose: bool, sort: str, sizes: dict[str, int] | None
+    path: Path, reader: Reader, *, verbose: bool, sort: str, sizes: dict[str, int] | None
 ) -> str:
     m = reader.metadata
     topics = [
@@ -121,7 +125,7 @@ def render(
     return "\n".join(out) + "\n"
 
 
-def message_sizes(reader: Any) -> dict[str, int]:
+def message_sizes(reader: Reader) -> dict[str, int]:
     sizes: dict[str, int] = {}
     for topic, data, _log, _pub in reader.raw_messages():
         sizes[topic] = sizes.get(topic, 0) + len(data)
@@ -129,13 +133,7 @@ def message_sizes(reader: Any) -> dict[str, int]:
 
 
 @click.command("info")
-@click.argument("bag_path", type=click.Path())
-@click.option(
-    "-s",
-    "--storage",
-    type=click.Choice(["mcap", "sqlite3"]),
-    help="Storage identifier (default: from the file extension).",
-)
+@bag_argument
 @click.option("-t", "--topic-name", is_flag=True, help="Only print topic names.")
 @click.option(
     "-v",
@@ -171,6 +169,8 @@ def cli(bag_path: str, storage: str | None, topic_name: bool, verbose: bool, sor
                 click.echo("".join(n + "\n" for n in names), nl=False)
                 return
             sizes = message_sizes(reader) if verbose else None
+            for problem in reader.shortfalls():
+                warn(problem)
             click.echo(render(path, reader, verbose=verbose, sort=sort, sizes=sizes), nl=False)
     except BagError as e:
         raise bag_error(str(e)) from None

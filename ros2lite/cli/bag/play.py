@@ -9,31 +9,28 @@ from __future__ import annotations
 import sys
 import time
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import click
 
-from .. import completion, render
+from .. import completion, numbers, render
 from .. import keyboard as keys_module
-from ..common import connect
-from .options import ManyValues, bag_error, qos_overrides
+from ..common import ManyValues, connect
+from .options import bag_argument, bag_error, check_patterns, qos_overrides, shared_options
 
 if TYPE_CHECKING:
+    from collections.abc import Iterable
+
     from ros2lite.bag.player import Player
     from ros2lite.logging import RcutilsLogger
+    from ros2lite.node import Node
 
 
 @click.command("play")
-@click.argument("bag_path", type=click.Path())
-@click.option(
-    "-s",
-    "--storage",
-    type=click.Choice(["mcap", "sqlite3"]),
-    help="Storage identifier (default: from the file extension).",
-)
+@bag_argument
 @click.option(
     "--read-ahead-queue-size",
-    type=click.IntRange(min=1),
+    type=numbers.Count(min=1, max=1_000_000),
     default=1000,
     show_default=True,
     help="Messages read ahead of playback.",
@@ -41,7 +38,7 @@ if TYPE_CHECKING:
 @click.option(
     "-r",
     "--rate",
-    type=click.FloatRange(min=0, min_open=True),
+    type=numbers.Finite(min=0, max=1e6, min_open=True),
     default=1.0,
     show_default=True,
     help="Rate at which to play back messages.",
@@ -53,20 +50,13 @@ if TYPE_CHECKING:
     shell_complete=completion.topics,
     help="Topics to play (default: all).",
 )
-@click.option("-e", "--regex", help="Play only topics matching the regular expression.")
-@click.option("-x", "--exclude-regex", help="Exclude topics matching the regular expression.")
-@click.option("--exclude-topics", cls=ManyValues, metavar="TOPIC...", help="Topics not to play.")
-@click.option(
-    "--qos-profile-overrides-path",
-    type=click.Path(dir_okay=False),
-    help="YAML file of QoS profiles by topic, used instead of the recorded ones.",
-)
+@shared_options("play", "recorded", "-p")
 @click.option("-l", "--loop", is_flag=True, help="Play the bag again and again.")
 @click.option("-m", "--remap", cls=ManyValues, metavar="OLD:=NEW...", help="Topic remappings.")
 @click.option(
     "--clock",
     "clock_hz",
-    type=click.FloatRange(min=0),
+    type=numbers.Finite(min=0, max=numbers.MAX_RATE),
     is_flag=False,
     flag_value=40.0,
     default=0.0,
@@ -76,18 +66,16 @@ if TYPE_CHECKING:
 @click.option(
     "-d",
     "--delay",
-    type=click.FloatRange(min=0),
+    type=numbers.seconds(),
     default=0.0,
     help="Seconds to wait before playing (again before each loop).",
 )
 @click.option(
     "--start-offset",
-    type=click.FloatRange(min=0),
+    type=numbers.seconds(),
     default=0.0,
     help="Start this many seconds into the bag.",
 )
-@click.option("-p", "--start-paused", is_flag=True, help="Start paused (SPACE resumes).")
-@click.option("--disable-keyboard-controls", is_flag=True, help="Ignore the keyboard.")
 @click.option("--node-name", default="rosbag2_player", show_default=True, hidden=True)
 def cli(
     bag_path: str,
@@ -109,20 +97,13 @@ def cli(
     node_name: str,
 ) -> None:
     """Play back ROS data from a bag."""
-    import re
-
     from ros2lite.bag.errors import BagError
     from ros2lite.bag.player import Player, PlayOptions
     from ros2lite.bag.reader import Reader
 
     if not Path(bag_path).exists():
         raise bag_error(f"Bag path '{bag_path}' does not exist!")
-    for pattern in (regex, exclude_regex):
-        if pattern:
-            try:
-                re.compile(pattern)
-            except re.error as e:
-                raise bag_error(f"Invalid regular expression '{pattern}': {e}") from None
+    check_patterns(regex, exclude_regex)
     remaps = {}
     for rule in remap:
         old, sep, new = rule.partition(":=")
@@ -168,7 +149,7 @@ def cli(
         _play(player, log, keyboard=not disable_keyboard_controls)
 
 
-def _absolute(node: Any, names: Any) -> list[str]:
+def _absolute(node: Node, names: Iterable[str]) -> list[str]:
     """Every form a given name may have in the bag: resolved (`/ns/x`) and, for relative
     names, as written (rosbag2 test bags hold names such as 'AAA')."""
     out = []

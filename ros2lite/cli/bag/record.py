@@ -13,10 +13,10 @@ from typing import TYPE_CHECKING
 
 import click
 
-from .. import completion, render
+from .. import completion, numbers, render
 from .. import keyboard as keys_module
-from ..common import connect
-from .options import ManyValues, bag_error, qos_overrides, warn
+from ..common import ManyValues, connect
+from .options import bag_error, check_patterns, qos_overrides, shared_options, warn
 
 if TYPE_CHECKING:
     from ros2lite.bag.recorder import Recorder, RecordOptions
@@ -49,14 +49,10 @@ SELECTION_ERROR = (
 @click.option(
     "--topic-types", cls=ManyValues, metavar="TYPE...", help="Record topics of these types."
 )
+@shared_options("record", "offered")
 @click.option("-a", "--all", "all_", is_flag=True, help="Record all topics and services.")
 @click.option("--all-topics", is_flag=True, help="Record all topics (no services).")
 @click.option("--all-services", is_flag=True, help="Record all services.")
-@click.option("-e", "--regex", help="Record only topics matching the regular expression.")
-@click.option("-x", "--exclude-regex", help="Exclude topics matching the regular expression.")
-@click.option(
-    "--exclude-topics", cls=ManyValues, metavar="TOPIC...", help="List of topics not to record."
-)
 @click.option(
     "--exclude-services",
     cls=ManyValues,
@@ -85,20 +81,20 @@ SELECTION_ERROR = (
 @click.option(
     "-b",
     "--max-bag-size",
-    type=click.IntRange(min=0),
+    type=numbers.Count(min=0, max=2**63 - 1),
     default=0,
     help="Split the bag at this many bytes (0: no splitting).",
 )
 @click.option(
     "-d",
     "--max-bag-duration",
-    type=click.FloatRange(min=0),
+    type=numbers.seconds(),
     default=0,
     help="Split the bag after this many seconds (0: no splitting).",
 )
 @click.option(
     "--max-cache-size",
-    type=click.IntRange(min=0),
+    type=numbers.Count(min=0, max=2**63 - 1),
     default=100 * 1024 * 1024,
     show_default=True,
     help="Bytes per topic kept in memory while the disk catches up; past it the "
@@ -120,12 +116,6 @@ SELECTION_ERROR = (
     type=click.Choice(["zstd", "lz4"]),
     help="Compress MCAP chunks with this format (the bag stays indexed).",
 )
-@click.option(
-    "--qos-profile-overrides-path",
-    type=click.Path(dir_okay=False),
-    help="YAML file of QoS profiles by topic, used instead of the offered ones.",
-)
-@click.option("--start-paused", is_flag=True, help="Start paused (SPACE resumes).")
 @click.option("--use-sim-time", is_flag=True, help="Stamp messages with /clock time.")
 @click.option(
     "--no-discovery", is_flag=True, help="Subscribe only to topics that exist at start-up."
@@ -133,10 +123,19 @@ SELECTION_ERROR = (
 @click.option(
     "-p",
     "--polling-interval",
-    type=click.IntRange(min=1),
+    type=numbers.Count(min=1, max=3_600_000),
     default=100,
     show_default=True,
     help="Milliseconds between topic discovery passes.",
+)
+@click.option(
+    "--flush-interval",
+    type=numbers.Count(min=1, max=3_600_000),
+    default=100,
+    show_default=True,
+    metavar="MS",
+    help="Milliseconds a received message may wait in memory before its chunk is written: "
+    "what a recorder killed outright (SIGKILL, power loss) can lose at most.",
 )
 @click.option(
     "--node-name", default="rosbag2_recorder", show_default=True, help="Name of the recorder node."
@@ -147,7 +146,6 @@ SELECTION_ERROR = (
     metavar="KEY=VALUE...",
     help="Custom metadata stored in the bag.",
 )
-@click.option("--disable-keyboard-controls", is_flag=True, help="Ignore the keyboard.")
 def cli(
     positional_topics: tuple[str, ...],
     topics: tuple[str, ...],
@@ -174,12 +172,12 @@ def cli(
     use_sim_time: bool,
     no_discovery: bool,
     polling_interval: int,
+    flush_interval: int,
     node_name: str,
     custom_data: tuple[str, ...],
     disable_keyboard_controls: bool,
 ) -> None:
     """Record ROS data to a bag."""
-    import re
 
     from ros2lite.bag.errors import BagError
     from ros2lite.bag.recorder import RecordOptions
@@ -193,12 +191,7 @@ def cli(
     selected = list(positional_topics) + list(topics)
     if not (selected or services or topic_types or all_ or all_topics or all_services or regex):
         raise bag_error(SELECTION_ERROR)
-    for pattern in (regex, exclude_regex):
-        if pattern:
-            try:
-                re.compile(pattern)
-            except re.error as e:
-                raise bag_error(f"Invalid regular expression '{pattern}': {e}") from None
+    check_patterns(regex, exclude_regex)
     if storage != "mcap":
         raise bag_error(f"Recording to '{storage}' is not supported; use -s mcap")
     if compression_mode != "none":
@@ -206,8 +199,10 @@ def cli(
             f"Compression mode '{compression_mode}' is not supported for MCAP; "
             f"use --compression-format alone (chunk compression)"
         )
-    events = [s.rstrip("/") + "/_service_event" for s in services]
-    excluded_events = [s.rstrip("/") + "/_service_event" for s in exclude_services]
+    from ros2lite.service_introspection import event_topic
+
+    events = [event_topic(s) for s in services]
+    excluded_events = [event_topic(s) for s in exclude_services]
     options = RecordOptions(
         topics=list(dict.fromkeys(_absolute(selected + events, node_name))),
         all_topics=all_ or all_topics,
@@ -222,6 +217,7 @@ def cli(
         max_cache_size=max_cache_size,
         start_paused=start_paused,
         discovery=not no_discovery,
+        flush_interval=flush_interval / 1000,
     )
     custom = _custom_data(custom_data)
     uri = output or time.strftime("rosbag2_%Y_%m_%d-%H_%M_%S")
@@ -238,7 +234,8 @@ def cli(
         ).open()
     except BagError as e:
         raise bag_error(str(e)) from None
-    conn = connect(use_sim_time=use_sim_time)
+    # the recorder is a node: a peer session keeps it hearing publishers through a router outage
+    conn = connect(use_sim_time=use_sim_time, as_node=True)
     try:
         conn.open()
     except BaseException:

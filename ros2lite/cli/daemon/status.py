@@ -14,6 +14,11 @@ def cli() -> None:
     from .common import table
 
     st = daemon.status(sessions=True)
+    if st.running and not st.answers_zenoh:
+        # a frozen router, or another program on the port: neither running nor free
+        click.echo('The daemon is not answering')
+        click.echo(st.message)
+        return
     click.echo('The daemon is running' if st.running else 'The daemon is not running')
     if st.running and st.ours:
         click.echo(f'Serving {st.endpoint} (ros2lite daemon, pid {st.pid})')

@@ -10,11 +10,13 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 
-from .. import completion
+from .. import completion, numbers
 from ..common import connect, strategy_options
 from ..errors import CliError
 
 if TYPE_CHECKING:
+    from click.shell_completion import CompletionItem
+
     from ros2lite.connection import Connection
     from ros2lite.task import Future
 
@@ -59,7 +61,7 @@ def node_options(*, timeout: bool = True, node_required: bool = True) -> Callabl
 
     def decorate(fn: F) -> F:
         @functools.wraps(fn)
-        def verb(**kwargs: Any) -> Any:
+        def verb(**kwargs: Any) -> Any:  # click hands over its option values
             shared = {k: kwargs.pop(k) for k in _TARGET_OPTIONS if k in kwargs}
             return fn(target=Target(**shared), **kwargs)
 
@@ -68,7 +70,7 @@ def node_options(*, timeout: bool = True, node_required: bool = True) -> Callabl
             cmd = click.option(
                 "--service-timeout",
                 metavar="N",
-                type=float,
+                type=numbers.seconds(min_open=True),
                 default=None,
                 help="Maximum time to wait for service response in seconds "
                 "(default: waits indefinitely)",
@@ -76,7 +78,7 @@ def node_options(*, timeout: bool = True, node_required: bool = True) -> Callabl
             cmd = click.option(
                 "--timeout",
                 metavar="N",
-                type=int,
+                type=numbers.Count(min=0, max=int(numbers.MAX_SECONDS)),
                 default=1,
                 show_default=True,
                 help="Wait for N seconds until node becomes available",
@@ -93,37 +95,6 @@ def node_options(*, timeout: bool = True, node_required: bool = True) -> Callabl
     return decorate
 
 
-class GreedyOption(click.Option):
-    """An option that takes every following word up to the next option, like argparse's
-    `nargs='+'` (`--param-prefixes a b`); repeating the option adds more."""
-
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
-        kwargs.update(multiple=True, type=click.UNPROCESSED)
-        super().__init__(*args, **kwargs)
-
-    def add_to_parser(self, parser: Any, ctx: click.Context) -> None:
-        super().add_to_parser(parser, ctx)
-        for name in self.opts:
-            option = parser._long_opt.get(name) or parser._short_opt.get(name)
-            if option is None:
-                continue
-            original = option.process
-
-            def process(value: Any, state: Any, original: Any = original) -> None:
-                words = [value]
-                while state.rargs and not state.rargs[0].startswith("-"):
-                    words.append(state.rargs.pop(0))
-                original(tuple(words), state)
-
-            option.process = process
-
-    def type_cast_value(self, ctx: click.Context, value: Any) -> Any:
-        # (('a', 'b'), ('c',)) from two uses → ('a', 'b', 'c')
-        return tuple(
-            w for group in value or () for w in (group if isinstance(group, tuple) else (group,))
-        )
-
-
 class Remote:
     """A verb's blocking view of one node's parameter services, through the library's one
     client; failures become ros2cli's lines."""
@@ -137,14 +108,14 @@ class Remote:
         # a node that vanishes mid-call is reported at once, not after the timeout
         self.client = AsyncParameterClient(conn.node(), fqn, fail_without_server=True)
 
-    def call(self, service: str, *args: Any) -> Any:
+    def call(self, service: str, *args: object) -> Any:  # the response of `service`
         """Wait for `service`, call the client's method of that name with `args`, return the
         response."""
         if not self.client.wait_for_services(SERVICE_WAIT, [service]):
             raise CliError(
                 f"Wait for service timed out waiting for parameter services for node {self.fqn}"
             )
-        future: Future = getattr(self.client, service)(*args)
+        future: Future[object] = getattr(self.client, service)(*args)
         self.conn.spin_until_future_complete(future, self.service_timeout)
         if not future.done():
             why = f"service '{self.fqn}/{service}' did not answer within {self.service_timeout} s"
@@ -172,7 +143,7 @@ def with_remote(target: Target, body: Callable[[Remote], T]) -> T:
 
 def complete_parameter_names(
     ctx: click.Context, _param: click.Parameter, incomplete: str
-) -> list[Any]:
+) -> list[CompletionItem]:
     """Names of the node's parameters, asked of the node itself; quick, quiet and without
     starting the daemon, like the other completers (nothing when anything fails)."""
     from click.shell_completion import CompletionItem
@@ -198,7 +169,8 @@ def _remote_parameter_names(ctx: click.Context) -> list[str]:
             return []
         future = client.list_parameters()
         conn.spin_until_future_complete(future, 1.0)
-        return list(future.result().result.names) if future.done() else []
+        response = future.result() if future.done() else None
+        return list(response.result.names) if response is not None else []
 
 
 def type_name(type_number: int) -> str:

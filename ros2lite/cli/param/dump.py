@@ -32,8 +32,11 @@ def cli(
         return
     path = output_dir / dump_file_name(fqn)
     try:
+        from ros2lite.files import open_for_writing
+
         output_dir.mkdir(parents=True, exist_ok=True)
-        path.write_text(text, encoding="utf-8")
+        with open(open_for_writing(path), "w", encoding="utf-8") as f:
+            f.write(text)
     except OSError as e:
         raise CliError(f"Couldn't write '{path}': {e.strerror or e}") from None
 

@@ -4,12 +4,17 @@ from __future__ import annotations
 
 import sys
 import time
-from typing import Any
+from typing import TYPE_CHECKING
 
 import click
 
-from .. import completion
-from ..common import connect, interface_type_name
+if TYPE_CHECKING:
+    from ros2lite.client import Client
+    from ros2lite.interfaces import Message, ServiceType
+    from ros2lite.node import Node
+
+from .. import completion, numbers
+from ..common import connect, interface_type_name, wait_saying_other_types
 from ..errors import CliError
 
 
@@ -19,11 +24,16 @@ from ..errors import CliError
 @click.argument('values', required=False)
 @click.option('--stdin', 'use_stdin', is_flag=True, help='Read values from standard input')
 @click.option(
-    '-r', '--rate', type=float, metavar='N', help='Repeat the call at a specific rate in Hz'
+    '-r',
+    '--rate',
+    # <= 0 is ros2cli's own error (exit 1) below; nan, inf and absurd rates are usage errors
+    type=numbers.Finite(max=numbers.MAX_RATE),
+    metavar='N',
+    help='Repeat the call at a specific rate in Hz',
 )
 @click.option(
     '--timeout',
-    type=click.FloatRange(min=0, min_open=True),
+    type=numbers.seconds(min_open=True),
     metavar='SECONDS',
     help='Give up if the service is not available, or does not answer, within '
     'this many seconds (default: wait forever, as ros2cli does)',
@@ -52,7 +62,7 @@ def cli(
         invalid='The passed service type is invalid',
         not_kind='The passed type is not a service',
     )
-    srv_class = get_interface(type_name)
+    srv_class: type[ServiceType] = get_interface(type_name)
     fields = _parse_values(sys.stdin.read() if use_stdin else values or '{}')
     request = srv_class.Request()
     try:
@@ -63,7 +73,7 @@ def cli(
     with connect() as conn:
         node = conn.node(f'_ros2lite_requester_{package}_{name}')
         client = node.create_client(srv_class, service_name, fail_without_server=True)
-        _wait(client, timeout)
+        _wait(client, timeout, node, type_name)
         period = None if rate is None else 1.0 / rate
         while True:
             last_call = time.monotonic()
@@ -74,12 +84,14 @@ def cli(
             time.sleep(max(0.0, last_call + period - time.monotonic()))
 
 
-def _parse_values(values: str) -> dict[str, Any]:
-    import yaml
+def _parse_values(values: str) -> dict[str, object]:  # field values, from YAML
+    from ros2lite.safe_yaml import YamlInputError, load
 
     try:
-        parsed = yaml.safe_load(values)
-    except yaml.YAMLError:
+        parsed = load(values, 'the passed value')
+    except YamlInputError as e:
+        if not e.syntax:
+            raise CliError(str(e)) from None
         raise CliError('The passed value needs to be in YAML string or a dictionary') from None
     if parsed is None:
         return {}
@@ -88,15 +100,24 @@ def _parse_values(values: str) -> dict[str, Any]:
     return parsed
 
 
-def _wait(client: Any, timeout: float | None) -> None:
+def _wait(
+    client: Client[Message, Message], timeout: float | None, node: Node, type_name: str
+) -> None:
     if client.service_is_ready():
         return
     click.echo('waiting for service to become available...')
-    if not client.wait_for_service(timeout_sec=timeout):
+    if not wait_saying_other_types(
+        lambda step: client.wait_for_service(timeout_sec=step),
+        timeout,
+        'service',
+        client.srv_name,
+        type_name,
+        node.get_service_names_and_types,
+    ):
         raise CliError(f"Timed out after {timeout:g} s waiting for service '{client.srv_name}'")
 
 
-def _call(client: Any, request: Any, timeout: float | None) -> Any:
+def _call(client: Client[Message, Message], request: Message, timeout: float | None) -> Message:
     from ros2lite.client import ServiceCallError
 
     try:

@@ -1,4 +1,4 @@
-"""`service type`: the type of one service; like ros2cli it fails silently (exit 1) if unknown."""
+"""`service type`: the type of one service; exit 1 with one line on stderr if unknown."""
 
 from __future__ import annotations
 
@@ -21,4 +21,5 @@ def cli(ctx: click.Context, service_name: str, no_daemon: bool, use_sim_time: bo
         service_name,
         no_daemon,
         lambda entities: service_names_and_types(entities, include_hidden=True),
+        'service',
     )

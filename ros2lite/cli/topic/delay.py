@@ -2,17 +2,26 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Protocol, cast
 
 import click
 
 from .. import completion
 from ..common import connect, strategy_options
 from ..errors import CliError
-from .common import graph_type, monitor
+from .common import watch, window_option
 
 if TYPE_CHECKING:
     from ros2lite.monitor.stats import IntervalSummary
+    from ros2lite.msgs.std_msgs.msg import Header
+    from ros2lite.subscription import MessageInfo
+
+
+class _Stamped(Protocol):
+    """A message with a std_msgs/Header (the type is checked to have one)."""
+
+    header: Header
+
 
 DEFAULT_WINDOW_SIZE = 10000
 
@@ -27,14 +36,7 @@ def delay_line(s: IntervalSummary) -> str:
 
 @click.command('delay')
 @click.argument('topic', shell_complete=completion.topics)
-@click.option(
-    '-w',
-    '--window',
-    type=click.IntRange(min=0),
-    default=DEFAULT_WINDOW_SIZE,
-    show_default=True,
-    help='window size, in # of messages, for calculating rate',
-)
+@window_option(DEFAULT_WINDOW_SIZE, 'window', minimum=0)
 @strategy_options(no_daemon=False)
 def cli(topic: str, window: int, use_sim_time: bool) -> None:
     """Display delay of topic from timestamp in header."""
@@ -44,15 +46,13 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
 
     stats = DelayStats(window)
     with connect(use_sim_time=use_sim_time) as conn:
-        watch = monitor(conn, topic)
-        type_name = graph_type(watch, wait=True)
-        assert type_name is not None
+        watched, type_name = watch(conn, topic)
         if 'header' not in get_interface(type_name).get_fields_and_field_types():
             raise CliError('msg does not have header')
         clock = conn.node().get_clock()
 
-        def on_sample(data: bytes, info: Any) -> None:
-            stamp = deserialize(type_name, data).header.stamp
+        def on_sample(data: bytes, info: MessageInfo) -> None:
+            stamp = cast(_Stamped, deserialize(type_name, data)).header.stamp
             now = clock.now().nanoseconds if clock.ros_time_is_active else info.received_timestamp
             if stats.add(now, stamp.sec * 1_000_000_000 + stamp.nanosec):
                 click.echo('time has reset, resetting counters')
@@ -63,6 +63,6 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
             summary = stats.summary()
             click.echo('no new messages' if summary is None else delay_line(summary))
 
-        watch.on_sample(type_name, qos_profile_sensor_data, on_sample)
+        watched.on_sample(type_name, qos_profile_sensor_data, on_sample)
         conn.node().create_timer(1.0, report)
         conn.spin()

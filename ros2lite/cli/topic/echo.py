@@ -4,20 +4,28 @@ from __future__ import annotations
 
 import sys
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import click
 
-from .. import completion
+from .. import completion, numbers
 from ..common import connect, explicit_qos, qos_from_options, qos_options, strategy_options
 from ..errors import CliError
 from .common import compile_filter, graph_type, message_type_name, monitor
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+    from ros2lite.interfaces.convert import FormatOptions
+    from ros2lite.monitor.stats import LostMessageCounter
     from ros2lite.monitor.topic import TopicMonitor
     from ros2lite.qos import QoSProfile
+    from ros2lite.subscription import MessageInfo
+
+    from ..common import QosOptions
 
 DEFAULT_TRUNCATE_LENGTH = 128
+PRUNE_PERIOD = 5.0  # seconds between prunings of the lost-message table
 CLEAR_SCREEN = '\x1b[H\x1b[2J'
 
 
@@ -38,12 +46,15 @@ class Printer:
         no_str: bool,
         flow_style: bool,
         raw: bool,
-        filter_fn: Callable[[Any], Any] | None,
+        filter_fn: Callable[[object], object] | None,
         once: bool,
         include_info: bool,
         clear: bool,
-        lost: Any,
+        lost: LostMessageCounter | None,
+        warn: Callable[[str], object],
+        topic: str = '',
     ) -> None:
+        from ros2lite.bad_samples import BadSamples
         from ros2lite.interfaces import deserialize
         from ros2lite.interfaces.classes import Message
 
@@ -52,7 +63,11 @@ class Printer:
         self.type_name = type_name
         self.csv = csv
         self.field = field
-        self.fmt = {'truncate_length': truncate_length, 'no_arr': no_arr, 'no_str': no_str}
+        self.fmt: FormatOptions = {
+            'truncate_length': truncate_length,
+            'no_arr': no_arr,
+            'no_str': no_str,
+        }
         self.flow_style = flow_style
         self.raw = raw
         self.filter_fn = filter_fn
@@ -62,17 +77,27 @@ class Printer:
         self.lost = lost
         self.done = False
         self.out = sys.stdout
+        self.bad = BadSamples(topic, type_name, warn)
 
     def report_lost(self) -> None:
+        """Print ros2cli's lines for messages lost since the last call."""
+        if self.lost is None:
+            return
         for change, total in self.lost.drain():
             self.out.write(
                 f'A message was lost!!!\n\ttotal count change:{change}\n\ttotal count: {total}---\n'
             )
 
-    def __call__(self, data: bytes, info: Any) -> None:
+    def __call__(self, data: bytes, info: MessageInfo) -> None:
         if self.lost is not None:
             self.report_lost()
-        value: Any = data if self.raw else self._deserialize(self.type_name, data)
+        from ros2lite.interfaces import CdrError
+
+        try:
+            value: object = data if self.raw else self._deserialize(self.type_name, data)
+        except CdrError as e:
+            self.bad_sample(data, info, e)
+            return
         if self.field is not None:
             for name in self.field:
                 try:
@@ -85,7 +110,21 @@ class Printer:
             self.done = True
         self.out.write(self.render(value, info))
 
-    def render(self, value: Any, info: Any) -> str:
+    def bad_sample(self, data: bytes, info: MessageInfo, error: Exception) -> None:
+        """A sample that is not the type: dropped with a (rate-limited) warning, or shown
+        with its message info when the user asked for message info."""
+        from ros2lite.bad_samples import describe_publisher
+
+        self.bad.add(info.publisher_gid, error, len(data))
+        if not self.include_info:
+            return
+        head = ''.join(f'{k}: {v}\n' for k, v in sorted(info_dict(info).items()))
+        self.out.write(
+            f'{head}---\n# dropped: not a valid {self.type_name} from '
+            f'{describe_publisher(info.publisher_gid)} ({len(data)} bytes: {error})\n---\n'
+        )
+
+    def render(self, value: object, info: MessageInfo) -> str:
         from ros2lite.interfaces import message_to_csv, message_to_yaml
 
         head = CLEAR_SCREEN if self.clear else ''
@@ -107,7 +146,7 @@ class Printer:
         return head + message_to_yaml(value, flow_style=self.flow_style, **self.fmt) + '---\n'
 
 
-def info_dict(info: Any) -> dict[str, int]:
+def info_dict(info: MessageInfo) -> dict[str, int]:
     """rclpy's message-info dict; rmw_zenoh has no reception sequence number and says 0."""
     return {
         'source_timestamp': info.source_timestamp,
@@ -143,7 +182,7 @@ def info_dict(info: Any) -> dict[str, int]:
 @click.option(
     '-l',
     '--truncate-length',
-    type=click.IntRange(min=0),
+    type=numbers.Count(min=0),
     default=DEFAULT_TRUNCATE_LENGTH,
     show_default=True,
     help='The length to truncate arrays, bytes, and strings to',
@@ -167,7 +206,7 @@ def info_dict(info: Any) -> dict[str, int]:
 @click.option('--once', is_flag=True, help='Print the first message received and then exit')
 @click.option(
     '--timeout',
-    type=click.FloatRange(min=0, min_open=True),
+    type=numbers.seconds(min_open=True),
     metavar='N',
     help='Stop after N seconds (exit status 0)',
 )
@@ -196,7 +235,7 @@ def cli(
     node_name: str | None,
     use_sim_time: bool,
     no_daemon: bool,
-    **qos: Any,
+    **qos: Unpack[QosOptions],
 ) -> None:
     """Output messages from a topic."""
     fields: list[str] | None = None
@@ -235,9 +274,13 @@ def cli(
             include_info=include_message_info,
             clear=clear,
             lost=lost,
+            warn=watch.node.get_logger().warn,
+            topic=watch.topic,
         )
         if lost is not None:
             counter = lost
+            # publishers that left are forgotten, so the table follows the graph
+            conn.every(PRUNE_PERIOD, lambda: counter.prune(watch.publisher_gids()))
             watch.on_arrival(
                 type_name,
                 profile,
@@ -269,7 +312,7 @@ def warn_type_mismatch(watch: TopicMonitor, type_name: str) -> None:
     )
 
 
-def choose_qos(watch: TopicMonitor, options: dict[str, Any]) -> QoSProfile:
+def choose_qos(watch: TopicMonitor, options: QosOptions) -> QoSProfile:
     """The `--qos-*` profile, or the preset adapted to what every publisher offers."""
     profile = qos_from_options(**options)
     if explicit_qos(**options):

@@ -4,18 +4,22 @@ from __future__ import annotations
 
 import sys
 import time
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import click
 
-from .. import completion
+from .. import completion, numbers
 from ..common import connect, qos_from_options, qos_options, strategy_options
 from ..errors import CliError
 from .common import message_type_name
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
     from ros2lite.connection import Connection
     from ros2lite.qos import QoSProfile
+
+    from ..common import QosOptions
 
 WAIT_STEP = 0.1  # seconds between subscription-count checks while waiting
 
@@ -28,7 +32,7 @@ WAIT_STEP = 0.1  # seconds between subscription-count checks while waiting
 @click.option(
     '-r',
     '--rate',
-    type=click.FloatRange(min=0, min_open=True),
+    type=numbers.rate(),
     default=1.0,
     metavar='N',
     show_default=True,
@@ -38,7 +42,7 @@ WAIT_STEP = 0.1  # seconds between subscription-count checks while waiting
     '-p',
     '--print',
     'print_nth',
-    type=int,
+    type=numbers.Count(min=0),
     default=1,
     metavar='N',
     show_default=True,
@@ -48,7 +52,7 @@ WAIT_STEP = 0.1  # seconds between subscription-count checks while waiting
 @click.option(
     '-t',
     '--times',
-    type=click.IntRange(min=0),
+    type=numbers.Count(min=0),
     default=0,
     show_default=True,
     help='Publish this number of times and then exit (0: forever)',
@@ -56,18 +60,18 @@ WAIT_STEP = 0.1  # seconds between subscription-count checks while waiting
 @click.option(
     '-w',
     '--wait-matching-subscriptions',
-    type=click.IntRange(min=0),
+    type=numbers.Count(min=0),
     help='Wait until finding the specified number of matching subscriptions. '
     'Defaults to 1 when using "-1"/"--once"/"--times", otherwise to 0.',
 )
 @click.option(
     '--max-wait-time-secs',
-    type=click.FloatRange(min=0, min_open=True),
+    type=numbers.seconds(min_open=True),
     help='Maximum wait time in seconds for --wait-matching-subscriptions (default: wait forever)',
 )
 @click.option(
     '--keep-alive',
-    type=click.FloatRange(min=0, min_open=True),
+    type=numbers.seconds(min_open=True),
     default=0.1,
     metavar='N',
     show_default=True,
@@ -90,7 +94,7 @@ def cli(
     keep_alive: float,
     node_name: str | None,
     use_sim_time: bool,
-    **qos: Any,
+    **qos: Unpack[QosOptions],
 ) -> None:
     """Publish a message to a topic.
 
@@ -126,12 +130,14 @@ def cli(
         )
 
 
-def parse_values(values: str) -> dict[str, Any]:
-    import yaml
+def parse_values(values: str) -> dict[str, object]:
+    from ros2lite.safe_yaml import YamlInputError, load
 
     try:
-        parsed = yaml.safe_load(values)
-    except yaml.YAMLError:
+        parsed = load(values, 'the passed value')
+    except YamlInputError as e:
+        if not e.syntax:
+            raise CliError(str(e)) from None
         raise CliError('The passed value needs to be in YAML string or a dictionary') from None
     if not isinstance(parsed, dict):
         raise CliError('The passed value needs to be a dictionary in YAML format')

@@ -14,4 +14,5 @@ def test_type(run: Callable[..., Any], alien_server: AlienFibonacciServer) -> No
     assert run('action', 'type', '/alien_fib').out == 'example_interfaces/action/Fibonacci\n'
     assert run('action', 'type', 'alien_fib').out == 'example_interfaces/action/Fibonacci\n'
     unknown = run('action', 'type', '/nope')
-    assert (unknown.code, unknown.out, unknown.err) == (1, '', '')
+    assert (unknown.code, unknown.out) == (1, '')
+    assert unknown.err == "Unknown action '/nope' (not in the graph now)\n"

@@ -19,7 +19,8 @@ def test_list(adder: Any, run: Any) -> None:
 def test_type(adder: Any, run: Any) -> None:
     assert run('service', 'type', '/math/add').out == 'example_interfaces/srv/AddTwoInts\n'
     unknown = run('service', 'type', '/no/such/service')
-    assert (unknown.code, unknown.out, unknown.err) == (1, '', '')
+    assert (unknown.code, unknown.out) == (1, '')
+    assert unknown.err == "Unknown service '/no/such/service' (not in the graph now)\n"
 
 
 def test_find(adder: Any, run: Any) -> None:

@@ -34,11 +34,16 @@ def test_several_types_one_per_line(run: Run, graph: TokenGraph) -> None:
     assert settle(run, 'topic', 'type', '/mixed', expected=expected).out == expected
 
 
-def test_unknown_is_silent_exit_1(run: Run, graph: TokenGraph) -> None:
+def test_unknown_is_exit_1_with_one_line_on_stderr(run: Run, graph: TokenGraph) -> None:
     settle(run, 'topic', 'type', '/mixed', until=bool)
-    for name in ('/nope', 'bad name', '/robot1'):
+    for name, why in (
+        ('/nope', "Unknown topic '/nope' (not in the graph now)"),
+        ('bad name', "invalid topic name 'bad name': character(s) ' ' not allowed"),
+        ('/robot1', "Unknown topic '/robot1' (not in the graph now)"),
+    ):
         result = run('topic', 'type', name)
-        assert (result.code, result.out, result.err) == (1, '', ''), name
+        assert (result.code, result.out) == (1, ''), name
+        assert result.err.startswith(why) and result.err.count('\n') == 1, result.err
 
 
 def test_hidden_topic_needs_the_group_flag(run: Run, graph: TokenGraph) -> None:

@@ -1,0 +1,137 @@
+"""rqt_graph on the terminal: the same left-to-right layout in character cells, nodes in
+rounded boxes, topics in square ones, arrows drawn with box lines; redrawn when the graph
+changes."""
+
+from __future__ import annotations
+
+import sys
+import time
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+from ros2lite.demos.display import DisplayError
+from ros2lite.demos.rqt_graph.layout import Layout, layout
+from ros2lite.demos.rqt_graph.model import Graph
+
+if TYPE_CHECKING:  # rich itself is imported where it draws
+    from rich.text import Text
+
+
+def cell_layout(graph: Graph) -> Layout:
+    """The graph laid out in terminal cells."""
+    return layout(graph, lambda name, _t: (len(name) + 4, 3), layer_gap=4, node_gap=1, margin=1)
+
+
+def render_lines(graph: Graph) -> list[list[tuple[str, str]]]:
+    """The picture as rows of (character, role) cells; roles: '', 'edge', 'node', 'topic'."""
+    lay = cell_layout(graph)
+    width, height = int(lay.width) + 2, int(lay.height) + 1
+    grid = [[(' ', '')] * width for _ in range(height)]
+
+    def put(x: int, y: int, ch: str, role: str) -> None:
+        if 0 <= y < height and 0 <= x < width:
+            grid[y][x] = (ch, role)
+
+    boxes = {name: _cells(b.x, b.y, b.w, b.h) for name, b in lay.boxes.items()}
+    for source, target, _ in lay.edges:
+        _, st, sr, sb = boxes[source]
+        tl, tt, _, tb = boxes[target]
+        y0, y1 = (st + sb) // 2, (tt + tb) // 2
+        x0 = sr + 1
+        x1 = tl - 1
+        if x1 <= x0:  # a link back to the left: leave below the boxes and come back
+            below = max(sb, tb) + 1
+            for x in range(min(x1, x0), max(x1, x0) + 1):
+                put(x, below, '─', 'edge')
+            for y in range(min(y0, below), below):
+                put(x0, y, '│', 'edge')
+            for y in range(min(y1, below), below):
+                put(x1, y, '│', 'edge')
+            put(x0, below, '╯', 'edge')
+            put(x1, below, '╰', 'edge')
+            put(x1, y1, '▶', 'edge')
+            continue
+        mid = (x0 + x1) // 2
+        for x in range(x0, mid):
+            put(x, y0, '─', 'edge')
+        for x in range(mid, x1):
+            put(x, y1, '─', 'edge')
+        if y0 != y1:
+            for y in range(min(y0, y1), max(y0, y1)):
+                put(mid, y, '│', 'edge')
+            put(mid, y0, '╮' if y1 > y0 else '╯', 'edge')
+            put(mid, y1, '╰' if y1 > y0 else '╭', 'edge')
+        put(x1, y1, '▶', 'edge')
+    for name, (left, top, right, bottom) in boxes.items():
+        topic = lay.boxes[name].is_topic
+        role = 'topic' if topic else 'node'
+        corners = '┌┐└┘' if topic else '╭╮╰╯'
+        put(left, top, corners[0], role)
+        put(right, top, corners[1], role)
+        put(left, bottom, corners[2], role)
+        put(right, bottom, corners[3], role)
+        for x in range(left + 1, right):
+            put(x, top, '─', role)
+            put(x, bottom, '─', role)
+        for y in range(top + 1, bottom):
+            put(left, y, '│', role)
+            put(right, y, '│', role)
+            for x in range(left + 1, right):
+                put(x, y, ' ', role)
+        for i, ch in enumerate(name):
+            put(left + 2 + i, (top + bottom) // 2, ch, role)
+    return grid
+
+
+def _cells(x: float, y: float, w: float, h: float) -> tuple[int, int, int, int]:
+    left = round(x - w / 2)
+    top = round(y - h / 2)
+    return left, top, left + int(w) - 1, top + int(h) - 1
+
+
+def render_text(graph: Graph) -> str:
+    """The picture as plain text (no colours)."""
+    return '\n'.join(''.join(ch for ch, _ in row).rstrip() for row in render_lines(graph))
+
+
+class GraphTerminal:
+    """The graph on the terminal, redrawn when it changes; `run` until Ctrl-C."""
+
+    STYLES = {'': '', 'edge': 'bright_black', 'node': 'bold cyan', 'topic': 'yellow'}
+
+    def __init__(self) -> None:
+        if not sys.stdout.isatty():
+            raise DisplayError('cannot draw on the terminal: standard output is not a terminal')
+
+    def picture(self, graph: Graph) -> Text:
+        """The graph as rich text, one row per text line."""
+        from rich.text import Text
+
+        text = Text(no_wrap=True, overflow='crop')
+        text.append(
+            f'rqt_graph  {len(graph.nodes)} nodes, {len(graph.topics)} topics  (Ctrl-C to quit)\n',
+            style='bold',
+        )
+        for row in render_lines(graph):
+            start = 0
+            for i in range(1, len(row) + 1):  # one span per run of the same role
+                if i == len(row) or row[i][1] != row[start][1]:
+                    run = ''.join(ch for ch, _ in row[start:i])
+                    text.append(run, style=self.STYLES[row[start][1]])
+                    start = i
+            text.append('\n')
+        return text
+
+    def run(self, current: Callable[[], Graph], ok: Callable[[], bool], period: float) -> None:
+        """Redraw whenever `current()` changes, every `period` s, while `ok()`."""
+        from rich.console import Console
+        from rich.live import Live
+
+        shown = None
+        with Live(console=Console(), auto_refresh=False) as live:
+            while ok():
+                graph = current()
+                if graph != shown:
+                    shown = graph
+                    live.update(self.picture(graph), refresh=True)
+                time.sleep(period)
