@@ -15,11 +15,14 @@ import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.duration import Duration
 from ros2lite.exceptions import NotInitializedException
 from ros2lite.time import ClockType, Time
+
+if TYPE_CHECKING:
+    from ros2lite.context import Context
 
 __all__ = [
     'Clock',
@@ -73,6 +76,7 @@ class JumpThreshold:
         self.on_clock_change = on_clock_change
 
     def exceeded(self, jump: TimeJump) -> bool:
+        """Whether `jump` is one this threshold selects."""
         if jump.clock_change in (ClockChange.ROS_TIME_ACTIVATED, ClockChange.ROS_TIME_DEACTIVATED):
             return self.on_clock_change
         delta = jump.delta.nanoseconds
@@ -90,8 +94,8 @@ class JumpHandle:
         self,
         clock: Clock,
         threshold: JumpThreshold,
-        pre_callback: Callable[[], Any] | None,
-        post_callback: Callable[[TimeJump], Any] | None,
+        pre_callback: Callable[[], object] | None,
+        post_callback: Callable[[TimeJump], object] | None,
     ) -> None:
         self._clock: Clock | None = clock
         self.threshold = threshold
@@ -99,6 +103,7 @@ class JumpHandle:
         self.post_callback = post_callback
 
     def unregister(self) -> None:
+        """Stop calling the callbacks (again: nothing happens)."""
         clock, self._clock = self._clock, None
         if clock is not None:
             clock._remove_jump_handle(self)
@@ -130,6 +135,7 @@ class Clock:
 
     @property
     def clock_type(self) -> ClockType:
+        """Which time this clock reads."""
         return self._clock_type
 
     @property
@@ -141,6 +147,7 @@ class Clock:
         return f'Clock(clock_type={self._clock_type.name})'
 
     def now(self) -> Time:
+        """The clock's current time."""
         if self._clock_type == ClockType.STEADY_TIME:
             return Time(nanoseconds=time.monotonic_ns(), clock_type=self._clock_type)
         return Time(nanoseconds=time.time_ns(), clock_type=self._clock_type)
@@ -150,8 +157,8 @@ class Clock:
         self,
         threshold: JumpThreshold,
         *,
-        pre_callback: Callable[[], Any] | None = None,
-        post_callback: Callable[[TimeJump], Any] | None = None,
+        pre_callback: Callable[[], object] | None = None,
+        post_callback: Callable[[TimeJump], object] | None = None,
     ) -> JumpHandle:
         """Call `pre_callback()` before and `post_callback(jump)` after each time jump that
         `threshold` selects, until the returned handle is unregistered."""
@@ -180,7 +187,7 @@ class Clock:
                 handle.post_callback(jump)
 
     # -- sleeping -----------------------------------------------------------------------------
-    def sleep_until(self, until: Time, context: Any = None) -> bool:
+    def sleep_until(self, until: Time, context: Context | None = None) -> bool:
         """Sleep until this clock reaches `until`. False when the context shut down or ROS
         time was switched on or off meanwhile (the target then means something else)."""
         from ros2lite.context import default_context
@@ -211,7 +218,7 @@ class Clock:
         finally:
             ctx.remove_on_shutdown(on_shutdown)
 
-    def sleep_for(self, rel_time: Duration, context: Any = None) -> bool:
+    def sleep_for(self, rel_time: Duration, context: Context | None = None) -> bool:
         """Sleep for `rel_time` of this clock (see :meth:`sleep_until`)."""
         return self.sleep_until(self.now() + rel_time, context)
 
@@ -226,7 +233,7 @@ class ROSClock(Clock):
         self._ros_time_active = False
         self._override_ns = 0
 
-    def __new__(cls, *args: Any, **kwargs: Any) -> ROSClock:
+    def __new__(cls, *args: object, **kwargs: object) -> ROSClock:
         return object.__new__(cls)
 
     def __repr__(self) -> str:
@@ -234,9 +241,11 @@ class ROSClock(Clock):
 
     @property
     def ros_time_is_active(self) -> bool:
+        """Whether the clock reads the time set from /clock rather than system time."""
         return self._ros_time_active
 
     def now(self) -> Time:
+        """The override while ROS time is active, else system time."""
         if self._ros_time_active:
             return Time(nanoseconds=self._override_ns, clock_type=ClockType.ROS_TIME)
         return Time(nanoseconds=time.time_ns(), clock_type=ClockType.ROS_TIME)

@@ -11,4 +11,5 @@ __all__ = ['DestroyableType']
 class DestroyableType(Protocol):
     """Anything with a `destroy()` that releases what it holds."""
 
-    def destroy(self) -> None: ...
+    def destroy(self) -> None:
+        """Release what it holds; it must not be used afterwards."""

@@ -14,7 +14,7 @@ from __future__ import annotations
 import enum
 import threading
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.executable import Executable
@@ -23,7 +23,8 @@ from ros2lite.transport.keys import EntityKind
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
-    from ros2lite.graph import Entity
+    from ros2lite.endpoint import EndpointOwner
+    from ros2lite.graph import Entity, GraphCache
     from ros2lite.task import Task
 
 __all__ = [
@@ -51,6 +52,8 @@ class UnsupportedEventTypeError(Ros2liteError, RuntimeError):
 
 
 class QoSPublisherEventType(enum.IntEnum):
+    """A publisher's events (rcl's numbers)."""
+
     RCL_PUBLISHER_OFFERED_DEADLINE_MISSED = 0
     RCL_PUBLISHER_LIVELINESS_LOST = 1
     RCL_PUBLISHER_OFFERED_INCOMPATIBLE_QOS = 2
@@ -59,6 +62,8 @@ class QoSPublisherEventType(enum.IntEnum):
 
 
 class QoSSubscriptionEventType(enum.IntEnum):
+    """A subscription's events (rcl's numbers)."""
+
     RCL_SUBSCRIPTION_REQUESTED_DEADLINE_MISSED = 0
     RCL_SUBSCRIPTION_LIVELINESS_CHANGED = 1
     RCL_SUBSCRIPTION_REQUESTED_INCOMPATIBLE_QOS = 2
@@ -68,21 +73,29 @@ class QoSSubscriptionEventType(enum.IntEnum):
 
 
 class QoSOfferedDeadlineMissedInfo(NamedTuple):
+    """rclpy's record of missed publisher deadlines (never reported on rmw_zenoh)."""
+
     total_count: int
     total_count_change: int
 
 
 class QoSRequestedDeadlineMissedInfo(NamedTuple):
+    """rclpy's record of missed subscription deadlines (never reported on rmw_zenoh)."""
+
     total_count: int
     total_count_change: int
 
 
 class QoSLivelinessLostInfo(NamedTuple):
+    """rclpy's record of lost publisher liveliness (never reported on rmw_zenoh)."""
+
     total_count: int
     total_count_change: int
 
 
 class QoSLivelinessChangedInfo(NamedTuple):
+    """rclpy's record of publishers' liveliness changes (never reported on rmw_zenoh)."""
+
     alive_count: int
     not_alive_count: int
     alive_count_change: int
@@ -90,28 +103,38 @@ class QoSLivelinessChangedInfo(NamedTuple):
 
 
 class QoSMessageLostInfo(NamedTuple):
+    """rclpy's record of lost messages (never reported on rmw_zenoh)."""
+
     total_count: int
     total_count_change: int
 
 
 class QoSOfferedIncompatibleQoSInfo(NamedTuple):
+    """Subscriptions that asked a publisher for QoS it does not offer, and the last policy."""
+
     total_count: int
     total_count_change: int
     last_policy_kind: QoSPolicyKind
 
 
 class QoSRequestedIncompatibleQoSInfo(NamedTuple):
+    """Publishers that do not offer what a subscription asks for, and the last policy."""
+
     total_count: int
     total_count_change: int
     last_policy_kind: QoSPolicyKind
 
 
 class IncompatibleTypeInfo(NamedTuple):
+    """Endpoints on the topic with another type (or type hash)."""
+
     total_count: int
     total_count_change: int
 
 
 class QoSPublisherMatchedInfo(NamedTuple):
+    """Subscriptions a publisher matched, in total and now, with the changes since last."""
+
     total_count: int
     total_count_change: int
     current_count: int
@@ -119,10 +142,24 @@ class QoSPublisherMatchedInfo(NamedTuple):
 
 
 class QoSSubscriptionMatchedInfo(NamedTuple):
+    """Publishers a subscription matched, in total and now, with the changes since last."""
+
     total_count: int
     total_count_change: int
     current_count: int
     current_count_change: int
+
+
+# what an event handler gives its callback
+EventInfo = (
+    QoSPublisherMatchedInfo
+    | QoSSubscriptionMatchedInfo
+    | IncompatibleTypeInfo
+    | QoSOfferedIncompatibleQoSInfo
+    | QoSRequestedIncompatibleQoSInfo
+)
+# a user's callback takes one kind of info; the handler hands it the kind it asked for
+EventCallback = Callable[..., object]
 
 
 class _Kind(enum.Enum):
@@ -131,12 +168,13 @@ class _Kind(enum.Enum):
     INCOMPATIBLE_TYPE = 'incompatible_type'
 
 
-_PUBLISHER_EVENTS = {
+# keyed by rcl's numbers (the enums are ints)
+_PUBLISHER_EVENTS: dict[int, _Kind] = {
     QoSPublisherEventType.RCL_PUBLISHER_MATCHED: _Kind.MATCHED,
     QoSPublisherEventType.RCL_PUBLISHER_OFFERED_INCOMPATIBLE_QOS: _Kind.INCOMPATIBLE_QOS,
     QoSPublisherEventType.RCL_PUBLISHER_INCOMPATIBLE_TYPE: _Kind.INCOMPATIBLE_TYPE,
 }
-_SUBSCRIPTION_EVENTS = {
+_SUBSCRIPTION_EVENTS: dict[int, _Kind] = {
     QoSSubscriptionEventType.RCL_SUBSCRIPTION_MATCHED: _Kind.MATCHED,
     QoSSubscriptionEventType.RCL_SUBSCRIPTION_REQUESTED_INCOMPATIBLE_QOS: _Kind.INCOMPATIBLE_QOS,
     QoSSubscriptionEventType.RCL_SUBSCRIPTION_INCOMPATIBLE_TYPE: _Kind.INCOMPATIBLE_TYPE,
@@ -150,13 +188,11 @@ class EventHandler(Executable):
         self,
         *,
         callback_group: CallbackGroup | None,
-        callback: Callable[[Any], Any],
+        callback: EventCallback,
         event_type: QoSPublisherEventType | QoSSubscriptionEventType,
-        parent: Any,
+        parent: EndpointOwner,
     ) -> None:
-        events: dict[Any, _Kind] = (
-            _PUBLISHER_EVENTS if _is_publisher(parent) else _SUBSCRIPTION_EVENTS
-        )
+        events = _PUBLISHER_EVENTS if _is_publisher(parent) else _SUBSCRIPTION_EVENTS
         kind = events.get(event_type)
         if kind is None:
             raise UnsupportedEventTypeError(
@@ -176,7 +212,7 @@ class EventHandler(Executable):
         self._current_change = 0
         self._last_policy = QoSPolicyKind.INVALID
         self._ready = False
-        self._graph: Any = node.context.graph
+        self._graph: GraphCache = node.context.graph
         for entity in self._graph.add_listener(self._on_graph):
             self._on_graph(entity, True)
 
@@ -233,7 +269,7 @@ class EventHandler(Executable):
             return None
         return self._call(self.callback, self.take_event())
 
-    def take_event(self) -> Any:
+    def take_event(self) -> EventInfo:
         """The counts now, with the changes since the last take (which are then reset)."""
         publisher = _is_publisher(self._parent)
         with self._lock:
@@ -252,31 +288,31 @@ class EventHandler(Executable):
         return incompatible(total, change, self._last_policy)
 
     def destroy(self) -> None:
+        """Stop following the graph and leave the node's waitables."""
         self._graph.remove_listener(self._on_graph)
         if self._node is not None:
             self._node.remove_waitable(self)
 
 
-def _is_publisher(parent: Any) -> bool:
+def _is_publisher(parent: EndpointOwner) -> bool:
     return bool(parent._ep.kind == EntityKind.PUBLISHER)
 
 
 class _EventCallbacks:
     """What publishers and subscription callbacks share."""
 
-    _types: Any
-    _names: dict[str, Any]
+    _names: dict[str, QoSPublisherEventType] | dict[str, QoSSubscriptionEventType]
 
     def __init__(self, use_default_callbacks: bool) -> None:
         self.use_default_callbacks = use_default_callbacks
 
     def create_event_handlers(
-        self, callback_group: CallbackGroup | None, parent: Any, topic_name: str
+        self, callback_group: CallbackGroup | None, parent: EndpointOwner, topic_name: str
     ) -> list[EventHandler]:
         """The handlers of `parent` (a publisher or subscription), defaults included."""
         handlers = []
         for attribute, event_type in self._names.items():
-            callback = getattr(self, attribute)
+            callback: EventCallback | None = getattr(self, attribute)
             if callback is None:
                 default = _DEFAULTS.get(attribute) if self.use_default_callbacks else None
                 if default is None:
@@ -307,11 +343,11 @@ class PublisherEventCallbacks(_EventCallbacks):
     def __init__(
         self,
         *,
-        deadline: Callable[[QoSOfferedDeadlineMissedInfo], Any] | None = None,
-        incompatible_qos: Callable[[QoSOfferedIncompatibleQoSInfo], Any] | None = None,
-        liveliness: Callable[[QoSLivelinessLostInfo], Any] | None = None,
-        incompatible_type: Callable[[IncompatibleTypeInfo], Any] | None = None,
-        matched: Callable[[QoSPublisherMatchedInfo], Any] | None = None,
+        deadline: Callable[[QoSOfferedDeadlineMissedInfo], object] | None = None,
+        incompatible_qos: Callable[[QoSOfferedIncompatibleQoSInfo], object] | None = None,
+        liveliness: Callable[[QoSLivelinessLostInfo], object] | None = None,
+        incompatible_type: Callable[[IncompatibleTypeInfo], object] | None = None,
+        matched: Callable[[QoSPublisherMatchedInfo], object] | None = None,
         use_default_callbacks: bool = True,
     ) -> None:
         super().__init__(use_default_callbacks)
@@ -337,12 +373,12 @@ class SubscriptionEventCallbacks(_EventCallbacks):
     def __init__(
         self,
         *,
-        deadline: Callable[[QoSRequestedDeadlineMissedInfo], Any] | None = None,
-        incompatible_qos: Callable[[QoSRequestedIncompatibleQoSInfo], Any] | None = None,
-        liveliness: Callable[[QoSLivelinessChangedInfo], Any] | None = None,
-        message_lost: Callable[[QoSMessageLostInfo], Any] | None = None,
-        incompatible_type: Callable[[IncompatibleTypeInfo], Any] | None = None,
-        matched: Callable[[QoSSubscriptionMatchedInfo], Any] | None = None,
+        deadline: Callable[[QoSRequestedDeadlineMissedInfo], object] | None = None,
+        incompatible_qos: Callable[[QoSRequestedIncompatibleQoSInfo], object] | None = None,
+        liveliness: Callable[[QoSLivelinessChangedInfo], object] | None = None,
+        message_lost: Callable[[QoSMessageLostInfo], object] | None = None,
+        incompatible_type: Callable[[IncompatibleTypeInfo], object] | None = None,
+        matched: Callable[[QoSSubscriptionMatchedInfo], object] | None = None,
         use_default_callbacks: bool = True,
     ) -> None:
         super().__init__(use_default_callbacks)
@@ -363,7 +399,9 @@ def _warn(message: str) -> None:
     logging.get_logger('rclpy.qos_event').warn(message)
 
 
-def _incompatible_qos_warning(parent: Any, topic_name: str) -> Callable[[Any], None]:
+def _incompatible_qos_warning(
+    parent: EndpointOwner, topic_name: str
+) -> Callable[[QoSOfferedIncompatibleQoSInfo | QoSRequestedIncompatibleQoSInfo], None]:
     if _is_publisher(parent):
         text = (
             f"New subscription discovered on topic '{topic_name}', requesting incompatible QoS. "
@@ -377,7 +415,9 @@ def _incompatible_qos_warning(parent: Any, topic_name: str) -> Callable[[Any], N
     return lambda info: _warn(text.format(info.last_policy_kind.name))
 
 
-def _incompatible_type_warning(parent: Any, topic_name: str) -> Callable[[Any], None]:
+def _incompatible_type_warning(
+    parent: EndpointOwner, topic_name: str
+) -> Callable[[IncompatibleTypeInfo], None]:
     side = 'subscription' if _is_publisher(parent) else 'publisher'
     return lambda info: _warn(
         f"Incompatible type on topic '{topic_name}', no messages will be sent to it "
@@ -385,7 +425,7 @@ def _incompatible_type_warning(parent: Any, topic_name: str) -> Callable[[Any], 
     )
 
 
-_DEFAULTS: dict[str, Callable[[Any, str], Callable[[Any], None]]] = {
+_DEFAULTS: dict[str, Callable[[EndpointOwner, str], EventCallback]] = {
     'incompatible_qos': _incompatible_qos_warning,
     'incompatible_type': _incompatible_type_warning,
 }

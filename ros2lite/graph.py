@@ -97,6 +97,7 @@ class GraphCache:
             return list(self._entities.values())
 
     def remove_listener(self, listener: Callable[[Entity, bool], None]) -> None:
+        """Stop calling a listener given to :meth:`add_listener`."""
         with self._cond:
             if listener in self._listeners:
                 self._listeners.remove(listener)

@@ -29,7 +29,9 @@ if TYPE_CHECKING:
     from ros2lite.interfaces import Message, ServiceType
     from ros2lite.msgs.rcl_interfaces import srv
     from ros2lite.msgs.rcl_interfaces.msg import Parameter as ParameterMsg
+    from ros2lite.msgs.rcl_interfaces.msg import ParameterEvent
     from ros2lite.node import Node
+    from ros2lite.subscription import Subscription
 
 __all__ = ['AsyncParameterClient']
 
@@ -209,11 +211,11 @@ class AsyncParameterClient:
 
     def on_parameter_event(
         self,
-        callback: Callable[[Any], Any],
+        callback: Callable[[ParameterEvent], object],
         qos_profile: QoSProfile = qos_profile_parameter_events,
         *,
         callback_group: CallbackGroup | None = None,
-    ) -> Any:
+    ) -> Subscription[ParameterEvent]:
         """Subscribe `callback(ParameterEvent)` to /parameter_events (every node's, as
         rclpy's client does); returns the subscription."""
         from ros2lite.parameters.events import TOPIC, TYPE

@@ -11,10 +11,22 @@ from __future__ import annotations
 import threading
 from collections.abc import Callable
 from itertools import chain
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.parameters.events import TOPIC, TYPE
 from ros2lite.qos import QoSProfile, qos_profile_parameter_events
+
+if TYPE_CHECKING:
+    from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.event_handler import SubscriptionEventCallbacks
+    from ros2lite.msgs.rcl_interfaces.msg import Parameter as ParameterMsg
+    from ros2lite.msgs.rcl_interfaces.msg import ParameterEvent
+    from ros2lite.node import Node
+    from ros2lite.qos_overriding_options import QoSOverridingOptions
+
+# what the two kinds of callback get
+ParameterCallback = Callable[['ParameterMsg'], object]
+ParameterEventCallback = Callable[['ParameterEvent'], object]
 
 __all__ = ['ParameterCallbackHandle', 'ParameterEventCallbackHandle', 'ParameterEventHandler']
 
@@ -22,7 +34,7 @@ __all__ = ['ParameterCallbackHandle', 'ParameterEventCallbackHandle', 'Parameter
 class ParameterCallbackHandle:
     """One registered parameter callback (give it back to remove it)."""
 
-    def __init__(self, parameter_name: str, node_name: str, callback: Callable[[Any], Any]):
+    def __init__(self, parameter_name: str, node_name: str, callback: ParameterCallback) -> None:
         self.parameter_name = parameter_name
         self.node_name = node_name
         self.callback = callback
@@ -31,7 +43,7 @@ class ParameterCallbackHandle:
 class ParameterEventCallbackHandle:
     """One registered event callback (give it back to remove it)."""
 
-    def __init__(self, callback: Callable[[Any], Any]) -> None:
+    def __init__(self, callback: ParameterEventCallback) -> None:
         self.callback = callback
 
 
@@ -46,7 +58,8 @@ class ParameterEventHandler:
             self.event_callbacks: list[ParameterEventCallbackHandle] = []
             self._lock = threading.RLock()
 
-        def event_callback(self, event: Any) -> None:
+        def event_callback(self, event: ParameterEvent) -> None:
+            """Dispatch one event: parameter callbacks first, newest first, then event ones."""
             with self._lock:
                 parameter_callbacks = {k: list(v) for k, v in self.parameter_callbacks.items()}
                 event_callbacks = list(self.event_callbacks)
@@ -61,8 +74,9 @@ class ParameterEventHandler:
                 event_handle.callback(event)
 
         def add_parameter_callback(
-            self, parameter_name: str, node_name: str, callback: Callable[[Any], Any]
+            self, parameter_name: str, node_name: str, callback: ParameterCallback
         ) -> ParameterCallbackHandle:
+            """Register `callback` for one parameter of one node (it runs before older ones)."""
             handle = ParameterCallbackHandle(parameter_name, node_name, callback)
             with self._lock:
                 self.parameter_callbacks.setdefault((parameter_name, node_name), []).insert(
@@ -71,6 +85,7 @@ class ParameterEventHandler:
             return handle
 
         def remove_parameter_callback(self, handle: ParameterCallbackHandle) -> None:
+            """Forget a parameter callback; RuntimeError if it is not registered."""
             key = (handle.parameter_name, handle.node_name)
             with self._lock:
                 handles = self.parameter_callbacks.get(key)
@@ -81,14 +96,16 @@ class ParameterEventHandler:
                     del self.parameter_callbacks[key]
 
         def add_parameter_event_callback(
-            self, callback: Callable[[Any], Any]
+            self, callback: ParameterEventCallback
         ) -> ParameterEventCallbackHandle:
+            """Register `callback` for every event (it runs before older ones)."""
             handle = ParameterEventCallbackHandle(callback)
             with self._lock:
                 self.event_callbacks.insert(0, handle)
             return handle
 
         def remove_parameter_event_callback(self, handle: ParameterEventCallbackHandle) -> None:
+            """Forget an event callback; RuntimeError if it is not registered."""
             with self._lock:
                 if handle not in self.event_callbacks:
                     raise RuntimeError("Callback doesn't exist")
@@ -96,13 +113,15 @@ class ParameterEventHandler:
 
     def __init__(
         self,
-        node: Any,
+        node: Node,
         qos_profile: QoSProfile = qos_profile_parameter_events,
-        callback_group: Any = None,
-        event_callbacks: Any = None,
-        qos_overriding_options: Any = None,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: SubscriptionEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
         raw: bool = False,
     ) -> None:
+        """rclpy's arguments; `event_callbacks`, `qos_overriding_options` and `raw` are
+        accepted and not used (the subscription is a plain typed one)."""
         self.node = node
         self.qos_profile = qos_profile
         self._callbacks = ParameterEventHandler.Callbacks()
@@ -115,10 +134,11 @@ class ParameterEventHandler:
         )
 
     def destroy(self) -> None:
+        """Stop watching /parameter_events."""
         self.node.destroy_subscription(self.parameter_event_subscription)
 
     def add_parameter_callback(
-        self, parameter_name: str, node_name: str, callback: Callable[[Any], Any]
+        self, parameter_name: str, node_name: str, callback: ParameterCallback
     ) -> ParameterCallbackHandle:
         """Call `callback(parameter)` when `node_name`'s `parameter_name` is set (a relative
         node name is in this node's namespace)."""
@@ -127,19 +147,23 @@ class ParameterEventHandler:
         )
 
     def remove_parameter_callback(self, handle: ParameterCallbackHandle) -> None:
+        """Forget a parameter callback; RuntimeError if it is not registered."""
         self._callbacks.remove_parameter_callback(handle)
 
     def add_parameter_event_callback(
-        self, callback: Callable[[Any], Any]
+        self, callback: ParameterEventCallback
     ) -> ParameterEventCallbackHandle:
         """Call `callback(event)` for every ParameterEvent."""
         return self._callbacks.add_parameter_event_callback(callback)
 
     def remove_parameter_event_callback(self, handle: ParameterEventCallbackHandle) -> None:
+        """Forget an event callback; RuntimeError if it is not registered."""
         self._callbacks.remove_parameter_event_callback(handle)
 
     @staticmethod
-    def get_parameter_from_event(event: Any, parameter_name: str, node_name: str) -> Any:
+    def get_parameter_from_event(
+        event: ParameterEvent, parameter_name: str, node_name: str
+    ) -> ParameterMsg | None:
         """The new or changed `parameter_name` of `node_name` in `event`, or None."""
         if event.node != node_name:
             return None
@@ -149,7 +173,7 @@ class ParameterEventHandler:
         return None
 
     @staticmethod
-    def get_parameters_from_event(event: Any) -> list[Any]:
+    def get_parameters_from_event(event: ParameterEvent) -> list[ParameterMsg]:
         """Every new or changed parameter in `event`."""
         return [*event.new_parameters, *event.changed_parameters]
 

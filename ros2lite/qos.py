@@ -192,18 +192,22 @@ class QoSProfile:
     # -- fields (setters accept rmw's numbers and check what rclpy checks) -----------------
     @property
     def history(self) -> HistoryPolicy:
+        """Keep the last `depth` samples, or all of them."""
         return self._history
 
     @history.setter
     def history(self, value: HistoryPolicy | int) -> None:
+        """Set from the enum or its number."""
         self._history = HistoryPolicy(value)
 
     @property
     def depth(self) -> int:
+        """How many samples KEEP_LAST keeps."""
         return self._depth
 
     @depth.setter
     def depth(self, value: int) -> None:
+        """A non-negative int (0 with KEEP_LAST warns, as rclpy does)."""
         if isinstance(value, bool) or not isinstance(value, int):
             raise TypeError(f"QoS depth must be an int, not {type(value).__name__}")
         if value < 0:
@@ -221,58 +225,72 @@ class QoSProfile:
 
     @property
     def reliability(self) -> ReliabilityPolicy:
+        """Whether delivery is retried or may drop."""
         return self._reliability
 
     @reliability.setter
     def reliability(self, value: ReliabilityPolicy | int) -> None:
+        """Set from the enum or its number."""
         self._reliability = ReliabilityPolicy(value)
 
     @property
     def durability(self) -> DurabilityPolicy:
+        """Whether late joiners get the last samples."""
         return self._durability
 
     @durability.setter
     def durability(self, value: DurabilityPolicy | int) -> None:
+        """Set from the enum or its number."""
         self._durability = DurabilityPolicy(value)
 
     @property
     def liveliness(self) -> LivelinessPolicy:
+        """How a publisher shows it is alive."""
         return self._liveliness
 
     @liveliness.setter
     def liveliness(self, value: LivelinessPolicy | int) -> None:
+        """Set from the enum or its number."""
         self._liveliness = LivelinessPolicy(value)
 
     @property
     def lifespan(self) -> Duration:
+        """How long a sample stays valid (0: unspecified)."""
         return self._lifespan
 
     @lifespan.setter
     def lifespan(self, value: Duration) -> None:
+        """A Duration."""
         self._lifespan = _duration("lifespan", value)
 
     @property
     def deadline(self) -> Duration:
+        """The longest expected gap between samples (0: unspecified)."""
         return self._deadline
 
     @deadline.setter
     def deadline(self, value: Duration) -> None:
+        """A Duration."""
         self._deadline = _duration("deadline", value)
 
     @property
     def liveliness_lease_duration(self) -> Duration:
+        """How long a publisher may stay silent and still be alive."""
         return self._liveliness_lease_duration
 
     @liveliness_lease_duration.setter
     def liveliness_lease_duration(self, value: Duration) -> None:
+        """A Duration."""
         self._liveliness_lease_duration = _duration("liveliness_lease_duration", value)
 
     @property
     def avoid_ros_namespace_conventions(self) -> bool:
+        """Whether names skip ROS's namespace mangling."""
         return self._avoid_ros_namespace_conventions
 
     @avoid_ros_namespace_conventions.setter
     def avoid_ros_namespace_conventions(self, value: bool) -> None:
+        """Set as a bool."""
         self._avoid_ros_namespace_conventions = bool(value)
 
     # -- value semantics --------------------------------------------------------------------

@@ -9,8 +9,9 @@ callback may refuse the resulting profile.
 
 from __future__ import annotations
 
+import enum
 from collections.abc import Callable, Iterable
-from typing import Any
+from typing import TYPE_CHECKING, cast
 
 from ros2lite.duration import Duration
 from ros2lite.exceptions import ParameterAlreadyDeclaredException, Ros2liteError
@@ -24,6 +25,11 @@ from ros2lite.qos import (
     ReliabilityPolicy,
 )
 
+if TYPE_CHECKING:
+    from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
+    from ros2lite.node import Node
+    from ros2lite.parameter import Parameter
+
 __all__ = [
     'InvalidQosOverridesError',
     'QoSOverridingOptions',
@@ -32,15 +38,20 @@ __all__ = [
 ]
 
 #: what a validation callback returns (rclpy uses SetParametersResult)
-QosCallbackResult: Any = get_interface('rcl_interfaces/msg/SetParametersResult')
-QosCallbackType = Callable[[QoSProfile], Any]
+QosCallbackResult: type[SetParametersResult] = get_interface(
+    'rcl_interfaces/msg/SetParametersResult'
+)
+QosCallbackType = Callable[[QoSProfile], 'SetParametersResult']
 
 _DURATIONS = {
     QoSPolicyKind.DEADLINE,
     QoSPolicyKind.LIFESPAN,
     QoSPolicyKind.LIVELINESS_LEASE_DURATION,
 }
-_ENUMS: dict[QoSPolicyKind, Any] = {
+_ENUMS: dict[
+    QoSPolicyKind,
+    type[DurabilityPolicy] | type[HistoryPolicy] | type[LivelinessPolicy] | type[ReliabilityPolicy],
+] = {
     QoSPolicyKind.DURABILITY: DurabilityPolicy,
     QoSPolicyKind.HISTORY: HistoryPolicy,
     QoSPolicyKind.LIVELINESS: LivelinessPolicy,
@@ -105,28 +116,30 @@ def _allowed(entity_type_str: str) -> set[QoSPolicyKind]:
     return allowed
 
 
-def _get_qos_policy_parameter(qos: QoSProfile, policy: QoSPolicyKind) -> Any:
+def _get_qos_policy_parameter(qos: QoSProfile, policy: QoSPolicyKind) -> int | str:
     """The parameter value of one policy of `qos` (short key, depth, or nanoseconds)."""
-    value = getattr(qos, policy.name.lower())
-    if policy in _DURATIONS:
+    value: object = getattr(qos, policy.name.lower())
+    if isinstance(value, Duration):
         return value.nanoseconds
-    if policy == QoSPolicyKind.DEPTH:
-        return value
-    return value.short_key
+    if isinstance(value, enum.Enum):
+        return value.name.lower()  # the policy's short key
+    return int(cast(int, value))  # depth
 
 
-def _override_qos_policy_with_param(qos: QoSProfile, policy: QoSPolicyKind, param: Any) -> None:
-    value = param.value
+def _override_qos_policy_with_param(
+    qos: QoSProfile, policy: QoSPolicyKind, param: Parameter
+) -> None:
+    value: object = param.value
     if policy in _DURATIONS:
-        value = Duration(nanoseconds=value)
+        value = Duration(nanoseconds=cast(int, value))
     elif policy in _ENUMS:
-        value = _ENUMS[policy].from_short_key(value)
+        value = _ENUMS[policy].from_short_key(str(value))
     setattr(qos, policy.name.lower(), value)
 
 
 def _declare_qos_parameters(
     entity_type: type,
-    node: Any,
+    node: Node,
     topic_name: str,
     qos: QoSProfile,
     options: QoSOverridingOptions,

@@ -8,9 +8,13 @@ callbacks, so the node must be spun by another thread (as with rclpy).
 from __future__ import annotations
 
 import threading
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.exceptions import ROSInterruptException
+
+if TYPE_CHECKING:
+    from ros2lite.clock import Clock
+    from ros2lite.node import Node
 
 __all__ = ['Rate']
 
@@ -18,7 +22,7 @@ __all__ = ['Rate']
 class Rate:
     """Sleeps until the next tick; ROSInterruptException once destroyed or shut down."""
 
-    def __init__(self, node: Any, frequency: float, clock: Any = None) -> None:
+    def __init__(self, node: Node, frequency: float, clock: Clock | None = None) -> None:
         if isinstance(frequency, bool) or not isinstance(frequency, (int, float)):
             raise TypeError(f'frequency must be a number, not {type(frequency).__name__}')
         if frequency <= 0:

@@ -10,9 +10,12 @@ their numbers mean different things.
 from __future__ import annotations
 
 import enum
-from typing import Any
+from typing import TYPE_CHECKING, overload
 
 from ros2lite.duration import Duration
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.builtin_interfaces import msg as _builtin_msg
 
 __all__ = ['ClockType', 'Time']
 
@@ -55,10 +58,12 @@ class Time:
 
     @property
     def nanoseconds(self) -> int:
+        """Nanoseconds since the clock's epoch."""
         return self._ns
 
     @property
     def clock_type(self) -> ClockType:
+        """The clock this time belongs to."""
         return self._clock_type
 
     def seconds_nanoseconds(self) -> tuple[int, int]:
@@ -79,7 +84,13 @@ class Time:
 
     __radd__ = __add__
 
-    def __sub__(self, other: Time | Duration) -> Any:
+    @overload
+    def __sub__(self, other: Time) -> Duration: ...
+
+    @overload
+    def __sub__(self, other: Duration) -> Time: ...
+
+    def __sub__(self, other: Time | Duration) -> Duration | Time:
         if isinstance(other, Time):
             self._same_clock(other)
             return Duration(nanoseconds=self._ns - other._ns)
@@ -128,14 +139,16 @@ class Time:
             return NotImplemented
         return order >= 0
 
-    def to_msg(self) -> Any:
+    def to_msg(self) -> _builtin_msg.Time:
+        """As a builtin_interfaces/msg/Time."""
         from ros2lite.interfaces import get_interface
 
         sec, nsec = self.seconds_nanoseconds()
-        return get_interface('builtin_interfaces/msg/Time')(sec=sec, nanosec=nsec)
+        time_type: type[_builtin_msg.Time] = get_interface('builtin_interfaces/msg/Time')
+        return time_type(sec=sec, nanosec=nsec)
 
     @classmethod
-    def from_msg(cls, msg: Any, clock_type: ClockType = ClockType.ROS_TIME) -> Time:
+    def from_msg(cls, msg: _builtin_msg.Time, clock_type: ClockType = ClockType.ROS_TIME) -> Time:
         """From a `builtin_interfaces/msg/Time` (ROS time unless told otherwise)."""
         if not hasattr(msg, 'sec') or not hasattr(msg, 'nanosec'):
             raise TypeError('Must pass a builtin_interfaces.msg.Time object')

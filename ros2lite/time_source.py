@@ -11,12 +11,18 @@ from __future__ import annotations
 import contextlib
 import threading
 import weakref
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.clock import ROSClock
 from ros2lite.parameter import Parameter
 from ros2lite.qos import QoSProfile, ReliabilityPolicy
 from ros2lite.time import ClockType, Time
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
+    from ros2lite.msgs.rosgraph_msgs.msg import Clock as ClockMsg
+    from ros2lite.node import Node
+    from ros2lite.subscription import Subscription
 
 __all__ = ['CLOCK_TOPIC', 'USE_SIM_TIME_NAME', 'TimeSource']
 
@@ -29,10 +35,10 @@ CLOCK_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
 class TimeSource:
     """Keeps its attached ROS clocks on system time, or on `/clock` under sim time."""
 
-    def __init__(self, *, node: Any = None) -> None:
+    def __init__(self, *, node: Node | None = None) -> None:
         self._lock = threading.RLock()
-        self._clock_sub: Any = None
-        self._node_weak_ref: weakref.ref[Any] | None = None
+        self._clock_sub: Subscription[ClockMsg] | None = None
+        self._node_weak_ref: weakref.ref[Node] | None = None
         self._associated_clocks: list[ROSClock] = []
         self._last_time_set: Time | None = None
         self._ros_time_is_active = False
@@ -42,10 +48,12 @@ class TimeSource:
     # -- ROS time on/off ----------------------------------------------------------------------
     @property
     def ros_time_is_active(self) -> bool:
+        """Whether the attached clocks follow /clock (use_sim_time)."""
         return self._ros_time_is_active
 
     @ros_time_is_active.setter
     def ros_time_is_active(self, enabled: bool) -> None:
+        """Switch every attached clock to /clock time (subscribing to it) or back."""
         with self._lock:
             if bool(enabled) == self._ros_time_is_active:
                 return
@@ -70,7 +78,7 @@ class TimeSource:
         if sub is not None and node is not None:
             node.destroy_subscription(sub)
 
-    def clock_callback(self, msg: Any) -> None:
+    def clock_callback(self, msg: ClockMsg) -> None:
         """A `/clock` message: the new time of every attached clock."""
         time_point = Time.from_msg(msg.clock)
         with self._lock:
@@ -80,10 +88,10 @@ class TimeSource:
             clock.set_ros_time_override(time_point)
 
     # -- node ---------------------------------------------------------------------------------
-    def _get_node(self) -> Any:
+    def _get_node(self) -> Node | None:
         return self._node_weak_ref() if self._node_weak_ref is not None else None
 
-    def attach_node(self, node: Any) -> None:
+    def attach_node(self, node: Node) -> None:
         """Follow `node`'s `use_sim_time` (declared here if the node has none yet)."""
         with self._lock:
             if self._node_weak_ref is not None:
@@ -112,7 +120,7 @@ class TimeSource:
                     node.remove_on_set_parameters_callback(self._on_parameters)
             self._node_weak_ref = None
 
-    def _on_parameters(self, parameters: list[Parameter]) -> Any:
+    def _on_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
         from ros2lite.parameters.store import result
 
         for param in parameters:

@@ -48,6 +48,7 @@ class Timer(Executable):
 
     @property
     def timer_period_ns(self) -> int:
+        """The period in nanoseconds."""
         return self._period_ns
 
     @timer_period_ns.setter

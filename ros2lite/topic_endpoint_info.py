@@ -4,7 +4,7 @@
 from __future__ import annotations
 
 import enum
-from typing import Any
+from collections.abc import Iterable, Sequence
 
 from ros2lite.qos import HistoryPolicy, QoSProfile, qos_profile_unknown
 
@@ -19,7 +19,7 @@ class TopicEndpointTypeEnum(enum.IntEnum):
     SUBSCRIPTION = 2
 
 
-def format_gid(gid: Any) -> str:
+def format_gid(gid: Iterable[int]) -> str:
     """rclpy's dotted lower-case hex, e.g. `01.0f.2a.…`."""
     return '.'.join(f'{b:02x}' for b in gid)
 
@@ -55,7 +55,7 @@ class TopicEndpointInfo:
         topic_type: str = '',
         topic_type_hash: str = '',
         endpoint_type: TopicEndpointTypeEnum = TopicEndpointTypeEnum.INVALID,
-        endpoint_gid: Any = (),
+        endpoint_gid: bytes | Sequence[int] = (),
         qos_profile: QoSProfile | None = None,
     ) -> None:
         self.node_name = node_name
@@ -70,10 +70,12 @@ class TopicEndpointInfo:
 
     @property
     def endpoint_type(self) -> TopicEndpointTypeEnum:
+        """Publisher or subscription."""
         return self._endpoint_type
 
     @endpoint_type.setter
     def endpoint_type(self, value: TopicEndpointTypeEnum | int | str) -> None:
+        """Set from the enum, its number or its name (as rclpy accepts)."""
         if isinstance(value, str):
             value = TopicEndpointTypeEnum[value]
         self._endpoint_type = TopicEndpointTypeEnum(value)

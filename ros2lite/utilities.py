@@ -25,6 +25,7 @@ def get_rmw_implementation_identifier() -> str:
 
 
 def get_available_rmw_implementations() -> set[str]:
+    """The middlewares this process could use: only rmw_zenoh_cpp's wire."""
     return {RMW_IMPLEMENTATION}
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Generic, TypeVar, cast
 
 from ros2lite.executable import Executable
 
@@ -20,6 +20,9 @@ if TYPE_CHECKING:
     from ros2lite.task import Task
 
 __all__ = ['NumberOfEntities', 'Waitable']
+
+# what take_data() hands to execute()
+T = TypeVar('T')
 
 
 @dataclass
@@ -44,7 +47,7 @@ class NumberOfEntities:
         )
 
 
-class Waitable(Executable):
+class Waitable(Executable, Generic[T]):
     """Base of user waitables: override `take_data` and `execute`; call `notify_ready()`."""
 
     def __init__(self, callback_group: CallbackGroup | None = None) -> None:
@@ -66,22 +69,23 @@ class Waitable(Executable):
         return self._call(self.execute, self.take_data())
 
     # -- rclpy's interface -------------------------------------------------------------------
-    def is_ready(self, wait_set: Any) -> bool:
+    def is_ready(self, wait_set: object) -> bool:
         """Whether there is work (here: whether notify_ready() was called since the last
         execution)."""
         return self._ready
 
-    def take_data(self) -> Any:
-        """Take what the work needs; given to execute()."""
-        return None
+    def take_data(self) -> T:
+        """Take what the work needs; given to execute() (None unless overridden)."""
+        return cast(T, None)
 
-    async def execute(self, taken_data: Any) -> None:
+    async def execute(self, taken_data: T) -> None:
         """Do the work."""
 
     def get_num_entities(self) -> NumberOfEntities:
+        """What rclpy would count in its wait set for this waitable (none by default)."""
         return NumberOfEntities()
 
-    def add_to_wait_set(self, wait_set: Any) -> None:
+    def add_to_wait_set(self, wait_set: object) -> None:
         """rclpy's wait-set hook; ros2lite has no wait sets, so nothing to add."""
 
     def destroy(self) -> None:

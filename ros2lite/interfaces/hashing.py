@@ -125,10 +125,12 @@ class TypeHash:
 
     @property
     def version(self) -> int:
+        """The hash version (1 for RIHS01; -1 unset)."""
         return self._version
 
     @property
     def value(self) -> bytes:
+        """The raw hash bytes (32 for RIHS01)."""
         return self._value
 
     @classmethod

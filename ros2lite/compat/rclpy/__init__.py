@@ -7,7 +7,6 @@ is covered.
 from __future__ import annotations
 
 import importlib
-from typing import Any
 
 from ros2lite import (
     create_node,
@@ -49,7 +48,7 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> object:
     """`rclpy.<module>` without importing it first, as rclpy's own imports make possible."""
     if name.startswith('_'):
         raise AttributeError(name)

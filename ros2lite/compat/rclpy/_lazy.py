@@ -6,7 +6,6 @@ from __future__ import annotations
 import importlib
 from collections.abc import Callable
 from types import ModuleType
-from typing import Any
 
 
 def library(candidates: tuple[str, ...], face: str, feature: str) -> ModuleType:
@@ -22,10 +21,10 @@ def library(candidates: tuple[str, ...], face: str, feature: str) -> ModuleType:
     )
 
 
-def face(candidates: tuple[str, ...], face_name: str, feature: str) -> Callable[[str], Any]:
+def face(candidates: tuple[str, ...], face_name: str, feature: str) -> Callable[[str], object]:
     """A module `__getattr__` that maps every name onto the library module."""
 
-    def __getattr__(name: str) -> Any:
+    def __getattr__(name: str) -> object:
         if name.startswith('__'):
             raise AttributeError(name)
         return getattr(library(candidates, face_name, feature), name)
