@@ -18,7 +18,7 @@ import threading
 import time
 from collections import deque
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Generic, cast
+from typing import TYPE_CHECKING, Generic, cast, overload
 
 from ros2lite.endpoint import Endpoint
 from ros2lite.exceptions import Ros2liteError
@@ -185,6 +185,14 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
                     del self._pending[seq]
 
     # -- synchronous: the reply wakes the caller ---------------------------------------------------
+    @overload
+    def call(self, request: SrvRequestT, timeout_sec: None = None) -> SrvResponseT:
+        """Without a timeout: the response (or ServiceCallError)."""
+
+    @overload
+    def call(self, request: SrvRequestT, timeout_sec: float) -> SrvResponseT | None:
+        """With a timeout: the response, or None when it passed first."""
+
     def call(self, request: SrvRequestT, timeout_sec: float | None = None) -> SrvResponseT | None:
         """Send and wait for the response; None when `timeout_sec` passes first (as rclpy).
         Unlike rclpy, no executor needs to spin the node meanwhile."""

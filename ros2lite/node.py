@@ -285,7 +285,7 @@ class Node(ParameterMixin):
         self,
         msg_type: type[MsgT],
         topic: str,
-        callback: Callable[[MsgT], object] | Callable[[MsgT, MessageInfo], object],
+        callback: Callable[[MsgT], object],
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
@@ -298,9 +298,24 @@ class Node(ParameterMixin):
     @overload
     def create_subscription(
         self,
+        msg_type: type[MsgT],
+        topic: str,
+        callback: Callable[[MsgT, MessageInfo], object],
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: SubscriptionEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
+        raw: Literal[False] = False,
+    ) -> Subscription[MsgT]:
+        """`callback(msg, info)`: the message and its MessageInfo (rclpy's second form)."""
+
+    @overload
+    def create_subscription(
+        self,
         msg_type: str,
         topic: str,
-        callback: Callable[[Any], object] | Callable[[Any, MessageInfo], object],
+        callback: Callable[..., object],
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,

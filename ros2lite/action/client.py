@@ -314,7 +314,6 @@ class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
             response = self._goal_client.call(
                 self._action_type.Impl.SendGoalService.Request(goal_id=goal_id, goal=goal)
             )
-            assert response is not None  # without a timeout, call() waits for the answer
             handle = ClientGoalHandle(self, goal_id, response)
             if not handle.accepted:
                 return None
