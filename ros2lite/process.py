@@ -15,7 +15,7 @@ import signal
 import subprocess
 import sys
 import threading
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from types import FrameType
 
 from ros2lite.exceptions import Ros2liteError
@@ -116,12 +116,15 @@ def terminal_signals_child() -> bool:
 
 
 def run_child(
-    cmd: Sequence[str], on_start: Callable[[subprocess.Popen[bytes]], object] | None = None
+    cmd: Sequence[str],
+    on_start: Callable[[subprocess.Popen[bytes]], object] | None = None,
+    env: Mapping[str, str] | None = None,
 ) -> int:
-    """Start `cmd`, forward SIGINT/SIGTERM to it (see the module doc), return its returncode
-    (negative: killed by that signal). `on_start(child)` runs once the child is started,
-    with the forwarding in place (`component standalone` loads its component there); if
-    it raises, the child is interrupted and waited for before the error goes on.
+    """Start `cmd` (in `env`, default this process's environment), forward SIGINT/SIGTERM to
+    it (see the module doc), return its returncode (negative: killed by that signal).
+    `on_start(child)` runs once the child is started, with the forwarding in place
+    (`component standalone` loads its component there); if it raises, the child is
+    interrupted and waited for before the error goes on.
 
     Signals are taken by handlers installed before the child starts, not as
     KeyboardInterrupt: a Ctrl-C landing between the child's start and our wait would
@@ -150,7 +153,7 @@ def run_child(
     with _handlers({signal.SIGINT: forward_int, signal.SIGTERM: forward_term}):
         try:
             try:
-                proc = subprocess.Popen(list(cmd))
+                proc = subprocess.Popen(list(cmd), env=None if env is None else dict(env))
             except OSError as e:
                 raise ChildError(f'{cmd[0]}: {e.strerror or e}') from None
             # signals that came while the child was starting (it may already run and be

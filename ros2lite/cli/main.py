@@ -19,6 +19,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     'bag': ('ros2lite.cli.bag', 'Various rosbag related sub-commands'),
     'component': ('ros2lite.cli.component', 'Various component related sub-commands'),
     'daemon': ('ros2lite.cli.daemon', 'Various daemon related sub-commands'),
+    'env': ('ros2lite.cli.env', 'Print shell lines that let code written for rclpy run'),
     'extension_points': ('ros2lite.cli.extension_points', 'List extension points'),
     'extensions': ('ros2lite.cli.extensions', 'List extensions'),
     'interface': ('ros2lite.cli.interface', 'Show information about ROS interfaces'),

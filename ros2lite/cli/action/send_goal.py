@@ -126,7 +126,8 @@ def send_goal(
     from ros2lite.interfaces import message_to_yaml
 
     try:
-        client = ActionClient(conn.node(), cls, action_name)
+        # a server that vanishes mid-goal is reported, not waited for forever
+        client = ActionClient(conn.node(), cls, action_name, fail_without_server=True)
     except ValueError as e:  # an invalid action name
         raise CliError(str(e)) from None
     from ros2lite.action.graph import get_action_names_and_types

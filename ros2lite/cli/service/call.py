@@ -77,7 +77,7 @@ def cli(
     package, _, name = type_name.split('/')
     with connect() as conn:
         node = conn.node(f'_ros2lite_requester_{package}_{name}')
-        client = node.create_client(srv_class, service_name)
+        client = node.create_client(srv_class, service_name, fail_without_server=True)
         _wait(client, timeout, node, type_name)
         period = None if rate is None else 1.0 / rate
         while True:
@@ -110,10 +110,11 @@ def _call(client: Client[Message, Message], request: Message, timeout: float | N
     from ros2lite.client import ServiceCallError
 
     try:
-        return client.call(request, timeout_sec=timeout)
-    except TimeoutError:
-        raise CliError(
-            f"Timed out after {timeout:g} s waiting for a response from '{client.srv_name}'"
-        ) from None
+        response = client.call(request, timeout_sec=timeout)
     except ServiceCallError as e:
         raise CliError(f'Exception while calling service: {e!r}') from None
+    if response is None:
+        raise CliError(
+            f"Timed out after {timeout:g} s waiting for a response from '{client.srv_name}'"
+        )
+    return response
