@@ -22,7 +22,7 @@ if TYPE_CHECKING:  # what type checkers see; at run time the names load lazily
 
     from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
     from ros2lite.clock import Clock
-    from ros2lite.context import Context, default_context
+    from ros2lite.context import Context, SignalHandlerOptions, default_context
     from ros2lite.duration import Duration
     from ros2lite.executors import (
         Executor,
@@ -123,33 +123,44 @@ def init(
     context: Context | None = None,
     router: str | None = None,
     domain_id: int | None = None,
+    signal_handler_options: SignalHandlerOptions | None = None,
 ) -> Context:
     """Open the node's Zenoh session (a peer; with no router it starts the daemon, or runs on
     without one: see `ros2lite.daemon.connect`).
 
     `args=None` reads `sys.argv` like rclpy; the returned context also works as
-    `with ros2lite.init(): …`, shutting down on exit. Like rclpy it installs a SIGTERM
-    handler: spinning then ends with ExternalShutdownException and `ok()` turns False.
+    `with ros2lite.init(): …`, shutting down on exit. Like rclpy it installs SIGINT and
+    SIGTERM handlers (`signal_handler_options` chooses): `ok()` then turns False, and
+    spinning ends (SIGTERM: with ExternalShutdownException; Ctrl-C still raises
+    KeyboardInterrupt).
     """
-    from ros2lite.context import default_context, install_signal_handlers
+    from ros2lite.context import SignalHandlerOptions, default_context, install_signal_handlers
 
     ctx = (context or default_context()).init(args, router=router, domain_id=domain_id)
-    install_signal_handlers()
+    options = SignalHandlerOptions.ALL if signal_handler_options is None else signal_handler_options
+    install_signal_handlers(options)
     return ctx
 
 
-def shutdown(*, context: Context | None = None) -> None:
-    """Close the context's session; its nodes leave the graph."""
+def shutdown(*, context: Context | None = None, uninstall_handlers: bool | None = None) -> None:
+    """Close the context's session, so its nodes leave the graph (RuntimeError if it is not
+    initialised). Signal handlers are put back when `uninstall_handlers` says so, by default
+    when it is the default context."""
+    from ros2lite.context import default_context, uninstall_signal_handlers
+
+    ctx = context or default_context()
+    ctx.shutdown()
+    if uninstall_handlers or (uninstall_handlers is None and ctx is default_context()):
+        uninstall_signal_handlers()
+
+
+def try_shutdown(*, context: Context | None = None, uninstall_handlers: bool | None = None) -> None:
+    """:func:`shutdown` if the context is still open."""
     from ros2lite.context import default_context
 
-    (context or default_context()).shutdown()
-
-
-def try_shutdown(*, context: Context | None = None) -> None:
-    """shutdown() if the context is still open."""
-    from ros2lite.context import default_context
-
-    (context or default_context()).try_shutdown()
+    ctx = context or default_context()
+    if ctx.ok() or ctx.session is not None:
+        shutdown(context=ctx, uninstall_handlers=uninstall_handlers)
 
 
 def ok(*, context: Context | None = None) -> bool:

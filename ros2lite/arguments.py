@@ -47,6 +47,12 @@ class RosArgs:
     params_files: list[Path] = field(default_factory=list)
     log_levels: dict[str | None, int] = field(default_factory=dict)
     enclave: str | None = None
+    # --enable/--disable-rosout-logs and -stdout-logs; None: not given (enabled)
+    rosout_logs: bool | None = None
+    stdout_logs: bool | None = None
+    # -p rules and params files in the order given: a later one wins, as in rcl
+    # (a params file's path, or a -p rule's (node or None, name, value))
+    param_sources: list[Path | tuple[str | None, str, object]] = field(default_factory=list)
 
     def merge(self, other: RosArgs) -> RosArgs:
         """Node-local arguments (`other`) take precedence over global ones."""
@@ -56,6 +62,9 @@ class RosArgs:
             self.params_files + other.params_files,
             {**self.log_levels, **other.log_levels},
             other.enclave or self.enclave,
+            other.rosout_logs if other.rosout_logs is not None else self.rosout_logs,
+            other.stdout_logs if other.stdout_logs is not None else self.stdout_logs,
+            self.param_sources + other.param_sources,
         )
         for source in (self.params, other.params):
             for node, values in source.items():
@@ -78,12 +87,16 @@ class RosArgs:
         return found
 
     def parameter_overrides(self, node_fqn: str, node_name: str) -> dict[str, object]:
-        """Values for one node: params files (in order), then -p, node-specific last."""
+        """Values for one node from -p rules and params files, in the order they were given
+        (global arguments before the node's own): a later one wins, as in rcl."""
         values: dict[str, object] = {}
-        for path in self.params_files:
-            values.update(load_params_file(path, node_fqn, node_name))
-        values.update(self.params.get(None, {}))
-        values.update(self.params.get(node_name, {}))
+        for source in self.param_sources:
+            if isinstance(source, Path):
+                values.update(load_params_file(source, node_fqn, node_name))
+            else:
+                node, name, value = source
+                if node in (None, node_name):
+                    values[name] = value
         return values
 
 
@@ -130,6 +143,14 @@ def split_ros_args(argv: list[str]) -> tuple[list[str], list[list[str]]]:
     return user, blocks
 
 
+def remove_ros_args(args: list[str] | None = None) -> list[str]:
+    """The arguments (default: `sys.argv`) without their `--ros-args` blocks: what a
+    program's own argument parser should see."""
+    import sys
+
+    return split_ros_args(list(sys.argv if args is None else args))[0]
+
+
 def parse_ros_args(argv: list[str] | None) -> RosArgs:
     """Parse every `--ros-args` block found in argv."""
     result = RosArgs()
@@ -144,12 +165,15 @@ def parse_ros_args(argv: list[str] | None) -> RosArgs:
                 result.remaps.append(Remap(node, src, dst))
             elif arg in ('-p', '--param'):
                 node, name, value = _split_assignment(_next(it, arg), 'parameter')
-                result.params.setdefault(node, {})[name] = parse_value(value)
+                parsed = parse_value(value)
+                result.params.setdefault(node, {})[name] = parsed
+                result.param_sources.append((node, name, parsed))
             elif arg == '--params-file':
                 path = Path(_next(it, arg))
                 if not path.is_file():
                     raise RosArgsError(f"Couldn't read parameters file '{path}'")
                 result.params_files.append(path)
+                result.param_sources.append(path)
             elif arg == '--log-level':
                 text = _next(it, arg)
                 logger: str | None = None
@@ -161,15 +185,12 @@ def parse_ros_args(argv: list[str] | None) -> RosArgs:
                 result.log_levels[logger] = level
             elif arg in ('-e', '--enclave'):
                 result.enclave = _next(it, arg)
-            elif arg in (
-                '--enable-rosout-logs',
-                '--disable-rosout-logs',
-                '--enable-stdout-logs',
-                '--disable-stdout-logs',
-                '--enable-external-lib-logs',
-                '--disable-external-lib-logs',
-            ):
-                continue
+            elif arg in ('--enable-rosout-logs', '--disable-rosout-logs'):
+                result.rosout_logs = arg.startswith('--enable')
+            elif arg in ('--enable-stdout-logs', '--disable-stdout-logs'):
+                result.stdout_logs = arg.startswith('--enable')
+            elif arg in ('--enable-external-lib-logs', '--disable-external-lib-logs'):
+                continue  # there is no external logging library to switch
             else:
                 raise RosArgsError(f"Unknown ROS argument '{arg}'")
     return result

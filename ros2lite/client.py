@@ -6,6 +6,10 @@ attachment (rmw_zenoh.md §5).
 awaiting coroutines run there. `call` does not need an executor at all: the reply wakes the
 calling thread directly, which is why it also works inside a callback; it refuses only where
 waiting could never end (the server is ours and cannot run until the caller returns).
+
+A request that no server answers stays pending, as with rclpy on rmw_zenoh (a server may come
+later; `remove_pending_request` gives up on it). Tools that would rather know at once create
+the client with `fail_without_server=True`: such a request then ends in ServiceCallError.
 """
 
 from __future__ import annotations
@@ -14,7 +18,7 @@ import threading
 import time
 from collections import deque
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Generic, cast
+from typing import TYPE_CHECKING, Generic, cast, overload
 
 from ros2lite.endpoint import Endpoint
 from ros2lite.exceptions import Ros2liteError
@@ -62,10 +66,12 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
         qos: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
+        fail_without_server: bool = False,
     ) -> None:
         from ros2lite.transport.session import declare_querier
 
         super().__init__(node, callback_group)
+        self.fail_without_server = fail_without_server
         self._ep = _ClientEndpoint(node, srv_type, srv_name, qos)
         self.srv_type: type[Srv[SrvRequestT, SrvResponseT]] = self._ep.msg_class
         self.srv_name = self._ep.topic_name
@@ -122,7 +128,8 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
                 on_response(seq, payload, '')
 
         def end(error: str | None) -> None:
-            if not answered.is_set():
+            # the query ended without a reply: no server (or it dropped the request)
+            if not answered.is_set() and self.fail_without_server:
                 answered.set()
                 on_response(seq, None, error or f"no server of '{self.srv_name}' answered")
 
@@ -178,8 +185,17 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
                     del self._pending[seq]
 
     # -- synchronous: the reply wakes the caller ---------------------------------------------------
-    def call(self, request: SrvRequestT, timeout_sec: float | None = None) -> SrvResponseT:
-        """Send and wait for the response; TimeoutError when `timeout_sec` passes first."""
+    @overload
+    def call(self, request: SrvRequestT, timeout_sec: None = None) -> SrvResponseT:
+        """Without a timeout: the response (or ServiceCallError)."""
+
+    @overload
+    def call(self, request: SrvRequestT, timeout_sec: float) -> SrvResponseT | None:
+        """With a timeout: the response, or None when it passed first."""
+
+    def call(self, request: SrvRequestT, timeout_sec: float | None = None) -> SrvResponseT | None:
+        """Send and wait for the response; None when `timeout_sec` passes first (as rclpy).
+        Unlike rclpy, no executor needs to spin the node meanwhile."""
         self._refuse_deadlock()
         done = threading.Event()
         outcome: list[tuple[int, bytes | None, str]] = []
@@ -190,7 +206,7 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
 
         self._send(request, on_response)
         if not done.wait(timeout_sec):
-            raise TimeoutError(f"service '{self.srv_name}' did not answer within {timeout_sec} s")
+            return None
         seq, data, error = outcome[0]
         if data is None:
             raise ServiceCallError(error)

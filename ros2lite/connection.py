@@ -36,6 +36,13 @@ __all__ = ['Connection', 'wait_for_name']
 HIDDEN_NODE_PREFIX = '_ros2lite_'
 
 
+class _ToolNode(Node):
+    """A tool's node: it reports what it sees its own way, not with rclpy's QoS event
+    warnings, and answers graph questions from snapshots, not from a graph cache."""
+
+    _default_event_callbacks = False
+
+
 class Connection:
     """One tool run's place on the graph: session, graph snapshots, hidden node, executor."""
 
@@ -110,13 +117,17 @@ class Connection:
             from ros2lite.node import Node
             from ros2lite.parameter import Parameter
 
-            self._node = Node(
+            self._node = _ToolNode(
                 name or f'{HIDDEN_NODE_PREFIX}{os.getpid()}',
                 context=self.context,
                 enable_rosout=False,
                 use_global_arguments=False,
                 start_parameter_services=False,
-                parameter_overrides=[Parameter('use_sim_time', value=self.use_sim_time)],
+                parameter_overrides=[
+                    Parameter('use_sim_time', value=self.use_sim_time),
+                    # a tool's node needs no type description service of its own
+                    Parameter('start_type_description_service', value=False),
+                ],
             )
         return self._node
 
@@ -135,7 +146,9 @@ class Connection:
         tool, which must tick even when sim time stands still)."""
         from ros2lite.clock import Clock, ClockType
 
-        return self.node().create_timer(period, callback, clock=Clock(ClockType.STEADY_TIME))
+        return self.node().create_timer(
+            period, callback, clock=Clock(clock_type=ClockType.STEADY_TIME)
+        )
 
     def spin(self) -> None:
         """Run the node's callbacks until the context shuts down (Ctrl-C raises as usual)."""

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import atexit
 import contextlib
+import enum
 import itertools
 import os
 import signal
@@ -20,7 +21,7 @@ from types import FrameType
 from typing import TYPE_CHECKING, Any
 
 from ros2lite.arguments import RosArgs, parse_ros_args
-from ros2lite.exceptions import NotInitializedException
+from ros2lite.exceptions import NotInitializedException, Ros2liteError
 
 if TYPE_CHECKING:
     from ros2lite.executors import Executor
@@ -28,6 +29,10 @@ if TYPE_CHECKING:
     from ros2lite.node import Node
     from ros2lite.service import Service
     from ros2lite.transport.handles import Session
+
+
+class InvalidDomainIdError(Ros2liteError, RuntimeError):
+    """A domain id outside what ROS allows."""
 
 
 class Context:
@@ -75,9 +80,18 @@ class Context:
 
         if self.session is not None:
             raise RuntimeError('Context.init() must only be called once')
+        if domain_id is not None and (not isinstance(domain_id, int) or domain_id < 0):
+            raise InvalidDomainIdError(f'invalid domain id {domain_id!r}: it must not be negative')
         self.terminating = False
-        self.argv = list(sys.argv if args is None else args)
+        argv = list(sys.argv if args is None else args)
+        for arg in argv:
+            arg.encode('utf-8')  # rcl takes C strings: undecodable arguments fail here, as there
+        self.argv = argv
         self.args = parse_ros_args(self.argv)
+        if self.args.stdout_logs is not None:
+            from ros2lite.logging import set_console_output
+
+            set_console_output(self.args.stdout_logs)
         if self.args.enclave is not None:
             from ros2lite.security.environment import use_enclave
 
@@ -94,8 +108,11 @@ class Context:
         _live.add(self)
         return self
 
-    # `with ros2lite.init():` shuts the context down on the way out, as rclpy allows
+    # `with Context():` initialises it (as rclpy's does) and `with ros2lite.init():` uses the
+    # one just initialised; both shut it down on the way out
     def __enter__(self) -> Context:
+        if self.session is None:
+            self.init()
         return self
 
     def __exit__(self, *exc: object) -> None:
@@ -104,6 +121,11 @@ class Context:
     def ok(self) -> bool:
         """Whether the session is open and no SIGTERM asked it to stop."""
         return self.session is not None and not self.terminating
+
+    def get_domain_id(self) -> int:
+        """The ROS domain of this context (rclpy's accessor)."""
+        self.require()
+        return self.domain_id
 
     def require(self) -> Session:
         """The session; NotInitializedException before init()."""
@@ -126,6 +148,13 @@ class Context:
                 self._graph = GraphCache(self.require(), self.domain_id)
             return self._graph
 
+    def graph_changed_locally(self, token_key: str, alive: bool) -> None:
+        """An entity of this process appeared or went: the graph cache (if one is kept)
+        learns it now, not when the liveliness subscription reports it back."""
+        graph = self._graph
+        if graph is not None:
+            graph._on_change(token_key, alive)
+
     def add_node(self, node: Node) -> None:
         """Remember a node, to destroy it at shutdown."""
         with self._lock:
@@ -138,8 +167,15 @@ class Context:
                 self._nodes.remove(node)
 
     def on_shutdown(self, fn: Callable[[], object]) -> None:
-        """Call `fn()` when the context shuts down."""
-        self._on_shutdown.append(fn)
+        """Call `fn()` when this context shuts down."""
+        with self._lock:
+            self._on_shutdown.append(fn)
+
+    def remove_on_shutdown(self, fn: Callable[[], object]) -> None:
+        """Forget a callback given to :meth:`on_shutdown` (a sleeper that woke up)."""
+        with self._lock:
+            if fn in self._on_shutdown:
+                self._on_shutdown.remove(fn)
 
     def add_executor(self, executor: Executor) -> None:
         """Remember an executor, to wake it at shutdown."""
@@ -151,10 +187,14 @@ class Context:
             executor.wake()
 
     def shutdown(self) -> None:
-        """Destroy the nodes, close the session and wake the executors."""
+        """Destroy the nodes, close the session and wake the executors; a context that is
+        not initialised cannot be shut down (RuntimeError, as in rclpy; :meth:`try_shutdown`
+        does not mind)."""
         if self.session is None:
-            return
-        for fn in self._on_shutdown:
+            raise RuntimeError('Context must be initialized before it can be shutdown')
+        with self._lock:
+            callbacks, self._on_shutdown = self._on_shutdown, []
+        for fn in callbacks:
             fn()
         for node in list(self._nodes):
             node.destroy_node()
@@ -172,6 +212,10 @@ class Context:
         """shutdown() unless already shut down."""
         if self.session is not None:
             self.shutdown()
+
+    def destroy(self) -> None:
+        """Release the context for good (rclpy's); shuts it down first if it still runs."""
+        self.try_shutdown()
 
     def _terminate(self) -> None:
         self.terminating = True
@@ -198,37 +242,80 @@ if _register_early is not None:
     _register_early(_shutdown_live_contexts)
 
 
-_previous_sigterm: Callable[[int, FrameType | None], object] | int | signal.Handlers | None = (
-    signal.SIG_DFL
-)
+class SignalHandlerOptions(enum.IntEnum):
+    """Which of ros2lite's signal handlers are installed (rclpy's names)."""
+
+    NO = 0
+    SigInt = 1
+    SigTerm = 2
+    ALL = 3
 
 
-def _on_sigterm(signum: int, frame: FrameType | None) -> None:
-    """SIGTERM as rclpy handles it: open contexts stop being ok() and spinning executors
-    raise ExternalShutdownException, so `main()` can leave through its normal clean-up.
-    Doing the shutdown itself here could interrupt a zenoh call on this very thread."""
+# a handler signal.getsignal() may give back
+_Handler = Callable[[int, FrameType | None], object] | int | signal.Handlers | None
+_previous: dict[int, _Handler] = {}
+
+
+def _stop_open_contexts(signum: int, frame: FrameType | None) -> None:
+    """SIGINT and SIGTERM as rclpy handles them: open contexts stop being ok() and spinning
+    executors end (SIGTERM: with ExternalShutdownException), so `main()` can leave through its
+    normal clean-up; the handler that was there before still runs (Ctrl-C still raises
+    KeyboardInterrupt). Doing the shutdown itself here could interrupt a zenoh call on this
+    very thread."""
     open_contexts = [ctx for ctx in list(_live) if ctx.ok()]
     for ctx in open_contexts:
         ctx._terminate()
-    if callable(_previous_sigterm):
-        _previous_sigterm(signum, frame)
-    elif not open_contexts and _previous_sigterm == signal.SIG_DFL:
+    previous = _previous.get(signum, signal.SIG_DFL)
+    if callable(previous):
+        previous(signum, frame)
+    elif not open_contexts and previous == signal.SIG_DFL:
         # nothing of ours to stop: die of the signal as if we had never been installed
-        signal.signal(signal.SIGTERM, signal.SIG_DFL)
-        os.kill(os.getpid(), signal.SIGTERM)
+        signal.signal(signum, signal.SIG_DFL)
+        os.kill(os.getpid(), signum)
 
 
-def install_signal_handlers() -> None:
-    """Route SIGTERM through `_on_sigterm` (main thread only; a handler already there is
-    still called after ours)."""
-    global _previous_sigterm
+def _wanted(options: SignalHandlerOptions) -> list[signal.Signals]:
+    return [
+        sig
+        for sig, flag in (
+            (signal.SIGINT, SignalHandlerOptions.SigInt),
+            (signal.SIGTERM, SignalHandlerOptions.SigTerm),
+        )
+        if options & flag
+    ]
+
+
+def install_signal_handlers(options: SignalHandlerOptions = SignalHandlerOptions.ALL) -> None:
+    """Route the chosen signals through ros2lite's handler (main thread only; the handler
+    already there is still called after ours)."""
     if threading.current_thread() is not threading.main_thread():
         return
-    current = signal.getsignal(signal.SIGTERM)
-    if current is _on_sigterm:
+    for sig in _wanted(SignalHandlerOptions(options)):
+        current = signal.getsignal(sig)
+        if current is _stop_open_contexts:
+            continue
+        _previous[sig] = current
+        signal.signal(sig, _stop_open_contexts)
+
+
+def uninstall_signal_handlers() -> None:
+    """Put back the handlers that were there before :func:`install_signal_handlers`."""
+    if threading.current_thread() is not threading.main_thread():
         return
-    _previous_sigterm = current
-    signal.signal(signal.SIGTERM, _on_sigterm)
+    for sig, previous in list(_previous.items()):
+        if signal.getsignal(sig) is _stop_open_contexts:
+            signal.signal(sig, previous if previous is not None else signal.SIG_DFL)
+        del _previous[sig]
+
+
+def get_current_signal_handlers_options() -> SignalHandlerOptions:
+    """Which of ros2lite's handlers are installed now."""
+    options = 0
+    if signal.getsignal(signal.SIGINT) is _stop_open_contexts:
+        options |= SignalHandlerOptions.SigInt
+    if signal.getsignal(signal.SIGTERM) is _stop_open_contexts:
+        options |= SignalHandlerOptions.SigTerm
+    return SignalHandlerOptions(options)
 
 
 _default = Context()

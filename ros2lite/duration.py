@@ -15,6 +15,8 @@ if TYPE_CHECKING:
     from ros2lite.msgs.builtin_interfaces import msg as _builtin_msg
 
 _NS = 1_000_000_000
+#: nanoseconds per second (rclpy.constants' name)
+S_TO_NS = _NS
 
 
 @total_ordering
@@ -23,8 +25,11 @@ class Duration:
 
     __slots__ = ('_ns',)
 
-    def __init__(self, *, seconds: float = 0, nanoseconds: int = 0) -> None:
-        self._ns = int(nanoseconds) + (round(seconds * _NS) if seconds else 0)
+    def __init__(self, *, seconds: float = 0, nanoseconds: float = 0) -> None:
+        ns = int(nanoseconds) + (round(seconds * _NS) if seconds else 0)
+        if not -(2**63) <= ns < 2**63:
+            raise OverflowError('Total nanoseconds value is too large to store in a duration')
+        self._ns = ns
 
     @classmethod
     def from_seconds(cls, seconds: float) -> Duration:
@@ -86,6 +91,8 @@ class Duration:
         return hash(self._ns)
 
     def __lt__(self, other: Duration) -> bool:
+        if not isinstance(other, Duration):
+            return NotImplemented
         return self._ns < other._ns
 
     def __add__(self, other: Duration) -> Duration:
@@ -111,3 +118,6 @@ class Duration:
 
 # rmw's "infinite" QoS duration: {INT64_MAX / 1e9 s, INT64_MAX % 1e9 ns}
 _INFINITE_NS = 9223372036 * _NS + 854775807
+
+#: rclpy's name for the infinite duration (what QoS durations and waits use for "forever")
+Infinite = Duration(nanoseconds=_INFINITE_NS)

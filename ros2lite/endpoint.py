@@ -8,6 +8,7 @@ from ros2lite.qos import QoSProfile
 from ros2lite.transport.keys import EntityKind, endpoint_token, topic_key
 
 if TYPE_CHECKING:
+    from ros2lite.event_handler import EventHandler
     from ros2lite.node import Node
     from ros2lite.transport.handles import Handle
 
@@ -28,15 +29,24 @@ def resolve_type(msg_type: type | str) -> tuple[str, type]:
 
 def as_qos(qos: QoSProfile | int) -> QoSProfile:
     """rclpy accepts a depth wherever a profile goes."""
-    if isinstance(qos, int):
+    if isinstance(qos, QoSProfile):
+        return qos
+    if isinstance(qos, int) and not isinstance(qos, bool):
         return QoSProfile(depth=qos)
-    return qos
+    raise TypeError(f'Expected QoSProfile or int, but received {type(qos)!r}')
 
 
 class EndpointOwner:
     """What publishers and subscriptions expose about their endpoint (`self._ep`)."""
 
     _ep: Endpoint
+    # QoS event handlers, set by the node that made the endpoint (rclpy's attribute)
+    event_handlers: list[EventHandler] = []
+
+    def _destroy_event_handlers(self) -> None:
+        handlers, self.event_handlers = self.event_handlers, []
+        for handler in handlers:
+            handler.destroy()
 
     @property
     def topic_name(self) -> str:
@@ -99,10 +109,14 @@ class Endpoint:
         from ros2lite.transport.session import declare_token
 
         self._token = declare_token(self.node.context.require(), self.token_key)
+        # this process' graph sees its own new endpoint at once (rcl's does)
+        self.node.context.graph_changed_locally(self.token_key, True)
 
     def _undeclare(self, *entities: Handle | None) -> None:
         from ros2lite.transport.session import undeclare_quietly
 
+        if self._token is not None:
+            self.node.context.graph_changed_locally(self.token_key, False)
         undeclare_quietly(self._token, *entities)
         self._token = None
 

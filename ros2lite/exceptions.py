@@ -30,6 +30,10 @@ class ROSInterruptException(Ros2liteError):
     """An operation was interrupted by the context shutting down (rclpy's name)."""
 
 
+class InvalidHandle(Ros2liteError, RuntimeError):
+    """An entity was used after it was destroyed (rclpy's name)."""
+
+
 class NoTypeSupportImportedException(Ros2liteError, TypeError):
     """Something given as a message, service or action type is not one (rclpy's name)."""
 

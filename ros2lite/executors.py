@@ -19,8 +19,9 @@ import os
 import queue
 import threading
 import time
+import warnings
 import weakref
-from collections.abc import Callable, Coroutine
+from collections.abc import Callable, Coroutine, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from typing import TYPE_CHECKING, Any
 
@@ -34,11 +35,13 @@ if TYPE_CHECKING:
     from ros2lite.timer import Timer
 
 __all__ = [
+    'ConditionReachedException',
     'Executor',
     'ExternalShutdownException',
     'MultiThreadedExecutor',
     'ShutdownException',
     'SingleThreadedExecutor',
+    'TimeoutException',
     'get_global_executor',
     'spin',
     'spin_once',
@@ -52,6 +55,14 @@ class ExternalShutdownException(Exception):
 
 class ShutdownException(Exception):
     """The executor was shut down."""
+
+
+class TimeoutException(Exception):
+    """No work came within the time given (wait_for_ready_callbacks)."""
+
+
+class ConditionReachedException(Exception):
+    """The condition given to wait_for_ready_callbacks held before work came."""
 
 
 class Executor:
@@ -76,6 +87,13 @@ class Executor:
     def context(self) -> Context:
         """The context whose nodes this executor runs."""
         return self._context
+
+    # `with SingleThreadedExecutor() as executor:` shuts it down on the way out
+    def __enter__(self) -> Executor:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.shutdown()
 
     # -- nodes and tasks -----------------------------------------------------------------------
     def add_node(self, node: Node) -> bool:
@@ -172,10 +190,13 @@ class Executor:
 
     def spin_once(self, timeout_sec: float | None = None) -> None:
         """Run one callback (or due timer), waiting up to `timeout_sec` (None: forever)."""
+        self._spin_once(timeout_sec, None)
+
+    def _spin_once(self, timeout_sec: float | None, stop: Callable[[], bool] | None) -> None:
         self._check_terminating()
         self._spinning += 1
         try:
-            item = self._next(timeout_sec, None)
+            item = self._next(timeout_sec, stop)
             if item is not None:
                 self._dispatch(item, False, None)
         finally:
@@ -183,8 +204,9 @@ class Executor:
         self._check_terminating()
 
     def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None) -> None:
-        """Run callbacks until `future` is done or `timeout_sec` passes."""
-        future.add_done_callback(lambda _f: self.wake())
+        """Run callbacks until `future` is done or `timeout_sec` passes (a future completed
+        on another thread ends the wait at once)."""
+        future._add_done_callback_now(lambda _f: self.wake())
         deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
         self._spinning += 1
         try:
@@ -227,9 +249,42 @@ class Executor:
     def spin_once_until_future_complete(
         self, future: Future, timeout_sec: float | None = None
     ) -> None:
-        """Run one callback, waking early when `future` completes."""
-        future.add_done_callback(lambda _f: self.wake())
-        self.spin_once(timeout_sec)
+        """Run one callback, but stop waiting for one as soon as `future` completes (on any
+        thread)."""
+        if future.done():
+            return
+        future._add_done_callback_now(lambda _f: self.wake())
+        self._spin_once(timeout_sec, future.done)
+
+    def wait_for_ready_callbacks(
+        self,
+        timeout_sec: float | None = None,
+        nodes: list[Node] | None = None,
+        condition: Callable[[], bool] | None = None,
+    ) -> tuple[Callable[[], None], Executable | Task, Node | None]:
+        """Wait for the next piece of work; (run it, the entity or task, its node). Raises
+        ShutdownException, TimeoutException or ConditionReachedException when none came.
+        (`nodes` is accepted for rclpy's signature; the work of every node is considered.)"""
+        if self._is_shutdown:
+            raise ShutdownException()
+        if condition is not None and condition():
+            raise ConditionReachedException()
+        item = self._next(timeout_sec, condition)
+        if item is None:
+            if self._is_shutdown or not self._context.ok():
+                raise ShutdownException()
+            if condition is not None and condition():
+                raise ConditionReachedException()
+            raise TimeoutException()
+        node = None if type(item) is Task else item._node
+        return (lambda: self._dispatch(item, False, None)), item, node
+
+    def _wait_for_ready_callbacks(
+        self, timeout_sec: float | None = None, nodes: list[Node] | None = None
+    ) -> Iterator[tuple[Callable[[], None], Executable | Task, Node | None]]:
+        """rclpy's generator form of :meth:`wait_for_ready_callbacks`."""
+        while True:
+            yield self.wait_for_ready_callbacks(timeout_sec, nodes)
 
     # -- finding work ----------------------------------------------------------------------------
     def _due_timer(self) -> tuple[Timer | None, float | None]:
@@ -239,7 +294,7 @@ class Executor:
             for timer in node.timers:
                 if timer._scheduled:
                     continue
-                remaining = timer.time_until_next_call()
+                remaining = timer._seconds_until_next_call()
                 if remaining is None:
                     continue
                 if remaining <= 0:
@@ -337,7 +392,7 @@ class Executor:
                 if pending is None or pending.done():
                     self._release(group, entity)
                 else:
-                    pending.add_done_callback(lambda _f: self._release(group, entity))
+                    pending._add_done_callback_now(lambda _f: self._release(group, entity))
 
     def _run_task(self, task: Task) -> None:
         task()
@@ -374,7 +429,9 @@ class Executor:
         coro = result
         task = Task(lambda: coro, executor=self, reschedule=self._enqueue)
         if then is not None:
-            task.add_done_callback(lambda t: then(t.result()) if t.exception() is None else None)
+            task._add_done_callback_now(
+                lambda t: then(t.result()) if t.exception() is None else None
+            )
         self._run_task(task)
         return None if task.done() else task
 
@@ -397,11 +454,20 @@ class MultiThreadedExecutor(Executor):
     def __init__(self, num_threads: int | None = None, *, context: Context | None = None) -> None:
         super().__init__(context=context)
         if num_threads is None:
-            num_threads = max(os.cpu_count() or 2, 2)
-        if num_threads < 1:
+            # the CPUs this process may run on, as rclpy counts them
+            affinity = getattr(os, 'sched_getaffinity', None)
+            num_threads = len(affinity(0)) if affinity is not None else (os.cpu_count() or 2)
+        elif num_threads < 1:
             raise ValueError('num_threads must be at least 1')
+        elif num_threads == 1:
+            warnings.warn(
+                'MultiThreadedExecutor with one thread runs one callback at a time: '
+                'a SingleThreadedExecutor does the same with less overhead',
+                UserWarning,
+                stacklevel=2,
+            )
         self._num_threads = num_threads
-        self._pool = ThreadPoolExecutor(num_threads, thread_name_prefix='ros2lite-executor')
+        self._executor = ThreadPoolExecutor(num_threads, thread_name_prefix='ros2lite-executor')
         self._errors: queue.SimpleQueue[BaseException] = queue.SimpleQueue()
         self._workers = threading.BoundedSemaphore(num_threads)
 
@@ -443,7 +509,7 @@ class MultiThreadedExecutor(Executor):
                 self.wake()
 
         try:
-            self._pool.submit(run)
+            self._executor.submit(run)
         except RuntimeError:  # the pool is shut down: the work goes with the executor
             self._workers.release()
             return False
@@ -474,7 +540,7 @@ class MultiThreadedExecutor(Executor):
     def shutdown(self, timeout_sec: float | None = None) -> bool:
         """Stop, and shut the thread pool down (waiting for it unless timeout_sec is 0)."""
         super().shutdown(timeout_sec)
-        self._pool.shutdown(wait=timeout_sec is None or timeout_sec > 0)
+        self._executor.shutdown(wait=timeout_sec is None or timeout_sec > 0)
         return True
 
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from ros2lite.names import action_entity_name, is_hidden_name
-from ros2lite.qos import QoSProfile
+from ros2lite.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum, format_gid
 from ros2lite.transport.keys import Entity, EntityKind, parse_token
 
 if TYPE_CHECKING:
@@ -46,19 +46,6 @@ _TOPIC_KINDS = (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION)
 _SERVICE_KINDS = (EntityKind.SERVICE, EntityKind.CLIENT)
 
 
-@dataclass(frozen=True)
-class TopicEndpointInfo:
-    """What `ros2 topic info -v` prints for one endpoint (rclpy's TopicEndpointInfo)."""
-
-    node_name: str
-    node_namespace: str
-    topic_type: str
-    topic_type_hash: str
-    endpoint_type: str  # 'PUBLISHER' or 'SUBSCRIPTION'
-    endpoint_gid: bytes
-    qos_profile: QoSProfile | None
-
-
 def snapshot(session: Session, domain_id: int, timeout: float = 5.0) -> list[Entity]:
     """All entities in the domain, from one complete liveliness query."""
     from ros2lite.transport.session import liveliness_keys
@@ -80,18 +67,40 @@ class GraphCache:
         # after creation already sees the graph; the subscriber then keeps it current
         for entity in snapshot(session, domain_id):
             self._entities[entity.to_token()] = entity
+        # called with (entity, alive) for each change, on the thread that saw it
+        self._listeners: list[Callable[[Entity, bool], None]] = []
         self._sub = declare_liveliness_subscriber(session, domain_id, self._on_change)
 
     def _on_change(self, key: str, alive: bool) -> None:
         with self._cond:
             if alive:
+                if key in self._entities:
+                    return  # known already (our own entities are added at once)
                 entity = parse_token(key)
                 if entity is None:
                     return
                 self._entities[key] = entity
             else:
-                self._entities.pop(key, None)
+                gone = self._entities.pop(key, None)
+                if gone is None:
+                    return
+                entity = gone
             self._cond.notify_all()
+            listeners = list(self._listeners)
+        for listener in listeners:
+            listener(entity, alive)
+
+    def add_listener(self, listener: Callable[[Entity, bool], None]) -> list[Entity]:
+        """Call `listener(entity, alive)` on every later change; returns the entities now."""
+        with self._cond:
+            self._listeners.append(listener)
+            return list(self._entities.values())
+
+    def remove_listener(self, listener: Callable[[Entity, bool], None]) -> None:
+        """Stop calling a listener given to :meth:`add_listener`."""
+        with self._cond:
+            if listener in self._listeners:
+                self._listeners.remove(listener)
 
     def entities(self) -> list[Entity]:
         """Every entity on the graph now (a copy)."""
@@ -173,7 +182,11 @@ def endpoints_by_topic(
     """Node, type, GID and QoS of each endpoint of `kind` on `topic`."""
     from ros2lite.transport.attachment import gid_from_token
 
-    label = 'PUBLISHER' if kind == EntityKind.PUBLISHER else 'SUBSCRIPTION'
+    label = (
+        TopicEndpointTypeEnum.PUBLISHER
+        if kind == EntityKind.PUBLISHER
+        else TopicEndpointTypeEnum.SUBSCRIPTION
+    )
     return [
         TopicEndpointInfo(
             e.node_name,
@@ -335,34 +348,6 @@ def node_info(
     )
 
 
-def format_gid(gid: bytes) -> str:
-    """rclpy's dotted lower-case hex, e.g. `01.0f.2a.…`."""
-    return '.'.join(f'{b:02x}' for b in gid)
-
-
 def format_endpoint_info(info: TopicEndpointInfo) -> str:
     """One endpoint as rclpy's `TopicEndpointInfo.__str__` prints it (no trailing newline)."""
-    from ros2lite.qos import HistoryPolicy, qos_profile_unknown
-
-    qos = info.qos_profile or qos_profile_unknown
-    history = qos.history.name
-    if qos.history == HistoryPolicy.KEEP_LAST:
-        history += f' ({qos.depth})'
-    return '\n'.join(
-        [
-            f'Node name: {info.node_name}',
-            f'Node namespace: {info.node_namespace}',
-            f'Topic type: {info.topic_type}',
-            f'Topic type hash: {info.topic_type_hash}',
-            f'Endpoint type: {info.endpoint_type}',
-            f'GID: {format_gid(info.endpoint_gid)}',
-            'QoS profile:',
-            f'  Reliability: {qos.reliability.name}',
-            f'  History (Depth): {history}',
-            f'  Durability: {qos.durability.name}',
-            f'  Lifespan: {qos.lifespan}',
-            f'  Deadline: {qos.deadline}',
-            f'  Liveliness: {qos.liveliness.name}',
-            f'  Liveliness lease duration: {qos.liveliness_lease_duration}',
-        ]
-    )
+    return str(info)

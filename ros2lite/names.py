@@ -47,45 +47,51 @@ def _check_tokens(
     label = shown if shown is not None else repr(name)
     for token in name.split('/'):
         if token and token[0].isdigit():
-            raise error(f'invalid {what} {label}: token {token!r} must not start with a digit')
+            raise error(f'{what} {label} is invalid: token {token!r} must not start with a number')
+
+
+def _unallowed(name: str, allowed: str) -> bool:
+    return any(not (c.isascii() and (c.isalnum() or c in allowed)) for c in name)
 
 
 def validate_topic_name(name: str, *, is_service: bool = False) -> None:
     """Check a topic/service name as a user may write it (relative, ``~`` and ``{}`` allowed),
-    as ``rcl_validate_topic_name`` does; the exception says what is wrong."""
+    as ``rcl_validate_topic_name`` does; the exception says which of rcl's rules is broken."""
     what = 'service name' if is_service else 'topic name'
     error = _name_error(is_service)
     if not name:
-        raise error(f'invalid {what}: must not be empty')
-    bad = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c in '_/~{}'))})
-    if bad:
+        raise error(f'{what} is invalid: must not be empty')
+    if _unallowed(name, '_/~{}'):
         raise error(
-            f"invalid {what} {name!r}: character(s) {''.join(bad)!r} not allowed "
-            "(use letters, digits, '_', '/', '~', '{}')"
+            f"{what} {name!r} is invalid: must not contain characters other than "
+            "alphanumerics, '_', '~', '{', '}' or '/'"
         )
     if name[0].isdigit():
-        raise error(f'invalid {what} {name!r}: must not start with a digit')
+        raise error(f'{what} {name!r} is invalid: must not start with a number')
     if name.endswith('/'):
-        raise error(f"invalid {what} {name!r}: must not end with '/'")
+        raise error(f"{what} {name!r} is invalid: must not end with '/'")
     if '//' in name:
-        raise error(f"invalid {what} {name!r}: must not contain '//'")
+        raise error(f"{what} {name!r} is invalid: must not contain repeated '/'")
     if '~' in name[1:] or (name.startswith('~') and len(name) > 1 and name[1] != '/'):
-        raise error(f"invalid {what} {name!r}: '~' is only allowed as '~' or '~/…' at the start")
+        raise error(f"{what} {name!r} is invalid: '~' is only allowed as '~' or '~/…' at the start")
     depth = 0
     for c in name:
         if c == '{':
             depth += 1
             if depth > 1:
-                raise error(f"invalid {what} {name!r}: nested '{{'")
+                raise error(f"{what} {name!r} is invalid: nested '{{'")
         elif c == '}':
             depth -= 1
             if depth < 0:
-                raise error(f"invalid {what} {name!r}: unbalanced '}}'")
+                raise error(f"{what} {name!r} is invalid: unbalanced '}}'")
     if depth:
-        raise error(f"invalid {what} {name!r}: unbalanced '{{'")
+        raise error(f"{what} {name!r} is invalid: unbalanced '{{'")
     for m in _SUBST_RE.finditer(name):
         if not _TOKEN_RE.fullmatch(m.group(1)):
-            raise error(f'invalid {what} {name!r}: bad substitution {m.group(0)!r}')
+            raise error(
+                f'{what} {name!r} is invalid: substitution {m.group(0)!r} must be alphanumerics '
+                "or '_', not starting with a number"
+            )
     _check_tokens(_SUBST_RE.sub('x', name.replace('~', 'x')), what, error, repr(name))
 
 
@@ -95,38 +101,38 @@ def validate_full_topic_name(name: str, *, is_service: bool = False) -> None:
 
 
 def _check_absolute(name: str, what: str, error: type[NameValidationException]) -> None:
-    """Rules shared by absolute topic names and namespaces."""
+    """Rules shared by absolute topic names and namespaces (rmw's, in its order)."""
     if not name:
-        raise error(f'invalid {what}: must not be empty')
+        raise error(f'{what} is invalid: must not be empty')
     if not name.startswith('/'):
-        raise error(f"invalid {what} {name!r}: must be absolute (start with '/')")
+        raise error(f"{what} {name!r} is invalid: must be absolute (start with '/')")
     if name == '/' and what == 'namespace':
         return
-    bad = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c in '_/'))})
-    if bad:
+    if _unallowed(name, '_/'):
         raise error(
-            f"invalid {what} {name!r}: character(s) {''.join(bad)!r} not allowed "
-            "(use letters, digits, '_', '/')"
+            f"{what} {name!r} is invalid: must not contain characters other than "
+            "alphanumerics, '_' or '/'"
         )
-    if name.endswith('/'):
-        raise error(f"invalid {what} {name!r}: must not end with '/'")
     if '//' in name:
-        raise error(f"invalid {what} {name!r}: must not contain '//'")
+        raise error(f"{what} {name!r} is invalid: must not contain repeated '/'")
+    if name.endswith('/'):
+        raise error(f"{what} {name!r} is invalid: must not end with '/'")
     _check_tokens(name, what, error)
 
 
 def validate_node_name(name: str) -> None:
-    """A node name is one token: letters, digits and '_', not starting with a digit."""
+    """A node name is one token: letters, digits and '_', not starting with a number."""
     if not name:
-        raise InvalidNodeNameException('invalid node name: must not be empty')
-    bad = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c == '_'))})
-    if bad:
+        raise InvalidNodeNameException('node name is invalid: must not be empty')
+    if _unallowed(name, '_'):
         raise InvalidNodeNameException(
-            f"invalid node name {name!r}: character(s) {''.join(bad)!r} not allowed "
-            "(use letters, digits, '_')"
+            f"node name {name!r} is invalid: must not contain characters other than "
+            "alphanumerics or '_'"
         )
     if name[0].isdigit():
-        raise InvalidNodeNameException(f'invalid node name {name!r}: must not start with a digit')
+        raise InvalidNodeNameException(
+            f'node name {name!r} is invalid: must not start with a number'
+        )
 
 
 def validate_namespace(namespace: str) -> None:
@@ -181,7 +187,7 @@ def expand_topic_name(
         if key not in subs:
             what = 'service name' if is_service else 'topic name'
             raise _name_error(is_service)(
-                f'invalid {what} {name!r}: unknown substitution {{{key}}}'
+                f'{what} {name!r} is invalid: unknown substitution {{{key}}}'
             )
         return subs[key]
 

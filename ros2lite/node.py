@@ -11,7 +11,7 @@ from ros2lite import names
 from ros2lite.arguments import RosArgs, parse_ros_args
 from ros2lite.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup
 from ros2lite.client import Client
-from ros2lite.clock import Clock, ClockType
+from ros2lite.clock import Clock, ROSClock
 from ros2lite.context import Context, default_context
 from ros2lite.executable import Executable, GuardCondition
 from ros2lite.logging import RcutilsLogger, set_logger_level
@@ -20,21 +20,23 @@ from ros2lite.parameters.node_api import ParameterMixin
 from ros2lite.publisher import Publisher
 from ros2lite.qos import (
     QoSProfile,
-    ReliabilityPolicy,
     qos_profile_rosout_default,
     qos_profile_services_default,
 )
+from ros2lite.rate import Rate
 from ros2lite.service import Service
 from ros2lite.subscription import Subscription
 from ros2lite.timer import Timer
 from ros2lite.transport import keys
 
 if TYPE_CHECKING:
+    from ros2lite.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
     from ros2lite.executable import Destroyable
     from ros2lite.executors import Executor
     from ros2lite.graph import Entity, TopicEndpointInfo
+    from ros2lite.logging_service import LoggingService
     from ros2lite.msgs.rcl_interfaces.msg import Log
-    from ros2lite.msgs.rosgraph_msgs.msg import Clock as ClockMsg
+    from ros2lite.qos_overriding_options import QoSOverridingOptions
     from ros2lite.service import ServiceCallback
     from ros2lite.subscription import MessageInfo, SubscriptionCallback
     from ros2lite.transport.handles import Handle
@@ -42,11 +44,14 @@ if TYPE_CHECKING:
 
 # rcl's rosout profile, lifespan 10 s included: the token must read `:1:,1000:,:10,0:,,`
 ROSOUT_QOS = qos_profile_rosout_default
-CLOCK_QOS = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT, depth=1)
 
 
 class Node(ParameterMixin):
     """rclpy-shaped node. Create after `ros2lite.init()`; destroy with `destroy_node()`."""
+
+    # rclpy's default QoS event callbacks (warnings, fed by the live graph); a tool's node
+    # (ros2lite.connection) goes without them, and without a graph cache of its own
+    _default_event_callbacks = True
 
     def __init__(
         self,
@@ -61,6 +66,7 @@ class Node(ParameterMixin):
         allow_undeclared_parameters: bool = False,
         automatically_declare_parameters_from_overrides: bool = False,
         start_parameter_services: bool = True,
+        enable_logger_service: bool = False,
     ) -> None:
         self.context = context or default_context()
         self.context.require()
@@ -79,6 +85,7 @@ class Node(ParameterMixin):
         self.services: list[Service[Any, Any]] = []
         self.clients: list[Client[Any, Any]] = []
         self.guards: list[GuardCondition] = []
+        self.rates: list[Rate] = []
         self.waitables: list[Executable] = []
         self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
         self._callback_groups: list[CallbackGroup] = [self.default_callback_group]
@@ -103,11 +110,12 @@ class Node(ParameterMixin):
                 self.context.enclave,
             ),
         )
-        self._clock = Clock(ClockType.ROS_TIME)
-        self._clock_sub: Subscription[ClockMsg] | None = None
+        self._clock = ROSClock()
         self._rosout: Publisher[Log] | None = None
+        enable_rosout = enable_rosout and self._args.rosout_logs is not False
         if enable_rosout:
-            self._rosout = self.create_publisher('rcl_interfaces/msg/Log', '/rosout', ROSOUT_QOS)
+            # rcl's own publisher: not one of the node's `publishers`, no event handlers
+            self._rosout = Publisher(self, 'rcl_interfaces/msg/Log', '/rosout', ROSOUT_QOS)
         self._logger = RcutilsLogger(
             self.get_logger_name(), self._publish_rosout if enable_rosout else None
         )
@@ -117,6 +125,19 @@ class Node(ParameterMixin):
             automatically_declare_parameters_from_overrides,
             start_parameter_services,
         )
+        from ros2lite.time_source import TimeSource
+
+        # use_sim_time (declared here unless an override did) and /clock, as rclpy's nodes do
+        self._time_source = TimeSource(node=self)
+        self._time_source.attach_clock(self._clock)
+        from ros2lite.type_description_service import TypeDescriptionService
+
+        self._type_description_service = TypeDescriptionService(self)
+        self._logger_service: LoggingService | None = None
+        if enable_logger_service:
+            from ros2lite.logging_service import LoggingService
+
+            self._logger_service = LoggingService(self)
         self.context.add_node(self)
 
     # -- names --------------------------------------------------------------------------------
@@ -159,18 +180,23 @@ class Node(ParameterMixin):
     # -- executor and callback groups --------------------------------------------------------
     @property
     def executor(self) -> Executor | None:
-        """The executor this node was added to, or None."""
-        return self._executor
+        """The executor this node was last added to, or None. It stays after the node is
+        removed from it (as in rclpy), so tasks created there, such as a deferred action
+        goal's execution, run when that executor spins again."""
+        return self._executor if self._executor is not None else self._last_executor
 
     @executor.setter
     def executor(self, new_executor: Executor | None) -> None:
-        """Move the node to another executor (None: to none)."""
-        if new_executor is self._executor:
+        """Move the node to `new_executor` (None: to no executor at all)."""
+        current = self.executor
+        if new_executor is current:
             return
-        if self._executor is not None:
-            self._executor.remove_node(self)
+        if current is not None:
+            current.remove_node(self)
+        self._last_executor = None
         if new_executor is not None:
             new_executor.add_node(self)
+            self._last_executor = new_executor
 
     @property
     def callback_groups(self) -> list[CallbackGroup]:
@@ -178,7 +204,11 @@ class Node(ParameterMixin):
         return list(self._callback_groups)
 
     def add_waitable(self, waitable: Executable) -> None:
-        """Let the executor run `waitable` with this node's entities (action parts do)."""
+        """Run `waitable` with this node's entities (its executor, its groups); action
+        clients and servers are such waitables."""
+        if waitable._node is None:
+            waitable._node = self
+            self._remember_group(waitable.callback_group)
         self.waitables.append(waitable)
         if waitable._has_work():
             waitable._notify()
@@ -213,7 +243,8 @@ class Node(ParameterMixin):
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
-        event_callbacks: object = None,
+        event_callbacks: PublisherEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
     ) -> Publisher[MsgT]:
         """A message class gives a publisher typed with it."""
 
@@ -225,7 +256,8 @@ class Node(ParameterMixin):
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
-        event_callbacks: object = None,
+        event_callbacks: PublisherEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
     ) -> Publisher[Any]:
         """A 'pkg/msg/Name' gives a publisher of that type, loosely typed."""
 
@@ -236,12 +268,18 @@ class Node(ParameterMixin):
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
-        event_callbacks: object = None,
+        event_callbacks: PublisherEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
     ) -> Publisher[MsgT]:
         """Publish `msg_type` (a class, or 'pkg/msg/Name') on `topic` (a depth is a
-        KEEP_LAST profile of that depth)."""
+        KEEP_LAST profile of that depth); with `qos_overriding_options` its QoS may be
+        overridden by parameters (see :mod:`ros2lite.qos_overriding_options`)."""
+        qos_profile = self._qos_with_overrides(
+            Publisher, topic, qos_profile, qos_overriding_options
+        )
         pub = Publisher(self, msg_type, topic, qos_profile)
         self.publishers.append(pub)
+        self._add_event_handlers(pub, event_callbacks, callback_group, topic)
         return pub
 
     @overload
@@ -253,7 +291,8 @@ class Node(ParameterMixin):
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
-        event_callbacks: object = None,
+        event_callbacks: SubscriptionEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
         raw: Literal[False] = False,
     ) -> Subscription[MsgT]:
         """A message class gives a subscription typed with it."""
@@ -261,13 +300,29 @@ class Node(ParameterMixin):
     @overload
     def create_subscription(
         self,
-        msg_type: str,
+        msg_type: type[MsgT],
         topic: str,
-        callback: Callable[[Any], object],
+        callback: Callable[[MsgT, MessageInfo], object],
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
-        event_callbacks: object = None,
+        event_callbacks: SubscriptionEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
+        raw: Literal[False] = False,
+    ) -> Subscription[MsgT]:
+        """`callback(msg, info)`: the message and its MessageInfo (rclpy's second form)."""
+
+    @overload
+    def create_subscription(
+        self,
+        msg_type: str,
+        topic: str,
+        callback: Callable[..., object],
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: SubscriptionEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
         raw: Literal[False] = False,
     ) -> Subscription[Any]:
         """A 'pkg/msg/Name' gives a subscription of that type, loosely typed."""
@@ -281,7 +336,8 @@ class Node(ParameterMixin):
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
-        event_callbacks: object = None,
+        event_callbacks: SubscriptionEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
         raw: Literal[True],
     ) -> Subscription[MsgT]:
         """raw=True: the callback gets CDR bytes and MessageInfo, undecoded."""
@@ -294,17 +350,64 @@ class Node(ParameterMixin):
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
-        event_callbacks: object = None,
+        event_callbacks: SubscriptionEventCallbacks | None = None,
+        qos_overriding_options: QoSOverridingOptions | None = None,
         raw: bool = False,
     ) -> Subscription[MsgT]:
-        """Call `callback(msg)` on the executor for each message on `topic`; with `raw`,
-        `callback(cdr_bytes, MessageInfo)` without decoding."""
+        """Call `callback(msg)` (or `callback(msg, info)`, told apart by its signature) on
+        the executor for each message on `topic`; with `raw`, the message is its CDR bytes,
+        undecoded."""
+        qos_profile = self._qos_with_overrides(
+            Subscription, topic, qos_profile, qos_overriding_options
+        )
         self._remember_group(callback_group)
         sub = Subscription(
             self, msg_type, topic, callback, qos_profile, raw=raw, callback_group=callback_group
         )
         self.subscriptions.append(sub)
+        self._add_event_handlers(sub, event_callbacks, callback_group, topic)
         return sub
+
+    def _add_event_handlers(
+        self,
+        entity: Publisher[MsgT] | Subscription[MsgT],
+        callbacks: PublisherEventCallbacks | SubscriptionEventCallbacks | None,
+        group: CallbackGroup | None,
+        topic: str,
+    ) -> None:
+        """The entity's QoS event handlers (rclpy's defaults warn of incompatible QoS and
+        types; tools' hidden nodes go without them)."""
+        from ros2lite.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
+
+        if callbacks is None:
+            defaults = self._default_event_callbacks
+            callbacks = (
+                PublisherEventCallbacks(use_default_callbacks=defaults)
+                if isinstance(entity, Publisher)
+                else SubscriptionEventCallbacks(use_default_callbacks=defaults)
+            )
+        entity.event_handlers = callbacks.create_event_handlers(group, entity, topic)
+        for handler in entity.event_handlers:
+            self.add_waitable(handler)
+
+    def _qos_with_overrides(
+        self,
+        entity_type: type,
+        topic: str,
+        qos: QoSProfile | int,
+        options: QoSOverridingOptions | None,
+    ) -> QoSProfile:
+        from ros2lite.endpoint import as_qos
+
+        profile = as_qos(qos)
+        if options is not None and options.policy_kinds:
+            from ros2lite.qos_overriding_options import _declare_qos_parameters
+
+            profile = profile.replace()  # the caller's profile stays as it was
+            _declare_qos_parameters(
+                entity_type, self, self.resolve_topic_name(topic), profile, options
+            )
+        return profile
 
     def create_timer(
         self,
@@ -312,8 +415,10 @@ class Node(ParameterMixin):
         callback: Callable[[], object],
         callback_group: CallbackGroup | None = None,
         clock: Clock | None = None,
+        autostart: bool = True,
     ) -> Timer:
-        """Call `callback()` every `timer_period_sec` of `clock` (the node's by default)."""
+        """Call `callback()` every `timer_period_sec` of `clock` (the node's ROS clock by
+        default); `autostart=False` leaves it canceled until `reset()`."""
         self._remember_group(callback_group)
         timer = Timer(
             timer_period_sec,
@@ -321,10 +426,25 @@ class Node(ParameterMixin):
             clock or self._clock,
             node=self,
             callback_group=callback_group,
+            autostart=autostart,
         )
         self.timers.append(timer)
         self._wake_executor()
         return timer
+
+    def create_rate(self, frequency: float, clock: Clock | None = None) -> Rate:
+        """A Rate ticking at `frequency` Hz on this node (which another thread spins)."""
+        rate = Rate(self, frequency, clock)
+        self.rates.append(rate)
+        return rate
+
+    def destroy_rate(self, rate: Rate) -> bool:
+        """Destroy it; True if it was this node's (rclpy's answer)."""
+        if rate not in self.rates:
+            return False
+        self.rates.remove(rate)
+        rate.destroy()
+        return True
 
     @overload
     def create_service(
@@ -385,6 +505,7 @@ class Node(ParameterMixin):
         *,
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
+        fail_without_server: bool = False,
     ) -> Client[SrvRequestT, SrvResponseT]:
         """A service class gives a client whose call() returns its Response."""
 
@@ -396,6 +517,7 @@ class Node(ParameterMixin):
         *,
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
+        fail_without_server: bool = False,
     ) -> Client[Any, Any]:
         """A 'pkg/srv/Name' gives a client of that type, loosely typed."""
 
@@ -406,11 +528,20 @@ class Node(ParameterMixin):
         *,
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
+        fail_without_server: bool = False,
     ) -> Client[SrvRequestT, SrvResponseT]:
         """A client of `srv_name`; `call()` blocks for the response, `call_async()` gives
-        a future the node's executor completes."""
+        a future the node's executor completes. See :class:`~ros2lite.client.Client` for
+        `fail_without_server` (a ros2lite extra for tools)."""
         self._remember_group(callback_group)
-        client = Client(self, srv_type, srv_name, qos_profile, callback_group=callback_group)
+        client = Client(
+            self,
+            srv_type,
+            srv_name,
+            qos_profile,
+            callback_group=callback_group,
+            fail_without_server=fail_without_server,
+        )
         self.clients.append(client)
         return client
 
@@ -423,41 +554,57 @@ class Node(ParameterMixin):
         self.guards.append(guard)
         return guard
 
-    def destroy_publisher(self, pub: Publisher[MsgT]) -> None:
-        """Withdraw a publisher of this node."""
-        if pub in self.publishers:
-            self.publishers.remove(pub)
+    def destroy_publisher(self, pub: Publisher[MsgT]) -> bool:
+        """Withdraw a publisher of this node; True if it was this node's (rclpy's answer)."""
+        if pub not in self.publishers:
+            return False
+        self.publishers.remove(pub)
         pub.destroy()
+        return True
 
-    def destroy_subscription(self, sub: Subscription[MsgT]) -> None:
-        """Withdraw a subscription of this node."""
-        if sub in self.subscriptions:
-            self.subscriptions.remove(sub)
+    def destroy_subscription(self, sub: Subscription[MsgT]) -> bool:
+        """Withdraw a subscription of this node; True if it was this node's (rclpy's
+        answer)."""
+        if sub not in self.subscriptions:
+            return False
+        self.subscriptions.remove(sub)
         sub.destroy()
+        return True
 
-    def destroy_timer(self, timer: Timer) -> None:
-        """Cancel a timer and forget it."""
+    def destroy_timer(self, timer: Timer) -> bool:
+        """Cancel a timer and forget it; True if it was this node's."""
         timer.cancel()
-        if timer in self.timers:
-            self.timers.remove(timer)
+        if timer not in self.timers:
+            return False
+        self.timers.remove(timer)
+        return True
 
-    def destroy_service(self, srv: Service[SrvRequestT, SrvResponseT]) -> None:
-        """Withdraw a service server of this node."""
-        if srv in self.services:
-            self.services.remove(srv)
+    def destroy_service(self, srv: Service[SrvRequestT, SrvResponseT]) -> bool:
+        """Withdraw a service server of this node; True if it was this node's (rclpy's
+        answer)."""
+        if srv not in self.services:
+            return False
+        self.services.remove(srv)
         srv.destroy()
+        return True
 
-    def destroy_client(self, client: Client[SrvRequestT, SrvResponseT]) -> None:
-        """Withdraw a service client of this node (its pending calls are cancelled)."""
-        if client in self.clients:
-            self.clients.remove(client)
+    def destroy_client(self, client: Client[SrvRequestT, SrvResponseT]) -> bool:
+        """Withdraw a service client of this node (its pending calls are cancelled); True if
+        it was this node's (rclpy's answer)."""
+        if client not in self.clients:
+            return False
+        self.clients.remove(client)
         client.destroy()
+        return True
 
-    def destroy_guard_condition(self, guard: GuardCondition) -> None:
-        """Forget a guard condition of this node."""
-        if guard in self.guards:
-            self.guards.remove(guard)
+    def destroy_guard_condition(self, guard: GuardCondition) -> bool:
+        """Forget a guard condition of this node; True if it was this node's (rclpy's
+        answer)."""
+        if guard not in self.guards:
+            return False
+        self.guards.remove(guard)
         guard.destroy()
+        return True
 
     def destroy_node(self) -> None:
         """Leave the graph: every entity, timer and waitable of the node goes."""
@@ -465,7 +612,9 @@ class Node(ParameterMixin):
 
         # logging still works once the node is gone (e.g. from a goal thread finishing
         # during shutdown): it just no longer reaches /rosout
-        self._rosout = None
+        rosout, self._rosout = self._rosout, None
+        if rosout is not None:
+            rosout.destroy()
         entities: list[Destroyable] = [
             *self.subscriptions,
             *self.publishers,
@@ -474,6 +623,9 @@ class Node(ParameterMixin):
         ]
         for entity in entities:
             entity.destroy()
+        for rate in self.rates:
+            rate.destroy()
+        self.rates.clear()
         for timer in self.timers:
             timer.cancel()
         for guard in self.guards:
@@ -503,16 +655,6 @@ class Node(ParameterMixin):
     def get_logger(self) -> RcutilsLogger:
         """The node's logger: console and /rosout."""
         return self._logger
-
-    def _enable_sim_time(self) -> None:
-        self._clock._enable_sim_time(True)
-        if self._clock_sub is None:
-            self._clock_sub = self.create_subscription(
-                'rosgraph_msgs/msg/Clock',
-                '/clock',
-                lambda m: self._clock._set_sim_time(m.clock.sec * 1_000_000_000 + m.clock.nanosec),
-                CLOCK_QOS,
-            )
 
     def _publish_rosout(
         self, severity: int, name: str, text: str, caller: inspect.Traceback
@@ -552,10 +694,40 @@ class Node(ParameterMixin):
 
         return node_names_and_namespaces(self._entities())
 
+    def get_node_names_and_namespaces_with_enclaves(self) -> list[tuple[str, str, str]]:
+        """(name, namespace, enclave) of every node in the graph."""
+        seen: dict[tuple[str, int], tuple[str, str, str]] = {}
+        for e in self._entities():
+            seen.setdefault((e.zid, e.nid), (e.node_name, e.namespace, e.enclave))
+        return sorted(seen.values(), key=lambda n: n[1].rstrip('/') + '/' + n[0])
+
+    def get_fully_qualified_node_names(self) -> list[str]:
+        """`/ns/name` of every node in the graph (this one included)."""
+        from ros2lite.graph import node_full_names
+
+        return node_full_names(self._entities(), include_hidden=True)
+
+    def wait_for_node(self, fully_qualified_node_name: str, timeout: float) -> bool:
+        """Wait until a node of that name is in the graph; False if `timeout` s passed first
+        (rclpy's; the name is made absolute if it is not)."""
+        from ros2lite.graph import node_full_names
+
+        fqn = names.absolute_node_name(fully_qualified_node_name)
+        context = self.context
+        context.graph.wait_for(
+            lambda entities: (
+                fqn in node_full_names(entities, include_hidden=True) or not context.ok()
+            ),
+            timeout,
+        )
+        return fqn in self.get_fully_qualified_node_names()
+
     def get_topic_names_and_types(
-        self, include_hidden_topics: bool = False
+        self, no_demangle: bool = False, *, include_hidden_topics: bool = True
     ) -> list[tuple[str, list[str]]]:
-        """(topic, types) on the graph, hidden topics only when asked."""
+        """Every topic in the graph with its types, hidden ones too (as rcl lists them;
+        tools filter those out). `no_demangle` is rclpy's DDS option: rmw_zenoh's names are
+        never mangled."""
         from ros2lite.graph import topic_names_and_types
 
         return topic_names_and_types(self._entities(), include_hidden_topics)

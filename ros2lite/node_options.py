@@ -29,3 +29,4 @@ class NodeOptions(TypedDict, total=False):
     allow_undeclared_parameters: bool
     automatically_declare_parameters_from_overrides: bool
     start_parameter_services: bool
+    enable_logger_service: bool

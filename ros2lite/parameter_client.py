@@ -14,10 +14,13 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
 
-from ros2lite.names import absolute_node_name
 from ros2lite.parameter import Parameter
 from ros2lite.parameters.services import SERVICES, TYPES
-from ros2lite.qos import QoSProfile, qos_profile_services_default
+from ros2lite.qos import (
+    QoSProfile,
+    qos_profile_parameter_events,
+    qos_profile_services_default,
+)
 from ros2lite.task import Future
 
 if TYPE_CHECKING:
@@ -26,7 +29,9 @@ if TYPE_CHECKING:
     from ros2lite.interfaces import Message, ServiceType
     from ros2lite.msgs.rcl_interfaces import srv
     from ros2lite.msgs.rcl_interfaces.msg import Parameter as ParameterMsg
+    from ros2lite.msgs.rcl_interfaces.msg import ParameterEvent
     from ros2lite.node import Node
+    from ros2lite.subscription import Subscription
 
 __all__ = ['AsyncParameterClient']
 
@@ -52,9 +57,13 @@ class AsyncParameterClient:
         remote_node_name: str,
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
+        *,
+        fail_without_server: bool = False,
     ) -> None:
         self._node = node
-        self.remote_node_name = absolute_node_name(remote_node_name)
+        self._fail_without_server = fail_without_server
+        # as rclpy: a relative name is the remote node's in this node's namespace
+        self.remote_node_name = remote_node_name
         self._qos = qos_profile
         self._group = callback_group
         self._clients: dict[str, Client[Message, Message]] = {}
@@ -67,6 +76,7 @@ class AsyncParameterClient:
                 f'{self.remote_node_name}/{service}',
                 qos_profile=self._qos,
                 callback_group=self._group,
+                fail_without_server=self._fail_without_server,
             )
         return client
 
@@ -171,9 +181,13 @@ class AsyncParameterClient:
         use_wildcard: bool = False,
         callback: DoneCallback[srv.SetParameters.Response] | None = None,
     ) -> Future[srv.SetParameters.Response]:
-        """Set the file's parameters for the remote node (its entries, and `/**`-style ones
-        when `use_wildcard`), one by one."""
-        return self.set_parameters(self.file_parameters(parameter_file, use_wildcard), callback)
+        """Set the parameters of every node entry of the file (and of `/**` first when
+        `use_wildcard`), one by one, as rclpy's client does; :meth:`file_parameters` picks
+        only the entries that apply to the remote node."""
+        from ros2lite.parameters.files import parameter_dict_from_yaml_file
+
+        values = parameter_dict_from_yaml_file(parameter_file, use_wildcard)
+        return self.set_parameters(list(values.values()), callback)
 
     def load_parameter_file_atomically(
         self,
@@ -182,15 +196,33 @@ class AsyncParameterClient:
         callback: DoneCallback[srv.SetParametersAtomically.Response] | None = None,
     ) -> Future[srv.SetParametersAtomically.Response]:
         """Like :meth:`load_parameter_file`, all or nothing."""
-        return self.set_parameters_atomically(
-            self.file_parameters(parameter_file, use_wildcard), callback
-        )
+        from ros2lite.parameters.files import parameter_dict_from_yaml_file
+
+        values = parameter_dict_from_yaml_file(parameter_file, use_wildcard)
+        return self.set_parameters_atomically(list(values.values()), callback)
 
     def file_parameters(self, parameter_file: str | Path, use_wildcard: bool) -> list[Parameter]:
-        """The Parameters a parameters file gives the remote node, checked on the way."""
+        """The Parameters a parameters file gives the remote node by rcl's matching rules
+        (what `ros2 param load` sets), checked on the way."""
         from ros2lite.parameters.files import parameters_for_node
 
-        return parameters_for_node(parameter_file, self.remote_node_name, use_wildcard)
+        fqn = self._node.resolve_service_name(self.remote_node_name, only_expand=True)
+        return parameters_for_node(parameter_file, fqn, use_wildcard)
+
+    def on_parameter_event(
+        self,
+        callback: Callable[[ParameterEvent], object],
+        qos_profile: QoSProfile = qos_profile_parameter_events,
+        *,
+        callback_group: CallbackGroup | None = None,
+    ) -> Subscription[ParameterEvent]:
+        """Subscribe `callback(ParameterEvent)` to /parameter_events (every node's, as
+        rclpy's client does); returns the subscription."""
+        from ros2lite.parameters.events import TOPIC, TYPE
+
+        return self._node.create_subscription(
+            TYPE, TOPIC, callback, qos_profile, callback_group=callback_group
+        )
 
     def destroy(self) -> None:
         """Destroy the clients made so far."""

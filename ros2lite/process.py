@@ -15,7 +15,7 @@ import signal
 import subprocess
 import sys
 import threading
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from types import FrameType
 
 from ros2lite.exceptions import Ros2liteError
@@ -74,14 +74,18 @@ def sigterm_raises() -> Iterator[None]:
 
 class StopSignals:
     """SIGINT and SIGTERM only set :attr:`event` inside the block: a long job (recording a
-    bag) finishes cleanly instead of being cut short by a second Ctrl-C."""
+    bag) finishes cleanly instead of being cut short by a second Ctrl-C. `on_stop()` also
+    runs (in the main thread, between two of its steps) for work that polls no event."""
 
-    def __init__(self) -> None:
+    def __init__(self, on_stop: Callable[[], object] | None = None) -> None:
         self.event = threading.Event()
+        self._on_stop = on_stop
         self._block: contextlib.ExitStack | None = None
 
     def _handle(self, _signum: int, _frame: FrameType | None) -> None:
         self.event.set()
+        if self._on_stop is not None:
+            self._on_stop()
 
     def __enter__(self) -> StopSignals:
         self._block = contextlib.ExitStack()
@@ -112,12 +116,15 @@ def terminal_signals_child() -> bool:
 
 
 def run_child(
-    cmd: Sequence[str], on_start: Callable[[subprocess.Popen[bytes]], object] | None = None
+    cmd: Sequence[str],
+    on_start: Callable[[subprocess.Popen[bytes]], object] | None = None,
+    env: Mapping[str, str] | None = None,
 ) -> int:
-    """Start `cmd`, forward SIGINT/SIGTERM to it (see the module doc), return its returncode
-    (negative: killed by that signal). `on_start(child)` runs once the child is started,
-    with the forwarding in place (`component standalone` loads its component there); if
-    it raises, the child is interrupted and waited for before the error goes on.
+    """Start `cmd` (in `env`, default this process's environment), forward SIGINT/SIGTERM to
+    it (see the module doc), return its returncode (negative: killed by that signal).
+    `on_start(child)` runs once the child is started, with the forwarding in place
+    (`component standalone` loads its component there); if it raises, the child is
+    interrupted and waited for before the error goes on.
 
     Signals are taken by handlers installed before the child starts, not as
     KeyboardInterrupt: a Ctrl-C landing between the child's start and our wait would
@@ -146,7 +153,7 @@ def run_child(
     with _handlers({signal.SIGINT: forward_int, signal.SIGTERM: forward_term}):
         try:
             try:
-                proc = subprocess.Popen(list(cmd))
+                proc = subprocess.Popen(list(cmd), env=None if env is None else dict(env))
             except OSError as e:
                 raise ChildError(f'{cmd[0]}: {e.strerror or e}') from None
             # signals that came while the child was starting (it may already run and be

@@ -13,6 +13,7 @@ from ros2lite.transport.keys import EntityKind
 from ros2lite.type_support import Msg, MsgT
 
 if TYPE_CHECKING:
+    from ros2lite.duration import Duration
     from ros2lite.node import Node
     from ros2lite.transport.session import Publisher as ZenohPublisher
 
@@ -69,6 +70,18 @@ class Publisher(EndpointOwner, Generic[MsgT]):
 
         return codec(self._ep.type_name).raw_serializer()
 
+    def wait_for_all_acked(self, timeout: Duration | None = None) -> bool:
+        """rclpy's wait for every subscription to acknowledge what was published. Zenoh has no
+        per-message acknowledgements (a reliable link delivers or fails), so, like
+        rmw_zenoh_cpp, there is nothing to wait for: True."""
+        if self._pub is None:
+            _destroyed()
+        return True
+
+    def assert_liveliness(self) -> None:
+        """Liveliness is the endpoint's token, kept alive by the session (rmw_zenoh's way):
+        nothing to assert by hand."""
+
     def get_subscription_count(self) -> int:
         """How many subscriptions on the graph match this topic name."""
         from ros2lite.graph import count
@@ -79,13 +92,16 @@ class Publisher(EndpointOwner, Generic[MsgT]):
 
     def destroy(self) -> None:
         """Withdraw the publisher and its token; publishing afterwards raises."""
+        self._destroy_event_handlers()
         self._ep._undeclare(self._pub)
         self._pub = None
         self._put = _destroyed
 
 
 def _destroyed(*_: object, **__: object) -> None:
-    raise RuntimeError('publisher has been destroyed')
+    from ros2lite.exceptions import InvalidHandle
+
+    raise InvalidHandle('publisher has been destroyed')
 
 
 class _PublisherEndpoint(Endpoint):

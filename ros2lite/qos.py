@@ -7,13 +7,14 @@ tokens and picks how an endpoint is declared from them. Enum values are rmw's
 
 from __future__ import annotations
 
-import dataclasses
 import enum
+import warnings
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import NamedTuple, TypeVar
 
 from ros2lite.duration import Duration
+from ros2lite.exceptions import Ros2liteError
 
 __all__ = [
     "DURATION_BEST_AVAILABLE",
@@ -24,18 +25,24 @@ __all__ = [
     "DurabilityPolicy",
     "Duration",
     "HistoryPolicy",
+    "InvalidQoSProfileException",
     "LivelinessPolicy",
     "MatchedQoS",
+    "QoSCompatibility",
     "QoSDurabilityPolicy",
     "QoSHistoryPolicy",
     "QoSLivelinessPolicy",
+    "QoSPolicyKind",
     "QoSPresetProfiles",
     "QoSProfile",
     "QoSReliabilityPolicy",
     "ReliabilityPolicy",
     "check_compatible",
+    "incompatible_policy",
     "match_publishers_qos",
     "preset",
+    "qos_check_compatible",
+    "qos_policy_name_from_kind",
     "qos_profile_action_status_default",
     "qos_profile_best_available",
     "qos_profile_default",
@@ -71,6 +78,11 @@ class _Policy(enum.IntEnum):
     @classmethod
     def short_keys(cls) -> list[str]:
         return [m.short_key for m in cls]
+
+    @classmethod
+    def get_from_short_key(cls: type[_P], name: str) -> int:
+        """rclpy's lookup: the policy's number for a short key, any case."""
+        return int(cls.from_short_key(name).value)
 
 
 class ReliabilityPolicy(_Policy):
@@ -118,43 +130,219 @@ DURATION_INFINITE = Duration(nanoseconds=2**63 - 1)  # rmw's {INT64_MAX ns}
 DURATION_BEST_AVAILABLE = Duration(nanoseconds=2**63 - 2)
 
 
-@dataclass(frozen=True)
+class InvalidQoSProfileException(Ros2liteError, ValueError):
+    """A QoS profile that cannot be built (rclpy's name): no history or depth, or a
+    negative depth or duration."""
+
+
+_FIELDS = (
+    "history",
+    "depth",
+    "reliability",
+    "durability",
+    "lifespan",
+    "deadline",
+    "liveliness",
+    "liveliness_lease_duration",
+    "avoid_ros_namespace_conventions",
+)
+
+
 class QoSProfile:
-    """A QoS profile with rclpy's field names and defaults (reliable, volatile, keep_last 10).
+    """A QoS profile as rclpy has it: keyword arguments, `depth` and/or `history` required
+    (depth alone means KEEP_LAST), reliable and volatile unless told otherwise; fields can
+    be changed after construction.
 
     Durations left at 0 mean "unspecified", as in rmw; the transport turns them into the
     infinite value rmw_zenoh puts in tokens.
     """
 
-    reliability: ReliabilityPolicy = ReliabilityPolicy.RELIABLE
-    durability: DurabilityPolicy = DurabilityPolicy.VOLATILE
-    history: HistoryPolicy = HistoryPolicy.KEEP_LAST
-    depth: int = 10
-    deadline: Duration = DURATION_UNSPECIFIED
-    lifespan: Duration = DURATION_UNSPECIFIED
-    liveliness: LivelinessPolicy = LivelinessPolicy.SYSTEM_DEFAULT
-    liveliness_lease_duration: Duration = DURATION_UNSPECIFIED
+    __slots__ = tuple("_" + f for f in _FIELDS)
 
-    def __post_init__(self) -> None:
-        # Accept plain ints (e.g. from YAML or tokens) but store the enums.
-        object.__setattr__(self, "reliability", ReliabilityPolicy(self.reliability))
-        object.__setattr__(self, "durability", DurabilityPolicy(self.durability))
-        object.__setattr__(self, "history", HistoryPolicy(self.history))
-        object.__setattr__(self, "liveliness", LivelinessPolicy(self.liveliness))
-        if self.depth < 0:
-            raise ValueError(f"QoS depth must not be negative: {self.depth}")
-        for name in ("deadline", "lifespan", "liveliness_lease_duration"):
-            if getattr(self, name).nanoseconds < 0:
-                raise ValueError(f"QoS {name.replace('_', ' ')} must not be negative")
+    def __init__(
+        self,
+        *,
+        history: HistoryPolicy | int | None = None,
+        depth: int | None = None,
+        reliability: ReliabilityPolicy | int = ReliabilityPolicy.RELIABLE,
+        durability: DurabilityPolicy | int = DurabilityPolicy.VOLATILE,
+        lifespan: Duration = DURATION_UNSPECIFIED,
+        deadline: Duration = DURATION_UNSPECIFIED,
+        liveliness: LivelinessPolicy | int = LivelinessPolicy.SYSTEM_DEFAULT,
+        liveliness_lease_duration: Duration = DURATION_UNSPECIFIED,
+        avoid_ros_namespace_conventions: bool = False,
+    ) -> None:
+        if history is None:
+            if depth is None:
+                raise InvalidQoSProfileException("History and/or depth settings are required.")
+            history = HistoryPolicy.KEEP_LAST
+        history = HistoryPolicy(history)
+        if history == HistoryPolicy.KEEP_LAST and depth is None:
+            raise InvalidQoSProfileException("History set to KEEP_LAST without a depth setting.")
+        self._history = history
+        self.depth = 0 if depth is None else depth
+        self.reliability = reliability
+        self.durability = durability
+        self.lifespan = lifespan
+        self.deadline = deadline
+        self.liveliness = liveliness
+        self.liveliness_lease_duration = liveliness_lease_duration
+        self.avoid_ros_namespace_conventions = avoid_ros_namespace_conventions
+
+    # -- fields (setters accept rmw's numbers and check what rclpy checks) -----------------
+    @property
+    def history(self) -> HistoryPolicy:
+        """Keep the last `depth` samples, or all of them."""
+        return self._history
+
+    @history.setter
+    def history(self, value: HistoryPolicy | int) -> None:
+        """Set from the enum or its number."""
+        self._history = HistoryPolicy(value)
+
+    @property
+    def depth(self) -> int:
+        """How many samples KEEP_LAST keeps."""
+        return self._depth
+
+    @depth.setter
+    def depth(self, value: int) -> None:
+        """A non-negative int (0 with KEEP_LAST warns, as rclpy does)."""
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise TypeError(f"QoS depth must be an int, not {type(value).__name__}")
+        if value < 0:
+            raise InvalidQoSProfileException(
+                f"history depth must be greater than or equal to zero: {value}"
+            )
+        if self._history == HistoryPolicy.KEEP_LAST and value == 0:
+            warnings.warn(
+                "A zero depth with KEEP_LAST doesn't make sense; no data could be stored. "
+                "This will be interpreted as SYSTEM_DEFAULT",
+                UserWarning,
+                stacklevel=2,
+            )
+        self._depth = value
+
+    @property
+    def reliability(self) -> ReliabilityPolicy:
+        """Whether delivery is retried or may drop."""
+        return self._reliability
+
+    @reliability.setter
+    def reliability(self, value: ReliabilityPolicy | int) -> None:
+        """Set from the enum or its number."""
+        self._reliability = ReliabilityPolicy(value)
+
+    @property
+    def durability(self) -> DurabilityPolicy:
+        """Whether late joiners get the last samples."""
+        return self._durability
+
+    @durability.setter
+    def durability(self, value: DurabilityPolicy | int) -> None:
+        """Set from the enum or its number."""
+        self._durability = DurabilityPolicy(value)
+
+    @property
+    def liveliness(self) -> LivelinessPolicy:
+        """How a publisher shows it is alive."""
+        return self._liveliness
+
+    @liveliness.setter
+    def liveliness(self, value: LivelinessPolicy | int) -> None:
+        """Set from the enum or its number."""
+        self._liveliness = LivelinessPolicy(value)
+
+    @property
+    def lifespan(self) -> Duration:
+        """How long a sample stays valid (0: unspecified)."""
+        return self._lifespan
+
+    @lifespan.setter
+    def lifespan(self, value: Duration) -> None:
+        """A Duration."""
+        self._lifespan = _duration("lifespan", value)
+
+    @property
+    def deadline(self) -> Duration:
+        """The longest expected gap between samples (0: unspecified)."""
+        return self._deadline
+
+    @deadline.setter
+    def deadline(self, value: Duration) -> None:
+        """A Duration."""
+        self._deadline = _duration("deadline", value)
+
+    @property
+    def liveliness_lease_duration(self) -> Duration:
+        """How long a publisher may stay silent and still be alive."""
+        return self._liveliness_lease_duration
+
+    @liveliness_lease_duration.setter
+    def liveliness_lease_duration(self, value: Duration) -> None:
+        """A Duration."""
+        self._liveliness_lease_duration = _duration("liveliness_lease_duration", value)
+
+    @property
+    def avoid_ros_namespace_conventions(self) -> bool:
+        """Whether names skip ROS's namespace mangling."""
+        return self._avoid_ros_namespace_conventions
+
+    @avoid_ros_namespace_conventions.setter
+    def avoid_ros_namespace_conventions(self, value: bool) -> None:
+        """Set as a bool."""
+        self._avoid_ros_namespace_conventions = bool(value)
+
+    # -- value semantics --------------------------------------------------------------------
+    def to_dict(self) -> dict[str, object]:
+        """The profile as the keyword arguments that rebuild it."""
+        return {f: getattr(self, f) for f in _FIELDS}
+
+    def get_c_qos_profile(self) -> _RmwProfile:
+        """The profile as rmw holds it (rclpy's accessor; here a plain record)."""
+        return _RmwProfile(self.to_dict())
 
     def replace(self, **changes: object) -> QoSProfile:
-        """A copy with some fields changed (``dataclasses.replace`` under a friendlier name)."""
-        return dataclasses.replace(self, **changes)  # type: ignore[arg-type]
+        """A copy with some fields changed."""
+        fields = self.to_dict()
+        fields.update(changes)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)  # the original was accepted already
+            return QoSProfile(**fields)  # type: ignore[arg-type]
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, QoSProfile):
+            return NotImplemented
+        return all(getattr(self, f) == getattr(other, f) for f in _FIELDS)
+
+    __hash__ = None  # type: ignore[assignment]  # mutable, as rclpy's profiles are
+
+    def __repr__(self) -> str:
+        fields = ", ".join(f"{f}={getattr(self, f)!r}" for f in _FIELDS)
+        return f"QoSProfile({fields})"
 
     @property
     def is_transient_local(self) -> bool:
         """Whether late subscribers get the last samples."""
         return self.durability == DurabilityPolicy.TRANSIENT_LOCAL
+
+
+class _RmwProfile:
+    """What :meth:`QoSProfile.get_c_qos_profile` gives: the fields, and `to_dict()`."""
+
+    def __init__(self, fields: dict[str, object]) -> None:
+        self._fields = fields
+
+    def to_dict(self) -> dict[str, object]:
+        return dict(self._fields)
+
+
+def _duration(name: str, value: Duration) -> Duration:
+    if not isinstance(value, Duration):
+        raise TypeError(f"QoS {name.replace('_', ' ')} must be a Duration")
+    if value.nanoseconds < 0:
+        raise InvalidQoSProfileException(f"QoS {name.replace('_', ' ')} must not be negative")
+    return value
 
 
 # rclpy's older spellings of the policy enums
@@ -166,7 +354,7 @@ QoSLivelinessPolicy = LivelinessPolicy
 
 _R, _D, _H, _L = ReliabilityPolicy, DurabilityPolicy, HistoryPolicy, LivelinessPolicy
 
-qos_profile_default = QoSProfile()
+qos_profile_default = QoSProfile(depth=10)
 qos_profile_sensor_data = QoSProfile(reliability=_R.BEST_EFFORT, depth=5)
 qos_profile_system_default = QoSProfile(
     reliability=_R.SYSTEM_DEFAULT,
@@ -174,7 +362,7 @@ qos_profile_system_default = QoSProfile(
     history=_H.SYSTEM_DEFAULT,
     depth=0,
 )
-qos_profile_services_default = QoSProfile()
+qos_profile_services_default = QoSProfile(depth=10)
 qos_profile_parameters = QoSProfile(depth=1000)
 qos_profile_parameter_events = QoSProfile(depth=1000)
 qos_profile_rosout_default = QoSProfile(
@@ -285,7 +473,7 @@ def resolve_best_available(
         if getattr(profile, field) == DURATION_BEST_AVAILABLE:
             given = [getattr(o, field) for o in others if not _no_duration(getattr(o, field))]
             changes[field] = pick(given) if given else DURATION_UNSPECIFIED
-    return dataclasses.replace(profile, **changes)  # type: ignore[arg-type]
+    return profile.replace(**changes)
 
 
 @dataclass(frozen=True)
@@ -324,7 +512,7 @@ def match_publishers_qos(
 
 
 _WEAKEST = QoSProfile(
-    reliability=ReliabilityPolicy.BEST_EFFORT, durability=DurabilityPolicy.VOLATILE
+    depth=10, reliability=ReliabilityPolicy.BEST_EFFORT, durability=DurabilityPolicy.VOLATILE
 )
 
 
@@ -366,6 +554,81 @@ def check_compatible(publisher: QoSProfile, subscription: QoSProfile) -> Compati
     if errors:
         return Compatibility(False, " ".join(errors))
     return Compatibility(True, " ".join(_warnings(pub, sub)))
+
+
+def incompatible_policy(publisher: QoSProfile, subscription: QoSProfile) -> QoSPolicyKind | None:
+    """The last policy (in rmw's order of checks) that makes the pair incompatible, or None:
+    what QoS-incompatibility events report."""
+    found = None
+    for policy, error in _policy_errors(publisher, subscription):
+        if error:
+            found = policy
+    return found
+
+
+def _policy_errors(pub: QoSProfile, sub: QoSProfile) -> list[tuple[QoSPolicyKind, bool]]:
+    pl, sl = pub.liveliness_lease_duration, sub.liveliness_lease_duration
+    return [
+        (
+            QoSPolicyKind.RELIABILITY,
+            pub.reliability == _R.BEST_EFFORT and sub.reliability == _R.RELIABLE,
+        ),
+        (
+            QoSPolicyKind.DURABILITY,
+            pub.durability == _D.VOLATILE and sub.durability == _D.TRANSIENT_LOCAL,
+        ),
+        (
+            QoSPolicyKind.DEADLINE,
+            not _no_duration(sub.deadline)
+            and (_no_duration(pub.deadline) or sub.deadline < pub.deadline),
+        ),
+        (
+            QoSPolicyKind.LIVELINESS,
+            pub.liveliness == _L.AUTOMATIC and sub.liveliness == _L.MANUAL_BY_TOPIC,
+        ),
+        (
+            QoSPolicyKind.LIVELINESS_LEASE_DURATION,
+            not _no_duration(sl) and (_no_duration(pl) or sl < pl),
+        ),
+    ]
+
+
+class QoSCompatibility(enum.IntEnum):
+    """rclpy's verdict on a publisher/subscription pair."""
+
+    OK = 0
+    WARNING = 1
+    ERROR = 2
+
+
+def qos_check_compatible(
+    publisher_qos: QoSProfile, subscription_qos: QoSProfile
+) -> tuple[QoSCompatibility, str]:
+    """rclpy's form of :func:`check_compatible`: (OK/WARNING/ERROR, reason)."""
+    compatible, reason = check_compatible(publisher_qos, subscription_qos)
+    if not compatible:
+        return QoSCompatibility.ERROR, reason
+    return (QoSCompatibility.WARNING if reason else QoSCompatibility.OK), reason
+
+
+class QoSPolicyKind(enum.IntEnum):
+    """Which policy an event or an override is about (rmw_qos_policy_kind_t)."""
+
+    INVALID = 1 << 0
+    DURABILITY = 1 << 1
+    DEADLINE = 1 << 2
+    LIVELINESS = 1 << 3
+    RELIABILITY = 1 << 4
+    HISTORY = 1 << 5
+    LIFESPAN = 1 << 6
+    DEPTH = 1 << 7
+    LIVELINESS_LEASE_DURATION = 1 << 8
+    AVOID_ROS_NAMESPACE_CONVENTIONS = 1 << 9
+
+
+def qos_policy_name_from_kind(policy_kind: QoSPolicyKind | int) -> str:
+    """'RELIABILITY_QOS_POLICY' and so on, as rmw names a policy kind."""
+    return f"{QoSPolicyKind(policy_kind).name}_QOS_POLICY"
 
 
 def _warnings(pub: QoSProfile, sub: QoSProfile) -> list[str]:

@@ -12,9 +12,12 @@ nesting is refused the same way. Errors are :class:`YamlInputError` with one rea
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ros2lite.exceptions import Ros2liteError
+
+if TYPE_CHECKING:
+    import yaml
 
 __all__ = ['MAX_DEPTH', 'MAX_VALUES', 'YamlInputError', 'load']
 
@@ -85,12 +88,20 @@ def _expanded_size(root: Any, limit: int, what: str) -> int:
     return sizes.get(id(root), 1)
 
 
-def load(text: str, what: str = 'YAML', *, max_values: int = MAX_VALUES) -> Any:
+def load(
+    text: str,
+    what: str = 'YAML',
+    *,
+    max_values: int = MAX_VALUES,
+    loader_class: type[yaml.SafeLoader] | None = None,
+) -> Any:
     """The value of a YAML document, like `yaml.safe_load` (tags of Python objects are
-    refused), or YamlInputError naming `what` (see the module doc)."""
+    refused), or YamlInputError naming `what` (see the module doc). `loader_class`, a
+    SafeLoader subclass, may construct values its own way (e.g. keep repeated keys); the
+    bounds hold all the same."""
     import yaml
 
-    loader = yaml.SafeLoader(text)
+    loader = (loader_class or yaml.SafeLoader)(text)
     try:
         try:
             node = loader.get_single_node()

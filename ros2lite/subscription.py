@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import enum
 import inspect
 import time
 from collections import deque
@@ -29,12 +30,52 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class MessageInfo:
-    """Delivery metadata from the rmw_zenoh attachment, plus our receive time."""
+    """Delivery metadata from the rmw_zenoh attachment, plus our receive time. Readable as
+    attributes, or by key as rclpy's dict is (`info['source_timestamp']`)."""
 
     source_timestamp: int  # ns since the epoch, from the publisher
     received_timestamp: int  # ns since the epoch, when the sample arrived here
     publication_sequence_number: int
     publisher_gid: bytes
+
+    def __getitem__(self, key: str) -> int | bytes:
+        try:
+            return getattr(self, key)
+        except AttributeError:
+            raise KeyError(key) from None
+
+    def get(self, key: str, default: object = None) -> object:
+        """A field by name, or `default` (rclpy's info is a dict)."""
+        return getattr(self, key, default)
+
+    def keys(self) -> list[str]:
+        """The field names, as the keys of rclpy's info dict."""
+        return list(self.__dataclass_fields__)
+
+
+class CallbackType(enum.Enum):
+    """What a subscription callback takes: the message, or the message and its info."""
+
+    MessageOnly = 0
+    WithMessageInfo = 1
+
+
+def callback_type(callback: Callable[..., object]) -> CallbackType:
+    """Tell `callback(msg)` from `callback(msg, info)`, as rclpy does (RuntimeError for
+    anything else)."""
+    try:
+        signature = inspect.signature(callback)
+    except (TypeError, ValueError):  # a builtin without a signature: assume the message only
+        return CallbackType.MessageOnly
+    for args, kind in (((0,), CallbackType.MessageOnly), ((0, 0), CallbackType.WithMessageInfo)):
+        try:
+            signature.bind(*args)
+        except TypeError:
+            continue
+        return kind
+    raise RuntimeError(
+        'a subscription callback must take one parameter (msg) or two (msg, msg_info)'
+    )
 
 
 # longest run of callbacks of one subscription in one executor turn: count and seconds
@@ -50,12 +91,20 @@ def _info(attachment: bytes, received: int) -> MessageInfo:
     return MessageInfo(stamp, received, seq, gid)
 
 
-SubscriptionCallback = Callable[[MsgT], object] | Callable[[bytes, MessageInfo], object]
-"""`callback(msg)`, or with raw=True `callback(cdr_bytes, info)`; `async def` ones too."""
+SubscriptionCallback = (
+    Callable[[MsgT], object]
+    | Callable[[MsgT, MessageInfo], object]
+    | Callable[[bytes, MessageInfo], object]
+)
+"""`callback(msg)` or `callback(msg, info)` (told apart by the signature, as rclpy does), and
+with raw=True the message is its CDR bytes; `async def` ones too."""
 
 
 class Subscription(EndpointOwner, Executable, Generic[MsgT]):
-    """Calls `callback(msg)`; with raw=True calls `callback(cdr_bytes, MessageInfo)`."""
+    """Calls `callback(msg)` or `callback(msg, MessageInfo)` (told apart by its signature);
+    with raw=True the message is its CDR bytes."""
+
+    CallbackType = CallbackType
 
     def __init__(
         self,
@@ -75,6 +124,8 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self._ep = _SubscriptionEndpoint(node, msg_type, topic, qos)
         ep = self._ep
         self.callback = callback
+        self._callback_type = callback_type(callback)
+        self._with_info = self._callback_type == CallbackType.WithMessageInfo
         self.raw = raw
         self._async = inspect.iscoroutinefunction(callback)
         keep_all = ep.qos.history == HistoryPolicy.KEEP_ALL
@@ -177,35 +228,21 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
             return (
                 None
                 if entry is None
-                else self._call(self.callback, *(entry if self.raw else entry[:1]))
+                else self._call(self.callback, *(entry if self._with_info else entry[:1]))
             )
         self._deliver_batch(_BATCH if batch else 1, stop)
         return None
 
     def _deliver_batch(self, limit: int, stop: Callable[[], bool] | None) -> None:
-        """Typed callbacks never see MessageInfo, so it is only built for raw ones."""
-        # (bytes, MessageInfo) for raw subscriptions, (msg) for typed ones
+        """MessageInfo is only built for callbacks that take it."""
+        # (msg) for the hot typed loop; the others go through _deliver_with_info
         callback: Callable[..., object] = self.callback
         buffer = self._buffer
         popleft, perf_counter = buffer.popleft, time.perf_counter
         # a batch also ends after _BATCH_TIME, so slow callbacks can't starve timers
         deadline = perf_counter() + _BATCH_TIME if limit > 1 else 0.0
-        if self.raw:
-            for i in range(limit):
-                if i & 7 == 7 and perf_counter() > deadline:
-                    break
-                try:
-                    sample, received = popleft()
-                except IndexError:
-                    break  # KEEP_LAST dropped it, or take() got there first
-                if self._destroyed:
-                    break
-                attachment = sample.attachment
-                if attachment is None:
-                    continue  # rmw_zenoh drops samples without an attachment
-                callback(sample.payload.to_bytes(), _info(attachment.to_bytes(), received))
-                if stop is not None and stop():
-                    break
+        if self.raw or self._with_info:
+            self._deliver_with_info(limit, stop, deadline)
             return
         des = self._deserialize or self._deserializer()
         if self._source is not None:  # the hot path (ros2lite.delivery)
@@ -252,8 +289,47 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
             )
         bad.add(gid, error, len(data))
 
+    def _deliver_with_info(
+        self, limit: int, stop: Callable[[], bool] | None, deadline: float
+    ) -> None:
+        """Raw bytes and/or MessageInfo: the slower loop (raw samples carry their arrival
+        time; typed ones are stamped when taken). A typed sample that does not decode is
+        dropped and reported, as in the hot loop."""
+        popleft, perf_counter = self._buffer.popleft, time.perf_counter
+        callback: Callable[..., object] = self.callback
+        des = None if self.raw else (self._deserialize or self._deserializer())
+        for i in range(limit):
+            if i & 7 == 7 and perf_counter() > deadline:
+                break
+            try:
+                entry = popleft()
+            except IndexError:
+                break  # KEEP_LAST dropped it, or take() got there first
+            if self._destroyed:
+                break
+            sample, received = entry if self.raw else (entry, time.time_ns())
+            attachment = sample.attachment
+            if attachment is None:
+                continue  # rmw_zenoh drops samples without an attachment
+            data = sample.payload.to_bytes()
+            if des is None:
+                message: object = data
+            else:
+                try:
+                    message = des(data)
+                except ValueError as e:  # a CdrError (imported lazily: tools stay light)
+                    self._bad_sample(data, gid_of(attachment.to_bytes()), e)
+                    continue
+            if self._with_info:
+                callback(message, _info(attachment.to_bytes(), received))
+            else:
+                callback(message)
+            if stop is not None and stop():
+                break
+
     def destroy(self) -> None:
         """Stop receiving: buffered samples are dropped and the token withdrawn."""
+        self._destroy_event_handlers()
         self._destroyed = True
         self._buffer.clear()
         if self._source is not None:

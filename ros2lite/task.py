@@ -18,7 +18,11 @@ T = TypeVar('T')
 
 
 class Future(Generic[T]):
-    """The result of an asynchronous operation (service call, goal, task)."""
+    """The result of an asynchronous operation (service call, goal, task).
+
+    With an `executor`, done-callbacks run as tasks of that executor (as rclpy schedules
+    them), on the thread spinning it; without one, on the thread that completes the future.
+    """
 
     def __init__(self, *, executor: Executor | None = None) -> None:
         # a plain flag for done(), which executors poll after every callback; the Event is
@@ -28,7 +32,8 @@ class Future(Generic[T]):
         self._event: threading.Event | None = None
         self._result: T | None = None
         self._exception: BaseException | None = None
-        self._callbacks: list[Callable[[Future[T]], object]] = []
+        # (callback, run on the completing thread rather than through the executor)
+        self._callbacks: list[tuple[Callable[[Future[T]], object], bool]] = []
         self._cancelled = False
         self._executor = executor
 
@@ -80,14 +85,34 @@ class Future(Generic[T]):
             event, callbacks, self._callbacks = self._event, self._callbacks, []
         if event is not None:
             event.set()
-        for cb in callbacks:
-            cb(self)
+        for cb, now in callbacks:
+            if now:
+                cb(self)
+            else:
+                self._schedule(cb)
+
+    def _schedule(self, callback: Callable[[Future[T]], object]) -> None:
+        executor = self._executor
+        if executor is not None:
+            executor.create_task(callback, self)
+        else:
+            callback(self)
 
     def add_done_callback(self, callback: Callable[[Future[T]], object]) -> None:
-        """Call `callback(future)` once done (at once if it already is)."""
+        """Call `callback(future)` once done (at once if it already is); through the
+        future's executor when it has one."""
         with self._lock:
             if not self._finished:
-                self._callbacks.append(callback)
+                self._callbacks.append((callback, False))
+                return
+        self._schedule(callback)
+
+    def _add_done_callback_now(self, callback: Callable[[Future[T]], object]) -> None:
+        """ros2lite's own bookkeeping (wake-ups, releasing a group): run on the completing
+        thread, never as a task."""
+        with self._lock:
+            if not self._finished:
+                self._callbacks.append((callback, True))
                 return
         callback(self)
 
@@ -181,7 +206,7 @@ class Task(Future[Any]):
         if self._reschedule is None:
             return
         if isinstance(awaited, Future) and not awaited.done():
-            awaited.add_done_callback(lambda _f: self._resume())
+            awaited._add_done_callback_now(lambda _f: self._resume())
         else:
             self._resume()
 

@@ -28,16 +28,37 @@ class Timer(Executable):
         *,
         node: Node | None = None,
         callback_group: CallbackGroup | None = None,
+        autostart: bool = True,
     ) -> None:
         if period_sec < 0:
             raise ValueError('timer period must not be negative')
         super().__init__(node, callback_group)
-        self.timer_period_ns = round(period_sec * 1e9)
+        self._period_ns = round(period_sec * 1e9)
         self.callback = callback
         self._clock = clock
-        self._canceled = False
+        self._canceled = not autostart
         self._sim = False  # which time base `_next` is on
-        self._next = self._now() + self.timer_period_ns
+        self._next = self._now() + self._period_ns
+        self._last_call = self._next - self._period_ns
+
+    @property
+    def clock(self) -> Clock | None:
+        """The clock whose time the period is measured in (None: steady time)."""
+        return self._clock
+
+    @property
+    def timer_period_ns(self) -> int:
+        """The period in nanoseconds."""
+        return self._period_ns
+
+    @timer_period_ns.setter
+    def timer_period_ns(self, value: int) -> None:
+        """A new period, counted from now (as rcl's timer_exchange_period does not, the next
+        call is re-planned so that a longer period is not cut short)."""
+        if value < 0:
+            raise ValueError('timer period must not be negative')
+        self._period_ns = int(value)
+        self._next = self._now() + self._period_ns
 
     def _now(self) -> int:
         """Now on the timer's time base. When `use_sim_time` flips, steady time and ROS time
@@ -48,15 +69,23 @@ class Timer(Executable):
         now: int = clock.now().nanoseconds if sim else time.monotonic_ns()  # type: ignore[union-attr]
         if sim != self._sim:
             self._sim = sim
-            self._next = now + self.timer_period_ns
+            self._next = now + self._period_ns
         return now
 
-    def time_until_next_call(self) -> float | None:
-        """Seconds until the timer is due (negative: overdue); None once cancelled."""
+    def time_until_next_call(self) -> int | None:
+        """Nanoseconds until the timer is due (negative: overdue); None once canceled."""
         if self._canceled:
             return None
         now = self._now()  # first: it may re-base `_next`
-        return (self._next - now) / 1e9
+        return self._next - now
+
+    def _seconds_until_next_call(self) -> float | None:
+        remaining = self.time_until_next_call()
+        return None if remaining is None else remaining / 1e9
+
+    def time_since_last_call(self) -> int:
+        """Nanoseconds since the timer last fired (or was started)."""
+        return self._now() - self._last_call
 
     def is_ready(self) -> bool:
         """Whether the timer is due."""
@@ -66,7 +95,7 @@ class Timer(Executable):
     @property
     def timer_period_sec(self) -> float:
         """The period in seconds."""
-        return self.timer_period_ns / 1e9
+        return self._period_ns / 1e9
 
     def execute(self) -> None:
         """Fire now (advancing the schedule), on the caller's thread."""
@@ -80,11 +109,12 @@ class Timer(Executable):
         if self._canceled:
             return False
         now = self._now()
+        self._last_call = now
         # keep the phase; if we fell behind by whole periods, skip them rather than burst
-        self._next += self.timer_period_ns
+        self._next += self._period_ns
         if self._next <= now:
-            behind = (now - self._next) // max(self.timer_period_ns, 1) + 1
-            self._next += behind * self.timer_period_ns
+            behind = (now - self._next) // max(self._period_ns, 1) + 1
+            self._next += behind * self._period_ns
         return True
 
     def cancel(self) -> None:
@@ -96,6 +126,14 @@ class Timer(Executable):
         return self._canceled
 
     def reset(self) -> None:
-        """Start again: next due one period from now."""
+        """Start again: due one period from now (also after cancel())."""
         self._canceled = False
-        self._next = self._now() + self.timer_period_ns
+        self._next = self._now() + self._period_ns
+        if self._node is not None:
+            self._node._wake_executor()  # a spinning executor must see the new deadline
+
+    def destroy(self) -> None:
+        """Never fire again (the node forgets it too)."""
+        self._canceled = True
+        if self._node is not None and self in self._node.timers:
+            self._node.timers.remove(self)

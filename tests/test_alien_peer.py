@@ -168,7 +168,7 @@ def test_liveliness_tokens_have_the_rmw_zenoh_shape(ros_context: Any, alien_sess
     expected = {
         f'@ros2_lv/{d}/{zid}/0/0/NN/%/%/lite_node',
         f'@ros2_lv/{d}/{zid}/0/1/MP/%/%/lite_node/%rosout/{LOG_TYPE}/{LOG_HASH}/:1:,1000:,:10,0:,,',
-        # every node publishes /parameter_events and serves the six parameter services
+        # every node publishes /parameter_events and serves the six parameter services…
         f'@ros2_lv/{d}/{zid}/0/2/MP/%/%/lite_node/%parameter_events/'
         'rcl_interfaces::msg::dds_::ParameterEvent_/'
         f"{hashes['rcl_interfaces/msg/ParameterEvent']}/::,1000:,:,:,,",
@@ -187,8 +187,12 @@ def test_liveliness_tokens_have_the_rmw_zenoh_shape(ros_context: Any, alien_sess
                 ]
             )
         ),
-        f'@ros2_lv/{d}/{zid}/0/9/MP/%/%/lite_node/%chatter/{STRING_TYPE}/{STRING_HASH}/::,7:,:,:,,',
-        f'@ros2_lv/{d}/{zid}/0/10/MS/%/%/lite_node/%robot1%chatter/{STRING_TYPE}/{STRING_HASH}/'
+        # and ~/get_type_description, as rcl's nodes do from Jazzy on
+        f'@ros2_lv/{d}/{zid}/0/9/SS/%/%/lite_node/%lite_node%get_type_description/'
+        'type_description_interfaces::srv::dds_::GetTypeDescription_/'
+        f"{hashes['type_description_interfaces/srv/GetTypeDescription']}/::,10:,:,:,,",
+        f'@ros2_lv/{d}/{zid}/0/10/MP/%/%/lite_node/%chatter/{STRING_TYPE}/{STRING_HASH}/::,7:,:,:,,',
+        f'@ros2_lv/{d}/{zid}/0/11/MS/%/%/lite_node/%robot1%chatter/{STRING_TYPE}/{STRING_HASH}/'
         '::,10:,:,:,,',
     }
 

@@ -169,3 +169,15 @@ def test_params_file_errors(tmp_path: Path) -> None:
     broken.write_text('a: [unclosed\n')
     with pytest.raises(RosArgsError, match="Couldn't read"):
         load_params_file(broken, '/n', 'n')
+
+
+def test_later_rules_win_over_earlier_files_and_back(tmp_path: Path) -> None:
+    """-p rules and params files count in the order given, as in rcl."""
+    path = tmp_path / 'p.yaml'
+    path.write_text('/**:\n  ros__parameters:\n    a: file\n    b: file\n')
+    args = parse_ros_args(
+        ['--ros-args', '-p', 'a:=early', '--params-file', str(path), '-p', 'b:=late']
+    )
+    assert args.parameter_overrides('/n', 'n') == {'a': 'file', 'b': 'late'}
+    flags = parse_ros_args(['--ros-args', '--disable-rosout-logs', '--enable-stdout-logs'])
+    assert (flags.rosout_logs, flags.stdout_logs) == (False, True)

@@ -197,3 +197,31 @@ def test_a_callbacks_own_value_error_still_reaches_the_caller(
         executor.spin_once(timeout_sec=5)
     assert sub.bad_samples is not None and sub.bad_samples.total == 1
     executor.shutdown()
+
+
+def test_a_message_and_info_callback_survives_hostile_samples(
+    ros_context: Any, alien_session: Any
+) -> None:
+    """`callback(msg, info)` takes the slower loop: bad samples are dropped there too, and the
+    good one arrives with its publisher's info."""
+    from ros2lite.subscription import MessageInfo
+
+    node = Node('info_victim', context=ros_context)
+    heard: list[tuple[str, bytes]] = []
+
+    def callback(msg: Any, info: MessageInfo) -> None:
+        heard.append((msg.data, info.publisher_gid))
+
+    sub = node.create_subscription('std_msgs/msg/String', '/hostile_info', callback, 100)
+    probe = node.create_publisher('std_msgs/msg/String', '/hostile_info', 10)
+    wait_until(lambda: probe.get_subscription_count() > 0)
+    key = f'{ros_context.domain_id}/hostile_info/std_msgs::msg::dds_::String_/{STRING_HASH}'
+    samples = [(p, attachment(i, gid(6))) for i, p in enumerate(HOSTILE)]
+    samples.append((cdr_string('with info'), attachment(99, gid(7))))
+    _publish(alien_session, key, samples)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(node)
+    spin_until(executor, lambda: bool(heard), timeout=15)
+    assert heard == [('with info', gid(7))]
+    assert sub.bad_samples is not None and sub.bad_samples.total == len(HOSTILE)
+    executor.shutdown()

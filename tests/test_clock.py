@@ -7,7 +7,7 @@ from typing import Any
 
 import pytest
 
-from ros2lite.clock import Clock, ClockType, Duration, Time
+from ros2lite.clock import Clock, ClockType, Duration, ROSClock, Time
 from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.interfaces import get_interface
 from ros2lite.node import Node
@@ -19,27 +19,27 @@ TimeMsg = get_interface('builtin_interfaces/msg/Time')
 
 
 def test_time_and_duration_arithmetic() -> None:
-    t = Time(5_500_000_000)
-    assert t.seconds_nanoseconds == (5, 500_000_000)
+    t = Time(nanoseconds=5_500_000_000)
+    assert t.seconds_nanoseconds() == (5, 500_000_000)
     assert (t + Duration.from_seconds(0.5)).nanoseconds == 6_000_000_000
-    assert t - Time(1_000_000_000) == Duration(nanoseconds=4_500_000_000)
+    assert t - Time(nanoseconds=1_000_000_000) == Duration(nanoseconds=4_500_000_000)
     assert (t - Duration(nanoseconds=500_000_000)).nanoseconds == 5_000_000_000
     assert Duration.from_seconds(1.25).to_seconds() == 1.25
     msg = t.to_msg()
     assert (msg.sec, msg.nanosec) == (5, 500_000_000)
-    assert Time.from_msg(msg) == Time(5_500_000_000, ClockType.ROS_TIME)
+    assert Time.from_msg(msg) == Time(nanoseconds=5_500_000_000, clock_type=ClockType.ROS_TIME)
     d = Duration(nanoseconds=2_000_000_001).to_msg()
     assert (d.sec, d.nanosec) == (2, 1)
-    assert Time(1) < Time(2)
+    assert Time(nanoseconds=1) < Time(nanoseconds=2)
 
 
 def test_clock_types() -> None:
-    system = Clock(ClockType.SYSTEM_TIME).now().nanoseconds
+    system = Clock(clock_type=ClockType.SYSTEM_TIME).now().nanoseconds
     assert abs(system - time.time_ns()) < 1_000_000_000
-    steady = Clock(ClockType.STEADY_TIME).now()
+    steady = Clock(clock_type=ClockType.STEADY_TIME).now()
     assert steady.clock_type == ClockType.STEADY_TIME
     assert abs(steady.nanoseconds - time.monotonic_ns()) < 1_000_000_000
-    ros = Clock(ClockType.ROS_TIME)
+    ros = Clock(clock_type=ClockType.ROS_TIME)
     assert not ros.ros_time_is_active
     assert abs(ros.now().nanoseconds - time.time_ns()) < 1_000_000_000
 
@@ -72,7 +72,7 @@ def test_sim_time_follows_clock_topic(ros_context: Any, clock_pub: Any) -> None:
         return clock.now().nanoseconds == target
 
     spin_until(ex, sent_and_seen)
-    assert clock.now() == Time(target, ClockType.ROS_TIME)
+    assert clock.now() == Time(nanoseconds=target, clock_type=ClockType.ROS_TIME)
     # switching sim time off goes back to the system clock
     node.set_parameters([Parameter('use_sim_time', value=False)])
     assert not clock.ros_time_is_active
@@ -116,14 +116,76 @@ def test_sim_time_enabled_later(ros_context: Any, clock_pub: Any) -> None:
     spin_until(ex, seen)
 
 
-def test_sleep_for_under_sim_time() -> None:
-    clock = Clock(ClockType.ROS_TIME)
-    clock._enable_sim_time(True)
-    clock._set_sim_time(1_000_000_000)
+def test_sleep_for_under_sim_time(ros_context: Any) -> None:
+    clock = ROSClock()
+    clock._set_ros_time_is_active(True)
+    clock.set_ros_time_override(Time(seconds=1, clock_type=ClockType.ROS_TIME))
     import threading
 
-    threading.Timer(0.1, clock._set_sim_time, args=(3_000_000_000,)).start()
+    later = Time(seconds=3, clock_type=ClockType.ROS_TIME)
+    threading.Timer(0.1, clock.set_ros_time_override, args=(later,)).start()
     start = time.monotonic()
-    clock.sleep_for(Duration.from_seconds(1.5))
+    assert clock.sleep_for(Duration.from_seconds(1.5), context=ros_context)
     assert 0.05 < time.monotonic() - start < 1.0
     assert clock.now().nanoseconds == 3_000_000_000
+
+
+def test_clock_types_and_ros_clock() -> None:
+    from ros2lite.clock import ROSClock
+
+    assert isinstance(Clock(clock_type=ClockType.ROS_TIME), ROSClock)
+    assert not Clock(clock_type=ClockType.STEADY_TIME).ros_time_is_active
+    with pytest.raises(TypeError):
+        Clock(clock_type='STEADY_TIME')  # type: ignore[arg-type]
+
+
+def test_jump_callbacks_follow_their_thresholds() -> None:
+    from ros2lite.clock import ClockChange, JumpThreshold, ROSClock
+
+    with pytest.raises(ValueError, match='min_forward'):
+        JumpThreshold(min_forward=Duration(), min_backward=None)
+    with pytest.raises(ValueError, match='must be enabled'):
+        JumpThreshold(min_forward=None, min_backward=None, on_clock_change=False)
+    clock = ROSClock()
+    forward: list[Any] = []
+    changes: list[Any] = []
+    pre: list[int] = []
+    jump = JumpThreshold(min_forward=Duration(seconds=1), min_backward=None, on_clock_change=False)
+    handle = clock.create_jump_callback(
+        jump, pre_callback=lambda: pre.append(1), post_callback=forward.append
+    )
+    with clock.create_jump_callback(
+        JumpThreshold(min_forward=None, min_backward=None), post_callback=changes.append
+    ):
+        clock.set_ros_time_override(Time(seconds=10, clock_type=ClockType.ROS_TIME))
+        assert forward == []  # ROS time is not active yet: no jump
+        clock._set_ros_time_is_active(True)
+        assert [c.clock_change for c in changes] == [ClockChange.ROS_TIME_ACTIVATED]
+    clock.set_ros_time_override(Time(seconds=10.5, clock_type=ClockType.ROS_TIME))
+    assert forward == []  # below the threshold
+    clock.set_ros_time_override(Time(seconds=12, clock_type=ClockType.ROS_TIME))
+    assert [j.delta for j in forward] == [Duration(seconds=1.5)] and pre == [1]
+    handle.unregister()
+    clock._set_ros_time_is_active(False)  # the `with` handle is gone too
+    assert len(changes) == 1
+
+
+def test_sleep_ends_false_when_the_context_shuts_down(ros_router: str) -> None:
+    from ros2lite.context import Context
+    from ros2lite.exceptions import NotInitializedException
+
+    clock = Clock()
+    with pytest.raises(NotInitializedException):
+        clock.sleep_for(Duration(nanoseconds=10_000_000), context=Context())
+    ctx = Context().init([])
+    result: list[bool] = []
+    import threading
+
+    sleeper = threading.Thread(
+        target=lambda: result.append(clock.sleep_for(Duration(seconds=30), context=ctx))
+    )
+    sleeper.start()
+    time.sleep(0.1)
+    ctx.shutdown()
+    sleeper.join(5)
+    assert result == [False]

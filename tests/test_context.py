@@ -84,8 +84,8 @@ def test_nodes_and_endpoints_share_one_id_counter(ros_context: Any) -> None:
     a = Node('a', context=ros_context, enable_rosout=False, start_parameter_services=False)
     pub = a.create_publisher('std_msgs/msg/String', 'x', 10)
     b = Node('b', context=ros_context, enable_rosout=False)
-    # id 1 is a's /parameter_events publisher
-    assert (a.node_id, pub._ep.entity_id, b.node_id) == (0, 2, 3)
+    # ids 1 and 2 are a's /parameter_events publisher and ~/get_type_description service
+    assert (a.node_id, pub._ep.entity_id, b.node_id) == (0, 3, 4)
 
 
 def test_shutdown_from_another_thread_ends_spin(ros_router: str) -> None:
@@ -163,3 +163,27 @@ def test_sigterm(processes: Any, mode: str, said: str, code: int) -> None:
     out, err = proc.communicate(timeout=10)
     assert (out.strip(), proc.returncode) == (said, code), err
     assert 'Traceback' not in err
+
+
+def test_rclpy_context_rules(ros_router: str) -> None:
+    from ros2lite.context import (
+        SignalHandlerOptions,
+        get_current_signal_handlers_options,
+    )
+
+    ctx = Context()
+    with pytest.raises(RuntimeError, match='initialized'):
+        ctx.shutdown()  # a context never initialised cannot be shut down
+    with pytest.raises(RuntimeError):
+        Context().init([], domain_id=-1)
+    with pytest.raises(UnicodeEncodeError):
+        Context().init(['prog', 'undecodable \udcc3'])
+    with ctx:  # a `with` initialises it (as rclpy's does)
+        assert ctx.ok() and ctx.get_domain_id() == ctx.domain_id
+    assert not ctx.ok()
+    ros2lite.init([])
+    try:
+        assert get_current_signal_handlers_options() == SignalHandlerOptions.ALL
+    finally:
+        ros2lite.shutdown()
+    assert get_current_signal_handlers_options() == SignalHandlerOptions.NO

@@ -41,8 +41,8 @@ def test_arithmetic_order_and_hash() -> None:
     assert b < a and a >= b and sorted([a, b]) == [b, a]
     assert len({Duration(seconds=1), Duration(nanoseconds=1_000_000_000)}) == 1
     assert Duration(seconds=1) != 1_000_000_000
-    assert Time(5_000_000_000) - Time(1_000_000_000) == Duration(seconds=4)
-    assert (Time(5_000_000_000) + Duration(seconds=1)).nanoseconds == 6_000_000_000
+    assert Time(nanoseconds=5_000_000_000) - Time(nanoseconds=1_000_000_000) == Duration(seconds=4)
+    assert (Time(nanoseconds=5_000_000_000) + Duration(seconds=1)).nanoseconds == 6_000_000_000
 
 
 def test_message_round_trip() -> None:
@@ -53,4 +53,4 @@ def test_message_round_trip() -> None:
 
 def test_qos_rejects_negative_durations() -> None:
     with pytest.raises(ValueError, match='lifespan must not be negative'):
-        QoSProfile(lifespan=Duration(seconds=-1))
+        QoSProfile(depth=10, lifespan=Duration(seconds=-1))

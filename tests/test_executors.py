@@ -377,3 +377,31 @@ def test_work_taken_just_before_shutdown_is_dropped_cleanly(ros_context: Any) ->
     assert group.beginning_execution(timer)
     executor._start(timer, group, False, None)
     assert group.can_execute(timer) and not timer._scheduled
+
+
+def test_spin_once_until_future_complete_ends_when_another_thread_completes_it(
+    ros_context: Any,
+) -> None:
+    node = Node('once_until', context=ros_context)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(node)
+    future = Future()
+    threading.Timer(0.1, future.set_result, args=(True,)).start()
+    start = time.monotonic()
+    executor.spin_once_until_future_complete(future, timeout_sec=10)
+    assert future.done() and time.monotonic() - start < 5
+
+
+def test_executor_as_context_manager_and_waiting_for_work(ros_context: Any) -> None:
+    from ros2lite.executors import ShutdownException, TimeoutException
+
+    with SingleThreadedExecutor(context=ros_context) as executor:
+        with pytest.raises(TimeoutException):
+            executor.wait_for_ready_callbacks(timeout_sec=0.01)
+        task = executor.create_task(lambda: 'done')
+        handler, entity, node = executor.wait_for_ready_callbacks(timeout_sec=1)
+        assert entity is task and node is None
+        handler()
+        assert task.result() == 'done'
+    with pytest.raises(ShutdownException):
+        executor.wait_for_ready_callbacks(timeout_sec=0)

@@ -53,11 +53,11 @@ def test_nodes_topics_and_endpoints(ros_context: Any, remote: Context) -> None:
         assert ('g_talker', '/robot1') in nodes and ('g_listener', '/') in nodes
         assert ('observer', '/') in nodes
         assert 'g_talker' in observer.get_node_names()
-        topics = dict(observer.get_topic_names_and_types())
+        topics = dict(observer.get_topic_names_and_types(include_hidden_topics=False))
         assert topics['/robot1/chatter'] == ['std_msgs/msg/Int32', 'std_msgs/msg/String']
         assert topics['/rosout'] == ['rcl_interfaces/msg/Log']
         assert '/_hidden/topic' not in topics
-        assert '/_hidden/topic' in dict(observer.get_topic_names_and_types(True))
+        assert '/_hidden/topic' in dict(observer.get_topic_names_and_types())  # as rcl
         assert observer.count_publishers('/robot1/chatter') == 1
         assert observer.count_subscribers('/robot1/chatter') == 2
 
@@ -66,13 +66,13 @@ def test_nodes_topics_and_endpoints(ros_context: Any, remote: Context) -> None:
     assert (info.node_name, info.node_namespace) == ('g_talker', '/robot1')
     assert info.topic_type == 'std_msgs/msg/String'
     assert info.topic_type_hash.startswith('RIHS01_df668c74')
-    assert info.endpoint_type == 'PUBLISHER'
+    assert info.endpoint_type.name == 'PUBLISHER'
     assert info.endpoint_gid == pub.gid
     assert info.qos_profile is not None and info.qos_profile.depth == 7
     assert info.qos_profile.reliability == ReliabilityPolicy.BEST_EFFORT
     subs = observer.get_subscriptions_info_by_topic('/robot1/chatter')
     assert sorted(s.topic_type for s in subs) == ['std_msgs/msg/Int32', 'std_msgs/msg/String']
-    assert {s.endpoint_type for s in subs} == {'SUBSCRIPTION'}
+    assert {s.endpoint_type.name for s in subs} == {'SUBSCRIPTION'}
     # relative names resolve against the querying node's namespace
     robot_observer = Node('robot_observer', namespace='/robot1', context=ros_context)
     assert robot_observer.count_publishers('chatter') == 1
@@ -100,7 +100,7 @@ def test_by_node_queries(ros_context: Any, remote: Context) -> None:
         assert observer.get_subscriber_names_and_types_by_node('worker', '/team') == [
             ('/team/cmd_vel', ['geometry_msgs/msg/Twist'])
         ]
-        # the six parameter services, under the node's name
+        # the six parameter services and the type description service, under the node's name
         services = observer.get_service_names_and_types_by_node('worker', '/team')
         assert [name for name, _ in services] == [
             f'/team/worker/{s}'
@@ -108,6 +108,7 @@ def test_by_node_queries(ros_context: Any, remote: Context) -> None:
                 'describe_parameters',
                 'get_parameter_types',
                 'get_parameters',
+                'get_type_description',
                 'list_parameters',
                 'set_parameters',
                 'set_parameters_atomically',

@@ -36,7 +36,9 @@ def ep(
     type_name: str = 'std_msgs/msg/String',
 ) -> Entity:
     entity = parse_token(
-        endpoint_token(0, zid, nid, eid, kind, ns, name, topic, type_name, HASH, QoSProfile())
+        endpoint_token(
+            0, zid, nid, eid, kind, ns, name, topic, type_name, HASH, QoSProfile(depth=10)
+        )
     )
     assert entity is not None
     return entity

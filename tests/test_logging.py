@@ -187,3 +187,85 @@ def test_logging_cost_does_not_grow_with_stack_depth(capsys: pytest.CaptureFixtu
 
     assert deep(60) < 0.2  # walking the stack per call took ~1 ms each here
     capsys.readouterr()
+
+
+def test_severity_hierarchy_and_clearing() -> None:
+    from ros2lite.logging import LoggingSeverity as S
+
+    root = rlog._root_logger
+    parent = rlog.get_logger('tree')
+    child = parent.get_child('leaf')
+    assert child.name == 'tree.leaf'
+    root.set_level(S.WARN)
+    assert child.get_effective_level() == S.WARN  # from the root, through the parent
+    parent.set_level(S.ERROR)
+    assert child.get_effective_level() == S.ERROR
+    child.set_level(S.DEBUG)
+    assert (parent.get_effective_level(), child.get_effective_level()) == (S.ERROR, S.DEBUG)
+    child.set_level(S.UNSET)  # back to inheriting
+    assert child.get_effective_level() == S.ERROR
+    rlog.clear_config()
+    assert child.get_effective_level() == S.INFO
+    assert rlog.get_logging_severity_from_string('warn') == S.WARN
+    with pytest.raises(RuntimeError):
+        rlog.get_logging_severity_from_string('loud')
+    with pytest.raises(ValueError, match='must not be empty'):
+        rlog.get_logger('')
+    with pytest.raises(ValueError, match='must not be empty'):
+        parent.get_child('')
+
+
+def test_a_call_site_keeps_its_arguments(capsys: pytest.CaptureFixture[str]) -> None:
+    logger = rlog.get_logger('site')
+    with pytest.raises(TypeError, match='not one of the recognized'):
+        logger.info('x', sometimes=True)
+    with pytest.raises(TypeError, match="required parameter 'throttle_duration_sec'"):
+        logger.info('x', throttle_time_source_type=None)
+    with pytest.raises(ValueError, match='severity cannot be changed'):
+        for severity in (rlog.INFO, rlog.WARN):
+            logger.log('x', severity)
+    # skip_first is applied before once, throttle before both
+    assert [logger.info('y', skip_first=True, once=True) for _ in range(3)] == [
+        False,
+        True,
+        False,
+    ]
+    capsys.readouterr()
+
+
+def test_throttle_on_a_ros_clock(capsys: pytest.CaptureFixture[str]) -> None:
+    from ros2lite.clock import ROSClock
+    from ros2lite.time import ClockType, Time
+
+    clock = ROSClock()
+    clock._set_ros_time_is_active(True)
+    logger = rlog.get_logger('sim')
+    seen = []
+    for second in range(5):
+        seen.append(logger.info('tick', throttle_duration_sec=2, throttle_time_source_type=clock))
+        clock.set_ros_time_override(Time(seconds=second + 1, clock_type=ClockType.ROS_TIME))
+    assert seen == [False, False, True, False, True]  # ROS time starts at 0
+    capsys.readouterr()
+
+
+def test_logging_directory(monkeypatch: pytest.MonkeyPatch, tmp_path: Any) -> None:
+    monkeypatch.delenv('ROS_LOG_DIR', raising=False)
+    monkeypatch.setenv('ROS_HOME', str(tmp_path))
+    assert rlog.get_logging_directory() == tmp_path / 'log'
+    monkeypatch.delenv('ROS_HOME')
+    monkeypatch.setenv('HOME', '/home/someone')
+    assert str(rlog.get_logging_directory()) == '/home/someone/.ros/log'
+
+
+def test_rosout_and_stdout_switches(ros_router: str, capsys: pytest.CaptureFixture[str]) -> None:
+    from ros2lite.context import Context
+
+    ctx = Context().init(['--ros-args', '--disable-rosout-logs', '--disable-stdout-logs'])
+    try:
+        node = Node('quiet_everywhere', context=ctx)
+        assert node._rosout is None
+        assert node.get_logger().info('nowhere to be seen') is True
+        assert capsys.readouterr().err == ''
+    finally:
+        rlog.set_console_output(True)
+        ctx.shutdown()

@@ -25,21 +25,21 @@ def test_valid_topic_names(name: str) -> None:
     [
         ("", "empty"),
         ("/foo/", "end with '/'"),
-        ("foo//bar", "'//'"),
-        ("9foo", "digit"),
-        ("/foo/9bar", "digit"),
-        ("foo bar", "not allowed"),
-        ("foo-bar", "not allowed"),
+        ("foo//bar", "repeated '/'"),
+        ("9foo", "must not start with a number"),
+        ("/foo/9bar", "must not start with a number"),
+        ("foo bar", "must not contain characters other than"),
+        ("foo-bar", "must not contain characters other than"),
         ("a/~", "'~'"),
         ("~foo", "'~'"),
         ("{a", "unbalanced"),
         ("a}", "unbalanced"),
-        ("{a-b}", "not allowed"),
+        ("{a-b}", "must not contain characters other than"),
         ("{}", "substitution"),
     ],
 )
 def test_invalid_topic_names(name: str, why: str) -> None:
-    with pytest.raises(ValueError, match="invalid topic name") as err:
+    with pytest.raises(ValueError, match=r"topic name.* is invalid") as err:
         names.validate_topic_name(name)
     assert why in str(err.value)
 
@@ -103,9 +103,9 @@ def test_rclpy_exceptions_are_value_errors() -> None:
     """rclpy's names, and still ValueErrors for code that catches those."""
     with pytest.raises(InvalidTopicNameException):
         names.validate_topic_name('9x')
-    with pytest.raises(InvalidServiceNameException, match='invalid service name'):
+    with pytest.raises(InvalidServiceNameException, match=r"service name.* is invalid"):
         names.validate_topic_name('9x', is_service=True)
-    with pytest.raises(InvalidServiceNameException, match='invalid service name'):
+    with pytest.raises(InvalidServiceNameException, match=r"service name.* is invalid"):
         names.expand_topic_name('a b', 'n', '/', is_service=True)
     with pytest.raises(InvalidNodeNameException):
         names.validate_node_name('a-b')

@@ -189,3 +189,37 @@ def test_logging_after_destroy_node(ros_context: Any, capsys: Any) -> None:
     node.destroy_node()
     node.get_logger().info('still heard')  # on the console; /rosout is gone with the node
     assert 'still heard' in capsys.readouterr().err
+
+
+def test_own_endpoints_count_at_once_and_destroy_answers(ros_context: Any) -> None:
+    node = Node('counting', namespace='/c', context=ros_context)
+    pub = node.create_publisher('std_msgs/msg/String', 'chatter', 1)
+    assert node.count_publishers('chatter') == 1  # no wait for the graph to hear of it
+    node.create_subscription('std_msgs/msg/String', 'chatter', lambda m: None, 1)
+    node.create_subscription('std_msgs/msg/String', 'chatter', lambda m: None, 1)
+    assert node.count_subscribers('/c/chatter') == 2 and pub.get_subscription_count() == 2
+    node.create_service('std_srvs/srv/Trigger', 'srv', lambda req, res: res)
+    assert node.count_services('srv') == 1
+    assert node.destroy_publisher(pub) and not node.destroy_publisher(pub)
+    assert node.count_publishers('chatter') == 0
+    with pytest.raises(ValueError, match="'42' is invalid"):
+        node.count_clients('42')
+    assert ('counting', '/c', '/') in node.get_node_names_and_namespaces_with_enclaves()
+
+
+def test_wait_for_node_and_the_executor_property(ros_context: Any) -> None:
+    from ros2lite.executors import SingleThreadedExecutor
+
+    node = Node('waits', context=ros_context)
+    assert node.wait_for_node('/waits', 5)
+    assert not node.wait_for_node('/nobody_here', 0.1)
+    first, second = (
+        SingleThreadedExecutor(context=ros_context),
+        SingleThreadedExecutor(context=ros_context),
+    )
+    node.executor = first
+    assert node in first.get_nodes() and node.executor is first
+    node.executor = second
+    assert node not in first.get_nodes() and node.executor is second
+    node.executor = None
+    assert node.executor is None and node not in second.get_nodes()

@@ -28,8 +28,11 @@ def test_presets_and_short_keys() -> None:
     assert preset("parameters").depth == preset("parameter_events").depth == 1000
     assert preset("action_status_default").durability == DurabilityPolicy.TRANSIENT_LOCAL
     assert preset("system_default").reliability == ReliabilityPolicy.SYSTEM_DEFAULT
-    assert QoSProfile() == QoSProfile(
-        ReliabilityPolicy.RELIABLE, DurabilityPolicy.VOLATILE, HistoryPolicy.KEEP_LAST, 10
+    assert QoSProfile(depth=10) == QoSProfile(
+        reliability=ReliabilityPolicy.RELIABLE,
+        durability=DurabilityPolicy.VOLATILE,
+        history=HistoryPolicy.KEEP_LAST,
+        depth=10,
     )
     with pytest.raises(ValueError, match="sensor_data"):
         preset("nope")
@@ -43,8 +46,8 @@ def test_presets_and_short_keys() -> None:
 
 
 def test_profile_accepts_ints_and_checks_depth() -> None:
-    assert QoSProfile(reliability=2).reliability is ReliabilityPolicy.BEST_EFFORT  # type: ignore[arg-type]
-    assert QoSProfile().replace(depth=3).depth == 3
+    assert QoSProfile(depth=10, reliability=2).reliability is ReliabilityPolicy.BEST_EFFORT  # type: ignore[arg-type]
+    assert QoSProfile(depth=10).replace(depth=3).depth == 3
     with pytest.raises(ValueError):
         QoSProfile(depth=-1)
 
@@ -63,44 +66,59 @@ R, D, L = ReliabilityPolicy, DurabilityPolicy, LivelinessPolicy
 @pytest.mark.parametrize(
     ("pub", "sub", "ok", "fragment"),
     [
-        (QoSProfile(reliability=R.BEST_EFFORT), QoSProfile(), False, "Best effort publisher"),
-        (QoSProfile(), QoSProfile(reliability=R.BEST_EFFORT), True, ""),
-        (QoSProfile(), QoSProfile(durability=D.TRANSIENT_LOCAL), False, "Volatile publisher"),
-        (QoSProfile(durability=D.TRANSIENT_LOCAL), QoSProfile(), True, ""),
-        (QoSProfile(), QoSProfile(deadline=Duration(seconds=1)), False, "publisher does not"),
         (
-            QoSProfile(deadline=Duration(seconds=2)),
-            QoSProfile(deadline=Duration(seconds=1)),
+            QoSProfile(depth=10, reliability=R.BEST_EFFORT),
+            QoSProfile(depth=10),
+            False,
+            "Best effort publisher",
+        ),
+        (QoSProfile(depth=10), QoSProfile(depth=10, reliability=R.BEST_EFFORT), True, ""),
+        (
+            QoSProfile(depth=10),
+            QoSProfile(depth=10, durability=D.TRANSIENT_LOCAL),
+            False,
+            "Volatile publisher",
+        ),
+        (QoSProfile(depth=10, durability=D.TRANSIENT_LOCAL), QoSProfile(depth=10), True, ""),
+        (
+            QoSProfile(depth=10),
+            QoSProfile(depth=10, deadline=Duration(seconds=1)),
+            False,
+            "publisher does not",
+        ),
+        (
+            QoSProfile(depth=10, deadline=Duration(seconds=2)),
+            QoSProfile(depth=10, deadline=Duration(seconds=1)),
             False,
             "deadline is less",
         ),
         (
-            QoSProfile(deadline=Duration(seconds=1)),
-            QoSProfile(deadline=Duration(seconds=2)),
+            QoSProfile(depth=10, deadline=Duration(seconds=1)),
+            QoSProfile(depth=10, deadline=Duration(seconds=2)),
             True,
             "",
         ),
         (
-            QoSProfile(liveliness=L.AUTOMATIC),
-            QoSProfile(liveliness=L.MANUAL_BY_TOPIC),
+            QoSProfile(depth=10, liveliness=L.AUTOMATIC),
+            QoSProfile(depth=10, liveliness=L.MANUAL_BY_TOPIC),
             False,
             "manual by topic",
         ),
         (
-            QoSProfile(),
-            QoSProfile(liveliness_lease_duration=Duration(seconds=1)),
+            QoSProfile(depth=10),
+            QoSProfile(depth=10, liveliness_lease_duration=Duration(seconds=1)),
             False,
             "lease duration, but publisher does not",
         ),
         (
-            QoSProfile(liveliness_lease_duration=Duration(seconds=3)),
-            QoSProfile(liveliness_lease_duration=Duration(seconds=1)),
+            QoSProfile(depth=10, liveliness_lease_duration=Duration(seconds=3)),
+            QoSProfile(depth=10, liveliness_lease_duration=Duration(seconds=1)),
             False,
             "less than publisher",
         ),
         # Tokens carry "infinite" where users write "unspecified": both mean no deadline.
-        (decode_qos("::,10:,:,:,,"), QoSProfile(), True, ""),
-        (QoSProfile(), decode_qos("::,10:,:,:,,"), True, ""),
+        (decode_qos("::,10:,:,:,,"), QoSProfile(depth=10), True, ""),
+        (QoSProfile(depth=10), decode_qos("::,10:,:,:,,"), True, ""),
         (q.qos_profile_system_default, q.qos_profile_system_default, True, "WARNING"),
     ],
 )
@@ -122,8 +140,8 @@ def test_resolve_best_available() -> None:
     )
     assert pub.deadline.is_unspecified
     pubs = [
-        QoSProfile(reliability=R.BEST_EFFORT, deadline=Duration(seconds=2)),
-        QoSProfile(durability=D.TRANSIENT_LOCAL, deadline=Duration(seconds=5)),
+        QoSProfile(depth=10, reliability=R.BEST_EFFORT, deadline=Duration(seconds=2)),
+        QoSProfile(depth=10, durability=D.TRANSIENT_LOCAL, deadline=Duration(seconds=5)),
     ]
     sub = resolve_best_available(ba, pubs, for_publisher=False)
     assert (sub.reliability, sub.durability) == (R.BEST_EFFORT, D.VOLATILE)
@@ -141,10 +159,54 @@ def test_rclpy_policy_aliases() -> None:
     assert q.QoSLivelinessPolicy is LivelinessPolicy
 
 
+def test_rclpy_profile_rules() -> None:
+    from ros2lite.qos import InvalidQoSProfileException
+
+    with pytest.raises(InvalidQoSProfileException):
+        QoSProfile()
+    with pytest.raises(InvalidQoSProfileException):
+        QoSProfile(history=HistoryPolicy.KEEP_LAST)
+    assert QoSProfile(history=HistoryPolicy.KEEP_ALL).depth == 0
+    profile = QoSProfile(depth=1)
+    profile.reliability = 2  # type: ignore[assignment]  # rmw's numbers are accepted
+    assert profile.reliability is ReliabilityPolicy.BEST_EFFORT
+    with pytest.warns(UserWarning, match="zero depth with KEEP_LAST"):
+        profile.depth = 0
+    profile.depth = 3
+    with pytest.raises(ValueError, match="greater than or equal to zero"):
+        QoSProfile(depth=-1)
+    copy = QoSProfile(**profile.get_c_qos_profile().to_dict())  # type: ignore[arg-type]
+    assert copy == profile and copy is not profile
+    assert HistoryPolicy.get_from_short_key("KEEP_all") == HistoryPolicy.KEEP_ALL.value
+
+
+def test_rclpy_compatibility_verdicts() -> None:
+    from ros2lite.qos import (
+        QoSCompatibility,
+        QoSPolicyKind,
+        incompatible_policy,
+        qos_check_compatible,
+        qos_profile_system_default,
+    )
+
+    reliable = QoSProfile(depth=1, liveliness=L.AUTOMATIC)
+    best_effort = QoSProfile(depth=1, reliability=R.BEST_EFFORT)
+    assert qos_check_compatible(reliable, reliable) == (QoSCompatibility.OK, "")
+    verdict, reason = qos_check_compatible(best_effort, reliable)
+    assert verdict == QoSCompatibility.ERROR and reason
+    assert qos_check_compatible(qos_profile_system_default, reliable)[0] == (
+        QoSCompatibility.WARNING
+    )
+    assert incompatible_policy(best_effort, reliable) == QoSPolicyKind.RELIABILITY
+    transient = QoSProfile(depth=1, durability=D.TRANSIENT_LOCAL)
+    assert incompatible_policy(best_effort, transient) == QoSPolicyKind.DURABILITY  # the last
+    assert incompatible_policy(reliable, best_effort) is None
+
+
 def test_qos_matching_publishers() -> None:
-    rel = QoSProfile()
-    be = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT)
-    tl = QoSProfile(durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    rel = QoSProfile(depth=10)
+    be = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT)
+    tl = QoSProfile(depth=10, durability=DurabilityPolicy.TRANSIENT_LOCAL)
     base = q.qos_profile_sensor_data
     assert q.match_publishers_qos(base, []).profile == base
     all_rel = q.match_publishers_qos(base, [rel, tl])

@@ -18,6 +18,7 @@ from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.graph import snapshot
 from ros2lite.msgs.example_interfaces.srv import AddTwoInts
 from ros2lite.node import Node
+from ros2lite.parameter import Parameter
 from ros2lite.transport.keys import EntityKind
 from tests.spinning import wait_until
 
@@ -127,7 +128,13 @@ def test_requests_without_a_valid_attachment_are_dropped(
 
 
 def test_server_and_client_tokens(ros_context: Any) -> None:
-    node = Node('tokens', namespace='/ns', context=ros_context, start_parameter_services=False)
+    node = Node(
+        'tokens',
+        namespace='/ns',
+        context=ros_context,
+        start_parameter_services=False,
+        parameter_overrides=[Parameter('start_type_description_service', value=False)],
+    )
     node.create_service(AddTwoInts, 'add', lambda req, resp: resp)
     node.create_client(AddTwoInts, '~/private_add')
 

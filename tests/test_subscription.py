@@ -212,3 +212,23 @@ def test_messages_from_another_process(
     spin_until(executor, lambda: len(got) == 200, timeout=10)
     assert got == [f'Hello World: {i}' for i in range(200)]
     assert proc.wait(timeout=10) == 0
+
+
+def test_callbacks_that_take_message_info(node: Node, executor: SingleThreadedExecutor) -> None:
+    """callback(msg, info) gets rclpy's MessageInfo for typed messages too; anything else
+    than one or two parameters is refused."""
+    String = interfaces.get_interface('std_msgs/msg/String')
+    got: list[tuple[Any, MessageInfo]] = []
+    sub = node.create_subscription(String, 'with_info', lambda m, i: got.append((m, i)), 10)
+    assert sub._callback_type == sub.CallbackType.WithMessageInfo
+    pub = node.create_publisher(String, 'with_info', 10)
+    wait_matched(pub)
+    before = time.time_ns()
+    pub.publish(String(data='x'))
+    spin_until(executor, lambda: got)
+    message, info = got[0]
+    assert message == String(data='x')
+    assert info['publication_sequence_number'] == 1 and info.publisher_gid == pub.gid
+    assert before <= info['source_timestamp'] <= info.received_timestamp
+    with pytest.raises(RuntimeError, match='one parameter'):
+        node.create_subscription(String, 'with_info', lambda a, b, c: None, 10)

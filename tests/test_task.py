@@ -50,8 +50,8 @@ def test_a_call_while_a_step_runs_is_not_lost() -> None:
     queued: list[Task] = []
 
     class CompletesWhileRegistering(Future):
-        def add_done_callback(self, callback: Any) -> None:
-            super().add_done_callback(callback)
+        def _add_done_callback_now(self, callback: Any) -> None:
+            super()._add_done_callback_now(callback)
             self.set_result(5)  # runs the callback: the task is re-queued…
             queued.pop()()  # …and called at once, while its step is still running
 
@@ -61,3 +61,27 @@ def test_a_call_while_a_step_runs_is_not_lost() -> None:
     task = Task(work, reschedule=queued.append)
     task()
     assert task.done() and task.result() == 5
+
+
+def test_a_future_with_an_executor_schedules_its_callbacks() -> None:
+    """Done-callbacks of a Future(executor=…) become tasks of that executor, as rclpy's."""
+
+    class Recorder:
+        def __init__(self) -> None:
+            self.tasks: list[tuple[Any, tuple[Any, ...]]] = []
+
+        def create_task(self, callback: Any, *args: Any) -> None:
+            self.tasks.append((callback, args))
+
+    executor = Recorder()
+    future = Future(executor=executor)
+    ran: list[Any] = []
+    future.add_done_callback(ran.append)
+    future.set_result(1)
+    assert ran == [] and executor.tasks == [(ran.append, (future,))]
+    future.add_done_callback(ran.append)  # already done: scheduled too
+    assert len(executor.tasks) == 2 and ran == []
+    plain = Future()
+    plain.add_done_callback(ran.append)
+    plain.set_result(2)
+    assert ran == [plain]  # without an executor: at once, on the completing thread

@@ -28,6 +28,7 @@ from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
 from ros2lite.task import Future
 from ros2lite.type_support import FeedbackT, GoalT, ResultT
+from ros2lite.waitable import NumberOfEntities
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
@@ -141,7 +142,10 @@ class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
         cancel_service_qos_profile: QoSProfile = qos_profile_services_default,
         feedback_sub_qos_profile: QoSProfile = QoSProfile(depth=10),  # noqa: B008
         status_sub_qos_profile: QoSProfile = qos_profile_action_status_default,
+        fail_without_server: bool = False,
     ) -> None:
+        """rclpy's arguments; `fail_without_server=True` (a ros2lite extra, for tools) ends a
+        request the server never answers in an error instead of leaving it pending."""
         self._node = node
         self._action_type = resolve_action_type(action_type)
         self._action_name = action_name
@@ -163,7 +167,13 @@ class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
         impl = self._action_type.Impl
         names = self._names
         self._goal_client, self._cancel_client, self._result_client = (
-            node.create_client(srv_type, name, qos_profile=qos, callback_group=group)
+            node.create_client(
+                srv_type,
+                name,
+                qos_profile=qos,
+                callback_group=group,
+                fail_without_server=fail_without_server,
+            )
             for srv_type, name, qos in (
                 (impl.SendGoalService, names.send_goal, goal_service_qos_profile),
                 (impl.CancelGoalService, names.cancel_goal, cancel_service_qos_profile),
@@ -189,6 +199,10 @@ class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
 
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
         return None  # never has work of its own
+
+    def get_num_entities(self) -> NumberOfEntities:
+        """What rcl_action counts: the feedback and status subscriptions, three clients."""
+        return NumberOfEntities(num_subscriptions=2, num_clients=3)
 
     @property
     def action_type(self) -> type[Action[GoalT, ResultT, FeedbackT]]:
@@ -273,7 +287,7 @@ class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
                 self._drop_feedback(key)
             future.set_result(handle)
 
-        call.add_done_callback(answered)
+        call._add_done_callback_now(answered)
         return future
 
     def send_goal(
@@ -356,7 +370,7 @@ class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
             if response is not None and response.status in TERMINAL_STATES:
                 goal_handle._status = response.status
 
-        future.add_done_callback(done)
+        future._add_done_callback_now(done)
         return future
 
     def _get_result(

@@ -279,6 +279,15 @@ class GoalTable:
             del self._goals[k]
         return gone
 
+    def next_expiry(self, now: float | None = None) -> float | None:
+        """Seconds until the next finished goal expires (0 if one is due), or None when no
+        goal has finished."""
+        ended = [e.ended_at for e in self._goals.values() if e.ended_at is not None]
+        if not ended:
+            return None
+        now = time.monotonic() if now is None else now
+        return max(0.0, min(ended) + self.result_timeout - now)
+
     def status_array(self) -> _action_msgs_msg.GoalStatusArray:
         """action_msgs/GoalStatusArray of every goal still tracked, oldest first."""
         return GoalStatusArray(

@@ -33,6 +33,7 @@ from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
 from ros2lite.task import Future
 from ros2lite.type_support import FeedbackT, GoalT, ResultT
+from ros2lite.waitable import NumberOfEntities
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
@@ -294,11 +295,46 @@ class ActionServer(Executable, Generic[GoalT, ResultT, FeedbackT]):
         self._status_pub = node.create_publisher(
             impl.GoalStatusMessage, names.status, status_pub_qos_profile
         )
+        # as rcl_action's timer: finished goals are forgotten `result_timeout` after they
+        # ended, whether or not anyone asks the server anything meanwhile
+        from ros2lite.clock import Clock, ClockType
+
+        self._expiry_timer = node.create_timer(
+            max(result_timeout, 0.001),
+            self._expire_goals,
+            callback_group=group,
+            clock=Clock(clock_type=ClockType.STEADY_TIME),
+            autostart=False,
+        )
         self._destroyed = False
         node.add_waitable(self)
 
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
         return None  # never has work of its own
+
+    def get_num_entities(self) -> NumberOfEntities:
+        """What rcl_action counts: three services and the expiry timer."""
+        return NumberOfEntities(num_timers=1, num_services=3)
+
+    def _expire_goals(self) -> None:
+        """Timer: forget the goals whose results expired; wake again for the next one."""
+        with self._lock:
+            before = len(self._goals)
+            self._goals.expire()
+            self._forget_expired()
+            expired = len(self._goals) < before
+            left = self._goals.next_expiry()
+        if expired:
+            self._publish_status()
+        self._plan_expiry(left)
+
+    def _plan_expiry(self, left: float | None) -> None:
+        timer = self._expiry_timer
+        if left is None:
+            timer.cancel()
+        else:
+            timer.timer_period_ns = max(int(left * 1e9), 1_000_000)
+            timer.reset()
 
     def configure_introspection(
         self,
@@ -433,7 +469,7 @@ class ActionServer(Executable, Generic[GoalT, ResultT, FeedbackT]):
             self._result_service.send_response(response, header)
             return
         # answered now if the goal is over, or the moment it ends
-        future.add_done_callback(lambda f: self._send_result(f.result(), header))
+        future._add_done_callback_now(lambda f: self._send_result(f.result(), header))
 
     def _send_result(self, response: Message | None, header: RequestHeader) -> None:
         if self._destroyed or response is None:
@@ -514,6 +550,8 @@ class ActionServer(Executable, Generic[GoalT, ResultT, FeedbackT]):
         with self._lock:
             future = self._result_futures.get(key)
             self._goals.finish(key)
+            left = self._goals.next_expiry()
+        self._plan_expiry(left)
         if future is not None and not future.done():
             future.set_result(response)
 
@@ -528,6 +566,7 @@ class ActionServer(Executable, Generic[GoalT, ResultT, FeedbackT]):
             node.destroy_service(service)
         node.destroy_publisher(self._feedback_pub)
         node.destroy_publisher(self._status_pub)
+        node.destroy_timer(self._expiry_timer)
         with self._lock:
             for handle in self._goal_handles.values():
                 handle.destroy()

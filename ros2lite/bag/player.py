@@ -17,7 +17,7 @@ import queue
 import re
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Generator
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -102,6 +102,8 @@ class Player:
         self.lateness: list[int] = []
         self._publishers: dict[str, Publisher[Msg]] = {}
         self._clock_thread: threading.Thread | None = None
+        # where the next burst starts: a log time and how many messages of it were sent
+        self._burst_from: tuple[int | None, int] = (None, 0)
         self._prepare()
 
     # -- set-up --------------------------------------------------------------------------------
@@ -325,16 +327,30 @@ class Player:
         if errors:
             raise errors[0]
 
-    def _reader_thread(self, out: queue.Queue[_Ahead], start: int) -> None:
-        put = out.put
+    def _in_range(self, start: int) -> Generator[tuple[str, bytes, int, int]]:
+        """The selected topics' messages from `start` on, without those whose log time lies
+        outside the bag's own range (a corrupt time, the year 2500 say, would have playback
+        wait for it): they are counted and reported once at the end."""
         first, last = self.reader.start_time, self.reader.end_time
         refused = 0
         try:
             for item in self.reader.raw_messages(self._publishers, start=start):
-                if not first <= item[2] <= last:
-                    # a corrupt time (the year 2500, say) would have playback wait for it
+                if first <= item[2] <= last:
+                    yield item
+                else:
                     refused += 1
-                    continue
+        finally:
+            if refused:
+                self._warn(
+                    f"{refused} message(s) have log times outside the bag's own range "
+                    f"[{first}, {last}] ns (corrupt); not playing them"
+                )
+
+    def _reader_thread(self, out: queue.Queue[_Ahead], start: int) -> None:
+        put = out.put
+        messages = self._in_range(start)
+        try:
+            for item in messages:
                 while not self._stopped:
                     try:
                         put(item, timeout=0.1)
@@ -347,12 +363,41 @@ class Player:
             put(e)
             return
         finally:
-            if refused:
-                self._warn(
-                    f"{refused} message(s) have log times outside the bag's own range "
-                    f"[{first}, {last}] ns (corrupt); not playing them"
-                )
+            messages.close()
         put(_END)
+
+    def burst(self, num_messages: int = 0) -> int:
+        """Publish the next `num_messages` messages (0: all the rest) as fast as possible,
+        ignoring their timing, as `ros2 bag burst` does; returns how many were published.
+        Starts at the start offset, or where an earlier burst stopped; `stop()` ends it."""
+        if num_messages < 0:
+            raise ValueError("num_messages must not be negative")
+        start, skip = self._burst_from
+        if start is None:
+            start = self.reader.start_time + int(self.options.start_offset * 1e9)
+        publishers = self._publishers
+        sent = 0
+        same_time = 0  # messages published at the last log time (a resumed burst skips them)
+        last_time = -1
+        messages = self._in_range(start)
+        try:
+            for topic, data, log_time, _ in messages:
+                if skip and log_time == start:
+                    skip -= 1
+                    continue
+                if self._stopped or (num_messages and sent >= num_messages):
+                    self._burst_from = (log_time, same_time if log_time == last_time else 0)
+                    return sent
+                publishers[topic].publish(data)
+                sent += 1
+                self.published += 1
+                self._bag_now = log_time
+                same_time = same_time + 1 if log_time == last_time else 1
+                last_time = log_time
+            self._burst_from = (self._end + 1, 0)
+        finally:
+            messages.close()
+        return sent
 
     def _play_once(self) -> None:
         start = self.reader.start_time + int(self.options.start_offset * 1e9)

@@ -71,7 +71,7 @@ def playback_qos(
     blocks rather than drops, as it did for the originals); rosbag2's default offer
     (reliable, volatile, keep-last 10) when they differed, with a warning."""
     if not recorded:
-        return QoSProfile()
+        return QoSProfile(depth=10)
     first = recorded[0]
     if not all(_same_offer(first, q) for q in recorded[1:]):
         if warn is not None:
@@ -79,7 +79,7 @@ def playback_qos(
                 f"Publishers of '{topic}' were recorded with different QoS offers; playing "
                 "it with the default offer (reliable, volatile, keep last 10)"
             )
-        return QoSProfile()
+        return QoSProfile(depth=10)
     keep_all = all(q.history == HistoryPolicy.KEEP_ALL for q in recorded)
     return QoSProfile(
         reliability=first.reliability,
@@ -128,7 +128,7 @@ def parse_qos_overrides(text: str) -> dict[str, QoSProfile]:
     if not isinstance(doc, dict):
         raise QoSOverrideError("QoS override file must map topic names to profiles")
     out: dict[str, QoSProfile] = {}
-    defaults = QoSProfile()
+    defaults = QoSProfile(depth=10)
     for topic, profile in doc.items():
         if not isinstance(profile, dict):
             raise QoSOverrideError(f"QoS override of {topic!r} must be a mapping")

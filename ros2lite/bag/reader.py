@@ -199,6 +199,17 @@ class Reader:
         """The bag's topics, in metadata order."""
         return [t.topic_metadata for t in self.metadata.topics_with_message_count]
 
+    def definition(self, type_name: str) -> tuple[str, str] | None:
+        """(schema encoding, text) of a type as the bag's files carry it, if they do."""
+        for f in self.files:
+            try:
+                found = self.summary(f).definitions.get(type_name)
+            except BagError:
+                continue
+            if found is not None and (found[0] or found[1]):
+                return found
+        return None
+
     def topic(self, name: str) -> TopicMetadata | None:
         """One topic's metadata, if the bag has it."""
         info = self.metadata.topic(name)

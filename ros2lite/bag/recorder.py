@@ -63,6 +63,7 @@ class RecordOptions:
     exclude_regex: str | None = None
     exclude_topics: list[str] = field(default_factory=list)
     topic_types: list[str] = field(default_factory=list)
+    exclude_topic_types: list[str] = field(default_factory=list)
     include_hidden_topics: bool = False
     qos_overrides: dict[str, QoSProfile] = field(default_factory=dict)
     polling_interval: float = 0.1
@@ -74,6 +75,30 @@ class RecordOptions:
     def selects_by_pattern(self) -> bool:
         """Whether topics are chosen by a rule (all, regex, types) rather than by name."""
         return self.all_topics or self.all_services or bool(self.regex) or bool(self.topic_types)
+
+    def selects(self, topic: str, type_name: str) -> bool:
+        """Whether these options ask for `topic` of this type (the recorder's and `bag
+        convert`'s one rule: excludes first, then names, service events, hidden, patterns)."""
+        if (
+            topic in self.exclude_topics
+            or type_name in self.exclude_topic_types
+            or (self.exclude_regex and re.search(self.exclude_regex, topic))
+        ):
+            return False
+        if topic in self.topics:
+            return True
+        if topic.endswith(SERVICE_EVENT_SUFFIX):
+            return self.all_services or bool(self.regex and re.search(self.regex, topic))
+        if not self.include_hidden_topics:
+            from ros2lite.names import is_hidden_name
+
+            if is_hidden_name(topic):
+                return False
+        if self.all_topics:
+            return True
+        if self.regex and re.search(self.regex, topic):
+            return True
+        return type_name in self.topic_types
 
 
 @dataclass
@@ -108,8 +133,6 @@ class Recorder:
         self.options = options
         self._log = log or (lambda _m: None)
         self._warn = warn or self._log
-        self._include = re.compile(options.regex) if options.regex else None
-        self._exclude = re.compile(options.exclude_regex) if options.exclude_regex else None
         self._clock = node.get_clock()
         self.stats: list[TopicStats] = []
         self._stats_by_tid: dict[int, TopicStats] = {}
@@ -292,23 +315,7 @@ class Recorder:
 
     def wanted(self, topic: str, type_name: str) -> bool:
         """Whether the options ask for `topic` of this type."""
-        o = self.options
-        if topic in o.exclude_topics or (self._exclude and self._exclude.search(topic)):
-            return False
-        if topic in o.topics:
-            return True
-        if topic.endswith(SERVICE_EVENT_SUFFIX):
-            return o.all_services or bool(self._include and self._include.search(topic))
-        if not o.include_hidden_topics:
-            from ros2lite.names import is_hidden_name
-
-            if is_hidden_name(topic):
-                return False
-        if o.all_topics:
-            return True
-        if self._include is not None and self._include.search(topic):
-            return True
-        return type_name in o.topic_types
+        return self.options.selects(topic, type_name)
 
     def discover(self) -> None:
         """Subscribe to every wanted topic that has publishers and no subscription yet."""

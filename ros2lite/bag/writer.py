@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 from ros2lite.bag.errors import BagError
 from ros2lite.bag.metadata import (
     EMPTY_STARTING_TIME,
+    METADATA_FILENAME,
     BagMetadata,
     FileInformation,
     TopicInformation,
@@ -236,9 +237,9 @@ class Writer:
         self._closed = True
         if self._storage is not None:
             self._storage.abandon()
-        for f in self._files:
+        for name in [f.path for f in self._files] + [METADATA_FILENAME]:
             with contextlib.suppress(OSError):
-                (self.path / f.path).unlink()
+                (self.path / name).unlink()
         self._remove_if_empty()
 
     def _require(self) -> StorageWriter:

@@ -8,8 +8,9 @@ is nothing to wait for.
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, TypedDict, TypeVar
+import functools
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any, TypedDict, TypeVar, cast
 
 import click
 
@@ -21,7 +22,16 @@ if TYPE_CHECKING:
 
     from ros2lite.connection import Connection
     from ros2lite.graph import Entity
-    from ros2lite.qos import QoSProfile
+    from ros2lite.node import Node
+    from ros2lite.qos import (
+        DurabilityPolicy,
+        HistoryPolicy,
+        LivelinessPolicy,
+        QoSProfile,
+        ReliabilityPolicy,
+    )
+
+    Policy = HistoryPolicy | ReliabilityPolicy | DurabilityPolicy | LivelinessPolicy
 
 
 class QosOptions(TypedDict):
@@ -77,6 +87,52 @@ def strategy_options(*, no_daemon: bool = True) -> Callable[[F], F]:
     return decorate
 
 
+def count_option(kind: str) -> Callable[[F], F]:
+    """`-c/--count-<kind>` of the list and find verbs, in ros2cli's words."""
+    return click.option(
+        '-c', f'--count-{kind}', is_flag=True, help=f'Only display the number of {kind} discovered'
+    )
+
+
+def values_argument(name: str = 'values', what: str = 'values') -> Callable[[F], F]:
+    """The optional YAML argument `name` of pub/call/send_goal and its `--stdin` alternative
+    (`what` the help reads: 'values', 'the goal'); see `check_stdin`."""
+
+    def decorate(fn: F) -> F:
+        fn = click.option(
+            '--stdin', 'use_stdin', is_flag=True, help=f'Read {what} from standard input'
+        )(fn)
+        decorated: F = click.argument(name, required=False)(fn)
+        return decorated
+
+    return decorate
+
+
+def check_stdin(values: str | None, use_stdin: bool, name: str = 'values') -> None:
+    """ros2cli's usage error when both the YAML argument `name` and --stdin are given."""
+    if use_stdin and values is not None:
+        raise click.UsageError(f'argument --stdin: not allowed with argument {name}')
+
+
+def yaml_fields(values: str, *, allow_empty: bool = False) -> dict[str, object]:
+    """The field values given in YAML (VALUES or --stdin) as a mapping, or ros2cli's line
+    saying why they are not one (`allow_empty`: empty text means no fields, as in
+    `service call`)."""
+    from ros2lite.safe_yaml import YamlInputError, load
+
+    try:
+        parsed = load(values, 'the passed value')
+    except YamlInputError as e:
+        if not e.syntax:
+            raise CliError(str(e)) from None
+        raise CliError('The passed value needs to be in YAML string or a dictionary') from None
+    if parsed is None and allow_empty:
+        return {}
+    if not isinstance(parsed, dict):
+        raise CliError('The passed value needs to be a dictionary in YAML format')
+    return parsed
+
+
 def connect(
     *, no_daemon: bool = False, use_sim_time: bool = False, as_node: bool = False
 ) -> Connection:
@@ -87,47 +143,24 @@ def connect(
     return Connection(autostart=not no_daemon, use_sim_time=use_sim_time, as_node=as_node)
 
 
+def _policies() -> list[tuple[str, type[Policy]]]:
+    """The `--qos-<name>` policy options, in ros2cli's order, with the library's enums
+    (whose short keys are the choices)."""
+    from ros2lite import qos as q
+
+    return [
+        ('history', q.HistoryPolicy),
+        ('reliability', q.ReliabilityPolicy),
+        ('durability', q.DurabilityPolicy),
+        ('liveliness', q.LivelinessPolicy),
+    ]
+
+
 def qos_options(default_profile: str) -> Callable[[F], F]:
     """The `--qos-*` options of `topic pub`/`echo` (ros2cli's add_qos_arguments)."""
 
     def decorate(fn: F) -> F:
         opts = [
-            click.option(
-                '--qos-liveliness-lease-duration-seconds',
-                type=numbers.seconds(),
-                help='Quality of service liveliness lease duration in seconds',
-            ),
-            click.option(
-                '--qos-liveliness',
-                type=click.Choice(
-                    ['system_default', 'automatic', 'manual_by_topic', 'unknown', 'best_available']
-                ),
-                help='Quality of service liveliness setting',
-            ),
-            click.option(
-                '--qos-durability',
-                type=click.Choice(
-                    ['system_default', 'transient_local', 'volatile', 'unknown', 'best_available']
-                ),
-                help='Quality of service durability setting',
-            ),
-            click.option(
-                '--qos-reliability',
-                type=click.Choice(
-                    ['system_default', 'reliable', 'best_effort', 'unknown', 'best_available']
-                ),
-                help='Quality of service reliability setting',
-            ),
-            click.option(
-                '--qos-history',
-                type=click.Choice(['system_default', 'keep_last', 'keep_all', 'unknown']),
-                help='Quality of service history setting',
-            ),
-            click.option(
-                '--qos-depth',
-                type=numbers.Count(min=0),
-                help='Queue size setting (overrides depth value of --qos-profile option)',
-            ),
             click.option(
                 '--qos-profile',
                 type=click.Choice(QOS_PROFILES),
@@ -135,10 +168,109 @@ def qos_options(default_profile: str) -> Callable[[F], F]:
                 show_default=True,
                 help='Quality of service preset profile',
             ),
+            click.option(
+                '--qos-depth',
+                type=numbers.Count(min=0),
+                help='Queue size setting (overrides depth value of --qos-profile option)',
+            ),
         ]
-        for opt in opts:
+        for name, policy in _policies():
+            # manual_by_node is deprecated in rmw: ros2cli does not offer it
+            keys = [k for k in policy.short_keys() if k != 'manual_by_node']
+            opts.append(
+                click.option(
+                    f'--qos-{name}',
+                    type=click.Choice(keys),
+                    help=f'Quality of service {name} setting',
+                )
+            )
+        opts.append(
+            click.option(
+                '--qos-liveliness-lease-duration-seconds',
+                type=numbers.seconds(),
+                help='Quality of service liveliness lease duration in seconds',
+            )
+        )
+        for opt in reversed(opts):
             fn = opt(fn)
         return fn
+
+    return decorate
+
+
+class MessageFormat(TypedDict):
+    """How an echo verb prints a message, from `format_options()`: the keywords of the
+    library's `format_event` (and of `topic echo`'s printer)."""
+
+    csv: bool
+    flow_style: bool
+    truncate_length: int | None
+    no_arr: bool
+    no_str: bool
+
+
+DEFAULT_TRUNCATE_LENGTH = 128
+CSV_HELP = 'Output all recursive fields separated by commas (e.g. for plotting)'
+
+
+def format_options(
+    *, csv_help: str = CSV_HELP, after_csv: Sequence[Callable[[Any], Any]] = ()
+) -> Callable[[F], F]:
+    """The echo verbs' message-format options (--csv, then `after_csv`, -f/--full-length,
+    -l/--truncate-length, --no-arr, --no-str, --flow-style), handed to the verb as one
+    `fmt: MessageFormat` argument (the truncation already None with --full-length)."""
+
+    def decorate(fn: F) -> F:
+        @functools.wraps(fn)
+        def verb(
+            *args: Any,
+            csv: bool,
+            full_length: bool,
+            truncate_length: int,
+            no_arr: bool,
+            no_str: bool,
+            flow_style: bool,
+            **kwargs: Any,
+        ) -> Any:
+            fmt: MessageFormat = {
+                'csv': csv,
+                'flow_style': flow_style,
+                'truncate_length': None if full_length else truncate_length,
+                'no_arr': no_arr,
+                'no_str': no_str,
+            }
+            return fn(*args, fmt=fmt, **kwargs)
+
+        opts = [
+            click.option('--csv', is_flag=True, help=csv_help),
+            *after_csv,
+            click.option(
+                '-f',
+                '--full-length',
+                is_flag=True,
+                help='Output all elements of arrays, bytes and strings longer than '
+                '--truncate-length',
+            ),
+            click.option(
+                '-l',
+                '--truncate-length',
+                type=numbers.Count(min=0),
+                default=DEFAULT_TRUNCATE_LENGTH,
+                show_default=True,
+                help='The length to truncate arrays, bytes, and strings to',
+            ),
+            click.option('--no-arr', is_flag=True, help="Don't print array fields of messages"),
+            click.option('--no-str', is_flag=True, help="Don't print string fields of messages"),
+            click.option(
+                '--flow-style',
+                is_flag=True,
+                help='Print collections in the flow style (not available with csv format)',
+            ),
+        ]
+        decorated: Any = verb
+        for opt in reversed(opts):
+            decorated = opt(decorated)
+        return cast(F, decorated)
 
     return decorate
 
@@ -157,15 +289,17 @@ def qos_from_options(
     from ros2lite import qos as q
 
     profile = q.preset(qos_profile)
-    changes: dict[str, object] = {}
-    if qos_history is not None:
-        changes['history'] = q.HistoryPolicy.from_short_key(qos_history)
-    if qos_reliability is not None:
-        changes['reliability'] = q.ReliabilityPolicy.from_short_key(qos_reliability)
-    if qos_durability is not None:
-        changes['durability'] = q.DurabilityPolicy.from_short_key(qos_durability)
-    if qos_liveliness is not None:
-        changes['liveliness'] = q.LivelinessPolicy.from_short_key(qos_liveliness)
+    given = {
+        'history': qos_history,
+        'reliability': qos_reliability,
+        'durability': qos_durability,
+        'liveliness': qos_liveliness,
+    }
+    changes: dict[str, object] = {
+        name: policy.from_short_key(key)
+        for name, policy in _policies()
+        if (key := given[name]) is not None
+    }
     if qos_liveliness_lease_duration_seconds is not None:
         changes['liveliness_lease_duration'] = q.Duration.from_seconds(
             qos_liveliness_lease_duration_seconds
@@ -195,10 +329,14 @@ def explicit_qos(**options: Unpack[QosOptions]) -> bool:
     )
 
 
-def include_hidden(ctx: click.Context, flag: bool = False) -> bool:
-    """--include-hidden-topics given on the verb or on `topic` itself (whose flag reaches
-    the verb through click's shared context object)."""
-    return flag or bool((ctx.obj or {}).get('include_hidden_topics'))
+def resolved_name(node: Node, name: str, kind: str) -> str:
+    """`name` resolved by the CLI's node as a `kind` ('service', 'action') name, or ros2cli's
+    line saying it is invalid."""
+    resolve = node.resolve_service_name if kind == 'service' else node.resolve_topic_name
+    try:
+        return resolve(name)
+    except ValueError:
+        raise CliError(f"The {kind} name '{name}' is invalid") from None
 
 
 def interface_type_name(name: str, kind: str, *, invalid: str, not_kind: str | None = None) -> str:
@@ -309,23 +447,41 @@ class ManyValues(click.Option):
     '''An option that takes every following word up to the next option, as argparse's
     `nargs='+'` does (`--topics /a /b -o out`). It may also be repeated.'''
 
+    grouped = False  # each occurrence one tuple of its words, not words one by one
+
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         kwargs.setdefault('multiple', True)
         super().__init__(*args, **kwargs)
 
     def add_to_parser(self, parser: Any, ctx: click.Context) -> None:
         super().add_to_parser(parser, ctx)
+        patched: set[int] = set()  # `-i` and `--input` are one parser option: patch it once
         for name in self.opts:
             opt = parser._long_opt.get(name) or parser._short_opt.get(name)
-            if opt is None:
+            if opt is None or id(opt) in patched:
                 continue
+            patched.add(id(opt))
             previous = opt.process
 
             def process(value: Any, state: Any, previous: Any = previous) -> None:
                 values = [value]
                 while state.rargs and not state.rargs[0].startswith('-'):
                     values.append(state.rargs.pop(0))
+                if self.grouped:
+                    previous(tuple(values), state)
+                    return
                 for v in values:
                     previous(v, state)
 
             opt.process = process
+
+
+class ValueGroups(ManyValues):
+    '''Like ManyValues, but each occurrence stays one tuple: `-i a mcap -i b` gives
+    (('a', 'mcap'), ('b',)) — argparse's `action='append', nargs='+'`.'''
+
+    grouped = True
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault('type', click.UNPROCESSED)
+        super().__init__(*args, **kwargs)

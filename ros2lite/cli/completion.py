@@ -57,28 +57,31 @@ def _hidden_wanted(incomplete: str) -> bool:
     return '/_' in incomplete or incomplete.startswith('_')
 
 
-@_quietly
-def topics(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
-    from ros2lite.graph import topic_names_and_types
+def _graph_names(kind: str) -> Completer:
+    """The names of the graph's topics, services or actions (`kind`)."""
 
-    names = topic_names_and_types(_graph_entities(ctx), _hidden_wanted(incomplete))
-    return _matching((name for name, _ in names), incomplete)
+    @_quietly
+    def complete(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
+        from ros2lite.graph import (
+            action_names_and_types,
+            service_names_and_types,
+            topic_names_and_types,
+        )
+
+        names_and_types = {
+            'topic': topic_names_and_types,
+            'service': service_names_and_types,
+            'action': action_names_and_types,
+        }[kind]
+        names = names_and_types(_graph_entities(ctx), _hidden_wanted(incomplete))
+        return _matching((name for name, _ in names), incomplete)
+
+    return complete
 
 
-@_quietly
-def services(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
-    from ros2lite.graph import service_names_and_types
-
-    names = service_names_and_types(_graph_entities(ctx), _hidden_wanted(incomplete))
-    return _matching((name for name, _ in names), incomplete)
-
-
-@_quietly
-def actions(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
-    from ros2lite.graph import action_names_and_types
-
-    names = action_names_and_types(_graph_entities(ctx), _hidden_wanted(incomplete))
-    return _matching((name for name, _ in names), incomplete)
+topics = _graph_names('topic')
+services = _graph_names('service')
+actions = _graph_names('action')
 
 
 @_quietly

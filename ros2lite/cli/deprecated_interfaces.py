@@ -12,6 +12,17 @@ _WORDS = {'msg': 'message', 'srv': 'service'}
 _FLAGS = {'msg': '-m', 'srv': '-s'}
 
 
+def verbs(kind: str) -> dict[str, str]:
+    """The `msg`/`srv` group's verbs (`kind`) with their one-line help."""
+    word = _WORDS[kind]
+    return {
+        'list': f'Output a list of available {word} types',
+        'package': f'Output a list of available {word} types within one package',
+        'packages': f'Output a list of packages which contain {kind}s',
+        'show': f'Output the {word} definition',
+    }
+
+
 def _deprecated(kind: str, instead: str) -> None:
     click.echo(
         f"'ros2 {kind}' is deprecated and will be removed in a future ROS release. "
@@ -31,7 +42,7 @@ def _names(kind: str, package: str) -> list[str]:
 def list_verb(kind: str) -> click.Command:
     """`<kind> list`: every type of that kind, sorted by package and name."""
 
-    @click.command('list', help=f'Output a list of available {_WORDS[kind]} types.')
+    @click.command('list', help=verbs(kind)['list'] + '.')
     def cli() -> None:
         from ros2lite.interfaces import list_interfaces
 
@@ -46,9 +57,7 @@ def list_verb(kind: str) -> click.Command:
 def package_verb(kind: str) -> click.Command:
     """`<kind> package NAME`: the types of that kind in one package."""
 
-    @click.command(
-        'package', help=f'Output a list of available {_WORDS[kind]} types within one package.'
-    )
+    @click.command('package', help=verbs(kind)['package'] + '.')
     @click.argument('package_name')
     def cli(package_name: str) -> None:
         _deprecated(kind, f'package {package_name}')
@@ -61,7 +70,7 @@ def package_verb(kind: str) -> click.Command:
 def packages_verb(kind: str) -> click.Command:
     """`<kind> packages`: the packages that define types of that kind."""
 
-    @click.command('packages', help=f'Output a list of packages which contain {kind}s.')
+    @click.command('packages', help=verbs(kind)['packages'] + '.')
     def cli() -> None:
         from ros2lite.interfaces import list_interfaces
 
@@ -76,7 +85,7 @@ def packages_verb(kind: str) -> click.Command:
 def show_verb(kind: str) -> click.Command:
     """`<kind> show TYPE`: the definition file as written."""
 
-    @click.command('show', help=f'Output the {_WORDS[kind]} definition.')
+    @click.command('show', help=verbs(kind)['show'] + '.')
     @click.argument('type_name', metavar='TYPE')
     def cli(type_name: str) -> None:
         from ros2lite.interfaces.registry import default_registry

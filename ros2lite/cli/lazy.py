@@ -6,23 +6,57 @@ Help text comes from the table itself, so `ros2lite --help` imports no verb modu
 from __future__ import annotations
 
 import importlib
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 import click
 
+F = TypeVar('F', bound=Callable[..., Any])
 
-def command_group(name: str, doc: str, verbs: dict[str, tuple[str, str]]) -> click.Group:
-    """A `ros2lite <name>` group of lazily imported verbs; bare `<name>` prints its help."""
+
+def command_group(
+    package: str, doc: str, verbs: dict[str, str], *, hidden: str | None = None
+) -> click.Group:
+    """The `ros2lite <command>` group of the command package `package` (its `__name__`):
+    `verbs` maps each verb to its one-line help, and the verb lives in module
+    `<package>.<verb>`, imported only when run. Bare `<command>` prints the help.
+
+    `hidden` ('topics', 'services') adds the group's own `--include-hidden-<hidden>` flag,
+    which reaches the verbs through the context object (see `include_hidden`)."""
 
     @click.pass_context
-    def callback(ctx: click.Context) -> None:
+    def callback(ctx: click.Context, **flags: bool) -> None:
+        ctx.ensure_object(dict).update(flags)
         if ctx.invoked_subcommand is None:
             click.echo(ctx.get_help())
 
     callback.__doc__ = doc
-    return click.group(name, cls=LazyGroup, lazy=verbs, invoke_without_command=True, help=doc)(
+    if hidden is not None:
+        callback = include_hidden_option(hidden)(callback)
+    lazy = {verb: (f'{package}.{verb}', summary) for verb, summary in verbs.items()}
+    name = package.rpartition('.')[2]
+    return click.group(name, cls=LazyGroup, lazy=lazy, invoke_without_command=True, help=doc)(
         callback
     )
+
+
+def include_hidden_option(
+    kind: str, verb: str | None = None, *, all_alias: bool = False
+) -> Callable[[F], F]:
+    """The `--include-hidden-<kind>` flag of a group or a verb (also `-a/--all` with
+    `all_alias`). Its help is ros2cli's "Consider hidden <kind> as well", or with `verb`
+    ('list', 'match') "Also <verb> hidden <kind> (…)"."""
+    help = f'Consider hidden {kind} as well'
+    if verb is not None:
+        help = f"Also {verb} hidden {kind} (a name part starts with '_')"
+    aliases = ('-a', '--all', f'include_hidden_{kind}') if all_alias else ()
+    return click.option(f'--include-hidden-{kind}', *aliases, is_flag=True, help=help)
+
+
+def include_hidden(ctx: click.Context, kind: str, flag: bool = False) -> bool:
+    """`--include-hidden-<kind>` given on the verb (`flag`) or on its group (`command_group`'s
+    `hidden`), whose flag reaches the verb through click's shared context object."""
+    return flag or bool((ctx.obj or {}).get(f'include_hidden_{kind}'))
 
 
 class LazyGroup(click.Group):

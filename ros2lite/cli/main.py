@@ -19,6 +19,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     'bag': ('ros2lite.cli.bag', 'Various rosbag related sub-commands'),
     'component': ('ros2lite.cli.component', 'Various component related sub-commands'),
     'daemon': ('ros2lite.cli.daemon', 'Various daemon related sub-commands'),
+    'env': ('ros2lite.cli.env', 'Print shell lines that let code written for rclpy run'),
     'extension_points': ('ros2lite.cli.extension_points', 'List extension points'),
     'extensions': ('ros2lite.cli.extensions', 'List extensions'),
     'interface': ('ros2lite.cli.interface', 'Show information about ROS interfaces'),
@@ -48,22 +49,21 @@ LACKING: dict[str, str] = {
     'pkg': f"'ros2lite pkg' {_NOT_YET}",
     'test': "'ros2 test' is launch_testing's runner for launch-based tests; ros2lite has no "
     'launch_testing, so run such tests with pytest',
-    'bag burst': f"'ros2lite bag burst' {_NOT_YET}",
-    'bag convert': f"'ros2lite bag convert' {_NOT_YET}",
 }
 
 
 def verb_tables() -> dict[str, tuple[str, dict[str, tuple[str, str]]]]:
-    """ros2cli's extension group name (`ros2<command>.verb`) → (command, its VERBS table),
-    for every command that has verbs (imports each command's package, not its verbs)."""
+    """ros2cli's extension group name (`ros2<command>.verb`) → (command, its verbs as
+    verb → (module, help)), for every command that has verbs (imports each command's
+    package, not its verbs)."""
     import importlib
 
     groups = {}
     for command, (module_name, _help) in COMMANDS.items():
-        verbs = getattr(importlib.import_module(module_name), 'VERBS', None)
-        if verbs:
-            group = 'ros2cli.daemon.verb' if command == 'daemon' else f'ros2{command}.verb'
-            groups[group] = (command, verbs)
+        group = importlib.import_module(module_name).cli
+        if isinstance(group, LazyGroup) and group.lazy:
+            name = 'ros2cli.daemon.verb' if command == 'daemon' else f'ros2{command}.verb'
+            groups[name] = (command, group.lazy)
     return groups
 
 

@@ -2,7 +2,8 @@
 
 The executable runs as a child process with everything after its name passed through, so
 `--ros-args -r chatter:=/x` reaches the node untouched; we wait for it and exit with its
-status. Signal forwarding is the library's (:func:`ros2lite.process.run_child`).
+status. The child gets the environment `ros2lite env` gives a shell, so code written for
+rclpy runs as it is. Signal forwarding is the library's (:func:`ros2lite.process.run_child`).
 """
 
 from __future__ import annotations
@@ -35,6 +36,9 @@ from .errors import CliError
 @click.argument('argv', nargs=-1, type=click.UNPROCESSED)
 def cli(prefix: str | None, package_name: str, executable_name: str, argv: tuple[str, ...]) -> None:
     """Run a package specific executable."""
+    import os
+
+    from ros2lite.env import ros_environment
     from ros2lite.pkg.executables import find_executable
     from ros2lite.process import exit_code, run_child
 
@@ -44,7 +48,9 @@ def cli(prefix: str | None, package_name: str, executable_name: str, argv: tuple
     cmd = exe.command(list(argv))
     if prefix is not None:
         cmd = shlex.split(prefix) + cmd
-    code = run_child(cmd)
+    # the child is in a ROS shell whether or not this one is: `rclpy` and interface
+    # packages import there (see `ros2lite env`)
+    code = run_child(cmd, env={**os.environ, **ros_environment()})
     if code < 0:
         signum = -code
         name = signal.strsignal(signum) or f'signal {signum}'

@@ -7,9 +7,12 @@ only where user code assigns values.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import operator
+import os
 from array import array
+from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any, ClassVar
 
 from .errors import FieldError, InterfaceError
@@ -185,8 +188,25 @@ def _check_scalar_source(ft: FieldType, name: str, var: str) -> list[str]:
     ]
 
 
+def _unchecked_source(ft: FieldType) -> list[str]:
+    """What an assignment still does with checks off (as rosidl's Jazzy classes): bring
+    sequences to the stored form (`array` of numbers, list otherwise), nothing else."""
+    if not ft.is_container:
+        return []
+    if ft.base in TYPECODES:
+        code = TYPECODES[ft.base]
+        return [f'if type(v) is not _array or v.typecode != {code!r}: v = _array({code!r}, v)']
+    if ft.base == 'byte':
+        return ['v = [bytes((x,)) for x in v] if isinstance(v, (bytes, bytearray)) else list(v)']
+    return ['v = list(v)']
+
+
 def _setter_source(name: str, ft: FieldType) -> list[str]:
     lines = [f'def _set_{name}(self, v):']
+    unchecked = _unchecked_source(ft)
+    lines += ['    if not _CHECK.on and not _CHECK.forced:']
+    lines += ['        ' + s for s in unchecked]
+    lines += [f'        self._{name} = v', '        return']
     body: list[str] = []
     if not ft.is_container:
         body += _check_scalar_source(ft, name, 'v')
@@ -221,6 +241,31 @@ def _setter_source(name: str, ft: FieldType) -> list[str]:
             )
     body.append(f'self._{name} = v')
     return lines + ['    ' + s for s in body]
+
+
+class _FieldChecks:
+    """Whether assignments to message fields are checked (types, ranges, sizes).
+
+    On by default; `ROS_PYTHON_CHECK_FIELDS=0` turns it off, as rosidl's Jazzy classes are
+    unless that variable is `1` (`ros2lite env` sets 0 unless the shell chose). Code that
+    fills messages from outside input forces checks on with :func:`checked_fields`."""
+
+    def __init__(self) -> None:
+        self.on = os.environ.get('ROS_PYTHON_CHECK_FIELDS', '1') != '0'
+        self.forced = 0
+
+
+_CHECK = _FieldChecks()
+
+
+@contextlib.contextmanager
+def checked_fields() -> Iterator[None]:
+    """Check every field assignment within the block, whatever the default."""
+    _CHECK.forced += 1
+    try:
+        yield
+    finally:
+        _CHECK.forced -= 1
 
 
 def _err(name: str, what: str) -> FieldError:
@@ -321,6 +366,7 @@ class ClassFactory:
             '_isinf': math.isinf,
             '_same_type': self.same_type,
             '_getter': operator.attrgetter,
+            '_CHECK': _CHECK,
         }
         exec(compile('\n'.join(src), f'<ros2lite {mdef.name}>', 'exec'), ns)
         cls: type[Message] = ns[short]

@@ -304,6 +304,9 @@ def set_message_fields(
             raise PopulateError(f'invalid YAML: {e.detail}' if e.syntax else str(e)) from None
     if values is None:
         values = {}
+    from .classes import checked_fields
+
     setters: list[_Setter] = []
-    _populate(msg, values, setters, expand_header_auto, expand_time_now)
+    with checked_fields():  # values from outside are checked whatever the default
+        _populate(msg, values, setters, expand_header_auto, expand_time_now)
     return setters

@@ -111,3 +111,48 @@ def type_hash(name: str, reg: Registry | None = None) -> str:
         text = json.dumps(type_description(name, reg), separators=(', ', ': '), ensure_ascii=True)
         h = _CACHE[key] = 'RIHS01_' + hashlib.sha256(text.encode()).hexdigest()
     return h
+
+
+class TypeHash:
+    """A type hash as rclpy holds it: a version and the raw hash bytes (`RIHS01_…` as text;
+    'INVALID' when the version is unknown)."""
+
+    __slots__ = ('_value', '_version')
+
+    def __init__(self, version: int = -1, value: bytes = b'') -> None:
+        self._version = version
+        self._value = bytes(value)
+
+    @property
+    def version(self) -> int:
+        """The hash version (1 for RIHS01; -1 unset)."""
+        return self._version
+
+    @property
+    def value(self) -> bytes:
+        """The raw hash bytes (32 for RIHS01)."""
+        return self._value
+
+    @classmethod
+    def from_string(cls, text: str) -> TypeHash:
+        """From `RIHS01_<64 hex digits>` (ValueError otherwise)."""
+        prefix, _, digits = text.partition('_')
+        if prefix != 'RIHS01' or len(digits) != 64:
+            raise ValueError(f"not a RIHS01 type hash: '{text}'")
+        return cls(version=1, value=bytes.fromhex(digits))
+
+    def __str__(self) -> str:
+        if self._version == 1:
+            return 'RIHS01_' + self._value.hex()
+        return 'INVALID'
+
+    def __repr__(self) -> str:
+        return f'TypeHash(version={self._version}, value={self._value!r})'
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, TypeHash):
+            return NotImplemented
+        return (self._version, self._value) == (other._version, other._value)
+
+    def __hash__(self) -> int:
+        return hash((self._version, self._value))

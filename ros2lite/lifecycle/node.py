@@ -118,6 +118,12 @@ class LifecycleNodeMixin:
             self._on_get_transition_graph,
             **options,
         )
+        machine = self._state_machine
+        machine.service_change_state = self._service_change_state
+        machine.service_get_state = self._service_get_state
+        machine.service_get_available_states = self._service_get_available_states
+        machine.service_get_available_transitions = self._service_get_available_transitions
+        machine.service_get_transition_graph = self._service_get_transition_graph
 
     # -- the user's side ------------------------------------------------------------------------
     @property

@@ -10,9 +10,20 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 from ros2lite.exceptions import Ros2liteError
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.lifecycle_msgs import srv
+    from ros2lite.service import Service
+
+    _ChangeState = Service[srv.ChangeState_Request, srv.ChangeState_Response]
+    _GetState = Service[srv.GetState_Request, srv.GetState_Response]
+    _GetAvailableStates = Service[srv.GetAvailableStates_Request, srv.GetAvailableStates_Response]
+    _GetAvailableTransitions = Service[
+        srv.GetAvailableTransitions_Request, srv.GetAvailableTransitions_Response
+    ]
 
 __all__ = [
     'STATES',
@@ -119,6 +130,13 @@ class StateMachine:
 
     def __init__(self) -> None:
         self.current = UNCONFIGURED
+        # the services that expose it (rclpy's state machine names them so); None while the
+        # node's communication interface is off
+        self.service_change_state: _ChangeState | None = None
+        self.service_get_state: _GetState | None = None
+        self.service_get_available_states: _GetAvailableStates | None = None
+        self.service_get_available_transitions: _GetAvailableTransitions | None = None
+        self.service_get_transition_graph: _GetAvailableTransitions | None = None
 
     @property
     def current_state(self) -> tuple[int, str]:

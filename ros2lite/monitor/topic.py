@@ -105,7 +105,7 @@ class TopicMonitor:
     def publisher_gids(self) -> set[bytes]:
         """The GIDs of the topic's publishers in the graph now."""
         pubs = endpoints_by_topic(self._entities(), self.topic, EntityKind.PUBLISHER)
-        return {p.endpoint_gid for p in pubs}
+        return {bytes(p.endpoint_gid) for p in pubs}
 
     def type_mismatch(self, type_name: str) -> TypeMismatch | None:
         """See :func:`type_mismatch`."""

@@ -9,6 +9,7 @@ alone matches every node). Nested parameter maps become dotted names (``a: {b: 1
 
 from __future__ import annotations
 
+import functools
 import re
 from collections.abc import Mapping
 from pathlib import Path
@@ -18,6 +19,9 @@ from ros2lite.exceptions import Ros2liteError
 from ros2lite.parameter import PARAMETER_SEPARATOR_STRING
 
 if TYPE_CHECKING:
+    import yaml
+
+    from ros2lite.msgs.rcl_interfaces import msg as _rcl_msg
     from ros2lite.parameter import AllowableParameterValue, Parameter
 
 # values are whatever the YAML holds until a Parameter is made of them (which checks them)
@@ -31,13 +35,44 @@ class ParamsFileError(Ros2liteError, ValueError):
     """The file cannot be read or is not a ROS 2 parameters file; the message says why."""
 
 
+class _Entries(dict[object, object]):
+    """A YAML mapping that also keeps every (key, value) pair in file order: rcl reads a
+    parameters file as a stream, so a node key written twice contributes both entries."""
+
+    pairs: list[tuple[object, object]]
+
+
+@functools.cache
+def _entries_loader() -> type[yaml.SafeLoader]:
+    """A SafeLoader whose mappings remember repeated keys (see `_Entries`)."""
+    import yaml
+
+    class Loader(yaml.SafeLoader):
+        pass
+
+    def mapping(loader: yaml.SafeLoader, node: yaml.MappingNode) -> _Entries:
+        loader.flatten_mapping(node)
+        entries = _Entries()
+        entries.pairs = []
+        for key_node, value_node in node.value:
+            key = loader.construct_object(key_node, deep=True)
+            value = loader.construct_object(value_node, deep=True)
+            entries.pairs.append((key, value))
+            entries[key] = value
+        return entries
+
+    Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, mapping)
+    return Loader
+
+
 def read_params_file(path: str | Path) -> list[tuple[str, Values]]:
-    """Every (node name, flattened parameters) entry of the file, in file order."""
+    """Every (node name, flattened parameters) entry of the file, in file order (a node key
+    that appears twice gives two entries, as rcl reads it)."""
     from ros2lite.safe_yaml import YamlInputError, load
 
     path = Path(path)
     try:
-        data = load(path.read_text(encoding="utf-8"), "the file")
+        data = load(path.read_text(encoding="utf-8"), "the file", loader_class=_entries_loader())
     except (OSError, UnicodeDecodeError, YamlInputError) as e:
         why = (e.strerror if isinstance(e, OSError) else None) or e
         raise ParamsFileError(f"Couldn't read parameters file '{path}': {why}") from None
@@ -53,7 +88,7 @@ def read_params_file(path: str | Path) -> list[tuple[str, Values]]:
 def _collect(
     path: Path, tree: Mapping[object, object], prefix: str, out: list[tuple[str, Values]]
 ) -> None:
-    for key, section in tree.items():
+    for key, section in getattr(tree, "pairs", tree.items()):
         name = f"{prefix}/{str(key).strip('/')}" if prefix else _absolute(str(key))
         if not isinstance(section, dict):
             raise ParamsFileError(f"Parameters file '{path}': '{name}' needs '{PARAMS_KEY}'")
@@ -131,6 +166,51 @@ def parameters_for_node(path: str | Path, node_fqn: str, use_wildcard: bool) -> 
         except (TypeError, ValueError) as e:
             raise ParamsFileError(f"Parameter '{name}' in '{path}': {e}") from None
     return params
+
+
+def parameter_dict_from_yaml_file(
+    parameter_file: str | Path,
+    use_wildcard: bool = False,
+    target_nodes: list[str] | None = None,
+    namespace: str = "",
+) -> dict[str, _rcl_msg.Parameter]:
+    """rclpy's reading of a parameters file: name → rcl_interfaces/msg/Parameter of the
+    entries of `target_nodes` (every node's when None), after the `/**` ones when
+    `use_wildcard`; names get `namespace.` in front. FileNotFoundError for a missing file,
+    RuntimeError when the file has no entry asked for."""
+    from ros2lite.parameter import Parameter
+
+    path = Path(parameter_file)
+    if not path.is_file():
+        raise FileNotFoundError(f"No such parameters file: '{path}'")
+    entries = read_params_file(path)
+    chosen = [(n, p) for n, p in entries if use_wildcard and n == WILDCARD]
+    if target_nodes:
+        names = {n for n, _ in entries}
+        for target in target_nodes:
+            if _absolute(target) not in names:
+                raise RuntimeError(
+                    f"Param file does not contain parameters for {target}, only for nodes: "
+                    f"{sorted(names)}"
+                )
+        wanted = {_absolute(t) for t in target_nodes}
+        chosen += [(n, p) for n, p in entries if n in wanted]
+    else:
+        chosen += [(n, p) for n, p in entries if n != WILDCARD]
+    if not chosen:
+        raise RuntimeError("Param file does not contain selected parameters")
+    values: Values = {}
+    for _, params in chosen:
+        values.update(params)
+    prefix = namespace + PARAMETER_SEPARATOR_STRING if namespace else ""
+    out: dict[str, _rcl_msg.Parameter] = {}
+    for name, value in values.items():
+        try:
+            parameter = Parameter(prefix + name, value=cast("AllowableParameterValue", value))
+            out[prefix + name] = parameter.to_parameter_msg()
+        except (TypeError, ValueError) as e:
+            raise ParamsFileError(f"Parameter '{name}' in '{path}': {e}") from None
+    return out
 
 
 def dump_tree(values: Mapping[str, object]) -> dict[str, object]:

@@ -17,7 +17,6 @@ from ros2lite.parameters.store import (
     ParameterStore,
     PostSetCallback,
     PreSetCallback,
-    result,
 )
 
 if TYPE_CHECKING:
@@ -28,8 +27,6 @@ if TYPE_CHECKING:
         SetParametersResult,
     )
     from ros2lite.node import Node
-
-USE_SIM_TIME = "use_sim_time"
 
 
 class ParameterMixin:
@@ -62,12 +59,6 @@ class ParameterMixin:
                 [(name, p.value, _descriptor()) for name, p in overrides.items()],
                 ignore_override=True,
             )
-        # use_sim_time, as rclpy's TimeSource handles it
-        if not self.has_parameter(USE_SIM_TIME):
-            self.declare_parameter(USE_SIM_TIME, False)
-        self._apply_use_sim_time(self._parameter_store.get_parameter_or(USE_SIM_TIME))
-        self._parameter_store.add_on_set_parameters_callback(_check_use_sim_time)
-        self._parameter_store.add_post_set_parameters_callback(self._on_use_sim_time_set)
         if start_parameter_services:
             self._start_parameter_services()
 
@@ -75,20 +66,6 @@ class ParameterMixin:
         from ros2lite.parameters.services import ParameterService
 
         self._parameter_service = ParameterService(cast('Node', self))
-
-    def _on_use_sim_time_set(self, parameters: list[Parameter]) -> None:
-        for p in parameters:
-            if p.name == USE_SIM_TIME:
-                self._apply_use_sim_time(p)
-
-    def _apply_use_sim_time(self, param: Parameter) -> None:
-        node = cast('Node', self)
-        if param.type_ != Parameter.Type.BOOL:
-            return
-        if param.value:
-            node._enable_sim_time()
-        else:
-            node.get_clock()._enable_sim_time(False)
 
     # -- declare -----------------------------------------------------------------------------
     def declare_parameter(
@@ -181,6 +158,19 @@ class ParameterMixin:
         return self._parameter_store.set_descriptor(name, descriptor, alternative_value)
 
     # -- callbacks ---------------------------------------------------------------------------
+    # rclpy's names for the registered callbacks, newest first (read-only views)
+    @property
+    def _pre_set_parameters_callbacks(self) -> list[PreSetCallback]:
+        return list(self._parameter_store._pre_set)
+
+    @property
+    def _on_set_parameters_callbacks(self) -> list[OnSetCallback]:
+        return list(self._parameter_store._on_set)
+
+    @property
+    def _post_set_parameters_callbacks(self) -> list[PostSetCallback]:
+        return list(self._parameter_store._post_set)
+
     def add_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
         """`callback(parameters)` may change the list being set, before any check."""
         self._parameter_store.add_pre_set_parameters_callback(callback)
@@ -210,13 +200,6 @@ def _descriptor() -> ParameterDescriptor:
     from ros2lite.parameters.store import descriptor
 
     return descriptor()
-
-
-def _check_use_sim_time(parameters: list[Parameter]) -> SetParametersResult:
-    for p in parameters:
-        if p.name == USE_SIM_TIME and p.type_ not in (Parameter.Type.BOOL, Parameter.Type.NOT_SET):
-            return result(False, f"{USE_SIM_TIME} parameter set to something besides a bool")
-    return result(True)
 
 
 def _override_parameters(values: Mapping[str, object]) -> dict[str, Parameter]:

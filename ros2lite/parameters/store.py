@@ -58,13 +58,24 @@ WRONG_TYPE = "Wrong parameter type"
 
 
 def descriptor(
-    name: str = "", type_number: int = 0, dynamic_typing: bool = False
+    name: str = "",
+    type_number: int = 0,
+    dynamic_typing: bool = False,
+    *,
+    description: str = "",
+    read_only: bool = False,
 ) -> ParameterDescriptor:
     """A new rcl_interfaces/msg/ParameterDescriptor."""
     from ros2lite.interfaces import get_interface
 
     cls: type[ParameterDescriptor] = get_interface("rcl_interfaces/msg/ParameterDescriptor")
-    return cls(name=name, type=type_number, dynamic_typing=dynamic_typing)
+    return cls(
+        name=name,
+        type=type_number,
+        dynamic_typing=dynamic_typing,
+        description=description,
+        read_only=read_only,
+    )
 
 
 def result(successful: bool, reason: str = "") -> SetParametersResult:
@@ -75,10 +86,12 @@ def result(successful: bool, reason: str = "") -> SetParametersResult:
     return cls(successful=successful, reason=reason)
 
 
-def validate_parameter_name(name: str) -> None:
-    """InvalidParameterException unless `name` is a non-empty string without whitespace."""
+def validate_parameter_name(name: str) -> bool:
+    """A parameter name is a non-empty string without white space; True if it is (rclpy's
+    answer), InvalidParameterException otherwise."""
     if not isinstance(name, str) or not name or any(c.isspace() for c in name):
         raise InvalidParameterException(name)
+    return True
 
 
 class ParameterStore:
@@ -154,7 +167,7 @@ class ParameterStore:
                 f"when declaring parameter named '{name}', declaring a parameter "
                 "only providing its name is deprecated: give a default value, a "
                 "Parameter.Type or a descriptor with dynamic_typing=True",
-                DeprecationWarning,
+                UserWarning,
                 stacklevel=4,
             )
             desc.dynamic_typing = True

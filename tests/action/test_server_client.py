@@ -256,4 +256,47 @@ def test_destroying_the_server_ends_execute_loops(fx: Fixture) -> None:
     wait_until(lambda: handle.status == GoalStatus.STATUS_EXECUTING)
     server.destroy()
     assert ended.wait(5)
-    assert fx.server_node.waitables == []
+    # gone from its node, with the event handlers of its publishers
+    gone = (server, server._feedback_pub, server._status_pub)
+    assert not [
+        w for w in fx.server_node.waitables if w in gone or getattr(w, '_parent', 0) in gone
+    ]
+
+
+def test_finished_goals_expire_without_being_asked(fx: Fixture) -> None:
+    """The server's timer forgets a finished goal `result_timeout` after it ended, even when
+    nobody sends another request (rcl_action's timer)."""
+    fx.release.set()
+    server = fx.server(result_timeout=0.3)
+    assert server.get_num_entities().num_timers == 1
+    client = fx.client()
+    handle = fx.wait(client.send_goal_async(Fibonacci.Goal(order=1)))
+    fx.wait(handle.get_result_async())
+    assert len(server._goal_handles) == 1
+    wait_until(lambda: not server._goal_handles, timeout=10)
+
+
+def test_deferred_goal_executes_after_the_node_left_the_executor(ros_context: Any) -> None:
+    """`rclpy.spin_until_future_complete(node, …, executor)` removes the node again; a goal
+    accepted then and executed later still runs on that executor (node.executor stays)."""
+    import ros2lite
+    from ros2lite.executors import SingleThreadedExecutor
+
+    node = Node('deferring', context=ros_context)
+    accepted: list[ServerGoalHandle] = []
+
+    def execute(goal_handle: ServerGoalHandle) -> Any:
+        goal_handle.succeed()
+        return Fibonacci.Result(sequence=[7])
+
+    ActionServer(node, Fibonacci, 'later', execute, handle_accepted_callback=accepted.append)
+    client = ActionClient(node, Fibonacci, 'later')
+    executor = SingleThreadedExecutor(context=ros_context)
+    assert client.wait_for_server(timeout_sec=15)
+    goal = client.send_goal_async(Fibonacci.Goal(order=1))
+    ros2lite.spin_until_future_complete(node, goal, executor, timeout_sec=15)
+    assert accepted and node.executor is executor
+    accepted[0].execute()  # the node is in no executor now
+    result = goal.result().get_result_async()
+    ros2lite.spin_until_future_complete(node, result, executor, timeout_sec=15)
+    assert list(result.result().result.sequence) == [7]

@@ -81,3 +81,29 @@ def test_stop_ends_a_loop(tmp_path: Path, node: Node) -> None:
     player.stop()
     thread.join(2)
     assert not thread.is_alive() and player.stopped
+
+
+def test_burst_ignores_timing_and_resumes_where_it_stopped(tmp_path: Path, node: Node) -> None:
+    # 3 messages share each log time: a burst stopping in the middle of them must resume
+    # with the next one, neither repeating nor skipping any
+    with Writer(tmp_path / "bag") as bag:
+        for i in range(12):
+            bag.write("/player_test", String(data=str(i)), T0 + (i // 3) * 10_000_000_000)
+    got: list[str] = []
+    sub = node.create_subscription(String, "/player_test", lambda m: got.append(m.data), 100)
+    player = Player(node, Reader(tmp_path / "bag"), PlayOptions())
+    t0 = time.monotonic()
+    assert player.burst(4) == 4
+    assert player.burst(4) == 4
+    assert player.burst() == 4  # the rest
+    assert player.burst() == 0
+    assert time.monotonic() - t0 < 10  # the bag spans 30 s
+    from ros2lite.executors import SingleThreadedExecutor
+
+    executor = SingleThreadedExecutor(context=node.context)
+    executor.add_node(node)
+    wait_until(lambda: executor.spin_once(0.05) or len(got) == 12)
+    assert got == [str(i) for i in range(12)]
+    node.destroy_subscription(sub)
+    with pytest.raises(ValueError):
+        player.burst(-1)

@@ -20,7 +20,7 @@ KEEP_ALL = QoSProfile(history=HistoryPolicy.KEEP_ALL)
 
 
 def test_playback_offers_what_all_recorded_publishers_offered() -> None:
-    assert playback_qos("/t", []) == QoSProfile()
+    assert playback_qos("/t", []) == QoSProfile(depth=10)
     q = playback_qos("/t", [LATCHED, LATCHED.replace(depth=3)])
     assert (q.durability, q.reliability, q.depth) == (
         DurabilityPolicy.TRANSIENT_LOCAL,
@@ -29,16 +29,18 @@ def test_playback_offers_what_all_recorded_publishers_offered() -> None:
     )
     assert playback_qos("/t", [KEEP_ALL]).history == HistoryPolicy.KEEP_ALL
     # history does not decide compatibility: the same offer, but not all kept all
-    assert playback_qos("/t", [KEEP_ALL, QoSProfile()]).history == HistoryPolicy.KEEP_LAST
+    assert playback_qos("/t", [KEEP_ALL, QoSProfile(depth=10)]).history == HistoryPolicy.KEEP_LAST
 
 
 def test_playback_falls_back_to_the_default_offer_on_mixed_offers() -> None:
     warnings: list[str] = []
     q = playback_qos("/mixed", [LATCHED, BEST_EFFORT], warnings.append)
-    assert q == QoSProfile()  # reliable, volatile, keep last 10, as rosbag2 falls back
+    assert q == QoSProfile(depth=10)  # reliable, volatile, keep last 10, as rosbag2 falls back
     assert len(warnings) == 1 and "'/mixed'" in warnings[0]
-    deadline = QoSProfile(deadline=Duration(seconds=1))
-    assert playback_qos("/d", [deadline, QoSProfile()], warnings.append) == QoSProfile()
+    deadline = QoSProfile(depth=10, deadline=Duration(seconds=1))
+    assert playback_qos("/d", [deadline, QoSProfile(depth=10)], warnings.append) == QoSProfile(
+        depth=10
+    )
 
 
 def test_recording_asks_for_what_every_publisher_offers() -> None:

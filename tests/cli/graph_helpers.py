@@ -69,7 +69,7 @@ class FakeNode:
             topic,
             type_name,
             type_hash or fake_hash(type_name),
-            qos or QoSProfile(),
+            qos or QoSProfile(depth=10),
         )
         self.graph.declare(key)
         return key

@@ -33,6 +33,10 @@ def scripts(tmp_path: Path) -> dict[str, str]:
             'a/dup': '#!/bin/sh\n',
             'b/dup': '#!/bin/sh\n',
             'wait_term': '#!/bin/sh\necho ready\nexec sleep 30\n',
+            # code written for rclpy, as an ament package installs it
+            'rclpy_node': f'#!{sys.executable}\n'
+            'import rclpy\nfrom std_msgs.msg import String\n'
+            'print(rclpy.__name__, String(data="in a ROS shell").data)\n',
         },
     )
     return {'AMENT_PREFIX_PATH': str(prefix)}
@@ -92,6 +96,20 @@ def test_arguments_and_prefix_pass_through(scripts: dict[str, str]) -> None:
     assert result.code == 0, result.err
     assert result.out == '--ros-args|-r|chatter:=/x|--help|-h|--prefix|p|FOO=from_prefix\n'
     assert result.err == ''
+
+
+def test_children_get_the_ros_shell_environment(scripts: dict[str, str]) -> None:
+    """`run` needs no `ros2lite env` first: its child imports rclpy and interface packages
+    even from a shell without PYTHONPATH."""
+    os_env = {k: v for k, v in os.environ.items() if k != 'PYTHONPATH'}
+    proc = subprocess.run(
+        [sys.executable, '-m', 'ros2lite', 'run', 'tools', 'rclpy_node'],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env={**os_env, **scripts},
+    )
+    assert (proc.returncode, proc.stdout) == (0, 'rclpy in a ROS shell\n'), proc.stderr
 
 
 def start_run(processes: Any, *args: str, **kw: Any) -> subprocess.Popen[str]:

@@ -42,7 +42,6 @@ def test_lacking_commands_say_why(run: Run) -> None:
     for args, word in (
         (['test', 'x.test.py'], 'launch_testing'),
         (['doctor'], 'doctor'),
-        (['bag', 'convert', '-i', 'a'], 'bag convert'),
     ):
         result = run(*args)
         assert result.code == 1 and word in result.err and len(result.err.splitlines()) == 1

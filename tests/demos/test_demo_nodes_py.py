@@ -182,6 +182,7 @@ def test_parameter_blackboard(ros_context: Any, processes: Any) -> None:
     assert sorted(wait(remote.list_parameters()).result.names) == [
         'names',
         'speed',
+        'start_type_description_service',
         'use_sim_time',
     ]
     assert wait(remote.set_parameters([Parameter('brand_new', value=7)])).results[0].successful
@@ -193,7 +194,7 @@ def test_parameter_blackboard(ros_context: Any, processes: Any) -> None:
         log_line(
             'parameter_blackboard',
             re.escape(
-                "Parameter blackboard node named '/parameter_blackboard' ready, and serving '3' "
+                "Parameter blackboard node named '/parameter_blackboard' ready, and serving '4' "
                 "parameters already!"
             ),
         ),
@@ -204,7 +205,7 @@ def test_parameter_blackboard(ros_context: Any, processes: Any) -> None:
 @pytest.mark.parametrize(
     'args, message',
     [
-        (['--ros-args', '-r', '__node:=1bad'], 'invalid node name'),
+        (['--ros-args', '-r', '__node:=1bad'], "node name '1bad' is invalid"),
         (['--ros-args', '--bogus'], "Unknown ROS argument '--bogus'"),
         # an override of another type than the declared default: rclpy's exception, one line
         (['--ros-args', '-p', 'use_sim_time:=3'], "expecting type 'BOOL'"),

@@ -88,3 +88,24 @@ def test_service_and_action_namespaces() -> None:
         get_interface('example_interfaces/action/Fibonacci_SendGoal_Request')
         is act.SendGoal.Request
     )
+
+
+def test_field_checks_can_be_off_as_in_jazzy(monkeypatch: pytest.MonkeyPatch) -> None:
+    """ROS_PYTHON_CHECK_FIELDS=0 (a ROS shell's default): assignments are not checked,
+    sequences still take their stored form; filling from outside input always checks."""
+    from ros2lite.interfaces import set_message_fields
+    from ros2lite.interfaces.classes import _CHECK
+
+    monkeypatch.setattr(_CHECK, 'on', False)
+    event_type = get_interface('rcl_interfaces/msg/ParameterEvent')
+    stand_in = object()
+    assert event_type(new_parameters=[stand_in]).new_parameters == [stand_in]
+    floats = get_interface('std_msgs/msg/Float64MultiArray')(data=[1, 2])
+    assert floats.data.typecode == 'd' and list(floats.data) == [1.0, 2.0]
+    from ros2lite.interfaces.errors import PopulateError
+
+    with pytest.raises(PopulateError, match='at most 1 elements'):  # checked all the same
+        set_message_fields(get_interface('std_srvs/srv/SetBool_Event')(), {'request': [{}, {}]})
+    monkeypatch.setattr(_CHECK, 'on', True)
+    with pytest.raises(FieldError):
+        event_type(new_parameters=[stand_in])

@@ -118,6 +118,7 @@ def test_enable_communication_interface_must_be_bool(ros_context: Any) -> None:
     quiet = LifecycleNode('lc_quiet', context=ros_context, enable_communication_interface=False)
     try:
         assert not hasattr(quiet, '_service_change_state')
+        assert quiet._state_machine.service_change_state is None  # rclpy's machine says so too
         served = [s.srv_name for s in quiet.services]
         assert served and not [n for n in served if 'state' in n or 'transition' in n]
         assert not any('transition' in p.topic_name for p in quiet.publishers)
@@ -146,6 +147,9 @@ def spun(ros_context: Any) -> Iterator[tuple[LifecycleNode, Node]]:
 
 def test_services_and_events_over_the_wire(spun: tuple[LifecycleNode, Node]) -> None:
     managed, node = spun
+    machine = managed._state_machine
+    assert machine.service_change_state is managed._service_change_state
+    assert machine.service_get_transition_graph is managed._service_get_transition_graph
     events: list[tuple[str, str]] = []
     node.create_subscription(
         TransitionEvent,

@@ -100,3 +100,41 @@ def test_dump_layout_and_round_trip(tmp_path: Path) -> None:
 def test_dump_keeps_clashing_names_flat() -> None:
     tree = yaml.safe_load(dump_yaml("/n", {"a": 1, "a.b": 2}))
     assert tree == {"/n": {"ros__parameters": {"a": 1, "a.b": 2}}}
+
+
+def test_repeated_node_keys_keep_every_entry(tmp_path: Path) -> None:
+    """rcl reads the file as a stream: a node key written twice contributes both entries
+    (PyYAML alone would keep only the last)."""
+    path = tmp_path / "twice.yaml"
+    path.write_text(
+        "/**:\n  ros__parameters:\n    a: 1\n"
+        "/n:\n  ros__parameters:\n    b: 2\n"
+        "/**:\n  ros__parameters:\n    c: 3\n"
+        "ns:\n  n2:\n    ros__parameters:\n      d: 4\n"
+        "ns:\n  n2:\n    ros__parameters:\n      e: 5\n"
+    )
+    assert values_for_node(path, "/n") == {"a": 1, "b": 2, "c": 3}
+    assert values_for_node(path, "/ns/n2") == {"a": 1, "c": 3, "d": 4, "e": 5}
+
+
+def test_parameter_dict_from_yaml_file(tmp_path: Path) -> None:
+    from ros2lite.parameters.files import parameter_dict_from_yaml_file
+
+    path = tmp_path / "p.yaml"
+    path.write_text(
+        "/**:\n  ros__parameters:\n    shared: 0\n"
+        "/x:\n  ros__parameters:\n    one: 1\n    shared: 10\n"
+        "/y:\n  ros__parameters:\n    two: [a, b]\n"
+    )
+    every = parameter_dict_from_yaml_file(path)  # every node's entries, not the wildcard
+    assert sorted(every) == ["one", "shared", "two"] and every["shared"].value.integer_value == 10
+    wild = parameter_dict_from_yaml_file(path, use_wildcard=True, target_nodes=["y"])
+    assert sorted(wild) == ["shared", "two"] and wild["shared"].value.integer_value == 0
+    assert list(parameter_dict_from_yaml_file(path, target_nodes=["/x"], namespace="ns")) == [
+        "ns.one",
+        "ns.shared",
+    ]
+    with pytest.raises(RuntimeError, match="does not contain parameters for /z"):
+        parameter_dict_from_yaml_file(path, target_nodes=["/z"])
+    with pytest.raises(FileNotFoundError):
+        parameter_dict_from_yaml_file(tmp_path / "absent.yaml")

@@ -65,7 +65,13 @@ def test_automatic_declaration_and_undeclared_policy(ros_context: Any) -> None:
         parameter_overrides=[Parameter("from_code", value=2.5)],
         automatically_declare_parameters_from_overrides=True,
     )
-    assert sorted(node.list_parameters([], 0).names) == ["from_code", "names", "use_sim_time", "x"]
+    assert sorted(node.list_parameters([], 0).names) == [
+        "from_code",
+        "names",
+        "start_type_description_service",
+        "use_sim_time",
+        "x",
+    ]
     assert node.get_parameter("names").value == ["a", "b"]
     with pytest.raises(ParameterNotDeclaredException):
         node.set_parameters([Parameter("fresh", value=1)])

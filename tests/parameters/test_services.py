@@ -73,7 +73,13 @@ def test_read_services(remote: Remote) -> None:
     assert described[0].name == "limit" and described[0].integer_range[0].to_value == 5
     assert remote.describe_parameters(["limit", "unknown"]).descriptors == []
     everything = remote.list_parameters().result
-    assert sorted(everything.names) == ["a.b.y", "a.x", "limit", "use_sim_time"]
+    assert sorted(everything.names) == [
+        "a.b.y",
+        "a.x",
+        "limit",
+        "start_type_description_service",
+        "use_sim_time",
+    ]
     assert sorted(everything.prefixes) == ["a", "a.b"]
     assert remote.list_parameters(["a"], depth=1).result.names == ["a.x"]
 

@@ -56,7 +56,7 @@ def test_build_reference_tokens() -> None:
             "/add_two_ints",
             "example_interfaces/srv/AddTwoInts",
             ADD_HASH,
-            QoSProfile(),
+            QoSProfile(depth=10),
         )
         == SS_ADD
     )
@@ -201,4 +201,4 @@ def test_mangling_and_prefix() -> None:
     with pytest.raises(ValueError, match="empty"):
         k.node_token(0, "zid", 0, "", "n")
     with pytest.raises(ValueError, match="node_token"):
-        k.endpoint_token(0, "z", 0, 1, "NN", "/", "n", "/t", "a/msg/B", "h", QoSProfile())
+        k.endpoint_token(0, "z", 0, 1, "NN", "/", "n", "/t", "a/msg/B", "h", QoSProfile(depth=10))

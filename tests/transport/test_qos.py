@@ -42,12 +42,17 @@ def test_rmw_zenoh_defaults_encode_empty() -> None:
 
 
 def test_best_available_normalisation() -> None:
-    norm = best_available_qos(QoSProfile(depth=0))
+    with pytest.warns(UserWarning, match="zero depth"):  # rclpy's warning for KEEP_LAST 0
+        zero = QoSProfile(depth=0)
+    norm = best_available_qos(zero)
     assert norm.depth == 42
     assert norm.deadline == norm.lifespan == norm.liveliness_lease_duration == DURATION_INFINITE
     assert norm.liveliness == LivelinessPolicy.AUTOMATIC
     # BEST_AVAILABLE is advertised unresolved, like rmw_zenoh does.
-    assert encode_qos(QoSProfile(reliability=ReliabilityPolicy.BEST_AVAILABLE)) == "4::,10:,:,:,,"
+    assert (
+        encode_qos(QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_AVAILABLE))
+        == "4::,10:,:,:,,"
+    )
     with pytest.raises(ValueError, match="UNKNOWN"):
         best_available_qos(q.qos_profile_unknown)
 

@@ -4,18 +4,24 @@ its feedback and its status — as Kilted's `ros2 action echo` does."""
 from __future__ import annotations
 
 import sys
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import click
 
 from .. import completion
-from ..common import connect, interface_type_name, strategy_options
+from ..common import (
+    connect,
+    format_options,
+    interface_type_name,
+    resolved_name,
+    strategy_options,
+)
 from ..errors import CliError
 
 if TYPE_CHECKING:
     from ros2lite.subscription import MessageInfo
 
-DEFAULT_TRUNCATE_LENGTH = 128
+    from ..common import MessageFormat
 
 
 @click.command('echo')
@@ -29,42 +35,12 @@ DEFAULT_TRUNCATE_LENGTH = 128
     help='The interfaces to print, separated by "|": GOAL_SERVICE, CANCEL_SERVICE, '
     'RESULT_SERVICE, FEEDBACK_TOPIC, STATUS_TOPIC (default: all of them)',
 )
-@click.option(
-    '--csv',
-    is_flag=True,
-    help='Output all recursive fields separated by commas (e.g. for plotting)',
-)
-@click.option(
-    '-f',
-    '--full-length',
-    is_flag=True,
-    help='Output all elements of arrays, bytes and strings longer than --truncate-length',
-)
-@click.option(
-    '-l',
-    '--truncate-length',
-    type=click.IntRange(min=0),
-    default=DEFAULT_TRUNCATE_LENGTH,
-    show_default=True,
-    help='The length to truncate arrays, bytes, and strings to',
-)
-@click.option('--no-arr', is_flag=True, help="Don't print array fields of messages")
-@click.option('--no-str', is_flag=True, help="Don't print string fields of messages")
-@click.option(
-    '--flow-style',
-    is_flag=True,
-    help='Print collections in the flow style (not available with csv format)',
-)
+@format_options()
 def cli(
     action_name: str,
     action_type: str | None,
     interfaces: str | None,
-    csv: bool,
-    full_length: bool,
-    truncate_length: int,
-    no_arr: bool,
-    no_str: bool,
-    flow_style: bool,
+    fmt: MessageFormat,
     no_daemon: bool,
     use_sim_time: bool,
 ) -> None:
@@ -89,10 +65,7 @@ def cli(
             wanted.add(name.strip().upper())
     with connect(no_daemon=no_daemon, use_sim_time=use_sim_time) as conn:
         node = conn.node()
-        try:
-            full = node.resolve_topic_name(action_name)
-        except ValueError:
-            raise CliError(f"The action name '{action_name}' is invalid") from None
+        full = resolved_name(node, action_name, 'action')
         if action_type is not None:
             type_name = interface_type_name(
                 action_type, 'action', invalid=f"The service type '{action_type}' is invalid"
@@ -102,13 +75,6 @@ def cli(
             if not types:
                 raise CliError(f"Could not load the action type for '{action_name}'")
             type_name = types[0]
-        fmt: dict[str, Any] = {  # format_event's keywords
-            'csv': csv,
-            'flow_style': flow_style,
-            'truncate_length': None if full_length else truncate_length,
-            'no_arr': no_arr,
-            'no_str': no_str,
-        }
         for watched in action_interfaces(full, type_name):
             if watched.interface not in wanted:
                 continue
@@ -120,7 +86,7 @@ def cli(
                 t: str = watched.type_name,
             ) -> None:
                 text = format_event(deserialize(t, data), **fmt)
-                sys.stdout.write(f'interface: {name}\n{text}' + ('\n' if csv else '---\n'))
+                sys.stdout.write(f'interface: {name}\n{text}' + ('\n' if fmt['csv'] else '---\n'))
 
             node.create_subscription(watched.type_name, watched.topic, show, watched.qos, raw=True)
         conn.spin()

@@ -5,23 +5,15 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import print_names_of_type, strategy_options
+from ..common import count_option, print_names_of_type, strategy_options
+from ..lazy import include_hidden_option
 
 
 @click.command('find')
 @strategy_options()
 @click.argument('action_type', shell_complete=completion.action_types)
-@click.option(
-    '-c', '--count-actions', is_flag=True, help='Only display the number of actions discovered'
-)
-@click.option(
-    '--include-hidden-actions',
-    '-a',
-    '--all',
-    'include_hidden_actions',
-    is_flag=True,
-    help="Also match hidden actions (a name part starts with '_')",
-)
+@count_option('actions')
+@include_hidden_option('actions', 'match', all_alias=True)
 def cli(
     action_type: str,
     count_actions: bool,

@@ -4,23 +4,15 @@ from __future__ import annotations
 
 import click
 
-from ..common import connect, print_names, strategy_options
+from ..common import connect, count_option, print_names, strategy_options
+from ..lazy import include_hidden_option
 
 
 @click.command('list')
 @strategy_options()
 @click.option('-t', '--show-types', is_flag=True, help='Additionally show the action type')
-@click.option(
-    '-c', '--count-actions', is_flag=True, help='Only display the number of actions discovered'
-)
-@click.option(
-    '--include-hidden-actions',
-    '-a',
-    '--all',
-    'include_hidden_actions',
-    is_flag=True,
-    help="Also list hidden actions (a name part starts with '_')",
-)
+@count_option('actions')
+@include_hidden_option('actions', 'list', all_alias=True)
 def cli(
     show_types: bool,
     count_actions: bool,

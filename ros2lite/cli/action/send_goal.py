@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, TypeVar
 import click
 
 from .. import completion, numbers
-from ..common import connect, wait_saying_other_types
+from ..common import check_stdin, connect, values_argument, wait_saying_other_types
 from ..errors import CliError
 
 if TYPE_CHECKING:
@@ -76,8 +76,7 @@ class FeedbackPrinter:
 @click.command('send_goal')
 @click.argument('action_name', shell_complete=completion.actions)
 @click.argument('action_type', shell_complete=completion.action_types)
-@click.argument('goal', required=False)
-@click.option('--stdin', 'use_stdin', is_flag=True, help='Read the goal from standard input')
+@values_argument('goal', 'the goal')
 @click.option('-f', '--feedback', is_flag=True, help='Echo feedback messages for the goal')
 @click.option(
     '--timeout',
@@ -97,8 +96,7 @@ def cli(
 
     GOAL fills the goal message in YAML (e.g. '{order: 5}').
     """
-    if use_stdin and goal is not None:
-        raise click.UsageError('argument --stdin: not allowed with argument goal')
+    check_stdin(goal, use_stdin, 'goal')
     values = sys.stdin.read() if use_stdin else (goal if goal is not None else '{}')
     type_name, cls = action_class(action_type)
     goal_msg = build_goal(cls, values)
@@ -128,7 +126,8 @@ def send_goal(
     from ros2lite.interfaces import message_to_yaml
 
     try:
-        client = ActionClient(conn.node(), cls, action_name)
+        # a server that vanishes mid-goal is reported, not waited for forever
+        client = ActionClient(conn.node(), cls, action_name, fail_without_server=True)
     except ValueError as e:  # an invalid action name
         raise CliError(str(e)) from None
     from ros2lite.action.graph import get_action_names_and_types

@@ -16,7 +16,7 @@ import click
 
 from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
 
-from .options import bag_argument, bag_error, warn
+from .options import bag_argument, bag_error, existing_bag, warn
 
 if TYPE_CHECKING:
     from ros2lite.bag.reader import Reader
@@ -153,9 +153,7 @@ def cli(bag_path: str, storage: str | None, topic_name: bool, verbose: bool, sor
     from ros2lite.bag.errors import BagError
     from ros2lite.bag.reader import Reader
 
-    path = Path(bag_path)
-    if not path.exists():
-        raise bag_error(f"Bag path '{bag_path}' does not exist!")
+    path = existing_bag(bag_path)
     if topic_name and verbose:
         warn(
             "Warning! You have set both the '-t' and '-v' parameters. The '-t' parameter "

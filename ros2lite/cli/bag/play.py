@@ -8,19 +8,26 @@ from __future__ import annotations
 
 import sys
 import time
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 import click
 
-from .. import completion, numbers, render
 from .. import keyboard as keys_module
-from ..common import ManyValues, connect
-from .options import bag_argument, bag_error, check_patterns, qos_overrides, shared_options
+from .. import numbers, render
+from .options import (
+    bag_argument,
+    bag_error,
+    bag_names,
+    bag_player,
+    player_node_option,
+    read_ahead_option,
+    remap_option,
+    shared_options,
+    start_offset_option,
+    topics_option,
+)
 
 if TYPE_CHECKING:
-    from collections.abc import Iterable
-
     from ros2lite.bag.player import Player
     from ros2lite.logging import RcutilsLogger
     from ros2lite.node import Node
@@ -28,13 +35,7 @@ if TYPE_CHECKING:
 
 @click.command("play")
 @bag_argument
-@click.option(
-    "--read-ahead-queue-size",
-    type=numbers.Count(min=1, max=1_000_000),
-    default=1000,
-    show_default=True,
-    help="Messages read ahead of playback.",
-)
+@read_ahead_option("Messages read ahead of playback.")
 @click.option(
     "-r",
     "--rate",
@@ -43,16 +44,10 @@ if TYPE_CHECKING:
     show_default=True,
     help="Rate at which to play back messages.",
 )
-@click.option(
-    "--topics",
-    cls=ManyValues,
-    metavar="TOPIC...",
-    shell_complete=completion.topics,
-    help="Topics to play (default: all).",
-)
+@topics_option("Topics to play (default: all).")
 @shared_options("play", "recorded", "-p")
 @click.option("-l", "--loop", is_flag=True, help="Play the bag again and again.")
-@click.option("-m", "--remap", cls=ManyValues, metavar="OLD:=NEW...", help="Topic remappings.")
+@remap_option
 @click.option(
     "--clock",
     "clock_hz",
@@ -70,13 +65,8 @@ if TYPE_CHECKING:
     default=0.0,
     help="Seconds to wait before playing (again before each loop).",
 )
-@click.option(
-    "--start-offset",
-    type=numbers.seconds(),
-    default=0.0,
-    help="Start this many seconds into the bag.",
-)
-@click.option("--node-name", default="rosbag2_player", show_default=True, hidden=True)
+@start_offset_option
+@player_node_option
 def cli(
     bag_path: str,
     storage: str | None,
@@ -97,70 +87,33 @@ def cli(
     node_name: str,
 ) -> None:
     """Play back ROS data from a bag."""
-    from ros2lite.bag.errors import BagError
-    from ros2lite.bag.player import Player, PlayOptions
-    from ros2lite.bag.reader import Reader
+    from ros2lite.bag.player import PlayOptions
 
-    if not Path(bag_path).exists():
-        raise bag_error(f"Bag path '{bag_path}' does not exist!")
-    check_patterns(regex, exclude_regex)
-    remaps = {}
-    for rule in remap:
-        old, sep, new = rule.partition(":=")
-        if not sep or not old or not new:
-            raise bag_error(f"Remapping '{rule}' is not OLD:=NEW")
-        remaps[old] = new
-    overrides = qos_overrides(qos_profile_overrides_path)
-    try:
-        reader = Reader(bag_path, storage)
-    except BagError as e:
-        raise bag_error(str(e)) from None
-    from ros2lite.logging import get_logger
+    def options(node: Node) -> PlayOptions:
+        return PlayOptions(
+            rate=rate,
+            loop=loop,
+            topics=bag_names(node, topics) if topics else None,
+            exclude_topics=bag_names(node, exclude_topics),
+            regex=regex,
+            exclude_regex=exclude_regex,
+            start_offset=start_offset,
+            delay=delay,
+            clock_hz=clock_hz,
+            start_paused=start_paused,
+            read_ahead_queue_size=read_ahead_queue_size,
+        )
 
-    log = get_logger(node_name)
-    with reader, connect() as conn:
-        node = conn.node(node_name)
-        try:
-            names = _absolute(node, topics) if topics else None
-            options = PlayOptions(
-                rate=rate,
-                loop=loop,
-                topics=names,
-                exclude_topics=_absolute(node, exclude_topics),
-                regex=regex,
-                exclude_regex=exclude_regex,
-                remap={
-                    old: node.resolve_topic_name(new)
-                    for k, new in remaps.items()
-                    for old in _absolute(node, [k])
-                },
-                start_offset=start_offset,
-                delay=delay,
-                clock_hz=clock_hz,
-                start_paused=start_paused,
-                read_ahead_queue_size=read_ahead_queue_size,
-                qos_overrides=overrides,
-            )
-            player = Player(
-                node, reader, options, log=lambda m: log.info(m), warn=lambda m: log.warn(m)
-            )
-        except (BagError, ValueError) as e:
-            raise bag_error(str(e)) from None
+    with bag_player(
+        bag_path,
+        storage,
+        node_name,
+        remap,
+        qos_profile_overrides_path,
+        options,
+        patterns=(regex, exclude_regex),
+    ) as (player, log):
         _play(player, log, keyboard=not disable_keyboard_controls)
-
-
-def _absolute(node: Node, names: Iterable[str]) -> list[str]:
-    """Every form a given name may have in the bag: resolved (`/ns/x`) and, for relative
-    names, as written (rosbag2 test bags hold names such as 'AAA')."""
-    out = []
-    for n in names:
-        try:
-            out.append(node.resolve_topic_name(n))
-        except ValueError:
-            out.append(n)  # rosbag2 bags may hold names ROS would not accept (e.g. 'AAA')
-        if not n.startswith("/"):
-            out.append(n)
-    return out
 
 
 def _play(player: Player, log: RcutilsLogger, keyboard: bool) -> None:

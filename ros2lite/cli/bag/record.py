@@ -16,7 +16,15 @@ import click
 from .. import completion, numbers, render
 from .. import keyboard as keys_module
 from ..common import ManyValues, connect
-from .options import bag_error, check_patterns, qos_overrides, shared_options, warn
+from .options import (
+    bag_error,
+    check_patterns,
+    qos_overrides,
+    services_option,
+    shared_options,
+    topics_option,
+    warn,
+)
 
 if TYPE_CHECKING:
     from ros2lite.bag.recorder import Recorder, RecordOptions
@@ -33,21 +41,16 @@ SELECTION_ERROR = (
 @click.argument(
     "positional_topics", metavar="[TOPICS]...", nargs=-1, shell_complete=completion.topics
 )
-@click.option(
-    "--topics",
-    cls=ManyValues,
-    metavar="TOPIC...",
-    shell_complete=completion.topics,
-    help="List of topics to record.",
-)
-@click.option(
-    "--services",
-    cls=ManyValues,
-    metavar="SERVICE...",
-    help="List of services to record (their service-event topics).",
-)
+@topics_option("List of topics to record.")
+@services_option("List of services to record (their service-event topics).")
 @click.option(
     "--topic-types", cls=ManyValues, metavar="TYPE...", help="Record topics of these types."
+)
+@click.option(
+    "--exclude-topic-types",
+    cls=ManyValues,
+    metavar="TYPE...",
+    help="Do not record topics of these types.",
 )
 @shared_options("record", "offered")
 @click.option("-a", "--all", "all_", is_flag=True, help="Record all topics and services.")
@@ -151,6 +154,7 @@ def cli(
     topics: tuple[str, ...],
     services: tuple[str, ...],
     topic_types: tuple[str, ...],
+    exclude_topic_types: tuple[str, ...],
     all_: bool,
     all_topics: bool,
     all_services: bool,
@@ -211,6 +215,7 @@ def cli(
         exclude_regex=exclude_regex,
         exclude_topics=_absolute(list(exclude_topics) + excluded_events, node_name),
         topic_types=list(topic_types),
+        exclude_topic_types=list(exclude_topic_types),
         include_hidden_topics=include_hidden_topics,
         qos_overrides=qos_overrides(qos_profile_overrides_path),
         polling_interval=polling_interval / 1000,

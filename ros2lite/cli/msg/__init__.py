@@ -2,16 +2,9 @@
 
 from __future__ import annotations
 
+from ..deprecated_interfaces import verbs
 from ..lazy import command_group
 
-VERBS = {
-    'list': (__name__ + '.list', 'Output a list of available message types'),
-    'package': (
-        __name__ + '.package',
-        'Output a list of available message types within one package',
-    ),
-    'packages': (__name__ + '.packages', 'Output a list of packages which contain msgs'),
-    'show': (__name__ + '.show', 'Output the message definition'),
-}
+VERBS = verbs('msg')
 
-cli = command_group('msg', 'Various msg related sub-commands.', VERBS)
+cli = command_group(__name__, 'Various msg related sub-commands.', VERBS)

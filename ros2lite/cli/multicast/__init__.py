@@ -5,9 +5,9 @@ from __future__ import annotations
 from ..lazy import command_group
 
 VERBS = {
-    'receive': (__name__ + '.receive', 'Receive a single UDP multicast packet'),
-    'send': (__name__ + '.send', 'Send a single UDP multicast packet'),
+    'receive': 'Receive a single UDP multicast packet',
+    'send': 'Send a single UDP multicast packet',
 }
 
 
-cli = command_group('multicast', 'Various multicast related sub-commands.', VERBS)
+cli = command_group(__name__, 'Various multicast related sub-commands.', VERBS)

@@ -5,13 +5,13 @@ from __future__ import annotations
 from ..lazy import command_group
 
 VERBS = {
-    "delete": (__name__ + ".delete", "Delete parameter"),
-    "describe": (__name__ + ".describe", "Show descriptive information about declared parameters"),
-    "dump": (__name__ + ".dump", "Show all of the parameters of a node in a YAML file format"),
-    "get": (__name__ + ".get", "Get parameter"),
-    "list": (__name__ + ".list", "Output a list of available parameters"),
-    "load": (__name__ + ".load", "Load parameter file for a node"),
-    "set": (__name__ + ".set", "Set parameter"),
+    "delete": "Delete parameter",
+    "describe": "Show descriptive information about declared parameters",
+    "dump": "Show all of the parameters of a node in a YAML file format",
+    "get": "Get parameter",
+    "list": "Output a list of available parameters",
+    "load": "Load parameter file for a node",
+    "set": "Set parameter",
 }
 
-cli = command_group("param", "Various param related sub-commands.", VERBS)
+cli = command_group(__name__, "Various param related sub-commands.", VERBS)

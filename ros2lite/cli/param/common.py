@@ -105,7 +105,8 @@ class Remote:
         self.conn = conn
         self.fqn = fqn
         self.service_timeout = service_timeout
-        self.client = AsyncParameterClient(conn.node(), fqn)
+        # a node that vanishes mid-call is reported at once, not after the timeout
+        self.client = AsyncParameterClient(conn.node(), fqn, fail_without_server=True)
 
     def call(self, service: str, *args: object) -> Any:  # the response of `service`
         """Wait for `service`, call the client's method of that name with `args`, return the

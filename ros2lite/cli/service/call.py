@@ -14,15 +14,21 @@ if TYPE_CHECKING:
     from ros2lite.node import Node
 
 from .. import completion, numbers
-from ..common import connect, interface_type_name, wait_saying_other_types
+from ..common import (
+    check_stdin,
+    connect,
+    interface_type_name,
+    values_argument,
+    wait_saying_other_types,
+    yaml_fields,
+)
 from ..errors import CliError
 
 
 @click.command('call')
 @click.argument('service_name', shell_complete=completion.services)
 @click.argument('service_type', shell_complete=completion.service_types)
-@click.argument('values', required=False)
-@click.option('--stdin', 'use_stdin', is_flag=True, help='Read values from standard input')
+@values_argument()
 @click.option(
     '-r',
     '--rate',
@@ -52,8 +58,7 @@ def cli(
     """
     from ros2lite.interfaces import get_interface, set_message_fields
 
-    if use_stdin and values is not None:
-        raise click.UsageError('argument --stdin: not allowed with argument values')
+    check_stdin(values, use_stdin)
     if rate is not None and rate <= 0:
         raise CliError('rate must be greater than zero')
     type_name = interface_type_name(
@@ -63,7 +68,7 @@ def cli(
         not_kind='The passed type is not a service',
     )
     srv_class: type[ServiceType] = get_interface(type_name)
-    fields = _parse_values(sys.stdin.read() if use_stdin else values or '{}')
+    fields = yaml_fields(sys.stdin.read() if use_stdin else values or '{}', allow_empty=True)
     request = srv_class.Request()
     try:
         set_message_fields(request, fields)
@@ -72,7 +77,7 @@ def cli(
     package, _, name = type_name.split('/')
     with connect() as conn:
         node = conn.node(f'_ros2lite_requester_{package}_{name}')
-        client = node.create_client(srv_class, service_name)
+        client = node.create_client(srv_class, service_name, fail_without_server=True)
         _wait(client, timeout, node, type_name)
         period = None if rate is None else 1.0 / rate
         while True:
@@ -82,22 +87,6 @@ def cli(
             if period is None or not conn.context.ok():
                 return
             time.sleep(max(0.0, last_call + period - time.monotonic()))
-
-
-def _parse_values(values: str) -> dict[str, object]:  # field values, from YAML
-    from ros2lite.safe_yaml import YamlInputError, load
-
-    try:
-        parsed = load(values, 'the passed value')
-    except YamlInputError as e:
-        if not e.syntax:
-            raise CliError(str(e)) from None
-        raise CliError('The passed value needs to be in YAML string or a dictionary') from None
-    if parsed is None:
-        return {}
-    if not isinstance(parsed, dict):
-        raise CliError('The passed value needs to be a dictionary in YAML format')
-    return parsed
 
 
 def _wait(
@@ -121,10 +110,11 @@ def _call(client: Client[Message, Message], request: Message, timeout: float | N
     from ros2lite.client import ServiceCallError
 
     try:
-        return client.call(request, timeout_sec=timeout)
-    except TimeoutError:
-        raise CliError(
-            f"Timed out after {timeout:g} s waiting for a response from '{client.srv_name}'"
-        ) from None
+        response = client.call(request, timeout_sec=timeout)
     except ServiceCallError as e:
         raise CliError(f'Exception while calling service: {e!r}') from None
+    if response is None:
+        raise CliError(
+            f"Timed out after {timeout:g} s waiting for a response from '{client.srv_name}'"
+        )
+    return response

@@ -8,7 +8,15 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion
-from ..common import connect, interface_type_name, qos_from_options, qos_options, strategy_options
+from ..common import (
+    connect,
+    format_options,
+    interface_type_name,
+    qos_from_options,
+    qos_options,
+    resolved_name,
+    strategy_options,
+)
 from ..errors import CliError
 
 if TYPE_CHECKING:
@@ -16,9 +24,7 @@ if TYPE_CHECKING:
 
     from ros2lite.subscription import MessageInfo
 
-    from ..common import QosOptions
-
-DEFAULT_TRUNCATE_LENGTH = 128
+    from ..common import MessageFormat, QosOptions
 
 
 @click.command('echo')
@@ -26,41 +32,11 @@ DEFAULT_TRUNCATE_LENGTH = 128
 @click.argument('service_type', required=False, shell_complete=completion.service_types)
 @strategy_options()
 @qos_options('services_default')
-@click.option(
-    '--csv',
-    is_flag=True,
-    help='Output all recursive fields separated by commas (e.g. for plotting)',
-)
-@click.option(
-    '-f',
-    '--full-length',
-    is_flag=True,
-    help='Output all elements of arrays, bytes and strings longer than --truncate-length',
-)
-@click.option(
-    '-l',
-    '--truncate-length',
-    type=click.IntRange(min=0),
-    default=DEFAULT_TRUNCATE_LENGTH,
-    show_default=True,
-    help='The length to truncate arrays, bytes, and strings to',
-)
-@click.option('--no-arr', is_flag=True, help="Don't print array fields of messages")
-@click.option('--no-str', is_flag=True, help="Don't print string fields of messages")
-@click.option(
-    '--flow-style',
-    is_flag=True,
-    help='Print collections in the flow style (not available with csv format)',
-)
+@format_options()
 def cli(
     service_name: str,
     service_type: str | None,
-    csv: bool,
-    full_length: bool,
-    truncate_length: int,
-    no_arr: bool,
-    no_str: bool,
-    flow_style: bool,
+    fmt: MessageFormat,
     no_daemon: bool,
     use_sim_time: bool,
     **qos: Unpack[QosOptions],
@@ -77,10 +53,7 @@ def cli(
 
     with connect(no_daemon=no_daemon, use_sim_time=use_sim_time) as conn:
         node = conn.node()
-        try:
-            full = node.resolve_service_name(service_name)
-        except ValueError:
-            raise CliError(f"The service name '{service_name}' is invalid") from None
+        full = resolved_name(node, service_name, 'service')
         topic = event_topic(full)
         entities = conn.entities()
         if service_type is not None:
@@ -104,15 +77,8 @@ def cli(
             )
 
         def show(data: bytes, _info: MessageInfo) -> None:
-            text = format_event(
-                deserialize(event_type, data),
-                csv=csv,
-                flow_style=flow_style,
-                truncate_length=None if full_length else truncate_length,
-                no_arr=no_arr,
-                no_str=no_str,
-            )
-            sys.stdout.write(text + ('\n' if csv else '---\n'))
+            text = format_event(deserialize(event_type, data), **fmt)
+            sys.stdout.write(text + ('\n' if fmt['csv'] else '---\n'))
 
         node.create_subscription(event_type, topic, show, qos_from_options(**qos), raw=True)
         conn.spin()

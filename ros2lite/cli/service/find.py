@@ -5,17 +5,15 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import print_names_of_type, strategy_options
-from . import hidden_wanted
+from ..common import count_option, print_names_of_type, strategy_options
+from ..lazy import include_hidden, include_hidden_option
 
 
 @click.command('find')
 @strategy_options()
 @click.argument('service_type', shell_complete=completion.service_types)
-@click.option(
-    '-c', '--count-services', is_flag=True, help='Only display the number of services discovered'
-)
-@click.option('--include-hidden-services', is_flag=True, help='Consider hidden services as well')
+@count_option('services')
+@include_hidden_option('services')
 @click.pass_context
 def cli(
     ctx: click.Context,
@@ -33,6 +31,6 @@ def cli(
         count_services,
         no_daemon,
         lambda entities: service_names_and_types(
-            entities, hidden_wanted(ctx, include_hidden_services)
+            entities, include_hidden(ctx, 'services', include_hidden_services)
         ),
     )

@@ -4,17 +4,15 @@ from __future__ import annotations
 
 import click
 
-from ..common import connect, print_names, strategy_options
-from . import hidden_wanted
+from ..common import connect, count_option, print_names, strategy_options
+from ..lazy import include_hidden, include_hidden_option
 
 
 @click.command('list')
 @strategy_options()
 @click.option('-t', '--show-types', is_flag=True, help='Additionally show the service type')
-@click.option(
-    '-c', '--count-services', is_flag=True, help='Only display the number of services discovered'
-)
-@click.option('--include-hidden-services', is_flag=True, help='Consider hidden services as well')
+@count_option('services')
+@include_hidden_option('services')
 @click.pass_context
 def cli(
     ctx: click.Context,
@@ -29,5 +27,7 @@ def cli(
 
     with connect(no_daemon=no_daemon) as conn:
         entities = conn.entities()
-    services = service_names_and_types(entities, hidden_wanted(ctx, include_hidden_services))
+    services = service_names_and_types(
+        entities, include_hidden(ctx, 'services', include_hidden_services)
+    )
     print_names(services, count_services, show_types)

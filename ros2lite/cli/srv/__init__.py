@@ -2,16 +2,9 @@
 
 from __future__ import annotations
 
+from ..deprecated_interfaces import verbs
 from ..lazy import command_group
 
-VERBS = {
-    'list': (__name__ + '.list', 'Output a list of available service types'),
-    'package': (
-        __name__ + '.package',
-        'Output a list of available service types within one package',
-    ),
-    'packages': (__name__ + '.packages', 'Output a list of packages which contain srvs'),
-    'show': (__name__ + '.show', 'Output the service definition'),
-}
+VERBS = verbs('srv')
 
-cli = command_group('srv', 'Various srv related sub-commands.', VERBS)
+cli = command_group(__name__, 'Various srv related sub-commands.', VERBS)

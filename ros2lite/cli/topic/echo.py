@@ -9,7 +9,15 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion, numbers
-from ..common import connect, explicit_qos, qos_from_options, qos_options, strategy_options
+from ..common import (
+    CSV_HELP,
+    connect,
+    explicit_qos,
+    format_options,
+    qos_from_options,
+    qos_options,
+    strategy_options,
+)
 from ..errors import CliError
 from .common import compile_filter, graph_type, message_type_name, monitor
 
@@ -22,9 +30,8 @@ if TYPE_CHECKING:
     from ros2lite.qos import QoSProfile
     from ros2lite.subscription import MessageInfo
 
-    from ..common import QosOptions
+    from ..common import MessageFormat, QosOptions
 
-DEFAULT_TRUNCATE_LENGTH = 128
 PRUNE_PERIOD = 5.0  # seconds between prunings of the lost-message table
 CLEAR_SCREEN = '\x1b[H\x1b[2J'
 
@@ -161,38 +168,16 @@ def info_dict(info: MessageInfo) -> dict[str, int]:
 @click.argument('message_type', required=False, shell_complete=completion.message_types)
 @strategy_options()
 @qos_options('sensor_data')
-@click.option(
-    '--csv',
-    is_flag=True,
-    help='Output all recursive fields separated by commas (e.g. for plotting). With '
-    '--include-message-info the source_timestamp, received_timestamp, '
-    'publication_sequence_number and reception_sequence_number come first.',
-)
-@click.option(
-    '--field',
-    help="Echo a selected field of a message; use '.' to select "
-    "sub-fields (e.g. 'pose.pose.position')",
-)
-@click.option(
-    '-f',
-    '--full-length',
-    is_flag=True,
-    help='Output all elements of arrays, bytes and strings longer than --truncate-length',
-)
-@click.option(
-    '-l',
-    '--truncate-length',
-    type=numbers.Count(min=0),
-    default=DEFAULT_TRUNCATE_LENGTH,
-    show_default=True,
-    help='The length to truncate arrays, bytes, and strings to',
-)
-@click.option('--no-arr', is_flag=True, help="Don't print array fields of messages")
-@click.option('--no-str', is_flag=True, help="Don't print string fields of messages")
-@click.option(
-    '--flow-style',
-    is_flag=True,
-    help='Print collections in the flow style (not available with csv format)',
+@format_options(
+    csv_help=f'{CSV_HELP}. With --include-message-info the source_timestamp, '
+    'received_timestamp, publication_sequence_number and reception_sequence_number come first.',
+    after_csv=[
+        click.option(
+            '--field',
+            help="Echo a selected field of a message; use '.' to select "
+            "sub-fields (e.g. 'pose.pose.position')",
+        )
+    ],
 )
 @click.option('--no-lost-messages', is_flag=True, help="Don't report when a message is lost")
 @click.option('--raw', is_flag=True, help='Echo the raw binary representation')
@@ -218,13 +203,8 @@ def info_dict(info: MessageInfo) -> dict[str, int]:
 def cli(
     topic_name: str,
     message_type: str | None,
-    csv: bool,
+    fmt: MessageFormat,
     field: str | None,
-    full_length: bool,
-    truncate_length: int,
-    no_arr: bool,
-    no_str: bool,
-    flow_style: bool,
     no_lost_messages: bool,
     raw: bool,
     filter_expr: str | None,
@@ -262,12 +242,7 @@ def cli(
             lost = LostMessageCounter()
         printer = Printer(
             type_name=type_name,
-            csv=csv,
             field=fields,
-            truncate_length=None if full_length else truncate_length,
-            no_arr=no_arr,
-            no_str=no_str,
-            flow_style=flow_style,
             raw=raw,
             filter_fn=filter_fn,
             once=once,
@@ -276,6 +251,7 @@ def cli(
             lost=lost,
             warn=watch.node.get_logger().warn,
             topic=watch.topic,
+            **fmt,
         )
         if lost is not None:
             counter = lost

@@ -5,18 +5,15 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import include_hidden, print_names_of_type, strategy_options
+from ..common import print_names_of_type, strategy_options
+from ..lazy import include_hidden, include_hidden_option
 
 
 @click.command('find')
 @strategy_options()
 @click.argument('topic_type', shell_complete=completion.message_types)
 @click.option('-c', '--count-topics', is_flag=True, help='Print only how many topics match')
-@click.option(
-    '--include-hidden-topics',
-    is_flag=True,
-    help="Also match hidden topics (a name part starts with '_')",
-)
+@include_hidden_option('topics', 'match')
 @click.pass_context
 def cli(
     ctx: click.Context,
@@ -34,6 +31,6 @@ def cli(
         count_topics,
         no_daemon,
         lambda entities: topic_names_and_types(
-            entities, include_hidden(ctx, include_hidden_topics)
+            entities, include_hidden(ctx, 'topics', include_hidden_topics)
         ),
     )

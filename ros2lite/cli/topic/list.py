@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import click
 
-from ..common import connect, include_hidden, print_names, strategy_options
+from ..common import connect, print_names, strategy_options
+from ..lazy import include_hidden, include_hidden_option
 
 
 def _section(rows: list[tuple[str, list[str], int]], publishers: bool) -> str:
@@ -30,14 +31,7 @@ def _section(rows: list[tuple[str, list[str], int]], publishers: bool) -> str:
     is_flag=True,
     help='Print only how many topics there are',
 )
-@click.option(
-    '--include-hidden-topics',
-    '-a',
-    '--all',
-    'include_hidden_topics',
-    is_flag=True,
-    help="Also list hidden topics (a name part starts with '_')",
-)
+@include_hidden_option('topics', 'list', all_alias=True)
 @click.option('-v', '--verbose', is_flag=True, help='Count publishers and subscribers per topic')
 @click.pass_context
 def cli(
@@ -54,7 +48,7 @@ def cli(
 
     with connect(no_daemon=no_daemon) as conn:
         entities = conn.entities()
-    topics = topic_names_and_types(entities, include_hidden(ctx, include_hidden_topics))
+    topics = topic_names_and_types(entities, include_hidden(ctx, 'topics', include_hidden_topics))
     if verbose and topics and not count_topics:
         counts = topic_counts(entities)
         pubs = [(name, types, counts[name][0]) for name, types in topics]

@@ -9,7 +9,15 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion, numbers
-from ..common import connect, qos_from_options, qos_options, strategy_options
+from ..common import (
+    check_stdin,
+    connect,
+    qos_from_options,
+    qos_options,
+    strategy_options,
+    values_argument,
+    yaml_fields,
+)
 from ..errors import CliError
 from .common import message_type_name
 
@@ -27,8 +35,7 @@ WAIT_STEP = 0.1  # seconds between subscription-count checks while waiting
 @click.command('pub')
 @click.argument('topic_name', shell_complete=completion.topics)
 @click.argument('message_type', shell_complete=completion.message_types)
-@click.argument('values', required=False)
-@click.option('--stdin', 'use_stdin', is_flag=True, help='Read values from standard input')
+@values_argument()
 @click.option(
     '-r',
     '--rate',
@@ -101,8 +108,7 @@ def cli(
     VALUES fills the message in YAML (e.g. 'data: Hello World'); 'now' sets a time field and
     'header: auto' a header to the current time on every publish.
     """
-    if use_stdin and values is not None:
-        raise click.UsageError('argument --stdin: not allowed with argument values')
+    check_stdin(values, use_stdin)
     if once and times:
         raise click.UsageError('argument -t/--times: not allowed with argument -1/--once')
     if use_stdin:
@@ -130,20 +136,6 @@ def cli(
         )
 
 
-def parse_values(values: str) -> dict[str, object]:
-    from ros2lite.safe_yaml import YamlInputError, load
-
-    try:
-        parsed = load(values, 'the passed value')
-    except YamlInputError as e:
-        if not e.syntax:
-            raise CliError(str(e)) from None
-        raise CliError('The passed value needs to be in YAML string or a dictionary') from None
-    if not isinstance(parsed, dict):
-        raise CliError('The passed value needs to be a dictionary in YAML format')
-    return parsed
-
-
 def publish_loop(
     conn: Connection,
     topic: str,
@@ -161,7 +153,7 @@ def publish_loop(
     from ros2lite.interfaces import get_interface, set_message_fields
 
     type_name = message_type_name(message_type)
-    fields = parse_values(values)
+    fields = yaml_fields(values)
     node = conn.node()
     pub = node.create_publisher(type_name, topic, profile)
     if wait_for == 0 and max_wait is not None:

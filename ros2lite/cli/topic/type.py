@@ -5,7 +5,8 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import include_hidden, print_types_of, strategy_options
+from ..common import print_types_of, strategy_options
+from ..lazy import include_hidden
 
 
 @click.command('type')
@@ -20,5 +21,5 @@ def cli(ctx: click.Context, topic_name: str, no_daemon: bool, use_sim_time: bool
         ctx,
         topic_name,
         no_daemon,
-        lambda entities: topic_names_and_types(entities, include_hidden(ctx)),
+        lambda entities: topic_names_and_types(entities, include_hidden(ctx, 'topics')),
     )

@@ -2,9 +2,15 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import ros2lite
 from ros2lite.demos.runner import run_main
 from ros2lite.msgs.example_interfaces.srv import AddTwoInts
+
+if TYPE_CHECKING:
+    from ros2lite.node import Node
+    from ros2lite.task import Future
 
 
 def request_once(a: int, b: int) -> None:
@@ -16,6 +22,14 @@ def request_once(a: int, b: int) -> None:
         node.get_logger().info('service not available, waiting again...')
     future = client.call_async(request)
     ros2lite.spin_until_future_complete(node, future)
+    log_result(node, request, future)
+    node.destroy_node()
+
+
+def log_result(
+    node: Node, request: AddTwoInts.Request, future: Future[AddTwoInts.Response]
+) -> None:
+    """Log the answer to `request`, or why there is none (both add_two_ints clients)."""
     try:
         result = future.result()
     except Exception as e:
@@ -25,7 +39,6 @@ def request_once(a: int, b: int) -> None:
             node.get_logger().info(
                 f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}'
             )
-    node.destroy_node()
 
 
 def main(args: list[str] | None = None) -> int:

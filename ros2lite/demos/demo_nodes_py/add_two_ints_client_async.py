@@ -4,6 +4,7 @@ spinning the node itself until the future is done."""
 from __future__ import annotations
 
 import ros2lite
+from ros2lite.demos.demo_nodes_py.add_two_ints_client import log_result
 from ros2lite.demos.runner import run_main
 from ros2lite.msgs.example_interfaces.srv import AddTwoInts
 
@@ -19,15 +20,7 @@ def request_async() -> None:
     while ros2lite.ok():
         ros2lite.spin_once(node)
         if future.done():
-            try:
-                result = future.result()
-            except Exception as e:
-                node.get_logger().info(f'Service call failed {e!r}')
-            else:  # None only if the call was cancelled, which nothing here does
-                if result is not None:
-                    node.get_logger().info(
-                        f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}'
-                    )
+            log_result(node, request, future)
             break
     node.destroy_node()
 

@@ -8,10 +8,11 @@ from ros2lite.node import Node
 
 
 class AddTwoIntsServer(Node):
-    """demo_nodes_py's server of `add_two_ints`."""
+    """demo_nodes_py's server of `add_two_ints` (`name`: the node's; introspection_service
+    serves it too)."""
 
-    def __init__(self) -> None:
-        super().__init__('add_two_ints_server')
+    def __init__(self, name: str = 'add_two_ints_server') -> None:
+        super().__init__(name)
         self.srv = self.create_service(AddTwoInts, 'add_two_ints', self.add_two_ints_callback)
 
     def add_two_ints_callback(

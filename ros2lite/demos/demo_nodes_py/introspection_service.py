@@ -7,8 +7,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from ros2lite.demos.demo_nodes_py.add_two_ints_server import AddTwoIntsServer
 from ros2lite.demos.runner import run_node
-from ros2lite.msgs.example_interfaces.srv import AddTwoInts
 from ros2lite.node import Node
 from ros2lite.parameter import Parameter
 from ros2lite.qos import qos_profile_system_default
@@ -56,21 +56,12 @@ def follow_parameter(
     node.declare_parameter(name, 'disabled')
 
 
-class IntrospectionServiceNode(Node):
+class IntrospectionServiceNode(AddTwoIntsServer):
     """Adds two integers; reports its requests and responses as its parameter says."""
 
     def __init__(self) -> None:
         super().__init__('introspection_service')
-        self.srv = self.create_service(AddTwoInts, 'add_two_ints', self.add_two_ints_callback)
         follow_parameter(self, 'service_configure_introspection', self.srv.configure_introspection)
-
-    def add_two_ints_callback(
-        self, request: AddTwoInts.Request, response: AddTwoInts.Response
-    ) -> AddTwoInts.Response:
-        """Answer a + b, and log the request."""
-        response.sum = request.a + request.b
-        self.get_logger().info(f'Incoming request\na: {request.a} b: {request.b}')
-        return response
 
 
 def main(args: list[str] | None = None) -> int:

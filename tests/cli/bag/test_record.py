@@ -315,10 +315,14 @@ def test_topic_types_hidden_topics_and_qos_overrides(
     typed = node.create_publisher(Int32, f"{topic}/typed", KEEP_ALL)
     hidden = node.create_publisher(String, f"{topic}/_hidden", KEEP_ALL)
     other = node.create_publisher(String, f"{topic}/other", KEEP_ALL)
+    Bool = get_interface("std_msgs/msg/Bool")
+    excluded = node.create_publisher(Bool, f"{topic}/_flag", KEEP_ALL)  # matches -e
     rec = recording(
         tmp_path / "bag",
         "--topic-types",
         "std_msgs/msg/Int32",
+        "--exclude-topic-types",
+        "std_msgs/msg/Bool",
         "-e",
         f"^{topic}/_",
         "--include-hidden-topics",
@@ -330,20 +334,25 @@ def test_topic_types_hidden_topics_and_qos_overrides(
     from ros2lite.graph import snapshot
     from ros2lite.qos import ReliabilityPolicy
 
-    # a peer's liveliness query can miss a token of another peer (the recorder is one now)
-    subs = wait_until(
-        lambda: [
+    def overridden() -> bool:
+        # a snapshot is one liveliness query, and a peer's query can miss a token of another
+        # peer (the recorder is one): ask again rather than trust a single one
+        subs = [
             e
             for e in snapshot(ros_context.session, ros_context.domain_id)
             if e.kind.value == "MS" and e.topic_name == f"{topic}/typed"
-        ],
-        timeout=20,
-    )
-    assert subs[0].qos.reliability == ReliabilityPolicy.BEST_EFFORT and subs[0].qos.depth == 7
+        ]
+        return bool(subs) and all(
+            s.qos.reliability == ReliabilityPolicy.BEST_EFFORT and s.qos.depth == 7 for s in subs
+        )
+
+    wait_until(overridden, timeout=20)
     for i in range(5):
         typed.publish(Int32(data=i))
     publish_all(hidden, 5)
     publish_all(other, 5)
+    for _ in range(5):
+        excluded.publish(Bool(data=True))
     time.sleep(0.5)
     code, _out, err = rec.finish()
     assert code == 0, err

@@ -78,7 +78,7 @@ def test_node_known_only_from_an_endpoint_token(run: Run, graph: TokenGraph) -> 
         '/chatter',
         STRING,
         'RIHS01_' + '0' * 64,
-        QoSProfile(),
+        QoSProfile(depth=10),
     )
     graph.declare(key)
     result = settle(run, 'node', 'list', until=lambda out: '/ghost\n' in out)

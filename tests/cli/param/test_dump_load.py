@@ -31,6 +31,7 @@ DUMP = """/cli/param_target:
       deep:
         value: 3
     ratio: 1.5
+    start_type_description_service: true
     use_sim_time: false
 
 """
@@ -52,8 +53,13 @@ def test_round_trip(run: Callable[..., Result], fresh_target: str, tmp_path: Pat
     result = run("param", "load", node, str(saved))
     assert result.code == 0
     assert "Set parameter count successful\n" in result.out
-    # read-only and unchanged-type failures are reported, the rest goes through
-    assert result.err == "Set parameter fixed failed: Trying to set a read-only parameter: fixed.\n"
+    # read-only and unchanged-type failures are reported, the rest goes through (the node's
+    # own read-only start_type_description_service too, as with rclpy nodes)
+    assert result.err == (
+        "Set parameter fixed failed: Trying to set a read-only parameter: fixed.\n"
+        "Set parameter start_type_description_service failed: Trying to set a read-only "
+        "parameter: start_type_description_service.\n"
+    )
     assert run("param", "dump", node).out == saved.read_text().replace("/cli/param_target", node)
     # a string that looks like a number stays a string through dump and load
     run("param", "set", node, "name", "'5'")

@@ -18,6 +18,7 @@ NAMES = [
     "names",
     "nested.deep.value",
     "ratio",
+    "start_type_description_service",
     "use_sim_time",
 ]
 

@@ -38,7 +38,7 @@ def test_unknown_is_exit_1_with_one_line_on_stderr(run: Run, graph: TokenGraph) 
     settle(run, 'topic', 'type', '/mixed', until=bool)
     for name, why in (
         ('/nope', "Unknown topic '/nope' (not in the graph now)"),
-        ('bad name', "invalid topic name 'bad name': character(s) ' ' not allowed"),
+        ('bad name', "topic name 'bad name' is invalid: must not contain characters other"),
         ('/robot1', "Unknown topic '/robot1' (not in the graph now)"),
     ):
         result = run('topic', 'type', name)

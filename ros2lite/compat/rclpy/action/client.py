@@ -1,0 +1,5 @@
+"""rclpy.action.client."""
+
+from ros2lite.action.client import ActionClient, ClientGoalHandle
+
+__all__ = ['ActionClient', 'ClientGoalHandle']

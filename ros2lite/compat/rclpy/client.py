@@ -1,0 +1,5 @@
+"""rclpy.client."""
+
+from ros2lite.client import Client
+
+__all__ = ['Client']

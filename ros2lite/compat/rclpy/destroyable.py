@@ -1,0 +1,5 @@
+"""rclpy.destroyable."""
+
+from ros2lite.destroyable import DestroyableType
+
+__all__ = ['DestroyableType']

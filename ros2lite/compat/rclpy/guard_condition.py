@@ -1,0 +1,5 @@
+"""rclpy.guard_condition."""
+
+from ros2lite.executable import GuardCondition
+
+__all__ = ['GuardCondition']

@@ -1,0 +1,5 @@
+"""rclpy.impl.logging_severity."""
+
+from ros2lite.logging import LoggingSeverity
+
+__all__ = ['LoggingSeverity']

@@ -1,0 +1,5 @@
+"""rclpy.logging_service."""
+
+from ros2lite.logging_service import LoggingService
+
+__all__ = ['LoggingService']

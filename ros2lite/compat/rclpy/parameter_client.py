@@ -1,0 +1,5 @@
+"""rclpy.parameter_client."""
+
+from ros2lite.parameter_client import AsyncParameterClient
+
+__all__ = ['AsyncParameterClient']

@@ -1,0 +1,5 @@
+"""rclpy.parameter_service."""
+
+from ros2lite.parameters.services import ParameterService
+
+__all__ = ['ParameterService']

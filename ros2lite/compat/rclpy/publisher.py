@@ -1,0 +1,5 @@
+"""rclpy.publisher."""
+
+from ros2lite.publisher import Publisher
+
+__all__ = ['Publisher']

@@ -1,0 +1,5 @@
+"""rclpy.service."""
+
+from ros2lite.service import Service
+
+__all__ = ['Service']

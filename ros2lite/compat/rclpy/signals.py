@@ -1,0 +1,15 @@
+"""rclpy.signals."""
+
+from ros2lite.context import (
+    SignalHandlerOptions,
+    get_current_signal_handlers_options,
+    install_signal_handlers,
+    uninstall_signal_handlers,
+)
+
+__all__ = [
+    'SignalHandlerOptions',
+    'get_current_signal_handlers_options',
+    'install_signal_handlers',
+    'uninstall_signal_handlers',
+]

@@ -1,0 +1,5 @@
+"""rclpy.subscription."""
+
+from ros2lite.subscription import MessageInfo, Subscription
+
+__all__ = ['MessageInfo', 'Subscription']

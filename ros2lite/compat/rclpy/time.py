@@ -1,0 +1,5 @@
+"""rclpy.time."""
+
+from ros2lite.time import Time
+
+__all__ = ['Time']

@@ -1,0 +1,88 @@
+"""What makes a ROS shell (`ros2lite.env`): the compat directory first on PYTHONPATH, said
+once however often it is applied, and shell lines that survive any path."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from ros2lite.env import COMPAT_DIR, UnknownShellError, ros_environment, shell_lines
+
+
+def test_compat_directory_goes_first_and_only_once() -> None:
+    first = ros_environment({'PYTHONPATH': f'/a{os.pathsep}/b'})
+    parts = first['PYTHONPATH'].split(os.pathsep)
+    assert parts == [str(COMPAT_DIR), '/a', '/b']
+    again = ros_environment({**first})
+    assert again['PYTHONPATH'] == first['PYTHONPATH']
+    assert (COMPAT_DIR / 'rclpy' / '__init__.py').is_file()
+    assert (COMPAT_DIR / 'sitecustomize.py').is_file()
+
+
+def test_field_checks_default_to_jazzys_unless_the_shell_chose() -> None:
+    assert ros_environment({})['ROS_PYTHON_CHECK_FIELDS'] == '0'
+    assert 'ROS_PYTHON_CHECK_FIELDS' not in ros_environment({'ROS_PYTHON_CHECK_FIELDS': '1'})
+
+
+@pytest.mark.parametrize('shell', ['bash', 'fish'])
+def test_lines_survive_awkward_paths(shell: str, tmp_path: Path) -> None:
+    """A PYTHONPATH entry with spaces, quotes and `$` comes back byte for byte."""
+    if shell == 'fish' and not _have('fish'):
+        pytest.skip('fish is not installed')
+    odd = str(tmp_path / "it's a $HOME \\ dir")
+    lines = shell_lines(shell, {'PYTHONPATH': odd})
+    if shell == 'bash':
+        script = f'{lines}\nprintf %s "$PYTHONPATH"'
+        cmd = ['bash', '-c', script]
+    else:
+        script = f'{lines}\nprintf %s "$PYTHONPATH"'
+        cmd = ['fish', '-c', script]
+    out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
+    assert out.split(os.pathsep) == [str(COMPAT_DIR), odd]
+
+
+def test_unknown_shell_is_one_clear_error() -> None:
+    with pytest.raises(UnknownShellError, match='bash, zsh, fish'):
+        shell_lines('tcsh')
+
+
+def test_another_interpreter_of_the_same_version_finds_ros2lite() -> None:
+    """`python3` of the system (ros2lite lives in a venv) still gets rclpy: sitecustomize
+    adds where `ros2lite env` said ros2lite is."""
+    system = '/usr/bin/python3'
+    probe = (
+        subprocess.run(
+            [system, '-c', 'import sys; print(*sys.version_info[:2], sep=".")'],
+            capture_output=True,
+            text=True,
+        )
+        if Path(system).exists()
+        else None
+    )
+    mine = f'{sys.version_info[0]}.{sys.version_info[1]}'
+    if (
+        probe is None
+        or probe.stdout.strip() != mine
+        or Path(sys.executable).resolve() == Path(system).resolve()
+    ):
+        pytest.skip(f'no other Python {mine} on this machine')
+    env = {k: v for k, v in os.environ.items() if k != 'PYTHONPATH'}
+    env.update(ros_environment(env))
+    out = subprocess.run(
+        [system, '-c', 'import rclpy, std_msgs.msg; print(std_msgs.msg.String(data="ok").data)'],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=60,
+    )
+    assert (out.returncode, out.stdout) == (0, 'ok\n'), out.stderr
+
+
+def _have(program: str) -> bool:
+    import shutil
+
+    return shutil.which(program) is not None
