@@ -36,11 +36,25 @@ __all__ = ['Connection', 'wait_for_name']
 HIDDEN_NODE_PREFIX = '_ros2lite_'
 
 
-class _ToolNode(Node):
-    """A tool's node: it reports what it sees its own way, not with rclpy's QoS event
-    warnings, and answers graph questions from snapshots, not from a graph cache."""
+_tool_node_class: type[Node] | None = None
 
-    _default_event_callbacks = False
+
+def _tool_node_type() -> type[Node]:
+    """The class of a tool's node, made on first use (importing this module loads no node
+    code: `topic list` only asks the graph)."""
+    global _tool_node_class
+    if _tool_node_class is None:
+        from ros2lite.node import Node
+
+        class _ToolNode(Node):
+            """A tool's node: it reports what it sees its own way, not with rclpy's QoS
+            event warnings, and answers graph questions from snapshots, not from a graph
+            cache."""
+
+            _default_event_callbacks = False
+
+        _tool_node_class = _ToolNode
+    return _tool_node_class
 
 
 class Connection:
@@ -114,10 +128,9 @@ class Connection:
         """The hidden node this run uses for its publishers, subscriptions and clients
         (made on first use; `name` only counts then)."""
         if self._node is None:
-            from ros2lite.node import Node
             from ros2lite.parameter import Parameter
 
-            self._node = _ToolNode(
+            self._node = _tool_node_type()(
                 name or f'{HIDDEN_NODE_PREFIX}{os.getpid()}',
                 context=self.context,
                 enable_rosout=False,

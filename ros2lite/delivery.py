@@ -19,9 +19,12 @@ from ros2lite.bad_samples import gid_of
 from ros2lite.transport.pull import payloads
 
 if TYPE_CHECKING:
+    from ros2lite.subscription import MessageInfo
+
+if TYPE_CHECKING:
     from ros2lite.transport.pull import PulledSamples
 
-__all__ = ['BATCH', 'BATCH_TIME', 'deliver']
+__all__ = ['BATCH', 'BATCH_TIME', 'deliver', 'deliver_with_info']
 
 # longest run of callbacks of one subscription in one executor turn: count and seconds
 BATCH = 512
@@ -36,6 +39,10 @@ class _Target(Protocol):
 
     def _bad_sample(self, data: bytes, gid: bytes, error: Exception) -> None:
         """Drop and report a sample that does not decode."""
+        ...
+
+    def _info(self, attachment: bytes, received: int) -> MessageInfo:
+        """The MessageInfo of a sample."""
         ...
 
 
@@ -98,3 +105,40 @@ def deliver(
         if not sub._destroyed:
             source.put_back(batch[i:])  # stopped early: the rest waits for the next turn
         return
+
+
+def deliver_with_info(
+    sub: _Target,
+    source: PulledSamples,
+    decode: Callable[[bytes], Any],
+    limit: int,
+    stop: Callable[[], bool] | None,
+    deadline: float,
+) -> None:
+    """`callback(msg, MessageInfo)` for up to `limit` samples: the slower loop, the info
+    stamped with the time each sample is taken (as rclpy's take does). Stops early as
+    `deliver` does (`deadline` 0 for single deliveries: never checked then)."""
+    batch = source.take(limit)
+    callback = sub.callback
+    perf_counter = time.perf_counter
+    for i, sample in enumerate(batch):
+        if sub._destroyed:
+            return
+        if i & 7 == 7 and perf_counter() > deadline:
+            source.put_back(batch[i:])
+            return
+        data = sample.payload.to_bytes()
+        attachment = sample.attachment.to_bytes()  # type: ignore[union-attr]  # take() checked
+        try:
+            message = decode(data)
+        except ValueError as e:  # a CdrError: dropped and reported
+            sub._bad_sample(data, gid_of(attachment), e)
+            continue
+        try:
+            callback(message, sub._info(attachment, time.time_ns()))
+        except BaseException:
+            source.put_back(batch[i + 1 :])
+            raise
+        if stop is not None and stop():
+            source.put_back(batch[i + 1 :])
+            return

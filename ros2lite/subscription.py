@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Generic, cast
 
 from ros2lite.bad_samples import BadSamples, gid_of
-from ros2lite.delivery import deliver
+from ros2lite.delivery import deliver, deliver_with_info
 from ros2lite.endpoint import Endpoint, EndpointOwner
 from ros2lite.executable import Executable
 from ros2lite.qos import HistoryPolicy, QoSProfile
@@ -206,6 +206,9 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
             except ValueError as e:  # a CdrError (imported lazily: tools stay light)
                 self._bad_sample(data, info.publisher_gid, e)  # dropped: take the next one
 
+    def _info(self, attachment: bytes, received: int) -> MessageInfo:
+        return _info(attachment, received)
+
     def _take_typed(self, source: PulledSamples) -> tuple[MsgT, MessageInfo] | None:
         while True:
             taken = source.take(1)
@@ -295,6 +298,11 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         """Raw bytes and/or MessageInfo: the slower loop (raw samples carry their arrival
         time; typed ones are stamped when taken). A typed sample that does not decode is
         dropped and reported, as in the hot loop."""
+        if self._source is not None:  # typed, pulled from Zenoh (ros2lite.delivery)
+            deliver_with_info(
+                self, self._source, self._deserialize or self._deserializer(), limit, stop, deadline
+            )
+            return
         popleft, perf_counter = self._buffer.popleft, time.perf_counter
         callback: Callable[..., object] = self.callback
         des = None if self.raw else (self._deserialize or self._deserializer())
