@@ -22,6 +22,7 @@ if TYPE_CHECKING:
     from ros2lite.subscription import MessageInfo
 
 if TYPE_CHECKING:
+    from ros2lite.transport.handles import Sample
     from ros2lite.transport.pull import PulledSamples
 
 __all__ = ['BATCH', 'BATCH_TIME', 'deliver', 'deliver_with_info']
@@ -56,7 +57,20 @@ def deliver(
     """Deliver up to `limit` samples of `source` to `sub.callback`, decoded by `decode`;
     stop early when `stop()` holds, the subscription is destroyed, or (for batches) after
     BATCH_TIME, so slow callbacks can't starve timers."""
-    batch = source.take(limit)
+    batch = source.take(limit, rearm_later=True)
+    try:
+        _deliver(sub, source, batch, decode, stop)
+    finally:
+        source.rearm()
+
+
+def _deliver(
+    sub: _Target,
+    source: PulledSamples,
+    batch: list[Sample],
+    decode: Callable[[bytes], Any],
+    stop: Callable[[], bool] | None,
+) -> None:
     if len(batch) == 1:  # spin_once: one message, without the batch machinery
         sample = batch[0]
         data = sample.payload.to_bytes()
@@ -118,7 +132,21 @@ def deliver_with_info(
     """`callback(msg, MessageInfo)` for up to `limit` samples: the slower loop, the info
     stamped with the time each sample is taken (as rclpy's take does). Stops early as
     `deliver` does (`deadline` 0 for single deliveries: never checked then)."""
-    batch = source.take(limit)
+    batch = source.take(limit, rearm_later=True)
+    try:
+        _deliver_with_info(sub, source, batch, decode, stop, deadline)
+    finally:
+        source.rearm()
+
+
+def _deliver_with_info(
+    sub: _Target,
+    source: PulledSamples,
+    batch: list[Sample],
+    decode: Callable[[bytes], Any],
+    stop: Callable[[], bool] | None,
+    deadline: float,
+) -> None:
     callback = sub.callback
     perf_counter = time.perf_counter
     for i, sample in enumerate(batch):

@@ -85,6 +85,7 @@ class PulledSamples:
         self._pending: deque[Sample] = deque(maxlen=self._depth)
         self._armed = True  # the doorbell owns the channel (the consumer found it empty)
         self._rearm = threading.Event()
+        self._rearm_later = False
         self._on_ready = on_ready
         self._closed = False
         self._thread = threading.Thread(
@@ -115,7 +116,8 @@ class PulledSamples:
     def _pull(self, limit: int) -> None:
         """Consumer thread, while it owns the channel: move up to what `limit` needs into
         `pending` (KEEP_LAST: all of it, so the ring's newest `depth` survive); when the
-        channel runs dry, hand it back to the doorbell."""
+        channel runs dry, hand it back to the doorbell (woken now, or by `rearm()` when the
+        consumer said it would call that after delivering)."""
         pending = self._pending
         # KEEP_ALL: a chunk at a time, so one-by-one consumers (spin_once) pull rarely
         want = max(limit, _CHUNK) - len(pending) if self._depth is None else self._depth + limit
@@ -128,13 +130,23 @@ class PulledSamples:
             extra = None
         if extra is None:
             self._armed = True
-            self._rearm.set()
+            if not self._rearm_later:
+                self._rearm.set()
         else:
             pending.append(extra)
 
-    def take(self, limit: int) -> list[Sample]:
+    def rearm(self) -> None:
+        """Consumer thread, after delivering what `take(…, rearm_later=True)` gave: wake the
+        doorbell if the channel ran dry. Waking it only now keeps it from taking the GIL in
+        the middle of a callback (which costs a delivery its latency)."""
+        self._rearm_later = False
+        if self._armed and not self._rearm.is_set():
+            self._rearm.set()
+
+    def take(self, limit: int, *, rearm_later: bool = False) -> list[Sample]:
         """Consumer thread: up to `limit` samples, oldest first (fewer, or none, when fewer
-        wait)."""
+        wait). With `rearm_later` the caller must call `rearm()` once it has delivered them."""
+        self._rearm_later = rearm_later
         pending = self._pending
         # `_armed` is read before `pending` (see _doorbell); KEEP_LAST always drains the
         # ring first, so that what is handed out is the newest `depth`
