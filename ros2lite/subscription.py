@@ -129,9 +129,10 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self.raw = raw
         self._async = inspect.iscoroutinefunction(callback)
         keep_all = ep.qos.history == HistoryPolicy.KEEP_ALL
-        # zenoh samples as they came: `sample` for typed subscriptions, `(sample, arrival ns)`
-        # for raw ones (tools like `topic hz` need arrival times). Bytes are copied out on the
-        # executor thread, keeping the pump thread's share of the GIL small.
+        # zenoh samples as a pump thread moved them: `(sample, arrival ns)` for raw ones
+        # (tools like `topic hz` need arrival times), `sample` for typed ones fed by a
+        # subclass hook; other typed subscriptions pull from Zenoh on the executor thread
+        # (`_source` below). Bytes are copied out on the executor thread.
         self._buffer: deque[Any] = deque(maxlen=None if keep_all else max(ep.qos.depth, 1))
         self._deserialize: Callable[[bytes], MsgT] | None = None
         self._destroyed = False

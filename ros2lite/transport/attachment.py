@@ -18,6 +18,7 @@ __all__ = [
     "ATTACHMENT_SIZE",
     "GID_SIZE",
     "LEGACY_ATTACHMENT_SIZE",
+    "PACK_CURRENT",
     "Attachment",
     "decode_attachment",
     "encode_attachment",
@@ -76,6 +77,11 @@ def encode_attachment(sequence_number: int, source_timestamp: int | None, gid: b
 def pack_attachment(sequence_number: int, source_timestamp: int, gid: bytes) -> bytes:
     """The hot-path encoder (publish, request, reply): no checks, one struct call."""
     return _PACKED.pack(sequence_number, source_timestamp, GID_SIZE, gid)
+
+
+PACK_CURRENT = _PACKED.pack
+"""`PACK_CURRENT(seq, timestamp, GID_SIZE, gid)`: pack_attachment without its Python call
+(a publisher calls it per message)."""
 
 
 def unpack_attachment(data: bytes) -> tuple[int, int, bytes] | None:
