@@ -51,7 +51,7 @@ from typing import Any
 
 from common import report, wall
 
-RUNS = 3
+RUNS = int(os.environ.get("BENCH_RUNS", 3))  # interleaved runs (median)
 VERBOSE = bool(os.environ.get("BENCH_BAG_VERBOSE"))
 
 PUBLISHER = r"""
