@@ -16,6 +16,7 @@ reads a batch through C-level iterators (:func:`payloads`): no Python loop per s
 
 from __future__ import annotations
 
+import contextlib
 import threading
 from collections import deque
 from collections.abc import Callable, Iterator
@@ -84,7 +85,11 @@ class PulledSamples:
         # samples taken from the channel and not yet handed out, oldest first
         self._pending: deque[Sample] = deque(maxlen=self._depth)
         self._armed = True  # the doorbell owns the channel (the consumer found it empty)
-        self._rearm = threading.Event()
+        # the doorbell waits on this lock (held) for the consumer to hand the channel back;
+        # a bare lock, because threading.Event runs Python code on both sides of every wake
+        self._rearm = threading.Lock()
+        self._rearm.acquire()
+        self._owed = False  # the consumer has taken the channel back and not released it yet
         self._rearm_later = False
         self._on_ready = on_ready
         self._closed = False
@@ -108,8 +113,7 @@ class PulledSamples:
             pending.append(sample)
             self._armed = False  # after the append: a consumer seeing this sees the sample
             self._on_ready()
-            rearm.wait()
-            rearm.clear()
+            rearm.acquire()  # until the consumer has emptied the channel (GIL released)
             if self._closed:
                 return
 
@@ -130,8 +134,9 @@ class PulledSamples:
             extra = None
         if extra is None:
             self._armed = True
+            self._owed = True
             if not self._rearm_later:
-                self._rearm.set()
+                self.rearm()
         else:
             pending.append(extra)
 
@@ -140,8 +145,9 @@ class PulledSamples:
         doorbell if the channel ran dry. Waking it only now keeps it from taking the GIL in
         the middle of a callback (which costs a delivery its latency)."""
         self._rearm_later = False
-        if self._armed and not self._rearm.is_set():
-            self._rearm.set()
+        if self._owed:
+            self._owed = False
+            self._rearm.release()
 
     def take(self, limit: int, *, rearm_later: bool = False) -> list[Sample]:
         """Consumer thread: up to `limit` samples, oldest first (fewer, or none, when fewer
@@ -184,7 +190,8 @@ class PulledSamples:
         """Stop receiving; the doorbell thread ends."""
         self._closed = True
         undeclare_quietly(self._sub)  # closes the channel: a doorbell in recv() returns
-        self._rearm.set()  # a doorbell waiting for the consumer returns
+        with contextlib.suppress(RuntimeError):  # (not held: the doorbell is in recv())
+            self._rearm.release()  # a doorbell waiting for the consumer returns
         if self._thread is not threading.current_thread():
             # a thread still inside zenoh when the interpreter finalises aborts the process
             self._thread.join(timeout=1.0)
