@@ -15,7 +15,7 @@ import signal
 import subprocess
 import sys
 import threading
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from types import FrameType
 
 from ros2lite.exceptions import Ros2liteError
@@ -111,9 +111,9 @@ def terminal_signals_child() -> bool:
         os.close(fd)
 
 
-def run_child(cmd: Sequence[str]) -> int:
-    """Start `cmd`, forward SIGINT/SIGTERM to it (see the module doc), return its returncode
-    (negative: killed by that signal).
+def run_child(cmd: Sequence[str], env: Mapping[str, str] | None = None) -> int:
+    """Start `cmd` (in `env`, default ours), forward SIGINT/SIGTERM to it (see the module
+    doc), return its returncode (negative: killed by that signal).
 
     Signals are taken by handlers installed before the child starts, not as
     KeyboardInterrupt: a Ctrl-C landing between the child's start and our wait would
@@ -142,7 +142,7 @@ def run_child(cmd: Sequence[str]) -> int:
     with _handlers({signal.SIGINT: forward_int, signal.SIGTERM: forward_term}):
         try:
             try:
-                proc = subprocess.Popen(list(cmd))
+                proc = subprocess.Popen(list(cmd), env=None if env is None else dict(env))
             except OSError as e:
                 raise ChildError(f'{cmd[0]}: {e.strerror or e}') from None
             # signals that came while the child was starting (it may already run and be

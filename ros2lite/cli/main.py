@@ -22,6 +22,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     'interface': ('ros2lite.cli.interface', 'Show information about ROS interfaces'),
     'node': ('ros2lite.cli.node', 'Various node related sub-commands'),
     'param': ('ros2lite.cli.param', 'Various param related sub-commands'),
+    'pkg': ('ros2lite.cli.pkg', 'Various package related sub-commands'),
     'run': ('ros2lite.cli.run', 'Run a package specific executable'),
     'service': ('ros2lite.cli.service', 'Various service related sub-commands'),
     'topic': ('ros2lite.cli.topic', 'Various topic related sub-commands'),

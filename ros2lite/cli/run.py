@@ -2,7 +2,9 @@
 
 The executable runs as a child process with everything after its name passed through, so
 `--ros-args -r chatter:=/x` reaches the node untouched; we wait for it and exit with its
-status. Signal forwarding is the library's (:func:`ros2lite.process.run_child`).
+status. Finding it is the package index's (:func:`ros2lite.pkg.executables.resolve_executable`,
+source workspaces included); signal forwarding is the library's
+(:func:`ros2lite.process.run_child`).
 """
 
 from __future__ import annotations
@@ -13,7 +15,6 @@ import signal
 import click
 
 from . import completion
-from .errors import CliError
 
 
 @click.command(
@@ -35,16 +36,21 @@ from .errors import CliError
 @click.argument('argv', nargs=-1, type=click.UNPROCESSED)
 def cli(prefix: str | None, package_name: str, executable_name: str, argv: tuple[str, ...]) -> None:
     """Run a package specific executable."""
-    from ros2lite.pkg.executables import find_executable
+    from ros2lite.pkg.environment import child_environment
+    from ros2lite.pkg.executables import resolve_executable
+    from ros2lite.pkg.index import PackageIndex
     from ros2lite.process import exit_code, run_child
 
-    exe = find_executable(package_name, executable_name)  # unknown package: its own error
-    if exe is None:
-        raise CliError('No executable found')
+    index = PackageIndex()
+    resolved = resolve_executable(package_name, executable_name, index=index)
+    if resolved.note:
+        click.echo(f'[ros2run]: {resolved.note}', err=True)
+    exe = resolved.executable
     cmd = exe.command(list(argv))
     if prefix is not None:
         cmd = shlex.split(prefix) + cmd
-    code = run_child(cmd)
+    env = child_environment(pythonpath=exe.pythonpath, workspaces=index.workspaces())
+    code = run_child(cmd, env)
     if code < 0:
         signum = -code
         name = signal.strsignal(signum) or f'signal {signum}'
