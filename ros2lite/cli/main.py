@@ -20,6 +20,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     'bag': ('ros2lite.cli.bag', 'Various rosbag related sub-commands'),
     'daemon': ('ros2lite.cli.daemon', 'Various daemon related sub-commands'),
     'interface': ('ros2lite.cli.interface', 'Show information about ROS interfaces'),
+    'launch': ('ros2lite.cli.launch', 'Run a launch file'),
     'node': ('ros2lite.cli.node', 'Various node related sub-commands'),
     'param': ('ros2lite.cli.param', 'Various param related sub-commands'),
     'pkg': ('ros2lite.cli.pkg', 'Various package related sub-commands'),
