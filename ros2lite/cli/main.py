@@ -19,6 +19,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     'action': ('ros2lite.cli.action', 'Various action related sub-commands'),
     'bag': ('ros2lite.cli.bag', 'Various rosbag related sub-commands'),
     'daemon': ('ros2lite.cli.daemon', 'Various daemon related sub-commands'),
+    'doctor': ('ros2lite.cli.doctor', 'Check ROS setup and other potential issues'),
     'interface': ('ros2lite.cli.interface', 'Show information about ROS interfaces'),
     'launch': ('ros2lite.cli.launch', 'Run a launch file'),
     'node': ('ros2lite.cli.node', 'Various node related sub-commands'),
@@ -27,6 +28,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     'run': ('ros2lite.cli.run', 'Run a package specific executable'),
     'service': ('ros2lite.cli.service', 'Various service related sub-commands'),
     'topic': ('ros2lite.cli.topic', 'Various topic related sub-commands'),
+    'wtf': ('ros2lite.cli.doctor', 'Use `wtf` as alias to `doctor`'),
 }
 
 # set by the shell's completion hook (see cli/completion.py)
