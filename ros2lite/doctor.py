@@ -2,7 +2,8 @@
 
 Six checks, each a *category* (what ``Failed modules:`` names):
 
-- ``platform`` — the Python version ros2lite needs, an operating system it is tested on;
+- ``platform`` — an operating system ros2lite is tested on, and a `python3` on PATH that
+  can import ros2lite;
 - ``network`` — a Zenoh router answers at the endpoint every session uses;
 - ``middleware`` — ``ROS_DOMAIN_ID``, the ``ZENOH_*`` variables and ``RMW_IMPLEMENTATION``
   make a valid session configuration that talks to rmw_zenoh nodes;
@@ -154,18 +155,37 @@ class Diagnosis:
 
         topics: dict[str, list[Entity]] = {}
         for e in self.graph() or []:
-            if e.kind in (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION) and e.topic_name:
-                if not is_hidden_name(e.topic_name):
-                    topics.setdefault(e.topic_name, []).append(e)
+            endpoint = e.kind in (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION)
+            if endpoint and e.topic_name and not is_hidden_name(e.topic_name):
+                topics.setdefault(e.topic_name, []).append(e)
         return dict(sorted(topics.items()))
 
     # -- checks ----------------------------------------------------------------------------------
     def check_platform(self) -> CheckResult:
+        import shutil
+
         result = CheckResult('platform')
-        if sys.version_info < (3, 10):
-            result.error(f'Python {platform.python_version()} is too old: ros2lite needs 3.10+')
         if platform.system() not in ('Linux', 'Darwin'):
             result.warn(f'{platform.system()} is not a platform ros2lite is tested on')
+        python3 = shutil.which('python3', path=self.env.get('PATH'))
+        if python3 is not None and os.path.realpath(python3) != os.path.realpath(sys.executable):
+            import subprocess
+
+            try:
+                found = (
+                    subprocess.run(
+                        [python3, '-c', 'import ros2lite'], capture_output=True, timeout=10
+                    ).returncode
+                    == 0
+                )
+            except (OSError, subprocess.SubprocessError):
+                found = False
+            if not found:
+                result.warn(
+                    f'python3 on PATH ({python3}) cannot import ros2lite, which runs in '
+                    f'{sys.executable}: scripts started as `python3 script.py` will not find '
+                    'it (use `ros2lite run`, or that interpreter)'
+                )
         return result
 
     def check_network(self) -> CheckResult:
