@@ -29,6 +29,8 @@ class Context:
         self.domain_id = 0
         self.zid = ''
         self.router: str | None = None
+        # the enclave named by `--ros-args --enclave` ('/' if none), announced in every token
+        self.enclave = '/'
         self.args = RosArgs()
         self.argv: list[str] = []
         # executors of this context, woken when it shuts down or is told to terminate
@@ -67,6 +69,11 @@ class Context:
         self.terminating = False
         self.argv = list(sys.argv if args is None else args)
         self.args = parse_ros_args(self.argv)
+        if self.args.enclave is not None:
+            from ros2lite.security.environment import use_enclave
+
+            use_enclave(self.args.enclave)  # the security material this process loads
+        self.enclave = self.args.enclave or '/'
         self.domain_id = env_domain_id() if domain_id is None else domain_id
         self.router = router
         self.session = connect(router, tool=short_lived, autostart=autostart)

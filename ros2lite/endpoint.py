@@ -81,6 +81,7 @@ class Endpoint:
             self.type_name,
             self.type_hash,
             self.qos,
+            ctx.enclave,
         )
         self._token: Any = None
 

@@ -82,7 +82,12 @@ class Node(ParameterMixin):
         self._token: Any = declare_token(
             self.context.session,
             keys.node_token(
-                self.context.domain_id, self.context.zid, self.node_id, self._namespace, self._name
+                self.context.domain_id,
+                self.context.zid,
+                self.node_id,
+                self._namespace,
+                self._name,
+                self.context.enclave,
             ),
         )
         self._clock = Clock(ClockType.ROS_TIME)

@@ -122,23 +122,13 @@ class ActionClient(Executable):
         group = self.callback_group
         impl = self._action_type.Impl
         names = self._names
-        self._goal_client = node.create_client(
-            impl.SendGoalService,
-            names.send_goal,
-            qos_profile=goal_service_qos_profile,
-            callback_group=group,
-        )
-        self._cancel_client = node.create_client(
-            impl.CancelGoalService,
-            names.cancel_goal,
-            qos_profile=cancel_service_qos_profile,
-            callback_group=group,
-        )
-        self._result_client = node.create_client(
-            impl.GetResultService,
-            names.get_result,
-            qos_profile=result_service_qos_profile,
-            callback_group=group,
+        self._goal_client, self._cancel_client, self._result_client = (
+            node.create_client(srv_type, name, qos_profile=qos, callback_group=group)
+            for srv_type, name, qos in (
+                (impl.SendGoalService, names.send_goal, goal_service_qos_profile),
+                (impl.CancelGoalService, names.cancel_goal, cancel_service_qos_profile),
+                (impl.GetResultService, names.get_result, result_service_qos_profile),
+            )
         )
         self._feedback_sub = node.create_subscription(
             impl.FeedbackMessage,

@@ -197,29 +197,30 @@ class ActionServer(Executable):
         impl = self._action_type.Impl
         names = self._names
         # rcl_action's order: the three services, then feedback and status publishers
-        self._goal_service = node.create_service(
-            impl.SendGoalService,
-            names.send_goal,
-            self._execute_goal_request,
-            qos_profile=goal_service_qos_profile,
-            callback_group=group,
-            deferred=True,
-        )
-        self._cancel_service = node.create_service(
-            impl.CancelGoalService,
-            names.cancel_goal,
-            self._execute_cancel_request,
-            qos_profile=cancel_service_qos_profile,
-            callback_group=group,
-            deferred=True,
-        )
-        self._result_service = node.create_service(
-            impl.GetResultService,
-            names.get_result,
-            self._on_result_request,
-            qos_profile=result_service_qos_profile,
-            callback_group=group,
-            deferred=True,
+        self._goal_service, self._cancel_service, self._result_service = (
+            node.create_service(
+                srv_type, name, handler, qos_profile=qos, callback_group=group, deferred=True
+            )
+            for srv_type, name, handler, qos in (
+                (
+                    impl.SendGoalService,
+                    names.send_goal,
+                    self._execute_goal_request,
+                    goal_service_qos_profile,
+                ),
+                (
+                    impl.CancelGoalService,
+                    names.cancel_goal,
+                    self._execute_cancel_request,
+                    cancel_service_qos_profile,
+                ),
+                (
+                    impl.GetResultService,
+                    names.get_result,
+                    self._on_result_request,
+                    result_service_qos_profile,
+                ),
+            )
         )
         self._feedback_pub = node.create_publisher(
             impl.FeedbackMessage, names.feedback, feedback_pub_qos_profile

@@ -203,6 +203,15 @@ def interface_type_name(name: str, kind: str, *, invalid: str, not_kind: str | N
     return full
 
 
+def print_names(names_and_types: list[tuple[str, list[str]]], count: bool, types: bool) -> None:
+    """What the list and find verbs print: how many there are, or one name a line (with
+    `[type, …]` when asked)."""
+    if count:
+        click.echo(len(names_and_types))
+    elif names_and_types:
+        click.echo('\n'.join(f'{n} [{", ".join(t)}]' if types else n for n, t in names_and_types))
+
+
 def print_names_of_type(
     type_name: str,
     count: bool,
@@ -213,11 +222,11 @@ def print_names_of_type(
     among their types, one a line, or only how many (`count`)."""
     with connect(no_daemon=no_daemon) as conn:
         entities = conn.entities()
-    found = [name for name, types in names_and_types(entities) if type_name in types]
-    if count:
-        click.echo(len(found))
-    elif found:
-        click.echo('\n'.join(found))
+    print_names(
+        [(name, types) for name, types in names_and_types(entities) if type_name in types],
+        count,
+        types=False,
+    )
 
 
 def print_types_of(
@@ -240,3 +249,29 @@ def print_types_of(
     if types is None:
         ctx.exit(1)
     click.echo('\n'.join(types))
+
+
+class ManyValues(click.Option):
+    '''An option that takes every following word up to the next option, as argparse's
+    `nargs='+'` does (`--topics /a /b -o out`). It may also be repeated.'''
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault('multiple', True)
+        super().__init__(*args, **kwargs)
+
+    def add_to_parser(self, parser: Any, ctx: click.Context) -> None:
+        super().add_to_parser(parser, ctx)
+        for name in self.opts:
+            opt = parser._long_opt.get(name) or parser._short_opt.get(name)
+            if opt is None:
+                continue
+            previous = opt.process
+
+            def process(value: Any, state: Any, previous: Any = previous) -> None:
+                values = [value]
+                while state.rargs and not state.rargs[0].startswith('-'):
+                    values.append(state.rargs.pop(0))
+                for v in values:
+                    previous(v, state)
+
+            opt.process = process

@@ -26,6 +26,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     'param': ('ros2lite.cli.param', 'Various param related sub-commands'),
     'pkg': ('ros2lite.cli.pkg', 'Various package related sub-commands'),
     'run': ('ros2lite.cli.run', 'Run a package specific executable'),
+    'security': ('ros2lite.cli.security', 'Various security related sub-commands'),
     'service': ('ros2lite.cli.service', 'Various service related sub-commands'),
     'topic': ('ros2lite.cli.topic', 'Various topic related sub-commands'),
     'wtf': ('ros2lite.cli.doctor', 'Use `wtf` as alias to `doctor`'),

@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING, Any
 
 from ros2lite.daemon.probe import router_answers, wait_answers
 from ros2lite.exceptions import Ros2liteError
+from ros2lite.security.errors import SecurityError
 from ros2lite.transport.config import domain_id, open_session, router_config, router_endpoint
 from ros2lite.transport.errors import SessionError
 
@@ -326,7 +327,7 @@ def connected_sessions(
 
     try:
         session = open_session(router_endpoint(router), mode="client", timeout=timeout)
-    except SessionError:
+    except (SessionError, SecurityError):  # e.g. no enclave of our own on a secured graph
         return None
     try:
         return router_sessions(session, domain_id(), timeout)
@@ -510,16 +511,6 @@ def stop(router: str | None = None, *, timeout: float = STOP_TIMEOUT) -> StopRes
 
 
 def ensure_running(router: str | None = None, *, timeout: float = START_TIMEOUT) -> StartResult:
-    """For CLI verbs: make sure a router answers, starting our daemon if none does."""
-    endpoint = router_endpoint(router)
-    if router_answers(endpoint):
-        info = _read_info(pid_file(endpoint))
-        return StartResult(
-            endpoint,
-            False,
-            True,
-            info is not None,
-            info.pid if info else None,
-            info.log_file if info else None,
-        )
-    return start(endpoint, timeout=timeout)
+    """Make sure a router answers, starting our daemon if none does (what `start` does when
+    something already answers: it says so and starts nothing)."""
+    return start(router, timeout=timeout)

@@ -11,6 +11,8 @@ import os
 import sys
 from typing import Any, TextIO
 
+from ros2lite.exceptions import Ros2liteError
+
 CHOICES = ('auto', 'window', 'terminal', 'none')
 
 
@@ -50,8 +52,24 @@ def choose(requested: str) -> list[str]:
     return order
 
 
-class DisplayError(ValueError):
+class DisplayError(Ros2liteError, ValueError):
     """A display that was asked for cannot be opened (one line for the user)."""
+
+
+def open_window(class_name: str, title: str) -> Any:
+    """A new top-level tkinter window, or DisplayError saying why none can open here."""
+    try:
+        import tkinter
+    except ImportError:
+        raise DisplayError('cannot open a window: tkinter is not installed') from None
+    if not window_possible():
+        raise DisplayError('cannot open a window: no display (DISPLAY is not set)')
+    try:
+        root = tkinter.Tk(className=class_name)
+    except tkinter.TclError as e:
+        raise DisplayError(f'cannot open a window: {e}') from None
+    root.title(title)
+    return root
 
 
 def add_display_argument(parser: Any) -> None:

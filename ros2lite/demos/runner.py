@@ -2,8 +2,8 @@
 
 Demos are run by `ros2lite run` and by hand, where Ctrl-C (or SIGTERM from a supervisor) is
 the normal way out, so either ends with status 0 and no traceback (as the rclpy demos do).
-Start-up errors a user can fix — no router, bad `--ros-args`, an invalid remapped name —
-become one line on stderr and status 1.
+Start-up errors a user can fix — no router, missing security material, bad `--ros-args`, an
+invalid remapped name — become one line on stderr and status 1.
 """
 
 from __future__ import annotations

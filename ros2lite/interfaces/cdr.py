@@ -19,21 +19,8 @@ from .parser import Field, FieldType, MessageDef
 from .registry import Registry
 
 HEADER_LE = b'\x00\x01\x00\x00'
-_FMT = {
-    'bool': '?',
-    'byte': 'c',
-    'char': 'B',
-    'int8': 'b',
-    'uint8': 'B',
-    'int16': 'h',
-    'uint16': 'H',
-    'int32': 'i',
-    'uint32': 'I',
-    'int64': 'q',
-    'uint64': 'Q',
-    'float32': 'f',
-    'float64': 'd',
-}
+# struct formats of the primitives: the array typecodes, plus bool and byte
+_FMT = {**TYPECODES, 'bool': '?', 'byte': 'c'}
 _SIZE = {k: struct.calcsize('<' + v) for k, v in _FMT.items()}
 _DUMMY = Field('structure_needs_at_least_one_member', FieldType('uint8'))
 _ZEROS = tuple(b'\x00' * i for i in range(8))

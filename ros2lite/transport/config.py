@@ -38,6 +38,7 @@ from ros2lite.transport.errors import ConfigError, RouterUnavailableError, Sessi
 
 __all__ = [
     "DEFAULT_ROUTER",
+    "DEFAULT_SECURE_ROUTER",
     "ROUTER_ENV",
     "ConfigError",
     "RouterUnavailableError",
@@ -65,6 +66,8 @@ __all__ = [
 SessionMode = Literal["peer", "client"]
 
 DEFAULT_ROUTER = "tcp/127.0.0.1:7447"
+# where the router listens when security is on (same port, TLS with mutual authentication)
+DEFAULT_SECURE_ROUTER = "tls/127.0.0.1:7447"
 ROUTER_ENV = "ROS2LITE_ROUTER"
 SESSION_CONFIG_ENV = "ZENOH_SESSION_CONFIG_URI"
 ROUTER_CONFIG_ENV = "ZENOH_ROUTER_CONFIG_URI"
@@ -94,9 +97,19 @@ def zerror_message(exc: BaseException) -> str:
     return (m.group(1) if m else text).rstrip(". ")
 
 
+def default_router(env: Mapping[str, str] | None = None) -> str:
+    """The endpoint used when none is named: TLS when this process runs secured (see
+    :mod:`ros2lite.security.environment`), plain TCP otherwise."""
+    from ros2lite.security.environment import enforced, resolve, security_enabled
+
+    if security_enabled(env) and (enforced(env) or resolve(env) is not None):
+        return DEFAULT_SECURE_ROUTER
+    return DEFAULT_ROUTER
+
+
 def router_endpoint(router: str | None = None, env: Mapping[str, str] | None = None) -> str:
     """The router endpoint: explicit argument, else ``$ROS2LITE_ROUTER``, else the default."""
-    value = router or _env(env).get(ROUTER_ENV) or DEFAULT_ROUTER
+    value = router or _env(env).get(ROUTER_ENV) or default_router(env)
     value = value.strip()
     if "/" not in value or not value.split("/", 1)[1]:
         raise ConfigError(
@@ -288,10 +301,51 @@ def session_config(
             _insert(config, key, value, "built-in session config")
     if endpoint:
         _insert(config, "connect/endpoints", _endpoints_json([endpoint]), ROUTER_ENV)
+    secured = _secure_session(config, env)
     apply_config_override(config, env=env)
     if router:
         _insert(config, "connect/endpoints", _endpoints_json([router_endpoint(router)]), "router")
+    if secured:
+        _require_tls(config, "connect/endpoints", env)
     return config
+
+
+def _secure_session(config: zenoh.Config, env: Mapping[str, str] | None) -> bool:
+    """With security on: this process's enclave certificate on every TLS link, and client
+    mode, so all traffic crosses the router that enforces the permissions (a peer-to-peer
+    link would bypass it).  Enforce without material raises; Permissive says so once."""
+    from ros2lite.security.environment import resolve
+
+    identity = resolve(env)
+    if identity is None:
+        return False
+    from ros2lite.transport.security import apply_tls
+
+    apply_tls(config, identity)
+    _insert(config, "mode", '"client"', "security")
+    return True
+
+
+def _require_tls(config: zenoh.Config, key: str, env: Mapping[str, str] | None) -> None:
+    """Under Enforce, a link that is not TLS is refused in one line."""
+    from ros2lite.security.environment import STRATEGY_ENV, enforced
+    from ros2lite.security.errors import SecurityError
+    from ros2lite.transport.security import is_tls_endpoint
+
+    if not enforced(env):
+        return
+    try:
+        value = json.loads(config.get_json(key))
+    except (zenoh.ZError, ValueError, TypeError):
+        return
+    if isinstance(value, dict):
+        value = [e for endpoints in value.values() for e in endpoints or []]
+    for endpoint in value or []:
+        if not is_tls_endpoint(str(endpoint)):
+            raise SecurityError(
+                f"SECURITY ERROR: {STRATEGY_ENV}=Enforce refuses the unencrypted endpoint "
+                f"{endpoint}; use a tls/ endpoint (e.g. {DEFAULT_SECURE_ROUTER})"
+            )
 
 
 def router_config(
@@ -338,7 +392,29 @@ def router_config(
         _insert(config, "listen/endpoints", _endpoints_json(listen), "listen endpoints")
     if connect:
         _insert(config, "connect/endpoints", _endpoints_json(connect), "connect endpoints")
+    _secure_router(config, env)
     return config
+
+
+def _secure_router(config: zenoh.Config, env: Mapping[str, str] | None) -> None:
+    """With security on: the router's own enclave on its TLS links, and access control made
+    from every enclave's permissions in the keystore (default deny)."""
+    from ros2lite.security.environment import router_identity
+
+    identity = router_identity(env)
+    if identity is None:
+        return
+    from ros2lite.logging import get_logger
+    from ros2lite.security.access import router_access
+    from ros2lite.transport.security import apply_access_control, apply_tls
+
+    apply_tls(config, identity)
+    access = router_access(identity.keystore)
+    for line in access.warnings:
+        get_logger("ros2lite.security").warn(line)
+    apply_access_control(config, access)
+    _require_tls(config, "listen/endpoints", env)
+    _require_tls(config, "connect/endpoints", env)
 
 
 def _configured_endpoint(config: zenoh.Config, fallback: str) -> str:
@@ -386,6 +462,11 @@ def open_session(
     except zenoh.ZError as exc:
         detail = zerror_message(exc)
         if "connect" in detail.lower():
+            if _handshake_refused(endpoint):
+                raise SessionError(
+                    f"the router at {endpoint} refused the TLS handshake (is this enclave's "
+                    "certificate from the router's keystore?)"
+                ) from None
             raise RouterUnavailableError(endpoint, detail) from None
         raise SessionError(f"cannot open a Zenoh session: {detail}") from None
     if not require_router:
@@ -394,6 +475,23 @@ def open_session(
         session.close()
         raise RouterUnavailableError(endpoint, "session opened but no router is connected")
     return session
+
+
+def _handshake_refused(endpoint: str) -> bool:
+    """A TLS endpoint where something accepts TCP connections, yet no session opened."""
+    import socket
+
+    from ros2lite.transport.security import is_tls_endpoint
+
+    parsed = endpoint_host_port(endpoint)
+    if not is_tls_endpoint(endpoint) or parsed is None:
+        return False
+    host = {"0.0.0.0": "127.0.0.1", "::": "::1"}.get(parsed[1], parsed[1])
+    try:
+        with socket.create_connection((host, parsed[2]), timeout=0.5):
+            return True
+    except OSError:
+        return False
 
 
 def session_endpoint(router: str | None = None, env: Mapping[str, str] | None = None) -> str:

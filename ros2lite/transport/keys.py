@@ -249,18 +249,9 @@ def parse_token(key: str, *, strict: bool = False) -> Entity | None:
         _fail(strict, key, "empty chunk")
         return None
     enclave, namespace, node_name = (demangle(p) for p in parts[6:9])
+    who = (domain_id, parts[2], nid, eid, kind, enclave, namespace, node_name)
     if kind is EntityKind.NODE:
-        return Entity(
-            domain_id,
-            parts[2],
-            nid,
-            eid,
-            kind,
-            enclave,
-            namespace,
-            node_name,
-            extra=tuple(parts[9:]),
-        )
+        return Entity(*who, extra=tuple(parts[9:]))
     if len(parts) < 13 or any(not p for p in parts[9:12]):
         _fail(strict, key, "endpoint tokens need topic, type, hash and QoS chunks")
         return None
@@ -273,14 +264,7 @@ def parse_token(key: str, *, strict: bool = False) -> Entity | None:
             raise
         qos = None
     return Entity(
-        domain_id,
-        parts[2],
-        nid,
-        eid,
-        kind,
-        enclave,
-        namespace,
-        node_name,
+        *who,
         topic_name=demangle(parts[9]),
         type_name=ros_type_name(dds),
         dds_type_name=dds,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from ..common import connect, strategy_options
+from ..common import connect, print_names, strategy_options
 
 
 @click.command('list')
@@ -33,12 +33,4 @@ def cli(
 
     with connect(no_daemon=no_daemon) as conn:
         entities = conn.entities()
-    actions = action_names_and_types(entities, include_hidden_actions)
-    if count_actions:
-        click.echo(len(actions))
-    elif actions:
-        click.echo(
-            '\n'.join(
-                f'{name} [{", ".join(types)}]' if show_types else name for name, types in actions
-            )
-        )
+    print_names(action_names_and_types(entities, include_hidden_actions), count_actions, show_types)

@@ -14,7 +14,7 @@ from typing import Any
 
 import click
 
-from .options import bag_error, warn
+from .options import bag_argument, bag_error, warn
 
 LABEL = 19
 SERVICE_EVENT_SUFFIX = "/_service_event"
@@ -129,13 +129,7 @@ def message_sizes(reader: Any) -> dict[str, int]:
 
 
 @click.command("info")
-@click.argument("bag_path", type=click.Path())
-@click.option(
-    "-s",
-    "--storage",
-    type=click.Choice(["mcap", "sqlite3"]),
-    help="Storage identifier (default: from the file extension).",
-)
+@bag_argument
 @click.option("-t", "--topic-name", is_flag=True, help="Only print topic names.")
 @click.option(
     "-v",

@@ -15,8 +15,8 @@ import click
 
 from .. import completion, render
 from .. import keyboard as keys_module
-from ..common import connect
-from .options import ManyValues, bag_error, qos_overrides
+from ..common import ManyValues, connect
+from .options import bag_argument, bag_error, check_patterns, qos_overrides, shared_options
 
 if TYPE_CHECKING:
     from ros2lite.bag.player import Player
@@ -24,13 +24,7 @@ if TYPE_CHECKING:
 
 
 @click.command("play")
-@click.argument("bag_path", type=click.Path())
-@click.option(
-    "-s",
-    "--storage",
-    type=click.Choice(["mcap", "sqlite3"]),
-    help="Storage identifier (default: from the file extension).",
-)
+@bag_argument
 @click.option(
     "--read-ahead-queue-size",
     type=click.IntRange(min=1),
@@ -53,14 +47,7 @@ if TYPE_CHECKING:
     shell_complete=completion.topics,
     help="Topics to play (default: all).",
 )
-@click.option("-e", "--regex", help="Play only topics matching the regular expression.")
-@click.option("-x", "--exclude-regex", help="Exclude topics matching the regular expression.")
-@click.option("--exclude-topics", cls=ManyValues, metavar="TOPIC...", help="Topics not to play.")
-@click.option(
-    "--qos-profile-overrides-path",
-    type=click.Path(dir_okay=False),
-    help="YAML file of QoS profiles by topic, used instead of the recorded ones.",
-)
+@shared_options("play", "recorded", "-p")
 @click.option("-l", "--loop", is_flag=True, help="Play the bag again and again.")
 @click.option("-m", "--remap", cls=ManyValues, metavar="OLD:=NEW...", help="Topic remappings.")
 @click.option(
@@ -86,8 +73,6 @@ if TYPE_CHECKING:
     default=0.0,
     help="Start this many seconds into the bag.",
 )
-@click.option("-p", "--start-paused", is_flag=True, help="Start paused (SPACE resumes).")
-@click.option("--disable-keyboard-controls", is_flag=True, help="Ignore the keyboard.")
 @click.option("--node-name", default="rosbag2_player", show_default=True, hidden=True)
 def cli(
     bag_path: str,
@@ -109,20 +94,13 @@ def cli(
     node_name: str,
 ) -> None:
     """Play back ROS data from a bag."""
-    import re
-
     from ros2lite.bag.errors import BagError
     from ros2lite.bag.player import Player, PlayOptions
     from ros2lite.bag.reader import Reader
 
     if not Path(bag_path).exists():
         raise bag_error(f"Bag path '{bag_path}' does not exist!")
-    for pattern in (regex, exclude_regex):
-        if pattern:
-            try:
-                re.compile(pattern)
-            except re.error as e:
-                raise bag_error(f"Invalid regular expression '{pattern}': {e}") from None
+    check_patterns(regex, exclude_regex)
     remaps = {}
     for rule in remap:
         old, sep, new = rule.partition(":=")

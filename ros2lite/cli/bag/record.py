@@ -15,8 +15,8 @@ import click
 
 from .. import completion, render
 from .. import keyboard as keys_module
-from ..common import connect
-from .options import ManyValues, bag_error, qos_overrides, warn
+from ..common import ManyValues, connect
+from .options import bag_error, check_patterns, qos_overrides, shared_options, warn
 
 if TYPE_CHECKING:
     from ros2lite.bag.recorder import Recorder, RecordOptions
@@ -49,14 +49,10 @@ SELECTION_ERROR = (
 @click.option(
     "--topic-types", cls=ManyValues, metavar="TYPE...", help="Record topics of these types."
 )
+@shared_options("record", "offered")
 @click.option("-a", "--all", "all_", is_flag=True, help="Record all topics and services.")
 @click.option("--all-topics", is_flag=True, help="Record all topics (no services).")
 @click.option("--all-services", is_flag=True, help="Record all services.")
-@click.option("-e", "--regex", help="Record only topics matching the regular expression.")
-@click.option("-x", "--exclude-regex", help="Exclude topics matching the regular expression.")
-@click.option(
-    "--exclude-topics", cls=ManyValues, metavar="TOPIC...", help="List of topics not to record."
-)
 @click.option(
     "--exclude-services",
     cls=ManyValues,
@@ -120,12 +116,6 @@ SELECTION_ERROR = (
     type=click.Choice(["zstd", "lz4"]),
     help="Compress MCAP chunks with this format (the bag stays indexed).",
 )
-@click.option(
-    "--qos-profile-overrides-path",
-    type=click.Path(dir_okay=False),
-    help="YAML file of QoS profiles by topic, used instead of the offered ones.",
-)
-@click.option("--start-paused", is_flag=True, help="Start paused (SPACE resumes).")
 @click.option("--use-sim-time", is_flag=True, help="Stamp messages with /clock time.")
 @click.option(
     "--no-discovery", is_flag=True, help="Subscribe only to topics that exist at start-up."
@@ -147,7 +137,6 @@ SELECTION_ERROR = (
     metavar="KEY=VALUE...",
     help="Custom metadata stored in the bag.",
 )
-@click.option("--disable-keyboard-controls", is_flag=True, help="Ignore the keyboard.")
 def cli(
     positional_topics: tuple[str, ...],
     topics: tuple[str, ...],
@@ -179,7 +168,6 @@ def cli(
     disable_keyboard_controls: bool,
 ) -> None:
     """Record ROS data to a bag."""
-    import re
 
     from ros2lite.bag.errors import BagError
     from ros2lite.bag.recorder import RecordOptions
@@ -193,12 +181,7 @@ def cli(
     selected = list(positional_topics) + list(topics)
     if not (selected or services or topic_types or all_ or all_topics or all_services or regex):
         raise bag_error(SELECTION_ERROR)
-    for pattern in (regex, exclude_regex):
-        if pattern:
-            try:
-                re.compile(pattern)
-            except re.error as e:
-                raise bag_error(f"Invalid regular expression '{pattern}': {e}") from None
+    check_patterns(regex, exclude_regex)
     if storage != "mcap":
         raise bag_error(f"Recording to '{storage}' is not supported; use -s mcap")
     if compression_mode != "none":

@@ -4,17 +4,11 @@ from __future__ import annotations
 
 import click
 
-from .options import bag_error
+from .options import bag_argument, bag_error
 
 
 @click.command("reindex")
-@click.argument("bag_path", type=click.Path())
-@click.option(
-    "-s",
-    "--storage",
-    type=click.Choice(["mcap", "sqlite3"]),
-    help="Storage identifier (default: from the file extensions).",
-)
+@bag_argument
 def cli(bag_path: str, storage: str | None) -> None:
     """Reconstruct metadata file for a bag."""
     from ros2lite.bag.errors import BagError

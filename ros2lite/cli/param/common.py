@@ -93,37 +93,6 @@ def node_options(*, timeout: bool = True, node_required: bool = True) -> Callabl
     return decorate
 
 
-class GreedyOption(click.Option):
-    """An option that takes every following word up to the next option, like argparse's
-    `nargs='+'` (`--param-prefixes a b`); repeating the option adds more."""
-
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
-        kwargs.update(multiple=True, type=click.UNPROCESSED)
-        super().__init__(*args, **kwargs)
-
-    def add_to_parser(self, parser: Any, ctx: click.Context) -> None:
-        super().add_to_parser(parser, ctx)
-        for name in self.opts:
-            option = parser._long_opt.get(name) or parser._short_opt.get(name)
-            if option is None:
-                continue
-            original = option.process
-
-            def process(value: Any, state: Any, original: Any = original) -> None:
-                words = [value]
-                while state.rargs and not state.rargs[0].startswith("-"):
-                    words.append(state.rargs.pop(0))
-                original(tuple(words), state)
-
-            option.process = process
-
-    def type_cast_value(self, ctx: click.Context, value: Any) -> Any:
-        # (('a', 'b'), ('c',)) from two uses → ('a', 'b', 'c')
-        return tuple(
-            w for group in value or () for w in (group if isinstance(group, tuple) else (group,))
-        )
-
-
 class Remote:
     """A verb's blocking view of one node's parameter services, through the library's one
     client; failures become ros2cli's lines."""

@@ -6,9 +6,9 @@ import re
 
 import click
 
-from ..common import connect
+from ..common import ManyValues, connect
 from ..errors import CliError
-from .common import GreedyOption, Remote, Target, node_options, type_name
+from .common import Remote, Target, node_options, type_name
 
 
 @click.command("list")
@@ -21,7 +21,7 @@ from .common import GreedyOption, Remote, Target, node_options, type_name
 )
 @click.option(
     "--param-prefixes",
-    cls=GreedyOption,
+    cls=ManyValues,
     metavar="PREFIX...",
     help="Only list parameters with the provided prefixes",
 )

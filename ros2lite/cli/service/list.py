@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from ..common import connect, strategy_options
+from ..common import connect, print_names, strategy_options
 from . import hidden_wanted
 
 
@@ -30,8 +30,4 @@ def cli(
     with connect(no_daemon=no_daemon) as conn:
         entities = conn.entities()
     services = service_names_and_types(entities, hidden_wanted(ctx, include_hidden_services))
-    if count_services:
-        click.echo(len(services))
-        return
-    for name, types in services:
-        click.echo(f'{name} [{", ".join(types)}]' if show_types else name)
+    print_names(services, count_services, show_types)

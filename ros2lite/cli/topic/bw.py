@@ -10,7 +10,7 @@ import click
 
 from .. import completion
 from ..common import connect, strategy_options
-from .common import graph_type, monitor
+from .common import watch, window_option
 
 if TYPE_CHECKING:
     from ros2lite.monitor.stats import BandwidthSummary
@@ -38,15 +38,7 @@ def bw_line(s: BandwidthSummary) -> str:
 
 @click.command('bw')
 @click.argument('topic', shell_complete=completion.topics)
-@click.option(
-    '-w',
-    '--window',
-    type=click.IntRange(min=1),
-    default=DEFAULT_WINDOW_SIZE,
-    show_default=True,
-    metavar='WINDOW',
-    help='maximum window size, in # of messages, for calculating rate',
-)
+@window_option(DEFAULT_WINDOW_SIZE, 'maximum window')
 @strategy_options(no_daemon=False)
 def cli(topic: str, window: int, use_sim_time: bool) -> None:
     """Display bandwidth used by topic."""
@@ -55,9 +47,7 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
 
     stats = BandwidthStats(window)
     with connect(use_sim_time=use_sim_time) as conn:
-        watch = monitor(conn, topic)
-        type_name = graph_type(watch, wait=True)
-        assert type_name is not None
+        watched, type_name = watch(conn, topic)
         clock = conn.node().get_clock()
 
         def now_ns() -> int:
@@ -73,7 +63,7 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
                 click.echo(bw_line(summary))
 
         # sizes are taken as samples arrive, so none is missed and none is decoded
-        watch.on_arrival(type_name, qos_profile_sensor_data, on_arrival)
+        watched.on_arrival(type_name, qos_profile_sensor_data, on_arrival)
         click.echo(f'Subscribed to [{topic}]')
         conn.node().create_timer(1.0, report)
         conn.spin()

@@ -4,11 +4,13 @@ through the library's TopicMonitor with ros2cli's words around it."""
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 
 from ..errors import CliError
+
+F = TypeVar('F', bound=Callable[..., Any])
 
 if TYPE_CHECKING:
     from ros2lite.connection import Connection
@@ -44,6 +46,28 @@ def compile_filter(expr: str | None) -> Callable[[Any], Any] | None:
         return eval(code, {'__builtins__': __builtins__}, {'m': m})
 
     return check
+
+
+def window_option(default: int, what: str, minimum: int = 1) -> Callable[[F], F]:
+    """`-w/--window N`: how many messages the statistics of `hz`, `bw` and `delay` span."""
+    return click.option(
+        '-w',
+        '--window',
+        'window',
+        type=click.IntRange(min=minimum),
+        default=default,
+        show_default=True,
+        metavar='WINDOW',
+        help=f'{what} size, in # of messages, for calculating rate',
+    )
+
+
+def watch(conn: Connection, topic: str) -> tuple[TopicMonitor, str]:
+    """A monitor of `topic` and its type, waited for with ros2cli's warning."""
+    watched = monitor(conn, topic)
+    type_name = graph_type(watched, wait=True)
+    assert type_name is not None  # waiting ends only with a type
+    return watched, type_name
 
 
 def monitor(conn: Connection, topic: str, node_name: str | None = None) -> TopicMonitor:

@@ -9,7 +9,7 @@ import click
 from .. import completion
 from ..common import connect, strategy_options
 from ..errors import CliError
-from .common import graph_type, monitor
+from .common import watch, window_option
 
 if TYPE_CHECKING:
     from ros2lite.monitor.stats import IntervalSummary
@@ -27,14 +27,7 @@ def delay_line(s: IntervalSummary) -> str:
 
 @click.command('delay')
 @click.argument('topic', shell_complete=completion.topics)
-@click.option(
-    '-w',
-    '--window',
-    type=click.IntRange(min=0),
-    default=DEFAULT_WINDOW_SIZE,
-    show_default=True,
-    help='window size, in # of messages, for calculating rate',
-)
+@window_option(DEFAULT_WINDOW_SIZE, 'window', minimum=0)
 @strategy_options(no_daemon=False)
 def cli(topic: str, window: int, use_sim_time: bool) -> None:
     """Display delay of topic from timestamp in header."""
@@ -44,9 +37,7 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
 
     stats = DelayStats(window)
     with connect(use_sim_time=use_sim_time) as conn:
-        watch = monitor(conn, topic)
-        type_name = graph_type(watch, wait=True)
-        assert type_name is not None
+        watched, type_name = watch(conn, topic)
         if 'header' not in get_interface(type_name).get_fields_and_field_types():
             raise CliError('msg does not have header')
         clock = conn.node().get_clock()
@@ -63,6 +54,6 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
             summary = stats.summary()
             click.echo('no new messages' if summary is None else delay_line(summary))
 
-        watch.on_sample(type_name, qos_profile_sensor_data, on_sample)
+        watched.on_sample(type_name, qos_profile_sensor_data, on_sample)
         conn.node().create_timer(1.0, report)
         conn.spin()

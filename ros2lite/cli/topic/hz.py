@@ -15,7 +15,7 @@ import click
 
 from .. import completion, render
 from ..common import connect, strategy_options
-from .common import compile_filter, graph_type, monitor
+from .common import compile_filter, watch, window_option
 
 if TYPE_CHECKING:
     from ros2lite.monitor.stats import IntervalSummary, RateStats
@@ -70,16 +70,7 @@ def ros_or_arrival_time(node: Node, wall_time: bool) -> Callable[[int], int]:
     required=True,
     shell_complete=completion.topics,
 )
-@click.option(
-    '-w',
-    '--window',
-    'window_size',
-    type=click.IntRange(min=1),
-    default=DEFAULT_WINDOW_SIZE,
-    show_default=True,
-    metavar='WINDOW',
-    help='window size, in # of messages, for calculating rate',
-)
+@window_option(DEFAULT_WINDOW_SIZE, 'window')
 @click.option(
     '--filter',
     'filter_expr',
@@ -95,7 +86,7 @@ def ros_or_arrival_time(node: Node, wall_time: bool) -> Callable[[int], int]:
 @strategy_options(no_daemon=False)
 def cli(
     topic_names: tuple[str, ...],
-    window_size: int,
+    window: int,
     filter_expr: str | None,
     wall_time: bool,
     use_sim_time: bool,
@@ -113,11 +104,9 @@ def cli(
         stats: dict[str, RateStats] = {}
         # Ctrl-C, hz's usual end, leaves with status 2 as in every other verb (ros2cli's)
         for topic in topic_names:
-            watch = monitor(conn, topic)
-            type_name = graph_type(watch, wait=True)
-            assert type_name is not None
-            stats[topic] = rate = RateStats(window_size)
-            _subscribe(watch, type_name, rate, stamp, filter_fn)
+            watched, type_name = watch(conn, topic)
+            stats[topic] = rate = RateStats(window)
+            _subscribe(watched, type_name, rate, stamp, filter_fn)
             if len(topic_names) > 1:
                 click.echo(f'Subscribed to [{topic}]')
         report = _Report(stats)
@@ -129,7 +118,7 @@ def cli(
 
 
 def _subscribe(
-    watch: TopicMonitor,
+    watched: TopicMonitor,
     type_name: str,
     rate: RateStats,
     stamp: Callable[[int], int],
@@ -144,7 +133,7 @@ def _subscribe(
             click.echo('time has reset, resetting counters')
 
     if filter_fn is None:
-        watch.on_arrival(
+        watched.on_arrival(
             type_name, qos_profile_sensor_data, lambda _size, _att, arrived: record(arrived)
         )
         return
@@ -154,7 +143,7 @@ def _subscribe(
         if filter_fn(deserialize(type_name, data)):
             record(info.received_timestamp)
 
-    watch.on_sample(type_name, qos_profile_sensor_data, count_matching)
+    watched.on_sample(type_name, qos_profile_sensor_data, count_matching)
 
 
 class _Report:

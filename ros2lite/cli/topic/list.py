@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from ..common import connect, include_hidden, strategy_options
+from ..common import connect, include_hidden, print_names, strategy_options
 
 
 def _section(rows: list[tuple[str, list[str], int]], publishers: bool) -> str:
@@ -55,19 +55,11 @@ def cli(
     with connect(no_daemon=no_daemon) as conn:
         entities = conn.entities()
     topics = topic_names_and_types(entities, include_hidden(ctx, include_hidden_topics))
-    if count_topics:
-        click.echo(len(topics))
-        return
-    if not topics:
-        return
-    if verbose:
+    if verbose and topics and not count_topics:
         counts = topic_counts(entities)
         pubs = [(name, types, counts[name][0]) for name, types in topics]
         subs = [(name, types, counts[name][1]) for name, types in topics]
         click.echo(_section(pubs, True))
         click.echo(_section(subs, False))
         return
-    if show_types:
-        click.echo('\n'.join(f'{name} [{", ".join(types)}]' for name, types in topics))
-    else:
-        click.echo('\n'.join(name for name, _ in topics))
+    print_names(topics, count_topics, show_types)

@@ -6,7 +6,7 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
-from ros2lite.demos.display import DisplayError, window_possible
+from ros2lite.demos.display import open_window
 from ros2lite.demos.rqt_graph.model import Graph
 from ros2lite.demos.rqt_graph.output import NODE_COLOUR, TOPIC_COLOUR, pixel_layout
 
@@ -15,17 +15,9 @@ class GraphWindow:
     """A window titled `rqt_graph`; `run` until closed, `ok()` turns False or Ctrl-C."""
 
     def __init__(self) -> None:
-        try:
-            import tkinter
-        except ImportError:
-            raise DisplayError('cannot open a window: tkinter is not installed') from None
-        if not window_possible():
-            raise DisplayError('cannot open a window: no display (DISPLAY is not set)')
-        try:
-            self.root = tkinter.Tk(className='rqt_graph')
-        except tkinter.TclError as e:
-            raise DisplayError(f'cannot open a window: {e}') from None
-        self.root.title('rqt_graph')
+        import tkinter
+
+        self.root = open_window('rqt_graph', 'rqt_graph')
         self.canvas = tkinter.Canvas(self.root, background='white', highlightthickness=0)
         self.canvas.pack(fill='both', expand=True)
         self.closed = False

@@ -16,6 +16,7 @@ import contextlib
 import os
 import select
 import sys
+from collections.abc import Callable
 from typing import Any
 
 ARROWS = {'A': 'up', 'B': 'down', 'C': 'right', 'D': 'left'}
@@ -83,3 +84,21 @@ class Keyboard:
             return key + second
         third = self._byte()
         return ARROWS.get(third, key + second + third)
+
+
+def key_loop(node: Any, banner: str, handle: Callable[[str], bool], *, raw: bool = False) -> None:
+    """Show `banner`, then pass each key to `handle` until it returns False, input ends or the
+    context shuts down, with `node` spinning in the background and the terminal restored on
+    every way out (what every teleop program does)."""
+    from ros2lite.demos.teleop.spinning import BackgroundSpin
+
+    context = node.context
+    with BackgroundSpin(node), Keyboard(raw=raw) as keyboard:
+        print(banner, flush=True)
+        while context.ok():
+            try:
+                key = keyboard.read(0.1)
+            except EOFError:
+                return
+            if key is not None and not handle(key):
+                return

@@ -138,24 +138,13 @@ class TeleopTwistKeyboard:
 def key_loop(teleop: TeleopTwistKeyboard) -> None:
     """Keys until Ctrl-C, the end of input or shutdown; always a stopping Twist at the end
     and the terminal restored."""
-    from ros2lite.demos.teleop.keyboard import Keyboard
-    from ros2lite.demos.teleop.spinning import BackgroundSpin
+    from ros2lite.demos.teleop.keyboard import key_loop as read_keys
 
-    context = teleop.node.context
-    with BackgroundSpin(teleop.node), Keyboard(raw=True) as keyboard:
-        try:
-            print(USAGE, flush=True)
-            print(vels(teleop.speed, teleop.turn), flush=True)
-            while context.ok():
-                try:
-                    key = keyboard.read(0.1)
-                except EOFError:
-                    return
-                if key is not None and not teleop.key(key):
-                    return
-        finally:
-            if context.ok():
-                teleop.publish(0.0, 0.0, 0.0, 0.0)
+    try:
+        read_keys(teleop.node, f'{USAGE}\n{vels(teleop.speed, teleop.turn)}', teleop.key, raw=True)
+    finally:
+        if teleop.node.context.ok():
+            teleop.publish(0.0, 0.0, 0.0, 0.0)
 
 
 def main(args: list[str] | None = None) -> int:

@@ -86,19 +86,9 @@ class TeleopTurtle:
 
 def key_loop(teleop: TeleopTurtle) -> None:
     """Read keys until Q, the end of input, or shutdown (the terminal restored either way)."""
-    from ros2lite.demos.teleop.keyboard import Keyboard
-    from ros2lite.demos.teleop.spinning import BackgroundSpin
+    from ros2lite.demos.teleop.keyboard import key_loop as read_keys
 
-    context = teleop.node.context
-    with BackgroundSpin(teleop.node), Keyboard() as keyboard:
-        print(INSTRUCTIONS, flush=True)
-        while context.ok():
-            try:
-                key = keyboard.read(0.1)
-            except EOFError:
-                return
-            if key is not None and not teleop.key(key):
-                return
+    read_keys(teleop.node, INSTRUCTIONS, teleop.key)
 
 
 def main(args: list[str] | None = None) -> int:

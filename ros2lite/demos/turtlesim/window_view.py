@@ -13,7 +13,7 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from ros2lite.demos.display import DisplayError, window_possible
+from ros2lite.demos.display import open_window
 from ros2lite.demos.turtlesim import sim, sprite
 
 FRAME_SECONDS = sim.DT  # redraw as often as the world steps
@@ -23,19 +23,11 @@ class WindowView:
     """A `TurtleSim` window on the node's world; `run(stop)` until closed or `stop()`."""
 
     def __init__(self, node: Any) -> None:
-        try:
-            import tkinter
-        except ImportError:
-            raise DisplayError('cannot open a window: tkinter is not installed') from None
-        if not window_possible():
-            raise DisplayError('cannot open a window: no display (DISPLAY is not set)')
-        try:
-            self.root = tkinter.Tk(className='turtlesim')
-        except tkinter.TclError as e:
-            raise DisplayError(f'cannot open a window: {e}') from None
+        import tkinter
+
+        self.root = open_window('turtlesim', 'TurtleSim')
         self.node = node
         self.world: sim.World = node.world
-        self.root.title('TurtleSim')
         self.root.resizable(False, False)
         self.background = self.world.background
         self.canvas = tkinter.Canvas(

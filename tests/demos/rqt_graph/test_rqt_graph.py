@@ -29,10 +29,26 @@ def lesson_graph(ros_context: Any, processes: Any) -> Iterator[None]:
     teleop = Node('teleop_turtle', context=ros_context)
     pub = teleop.create_publisher(Twist, 'turtle1/cmd_vel', 1)
     deadline = time.monotonic() + 10
-    # every edge the tests look for is in the graph before any of them looks
-    while pub.get_subscription_count() < 1 or teleop.count_publishers('/turtle1/pose') < 1:
+    while pub.get_subscription_count() < 1:
         assert time.monotonic() < deadline
         time.sleep(0.05)
+    # every edge the tests look for is in the graph as a tool (a client of the router, as
+    # rqt_graph is) sees it, before any of them looks
+    from ros2lite.connection import Connection
+    from ros2lite.graph import EntityKind
+
+    def edges() -> set[tuple[str, str]]:
+        with Connection(autostart=False) as conn:
+            return {
+                (e.node_fqn, e.topic_name or '')
+                for e in conn.entities()
+                if e.kind == EntityKind.PUBLISHER
+            }
+
+    wanted = {('/teleop_turtle', '/turtle1/cmd_vel'), ('/turtlesim', '/turtle1/pose')}
+    while not wanted <= edges():
+        assert time.monotonic() < deadline
+        time.sleep(0.1)
     yield
     teleop.destroy_node()
 

@@ -1,0 +1,17 @@
+"""`security create_enclave ROOT NAME`: an enclave's key, certificate and permissions."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from .common import create
+
+
+@click.command('create_enclave')
+@click.argument('root', metavar='ROOT', type=click.Path(path_type=Path))
+@click.argument('name', metavar='NAME')
+def cli(root: Path, name: str) -> None:
+    """Create enclave."""
+    create(root, name, 'enclave')

@@ -1,0 +1,24 @@
+"""`security list_enclaves ROOT`: every enclave of a keystore, one a line, sorted."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from ..errors import CliError
+
+
+@click.command('list_enclaves')
+@click.argument('root', metavar='ROOT', type=click.Path(path_type=Path))
+def cli(root: Path) -> None:
+    """List enclaves in keystore."""
+    from ros2lite.security import SecurityError
+    from ros2lite.security.keystore import list_enclaves
+
+    try:
+        enclaves = list_enclaves(root)
+    except SecurityError as e:
+        raise CliError(f'Unable to list enclaves: {e}') from None
+    for enclave in enclaves:
+        click.echo(enclave)

@@ -1,0 +1,97 @@
+"""Writing keystore files without ever following a symlink, and reading XML safely.
+
+A keystore lives in a directory other users may share; a planted symlink must not redirect
+a private key or a signed document elsewhere.  Every write here opens with ``O_NOFOLLOW``
+and every directory we write into is checked to be a real directory below the keystore.
+The symlinks sros2's layout has (``identity_ca.cert.pem`` → ``ca.cert.pem`` …) are made by
+us, never written through.
+"""
+
+from __future__ import annotations
+
+import os
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+from ros2lite.security.errors import KeystoreError, PolicyError
+
+__all__ = ['make_dirs', 'parse_xml', 'read_bytes', 'symlink', 'write_file']
+
+# Policies and permissions are small; anything bigger is not one.
+MAX_XML_BYTES = 4 * 1024 * 1024
+
+
+def make_dirs(root: Path, relative: Path | str = '.') -> Path:
+    """Create ``root/relative`` (parents too) and check that no part of it is a symlink."""
+    path = root
+    parts = [p for p in Path(relative).parts if p not in ('.', '')]
+    for part in ['', *parts]:
+        path = path / part if part else path
+        if path.is_symlink():
+            raise KeystoreError(f"refusing to write below '{path}': it is a symlink")
+        try:
+            path.mkdir(mode=0o755, exist_ok=True)
+        except FileExistsError:
+            raise KeystoreError(f"'{path}' exists and is not a directory") from None
+        except OSError as exc:
+            raise KeystoreError(f"cannot create '{path}': {exc.strerror}") from None
+        if not path.is_dir():
+            raise KeystoreError(f"'{path}' exists and is not a directory")
+    return path
+
+
+def write_file(path: Path, data: bytes, mode: int = 0o644) -> None:
+    """Replace ``path``'s content; a symlink there is refused, never followed."""
+    flags = os.O_WRONLY | os.O_CREAT | os.O_TRUNC | getattr(os, 'O_NOFOLLOW', 0)
+    try:
+        fd = os.open(path, flags, mode)
+    except OSError as exc:
+        if path.is_symlink():
+            raise KeystoreError(f"refusing to write '{path}': it is a symlink") from None
+        raise KeystoreError(f"cannot write '{path}': {exc.strerror}") from None
+    try:
+        os.fchmod(fd, mode)
+        view = memoryview(data)
+        while view:
+            view = view[os.write(fd, view) :]
+    finally:
+        os.close(fd)
+
+
+def symlink(target: str, link: Path) -> None:
+    """Make ``link`` point at ``target`` (relative), replacing what was there (sros2 does)."""
+    if link.is_symlink() and os.readlink(link) == target:
+        return
+    if os.path.normpath(link.parent / target) == os.path.normpath(link):
+        return  # the file itself (enclave '/' lives in the enclaves directory)
+    if link.is_symlink() or link.exists():
+        if link.is_dir() and not link.is_symlink():
+            raise KeystoreError(f"'{link}' is a directory")
+        link.unlink()
+    try:
+        os.symlink(target, link)
+    except OSError as exc:
+        raise KeystoreError(f"cannot create '{link}': {exc.strerror}") from None
+
+
+def read_bytes(path: Path, what: str, limit: int = MAX_XML_BYTES) -> bytes:
+    """A file's bytes, at most ``limit`` of them; errors name the file."""
+    try:
+        with open(path, 'rb') as fh:
+            data = fh.read(limit + 1)
+    except OSError as exc:
+        raise PolicyError(f"cannot read {what} '{path}': {exc.strerror}") from None
+    if len(data) > limit:
+        raise PolicyError(f"{what} '{path}' is larger than {limit} bytes")
+    return data
+
+
+def parse_xml(data: bytes, origin: str) -> ET.Element:
+    """Parse an XML document that may come from anyone: no DTDs, hence no entities."""
+    head = data[:4096].lower()
+    if b'<!doctype' in head or b'<!entity' in data.lower():
+        raise PolicyError(f'{origin}: DTDs and entities are not accepted')
+    try:
+        return ET.fromstring(data)
+    except ET.ParseError as exc:
+        raise PolicyError(f'{origin}: not well-formed XML ({exc})') from None

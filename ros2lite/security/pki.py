@@ -1,0 +1,117 @@
+"""Keys, certificates and S/MIME signatures as sros2 makes them, with ``cryptography``.
+
+* keys: ECDSA on prime256v1 (DDS-Security 9.3.1 asks for it), PKCS#8 PEM, unencrypted;
+* the CA: self-signed, ``CN=sros2CA``, basicConstraints CA (path length 1, critical);
+* an enclave: ``CN=<enclave name>``, signed by the CA, basicConstraints not-CA;
+* all valid from now for 3650 days, signed with SHA-256;
+* documents (governance, permissions): detached, text-mode S/MIME (``multipart/signed``,
+  ``micalg="sha-256"``), which ``openssl smime -verify`` checks against the CA.
+
+Importing this module loads ``cryptography``; nothing on a hot path does.
+"""
+
+from __future__ import annotations
+
+import datetime
+from pathlib import Path
+from typing import Any
+
+from cryptography import x509
+from cryptography.hazmat.primitives import hashes, serialization
+from cryptography.hazmat.primitives.asymmetric import ec
+from cryptography.hazmat.primitives.serialization import pkcs7
+
+from ros2lite.security.errors import KeystoreError
+from ros2lite.security.files import write_file
+
+__all__ = [
+    'CA_COMMON_NAME',
+    'load_certificate',
+    'load_private_key',
+    'new_ca',
+    'new_identity',
+    'sign_document',
+    'write_certificate',
+    'write_private_key',
+]
+
+CA_COMMON_NAME = 'sros2CA'
+VALIDITY = datetime.timedelta(days=3650)
+
+
+def _build(
+    subject: str, *, ca: bool, issuer: x509.Name | None = None, issuer_key: Any = None
+) -> tuple[x509.Certificate, ec.EllipticCurvePrivateKey]:
+    key = ec.generate_private_key(ec.SECP256R1())
+    name = x509.Name([x509.NameAttribute(x509.oid.NameOID.COMMON_NAME, subject)])
+    now = datetime.datetime.now(datetime.timezone.utc)
+    constraints = (
+        x509.BasicConstraints(ca=True, path_length=1)
+        if ca
+        else x509.BasicConstraints(ca=False, path_length=None)
+    )
+    cert = (
+        x509.CertificateBuilder()
+        .issuer_name(issuer or name)
+        .subject_name(name)
+        .serial_number(x509.random_serial_number())
+        .not_valid_before(now)
+        .not_valid_after(now + VALIDITY)
+        .public_key(key.public_key())
+        .add_extension(constraints, critical=ca)
+        .sign(issuer_key or key, hashes.SHA256())
+    )
+    return cert, key
+
+
+def new_ca(common_name: str = CA_COMMON_NAME) -> tuple[x509.Certificate, Any]:
+    """A fresh self-signed CA certificate and its key."""
+    return _build(common_name, ca=True)
+
+
+def new_identity(common_name: str, ca_cert: x509.Certificate, ca_key: Any) -> tuple[Any, Any]:
+    """A fresh certificate for ``common_name`` (an enclave), signed by the CA."""
+    return _build(common_name, ca=False, issuer=ca_cert.subject, issuer_key=ca_key)
+
+
+def write_private_key(key: Any, path: Path) -> None:
+    """PKCS#8 PEM, readable by the owner only."""
+    data = key.private_bytes(
+        serialization.Encoding.PEM,
+        serialization.PrivateFormat.PKCS8,
+        serialization.NoEncryption(),
+    )
+    write_file(path, data, 0o600)
+
+
+def write_certificate(cert: x509.Certificate, path: Path) -> None:
+    write_file(path, cert.public_bytes(serialization.Encoding.PEM))
+
+
+def load_certificate(path: Path) -> x509.Certificate:
+    """A PEM certificate; unreadable or malformed files give a one-line KeystoreError."""
+    try:
+        return x509.load_pem_x509_certificate(path.read_bytes())
+    except (OSError, ValueError) as exc:
+        raise KeystoreError(f"cannot load certificate '{path}': {exc}") from None
+
+
+def load_private_key(path: Path) -> Any:
+    """A PEM private key (unencrypted, as sros2 writes them)."""
+    try:
+        return serialization.load_pem_private_key(path.read_bytes(), password=None)
+    except (OSError, ValueError, TypeError) as exc:
+        raise KeystoreError(f"cannot load private key '{path}': {exc}") from None
+
+
+def sign_document(cert: x509.Certificate, key: Any, content: bytes) -> bytes:
+    """``content`` wrapped in a detached, text-mode S/MIME signature (sros2's .p7s)."""
+    return (
+        pkcs7.PKCS7SignatureBuilder()
+        .set_data(content)
+        .add_signer(cert, key, hashes.SHA256())
+        .sign(
+            serialization.Encoding.SMIME,
+            [pkcs7.PKCS7Options.Text, pkcs7.PKCS7Options.DetachedSignature],
+        )
+    )

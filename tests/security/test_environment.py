@@ -1,0 +1,75 @@
+"""Which identity a process takes from ROS_SECURITY_* (rcl's rules), and what the config
+builders make of it."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from ros2lite.security import environment
+from ros2lite.security.errors import SecurityError
+from ros2lite.security.keystore import create_enclave, create_keystore
+
+
+@pytest.fixture(scope='module')
+def keystore(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    root = tmp_path_factory.mktemp('env') / 'ks'
+    create_keystore(root, {})
+    create_enclave(root, '/robot/talker', {})
+    return root
+
+
+def secure(keystore: Path, **more: str) -> dict[str, str]:
+    return {
+        'ROS_SECURITY_ENABLE': 'true',
+        'ROS_SECURITY_STRATEGY': 'Enforce',
+        'ROS_SECURITY_KEYSTORE': str(keystore),
+        **more,
+    }
+
+
+def test_off_unless_exactly_true(keystore: Path) -> None:
+    assert environment.resolve({}) is None
+    assert environment.resolve({**secure(keystore), 'ROS_SECURITY_ENABLE': 'True'}) is None
+
+
+def test_enclave_from_override_or_argument(keystore: Path) -> None:
+    found = environment.resolve(secure(keystore), enclave='/robot/talker')
+    assert found is not None and found.certificate.name == 'cert.pem'
+    assert found.directory == keystore / 'enclaves' / 'robot' / 'talker'
+    over = environment.resolve(
+        secure(keystore, ROS_SECURITY_ENCLAVE_OVERRIDE='/robot/talker'), enclave='/x'
+    )
+    assert over is not None and over.enclave == '/robot/talker'
+
+
+def test_enforce_without_material(keystore: Path) -> None:
+    with pytest.raises(SecurityError, match=r"^SECURITY ERROR: unable to find a folder matching"):
+        environment.resolve(secure(keystore), enclave='/missing')
+    with pytest.raises(SecurityError, match='ROS_SECURITY_KEYSTORE is not set'):
+        environment.resolve({'ROS_SECURITY_ENABLE': 'true', 'ROS_SECURITY_STRATEGY': 'Enforce'})
+
+
+def test_permissive_says_it_once(keystore: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    env = secure(keystore, ROS_SECURITY_STRATEGY='Permissive')
+    assert environment.resolve(env, enclave='/nowhere') is None
+    assert environment.resolve(env, enclave='/nowhere') is None
+    err = capsys.readouterr().err
+    assert err.count('running unsecured') == 1, err
+
+
+def test_config_builders(keystore: Path) -> None:
+    import json
+
+    from ros2lite.transport.config import router_endpoint, session_config
+
+    env = secure(keystore, ROS_SECURITY_ENCLAVE_OVERRIDE='/robot/talker')
+    assert router_endpoint(env=env) == 'tls/127.0.0.1:7447'
+    assert router_endpoint(env={}) == 'tcp/127.0.0.1:7447'
+    config = session_config(env=env, mode='peer')
+    assert json.loads(config.get_json('mode')) == 'client'  # all traffic crosses the router
+    tls = json.loads(config.get_json('transport/link/tls'))
+    assert tls['enable_mtls'] is True
+    assert tls['connect_certificate'].endswith('enclaves/robot/talker/cert.pem')
+    assert tls['root_ca_certificate'].endswith('identity_ca.cert.pem')
