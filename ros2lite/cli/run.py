@@ -46,9 +46,7 @@ def cli(prefix: str | None, package_name: str, executable_name: str, argv: tuple
     if resolved.note:
         click.echo(f'[ros2run]: {resolved.note}', err=True)
     exe = resolved.executable
-    cmd = exe.command(list(argv))
-    if prefix is not None:
-        cmd = shlex.split(prefix) + cmd
+    cmd = exe.prefixed_command(shlex.split(prefix or ''), list(argv))
     env = child_environment(pythonpath=exe.pythonpath, workspaces=index.workspaces())
     code = run_child(cmd, env)
     if code < 0:

@@ -12,7 +12,7 @@ import os
 import re
 import shlex
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ros2lite.pkg.environment import child_environment
@@ -49,7 +49,6 @@ class ProcessSpec:
     sigterm_timeout: float
     sigkill_timeout: float
     log_cmd: bool = False
-    temp_files: list[str] = field(default_factory=list)
 
 
 # launch's defaults: launch configurations, so `sigterm_timeout:=10` on the command line works

@@ -259,8 +259,8 @@ class PushRosNamespace(Action):
 
 
 def _valid_namespace(namespace: str) -> str:
-    ns = normalize_namespace(namespace.rstrip('/') or '/')
     try:
+        ns = normalize_namespace(namespace.rstrip('/') or '/')
         validate_namespace(ns)
     except NameValidationException as e:
         raise LaunchError(f"invalid namespace '{namespace}': {e}") from None

@@ -128,13 +128,15 @@ class LaunchService:
         """A file to delete when the launch ends (e.g. a generated parameter file)."""
         self._temp_files.append(path)
 
-    def start_process(self, action: ExecuteProcess, spec: ProcessSpec) -> None:
-        """Start `action`'s process (ExecuteProcess.execute calls this)."""
+    def start_process(
+        self, action: ExecuteProcess, spec: ProcessSpec, *, again: _Running | None = None
+    ) -> None:
+        """Start `action`'s process (ExecuteProcess.execute calls this); `again` is the run
+        a respawn replaces (its label and colour are kept)."""
         if self._shutting_down:
             return
-        label = f'{spec.name}-{next(self._labels)}'
-        index = len(self._started)
-        self._temp_files += spec.temp_files
+        label = again.label if again else f'{spec.name}-{next(self._labels)}'
+        index = again.index if again else len(self._started)
 
         def on_line(stream: str, line: str) -> None:
             self.output.process_line(label, index, stream, line, spec.output[stream])
@@ -351,14 +353,15 @@ class LaunchService:
         self._dispatch(ExecutionComplete(action=action))
         if not self._shutting_down and self._guard(lambda: action.should_respawn(self.context)):
             action.respawn_count += 1
-            self._respawn_later(action, running.spec)
+            self._respawn_later(running)
 
-    def _respawn_later(self, action: ExecuteProcess, spec: ProcessSpec) -> None:
+    def _respawn_later(self, previous: _Running) -> None:
         service = self
+        action = previous.action
 
         class _Respawn(LaunchDescriptionEntity):
             def visit(self, context: LaunchContext) -> Entities | None:
-                service.start_process(action, spec)
+                service.start_process(action, previous.spec, again=previous)
                 return None
 
         timer = TimerAction(period=str(action.respawn_delay or 0.0), actions=[_Respawn()])

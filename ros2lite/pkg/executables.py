@@ -16,8 +16,9 @@ owns a name); its executables depend on that source:
 - an **ament prefix**: the executable files under ``lib/<package>`` — what ros2run looks at;
 - the packages **bundled** with ros2lite (:data:`BUNDLED`).
 
-Python targets are started as ``python -c …`` with the same interpreter, so they run in this
-environment without needing a console script on PATH. Courses name a few C++ demo packages;
+Python targets are started as ``python -m ros2lite.pkg.runner <module:function> <name> …``
+with the same interpreter, so they run in this environment without needing a console script
+on PATH. Courses name a few C++ demo packages;
 when one is not installed, :func:`resolve_executable` runs its Python twin
 (:data:`EQUIVALENTS`) and says so.
 """
@@ -26,6 +27,7 @@ from __future__ import annotations
 
 import difflib
 import os
+import re
 import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -44,6 +46,8 @@ from .index import (
 from .setup_files import read_python_package
 
 ENTRY_POINT_GROUP = 'ros2lite.executables'
+RUNNER = 'ros2lite.pkg.runner'
+_PYTHON = re.compile(r'python[0-9.]*\Z')
 
 # the demos bundled with ros2lite: package -> executables, each `main()` of
 # ros2lite.demos.<package>.<executable>
@@ -114,10 +118,23 @@ class PackageExecutable:
         return self.origin != ORIGIN_AMENT
 
     def command(self, argv: Sequence[str] = (), python: str | None = None) -> list[str]:
-        """The argv that starts it; `argv` is passed through untouched (`--ros-args` too)."""
+        """The argv that starts it; `argv` is passed through untouched (`--ros-args` too).
+        A Python target runs through :mod:`ros2lite.pkg.runner` with this interpreter."""
         if not self.is_python:
             return [self.target, *argv]
-        return [python or sys.executable, '-c', _python_launcher(self.target, self.name), *argv]
+        return [python or sys.executable, *self.python_arguments(argv)]
+
+    def python_arguments(self, argv: Sequence[str] = ()) -> list[str]:
+        """What follows the interpreter for a Python target (for a prefix such as
+        `python -m pdb`, which brings its own interpreter)."""
+        return ['-m', RUNNER, self.target, self.name, *argv]
+
+    def prefixed_command(self, prefix: Sequence[str], argv: Sequence[str] = ()) -> list[str]:
+        """The command under a prefix (`gdb -ex run --args`, `valgrind`, …). A prefix that
+        is itself a Python interpreter (`python -m pdb`) runs a Python target directly."""
+        if self.is_python and prefix and _PYTHON.match(os.path.basename(prefix[0])):
+            return [*prefix, *self.python_arguments(argv)]
+        return [*prefix, *self.command(argv)]
 
     def path(self) -> str:
         """A file to show for it (`pkg executables --full-path`): the file itself, or the
@@ -141,22 +158,6 @@ def _module_file(module: str, pythonpath: Sequence[str]) -> str | None:
             return None
         search = list(spec.submodule_search_locations or [])
     return spec.origin if spec is not None else None
-
-
-def _python_launcher(target: str, name: str) -> str:
-    """Code for `python -c` that behaves like a console script: argv[0] is the executable's
-    name, the working directory is not importable, and the return value is the exit status."""
-    module, _, attr = target.partition(':')
-    return (
-        'import importlib, sys\n'
-        "if sys.path and sys.path[0] in ('', '.'):\n"
-        '    del sys.path[0]\n'
-        f'sys.argv[0] = {name!r}\n'
-        f'fn = importlib.import_module({module!r})\n'
-        f'for part in {attr!r}.split("."):\n'
-        '    fn = getattr(fn, part)\n'
-        'sys.exit(fn())\n'
-    )
 
 
 # -- each source's executables -----------------------------------------------------------------

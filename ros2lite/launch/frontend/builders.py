@@ -26,6 +26,7 @@ from ..actions import (
     UnsetEnvironmentVariable,
 )
 from ..conditions import IfCondition, UnlessCondition
+from ..errors import InvalidFrontendLaunchFileError
 from ..execute import ExecuteProcess
 from ..substitutions import Substitution, TextSubstitution
 from .entity import Entity
@@ -47,29 +48,30 @@ def _condition(e: Entity) -> dict[str, Any]:
 
 
 def split_words(subs: list[Substitution]) -> list[list[Substitution]]:
-    """A command line: literal text is split at whitespace (quotes respected), substitutions
-    stay inside the word they touch."""
-    words: list[list[Substitution]] = []
-    current: list[Substitution] = []
-    for sub in subs:
-        if not isinstance(sub, TextSubstitution):
-            current.append(sub)
-            continue
-        text = sub.text
-        starts_with_space = text[:1].isspace()
-        ends_with_space = text[-1:].isspace()
-        parts = shlex.split(text) if text.strip() else []
-        if starts_with_space and current:
-            words.append(current)
-            current = []
-        for i, part in enumerate(parts):
-            current.append(TextSubstitution(text=part))
-            if i < len(parts) - 1 or ends_with_space:
-                words.append(current)
-                current = []
-    if current:
-        words.append(current)
-    return words
+    """A command line split into words as a shell would (quotes group, backslashes escape);
+    each substitution stays whole inside the word it is written in."""
+    text = ''
+    for i, sub in enumerate(subs):
+        if isinstance(sub, TextSubstitution):
+            if '\x00' in sub.text:
+                raise InvalidFrontendLaunchFileError('a command may not contain NUL characters')
+            text += sub.text
+        else:
+            text += f'\x00{i}\x00'
+    try:
+        words = shlex.split(text)
+    except ValueError as e:
+        raise InvalidFrontendLaunchFileError(f'cannot split command {text!r}: {e}') from None
+    out: list[list[Substitution]] = []
+    for word in words:
+        parts: list[Substitution] = []
+        for n, piece in enumerate(word.split('\x00')):
+            if n % 2:
+                parts.append(subs[int(piece)])
+            elif piece:
+                parts.append(TextSubstitution(text=piece))
+        out.append(parts or [TextSubstitution(text='')])
+    return out
 
 
 def _arg(e: Entity) -> Action:
