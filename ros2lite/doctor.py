@@ -123,8 +123,12 @@ class Diagnosis:
         """The daemon module's status of the endpoint (None when the endpoint is invalid)."""
         if self._status is None and self.endpoint() is not None:
             from ros2lite import daemon
+            from ros2lite.exceptions import Ros2liteError
 
-            self._status = daemon.status(self.endpoint(), sessions=True)
+            try:
+                self._status = daemon.status(self.endpoint(), sessions=True)
+            except Ros2liteError:  # e.g. a bad ROS_DOMAIN_ID: the middleware check says so
+                self._status = daemon.status(self.endpoint())
         return self._status
 
     def graph(self) -> list[Entity] | None:

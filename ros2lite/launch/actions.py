@@ -423,8 +423,15 @@ class IncludeLaunchDescription(Action):
             name = perform_substitutions(context, key)
             context.launch_configurations[name] = perform_substitutions(context, value)
             given.append(name)
-        for arg in description.get_launch_arguments():
-            if arg.default_value is None and arg.name not in context.launch_configurations:
+        from .introspection import declared_arguments
+
+        for arg, conditional, via in declared_arguments(description):
+            if conditional or arg.default_value is not None:
+                continue
+            names = {*given, *context.launch_configurations}
+            for include in via:  # an include on the way may give it
+                names.update(include.argument_names_without_context())
+            if arg.name not in names:
                 raise LaunchError(
                     f"Included launch description missing required argument '{arg.name}' "
                     f"(description: '{arg.description}'), given: [{', '.join(given)}]"
@@ -433,6 +440,14 @@ class IncludeLaunchDescription(Action):
 
     def describe(self) -> str:
         return f'IncludeLaunchDescription({self.launch_description_source.describe()})'
+
+    def argument_names_without_context(self) -> list[str]:
+        """The names of the arguments it gives that are plain text."""
+        return [
+            ''.join(s.text for s in key if isinstance(s, TextSubstitution))
+            for key, _value in self.launch_arguments
+            if all(isinstance(s, TextSubstitution) for s in key)
+        ]
 
     def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
         """The included description when it can be read without running the launch."""

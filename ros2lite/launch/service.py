@@ -191,14 +191,15 @@ class LaunchService:
             if in_main
             else contextlib.nullcontext()
         )
-        try:
-            with signals:
+        with signals:
+            # cleaning up inside the handlers: a late Ctrl-C cannot cut it short
+            try:
                 self._open_logs()
                 for description in self._descriptions:
                     self._visit_guarded(description)
                 self._loop(shutdown_when_idle)
-        finally:
-            self._cleanup()
+            finally:
+                self._cleanup()
         return self.return_code
 
     def _open_logs(self) -> None:

@@ -202,3 +202,143 @@ def test_ctrl_c_in_a_terminal_reaches_the_child_once(tmp_path: Path) -> None:
         os.close(slave)
     assert out == 'interrupts=1\n', err
     assert proc.returncode == 0
+
+
+# A node as a student writes it after `pkg create`, here against ros2lite's own API (the
+# rclpy-named face of the same code is the compat directory's)
+WORKSPACE_TALKER = '''
+import ros2lite
+from ros2lite.executors import ExternalShutdownException
+from ros2lite.msgs.std_msgs.msg import String
+from ros2lite.node import Node
+
+
+class MinimalPublisher(Node):
+    def __init__(self):
+        super().__init__('minimal_publisher')
+        self.publisher_ = self.create_publisher(String, 'topic', 10)
+        self.i = 0
+        self.timer = self.create_timer(0.1, self.timer_callback)
+
+    def timer_callback(self):
+        msg = String()
+        msg.data = f'Hello World: {self.i}'
+        self.publisher_.publish(msg)
+        self.i += 1
+
+
+def main(args=None):
+    ros2lite.init(args=args)
+    node = MinimalPublisher()
+    try:
+        ros2lite.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+'''
+
+
+def test_a_new_package_runs_without_a_build(
+    run: Callable[..., Result], ros_context: Any, processes: Any, tmp_path: Path
+) -> None:
+    ws = tmp_path / 'ws'
+    created = run(
+        'pkg',
+        'create',
+        '--build-type',
+        'ament_python',
+        'py_pubsub',
+        '--destination-directory',
+        str(ws / 'src'),
+        '--dependencies',
+        'rclpy',
+        'std_msgs',
+    )
+    assert created.code == 0, created.err
+    pkg = ws / 'src' / 'py_pubsub'
+    (pkg / 'py_pubsub' / 'publisher_member_function.py').write_text(WORKSPACE_TALKER)
+    setup = pkg / 'setup.py'
+    setup.write_text(
+        setup.read_text().replace(
+            "'console_scripts': [\n",
+            "'console_scripts': ['talker = py_pubsub.publisher_member_function:main',\n",
+        )
+    )
+    node = Node('ws_probe', context=ros_context, enable_rosout=False)
+    got: list[str] = []
+    node.create_subscription('std_msgs/msg/String', '/ws_topic', lambda m: got.append(m.data), 10)
+    ex = SingleThreadedExecutor(context=ros_context)
+    ex.add_node(node)
+    proc = processes.start(
+        [
+            sys.executable,
+            '-m',
+            'ros2lite',
+            'run',
+            'py_pubsub',
+            'talker',
+            '--ros-args',
+            '-r',
+            'topic:=/ws_topic',
+        ],
+        stdin=subprocess.DEVNULL,
+        start_new_session=True,
+        cwd=pkg / 'py_pubsub',  # anywhere inside the workspace
+    )
+    spin_until(ex, lambda: len(got) >= 3, timeout=20)
+    assert got[0].startswith('Hello World: ')
+    _out, err = processes.stop(proc)
+    assert proc.returncode == 0, err
+    assert 'Traceback' not in err
+
+
+def test_cpp_demo_runs_its_python_twin(ros_context: Any, processes: Any) -> None:
+    probe = Node('twin_probe', context=ros_context, enable_rosout=False)
+    proc = start_run(
+        processes, 'demo_nodes_cpp', 'listener', '--ros-args', '-r', '__node:=twin_listener'
+    )
+    wait_until(lambda: ('twin_listener', '/') in probe.get_node_names_and_namespaces(), 15)
+    _out, err = processes.stop(proc)
+    assert err.splitlines()[0] == (
+        '[ros2run]: demo_nodes_cpp (C++) is not installed; running demo_nodes_py listener, '
+        'its Python equivalent'
+    )
+    assert proc.returncode == 0
+
+
+def test_python_prefix_runs_the_target_under_pdb(tmp_path: Path) -> None:
+    from tests.pkg.workspaces import write_package
+
+    ws = tmp_path / 'ws'
+    write_package(
+        ws / 'src' / 'dbg',
+        'dbg',
+        scripts={'show': 'dbg.show:main'},
+        modules={
+            'dbg/__init__.py': '',
+            'dbg/show.py': (
+                'import sys\ndef main():\n    print("argv", sys.argv[1:])\n    return 0\n'
+            ),
+        },
+    )
+    result = run_process(
+        'run',
+        '--prefix',
+        f'{sys.executable} -m pdb',
+        'dbg',
+        'show',
+        'a',
+        'b',
+        stdin='continue\nquit\n',
+        env={'ROS2LITE_WORKSPACE': str(ws)},
+    )
+    assert "argv ['a', 'b']" in result.out
+    assert '(Pdb)' in result.out
+
+
+def test_unknown_names_get_close_matches(run: Callable[..., Result]) -> None:
+    assert run('run', 'demo_nodes_py', 'listner').err == (
+        'No executable found; did you mean: listener?\n'
+    )
+    assert run('run', 'turtlesin', 'turtlesim_node').err == (
+        "Package 'turtlesin' not found; did you mean: turtlesim, turtlesim_msgs?\n"
+    )

@@ -1,0 +1,232 @@
+"""`ros2lite launch` end to end: Python, XML and YAML launch files from a source workspace
+start real nodes (namespace, remap, parameters from a dict and a file, an included file
+given an argument); Ctrl-C stops every child; `-s`/`-p` and the errors."""
+
+from __future__ import annotations
+
+import os
+import queue
+import random
+import shutil
+import signal
+import subprocess
+import sys
+import threading
+import time
+import uuid
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from ros2lite.node import Node
+from tests.cli.conftest import Result, run_process
+from tests.pkg.workspaces import write_package
+from tests.spinning import wait_until
+
+FILES = Path(__file__).resolve().parent / 'launch_files'
+
+
+@pytest.fixture
+def workspace(tmp_path: Path) -> Path:
+    """A workspace whose `lesson_bringup` package holds the lesson's launch files (unbuilt)."""
+    ws = tmp_path / 'ws'
+    pkg = write_package(ws / 'src' / 'lesson_bringup', 'lesson_bringup')
+    (pkg / 'launch').mkdir()
+    (pkg / 'config').mkdir()
+    for f in FILES.iterdir():
+        if '.launch.' in f.name:
+            shutil.copy(f, pkg / 'launch' / f.name)
+    shutil.copy(FILES / 'board.yaml', pkg / 'config' / 'board.yaml')
+    return ws
+
+
+class Launch:
+    """A `ros2lite launch` process whose output lines are collected by a thread."""
+
+    def __init__(self, proc: subprocess.Popen[str]) -> None:
+        self.proc = proc
+        self.lines: list[str] = []
+        self._queue: queue.SimpleQueue[str] = queue.SimpleQueue()
+        threading.Thread(target=self._pump, daemon=True).start()
+
+    def _pump(self) -> None:
+        assert self.proc.stdout is not None
+        for line in self.proc.stdout:
+            self.lines.append(line.rstrip('\n'))
+
+    def wait_for(self, text: str, timeout: float = 30.0) -> str:
+        found = wait_until(
+            lambda: next((line for line in self.lines if text in line), None), timeout=timeout
+        )
+        return str(found)
+
+    def interrupt(self, timeout: float = 30.0) -> int:
+        self.proc.send_signal(signal.SIGINT)
+        return self.proc.wait(timeout)
+
+
+def start_launch(processes: Any, *args: str, cwd: Path | None = None, **env: str) -> Launch:
+    proc = processes.start(
+        [sys.executable, '-m', 'ros2lite', 'launch', *args],
+        stdin=subprocess.DEVNULL,
+        stderr=subprocess.STDOUT,
+        start_new_session=True,
+        cwd=cwd,
+        env={**os.environ, **env},
+    )
+    return Launch(proc)
+
+
+@pytest.mark.parametrize('flavour', ['py', 'xml', 'yaml'])
+def test_the_lesson_in_each_format(
+    flavour: str,
+    workspace: Path,
+    ros_context: Any,
+    processes: Any,
+    run: Callable[..., Result],
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    ns = f'lesson_{flavour}'
+    launch = start_launch(
+        processes,
+        'lesson_bringup',
+        f'top.launch.{flavour}',
+        f'ns:={ns}',
+        'topic:=said',
+        cwd=workspace / 'src',
+    )
+    heard = launch.wait_for('I heard: [Hello World: ')
+    assert f'[{ns}.listener]' in heard and heard.startswith('[listener-3] [INFO] [')
+    assert launch.lines[0].startswith('[INFO] [launch]: All log files can be found below ')
+    probe = Node(f'launch_probe_{flavour}', context=ros_context, enable_rosout=False)
+    nodes = {('speaker', f'/{ns}'), ('board', f'/{ns}'), ('listener', f'/{ns}')}
+    wait_until(lambda: nodes <= set(probe.get_node_names_and_namespaces()), timeout=15)
+    topics = dict(probe.get_topic_names_and_types())
+    assert topics.get(f'/{ns}/said') == ['std_msgs/msg/String']
+    monkeypatch.chdir(workspace)
+    assert run('param', 'get', f'/{ns}/board', 'answer').out == 'Integer value is: 42\n'
+    assert run('param', 'get', f'/{ns}/board', 'greeting').out == (
+        'String value is: hello from a file\n'
+    )
+    assert launch.interrupt() == 0
+    for label in ('talker-1', 'parameter_blackboard-2', 'listener-3'):
+        assert any(f'[INFO] [{label}]: process has finished cleanly' in x for x in launch.lines)
+    assert not any('Traceback' in line for line in launch.lines), launch.lines
+
+
+def _descendants(marker: str) -> list[int]:
+    """Processes (of any session or group) carrying the trial's marker in their environment."""
+    found = []
+    for entry in os.listdir('/proc'):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f'/proc/{entry}/environ', 'rb') as f:
+                if marker.encode() in f.read():
+                    found.append(int(entry))
+        except OSError:
+            continue
+    return found
+
+
+@pytest.fixture
+def terminal() -> Iterator[int]:
+    """A pseudo-terminal for the launch: Ctrl-C typed there goes to its foreground group."""
+    import pty
+
+    master, slave = pty.openpty()
+    yield slave
+    os.close(master)
+    os.close(slave)
+
+
+def test_ctrl_c_leaves_no_child_behind(ros_router: str, terminal: int) -> None:
+    """Ctrl-C at random moments, from starting up to talking: every process the launch
+    started is gone when it returns, and it returns 0 without escalating."""
+    import fcntl
+    import termios
+
+    def take_terminal() -> None:
+        fcntl.ioctl(0, termios.TIOCSCTTY, 0)
+
+    for delay in (0.05, random.uniform(0.2, 0.8), None, None):
+        marker = f'ROS2LITE_TRIAL={uuid.uuid4().hex}'
+        name, value = marker.split('=')
+        proc = subprocess.Popen(
+            [
+                sys.executable,
+                '-m',
+                'ros2lite',
+                'launch',
+                'demo_nodes_py',
+                'talker_listener.launch.py',
+            ],
+            stdin=terminal,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+            start_new_session=True,
+            preexec_fn=take_terminal,
+            env={**os.environ, name: value},
+        )
+        launch = Launch(proc)
+        try:
+            if delay is None:
+                launch.wait_for('I heard: [Hello World: ')  # both nodes up and talking
+            else:
+                time.sleep(delay)  # deliberately early: during start-up
+            os.killpg(proc.pid, signal.SIGINT)  # what the terminal does on Ctrl-C
+            code = proc.wait(30)
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+        wait_until(lambda m=marker: not _descendants(m), timeout=10)
+        if any('process started' in line for line in launch.lines):
+            # the launch was running: it stopped its children in order, and says so
+            assert code == 0, launch.lines
+            assert not any('escalating' in line for line in launch.lines), launch.lines
+        # else Ctrl-C came while Python was still importing: nothing was started
+
+
+def test_show_args_and_print(
+    run: Callable[..., Result], workspace: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(workspace)  # the include's FindPackageShare finds the workspace
+    shown = run('launch', 'lesson_bringup', 'top.launch.py', '-s')
+    assert shown.code == 0, shown.err
+    assert shown.out.startswith(
+        "Arguments (pass arguments as '<name>:=<value>'):\n\n    'ns':\n        namespace\n"
+        "        (default: 'lesson')\n\n    'topic':\n        topic to use\n"
+    )
+    assert "'heard_topic':" in shown.out  # from the included file
+    printed = run('launch', 'demo_nodes_py', 'talker_listener.launch.xml', '--print')
+    assert printed.out.splitlines()[1:] == [
+        "├── Node(package='demo_nodes_py', executable='talker')",
+        "└── Node(package='demo_nodes_py', executable='listener')",
+    ]
+
+
+def test_errors(run: Callable[..., Result], workspace: Path) -> None:
+    missing = run('launch', 'demo_nodes_py', 'nope.launch.py')
+    assert missing.code == 1
+    assert missing.err.startswith(
+        "file 'nope.launch.py' was not found in the share directory of package 'demo_nodes_py'"
+    )
+    assert run('launch', 'demo_nodes_py', 'talker_listener.launch.py', 'oops').err == (
+        "malformed launch argument 'oops', expected format '<name>:=<value>'\n"
+    )
+    assert run('launch', 'no_such_pkg', 'x.launch.py').err == ("Package 'no_such_pkg' not found\n")
+    assert 'is not a launch file' in run('launch', 'no_such_file.launch.py').err
+
+
+def test_a_required_argument_missing(workspace: Path) -> None:
+    path = workspace / 'src' / 'lesson_bringup' / 'launch' / 'listen.launch.py'
+    result = run_process('launch', str(path))
+    assert result.code == 1
+    assert result.out.splitlines()[-1] == (
+        '[ERROR] [launch]: Caught exception in launch (see debug for traceback): Included '
+        "launch description missing required argument 'heard_topic' (description: 'no "
+        "description given'), given: []"
+    )
