@@ -17,6 +17,7 @@ from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
 from tests.cli.conftest import Result, run_process
 from tests.pkg.test_executables import make_ament_prefix
+from tests.pkg.workspaces import MINIMAL_PUBLISHER
 from tests.spinning import spin_until, wait_until
 
 
@@ -204,39 +205,6 @@ def test_ctrl_c_in_a_terminal_reaches_the_child_once(tmp_path: Path) -> None:
     assert proc.returncode == 0
 
 
-# A node as a student writes it after `pkg create`, here against ros2lite's own API (the
-# rclpy-named face of the same code is the compat directory's)
-WORKSPACE_TALKER = '''
-import ros2lite
-from ros2lite.executors import ExternalShutdownException
-from ros2lite.msgs.std_msgs.msg import String
-from ros2lite.node import Node
-
-
-class MinimalPublisher(Node):
-    def __init__(self):
-        super().__init__('minimal_publisher')
-        self.publisher_ = self.create_publisher(String, 'topic', 10)
-        self.i = 0
-        self.timer = self.create_timer(0.1, self.timer_callback)
-
-    def timer_callback(self):
-        msg = String()
-        msg.data = f'Hello World: {self.i}'
-        self.publisher_.publish(msg)
-        self.i += 1
-
-
-def main(args=None):
-    ros2lite.init(args=args)
-    node = MinimalPublisher()
-    try:
-        ros2lite.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-'''
-
-
 def test_a_new_package_runs_without_a_build(
     run: Callable[..., Result], ros_context: Any, processes: Any, tmp_path: Path
 ) -> None:
@@ -255,7 +223,7 @@ def test_a_new_package_runs_without_a_build(
     )
     assert created.code == 0, created.err
     pkg = ws / 'src' / 'py_pubsub'
-    (pkg / 'py_pubsub' / 'publisher_member_function.py').write_text(WORKSPACE_TALKER)
+    (pkg / 'py_pubsub' / 'publisher_member_function.py').write_text(MINIMAL_PUBLISHER)
     setup = pkg / 'setup.py'
     setup.write_text(
         setup.read_text().replace(

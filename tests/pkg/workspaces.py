@@ -19,6 +19,39 @@ PACKAGE_XML = """<?xml version="1.0"?>
 """
 
 
+# A node as a student writes it after `pkg create`, here against ros2lite's own API (the
+# rclpy-named face of the same code is the compat directory's)
+MINIMAL_PUBLISHER = '''
+import ros2lite
+from ros2lite.executors import ExternalShutdownException
+from ros2lite.msgs.std_msgs.msg import String
+from ros2lite.node import Node
+
+
+class MinimalPublisher(Node):
+    def __init__(self):
+        super().__init__('minimal_publisher')
+        self.publisher_ = self.create_publisher(String, 'topic', 10)
+        self.i = 0
+        self.timer = self.create_timer(0.1, self.timer_callback)
+
+    def timer_callback(self):
+        msg = String()
+        msg.data = f'Hello World: {self.i}'
+        self.publisher_.publish(msg)
+        self.i += 1
+
+
+def main(args=None):
+    ros2lite.init(args=args)
+    node = MinimalPublisher()
+    try:
+        ros2lite.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+'''
+
+
 def write_package(
     directory: Path,
     name: str,
