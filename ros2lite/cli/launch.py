@@ -117,9 +117,11 @@ def cli(
         launch_a_launch_file,
         parse_launch_arguments,
     )
+    from ros2lite.pkg.index import PackageIndex
 
     from .render import fancy
 
+    index = PackageIndex()  # read once, for the file and for the nodes
     words = list(launch_arguments)
     notes: list[str] = []
     if launch_file_name is None or ':=' in launch_file_name:
@@ -133,7 +135,7 @@ def cli(
                 'name, or the path of a launch file'
             )
     else:
-        path, note = find_launch_file(package_name, launch_file_name)
+        path, note = find_launch_file(package_name, launch_file_name, index)
         if note:
             notes.append(note)
     arguments = parse_launch_arguments(words)
@@ -158,5 +160,6 @@ def cli(
         output_override='both' if show_all else None,
         style=_Colours() if fancy() else None,
         notes=notes,
+        index=index,
     )
     raise click.exceptions.Exit(code)

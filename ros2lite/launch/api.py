@@ -88,6 +88,7 @@ def launch_a_launch_file(
     style: Any = None,
     stream: Any = None,
     notes: Sequence[str] = (),
+    index: Any = None,
 ) -> int:
     """Run the launch file with its arguments until it is done or stopped; returns the
     launch's status (0, or 1 when the launch itself failed)."""
@@ -98,6 +99,7 @@ def launch_a_launch_file(
         style=style,
         stream=stream,
         output_override=output_override,
+        index=index,
     )
     for note in notes:
         service.pending_notes.append(note)

@@ -169,6 +169,10 @@ class LaunchContext:
             self._index = PackageIndex(self.environment)
         return self._index
 
+    def use_package_index(self, index: PackageIndex) -> None:
+        """Answer package questions from `index` (one the caller has already read)."""
+        self._index = index
+
     def anonymous_name(self, name: str, make: Callable[[], str]) -> str:
         if name not in self._anonymous:
             self._anonymous[name] = make()

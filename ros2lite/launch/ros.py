@@ -16,8 +16,6 @@ from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import yaml
-
 from ros2lite.names import NameValidationException, normalize_namespace, validate_namespace
 
 from .actions import Action, Entities, path_of
@@ -111,6 +109,8 @@ class ParameterFile:
 
 def _yaml_value(text: str) -> Any:
     """Text as launch_ros reads it: a YAML scalar or a list of one scalar type; else text."""
+    import yaml
+
     try:
         value = yaml.safe_load(text)
     except yaml.YAMLError:
@@ -164,6 +164,8 @@ def evaluate_parameter(context: LaunchContext, value: Any) -> Any:
 
 
 def _typed(text: str, value_type: Any) -> Any:
+    import yaml
+
     try:
         parsed = yaml.safe_load(text)
     except yaml.YAMLError:
@@ -319,6 +321,8 @@ class Node(ExecuteProcess):
         return resolved.executable
 
     def _params_file(self, context: LaunchContext, values: dict[str, Any]) -> str:
+        import yaml
+
         fd, path = tempfile.mkstemp(prefix='launch_params_', suffix='.yaml')
         with os.fdopen(fd, 'w', encoding='utf-8') as out:
             yaml.safe_dump({'/**': {'ros__parameters': values}}, out, sort_keys=False)

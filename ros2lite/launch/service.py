@@ -76,8 +76,11 @@ class LaunchService:
         log_dir: Path | None = None,
         write_logs: bool = True,
         output_override: str | None = None,
+        index: Any = None,
     ) -> None:
         self.context = LaunchContext(argv=argv, noninteractive=noninteractive)
+        if index is not None:
+            self.context.use_package_index(index)
         self.context.service = self
         self.context.emit_event_sync = self.emit_event
         self.debug = debug

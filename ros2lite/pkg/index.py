@@ -180,11 +180,13 @@ class PackageIndex:
         return found
 
     def _read_entry_points(self) -> dict[str, Package]:
-        from importlib.metadata import entry_points
-
         from .executables import ENTRY_POINT_GROUP
 
         found: dict[str, Package] = {}
+        if not _may_declare(ENTRY_POINT_GROUP):
+            return found
+        from importlib.metadata import entry_points
+
         for ep in entry_points(group=ENTRY_POINT_GROUP):
             package, dot, exe = ep.name.partition('.')
             if not dot or not exe or not is_valid_package_name(package) or package in found:
@@ -262,6 +264,29 @@ class PackageIndex:
                     if pkg.interfaces is not None:
                         found[name] = pkg.interfaces
         return dict(sorted(found.items()))
+
+
+def _may_declare(group: str) -> bool:
+    """Could an installed distribution declare entry points in `group`? A quick look at the
+    entry_points.txt files on sys.path, so the common answer (none) costs no importlib.metadata
+    scan of every distribution — that scan is what reads them properly when one may."""
+    import sys
+
+    needle = f'[{group}]'.encode()
+    for entry in sys.path:
+        try:
+            names = os.listdir(entry or '.')
+        except OSError:
+            continue
+        for name in names:
+            if name.endswith(('.dist-info', '.egg-info')):
+                try:
+                    with open(os.path.join(entry or '.', name, 'entry_points.txt'), 'rb') as f:
+                        if needle in f.read():
+                            return True
+                except OSError:
+                    continue
+    return False
 
 
 def _children(directory: Path) -> Iterator[Path]:

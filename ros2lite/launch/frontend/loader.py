@@ -5,8 +5,6 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-import yaml
-
 from ..actions import LaunchDescription
 from ..errors import InvalidFrontendLaunchFileError
 from .builders import build_all
@@ -45,6 +43,8 @@ def load_frontend_file(path: Path, kind: str | None = None) -> LaunchDescription
             )
         entities = XmlEntity(root, where).children()
     elif kind == 'yaml':
+        import yaml  # here: a Python launch file should not pay for it
+
         try:
             document = yaml.safe_load(data)
         except yaml.YAMLError as e:
