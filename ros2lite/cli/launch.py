@@ -95,7 +95,7 @@ class _Colours:
     'matching the executable name.',
 )
 @click.argument('package_name', shell_complete=completion.executable_packages)
-@click.argument('launch_file_name', required=False)
+@click.argument('launch_file_name', required=False, shell_complete=completion.launch_files)
 @click.argument('launch_arguments', nargs=-1, type=click.UNPROCESSED)
 def cli(
     noninteractive: bool,

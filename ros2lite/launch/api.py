@@ -13,7 +13,12 @@ from .errors import LaunchError
 from .service import LaunchService
 from .sources import AnyLaunchDescriptionSource
 
-__all__ = ['find_launch_file', 'launch_a_launch_file', 'parse_launch_arguments']
+__all__ = [
+    'find_launch_file',
+    'launch_a_launch_file',
+    'launch_files',
+    'parse_launch_arguments',
+]
 
 _SKIP = {'__pycache__', 'node_modules'}
 
@@ -65,6 +70,28 @@ def find_launch_file(package: str, file_name: str, index: Any = None) -> tuple[P
             f"'{package}': {[str(p) for p in found]}"
         )
     return found[0], note
+
+
+def _is_launch_file(name: str) -> bool:
+    """Names launch files go by: `x.launch.py|xml|yaml|yml`, and `x_launch.py` (older)."""
+    stem, dot, ext = name.rpartition('.')
+    return (
+        bool(dot) and ext in ('py', 'xml', 'yaml', 'yml') and stem.endswith(('.launch', '_launch'))
+    )
+
+
+def launch_files(package: str, index: Any = None) -> list[str]:
+    """The launch file names in a package's share directory (for completion), sorted."""
+    from ros2lite.pkg.index import PackageIndex
+
+    pkg = (index if index is not None else PackageIndex()).find(package)
+    if pkg is None or pkg.share is None:
+        return []
+    names: set[str] = set()
+    for _dirpath, dirnames, filenames in os.walk(pkg.share):
+        dirnames[:] = [d for d in dirnames if not d.startswith('.') and d not in _SKIP]
+        names.update(f for f in filenames if _is_launch_file(f))
+    return sorted(names)
 
 
 def _matches(share: Path, file_name: str) -> list[Path]:
