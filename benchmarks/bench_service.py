@@ -96,7 +96,7 @@ def _raw_round_trips(endpoint: str) -> list[float]:
 def _library_round_trips() -> list[float]:
     import ros2lite
     from ros2lite.context import Context
-    from ros2lite.msgs.example_interfaces.srv import AddTwoInts  # type: ignore[attr-defined]
+    from ros2lite.msgs.example_interfaces.srv import AddTwoInts
 
     ctx = Context().init([])
     try:

@@ -12,11 +12,13 @@ Names are re-exported lazily so `import ros2lite` (and `ros2lite --help`) stays 
 from __future__ import annotations
 
 import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 __version__ = '0.1.0'
 
 if TYPE_CHECKING:  # what type checkers see; at run time the names load lazily
+    from typing_extensions import Unpack
+
     from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
     from ros2lite.clock import Clock
     from ros2lite.context import Context, default_context
@@ -33,6 +35,7 @@ if TYPE_CHECKING:  # what type checkers see; at run time the names load lazily
     )
     from ros2lite.logging import get_logger
     from ros2lite.node import Node
+    from ros2lite.node_options import NodeOptions
     from ros2lite.parameter import Parameter
     from ros2lite.qos import (
         DurabilityPolicy,
@@ -116,10 +119,10 @@ _EXPORTS = {
 def init(
     args: list[str] | None = None,
     *,
-    context: Any = None,
+    context: Context | None = None,
     router: str | None = None,
     domain_id: int | None = None,
-) -> Any:
+) -> Context:
     """Open the node's Zenoh session (a peer; with no router it starts the daemon, or runs on
     without one: see `ros2lite.daemon.connect`).
 
@@ -134,31 +137,35 @@ def init(
     return ctx
 
 
-def shutdown(*, context: Any = None) -> None:
+def shutdown(*, context: Context | None = None) -> None:
+    """Close the context's session; its nodes leave the graph."""
     from ros2lite.context import default_context
 
     (context or default_context()).shutdown()
 
 
-def try_shutdown(*, context: Any = None) -> None:
+def try_shutdown(*, context: Context | None = None) -> None:
+    """shutdown() if the context is still open."""
     from ros2lite.context import default_context
 
     (context or default_context()).try_shutdown()
 
 
-def ok(*, context: Any = None) -> bool:
+def ok(*, context: Context | None = None) -> bool:
+    """Whether the context is open and no SIGTERM asked it to stop."""
     from ros2lite.context import default_context
 
     return (context or default_context()).ok()
 
 
-def create_node(node_name: str, **kwargs: Any) -> Any:
+def create_node(node_name: str, **kwargs: Unpack[NodeOptions]) -> Node:
+    """A Node (rclpy's factory function; the keyword arguments are Node's)."""
     from ros2lite.node import Node
 
     return Node(node_name, **kwargs)
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> object:
     module = _EXPORTS.get(name)
     if module is None:
         raise AttributeError(f"module 'ros2lite' has no attribute '{name}'")

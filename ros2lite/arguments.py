@@ -7,9 +7,9 @@ Supported: ``-r/--remap [node:]from:=to`` (including ``__node``/``__name`` and `
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
 
 from ros2lite.exceptions import Ros2liteError
 
@@ -30,6 +30,8 @@ class RosArgsError(Ros2liteError, ValueError):
 
 @dataclass
 class Remap:
+    """One `-r from:=to` rule (for one node when `node` is given)."""
+
     node: str | None  # only applies to this node name when given
     source: str
     target: str
@@ -37,8 +39,11 @@ class Remap:
 
 @dataclass
 class RosArgs:
+    """What `--ros-args` said: remaps, parameters, params files, log levels, enclave."""
+
     remaps: list[Remap] = field(default_factory=list)
-    params: dict[str | None, dict[str, Any]] = field(default_factory=dict)  # node → name → value
+    # node → name → value (as the YAML reads; a Parameter checks it)
+    params: dict[str | None, dict[str, object]] = field(default_factory=dict)
     params_files: list[Path] = field(default_factory=list)
     log_levels: dict[str | None, int] = field(default_factory=dict)
     enclave: str | None = None
@@ -58,9 +63,11 @@ class RosArgs:
         return merged
 
     def node_name_override(self, node: str) -> str | None:
+        """The name `__node:=` gives this node, if any."""
         return self._special(node, ('__node', '__name'))
 
     def namespace_override(self, node: str) -> str | None:
+        """The namespace `__ns:=` gives this node, if any."""
         return self._special(node, ('__ns',))
 
     def _special(self, node: str, keys: tuple[str, ...]) -> str | None:
@@ -70,9 +77,9 @@ class RosArgs:
                 found = r.target
         return found
 
-    def parameter_overrides(self, node_fqn: str, node_name: str) -> dict[str, Any]:
+    def parameter_overrides(self, node_fqn: str, node_name: str) -> dict[str, object]:
         """Values for one node: params files (in order), then -p, node-specific last."""
-        values: dict[str, Any] = {}
+        values: dict[str, object] = {}
         for path in self.params_files:
             values.update(load_params_file(path, node_fqn, node_name))
         values.update(self.params.get(None, {}))
@@ -92,7 +99,7 @@ def _split_assignment(text: str, what: str) -> tuple[str | None, str, str]:
     return node, left, right
 
 
-def parse_value(text: str) -> Any:
+def parse_value(text: str) -> object:
     """A parameter value from the command line, typed the YAML way ('1' → int)."""
     import yaml
 
@@ -168,7 +175,7 @@ def parse_ros_args(argv: list[str] | None) -> RosArgs:
     return result
 
 
-def _next(it: Any, flag: str) -> str:
+def _next(it: Iterator[str], flag: str) -> str:
     try:
         value: str = next(it)
     except StopIteration:
@@ -176,7 +183,7 @@ def _next(it: Any, flag: str) -> str:
     return value
 
 
-def load_params_file(path: Path, node_fqn: str, node_name: str | None = None) -> dict[str, Any]:
+def load_params_file(path: Path, node_fqn: str, node_name: str | None = None) -> dict[str, object]:
     """Parameters for one node from a ROS 2 YAML params file (rules: parameters/files.py)."""
     from ros2lite.parameters.files import ParamsFileError, values_for_node
 

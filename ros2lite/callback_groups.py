@@ -7,7 +7,10 @@ A node's entities share its default `MutuallyExclusiveCallbackGroup` unless give
 from __future__ import annotations
 
 import threading
-from typing import Any
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ros2lite.executable import Executable
 
 __all__ = ['CallbackGroup', 'MutuallyExclusiveCallbackGroup', 'ReentrantCallbackGroup']
 
@@ -16,36 +19,42 @@ class CallbackGroup:
     """Decides whether an entity's callback may start now; told when it ends."""
 
     def __init__(self) -> None:
-        self.entities: list[Any] = []
+        self.entities: list[Executable] = []
 
-    def add_entity(self, entity: Any) -> None:
+    def add_entity(self, entity: Executable) -> None:
+        """Make `entity`'s callbacks part of this group."""
         self.entities.append(entity)
 
-    def has_entity(self, entity: Any) -> bool:
+    def has_entity(self, entity: Executable) -> bool:
+        """Whether `entity` belongs to this group."""
         return entity in self.entities
 
-    def can_execute(self, entity: Any) -> bool:
+    def can_execute(self, entity: Executable) -> bool:
+        """Whether `entity`'s callback could start now (without claiming the group)."""
         raise NotImplementedError
 
-    def beginning_execution(self, entity: Any) -> bool:
+    def beginning_execution(self, entity: Executable) -> bool:
         """Claim the group for `entity`'s callback; False if it must wait."""
         raise NotImplementedError
 
-    def ending_execution(self, entity: Any) -> None:
+    def ending_execution(self, entity: Executable) -> None:
+        """`entity`'s callback is over: the group is free again for it."""
         raise NotImplementedError
 
 
 class ReentrantCallbackGroup(CallbackGroup):
     """Any number of its callbacks may run at the same time."""
 
-    def can_execute(self, entity: Any) -> bool:
+    def can_execute(self, entity: Executable) -> bool:
+        """Always: nothing in this group waits for anything else in it."""
         return True
 
-    def beginning_execution(self, entity: Any) -> bool:
+    def beginning_execution(self, entity: Executable) -> bool:
+        """Always succeeds."""
         return True
 
-    def ending_execution(self, entity: Any) -> None:
-        pass
+    def ending_execution(self, entity: Executable) -> None:
+        """Nothing to release."""
 
 
 class MutuallyExclusiveCallbackGroup(CallbackGroup):
@@ -54,19 +63,22 @@ class MutuallyExclusiveCallbackGroup(CallbackGroup):
     def __init__(self) -> None:
         super().__init__()
         self._lock = threading.Lock()
-        self._active: Any = None
+        self._active: Executable | None = None
 
-    def can_execute(self, entity: Any) -> bool:
+    def can_execute(self, entity: Executable) -> bool:
+        """Whether no callback of the group runs now."""
         return self._active is None
 
-    def beginning_execution(self, entity: Any) -> bool:
+    def beginning_execution(self, entity: Executable) -> bool:
+        """Claim the group unless one of its callbacks runs."""
         with self._lock:
             if self._active is None:
                 self._active = entity
                 return True
             return False
 
-    def ending_execution(self, entity: Any) -> None:
+    def ending_execution(self, entity: Executable) -> None:
+        """Release the group if `entity` holds it."""
         with self._lock:
             if self._active is entity:
                 self._active = None

@@ -14,20 +14,26 @@ import threading
 import time
 from collections import deque
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Generic, cast
 
 from ros2lite.endpoint import Endpoint
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile
+from ros2lite.service_introspection import IntrospectionMixin, ServiceEventType
 from ros2lite.task import Future
 from ros2lite.transport.attachment import pack_attachment
 from ros2lite.transport.keys import EntityKind
+from ros2lite.type_support import SrvRequestT, SrvResponseT
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.graph import Entity
     from ros2lite.interfaces.cdr import Codec
+    from ros2lite.node import Node
     from ros2lite.task import Task
+    from ros2lite.transport.session import Querier
+    from ros2lite.type_support import Srv
 
 __all__ = ['Client', 'ServiceCallError']
 
@@ -40,17 +46,18 @@ class ServiceCallError(Ros2liteError, RuntimeError):
     """A request ended without a response (no server answered, or the query failed)."""
 
 
-class Client(Executable):
-    """Calls the service `srv_name` of type `srv_type`."""
+class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]):
+    """Calls the service `srv_name` of type `srv_type`; `call()` gives its Response."""
 
     # completing a future runs no user callback here: it must not wait for the group, or a
     # coroutine holding that group while awaiting this very future would never resume
     needs_group = False
+    _node: Node  # a client always belongs to a node
 
     def __init__(
         self,
-        node: Any,
-        srv_type: Any,
+        node: Node,
+        srv_type: type[Srv[SrvRequestT, SrvResponseT]] | str,
         srv_name: str,
         qos: QoSProfile | int,
         *,
@@ -60,22 +67,25 @@ class Client(Executable):
 
         super().__init__(node, callback_group)
         self._ep = _ClientEndpoint(node, srv_type, srv_name, qos)
-        self.srv_type: Any = self._ep.msg_class
+        self.srv_type: type[Srv[SrvRequestT, SrvResponseT]] = self._ep.msg_class
         self.srv_name = self._ep.topic_name
         self.qos_profile = self._ep.qos
         self._gid = self._ep.gid
         self._lock = threading.Lock()
         self._seq = 0
-        self._pending: dict[int, Future] = {}
+        self._pending: dict[int, Future[SrvResponseT]] = {}
         # (sequence number, response bytes or None, error text) from Zenoh threads
         self._responses: deque[tuple[int, bytes | None, str]] = deque()
         self._codec_pair: tuple[Codec, Codec] | None = None
         timeout = _UNLIMITED if '/_action/get_result' in self.srv_name else None
-        self._querier: Any = declare_querier(node.context.session, self._ep.key, timeout)
+        self._querier: Querier | None = declare_querier(
+            node.context.require(), self._ep.key, timeout
+        )
         self._ep._announce()
 
     @property
     def service_name(self) -> str:
+        """The fully resolved service name."""
         return self.srv_name
 
     def _codecs(self) -> tuple[Codec, Codec]:
@@ -88,9 +98,9 @@ class Client(Executable):
 
     def _send(
         self,
-        request: Any,
+        request: SrvRequestT,
         on_response: Callable[[int, bytes | None, str], None],
-        future: Future | None = None,
+        future: Future[SrvResponseT] | None = None,
     ) -> None:
         """Serialize and send; `on_response(seq, data or None, error)` once, on a Zenoh
         thread. A `future` is registered under the request's sequence number first."""
@@ -117,15 +127,20 @@ class Client(Executable):
                 on_response(seq, None, error or f"no server of '{self.srv_name}' answered")
 
         try:
-            self._querier.get(data, pack_attachment(seq, time.time_ns(), self._gid), reply, end)
+            querier = self._querier
+            if querier is None:
+                raise RuntimeError('client has been destroyed')
+            querier.get(data, pack_attachment(seq, time.time_ns(), self._gid), reply, end)
         except BaseException:
             with self._lock:
                 self._pending.pop(seq, None)
             raise
+        self._introspect(ServiceEventType.REQUEST_SENT, seq, self._gid, request)
 
     # -- asynchronous: completed by the executor ---------------------------------------------------
-    def call_async(self, request: Any) -> Future:
-        future = Future()
+    def call_async(self, request: SrvRequestT) -> Future[SrvResponseT]:
+        """Send `request`; the future completes with the response on the node's executor."""
+        future: Future[SrvResponseT] = Future()
         self._send(request, self._on_response, future)
         return future
 
@@ -151,33 +166,37 @@ class Client(Executable):
             except Exception as e:
                 future.set_exception(ServiceCallError(f'undecodable response: {e}'))
                 continue
-            future.set_result(response)
+            self._introspect(ServiceEventType.RESPONSE_RECEIVED, seq, self._gid, response)
+            future.set_result(cast('SrvResponseT', response))
         return None
 
-    def remove_pending_request(self, future: Future) -> None:
+    def remove_pending_request(self, future: Future[SrvResponseT]) -> None:
+        """Give up on a call_async future: a response that still comes is dropped."""
         with self._lock:
             for seq, pending in list(self._pending.items()):
                 if pending is future:
                     del self._pending[seq]
 
     # -- synchronous: the reply wakes the caller ---------------------------------------------------
-    def call(self, request: Any, timeout_sec: float | None = None) -> Any:
+    def call(self, request: SrvRequestT, timeout_sec: float | None = None) -> SrvResponseT:
         """Send and wait for the response; TimeoutError when `timeout_sec` passes first."""
         self._refuse_deadlock()
         done = threading.Event()
-        outcome: list[tuple[bytes | None, str]] = []
+        outcome: list[tuple[int, bytes | None, str]] = []
 
         def on_response(seq: int, data: bytes | None, error: str) -> None:
-            outcome.append((data, error))
+            outcome.append((seq, data, error))
             done.set()
 
         self._send(request, on_response)
         if not done.wait(timeout_sec):
             raise TimeoutError(f"service '{self.srv_name}' did not answer within {timeout_sec} s")
-        data, error = outcome[0]
+        seq, data, error = outcome[0]
         if data is None:
             raise ServiceCallError(error)
-        return self._codecs()[1].deserialize(data)
+        response = self._codecs()[1].deserialize(data)
+        self._introspect(ServiceEventType.RESPONSE_RECEIVED, seq, self._gid, response)
+        return cast('SrvResponseT', response)
 
     def _refuse_deadlock(self) -> None:
         """Inside a callback, a server of ours on the same executor may be unable to run
@@ -207,7 +226,7 @@ class Client(Executable):
             )
 
     # -- availability -----------------------------------------------------------------------------
-    def _server_count(self, entities: list[Any]) -> int:
+    def _server_count(self, entities: list[Entity]) -> int:
         return sum(
             1
             for e in entities
@@ -218,6 +237,7 @@ class Client(Executable):
         )
 
     def service_is_ready(self) -> bool:
+        """Whether a server of this name and type is on the graph now."""
         return self._server_count(self._node.context.graph.entities()) > 0
 
     def wait_for_service(self, timeout_sec: float | None = None) -> bool:
@@ -229,6 +249,8 @@ class Client(Executable):
         return context.ok() and self.service_is_ready()
 
     def destroy(self) -> None:
+        """Cancel pending calls and withdraw the querier and its token."""
+        self._destroy_introspection()
         with self._lock:
             pending, self._pending = self._pending, {}
         for future in pending.values():

@@ -9,14 +9,19 @@ import enum
 import threading
 import time
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, overload
 
 from ros2lite.duration import Duration
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.builtin_interfaces import msg as _builtin_msg
 
 _NS = 1_000_000_000
 
 
 class ClockType(enum.IntEnum):
+    """Which time a clock tells (rcl's clock types)."""
+
     UNINITIALIZED = 0
     ROS_TIME = 1
     SYSTEM_TIME = 2
@@ -25,24 +30,36 @@ class ClockType(enum.IntEnum):
 
 @dataclass(frozen=True, order=True)
 class Time:
+    """A point in time (ns) on a clock type; rclpy's Time."""
+
     nanoseconds: int = 0
     clock_type: ClockType = ClockType.SYSTEM_TIME
 
     @classmethod
-    def from_msg(cls, msg: Any, clock_type: ClockType = ClockType.ROS_TIME) -> Time:
+    def from_msg(cls, msg: _builtin_msg.Time, clock_type: ClockType = ClockType.ROS_TIME) -> Time:
+        """From a builtin_interfaces/Time."""
         return cls(msg.sec * _NS + msg.nanosec, clock_type)
 
     @property
     def seconds_nanoseconds(self) -> tuple[int, int]:
+        """(whole seconds, remaining nanoseconds)."""
         return divmod(self.nanoseconds, _NS)
 
-    def to_msg(self) -> Any:
+    def to_msg(self) -> _builtin_msg.Time:
+        """As a builtin_interfaces/Time."""
         from ros2lite.interfaces import get_interface
 
         sec, nsec = divmod(self.nanoseconds, _NS)
-        return get_interface('builtin_interfaces/msg/Time')(sec=sec, nanosec=nsec)
+        time_type: type[_builtin_msg.Time] = get_interface('builtin_interfaces/msg/Time')
+        return time_type(sec=sec, nanosec=nsec)
 
-    def __sub__(self, other: Time | Duration) -> Any:
+    @overload
+    def __sub__(self, other: Time) -> Duration: ...
+
+    @overload
+    def __sub__(self, other: Duration) -> Time: ...
+
+    def __sub__(self, other: Time | Duration) -> Duration | Time:
         if isinstance(other, Time):
             return Duration(nanoseconds=self.nanoseconds - other.nanoseconds)
         return Time(self.nanoseconds - other.nanoseconds, self.clock_type)
@@ -61,6 +78,7 @@ class Clock:
 
     @property
     def ros_time_is_active(self) -> bool:
+        """Whether ROS time follows /clock (use_sim_time)."""
         return self._sim_ns is not None
 
     def _enable_sim_time(self, enabled: bool) -> None:
@@ -75,6 +93,7 @@ class Clock:
                 self._changed.notify_all()
 
     def now(self) -> Time:
+        """The clock's current time."""
         if self.clock_type == ClockType.STEADY_TIME:
             return Time(time.monotonic_ns(), self.clock_type)
         sim = self._sim_ns
@@ -83,6 +102,7 @@ class Clock:
         return Time(time.time_ns(), self.clock_type)
 
     def sleep_for(self, duration: Duration | float) -> None:
+        """Sleep for a duration of this clock's time (simulated time waits for /clock)."""
         seconds = duration.to_seconds() if isinstance(duration, Duration) else duration
         if self._sim_ns is None:
             time.sleep(max(0.0, seconds))

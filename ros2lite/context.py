@@ -15,17 +15,26 @@ import signal
 import sys
 import threading
 import weakref
-from typing import Any
+from collections.abc import Callable
+from types import FrameType
+from typing import TYPE_CHECKING, Any
 
 from ros2lite.arguments import RosArgs, parse_ros_args
 from ros2lite.exceptions import NotInitializedException
+
+if TYPE_CHECKING:
+    from ros2lite.executors import Executor
+    from ros2lite.graph import GraphCache
+    from ros2lite.node import Node
+    from ros2lite.service import Service
+    from ros2lite.transport.handles import Session
 
 
 class Context:
     """Owns the session; nodes, endpoints and executors of a process share it."""
 
     def __init__(self) -> None:
-        self.session: Any = None
+        self.session: Session | None = None
         self.domain_id = 0
         self.zid = ''
         self.router: str | None = None
@@ -34,15 +43,15 @@ class Context:
         self.args = RosArgs()
         self.argv: list[str] = []
         # executors of this context, woken when it shuts down or is told to terminate
-        self._executors: weakref.WeakSet[Any] = weakref.WeakSet()
+        self._executors: weakref.WeakSet[Executor] = weakref.WeakSet()
         # service servers of this process by key, so a blocking call can tell when waiting
         # for one of them would deadlock
-        self.local_services: dict[str, Any] = {}
+        self.local_services: dict[str, Service[Any, Any]] = {}
         self._ids = itertools.count()
         self._lock = threading.Lock()
-        self._nodes: list[Any] = []
-        self._on_shutdown: list[Any] = []
-        self._graph: Any = None
+        self._nodes: list[Node] = []
+        self._on_shutdown: list[Callable[[], object]] = []
+        self._graph: GraphCache | None = None
         # set by SIGTERM: ok() turns False at once and spinning executors raise
         # ExternalShutdownException; the session itself closes on the way out
         self.terminating = False
@@ -89,19 +98,22 @@ class Context:
         self.try_shutdown()
 
     def ok(self) -> bool:
+        """Whether the session is open and no SIGTERM asked it to stop."""
         return self.session is not None and not self.terminating
 
-    def require(self) -> Any:
+    def require(self) -> Session:
+        """The session; NotInitializedException before init()."""
         if self.session is None:
             raise NotInitializedException()
         return self.session
 
     def next_entity_id(self) -> int:
+        """A fresh id for a node or endpoint (rmw_zenoh numbers both from one counter)."""
         with self._lock:
             return next(self._ids)
 
     @property
-    def graph(self) -> Any:
+    def graph(self) -> GraphCache:
         """The live graph cache, created on first use (CLI snapshots don't need it)."""
         with self._lock:
             if self._graph is None:
@@ -110,19 +122,23 @@ class Context:
                 self._graph = GraphCache(self.require(), self.domain_id)
             return self._graph
 
-    def add_node(self, node: Any) -> None:
+    def add_node(self, node: Node) -> None:
+        """Remember a node, to destroy it at shutdown."""
         with self._lock:
             self._nodes.append(node)
 
-    def remove_node(self, node: Any) -> None:
+    def remove_node(self, node: Node) -> None:
+        """Forget a destroyed node."""
         with self._lock:
             if node in self._nodes:
                 self._nodes.remove(node)
 
-    def on_shutdown(self, fn: Any) -> None:
+    def on_shutdown(self, fn: Callable[[], object]) -> None:
+        """Call `fn()` when the context shuts down."""
         self._on_shutdown.append(fn)
 
-    def add_executor(self, executor: Any) -> None:
+    def add_executor(self, executor: Executor) -> None:
+        """Remember an executor, to wake it at shutdown."""
         self._executors.add(executor)
 
     def wake(self) -> None:
@@ -131,6 +147,7 @@ class Context:
             executor.wake()
 
     def shutdown(self) -> None:
+        """Destroy the nodes, close the session and wake the executors."""
         if self.session is None:
             return
         for fn in self._on_shutdown:
@@ -148,6 +165,7 @@ class Context:
             self._ids = itertools.count()
 
     def try_shutdown(self) -> None:
+        """shutdown() unless already shut down."""
         if self.session is not None:
             self.shutdown()
 
@@ -176,10 +194,12 @@ if _register_early is not None:
     _register_early(_shutdown_live_contexts)
 
 
-_previous_sigterm: Any = signal.SIG_DFL
+_previous_sigterm: Callable[[int, FrameType | None], object] | int | signal.Handlers | None = (
+    signal.SIG_DFL
+)
 
 
-def _on_sigterm(signum: int, frame: Any) -> None:
+def _on_sigterm(signum: int, frame: FrameType | None) -> None:
     """SIGTERM as rclpy handles it: open contexts stop being ok() and spinning executors
     raise ExternalShutdownException, so `main()` can leave through its normal clean-up.
     Doing the shutdown itself here could interrupt a zenoh call on this very thread."""
@@ -211,4 +231,5 @@ _default = Context()
 
 
 def default_context() -> Context:
+    """The process' context (the one `ros2lite.init()` opens)."""
     return _default

@@ -9,7 +9,10 @@ client library can use it.
 from __future__ import annotations
 
 from functools import total_ordering
-from typing import Any
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.builtin_interfaces import msg as _builtin_msg
 
 _NS = 1_000_000_000
 
@@ -25,19 +28,22 @@ class Duration:
 
     @classmethod
     def from_seconds(cls, seconds: float) -> Duration:
+        """A duration of `seconds` (rounded to ns)."""
         return cls(seconds=seconds)
 
     @classmethod
     def from_nanoseconds(cls, nanoseconds: int) -> Duration:
+        """A duration of `nanoseconds`."""
         return cls(nanoseconds=nanoseconds)
 
     @classmethod
-    def from_msg(cls, msg: Any) -> Duration:
+    def from_msg(cls, msg: _builtin_msg.Duration | _builtin_msg.Time) -> Duration:
         """From a `builtin_interfaces/msg/Duration` (or anything with sec/nanosec)."""
         return cls(nanoseconds=msg.sec * _NS + msg.nanosec)
 
     @property
     def nanoseconds(self) -> int:
+        """The length in nanoseconds."""
         return self._ns
 
     @property
@@ -52,19 +58,26 @@ class Duration:
 
     @property
     def is_unspecified(self) -> bool:
+        """Whether it is zero (QoS: the middleware's default)."""
         return self._ns == 0
 
     @property
     def is_infinite(self) -> bool:
+        """Whether it is QoS's "infinite"."""
         return self._ns == _INFINITE_NS
 
     def to_seconds(self) -> float:
+        """The length in seconds."""
         return self._ns / _NS
 
-    def to_msg(self) -> Any:
+    def to_msg(self) -> _builtin_msg.Duration:
+        """As a builtin_interfaces/Duration."""
         from ros2lite.interfaces import get_interface
 
-        return get_interface('builtin_interfaces/msg/Duration')(sec=self.sec, nanosec=self.nsec)
+        duration_type: type[_builtin_msg.Duration] = get_interface(
+            'builtin_interfaces/msg/Duration'
+        )
+        return duration_type(sec=self.sec, nanosec=self.nsec)
 
     def __eq__(self, other: object) -> bool:
         return isinstance(other, Duration) and self._ns == other._ns

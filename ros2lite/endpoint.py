@@ -2,14 +2,18 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.qos import QoSProfile
 from ros2lite.transport.keys import EntityKind, endpoint_token, topic_key
 
+if TYPE_CHECKING:
+    from ros2lite.node import Node
+    from ros2lite.transport.handles import Handle
 
-def resolve_type(msg_type: Any) -> tuple[str, Any]:
-    """(type name, class or None) from a message class or a 'pkg/msg/Name' string."""
+
+def resolve_type(msg_type: type | str) -> tuple[str, type]:
+    """(type name, class) from a message or service class or a 'pkg/msg/Name' string."""
     from ros2lite.interfaces import get_interface
     from ros2lite.interfaces.registry import normalize_name
 
@@ -36,14 +40,17 @@ class EndpointOwner:
 
     @property
     def topic_name(self) -> str:
+        """The fully resolved topic (or service) name."""
         return self._ep.topic_name
 
     @property
-    def msg_type(self) -> Any:
+    def msg_type(self) -> type:
+        """The message class (or the stand-in of a type known only by name and hash)."""
         return self._ep.msg_class
 
     @property
     def qos_profile(self) -> QoSProfile:
+        """The QoS this endpoint was created with (a depth becomes a KEEP_LAST profile)."""
         return self._ep.qos
 
     def destroy(self) -> None:
@@ -56,7 +63,7 @@ class Endpoint:
 
     kind: EntityKind
 
-    def __init__(self, node: Any, msg_type: Any, topic: str, qos: QoSProfile | int) -> None:
+    def __init__(self, node: Node, msg_type: type | str, topic: str, qos: QoSProfile | int) -> None:
         from ros2lite.interfaces import type_hash
 
         self.node = node
@@ -83,15 +90,15 @@ class Endpoint:
             self.qos,
             ctx.enclave,
         )
-        self._token: Any = None
+        self._token: Handle | None = None
 
     def _announce(self) -> None:
         # rmw_zenoh declares the data entity first, then the token
         from ros2lite.transport.session import declare_token
 
-        self._token = declare_token(self.node.context.session, self.token_key)
+        self._token = declare_token(self.node.context.require(), self.token_key)
 
-    def _undeclare(self, *entities: Any) -> None:
+    def _undeclare(self, *entities: Handle | None) -> None:
         from ros2lite.transport.session import undeclare_quietly
 
         undeclare_quietly(self._token, *entities)
@@ -99,6 +106,7 @@ class Endpoint:
 
     @property
     def gid(self) -> bytes:
+        """The 16-byte global id rmw_zenoh derives from the endpoint's token."""
         from ros2lite.transport.attachment import gid_from_token
 
         return gid_from_token(self.token_key)

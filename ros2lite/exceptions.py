@@ -9,7 +9,10 @@ as ``except ValueError`` keeps working. Subpackages keep their own errors (``bag
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ros2lite.parameter import Parameter
 
 
 class Ros2liteError(Exception):
@@ -88,7 +91,7 @@ class InvalidParameterException(ParameterException):
 class InvalidParameterTypeException(ParameterException):
     """A statically typed parameter was given a value of another type."""
 
-    def __init__(self, desired_parameter: Any, expected_type: Any) -> None:
+    def __init__(self, desired_parameter: Parameter, expected_type: str) -> None:
         # the Parameter's own Type enum names what it got (no import of ros2lite.parameter)
         got = type(desired_parameter).Type.from_parameter_value(desired_parameter.value).name
         super().__init__(
@@ -101,7 +104,7 @@ class InvalidParameterTypeException(ParameterException):
 class InvalidParameterValueException(ParameterException):
     """A value was refused by a descriptor (range) or an on-set callback."""
 
-    def __init__(self, parameter: str, value: Any, reason: str) -> None:
+    def __init__(self, parameter: str, value: object, reason: str) -> None:
         super().__init__(
             f"Invalid parameter value ({value}) for parameter. Reason: {reason}", parameter
         )

@@ -7,21 +7,31 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from ros2lite.callback_groups import CallbackGroup
 
 if TYPE_CHECKING:
+    from ros2lite.executors import Executor
+    from ros2lite.node import Node
     from ros2lite.task import Task
 
-__all__ = ['Executable', 'GuardCondition', 'current_execution']
+__all__ = ['Destroyable', 'Executable', 'GuardCondition', 'current_execution']
 
 # which executor and entity the current thread runs a callback for (set by the executor):
 # coroutine callbacks continue on it, and blocking calls check it for deadlocks
 _running = threading.local()
 
 
-def current_execution() -> tuple[Any, Executable | None]:
+class Destroyable(Protocol):
+    """Anything a node tears down when it is destroyed."""
+
+    def destroy(self) -> None:
+        """Release what it holds (entities leave the graph)."""
+        ...
+
+
+def current_execution() -> tuple[Executor | None, Executable | None]:
     """(executor, entity) whose callback this thread is running, or (None, None)."""
     return getattr(_running, 'executor', None), getattr(_running, 'entity', None)
 
@@ -35,7 +45,7 @@ class Executable:
     needs_group = True
     is_timer = False
 
-    def __init__(self, node: Any, callback_group: CallbackGroup | None) -> None:
+    def __init__(self, node: Node | None, callback_group: CallbackGroup | None) -> None:
         from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup
 
         self._node = node
@@ -50,7 +60,8 @@ class Executable:
         """Any thread: work arrived; queue this entity on its node's executor (once)."""
         if self._scheduled:
             return
-        executor = self._node._executor
+        # only entities of a node queue work (a nodeless timer is never notified)
+        executor = self._node._executor  # type: ignore[union-attr]
         if executor is not None:
             self._scheduled = True
             executor._enqueue(self)
@@ -66,7 +77,10 @@ class Executable:
         return False
 
     def _call(
-        self, callback: Callable[..., Any], *args: Any, then: Callable[[Any], None] | None = None
+        self,
+        callback: Callable[..., object],
+        *args: object,
+        then: Callable[[Any], None] | None = None,  # gets what the user's callback returned
     ) -> Task | None:
         """Run a user callback on the executor's terms (a coroutine becomes a Task). That is
         the executor running this entity now: a multi-threaded one may run it after the node
@@ -92,8 +106,8 @@ class GuardCondition(Executable):
 
     def __init__(
         self,
-        node: Any,
-        callback: Callable[[], Any] | None,
+        node: Node | None,
+        callback: Callable[[], object] | None,
         callback_group: CallbackGroup | None = None,
     ) -> None:
         super().__init__(node, callback_group)
@@ -101,6 +115,7 @@ class GuardCondition(Executable):
         self._triggered = False
 
     def trigger(self) -> None:
+        """Any thread: have the executor run the callback (once per trigger burst)."""
         self._triggered = True
         self._notify()
 
@@ -112,4 +127,5 @@ class GuardCondition(Executable):
         return self._call(self.callback) if self.callback is not None else None
 
     def destroy(self) -> None:
+        """Never run the callback again."""
         self.callback = None

@@ -62,7 +62,7 @@ class Executor:
         self._nodes: list[Node] = []
         self._lock = threading.RLock()
         # entities and tasks with work; None is a bare wake-up
-        self._queue: queue.SimpleQueue[Any] = queue.SimpleQueue()
+        self._queue: queue.SimpleQueue[Executable | Task | None] = queue.SimpleQueue()
         self._enqueue = self._queue.put
         # entities whose callback group was busy, re-queued when the group frees
         self._blocked: list[Executable] = []
@@ -74,6 +74,7 @@ class Executor:
 
     @property
     def context(self) -> Context:
+        """The context whose nodes this executor runs."""
         return self._context
 
     # -- nodes and tasks -----------------------------------------------------------------------
@@ -100,6 +101,7 @@ class Executor:
         return True
 
     def remove_node(self, node: Node) -> None:
+        """Stop running `node`'s callbacks."""
         with self._lock:
             if node not in self._nodes:
                 return
@@ -108,14 +110,19 @@ class Executor:
             node._executor = None
 
     def get_nodes(self) -> list[Node]:
+        """The nodes added to this executor."""
         with self._lock:
             return list(self._nodes)
 
     def wake(self) -> None:
+        """Any thread: make a waiting spin look again (at ok(), timers, conditions)."""
         self._queue.put(None)
 
     def create_task(
-        self, callback: Callable[..., Any] | Coroutine[Any, Any, Any], *args: Any, **kwargs: Any
+        self,
+        callback: Callable[..., object] | Coroutine[object, object, object],
+        *args: object,
+        **kwargs: object,
     ) -> Task:
         """Run `callback(*args, **kwargs)` (or a coroutine) on this executor as a Task."""
         if inspect.iscoroutine(callback):
@@ -128,6 +135,7 @@ class Executor:
         return task
 
     def shutdown(self, timeout_sec: float | None = None) -> bool:
+        """Remove every node and stop spinning (True: done)."""
         self._is_shutdown = True
         for node in self.get_nodes():
             self.remove_node(node)
@@ -143,6 +151,7 @@ class Executor:
             raise ExternalShutdownException()
 
     def spin(self) -> None:
+        """Run callbacks until the context shuts down or shutdown() is called."""
         self._spinning += 1
         try:
             while self._ok():
@@ -166,6 +175,7 @@ class Executor:
         self._check_terminating()
 
     def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None) -> None:
+        """Run callbacks until `future` is done or `timeout_sec` passes."""
         future.add_done_callback(lambda _f: self.wake())
         deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
         self._spinning += 1
@@ -209,6 +219,7 @@ class Executor:
     def spin_once_until_future_complete(
         self, future: Future, timeout_sec: float | None = None
     ) -> None:
+        """Run one callback, waking early when `future` completes."""
         future.add_done_callback(lambda _f: self.wake())
         self.spin_once(timeout_sec)
 
@@ -231,7 +242,9 @@ class Executor:
                 wait = remaining if wait is None else min(wait, remaining)
         return None, wait
 
-    def _next(self, timeout: float | None, stop: Callable[[], bool] | None) -> Any:
+    def _next(
+        self, timeout: float | None, stop: Callable[[], bool] | None
+    ) -> Executable | Task | None:
         """The next entity, task or due timer; None when the timeout passed, `stop()` holds
         or the executor/context shut down. A bare wake-up is not work: waiting goes on."""
         work = self._queue
@@ -273,11 +286,13 @@ class Executor:
                 return None
 
     # -- running work ----------------------------------------------------------------------------
-    def _dispatch(self, item: Any, batch: bool, stop: Callable[[], bool] | None) -> None:
+    def _dispatch(
+        self, item: Executable | Task, batch: bool, stop: Callable[[], bool] | None
+    ) -> None:
         if type(item) is Task:
             self._run_task(item)
             return
-        node = item._node
+        node: Node = item._node  # type: ignore[assignment]  # queued entities have a node
         if node._executor is not self:
             # its node left: if it comes back here, add_node queues the entity again; if it
             # went to another executor, that one has taken the entity over
@@ -335,7 +350,10 @@ class Executor:
             self.wake()  # due timers of the group may run now
 
     def _run_callback(
-        self, callback: Callable[..., Any], *args: Any, then: Callable[[Any], None] | None = None
+        self,
+        callback: Callable[..., object],
+        *args: object,
+        then: Callable[[Any], None] | None = None,  # gets what the user's callback returned
     ) -> Task | None:
         """Call a user callback; a coroutine it returns goes on as a Task of this executor
         (first step now). `then(result)` gets the result, now or when the task ends."""
@@ -356,8 +374,9 @@ class SingleThreadedExecutor(Executor):
     """Runs every callback on the thread that spins it."""
 
 
-# queued by a worker whose callback raised, so the spinning thread raises it promptly
-_WORKER_FAILED = object()
+# queued by a worker whose callback raised, so the spinning thread raises it promptly (a task
+# that is never run: only its arrival counts)
+_WORKER_FAILED = Task(lambda: None)
 
 
 class MultiThreadedExecutor(Executor):
@@ -379,6 +398,7 @@ class MultiThreadedExecutor(Executor):
 
     @property
     def num_threads(self) -> int:
+        """How many callbacks may run at once."""
         return self._num_threads
 
     def _raise_errors(self) -> None:
@@ -388,13 +408,15 @@ class MultiThreadedExecutor(Executor):
             return
         raise error
 
-    def _next(self, timeout: float | None, stop: Callable[[], bool] | None) -> Any:
+    def _next(
+        self, timeout: float | None, stop: Callable[[], bool] | None
+    ) -> Executable | Task | None:
         self._raise_errors()
         item = super()._next(timeout, stop)
         self._raise_errors()
         return item
 
-    def _submit(self, fn: Callable[..., None], *args: Any) -> bool:
+    def _submit(self, fn: Callable[..., None], *args: object) -> bool:
         """Hand `fn(*args)` to a worker; False if the executor was shut down meanwhile (by
         another thread, while this one was still spinning)."""
         # never queue more work in the pool than it has threads: what waits stays in our
@@ -429,7 +451,9 @@ class MultiThreadedExecutor(Executor):
             if entity.needs_group:
                 group.ending_execution(entity)
 
-    def _dispatch(self, item: Any, batch: bool, stop: Callable[[], bool] | None) -> None:
+    def _dispatch(
+        self, item: Executable | Task, batch: bool, stop: Callable[[], bool] | None
+    ) -> None:
         if item is _WORKER_FAILED:
             self._raise_errors()
             return
@@ -439,6 +463,7 @@ class MultiThreadedExecutor(Executor):
         super()._dispatch(item, batch, stop)
 
     def shutdown(self, timeout_sec: float | None = None) -> bool:
+        """Stop, and shut the thread pool down (waiting for it unless timeout_sec is 0)."""
         super().shutdown(timeout_sec)
         self._pool.shutdown(wait=timeout_sec is None or timeout_sec > 0)
         return True
@@ -450,6 +475,7 @@ _global_lock = threading.Lock()
 
 
 def get_global_executor(context: Context | None = None) -> SingleThreadedExecutor:
+    """The context's shared single-threaded executor (what ros2lite.spin uses)."""
     ctx = context or default_context()
     with _global_lock:
         executor = _global.get(ctx)
@@ -465,6 +491,7 @@ def _executor_for(node: Node, executor: Executor | None) -> Executor:
 def spin_once(
     node: Node, *, executor: Executor | None = None, timeout_sec: float | None = None
 ) -> None:
+    """Run one callback of `node` (on the global executor unless one is given)."""
     ex = _executor_for(node, executor)
     added = ex.add_node(node)
     try:
@@ -488,6 +515,7 @@ def spin(node: Node, executor: Executor | None = None) -> None:
 def spin_until_future_complete(
     node: Node, future: Future, executor: Executor | None = None, timeout_sec: float | None = None
 ) -> None:
+    """Spin `node` until `future` is done or `timeout_sec` passes."""
     ex = _executor_for(node, executor)
     added = ex.add_node(node)
     try:

@@ -10,11 +10,14 @@ from __future__ import annotations
 import threading
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.names import action_entity_name, is_hidden_name
 from ros2lite.qos import QoSProfile
 from ros2lite.transport.keys import Entity, EntityKind, parse_token
+
+if TYPE_CHECKING:
+    from ros2lite.transport.handles import Session
 
 # Entity and EntityKind are the graph's vocabulary; other modules import them from here
 __all__ = [
@@ -56,7 +59,7 @@ class TopicEndpointInfo:
     qos_profile: QoSProfile | None
 
 
-def snapshot(session: Any, domain_id: int, timeout: float = 5.0) -> list[Entity]:
+def snapshot(session: Session, domain_id: int, timeout: float = 5.0) -> list[Entity]:
     """All entities in the domain, from one complete liveliness query."""
     from ros2lite.transport.session import liveliness_keys
 
@@ -68,7 +71,7 @@ def snapshot(session: Any, domain_id: int, timeout: float = 5.0) -> list[Entity]
 class GraphCache:
     """Entities kept current from a liveliness subscriber with history."""
 
-    def __init__(self, session: Any, domain_id: int) -> None:
+    def __init__(self, session: Session, domain_id: int) -> None:
         from ros2lite.transport.session import declare_liveliness_subscriber
 
         self._entities: dict[str, Entity] = {}
@@ -91,6 +94,7 @@ class GraphCache:
             self._cond.notify_all()
 
     def entities(self) -> list[Entity]:
+        """Every entity on the graph now (a copy)."""
         with self._cond:
             return list(self._entities.values())
 
@@ -108,6 +112,7 @@ class GraphCache:
         return True
 
     def close(self) -> None:
+        """Stop following the graph."""
         from ros2lite.transport.session import undeclare_quietly
 
         undeclare_quietly(self._sub)
@@ -137,6 +142,7 @@ def _names_and_types(
 def topic_names_and_types(
     entities: Iterable[Entity], include_hidden: bool = False
 ) -> list[tuple[str, list[str]]]:
+    """(topic, types) of the graph's publishers and subscriptions, sorted."""
     result = _names_and_types(entities, _TOPIC_KINDS)
     return result if include_hidden else [r for r in result if not is_hidden_name(r[0])]
 
@@ -144,6 +150,7 @@ def topic_names_and_types(
 def service_names_and_types(
     entities: Iterable[Entity], include_hidden: bool = False
 ) -> list[tuple[str, list[str]]]:
+    """(service, types) of the graph's servers and clients, sorted."""
     result = _names_and_types(entities, _SERVICE_KINDS)
     return result if include_hidden else [r for r in result if not is_hidden_name(r[0])]
 
@@ -156,12 +163,14 @@ def _of_node(entities: Iterable[Entity], node: str, namespace: str) -> list[Enti
 def names_and_types_by_node(
     entities: Iterable[Entity], node: str, namespace: str, kind: EntityKind
 ) -> list[tuple[str, list[str]]]:
+    """(name, types) of one node's entities of `kind`."""
     return _names_and_types(_of_node(entities, node, namespace), (kind,))
 
 
 def endpoints_by_topic(
     entities: Iterable[Entity], topic: str, kind: EntityKind
 ) -> list[TopicEndpointInfo]:
+    """Node, type, GID and QoS of each endpoint of `kind` on `topic`."""
     from ros2lite.transport.attachment import gid_from_token
 
     label = 'PUBLISHER' if kind == EntityKind.PUBLISHER else 'SUBSCRIPTION'
@@ -181,6 +190,7 @@ def endpoints_by_topic(
 
 
 def count(entities: Iterable[Entity], topic: str, kind: EntityKind) -> int:
+    """How many entities of `kind` the graph has on `topic`."""
     return sum(1 for e in entities if e.kind == kind and e.topic_name == topic)
 
 

@@ -11,7 +11,20 @@ import os
 import sys
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, TypedDict
+
+if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+
+class LogOptions(TypedDict, total=False):
+    """The keyword options of the level methods (rclpy's)."""
+
+    once: bool
+    skip_first: bool
+    throttle_duration_sec: float | None
+    throttle_time_source_type: object  # accepted and ignored, as in rclpy without a clock
+
 
 DEBUG, INFO, WARN, ERROR, FATAL = 10, 20, 30, 40, 50
 _NAMES = {DEBUG: 'DEBUG', INFO: 'INFO', WARN: 'WARN', ERROR: 'ERROR', FATAL: 'FATAL'}
@@ -23,10 +36,12 @@ _levels: dict[str | None, int] = {None: INFO}
 
 
 def set_logger_level(name: str | None, level: int) -> None:
+    """The level of logger `name` and its children (None: the default level)."""
     _levels[name] = level
 
 
 def get_logger_level(name: str) -> int:
+    """The level that applies to `name`: its own, its nearest parent's, or the default."""
     while name:
         if name in _levels:
             return _levels[name]
@@ -74,27 +89,34 @@ class RcutilsLogger:
         self._last: dict[tuple[str, int], float] = {}
 
     def get_child(self, suffix: str) -> RcutilsLogger:
+        """A logger named `<this>.<suffix>` (publishing where this one does)."""
         return RcutilsLogger(f'{self.name}.{suffix}' if self.name else suffix, self._publish)
 
     def set_level(self, level: int) -> None:
+        """Set this logger's level (and its children's, unless they have their own)."""
         set_logger_level(self.name, int(level))
 
     def get_effective_level(self) -> int:
+        """The level that applies to this logger."""
         return get_logger_level(self.name)
 
     def is_enabled_for(self, severity: int) -> bool:
+        """Whether a message of `severity` would be logged."""
         return severity >= self.get_effective_level()
 
     def log(
         self,
-        message: Any,
+        message: object,
         severity: int,
         *,
         once: bool = False,
         skip_first: bool = False,
         throttle_duration_sec: float | None = None,
-        **_: Any,
+        **_: object,  # rclpy's other options (e.g. throttle_time_source_type) are ignored
     ) -> bool:
+        """Print `str(message)` at `severity` (and publish it on /rosout for a node's
+        logger) unless the level, `once`, `skip_first` or the throttle hold it back; True
+        when it was logged."""
         if not self.is_enabled_for(severity):
             return False
         # the user's frame, found directly: inspect.stack() walked (and described) the whole
@@ -128,21 +150,26 @@ class RcutilsLogger:
             self._publish(severity, self.name, text, caller)
         return True
 
-    def debug(self, message: Any, **kw: Any) -> bool:
+    def debug(self, message: object, **kw: Unpack[LogOptions]) -> bool:
+        """log() at DEBUG."""
         return self.log(message, DEBUG, **kw)
 
-    def info(self, message: Any, **kw: Any) -> bool:
+    def info(self, message: object, **kw: Unpack[LogOptions]) -> bool:
+        """log() at INFO."""
         return self.log(message, INFO, **kw)
 
-    def warn(self, message: Any, **kw: Any) -> bool:
+    def warn(self, message: object, **kw: Unpack[LogOptions]) -> bool:
+        """log() at WARN."""
         return self.log(message, WARN, **kw)
 
     warning = warn
 
-    def error(self, message: Any, **kw: Any) -> bool:
+    def error(self, message: object, **kw: Unpack[LogOptions]) -> bool:
+        """log() at ERROR."""
         return self.log(message, ERROR, **kw)
 
-    def fatal(self, message: Any, **kw: Any) -> bool:
+    def fatal(self, message: object, **kw: Unpack[LogOptions]) -> bool:
+        """log() at FATAL."""
         return self.log(message, FATAL, **kw)
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import inspect
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 from ros2lite import names
 from ros2lite.arguments import RosArgs, parse_ros_args
@@ -28,6 +28,17 @@ from ros2lite.service import Service
 from ros2lite.subscription import Subscription
 from ros2lite.timer import Timer
 from ros2lite.transport import keys
+
+if TYPE_CHECKING:
+    from ros2lite.executable import Destroyable
+    from ros2lite.executors import Executor
+    from ros2lite.graph import Entity, TopicEndpointInfo
+    from ros2lite.msgs.rcl_interfaces.msg import Log
+    from ros2lite.msgs.rosgraph_msgs.msg import Clock as ClockMsg
+    from ros2lite.service import ServiceCallback
+    from ros2lite.subscription import MessageInfo, SubscriptionCallback
+    from ros2lite.transport.handles import Handle
+    from ros2lite.type_support import MsgT, Srv, SrvRequestT, SrvResponseT
 
 # rcl's rosout profile, lifespan 10 s included: the token must read `:1:,1000:,:10,0:,,`
 ROSOUT_QOS = qos_profile_rosout_default
@@ -62,25 +73,25 @@ class Node(ParameterMixin):
         self._name = name
         self._namespace = names.normalize_namespace(namespace)
         self.node_id = self.context.next_entity_id()
-        self.publishers: list[Publisher] = []
-        self.subscriptions: list[Subscription] = []
+        self.publishers: list[Publisher[Any]] = []
+        self.subscriptions: list[Subscription[Any]] = []
         self.timers: list[Timer] = []
-        self.services: list[Service] = []
-        self.clients: list[Client] = []
+        self.services: list[Service[Any, Any]] = []
+        self.clients: list[Client[Any, Any]] = []
         self.guards: list[GuardCondition] = []
         self.waitables: list[Executable] = []
         self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
         self._callback_groups: list[CallbackGroup] = [self.default_callback_group]
         # the executor this node was added to (it owns the node's work), and the last one
         # (whose queue may still hold entries of its entities)
-        self._executor: Any = None
-        self._last_executor: Any = None
+        self._executor: Executor | None = None
+        self._last_executor: Executor | None = None
         for level_name, level in self._args.log_levels.items():
             set_logger_level(level_name, level)
         from ros2lite.transport.session import declare_token
 
-        self._token: Any = declare_token(
-            self.context.session,
+        self._token: Handle | None = declare_token(
+            self.context.require(),
             keys.node_token(
                 self.context.domain_id,
                 self.context.zid,
@@ -91,8 +102,8 @@ class Node(ParameterMixin):
             ),
         )
         self._clock = Clock(ClockType.ROS_TIME)
-        self._clock_sub: Subscription | None = None
-        self._rosout: Publisher | None = None
+        self._clock_sub: Subscription[ClockMsg] | None = None
+        self._rosout: Publisher[Log] | None = None
         if enable_rosout:
             self._rosout = self.create_publisher('rcl_interfaces/msg/Log', '/rosout', ROSOUT_QOS)
         self._logger = RcutilsLogger(
@@ -108,15 +119,19 @@ class Node(ParameterMixin):
 
     # -- names --------------------------------------------------------------------------------
     def get_name(self) -> str:
+        """The node's name, after any `__node:=` remapping."""
         return self._name
 
     def get_namespace(self) -> str:
+        """The node's namespace ('/' for none), after any `__ns:=` remapping."""
         return self._namespace
 
     def get_fully_qualified_name(self) -> str:
+        """'/namespace/name', as the graph lists the node."""
         return names.node_fqn(self._namespace, self._name)
 
     def get_logger_name(self) -> str:
+        """The logger name rcl gives the node: namespace dots, then the name."""
         ns = self._namespace.strip('/').replace('/', '.')
         return f'{ns}.{self._name}' if ns else self._name
 
@@ -141,12 +156,13 @@ class Node(ParameterMixin):
 
     # -- executor and callback groups --------------------------------------------------------
     @property
-    def executor(self) -> Any:
+    def executor(self) -> Executor | None:
         """The executor this node was added to, or None."""
         return self._executor
 
     @executor.setter
-    def executor(self, new_executor: Any) -> None:
+    def executor(self, new_executor: Executor | None) -> None:
+        """Move the node to another executor (None: to none)."""
         if new_executor is self._executor:
             return
         if self._executor is not None:
@@ -156,14 +172,17 @@ class Node(ParameterMixin):
 
     @property
     def callback_groups(self) -> list[CallbackGroup]:
+        """The groups of this node's entities, its default group first."""
         return list(self._callback_groups)
 
     def add_waitable(self, waitable: Executable) -> None:
+        """Let the executor run `waitable` with this node's entities (action parts do)."""
         self.waitables.append(waitable)
         if waitable._has_work():
             waitable._notify()
 
     def remove_waitable(self, waitable: Executable) -> None:
+        """Stop running `waitable` with this node."""
         if waitable in self.waitables:
             self.waitables.remove(waitable)
 
@@ -184,30 +203,100 @@ class Node(ParameterMixin):
         return self._resolve(service, only_expand, is_service=True)
 
     # -- entities -----------------------------------------------------------------------------
+    @overload
     def create_publisher(
         self,
-        msg_type: Any,
+        msg_type: type[MsgT],
         topic: str,
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
-        event_callbacks: Any = None,
-    ) -> Publisher:
+        event_callbacks: object = None,
+    ) -> Publisher[MsgT]:
+        """A message class gives a publisher typed with it."""
+
+    @overload
+    def create_publisher(
+        self,
+        msg_type: str,
+        topic: str,
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: object = None,
+    ) -> Publisher[Any]:
+        """A 'pkg/msg/Name' gives a publisher of that type, loosely typed."""
+
+    def create_publisher(
+        self,
+        msg_type: type[MsgT] | str,
+        topic: str,
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: object = None,
+    ) -> Publisher[MsgT]:
+        """Publish `msg_type` (a class, or 'pkg/msg/Name') on `topic` (a depth is a
+        KEEP_LAST profile of that depth)."""
         pub = Publisher(self, msg_type, topic, qos_profile)
         self.publishers.append(pub)
         return pub
 
+    @overload
     def create_subscription(
         self,
-        msg_type: Any,
+        msg_type: type[MsgT],
         topic: str,
-        callback: Callable[..., Any],
+        callback: Callable[[MsgT], object],
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
-        event_callbacks: Any = None,
+        event_callbacks: object = None,
+        raw: Literal[False] = False,
+    ) -> Subscription[MsgT]:
+        """A message class gives a subscription typed with it."""
+
+    @overload
+    def create_subscription(
+        self,
+        msg_type: str,
+        topic: str,
+        callback: Callable[[Any], object],
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: object = None,
+        raw: Literal[False] = False,
+    ) -> Subscription[Any]:
+        """A 'pkg/msg/Name' gives a subscription of that type, loosely typed."""
+
+    @overload
+    def create_subscription(
+        self,
+        msg_type: type[MsgT] | str,
+        topic: str,
+        callback: Callable[[bytes, MessageInfo], object],
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: object = None,
+        raw: Literal[True],
+    ) -> Subscription[MsgT]:
+        """raw=True: the callback gets CDR bytes and MessageInfo, undecoded."""
+
+    def create_subscription(
+        self,
+        msg_type: type[MsgT] | str,
+        topic: str,
+        callback: SubscriptionCallback[MsgT],
+        qos_profile: QoSProfile | int,
+        *,
+        callback_group: CallbackGroup | None = None,
+        event_callbacks: object = None,
         raw: bool = False,
-    ) -> Subscription:
+    ) -> Subscription[MsgT]:
+        """Call `callback(msg)` on the executor for each message on `topic`; with `raw`,
+        `callback(cdr_bytes, MessageInfo)` without decoding."""
         self._remember_group(callback_group)
         sub = Subscription(
             self, msg_type, topic, callback, qos_profile, raw=raw, callback_group=callback_group
@@ -218,10 +307,11 @@ class Node(ParameterMixin):
     def create_timer(
         self,
         timer_period_sec: float,
-        callback: Callable[[], Any],
+        callback: Callable[[], object],
         callback_group: CallbackGroup | None = None,
         clock: Clock | None = None,
     ) -> Timer:
+        """Call `callback()` every `timer_period_sec` of `clock` (the node's by default)."""
         self._remember_group(callback_group)
         timer = Timer(
             timer_period_sec,
@@ -234,16 +324,42 @@ class Node(ParameterMixin):
         self._wake_executor()
         return timer
 
+    @overload
     def create_service(
         self,
-        srv_type: Any,
+        srv_type: type[Srv[SrvRequestT, SrvResponseT]],
         srv_name: str,
-        callback: Callable[..., Any],
+        callback: ServiceCallback[SrvRequestT, SrvResponseT],
         *,
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
         deferred: bool = False,
-    ) -> Service:
+    ) -> Service[SrvRequestT, SrvResponseT]:
+        """A service class gives a server typed with its request and response."""
+
+    @overload
+    def create_service(
+        self,
+        srv_type: str,
+        srv_name: str,
+        callback: ServiceCallback[Any, Any],
+        *,
+        qos_profile: QoSProfile = qos_profile_services_default,
+        callback_group: CallbackGroup | None = None,
+        deferred: bool = False,
+    ) -> Service[Any, Any]:
+        """A 'pkg/srv/Name' gives a server of that type, loosely typed."""
+
+    def create_service(
+        self,
+        srv_type: type[Srv[SrvRequestT, SrvResponseT]] | str,
+        srv_name: str,
+        callback: ServiceCallback[SrvRequestT, SrvResponseT],
+        *,
+        qos_profile: QoSProfile = qos_profile_services_default,
+        callback_group: CallbackGroup | None = None,
+        deferred: bool = False,
+    ) -> Service[SrvRequestT, SrvResponseT]:
         """Serve `srv_name`: `callback(request, response)` returns the response (or, with
         `deferred=True`, `callback(request, header)` answers later via `send_response`)."""
         self._remember_group(callback_group)
@@ -259,64 +375,101 @@ class Node(ParameterMixin):
         self.services.append(srv)
         return srv
 
+    @overload
     def create_client(
         self,
-        srv_type: Any,
+        srv_type: type[Srv[SrvRequestT, SrvResponseT]],
         srv_name: str,
         *,
         qos_profile: QoSProfile = qos_profile_services_default,
         callback_group: CallbackGroup | None = None,
-    ) -> Client:
+    ) -> Client[SrvRequestT, SrvResponseT]:
+        """A service class gives a client whose call() returns its Response."""
+
+    @overload
+    def create_client(
+        self,
+        srv_type: str,
+        srv_name: str,
+        *,
+        qos_profile: QoSProfile = qos_profile_services_default,
+        callback_group: CallbackGroup | None = None,
+    ) -> Client[Any, Any]:
+        """A 'pkg/srv/Name' gives a client of that type, loosely typed."""
+
+    def create_client(
+        self,
+        srv_type: type[Srv[SrvRequestT, SrvResponseT]] | str,
+        srv_name: str,
+        *,
+        qos_profile: QoSProfile = qos_profile_services_default,
+        callback_group: CallbackGroup | None = None,
+    ) -> Client[SrvRequestT, SrvResponseT]:
+        """A client of `srv_name`; `call()` blocks for the response, `call_async()` gives
+        a future the node's executor completes."""
         self._remember_group(callback_group)
         client = Client(self, srv_type, srv_name, qos_profile, callback_group=callback_group)
         self.clients.append(client)
         return client
 
     def create_guard_condition(
-        self, callback: Callable[[], Any], callback_group: CallbackGroup | None = None
+        self, callback: Callable[[], object], callback_group: CallbackGroup | None = None
     ) -> GuardCondition:
+        """A guard whose `trigger()` (from any thread) runs `callback()` on the executor."""
         self._remember_group(callback_group)
         guard = GuardCondition(self, callback, callback_group)
         self.guards.append(guard)
         return guard
 
-    def destroy_publisher(self, pub: Publisher) -> None:
+    def destroy_publisher(self, pub: Publisher[MsgT]) -> None:
+        """Withdraw a publisher of this node."""
         if pub in self.publishers:
             self.publishers.remove(pub)
         pub.destroy()
 
-    def destroy_subscription(self, sub: Subscription) -> None:
+    def destroy_subscription(self, sub: Subscription[MsgT]) -> None:
+        """Withdraw a subscription of this node."""
         if sub in self.subscriptions:
             self.subscriptions.remove(sub)
         sub.destroy()
 
     def destroy_timer(self, timer: Timer) -> None:
+        """Cancel a timer and forget it."""
         timer.cancel()
         if timer in self.timers:
             self.timers.remove(timer)
 
-    def destroy_service(self, srv: Service) -> None:
+    def destroy_service(self, srv: Service[SrvRequestT, SrvResponseT]) -> None:
+        """Withdraw a service server of this node."""
         if srv in self.services:
             self.services.remove(srv)
         srv.destroy()
 
-    def destroy_client(self, client: Client) -> None:
+    def destroy_client(self, client: Client[SrvRequestT, SrvResponseT]) -> None:
+        """Withdraw a service client of this node (its pending calls are cancelled)."""
         if client in self.clients:
             self.clients.remove(client)
         client.destroy()
 
     def destroy_guard_condition(self, guard: GuardCondition) -> None:
+        """Forget a guard condition of this node."""
         if guard in self.guards:
             self.guards.remove(guard)
         guard.destroy()
 
     def destroy_node(self) -> None:
+        """Leave the graph: every entity, timer and waitable of the node goes."""
         from ros2lite.transport.session import undeclare_quietly
 
         # logging still works once the node is gone (e.g. from a goal thread finishing
         # during shutdown): it just no longer reaches /rosout
         self._rosout = None
-        entities: list[Any] = [*self.subscriptions, *self.publishers, *self.services, *self.clients]
+        entities: list[Destroyable] = [
+            *self.subscriptions,
+            *self.publishers,
+            *self.services,
+            *self.clients,
+        ]
         for entity in entities:
             entity.destroy()
         for timer in self.timers:
@@ -324,7 +477,7 @@ class Node(ParameterMixin):
         for guard in self.guards:
             guard.destroy()
         for waitable in list(self.waitables):  # destroying one may remove it from the list
-            destroy: Callable[[], Any] | None = getattr(waitable, 'destroy', None)
+            destroy: Callable[[], object] | None = getattr(waitable, 'destroy', None)
             if destroy is not None:
                 destroy()
         self.subscriptions.clear()
@@ -342,9 +495,11 @@ class Node(ParameterMixin):
 
     # -- time and logging ---------------------------------------------------------------------
     def get_clock(self) -> Clock:
+        """The node's ROS clock (simulated time with use_sim_time)."""
         return self._clock
 
     def get_logger(self) -> RcutilsLogger:
+        """The node's logger: console and /rosout."""
         return self._logger
 
     def _enable_sim_time(self) -> None:
@@ -381,14 +536,16 @@ class Node(ParameterMixin):
         )
 
     # -- graph --------------------------------------------------------------------------------
-    def _entities(self) -> list[Any]:
-        entities: list[Any] = self.context.graph.entities()
+    def _entities(self) -> list[Entity]:
+        entities: list[Entity] = self.context.graph.entities()
         return entities
 
     def get_node_names(self) -> list[str]:
+        """Names of the nodes on the graph."""
         return [n for n, _ in self.get_node_names_and_namespaces()]
 
     def get_node_names_and_namespaces(self) -> list[tuple[str, str]]:
+        """(name, namespace) of the nodes on the graph."""
         from ros2lite.graph import node_names_and_namespaces
 
         return node_names_and_namespaces(self._entities())
@@ -396,11 +553,13 @@ class Node(ParameterMixin):
     def get_topic_names_and_types(
         self, include_hidden_topics: bool = False
     ) -> list[tuple[str, list[str]]]:
+        """(topic, types) on the graph, hidden topics only when asked."""
         from ros2lite.graph import topic_names_and_types
 
         return topic_names_and_types(self._entities(), include_hidden_topics)
 
     def get_service_names_and_types(self) -> list[tuple[str, list[str]]]:
+        """(service, types) on the graph."""
         from ros2lite.graph import service_names_and_types
 
         return service_names_and_types(self._entities(), include_hidden=True)
@@ -415,31 +574,37 @@ class Node(ParameterMixin):
     def get_publisher_names_and_types_by_node(
         self, node_name: str, node_namespace: str
     ) -> list[tuple[str, list[str]]]:
+        """(topic, types) that node publishes."""
         return self._by_node(node_name, node_namespace, keys.EntityKind.PUBLISHER)
 
     def get_subscriber_names_and_types_by_node(
         self, node_name: str, node_namespace: str
     ) -> list[tuple[str, list[str]]]:
+        """(topic, types) that node subscribes to."""
         return self._by_node(node_name, node_namespace, keys.EntityKind.SUBSCRIPTION)
 
     def get_service_names_and_types_by_node(
         self, node_name: str, node_namespace: str
     ) -> list[tuple[str, list[str]]]:
+        """(service, types) that node serves."""
         return self._by_node(node_name, node_namespace, keys.EntityKind.SERVICE)
 
     def get_client_names_and_types_by_node(
         self, node_name: str, node_namespace: str
     ) -> list[tuple[str, list[str]]]:
+        """(service, types) that node has clients of."""
         return self._by_node(node_name, node_namespace, keys.EntityKind.CLIENT)
 
-    def get_publishers_info_by_topic(self, topic_name: str) -> list[Any]:
+    def get_publishers_info_by_topic(self, topic_name: str) -> list[TopicEndpointInfo]:
+        """Node, type, GID and QoS of each publisher of a topic."""
         from ros2lite.graph import endpoints_by_topic
 
         return endpoints_by_topic(
             self._entities(), self.resolve_topic_name(topic_name), keys.EntityKind.PUBLISHER
         )
 
-    def get_subscriptions_info_by_topic(self, topic_name: str) -> list[Any]:
+    def get_subscriptions_info_by_topic(self, topic_name: str) -> list[TopicEndpointInfo]:
+        """Node, type, GID and QoS of each subscription of a topic."""
         from ros2lite.graph import endpoints_by_topic
 
         return endpoints_by_topic(
@@ -447,12 +612,15 @@ class Node(ParameterMixin):
         )
 
     def count_publishers(self, topic_name: str) -> int:
+        """How many publishers a topic has on the graph."""
         return len(self.get_publishers_info_by_topic(topic_name))
 
     def count_subscribers(self, topic_name: str) -> int:
+        """How many subscriptions a topic has on the graph."""
         return len(self.get_subscriptions_info_by_topic(topic_name))
 
     def count_services(self, service_name: str) -> int:
+        """How many servers a service has on the graph."""
         from ros2lite.graph import count
 
         return count(
@@ -460,6 +628,7 @@ class Node(ParameterMixin):
         )
 
     def count_clients(self, service_name: str) -> int:
+        """How many clients a service has on the graph."""
         from ros2lite.graph import count
 
         return count(

@@ -8,7 +8,11 @@ from __future__ import annotations
 
 import array
 import enum
-from typing import Any
+from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.rcl_interfaces import msg as _rcl_msg
 
 PARAMETER_SEPARATOR_STRING = "."
 
@@ -26,14 +30,29 @@ _FIELDS = {
 }
 _SEQUENCES = (list, tuple, array.array)
 
+AllowableParameterValue = (
+    None
+    | bool
+    | int
+    | float
+    | str
+    | Sequence[bytes]
+    | Sequence[bool]
+    | Sequence[int]
+    | Sequence[float]
+    | Sequence[str]
+)
+"""What a parameter can hold (rclpy's name): one value, or a list (tuple, array) of one kind."""
 
-def _msg(name: str) -> Any:
+
+def _value_msg(type_number: int) -> _rcl_msg.ParameterValue:
     from ros2lite.interfaces import get_interface
 
-    return get_interface(f"rcl_interfaces/msg/{name}")
+    cls: type[_rcl_msg.ParameterValue] = get_interface("rcl_interfaces/msg/ParameterValue")
+    return cls(type=type_number)
 
 
-def _every(values: Any, kind: type) -> bool:
+def _every(values: Iterable[object], kind: type) -> bool:
     # bool is an int to Python but never to ROS
     return all(isinstance(v, kind) and (kind is bool or not isinstance(v, bool)) for v in values)
 
@@ -56,7 +75,7 @@ class Parameter:
         STRING_ARRAY = 9
 
         @classmethod
-        def from_parameter_value(cls, parameter_value: Any) -> Parameter.Type:
+        def from_parameter_value(cls, parameter_value: object) -> Parameter.Type:
             """The type a Python value maps to; TypeError when it maps to none."""
             v = parameter_value
             if v is None:
@@ -85,7 +104,7 @@ class Parameter:
                 raise TypeError(f"The given value is not a list of one of the allowed types '{v}'.")
             raise TypeError(f"The given value is not one of the allowed types '{v}'.")
 
-        def check(self, parameter_value: Any) -> bool:
+        def check(self, parameter_value: object) -> bool:
             """Whether a parameter of this type can hold the value."""
             v = parameter_value
             kinds: dict[int, type] = {1: bool, 2: int, 3: float, 4: str}
@@ -101,7 +120,12 @@ class Parameter:
             sequences = _SEQUENCES if self.value in (7, 8) else (list, tuple)
             return isinstance(v, sequences) and _every(v, item)
 
-    def __init__(self, name: str, type_: Parameter.Type | None = None, value: Any = None) -> None:
+    def __init__(
+        self,
+        name: str,
+        type_: Parameter.Type | None = None,
+        value: AllowableParameterValue = None,
+    ) -> None:
         if type_ is None:
             type_ = Parameter.Type.from_parameter_value(value)
         if not isinstance(type_, Parameter.Type):
@@ -114,53 +138,61 @@ class Parameter:
 
     @property
     def name(self) -> str:
+        """The parameter's full (dotted) name."""
         return self._name
 
     @property
     def type_(self) -> Parameter.Type:
+        """Its type; NOT_SET for a parameter without a value."""
         return self._type_
 
     @property
     def value(self) -> Any:
+        """Its value: whichever of the allowed kinds `type_` says (Any, as in rclpy, so that
+        code reading a parameter it knows the type of needs no narrowing)."""
         return self._value
 
     def __repr__(self) -> str:
         return f"Parameter(name={self._name!r}, type_={self._type_}, value={self._value!r})"
 
     @classmethod
-    def from_parameter_msg(cls, param_msg: Any) -> Parameter:
+    def from_parameter_msg(cls, param_msg: _rcl_msg.Parameter) -> Parameter:
         """From an rcl_interfaces/msg/Parameter."""
         type_ = Parameter.Type(param_msg.value.type)
         field = _FIELDS.get(type_.value)
-        value = getattr(param_msg.value, field) if field else None
+        value: Any = getattr(param_msg.value, field) if field else None  # a field, by name
         if value is not None and type_.value in (5, 6, 9):  # any sequence → list
             value = list(value)
         return cls(param_msg.name, type_, value)
 
-    def get_parameter_value(self) -> Any:
+    def get_parameter_value(self) -> _rcl_msg.ParameterValue:
         """This value as an rcl_interfaces/msg/ParameterValue."""
-        msg = _msg("ParameterValue")(type=self._type_.value)
+        msg = _value_msg(self._type_.value)
         field = _FIELDS.get(self._type_.value)
         if field:
             value = self._value
             setattr(msg, field, list(value) if isinstance(value, (tuple, array.array)) else value)
         return msg
 
-    def to_parameter_msg(self) -> Any:
-        return _msg("Parameter")(name=self._name, value=self.get_parameter_value())
+    def to_parameter_msg(self) -> _rcl_msg.Parameter:
+        """This parameter as an rcl_interfaces/msg/Parameter."""
+        from ros2lite.interfaces import get_interface
+
+        cls: type[_rcl_msg.Parameter] = get_interface("rcl_interfaces/msg/Parameter")
+        return cls(name=self._name, value=self.get_parameter_value())
 
 
-def parameter_value_to_python(parameter_value: Any) -> Any:
+def parameter_value_to_python(parameter_value: _rcl_msg.ParameterValue) -> AllowableParameterValue:
     """The Python value held by an rcl_interfaces/msg/ParameterValue (None when not set)."""
     if parameter_value.type not in _FIELDS:
         if parameter_value.type == 0:
             return None
         raise RuntimeError(f"unexpected parameter type {parameter_value.type}")
-    value = getattr(parameter_value, _FIELDS[parameter_value.type])
+    value: AllowableParameterValue = getattr(parameter_value, _FIELDS[parameter_value.type])
     return list(value) if isinstance(value, _SEQUENCES) else value
 
 
-def get_parameter_value(string_value: str) -> Any:
+def get_parameter_value(string_value: str) -> _rcl_msg.ParameterValue:
     """The ParameterValue a command-line string stands for, typed the YAML way.
 
     Lists of one element type become arrays; a YAML string is that string (so "'5'" is the
@@ -174,17 +206,20 @@ def get_parameter_value(string_value: str) -> Any:
     except yaml.YAMLError:
         loaded = string_value
     if isinstance(loaded, list) and not loaded:  # [] holds no type: rclpy sends bool[]
-        return _msg("ParameterValue")(type=Parameter.Type.BOOL_ARRAY.value)
+        return _value_msg(Parameter.Type.BOOL_ARRAY.value)
     if isinstance(loaded, (bool, int, float)) or (
         isinstance(loaded, list) and any(_every(loaded, k) for k in (bool, int, float, str))
     ):
         return Parameter("", value=loaded).get_parameter_value()
     text = loaded if isinstance(loaded, str) else string_value
-    return _msg("ParameterValue")(type=Parameter.Type.STRING.value, string_value=text)
+    msg = _value_msg(Parameter.Type.STRING.value)
+    msg.string_value = text
+    return msg
 
 
 __all__ = [
     "PARAMETER_SEPARATOR_STRING",
+    "AllowableParameterValue",
     "Parameter",
     "get_parameter_value",
     "parameter_value_to_python",

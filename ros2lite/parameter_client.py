@@ -12,7 +12,7 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from ros2lite.names import absolute_node_name
 from ros2lite.parameter import Parameter
@@ -23,18 +23,24 @@ from ros2lite.task import Future
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
     from ros2lite.client import Client
+    from ros2lite.interfaces import Message, ServiceType
+    from ros2lite.msgs.rcl_interfaces import srv
+    from ros2lite.msgs.rcl_interfaces.msg import Parameter as ParameterMsg
     from ros2lite.node import Node
 
 __all__ = ['AsyncParameterClient']
 
-DoneCallback = Callable[[Future], None]
+_ResponseT = TypeVar('_ResponseT')
+DoneCallback = Callable[[Future[_ResponseT]], object]
+"""Called with the future of a call once it is done."""
 
 
-def service_type(service: str) -> Any:
+def service_type(service: str) -> type[ServiceType]:
     """The rcl_interfaces service class of one of the six parameter services."""
     from ros2lite.interfaces import get_interface
 
-    return get_interface(f'rcl_interfaces/srv/{TYPES[service]}')
+    found: type[ServiceType] = get_interface(f'rcl_interfaces/srv/{TYPES[service]}')
+    return found
 
 
 class AsyncParameterClient:
@@ -51,9 +57,9 @@ class AsyncParameterClient:
         self.remote_node_name = absolute_node_name(remote_node_name)
         self._qos = qos_profile
         self._group = callback_group
-        self._clients: dict[str, Client] = {}
+        self._clients: dict[str, Client[Message, Message]] = {}
 
-    def _client(self, service: str) -> Client:
+    def _client(self, service: str) -> Client[Message, Message]:
         client = self._clients.get(service)
         if client is None:
             client = self._clients[service] = self._node.create_client(
@@ -79,7 +85,10 @@ class AsyncParameterClient:
                 return False
         return True
 
-    def _call(self, service: str, callback: DoneCallback | None, **fields: Any) -> Future:
+    def _call(
+        self, service: str, callback: DoneCallback[Any] | None, **fields: object
+    ) -> Future[Any]:
+        """Call `service` with a request of `fields` (the caller knows the response type)."""
         future = self._client(service).call_async(service_type(service).Request(**fields))
         if callback is not None:
             future.add_done_callback(callback)
@@ -89,47 +98,70 @@ class AsyncParameterClient:
         self,
         prefixes: Sequence[str] | None = None,
         depth: int | None = None,
-        callback: DoneCallback | None = None,
-    ) -> Future:
+        callback: DoneCallback[srv.ListParameters.Response] | None = None,
+    ) -> Future[srv.ListParameters.Response]:
         """Names (and prefixes) of the node's parameters, optionally under `prefixes`."""
         return self._call(
-            'list_parameters', callback, prefixes=list(prefixes or []), depth=depth or 0
+            'list_parameters',
+            callback,
+            prefixes=list(prefixes or []),
+            depth=depth or 0,
         )
 
-    def get_parameters(self, names: Sequence[str], callback: DoneCallback | None = None) -> Future:
+    def get_parameters(
+        self,
+        names: Sequence[str],
+        callback: DoneCallback[srv.GetParameters.Response] | None = None,
+    ) -> Future[srv.GetParameters.Response]:
         """The values of `names` (an empty reply when any of them is unknown)."""
         return self._call('get_parameters', callback, names=list(names))
 
     def get_parameter_types(
-        self, names: Sequence[str], callback: DoneCallback | None = None
-    ) -> Future:
+        self,
+        names: Sequence[str],
+        callback: DoneCallback[srv.GetParameterTypes.Response] | None = None,
+    ) -> Future[srv.GetParameterTypes.Response]:
         """The ParameterType numbers of `names`."""
         return self._call('get_parameter_types', callback, names=list(names))
 
     def describe_parameters(
-        self, names: Sequence[str], callback: DoneCallback | None = None
-    ) -> Future:
+        self,
+        names: Sequence[str],
+        callback: DoneCallback[srv.DescribeParameters.Response] | None = None,
+    ) -> Future[srv.DescribeParameters.Response]:
         """The descriptors of `names` (an empty reply when any of them is unknown)."""
         return self._call('describe_parameters', callback, names=list(names))
 
     def set_parameters(
-        self, parameters: Sequence[Any], callback: DoneCallback | None = None
-    ) -> Future:
+        self,
+        parameters: Sequence[Parameter | ParameterMsg],
+        callback: DoneCallback[srv.SetParameters.Response] | None = None,
+    ) -> Future[srv.SetParameters.Response]:
         """Set each of `parameters` (Parameters or rcl_interfaces/msg/Parameter messages);
         one result per parameter."""
-        return self._call('set_parameters', callback, parameters=parameter_messages(parameters))
+        return self._call(
+            'set_parameters',
+            callback,
+            parameters=parameter_messages(parameters),
+        )
 
     def set_parameters_atomically(
-        self, parameters: Sequence[Any], callback: DoneCallback | None = None
-    ) -> Future:
+        self,
+        parameters: Sequence[Parameter | ParameterMsg],
+        callback: DoneCallback[srv.SetParametersAtomically.Response] | None = None,
+    ) -> Future[srv.SetParametersAtomically.Response]:
         """Set all of `parameters` or none; one result for all."""
         return self._call(
-            'set_parameters_atomically', callback, parameters=parameter_messages(parameters)
+            'set_parameters_atomically',
+            callback,
+            parameters=parameter_messages(parameters),
         )
 
     def delete_parameters(
-        self, names: Sequence[str], callback: DoneCallback | None = None
-    ) -> Future:
+        self,
+        names: Sequence[str],
+        callback: DoneCallback[srv.SetParameters.Response] | None = None,
+    ) -> Future[srv.SetParameters.Response]:
         """Set each to NOT_SET, which undeclares it where the node allows that."""
         return self.set_parameters([Parameter(n) for n in names], callback)
 
@@ -137,8 +169,8 @@ class AsyncParameterClient:
         self,
         parameter_file: str | Path,
         use_wildcard: bool = False,
-        callback: DoneCallback | None = None,
-    ) -> Future:
+        callback: DoneCallback[srv.SetParameters.Response] | None = None,
+    ) -> Future[srv.SetParameters.Response]:
         """Set the file's parameters for the remote node (its entries, and `/**`-style ones
         when `use_wildcard`), one by one."""
         return self.set_parameters(self.file_parameters(parameter_file, use_wildcard), callback)
@@ -147,8 +179,8 @@ class AsyncParameterClient:
         self,
         parameter_file: str | Path,
         use_wildcard: bool = False,
-        callback: DoneCallback | None = None,
-    ) -> Future:
+        callback: DoneCallback[srv.SetParametersAtomically.Response] | None = None,
+    ) -> Future[srv.SetParametersAtomically.Response]:
         """Like :meth:`load_parameter_file`, all or nothing."""
         return self.set_parameters_atomically(
             self.file_parameters(parameter_file, use_wildcard), callback
@@ -167,6 +199,6 @@ class AsyncParameterClient:
         self._clients.clear()
 
 
-def parameter_messages(parameters: Sequence[Any]) -> list[Any]:
+def parameter_messages(parameters: Sequence[Parameter | ParameterMsg]) -> list[ParameterMsg]:
     """rcl_interfaces/msg/Parameter messages from Parameters (messages pass through)."""
     return [p.to_parameter_msg() if isinstance(p, Parameter) else p for p in parameters]

@@ -120,9 +120,16 @@ def terminal_signals_child() -> bool:
         os.close(fd)
 
 
-def run_child(cmd: Sequence[str], env: Mapping[str, str] | None = None) -> int:
+def run_child(
+    cmd: Sequence[str],
+    on_start: Callable[[subprocess.Popen[bytes]], object] | None = None,
+    env: Mapping[str, str] | None = None,
+) -> int:
     """Start `cmd` (in `env`, default ours), forward SIGINT/SIGTERM to it (see the module
-    doc), return its returncode (negative: killed by that signal).
+    doc), return its returncode (negative: killed by that signal). `on_start(child)` runs
+    once the child is started, with the forwarding in place (`component standalone` loads
+    its component there); if it raises, the child is interrupted and waited for before the
+    error goes on.
 
     Signals are taken by handlers installed before the child starts, not as
     KeyboardInterrupt: a Ctrl-C landing between the child's start and our wait would
@@ -160,6 +167,14 @@ def run_child(cmd: Sequence[str], env: Mapping[str, str] | None = None) -> int:
                 proc.send_signal(signal.SIGTERM)
             elif interrupts and not terminal_signals_child():
                 proc.send_signal(signal.SIGINT)
+            if on_start is not None:
+                try:
+                    on_start(proc)
+                except BaseException:
+                    if proc.poll() is None:
+                        proc.send_signal(signal.SIGINT)
+                    proc.wait()
+                    raise
             return proc.wait()
         finally:
             sys.stdout.flush()

@@ -3,35 +3,44 @@
 from __future__ import annotations
 
 import time
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Generic
 
 from ros2lite.endpoint import Endpoint, EndpointOwner
 from ros2lite.qos import QoSProfile
 from ros2lite.transport.attachment import pack_attachment
 from ros2lite.transport.keys import EntityKind
+from ros2lite.type_support import Msg, MsgT
+
+if TYPE_CHECKING:
+    from ros2lite.node import Node
+    from ros2lite.transport.session import Publisher as ZenohPublisher
 
 
-class Publisher(EndpointOwner):
+class Publisher(EndpointOwner, Generic[MsgT]):
     """Publishes messages (or ready CDR bytes) with rmw_zenoh's sequence/timestamp/GID."""
 
-    def __init__(self, node: Any, msg_type: Any, topic: str, qos: QoSProfile | int) -> None:
+    def __init__(
+        self, node: Node, msg_type: type[MsgT] | str, topic: str, qos: QoSProfile | int
+    ) -> None:
         from ros2lite.transport.session import declare_publisher
 
         self._ep = _PublisherEndpoint(node, msg_type, topic, qos)
         ep = self._ep
-        self._pub: Any = declare_publisher(node.context.session, ep.key, ep.qos)
+        self._pub: ZenohPublisher | None = declare_publisher(node.context.require(), ep.key, ep.qos)
         ep._announce()
         self._gid = ep.gid
         self._seq = 0
-        self._serialize: Any = None
+        self._serialize: Callable[[Msg], bytes] | None = None
         self._msg_class = ep.msg_class
-        self._put = self._pub.put
+        self._put: Callable[..., object] = self._pub.put
 
     @property
     def gid(self) -> bytes:
+        """The 16-byte global id rmw_zenoh puts in every sample's attachment."""
         return self._gid
 
-    def publish(self, msg: Any) -> None:
+    def publish(self, msg: MsgT | bytes | bytearray | memoryview) -> None:
         """Send a message object, or bytes that already hold its CDR encoding."""
         # hot path first: a message of exactly our class, through its cached codec
         if type(msg) is self._msg_class:
@@ -39,7 +48,7 @@ class Publisher(EndpointOwner):
             if ser is None:
                 ser = self._serialize = self._codec_serializer()
             try:
-                data = ser(msg)
+                data = ser(msg)  # type: ignore[arg-type]  # exactly our message class
             except Exception as e:  # the raw generated function: name the type here
                 from ros2lite.interfaces.errors import CdrError
 
@@ -55,12 +64,13 @@ class Publisher(EndpointOwner):
         self._seq = seq = self._seq + 1
         self._put(data, attachment=pack_attachment(seq, time.time_ns(), self._gid))
 
-    def _codec_serializer(self) -> Any:
+    def _codec_serializer(self) -> Callable[[Msg], bytes]:
         from ros2lite.interfaces.cdr import codec
 
         return codec(self._ep.type_name).raw_serializer()
 
     def get_subscription_count(self) -> int:
+        """How many subscriptions on the graph match this topic name."""
         from ros2lite.graph import count
 
         return count(
@@ -68,12 +78,13 @@ class Publisher(EndpointOwner):
         )
 
     def destroy(self) -> None:
+        """Withdraw the publisher and its token; publishing afterwards raises."""
         self._ep._undeclare(self._pub)
         self._pub = None
         self._put = _destroyed
 
 
-def _destroyed(*_: Any, **__: Any) -> None:
+def _destroyed(*_: object, **__: object) -> None:
     raise RuntimeError('publisher has been destroyed')
 
 

@@ -74,6 +74,8 @@ class _Policy(enum.IntEnum):
 
 
 class ReliabilityPolicy(_Policy):
+    """Whether delivery is retried (RELIABLE) or may drop (BEST_EFFORT)."""
+
     SYSTEM_DEFAULT = 0
     RELIABLE = 1
     BEST_EFFORT = 2
@@ -82,6 +84,8 @@ class ReliabilityPolicy(_Policy):
 
 
 class DurabilityPolicy(_Policy):
+    """Whether late subscribers get earlier samples (TRANSIENT_LOCAL)."""
+
     SYSTEM_DEFAULT = 0
     TRANSIENT_LOCAL = 1
     VOLATILE = 2
@@ -90,6 +94,8 @@ class DurabilityPolicy(_Policy):
 
 
 class HistoryPolicy(_Policy):
+    """Whether `depth` bounds the queue (KEEP_LAST) or not (KEEP_ALL)."""
+
     SYSTEM_DEFAULT = 0
     KEEP_LAST = 1
     KEEP_ALL = 2
@@ -97,6 +103,8 @@ class HistoryPolicy(_Policy):
 
 
 class LivelinessPolicy(_Policy):
+    """How an endpoint shows it is alive."""
+
     SYSTEM_DEFAULT = 0
     AUTOMATIC = 1
     MANUAL_BY_NODE = 2  # deprecated in rmw, kept so old tokens still decode
@@ -145,6 +153,7 @@ class QoSProfile:
 
     @property
     def is_transient_local(self) -> bool:
+        """Whether late subscribers get the last samples."""
         return self.durability == DurabilityPolicy.TRANSIENT_LOCAL
 
 
@@ -217,10 +226,12 @@ class QoSPresetProfiles(enum.Enum):
 
     @classmethod
     def short_keys(cls) -> list[str]:
+        """The presets' names as the CLI spells them."""
         return [name.lower() for name in cls.__members__]  # aliases too (equal profiles)
 
     @classmethod
     def get_from_short_key(cls, name: str) -> QoSProfile:
+        """The preset profile of a CLI name."""
         return cls[name.upper()].value
 
 

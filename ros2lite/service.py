@@ -9,21 +9,26 @@ from __future__ import annotations
 import logging
 import time
 from collections import deque
-from collections.abc import Callable
+from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Generic, cast
 
 from ros2lite.endpoint import Endpoint
 from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile
+from ros2lite.service_introspection import IntrospectionMixin, ServiceEventType
 from ros2lite.transport.attachment import pack_attachment, unpack_attachment
 from ros2lite.transport.keys import EntityKind
+from ros2lite.type_support import SrvRequestT, SrvResponseT
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
     from ros2lite.interfaces.cdr import Codec
+    from ros2lite.node import Node
     from ros2lite.task import Task
+    from ros2lite.transport.handles import Handle
     from ros2lite.transport.session import Request
+    from ros2lite.type_support import Srv
 
 __all__ = ['RequestHeader', 'Service']
 
@@ -40,28 +45,40 @@ class RequestHeader:
     _request: Request | None = field(default=None, repr=False, compare=False)
 
 
-class Service(Executable):
+ServiceCallback = (
+    Callable[[SrvRequestT, SrvResponseT], SrvResponseT | Awaitable[SrvResponseT]]
+    | Callable[[SrvRequestT, RequestHeader], object]
+)
+"""`callback(request, response)` returning the response (or a coroutine giving it); with
+`deferred=True`, `callback(request, header)` that answers later with `send_response`."""
+
+
+class Service(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]):
     """Serves `srv_name`; `callback(request, response)` returns the response to send.
 
     With `deferred=True` the callback is `callback(request, header)` and the owner answers
     later with `send_response(response, header)` (the action server's get_result does)."""
 
+    _node: Node  # a server always belongs to a node
+
     def __init__(
         self,
-        node: Any,
-        srv_type: Any,
+        node: Node,
+        srv_type: type[Srv[SrvRequestT, SrvResponseT]] | str,
         srv_name: str,
-        callback: Callable[..., Any],
+        callback: ServiceCallback[SrvRequestT, SrvResponseT],
         qos: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,
         deferred: bool = False,
     ) -> None:
+        from ros2lite.interfaces.classes import as_service_class
         from ros2lite.transport.session import declare_queryable
 
         super().__init__(node, callback_group)
         self._ep = _ServiceEndpoint(node, srv_type, srv_name, qos)
-        self.srv_type: Any = self._ep.msg_class
+        self.srv_type: type[Srv[SrvRequestT, SrvResponseT]] = self._ep.msg_class
+        self._response_class = as_service_class(self._ep.msg_class).Response
         self.srv_name = self._ep.topic_name
         self.qos_profile = self._ep.qos
         self.callback = callback
@@ -69,14 +86,15 @@ class Service(Executable):
         self._requests: deque[Request] = deque()
         self._destroyed = False
         self._codec_pair: tuple[Codec, Codec] | None = None
-        self._queryable: Any = declare_queryable(
-            node.context.session, self._ep.key, self._on_request
+        self._queryable: Handle | None = declare_queryable(
+            node.context.require(), self._ep.key, self._on_request
         )
         self._ep._announce()
         node.context.local_services[self._ep.key] = self
 
     @property
     def service_name(self) -> str:
+        """The fully resolved service name."""
         return self.srv_name
 
     def _on_request(self, request: Request) -> None:
@@ -98,7 +116,7 @@ class Service(Executable):
             self._codec_pair = service_codecs(self._ep.type_name)
         return self._codec_pair
 
-    def _take(self) -> tuple[Any, RequestHeader] | None:
+    def _take(self) -> tuple[SrvRequestT, RequestHeader] | None:
         """The next well-formed request as (message, header); malformed ones are dropped
         as rmw_zenoh drops them (no attachment, negative sequence number, bad CDR)."""
         while self._requests:
@@ -114,7 +132,8 @@ class Service(Executable):
                 _log.warning('%s: undecodable request dropped: %s', self.srv_name, e)
                 request.drop()
                 continue
-            return message, RequestHeader(fields[0], fields[2], fields[1], request)
+            header = RequestHeader(fields[0], fields[2], fields[1], request)
+            return cast('SrvRequestT', message), header
         return None
 
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
@@ -122,13 +141,16 @@ class Service(Executable):
         if taken is None:
             return None
         message, header = taken
+        self._introspect(
+            ServiceEventType.REQUEST_RECEIVED, header.sequence_number, header.client_gid, message
+        )
         try:
             if self._deferred:
                 return self._call(self.callback, message, header)
             return self._call(
                 self.callback,
                 message,
-                self.srv_type.Response(),
+                self._response_class(),
                 then=lambda response: self.send_response(response, header),
             )
         except BaseException:
@@ -141,7 +163,7 @@ class Service(Executable):
         if request is not None:
             request.drop()
 
-    def send_response(self, response: Any, header: RequestHeader) -> None:
+    def send_response(self, response: SrvResponseT, header: RequestHeader) -> None:
         """Answer the request `header` came with (once)."""
         request, header._request = header._request, None
         if request is None:
@@ -160,9 +182,14 @@ class Service(Executable):
         request.reply(
             data, pack_attachment(header.sequence_number, time.time_ns(), header.client_gid)
         )
+        self._introspect(
+            ServiceEventType.RESPONSE_SENT, header.sequence_number, header.client_gid, response
+        )
 
     def destroy(self) -> None:
+        """Stop serving: queued requests end unanswered; the queryable and token go."""
         self._destroyed = True
+        self._destroy_introspection()
         self._node.context.local_services.pop(self._ep.key, None)
         while self._requests:
             self._requests.popleft().drop()

@@ -7,17 +7,20 @@ import time
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Generic, cast
 
 from ros2lite.endpoint import Endpoint, EndpointOwner
 from ros2lite.executable import Executable
 from ros2lite.qos import HistoryPolicy, QoSProfile
 from ros2lite.transport.attachment import unpack_attachment
 from ros2lite.transport.keys import EntityKind
+from ros2lite.type_support import MsgT
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.node import Node
     from ros2lite.task import Task
+    from ros2lite.transport.handles import Sample
 
 
 @dataclass(frozen=True)
@@ -43,15 +46,19 @@ def _info(attachment: bytes, received: int) -> MessageInfo:
     return MessageInfo(stamp, received, seq, gid)
 
 
-class Subscription(EndpointOwner, Executable):
+SubscriptionCallback = Callable[[MsgT], object] | Callable[[bytes, MessageInfo], object]
+"""`callback(msg)`, or with raw=True `callback(cdr_bytes, info)`; `async def` ones too."""
+
+
+class Subscription(EndpointOwner, Executable, Generic[MsgT]):
     """Calls `callback(msg)`; with raw=True calls `callback(cdr_bytes, MessageInfo)`."""
 
     def __init__(
         self,
-        node: Any,
-        msg_type: Any,
+        node: Node,
+        msg_type: type[MsgT] | str,
         topic: str,
-        callback: Callable[..., Any],
+        callback: SubscriptionCallback[MsgT],
         qos: QoSProfile | int,
         *,
         raw: bool = False,
@@ -70,12 +77,12 @@ class Subscription(EndpointOwner, Executable):
         # for raw ones (tools like `topic hz` need arrival times). Bytes are copied out on the
         # executor thread, keeping the pump thread's share of the GIL small.
         self._buffer: deque[Any] = deque(maxlen=None if keep_all else max(ep.qos.depth, 1))
-        self._deserialize: Any = None
+        self._deserialize: Callable[[bytes], MsgT] | None = None
         self._destroyed = False
         # a subclass hook (e.g. topic monitors) sees every sample instead of the buffer
         hook = None if type(self)._on_sample is Subscription._on_sample else self._on_sample
         self._receiver = SampleReceiver(
-            node.context.session,
+            node.context.require(),
             ep.key,
             ep.qos,
             self._buffer,
@@ -86,7 +93,7 @@ class Subscription(EndpointOwner, Executable):
         )
         ep._announce()
 
-    def _on_sample(self, sample: Any) -> None:
+    def _on_sample(self, sample: Sample) -> None:
         """Receive thread: keep the sample and make sure the executor will come for it.
         Samples without an attachment, which rmw_zenoh ignores, are dropped when taken."""
         if self._destroyed:
@@ -97,15 +104,18 @@ class Subscription(EndpointOwner, Executable):
     def _has_work(self) -> bool:
         return bool(self._buffer) and not self._destroyed
 
-    def _deserializer(self) -> Any:
+    def _deserializer(self) -> Callable[[bytes], MsgT]:
         des = self._deserialize
         if des is None:
             from ros2lite.interfaces.cdr import codec
 
-            des = self._deserialize = codec(self._ep.type_name).fast_deserializer()
+            # the codec of this subscription's own type builds MsgT messages
+            des = self._deserialize = cast(
+                'Callable[[bytes], MsgT]', codec(self._ep.type_name).fast_deserializer()
+            )
         return des
 
-    def take(self) -> tuple[Any, MessageInfo] | None:
+    def take(self) -> tuple[MsgT | bytes, MessageInfo] | None:
         """The oldest buffered sample as (message or bytes, info), or None. For typed
         subscriptions `received_timestamp` is the time of the take."""
         while True:
@@ -137,7 +147,9 @@ class Subscription(EndpointOwner, Executable):
 
     def _deliver_batch(self, limit: int, stop: Callable[[], bool] | None) -> None:
         """Typed callbacks never see MessageInfo, so it is only built for raw ones."""
-        buffer, callback = self._buffer, self.callback
+        # (bytes, MessageInfo) for raw subscriptions, (msg) for typed ones
+        callback: Callable[..., object] = self.callback
+        buffer = self._buffer
         popleft, perf_counter = buffer.popleft, time.perf_counter
         # a batch also ends after _BATCH_TIME, so slow callbacks can't starve timers
         deadline = perf_counter() + _BATCH_TIME if limit > 1 else 0.0
@@ -176,11 +188,13 @@ class Subscription(EndpointOwner, Executable):
                 break
 
     def destroy(self) -> None:
+        """Stop receiving: buffered samples are dropped and the token withdrawn."""
         self._destroyed = True
         self._buffer.clear()
         self._ep._undeclare(self._receiver)  # ends the receive thread too
 
     def get_publisher_count(self) -> int:
+        """How many publishers on the graph match this topic name."""
         from ros2lite.graph import count
 
         return count(self._ep.node.context.graph.entities(), self.topic_name, EntityKind.PUBLISHER)

@@ -6,37 +6,44 @@ from __future__ import annotations
 
 import inspect
 import threading
-from collections.abc import Callable, Generator
-from typing import Any
+from collections.abc import Callable, Coroutine, Generator
+from typing import TYPE_CHECKING, Any, Generic, TypeVar, final
+
+if TYPE_CHECKING:
+    from ros2lite.executors import Executor
 
 __all__ = ['Future', 'Task']
 
+T = TypeVar('T')
 
-class Future:
+
+class Future(Generic[T]):
     """The result of an asynchronous operation (service call, goal, task)."""
 
-    def __init__(self, *, executor: Any = None) -> None:
+    def __init__(self, *, executor: Executor | None = None) -> None:
         # a plain flag for done(), which executors poll after every callback; the Event is
         # only made for threads that block in wait()
         self._finished = False
         self._lock = threading.Lock()
         self._event: threading.Event | None = None
-        self._result: Any = None
+        self._result: T | None = None
         self._exception: BaseException | None = None
-        self._callbacks: list[Callable[[Future], None]] = []
+        self._callbacks: list[Callable[[Future[T]], object]] = []
         self._cancelled = False
         self._executor = executor
 
-    def __await__(self) -> Generator[Future, None, Any]:
+    def __await__(self) -> Generator[Future[T], None, T | None]:
         # the task running the awaiting coroutine sees this future and resumes when it is done
         while not self._finished:
             yield self
         return self.result()
 
     def done(self) -> bool:
+        """Whether a result, an exception or a cancellation has ended it."""
         return self._finished
 
     def cancelled(self) -> bool:
+        """Whether it ended by `cancel()`."""
         return self._cancelled
 
     def cancel(self) -> None:
@@ -45,19 +52,23 @@ class Future:
             self._cancelled = True
             self._finish()
 
-    def result(self) -> Any:
+    def result(self) -> T | None:
+        """The result (None while pending or once cancelled); raises its exception."""
         if self._exception is not None:
             raise self._exception
         return self._result
 
     def exception(self) -> BaseException | None:
+        """The exception it ended with, if any."""
         return self._exception
 
-    def set_result(self, result: Any) -> None:
+    def set_result(self, result: T) -> None:
+        """Complete it with `result` (done callbacks run now, on this thread)."""
         self._result = result
         self._finish()
 
     def set_exception(self, exc: BaseException) -> None:
+        """Complete it with an exception that `result()` raises."""
         self._exception = exc
         self._finish()
 
@@ -72,7 +83,7 @@ class Future:
         for cb in callbacks:
             cb(self)
 
-    def add_done_callback(self, callback: Callable[[Future], None]) -> None:
+    def add_done_callback(self, callback: Callable[[Future[T]], object]) -> None:
         """Call `callback(future)` once done (at once if it already is)."""
         with self._lock:
             if not self._finished:
@@ -91,7 +102,8 @@ class Future:
         return event.wait(timeout)
 
 
-class Task(Future):
+@final  # executors tell tasks from entities by `type(item) is Task`
+class Task(Future[Any]):
     """Runs `handler(*args)`; if that is (or returns) a coroutine, one step per call.
 
     The executor calls the task; when the coroutine awaits a future that is not done, the
@@ -100,18 +112,18 @@ class Task(Future):
 
     def __init__(
         self,
-        handler: Callable[..., Any],
-        args: tuple[Any, ...] = (),
-        kwargs: dict[str, Any] | None = None,
+        handler: Callable[..., object],
+        args: tuple[object, ...] = (),
+        kwargs: dict[str, object] | None = None,
         *,
-        executor: Any = None,
+        executor: Executor | None = None,
         reschedule: Callable[[Task], None] | None = None,
     ) -> None:
         super().__init__(executor=executor)
-        self._handler: Callable[..., Any] | None = handler
+        self._handler: Callable[..., object] | None = handler
         self._args = args
         self._kwargs = kwargs or {}
-        self._coro: Any = None
+        self._coro: Coroutine[object, None, object] | None = None
         self._reschedule = reschedule
         # a step runs on one thread at a time; a call arriving meanwhile (the awaited future
         # completed on another thread before the step ended) is not lost: the running call
@@ -121,9 +133,11 @@ class Task(Future):
         self._again = False
 
     def executing(self) -> bool:
+        """Whether a step of it runs right now (on some thread)."""
         return self._executing
 
     def __call__(self) -> None:
+        """Take the next step (the executor calls this; a concurrent call is not lost)."""
         with self._state:
             if self._finished:
                 return
@@ -176,6 +190,7 @@ class Task(Future):
             self._reschedule(self)
 
     def cancel(self) -> None:
+        """Close the coroutine (if started) and cancel the task."""
         if self._coro is not None and not self._finished:
             self._coro.close()
         super().cancel()

@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from ros2lite.executable import Executable
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.clock import Clock
+    from ros2lite.node import Node
     from ros2lite.task import Task
 
 
@@ -21,10 +23,10 @@ class Timer(Executable):
     def __init__(
         self,
         period_sec: float,
-        callback: Callable[[], Any],
-        clock: Any = None,
+        callback: Callable[[], object],
+        clock: Clock | None = None,
         *,
-        node: Any = None,
+        node: Node | None = None,
         callback_group: CallbackGroup | None = None,
     ) -> None:
         if period_sec < 0:
@@ -42,24 +44,28 @@ class Timer(Executable):
         are unrelated numbers, so the next call is re-based to one period from now."""
         clock = self._clock
         sim = clock is not None and clock.ros_time_is_active
-        now: int = clock.now().nanoseconds if sim else time.monotonic_ns()
+        # `sim` implies a clock
+        now: int = clock.now().nanoseconds if sim else time.monotonic_ns()  # type: ignore[union-attr]
         if sim != self._sim:
             self._sim = sim
             self._next = now + self.timer_period_ns
         return now
 
     def time_until_next_call(self) -> float | None:
+        """Seconds until the timer is due (negative: overdue); None once cancelled."""
         if self._canceled:
             return None
         now = self._now()  # first: it may re-base `_next`
         return (self._next - now) / 1e9
 
     def is_ready(self) -> bool:
+        """Whether the timer is due."""
         remaining = self.time_until_next_call()
         return remaining is not None and remaining <= 0
 
     @property
     def timer_period_sec(self) -> float:
+        """The period in seconds."""
         return self.timer_period_ns / 1e9
 
     def execute(self) -> None:
@@ -82,11 +88,14 @@ class Timer(Executable):
         return True
 
     def cancel(self) -> None:
+        """Stop firing (reset() starts it again)."""
         self._canceled = True
 
     def is_canceled(self) -> bool:
+        """Whether cancel() stopped it."""
         return self._canceled
 
     def reset(self) -> None:
+        """Start again: next due one period from now."""
         self._canceled = False
         self._next = self._now() + self.timer_period_ns

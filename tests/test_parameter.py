@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from ros2lite.interfaces import deserialize, serialize
-from ros2lite.msgs.rcl_interfaces.msg import ParameterValue  # type: ignore[attr-defined]
+from ros2lite.msgs.rcl_interfaces.msg import ParameterValue
 from ros2lite.parameter import Parameter, get_parameter_value, parameter_value_to_python
 
 T = Parameter.Type

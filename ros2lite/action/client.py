@@ -11,7 +11,7 @@ import threading
 import time
 import weakref
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Generic, Protocol, cast
 
 from ros2lite.action.goals import (
     TERMINAL_STATES,
@@ -26,18 +26,47 @@ from ros2lite.action.server import await_or_execute
 from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
 from ros2lite.task import Future
+from ros2lite.type_support import FeedbackT, GoalT, ResultT
+
+if TYPE_CHECKING:
+    from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.clock import Clock
+    from ros2lite.interfaces import Message
+    from ros2lite.msgs.action_msgs.msg import GoalStatusArray
+    from ros2lite.msgs.action_msgs.srv import CancelGoal_Response
+    from ros2lite.msgs.builtin_interfaces.msg import Time
+    from ros2lite.msgs.unique_identifier_msgs.msg import UUID
+    from ros2lite.node import Node
+    from ros2lite.service_introspection import ServiceIntrospectionState
+    from ros2lite.type_support import Action, FeedbackMessage, GetResultResponse
 
 # how often wait_for_server looks at the graph
 _POLL = 0.05
 
 
-class ClientGoalHandle:
+class _SendGoalResponse(Protocol):
+    """What the client reads of an `<A>_SendGoal_Response`."""
+
+    accepted: bool
+    stamp: Time
+
+
+FeedbackCallback = Callable[['FeedbackMessage[FeedbackT]'], object]
+"""Gets each `<A>_FeedbackMessage` (goal id and feedback) of one goal; may be `async def`."""
+
+
+class ClientGoalHandle(Generic[GoalT, ResultT, FeedbackT]):
     """A goal as its client sees it: accepted or not, its status, and ways to end it."""
 
-    def __init__(self, action_client: ActionClient, goal_id: Any, goal_response: Any) -> None:
+    def __init__(
+        self,
+        action_client: ActionClient[GoalT, ResultT, FeedbackT],
+        goal_id: UUID,
+        goal_response: Message,
+    ) -> None:
         self._action_client = action_client
         self._goal_id = goal_id
-        self._goal_response = goal_response
+        self._goal_response = cast(_SendGoalResponse, goal_response)
         self._status = GoalStatus.STATUS_UNKNOWN
 
     def __eq__(self, other: object) -> bool:
@@ -58,46 +87,54 @@ class ClientGoalHandle:
         )
 
     @property
-    def goal_id(self) -> Any:
+    def goal_id(self) -> UUID:
+        """The goal's id."""
         return self._goal_id
 
     @property
-    def stamp(self) -> Any:
+    def stamp(self) -> Time:
+        """When the server accepted (or rejected) the goal."""
         return self._goal_response.stamp
 
     @property
     def accepted(self) -> bool:
+        """Whether the server accepted the goal."""
         return bool(self._goal_response.accepted)
 
     @property
     def status(self) -> int:
+        """The goal's last known action_msgs/GoalStatus value."""
         return self._status
 
-    def cancel_goal(self) -> Any:
+    def cancel_goal(self) -> CancelGoal_Response:
         """Ask the server to cancel; blocks until it answers (CancelGoal.Response)."""
         return self._action_client._cancel_goal(self)
 
-    def cancel_goal_async(self) -> Future:
+    def cancel_goal_async(self) -> Future[CancelGoal_Response]:
+        """Ask the server to cancel; the future gives its CancelGoal.Response."""
         return self._action_client._cancel_goal_async(self)
 
-    def get_result(self) -> Any:
+    def get_result(self) -> GetResultResponse[ResultT]:
         """Block until the goal ends; gives its GetResult response (status and result)."""
         return self._action_client._get_result(self)
 
-    def get_result_async(self) -> Future:
+    def get_result_async(self) -> Future[GetResultResponse[ResultT]]:
+        """The future of the goal's GetResult response (status and result)."""
         return self._action_client._get_result_async(self)
 
 
-class ActionClient(Executable):
+class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
     """Sends goals to one action (rclpy.action.ActionClient's arguments and defaults)."""
+
+    _node: Node
 
     def __init__(
         self,
-        node: Any,
-        action_type: Any,
+        node: Node,
+        action_type: type[Action[GoalT, ResultT, FeedbackT]] | str,
         action_name: str,
         *,
-        callback_group: Any = None,
+        callback_group: CallbackGroup | None = None,
         goal_service_qos_profile: QoSProfile = qos_profile_services_default,
         result_service_qos_profile: QoSProfile = qos_profile_services_default,
         cancel_service_qos_profile: QoSProfile = qos_profile_services_default,
@@ -111,8 +148,10 @@ class ActionClient(Executable):
             node.resolve_topic_name(action_name), self._action_type._TYPE_NAME
         )
         self._lock = threading.Lock()
-        self._feedback_callbacks: dict[bytes, Callable[[Any], Any]] = {}
-        self._goal_handles: dict[bytes, weakref.ref[ClientGoalHandle]] = {}
+        self._feedback_callbacks: dict[bytes, FeedbackCallback[FeedbackT]] = {}
+        self._goal_handles: dict[
+            bytes, weakref.ref[ClientGoalHandle[GoalT, ResultT, FeedbackT]]
+        ] = {}
         # goals sent but not answered yet, with the last status seen for them: the server
         # may publish a goal's status before its answer to send_goal arrives here
         self._unanswered: dict[bytes, int] = {}
@@ -151,24 +190,27 @@ class ActionClient(Executable):
         return None  # never has work of its own
 
     @property
-    def action_type(self) -> Any:
-        return self._action_type
+    def action_type(self) -> type[Action[GoalT, ResultT, FeedbackT]]:
+        """The action class."""
+        return cast('type[Action[GoalT, ResultT, FeedbackT]]', self._action_type)
 
     @property
     def action_name(self) -> str:
+        """The fully resolved action name."""
         return self._names.action
 
     # -- incoming ----------------------------------------------------------------------------
-    async def _on_feedback(self, message: Any) -> None:
+    async def _on_feedback(self, message: Message) -> None:
         # a coroutine, so that feedback callbacks may be `async def` too (as in rclpy)
+        feedback = cast('FeedbackMessage[FeedbackT]', message)
         with self._lock:
-            callback = self._feedback_callbacks.get(goal_key(message.goal_id))
+            callback = self._feedback_callbacks.get(goal_key(feedback.goal_id))
         if callback is not None:
-            await await_or_execute(callback, message)
+            await await_or_execute(callback, feedback)
 
-    def _on_status(self, message: Any) -> None:
+    def _on_status(self, message: Message) -> None:
         with self._lock:
-            for status in message.status_list:
+            for status in cast('GoalStatusArray', message).status_list:
                 key = goal_key(status.goal_info.goal_id)
                 if key in self._unanswered:
                     self._unanswered[key] = status.status
@@ -185,10 +227,10 @@ class ActionClient(Executable):
     # -- goals -------------------------------------------------------------------------------
     def send_goal_async(
         self,
-        goal: Any,
-        feedback_callback: Callable[[Any], Any] | None = None,
-        goal_uuid: Any = None,
-    ) -> Future:
+        goal: GoalT,
+        feedback_callback: FeedbackCallback[FeedbackT] | None = None,
+        goal_uuid: UUID | None = None,
+    ) -> Future[ClientGoalHandle[GoalT, ResultT, FeedbackT]]:
         """Send a goal; the future gives its ClientGoalHandle once the server answers.
 
         `feedback_callback(feedback_message)` gets this goal's `<A>_FeedbackMessage`s."""
@@ -203,14 +245,14 @@ class ActionClient(Executable):
             if feedback_callback is not None:
                 self._feedback_callbacks[key] = feedback_callback
             self._unanswered[key] = GoalStatus.STATUS_UNKNOWN
-        future = Future()
+        future: Future[ClientGoalHandle[GoalT, ResultT, FeedbackT]] = Future()
         try:
             call = self._goal_client.call_async(request)
         except BaseException:
             self._forget_goal(key)
             raise
 
-        def answered(call_future: Future) -> None:
+        def answered(call_future: Future[Message]) -> None:
             exc = call_future.exception() if not call_future.cancelled() else None
             if call_future.cancelled() or exc is not None:
                 self._forget_goal(key)
@@ -219,7 +261,7 @@ class ActionClient(Executable):
                 else:
                     future.cancel()
                 return
-            handle = ClientGoalHandle(self, goal_id, call_future.result())
+            handle = ClientGoalHandle(self, goal_id, cast('Message', call_future.result()))
             with self._lock:
                 early = self._unanswered.pop(key, GoalStatus.STATUS_UNKNOWN)
                 if handle.accepted:
@@ -235,10 +277,10 @@ class ActionClient(Executable):
 
     def send_goal(
         self,
-        goal: Any,
-        feedback_callback: Callable[[Any], Any] | None = None,
-        goal_uuid: Any = None,
-    ) -> Any:
+        goal: GoalT,
+        feedback_callback: FeedbackCallback[FeedbackT] | None = None,
+        goal_uuid: UUID | None = None,
+    ) -> GetResultResponse[ResultT] | None:
         """Send a goal and block until its GetResult response (None if it was rejected).
 
         The replies wake this thread directly, so no executor is needed for that; feedback
@@ -276,46 +318,56 @@ class ActionClient(Executable):
             self._feedback_callbacks.pop(key, None)
             self._unanswered.pop(key, None)
 
-    def _cancel_goal_async(self, goal_handle: ClientGoalHandle) -> Future:
+    def _cancel_goal_async(
+        self, goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]
+    ) -> Future[CancelGoal_Response]:
         if not isinstance(goal_handle, ClientGoalHandle):
             raise TypeError('expected a ClientGoalHandle')
         if not goal_handle.accepted:
             raise TypeError('Action goal was not accepted')
         request = CancelGoal.Request()
         request.goal_info.goal_id = goal_handle.goal_id
-        return self._cancel_client.call_async(request)
+        return cast('Future[CancelGoal_Response]', self._cancel_client.call_async(request))
 
-    def _cancel_goal(self, goal_handle: ClientGoalHandle) -> Any:
+    def _cancel_goal(
+        self, goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]
+    ) -> CancelGoal_Response:
         if not goal_handle.accepted:
             raise TypeError('Action goal was not accepted')
         request = CancelGoal.Request()
         request.goal_info.goal_id = goal_handle.goal_id
-        return self._cancel_client.call(request)
+        return cast('CancelGoal_Response', self._cancel_client.call(request))
 
-    def _get_result_async(self, goal_handle: ClientGoalHandle) -> Future:
+    def _get_result_async(
+        self, goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]
+    ) -> Future[GetResultResponse[ResultT]]:
         if not isinstance(goal_handle, ClientGoalHandle):
             raise TypeError('expected a ClientGoalHandle')
         if not goal_handle.accepted:
             raise TypeError('Action goal was not accepted')
         key = goal_key(goal_handle.goal_id)
         request = self._action_type.Impl.GetResultService.Request(goal_id=goal_handle.goal_id)
-        future = self._result_client.call_async(request)
+        future = cast('Future[GetResultResponse[ResultT]]', self._result_client.call_async(request))
 
-        def done(f: Future) -> None:
+        def done(f: Future[GetResultResponse[ResultT]]) -> None:
             self._drop_feedback(key)
-            if not f.cancelled() and f.exception() is None:
-                status = f.result().status
-                if status in TERMINAL_STATES:
-                    goal_handle._status = status
+            response = f.result() if not f.cancelled() and f.exception() is None else None
+            if response is not None and response.status in TERMINAL_STATES:
+                goal_handle._status = response.status
 
         future.add_done_callback(done)
         return future
 
-    def _get_result(self, goal_handle: ClientGoalHandle) -> Any:
+    def _get_result(
+        self, goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]
+    ) -> GetResultResponse[ResultT]:
         if not goal_handle.accepted:
             raise TypeError('Action goal was not accepted')
-        response = self._result_client.call(
-            self._action_type.Impl.GetResultService.Request(goal_id=goal_handle.goal_id)
+        response = cast(
+            'GetResultResponse[ResultT]',
+            self._result_client.call(
+                self._action_type.Impl.GetResultService.Request(goal_id=goal_handle.goal_id)
+            ),
         )
         self._drop_feedback(goal_key(goal_handle.goal_id))
         if response.status in TERMINAL_STATES:
@@ -343,7 +395,19 @@ class ActionClient(Executable):
             time.sleep(_POLL)
         return self.server_is_ready()
 
+    def configure_introspection(
+        self,
+        clock: Clock,
+        service_event_qos_profile: QoSProfile,
+        introspection_state: ServiceIntrospectionState,
+    ) -> None:
+        """Report the action's three service clients on their `_service_event` topics (see
+        :mod:`ros2lite.service_introspection`; what `action echo` shows)."""
+        for client in (self._goal_client, self._cancel_client, self._result_client):
+            client.configure_introspection(clock, service_event_qos_profile, introspection_state)
+
     def destroy(self) -> None:
+        """Withdraw the five entities from the graph."""
         if self._destroyed:
             return
         self._destroyed = True

@@ -10,19 +10,28 @@ from __future__ import annotations
 import enum
 import time
 import uuid as _uuid
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.interfaces import get_interface
+from ros2lite.interfaces.classes import ActionType
 from ros2lite.names import action_entity_name
 
+if TYPE_CHECKING:
+    from ros2lite.msgs.action_msgs import msg as _action_msgs_msg
+    from ros2lite.msgs.action_msgs import srv as _action_msgs_srv
+    from ros2lite.msgs.unique_identifier_msgs import msg as _uuid_msg
+
 # action_msgs is where the status values are defined; they are read from there, not repeated
-GoalStatus: Any = get_interface('action_msgs/msg/GoalStatus')
-GoalInfo: Any = get_interface('action_msgs/msg/GoalInfo')
-GoalStatusArray: Any = get_interface('action_msgs/msg/GoalStatusArray')
-CancelGoal: Any = get_interface('action_msgs/srv/CancelGoal')
-UUID: Any = get_interface('unique_identifier_msgs/msg/UUID')
+GoalStatus: type[_action_msgs_msg.GoalStatus] = get_interface('action_msgs/msg/GoalStatus')
+GoalInfo: type[_action_msgs_msg.GoalInfo] = get_interface('action_msgs/msg/GoalInfo')
+GoalStatusArray: type[_action_msgs_msg.GoalStatusArray] = get_interface(
+    'action_msgs/msg/GoalStatusArray'
+)
+CancelGoal: type[_action_msgs_srv.CancelGoal] = get_interface('action_msgs/srv/CancelGoal')
+UUID: type[_uuid_msg.UUID] = get_interface('unique_identifier_msgs/msg/UUID')
 
 ACTIVE_STATES = frozenset(
     {GoalStatus.STATUS_ACCEPTED, GoalStatus.STATUS_EXECUTING, GoalStatus.STATUS_CANCELING}
@@ -58,22 +67,27 @@ class ActionNames:
 
     @property
     def send_goal(self) -> str:
+        """The send_goal service's name."""
         return action_entity_name(self.action, 'send_goal')
 
     @property
     def cancel_goal(self) -> str:
+        """The cancel_goal service's name."""
         return action_entity_name(self.action, 'cancel_goal')
 
     @property
     def get_result(self) -> str:
+        """The get_result service's name."""
         return action_entity_name(self.action, 'get_result')
 
     @property
     def feedback(self) -> str:
+        """The feedback topic's name."""
         return action_entity_name(self.action, 'feedback')
 
     @property
     def status(self) -> str:
+        """The status topic's name."""
         return action_entity_name(self.action, 'status')
 
     def entities(self) -> list[tuple[str, str, str]]:
@@ -88,7 +102,7 @@ class ActionNames:
         ]
 
 
-def action_type_name(action_type: Any) -> str:
+def action_type_name(action_type: type | str) -> str:
     """'pkg/action/Name' of an action class or of such a string ('pkg/Name' is accepted)."""
     if isinstance(action_type, str):
         parts = action_type.split('/')
@@ -103,29 +117,33 @@ def action_type_name(action_type: Any) -> str:
     return str(name)
 
 
-def resolve_action_type(action_type: Any) -> Any:
+def resolve_action_type(action_type: type | str) -> type[ActionType]:
     """The action class for a class or a type name."""
     if isinstance(action_type, str):
-        return get_interface(action_type_name(action_type))
+        found: type[ActionType] = get_interface(action_type_name(action_type))
+        return found
     action_type_name(action_type)
+    if not issubclass(action_type, ActionType):
+        raise TypeError(f'not a ros2lite action type: {action_type!r}')
     return action_type
 
 
 # -- goal ids ------------------------------------------------------------------------------
 
 
-def new_goal_id() -> Any:
+def new_goal_id() -> _uuid_msg.UUID:
     """A random (version 4) goal UUID message, as rclpy's ActionClient makes them."""
     return UUID(uuid=list(_uuid.uuid4().bytes))
 
 
-def goal_key(goal_id: Any) -> bytes:
+def goal_key(goal_id: _uuid_msg.UUID | bytes | Sequence[int]) -> bytes:
     """The 16 bytes of a UUID message (or of bytes/list), usable as a dict key."""
-    raw = getattr(goal_id, 'uuid', goal_id)
-    return bytes(raw)
+    if isinstance(goal_id, (bytes, bytearray, Sequence)):
+        return bytes(goal_id)
+    return bytes(goal_id.uuid)
 
 
-def goal_id_hex(goal_id: Any) -> str:
+def goal_id_hex(goal_id: _uuid_msg.UUID | bytes | Sequence[int]) -> str:
     """32 lower-case hex digits, as `ros2 action send_goal` prints a goal ID."""
     return goal_key(goal_id).hex()
 
@@ -161,6 +179,7 @@ class InvalidGoalTransition(Ros2liteError, RuntimeError):
 
 
 def next_state(state: int, event: GoalEvent) -> int:
+    """The state `event` moves a goal in `state` to (InvalidGoalTransition if none)."""
     try:
         return _TRANSITIONS[(state, event)]
     except KeyError:
@@ -171,6 +190,7 @@ def next_state(state: int, event: GoalEvent) -> int:
 
 
 def is_cancelable(state: int) -> bool:
+    """Whether a goal in `state` may still take a cancel request."""
     return (state, GoalEvent.CANCEL_GOAL) in _TRANSITIONS
 
 
@@ -181,7 +201,7 @@ def is_cancelable(state: int) -> bool:
 class GoalEntry:
     """One accepted goal as the server tracks it until its result expires."""
 
-    info: Any  # action_msgs/GoalInfo (id and acceptance stamp)
+    info: _action_msgs_msg.GoalInfo  # id and acceptance stamp
     state: int = GoalStatus.STATUS_ACCEPTED
     ended_at: float | None = None  # time.monotonic() when its result became known
     stamp_ns: int = field(init=False)
@@ -191,6 +211,7 @@ class GoalEntry:
 
     @property
     def key(self) -> bytes:
+        """The goal id's 16 bytes."""
         return goal_key(self.info.goal_id)
 
 
@@ -211,9 +232,11 @@ class GoalTable:
         return len(self._goals)
 
     def get(self, key: bytes) -> GoalEntry | None:
+        """The entry of a goal id, if it is still tracked."""
         return self._goals.get(key)
 
-    def add(self, info: Any) -> GoalEntry:
+    def add(self, info: _action_msgs_msg.GoalInfo) -> GoalEntry:
+        """Track a newly accepted goal (RuntimeError if its id is taken)."""
         entry = GoalEntry(info)
         if entry.key in self._goals:
             raise RuntimeError(f'goal {entry.key.hex()} already exists')
@@ -244,13 +267,15 @@ class GoalTable:
             del self._goals[k]
         return gone
 
-    def status_array(self) -> Any:
+    def status_array(self) -> _action_msgs_msg.GoalStatusArray:
         """action_msgs/GoalStatusArray of every goal still tracked, oldest first."""
         return GoalStatusArray(
             status_list=[GoalStatus(goal_info=e.info, status=e.state) for e in self._goals.values()]
         )
 
-    def select_cancel(self, request: Any) -> tuple[int, list[Any]]:
+    def select_cancel(
+        self, request: _action_msgs_srv.CancelGoal_Request
+    ) -> tuple[int, list[_action_msgs_msg.GoalInfo]]:
         """rcl_action's reading of a CancelGoal request: (return code, GoalInfos to cancel).
 
         A zero goal id and zero stamp mean every goal; a zero id with a stamp, every goal

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ros2lite.node import Node
 
 
-def get_action_names_and_types(node: Any) -> list[tuple[str, list[str]]]:
+def get_action_names_and_types(node: Node) -> list[tuple[str, list[str]]]:
     """Every action with a server or a client, with its type(s)."""
     from ros2lite.graph import action_names_and_types
 
@@ -13,7 +16,7 @@ def get_action_names_and_types(node: Any) -> list[tuple[str, list[str]]]:
 
 
 def _by_node(
-    node: Any, remote_node_name: str, remote_node_namespace: str, servers: bool
+    node: Node, remote_node_name: str, remote_node_namespace: str, servers: bool
 ) -> list[tuple[str, list[str]]]:
     from ros2lite.graph import node_info
 
@@ -26,12 +29,14 @@ def _by_node(
 
 
 def get_action_server_names_and_types_by_node(
-    node: Any, remote_node_name: str, remote_node_namespace: str
+    node: Node, remote_node_name: str, remote_node_namespace: str
 ) -> list[tuple[str, list[str]]]:
+    """(action, types) that node serves."""
     return _by_node(node, remote_node_name, remote_node_namespace, True)
 
 
 def get_action_client_names_and_types_by_node(
-    node: Any, remote_node_name: str, remote_node_namespace: str
+    node: Node, remote_node_name: str, remote_node_namespace: str
 ) -> list[tuple[str, list[str]]]:
+    """(action, types) that node has clients of."""
     return _by_node(node, remote_node_name, remote_node_namespace, False)

@@ -14,8 +14,8 @@ import enum
 import inspect
 import threading
 import traceback
-from collections.abc import Callable
-from typing import Any
+from collections.abc import Awaitable, Callable
+from typing import TYPE_CHECKING, Generic, Protocol, TypeVar, cast
 
 from ros2lite.action.goals import (
     TERMINAL_STATES,
@@ -31,6 +31,21 @@ from ros2lite.action.goals import (
 from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
 from ros2lite.task import Future
+from ros2lite.type_support import FeedbackT, GoalT, ResultT
+
+if TYPE_CHECKING:
+    from ros2lite.callback_groups import CallbackGroup
+    from ros2lite.clock import Clock
+    from ros2lite.interfaces import Message
+    from ros2lite.msgs.action_msgs.msg import GoalInfo as GoalInfoMsg
+    from ros2lite.msgs.action_msgs.srv import CancelGoal_Request
+    from ros2lite.msgs.unique_identifier_msgs.msg import UUID
+    from ros2lite.node import Node
+    from ros2lite.service import RequestHeader
+    from ros2lite.service_introspection import ServiceIntrospectionState
+    from ros2lite.type_support import Action
+
+_T = TypeVar('_T')
 
 
 class GoalResponse(enum.Enum):
@@ -47,30 +62,53 @@ class CancelResponse(enum.Enum):
     ACCEPT = 2
 
 
-def default_goal_callback(goal_request: Any) -> GoalResponse:
+class _SendGoalRequest(Protocol):
+    """What the server reads of an `<A>_SendGoal_Request`."""
+
+    goal_id: UUID
+    goal: Message
+
+
+class _GoalIdRequest(Protocol):
+    """What the server reads of an `<A>_GetResult_Request`."""
+
+    goal_id: UUID
+
+
+def default_goal_callback(goal_request: object) -> GoalResponse:
+    """Accept every goal (rclpy's default)."""
     return GoalResponse.ACCEPT
 
 
-def default_handle_accepted_callback(goal_handle: ServerGoalHandle) -> None:
+def default_handle_accepted_callback(
+    goal_handle: ServerGoalHandle[GoalT, ResultT, FeedbackT],
+) -> None:
+    """Start executing an accepted goal at once (rclpy's default)."""
     goal_handle.execute()
 
 
-def default_cancel_callback(cancel_request: Any) -> CancelResponse:
+def default_cancel_callback(cancel_request: object) -> CancelResponse:
+    """Refuse every cancel request (rclpy's default)."""
     return CancelResponse.REJECT
 
 
-async def await_or_execute(callback: Callable[..., Any], *args: Any) -> Any:
+async def await_or_execute(callback: Callable[..., _T | Awaitable[_T]], *args: object) -> _T:
     """Call a plain or `async def` callback and give its result."""
     result = callback(*args)
     if inspect.isawaitable(result):
-        result = await result
-    return result
+        return cast(_T, await result)
+    return cast(_T, result)
 
 
-class ServerGoalHandle:
+class ServerGoalHandle(Generic[GoalT, ResultT, FeedbackT]):
     """One accepted goal as the user's callbacks see it."""
 
-    def __init__(self, action_server: ActionServer, goal_info: Any, goal_request: Any) -> None:
+    def __init__(
+        self,
+        action_server: ActionServer[GoalT, ResultT, FeedbackT],
+        goal_info: GoalInfoMsg,
+        goal_request: GoalT,
+    ) -> None:
         self._action_server = action_server
         self._goal_info = goal_info
         self._goal_request = goal_request
@@ -87,19 +125,23 @@ class ServerGoalHandle:
         return f'ServerGoalHandle <id: {self._key.hex()}, status: {self.status}>'
 
     @property
-    def request(self) -> Any:
+    def request(self) -> GoalT:
+        """The goal the client sent."""
         return self._goal_request
 
     @property
-    def goal_id(self) -> Any:
+    def goal_id(self) -> UUID:
+        """The goal's id."""
         return self._goal_info.goal_id
 
     @property
     def status(self) -> int:
+        """The goal's action_msgs/GoalStatus value now."""
         return self._action_server._goal_status(self._key)
 
     @property
     def is_active(self) -> bool:
+        """Whether the goal is accepted, executing or canceling (not ended)."""
         return self.status in (
             GoalStatus.STATUS_ACCEPTED,
             GoalStatus.STATUS_EXECUTING,
@@ -112,7 +154,9 @@ class ServerGoalHandle:
         shut down), so that execute loops written for cancellation end there too."""
         return self._destroyed or self.status == GoalStatus.STATUS_CANCELING
 
-    def execute(self, execute_callback: Callable[..., Any] | None = None) -> None:
+    def execute(
+        self, execute_callback: ExecuteCallback[GoalT, ResultT, FeedbackT] | None = None
+    ) -> None:
         """Start executing (with the server's execute callback unless one is given).
 
         A goal whose cancel was requested before it started keeps CANCELING: the callback
@@ -121,7 +165,8 @@ class ServerGoalHandle:
             self._update_state(GoalEvent.EXECUTE)
         self._action_server._notify_execute(self, execute_callback)
 
-    def publish_feedback(self, feedback: Any) -> None:
+    def publish_feedback(self, feedback: FeedbackT) -> None:
+        """Send feedback to the client(s) on the action's feedback topic."""
         server = self._action_server
         if not isinstance(feedback, server._action_type.Feedback):
             raise TypeError(
@@ -136,15 +181,19 @@ class ServerGoalHandle:
         server._feedback_pub.publish(message)
 
     def succeed(self) -> None:
+        """Mark the goal succeeded (the execute callback's result is sent)."""
         self._update_state(GoalEvent.SUCCEED)
 
     def abort(self) -> None:
+        """Mark the goal aborted."""
         self._update_state(GoalEvent.ABORT)
 
     def canceled(self) -> None:
+        """Mark a canceling goal canceled."""
         self._update_state(GoalEvent.CANCELED)
 
     def destroy(self) -> None:
+        """Detach from the server: state changes and feedback are ignored from now on."""
         self._destroyed = True
 
     def _update_state(self, event: GoalEvent) -> None:
@@ -152,22 +201,38 @@ class ServerGoalHandle:
             self._action_server._update_goal(self._key, event)
 
 
-class ActionServer(Executable):
+ExecuteCallback = Callable[
+    [ServerGoalHandle[GoalT, ResultT, FeedbackT]], ResultT | Awaitable[ResultT]
+]
+"""Runs an accepted goal and returns its result (may be `async def`)."""
+GoalCallback = Callable[[GoalT], GoalResponse | Awaitable[GoalResponse]]
+"""Accepts or rejects a goal request."""
+HandleAcceptedCallback = Callable[[ServerGoalHandle[GoalT, ResultT, FeedbackT]], object]
+"""Told of each accepted goal; calls `goal_handle.execute()` now or later."""
+CancelCallback = Callable[
+    [ServerGoalHandle[GoalT, ResultT, FeedbackT]], CancelResponse | Awaitable[CancelResponse]
+]
+"""Accepts or rejects a request to cancel a goal."""
+
+
+class ActionServer(Executable, Generic[GoalT, ResultT, FeedbackT]):
     """Serves one action on a node (rclpy.action.ActionServer's arguments and defaults)."""
+
+    _node: Node
 
     def __init__(
         self,
-        node: Any,
-        action_type: Any,
+        node: Node,
+        action_type: type[Action[GoalT, ResultT, FeedbackT]] | str,
         action_name: str,
-        execute_callback: Callable[..., Any],
+        execute_callback: ExecuteCallback[GoalT, ResultT, FeedbackT],
         *,
-        callback_group: Any = None,
-        goal_callback: Callable[[Any], Any] = default_goal_callback,
-        handle_accepted_callback: Callable[
-            [ServerGoalHandle], Any
+        callback_group: CallbackGroup | None = None,
+        goal_callback: GoalCallback[GoalT] = default_goal_callback,
+        handle_accepted_callback: HandleAcceptedCallback[
+            GoalT, ResultT, FeedbackT
         ] = default_handle_accepted_callback,
-        cancel_callback: Callable[[ServerGoalHandle], Any] = default_cancel_callback,
+        cancel_callback: CancelCallback[GoalT, ResultT, FeedbackT] = default_cancel_callback,
         goal_service_qos_profile: QoSProfile = qos_profile_services_default,
         result_service_qos_profile: QoSProfile = qos_profile_services_default,
         cancel_service_qos_profile: QoSProfile = qos_profile_services_default,
@@ -184,8 +249,8 @@ class ActionServer(Executable):
         self._logger = node.get_logger()
         self._lock = threading.RLock()
         self._goals = GoalTable(result_timeout)
-        self._goal_handles: dict[bytes, ServerGoalHandle] = {}
-        self._result_futures: dict[bytes, Future] = {}
+        self._goal_handles: dict[bytes, ServerGoalHandle[GoalT, ResultT, FeedbackT]] = {}
+        self._result_futures: dict[bytes, Future[Message]] = {}
         self.register_execute_callback(execute_callback)
         self.register_goal_callback(goal_callback)
         self.register_handle_accepted_callback(handle_accepted_callback)
@@ -234,37 +299,59 @@ class ActionServer(Executable):
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
         return None  # never has work of its own
 
+    def configure_introspection(
+        self,
+        clock: Clock,
+        service_event_qos_profile: QoSProfile,
+        introspection_state: ServiceIntrospectionState,
+    ) -> None:
+        """Report the action's three services on their `_service_event` topics (see
+        :mod:`ros2lite.service_introspection`; what `action echo` shows)."""
+        for service in (self._goal_service, self._cancel_service, self._result_service):
+            service.configure_introspection(clock, service_event_qos_profile, introspection_state)
+
     # -- rclpy's registration API ---------------------------------------------------------------
-    def register_execute_callback(self, execute_callback: Callable[..., Any]) -> None:
+    def register_execute_callback(
+        self, execute_callback: ExecuteCallback[GoalT, ResultT, FeedbackT]
+    ) -> None:
+        """Use `execute_callback` for goals executed from now on."""
         if not callable(execute_callback):
             raise TypeError('Failed to register execute callback: not callable')
         self._execute_callback = execute_callback
 
-    def register_goal_callback(self, goal_callback: Callable[[Any], Any] | None) -> None:
-        self._goal_callback = goal_callback or default_goal_callback
+    def register_goal_callback(self, goal_callback: GoalCallback[GoalT] | None) -> None:
+        """Use `goal_callback` (None: accept all) for goal requests from now on."""
+        self._goal_callback: GoalCallback[GoalT] = goal_callback or default_goal_callback
 
     def register_handle_accepted_callback(
-        self, handle_accepted_callback: Callable[[ServerGoalHandle], Any] | None
+        self, handle_accepted_callback: HandleAcceptedCallback[GoalT, ResultT, FeedbackT] | None
     ) -> None:
-        self._handle_accepted_callback = (
+        """Use `handle_accepted_callback` (None: execute at once) for accepted goals."""
+        self._handle_accepted_callback: HandleAcceptedCallback[GoalT, ResultT, FeedbackT] = (
             handle_accepted_callback or default_handle_accepted_callback
         )
 
     def register_cancel_callback(
-        self, cancel_callback: Callable[[ServerGoalHandle], Any] | None
+        self, cancel_callback: CancelCallback[GoalT, ResultT, FeedbackT] | None
     ) -> None:
-        self._cancel_callback = cancel_callback or default_cancel_callback
+        """Use `cancel_callback` (None: reject all) for cancel requests from now on."""
+        self._cancel_callback: CancelCallback[GoalT, ResultT, FeedbackT] = (
+            cancel_callback or default_cancel_callback
+        )
 
     @property
-    def action_type(self) -> Any:
-        return self._action_type
+    def action_type(self) -> type[Action[GoalT, ResultT, FeedbackT]]:
+        """The action class served."""
+        return cast('type[Action[GoalT, ResultT, FeedbackT]]', self._action_type)
 
     @property
     def action_name(self) -> str:
+        """The fully resolved action name."""
         return self._names.action
 
     # -- requests (deferred service callbacks; coroutines, so user callbacks may be too) -----
-    async def _execute_goal_request(self, request: Any, header: Any) -> None:
+    async def _execute_goal_request(self, message: Message, header: RequestHeader) -> None:
+        request = cast(_SendGoalRequest, message)
         key = goal_key(request.goal_id)
         with self._lock:
             self._goals.expire()
@@ -294,7 +381,7 @@ class ActionServer(Executable):
                     accepted = False
                 else:
                     self._goals.add(info)
-                    goal_handle = ServerGoalHandle(self, info, request.goal)
+                    goal_handle = ServerGoalHandle(self, info, cast(GoalT, request.goal))
                     self._goal_handles[key] = goal_handle
                     self._result_futures[key] = Future()
         response_msg = self._action_type.Impl.SendGoalService.Response(
@@ -306,7 +393,8 @@ class ActionServer(Executable):
         self._publish_status()
         await await_or_execute(self._handle_accepted_callback, goal_handle)
 
-    async def _execute_cancel_request(self, request: Any, header: Any) -> None:
+    async def _execute_cancel_request(self, message: Message, header: RequestHeader) -> None:
+        request = cast('CancelGoal_Request', message)
         with self._lock:
             code, infos = self._goals.select_cancel(request)
         canceling = []
@@ -331,8 +419,8 @@ class ActionServer(Executable):
             CancelGoal.Response(return_code=code, goals_canceling=canceling), header
         )
 
-    def _on_result_request(self, request: Any, header: Any) -> None:
-        key = goal_key(request.goal_id)
+    def _on_result_request(self, message: Message, header: RequestHeader) -> None:
+        key = goal_key(cast(_GoalIdRequest, message).goal_id)
         with self._lock:
             self._goals.expire()
             self._forget_expired()
@@ -346,9 +434,11 @@ class ActionServer(Executable):
         # answered now if the goal is over, or the moment it ends
         future.add_done_callback(lambda f: self._send_result(f.result(), header))
 
-    def _send_result(self, response: Any, header: Any) -> None:
-        if self._destroyed:
-            return  # the service is gone, and with it the request
+    def _send_result(self, response: Message | None, header: RequestHeader) -> None:
+        if self._destroyed or response is None:
+            # the service is gone, and with it the request (a result future is only ever
+            # completed with a response, so None does not happen)
+            return
         try:
             self._result_service.send_response(response, header)
         except Exception as e:  # e.g. the session closed meanwhile
@@ -381,7 +471,9 @@ class ActionServer(Executable):
             self._status_pub.publish(self._goals.status_array())
 
     def _notify_execute(
-        self, goal_handle: ServerGoalHandle, execute_callback: Callable[..., Any] | None
+        self,
+        goal_handle: ServerGoalHandle[GoalT, ResultT, FeedbackT],
+        execute_callback: ExecuteCallback[GoalT, ResultT, FeedbackT] | None,
     ) -> None:
         callback = execute_callback or self._execute_callback
         executor = self._node.executor
@@ -392,10 +484,13 @@ class ActionServer(Executable):
         executor.create_task(self._execute_goal, callback, goal_handle)
 
     async def _execute_goal(
-        self, execute_callback: Callable[..., Any], goal_handle: ServerGoalHandle
+        self,
+        execute_callback: ExecuteCallback[GoalT, ResultT, FeedbackT],
+        goal_handle: ServerGoalHandle[GoalT, ResultT, FeedbackT],
     ) -> None:
         key = goal_handle._key
         result_type = self._action_type.Result
+        result: object
         try:
             result = await await_or_execute(execute_callback, goal_handle)
         except Exception as e:

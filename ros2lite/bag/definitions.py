@@ -9,6 +9,7 @@ those texts first and from the local search path for anything they leave out.
 from __future__ import annotations
 
 import re
+from typing import ClassVar
 
 from ros2lite.interfaces.errors import InterfaceError
 from ros2lite.interfaces.parser import MessageDef, parse_message, parse_service
@@ -79,6 +80,7 @@ class BagTypes(Registry):
         return normalize_name(type_name) in defs
 
     def message(self, name: str) -> MessageDef:
+        """A definition from the bag, else from the fallback registry."""
         found = self._messages.get(name)
         if found is not None:
             return found
@@ -89,11 +91,23 @@ class BagTypes(Registry):
         return self._fallback.message(full)
 
 
-def type_ref(type_name: str, type_hash: str) -> type:
+class TypeRef:
+    """Base of the stand-ins `type_ref` makes: a message type known by name and hash only."""
+
+    _TYPE_NAME: ClassVar[str] = ""
+    _TYPE_HASH: ClassVar[str] = ""
+
+    @classmethod
+    def get_fields_and_field_types(cls) -> dict[str, str]:
+        """Unknown here: the type has no local definition."""
+        return {}
+
+
+def type_ref(type_name: str, type_hash: str) -> type[TypeRef]:
     """A stand-in for a message class that only names a type and its RIHS01 hash: enough to
     publish or subscribe raw CDR bytes of a type with no local definition."""
     return type(
         type_name.rsplit("/", 1)[-1],
-        (),
+        (TypeRef,),
         {"_TYPE_NAME": normalize_name(type_name), "_TYPE_HASH": type_hash},
     )

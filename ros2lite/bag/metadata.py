@@ -8,9 +8,11 @@ rosbag2 and rosbags parse it strictly and people diff it; reading goes through `
 from __future__ import annotations
 
 import json
+import os
 import re
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from ros2lite.bag.errors import MetadataError
 from ros2lite.duration import Duration
@@ -60,12 +62,16 @@ class TopicMetadata:
 
 @dataclass
 class TopicInformation:
+    """One topic of a bag and how many messages it has."""
+
     topic_metadata: TopicMetadata
     message_count: int = 0
 
 
 @dataclass
 class FileInformation:
+    """One file of a bag: its path, time span and message count."""
+
     path: str
     starting_time: int = EMPTY_STARTING_TIME  # ns since the epoch
     duration: int = 0  # ns
@@ -74,6 +80,8 @@ class FileInformation:
 
 @dataclass
 class BagMetadata:
+    """metadata.yaml (rosbag2's `rosbag2_bagfile_information`) as data."""
+
     version: int = METADATA_VERSION
     storage_identifier: str = "mcap"
     duration: int = 0  # ns, last minus first log time
@@ -88,6 +96,7 @@ class BagMetadata:
     ros_distro: str = ROS_DISTRO
 
     def topic(self, name: str) -> TopicInformation | None:
+        """The entry of one topic, if the bag has it."""
         for info in self.topics_with_message_count:
             if info.topic_metadata.name == name:
                 return info
@@ -104,8 +113,16 @@ def _duration_dict(d: Duration) -> dict[str, int]:
     return {"sec": d.sec, "nsec": d.nsec}
 
 
-def qos_to_dict(q: QoSProfile, names: bool) -> dict[str, Any]:
-    def policy(p: Any) -> Any:
+if TYPE_CHECKING:
+    from ros2lite.qos import _Policy
+
+_P = TypeVar("_P", bound="_Policy")
+
+
+def qos_to_dict(q: QoSProfile, names: bool) -> dict[str, object]:
+    """One offered QoS profile as rosbag2 writes it (policy names, or numbers)."""
+
+    def policy(p: _Policy) -> str | int:
         return p.short_key if names else int(p)
 
     return {
@@ -121,7 +138,7 @@ def qos_to_dict(q: QoSProfile, names: bool) -> dict[str, Any]:
     }
 
 
-def _policy(cls: Any, value: Any, what: str) -> Any:
+def _policy(cls: type[_P], value: object, what: str) -> _P:
     if isinstance(value, bool):
         raise MetadataError(f"bad QoS {what}: {value!r}")
     if isinstance(value, int):
@@ -135,7 +152,7 @@ def _policy(cls: Any, value: Any, what: str) -> Any:
         raise MetadataError(f"bad QoS {what}: {value!r}") from None
 
 
-def _duration(value: Any, what: str) -> Duration:
+def _duration(value: object, what: str) -> Duration:
     if value is None:
         return Duration()
     if not isinstance(value, dict):
@@ -152,7 +169,7 @@ def _duration(value: Any, what: str) -> Duration:
     return Duration(nanoseconds=ns)
 
 
-def qos_from_dict(d: Any) -> QoSProfile:
+def qos_from_dict(d: object) -> QoSProfile:
     """A profile from one entry of `offered_qos_profiles` (integer or named enums)."""
     if not isinstance(d, dict):
         raise MetadataError(f"bad QoS profile: {d!r}")
@@ -174,7 +191,7 @@ def qos_from_dict(d: Any) -> QoSProfile:
     )
 
 
-def parse_qos_list(value: Any) -> list[QoSProfile]:
+def parse_qos_list(value: object) -> list[QoSProfile]:
     """`offered_qos_profiles` in any form rosbag2 wrote: a YAML string (v4-8 and channel
     metadata), a list (v9), or empty."""
     if value is None or value == "":
@@ -206,7 +223,7 @@ _PLAIN = re.compile(r"^[A-Za-z_/.][A-Za-z0-9_./:\-]*$")
 _RESERVED = {"true", "false", "yes", "no", "on", "off", "null", "y", "n", "~"}
 
 
-def _scalar(value: Any) -> str:
+def _scalar(value: object) -> str:
     if value is None:
         return "~"
     if isinstance(value, bool):
@@ -221,7 +238,7 @@ def _scalar(value: Any) -> str:
     return json.dumps(text, ensure_ascii=False)
 
 
-def _emit(value: Any, indent: int) -> list[str]:
+def _emit(value: Mapping[str, object] | Sequence[object], indent: int) -> list[str]:
     """Lines of a mapping or sequence at `indent` spaces (yaml-cpp: sequences under a key
     are indented two more, empty ones written `[]`, empty maps `{}`)."""
     pad = " " * indent
@@ -249,7 +266,7 @@ def _emit(value: Any, indent: int) -> list[str]:
     return lines
 
 
-def _as_tree(m: BagMetadata) -> dict[str, Any]:
+def _as_tree(m: BagMetadata) -> dict[str, object]:
     """The v9 key order of rosbag2's encoder."""
     topics = []
     for info in m.topics_with_message_count:
@@ -302,7 +319,7 @@ def dump_metadata(m: BagMetadata, *, top_key: bool = True) -> str:
 # -- parsing ------------------------------------------------------------------------------------
 
 
-def _require(d: dict[str, Any], key: str, version: int) -> Any:
+def _require(d: dict[str, Any], key: str, version: int) -> Any:  # YAML: checked by the caller
     if key not in d:
         raise MetadataError(f"metadata version {version} lacks the key '{key}'")
     return d[key]
@@ -385,7 +402,8 @@ def parse_metadata(text: str, *, top_key: bool = True) -> BagMetadata:
     )
 
 
-def read_metadata_file(path: Any) -> BagMetadata:
+def read_metadata_file(path: str | os.PathLike[str]) -> BagMetadata:
+    """Parse a metadata.yaml file (MetadataError when unreadable or malformed)."""
     from pathlib import Path
 
     try:
@@ -395,10 +413,9 @@ def read_metadata_file(path: Any) -> BagMetadata:
     return parse_metadata(text)
 
 
-def write_metadata_file(directory: Any, m: BagMetadata) -> None:
+def write_metadata_file(directory: str | os.PathLike[str], m: BagMetadata) -> None:
     """Write metadata.yaml atomically (a temp file renamed over it), so a crash mid-write
     never leaves half a file."""
-    import os
     from pathlib import Path
 
     path = Path(directory) / METADATA_FILENAME

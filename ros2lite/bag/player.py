@@ -19,12 +19,21 @@ import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.bag.metadata import TopicMetadata
 from ros2lite.bag.qos import playback_qos
 from ros2lite.bag.reader import Reader
 from ros2lite.qos import QoSProfile
+
+if TYPE_CHECKING:
+    from ros2lite.node import Node
+    from ros2lite.publisher import Publisher
+    from ros2lite.type_support import Msg
+
+# what the read-ahead thread hands over: a message (topic, CDR bytes, log and publish time),
+# the error that ended reading, or _END
+_Ahead = tuple[str, bytes, int, int] | BaseException | None
 
 __all__ = ["SWITCH_INTERVAL", "PlayOptions", "Player"]
 
@@ -33,7 +42,7 @@ _SPIN = 300_000  # ns spent spinning (not sleeping) before each deadline
 # default 5 ms switch interval it could make a message that late. The switch interval is the
 # process' to set (see ros2lite.process.switch_interval), so this is what players ask for.
 SWITCH_INTERVAL = 0.0002
-_END = object()
+_END = None  # what the read-ahead thread puts after the last message
 
 
 @dataclass
@@ -65,12 +74,12 @@ class Player:
 
     def __init__(
         self,
-        node: Any,
+        node: Node,
         reader: Reader,
         options: PlayOptions,
         *,
-        log: Callable[[str], Any] | None = None,
-        warn: Callable[[str], Any] | None = None,
+        log: Callable[[str], object] | None = None,
+        warn: Callable[[str], object] | None = None,
     ) -> None:
         if options.rate <= 0:
             raise ValueError("rate must be greater than 0")
@@ -90,7 +99,7 @@ class Player:
         self._end = reader.end_time
         self.published = 0
         self.lateness: list[int] = []
-        self._publishers: dict[str, Any] = {}
+        self._publishers: dict[str, Publisher[Msg]] = {}
         self._clock_thread: threading.Thread | None = None
         self._prepare()
 
@@ -121,7 +130,7 @@ class Player:
                 )
                 continue
             type_name = normalize_name(t.type)
-            msg_type: Any = type_name
+            msg_type: type[Msg] | str = type_name
             try:
                 get_interface(type_name)
                 from ros2lite.interfaces import type_hash
@@ -132,20 +141,21 @@ class Player:
             if local_hash is None or (
                 t.type_description_hash and t.type_description_hash != local_hash
             ):
-                msg_type = self._bag_type(t, type_name)
-                if msg_type is None:
+                ref = self._bag_type(t, type_name)
+                if ref is None:
                     self._warn(
                         f"Topic '{t.name}': type {t.type} is unknown here and the bag "
                         f"holds no definition of it; not playing it"
                     )
                     continue
+                msg_type = ref
             qos = self.options.qos_overrides.get(t.name) or playback_qos(
                 t.name, t.offered_qos_profiles, self._warn
             )
             target = self.options.remap.get(t.name, t.name)
             self._publishers[t.name] = self.node.create_publisher(msg_type, target, qos)
 
-    def _bag_type(self, t: TopicMetadata, type_name: str) -> Any:
+    def _bag_type(self, t: TopicMetadata, type_name: str) -> type[Msg] | None:
         """A publishable stand-in for a type known only from the bag (hash from the bag, or
         computed from its definition)."""
         from ros2lite.bag.definitions import type_ref
@@ -165,15 +175,18 @@ class Player:
 
     @property
     def topics(self) -> list[str]:
+        """The bag topics being played, sorted."""
         return sorted(self._publishers)
 
     # -- control -------------------------------------------------------------------------------
     @property
     def paused(self) -> bool:
+        """Whether playback is paused."""
         return self._paused
 
     @property
     def rate(self) -> float:
+        """The playback rate (1.0: real time)."""
         return self._rate
 
     def _reanchor(self) -> None:
@@ -182,6 +195,7 @@ class Player:
         self._anchor_wall = time.monotonic_ns()
 
     def pause(self) -> None:
+        """Hold playback (any thread)."""
         with self._cv:
             if not self._paused:
                 self._bag_now = self.bag_time()
@@ -190,6 +204,7 @@ class Player:
                 self._log("Pausing play.")
 
     def resume(self) -> None:
+        """Go on playing from where it was paused (any thread)."""
         with self._cv:
             if self._paused:
                 self._paused = False
@@ -198,6 +213,7 @@ class Player:
                 self._log("Resuming play.")
 
     def toggle_paused(self) -> None:
+        """Pause or resume, as the space key does."""
         if self._paused:
             self.resume()
         else:
@@ -211,6 +227,7 @@ class Player:
                 self._cv.notify_all()
 
     def set_rate(self, rate: float) -> bool:
+        """Change the playback rate from now on (False if not positive)."""
         if rate <= 0:
             return False
         with self._cv:
@@ -222,12 +239,14 @@ class Player:
         return True
 
     def stop(self) -> None:
+        """End playback; play() returns."""
         with self._cv:
             self._stopped = True
             self._cv.notify_all()
 
     @property
     def stopped(self) -> bool:
+        """Whether stop() was called."""
         return self._stopped
 
     def bag_time(self) -> int:
@@ -282,7 +301,7 @@ class Player:
         if errors:
             raise errors[0]
 
-    def _reader_thread(self, out: queue.Queue[Any], start: int) -> None:
+    def _reader_thread(self, out: queue.Queue[_Ahead], start: int) -> None:
         put = out.put
         try:
             for item in self.reader.raw_messages(self._publishers, start=start):
@@ -301,7 +320,7 @@ class Player:
 
     def _play_once(self) -> None:
         start = self.reader.start_time + int(self.options.start_offset * 1e9)
-        ahead: queue.Queue[Any] = queue.Queue(max(self.options.read_ahead_queue_size, 1))
+        ahead: queue.Queue[_Ahead] = queue.Queue(max(self.options.read_ahead_queue_size, 1))
         feeder = threading.Thread(
             target=self._reader_thread,
             args=(ahead, start),

@@ -11,9 +11,9 @@ from __future__ import annotations
 import heapq
 import os
 import re
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import (
@@ -24,7 +24,12 @@ from ros2lite.bag.metadata import (
     TopicMetadata,
     read_metadata_file,
 )
-from ros2lite.bag.storage import FileSummary, open_storage_reader, plugin_for
+from ros2lite.bag.storage import FileSummary, StorageReader, open_storage_reader, plugin_for
+
+if TYPE_CHECKING:
+    from ros2lite.bag.definitions import BagTypes
+    from ros2lite.interfaces import Message
+    from ros2lite.interfaces.registry import Registry
 
 __all__ = ["Reader", "bag_files", "metadata_from_files"]
 
@@ -99,10 +104,10 @@ class Reader:
     def __init__(self, path: str | os.PathLike[str], storage_id: str | None = None) -> None:
         self.path = Path(path)
         self._storage_id = storage_id
-        self._readers: dict[Path, Any] = {}
+        self._readers: dict[Path, StorageReader] = {}
         self._summaries: dict[Path, FileSummary] = {}
-        self._types: Any = None
-        self._decoders: dict[str, Any] = {}
+        self._types: BagTypes | None = None
+        self._decoders: dict[str, Callable[[bytes], Message | bytes]] = {}
         if not self.path.exists():
             raise BagError(f"Bag path '{path}' does not exist!")
         self.directory: Path
@@ -154,13 +159,14 @@ class Reader:
             raise BagError(f"No storage plugin for '{f}'")
         return sid
 
-    def _reader(self, f: Path) -> Any:
+    def _reader(self, f: Path) -> StorageReader:
         r = self._readers.get(f)
         if r is None:
             r = self._readers[f] = open_storage_reader(str(f), self._storage_for(f))
         return r
 
     def summary(self, f: Path) -> FileSummary:
+        """What the file `f` of the bag says about itself (read once)."""
         s = self._summaries.get(f)
         if s is None:
             s = self._summaries[f] = self._reader(f).summary()
@@ -173,6 +179,7 @@ class Reader:
         )
 
     def close(self) -> None:
+        """Close the files opened so far."""
         for r in self._readers.values():
             r.close()
         self._readers.clear()
@@ -183,28 +190,33 @@ class Reader:
     def __exit__(self, *exc: object) -> None:
         self.close()
 
-    def __iter__(self) -> Iterator[tuple[str, Any, int]]:
+    def __iter__(self) -> Iterator[tuple[str, Message | bytes, int]]:
         return self.messages()
 
     # -- topics --------------------------------------------------------------------------------
     @property
     def topics(self) -> list[TopicMetadata]:
+        """The bag's topics, in metadata order."""
         return [t.topic_metadata for t in self.metadata.topics_with_message_count]
 
     def topic(self, name: str) -> TopicMetadata | None:
+        """One topic's metadata, if the bag has it."""
         info = self.metadata.topic(name)
         return info.topic_metadata if info is not None else None
 
     @property
     def message_count(self) -> int:
+        """Messages in the whole bag."""
         return self.metadata.message_count
 
     @property
     def start_time(self) -> int:
+        """Log time (ns) of the first message."""
         return self.metadata.starting_time
 
     @property
     def end_time(self) -> int:
+        """Log time (ns) of the last message."""
         return self.metadata.starting_time + self.metadata.duration
 
     # -- messages ------------------------------------------------------------------------------
@@ -227,7 +239,7 @@ class Reader:
         stop: int | None = None,
         *,
         raw: bool = False,
-    ) -> Iterator[tuple[str, Any, int]]:
+    ) -> Iterator[tuple[str, Message | bytes, int]]:
         """(topic, message, log_time): message objects, or CDR bytes with `raw=True` or for
         a type that cannot be decoded here."""
         decoders = self._decoders
@@ -240,14 +252,14 @@ class Reader:
                 decode = decoders[topic] = self._decoder(topic)
             yield topic, decode(data), log_time
 
-    def deserialize(self, data: bytes, type_name: str) -> Any:
+    def deserialize(self, data: bytes, type_name: str) -> Message:
         """Decode CDR bytes of a type the bag holds (its own definition if need be)."""
         from ros2lite.interfaces.cdr import codec
         from ros2lite.interfaces.registry import normalize_name
 
         return codec(normalize_name(type_name), self._registry_for(type_name, "")).deserialize(data)
 
-    def _bag_types(self) -> Any:
+    def _bag_types(self) -> BagTypes:
         if self._types is None:
             from ros2lite.bag.definitions import BagTypes
 
@@ -262,7 +274,7 @@ class Reader:
             self._types = types
         return self._types
 
-    def _registry_for(self, type_name: str, bag_hash: str) -> Any:
+    def _registry_for(self, type_name: str, bag_hash: str) -> Registry:
         """The local registry when it has this very type, else the bag's definitions."""
         from ros2lite.interfaces import InterfaceError, type_hash
         from ros2lite.interfaces.registry import default_registry, normalize_name
@@ -279,7 +291,7 @@ class Reader:
             return types
         return default_registry()
 
-    def _decoder(self, topic: str) -> Any:
+    def _decoder(self, topic: str) -> Callable[[bytes], Message | bytes]:
         from ros2lite.interfaces import InterfaceError
         from ros2lite.interfaces.cdr import codec
         from ros2lite.interfaces.registry import normalize_name
@@ -294,7 +306,7 @@ class Reader:
         except (InterfaceError, LookupError, ValueError):
             return _as_bytes
 
-        def decode(data: bytes) -> Any:
+        def decode(data: bytes) -> Message | bytes:
             try:
                 return c.deserialize(data)
             except ValueError:

@@ -21,17 +21,22 @@ import time
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.bag.errors import BagError
 from ros2lite.bag.writer import Writer
 from ros2lite.qos import QoSProfile
+from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
 from ros2lite.transport.attachment import unpack_attachment
+
+if TYPE_CHECKING:
+    from ros2lite.graph import Entity
+    from ros2lite.monitor.subscription import MonitoredSubscription
+    from ros2lite.node import Node
 
 __all__ = ["DEFAULT_MAX_CACHE_SIZE", "RecordOptions", "Recorder", "TopicStats"]
 
 DEFAULT_MAX_CACHE_SIZE = 100 * 1024 * 1024
-SERVICE_EVENT_SUFFIX = "/_service_event"
 # how long a finished chunk may wait in memory before it is put on disk anyway (seconds)
 _FLUSH_PERIOD = 1.0
 
@@ -55,6 +60,7 @@ class RecordOptions:
     discovery: bool = True  # keep looking for new topics while recording
 
     def selects_by_pattern(self) -> bool:
+        """Whether topics are chosen by a rule (all, regex, types) rather than by name."""
         return self.all_topics or self.all_services or bool(self.regex) or bool(self.topic_types)
 
 
@@ -78,12 +84,12 @@ class Recorder:
 
     def __init__(
         self,
-        node: Any,
+        node: Node,
         writer: Writer,
         options: RecordOptions,
         *,
-        log: Callable[[str], Any] | None = None,
-        warn: Callable[[str], Any] | None = None,
+        log: Callable[[str], object] | None = None,
+        warn: Callable[[str], object] | None = None,
     ) -> None:
         self.node = node
         self.writer = writer
@@ -97,7 +103,7 @@ class Recorder:
         self._stats_by_tid: dict[int, TopicStats] = {}
         self._by_name: dict[str, int] = {}
         self._skipped: set[str] = set()
-        self._subscriptions: list[Any] = []
+        self._subscriptions: list[MonitoredSubscription] = []
         self._queue: deque[tuple[int, bytes, int, bytes]] = deque()
         self._wake = threading.Event()
         self._writer_idle = False
@@ -112,6 +118,7 @@ class Recorder:
 
     # -- control -------------------------------------------------------------------------------
     def start(self) -> None:
+        """Open the bag, subscribe to what is wanted now and (with discovery) keep looking."""
         self._running = True
         self.writer.open()
         self._writer_thread = threading.Thread(
@@ -131,19 +138,23 @@ class Recorder:
 
     @property
     def paused(self) -> bool:
+        """Whether recording is paused (messages are dropped meanwhile)."""
         return self._paused
 
     def pause(self) -> None:
+        """Stop writing messages until resume()."""
         if not self._paused:
             self._paused = True
             self._log("Pausing recording.")
 
     def resume(self) -> None:
+        """Write messages again."""
         if self._paused:
             self._paused = False
             self._log("Resuming recording.")
 
     def toggle_paused(self) -> None:
+        """Pause or resume, as the space key does."""
         if self._paused:
             self.resume()
         else:
@@ -240,6 +251,7 @@ class Recorder:
                 return
 
     def wanted(self, topic: str, type_name: str) -> bool:
+        """Whether the options ask for `topic` of this type."""
         o = self.options
         if topic in o.exclude_topics or (self._exclude and self._exclude.search(topic)):
             return False
@@ -262,14 +274,14 @@ class Recorder:
         """Subscribe to every wanted topic that has publishers and no subscription yet."""
         from ros2lite.transport.keys import EntityKind
 
-        publishers: dict[str, list[Any]] = {}
+        publishers: dict[str, list[Entity]] = {}
         for e in self.node.context.graph.entities():
             if e.kind == EntityKind.PUBLISHER and e.topic_name and e.type_name:
                 publishers.setdefault(e.topic_name, []).append(e)
         for topic, pubs in sorted(publishers.items()):
             if topic in self._by_name or topic in self._skipped:
                 continue
-            types = sorted({p.type_name for p in pubs})
+            types = sorted({p.type_name or '' for p in pubs})  # (all named: see above)
             if not any(self.wanted(topic, t) for t in types):
                 continue
             if len(types) > 1:
@@ -280,7 +292,7 @@ class Recorder:
                 continue
             self._subscribe(topic, types[0], pubs)
 
-    def _subscribe(self, topic: str, type_name: str, pubs: list[Any]) -> None:
+    def _subscribe(self, topic: str, type_name: str, pubs: list[Entity]) -> None:
         from ros2lite.bag.qos import recording_qos
         from ros2lite.interfaces import InterfaceError, get_interface
         from ros2lite.monitor.subscription import MonitoredSubscription
@@ -288,7 +300,7 @@ class Recorder:
         offered = [p.qos for p in pubs if p.qos is not None]
         qos = self.options.qos_overrides.get(topic) or recording_qos(topic, offered, self._warn)
         hashes = {p.type_hash for p in pubs if p.type_hash}
-        msg_type: Any = type_name
+        msg_type: type | str = type_name
         try:
             get_interface(type_name)
         except (InterfaceError, LookupError, ValueError) as e:

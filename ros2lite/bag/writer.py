@@ -15,7 +15,7 @@ import time
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.bag.errors import BagError
 from ros2lite.bag.metadata import (
@@ -26,8 +26,12 @@ from ros2lite.bag.metadata import (
     TopicMetadata,
     write_metadata_file,
 )
-from ros2lite.bag.storage.mcap import DEFAULT_CHUNK_SIZE, PRESETS, McapStorageWriter
+from ros2lite.bag.storage import StorageWriter
+from ros2lite.bag.storage.mcap import DEFAULT_CHUNK_SIZE, PRESETS, open_writer
 from ros2lite.qos import QoSProfile
+
+if TYPE_CHECKING:
+    from ros2lite.type_support import Msg
 
 __all__ = ["MIN_SPLIT_SIZE", "Writer", "type_definition"]
 
@@ -105,7 +109,7 @@ class Writer:
         self.custom_data = dict(custom_data) if custom_data else None
         self._topics: list[_Topic] = []
         self._by_name: dict[str, int] = {}
-        self._storage: McapStorageWriter | None = None
+        self._storage: StorageWriter | None = None
         self._files: list[FileInformation] = []
         self._file: FileInformation | None = None
         self._file_bytes = 0
@@ -117,6 +121,7 @@ class Writer:
 
     # -- lifecycle ------------------------------------------------------------------------------
     def open(self) -> Writer:
+        """Create the bag directory and its first file (BagError if it already exists)."""
         if self._open:
             return self
         if self.path.exists():
@@ -148,15 +153,17 @@ class Writer:
 
     @property
     def files(self) -> list[str]:
+        """The bag's files written so far, relative to its directory."""
         return [f.path for f in self._files]
 
     @property
     def message_count(self) -> int:
+        """Messages written so far."""
         return self._count
 
     def _next_file(self) -> None:
         name = f"{self.path.name}_{len(self._files)}.mcap"
-        storage = McapStorageWriter(
+        storage = open_writer(
             str(self.path / name), compression=self.compression, chunk_size=self.chunk_size
         )
         self._storage = storage
@@ -234,7 +241,7 @@ class Writer:
                 (self.path / f.path).unlink()
         self._remove_if_empty()
 
-    def _require(self) -> McapStorageWriter:
+    def _require(self) -> StorageWriter:
         if not self._open:
             self.open()
         if self._closed or self._storage is None:
@@ -276,10 +283,15 @@ class Writer:
         return tid
 
     def topic_id(self, name: str) -> int:
+        """The id `create_topic` gave a topic."""
         return self._by_name[name]
 
     def write(
-        self, topic: str, message: Any, log_time: int | None = None, publish_time: int | None = None
+        self,
+        topic: str,
+        message: Msg | bytes | bytearray | memoryview,
+        log_time: int | None = None,
+        publish_time: int | None = None,
     ) -> None:
         """Write one message (CDR bytes or a message object) on a topic. A message object on
         a topic not created yet creates it with the message's type."""

@@ -9,16 +9,31 @@ is nothing to wait for.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypedDict, TypeVar
 
 import click
 
 from .errors import CliError
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
     from ros2lite.connection import Connection
     from ros2lite.graph import Entity
     from ros2lite.qos import QoSProfile
+
+
+class QosOptions(TypedDict):
+    """The values of the `--qos-*` options `qos_options()` adds."""
+
+    qos_profile: str
+    qos_depth: int | None
+    qos_history: str | None
+    qos_reliability: str | None
+    qos_durability: str | None
+    qos_liveliness: str | None
+    qos_liveliness_lease_duration_seconds: float | None
+
 
 F = TypeVar('F', bound=Callable[..., Any])
 
@@ -133,13 +148,13 @@ def qos_from_options(
     qos_durability: str | None,
     qos_liveliness: str | None = None,
     qos_liveliness_lease_duration_seconds: float | None = None,
-    **_: Any,
+    **_: object,
 ) -> QoSProfile:
     """The profile the `--qos-*` options describe (unset options keep the preset's value)."""
     from ros2lite import qos as q
 
     profile = q.preset(qos_profile)
-    changes: dict[str, Any] = {}
+    changes: dict[str, object] = {}
     if qos_history is not None:
         changes['history'] = q.HistoryPolicy.from_short_key(qos_history)
     if qos_reliability is not None:
@@ -162,7 +177,7 @@ def qos_from_options(
     return profile.replace(**changes) if changes else profile
 
 
-def explicit_qos(**options: Any) -> bool:
+def explicit_qos(**options: Unpack[QosOptions]) -> bool:
     """True when any `--qos-*` override (other than the profile) was given."""
     return any(
         options.get(k) is not None

@@ -12,7 +12,6 @@ import select
 import sys
 import threading
 from collections.abc import Callable
-from typing import Any
 
 _ARROWS = {b"\x1b[A": "up", b"\x1b[B": "down", b"\x1b[C": "right", b"\x1b[D": "left"}
 
@@ -30,7 +29,7 @@ def available() -> bool:
 class Keyboard:
     """Calls `handlers[key]()` from a background thread for each key pressed."""
 
-    def __init__(self, handlers: dict[str, Callable[[], Any]]) -> None:
+    def __init__(self, handlers: dict[str, Callable[[], object]]) -> None:
         import termios
         import tty
 

@@ -26,13 +26,38 @@ def command_group(name: str, doc: str, verbs: dict[str, tuple[str, str]]) -> cli
 
 
 class LazyGroup(click.Group):
-    """`lazy` maps a command name to ('module.path', 'one-line help')."""
+    """`lazy` maps a command name to ('module.path', 'one-line help'); `hidden_commands` work
+    but stay out of the help. An unknown name gets the closest match (cli/suggest.py);
+    the root group's `lacking` maps names ros2lite lacks on purpose to the reason."""
 
     def __init__(
-        self, *args: Any, lazy: dict[str, tuple[str, str]] | None = None, **kwargs: Any
+        self,
+        *args: Any,
+        lazy: dict[str, tuple[str, str]] | None = None,
+        hidden_commands: frozenset[str] = frozenset(),
+        lacking: dict[str, str] | None = None,
+        **kwargs: Any,
     ) -> None:
         super().__init__(*args, **kwargs)
         self.lazy = lazy or {}
+        self.hidden_commands = hidden_commands
+        self.lacking = lacking or {}
+
+    def resolve_command(
+        self, ctx: click.Context, args: list[str]
+    ) -> tuple[str | None, click.Command | None, list[str]]:
+        name = args[0] if args else ''
+        if (
+            name
+            and not name.startswith('-')
+            and not ctx.resilient_parsing
+            and self.get_command(ctx, name) is None
+        ):
+            from .suggest import unknown
+
+            shown = self.hidden_commands
+            unknown(ctx, name, (n for n in self.list_commands(ctx) if n not in shown))
+        return super().resolve_command(ctx, args)
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         return sorted(set(super().list_commands(ctx)) | set(self.lazy))
@@ -45,7 +70,11 @@ class LazyGroup(click.Group):
         return super().get_command(ctx, cmd_name)
 
     def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
-        rows = [(name, self.lazy[name][1]) for name in sorted(self.lazy)]
+        rows = [
+            (name, self.lazy[name][1])
+            for name in sorted(self.lazy)
+            if name not in self.hidden_commands
+        ]
         rows += [(name, cmd.get_short_help_str()) for name, cmd in sorted(self.commands.items())]
         if rows:
             with formatter.section('Commands'):

@@ -48,7 +48,7 @@ def cli(prefix: str | None, package_name: str, executable_name: str, argv: tuple
     exe = resolved.executable
     cmd = exe.prefixed_command(shlex.split(prefix or ''), list(argv))
     env = child_environment(pythonpath=exe.pythonpath, workspaces=index.workspaces())
-    code = run_child(cmd, env)
+    code = run_child(cmd, env=env)
     if code < 0:
         signum = -code
         name = signal.strsignal(signum) or f'signal {signum}'

@@ -52,6 +52,7 @@ def _run(args: argparse.Namespace, ready_fd: int | None) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """`python -m ros2lite.daemon`: run the router (detached unless --foreground)."""
     args = _parse(argv)
     if args.foreground:
         return _run(args, None)

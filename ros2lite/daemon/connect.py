@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.transport.config import (
     CONNECT_TIMEOUT_MS,
@@ -41,6 +41,9 @@ from ros2lite.transport.config import (
     session_endpoint,
 )
 from ros2lite.transport.errors import RouterUnavailableError
+
+if TYPE_CHECKING:
+    from ros2lite.transport.handles import Session
 
 __all__ = ["NO_DAEMON_ENV", "autostart_enabled", "connect", "open_node_session"]
 
@@ -95,7 +98,7 @@ def _autostart(router: str | None) -> None:
         )
 
 
-def open_node_session(router: str | None = None) -> Any:
+def open_node_session(router: str | None = None) -> Session:
     """The session of a long-lived node (module doc); raises ConfigError/SessionError."""
     if autostart_enabled():
         _autostart(router)
@@ -135,7 +138,7 @@ def connect(
     tool: bool = False,
     autostart: bool = True,
     timeout: float = CONNECT_TIMEOUT_MS / 1000,
-) -> Any:
+) -> Session:
     """Open this process' session: a node's (peer, module doc) or, with `tool`, a client's.
 
     A tool probes the router endpoint once: when nothing answers it starts the daemon there

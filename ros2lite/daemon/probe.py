@@ -49,6 +49,7 @@ def _zenoh_probe(endpoint: str, timeout: float) -> bool:
 
 
 def wait_answers(endpoint: str, timeout: float) -> bool:
+    """Whether a router answers at `endpoint` within `timeout` seconds."""
     deadline = time.monotonic() + timeout
     while True:
         if router_answers(endpoint, timeout=0.2):

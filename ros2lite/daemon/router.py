@@ -24,7 +24,7 @@ import time
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TextIO
 
 from ros2lite.daemon.probe import router_answers, wait_answers
 from ros2lite.exceptions import Ros2liteError
@@ -75,6 +75,8 @@ class DaemonInfo:
 
 @dataclass(frozen=True)
 class StartResult:
+    """What `daemon start` found or did at an endpoint."""
+
     endpoint: str
     started: bool  # True when this call spawned the router
     already_running: bool  # something already answered at the endpoint
@@ -84,6 +86,7 @@ class StartResult:
 
     @property
     def message(self) -> str:
+        """The line `daemon start` prints."""
         if self.started:
             return "The daemon has been started"
         if self.ours:
@@ -96,6 +99,8 @@ class StartResult:
 
 @dataclass(frozen=True)
 class StopResult:
+    """What `daemon stop` found or did at an endpoint."""
+
     endpoint: str
     stopped: bool
     foreign: bool = False  # a router answers there, but it is not ours to stop
@@ -105,6 +110,7 @@ class StopResult:
 
     @property
     def message(self) -> str:
+        """The line `daemon stop` prints."""
         if self.stopped:
             return "The daemon has been stopped"
         if self.foreign:
@@ -114,6 +120,8 @@ class StopResult:
 
 @dataclass(frozen=True)
 class DaemonStatus:
+    """What `daemon status` found at an endpoint."""
+
     endpoint: str
     running: bool  # something answers at the endpoint
     ours: bool  # a live ros2lite daemon owns the endpoint
@@ -123,10 +131,12 @@ class DaemonStatus:
 
     @property
     def pid(self) -> int | None:
+        """The daemon's process id, when it is ours."""
         return self.info.pid if self.info else None
 
     @property
     def message(self) -> str:
+        """The line `daemon status` prints."""
         if self.running and self.ours:
             return "The daemon is running"
         if self.running:
@@ -157,10 +167,12 @@ def _stem(endpoint: str) -> str:
 
 
 def pid_file(endpoint: str) -> Path:
+    """The daemon's pid and lock file for an endpoint."""
     return runtime_dir() / (_stem(endpoint) + ".pid")
 
 
 def log_file(endpoint: str) -> Path:
+    """The daemon's log file for an endpoint."""
     return runtime_dir() / (_stem(endpoint) + ".log")
 
 
@@ -200,7 +212,7 @@ def _read_info(path: Path) -> DaemonInfo | None:
             fcntl.flock(fh, fcntl.LOCK_SH | fcntl.LOCK_NB)
         except BlockingIOError:
             try:
-                data: dict[str, Any] = json.loads(fh.read() or "{}")
+                data: dict[str, Any] = json.loads(fh.read() or "{}")  # JSON: checked below
                 return DaemonInfo(
                     pid=int(data["pid"]),
                     endpoint=str(data["endpoint"]),
@@ -233,7 +245,7 @@ def _is_our_process(pid: int) -> bool:
         return False
 
 
-def _write_pid_file(path: Path, info: DaemonInfo) -> Any:
+def _write_pid_file(path: Path, info: DaemonInfo) -> TextIO:
     """Write the pid file atomically and return its handle, locked for the process' life."""
     tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
     fh = os.fdopen(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600), "w")

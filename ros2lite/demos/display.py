@@ -9,7 +9,11 @@ from __future__ import annotations
 
 import os
 import sys
-from typing import Any, TextIO
+from typing import TYPE_CHECKING, TextIO
+
+if TYPE_CHECKING:
+    import argparse
+    import tkinter
 
 from ros2lite.exceptions import Ros2liteError
 
@@ -31,6 +35,7 @@ def window_possible(environ: dict[str, str] | None = None) -> bool:
 
 
 def terminal_possible(stream: TextIO | None = None) -> bool:
+    """Whether `stream` (stdout by default) is a terminal a view can draw on."""
     stream = sys.stdout if stream is None else stream
     try:
         return stream.isatty()
@@ -56,7 +61,7 @@ class DisplayError(Ros2liteError, ValueError):
     """A display that was asked for cannot be opened (one line for the user)."""
 
 
-def open_window(class_name: str, title: str) -> Any:
+def open_window(class_name: str, title: str) -> tkinter.Tk:
     """A new top-level tkinter window, or DisplayError saying why none can open here."""
     try:
         import tkinter
@@ -72,7 +77,7 @@ def open_window(class_name: str, title: str) -> Any:
     return root
 
 
-def add_display_argument(parser: Any) -> None:
+def add_display_argument(parser: argparse.ArgumentParser) -> None:
     """`--display auto|window|terminal|none` on a demo's argparse parser."""
     parser.add_argument(
         '--display',

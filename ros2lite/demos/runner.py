@@ -10,17 +10,20 @@ from __future__ import annotations
 
 import sys
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ros2lite.node import Node
 
 
-def run_node(make_node: Callable[[], Any], args: list[str] | None = None) -> int:
+def run_node(make_node: Callable[[], Node], args: list[str] | None = None) -> int:
     """Spin the node `make_node()` builds until Ctrl-C or shutdown; returns the exit status."""
     import ros2lite
 
     return run_main(lambda: ros2lite.spin(make_node()), args)
 
 
-def run_main(body: Callable[[], Any], args: list[str] | None = None) -> int:
+def run_main(body: Callable[[], object], args: list[str] | None = None) -> int:
     """Run `body()` in an initialised context (demos that do something and end)."""
     import ros2lite
     from ros2lite.exceptions import Ros2liteError

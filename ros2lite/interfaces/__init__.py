@@ -6,14 +6,22 @@ YAML helpers when they are called.
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
-from .cdr import codec
+from .cdr import Codec, codec
 from .classes import ActionType, Message, ServiceType
 from .classes import get_interface as _get_interface
 from .errors import CdrError, FieldError, InterfaceError, UnknownInterfaceError
 from .hashing import type_hash as _type_hash
 from .registry import Registry, default_registry, normalize_name
+
+if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+    from ros2lite.type_support import Msg
+
+    from .convert import FormatOptions
 
 __all__ = [
     'ActionType',
@@ -47,21 +55,20 @@ def type_hash(name: str) -> str:
     return _type_hash(normalize_name(name))
 
 
-def serialize(msg: Message) -> bytes:
+def serialize(msg: Msg) -> bytes:
     """CDR bytes (little-endian, with the 4-byte encapsulation header) of a message."""
-    try:
-        c = type(msg)._CODEC  # type: ignore[attr-defined]
-    except AttributeError:
-        if not isinstance(msg, Message):
-            raise TypeError(f'not a ros2lite message: {msg!r}') from None
+    if not isinstance(msg, Message):
+        raise TypeError(f'not a ros2lite message: {msg!r}')
+    c: Codec | None = getattr(type(msg), '_CODEC', None)
+    if c is None:
         c = codec(msg._TYPE_NAME)
     return c.serialize(msg)
 
 
-_BY_NAME: dict[Any, Any] = {}
+_BY_NAME: dict[str | type[Message], Codec] = {}
 
 
-def deserialize(type_or_name: str | type[Message], data: bytes | bytearray | memoryview) -> Any:
+def deserialize(type_or_name: str | type[Message], data: bytes | bytearray | memoryview) -> Message:
     """Decode CDR bytes of either byte order into a message object."""
     c = _BY_NAME.get(type_or_name)
     if c is None or c.reg is not default_registry():
@@ -83,29 +90,40 @@ def definition_text(name: str) -> str:
     return _definition_text(normalize_name(name), default_registry())
 
 
-def message_to_dict(msg: Message, **opts: Any) -> dict[str, Any]:
+def message_to_dict(msg: Message, **opts: Unpack[FormatOptions]) -> dict[str, Any]:
+    """Nested plain dict/list/scalar form of a message, in field order (rosidl_runtime_py's)."""
     from .convert import message_to_dict as _f
 
     return _f(msg, **opts)
 
 
-def message_to_yaml(msg: Message, **opts: Any) -> str:
+def message_to_yaml(
+    msg: Message, *, flow_style: bool = False, fast: bool = True, **opts: Unpack[FormatOptions]
+) -> str:
+    """YAML text exactly as `ros2 topic echo` prints a message."""
     from .convert import message_to_yaml as _f
 
-    return _f(msg, **opts)
+    return _f(msg, flow_style=flow_style, fast=fast, **opts)
 
 
-def message_to_csv(msg: Message, **opts: Any) -> str:
+def message_to_csv(msg: Message, **opts: Unpack[FormatOptions]) -> str:
+    """Comma-separated leaf values, as `ros2 topic echo --csv` prints them."""
     from .convert import message_to_csv as _f
 
     return _f(msg, **opts)
 
 
-def set_message_fields(msg: Message, values: dict[str, Any] | str, **opts: Any) -> list[Any]:
+def set_message_fields(
+    msg: Message,
+    values: dict[str, Any] | str,
+    *,
+    expand_header_auto: bool = False,
+    expand_time_now: bool = False,
+) -> list[Callable[[Message], None]]:
     """Fill `msg` from a dict or YAML mapping text (rosidl_runtime_py coercions).
 
     Returns the stamp setters that 'header: auto' / 'stamp: now' asked for.
     """
     from .convert import set_message_fields as _f
 
-    return _f(msg, values, **opts)
+    return _f(msg, values, expand_header_auto=expand_header_auto, expand_time_now=expand_time_now)

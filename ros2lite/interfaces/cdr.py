@@ -11,12 +11,15 @@ from __future__ import annotations
 import struct
 from array import array
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from .classes import TYPECODES, factory
+from .classes import TYPECODES, Message, factory
 from .errors import CdrError
 from .parser import Field, FieldType, MessageDef
 from .registry import Registry
+
+if TYPE_CHECKING:
+    from ros2lite.type_support import Msg
 
 HEADER_LE = b'\x00\x01\x00\x00'
 # struct formats of the primitives: the array typecodes, plus bool and byte
@@ -51,7 +54,7 @@ class _Gen:
     def emit(self, line: str) -> None:
         self.lines.append('    ' * self.indent + line)
 
-    def const(self, prefix: str, value: Any) -> str:
+    def const(self, prefix: str, value: object) -> str:
         n = self.name(prefix)
         self.ns[n] = value
         return n
@@ -409,9 +412,10 @@ class _DesGen(_Gen):
         self.forget(4)
 
 
-def build_serializer(name: str, reg: Registry) -> Callable[[Any], bytes]:
+def build_serializer(name: str, reg: Registry) -> Callable[[Msg], bytes]:
     # the cheapest shape the type allows: straight-line without offset, straight-line with
     # offset, and the general list-building form (which always tracks the offset)
+    """Generate and compile `ser(msg) -> bytes` for one type."""
     for straight, track_offset in ((True, False), (True, True), (False, True)):
         gen = _SerGen(reg, straight, track_offset)
         try:
@@ -430,12 +434,12 @@ def build_serializer(name: str, reg: Registry) -> Callable[[Any], bytes]:
         body = ['    p = [_HEADER]', *head, *gen.lines, '    return _join(p)']
     src = 'def ser(m):\n' + '\n'.join(body)
     exec(compile(src, f'<cdr ser {name}>', 'exec'), gen.ns)
-    fn: Callable[[Any], bytes] = gen.ns['ser']
+    fn: Callable[[Msg], bytes] = gen.ns['ser']
     fn.__doc__ = src
     return fn
 
 
-_Des = Callable[[bytes, int], tuple[Any, int]]
+_Des = Callable[[bytes, int], tuple[Message, int]]
 
 
 def _des_body(
@@ -456,6 +460,7 @@ def _des_body(
 def build_deserializer(
     name: str, reg: Registry, little: bool = True, lenient: bool = False
 ) -> _Des:
+    """Generate and compile `des(data, offset) -> (msg, end)` for one type and byte order."""
     gen, v = _des_body(name, reg, little, lenient, 1)
     src = 'def des(d, o):\n' + '\n'.join(gen.lines) + f'\n    return {v}, o'
     exec(compile(src, f'<cdr des {name}>', 'exec'), gen.ns)
@@ -465,8 +470,8 @@ def build_deserializer(
 
 
 def build_fast_decoder(
-    name: str, reg: Registry, slow: Callable[[bytes], Any]
-) -> Callable[[bytes], Any]:
+    name: str, reg: Registry, slow: Callable[[bytes], Message]
+) -> Callable[[bytes], Message]:
     """`decode(d)` for whole little-endian payloads with the header check inlined (one call
     per message on the subscription hot path); anything unusual goes to `slow`, which gives
     the precise error or handles big-endian and bad UTF-8."""
@@ -486,7 +491,7 @@ def build_fast_decoder(
         ]
     )
     exec(compile(src, f'<cdr decode {name}>', 'exec'), gen.ns)
-    fn: Callable[[bytes], Any] = gen.ns['decode']
+    fn: Callable[[bytes], Message] = gen.ns['decode']
     fn.__doc__ = src
     return fn
 
@@ -498,40 +503,42 @@ class Codec:
 
     def __init__(self, name: str, reg: Registry) -> None:
         self.name, self.reg = name, reg
-        self._ser: Callable[[Any], bytes] = self._first_ser
+        self._ser: Callable[[Msg], bytes] = self._first_ser
         self._des_le: _Des = self._first_des_le
         self._des_be: _Des = self._first_des_be
 
-    def _first_ser(self, msg: Any) -> bytes:
+    def _first_ser(self, msg: Msg) -> bytes:
         self._ser = build_serializer(self.name, self.reg)
         return self._ser(msg)
 
-    def _first_des_le(self, data: bytes, o: int) -> tuple[Any, int]:
+    def _first_des_le(self, data: bytes, o: int) -> tuple[Message, int]:
         self._des_le = build_deserializer(self.name, self.reg, True)
         return self._des_le(data, o)
 
-    def _first_des_be(self, data: bytes, o: int) -> tuple[Any, int]:
+    def _first_des_be(self, data: bytes, o: int) -> tuple[Message, int]:
         self._des_be = build_deserializer(self.name, self.reg, False)
         return self._des_be(data, o)
 
-    def raw_serializer(self) -> Callable[[Any], bytes]:
+    def raw_serializer(self) -> Callable[[Msg], bytes]:
         """The generated function itself, for hot loops that handle errors themselves."""
         if self._ser == self._first_ser:
             self._ser = build_serializer(self.name, self.reg)
         return self._ser
 
-    def fast_deserializer(self) -> Callable[[bytes], Any]:
+    def fast_deserializer(self) -> Callable[[bytes], Message]:
         """A lean decoder for the common case (little-endian, well-formed bytes); anything
         else falls back to `deserialize`, which gives the precise error."""
         return build_fast_decoder(self.name, self.reg, self.deserialize)
 
-    def serialize(self, msg: Any) -> bytes:
+    def serialize(self, msg: Msg) -> bytes:
+        """CDR bytes with the little-endian encapsulation header; CdrError on bad fields."""
         try:
             return self._ser(msg)
         except (struct.error, AttributeError, TypeError, UnicodeEncodeError) as e:
             raise CdrError(f'cannot serialize {self.name}: {e}') from None
 
-    def deserialize(self, data: bytes | bytearray | memoryview) -> Any:
+    def deserialize(self, data: bytes | bytearray | memoryview) -> Message:
+        """The message in CDR bytes of either byte order; CdrError if they do not hold one."""
         if type(data) is not bytes:
             data = bytes(data)
         try:

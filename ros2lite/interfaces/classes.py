@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import operator
 from array import array
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from .errors import FieldError
 from .parser import INT_RANGES, PRIMITIVES, FieldType, MessageDef
@@ -49,13 +49,14 @@ class Message(metaclass=MessageMeta):
     """Base of every generated message class."""
 
     __slots__ = ()
-    _TYPE_NAME = ''
-    _DEF: MessageDef
+    _TYPE_NAME: ClassVar[str] = ''
+    _DEF: ClassVar[MessageDef]
     SLOT_TYPES: tuple[FieldType, ...] = ()
     _fields_and_field_types: dict[str, str] = {}
 
     @classmethod
     def get_fields_and_field_types(cls) -> dict[str, str]:
+        """Field name → rosidl type text, in definition order (rclpy's)."""
         return dict(cls._fields_and_field_types)
 
     def __repr__(self) -> str:
@@ -80,8 +81,6 @@ class Message(metaclass=MessageMeta):
     if TYPE_CHECKING:
         # fields are generated per type, so type checkers treat messages as dynamic
         def __init__(self, **kwargs: Any) -> None: ...
-
-        def __getattr__(self, name: str) -> Any: ...
 
 
 def rosidl_type_string(ft: FieldType) -> str:
@@ -254,10 +253,12 @@ class ClassFactory:
         self.registry = registry
         self.classes: dict[str, type[Message]] = {}
 
-    def same_type(self, value: Any, name: str) -> bool:
+    def same_type(self, value: object, name: str) -> bool:
+        """Whether `value` is a message of type `name` (of whichever factory)."""
         return getattr(type(value), '_TYPE_NAME', None) == name
 
     def message_class(self, name: str) -> type[Message]:
+        """The class of a message type, built (with its nested types) on first use."""
         cls = self.classes.get(name)
         if cls is not None:
             return cls
@@ -326,7 +327,7 @@ _MISSING = _Missing()
 class ServiceType:
     """A service class: a namespace holding Request, Response and Event like rosidl's."""
 
-    _TYPE_NAME = ''
+    _TYPE_NAME: ClassVar[str] = ''
     Request: type[Message]
     Response: type[Message]
     Event: type[Message]
@@ -335,17 +336,36 @@ class ServiceType:
         raise NotImplementedError('Service classes can not be instantiated')
 
 
+def as_service_class(cls: object) -> type[ServiceType]:
+    """`cls` itself, checked to be a service class (library code reads its parts through
+    this nominal type; users' code sees the :class:`ros2lite.type_support.Srv` protocol)."""
+    if isinstance(cls, type) and issubclass(cls, ServiceType):
+        return cls
+    raise TypeError(f'not a ros2lite service type: {cls!r}')
+
+
+class ActionImpl:
+    """What rcl_action builds an action from (rosidl's `<Action>.Impl`): its three services
+    and two topics' types."""
+
+    SendGoalService: type[ServiceType]
+    GetResultService: type[ServiceType]
+    CancelGoalService: type[ServiceType]
+    FeedbackMessage: type[Message]
+    GoalStatusMessage: type[Message]
+
+
 class ActionType:
     """An action class: Goal/Result/Feedback plus the generated transport types."""
 
-    _TYPE_NAME = ''
+    _TYPE_NAME: ClassVar[str] = ''
     Goal: type[Message]
     Result: type[Message]
     Feedback: type[Message]
     FeedbackMessage: type[Message]
     SendGoal: type[ServiceType]
     GetResult: type[ServiceType]
-    Impl: type
+    Impl: type[ActionImpl]
 
     def __init__(self) -> None:
         raise NotImplementedError('Action classes can not be instantiated')
@@ -355,6 +375,7 @@ _FACTORIES: dict[int, ClassFactory] = {}
 
 
 def factory(reg: Registry | None = None) -> ClassFactory:
+    """The class factory of a registry (the default one unless given)."""
     reg = reg or default_registry()
     f = _FACTORIES.get(id(reg))
     if f is None or f.registry is not reg:
@@ -386,7 +407,7 @@ def _action_class(name: str, fac: ClassFactory) -> type[ActionType]:
         feedback_message = fac.message_class(name + '_FeedbackMessage')
         impl = type(
             'Impl',
-            (),
+            (ActionImpl,),
             {
                 'SendGoalService': send_goal,
                 'GetResultService': get_result,

@@ -10,15 +10,29 @@ from __future__ import annotations
 
 import sys
 from array import array
-from collections.abc import Callable
+from collections.abc import Callable, Sized
 from functools import partial
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypedDict
 
 from .classes import ROSIDL_NAMES, Message, get_interface
 from .errors import FieldError, PopulateError
 from .parser import FieldType
 
-_Setter = Callable[[Any], None]
+if TYPE_CHECKING:
+    import yaml
+
+
+class FormatOptions(TypedDict, total=False):
+    """How message_to_dict/yaml/csv abbreviate (`topic echo`'s --truncate-length, --no-arr,
+    --no-str)."""
+
+    truncate_length: int | None
+    no_arr: bool
+    no_str: bool
+
+
+_Setter = Callable[[Message], None]
+"""Stores a stamp (builtin_interfaces/Time) where 'auto'/'now' asked for one."""
 
 
 def _element_name(ft: FieldType) -> str:
@@ -29,7 +43,7 @@ def _element_name(ft: FieldType) -> str:
     return ft.base
 
 
-def abbreviate_array(value: Any, ft: FieldType) -> str:
+def abbreviate_array(value: Sized, ft: FieldType) -> str:
     """The '--no-arr' placeholder for a container value."""
     name = _element_name(ft)
     if ft.container == 'array':
@@ -78,11 +92,11 @@ def message_to_dict(
     }
 
 
-_DUMPERS: dict[bool, Any] = {}
+_DUMPERS: dict[bool, type[yaml.SafeDumper]] = {}
 _C_MAX_WIDTH = 2**31 - 1  # libyaml keeps the width in a C int
 
 
-def _dumper(fast: bool = False) -> Any:
+def _dumper(fast: bool = False) -> type[yaml.SafeDumper]:
     """A private Dumper (our dict representer never leaks into the user's PyYAML).
 
     `fast` picks libyaml's emitter when PyYAML has it; callers only ask for it when the
@@ -97,7 +111,7 @@ def _dumper(fast: bool = False) -> Any:
         class Dumper(base):  # type: ignore[valid-type,misc]
             pass
 
-        def represent_dict(d: Any, data: dict[str, Any]) -> Any:
+        def represent_dict(d: yaml.SafeDumper, data: dict[str, object]) -> yaml.MappingNode:
             return d.represent_mapping('tag:yaml.org,2002:map', data.items())
 
         Dumper.add_representer(dict, represent_dict)
@@ -105,7 +119,7 @@ def _dumper(fast: bool = False) -> Any:
     return dumper
 
 
-def _plain(value: Any) -> bool:
+def _plain(value: object) -> bool:
     """True when every string inside is printable ASCII.
 
     libyaml and PyYAML's Python emitter only differ in how they escape unusual characters
@@ -131,9 +145,15 @@ def message_to_yaml(
     fast: bool = True,
 ) -> str:
     """YAML text exactly as `ros2 topic echo` prints a message."""
+    data = message_to_dict(msg, truncate_length=truncate_length, no_arr=no_arr, no_str=no_str)
+    return dict_to_yaml(data, flow_style=flow_style, fast=fast)
+
+
+def dict_to_yaml(data: dict[str, Any], *, flow_style: bool = False, fast: bool = True) -> str:
+    """YAML text of a message's dict form (`message_to_dict`, perhaps edited, as `service
+    echo` names event types), dumped exactly as rosidl_runtime_py dumps messages."""
     import yaml
 
-    data = message_to_dict(msg, truncate_length=truncate_length, no_arr=no_arr, no_str=no_str)
     use_c = fast and _plain(data)
     return yaml.dump(
         data,
@@ -146,7 +166,7 @@ def message_to_yaml(
 
 
 def _csv_value(
-    val: Any, ft: FieldType | None, trunc: int | None, no_arr: bool, no_str: bool
+    val: object, ft: FieldType | None, trunc: int | None, no_arr: bool, no_str: bool
 ) -> str:
     if isinstance(val, (list, tuple, array)):
         if no_arr and ft is not None and ft.is_container:
@@ -191,7 +211,7 @@ def _coerce(current: Any, value: Any, ft: FieldType) -> Any:
 
 
 def _populate(
-    msg: Message, values: Any, setters: list[_Setter], header_auto: bool, time_now: bool
+    msg: Message, values: object, setters: list[_Setter], header_auto: bool, time_now: bool
 ) -> None:
     if not isinstance(values, dict):
         raise PopulateError(

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-from typing import Any
 
 from .parser import Field, FieldType
 from .registry import Registry, default_registry, normalize_name
@@ -36,7 +35,7 @@ _CONTAINER_OFFSET = {'': 0, 'array': 48, 'bounded': 96, 'sequence': 144}
 _DUMMY = Field('structure_needs_at_least_one_member', FieldType('uint8'))
 
 
-def _field_type(ft: FieldType) -> dict[str, Any]:
+def _field_type(ft: FieldType) -> dict[str, int | str]:
     if ft.is_primitive:
         base = _BOUNDED_STRING[ft.base] if ft.string_bound else _TYPE_IDS[ft.base]
         nested = ''
@@ -50,7 +49,7 @@ def _field_type(ft: FieldType) -> dict[str, Any]:
     }
 
 
-def _description(name: str, fields: list[Field]) -> dict[str, Any]:
+def _description(name: str, fields: list[Field]) -> dict[str, object]:
     return {
         'type_name': name,
         'fields': [{'name': f.name, 'type': _field_type(f.type)} for f in (fields or [_DUMMY])],
@@ -78,7 +77,7 @@ def _top_fields(name: str, reg: Registry) -> list[Field]:
     return reg.message(name).fields
 
 
-def type_description(name: str, reg: Registry | None = None) -> dict[str, Any]:
+def type_description(name: str, reg: Registry | None = None) -> dict[str, object]:
     """The TypeDescription dict (without defaults) that the hash is computed over."""
     reg = reg or default_registry()
     name = normalize_name(name)

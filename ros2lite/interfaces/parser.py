@@ -70,18 +70,22 @@ class FieldType:
 
     @property
     def is_primitive(self) -> bool:
+        """Whether the element type is a primitive (not a message)."""
         return self.base in PRIMITIVES
 
     @property
     def is_string(self) -> bool:
+        """Whether the element type is string or wstring."""
         return self.base in STRING_TYPES
 
     @property
     def is_container(self) -> bool:
+        """Whether it is an array or a sequence."""
         return self.container != ''
 
     @property
     def element(self) -> FieldType:
+        """The type of one element (the container dropped)."""
         return FieldType(self.base, self.string_bound)
 
     def base_text(self) -> str:
@@ -103,6 +107,8 @@ class FieldType:
 
 @dataclass(frozen=True)
 class Field:
+    """One field of a message: name, type and default."""
+
     name: str
     type: FieldType
     default: Any = None  # parsed default value, None when the .msg gives none
@@ -110,6 +116,8 @@ class Field:
 
 @dataclass(frozen=True)
 class Constant:
+    """One constant of a message: name, primitive type and value."""
+
     name: str
     type: str  # a primitive type name
     value: Any
@@ -117,21 +125,27 @@ class Constant:
 
 @dataclass
 class MessageDef:
+    """A parsed message definition: its fields and constants."""
+
     name: str  # 'pkg/msg/Name' (or a generated 'pkg/srv/S_Request' …)
     fields: list[Field] = field(default_factory=list)
     constants: list[Constant] = field(default_factory=list)
 
     @property
     def package(self) -> str:
+        """The package the type belongs to."""
         return self.name.split('/')[0]
 
     @property
     def short_name(self) -> str:
+        """The type's name without package and kind."""
         return self.name.rsplit('/', 1)[1]
 
 
 @dataclass
 class ServiceDef:
+    """A parsed service: its request and response messages."""
+
     name: str
     request: MessageDef
     response: MessageDef
@@ -139,6 +153,8 @@ class ServiceDef:
 
 @dataclass
 class ActionDef:
+    """A parsed action: its goal, result and feedback messages."""
+
     name: str
     goal: MessageDef
     result: MessageDef
@@ -367,6 +383,7 @@ def _sections(text: str, count: int, source: str) -> list[tuple[str, int]]:
 
 
 def parse_service(text: str, name: str, source: str = '<string>') -> ServiceDef:
+    """Parse `.srv` text into its request and response definitions."""
     (req, l1), (resp, l2) = _sections(text, 2, source)
     return ServiceDef(
         name,
@@ -376,6 +393,7 @@ def parse_service(text: str, name: str, source: str = '<string>') -> ServiceDef:
 
 
 def parse_action(text: str, name: str, source: str = '<string>') -> ActionDef:
+    """Parse `.action` text into its goal, result and feedback definitions."""
     (goal, l1), (result, l2), (feedback, l3) = _sections(text, 3, source)
     return ActionDef(
         name,

@@ -86,6 +86,7 @@ class Registry:
         return self._packages
 
     def package_dir(self, package: str) -> Path:
+        """The directory of a package (UnknownInterfaceError if none)."""
         try:
             return self.packages()[package]
         except KeyError:
@@ -102,6 +103,7 @@ class Registry:
         return sorted(names)
 
     def all_interfaces(self) -> list[str]:
+        """Every 'pkg/kind/Name' on the search path, by package."""
         return [n for pkg in sorted(self.packages()) for n in self.package_interfaces(pkg)]
 
     def interface_path(self, name: str) -> Path:
@@ -113,9 +115,11 @@ class Registry:
         return path
 
     def interface_text(self, name: str) -> str:
+        """The definition file's text."""
         return self.interface_path(name).read_text(encoding='utf-8')
 
     def exists(self, name: str) -> bool:
+        """Whether a definition file for 'pkg/kind/Name' exists."""
         try:
             self.interface_path(name)
         except InterfaceError:
@@ -124,6 +128,7 @@ class Registry:
 
     # -- definitions -----------------------------------------------------------------------
     def service(self, name: str) -> ServiceDef:
+        """The parsed definition of a service (cached)."""
         svc = self._services.get(name)
         if svc is None:
             path = self.interface_path(name)
@@ -132,6 +137,7 @@ class Registry:
         return svc
 
     def action(self, name: str) -> ActionDef:
+        """The parsed definition of an action (cached)."""
         act = self._actions.get(name)
         if act is None:
             path = self.interface_path(name)

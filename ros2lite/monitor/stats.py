@@ -12,8 +12,8 @@ from __future__ import annotations
 import math
 import threading
 from collections import deque
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
 from ros2lite.transport.attachment import unpack_attachment
 
@@ -46,7 +46,7 @@ class IntervalSummary:
         return _NS / self.mean if self.mean > 0 else 0.0
 
 
-def summarize(values: Any) -> IntervalSummary:
+def summarize(values: Sequence[int]) -> IntervalSummary:
     """Summary of a non-empty sequence of integer nanosecond values."""
     n = len(values)
     total = sum(values)
@@ -110,6 +110,8 @@ class RateStats:
 
 @dataclass(frozen=True)
 class BandwidthSummary:
+    """`topic bw`'s figures over its window."""
+
     bytes_per_second: float
     count: int
     mean: float
@@ -127,6 +129,7 @@ class BandwidthStats:
         self._samples: deque[tuple[int, int]] = deque(maxlen=window)
 
     def add(self, now_ns: int, size: int) -> None:
+        """Count one message of `size` bytes that arrived at `now_ns`."""
         with self._lock:
             self._samples.append((now_ns, size))
 
@@ -183,6 +186,7 @@ class DelayStats:
 
     @property
     def empty(self) -> bool:
+        """Whether no delay has been measured yet."""
         with self._lock:
             return not self._delays
 
@@ -210,6 +214,7 @@ class LostMessageCounter:
         self._events: list[tuple[int, int]] = []
 
     def observe(self, sequence_number: int, gid: bytes) -> None:
+        """Note a sample's sequence number; gaps per publisher count as lost."""
         with self._lock:
             last = self._last.get(gid)
             self._last[gid] = sequence_number
@@ -227,6 +232,7 @@ class LostMessageCounter:
             self.observe(fields[0], fields[2])
 
     def drain(self) -> list[tuple[int, int]]:
+        """(change, total) of each loss noticed since the last call."""
         with self._lock:
             events, self._events = self._events, []
         return events

@@ -9,11 +9,15 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Iterable
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.graph import Entity, EntityKind
 from ros2lite.qos import QoSProfile
-from ros2lite.subscription import Subscription
+from ros2lite.subscription import MessageInfo, Subscription
+
+if TYPE_CHECKING:
+    from ros2lite.node import Node
+    from ros2lite.transport.handles import Sample
 
 __all__ = ['MonitoredSubscription', 'topic_types']
 
@@ -47,14 +51,14 @@ class MonitoredSubscription(Subscription):
 
     def __init__(
         self,
-        node: Any,
-        msg_type: Any,
+        node: Node,
+        msg_type: type | str,
         topic: str,
-        callback: Callable[[bytes, Any], Any] | None,
+        callback: Callable[[bytes, MessageInfo], object] | None,
         qos: QoSProfile,
         *,
-        on_arrival: Callable[[int, bytes, int], Any] | None = None,
-        on_payload: Callable[[bytes, bytes, int], Any] | None = None,
+        on_arrival: Callable[[int, bytes, int], object] | None = None,
+        on_payload: Callable[[bytes, bytes, int], object] | None = None,
     ) -> None:
         if (on_arrival is None) == (on_payload is None):
             raise TypeError('give exactly one of on_arrival and on_payload')
@@ -64,7 +68,7 @@ class MonitoredSubscription(Subscription):
         super().__init__(node, msg_type, topic, callback or _ignore, qos, raw=True)
         node.subscriptions.append(self)  # destroyed with the node, like its own ones
 
-    def _on_sample(self, sample: Any) -> None:
+    def _on_sample(self, sample: Sample) -> None:
         attachment = sample.attachment
         if attachment is None:
             return  # rmw_zenoh ignores samples without one
@@ -80,5 +84,5 @@ class MonitoredSubscription(Subscription):
             super()._on_sample(sample)
 
 
-def _ignore(*_: Any) -> None:
+def _ignore(*_: object) -> None:
     """Callback of a subscription whose samples are never queued."""

@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.parameter import Parameter
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.rcl_interfaces.msg import ParameterEvent
+    from ros2lite.node import Node
+    from ros2lite.publisher import Publisher
 
 TOPIC = "/parameter_events"
 TYPE = "rcl_interfaces/msg/ParameterEvent"
@@ -13,18 +18,22 @@ TYPE = "rcl_interfaces/msg/ParameterEvent"
 class ParameterEventPublisher:
     """Turns a store's (new, changed, deleted) report into one ParameterEvent message."""
 
-    def __init__(self, node: Any) -> None:
+    def __init__(self, node: Node) -> None:
         from ros2lite.qos import qos_profile_parameter_events
 
         self._node = node
-        self._publisher = node.create_publisher(TYPE, TOPIC, qos_profile_parameter_events)
+        self._publisher: Publisher[ParameterEvent] = node.create_publisher(
+            TYPE, TOPIC, qos_profile_parameter_events
+        )
 
     def __call__(
         self, new: list[Parameter], changed: list[Parameter], deleted: list[Parameter]
     ) -> None:
+        """Publish one event for the parameters declared, changed and undeclared."""
         from ros2lite.interfaces import get_interface
 
-        event = get_interface(TYPE)(
+        event_type: type[ParameterEvent] = get_interface(TYPE)
+        event = event_type(
             stamp=self._node.get_clock().now().to_msg(),
             node=self._node.get_fully_qualified_name(),
             new_parameters=[p.to_parameter_msg() for p in new],

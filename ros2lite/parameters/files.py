@@ -10,11 +10,18 @@ alone matches every node). Nested parameter maps become dotted names (``a: {b: 1
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, cast
 
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.parameter import PARAMETER_SEPARATOR_STRING
+
+if TYPE_CHECKING:
+    from ros2lite.parameter import AllowableParameterValue, Parameter
+
+# values are whatever the YAML holds until a Parameter is made of them (which checks them)
+Values = dict[str, object]
 
 PARAMS_KEY = "ros__parameters"
 WILDCARD = "/**"
@@ -24,7 +31,7 @@ class ParamsFileError(Ros2liteError, ValueError):
     """The file cannot be read or is not a ROS 2 parameters file; the message says why."""
 
 
-def read_params_file(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
+def read_params_file(path: str | Path) -> list[tuple[str, Values]]:
     """Every (node name, flattened parameters) entry of the file, in file order."""
     import yaml
 
@@ -37,13 +44,13 @@ def read_params_file(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
         return []
     if not isinstance(data, dict):
         raise ParamsFileError(f"Parameters file '{path}' must map node names to parameters")
-    entries: list[tuple[str, dict[str, Any]]] = []
+    entries: list[tuple[str, Values]] = []
     _collect(path, data, "", entries)
     return entries
 
 
 def _collect(
-    path: Path, tree: dict[Any, Any], prefix: str, out: list[tuple[str, dict[str, Any]]]
+    path: Path, tree: Mapping[object, object], prefix: str, out: list[tuple[str, Values]]
 ) -> None:
     for key, section in tree.items():
         name = f"{prefix}/{str(key).strip('/')}" if prefix else _absolute(str(key))
@@ -67,9 +74,9 @@ def _absolute(name: str) -> str:
     return name if name.startswith("/") else "/" + name
 
 
-def flatten(tree: dict[Any, Any], prefix: str = "") -> dict[str, Any]:
+def flatten(tree: Mapping[object, object], prefix: str = "") -> Values:
     """Nested maps as dotted names: {'a': {'b': 1}} → {'a.b': 1}."""
-    out: dict[str, Any] = {}
+    out: Values = {}
     for key, value in tree.items():
         name = f"{prefix}{key}"
         if isinstance(value, dict):
@@ -89,14 +96,13 @@ def node_pattern(name: str) -> re.Pattern[str]:
 
 
 def matches(pattern: str, node_fqn: str) -> bool:
+    """Whether a file's node name (maybe with wildcards) stands for `node_fqn`."""
     return node_pattern(pattern).fullmatch(node_fqn) is not None
 
 
-def values_for_node(
-    path: str | Path, node_fqn: str, *, use_wildcard: bool = True
-) -> dict[str, Any]:
+def values_for_node(path: str | Path, node_fqn: str, *, use_wildcard: bool = True) -> Values:
     """The parameters this file gives the node (`use_wildcard=False` skips pattern entries)."""
-    values: dict[str, Any] = {}
+    values: Values = {}
     for name, params in read_params_file(path):
         if "*" in name and not use_wildcard:
             continue
@@ -105,7 +111,7 @@ def values_for_node(
     return values
 
 
-def parameters_for_node(path: str | Path, node_fqn: str, use_wildcard: bool) -> list[Any]:
+def parameters_for_node(path: str | Path, node_fqn: str, use_wildcard: bool) -> list[Parameter]:
     """The file's parameters for the node as Parameters; an error naming the nodes the file
     has when it has none for this one, or naming a value that cannot be a parameter."""
     from ros2lite.parameter import Parameter
@@ -119,15 +125,16 @@ def parameters_for_node(path: str | Path, node_fqn: str, use_wildcard: bool) -> 
     params = []
     for name, value in values.items():
         try:
-            params.append(Parameter(name, value=value))
+            # Parameter() checks that the YAML value is one a parameter can hold
+            params.append(Parameter(name, value=cast("AllowableParameterValue", value)))
         except (TypeError, ValueError) as e:
             raise ParamsFileError(f"Parameter '{name}' in '{path}': {e}") from None
     return params
 
 
-def dump_tree(values: dict[str, Any]) -> dict[str, Any]:
+def dump_tree(values: Mapping[str, object]) -> dict[str, object]:
     """Dotted names back into nested maps (what `param dump` writes)."""
-    tree: dict[str, Any] = {}
+    tree: dict[str, object] = {}
     for name in sorted(values):
         node = tree
         *parents, leaf = name.split(PARAMETER_SEPARATOR_STRING)
@@ -141,7 +148,7 @@ def dump_tree(values: dict[str, Any]) -> dict[str, Any]:
     return tree
 
 
-def dump_yaml(node_fqn: str, values: dict[str, Any]) -> str:
+def dump_yaml(node_fqn: str, values: Mapping[str, object]) -> str:
     """A parameters file for one node, as `ros2 param dump` prints it (keys sorted)."""
     import yaml
 

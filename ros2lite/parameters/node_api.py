@@ -7,17 +7,27 @@ overrides from `--ros-args`, /parameter_events, the parameter services and `use_
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import Any
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, cast
 
-from ros2lite.parameter import Parameter
+from ros2lite.parameter import AllowableParameterValue, Parameter
 from ros2lite.parameters.store import (
     OnSetCallback,
+    ParameterDeclaration,
     ParameterStore,
     PostSetCallback,
     PreSetCallback,
     result,
 )
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.rcl_interfaces.msg import (
+        ListParametersResult,
+        ParameterDescriptor,
+        ParameterValue,
+        SetParametersResult,
+    )
+    from ros2lite.node import Node
 
 USE_SIM_TIME = "use_sim_time"
 
@@ -36,7 +46,7 @@ class ParameterMixin:
     ) -> None:
         from ros2lite.parameters.events import ParameterEventPublisher
 
-        node: Any = self
+        node = cast('Node', self)  # the mixin of Node
         overrides = _override_parameters(
             node._args.parameter_overrides(node.get_fully_qualified_name(), node.get_name())
         )
@@ -64,7 +74,7 @@ class ParameterMixin:
     def _start_parameter_services(self) -> None:
         from ros2lite.parameters.services import ParameterService
 
-        self._parameter_service = ParameterService(self)
+        self._parameter_service = ParameterService(cast('Node', self))
 
     def _on_use_sim_time_set(self, parameters: list[Parameter]) -> None:
         for p in parameters:
@@ -72,7 +82,7 @@ class ParameterMixin:
                 self._apply_use_sim_time(p)
 
     def _apply_use_sim_time(self, param: Parameter) -> None:
-        node: Any = self
+        node = cast('Node', self)
         if param.type_ != Parameter.Type.BOOL:
             return
         if param.value:
@@ -82,10 +92,14 @@ class ParameterMixin:
 
     # -- declare -----------------------------------------------------------------------------
     def declare_parameter(
-        self, name: str, value: Any = None, descriptor: Any = None, ignore_override: bool = False
+        self,
+        name: str,
+        value: AllowableParameterValue | Parameter.Type | ParameterValue = None,
+        descriptor: ParameterDescriptor | None = None,
+        ignore_override: bool = False,
     ) -> Parameter:
         """Declare one parameter; returns it with its effective value (an override wins)."""
-        entry: tuple[Any, ...] = (
+        entry: ParameterDeclaration = (
             (name,)
             if value is None and descriptor is None
             else (name, value, descriptor if descriptor is not None else _descriptor())
@@ -93,98 +107,127 @@ class ParameterMixin:
         return self._parameter_store.declare_parameters("", [entry], ignore_override)[0]
 
     def declare_parameters(
-        self, namespace: str, parameters: Sequence[tuple[Any, ...]], ignore_override: bool = False
+        self,
+        namespace: str,
+        parameters: Sequence[ParameterDeclaration],
+        ignore_override: bool = False,
     ) -> list[Parameter]:
+        """Declare (name[, value or type[, descriptor]]) entries under `namespace`."""
         return self._parameter_store.declare_parameters(namespace, parameters, ignore_override)
 
     def undeclare_parameter(self, name: str) -> None:
+        """Forget a (not read-only) parameter."""
         self._parameter_store.undeclare_parameter(name)
 
     # -- read --------------------------------------------------------------------------------
     def has_parameter(self, name: str) -> bool:
+        """Whether `name` is declared."""
         return self._parameter_store.has_parameter(name)
 
     def get_parameter(self, name: str) -> Parameter:
+        """A declared parameter (ParameterNotDeclaredException otherwise)."""
         return self._parameter_store.get_parameter(name)
 
     def get_parameters(self, names: list[str]) -> list[Parameter]:
+        """get_parameter() of each name."""
         return self._parameter_store.get_parameters(names)
 
     def get_parameter_or(self, name: str, alternative_value: Parameter | None = None) -> Parameter:
+        """The parameter, or `alternative_value` when undeclared or not set."""
         return self._parameter_store.get_parameter_or(name, alternative_value)
 
     def get_parameters_by_prefix(self, prefix: str) -> dict[str, Parameter]:
+        """Parameters under `prefix.`, by their names relative to it."""
         return self._parameter_store.get_parameters_by_prefix(prefix)
 
     def get_parameter_type(self, name: str) -> Parameter.Type:
+        """A parameter's type."""
         return self._parameter_store.get_parameter_type(name)
 
     def get_parameter_types(self, names: list[str]) -> list[Parameter.Type]:
+        """get_parameter_type() of each name."""
         if not all(isinstance(n, str) for n in names):
             raise TypeError("All names must be instances of type str")
         return [self._parameter_store.get_parameter_type(n) for n in names]
 
-    def describe_parameter(self, name: str) -> Any:
+    def describe_parameter(self, name: str) -> ParameterDescriptor:
+        """A parameter's descriptor (constraints, read-only, dynamic typing)."""
         return self._parameter_store.describe_parameter(name)
 
-    def describe_parameters(self, names: list[str]) -> list[Any]:
+    def describe_parameters(self, names: list[str]) -> list[ParameterDescriptor]:
+        """describe_parameter() of each name."""
         return [self._parameter_store.describe_parameter(n) for n in names]
 
-    def list_parameters(self, prefixes: list[str], depth: int) -> Any:
+    def list_parameters(self, prefixes: list[str], depth: int) -> ListParametersResult:
+        """Declared names (and prefixes) under `prefixes`, `depth` levels deep (0: all)."""
         return self._parameter_store.list_parameters(prefixes, depth)
 
     # -- write -------------------------------------------------------------------------------
-    def set_parameters(self, parameter_list: Sequence[Parameter]) -> list[Any]:
+    def set_parameters(self, parameter_list: Sequence[Parameter]) -> list[SetParametersResult]:
         """One SetParametersResult per parameter, each set on its own."""
         return self._parameter_store.set_parameters(parameter_list)
 
-    def set_parameters_atomically(self, parameter_list: Sequence[Parameter]) -> Any:
+    def set_parameters_atomically(self, parameter_list: Sequence[Parameter]) -> SetParametersResult:
+        """Set all of them or none; one result."""
         return self._parameter_store.set_parameters_atomically(parameter_list)
 
-    def set_descriptor(self, name: str, descriptor: Any, alternative_value: Any = None) -> Any:
+    def set_descriptor(
+        self,
+        name: str,
+        descriptor: ParameterDescriptor,
+        alternative_value: ParameterValue | None = None,
+    ) -> ParameterValue:
+        """Replace a descriptor (keeping the value if it fits, else `alternative_value`)."""
         return self._parameter_store.set_descriptor(name, descriptor, alternative_value)
 
     # -- callbacks ---------------------------------------------------------------------------
     def add_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
+        """`callback(parameters)` may change the list being set, before any check."""
         self._parameter_store.add_pre_set_parameters_callback(callback)
 
     def add_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
+        """`callback(parameters)` may refuse a set (an unsuccessful SetParametersResult)."""
         self._parameter_store.add_on_set_parameters_callback(callback)
 
     def add_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
+        """`callback(parameters)` learns of every successful set."""
         self._parameter_store.add_post_set_parameters_callback(callback)
 
     def remove_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
+        """Forget a pre-set callback."""
         self._parameter_store.remove_pre_set_parameters_callback(callback)
 
     def remove_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
+        """Forget an on-set callback."""
         self._parameter_store.remove_on_set_parameters_callback(callback)
 
     def remove_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
+        """Forget a post-set callback."""
         self._parameter_store.remove_post_set_parameters_callback(callback)
 
 
-def _descriptor() -> Any:
+def _descriptor() -> ParameterDescriptor:
     from ros2lite.parameters.store import descriptor
 
     return descriptor()
 
 
-def _check_use_sim_time(parameters: list[Parameter]) -> Any:
+def _check_use_sim_time(parameters: list[Parameter]) -> SetParametersResult:
     for p in parameters:
         if p.name == USE_SIM_TIME and p.type_ not in (Parameter.Type.BOOL, Parameter.Type.NOT_SET):
             return result(False, f"{USE_SIM_TIME} parameter set to something besides a bool")
     return result(True)
 
 
-def _override_parameters(values: dict[str, Any]) -> dict[str, Parameter]:
+def _override_parameters(values: Mapping[str, object]) -> dict[str, Parameter]:
     """`-p`/params-file values as Parameters; a value no parameter type can hold is an error."""
     from ros2lite.arguments import RosArgsError
 
     out: dict[str, Parameter] = {}
     for name, value in values.items():
         try:
-            out[name] = Parameter(name, value=value)
+            # Parameter() checks that the value is one a parameter can hold
+            out[name] = Parameter(name, value=cast('AllowableParameterValue', value))
         except (TypeError, ValueError) as e:
             raise RosArgsError(f"Invalid value for parameter override '{name}': {e}") from None
     return out

@@ -5,11 +5,18 @@ is a failed result whose reason is the exception's message."""
 from __future__ import annotations
 
 import contextlib
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ros2lite.exceptions import ParameterNotDeclaredException, ParameterUninitializedException
 from ros2lite.parameter import Parameter
 from ros2lite.parameters.store import result
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.rcl_interfaces import srv
+    from ros2lite.msgs.rcl_interfaces.msg import Parameter as ParameterMsg
+    from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
+    from ros2lite.node import Node
+    from ros2lite.service import Service
 
 SERVICES = (
     "describe_parameters",
@@ -32,11 +39,11 @@ TYPES = {
 class ParameterService:
     """Creates the services on `node` (names relative to the node: `<node>/<service>`)."""
 
-    def __init__(self, node: Any) -> None:
+    def __init__(self, node: Node) -> None:
         from ros2lite.qos import qos_profile_parameters
 
         self._node = node
-        self.services = [
+        self.services: list[Service[Any, Any]] = [
             node.create_service(
                 f"rcl_interfaces/srv/{TYPES[name]}",
                 f"{node.get_name()}/{name}",
@@ -46,14 +53,18 @@ class ParameterService:
             for name in SERVICES
         ]
 
-    def _describe_parameters(self, request: Any, response: Any) -> Any:
+    def _describe_parameters(
+        self, request: srv.DescribeParameters.Request, response: srv.DescribeParameters.Response
+    ) -> srv.DescribeParameters.Response:
         try:
             response.descriptors = [self._node.describe_parameter(n) for n in request.names]
         except ParameterNotDeclaredException:
             response.descriptors = []
         return response
 
-    def _get_parameters(self, request: Any, response: Any) -> Any:
+    def _get_parameters(
+        self, request: srv.GetParameters.Request, response: srv.GetParameters.Response
+    ) -> srv.GetParameters.Response:
         try:
             response.values = [
                 self._node.get_parameter(n).get_parameter_value() for n in request.names
@@ -62,28 +73,38 @@ class ParameterService:
             response.values = []
         return response
 
-    def _get_parameter_types(self, request: Any, response: Any) -> Any:
+    def _get_parameter_types(
+        self, request: srv.GetParameterTypes.Request, response: srv.GetParameterTypes.Response
+    ) -> srv.GetParameterTypes.Response:
         try:
             response.types = [self._node.get_parameter_type(n).value for n in request.names]
         except ParameterNotDeclaredException:
             response.types = []
         return response
 
-    def _list_parameters(self, request: Any, response: Any) -> Any:
+    def _list_parameters(
+        self, request: srv.ListParameters.Request, response: srv.ListParameters.Response
+    ) -> srv.ListParameters.Response:
         # a bad request gets the default (empty) result
         with contextlib.suppress(TypeError, ValueError):
             response.result = self._node.list_parameters(list(request.prefixes), int(request.depth))
         return response
 
-    def _set_parameters(self, request: Any, response: Any) -> Any:
+    def _set_parameters(
+        self, request: srv.SetParameters.Request, response: srv.SetParameters.Response
+    ) -> srv.SetParameters.Response:
         response.results = [self._set([p]) for p in request.parameters]
         return response
 
-    def _set_parameters_atomically(self, request: Any, response: Any) -> Any:
+    def _set_parameters_atomically(
+        self,
+        request: srv.SetParametersAtomically.Request,
+        response: srv.SetParametersAtomically.Response,
+    ) -> srv.SetParametersAtomically.Response:
         response.result = self._set(list(request.parameters))
         return response
 
-    def _set(self, messages: list[Any]) -> Any:
+    def _set(self, messages: list[ParameterMsg]) -> SetParametersResult:
         """Set atomically; undeclared names and malformed values are failed results."""
         try:
             params = [Parameter.from_parameter_msg(m) for m in messages]
@@ -93,6 +114,7 @@ class ParameterService:
         return outcome
 
     def destroy(self) -> None:
+        """Withdraw the six services."""
         for service in self.services:
             self._node.destroy_service(service)
         self.services.clear()

@@ -14,7 +14,7 @@ import math
 import threading
 import warnings
 from collections.abc import Callable, Iterable, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, TypeGuard, cast
 
 from ros2lite.exceptions import (
     InvalidParameterException,
@@ -25,34 +25,58 @@ from ros2lite.exceptions import (
     ParameterNotDeclaredException,
     ParameterUninitializedException,
 )
-from ros2lite.parameter import PARAMETER_SEPARATOR_STRING, Parameter, parameter_value_to_python
+from ros2lite.parameter import (
+    PARAMETER_SEPARATOR_STRING,
+    AllowableParameterValue,
+    Parameter,
+    parameter_value_to_python,
+)
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.rcl_interfaces.msg import (
+        FloatingPointRange,
+        IntegerRange,
+        ListParametersResult,
+        ParameterDescriptor,
+        ParameterValue,
+        SetParametersResult,
+    )
 
 EmitFn = Callable[[list[Parameter], list[Parameter], list[Parameter]], None]
 PreSetCallback = Callable[[list[Parameter]], list[Parameter]]
-OnSetCallback = Callable[[list[Parameter]], Any]
+OnSetCallback = Callable[[list[Parameter]], 'SetParametersResult']
 PostSetCallback = Callable[[list[Parameter]], None]
+ParameterDeclaration = (
+    tuple[str]
+    | tuple[str, 'AllowableParameterValue | Parameter.Type | ParameterValue']
+    | tuple[str, 'AllowableParameterValue | Parameter.Type | ParameterValue', 'ParameterDescriptor']
+)
+"""(name[, default value or Parameter.Type[, descriptor]]), as rclpy's declare_parameters."""
 
 DEPTH_RECURSIVE = 0  # rcl_interfaces/srv/ListParameters: every level
 WRONG_TYPE = "Wrong parameter type"
 
 
-def _iface(name: str) -> Any:
+def descriptor(
+    name: str = "", type_number: int = 0, dynamic_typing: bool = False
+) -> ParameterDescriptor:
+    """A new rcl_interfaces/msg/ParameterDescriptor."""
     from ros2lite.interfaces import get_interface
 
-    return get_interface(f"rcl_interfaces/msg/{name}")
+    cls: type[ParameterDescriptor] = get_interface("rcl_interfaces/msg/ParameterDescriptor")
+    return cls(name=name, type=type_number, dynamic_typing=dynamic_typing)
 
 
-def descriptor(**fields: Any) -> Any:
-    """A new rcl_interfaces/msg/ParameterDescriptor."""
-    return _iface("ParameterDescriptor")(**fields)
-
-
-def result(successful: bool, reason: str = "") -> Any:
+def result(successful: bool, reason: str = "") -> SetParametersResult:
     """A new rcl_interfaces/msg/SetParametersResult."""
-    return _iface("SetParametersResult")(successful=successful, reason=reason)
+    from ros2lite.interfaces import get_interface
+
+    cls: type[SetParametersResult] = get_interface("rcl_interfaces/msg/SetParametersResult")
+    return cls(successful=successful, reason=reason)
 
 
 def validate_parameter_name(name: str) -> None:
+    """InvalidParameterException unless `name` is a non-empty string without whitespace."""
     if not isinstance(name, str) or not name or any(c.isspace() for c in name):
         raise InvalidParameterException(name)
 
@@ -73,7 +97,7 @@ class ParameterStore:
         self.allow_undeclared = allow_undeclared
         self._emit = emit
         self._parameters: dict[str, Parameter] = {}
-        self._descriptors: dict[str, Any] = {}
+        self._descriptors: dict[str, ParameterDescriptor] = {}
         self._pre_set: list[PreSetCallback] = []
         self._on_set: list[OnSetCallback] = []
         self._post_set: list[PostSetCallback] = []
@@ -81,10 +105,13 @@ class ParameterStore:
 
     # -- declaring ---------------------------------------------------------------------------
     def declare_parameters(
-        self, namespace: str, parameters: Sequence[tuple[Any, ...]], ignore_override: bool = False
+        self,
+        namespace: str,
+        parameters: Sequence[ParameterDeclaration],
+        ignore_override: bool = False,
     ) -> list[Parameter]:
         """Declare each (name[, value or Parameter.Type[, descriptor]]) as `namespace.name`."""
-        todo: list[tuple[Parameter, Any]] = []
+        todo: list[tuple[Parameter, ParameterDescriptor]] = []
         for index, entry in enumerate(parameters):
             todo.append(self._prepare(namespace, index, entry, ignore_override))
         with self._lock:
@@ -100,8 +127,8 @@ class ParameterStore:
             return [self._parameters[p.name] for p, _ in todo]
 
     def _prepare(
-        self, namespace: str, index: int, entry: tuple[Any, ...], ignore_override: bool
-    ) -> tuple[Parameter, Any]:
+        self, namespace: str, index: int, entry: ParameterDeclaration, ignore_override: bool
+    ) -> tuple[Parameter, ParameterDescriptor]:
         if not isinstance(entry, (tuple, list)) or not 1 <= len(entry) <= 3:
             raise TypeError(
                 f"Invalid parameter tuple length at index {index} in parameters "
@@ -116,7 +143,7 @@ class ParameterStore:
             name = f"{namespace}{PARAMETER_SEPARATOR_STRING}{name}"
         validate_parameter_name(name)
         second = entry[1] if len(entry) > 1 else None
-        desc = copy.deepcopy(entry[2]) if len(entry) > 2 else descriptor()
+        desc = copy.deepcopy(entry[2]) if len(entry) == 3 else descriptor()
         if not hasattr(desc, "dynamic_typing"):
             raise TypeError(
                 f"Third element {desc} at index {index} in parameters list is "
@@ -131,7 +158,7 @@ class ParameterStore:
                 stacklevel=4,
             )
             desc.dynamic_typing = True
-        value = None
+        value: AllowableParameterValue = None
         if isinstance(second, Parameter.Type):
             if second == Parameter.Type.NOT_SET:
                 raise ValueError(
@@ -145,7 +172,10 @@ class ParameterStore:
                 )
             desc.type = second.value
         else:
-            value = parameter_value_to_python(second) if _is_value_msg(second) else second
+            if _is_value_msg(second):
+                value = parameter_value_to_python(second)
+            else:  # anything else: Parameter() below says whether it may be a value
+                value = cast("AllowableParameterValue", second)
             if not desc.dynamic_typing:
                 desc.type = Parameter.Type.from_parameter_value(value).value
                 if desc.type == Parameter.Type.NOT_SET.value:
@@ -158,6 +188,7 @@ class ParameterStore:
         return Parameter(name, value=value), desc
 
     def undeclare_parameter(self, name: str) -> None:
+        """Forget a parameter (not a read-only one); reported as deleted."""
         with self._lock:
             if name not in self._parameters:
                 raise ParameterNotDeclaredException(name)
@@ -170,12 +201,15 @@ class ParameterStore:
 
     # -- reading -----------------------------------------------------------------------------
     def has_parameter(self, name: str) -> bool:
+        """Whether `name` is declared."""
         return name in self._parameters
 
     def names(self) -> list[str]:
+        """Every declared name, in declaration order."""
         return list(self._parameters)
 
     def get_parameter(self, name: str) -> Parameter:
+        """The parameter; an undeclared name is an error unless undeclared ones are allowed."""
         param = self._parameters.get(name)
         if param is not None:
             if param.type_ != Parameter.Type.NOT_SET or self._descriptors[name].dynamic_typing:
@@ -186,12 +220,14 @@ class ParameterStore:
         raise ParameterNotDeclaredException(name)
 
     def get_parameters(self, names: Iterable[str]) -> list[Parameter]:
+        """get_parameter() of each name."""
         names = list(names)
         if not all(isinstance(n, str) for n in names):
             raise TypeError("All names must be instances of type str")
         return [self.get_parameter(n) for n in names]
 
     def get_parameter_or(self, name: str, alternative_value: Parameter | None = None) -> Parameter:
+        """The parameter, or `alternative_value` when it is undeclared or not set."""
         if alternative_value is None:
             alternative_value = Parameter(name, Parameter.Type.NOT_SET)
         param = self._parameters.get(name)
@@ -200,6 +236,7 @@ class ParameterStore:
         return param
 
     def get_parameter_type(self, name: str) -> Parameter.Type:
+        """The parameter's type (NOT_SET for an undeclared one, where that is allowed)."""
         param = self._parameters.get(name)
         if param is not None:
             return param.type_
@@ -208,6 +245,7 @@ class ParameterStore:
         raise ParameterNotDeclaredException(name)
 
     def get_parameters_by_prefix(self, prefix: str) -> dict[str, Parameter]:
+        """Parameters under `prefix.`, by their names relative to it."""
         if prefix:
             prefix += PARAMETER_SEPARATOR_STRING
         return {
@@ -216,7 +254,8 @@ class ParameterStore:
             if name.startswith(prefix)
         }
 
-    def describe_parameter(self, name: str) -> Any:
+    def describe_parameter(self, name: str) -> ParameterDescriptor:
+        """The parameter's descriptor (a blank one for an undeclared name, where allowed)."""
         desc = self._descriptors.get(name)
         if desc is not None:
             return desc
@@ -224,7 +263,7 @@ class ParameterStore:
             return descriptor()
         raise ParameterNotDeclaredException(name)
 
-    def list_parameters(self, prefixes: list[str], depth: int) -> Any:
+    def list_parameters(self, prefixes: list[str], depth: int) -> ListParametersResult:
         """Names (and their dotted prefixes) under any of `prefixes`, `depth` levels deep."""
         if not isinstance(prefixes, list) or not all(isinstance(p, str) for p in prefixes):
             raise TypeError("The prefixes argument must be a list of str")
@@ -237,7 +276,12 @@ class ParameterStore:
         def shallow(name: str) -> bool:
             return name.count(sep) < depth
 
-        out = _iface("ListParametersResult")()
+        from ros2lite.interfaces import get_interface
+
+        result_type: type[ListParametersResult] = get_interface(
+            "rcl_interfaces/msg/ListParametersResult"
+        )
+        out = result_type()
         for name in list(self._parameters):
             if prefixes or depth != DEPTH_RECURSIVE:
                 wanted = (not prefixes and shallow(name)) or any(
@@ -258,11 +302,11 @@ class ParameterStore:
         return out
 
     # -- setting -----------------------------------------------------------------------------
-    def set_parameters(self, parameters: Sequence[Parameter]) -> list[Any]:
+    def set_parameters(self, parameters: Sequence[Parameter]) -> list[SetParametersResult]:
         """Set one at a time; stops (raising) at the first undeclared one if not allowed."""
         return [self.set_parameters_atomically([p]) for p in parameters]
 
-    def set_parameters_atomically(self, parameters: Sequence[Parameter]) -> Any:
+    def set_parameters_atomically(self, parameters: Sequence[Parameter]) -> SetParametersResult:
         """All or nothing: one callback round and one event for the whole list."""
         params = list(parameters)
         with self._lock:
@@ -286,10 +330,13 @@ class ParameterStore:
             return self._set_atomically(params, None, allow_not_set=False)
 
     def _set_atomically(
-        self, params: list[Parameter], descriptors: dict[str, Any] | None, allow_not_set: bool
-    ) -> Any:
+        self,
+        params: list[Parameter],
+        descriptors: dict[str, ParameterDescriptor] | None,
+        allow_not_set: bool,
+    ) -> SetParametersResult:
         """Check, ask the callbacks, store, then report. Caller holds the lock."""
-        new_descriptors: dict[str, Any] = {}
+        new_descriptors: dict[str, ParameterDescriptor] = {}
         for param in params:
             if descriptors is not None:
                 desc, check_read_only = descriptors[param.name], False
@@ -319,7 +366,7 @@ class ParameterStore:
                 self._descriptors[param.name] = new_descriptors[param.name]
             else:  # implicitly declared (undeclared parameters allowed)
                 self._descriptors[param.name] = descriptor(
-                    name=param.name, type=param.type_.value, dynamic_typing=True
+                    name=param.name, type_number=param.type_.value, dynamic_typing=True
                 )
             if self.get_parameter_or(param.name).type_ == Parameter.Type.NOT_SET:
                 new.append(param)
@@ -332,7 +379,9 @@ class ParameterStore:
             post(params)
         return result(True)
 
-    def _apply_descriptor(self, param: Parameter, desc: Any, check_read_only: bool) -> Any:
+    def _apply_descriptor(
+        self, param: Parameter, desc: ParameterDescriptor, check_read_only: bool
+    ) -> SetParametersResult:
         """Whether `param` satisfies `desc`; fills the descriptor's name (and dynamic type)."""
         desc.name = param.name
         if check_read_only and desc.read_only:
@@ -353,7 +402,7 @@ class ParameterStore:
         return result(True)
 
     @staticmethod
-    def _check_integer_range(param: Parameter, rng: Any) -> Any:
+    def _check_integer_range(param: Parameter, rng: IntegerRange) -> SetParametersResult:
         lo, hi = sorted((rng.from_value, rng.to_value))
         value = param.value
         if value in (lo, hi):
@@ -370,7 +419,7 @@ class ParameterStore:
             )
         return result(True)
 
-    def _check_double_range(self, param: Parameter, rng: Any) -> Any:
+    def _check_double_range(self, param: Parameter, rng: FloatingPointRange) -> SetParametersResult:
         lo, hi = sorted((rng.from_value, rng.to_value))
         value = param.value
         tol = self.PARAM_REL_TOL
@@ -391,7 +440,12 @@ class ParameterStore:
                 )
         return result(True)
 
-    def set_descriptor(self, name: str, desc: Any, alternative_value: Any = None) -> Any:
+    def set_descriptor(
+        self,
+        name: str,
+        desc: ParameterDescriptor,
+        alternative_value: ParameterValue | None = None,
+    ) -> ParameterValue:
         """Replace a parameter's descriptor, keeping its value if it still fits, else taking
         `alternative_value` (a ParameterValue); returns the resulting ParameterValue."""
         with self._lock:
@@ -425,23 +479,29 @@ class ParameterStore:
     # -- callbacks ---------------------------------------------------------------------------
     # like rclpy, the newest callback runs first
     def add_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
+        """`callback(parameters)` may change the list being set, before any check."""
         self._pre_set.insert(0, callback)
 
     def add_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
+        """`callback(parameters)` may refuse a set (an unsuccessful SetParametersResult)."""
         self._on_set.insert(0, callback)
 
     def add_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
+        """`callback(parameters)` learns of every successful set."""
         self._post_set.insert(0, callback)
 
     def remove_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
+        """Forget a pre-set callback."""
         self._pre_set.remove(callback)
 
     def remove_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
+        """Forget an on-set callback."""
         self._on_set.remove(callback)
 
     def remove_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
+        """Forget a post-set callback."""
         self._post_set.remove(callback)
 
 
-def _is_value_msg(value: Any) -> bool:
+def _is_value_msg(value: object) -> TypeGuard[ParameterValue]:
     return hasattr(value, "type") and hasattr(value, "string_array_value")

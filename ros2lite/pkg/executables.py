@@ -57,10 +57,15 @@ _DEMOS = {
         'add_two_ints_client',
         'add_two_ints_client_async',
         'add_two_ints_server',
+        'introspection_client',
+        'introspection_service',
         'listener',
         'parameter_blackboard',
         'talker',
     ],
+    'lifecycle': ['lifecycle_listener'],
+    'lifecycle_py': ['lifecycle_talker'],
+    'rclpy_components': ['component_container', 'component_container_mt'],
     'rqt_graph': ['rqt_graph'],
     'teleop_twist_keyboard': ['teleop_twist_keyboard'],
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
@@ -98,6 +103,8 @@ class ExecutableNotFoundError(Ros2liteError, LookupError):
 
 
 class MultipleExecutablesError(Ros2liteError, LookupError):
+    """More than one executable answers to the name (ros2cli's error)."""
+
     def __init__(self, locations: Sequence[str]) -> None:
         super().__init__('Multiple executables found:' + ''.join(f'\n- {p}' for p in locations))
         self.locations = list(locations)
@@ -115,6 +122,7 @@ class PackageExecutable:
 
     @property
     def is_python(self) -> bool:
+        """Whether it is run with a Python interpreter (not an ament file)."""
         return self.origin != ORIGIN_AMENT
 
     def command(self, argv: Sequence[str] = (), python: str | None = None) -> list[str]:

@@ -209,6 +209,7 @@ class Grant:
     rules: tuple[Rule, ...] = field(default_factory=tuple)
 
     def valid_at(self, when: datetime.datetime) -> bool:
+        """Whether the grant's validity period includes `when`."""
         return (self.not_before is None or self.not_before <= when) and (
             self.not_after is None or when <= self.not_after
         )

@@ -85,6 +85,7 @@ def write_private_key(key: Any, path: Path) -> None:
 
 
 def write_certificate(cert: x509.Certificate, path: Path) -> None:
+    """Write a certificate as PEM."""
     write_file(path, cert.public_bytes(serialization.Encoding.PEM))
 
 

@@ -243,6 +243,7 @@ class NodeAccess:
 
     @property
     def fqn(self) -> str:
+        """'/namespace/name' of the node."""
         return self.namespace.rstrip('/') + '/' + self.name
 
 

@@ -9,11 +9,12 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass, field
-from typing import Any
 
 import zenoh
 
+from ros2lite.transport.handles import Session
 from ros2lite.transport.keys import EntityKind, parse_token
+from ros2lite.transport.session import as_zenoh
 
 __all__ = ["ConnectedSession", "router_sessions"]
 
@@ -29,8 +30,10 @@ class ConnectedSession:
     nodes: list[str] = field(default_factory=list)  # "/ns/name", with " (domain N)" if foreign
 
 
-def _router_info(session: Any, router_zid: str, timeout: float) -> dict[str, Any] | None:
-    replies = session.get(f"@/{router_zid}/router", zenoh.handlers.FifoChannel(16), timeout=timeout)
+def _router_info(session: Session, router_zid: str, timeout: float) -> dict[str, object] | None:
+    replies = as_zenoh(session).get(
+        f"@/{router_zid}/router", zenoh.handlers.FifoChannel(16), timeout=timeout
+    )
     for reply in replies:
         if reply.ok is None:
             continue
@@ -43,10 +46,12 @@ def _router_info(session: Any, router_zid: str, timeout: float) -> dict[str, Any
     return None
 
 
-def _node_names(session: Any, domain_id: int, timeout: float) -> dict[str, list[str]]:
+def _node_names(session: Session, domain_id: int, timeout: float) -> dict[str, list[str]]:
     names: dict[str, list[str]] = {}
-    replies = session.liveliness().get(
-        LIVELINESS_ALL, zenoh.handlers.FifoChannel(1 << 16), timeout=timeout
+    replies = (
+        as_zenoh(session)
+        .liveliness()
+        .get(LIVELINESS_ALL, zenoh.handlers.FifoChannel(1 << 16), timeout=timeout)
     )
     for reply in replies:
         if reply.ok is None:
@@ -62,7 +67,7 @@ def _node_names(session: Any, domain_id: int, timeout: float) -> dict[str, list[
 
 
 def router_sessions(
-    session: Any, domain_id: int, timeout: float = 2.0
+    session: Session, domain_id: int, timeout: float = 2.0
 ) -> list[ConnectedSession] | None:
     """The sessions (other than ``session`` itself) linked to the router ``session`` is
     connected to; None when there is no router or its admin space does not answer."""
@@ -75,7 +80,10 @@ def router_sessions(
     own = str(session.zid())
     names = _node_names(session, domain_id, timeout)
     out = []
-    for entry in info.get("sessions", []):
+    sessions = info.get("sessions", [])
+    for entry in sessions if isinstance(sessions, list) else []:
+        if not isinstance(entry, dict):
+            continue  # the admin space is outside data: skip what is not a session entry
         zid = str(entry.get("peer", ""))
         if not zid or zid == own:
             continue

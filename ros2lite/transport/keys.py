@@ -80,10 +80,12 @@ def mangle(name: str) -> str:
 
 
 def demangle(chunk: str) -> str:
+    """A name chunk of a key or token back to the ROS name ('%' → '/')."""
     return chunk.replace("%", "/")
 
 
 def liveliness_prefix(domain_id: int) -> str:
+    """The liveliness key prefix of a domain."""
     return f"{LIVELINESS_PREFIX}/{int(domain_id)}"
 
 
@@ -93,6 +95,8 @@ def liveliness_subscription_key(domain_id: int) -> str:
 
 
 class EntityKind(str, enum.Enum):
+    """The kind of a liveliness token (rmw_zenoh's two-letter codes)."""
+
     NODE = "NN"
     PUBLISHER = "MP"
     SUBSCRIPTION = "MS"
@@ -182,10 +186,12 @@ class Entity:
 
     @property
     def node_fqn(self) -> str:
+        """'/namespace/name' of the node owning the entity."""
         return node_fqn(self.namespace, self.node_name)
 
     @property
     def is_node(self) -> bool:
+        """Whether the token stands for a node (not one of its endpoints)."""
         return self.kind is EntityKind.NODE
 
     def to_token(self) -> str:

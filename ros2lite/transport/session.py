@@ -16,20 +16,24 @@ import threading
 from collections import deque
 from collections.abc import Callable
 from itertools import chain, islice
-from typing import Any, Protocol
+from typing import Any, cast
 
 import zenoh
 import zenoh.ext
 
 from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from ros2lite.transport.handles import Handle, Sample, Session
 from ros2lite.transport.keys import liveliness_subscription_key
 
 __all__ = [
     "Handle",
+    "Publisher",
     "Querier",
     "Request",
     "Sample",
     "SampleReceiver",
+    "Session",
+    "as_zenoh",
     "declare_liveliness_subscriber",
     "declare_publisher",
     "declare_querier",
@@ -40,25 +44,23 @@ __all__ = [
 ]
 
 
-class _Bytes(Protocol):
-    def to_bytes(self) -> bytes: ...
+Publisher = zenoh.Publisher | zenoh.ext.AdvancedPublisher
+"""A declared publisher: `.put(payload, attachment=…)` and `.undeclare()`."""
 
 
-class Sample(Protocol):
-    """What a received sample offers (a zenoh.Sample): its payload and attachment."""
-
-    @property
-    def payload(self) -> _Bytes: ...
-
-    @property
-    def attachment(self) -> _Bytes | None: ...
+_Subscriber = (
+    zenoh.Subscriber[zenoh.handlers.Handler[zenoh.Sample]]
+    | zenoh.ext.AdvancedSubscriber[zenoh.handlers.Handler[zenoh.Sample]]
+)
 
 
-class Handle(Protocol):
-    def undeclare(self) -> None: ...
+def as_zenoh(session: Session) -> zenoh.Session:
+    """The zenoh session behind the library's handle (only zenoh sessions are ever opened:
+    see :func:`ros2lite.transport.config.open_session`)."""
+    return cast(zenoh.Session, session)
 
 
-def undeclare_quietly(*handles: Any) -> None:
+def undeclare_quietly(*handles: Handle | None) -> None:
     """Undeclare what is given; errors only mean the session is already closed."""
     for handle in handles:
         if handle is not None:
@@ -67,16 +69,22 @@ def undeclare_quietly(*handles: Any) -> None:
 
 
 # -- graph ----------------------------------------------------------------------------------------
-def declare_token(session: Any, key: str) -> Handle:
-    token: Handle = session.liveliness().declare_token(key)
-    return token
+def declare_token(session: Session, key: str) -> Handle:
+    """A liveliness token: the graph sees the entity it names while the token lives."""
+    return as_zenoh(session).liveliness().declare_token(key)
 
 
-def liveliness_keys(session: Any, domain_id: int, timeout: float = 5.0) -> list[str]:
+def liveliness_keys(session: Session, domain_id: int, timeout: float = 5.0) -> list[str]:
     """Keys of every live token of the domain, from one complete liveliness query."""
     # an explicit large channel: the default handler can stall past a few hundred replies
-    replies = session.liveliness().get(
-        liveliness_subscription_key(domain_id), zenoh.handlers.FifoChannel(1 << 16), timeout=timeout
+    replies = (
+        as_zenoh(session)
+        .liveliness()
+        .get(
+            liveliness_subscription_key(domain_id),
+            zenoh.handlers.FifoChannel(1 << 16),
+            timeout=timeout,
+        )
     )
     keys = []
     for reply in replies:
@@ -87,17 +95,21 @@ def liveliness_keys(session: Any, domain_id: int, timeout: float = 5.0) -> list[
 
 
 def declare_liveliness_subscriber(
-    session: Any, domain_id: int, on_change: Callable[[str, bool], None]
+    session: Session, domain_id: int, on_change: Callable[[str, bool], None]
 ) -> Handle:
     """`on_change(key, alive)` for every token of the domain appearing or going away,
     starting with the ones alive now (history)."""
     put = zenoh.SampleKind.PUT
 
-    def callback(sample: Any) -> None:
+    def callback(sample: zenoh.Sample) -> None:
         on_change(str(sample.key_expr), sample.kind == put)
 
-    sub: Handle = session.liveliness().declare_subscriber(
-        liveliness_subscription_key(domain_id), zenoh.handlers.Callback(callback), history=True
+    sub: Handle = (
+        as_zenoh(session)
+        .liveliness()
+        .declare_subscriber(
+            liveliness_subscription_key(domain_id), zenoh.handlers.Callback(callback), history=True
+        )
     )
     return sub
 
@@ -111,18 +123,14 @@ def _transient_local(qos: QoSProfile) -> bool:
     return qos.durability == DurabilityPolicy.TRANSIENT_LOCAL
 
 
-def declare_publisher(session: Any, key: str, qos: QoSProfile) -> Any:
+def declare_publisher(session: Session, key: str, qos: QoSProfile) -> Publisher:
     """A publisher with `.put(payload, attachment=…)`, mapped from QoS as rmw_zenoh does:
     reliability, BLOCK congestion control only for reliable KEEP_ALL, and transient local
     through zenoh-ext's advanced publisher (a cache of `depth` samples)."""
     reliable = _reliable(qos)
     block = reliable and qos.history == HistoryPolicy.KEEP_ALL
-    options: dict[str, Any] = {
-        "reliability": zenoh.Reliability.RELIABLE if reliable else zenoh.Reliability.BEST_EFFORT,
-        "congestion_control": zenoh.CongestionControl.BLOCK
-        if block
-        else zenoh.CongestionControl.DROP,
-    }
+    reliability = zenoh.Reliability.RELIABLE if reliable else zenoh.Reliability.BEST_EFFORT
+    congestion = zenoh.CongestionControl.BLOCK if block else zenoh.CongestionControl.DROP
     if _transient_local(qos):
         # as rmw_zenoh: reliable + transient local also announces its last sequence number
         # (sporadic heartbeat), which subscribers' heartbeat recovery relies on
@@ -132,14 +140,17 @@ def declare_publisher(session: Any, key: str, qos: QoSProfile) -> Any:
             else None
         )
         return zenoh.ext.declare_advanced_publisher(
-            session,
+            as_zenoh(session),
             key,
             cache=zenoh.ext.CacheConfig(max(qos.depth, 1)),
             sample_miss_detection=miss,
             publisher_detection=True,
-            **options,
+            reliability=reliability,
+            congestion_control=congestion,
         )
-    return session.declare_publisher(key, **options)
+    return as_zenoh(session).declare_publisher(
+        key, reliability=reliability, congestion_control=congestion
+    )
 
 
 # Rust-side queue between zenoh and the pump thread (never below the QoS depth), and how many
@@ -163,14 +174,14 @@ class SampleReceiver:
 
     def __init__(
         self,
-        session: Any,
+        session: Session,
         key: str,
         qos: QoSProfile,
-        buffer: deque[Any],
+        buffer: deque[Any],  # samples, or (sample, arrival ns) with `stamp`
         on_batch: Callable[[], None],
         *,
         stamp: bool = False,
-        hook: Callable[[Any], None] | None = None,
+        hook: Callable[[Sample], None] | None = None,
         name: str = "",
     ) -> None:
         import time
@@ -188,8 +199,8 @@ class SampleReceiver:
                 if _reliable(qos)
                 else None
             )
-            self._sub: Any = zenoh.ext.declare_advanced_subscriber(
-                session,
+            self._sub: _Subscriber = zenoh.ext.declare_advanced_subscriber(
+                as_zenoh(session),
                 key,
                 handler,
                 history=zenoh.ext.HistoryConfig(
@@ -199,7 +210,7 @@ class SampleReceiver:
                 subscriber_detection=True,
             )
         else:
-            self._sub = session.declare_subscriber(key, handler)
+            self._sub = as_zenoh(session).declare_subscriber(key, handler)
         self._buffer = buffer
         self._on_batch = on_batch
         self._stamp = stamp
@@ -210,7 +221,7 @@ class SampleReceiver:
         )
         self._thread.start()
 
-    def _pump(self, channel: Any) -> None:
+    def _pump(self, channel: zenoh.handlers.Handler[zenoh.Sample]) -> None:
         """Block (GIL released) until a sample comes, then move the whole backlog at once.
         Ends when the subscriber is undeclared (the channel closes)."""
         recv = channel.recv
@@ -245,6 +256,7 @@ class SampleReceiver:
             on_batch()
 
     def undeclare(self) -> None:
+        """Stop receiving; the pump thread ends."""
         undeclare_quietly(self._sub)  # closes the channel, which ends the pump thread
         if self._thread is not threading.current_thread():
             # a pump still inside zenoh when the interpreter finalises aborts the process
@@ -257,8 +269,8 @@ class Request:
 
     __slots__ = ("_query", "attachment", "key", "payload")
 
-    def __init__(self, query: Any, key: str) -> None:
-        self._query = query
+    def __init__(self, query: zenoh.Query, key: str) -> None:
+        self._query: zenoh.Query | None = query
         self.key = key
         payload = query.payload
         attachment = query.attachment
@@ -282,11 +294,15 @@ class Request:
             query.drop()
 
 
-def declare_queryable(session: Any, key: str, on_request: Callable[[Request], None]) -> Handle:
+def declare_queryable(session: Session, key: str, on_request: Callable[[Request], None]) -> Handle:
     """A service server's queryable: `complete=True`, because rmw_zenoh clients query with
     target ALL_COMPLETE and would never reach an incomplete one."""
-    queryable: Handle = session.declare_queryable(
-        key, zenoh.handlers.Callback(lambda query: on_request(Request(query, key))), complete=True
+
+    def on_query(query: zenoh.Query) -> None:
+        on_request(Request(query, key))
+
+    queryable: Handle = as_zenoh(session).declare_queryable(
+        key, zenoh.handlers.Callback(on_query), complete=True
     )
     return queryable
 
@@ -294,14 +310,16 @@ def declare_queryable(session: Any, key: str, on_request: Callable[[Request], No
 class Querier:
     """A service client's querier: one query per request (ALL_COMPLETE, no consolidation)."""
 
-    def __init__(self, session: Any, key: str, timeout: float | None) -> None:
-        options: dict[str, Any] = {
-            "target": zenoh.QueryTarget.ALL_COMPLETE,
-            "consolidation": zenoh.ConsolidationMode.NONE,
-        }
+    def __init__(self, session: Session, key: str, timeout: float | None) -> None:
+        target, consolidation = zenoh.QueryTarget.ALL_COMPLETE, zenoh.ConsolidationMode.NONE
         if timeout is not None:
-            options["timeout"] = timeout
-        self._querier = session.declare_querier(key, **options)
+            self._querier = as_zenoh(session).declare_querier(
+                key, target=target, consolidation=consolidation, timeout=timeout
+            )
+        else:  # the session's queries_default_timeout applies
+            self._querier = as_zenoh(session).declare_querier(
+                key, target=target, consolidation=consolidation
+            )
 
     def get(
         self,
@@ -314,7 +332,7 @@ class Querier:
         the query is over (error: the text of an error reply or timeout, else None)."""
         error: list[str] = []
 
-        def reply(r: Any) -> None:
+        def reply(r: zenoh.Reply) -> None:
             ok = r.ok
             if ok is None:
                 err = r.err
@@ -334,8 +352,10 @@ class Querier:
         )
 
     def undeclare(self) -> None:
+        """Withdraw the querier."""
         undeclare_quietly(self._querier)
 
 
-def declare_querier(session: Any, key: str, timeout: float | None) -> Querier:
+def declare_querier(session: Session, key: str, timeout: float | None) -> Querier:
+    """A service client's querier; `timeout` None keeps the session's default."""
     return Querier(session, key, timeout)

@@ -7,8 +7,8 @@ from typing import Any
 
 from ros2lite.action import ActionClient
 from ros2lite.executors import SingleThreadedExecutor
-from ros2lite.msgs.action_msgs.msg import GoalStatus  # type: ignore[attr-defined]
-from ros2lite.msgs.example_interfaces.action import Fibonacci  # type: ignore[attr-defined]
+from ros2lite.msgs.action_msgs.msg import GoalStatus
+from ros2lite.msgs.example_interfaces.action import Fibonacci
 from ros2lite.node import Node
 from tests.action.alien import AlienFibonacciServer
 from tests.spinning import spin_until

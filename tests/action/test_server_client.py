@@ -15,9 +15,9 @@ from ros2lite.action import ActionClient, ActionServer, CancelResponse, GoalResp
 from ros2lite.action.server import ServerGoalHandle
 from ros2lite.callback_groups import ReentrantCallbackGroup
 from ros2lite.executors import MultiThreadedExecutor
-from ros2lite.msgs.action_msgs.msg import GoalStatus  # type: ignore[attr-defined]
-from ros2lite.msgs.action_msgs.srv import CancelGoal  # type: ignore[attr-defined]
-from ros2lite.msgs.example_interfaces.action import Fibonacci  # type: ignore[attr-defined]
+from ros2lite.msgs.action_msgs.msg import GoalStatus
+from ros2lite.msgs.action_msgs.srv import CancelGoal
+from ros2lite.msgs.example_interfaces.action import Fibonacci
 from ros2lite.node import Node
 from ros2lite.qos import qos_profile_action_status_default
 from tests.spinning import wait_until

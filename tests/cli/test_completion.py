@@ -81,6 +81,8 @@ def test_types_packages_and_executables() -> None:
         'add_two_ints_client',
         'add_two_ints_client_async',
         'add_two_ints_server',
+        'introspection_client',
+        'introspection_service',
         'listener',
         'parameter_blackboard',
         'talker',

@@ -70,9 +70,9 @@ def test_environment_search_path_in_a_fresh_process(tmp_path: Path) -> None:
 
 def test_import_hook_modules() -> None:
     # the modules are built at import time, so static checkers cannot see their names
-    from ros2lite.msgs.example_interfaces.action import Fibonacci  # type: ignore[attr-defined]
-    from ros2lite.msgs.example_interfaces.srv import AddTwoInts  # type: ignore[attr-defined]
-    from ros2lite.msgs.std_msgs.msg import String  # type: ignore[attr-defined]
+    from ros2lite.msgs.example_interfaces.action import Fibonacci
+    from ros2lite.msgs.example_interfaces.srv import AddTwoInts
+    from ros2lite.msgs.std_msgs.msg import String
 
     assert String(data='x').data == 'x'
     assert AddTwoInts.Request(a=1, b=2).b == 2

@@ -16,7 +16,7 @@ from ros2lite.exceptions import (
     ParameterNotDeclaredException,
     ParameterUninitializedException,
 )
-from ros2lite.msgs.rcl_interfaces.msg import (  # type: ignore[attr-defined]
+from ros2lite.msgs.rcl_interfaces.msg import (
     FloatingPointRange,
     IntegerRange,
     ParameterDescriptor,
@@ -260,7 +260,7 @@ def test_getters(store: ParameterStore) -> None:
 
 
 def test_set_descriptor(store: ParameterStore) -> None:
-    from ros2lite.msgs.rcl_interfaces.msg import ParameterValue  # type: ignore[attr-defined]
+    from ros2lite.msgs.rcl_interfaces.msg import ParameterValue
 
     store.declare_parameters("", [("speed", 50)])
     limited = ParameterDescriptor(

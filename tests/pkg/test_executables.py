@@ -54,6 +54,8 @@ def test_bundled_demos() -> None:
         'add_two_ints_client',
         'add_two_ints_client_async',
         'add_two_ints_server',
+        'introspection_client',
+        'introspection_service',
         'listener',
         'parameter_blackboard',
         'talker',

@@ -15,8 +15,8 @@ from __future__ import annotations
 
 import contextlib
 import os
-from collections.abc import Iterator
-from typing import Any
+from collections.abc import Callable, Iterator
+from typing import IO, TYPE_CHECKING
 
 from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import (
@@ -27,7 +27,12 @@ from ros2lite.bag.metadata import (
     parse_metadata,
     parse_qos_list,
 )
-from ros2lite.bag.storage import FileSummary
+from ros2lite.bag.storage import FileSummary, StorageReader, StorageWriter
+
+if TYPE_CHECKING:
+    from mcap.records import Channel, Metadata, Schema
+    from mcap.records import Message as McapMessage
+    from mcap.summary import Summary
 
 __all__ = [
     "COMPRESSIONS",
@@ -69,7 +74,7 @@ class _DirectFile:
         self._fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
         self._pos = 0
 
-    def write(self, data: Any) -> int:
+    def write(self, data: bytes | bytearray | memoryview) -> int:
         view = memoryview(data).cast("B")
         n = len(view)
         done = 0
@@ -142,6 +147,7 @@ class McapStorageWriter:
         return self._file.tell()
 
     def add_schema(self, type_name: str, encoding: str, text: str) -> int:
+        """Register a type's definition once; its schema id."""
         sid = self._schemas.get(type_name)
         if sid is None:
             sid = self._schemas[type_name] = self._writer.register_schema(
@@ -150,6 +156,7 @@ class McapStorageWriter:
         return sid
 
     def add_channel(self, topic: TopicMetadata, schema_id: int) -> int:
+        """Register a topic with its QoS and type hash; its channel id."""
         cid: int = self._writer.register_channel(
             topic.name,
             topic.serialization_format,
@@ -162,6 +169,7 @@ class McapStorageWriter:
         return cid
 
     def add_rosbag2_metadata(self, metadata: BagMetadata) -> None:
+        """Store the bag's metadata as known now in a `rosbag2` record."""
         self._writer.add_metadata(
             "rosbag2", {"serialized_metadata": dump_metadata(metadata, top_key=False)}
         )
@@ -193,7 +201,7 @@ class McapStorageWriter:
 # -- reading -------------------------------------------------------------------------------------
 
 
-def _topic(channel: Any, schema: Any) -> TopicMetadata:
+def _topic(channel: Channel, schema: Schema | None) -> TopicMetadata:
     meta = channel.metadata or {}
     try:
         qos = parse_qos_list(meta.get("offered_qos_profiles"))
@@ -208,7 +216,7 @@ def _topic(channel: Any, schema: Any) -> TopicMetadata:
     )
 
 
-def _rosbag2_record(record: Any) -> tuple[BagMetadata | None, str]:
+def _rosbag2_record(record: Metadata) -> tuple[BagMetadata | None, str]:
     data = record.metadata
     text = data.get("serialized_metadata")
     if text:
@@ -235,13 +243,14 @@ class McapStorageReader:
         except Exception as e:
             self._stream.close()
             raise BagError(f"'{path}' is not an MCAP file ({e or type(e).__name__})") from None
-        self._summary: Any = None
+        self._summary: Summary | None = None
         self._indexed: bool | None = None
 
     def close(self) -> None:
+        """Close the file."""
         self._stream.close()
 
-    def _mcap_summary(self) -> Any:
+    def _mcap_summary(self) -> Summary | None:
         """mcap's Summary, or None for a file that has none (or a broken end)."""
         if self._indexed is None:
             try:
@@ -252,10 +261,11 @@ class McapStorageReader:
         return self._summary if self._indexed else None
 
     def summary(self) -> FileSummary:
+        """From the summary section; a file without one is scanned."""
         s = self._mcap_summary()
-        if s is None:
+        stats = s.statistics if s is not None else None
+        if s is None or stats is None:  # (a summary counts only with its statistics)
             return self._scan_summary()
-        stats = s.statistics
         by_channel: dict[int, TopicMetadata] = {}
         topics: dict[str, TopicMetadata] = {}
         definitions: dict[str, tuple[str, str]] = {}
@@ -285,7 +295,7 @@ class McapStorageReader:
             ros_distro=distro,
         )
 
-    def _metadata_records(self) -> Iterator[Any]:
+    def _metadata_records(self) -> Iterator[Metadata]:
         s = self._summary
         if s is None or not s.metadata_indexes:
             return iter(())
@@ -317,9 +327,9 @@ class McapStorageReader:
         topics: dict[str, TopicMetadata] = {}
         definitions: dict[str, tuple[str, str]] = {}
         counts: dict[str, int] = {}
-        records: list[Any] = []
+        records: list[Metadata] = []
 
-        def on_channel(channel: Any, schema: Any) -> None:
+        def on_channel(channel: Channel, schema: Schema | None) -> None:
             t = _topic(channel, schema)
             topics.setdefault(t.name, t)
             counts.setdefault(t.name, 0)
@@ -359,16 +369,18 @@ def _text(data: bytes) -> str:
 
 
 def _scan(
-    stream: Any, on_metadata: Any = None, on_channel: Any = None
-) -> Iterator[tuple[dict[int, Any], Any, Any]]:
+    stream: IO[bytes],
+    on_metadata: Callable[[Metadata], object] | None = None,
+    on_channel: Callable[[Channel, Schema | None], object] | None = None,
+) -> Iterator[tuple[dict[int, Schema], Channel, McapMessage]]:
     """Every message record in file order, stopping quietly at the first record that cannot
     be read (a truncated chunk at the end of a killed recording)."""
     from mcap.records import Channel, Message, Metadata, Schema
     from mcap.stream_reader import StreamReader
 
     stream.seek(0)
-    schemas: dict[int, Any] = {}
-    channels: dict[int, Any] = {}
+    schemas: dict[int, Schema] = {}
+    channels: dict[int, Channel] = {}
     records = StreamReader(stream, skip_magic=False).records
     while True:
         try:
@@ -391,8 +403,16 @@ def _scan(
             on_metadata(record)
 
 
-def open_reader(path: str) -> McapStorageReader:
+def open_reader(path: str) -> StorageReader:
+    """The plugin's reader of one file."""
     return McapStorageReader(path)
+
+
+def open_writer(
+    path: str, *, compression: str = "none", chunk_size: int = DEFAULT_CHUNK_SIZE
+) -> StorageWriter:
+    """The plugin's writer of one new file."""
+    return McapStorageWriter(path, compression=compression, chunk_size=chunk_size)
 
 
 def recover(path: str) -> int:
@@ -414,7 +434,7 @@ def recover(path: str) -> int:
         writer.start(profile="ros2", library=_library())
         schema_ids: dict[int, int] = {}
         channel_ids: dict[int, int] = {}
-        metadata: list[Any] = []
+        metadata: list[Metadata] = []
         kept = 0
         for schemas, channel, m in _scan(src, on_metadata=metadata.append):
             cid = channel_ids.get(channel.id)

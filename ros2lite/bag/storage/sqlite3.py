@@ -10,16 +10,17 @@ from __future__ import annotations
 import contextlib
 import sqlite3
 from collections.abc import Iterator
-from typing import Any
 
 from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import TopicMetadata, parse_metadata, parse_qos_list
-from ros2lite.bag.storage import FileSummary
+from ros2lite.bag.storage import FileSummary, StorageReader
 
 __all__ = ["Sqlite3StorageReader", "open_reader"]
 
 
 class Sqlite3StorageReader:
+    """One `.db3` file of an older rosbag2 bag, read with SQL."""
+
     def __init__(self, path: str) -> None:
         import os
 
@@ -45,6 +46,7 @@ class Sqlite3StorageReader:
         raise BagError(f"'{path}' is not a readable sqlite3 bag ({error})")
 
     def close(self) -> None:
+        """Close the database."""
         self._db.close()
 
     def _tables(self) -> set[str]:
@@ -79,6 +81,7 @@ class Sqlite3StorageReader:
         return out
 
     def summary(self) -> FileSummary:
+        """Topics, counts and times from SQL aggregates (no message data read)."""
         try:
             return self._summary()
         except sqlite3.DatabaseError as e:
@@ -134,10 +137,11 @@ class Sqlite3StorageReader:
     def messages(
         self, topics: set[str] | None = None, start: int | None = None, stop: int | None = None
     ) -> Iterator[tuple[str, bytes, int, int]]:
+        """(topic, data, log time, log time) in time order, `start <= t < stop`."""
         names = {tid: t.name for tid, t in self._topic_rows()}
         query = "SELECT topic_id, timestamp, data FROM messages"
         where: list[str] = []
-        args: list[Any] = []
+        args: list[int] = []
         if start is not None:
             where.append("timestamp >= ?")
             args.append(start)
@@ -156,5 +160,6 @@ class Sqlite3StorageReader:
             raise BagError(f"'{self.path}' is not a readable sqlite3 bag ({e})") from None
 
 
-def open_reader(path: str) -> Sqlite3StorageReader:
+def open_reader(path: str) -> StorageReader:
+    """The plugin's reader of one file."""
     return Sqlite3StorageReader(path)

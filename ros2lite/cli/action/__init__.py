@@ -5,6 +5,7 @@ from __future__ import annotations
 from ..lazy import command_group
 
 VERBS = {
+    'echo': (__name__ + '.echo', 'Echo a action'),
     'find': (__name__ + '.find', 'Find actions from type'),
     'info': (__name__ + '.info', 'Print information about an action'),
     'list': (__name__ + '.list', 'Output a list of action names'),

@@ -7,7 +7,7 @@ then leaves with status 2, as ros2cli does.
 from __future__ import annotations
 
 import sys
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, TypeVar
 
 import click
 
@@ -16,11 +16,16 @@ from ..common import connect
 from ..errors import CliError
 
 if TYPE_CHECKING:
+    from ros2lite.action import ClientGoalHandle
     from ros2lite.connection import Connection
+    from ros2lite.interfaces import ActionType, Message
     from ros2lite.task import Future
+    from ros2lite.type_support import FeedbackMessage
+
+_T = TypeVar('_T')
 
 
-def action_class(action_type: str) -> tuple[str, Any]:
+def action_class(action_type: str) -> tuple[str, type[ActionType]]:
     """('pkg/action/Name', class) for 'pkg/action/Name' or 'pkg/Name'."""
     from ros2lite.action.goals import resolve_action_type
     from ros2lite.interfaces import InterfaceError
@@ -32,7 +37,7 @@ def action_class(action_type: str) -> tuple[str, Any]:
     return cls._TYPE_NAME, cls
 
 
-def build_goal(cls: Any, values: str) -> Any:
+def build_goal(cls: type[ActionType], values: str) -> Message:
     import yaml
 
     from ros2lite.interfaces import set_message_fields
@@ -51,9 +56,9 @@ class FeedbackPrinter:
     first feedback may overtake the server's answer to send_goal on the way here."""
 
     def __init__(self) -> None:
-        self._held: list[Any] | None = []
+        self._held: list[FeedbackMessage[Message]] | None = []
 
-    def __call__(self, message: Any) -> None:
+    def __call__(self, message: FeedbackMessage[Message]) -> None:
         if self._held is not None:
             self._held.append(message)
         else:
@@ -65,7 +70,7 @@ class FeedbackPrinter:
             self._print(message)
 
     @staticmethod
-    def _print(message: Any) -> None:
+    def _print(message: FeedbackMessage[Message]) -> None:
         from ros2lite.interfaces import message_to_yaml
 
         click.echo(f'Feedback:\n    {message_to_yaml(message.feedback)}')
@@ -115,9 +120,9 @@ def cli(
 
 def send_goal(
     conn: Connection,
-    cls: Any,
+    cls: type[ActionType],
     action_name: str,
-    goal: Any,
+    goal: Message,
     feedback: FeedbackPrinter | None,
     timeout: float | None,
 ) -> None:
@@ -163,15 +168,18 @@ def send_goal(
         client.destroy()
 
 
-def _outcome(conn: Connection, future: Future, doing: str) -> Any:
+def _outcome(conn: Connection, future: Future[_T], doing: str) -> _T:
     """Spin until `future` is done; its result, or ros2cli's error naming what failed."""
     conn.spin_until_future_complete(future)
     if future.cancelled() or future.exception() is not None:
         raise CliError(f'Exception while {doing}: {future.exception()!r}')
-    return future.result()
+    result = future.result()
+    if result is None:  # (goal handles and responses are never None)
+        raise CliError(f'Exception while {doing}: no result')
+    return result
 
 
-def _cancel(conn: Connection, goal_handle: Any) -> None:
+def _cancel(conn: Connection, goal_handle: ClientGoalHandle[Message, Message, Message]) -> None:
     from ros2lite.action.goals import goal_key
 
     click.echo('Canceling goal...')

@@ -10,14 +10,18 @@ from __future__ import annotations
 import os
 import time
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 import click
 
+from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
+
 from .options import bag_argument, bag_error, warn
 
+if TYPE_CHECKING:
+    from ros2lite.bag.reader import Reader
+
 LABEL = 19
-SERVICE_EVENT_SUFFIX = "/_service_event"
 
 
 def format_size(size: float) -> str:
@@ -62,7 +66,7 @@ def _lines(label: str, items: list[str], indent: int = LABEL) -> list[str]:
 
 
 def render(
-    path: Path, reader: Any, *, verbose: bool, sort: str, sizes: dict[str, int] | None
+    path: Path, reader: Reader, *, verbose: bool, sort: str, sizes: dict[str, int] | None
 ) -> str:
     m = reader.metadata
     topics = [
@@ -121,7 +125,7 @@ def render(
     return "\n".join(out) + "\n"
 
 
-def message_sizes(reader: Any) -> dict[str, int]:
+def message_sizes(reader: Reader) -> dict[str, int]:
     sizes: dict[str, int] = {}
     for topic, data, _log, _pub in reader.raw_messages():
         sizes[topic] = sizes.get(topic, 0) + len(data)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import sys
 import time
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import click
 
@@ -19,8 +19,11 @@ from ..common import ManyValues, connect
 from .options import bag_argument, bag_error, check_patterns, qos_overrides, shared_options
 
 if TYPE_CHECKING:
+    from collections.abc import Iterable
+
     from ros2lite.bag.player import Player
     from ros2lite.logging import RcutilsLogger
+    from ros2lite.node import Node
 
 
 @click.command("play")
@@ -146,7 +149,7 @@ def cli(
         _play(player, log, keyboard=not disable_keyboard_controls)
 
 
-def _absolute(node: Any, names: Any) -> list[str]:
+def _absolute(node: Node, names: Iterable[str]) -> list[str]:
     """Every form a given name may have in the bag: resolved (`/ns/x`) and, for relative
     names, as written (rosbag2 test bags hold names such as 'AAA')."""
     out = []

@@ -189,8 +189,10 @@ def cli(
             f"Compression mode '{compression_mode}' is not supported for MCAP; "
             f"use --compression-format alone (chunk compression)"
         )
-    events = [s.rstrip("/") + "/_service_event" for s in services]
-    excluded_events = [s.rstrip("/") + "/_service_event" for s in exclude_services]
+    from ros2lite.service_introspection import event_topic
+
+    events = [event_topic(s) for s in services]
+    excluded_events = [event_topic(s) for s in exclude_services]
     options = RecordOptions(
         topics=list(dict.fromkeys(_absolute(selected + events, node_name))),
         all_topics=all_ or all_topics,

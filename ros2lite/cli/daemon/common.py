@@ -2,14 +2,34 @@
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Sequence
+from typing import Protocol
+
+
+class Session(Protocol):
+    """What is shown of a session connected to the router (the daemon's ConnectedSession)."""
+
+    @property
+    def zid(self) -> str:
+        """The session's Zenoh id."""
+        ...
+
+    @property
+    def whatami(self) -> str:
+        """'peer', 'client' or 'router'."""
+        ...
+
+    @property
+    def nodes(self) -> list[str]:
+        """The ROS nodes it runs, by full name."""
+        ...
 
 
 def _plural(n: int, word: str) -> str:
     return f"{n} {word}" + ("" if n == 1 else "s")
 
 
-def table(sessions: list[Any]) -> list[str]:
+def table(sessions: Sequence[Session]) -> list[str]:
     """`Connected sessions: N`, then one line per session: mode, zid, its nodes."""
     lines = [f"Connected sessions: {len(sessions)}"]
     for s in sessions:
@@ -17,7 +37,7 @@ def table(sessions: list[Any]) -> list[str]:
     return lines
 
 
-def consequences(sessions: list[Any]) -> list[str]:
+def consequences(sessions: Sequence[Session]) -> list[str]:
     """What stopping the router did to the sessions that were connected to it."""
     if not sessions:
         return []

@@ -15,6 +15,8 @@ from ..common import connect, strategy_options
 from ..errors import CliError
 
 if TYPE_CHECKING:
+    from click.shell_completion import CompletionItem
+
     from ros2lite.connection import Connection
     from ros2lite.task import Future
 
@@ -59,7 +61,7 @@ def node_options(*, timeout: bool = True, node_required: bool = True) -> Callabl
 
     def decorate(fn: F) -> F:
         @functools.wraps(fn)
-        def verb(**kwargs: Any) -> Any:
+        def verb(**kwargs: Any) -> Any:  # click hands over its option values
             shared = {k: kwargs.pop(k) for k in _TARGET_OPTIONS if k in kwargs}
             return fn(target=Target(**shared), **kwargs)
 
@@ -105,14 +107,14 @@ class Remote:
         self.service_timeout = service_timeout
         self.client = AsyncParameterClient(conn.node(), fqn)
 
-    def call(self, service: str, *args: Any) -> Any:
+    def call(self, service: str, *args: object) -> Any:  # the response of `service`
         """Wait for `service`, call the client's method of that name with `args`, return the
         response."""
         if not self.client.wait_for_services(SERVICE_WAIT, [service]):
             raise CliError(
                 f"Wait for service timed out waiting for parameter services for node {self.fqn}"
             )
-        future: Future = getattr(self.client, service)(*args)
+        future: Future[object] = getattr(self.client, service)(*args)
         self.conn.spin_until_future_complete(future, self.service_timeout)
         if not future.done():
             why = f"service '{self.fqn}/{service}' did not answer within {self.service_timeout} s"
@@ -140,7 +142,7 @@ def with_remote(target: Target, body: Callable[[Remote], T]) -> T:
 
 def complete_parameter_names(
     ctx: click.Context, _param: click.Parameter, incomplete: str
-) -> list[Any]:
+) -> list[CompletionItem]:
     """Names of the node's parameters, asked of the node itself; quick, quiet and without
     starting the daemon, like the other completers (nothing when anything fails)."""
     from click.shell_completion import CompletionItem
@@ -166,7 +168,8 @@ def _remote_parameter_names(ctx: click.Context) -> list[str]:
             return []
         future = client.list_parameters()
         conn.spin_until_future_complete(future, 1.0)
-        return list(future.result().result.names) if future.done() else []
+        response = future.result() if future.done() else None
+        return list(response.result.names) if response is not None else []
 
 
 def type_name(type_number: int) -> str:

@@ -2,9 +2,16 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 import click
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.rcl_interfaces.msg import (
+        FloatingPointRange,
+        IntegerRange,
+        ParameterDescriptor,
+    )
 
 from .common import Target, complete_parameter_names, node_options, type_name, with_remote
 
@@ -26,14 +33,14 @@ def cli(
         click.echo("\n".join(render(descriptor)))
 
 
-def render(d: Any) -> list[str]:
+def render(d: ParameterDescriptor) -> list[str]:
     lines = [f"Parameter name: {d.name}", f"  Type: {type_name(d.type)}"]
     if d.description:
         lines.append(f"  Description: {d.description}")
     lines.append("  Constraints:")
     if d.read_only:
         lines.append("    Read only: true")
-    ranges = [*d.floating_point_range, *d.integer_range]
+    ranges: list[FloatingPointRange | IntegerRange] = [*d.floating_point_range, *d.integer_range]
     if ranges:
         lines += [f"    Min value: {ranges[0].from_value}", f"    Max value: {ranges[0].to_value}"]
         if ranges[0].step:

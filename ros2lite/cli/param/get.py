@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 import click
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.rcl_interfaces.msg import ParameterValue
 
 from ..errors import CliError
 from .common import Target, complete_parameter_names, node_options, with_remote
@@ -39,7 +42,7 @@ def cli(
     click.echo(render(values[0], hide_type))
 
 
-def render(value: Any, hide_type: bool) -> str:
+def render(value: ParameterValue, hide_type: bool) -> str:
     from ros2lite.parameter import parameter_value_to_python
 
     if value.type not in LABELS and value.type != 0:

@@ -3,9 +3,12 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 import click
+
+if TYPE_CHECKING:
+    from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
 
 from .common import Remote, Target, node_options, with_remote
 
@@ -25,7 +28,7 @@ def cli(
 ) -> None:
     """Load parameter file for a node."""
 
-    def load(remote: Remote) -> list[tuple[str, Any]]:
+    def load(remote: Remote) -> list[tuple[str, SetParametersResult]]:
         params = remote.client.file_parameters(parameter_file, not no_use_wildcard)
         response = remote.call("set_parameters", params)
         return list(zip([p.name for p in params], response.results, strict=False))

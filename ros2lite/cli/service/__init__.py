@@ -8,6 +8,7 @@ from ..lazy import LazyGroup
 
 VERBS = {
     'call': (__name__ + '.call', 'Call a service'),
+    'echo': (__name__ + '.echo', 'Echo a service'),
     'find': (__name__ + '.find', 'Output a list of available services of a given type'),
     'info': (__name__ + '.info', 'Print information about a service'),
     'list': (__name__ + '.list', 'Output a list of available services'),

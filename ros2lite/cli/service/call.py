@@ -4,9 +4,13 @@ from __future__ import annotations
 
 import sys
 import time
-from typing import Any
+from typing import TYPE_CHECKING
 
 import click
+
+if TYPE_CHECKING:
+    from ros2lite.client import Client
+    from ros2lite.interfaces import Message, ServiceType
 
 from .. import completion
 from ..common import connect, interface_type_name
@@ -52,7 +56,7 @@ def cli(
         invalid='The passed service type is invalid',
         not_kind='The passed type is not a service',
     )
-    srv_class = get_interface(type_name)
+    srv_class: type[ServiceType] = get_interface(type_name)
     fields = _parse_values(sys.stdin.read() if use_stdin else values or '{}')
     request = srv_class.Request()
     try:
@@ -74,7 +78,7 @@ def cli(
             time.sleep(max(0.0, last_call + period - time.monotonic()))
 
 
-def _parse_values(values: str) -> dict[str, Any]:
+def _parse_values(values: str) -> dict[str, object]:  # field values, from YAML
     import yaml
 
     try:
@@ -88,7 +92,7 @@ def _parse_values(values: str) -> dict[str, Any]:
     return parsed
 
 
-def _wait(client: Any, timeout: float | None) -> None:
+def _wait(client: Client[Message, Message], timeout: float | None) -> None:
     if client.service_is_ready():
         return
     click.echo('waiting for service to become available...')
@@ -96,7 +100,7 @@ def _wait(client: Any, timeout: float | None) -> None:
         raise CliError(f"Timed out after {timeout:g} s waiting for service '{client.srv_name}'")
 
 
-def _call(client: Any, request: Any, timeout: float | None) -> Any:
+def _call(client: Client[Message, Message], request: Message, timeout: float | None) -> Message:
     from ros2lite.client import ServiceCallError
 
     try:

@@ -32,7 +32,7 @@ def message_type_name(name: str) -> str:
     return full
 
 
-def compile_filter(expr: str | None) -> Callable[[Any], Any] | None:
+def compile_filter(expr: str | None) -> Callable[[object], object] | None:
     """`--filter EXPR` as a function of the message `m` (Python builtins available), as
     ros2cli has it: the user's own expression, run in this process."""
     if not expr:
@@ -42,7 +42,7 @@ def compile_filter(expr: str | None) -> Callable[[Any], Any] | None:
     except SyntaxError as e:
         raise CliError(f"Invalid filter expression '{expr}': {e.msg}") from None
 
-    def check(m: Any) -> Any:
+    def check(m: object) -> object:
         return eval(code, {'__builtins__': __builtins__}, {'m': m})
 
     return check

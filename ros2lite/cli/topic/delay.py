@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Protocol, cast
 
 import click
 
@@ -13,6 +13,15 @@ from .common import watch, window_option
 
 if TYPE_CHECKING:
     from ros2lite.monitor.stats import IntervalSummary
+    from ros2lite.msgs.std_msgs.msg import Header
+    from ros2lite.subscription import MessageInfo
+
+
+class _Stamped(Protocol):
+    """A message with a std_msgs/Header (the type is checked to have one)."""
+
+    header: Header
+
 
 DEFAULT_WINDOW_SIZE = 10000
 
@@ -42,8 +51,8 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
             raise CliError('msg does not have header')
         clock = conn.node().get_clock()
 
-        def on_sample(data: bytes, info: Any) -> None:
-            stamp = deserialize(type_name, data).header.stamp
+        def on_sample(data: bytes, info: MessageInfo) -> None:
+            stamp = cast(_Stamped, deserialize(type_name, data)).header.stamp
             now = clock.now().nanoseconds if clock.ros_time_is_active else info.received_timestamp
             if stats.add(now, stamp.sec * 1_000_000_000 + stamp.nanosec):
                 click.echo('time has reset, resetting counters')

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import click
 
@@ -14,8 +14,15 @@ from ..errors import CliError
 from .common import compile_filter, graph_type, message_type_name, monitor
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+    from ros2lite.interfaces.convert import FormatOptions
+    from ros2lite.monitor.stats import LostMessageCounter
     from ros2lite.monitor.topic import TopicMonitor
     from ros2lite.qos import QoSProfile
+    from ros2lite.subscription import MessageInfo
+
+    from ..common import QosOptions
 
 DEFAULT_TRUNCATE_LENGTH = 128
 CLEAR_SCREEN = '\x1b[H\x1b[2J'
@@ -38,11 +45,11 @@ class Printer:
         no_str: bool,
         flow_style: bool,
         raw: bool,
-        filter_fn: Callable[[Any], Any] | None,
+        filter_fn: Callable[[object], object] | None,
         once: bool,
         include_info: bool,
         clear: bool,
-        lost: Any,
+        lost: LostMessageCounter | None,
     ) -> None:
         from ros2lite.interfaces import deserialize
         from ros2lite.interfaces.classes import Message
@@ -52,7 +59,11 @@ class Printer:
         self.type_name = type_name
         self.csv = csv
         self.field = field
-        self.fmt = {'truncate_length': truncate_length, 'no_arr': no_arr, 'no_str': no_str}
+        self.fmt: FormatOptions = {
+            'truncate_length': truncate_length,
+            'no_arr': no_arr,
+            'no_str': no_str,
+        }
         self.flow_style = flow_style
         self.raw = raw
         self.filter_fn = filter_fn
@@ -64,15 +75,18 @@ class Printer:
         self.out = sys.stdout
 
     def report_lost(self) -> None:
+        """Print ros2cli's lines for messages lost since the last call."""
+        if self.lost is None:
+            return
         for change, total in self.lost.drain():
             self.out.write(
                 f'A message was lost!!!\n\ttotal count change:{change}\n\ttotal count: {total}---\n'
             )
 
-    def __call__(self, data: bytes, info: Any) -> None:
+    def __call__(self, data: bytes, info: MessageInfo) -> None:
         if self.lost is not None:
             self.report_lost()
-        value: Any = data if self.raw else self._deserialize(self.type_name, data)
+        value: object = data if self.raw else self._deserialize(self.type_name, data)
         if self.field is not None:
             for name in self.field:
                 try:
@@ -85,7 +99,7 @@ class Printer:
             self.done = True
         self.out.write(self.render(value, info))
 
-    def render(self, value: Any, info: Any) -> str:
+    def render(self, value: object, info: MessageInfo) -> str:
         from ros2lite.interfaces import message_to_csv, message_to_yaml
 
         head = CLEAR_SCREEN if self.clear else ''
@@ -107,7 +121,7 @@ class Printer:
         return head + message_to_yaml(value, flow_style=self.flow_style, **self.fmt) + '---\n'
 
 
-def info_dict(info: Any) -> dict[str, int]:
+def info_dict(info: MessageInfo) -> dict[str, int]:
     """rclpy's message-info dict; rmw_zenoh has no reception sequence number and says 0."""
     return {
         'source_timestamp': info.source_timestamp,
@@ -196,7 +210,7 @@ def cli(
     node_name: str | None,
     use_sim_time: bool,
     no_daemon: bool,
-    **qos: Any,
+    **qos: Unpack[QosOptions],
 ) -> None:
     """Output messages from a topic."""
     fields: list[str] | None = None
@@ -269,7 +283,7 @@ def warn_type_mismatch(watch: TopicMonitor, type_name: str) -> None:
     )
 
 
-def choose_qos(watch: TopicMonitor, options: dict[str, Any]) -> QoSProfile:
+def choose_qos(watch: TopicMonitor, options: QosOptions) -> QoSProfile:
     """The `--qos-*` profile, or the preset adapted to what every publisher offers."""
     profile = qos_from_options(**options)
     if explicit_qos(**options):

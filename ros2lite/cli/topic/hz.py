@@ -9,7 +9,7 @@ nor drop samples, and the rate stays exact at 10 kHz.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import click
 
@@ -21,6 +21,7 @@ if TYPE_CHECKING:
     from ros2lite.monitor.stats import IntervalSummary, RateStats
     from ros2lite.monitor.topic import TopicMonitor
     from ros2lite.node import Node
+    from ros2lite.subscription import MessageInfo
 
 DEFAULT_WINDOW_SIZE = 10000
 HEADER = ['topic', 'rate', 'min_delta', 'max_delta', 'std_dev', 'window']
@@ -122,7 +123,7 @@ def _subscribe(
     type_name: str,
     rate: RateStats,
     stamp: Callable[[int], int],
-    filter_fn: Callable[[Any], Any] | None,
+    filter_fn: Callable[[object], object] | None,
 ) -> None:
     """Count samples on arrival (Zenoh thread, nothing queued or decoded) unless a filter
     needs the message; then decode on the executor and use the arrival stamp it carries."""
@@ -139,7 +140,7 @@ def _subscribe(
         return
     from ros2lite.interfaces import deserialize
 
-    def count_matching(data: bytes, info: Any) -> None:
+    def count_matching(data: bytes, info: MessageInfo) -> None:
         if filter_fn(deserialize(type_name, data)):
             record(info.received_timestamp)
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 import time
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import click
 
@@ -14,8 +14,12 @@ from ..errors import CliError
 from .common import message_type_name
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
     from ros2lite.connection import Connection
     from ros2lite.qos import QoSProfile
+
+    from ..common import QosOptions
 
 WAIT_STEP = 0.1  # seconds between subscription-count checks while waiting
 
@@ -90,7 +94,7 @@ def cli(
     keep_alive: float,
     node_name: str | None,
     use_sim_time: bool,
-    **qos: Any,
+    **qos: Unpack[QosOptions],
 ) -> None:
     """Publish a message to a topic.
 
@@ -126,7 +130,7 @@ def cli(
         )
 
 
-def parse_values(values: str) -> dict[str, Any]:
+def parse_values(values: str) -> dict[str, object]:
     import yaml
 
     try:

@@ -3,38 +3,52 @@ the result, then exits."""
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 import ros2lite
 from ros2lite.action import ActionClient
 from ros2lite.demos.runner import run_node
-from ros2lite.msgs.action_msgs.msg import GoalStatus  # type: ignore[attr-defined]
-from ros2lite.msgs.action_tutorials_interfaces.action import (  # type: ignore[attr-defined]
+from ros2lite.msgs.action_msgs.msg import GoalStatus
+from ros2lite.msgs.action_tutorials_interfaces.action import (
     Fibonacci,
 )
 from ros2lite.node import Node
 
+if TYPE_CHECKING:
+    from ros2lite.action import ClientGoalHandle
+    from ros2lite.task import Future
+    from ros2lite.type_support import FeedbackMessage, GetResultResponse
+
+    _Handle = ClientGoalHandle[Fibonacci.Goal, Fibonacci.Result, Fibonacci.Feedback]
+
 
 class FibonacciActionClient(Node):
+    """action_tutorials_py's client: one goal, its feedback and result logged."""
+
     def __init__(self) -> None:
         super().__init__('fibonacci_action_client')
         self._action_client = ActionClient(self, Fibonacci, 'fibonacci')
 
-    def goal_response_callback(self, future: Any) -> None:
+    def goal_response_callback(self, future: Future[_Handle]) -> None:
+        """The server answered: ask for the result of an accepted goal."""
         goal_handle = future.result()
-        if not goal_handle.accepted:
+        if goal_handle is None or not goal_handle.accepted:
             self.get_logger().info('Goal rejected :(')
             return
         self.get_logger().info('Goal accepted :)')
         self._get_result_future = goal_handle.get_result_async()
         self._get_result_future.add_done_callback(self.get_result_callback)
 
-    def feedback_callback(self, feedback: Any) -> None:
+    def feedback_callback(self, feedback: FeedbackMessage[Fibonacci.Feedback]) -> None:
+        """Log each partial sequence."""
         self.get_logger().info(f'Received feedback: {feedback.feedback.partial_sequence}')
 
-    def get_result_callback(self, future: Any) -> None:
-        result = future.result().result
-        status = future.result().status
+    def get_result_callback(self, future: Future[GetResultResponse[Fibonacci.Result]]) -> None:
+        """Log the result, then leave."""
+        response = future.result()
+        assert response is not None  # the client never cancels this future
+        result = response.result
+        status = response.status
         if status == GoalStatus.STATUS_SUCCEEDED:
             self.get_logger().info(f'Goal succeeded! Result: {result.sequence}')
         else:
@@ -42,6 +56,7 @@ class FibonacciActionClient(Node):
         ros2lite.shutdown(context=self.context)  # leave after the result, as the demo does
 
     def send_goal(self) -> None:
+        """Wait for the server and send a goal of order 10."""
         self.get_logger().info('Waiting for action server...')
         self._action_client.wait_for_server()
         goal_msg = Fibonacci.Goal()
@@ -60,6 +75,7 @@ def _make() -> FibonacciActionClient:
 
 
 def main(args: list[str] | None = None) -> int:
+    """`fibonacci_action_client`'s entry point."""
     return run_node(_make, args)
 
 

@@ -7,19 +7,24 @@ as in the ROS demo.
 from __future__ import annotations
 
 import time
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.action import ActionServer, CancelResponse, GoalResponse
 from ros2lite.action.server import ServerGoalHandle
 from ros2lite.callback_groups import ReentrantCallbackGroup
 from ros2lite.demos.runner import run_main
-from ros2lite.msgs.action_tutorials_interfaces.action import (  # type: ignore[attr-defined]
+from ros2lite.msgs.action_tutorials_interfaces.action import (
     Fibonacci,
 )
 from ros2lite.node import Node
 
+if TYPE_CHECKING:
+    _Handle = ServerGoalHandle[Fibonacci.Goal, Fibonacci.Result, Fibonacci.Feedback]
+
 
 class FibonacciActionServer(Node):
+    """action_tutorials_py's server: Fibonacci sequences, one number a second."""
+
     def __init__(self) -> None:
         super().__init__('fibonacci_action_server')
         self._action_server = ActionServer(
@@ -33,19 +38,23 @@ class FibonacciActionServer(Node):
         )
 
     def destroy(self) -> None:
+        """Withdraw the action server, then the node."""
         self._action_server.destroy()
         super().destroy_node()
 
-    def goal_callback(self, goal_request: Any) -> GoalResponse:
+    def goal_callback(self, goal_request: Fibonacci.Goal) -> GoalResponse:
         # this server takes several goals at once
+        """Accept every goal."""
         self.get_logger().info('Received goal request')
         return GoalResponse.ACCEPT
 
-    def cancel_callback(self, goal_handle: ServerGoalHandle) -> CancelResponse:
+    def cancel_callback(self, goal_handle: _Handle) -> CancelResponse:
+        """Accept every cancel request."""
         self.get_logger().info('Received cancel request')
         return CancelResponse.ACCEPT
 
-    async def execute_callback(self, goal_handle: ServerGoalHandle) -> Any:
+    async def execute_callback(self, goal_handle: _Handle) -> Fibonacci.Result:
+        """Compute the sequence, publishing it as it grows; honour cancels."""
         self.get_logger().info('Executing goal...')
         feedback_msg = Fibonacci.Feedback()
         feedback_msg.partial_sequence = [0, 1]
@@ -68,6 +77,7 @@ class FibonacciActionServer(Node):
 
 
 def main(args: list[str] | None = None) -> int:
+    """`fibonacci_action_server`'s entry point."""
     import ros2lite
     from ros2lite.executors import MultiThreadedExecutor
 

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import ros2lite
 from ros2lite.demos.runner import run_main
-from ros2lite.msgs.example_interfaces.srv import AddTwoInts  # type: ignore[attr-defined]
+from ros2lite.msgs.example_interfaces.srv import AddTwoInts
 
 
 def request_once(a: int, b: int) -> None:
+    """Ask `add_two_ints` for a + b once, waiting for the server."""
     node = ros2lite.create_node('add_two_ints_client')
     client = node.create_client(AddTwoInts, 'add_two_ints')
     request = AddTwoInts.Request(a=a, b=b)
@@ -19,14 +20,16 @@ def request_once(a: int, b: int) -> None:
         result = future.result()
     except Exception as e:
         node.get_logger().info(f'Service call failed {e!r}')
-    else:
-        node.get_logger().info(
-            f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}'
-        )
+    else:  # None only if the call was cancelled, which nothing here does
+        if result is not None:
+            node.get_logger().info(
+                f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}'
+            )
     node.destroy_node()
 
 
 def main(args: list[str] | None = None) -> int:
+    """`add_two_ints_client`'s entry point."""
     return run_main(lambda: request_once(2, 3), args)
 
 

@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import ros2lite
 from ros2lite.demos.runner import run_main
-from ros2lite.msgs.example_interfaces.srv import AddTwoInts  # type: ignore[attr-defined]
+from ros2lite.msgs.example_interfaces.srv import AddTwoInts
 
 
 def request_async() -> None:
+    """Ask `add_two_ints` for 41 + 1, spinning until the answer comes."""
     node = ros2lite.create_node('add_two_ints_client')
     client = node.create_client(AddTwoInts, 'add_two_ints')
     while not client.wait_for_service(timeout_sec=1.0):
@@ -22,15 +23,17 @@ def request_async() -> None:
                 result = future.result()
             except Exception as e:
                 node.get_logger().info(f'Service call failed {e!r}')
-            else:
-                node.get_logger().info(
-                    f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}'
-                )
+            else:  # None only if the call was cancelled, which nothing here does
+                if result is not None:
+                    node.get_logger().info(
+                        f'Result of add_two_ints: for {request.a} + {request.b} = {result.sum}'
+                    )
             break
     node.destroy_node()
 
 
 def main(args: list[str] | None = None) -> int:
+    """`add_two_ints_client_async`'s entry point."""
     return run_main(request_async, args)
 
 

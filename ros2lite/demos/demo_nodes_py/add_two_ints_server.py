@@ -2,25 +2,29 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 from ros2lite.demos.runner import run_node
-from ros2lite.msgs.example_interfaces.srv import AddTwoInts  # type: ignore[attr-defined]
+from ros2lite.msgs.example_interfaces.srv import AddTwoInts
 from ros2lite.node import Node
 
 
 class AddTwoIntsServer(Node):
+    """demo_nodes_py's server of `add_two_ints`."""
+
     def __init__(self) -> None:
         super().__init__('add_two_ints_server')
         self.srv = self.create_service(AddTwoInts, 'add_two_ints', self.add_two_ints_callback)
 
-    def add_two_ints_callback(self, request: Any, response: Any) -> Any:
+    def add_two_ints_callback(
+        self, request: AddTwoInts.Request, response: AddTwoInts.Response
+    ) -> AddTwoInts.Response:
+        """Answer a + b, and log the request."""
         response.sum = request.a + request.b
         self.get_logger().info(f'Incoming request\na: {request.a} b: {request.b}')
         return response
 
 
 def main(args: list[str] | None = None) -> int:
+    """`add_two_ints_server`'s entry point."""
     return run_node(AddTwoIntsServer, args)
 
 

@@ -2,23 +2,25 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 from ros2lite.demos.runner import run_node
-from ros2lite.msgs.std_msgs.msg import String  # type: ignore[attr-defined]  # import hook
+from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.node import Node
 
 
 class Listener(Node):
+    """demo_nodes_py's listener of `chatter`."""
+
     def __init__(self) -> None:
         super().__init__('listener')
         self.sub = self.create_subscription(String, 'chatter', self.chatter_callback, 10)
 
-    def chatter_callback(self, msg: Any) -> None:
+    def chatter_callback(self, msg: String) -> None:
+        """Log what was heard."""
         self.get_logger().info(f'I heard: [{msg.data}]')
 
 
 def main(args: list[str] | None = None) -> int:
+    """`listener`'s entry point."""
     return run_node(Listener, args)
 
 

@@ -11,6 +11,8 @@ from ros2lite.node import Node
 
 
 class ParameterBlackboard(Node):
+    """A node that holds whatever parameters it is given or set."""
+
     def __init__(self) -> None:
         super().__init__(
             "parameter_blackboard",
@@ -25,6 +27,7 @@ class ParameterBlackboard(Node):
 
 
 def main(args: list[str] | None = None) -> int:
+    """`parameter_blackboard`'s entry point."""
     return run_node(ParameterBlackboard, args)
 
 

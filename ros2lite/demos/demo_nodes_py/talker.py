@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 from ros2lite.demos.runner import run_node
-from ros2lite.msgs.std_msgs.msg import String  # type: ignore[attr-defined]  # import hook
+from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.node import Node
 
 
 class Talker(Node):
+    """demo_nodes_py's talker on `chatter`."""
+
     def __init__(self) -> None:
         super().__init__('talker')
         self.i = 0
@@ -15,6 +17,7 @@ class Talker(Node):
         self.tmr = self.create_timer(1.0, self.timer_callback)
 
     def timer_callback(self) -> None:
+        """Publish the next 'Hello World: N'."""
         msg = String(data=f'Hello World: {self.i}')
         self.i += 1
         self.get_logger().info(f'Publishing: "{msg.data}"')
@@ -22,6 +25,7 @@ class Talker(Node):
 
 
 def main(args: list[str] | None = None) -> int:
+    """`talker`'s entry point."""
     return run_node(Talker, args)
 
 

@@ -27,6 +27,8 @@ class Box:
 
 @dataclass(frozen=True)
 class Layout:
+    """Where the boxes and edges of a graph go, and the picture's size."""
+
     boxes: dict[str, Box]
     edges: tuple[tuple[str, str, tuple[tuple[float, float], ...]], ...]  # source, target, path
     width: float

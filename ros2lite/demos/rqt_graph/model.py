@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
+from ros2lite.graph import Entity, EntityKind
 from ros2lite.names import is_hidden_name
 
 DEBUG_TOPICS = frozenset({'/rosout', '/parameter_events'})
@@ -27,6 +28,8 @@ class Endpoint:
 
 @dataclass(frozen=True)
 class Options:
+    """Which nodes and topics the picture leaves out (rqt_graph's check boxes)."""
+
     include_hidden: bool = False
     show_debug: bool = False
     show_leaf_topics: bool = False
@@ -67,16 +70,14 @@ def build(nodes: Iterable[str], endpoints: Iterable[Endpoint], options: Options)
     return Graph(tuple(shown_nodes), tuple(topics), tuple(edges))
 
 
-def from_node(node: object, options: Options) -> Graph:
-    """The graph as `node` (any ros2lite Node) sees it now."""
-    names: list[str] = []
-    endpoints: list[Endpoint] = []
-    for name, namespace in node.get_node_names_and_namespaces():  # type: ignore[attr-defined]
-        fqn = namespace.rstrip('/') + '/' + name
-        names.append(fqn)
-        for kind, query in (
-            ('pub', node.get_publisher_names_and_types_by_node),  # type: ignore[attr-defined]
-            ('sub', node.get_subscriber_names_and_types_by_node),  # type: ignore[attr-defined]
-        ):
-            endpoints += [Endpoint(fqn, kind, topic) for topic, _ in query(name, namespace)]
+def from_entities(entities: Iterable[Entity], options: Options) -> Graph:
+    """The graph a set of graph entities (a complete liveliness query) describes."""
+    entities = list(entities)
+    names = sorted({e.node_fqn for e in entities if e.is_node})
+    kinds = {EntityKind.PUBLISHER: 'pub', EntityKind.SUBSCRIPTION: 'sub'}
+    endpoints = [
+        Endpoint(e.node_fqn, kinds[e.kind], e.topic_name)
+        for e in entities
+        if e.kind in kinds and e.topic_name
+    ]
     return build(names, endpoints, options)

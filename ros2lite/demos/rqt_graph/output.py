@@ -39,6 +39,7 @@ def pixel_size(name: str, is_topic: bool) -> tuple[float, float]:
 
 
 def pixel_layout(graph: Graph) -> Layout:
+    """The graph laid out in pixels (the SVG's and the window's sizes)."""
     return layout(graph, pixel_size, layer_gap=70, node_gap=24, margin=16)
 
 

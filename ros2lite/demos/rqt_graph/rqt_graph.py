@@ -11,11 +11,14 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.demos.display import DisplayError, add_display_argument, choose, own_arguments
 from ros2lite.demos.rqt_graph import model
 from ros2lite.demos.runner import run_main
+
+if TYPE_CHECKING:
+    from ros2lite.node import Node
 
 REFRESH_SECONDS = 1.0
 OUTPUTS = ('.svg', '.dot', '.gv')
@@ -38,7 +41,8 @@ def write_output(path: str, graph: model.Graph) -> None:
         f.write(text)
 
 
-def graph_node() -> Any:
+def graph_node() -> Node:
+    """The hidden node the graph is read through."""
     from ros2lite.node import Node
 
     return Node(
@@ -47,6 +51,7 @@ def graph_node() -> Any:
 
 
 def run(options: argparse.Namespace) -> None:
+    """Show the live graph (or write it to a file) as the options say."""
     node = graph_node()
     filters = model.Options(
         include_hidden=options.include_hidden,
@@ -55,7 +60,12 @@ def run(options: argparse.Namespace) -> None:
     )
 
     def current() -> model.Graph:
-        return model.from_node(node, filters)
+        # one complete liveliness query per picture: a graph cache that has just started
+        # may not have heard every token yet
+        from ros2lite.graph import snapshot
+
+        context = node.context
+        return model.from_entities(snapshot(context.require(), context.domain_id), filters)
 
     if options.output:
         write_output(options.output, current())
@@ -83,6 +93,7 @@ def run(options: argparse.Namespace) -> None:
 
 
 def main(args: list[str] | None = None) -> int:
+    """`rqt_graph`'s entry point."""
     parser = argparse.ArgumentParser(
         prog='rqt_graph', description='Show the ROS graph: nodes, topics and who talks to whom.'
     )

@@ -7,14 +7,18 @@ from __future__ import annotations
 import sys
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.demos.display import DisplayError
 from ros2lite.demos.rqt_graph.layout import Layout, layout
 from ros2lite.demos.rqt_graph.model import Graph
 
+if TYPE_CHECKING:  # rich itself is imported where it draws
+    from rich.text import Text
+
 
 def cell_layout(graph: Graph) -> Layout:
+    """The graph laid out in terminal cells."""
     return layout(graph, lambda name, _t: (len(name) + 4, 3), layer_gap=4, node_gap=1, margin=1)
 
 
@@ -99,7 +103,8 @@ class GraphTerminal:
         if not sys.stdout.isatty():
             raise DisplayError('cannot draw on the terminal: standard output is not a terminal')
 
-    def picture(self, graph: Graph) -> Any:
+    def picture(self, graph: Graph) -> Text:
+        """The graph as rich text, one row per text line."""
         from rich.text import Text
 
         text = Text(no_wrap=True, overflow='crop')
@@ -118,6 +123,7 @@ class GraphTerminal:
         return text
 
     def run(self, current: Callable[[], Graph], ok: Callable[[], bool], period: float) -> None:
+        """Redraw whenever `current()` changes, every `period` s, while `ok()`."""
         from rich.console import Console
         from rich.live import Live
 

@@ -27,6 +27,7 @@ class GraphWindow:
         self.closed = True
 
     def draw(self, graph: Graph) -> None:
+        """Draw the graph on the canvas, sized to fit it."""
         lay = pixel_layout(graph)
         c = self.canvas
         c.delete('all')
@@ -44,6 +45,7 @@ class GraphWindow:
             c.create_text(box.x, box.y, text=box.name, fill='black')
 
     def run(self, current: Callable[[], Graph], ok: Callable[[], bool], period: float) -> None:
+        """Redraw whenever `current()` changes, every `period` s, until closed or not `ok()`."""
         shown = None
         next_check = 0.0
         try:

@@ -17,7 +17,10 @@ import os
 import select
 import sys
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ros2lite.node import Node
 
 ARROWS = {'A': 'up', 'B': 'down', 'C': 'right', 'D': 'left'}
 ESCAPE_WAIT = 0.05  # s: how long the rest of an escape sequence may take to arrive
@@ -29,7 +32,7 @@ class Keyboard:
     def __init__(self, fd: int | None = None, *, raw: bool = False) -> None:
         self.fd = sys.stdin.fileno() if fd is None else fd
         self.raw = raw
-        self._saved: list[Any] | None = None
+        self._saved: list[int | list[bytes | int]] | None = None  # termios attributes
 
     def __enter__(self) -> Keyboard:
         if not os.isatty(self.fd):
@@ -86,7 +89,7 @@ class Keyboard:
         return ARROWS.get(third, key + second + third)
 
 
-def key_loop(node: Any, banner: str, handle: Callable[[str], bool], *, raw: bool = False) -> None:
+def key_loop(node: Node, banner: str, handle: Callable[[str], bool], *, raw: bool = False) -> None:
     """Show `banner`, then pass each key to `handle` until it returns False, input ends or the
     context shuts down, with `node` spinning in the background and the terminal restored on
     every way out (what every teleop program does)."""

@@ -4,13 +4,16 @@ from __future__ import annotations
 
 import contextlib
 import threading
-from typing import Any
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ros2lite.node import Node
 
 
 class BackgroundSpin:
     """Spin `node` on a daemon thread until `stop()` (or shutdown); a context manager."""
 
-    def __init__(self, node: Any) -> None:
+    def __init__(self, node: Node) -> None:
         from ros2lite.executors import SingleThreadedExecutor
 
         self.node = node
@@ -33,5 +36,6 @@ class BackgroundSpin:
         self.stop()
 
     def stop(self) -> None:
+        """Stop spinning and wait (up to 5 s) for the thread."""
         self.executor.shutdown()
         self._thread.join(5.0)

@@ -73,6 +73,7 @@ CTRL_C = '\x03'
 
 
 def vels(speed: float, turn: float) -> str:
+    """The status line of the current speeds, as teleop_twist_keyboard prints it."""
     return f'currently:\tspeed {speed}\tturn {turn} '
 
 
@@ -88,11 +89,11 @@ class TeleopTwistKeyboard:
         if not self.stamped and self.frame_id:
             raise ValueError("'frame_id' can only be set when 'stamped' is True")
         if self.stamped:
-            from ros2lite.msgs.geometry_msgs.msg import TwistStamped  # type: ignore[attr-defined]
+            from ros2lite.msgs.geometry_msgs.msg import TwistStamped
 
             self._msg_type: Any = TwistStamped
         else:
-            from ros2lite.msgs.geometry_msgs.msg import Twist  # type: ignore[attr-defined]
+            from ros2lite.msgs.geometry_msgs.msg import Twist
 
             self._msg_type = Twist
         self.pub = self.node.create_publisher(self._msg_type, 'cmd_vel', 10)
@@ -102,6 +103,7 @@ class TeleopTwistKeyboard:
         self._direction: tuple[float, ...] = (0.0, 0.0, 0.0, 0.0)
 
     def publish(self, x: float, y: float, z: float, th: float) -> None:
+        """Publish one (stamped) Twist in direction (x, y, z, th) at the current speeds."""
         msg = self._msg_type()
         twist = msg
         if self.stamped:
@@ -148,6 +150,7 @@ def key_loop(teleop: TeleopTwistKeyboard) -> None:
 
 
 def main(args: list[str] | None = None) -> int:
+    """`teleop_twist_keyboard`'s entry point."""
     return run_main(lambda: key_loop(TeleopTwistKeyboard()), args)
 
 

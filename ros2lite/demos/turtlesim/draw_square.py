@@ -13,9 +13,9 @@ from typing import Any
 
 from ros2lite.demos.runner import run_node
 from ros2lite.demos.turtlesim.sim import f32
-from ros2lite.msgs.geometry_msgs.msg import Twist  # type: ignore[attr-defined]
-from ros2lite.msgs.std_srvs.srv import Empty  # type: ignore[attr-defined]
-from ros2lite.msgs.turtlesim.msg import Pose  # type: ignore[attr-defined]
+from ros2lite.msgs.geometry_msgs.msg import Twist
+from ros2lite.msgs.std_srvs.srv import Empty
+from ros2lite.msgs.turtlesim.msg import Pose
 from ros2lite.node import Node
 
 PI = 3.141592  # the tutorial's own
@@ -23,6 +23,8 @@ FORWARD, STOP_FORWARD, TURN, STOP_TURN = range(4)
 
 
 class DrawSquare(Node):
+    """turtlesim's `draw_square` node: turtle1 round a 2 m square."""
+
     def __init__(self) -> None:
         super().__init__('draw_square')
         self.twist_pub = self.create_publisher(Twist, 'turtle1/cmd_vel', 10)
@@ -30,39 +32,46 @@ class DrawSquare(Node):
         self.reset_client = self.create_client(Empty, 'reset')
         self.timer = self.create_timer(0.016, self.on_timer)
         self.reset_done = self.reset_client.call_async(Empty.Request())
-        self.pose: Any = None
+        self.pose: Any = None  # a turtlesim Pose once one came after the reset
         self.goal = Pose()
         self.state = FORWARD
         self.first_goal_set = False
 
     def on_pose(self, pose: Any) -> None:
+        """Keep the latest pose (once the reset is done)."""
         if self.reset_done.done():  # poses from before the reset are of the old turtle1
             self.pose = pose
 
     def reached_goal(self) -> bool:
+        """Whether the pose is at the goal (position and heading)."""
         p, g = self.pose, self.goal
         return abs(p.x - g.x) < 0.1 and abs(p.y - g.y) < 0.1 and abs(p.theta - g.theta) < 0.01
 
     def stopped(self) -> bool:
+        """Whether the turtle stands still."""
         return self.pose.angular_velocity < 0.0001 and self.pose.linear_velocity < 0.0001
 
     def print_goal(self) -> None:
+        """Log the new goal, as draw_square does."""
         g = self.goal
         self.get_logger().info(f'New goal [{g.x:f} {g.y:f}, {g.theta:f}]')
 
     def command(self, linear: float, angular: float) -> None:
+        """Publish one velocity command."""
         twist = Twist()
         twist.linear.x = linear
         twist.angular.z = angular
         self.twist_pub.publish(twist)
 
     def goal_ahead(self) -> None:
+        """Set the goal 2 m ahead of the turtle."""
         p = self.pose
         self.goal.x = f32(math.cos(p.theta) * 2 + p.x)
         self.goal.y = f32(math.sin(p.theta) * 2 + p.y)
         self.goal.theta = p.theta
 
     def on_timer(self) -> None:
+        """One 16 ms step of the square's state machine."""
         if self.pose is None:
             return
         if not self.first_goal_set:
@@ -105,6 +114,7 @@ class DrawSquare(Node):
 
 
 def main(args: list[str] | None = None) -> int:
+    """`draw_square`'s entry point."""
     return run_node(DrawSquare, args)
 
 

@@ -14,21 +14,21 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any, cast
 
 from ros2lite.action import ActionServer, CancelResponse
 from ros2lite.action.server import ServerGoalHandle
 from ros2lite.demos.turtlesim import sim
-from ros2lite.msgs.geometry_msgs.msg import Twist  # type: ignore[attr-defined]
-from ros2lite.msgs.rcl_interfaces.msg import (  # type: ignore[attr-defined]
+from ros2lite.msgs.geometry_msgs.msg import Twist
+from ros2lite.msgs.rcl_interfaces.msg import (
     IntegerRange,
     ParameterDescriptor,
     ParameterEvent,
 )
-from ros2lite.msgs.std_srvs.srv import Empty  # type: ignore[attr-defined]
-from ros2lite.msgs.turtlesim.action import RotateAbsolute  # type: ignore[attr-defined]
-from ros2lite.msgs.turtlesim.msg import Color, Pose  # type: ignore[attr-defined]
-from ros2lite.msgs.turtlesim.srv import (  # type: ignore[attr-defined]
+from ros2lite.msgs.std_srvs.srv import Empty
+from ros2lite.msgs.turtlesim.action import RotateAbsolute
+from ros2lite.msgs.turtlesim.msg import Color, Pose
+from ros2lite.msgs.turtlesim.srv import (
     Kill,
     SetPen,
     Spawn,
@@ -66,6 +66,17 @@ class Frame:
     steps: int
 
 
+if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+    from ros2lite.node_options import NodeOptions
+    from ros2lite.service import Service
+
+    _RotateHandle = ServerGoalHandle[
+        RotateAbsolute.Goal, RotateAbsolute.Result, RotateAbsolute.Feedback
+    ]
+
+
 class _TurtleInterface:
     """One turtle's topics, services and action on the node (created on spawn, gone on kill)."""
 
@@ -76,7 +87,7 @@ class _TurtleInterface:
         self.cmd_vel = node.create_subscription(Twist, f'{name}/cmd_vel', self._on_twist, TOPIC_QOS)
         self.pose = node.create_publisher(Pose, f'{name}/pose', TOPIC_QOS)
         self.color = node.create_publisher(Color, f'{name}/color_sensor', TOPIC_QOS)
-        self.services = [
+        self.services: list[Service[Any, Any]] = [
             node.create_service(SetPen, f'{name}/set_pen', self._on_set_pen),
             node.create_service(
                 TeleportRelative, f'{name}/teleport_relative', self._on_teleport_relative
@@ -93,10 +104,10 @@ class _TurtleInterface:
             handle_accepted_callback=self._on_accepted,
             cancel_callback=self._on_cancel,
         )
-        self._results: dict[ServerGoalHandle, Future] = {}
+        self._results: dict[_RotateHandle, Future[RotateAbsolute.Result]] = {}
 
     # -- inputs ----------------------------------------------------------------------------
-    def _on_twist(self, msg: Any) -> None:
+    def _on_twist(self, msg: Twist) -> None:
         world = self.node.world
         aborted = self.turtle.command(
             msg.linear.x, msg.linear.y, msg.angular.z, world.time, world.holonomic
@@ -107,21 +118,25 @@ class _TurtleInterface:
             )
             self.finish(aborted.goal, 'aborted')
 
-    def _on_set_pen(self, request: Any, response: Any) -> Any:
+    def _on_set_pen(self, request: SetPen.Request, response: SetPen.Response) -> SetPen.Response:
         self.turtle.set_pen(request.r, request.g, request.b, request.width, bool(request.off))
         return response
 
-    def _on_teleport_relative(self, request: Any, response: Any) -> Any:
+    def _on_teleport_relative(
+        self, request: TeleportRelative.Request, response: TeleportRelative.Response
+    ) -> TeleportRelative.Response:
         self.turtle.teleport_relative(request.linear, request.angular)
         return response
 
-    def _on_teleport_absolute(self, request: Any, response: Any) -> Any:
+    def _on_teleport_absolute(
+        self, request: TeleportAbsolute.Request, response: TeleportAbsolute.Response
+    ) -> TeleportAbsolute.Response:
         self.turtle.teleport_absolute(request.x, request.y, request.theta)
         return response
 
     # -- rotate_absolute: the world works the goal; the execute callback waits for its end ---
-    def _on_accepted(self, handle: ServerGoalHandle) -> None:
-        result = Future()
+    def _on_accepted(self, handle: _RotateHandle) -> None:
+        result: Future[RotateAbsolute.Result] = Future()
         self._results[handle] = result
         previous = self.turtle.start_goal(sim.RotateGoal(handle.request.theta, token=handle))
         if previous is not None:
@@ -131,25 +146,27 @@ class _TurtleInterface:
             self.finish(previous.goal, 'aborted')
         handle.execute()
 
-    async def _execute(self, handle: ServerGoalHandle) -> Any:
+    async def _execute(self, handle: _RotateHandle) -> RotateAbsolute.Result:
         future = self._results.get(handle)
         if future is None:  # ended before it started executing
             return RotateAbsolute.Result()
-        return await future
+        result = await future
+        return result if result is not None else RotateAbsolute.Result()
 
-    def _on_cancel(self, handle: ServerGoalHandle) -> CancelResponse:
+    def _on_cancel(self, handle: _RotateHandle) -> CancelResponse:
         goal = self.turtle.goal
         if goal is not None and goal.token == handle:
             goal.cancel_requested = True
         return CancelResponse.ACCEPT
 
     def feedback(self, goal: sim.RotateGoal, remaining: float) -> None:
-        goal.token.publish_feedback(RotateAbsolute.Feedback(remaining=remaining))
+        handle = cast('_RotateHandle', goal.token)  # the token is the goal's handle
+        handle.publish_feedback(RotateAbsolute.Feedback(remaining=remaining))
 
     def finish(self, goal: sim.RotateGoal, outcome: str) -> None:
         """End the goal's ROS side: its state, then its result (`delta`) to the waiting
         execute callback."""
-        handle: ServerGoalHandle = goal.token
+        handle = cast('_RotateHandle', goal.token)
         transition = {
             'succeeded': handle.succeed,
             'canceled': handle.canceled,
@@ -192,7 +209,7 @@ class _TurtleInterface:
         self.rotate.destroy()
 
 
-def _channel(description: str) -> Any:
+def _channel(description: str) -> ParameterDescriptor:
     return ParameterDescriptor(
         description=description,
         integer_range=[IntegerRange(from_value=0, to_value=255, step=1)],
@@ -203,7 +220,7 @@ class TurtlesimNode(Node):
     """Jazzy's `/turtlesim`: parameters, the four world services, and one interface per
     turtle, stepped every 16 ms."""
 
-    def __init__(self, *, world: sim.World | None = None, **kwargs: Any) -> None:
+    def __init__(self, *, world: sim.World | None = None, **kwargs: Unpack[NodeOptions]) -> None:
         super().__init__('turtlesim', **kwargs)
         self.world = world or sim.World()
         self.revision = 0  # bumped on every change a view could show
@@ -258,7 +275,7 @@ class TurtlesimNode(Node):
         self.world.background = (r, g, b)
         self.revision += 1
 
-    def _on_parameter_event(self, event: Any) -> None:
+    def _on_parameter_event(self, event: ParameterEvent) -> None:
         if event.node == self.get_fully_qualified_name():
             self._update_frame()  # turtlesim repaints on its own parameter events
 
@@ -280,14 +297,14 @@ class TurtlesimNode(Node):
         self.revision += 1
         return real_name
 
-    def _on_spawn(self, request: Any, response: Any) -> Any:
+    def _on_spawn(self, request: Spawn.Request, response: Spawn.Response) -> Spawn.Response:
         name = self._spawn(request.name, request.x, request.y, request.theta)
         if not name and request.name in self.world.turtles:
             self.get_logger().error(f'A turtle named [{request.name}] already exists')
         response.name = name
         return response
 
-    def _on_kill(self, request: Any, response: Any) -> Any:
+    def _on_kill(self, request: Kill.Request, response: Kill.Response) -> Kill.Response:
         if not self.world.kill(request.name):
             self.get_logger().error(f'Tried to kill turtle [{request.name}], which does not exist')
             return response
@@ -295,13 +312,13 @@ class TurtlesimNode(Node):
         self.revision += 1
         return response
 
-    def _on_clear(self, request: Any, response: Any) -> Any:
+    def _on_clear(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
         self.get_logger().info('Clearing turtlesim.')
         self.world.clear()
         self.revision += 1
         return response
 
-    def _on_reset(self, request: Any, response: Any) -> Any:
+    def _on_reset(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
         self.get_logger().info('Resetting turtlesim.')
         for interface in self._interfaces.values():
             interface.destroy()

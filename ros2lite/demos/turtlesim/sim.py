@@ -18,7 +18,7 @@ import struct
 from collections import deque
 from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Literal
 
 # turtlesim's own (rounded) pi: angles are normalised with it, so keep it for equal results
 PI = 3.14159265
@@ -68,6 +68,7 @@ class Pen:
 
     @property
     def rgb(self) -> tuple[int, int, int]:
+        """The pen's colour."""
         return (self.r, self.g, self.b)
 
 
@@ -90,13 +91,15 @@ class RotateGoal:
 
     theta: float
     start_theta: float = 0.0
-    token: Any = None
+    token: object = None
     cancel_requested: bool = False
     delta: float = 0.0  # turned so far (start - now), the action's result
 
 
 @dataclass(frozen=True)
 class GoalFeedback:
+    """A rotate goal's progress after a step (what the action publishes)."""
+
     turtle: str
     goal: RotateGoal
     remaining: float
@@ -122,6 +125,10 @@ class WallHit:
     y: float
 
 
+Event = GoalFeedback | GoalDone | WallHit
+"""Something a step did that the node reports (feedback, a goal's end, a wall)."""
+
+
 @dataclass
 class TurtleUpdate:
     """What one step did to one turtle: everything the node publishes or logs for it."""
@@ -129,7 +136,7 @@ class TurtleUpdate:
     name: str
     pose: Pose
     color: tuple[int, int, int]
-    events: list[Any] = field(default_factory=list)
+    events: list[Event] = field(default_factory=list)
 
 
 @dataclass(frozen=True)
@@ -159,6 +166,7 @@ class Turtle:
         self._teleports: list[_Teleport] = []
 
     def pose(self) -> Pose:
+        """The pose /pose publishes (float32 values, as turtlesim's message)."""
         return Pose(
             f32(self.x),
             f32(self.y),
@@ -189,9 +197,11 @@ class Turtle:
         self.pen = Pen(r, g, b, width if width != 0 else 1, False)
 
     def teleport_absolute(self, x: float, y: float, theta: float) -> None:
+        """Move to (x, y, theta) at the next step, drawing if the pen is down."""
         self._teleports.append(_Teleport(x, y, theta, 0.0, False))
 
     def teleport_relative(self, linear: float, angular: float) -> None:
+        """Turn, then move `linear` ahead, at the next step."""
         self._teleports.append(_Teleport(0.0, 0.0, angular, linear, True))
 
     def start_goal(self, goal: RotateGoal) -> GoalDone | None:
@@ -202,6 +212,13 @@ class Turtle:
         return GoalDone(self.name, previous, 'aborted') if previous is not None else None
 
 
+Stroke = (
+    tuple[Literal['clear']]
+    | tuple[Literal['line'], float, float, float, float, tuple[int, int, int], int]
+)
+"""What a view replays: ('line', x0, y0, x1, y1, rgb, width) or ('clear',)."""
+
+
 class Canvas:
     """The path image (500x500 RGBA, transparent where nothing was drawn) and, for a view, the
     log of what was drawn since it last looked (`drain()`)."""
@@ -210,10 +227,11 @@ class Canvas:
         self.size = size
         self.pixels = bytearray(size * size * 4)
         self.keep_strokes = False  # a view sets it, then must drain()
-        self._strokes: deque[tuple[Any, ...]] = deque()
+        self._strokes: deque[Stroke] = deque()
         self.clear()
 
     def clear(self) -> None:
+        """Wipe every path (a view replays it as 'clear')."""
         self.pixels[:] = bytes((*EMPTY_PIXEL, 0)) * (self.size * self.size)
         if self.keep_strokes:
             self._strokes.append(('clear',))
@@ -227,6 +245,7 @@ class Canvas:
         return (self.pixels[i], self.pixels[i + 1], self.pixels[i + 2])
 
     def is_drawn(self, px: int, py: int) -> bool:
+        """Whether a path crossed this pixel."""
         return (
             0 <= px < self.size
             and 0 <= py < self.size
@@ -251,9 +270,10 @@ class Canvas:
             self._strokes.append(('line', x0, y0, x1, y1, rgb, width))
 
     def has_strokes(self) -> bool:
+        """Whether strokes wait for a view to drain them."""
         return bool(self._strokes)
 
-    def drain(self) -> list[tuple[Any, ...]]:
+    def drain(self) -> list[Stroke]:
         """Strokes drawn since the last call: ('line', x0, y0, x1, y1, rgb, width) or ('clear',)."""
         out = []
         while True:
@@ -316,9 +336,11 @@ class World:
         return name
 
     def kill(self, name: str) -> bool:
+        """Remove a turtle; False if there is none of that name."""
         return self.turtles.pop(name, None) is not None
 
     def clear(self) -> None:
+        """Wipe the paths (the turtles stay)."""
         self.canvas.clear()
 
     def remove_all(self) -> list[Turtle]:
@@ -344,7 +366,7 @@ class World:
         return [self._update(self.turtles[name]) for name in sorted(self.turtles)]
 
     def _update(self, t: Turtle) -> TurtleUpdate:
-        events: list[Any] = []
+        events: list[Event] = []
         canvas = self.canvas
         # teleports first, in order, each drawn with the pen
         for req in t._teleports:

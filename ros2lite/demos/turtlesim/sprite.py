@@ -43,6 +43,7 @@ SHAPE: tuple[tuple[list[tuple[float, float]], str], ...] = (
 
 
 def colours(sprite: int) -> dict[str, tuple[int, int, int]]:
+    """A turtle sprite's shell and skin colours."""
     return {'shell': SHELLS[sprite % len(SHELLS)], 'skin': SKIN}
 
 
@@ -64,5 +65,6 @@ def parts(
 
 
 def hex_colour(rgb: tuple[int, int, int]) -> str:
+    """'#rrggbb' of a colour (what tkinter takes)."""
     r, g, b = rgb
     return f'#{r:02x}{g:02x}{b:02x}'

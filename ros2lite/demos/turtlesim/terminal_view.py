@@ -16,10 +16,17 @@ import threading
 import time
 from collections import deque
 from collections.abc import Callable, Iterator
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.demos.display import DisplayError
 from ros2lite.demos.turtlesim import sim, sprite
+
+if TYPE_CHECKING:  # rich itself is imported where it draws
+    from rich.console import Console, ConsoleOptions
+    from rich.segment import Segment
+    from rich.style import Style
+
+    from ros2lite.demos.turtlesim.node import TurtlesimNode
 
 FRAME_SECONDS = 0.05  # 20 redraws a second at most; only when something changed
 UPPER_HALF = '\u2580'
@@ -37,6 +44,7 @@ class LogLines:
         self._lines: deque[str] = deque()
 
     def write(self, text: str) -> int:
+        """Queue the complete lines of `text` (the rest waits for its newline)."""
         with self._lock:
             text = self._partial + text
             *lines, self._partial = text.split('\n')
@@ -44,18 +52,22 @@ class LogLines:
         return len(text)
 
     def flush(self) -> None:
+        """Nothing to do: lines are shown when the view draws."""
         pass
 
     def isatty(self) -> bool:
+        """Loggers may colour their output: it ends up on the terminal."""
         return True
 
     def drain(self) -> list[str]:
+        """The complete lines queued since the last call."""
         with self._lock:
             lines = list(self._lines)
             self._lines.clear()
             return lines
 
     def rest(self) -> str:
+        """What was written after the last newline."""
         with self._lock:
             return self._partial
 
@@ -68,17 +80,17 @@ class Picture:
         self.side = side
         self.title = title
 
-    def __rich_console__(self, console: Any, options: Any) -> Iterator[Any]:
+    def __rich_console__(self, console: Console, options: ConsoleOptions) -> Iterator[Segment]:
         from rich.segment import Segment
 
         yield from _segments(self.pixels, self.side)
         yield Segment(self.title)
 
 
-_styles: dict[tuple[tuple[int, int, int], tuple[int, int, int]], Any] = {}
+_styles: dict[tuple[tuple[int, int, int], tuple[int, int, int]], Style] = {}
 
 
-def _style(top: tuple[int, int, int], bottom: tuple[int, int, int]) -> Any:
+def _style(top: tuple[int, int, int], bottom: tuple[int, int, int]) -> Style:
     style = _styles.get((top, bottom))
     if style is None:
         from rich.color import Color
@@ -89,7 +101,7 @@ def _style(top: tuple[int, int, int], bottom: tuple[int, int, int]) -> Any:
     return style
 
 
-def _segments(pixels: list[tuple[int, int, int]], side: int) -> Iterator[Any]:
+def _segments(pixels: list[tuple[int, int, int]], side: int) -> Iterator[Segment]:
     from rich.segment import Segment
 
     for row in range(0, side - 1, 2):
@@ -113,7 +125,7 @@ def _segments(pixels: list[tuple[int, int, int]], side: int) -> Iterator[Any]:
 class TerminalView:
     """The live canvas on stdout; `run(stop)` until `stop()` or Ctrl-C."""
 
-    def __init__(self, node: Any) -> None:
+    def __init__(self, node: TurtlesimNode) -> None:
         if not sys.stdout.isatty():
             raise DisplayError('cannot draw on the terminal: standard output is not a terminal')
         from rich.console import Console
@@ -223,7 +235,7 @@ class TerminalView:
         saved_stderr = sys.stderr
         if logs is not None:
             sys.stderr = logs
-        last: Any = None
+        last: object = None
         try:
             with Live(console=self.console, auto_refresh=False, transient=False) as live:
                 while not stop():

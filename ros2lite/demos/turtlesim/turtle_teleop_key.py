@@ -9,9 +9,16 @@ to the orientation they sit at from F, F cancels the goal, Q quits. Its node is
 from __future__ import annotations
 
 import sys
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.demos.runner import run_main
+
+if TYPE_CHECKING:
+    from ros2lite.action import ClientGoalHandle
+    from ros2lite.msgs.turtlesim.action import RotateAbsolute
+    from ros2lite.task import Future
+
+    _Handle = ClientGoalHandle[RotateAbsolute.Goal, RotateAbsolute.Result, RotateAbsolute.Feedback]
 
 INSTRUCTIONS = (
     'Reading from keyboard\n'
@@ -41,8 +48,8 @@ class TeleopTurtle:
 
     def __init__(self) -> None:
         from ros2lite.action import ActionClient
-        from ros2lite.msgs.geometry_msgs.msg import Twist  # type: ignore[attr-defined]
-        from ros2lite.msgs.turtlesim.action import RotateAbsolute  # type: ignore[attr-defined]
+        from ros2lite.msgs.geometry_msgs.msg import Twist
+        from ros2lite.msgs.turtlesim.action import RotateAbsolute
         from ros2lite.node import Node
 
         self.node = Node('teleop_turtle')
@@ -52,9 +59,10 @@ class TeleopTurtle:
         self._rotate = RotateAbsolute
         self.twist_pub = self.node.create_publisher(Twist, 'turtle1/cmd_vel', 1)
         self.rotate_client = ActionClient(self.node, RotateAbsolute, 'turtle1/rotate_absolute')
-        self.goal_handle: Any = None
+        self.goal_handle: _Handle | None = None
 
     def key(self, key: str) -> bool:
+        """Act on one key (move, rotate, cancel); False for Q (quit)."""
         key = key.lower() if len(key) == 1 else key
         if key == 'q':
             return False
@@ -71,14 +79,16 @@ class TeleopTurtle:
         return True
 
     def send_goal(self, theta: float) -> None:
+        """Ask rotate_absolute to turn turtle1 to `theta`."""
         future = self.rotate_client.send_goal_async(self._rotate.Goal(theta=theta))
         future.add_done_callback(self._on_goal_response)
 
-    def _on_goal_response(self, future: Any) -> None:
+    def _on_goal_response(self, future: Future[_Handle]) -> None:
         self.node.get_logger().debug('Goal response received')
         self.goal_handle = future.result()
 
     def cancel_goal(self) -> None:
+        """Cancel the last rotate goal, if any."""
         if self.goal_handle is not None:
             self.node.get_logger().debug('Sending cancel request')
             self.goal_handle.cancel_goal_async()
@@ -92,6 +102,7 @@ def key_loop(teleop: TeleopTurtle) -> None:
 
 
 def main(args: list[str] | None = None) -> int:
+    """`turtle_teleop_key`'s entry point."""
     return run_main(lambda: key_loop(TeleopTurtle()), args)
 
 

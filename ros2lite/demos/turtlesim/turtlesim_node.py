@@ -10,13 +10,16 @@ from __future__ import annotations
 import argparse
 import threading
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.demos.display import DisplayError, add_display_argument, choose, own_arguments
 from ros2lite.demos.runner import run_main
 
+if TYPE_CHECKING:
+    from ros2lite.demos.turtlesim.node import TurtlesimNode
 
-def open_view(kind: str, node: Any) -> Callable[[Callable[[], bool]], None] | None:
+
+def open_view(kind: str, node: TurtlesimNode) -> Callable[[Callable[[], bool]], None] | None:
     """A started view of `kind` ('window', 'terminal'), as a blocking `run(stop)`; None for
     'none'. Raises DisplayError when it cannot open."""
     if kind == 'window':
@@ -30,7 +33,7 @@ def open_view(kind: str, node: Any) -> Callable[[Callable[[], bool]], None] | No
     return None
 
 
-def run_with_display(node: Any, requested: str) -> None:
+def run_with_display(node: TurtlesimNode, requested: str) -> None:
     """Spin `node` and show it on the first display of `requested` that opens."""
     from ros2lite.executors import SingleThreadedExecutor
 
@@ -70,6 +73,7 @@ def run_with_display(node: Any, requested: str) -> None:
 
 
 def main(args: list[str] | None = None) -> int:
+    """`turtlesim_node`'s entry point (`--display auto|window|terminal|none`)."""
     parser = argparse.ArgumentParser(
         prog='turtlesim_node', description='The turtlesim node (Jazzy\'s interface).'
     )

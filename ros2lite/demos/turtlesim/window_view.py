@@ -11,10 +11,13 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ros2lite.demos.display import open_window
 from ros2lite.demos.turtlesim import sim, sprite
+
+if TYPE_CHECKING:
+    from ros2lite.demos.turtlesim.node import Frame, TurtlesimNode
 
 FRAME_SECONDS = sim.DT  # redraw as often as the world steps
 
@@ -22,7 +25,7 @@ FRAME_SECONDS = sim.DT  # redraw as often as the world steps
 class WindowView:
     """A `TurtleSim` window on the node's world; `run(stop)` until closed or `stop()`."""
 
-    def __init__(self, node: Any) -> None:
+    def __init__(self, node: TurtlesimNode) -> None:
         import tkinter
 
         self.root = open_window('turtlesim', 'TurtleSim')
@@ -79,7 +82,7 @@ class WindowView:
                 if left < right and top < bottom:
                     self.path.put(colour, to=(left, top, right, bottom))
 
-    def _draw_turtles(self, frame: Any) -> None:
+    def _draw_turtles(self, frame: Frame) -> None:
         seen = set()
         for t in frame.turtles:
             seen.add(t.name)

@@ -395,3 +395,40 @@ def test_sigint_under_load_keeps_a_gapless_prefix(
         got = [m.data for _, m, _ in bag]
     assert len(got) > 100
     assert got == sent[: len(got)]  # everything received up to the stop, no gaps
+
+
+def test_services_are_recorded_from_their_introspection_events(
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any
+) -> None:
+    from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.qos import qos_profile_system_default
+    from ros2lite.service_introspection import ServiceIntrospectionState
+
+    add = get_interface("example_interfaces/srv/AddTwoInts")
+    service = node.create_service(add, "/rec_add", lambda rq, rs: add.Response(sum=rq.a + rq.b))
+    client = node.create_client(add, "/rec_add")
+    other = node.create_service(add, "/rec_other", lambda rq, rs: rs)
+    for end in (service, client, other):
+        end.configure_introspection(
+            node.get_clock(), qos_profile_system_default, ServiceIntrospectionState.CONTENTS
+        )
+    events = "/rec_add/_service_event"
+    seen: list[Any] = []
+    node.create_subscription(f"{add._TYPE_NAME}_Event", events, seen.append, 10)
+    rec = recording(tmp_path / "bag", "--services", "/rec_add")
+    wait_until(lambda: subscribed(ros_context, events, count=2), timeout=20)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(node)
+    future = client.call_async(add.Request(a=20, b=22))
+    executor.spin_until_future_complete(future, timeout_sec=10)
+    assert future.result().sum == 42
+    executor.spin_until(lambda: len(seen) == 4, 10)  # the recorder hears them as we do
+    executor.shutdown()
+    code, _out, err = rec.finish(signal.SIGINT)
+    assert code == 0, err
+    with Reader(tmp_path / "bag") as bag:
+        assert [t.name for t in bag.topics] == [events]  # /rec_other is not asked for
+        assert bag.topic(events).type == "example_interfaces/srv/AddTwoInts_Event"  # type: ignore[union-attr]
+        got = [m for _, m, _ in bag]
+    assert sorted(e.info.event_type for e in got) == [0, 1, 2, 3]
+    assert {r.sum for e in got for r in e.response} == {42}

@@ -13,7 +13,7 @@ from typing import Any
 
 import pytest
 
-from ros2lite.msgs.geometry_msgs.msg import Twist  # type: ignore[attr-defined]
+from ros2lite.msgs.geometry_msgs.msg import Twist
 from ros2lite.node import Node
 from tests.demos.ptyproc import PtyProcess, ros2lite_argv
 from tests.demos.screenshot import screenshot

@@ -8,7 +8,7 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from ros2lite.msgs.geometry_msgs.msg import Twist  # type: ignore[attr-defined]
+from ros2lite.msgs.geometry_msgs.msg import Twist
 from ros2lite.node import Node
 from tests.cli.conftest import Result, run_process
 from tests.demos.turtlesim.test_node import settle

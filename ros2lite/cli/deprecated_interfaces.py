@@ -1,0 +1,97 @@
+"""`msg` and `srv`: ros2cli's deprecated per-kind views of `interface`, kept because old
+tutorials still type them. Every verb first says, on stderr, what to use instead (ros2cli's
+own deprecation line), then prints what ros2msg/ros2srv printed."""
+
+from __future__ import annotations
+
+import click
+
+from .errors import CliError
+
+_WORDS = {'msg': 'message', 'srv': 'service'}
+_FLAGS = {'msg': '-m', 'srv': '-s'}
+
+
+def _deprecated(kind: str, instead: str) -> None:
+    click.echo(
+        f"'ros2 {kind}' is deprecated and will be removed in a future ROS release. "
+        f"Instead use: 'ros2 interface {instead}'",
+        err=True,
+    )
+
+
+def _names(kind: str, package: str) -> list[str]:
+    from ros2lite.interfaces.registry import default_registry
+
+    if package not in default_registry().packages():
+        raise CliError('Unknown package name')
+    return [n for n in default_registry().package_interfaces(package) if n.split('/')[1] == kind]
+
+
+def list_verb(kind: str) -> click.Command:
+    """`<kind> list`: every type of that kind, sorted by package and name."""
+
+    @click.command('list', help=f'Output a list of available {_WORDS[kind]} types.')
+    def cli() -> None:
+        from ros2lite.interfaces import list_interfaces
+
+        _deprecated(kind, f'list {_FLAGS[kind]}')
+        for name in list_interfaces():
+            if name.split('/')[1] == kind:
+                click.echo(name)
+
+    return cli
+
+
+def package_verb(kind: str) -> click.Command:
+    """`<kind> package NAME`: the types of that kind in one package."""
+
+    @click.command(
+        'package', help=f'Output a list of available {_WORDS[kind]} types within one package.'
+    )
+    @click.argument('package_name')
+    def cli(package_name: str) -> None:
+        _deprecated(kind, f'package {package_name}')
+        for name in _names(kind, package_name):
+            click.echo(name)
+
+    return cli
+
+
+def packages_verb(kind: str) -> click.Command:
+    """`<kind> packages`: the packages that define types of that kind."""
+
+    @click.command('packages', help=f'Output a list of packages which contain {kind}s.')
+    def cli() -> None:
+        from ros2lite.interfaces import list_interfaces
+
+        _deprecated(kind, f'packages {_FLAGS[kind]}')
+        found = {n.split('/')[0] for n in list_interfaces() if n.split('/')[1] == kind}
+        for package in sorted(found):
+            click.echo(package)
+
+    return cli
+
+
+def show_verb(kind: str) -> click.Command:
+    """`<kind> show TYPE`: the definition file as written."""
+
+    @click.command('show', help=f'Output the {_WORDS[kind]} definition.')
+    @click.argument('type_name', metavar='TYPE')
+    def cli(type_name: str) -> None:
+        from ros2lite.interfaces.registry import default_registry
+
+        parts = type_name.split('/')
+        if len(parts) == 2:
+            parts = [parts[0], kind, parts[1]]
+        if len(parts) != 3 or not parts[0] or not parts[2]:
+            raise CliError(f'The passed {_WORDS[kind]} type is invalid')
+        full = '/'.join(parts)
+        _deprecated(kind, f'show {full}' + ('.srv' if kind == 'srv' else ''))
+        if parts[0] not in default_registry().packages():
+            raise CliError('Unknown package name')
+        if full not in _names(kind, parts[0]):
+            raise CliError(f'Unknown {_WORDS[kind]} name')
+        click.echo(default_registry().interface_text(full), nl=False)
+
+    return cli

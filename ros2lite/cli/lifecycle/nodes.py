@@ -1,0 +1,24 @@
+"""`lifecycle nodes`: the managed nodes in the graph, sorted."""
+
+from __future__ import annotations
+
+import click
+
+from ..common import connect, strategy_options
+from .common import managed_nodes
+
+
+@click.command('nodes')
+@strategy_options()
+@click.option('-a', '--all', 'show_all', is_flag=True, help='Display all nodes even hidden ones')
+@click.option(
+    '-c', '--count-nodes', is_flag=True, help='Only display the number of nodes discovered'
+)
+def cli(show_all: bool, count_nodes: bool, no_daemon: bool, use_sim_time: bool) -> None:
+    """Output a list of nodes with lifecycle."""
+    with connect(no_daemon=no_daemon) as conn:
+        names = managed_nodes(conn, show_all)
+    if count_nodes:
+        click.echo(len(names))
+    elif names:
+        click.echo('\n'.join(names))

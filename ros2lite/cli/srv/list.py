@@ -1,0 +1,7 @@
+"""`srv list`: deprecated; see :mod:`ros2lite.cli.deprecated_interfaces`."""
+
+from __future__ import annotations
+
+from ..deprecated_interfaces import list_verb
+
+cli = list_verb('srv')
