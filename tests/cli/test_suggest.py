@@ -41,7 +41,7 @@ def test_unknown_verb(run: Run) -> None:
 def test_lacking_commands_say_why(run: Run) -> None:
     for args, word in (
         (['test', 'x.test.py'], 'launch_testing'),
-        (['doctor'], 'doctor'),
+        (['bag', 'burst', 'x'], 'bag burst'),
         (['bag', 'convert', '-i', 'a'], 'bag convert'),
     ):
         result = run(*args)
