@@ -22,8 +22,10 @@ def main() -> None:
         print(USAGE, file=sys.stderr)
         raise SystemExit(2)
     target, name, *rest = sys.argv[1:]
-    here = os.getcwd()
-    sys.path[:] = [p for p in sys.path if p not in ('', '.', here)]
+    # `-m` put the working directory first; an installed script would not see it (a
+    # PYTHONPATH entry naming the same directory, further on, stays)
+    if sys.path and sys.path[0] in ('', '.', os.getcwd()):
+        del sys.path[0]
     sys.argv[:] = [name, *rest]
     module, _, attr = target.partition(':')
     fn: Any = importlib.import_module(module)

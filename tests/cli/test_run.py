@@ -310,3 +310,87 @@ def test_unknown_names_get_close_matches(run: Callable[..., Result]) -> None:
     assert run('run', 'turtlesin', 'turtlesim_node').err == (
         "Package 'turtlesin' not found; did you mean: turtlesim, turtlesim_msgs?\n"
     )
+
+
+BIRTHDAY = '''
+import ros2lite
+from ros2lite.executors import ExternalShutdownException
+from ros2lite.msgs.tutorial_interfaces.msg import Age
+from ros2lite.node import Node
+
+
+def main():
+    ros2lite.init()
+    node = Node('birthday')
+    pub = node.create_publisher(Age, 'age', 10)
+    node.create_timer(0.1, lambda: pub.publish(Age(years=3, months=2)))
+    try:
+        ros2lite.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+'''
+
+
+def test_a_custom_message_package_used_by_another(
+    run: Callable[..., Result],
+    ros_context: Any,
+    processes: Any,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """An ament_cmake package holding Age.msg, used by an ament_python package's node: both
+    straight from the workspace, the type known to the node and to this test alike."""
+    from ros2lite.interfaces.registry import reload_registry
+
+    src = tmp_path / 'ws' / 'src'
+    assert (
+        run('pkg', 'create', 'tutorial_interfaces', '--destination-directory', str(src)).code == 0
+    )
+    (src / 'tutorial_interfaces' / 'msg').mkdir()
+    (src / 'tutorial_interfaces' / 'msg' / 'Age.msg').write_text('uint8 years\nuint8 months\n')
+    assert (
+        run(
+            'pkg',
+            'create',
+            '--build-type',
+            'ament_python',
+            'ages',
+            '--destination-directory',
+            str(src),
+            '--dependencies',
+            'tutorial_interfaces',
+        ).code
+        == 0
+    )
+    (src / 'ages' / 'ages' / 'birthday.py').write_text(BIRTHDAY)
+    setup = src / 'ages' / 'setup.py'
+    setup.write_text(
+        setup.read_text().replace(
+            "'console_scripts': [\n", "'console_scripts': ['birthday = ages.birthday:main',\n"
+        )
+    )
+    shown = run_process(
+        'interface',
+        'show',
+        'tutorial_interfaces/msg/Age',
+        env={'ROS2LITE_WORKSPACE': str(tmp_path / 'ws')},
+    )
+    assert shown.out == 'uint8 years\nuint8 months\n'
+
+    monkeypatch.setenv('ROS2LITE_WORKSPACE', str(tmp_path / 'ws'))
+    reload_registry()
+    try:
+        node = Node('age_probe', context=ros_context, enable_rosout=False)
+        got: list[tuple[int, int]] = []
+        node.create_subscription(
+            'tutorial_interfaces/msg/Age', '/age', lambda m: got.append((m.years, m.months)), 10
+        )
+        ex = SingleThreadedExecutor(context=ros_context)
+        ex.add_node(node)
+        proc = start_run(processes, 'ages', 'birthday', cwd=src / 'ages')
+        spin_until(ex, lambda: got, timeout=20)
+        assert got[0] == (3, 2)
+        processes.stop(proc)
+    finally:
+        monkeypatch.undo()
+        reload_registry()
