@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 import queue
 import random
+import re
 import shutil
 import signal
 import subprocess
@@ -230,3 +231,43 @@ def test_a_required_argument_missing(workspace: Path) -> None:
         "launch description missing required argument 'heard_topic' (description: 'no "
         "description given'), given: []"
     )
+
+
+def _screen_of_a_launch_in_a_terminal(env: dict[str, str]) -> str:
+    """What a terminal shows of a two-node launch until the listener hears the talker."""
+    import pty
+    import select
+
+    master, slave = pty.openpty()
+    proc = subprocess.Popen(
+        [sys.executable, '-m', 'ros2lite', 'launch', 'demo_nodes_py', 'talker_listener.launch.py'],
+        stdin=subprocess.DEVNULL,
+        stdout=slave,
+        stderr=slave,
+        start_new_session=True,
+        env=env,
+    )
+    os.close(slave)
+    seen = b''
+    try:
+        deadline = time.monotonic() + 30
+        while b'I heard' not in seen and time.monotonic() < deadline:
+            ready, _, _ = select.select([master], [], [], 0.5)
+            if ready:
+                seen += os.read(master, 65536)
+    finally:
+        proc.send_signal(signal.SIGINT)
+        proc.wait(30)
+        os.close(master)
+    return seen.decode(errors='replace')
+
+
+def test_a_colour_per_process_on_a_terminal(ros_router: str) -> None:
+    env = {k: v for k, v in os.environ.items() if k != 'NO_COLOR'}
+    screen = _screen_of_a_launch_in_a_terminal(env)
+    talker = re.search(r'((?:\x1b\[[0-9;]*m)+)\[talker-1\]', screen)
+    listener = re.search(r'((?:\x1b\[[0-9;]*m)+)\[listener-2\]', screen)
+    assert talker and listener, screen
+    assert talker.group(1) != listener.group(1)  # one colour each
+    plain = _screen_of_a_launch_in_a_terminal({**env, 'NO_COLOR': '1'})
+    assert '[talker-1]' in plain and '\x1b[' not in plain
