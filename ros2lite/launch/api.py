@@ -8,6 +8,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from ros2lite.pkg.workspace import SKIPPED_DIRS
+
 from .actions import IncludeLaunchDescription, LaunchDescription, SetLaunchConfiguration
 from .errors import LaunchError
 from .service import LaunchService
@@ -19,8 +21,6 @@ __all__ = [
     'launch_files',
     'parse_launch_arguments',
 ]
-
-_SKIP = {'__pycache__', 'node_modules'}
 
 
 def parse_launch_arguments(arguments: Sequence[str]) -> list[tuple[str, str]]:
@@ -89,7 +89,7 @@ def launch_files(package: str, index: Any = None) -> list[str]:
         return []
     names: set[str] = set()
     for _dirpath, dirnames, filenames in os.walk(pkg.share):
-        dirnames[:] = [d for d in dirnames if not d.startswith('.') and d not in _SKIP]
+        dirnames[:] = [d for d in dirnames if not d.startswith('.') and d not in SKIPPED_DIRS]
         names.update(f for f in filenames if _is_launch_file(f))
     return sorted(names)
 
@@ -97,7 +97,7 @@ def launch_files(package: str, index: Any = None) -> list[str]:
 def _matches(share: Path, file_name: str) -> list[Path]:
     found = []
     for dirpath, dirnames, filenames in os.walk(share):
-        dirnames[:] = sorted(d for d in dirnames if not d.startswith('.') and d not in _SKIP)
+        dirnames[:] = sorted(d for d in dirnames if not d.startswith('.') and d not in SKIPPED_DIRS)
         if file_name in filenames:
             found.append(Path(dirpath) / file_name)
     return found

@@ -26,6 +26,7 @@ from .manifest import MANIFEST, Manifest, ManifestError, read_manifest
 
 __all__ = [
     'IGNORE_MARKERS',
+    'SKIPPED_DIRS',
     'WORKSPACE_ENV',
     'Scan',
     'SourcePackage',
@@ -37,7 +38,8 @@ __all__ = [
 
 WORKSPACE_ENV = 'ROS2LITE_WORKSPACE'
 IGNORE_MARKERS = ('COLCON_IGNORE', 'AMENT_IGNORE', 'CATKIN_IGNORE')
-_SKIP = {'__pycache__', 'node_modules'}
+# never holding packages, and possibly huge
+SKIPPED_DIRS = frozenset({'__pycache__', 'node_modules'})
 _MAX_DEPTH = 8
 _MAX_DIRS = 5000
 
@@ -94,7 +96,7 @@ def _package_dirs(root: Path) -> Iterator[Path]:
         children = [
             Path(e.path)
             for e in entries
-            if not e.name.startswith('.') and e.name not in _SKIP and _is_dir(e)
+            if not e.name.startswith('.') and e.name not in SKIPPED_DIRS and _is_dir(e)
         ]
         # reversed so the stack pops them in name order
         stack.extend((child, depth + 1) for child in reversed(children))

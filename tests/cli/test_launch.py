@@ -271,3 +271,16 @@ def test_a_colour_per_process_on_a_terminal(ros_router: str) -> None:
     assert talker.group(1) != listener.group(1)  # one colour each
     plain = _screen_of_a_launch_in_a_terminal({**env, 'NO_COLOR': '1'})
     assert '[talker-1]' in plain and '\x1b[' not in plain
+
+
+def test_sigterm_stops_every_child_too(processes: Any) -> None:
+    """launch itself leaves its processes behind on SIGTERM; ros2lite stops them in order."""
+    marker = f'ROS2LITE_TRIAL={uuid.uuid4().hex}'
+    name, value = marker.split('=')
+    launch = start_launch(processes, 'demo_nodes_py', 'talker_listener.launch.py', **{name: value})
+    launch.wait_for('I heard: [Hello World: ')
+    launch.proc.send_signal(signal.SIGTERM)
+    assert launch.proc.wait(30) == 0
+    wait_until(lambda: not _descendants(marker), timeout=10)
+    assert '[WARNING] [launch]: received SIGTERM, stopping every process' in launch.lines
+    assert "[INFO] [talker-1]: sending signal 'SIGINT' to process[talker-1]" in launch.lines
