@@ -7,7 +7,6 @@ screen style (a colour per process on a terminal, plain text otherwise) and repo
 
 from __future__ import annotations
 
-import os
 import sys
 
 import click
@@ -119,6 +118,7 @@ def cli(
     )
     from ros2lite.pkg.index import PackageIndex
 
+    from .main import debug_enabled
     from .render import fancy
 
     index = PackageIndex()  # read once, for the file and for the nodes
@@ -154,7 +154,7 @@ def cli(
         path.absolute(),
         arguments,
         noninteractive=not interactive,
-        debug=debug or os.environ.get('ROS2LITE_DEBUG', '') not in ('', '0'),
+        debug=debug or debug_enabled(),
         launch_prefix=launch_prefix,
         launch_prefix_filter=launch_prefix_filter,
         output_override='both' if show_all else None,

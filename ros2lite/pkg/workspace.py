@@ -4,7 +4,7 @@ A workspace is a directory whose `src/` holds packages (each a directory with a
 `package.xml`, at any depth), as colcon sees it. ros2lite uses, in this order:
 
 1. the workspace enclosing the current directory: the nearest of the current directory and
-   its parents whose `src/` holds at least one package;
+   its parents whose `src/` holds at least one package within four levels;
 2. each directory in ``ROS2LITE_WORKSPACE`` (`:`-separated): its `src/` if it has one,
    else the directory itself.
 
@@ -42,6 +42,10 @@ IGNORE_MARKERS = ('COLCON_IGNORE', 'AMENT_IGNORE', 'CATKIN_IGNORE')
 SKIPPED_DIRS = frozenset({'__pycache__', 'node_modules'})
 _MAX_DEPTH = 8
 _MAX_DIRS = 5000
+# finding the enclosing workspace runs in every process that uses types: look less far
+# (colcon workspaces keep packages at src/<repo>/<pkg>), so a big non-ROS ~/src costs little
+_DETECT_DEPTH = 4
+_DETECT_DIRS = 1000
 
 
 @dataclass(frozen=True)
@@ -69,10 +73,12 @@ class Scan:
     problems: list[str] = field(default_factory=list)
 
 
-def _package_dirs(root: Path) -> Iterator[Path]:
+def _package_dirs(
+    root: Path, max_depth: int = _MAX_DEPTH, max_dirs: int = _MAX_DIRS
+) -> Iterator[Path]:
     """Directories under `root` holding a package.xml, by colcon's walking rules."""
     seen: set[tuple[int, int]] = set()
-    budget = _MAX_DIRS
+    budget = max_dirs
     stack: list[tuple[Path, int]] = [(root, 0)]
     while stack and budget > 0:
         directory, depth = stack.pop()
@@ -91,7 +97,7 @@ def _package_dirs(root: Path) -> Iterator[Path]:
         if MANIFEST in names:  # a package (perhaps `src` itself): do not look inside
             yield directory
             continue
-        if depth >= _MAX_DEPTH:
+        if depth >= max_depth:
             continue
         children = [
             Path(e.path)
@@ -130,7 +136,7 @@ def scan_workspace(root: Path, workspace: Path | None = None) -> Scan:
 
 
 def _has_package(src: Path) -> bool:
-    return next(_package_dirs(src), None) is not None
+    return next(_package_dirs(src, _DETECT_DEPTH, _DETECT_DIRS), None) is not None
 
 
 def enclosing_workspace(cwd: Path) -> Path | None:
