@@ -1,8 +1,9 @@
 """Both ways of working, one package: `pkg create` → real `colcon build` →
 `source install/setup.bash` → `ros2lite run`, and the same sources run unbuilt.
 
-colcon-common-extensions comes from PyPI (installed once into pytest's cache directory) and
-runs with this interpreter, as it does when installed next to ros2lite.
+colcon-common-extensions comes from PyPI (installed once into pytest's cache directory, or
+~/.cache/ros2lite-tests without the cache plugin) and runs with this interpreter, as it does
+when installed next to ros2lite.
 """
 
 from __future__ import annotations
@@ -22,11 +23,24 @@ from tests.pkg.workspaces import MINIMAL_PUBLISHER
 from tests.spinning import spin_until
 
 
+def _cache_dir(request: pytest.FixtureRequest) -> Path:
+    """pytest's cache directory when its cache plugin runs, else the user's cache (so a run
+    with `-p no:cacheprovider` does not download colcon again each time)."""
+    name = f'colcon-common-extensions-py{sys.version_info[0]}.{sys.version_info[1]}'
+    cache = getattr(request.config, 'cache', None)
+    if cache is not None:
+        return Path(cache.mkdir(name))
+    base = Path(os.environ.get('XDG_CACHE_HOME') or Path.home() / '.cache')
+    site = base / 'ros2lite-tests' / name
+    site.mkdir(parents=True, exist_ok=True)
+    return site
+
+
 @pytest.fixture(scope='session')
 def colcon_site(request: pytest.FixtureRequest) -> Path:
     """A directory holding colcon-common-extensions (pip --target), or a skip when PyPI
     cannot be reached."""
-    site = Path(request.config.cache.mkdir('colcon-common-extensions'))
+    site = _cache_dir(request)
     marker = site / '.installed'
     if not marker.exists():
         done = subprocess.run(
