@@ -4,6 +4,7 @@ one, lonely endpoints, mismatched type hashes, incompatible QoS, and no router a
 from __future__ import annotations
 
 import os
+import subprocess
 import sys
 from collections.abc import Callable, Iterator
 from typing import Any
@@ -13,7 +14,7 @@ import pytest
 from ros2lite.qos import QoSProfile, ReliabilityPolicy
 from tests.cli.conftest import Result
 from tests.cli.graph_helpers import STRING_HASH, TokenGraph, fake_hash, private_domain
-from tests.spinning import free_port
+from tests.spinning import free_port, wait_until
 
 
 @pytest.fixture
@@ -131,3 +132,48 @@ def test_report_layout(run: Callable[..., Result], graph: TokenGraph) -> None:
     assert '\n   TOPIC LIST\ntopic    : none\n' in result.out  # padding: max(8, key + 4)
     assert 'router answers        : yes\n' in result.out
     assert 'PACKAGE VERSIONS' not in run('doctor', '-r', '--exclude-packages').out
+
+
+def test_type_hash_mismatch_between_real_nodes(
+    run: Callable[..., Result],
+    ros_router: str,
+    processes: Any,
+    tmp_path: Any,
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The broken setup a student makes: `Age.msg` gains a field while a node started from
+    the old definition still runs. Same type name, different RIHS01 hashes — doctor names
+    both endpoints."""
+    from ros2lite.interfaces.hashing import type_hash
+    from ros2lite.interfaces.registry import Registry
+
+    monkeypatch.setenv('PATH', os.path.dirname(sys.executable) + os.pathsep + os.environ['PATH'])
+    private_domain(monkeypatch)
+    definitions = {'old': 'uint8 years\n', 'new': 'uint8 years\nuint8 months\n'}
+    hashes = {}
+    for version, text in definitions.items():
+        msg = tmp_path / version / 'lesson_msgs' / 'msg'
+        msg.mkdir(parents=True)
+        (msg / 'Age.msg').write_text(text)
+        hashes[version] = type_hash('lesson_msgs/msg/Age', Registry([tmp_path / version]))
+    assert hashes['old'] != hashes['new']
+
+    def cli(version: str, *args: str) -> Any:
+        env = {**os.environ, 'ROS2LITE_INTERFACE_PATH': str(tmp_path / version)}
+        cmd = [sys.executable, '-m', 'ros2lite', *args]
+        return processes.start(cmd, env=env, stdin=subprocess.DEVNULL)
+
+    cli('old', 'topic', 'pub', '/age', 'lesson_msgs/msg/Age', '{years: 7}')
+    cli('new', 'topic', 'echo', '/age', 'lesson_msgs/msg/Age')
+
+    def diagnosed() -> Result | None:
+        result = run('doctor')
+        return result if 'Type hash mismatch' in result.err else None
+
+    result = wait_until(diagnosed, timeout=30, interval=0.2)
+    assert result.code == 0  # doctor reports; it does not fail the shell
+    assert result.out == '\n1/6 check(s) failed\n\nFailed modules: topic\n'
+    (finding,) = [f for f in _findings(result.err) if 'Type hash mismatch' in f]
+    assert finding.startswith('ERROR: Type hash mismatch on /age (lesson_msgs/msg/Age): ')
+    assert hashes['old'] in finding and hashes['new'] in finding
+    assert finding.endswith('; these endpoints never exchange a message')
