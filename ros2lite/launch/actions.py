@@ -488,7 +488,9 @@ class TimerAction(Action):
             raise LaunchError(f"TimerAction period '{text}' is not a number") from None
         if seconds < 0:
             raise LaunchError(f'TimerAction period {seconds} is negative')
-        context.service.add_timer(self, seconds, context.capture_locals())
+        # its actions run later, in the scope of now (the namespace, parameters and launch
+        # configurations of an enclosing group, as launch does since ros2/launch#836)
+        context.service.add_timer(self, seconds, context.capture_locals(), context.scope.copy())
         return None
 
     def cancel(self) -> None:

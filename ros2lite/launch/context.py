@@ -101,8 +101,10 @@ class LaunchContext:
     def environment(self) -> dict[str, str]:
         return self.scope.environment
 
-    def push_scope(self, *, forwarding: bool = True) -> None:
-        self._scopes.append(self.scope.copy(forwarding=forwarding))
+    def push_scope(self, *, forwarding: bool = True, saved: Scope | None = None) -> None:
+        """A new innermost scope: a copy of the current one, or of `saved` (deferred work,
+        such as a timer's actions, runs in the scope it was scheduled from)."""
+        self._scopes.append((self.scope if saved is None else saved).copy(forwarding=forwarding))
 
     def pop_scope(self) -> None:
         if len(self._scopes) == 1:

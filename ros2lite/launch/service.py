@@ -31,7 +31,7 @@ from typing import Any
 from ros2lite.process import ChildError, ChildProcess, signal_handler
 
 from .actions import Entities, LaunchDescription, LaunchDescriptionEntity, TimerAction
-from .context import LaunchContext
+from .context import LaunchContext, Scope
 from .event_handlers import OnProcessIO
 from .events import (
     Event,
@@ -93,7 +93,7 @@ class LaunchService:
         self._descriptions: list[LaunchDescription] = []
         self._running: dict[int, _Running] = {}  # by id(action)
         self._started: list[ChildProcess] = []
-        self._timers: list[tuple[float, int, TimerAction, dict[str, Any]]] = []
+        self._timers: list[tuple[float, int, TimerAction, dict[str, Any], Scope]] = []
         self._seq = itertools.count()
         self._labels = itertools.count(1)
         self._shutting_down = False
@@ -124,8 +124,12 @@ class LaunchService:
     def log_directory(self) -> Path | None:
         return self.output.log_dir
 
-    def add_timer(self, action: TimerAction, seconds: float, frame: dict[str, Any]) -> None:
-        heapq.heappush(self._timers, (time.monotonic() + seconds, next(self._seq), action, frame))
+    def add_timer(
+        self, action: TimerAction, seconds: float, frame: dict[str, Any], scope: Scope
+    ) -> None:
+        """Visit `action`'s actions in `seconds`, with these locals and in this scope."""
+        due = time.monotonic() + seconds
+        heapq.heappush(self._timers, (due, next(self._seq), action, frame, scope))
 
     def add_temp_file(self, path: str) -> None:
         """A file to delete when the launch ends (e.g. a generated parameter file)."""
@@ -369,18 +373,22 @@ class LaunchService:
                 return None
 
         timer = TimerAction(period=str(action.respawn_delay or 0.0), actions=[_Respawn()])
-        self.add_timer(timer, float(action.respawn_delay or 0.0), self.context.capture_locals())
+        delay = float(action.respawn_delay or 0.0)
+        # the respawn reuses the process' spec: the scope it fires in does not matter
+        self.add_timer(timer, delay, self.context.capture_locals(), self.context.scope.copy())
 
     def _fire_timers(self, now: float) -> None:
         while self._timers and self._timers[0][0] <= now:
-            _deadline, _seq, timer, frame = heapq.heappop(self._timers)
+            _deadline, _seq, timer, frame, scope = heapq.heappop(self._timers)
             if timer.cancelled:
                 continue
             self.context.push_locals(frame)
+            self.context.push_scope(saved=scope)  # what the actions set stays theirs
             try:
                 for entity in timer.actions:
                     self._visit_guarded(entity)
             finally:
+                self.context.pop_scope()
                 self.context.pop_locals()
 
     # -- visiting --------------------------------------------------------------------------------

@@ -105,6 +105,34 @@ def test_events_timers_conditions_and_scopes(tmp_path: Path) -> None:
     assert seen == ['first\n', 'second\n']
 
 
+def test_a_timer_keeps_the_scope_it_was_set_in(tmp_path: Path) -> None:
+    """A timer inside a group fires after the group has ended: its actions still see the
+    group's configurations (as launch does since ros2/launch#836), and what they set stays
+    theirs."""
+    code, lines, _ = run_launch(
+        [
+            SetLaunchConfiguration('who', 'outer'),
+            GroupAction(
+                [
+                    SetLaunchConfiguration('who', 'inner'),
+                    TimerAction(
+                        period=0.1,
+                        actions=[
+                            LogInfo(msg=['timer sees ', LaunchConfiguration('who')]),
+                            SetLaunchConfiguration('who', 'timer'),
+                        ],
+                    ),
+                ]
+            ),
+            TimerAction(period=0.3, actions=[LogInfo(msg=['later ', LaunchConfiguration('who')])]),
+        ],
+        tmp_path,
+    )
+    assert code == 0
+    logs = [line.split(': ', 1)[1] for line in lines if line.startswith('[INFO] [launch.user]')]
+    assert logs == ['timer sees inner', 'later outer']
+
+
 def test_a_shutdown_stops_what_runs(tmp_path: Path) -> None:
     done = sh('exit 0')
     code, lines, _ = run_launch(
