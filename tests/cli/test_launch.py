@@ -28,12 +28,34 @@ from tests.spinning import wait_until
 
 FILES = Path(__file__).resolve().parent / 'launch_files'
 
+# a node that says what it was given (name, namespace, arguments, parameters), then ends
+SHOW = """
+import sys
+
+import ros2lite
+from ros2lite.node import Node
+
+
+def main(args=None):
+    ros2lite.init(args=args)
+    node = Node('show', automatically_declare_parameters_from_overrides=True)
+    own = sys.argv[1:sys.argv.index('--ros-args')]
+    values = {n: node.get_parameter(n).value for n in ('answer', 'label', 'greeting')}
+    print(node.get_fully_qualified_name(), own, values, flush=True)
+    ros2lite.shutdown()
+"""
+
 
 @pytest.fixture
 def workspace(tmp_path: Path) -> Path:
     """A workspace whose `lesson_bringup` package holds the lesson's launch files (unbuilt)."""
     ws = tmp_path / 'ws'
-    pkg = write_package(ws / 'src' / 'lesson_bringup', 'lesson_bringup')
+    pkg = write_package(
+        ws / 'src' / 'lesson_bringup',
+        'lesson_bringup',
+        scripts={'show': 'lesson_bringup.show:main'},
+        modules={'lesson_bringup/__init__.py': '', 'lesson_bringup/show.py': SHOW},
+    )
     (pkg / 'launch').mkdir()
     (pkg / 'config').mkdir()
     for f in FILES.iterdir():
@@ -189,6 +211,41 @@ def test_ctrl_c_leaves_no_child_behind(ros_router: str, terminal: int) -> None:
             assert code == 0, launch.lines
             assert not any('escalating' in line for line in launch.lines), launch.lines
         # else Ctrl-C came while Python was still importing: nothing was started
+
+
+def test_every_feature_a_course_names(workspace: Path) -> None:
+    """features.launch.py: the Python launch API of a ROS course, by its ROS names, run to
+    its natural end (every process exits, so the launch does)."""
+    result = run_process(
+        'launch',
+        'lesson_bringup',
+        'features.launch.py',
+        'mode:=fast',
+        env={'ROS2LITE_WORKSPACE': str(workspace), 'LESSON_WHO': 'student'},
+    )
+    assert result.code == 0, result.out + result.err
+    lines = result.out.splitlines()
+    assert '[greet-1] hello student' in lines  # TextSubstitution + EnvironmentVariable
+    assert '[INFO] [launch.user]: greet is done' in lines  # OnProcessExit
+    assert '[echo-2] without extra' in lines  # UnlessCondition
+    assert not any('with extra' in line for line in lines if 'without' not in line)
+    assert '[INFO] [launch.user]: mode is fast' in lines  # OpaqueFunction + the argument
+    # TimerAction, GroupAction + PushRosNamespace, SetParameter, a dict and a file
+    # (FindPackageShare + PathJoinSubstitution), arguments, and output to the screen
+    assert (
+        "[show-3] /feat/shower ['--mode', 'fast'] "
+        "{'answer': 42, 'label': 'from a dict', 'greeting': 'hello from a file'}"
+    ) in lines
+    assert any(line.startswith('[INFO] [show-3]: process has finished cleanly') for line in lines)
+    shown = run_process(
+        'launch',
+        'lesson_bringup',
+        'features.launch.py',
+        '-s',
+        env={'ROS2LITE_WORKSPACE': str(workspace)},
+    )
+    assert "    'mode':\n        how to run\n        (default: 'slow')\n" in shown.out
+    assert "    'extra':\n        one more\n        (default: 'false')\n" in shown.out
 
 
 def test_show_args_and_print(
