@@ -79,9 +79,9 @@ def test_type_hash_mismatch_is_an_error(run: Callable[..., Result], graph: Token
 
 
 def test_incompatible_qos(run: Callable[..., Result], graph: TokenGraph) -> None:
-    best_effort = QoSProfile(reliability=ReliabilityPolicy.BEST_EFFORT)
+    best_effort = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT)
     graph.node('camera').pub('/image', qos=best_effort)
-    graph.node('viewer').sub('/image', qos=QoSProfile())
+    graph.node('viewer').sub('/image', qos=QoSProfile(depth=10))
     result = run('doctor', '-iw', '-rf')
     assert 'Failed modules: qos\n' in result.out
     assert _findings(result.err) == [
