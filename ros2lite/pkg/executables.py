@@ -43,7 +43,6 @@ from .index import (
     Package,
     PackageIndex,
 )
-from .setup_files import read_python_package
 
 ENTRY_POINT_GROUP = 'ros2lite.executables'
 RUNNER = 'ros2lite.pkg.runner'
@@ -177,6 +176,8 @@ def _workspace_executables(pkg: Package) -> list[PackageExecutable]:
     source = pkg.source
     if source is None or source.manifest.build_type != 'ament_python':
         return []
+    from .setup_files import read_python_package  # ast + configparser: workspaces only
+
     info = read_python_package(source.directory)
     root = str(info.package_root or source.directory)
     return [

@@ -9,11 +9,14 @@ checked before it is ever used to build a path, and anything malformed is a
 from __future__ import annotations
 
 import re
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ros2lite.exceptions import Ros2liteError
+
+if TYPE_CHECKING:
+    import xml.etree.ElementTree as ET
 
 __all__ = [
     'MANIFEST',
@@ -77,6 +80,9 @@ def _text(element: ET.Element | None) -> str:
 
 def read_manifest(path: Path) -> Manifest:
     """Parse the package.xml at `path`; raises :class:`ManifestError`."""
+    # imported here: every process that uses types loads this module, few read a manifest
+    import xml.etree.ElementTree as ET
+
     try:
         data = path.read_bytes()
     except OSError as e:
