@@ -266,6 +266,36 @@ def test_show_args_and_print(
     ]
 
 
+def test_prefix_filter_and_all_output(tmp_path: Path) -> None:
+    """`--launch-prefix` goes before every executable (or those `--launch-prefix-filter`
+    matches); `-a` shows the output of processes whose output goes to the log only."""
+    path = tmp_path / 'two.launch.py'
+    path.write_text(
+        'from launch import LaunchDescription\n'
+        'from launch.actions import ExecuteProcess\n\n'
+        'def generate_launch_description():\n'
+        '    return LaunchDescription([\n'
+        "        ExecuteProcess(cmd=['echo', 'quiet'], output='log'),\n"
+        "        ExecuteProcess(cmd=['printf', 'loud'], output='screen'),\n"
+        '    ])\n'
+    )
+
+    def screen(*options: str) -> list[str]:
+        result = run_process('launch', *options, str(path))
+        assert result.code == 0, result.out + result.err
+        # two processes at once: their lines may come in either order
+        return sorted(line for line in result.out.splitlines() if not line.startswith('[INFO]'))
+
+    assert screen() == ['[printf-2] loud']
+    assert screen('-a') == ['[echo-1] quiet', '[printf-2] loud']
+    assert screen('-a', '--launch-prefix', 'echo with') == [
+        '[echo-1] with echo quiet',
+        '[printf-2] with printf loud',
+    ]
+    filtered = screen('-a', '--launch-prefix', 'echo with', '--launch-prefix-filter', 'pri.tf')
+    assert filtered == ['[echo-1] quiet', '[printf-2] with printf loud']
+
+
 def test_errors(run: Callable[..., Result], workspace: Path) -> None:
     missing = run('launch', 'demo_nodes_py', 'nope.launch.py')
     assert missing.code == 1
