@@ -198,7 +198,9 @@ def bench_launch() -> None:
             ours.append(_until_heard([launch], env))
             base.append(_until_heard(by_hand, env))
         if os.environ.get('BENCH_LAUNCH_VERBOSE'):
+            load = ', '.join(f'{x:.2f}' for x in os.getloadavg())
             print('# launch', [round(t, 3) for t in ours], 'by hand', [round(t, 3) for t in base])
+            print(f'# load average during the runs: {load} on {os.cpu_count()} cores')
         report(
             'launch_two_nodes_talking',
             statistics.median(ours) * 1000,
