@@ -109,11 +109,11 @@ class ParameterFile:
 
 def _yaml_value(text: str) -> Any:
     """Text as launch_ros reads it: a YAML scalar or a list of one scalar type; else text."""
-    import yaml
+    from ros2lite.safe_yaml import YamlInputError, load
 
     try:
-        value = yaml.safe_load(text)
-    except yaml.YAMLError:
+        value = load(text, 'a launch value')
+    except YamlInputError:
         return text
     if isinstance(value, (bool, int, float, str)):
         return value
@@ -164,11 +164,11 @@ def evaluate_parameter(context: LaunchContext, value: Any) -> Any:
 
 
 def _typed(text: str, value_type: Any) -> Any:
-    import yaml
+    from ros2lite.safe_yaml import YamlInputError, load
 
     try:
-        parsed = yaml.safe_load(text)
-    except yaml.YAMLError:
+        parsed = load(text, 'a launch parameter value')
+    except YamlInputError:
         parsed = text
     if value_type is float and isinstance(parsed, int) and not isinstance(parsed, bool):
         return float(parsed)

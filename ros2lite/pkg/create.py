@@ -162,9 +162,9 @@ class _Writer:
     def file(self, path: str, content: str, *, quiet: bool = False) -> None:
         if not quiet:
             self.report(f'creating {path}')
-        flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, 'O_NOFOLLOW', 0)
-        fd = os.open(path, flags, 0o644)
-        with os.fdopen(fd, 'w', encoding='utf-8') as out:
+        from ros2lite.files import create_new
+
+        with os.fdopen(create_new(path), 'w', encoding='utf-8') as out:
             out.write(content)
 
 

@@ -43,12 +43,14 @@ def load_frontend_file(path: Path, kind: str | None = None) -> LaunchDescription
             )
         entities = XmlEntity(root, where).children()
     elif kind == 'yaml':
-        import yaml  # here: a Python launch file should not pay for it
+        from ros2lite.safe_yaml import YamlInputError, load  # a Python file does not pay
 
         try:
-            document = yaml.safe_load(data)
-        except yaml.YAMLError as e:
-            raise InvalidFrontendLaunchFileError(f'{where}: not valid YAML ({e})') from None
+            document = load(data.decode('utf-8'), where)
+        except UnicodeDecodeError:
+            raise InvalidFrontendLaunchFileError(f'{where}: not UTF-8 text') from None
+        except YamlInputError as e:
+            raise InvalidFrontendLaunchFileError(str(e)) from None
         entities = yaml_root(document, where)
     else:
         raise InvalidFrontendLaunchFileError(f'{where}: not an XML or YAML launch file')

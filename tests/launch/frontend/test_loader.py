@@ -114,6 +114,16 @@ def test_split_words_keeps_substitutions_inside_quotes() -> None:
         ('f.yaml', 'launch: [{node: {pkg: a}, arg: {}}]', 'each action is a mapping with one key'),
         ('g.yaml', 'launch:\n- group: {scoped: maybe}', "'scoped' must be true or false"),
         ('h.yaml', 'launch: [: :', 'not valid YAML'),
+        (
+            'i.yaml',
+            'a: &a [x, x, x, x, x, x, x, x, x, x]\n'
+            + ''.join(
+                f'{n}: &{n} [*{p}, *{p}, *{p}, *{p}, *{p}, *{p}, *{p}, *{p}, *{p}, *{p}]\n'
+                for p, n in zip('abcdefgh', 'bcdefghi', strict=True)
+            )
+            + 'launch: []\n',
+            'expands to more than',
+        ),
     ],
 )
 def test_errors(tmp_path: Path, name: str, text: str, error: str) -> None:
@@ -122,3 +132,4 @@ def test_errors(tmp_path: Path, name: str, text: str, error: str) -> None:
     with pytest.raises(InvalidFrontendLaunchFileError) as info:
         load_frontend_file(path)
     assert error in str(info.value)
+    assert '\n' not in str(info.value)  # one line
