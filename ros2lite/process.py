@@ -1,10 +1,14 @@
-"""Child processes and stop signals, as `run` needs them now and `launch` next.
+"""Child processes and stop signals, for `run` and `launch`.
 
 Signals are a process-wide resource, so everything that installs a handler does it here,
 for a bounded stretch of code (a ``with`` block or one call), and puts back what was there.
 Ctrl-C typed in a terminal reaches a child by itself (same foreground process group), so it
 is forwarded only when it did not come from the terminal (``kill -INT``, a test, a
 supervisor) or when it is the second one; SIGTERM is always forwarded.
+
+That is :func:`run_child`, one child that shares our terminal. :class:`ChildProcess` is for
+a supervisor of many (`launch`): each child gets a process group of its own and its output
+through pipes, and the supervisor stops them itself with launch's escalation.
 """
 
 from __future__ import annotations
@@ -17,15 +21,20 @@ import sys
 import threading
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from types import FrameType
+from typing import Any
 
 from ros2lite.exceptions import Ros2liteError
 
 __all__ = [
+    'SIGKILL_TIMEOUT',
+    'SIGTERM_TIMEOUT',
     'ChildError',
+    'ChildProcess',
     'StopSignals',
     'Terminated',
     'exit_code',
     'run_child',
+    'signal_handler',
     'sigterm_raises',
     'switch_interval',
     'terminal_signals_child',
@@ -191,3 +200,180 @@ def switch_interval(seconds: float) -> Iterator[None]:
         yield
     finally:
         sys.setswitchinterval(previous)
+
+
+# -- supervised children (launch) -----------------------------------------------------------------
+
+SIGTERM_TIMEOUT = 5.0  # launch's defaults: SIGINT, then SIGTERM 5 s later, SIGKILL 5 s after that
+SIGKILL_TIMEOUT = 5.0
+
+LineCallback = Callable[[str, str], None]  # (stream 'stdout'|'stderr', line without newline)
+ExitCallback = Callable[[int], None]
+
+
+@contextlib.contextmanager
+def signal_handler(handler: Callable[[int], None], signals: Sequence[int]) -> Iterator[None]:
+    """Within the block, `signals` only call `handler(signum)` (main thread; elsewhere a
+    no-op). The handler runs between two bytecodes of the main thread: it must only post
+    work somewhere (a :class:`queue.SimpleQueue` is safe for that), never block."""
+
+    def call(signum: int, _frame: FrameType | None) -> None:
+        handler(signum)
+
+    with _handlers(dict.fromkeys(signals, call)):
+        yield
+
+
+class ChildProcess:
+    """A child in a process group of its own, its output read line by line on threads.
+
+    Its own group means a signal from us reaches everything it started (a shell's children
+    too), and a Ctrl-C typed at the terminal reaches only our process, which then stops the
+    children in order — each gets exactly one SIGINT. Stopping escalates as launch does:
+    SIGINT, SIGTERM after `sigterm_timeout`, SIGKILL after `sigkill_timeout` more
+    (:meth:`begin_stop`, then :meth:`escalate` whenever :meth:`next_deadline` passes).
+    """
+
+    def __init__(
+        self,
+        cmd: Sequence[str],
+        *,
+        env: Mapping[str, str] | None = None,
+        cwd: str | None = None,
+        on_line: LineCallback | None = None,
+        on_exit: ExitCallback | None = None,
+        sigterm_timeout: float = SIGTERM_TIMEOUT,
+        sigkill_timeout: float = SIGKILL_TIMEOUT,
+    ) -> None:
+        self.cmd = list(cmd)
+        self.env = None if env is None else dict(env)
+        self.cwd = cwd
+        self.on_line = on_line
+        self.on_exit = on_exit
+        self.sigterm_timeout = sigterm_timeout
+        self.sigkill_timeout = sigkill_timeout
+        self._proc: subprocess.Popen[bytes] | None = None
+        self._readers: list[threading.Thread] = []
+        self._exited = threading.Event()
+        self._stop_started: float | None = None
+        self._stage = 0  # signals sent while stopping: 1 SIGINT (or skipped), 2 SIGTERM, 3 SIGKILL
+
+    # -- life ------------------------------------------------------------------------------------
+    def start(self) -> int:
+        """Start it; returns the pid. Raises :class:`ChildError` when it cannot start."""
+        try:
+            self._proc = subprocess.Popen(
+                self.cmd,
+                env=self.env,
+                cwd=self.cwd,
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.PIPE,
+                start_new_session=True,
+            )
+        except OSError as e:
+            raise ChildError(f'{self.cmd[0]}: {e.strerror or e}') from None
+        assert self._proc.stdout is not None and self._proc.stderr is not None
+        for name, stream in (('stdout', self._proc.stdout), ('stderr', self._proc.stderr)):
+            t = threading.Thread(
+                target=self._read, args=(name, stream), name=f'child-{name}', daemon=True
+            )
+            t.start()
+            self._readers.append(t)
+        threading.Thread(target=self._wait, name='child-wait', daemon=True).start()
+        return self._proc.pid
+
+    def _read(self, name: str, stream: Any) -> None:
+        try:
+            for raw in iter(stream.readline, b''):
+                if self.on_line is not None:
+                    self.on_line(name, raw.decode('utf-8', 'replace').rstrip('\r\n'))
+        except (OSError, ValueError):
+            pass
+        finally:
+            with contextlib.suppress(OSError):
+                stream.close()
+
+    def _wait(self) -> None:
+        assert self._proc is not None
+        code = self._proc.wait()
+        # deliver its last lines before saying it ended (a grandchild may hold the pipes
+        # open for longer: then only a short wait)
+        for t in self._readers:
+            t.join(timeout=1.0)
+        self._exited.set()
+        if self.on_exit is not None:
+            self.on_exit(code)
+
+    @property
+    def pid(self) -> int | None:
+        return self._proc.pid if self._proc is not None else None
+
+    @property
+    def returncode(self) -> int | None:
+        """Its exit status once it has ended and been reaped (negative: killed by a signal)."""
+        return self._proc.returncode if self._proc is not None else None
+
+    @property
+    def running(self) -> bool:
+        return self._proc is not None and not self._exited.is_set()
+
+    def wait(self, timeout: float | None = None) -> bool:
+        """Wait until it has ended and its output was delivered; True if it has."""
+        return self._exited.wait(timeout)
+
+    # -- signals ---------------------------------------------------------------------------------
+    def send_signal(self, sig: int) -> bool:
+        """Signal its whole process group; False when it has already ended."""
+        proc = self._proc
+        if proc is None or proc.poll() is not None:
+            return False
+        try:
+            os.killpg(proc.pid, sig)
+        except ProcessLookupError:
+            return False
+        return True
+
+    def begin_stop(self, now: float, *, send_sigint: bool = True) -> bool:
+        """Start stopping it (once): SIGINT now unless told not to, the rest by
+        :meth:`escalate`. Returns whether a SIGINT was sent."""
+        if self._stop_started is not None or not self.running:
+            return False
+        self._stop_started = now
+        self._stage = 1
+        return self.send_signal(signal.SIGINT) if send_sigint else False
+
+    @property
+    def stopping(self) -> bool:
+        return self._stop_started is not None
+
+    def next_deadline(self) -> float | None:
+        """When :meth:`escalate` has its next step to take (None: nothing pending)."""
+        if self._stop_started is None or not self.running or self._stage >= 3:
+            return None
+        if self._stage == 1:
+            return self._stop_started + self.sigterm_timeout
+        return self._stop_started + self.sigterm_timeout + self.sigkill_timeout
+
+    def escalate(self, now: float) -> tuple[str, str, float] | None:
+        """Take the step that is due, if any: (signal sent, signal it follows, seconds since
+        the stop began as launch counts them) — e.g. ('SIGTERM', 'SIGINT', 5.0)."""
+        deadline = self.next_deadline()
+        if deadline is None or now < deadline:
+            return None
+        if self._stage == 1:
+            self._stage = 2
+            self.send_signal(signal.SIGTERM)
+            return 'SIGTERM', 'SIGINT', self.sigterm_timeout
+        self._stage = 3
+        self.send_signal(signal.SIGKILL)
+        return 'SIGKILL', 'SIGTERM', self.sigterm_timeout + self.sigkill_timeout
+
+    def kill_leftovers(self) -> None:
+        """SIGKILL whatever is left of its process group once it has ended (e.g. a
+        background job of a shell it ran), so nothing it started outlives the launch."""
+        proc = self._proc
+        if proc is None or proc.poll() is None:
+            return
+        with contextlib.suppress(ProcessLookupError, PermissionError):
+            os.killpg(proc.pid, signal.SIGKILL)

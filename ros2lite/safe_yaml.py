@@ -37,7 +37,7 @@ class YamlInputError(Ros2liteError, ValueError):
         self.detail = detail or message  # the problem without the `what` prefix
 
 
-def _describe(e: Any) -> str:
+def _describe(e: yaml.YAMLError) -> str:
     """A YAMLError as one line: the problem and where it is."""
     problem = getattr(e, 'problem', None) or getattr(e, 'context', None)
     mark = getattr(e, 'problem_mark', None) or getattr(e, 'context_mark', None)
@@ -47,19 +47,19 @@ def _describe(e: Any) -> str:
     return text
 
 
-def _syntax(what: str, e: Any) -> YamlInputError:
+def _syntax(what: str, e: yaml.YAMLError) -> YamlInputError:
     why = _describe(e)
     return YamlInputError(f'{what} is not valid YAML: {why}', syntax=True, detail=why)
 
 
-def _expanded_size(root: Any, limit: int, what: str) -> int:
+def _expanded_size(root: yaml.Node, limit: int, what: str) -> int:
     """How many values the composed node `root` makes with aliases expanded (stops counting
     past `limit`); raises YamlInputError when nesting goes deeper than MAX_DEPTH."""
     from yaml.nodes import MappingNode, SequenceNode
 
     sizes: dict[int, int] = {}
     # iterative post-order walk: (node, depth, children done?)
-    stack: list[tuple[Any, int, bool]] = [(root, 1, False)]
+    stack: list[tuple[yaml.Node, int, bool]] = [(root, 1, False)]
     on_path: set[int] = set()
     while stack:
         node, depth, done = stack.pop()

@@ -26,6 +26,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     'EVENT_TOPIC_SUFFIX',
+    'Introspectable',
     'IntrospectionMixin',
     'ServiceEventType',
     'ServiceIntrospectionState',
@@ -159,7 +160,28 @@ class _EventPublisher:
             self.node.destroy_publisher(self.publisher)
 
 
-class IntrospectionMixin:
+class Introspectable:
+    """What reports service events when asked: a client or a service, or an action client
+    or server (through its three service clients or services)."""
+
+    def _introspected(self) -> tuple[IntrospectionMixin, ...]:
+        """The clients or services whose events this one reports."""
+        raise NotImplementedError
+
+    def configure_introspection(
+        self,
+        clock: Clock,
+        service_event_qos_profile: QoSProfile,
+        introspection_state: ServiceIntrospectionState,
+    ) -> None:
+        """Report the events from now on (OFF: stop), on each service's `_service_event`
+        topic (an action's: its three services', which is what `action echo` shows)."""
+        state = ServiceIntrospectionState(introspection_state)
+        for endpoint in self._introspected():
+            endpoint._set_introspection(clock, service_event_qos_profile, state)
+
+
+class IntrospectionMixin(Introspectable):
     """What `Service` and `Client` share for introspection. The class using it provides
     `_node`, `srv_name` and `_ep.type_name` (the `pkg/srv/Name` of its type)."""
 
@@ -168,20 +190,18 @@ class IntrospectionMixin:
     _ep: Endpoint
     srv_name: str
 
-    def configure_introspection(
-        self,
-        clock: Clock,
-        service_event_qos_profile: QoSProfile,
-        introspection_state: ServiceIntrospectionState,
+    def _introspected(self) -> tuple[IntrospectionMixin, ...]:
+        return (self,)
+
+    def _set_introspection(
+        self, clock: Clock, qos: QoSProfile, state: ServiceIntrospectionState
     ) -> None:
-        """Report this client's or service's events from now on (OFF: stop)."""
-        state = ServiceIntrospectionState(introspection_state)
         if state == ServiceIntrospectionState.OFF:
             self._destroy_introspection()
             return
         if self._introspection is None:
             self._introspection = _EventPublisher(
-                self._node, self._ep.type_name, self.srv_name, service_event_qos_profile
+                self._node, self._ep.type_name, self.srv_name, qos
             )
         self._introspection.clock = clock
         self._introspection.contents = state == ServiceIntrospectionState.CONTENTS

@@ -110,7 +110,9 @@ class Processes:
         self.procs.append(proc)
         return proc
 
-    def stop(self, proc: subprocess.Popen[str], timeout: float = 5.0) -> tuple[str, str]:
+    def stop(self, proc: subprocess.Popen[str], timeout: float = 10.0) -> tuple[str, str]:
+        # a process exits within a second of SIGINT on a quiet machine; on a loaded 2-core CI
+        # its interpreter teardown can take several, so SIGKILL waits longer than that
         if proc.poll() is None:
             proc.send_signal(signal.SIGINT)
         try:

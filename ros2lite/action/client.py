@@ -26,20 +26,20 @@ from ros2lite.action.goals import (
 from ros2lite.action.server import await_or_execute
 from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
+from ros2lite.service_introspection import Introspectable
 from ros2lite.task import Future
 from ros2lite.type_support import FeedbackT, GoalT, ResultT
 from ros2lite.waitable import NumberOfEntities
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
-    from ros2lite.clock import Clock
     from ros2lite.interfaces import Message
     from ros2lite.msgs.action_msgs.msg import GoalStatusArray
     from ros2lite.msgs.action_msgs.srv import CancelGoal_Response
     from ros2lite.msgs.builtin_interfaces.msg import Time
     from ros2lite.msgs.unique_identifier_msgs.msg import UUID
     from ros2lite.node import Node
-    from ros2lite.service_introspection import ServiceIntrospectionState
+    from ros2lite.service_introspection import IntrospectionMixin
     from ros2lite.type_support import Action, FeedbackMessage, GetResultResponse
 
 # how often wait_for_server looks at the graph
@@ -55,6 +55,12 @@ class _SendGoalResponse(Protocol):
 
 FeedbackCallback = Callable[['FeedbackMessage[FeedbackT]'], object]
 """Gets each `<A>_FeedbackMessage` (goal id and feedback) of one goal; may be `async def`."""
+
+
+def _require_accepted(goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]) -> None:
+    """Only an accepted goal can be canceled or have a result (rclpy's TypeError)."""
+    if not goal_handle.accepted:
+        raise TypeError('Action goal was not accepted')
 
 
 class ClientGoalHandle(Generic[GoalT, ResultT, FeedbackT]):
@@ -125,7 +131,7 @@ class ClientGoalHandle(Generic[GoalT, ResultT, FeedbackT]):
         return self._action_client._get_result_async(self)
 
 
-class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
+class ActionClient(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT]):
     """Sends goals to one action (rclpy.action.ActionClient's arguments and defaults)."""
 
     _node: Node
@@ -333,35 +339,41 @@ class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
             self._feedback_callbacks.pop(key, None)
             self._unanswered.pop(key, None)
 
+    @staticmethod
+    def _cancel_request(goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]) -> Message:
+        """The CancelGoal request for an accepted goal (TypeError for one not accepted)."""
+        _require_accepted(goal_handle)
+        request = CancelGoal.Request()
+        request.goal_info.goal_id = goal_handle.goal_id
+        return request
+
+    def _result_request(self, goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]) -> Message:
+        """The GetResult request for an accepted goal (TypeError for one not accepted)."""
+        _require_accepted(goal_handle)
+        return self._action_type.Impl.GetResultService.Request(goal_id=goal_handle.goal_id)
+
     def _cancel_goal_async(
         self, goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]
     ) -> Future[CancelGoal_Response]:
         if not isinstance(goal_handle, ClientGoalHandle):
             raise TypeError('expected a ClientGoalHandle')
-        if not goal_handle.accepted:
-            raise TypeError('Action goal was not accepted')
-        request = CancelGoal.Request()
-        request.goal_info.goal_id = goal_handle.goal_id
+        request = self._cancel_request(goal_handle)
         return cast('Future[CancelGoal_Response]', self._cancel_client.call_async(request))
 
     def _cancel_goal(
         self, goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]
     ) -> CancelGoal_Response:
-        if not goal_handle.accepted:
-            raise TypeError('Action goal was not accepted')
-        request = CancelGoal.Request()
-        request.goal_info.goal_id = goal_handle.goal_id
-        return cast('CancelGoal_Response', self._cancel_client.call(request))
+        return cast(
+            'CancelGoal_Response', self._cancel_client.call(self._cancel_request(goal_handle))
+        )
 
     def _get_result_async(
         self, goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]
     ) -> Future[GetResultResponse[ResultT]]:
         if not isinstance(goal_handle, ClientGoalHandle):
             raise TypeError('expected a ClientGoalHandle')
-        if not goal_handle.accepted:
-            raise TypeError('Action goal was not accepted')
         key = goal_key(goal_handle.goal_id)
-        request = self._action_type.Impl.GetResultService.Request(goal_id=goal_handle.goal_id)
+        request = self._result_request(goal_handle)
         future = cast('Future[GetResultResponse[ResultT]]', self._result_client.call_async(request))
 
         def done(f: Future[GetResultResponse[ResultT]]) -> None:
@@ -376,13 +388,9 @@ class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
     def _get_result(
         self, goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]
     ) -> GetResultResponse[ResultT]:
-        if not goal_handle.accepted:
-            raise TypeError('Action goal was not accepted')
         response = cast(
             'GetResultResponse[ResultT]',
-            self._result_client.call(
-                self._action_type.Impl.GetResultService.Request(goal_id=goal_handle.goal_id)
-            ),
+            self._result_client.call(self._result_request(goal_handle)),
         )
         self._drop_feedback(goal_key(goal_handle.goal_id))
         if response.status in TERMINAL_STATES:
@@ -410,16 +418,9 @@ class ActionClient(Executable, Generic[GoalT, ResultT, FeedbackT]):
             time.sleep(_POLL)
         return self.server_is_ready()
 
-    def configure_introspection(
-        self,
-        clock: Clock,
-        service_event_qos_profile: QoSProfile,
-        introspection_state: ServiceIntrospectionState,
-    ) -> None:
-        """Report the action's three service clients on their `_service_event` topics (see
-        :mod:`ros2lite.service_introspection`; what `action echo` shows)."""
-        for client in (self._goal_client, self._cancel_client, self._result_client):
-            client.configure_introspection(clock, service_event_qos_profile, introspection_state)
+    def _introspected(self) -> tuple[IntrospectionMixin, ...]:
+        """The action's three service clients, whose events its introspection reports."""
+        return (self._goal_client, self._cancel_client, self._result_client)
 
     def destroy(self) -> None:
         """Withdraw the five entities from the graph."""

@@ -31,20 +31,20 @@ from ros2lite.action.goals import (
 )
 from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
+from ros2lite.service_introspection import Introspectable
 from ros2lite.task import Future
 from ros2lite.type_support import FeedbackT, GoalT, ResultT
 from ros2lite.waitable import NumberOfEntities
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
-    from ros2lite.clock import Clock
     from ros2lite.interfaces import Message
     from ros2lite.msgs.action_msgs.msg import GoalInfo as GoalInfoMsg
     from ros2lite.msgs.action_msgs.srv import CancelGoal_Request
     from ros2lite.msgs.unique_identifier_msgs.msg import UUID
     from ros2lite.node import Node
     from ros2lite.service import RequestHeader
-    from ros2lite.service_introspection import ServiceIntrospectionState
+    from ros2lite.service_introspection import IntrospectionMixin
     from ros2lite.type_support import Action
 
 _T = TypeVar('_T')
@@ -217,7 +217,7 @@ CancelCallback = Callable[
 """Accepts or rejects a request to cancel a goal."""
 
 
-class ActionServer(Executable, Generic[GoalT, ResultT, FeedbackT]):
+class ActionServer(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT]):
     """Serves one action on a node (rclpy.action.ActionServer's arguments and defaults)."""
 
     _node: Node
@@ -336,16 +336,9 @@ class ActionServer(Executable, Generic[GoalT, ResultT, FeedbackT]):
             timer.timer_period_ns = max(int(left * 1e9), 1_000_000)
             timer.reset()
 
-    def configure_introspection(
-        self,
-        clock: Clock,
-        service_event_qos_profile: QoSProfile,
-        introspection_state: ServiceIntrospectionState,
-    ) -> None:
-        """Report the action's three services on their `_service_event` topics (see
-        :mod:`ros2lite.service_introspection`; what `action echo` shows)."""
-        for service in (self._goal_service, self._cancel_service, self._result_service):
-            service.configure_introspection(clock, service_event_qos_profile, introspection_state)
+    def _introspected(self) -> tuple[IntrospectionMixin, ...]:
+        """The action's three services, whose events its introspection reports."""
+        return (self._goal_service, self._cancel_service, self._result_service)
 
     # -- rclpy's registration API ---------------------------------------------------------------
     def register_execute_callback(

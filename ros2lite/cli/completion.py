@@ -143,3 +143,13 @@ def executables(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
     if not package:
         return []
     return _matching((e.name for e in get_executables(package)), incomplete)
+
+
+@_quietly
+def launch_files(ctx: click.Context, incomplete: str) -> list[CompletionItem]:
+    from ros2lite.launch.api import launch_files as files
+
+    package = ctx.params.get('package_name')
+    if not package:
+        return []
+    return _matching(files(package), incomplete)

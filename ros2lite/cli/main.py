@@ -20,19 +20,23 @@ COMMANDS: dict[str, tuple[str, str]] = {
     'component': ('ros2lite.cli.component', 'Various component related sub-commands'),
     'daemon': ('ros2lite.cli.daemon', 'Various daemon related sub-commands'),
     'env': ('ros2lite.cli.env', 'Print shell lines that let code written for rclpy run'),
+    'doctor': ('ros2lite.cli.doctor', 'Check ROS setup and other potential issues'),
     'extension_points': ('ros2lite.cli.extension_points', 'List extension points'),
     'extensions': ('ros2lite.cli.extensions', 'List extensions'),
     'interface': ('ros2lite.cli.interface', 'Show information about ROS interfaces'),
+    'launch': ('ros2lite.cli.launch', 'Run a launch file'),
     'lifecycle': ('ros2lite.cli.lifecycle', 'Various lifecycle related sub-commands'),
     'msg': ('ros2lite.cli.msg', 'Various msg related sub-commands'),
     'multicast': ('ros2lite.cli.multicast', 'Various multicast related sub-commands'),
     'node': ('ros2lite.cli.node', 'Various node related sub-commands'),
     'param': ('ros2lite.cli.param', 'Various param related sub-commands'),
+    'pkg': ('ros2lite.cli.pkg', 'Various package related sub-commands'),
     'run': ('ros2lite.cli.run', 'Run a package specific executable'),
     'security': ('ros2lite.cli.security', 'Various security related sub-commands'),
     'service': ('ros2lite.cli.service', 'Various service related sub-commands'),
     'srv': ('ros2lite.cli.srv', 'Various srv related sub-commands'),
     'topic': ('ros2lite.cli.topic', 'Various topic related sub-commands'),
+    'wtf': ('ros2lite.cli.doctor', 'Use `wtf` as alias to `doctor`'),
 }
 
 # work, but stay out of `ros2lite --help` (ros2cli hides the first two; the others are its
@@ -41,12 +45,7 @@ HIDDEN = frozenset({'extension_points', 'extensions', 'msg', 'srv'})
 
 # what ros2cli has and ros2lite does not, with the reason (one line, exit 1); 'command' or
 # 'command verb'. Drop an entry when the command or verb lands.
-_NOT_YET = "is not in this build of ros2lite yet (see `ros2lite --help` for what is)"
 LACKING: dict[str, str] = {
-    'doctor': f"'ros2lite doctor' {_NOT_YET}",
-    'wtf': f"'ros2lite wtf' (doctor) {_NOT_YET}",
-    'launch': f"'ros2lite launch' {_NOT_YET}",
-    'pkg': f"'ros2lite pkg' {_NOT_YET}",
     'test': "'ros2 test' is launch_testing's runner for launch-based tests; ros2lite has no "
     'launch_testing, so run such tests with pytest',
 }

@@ -2,8 +2,10 @@
 
 The executable runs as a child process with everything after its name passed through, so
 `--ros-args -r chatter:=/x` reaches the node untouched; we wait for it and exit with its
-status. The child gets the environment `ros2lite env` gives a shell, so code written for
-rclpy runs as it is. Signal forwarding is the library's (:func:`ros2lite.process.run_child`).
+status. Finding it is the package index's (:func:`ros2lite.pkg.executables.resolve_executable`,
+source workspaces included); the child gets the environment `ros2lite env` gives a shell, so
+code written for rclpy runs as it is; signal forwarding is the library's
+(:func:`ros2lite.process.run_child`).
 """
 
 from __future__ import annotations
@@ -14,7 +16,6 @@ import signal
 import click
 
 from . import completion
-from .errors import CliError
 
 
 @click.command(
@@ -36,21 +37,19 @@ from .errors import CliError
 @click.argument('argv', nargs=-1, type=click.UNPROCESSED)
 def cli(prefix: str | None, package_name: str, executable_name: str, argv: tuple[str, ...]) -> None:
     """Run a package specific executable."""
-    import os
-
-    from ros2lite.env import ros_environment
-    from ros2lite.pkg.executables import find_executable
+    from ros2lite.pkg.environment import child_environment
+    from ros2lite.pkg.executables import resolve_executable
+    from ros2lite.pkg.index import PackageIndex
     from ros2lite.process import exit_code, run_child
 
-    exe = find_executable(package_name, executable_name)  # unknown package: its own error
-    if exe is None:
-        raise CliError('No executable found')
-    cmd = exe.command(list(argv))
-    if prefix is not None:
-        cmd = shlex.split(prefix) + cmd
-    # the child is in a ROS shell whether or not this one is: `rclpy` and interface
-    # packages import there (see `ros2lite env`)
-    code = run_child(cmd, env={**os.environ, **ros_environment()})
+    index = PackageIndex()
+    resolved = resolve_executable(package_name, executable_name, index=index)
+    if resolved.note:
+        click.echo(f'[ros2run]: {resolved.note}', err=True)
+    exe = resolved.executable
+    cmd = exe.prefixed_command(shlex.split(prefix or ''), list(argv))
+    env = child_environment(pythonpath=exe.pythonpath, workspaces=index.workspaces())
+    code = run_child(cmd, env=env)
     if code < 0:
         signum = -code
         name = signal.strsignal(signum) or f'signal {signum}'

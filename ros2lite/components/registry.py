@@ -104,7 +104,7 @@ def _entry_point_types() -> dict[str, list[ComponentType]]:
 def _ament_types(env: Mapping[str, str] | None) -> dict[str, list[ComponentType]]:
     """Components registered in the ament resource index of every prefix, first prefix
     first (a package in an overlay hides the same package underneath)."""
-    from ros2lite.pkg.executables import ament_prefixes
+    from ros2lite.pkg.index import ament_prefixes
 
     found: dict[str, list[ComponentType]] = {}
     for prefix in ament_prefixes(env):

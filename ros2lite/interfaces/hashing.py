@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import weakref
 
 from .parser import Field, FieldType
 from .registry import Registry, default_registry, normalize_name
@@ -99,17 +100,19 @@ def type_description(name: str, reg: Registry | None = None) -> dict[str, object
     }
 
 
-_CACHE: dict[tuple[int, str], str] = {}
+# per registry, and dropped with it: keyed by id(), a registry made after another was freed
+# (reload_registry) could reuse its id and be handed the old definitions' hashes
+_CACHE: weakref.WeakKeyDictionary[Registry, dict[str, str]] = weakref.WeakKeyDictionary()
 
 
 def type_hash(name: str, reg: Registry | None = None) -> str:
     """'RIHS01_<sha256 hex>' for a message, service, action or generated sub-type."""
     reg = reg or default_registry()
-    key = (id(reg), name)
-    h = _CACHE.get(key)
+    cache = _CACHE.setdefault(reg, {})
+    h = cache.get(name)
     if h is None:
         text = json.dumps(type_description(name, reg), separators=(', ', ': '), ensure_ascii=True)
-        h = _CACHE[key] = 'RIHS01_' + hashlib.sha256(text.encode()).hexdigest()
+        h = cache[name] = 'RIHS01_' + hashlib.sha256(text.encode()).hexdigest()
     return h
 
 

@@ -1,16 +1,17 @@
 """Where interface definitions come from, and the cache of parsed definitions.
 
-Search order (first package match wins): ``ROS2LITE_INTERFACE_PATH`` directories holding
-``<pkg>/msg|srv|action``, then ``share/<pkg>`` of every ``AMENT_PREFIX_PATH`` prefix, then the
-bundled ``ros2lite/msgs``. A whole package comes from one place so a user's copy of a package
-never mixes with ours.
+Packages come from the package index (:mod:`ros2lite.pkg.index`), first source first:
+``ROS2LITE_INTERFACE_PATH`` directories holding ``<pkg>/msg|srv|action``, source workspaces
+(a package's own ``msg/ srv/ action/``), ``share/<pkg>`` of every ``AMENT_PREFIX_PATH``
+prefix, then the bundled ``ros2lite/msgs``. A whole package comes from one place so a user's
+copy of a package never mixes with ours.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from ros2lite.pkg.index import BUNDLED_INTERFACES, interface_roots
+from ros2lite.pkg.index import BUNDLED_INTERFACES, interface_packages
 
 from .errors import InterfaceError, UnknownInterfaceError
 from .parser import (
@@ -59,7 +60,8 @@ class Registry:
     """Finds, parses and caches definitions; one per search path configuration."""
 
     def __init__(self, roots: list[Path] | None = None) -> None:
-        self.roots = roots if roots is not None else interface_roots()
+        # explicit roots (directories of packages) replace the package index
+        self.roots = roots
         self._packages: dict[str, Path] | None = None
         self._messages: dict[str, MessageDef] = {}
         self._services: dict[str, ServiceDef] = {}
@@ -68,9 +70,11 @@ class Registry:
     # -- discovery -------------------------------------------------------------------------
     def packages(self) -> dict[str, Path]:
         """Package name → its directory (the one holding msg/srv/action)."""
+        if self._packages is None and self.roots is None:
+            self._packages = interface_packages()
         if self._packages is None:
             found: dict[str, Path] = {}
-            for root in self.roots:
+            for root in self.roots or ():
                 try:
                     children = sorted(root.iterdir())
                 except OSError:
@@ -251,7 +255,7 @@ def default_registry() -> Registry:
 
 
 def reload_registry() -> Registry:
-    """Re-read ROS2LITE_INTERFACE_PATH/AMENT_PREFIX_PATH (new classes are built afresh)."""
+    """Re-read the package index (new classes are built afresh)."""
     global _DEFAULT
     _DEFAULT = Registry()
     return _DEFAULT

@@ -53,8 +53,22 @@ def _may_be_package(name: str) -> bool:
     if hit is None:
         hit = _maybe[key] = any(
             os.path.isdir(os.path.join(root, name, kind)) for root in roots for kind in _KINDS
-        )
+        ) or name in _workspace_packages()
     return hit
+
+
+_workspaces: dict[tuple[str | None, str], frozenset[str]] = {}
+
+
+def _workspace_packages() -> frozenset[str]:
+    from ros2lite.pkg.index import workspace_interface_packages
+    from ros2lite.pkg.workspace import WORKSPACE_ENV
+
+    key = (os.environ.get(WORKSPACE_ENV), os.getcwd())
+    names = _workspaces.get(key)
+    if names is None:
+        names = _workspaces[key] = frozenset(workspace_interface_packages())
+    return names
 
 
 def _split(module: str, prefix: str) -> tuple[str, str]:

@@ -5,7 +5,8 @@ is a failed result whose reason is the exception's message."""
 from __future__ import annotations
 
 import contextlib
-from typing import TYPE_CHECKING, Any
+from collections.abc import Callable, Iterable
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from ros2lite.exceptions import ParameterNotDeclaredException, ParameterUninitializedException
 from ros2lite.parameter import Parameter
@@ -35,6 +36,21 @@ TYPES = {
     "set_parameters_atomically": "SetParametersAtomically",
 }
 
+_T = TypeVar('_T')
+
+
+def _all_or_none(
+    names: Iterable[str],
+    lookup: Callable[[str], _T],
+    errors: type[Exception] | tuple[type[Exception], ...],
+) -> list[_T]:
+    """`lookup` of every name, or an empty list when one fails with `errors` (what rclpy's
+    parameter services answer for a name that is not there)."""
+    try:
+        return [lookup(n) for n in names]
+    except errors:
+        return []
+
 
 class ParameterService:
     """Creates the services on `node` (names relative to the node: `<node>/<service>`)."""
@@ -56,30 +72,29 @@ class ParameterService:
     def _describe_parameters(
         self, request: srv.DescribeParameters.Request, response: srv.DescribeParameters.Response
     ) -> srv.DescribeParameters.Response:
-        try:
-            response.descriptors = [self._node.describe_parameter(n) for n in request.names]
-        except ParameterNotDeclaredException:
-            response.descriptors = []
+        response.descriptors = _all_or_none(
+            request.names, self._node.describe_parameter, ParameterNotDeclaredException
+        )
         return response
 
     def _get_parameters(
         self, request: srv.GetParameters.Request, response: srv.GetParameters.Response
     ) -> srv.GetParameters.Response:
-        try:
-            response.values = [
-                self._node.get_parameter(n).get_parameter_value() for n in request.names
-            ]
-        except (ParameterNotDeclaredException, ParameterUninitializedException):
-            response.values = []
+        response.values = _all_or_none(
+            request.names,
+            lambda n: self._node.get_parameter(n).get_parameter_value(),
+            (ParameterNotDeclaredException, ParameterUninitializedException),
+        )
         return response
 
     def _get_parameter_types(
         self, request: srv.GetParameterTypes.Request, response: srv.GetParameterTypes.Response
     ) -> srv.GetParameterTypes.Response:
-        try:
-            response.types = [self._node.get_parameter_type(n).value for n in request.names]
-        except ParameterNotDeclaredException:
-            response.types = []
+        response.types = _all_or_none(
+            request.names,
+            lambda n: self._node.get_parameter_type(n).value,
+            ParameterNotDeclaredException,
+        )
         return response
 
     def _list_parameters(

@@ -1,35 +1,52 @@
-"""Where `ros2lite run <package> <executable>` finds what to start.
+"""What a package can run: the executables behind `ros2lite run`, `pkg executables` and
+launch's `Node`.
 
-Three sources, searched in this order; the first one that knows a *package* owns it entirely
-(as with ament overlays, a package is never merged from two places):
+The package comes from the package index (:mod:`ros2lite.pkg.index`, which says which source
+owns a name); its executables depend on that source:
 
-1. Python entry points in the group ``ros2lite.executables``, named ``<package>.<executable>``
-   (package names cannot contain a dot, so the first dot splits), e.g. in pyproject.toml::
+- a **source workspace** ament_python package: the ``console_scripts`` of its
+  ``setup.py``/``setup.cfg`` (read, never executed), run straight from the sources;
+- Python **entry points** in the group ``ros2lite.executables``, named
+  ``<package>.<executable>`` (package names cannot contain a dot, so the first dot splits),
+  e.g. in pyproject.toml::
 
        [project.entry-points."ros2lite.executables"]
        "my_pkg.talker" = "my_pkg.nodes:talker_main"
 
-2. ament prefixes on ``AMENT_PREFIX_PATH`` (a sourced ROS install or colcon workspace): the
-   package is known when ``share/ament_index/resource_index/packages/<package>`` exists, and its
-   executables are the executable files under ``lib/<package>`` — what ros2run looks at.
-3. The packages bundled with ros2lite (:data:`BUNDLED`).
+- an **ament prefix**: the executable files under ``lib/<package>`` — what ros2run looks at;
+- the packages **bundled** with ros2lite (:data:`BUNDLED`).
 
-Python targets are started as ``python -c …`` with the same interpreter, so they run in this
-environment without needing a console script on PATH.
+Python targets are started as ``python -m ros2lite.pkg.runner <module:function> <name> …``
+with the same interpreter, so they run in this environment without needing a console script
+on PATH. Courses name a few C++ demo packages;
+when one is not installed, :func:`resolve_executable` runs its Python twin
+(:data:`EQUIVALENTS`) and says so.
 """
 
 from __future__ import annotations
 
+import difflib
 import os
+import re
 import sys
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from ros2lite.exceptions import Ros2liteError
-from ros2lite.pkg.index import ament_prefixes
+
+from .index import (
+    ORIGIN_AMENT,
+    ORIGIN_BUNDLED,
+    ORIGIN_ENTRY_POINT,
+    ORIGIN_WORKSPACE,
+    Package,
+    PackageIndex,
+)
 
 ENTRY_POINT_GROUP = 'ros2lite.executables'
+RUNNER = 'ros2lite.pkg.runner'
+_PYTHON = re.compile(r'python[0-9.]*\Z')
 
 # the demos bundled with ros2lite: package -> executables, each `main()` of
 # ros2lite.demos.<package>.<executable>
@@ -57,17 +74,31 @@ BUNDLED: dict[str, dict[str, str]] = {
     for package, names in _DEMOS.items()
 }
 
-_ORIGIN_ENTRY_POINT = 'entry point'
-_ORIGIN_AMENT = 'ament'
-_ORIGIN_BUNDLED = 'bundled'
+# C++ packages that courses run, and the bundled Python package that does the same thing under
+# the same executable names (used only when the C++ package itself is not installed)
+EQUIVALENTS = {'demo_nodes_cpp': 'demo_nodes_py'}
+
+
+def _suggest(name: str, candidates: Sequence[str]) -> str:
+    close = difflib.get_close_matches(name, sorted(set(candidates)), n=3, cutoff=0.6)
+    return f"; did you mean: {', '.join(close)}?" if close else ''
 
 
 class PackageNotFoundError(Ros2liteError, LookupError):
-    """No package of that name anywhere on the package path."""
+    """No source knows the package; the message names close matches."""
 
-    def __init__(self, package: str) -> None:
-        super().__init__(f"Package '{package}' not found")
+    def __init__(self, package: str, known: Sequence[str] = ()) -> None:
+        super().__init__(f"Package '{package}' not found{_suggest(package, known)}")
         self.package = package
+
+
+class ExecutableNotFoundError(Ros2liteError, LookupError):
+    """The package has no executable by that name; the message names close matches."""
+
+    def __init__(self, package: str, name: str, known: Sequence[str] = ()) -> None:
+        super().__init__(f'No executable found{_suggest(name, known)}')
+        self.package = package
+        self.name = name
 
 
 class MultipleExecutablesError(Ros2liteError, LookupError):
@@ -84,59 +115,88 @@ class PackageExecutable:
 
     package: str
     name: str
-    target: str  # 'module:attr' for entry points and bundled ones, a file path for ament
-    origin: str  # 'entry point', 'ament' or 'bundled'
+    target: str  # 'module:attr' for Python ones, a file path for ament
+    origin: str  # 'workspace', 'entry point', 'ament' or 'bundled'
+    pythonpath: tuple[str, ...] = ()  # where its modules are, for sources run in place
 
     @property
     def is_python(self) -> bool:
-        """Whether it is run with a Python interpreter (not an ament binary)."""
-        return self.origin != _ORIGIN_AMENT
+        """Whether it is run with a Python interpreter (not an ament file)."""
+        return self.origin != ORIGIN_AMENT
 
     def command(self, argv: Sequence[str] = (), python: str | None = None) -> list[str]:
-        """The argv that starts it; `argv` is passed through untouched (`--ros-args` too)."""
+        """The argv that starts it; `argv` is passed through untouched (`--ros-args` too).
+        A Python target runs through :mod:`ros2lite.pkg.runner` with this interpreter."""
         if not self.is_python:
             return [self.target, *argv]
-        return [python or sys.executable, '-c', _python_launcher(self.target, self.name), *argv]
+        return [python or sys.executable, *self.python_arguments(argv)]
+
+    def python_arguments(self, argv: Sequence[str] = ()) -> list[str]:
+        """What follows the interpreter for a Python target (for a prefix such as
+        `python -m pdb`, which brings its own interpreter)."""
+        return ['-m', RUNNER, self.target, self.name, *argv]
+
+    def prefixed_command(self, prefix: Sequence[str], argv: Sequence[str] = ()) -> list[str]:
+        """The command under a prefix (`gdb -ex run --args`, `valgrind`, …). A prefix that
+        is itself a Python interpreter (`python -m pdb`) runs a Python target directly."""
+        if self.is_python and prefix and _PYTHON.match(os.path.basename(prefix[0])):
+            return [*prefix, *self.python_arguments(argv)]
+        return [*prefix, *self.command(argv)]
+
+    def path(self) -> str:
+        """A file to show for it (`pkg executables --full-path`): the file itself, or the
+        module that holds a Python target (found without importing anything)."""
+        if not self.is_python:
+            return self.target
+        module = self.target.partition(':')[0]
+        found = _module_file(module, self.pythonpath)
+        return found if found is not None else self.target
 
 
-def _python_launcher(target: str, name: str) -> str:
-    """Code for `python -c` that behaves like a console script: argv[0] is the executable's
-    name, the working directory is not importable, and the return value is the exit status."""
-    module, _, attr = target.partition(':')
-    return (
-        'import importlib, sys\n'
-        "if sys.path and sys.path[0] in ('', '.'):\n"
-        '    del sys.path[0]\n'
-        f'sys.argv[0] = {name!r}\n'
-        f'fn = importlib.import_module({module!r})\n'
-        f'for part in {attr!r}.split("."):\n'
-        '    fn = getattr(fn, part)\n'
-        'sys.exit(fn())\n'
-    )
+def _module_file(module: str, pythonpath: Sequence[str]) -> str | None:
+    from importlib.machinery import PathFinder
+
+    search: list[str] | None = [*pythonpath, *sys.path]
+    spec = None
+    parts = module.split('.')
+    for i in range(len(parts)):
+        spec = PathFinder.find_spec('.'.join(parts[: i + 1]), search)
+        if spec is None:
+            return None
+        search = list(spec.submodule_search_locations or [])
+    return spec.origin if spec is not None else None
 
 
-# -- the three sources --------------------------------------------------------------------------
+# -- each source's executables -----------------------------------------------------------------
 
 
-def _entry_point_packages() -> dict[str, list[PackageExecutable]]:
+def _workspace_executables(pkg: Package) -> list[PackageExecutable]:
+    """An ament_python package's console scripts, run from its sources; other build types
+    need a build before anything of theirs can run."""
+    source = pkg.source
+    if source is None or source.manifest.build_type != 'ament_python':
+        return []
+    from .setup_files import read_python_package  # ast + configparser: workspaces only
+
+    info = read_python_package(source.directory)
+    root = str(info.package_root or source.directory)
+    return [
+        PackageExecutable(pkg.name, name, target, ORIGIN_WORKSPACE, (root,))
+        for name, target in sorted(info.console_scripts.items())
+    ]
+
+
+def _entry_point_executables(package: str) -> list[PackageExecutable]:
     from importlib.metadata import entry_points
 
-    found: dict[str, list[PackageExecutable]] = {}
+    found = []
     for ep in entry_points(group=ENTRY_POINT_GROUP):
-        package, dot, exe = ep.name.partition('.')
-        if not dot or not package or not exe:
-            continue  # malformed name: ignore rather than break every `run`
-        found.setdefault(package, []).append(
-            PackageExecutable(package, exe, f'{ep.module}:{ep.attr}', _ORIGIN_ENTRY_POINT)
-        )
-    return found
-
-
-def _ament_prefix(package: str, prefixes: Iterable[Path]) -> Path | None:
-    for prefix in prefixes:
-        if (prefix / 'share' / 'ament_index' / 'resource_index' / 'packages' / package).is_file():
-            return prefix
-    return None
+        name, dot, exe = ep.name.partition('.')
+        if dot and name == package and exe:
+            found.append(
+                PackageExecutable(package, exe, f'{ep.module}:{ep.attr}', ORIGIN_ENTRY_POINT)
+            )
+    return sorted(found, key=lambda e: e.name)
 
 
 def _ament_executables(package: str, prefix: Path) -> list[PackageExecutable]:
@@ -147,57 +207,101 @@ def _ament_executables(package: str, prefix: Path) -> list[PackageExecutable]:
         for filename in sorted(filenames):
             path = os.path.join(dirpath, filename)
             if os.access(path, os.X_OK):
-                found.append(PackageExecutable(package, filename, path, _ORIGIN_AMENT))
-    return found
-
-
-def _ament_packages(prefixes: Iterable[Path]) -> set[str]:
-    names: set[str] = set()
-    for prefix in prefixes:
-        index = prefix / 'share' / 'ament_index' / 'resource_index' / 'packages'
-        if index.is_dir():
-            names.update(p.name for p in index.iterdir() if p.is_file())
-    return names
+                found.append(PackageExecutable(package, filename, path, ORIGIN_AMENT))
+    return sorted(found, key=lambda e: e.target)
 
 
 def _bundled(package: str) -> list[PackageExecutable]:
     return [
-        PackageExecutable(package, name, target, _ORIGIN_BUNDLED)
-        for name, target in sorted(BUNDLED[package].items())
+        PackageExecutable(package, name, target, ORIGIN_BUNDLED)
+        for name, target in sorted(BUNDLED.get(package, {}).items())
     ]
+
+
+def package_executables(pkg: Package) -> list[PackageExecutable]:
+    """Everything `pkg` can run, as its source defines it."""
+    if pkg.origin == ORIGIN_WORKSPACE:
+        return _workspace_executables(pkg)
+    if pkg.origin == ORIGIN_ENTRY_POINT:
+        return _entry_point_executables(pkg.name)
+    if pkg.origin == ORIGIN_AMENT:
+        return _ament_executables(pkg.name, pkg.prefix)
+    if pkg.origin == ORIGIN_BUNDLED:
+        return _bundled(pkg.name)
+    return []
 
 
 # -- queries ------------------------------------------------------------------------------------
 
 
-def get_executables(package: str, env: Mapping[str, str] | None = None) -> list[PackageExecutable]:
+def _index(env: Mapping[str, str] | None, index: PackageIndex | None) -> PackageIndex:
+    return index if index is not None else PackageIndex(env)
+
+
+def get_executables(
+    package: str, env: Mapping[str, str] | None = None, *, index: PackageIndex | None = None
+) -> list[PackageExecutable]:
     """All executables of `package` from the first source that has it."""
-    entry = _entry_point_packages().get(package)
-    if entry is not None:
-        return sorted(entry, key=lambda e: e.name)
-    prefix = _ament_prefix(package, ament_prefixes(env))
-    if prefix is not None:
-        return _ament_executables(package, prefix)
-    if package in BUNDLED:
-        return _bundled(package)
-    raise PackageNotFoundError(package)
+    idx = _index(env, index)
+    pkg = idx.find(package)
+    if pkg is None:
+        raise PackageNotFoundError(package, list(idx.packages()))
+    return package_executables(pkg)
 
 
 def find_executable(
-    package: str, name: str, env: Mapping[str, str] | None = None
+    package: str,
+    name: str,
+    env: Mapping[str, str] | None = None,
+    *,
+    index: PackageIndex | None = None,
 ) -> PackageExecutable | None:
     """The executable `name` of `package`; None when the package has none by that name.
 
     Raises PackageNotFoundError, or MultipleExecutablesError when an ament package has several
     files with that name in different subdirectories.
     """
-    matches = [e for e in get_executables(package, env) if e.name == name]
+    matches = [e for e in get_executables(package, env, index=index) if e.name == name]
     if len(matches) > 1:
         raise MultipleExecutablesError([e.target for e in matches])
     return matches[0] if matches else None
 
 
+@dataclass(frozen=True)
+class Resolved:
+    """An executable to start, and a line to tell the user when it is a stand-in."""
+
+    executable: PackageExecutable
+    note: str | None = None
+
+
+def resolve_executable(
+    package: str,
+    name: str,
+    env: Mapping[str, str] | None = None,
+    *,
+    index: PackageIndex | None = None,
+) -> Resolved:
+    """What `run <package> <name>` (or a launch `Node`) starts.
+
+    A package in :data:`EQUIVALENTS` that no source provides runs its Python twin, with a
+    note saying so. Raises PackageNotFoundError / ExecutableNotFoundError (naming close
+    matches) or MultipleExecutablesError.
+    """
+    idx = _index(env, index)
+    twin = EQUIVALENTS.get(package)
+    if twin is not None and idx.find(package) is None:
+        exe = find_executable(twin, name, index=idx)
+        if exe is not None:
+            note = f'{package} (C++) is not installed; running {twin} {name}, its Python equivalent'
+            return Resolved(exe, note)
+    exe = find_executable(package, name, index=idx)
+    if exe is None:
+        known = [e.name for e in get_executables(package, index=idx)]
+        raise ExecutableNotFoundError(package, name, known)
+    return Resolved(exe)
+
+
 def list_packages(env: Mapping[str, str] | None = None) -> list[str]:
-    """Every package that has an entry here, sorted."""
-    names = set(_entry_point_packages()) | _ament_packages(ament_prefixes(env)) | set(BUNDLED)
-    return sorted(names)
+    """Every package the index knows, sorted."""
+    return list(PackageIndex(env).packages())

@@ -1,25 +1,67 @@
-"""Where packages are found: the one reading of the package search path.
+"""Where packages are found: the one package index.
 
-Every part of ros2lite that looks for packages — the executables behind `run`, the interface
-definitions behind the type system — starts from here, so a prefix, a variable or (later) a
-source workspace is honoured the same way everywhere.
+Every part of ros2lite that looks for a package — `pkg`, `run`, `launch`, the type system,
+shell completion — asks this module, so a prefix, a variable or a workspace is honoured the
+same way everywhere.
+
+Sources, first one first; **a package belongs entirely to the first source that knows it**
+(as with ament overlays, nothing is merged from two places):
+
+1. ``ROS2LITE_INTERFACE_PATH`` — directories of interface packages (`<pkg>/msg|srv|action`).
+2. **Source workspaces** (:mod:`ros2lite.pkg.workspace`): the workspace enclosing the current
+   directory, then each ``ROS2LITE_WORKSPACE`` entry — every `package.xml` under their `src/`.
+   These come before installed packages so the code you are editing is the code that runs,
+   even after an older `colcon build` of the same package was sourced.
+3. Python entry points in the group ``ros2lite.executables`` (see :mod:`.executables`).
+4. ``AMENT_PREFIX_PATH`` — a sourced ROS install or colcon `install/`: packages listed in each
+   prefix's ament resource index, prefixes in order.
+5. The packages bundled with ros2lite: its demos and its interface definitions.
+
+`ros2lite pkg prefix <pkg>` prints where the winner lives and, when it is not an ament
+prefix or when it shadows another source, a line on stderr naming the source.
 """
 
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
 from pathlib import Path
 
+from .manifest import MANIFEST, is_valid_package_name
+from .workspace import SourcePackage, scan_workspace, workspace_sources, workspaces
+
 __all__ = [
+    'BUNDLED_DEMOS',
     'BUNDLED_INTERFACES',
     'INTERFACE_PATH_ENV',
+    'ORIGINS',
+    'Package',
+    'PackageIndex',
     'ament_prefixes',
+    'interface_packages',
     'interface_roots',
 ]
 
 INTERFACE_PATH_ENV = 'ROS2LITE_INTERFACE_PATH'
-BUNDLED_INTERFACES = Path(__file__).resolve().parent.parent / 'msgs'
+_ROOT = Path(__file__).resolve().parent.parent
+BUNDLED_INTERFACES = _ROOT / 'msgs'
+BUNDLED_DEMOS = _ROOT / 'demos'
+_KINDS = ('msg', 'srv', 'action')
+_AMENT_INDEX = Path('share') / 'ament_index' / 'resource_index' / 'packages'
+
+ORIGIN_INTERFACE_PATH = 'interface path'
+ORIGIN_WORKSPACE = 'workspace'
+ORIGIN_ENTRY_POINT = 'entry point'
+ORIGIN_AMENT = 'ament'
+ORIGIN_BUNDLED = 'bundled'
+ORIGINS = (
+    ORIGIN_INTERFACE_PATH,
+    ORIGIN_WORKSPACE,
+    ORIGIN_ENTRY_POINT,
+    ORIGIN_AMENT,
+    ORIGIN_BUNDLED,
+)
 
 
 def _paths(value: str) -> list[Path]:
@@ -33,9 +75,238 @@ def ament_prefixes(env: Mapping[str, str] | None = None) -> list[Path]:
 
 def interface_roots(env: Mapping[str, str] | None = None) -> list[Path]:
     """Directories whose children are interface packages (`<pkg>/msg|srv|action`), in
-    priority order: `ROS2LITE_INTERFACE_PATH`, each prefix's `share/`, the bundled set."""
+    priority order: `ROS2LITE_INTERFACE_PATH`, each prefix's `share/`, the bundled set.
+    (Source workspaces hold packages at any depth; :func:`interface_packages` has them.)"""
     environ = os.environ if env is None else env
     roots = _paths(environ.get(INTERFACE_PATH_ENV, ''))
     roots += [prefix / 'share' for prefix in ament_prefixes(environ)]
     roots.append(BUNDLED_INTERFACES)
     return roots
+
+
+def _has_interfaces(path: Path) -> bool:
+    return any((path / kind).is_dir() for kind in _KINDS)
+
+
+@dataclass(frozen=True)
+class Package:
+    """One package as the index knows it."""
+
+    name: str
+    origin: str  # one of ORIGINS
+    prefix: Path  # what `pkg prefix` prints
+    share: Path | None = None  # package.xml, launch/, config/ live here
+    interfaces: Path | None = None  # the directory holding msg/ srv/ action/
+    source: SourcePackage | None = None  # set for workspace packages
+
+    @property
+    def manifest_path(self) -> Path | None:
+        """Its package.xml, when it has one."""
+        if self.share is not None and (self.share / MANIFEST).is_file():
+            return self.share / MANIFEST
+        return None
+
+    def describe_source(self) -> str:
+        """Where it came from, for people: 'source workspace /ws', 'ament prefix /opt/…'."""
+        if self.origin == ORIGIN_WORKSPACE and self.source is not None:
+            return f'source workspace {self.source.workspace}'
+        if self.origin == ORIGIN_AMENT:
+            return f'ament prefix {self.prefix}'
+        if self.origin == ORIGIN_INTERFACE_PATH:
+            return f'{INTERFACE_PATH_ENV} entry {self.prefix}'
+        if self.origin == ORIGIN_ENTRY_POINT:
+            return f'Python entry points installed in {self.prefix}'
+        return 'packages bundled with ros2lite'
+
+
+class PackageIndex:
+    """The packages visible from one environment and working directory. Each source is
+    read once, on first use, and then remembered: make a new index to see changes on disk
+    (the module functions of :mod:`ros2lite.pkg` do, on every call)."""
+
+    def __init__(self, env: Mapping[str, str] | None = None, cwd: Path | None = None) -> None:
+        self.env: dict[str, str] = dict(os.environ if env is None else env)
+        self.cwd = cwd
+        self._sources: dict[str, dict[str, Package]] = {}
+        self._workspaces: list[Path] | None = None
+        self.problems: list[str] = []
+
+    # -- the sources, each name -> Package ---------------------------------------------------
+    def workspaces(self) -> list[Path]:
+        """The source workspaces in use, in priority order."""
+        if self._workspaces is None:
+            self._workspaces = workspaces(self.env, self.cwd)
+        return self._workspaces
+
+    def _source(self, origin: str) -> dict[str, Package]:
+        found = self._sources.get(origin)
+        if found is None:
+            reader = {
+                ORIGIN_INTERFACE_PATH: self._read_interface_path,
+                ORIGIN_WORKSPACE: self._read_workspaces,
+                ORIGIN_ENTRY_POINT: self._read_entry_points,
+                ORIGIN_AMENT: self._read_ament,
+                ORIGIN_BUNDLED: self._read_bundled,
+            }[origin]
+            found = self._sources[origin] = reader()
+        return found
+
+    def _read_interface_path(self) -> dict[str, Package]:
+        found: dict[str, Package] = {}
+        for root in _paths(self.env.get(INTERFACE_PATH_ENV, '')):
+            for child in _children(root):
+                if child.name not in found and _has_interfaces(child):
+                    found[child.name] = Package(
+                        child.name, ORIGIN_INTERFACE_PATH, root, child, child
+                    )
+        return found
+
+    def _read_workspaces(self) -> dict[str, Package]:
+        found: dict[str, Package] = {}
+        for ws in self.workspaces():
+            scan = scan_workspace(workspace_sources(ws), ws)
+            self.problems += scan.problems
+            for name, source in scan.packages.items():
+                if name not in found:
+                    d = source.directory
+                    found[name] = Package(
+                        name,
+                        ORIGIN_WORKSPACE,
+                        d,
+                        d,
+                        d if _has_interfaces(d) else None,
+                        source,
+                    )
+        return found
+
+    def _read_entry_points(self) -> dict[str, Package]:
+        from .executables import ENTRY_POINT_GROUP
+
+        found: dict[str, Package] = {}
+        if not _may_declare(ENTRY_POINT_GROUP):
+            return found
+        from importlib.metadata import entry_points
+
+        for ep in entry_points(group=ENTRY_POINT_GROUP):
+            package, dot, exe = ep.name.partition('.')
+            if not dot or not exe or not is_valid_package_name(package) or package in found:
+                continue
+            dist = getattr(ep, 'dist', None)
+            location = Path(str(dist.locate_file(''))) if dist is not None else Path()
+            found[package] = Package(package, ORIGIN_ENTRY_POINT, location)
+        return found
+
+    def _read_ament(self) -> dict[str, Package]:
+        found: dict[str, Package] = {}
+        for prefix in ament_prefixes(self.env):
+            names = [m.name for m in _children(prefix / _AMENT_INDEX) if m.is_file()]
+            # interface definitions copied into a prefix count without an index marker
+            names += [d.name for d in _children(prefix / 'share') if _has_interfaces(d)]
+            for name in names:
+                if name in found or not is_valid_package_name(name):
+                    continue
+                share = prefix / 'share' / name
+                interfaces = share if _has_interfaces(share) else None
+                found[name] = Package(name, ORIGIN_AMENT, prefix, share, interfaces)
+        return found
+
+    def _read_bundled(self) -> dict[str, Package]:
+        from .executables import BUNDLED
+
+        found: dict[str, Package] = {}
+        for child in _children(BUNDLED_INTERFACES):
+            if _has_interfaces(child):
+                found[child.name] = Package(child.name, ORIGIN_BUNDLED, _ROOT, child, child)
+        for name in BUNDLED:
+            demo = BUNDLED_DEMOS / name
+            interfaces = found[name].interfaces if name in found else None
+            found[name] = Package(
+                name, ORIGIN_BUNDLED, _ROOT, demo if demo.is_dir() else None, interfaces
+            )
+        return found
+
+    # -- queries -----------------------------------------------------------------------------
+    def candidates(self, name: str) -> list[Package]:
+        """Every source's `name`, winner first (the rest are shadowed by it)."""
+        return [pkg for origin in ORIGINS if (pkg := self._source(origin).get(name))]
+
+    def find(self, name: str) -> Package | None:
+        """The package `name` from the first source that knows it."""
+        for origin in ORIGINS:
+            pkg = self._source(origin).get(name)
+            if pkg is not None:
+                return pkg
+        return None
+
+    def packages(self) -> dict[str, Package]:
+        """Every package (the winner for each name), sorted by name."""
+        winners: dict[str, Package] = {}
+        for origin in ORIGINS:
+            for name, pkg in self._source(origin).items():
+                winners.setdefault(name, pkg)
+        return dict(sorted(winners.items()))
+
+    def interface_packages(self) -> dict[str, Path]:
+        """Package name → the directory holding its msg/srv/action, for packages that have
+        interfaces (owned, like everything, by the first source that knows the package).
+
+        Entry points declare executables only: they neither have nor hide interfaces, and
+        are not read here, which keeps every node's start-up free of a scan of all installed
+        distributions."""
+        found: dict[str, Path] = {}
+        owned: set[str] = set()
+        for origin in ORIGINS:
+            if origin == ORIGIN_ENTRY_POINT:
+                continue
+            for name, pkg in self._source(origin).items():
+                if name not in owned:
+                    owned.add(name)
+                    if pkg.interfaces is not None:
+                        found[name] = pkg.interfaces
+        return dict(sorted(found.items()))
+
+
+def _may_declare(group: str) -> bool:
+    """Could an installed distribution declare entry points in `group`? A quick look at the
+    entry_points.txt files on sys.path, so the common answer (none) costs no importlib.metadata
+    scan of every distribution — that scan is what reads them properly when one may."""
+    import sys
+
+    needle = f'[{group}]'.encode()
+    for entry in sys.path:
+        try:
+            names = os.listdir(entry or '.')
+        except OSError:
+            continue
+        for name in names:
+            if name.endswith(('.dist-info', '.egg-info')):
+                try:
+                    with open(os.path.join(entry or '.', name, 'entry_points.txt'), 'rb') as f:
+                        if needle in f.read():
+                            return True
+                except OSError:
+                    continue
+    return False
+
+
+def _children(directory: Path) -> Iterator[Path]:
+    try:
+        return iter(sorted(directory.iterdir()))
+    except OSError:
+        return iter(())
+
+
+def workspace_interface_packages(env: Mapping[str, str] | None = None) -> dict[str, Path]:
+    """Package name → its interface directory, for the source workspaces' packages alone
+    (the top-level import hook's quick "could this be an interface package?")."""
+    index = PackageIndex(env)
+    return {
+        name: pkg.interfaces
+        for name, pkg in index._source(ORIGIN_WORKSPACE).items()
+        if pkg.interfaces is not None
+    }
+
+
+def interface_packages(env: Mapping[str, str] | None = None) -> dict[str, Path]:
+    """Package name → its interface directory, in the index's precedence."""
+    return PackageIndex(env).interface_packages()

@@ -14,11 +14,10 @@ from __future__ import annotations
 
 import datetime
 from pathlib import Path
-from typing import Any
 
 from cryptography import x509
 from cryptography.hazmat.primitives import hashes, serialization
-from cryptography.hazmat.primitives.asymmetric import ec
+from cryptography.hazmat.primitives.asymmetric import ec, rsa
 from cryptography.hazmat.primitives.serialization import pkcs7
 
 from ros2lite.security.errors import KeystoreError
@@ -26,6 +25,7 @@ from ros2lite.security.files import write_file
 
 __all__ = [
     'CA_COMMON_NAME',
+    'SigningKey',
     'load_certificate',
     'load_private_key',
     'new_ca',
@@ -36,11 +36,13 @@ __all__ = [
 ]
 
 CA_COMMON_NAME = 'sros2CA'
+# a key that can sign both certificates and S/MIME documents; sros2 makes ECDSA ones
+SigningKey = ec.EllipticCurvePrivateKey | rsa.RSAPrivateKey
 VALIDITY = datetime.timedelta(days=3650)
 
 
 def _build(
-    subject: str, *, ca: bool, issuer: x509.Name | None = None, issuer_key: Any = None
+    subject: str, *, ca: bool, issuer: x509.Name | None = None, issuer_key: SigningKey | None = None
 ) -> tuple[x509.Certificate, ec.EllipticCurvePrivateKey]:
     key = ec.generate_private_key(ec.SECP256R1())
     name = x509.Name([x509.NameAttribute(x509.oid.NameOID.COMMON_NAME, subject)])
@@ -64,17 +66,21 @@ def _build(
     return cert, key
 
 
-def new_ca(common_name: str = CA_COMMON_NAME) -> tuple[x509.Certificate, Any]:
+def new_ca(
+    common_name: str = CA_COMMON_NAME,
+) -> tuple[x509.Certificate, ec.EllipticCurvePrivateKey]:
     """A fresh self-signed CA certificate and its key."""
     return _build(common_name, ca=True)
 
 
-def new_identity(common_name: str, ca_cert: x509.Certificate, ca_key: Any) -> tuple[Any, Any]:
+def new_identity(
+    common_name: str, ca_cert: x509.Certificate, ca_key: SigningKey
+) -> tuple[x509.Certificate, ec.EllipticCurvePrivateKey]:
     """A fresh certificate for ``common_name`` (an enclave), signed by the CA."""
     return _build(common_name, ca=False, issuer=ca_cert.subject, issuer_key=ca_key)
 
 
-def write_private_key(key: Any, path: Path) -> None:
+def write_private_key(key: SigningKey, path: Path) -> None:
     """PKCS#8 PEM, readable by the owner only."""
     data = key.private_bytes(
         serialization.Encoding.PEM,
@@ -97,15 +103,18 @@ def load_certificate(path: Path) -> x509.Certificate:
         raise KeystoreError(f"cannot load certificate '{path}': {exc}") from None
 
 
-def load_private_key(path: Path) -> Any:
-    """A PEM private key (unencrypted, as sros2 writes them)."""
+def load_private_key(path: Path) -> SigningKey:
+    """A PEM private key (unencrypted, as sros2 writes them) of a kind that signs."""
     try:
-        return serialization.load_pem_private_key(path.read_bytes(), password=None)
+        key = serialization.load_pem_private_key(path.read_bytes(), password=None)
     except (OSError, ValueError, TypeError) as exc:
         raise KeystoreError(f"cannot load private key '{path}': {exc}") from None
+    if not isinstance(key, (ec.EllipticCurvePrivateKey, rsa.RSAPrivateKey)):
+        raise KeystoreError(f"cannot load private key '{path}': not an ECDSA or RSA key")
+    return key
 
 
-def sign_document(cert: x509.Certificate, key: Any, content: bytes) -> bytes:
+def sign_document(cert: x509.Certificate, key: SigningKey, content: bytes) -> bytes:
     """``content`` wrapped in a detached, text-mode S/MIME signature (sros2's .p7s)."""
     return (
         pkcs7.PKCS7SignatureBuilder()

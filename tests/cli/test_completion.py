@@ -105,3 +105,13 @@ def test_activation_scripts() -> None:
         result = run_process(env={'_ROS2LITE_COMPLETE': f'{shell}_source'})
         assert result.code == 0
         assert '_ROS2LITE_COMPLETE' in result.out and 'ros2lite' in result.out
+
+
+def test_packages_executables_and_launch_files_from_the_index() -> None:
+    assert complete('ros2lite launch demo_nodes_py talker') == [
+        'talker_listener.launch.py',
+        'talker_listener.launch.xml',
+        'talker_listener.launch.yaml',
+    ]
+    assert complete('ros2lite run turtlesim turtle_tel') == ['turtle_teleop_key']
+    assert complete('ros2lite pkg prefix demo_nodes_p') == ['demo_nodes_py']

@@ -17,6 +17,7 @@ from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
 from tests.cli.conftest import Result, run_process
 from tests.pkg.test_executables import make_ament_prefix
+from tests.pkg.workspaces import MINIMAL_PUBLISHER
 from tests.spinning import spin_until, wait_until
 
 
@@ -220,3 +221,191 @@ def test_ctrl_c_in_a_terminal_reaches_the_child_once(tmp_path: Path) -> None:
         os.close(slave)
     assert out == 'interrupts=1\n', err
     assert proc.returncode == 0
+
+
+def test_a_new_package_runs_without_a_build(
+    run: Callable[..., Result], ros_context: Any, processes: Any, tmp_path: Path
+) -> None:
+    ws = tmp_path / 'ws'
+    created = run(
+        'pkg',
+        'create',
+        '--build-type',
+        'ament_python',
+        'py_pubsub',
+        '--destination-directory',
+        str(ws / 'src'),
+        '--dependencies',
+        'rclpy',
+        'std_msgs',
+    )
+    assert created.code == 0, created.err
+    pkg = ws / 'src' / 'py_pubsub'
+    (pkg / 'py_pubsub' / 'publisher_member_function.py').write_text(MINIMAL_PUBLISHER)
+    setup = pkg / 'setup.py'
+    setup.write_text(
+        setup.read_text().replace(
+            "'console_scripts': [\n",
+            "'console_scripts': ['talker = py_pubsub.publisher_member_function:main',\n",
+        )
+    )
+    node = Node('ws_probe', context=ros_context, enable_rosout=False)
+    got: list[str] = []
+    node.create_subscription('std_msgs/msg/String', '/ws_topic', lambda m: got.append(m.data), 10)
+    ex = SingleThreadedExecutor(context=ros_context)
+    ex.add_node(node)
+    proc = processes.start(
+        [
+            sys.executable,
+            '-m',
+            'ros2lite',
+            'run',
+            'py_pubsub',
+            'talker',
+            '--ros-args',
+            '-r',
+            'topic:=/ws_topic',
+        ],
+        stdin=subprocess.DEVNULL,
+        start_new_session=True,
+        cwd=pkg / 'py_pubsub',  # anywhere inside the workspace
+    )
+    spin_until(ex, lambda: len(got) >= 3, timeout=20)
+    assert got[0].startswith('Hello World: ')
+    _out, err = processes.stop(proc)
+    assert proc.returncode == 0, err
+    assert 'Traceback' not in err
+
+
+def test_cpp_demo_runs_its_python_twin(ros_context: Any, processes: Any) -> None:
+    probe = Node('twin_probe', context=ros_context, enable_rosout=False)
+    proc = start_run(
+        processes, 'demo_nodes_cpp', 'listener', '--ros-args', '-r', '__node:=twin_listener'
+    )
+    wait_until(lambda: ('twin_listener', '/') in probe.get_node_names_and_namespaces(), 15)
+    _out, err = processes.stop(proc)
+    assert err.splitlines()[0] == (
+        '[ros2run]: demo_nodes_cpp (C++) is not installed; running demo_nodes_py listener, '
+        'its Python equivalent'
+    )
+    assert proc.returncode == 0
+
+
+def test_python_prefix_runs_the_target_under_pdb(tmp_path: Path) -> None:
+    from tests.pkg.workspaces import write_package
+
+    ws = tmp_path / 'ws'
+    write_package(
+        ws / 'src' / 'dbg',
+        'dbg',
+        scripts={'show': 'dbg.show:main'},
+        modules={
+            'dbg/__init__.py': '',
+            'dbg/show.py': (
+                'import sys\ndef main():\n    print("argv", sys.argv[1:])\n    return 0\n'
+            ),
+        },
+    )
+    result = run_process(
+        'run',
+        '--prefix',
+        f'{sys.executable} -m pdb',
+        'dbg',
+        'show',
+        'a',
+        'b',
+        stdin='continue\nquit\n',
+        env={'ROS2LITE_WORKSPACE': str(ws)},
+    )
+    assert "argv ['a', 'b']" in result.out
+    assert '(Pdb)' in result.out
+
+
+def test_unknown_names_get_close_matches(run: Callable[..., Result]) -> None:
+    assert run('run', 'demo_nodes_py', 'listner').err == (
+        'No executable found; did you mean: listener?\n'
+    )
+    assert run('run', 'turtlesin', 'turtlesim_node').err == (
+        "Package 'turtlesin' not found; did you mean: turtlesim, turtlesim_msgs?\n"
+    )
+
+
+BIRTHDAY = '''
+import ros2lite
+from ros2lite.executors import ExternalShutdownException
+from ros2lite.msgs.tutorial_interfaces.msg import Age
+from ros2lite.node import Node
+
+
+def main():
+    ros2lite.init()
+    node = Node('birthday')
+    pub = node.create_publisher(Age, 'age', 10)
+    node.create_timer(0.1, lambda: pub.publish(Age(years=3, months=2)))
+    try:
+        ros2lite.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+'''
+
+
+def test_a_custom_message_package_used_by_another(
+    run: Callable[..., Result], processes: Any, tmp_path: Path
+) -> None:
+    """An ament_cmake package holding Age.msg, used by an ament_python package's node: both
+    straight from the workspace, the type known to the node and to a tool alike."""
+    src = tmp_path / 'ws' / 'src'
+    assert (
+        run('pkg', 'create', 'tutorial_interfaces', '--destination-directory', str(src)).code == 0
+    )
+    (src / 'tutorial_interfaces' / 'msg').mkdir()
+    (src / 'tutorial_interfaces' / 'msg' / 'Age.msg').write_text('uint8 years\nuint8 months\n')
+    assert (
+        run(
+            'pkg',
+            'create',
+            '--build-type',
+            'ament_python',
+            'ages',
+            '--destination-directory',
+            str(src),
+            '--dependencies',
+            'tutorial_interfaces',
+        ).code
+        == 0
+    )
+    (src / 'ages' / 'ages' / 'birthday.py').write_text(BIRTHDAY)
+    setup = src / 'ages' / 'setup.py'
+    setup.write_text(
+        setup.read_text().replace(
+            "'console_scripts': [\n", "'console_scripts': ['birthday = ages.birthday:main',\n"
+        )
+    )
+    shown = run_process(
+        'interface',
+        'show',
+        'tutorial_interfaces/msg/Age',
+        env={'ROS2LITE_WORKSPACE': str(tmp_path / 'ws')},
+    )
+    assert shown.out == 'uint8 years\nuint8 months\n'
+
+    # the node publishes from its source package; `topic echo`, run elsewhere, knows the
+    # type from the same workspace (a process of its own: this one's registry stays as is)
+    proc = start_run(processes, 'ages', 'birthday', cwd=src / 'ages')
+    echo = processes.start(
+        [
+            sys.executable,
+            '-m',
+            'ros2lite',
+            'topic',
+            'echo',
+            '--once',
+            '/age',
+            'tutorial_interfaces/msg/Age',
+        ],
+        stdin=subprocess.DEVNULL,
+        env={**os.environ, 'ROS2LITE_WORKSPACE': str(tmp_path / 'ws')},
+    )
+    out, err = echo.communicate(timeout=60)
+    assert (echo.returncode, out) == (0, 'years: 3\nmonths: 2\n---\n'), err
+    processes.stop(proc)

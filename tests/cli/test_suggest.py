@@ -39,9 +39,6 @@ def test_unknown_verb(run: Run) -> None:
 
 
 def test_lacking_commands_say_why(run: Run) -> None:
-    for args, word in (
-        (['test', 'x.test.py'], 'launch_testing'),
-        (['doctor'], 'doctor'),
-    ):
+    for args, word in ((['test', 'x.test.py'], 'launch_testing'),):
         result = run(*args)
         assert result.code == 1 and word in result.err and len(result.err.splitlines()) == 1

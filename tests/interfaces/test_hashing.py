@@ -88,3 +88,21 @@ def test_rosbags_agrees_on_ordinary_messages() -> None:
     store = get_typestore(Stores.ROS2_JAZZY)
     for name in ('geometry_msgs/msg/Twist', 'sensor_msgs/msg/Imu', 'tf2_msgs/msg/TFMessage'):
         assert store.hash_rihs01(name) == type_hash(name)
+
+
+def test_each_registry_hashes_its_own_definitions(tmp_path: Path) -> None:
+    """A registry made after another one was dropped (as reload_registry does) must not be
+    handed the hashes of the old definitions, whatever id() the new object gets."""
+    from ros2lite.interfaces.hashing import type_hash as hash_in
+    from ros2lite.interfaces.registry import Registry
+
+    versions = ('uint8 years\n', 'uint8 years\nuint8 months\n', 'uint16 years\n')
+    seen = set()
+    for i, fields in enumerate(versions * 2):
+        msg = tmp_path / str(i) / 'lesson_msgs' / 'msg'
+        msg.mkdir(parents=True)
+        (msg / 'Age.msg').write_text(fields)
+        # each registry is dropped at once: the next one may well get the same id()
+        seen.add((fields, hash_in('lesson_msgs/msg/Age', Registry([tmp_path / str(i)]))))
+    assert len(seen) == 3  # one hash per definition, the same each time
+    assert len({h for _, h in seen}) == 3

@@ -150,3 +150,71 @@ def test_entry_points(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     assert find_executable('demo_nodes_py', 'listener') is None
     assert 'ep_pkg' in list_packages() and 'no_dot_name' not in list_packages()
     assert sys.path[0] == str(tmp_path)
+
+
+def test_workspace_python_package_runs_from_its_sources(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from ros2lite.pkg.environment import child_environment
+    from ros2lite.pkg.index import PackageIndex
+    from tests.pkg.workspaces import write_package
+
+    ws = tmp_path / 'ws'
+    write_package(
+        ws / 'src' / 'py_tools',
+        'py_tools',
+        scripts={'hello': 'py_tools.hello:main'},
+        modules={
+            'py_tools/__init__.py': '',
+            'py_tools/hello.py': (
+                'import sys\ndef main():\n    print("hi", sys.argv)\n    return 4\n'
+            ),
+        },
+    )
+    write_package(ws / 'src' / 'cpp_thing', 'cpp_thing', build_type='ament_cmake')
+    monkeypatch.chdir(tmp_path)  # outside the workspace: found through the variable
+    monkeypatch.setenv('ROS2LITE_WORKSPACE', str(ws))
+    index = PackageIndex()
+    hello = find_executable('py_tools', 'hello', index=index)
+    assert hello is not None and hello.origin == 'workspace'
+    assert hello.pythonpath == (str(ws / 'src' / 'py_tools'),)
+    assert hello.path() == str(ws / 'src' / 'py_tools' / 'py_tools' / 'hello.py')
+    assert get_executables('cpp_thing', index=index) == []  # C++ needs a build first
+    env = child_environment(pythonpath=hello.pythonpath, workspaces=index.workspaces())
+    proc = subprocess.run(
+        hello.command(['--ros-args']), capture_output=True, text=True, timeout=60, env=env
+    )
+    assert (proc.returncode, proc.stdout) == (4, "hi ['hello', '--ros-args']\n")
+
+
+def test_cpp_demo_names_run_the_python_twins() -> None:
+    from ros2lite.pkg.executables import resolve_executable
+
+    resolved = resolve_executable('demo_nodes_cpp', 'add_two_ints_server')
+    assert resolved.executable.package == 'demo_nodes_py'
+    assert resolved.executable.name == 'add_two_ints_server'
+    assert resolved.note == (
+        'demo_nodes_cpp (C++) is not installed; running demo_nodes_py add_two_ints_server, '
+        'its Python equivalent'
+    )
+    assert resolve_executable('demo_nodes_py', 'talker').note is None
+
+
+def test_cpp_demo_installed_is_used_as_is(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from ros2lite.pkg.executables import resolve_executable
+
+    prefix = make_ament_prefix(tmp_path, 'demo_nodes_cpp', {'talker': '#!/bin/sh\n'})
+    monkeypatch.setenv('AMENT_PREFIX_PATH', str(prefix))
+    resolved = resolve_executable('demo_nodes_cpp', 'talker')
+    assert resolved.note is None and resolved.executable.origin == 'ament'
+
+
+def test_close_matches_in_errors() -> None:
+    from ros2lite.pkg.executables import ExecutableNotFoundError, resolve_executable
+
+    with pytest.raises(PackageNotFoundError, match=r"not found; did you mean: demo_nodes_py\?"):
+        resolve_executable('demo_node_py', 'talker')
+    with pytest.raises(ExecutableNotFoundError, match=r'^No executable found; did you mean: '):
+        resolve_executable('demo_nodes_py', 'talkr')
+    with pytest.raises(ExecutableNotFoundError, match=r'^No executable found$'):
+        resolve_executable('demo_nodes_py', 'zzzzzz')

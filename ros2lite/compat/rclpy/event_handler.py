@@ -1,39 +1,4 @@
-"""rclpy.event_handler."""
+"""rclpy.event_handler: the names of :mod:`ros2lite.event_handler`, which is rclpy-shaped."""
 
-from ros2lite.event_handler import (
-    EventHandler,
-    IncompatibleTypeInfo,
-    PublisherEventCallbacks,
-    QoSLivelinessChangedInfo,
-    QoSLivelinessLostInfo,
-    QoSMessageLostInfo,
-    QoSOfferedDeadlineMissedInfo,
-    QoSOfferedIncompatibleQoSInfo,
-    QoSPublisherEventType,
-    QoSPublisherMatchedInfo,
-    QoSRequestedDeadlineMissedInfo,
-    QoSRequestedIncompatibleQoSInfo,
-    QoSSubscriptionEventType,
-    QoSSubscriptionMatchedInfo,
-    SubscriptionEventCallbacks,
-    UnsupportedEventTypeError,
-)
-
-__all__ = [
-    'EventHandler',
-    'IncompatibleTypeInfo',
-    'PublisherEventCallbacks',
-    'QoSLivelinessChangedInfo',
-    'QoSLivelinessLostInfo',
-    'QoSMessageLostInfo',
-    'QoSOfferedDeadlineMissedInfo',
-    'QoSOfferedIncompatibleQoSInfo',
-    'QoSPublisherEventType',
-    'QoSPublisherMatchedInfo',
-    'QoSRequestedDeadlineMissedInfo',
-    'QoSRequestedIncompatibleQoSInfo',
-    'QoSSubscriptionEventType',
-    'QoSSubscriptionMatchedInfo',
-    'SubscriptionEventCallbacks',
-    'UnsupportedEventTypeError',
-]
+from ros2lite.event_handler import *  # noqa: F403
+from ros2lite.event_handler import __all__  # noqa: F401

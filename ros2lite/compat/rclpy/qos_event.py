@@ -1,39 +1,4 @@
-"""rclpy.qos_event (the older name of rclpy.event_handler)."""
+"""rclpy.qos_event (the older name of rclpy.event_handler): the same names."""
 
-from ros2lite.event_handler import (
-    EventHandler,
-    IncompatibleTypeInfo,
-    PublisherEventCallbacks,
-    QoSLivelinessChangedInfo,
-    QoSLivelinessLostInfo,
-    QoSMessageLostInfo,
-    QoSOfferedDeadlineMissedInfo,
-    QoSOfferedIncompatibleQoSInfo,
-    QoSPublisherEventType,
-    QoSPublisherMatchedInfo,
-    QoSRequestedDeadlineMissedInfo,
-    QoSRequestedIncompatibleQoSInfo,
-    QoSSubscriptionEventType,
-    QoSSubscriptionMatchedInfo,
-    SubscriptionEventCallbacks,
-    UnsupportedEventTypeError,
-)
-
-__all__ = [
-    'EventHandler',
-    'IncompatibleTypeInfo',
-    'PublisherEventCallbacks',
-    'QoSLivelinessChangedInfo',
-    'QoSLivelinessLostInfo',
-    'QoSMessageLostInfo',
-    'QoSOfferedDeadlineMissedInfo',
-    'QoSOfferedIncompatibleQoSInfo',
-    'QoSPublisherEventType',
-    'QoSPublisherMatchedInfo',
-    'QoSRequestedDeadlineMissedInfo',
-    'QoSRequestedIncompatibleQoSInfo',
-    'QoSSubscriptionEventType',
-    'QoSSubscriptionMatchedInfo',
-    'SubscriptionEventCallbacks',
-    'UnsupportedEventTypeError',
-]
+from ros2lite.event_handler import *  # noqa: F403
+from ros2lite.event_handler import __all__  # noqa: F401

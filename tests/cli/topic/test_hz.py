@@ -47,7 +47,9 @@ def test_waits_for_topic_filters_and_window(processes: Any, talker: Any, topic: 
     blocks = BLOCK.findall(hz.text[len(warning) :])
     assert BLOCK.sub('', hz.text[len(warning) :]) == ''
     for rate, _low, _high, _std, window in blocks:
-        assert abs(float(rate) - 25) < 25 * 0.05  # every other message passes
+        # every other message passes: 25 Hz, never the talker's 50 (a window of 10 arrivals
+        # can read fast when load delays a few and delivers them together)
+        assert abs(float(rate) - 25) < 25 * 0.4
         assert window == '10'
 
 

@@ -186,7 +186,10 @@ def test_default_loop_publishes_at_rate_with_node_name_and_qos(
         'data: loop',
     )
     wait_until(lambda: len(heard.messages) >= 5)
-    pubs = [e for e in graph(ros_context) if e.kind.value == 'MP' and e.topic_name == topic]
+    # one liveliness query can miss a token a just-started peer declared: ask until it shows
+    pubs = wait_until(
+        lambda: [e for e in graph(ros_context) if e.kind.value == 'MP' and e.topic_name == topic]
+    )
     assert [e.node_name for e in pubs] == ['my_pub']
     assert pubs[0].qos is not None and pubs[0].qos.reliability.name == 'BEST_EFFORT'
     out, _ = processes.stop(proc)

@@ -1,0 +1,74 @@
+"""`ros2lite doctor` (and `wtf`): ros2doctor's checks summary, warnings and reports.
+
+Warnings and errors go to stderr as ros2doctor's Python warnings print them
+(`<file>: <line>: UserWarning: <message>`, errors prefixed `ERROR: `); the summary
+(`All 6 checks passed` / `1/6 check(s) failed` + `Failed modules: …`) and the reports
+(`--report`) go to stdout.
+"""
+
+from __future__ import annotations
+
+import click
+
+
+@click.command('doctor', context_settings={'help_option_names': ['-h', '--help']})
+@click.option('-r', '--report', is_flag=True, help='Print all reports.')
+@click.option(
+    '-rf',
+    '--report-failed',
+    '--report-fail',
+    'report_failed',
+    is_flag=True,
+    help='Print reports of failed checks only.',
+)
+@click.option(
+    '-ep',
+    '--exclude-packages',
+    is_flag=True,
+    help='Exclude package checks or report.',
+)
+@click.option(
+    '-iw',
+    '--include-warnings',
+    is_flag=True,
+    help='Include warnings as failed checks. Warnings are ignored by default.',
+)
+def cli(report: bool, report_failed: bool, exclude_packages: bool, include_warnings: bool) -> None:
+    """Check ROS setup and other potential issues."""
+    from ros2lite.doctor import Diagnosis, Report
+
+    diagnosis = Diagnosis()
+    exclude = ('package',) if exclude_packages else ()
+    if report:
+        for section in diagnosis.reports():
+            if section.category not in exclude:
+                _print_report(section)
+        return
+    results = diagnosis.run_checks(exclude=exclude)
+    for result in results:
+        for finding in result.findings:
+            prefix = 'ERROR: ' if finding.severity == 'error' else ''
+            click.echo(
+                f'{finding.filename}: {finding.lineno}: UserWarning: {prefix}{finding.message}',
+                err=True,
+            )
+    failed = [r.category for r in results if r.failed(include_warnings)]
+    if failed:
+        click.echo(f'\n{len(failed)}/{len(results)} check(s) failed\n')
+        click.echo('Failed modules: ' + ' '.join(failed))
+    else:
+        click.echo(f'\nAll {len(results)} checks passed\n')
+    if report_failed and failed:
+        sections: list[Report] = diagnosis.reports(set(failed))
+        for section in sections:
+            _print_report(section)
+
+
+def _print_report(report: object) -> None:
+    from ros2lite.doctor import Report
+
+    assert isinstance(report, Report)
+    click.echo(f'\n   {report.name}')
+    pad = max([8, *(len(key) + 4 for key, _ in report.items)])
+    for key, value in report.items:
+        click.echo(f'{key:{pad}}: {value}')

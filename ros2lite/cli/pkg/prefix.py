@@ -1,0 +1,31 @@
+"""`pkg prefix <pkg> [--share]`: where a package lives, and (on stderr) which source won
+when that is not simply an installed prefix."""
+
+from __future__ import annotations
+
+import click
+
+from .. import completion
+from ..errors import CliError
+
+
+@click.command('prefix')
+@click.argument('package_name', shell_complete=completion.executable_packages)
+@click.option('--share', is_flag=True, help='Show share directory for the package')
+def cli(package_name: str, share: bool) -> None:
+    """Output the prefix path of a package."""
+    from ros2lite.pkg.index import ORIGIN_AMENT, PackageIndex
+
+    candidates = PackageIndex().candidates(package_name)
+    if not candidates:
+        raise CliError('Package not found')
+    winner, shadowed = candidates[0], candidates[1:]
+    path = winner.share if share else winner.prefix
+    if path is None:
+        raise CliError(f"Package '{package_name}' has no share directory")
+    click.echo(str(path))
+    if winner.origin != ORIGIN_AMENT or shadowed:
+        note = f'{package_name}: from the {winner.describe_source()}'
+        if shadowed:
+            note += '; shadows the ' + ', the '.join(p.describe_source() for p in shadowed)
+        click.echo(note, err=True)

@@ -1,0 +1,45 @@
+"""`launch.actions`: ros2lite's launch actions under launch's names."""
+
+from ros2lite.launch.actions import (
+    Action,
+    AppendEnvironmentVariable,
+    DeclareLaunchArgument,
+    EmitEvent,
+    GroupAction,
+    IncludeLaunchDescription,
+    LogInfo,
+    OpaqueFunction,
+    PopLaunchConfigurations,
+    PushLaunchConfigurations,
+    RegisterEventHandler,
+    SetEnvironmentVariable,
+    SetLaunchConfiguration,
+    Shutdown,
+    TimerAction,
+    UnregisterEventHandler,
+    UnsetEnvironmentVariable,
+    UnsetLaunchConfiguration,
+)
+from ros2lite.launch.execute import ExecuteProcess
+
+__all__ = [
+    'Action',
+    'AppendEnvironmentVariable',
+    'DeclareLaunchArgument',
+    'EmitEvent',
+    'ExecuteProcess',
+    'GroupAction',
+    'IncludeLaunchDescription',
+    'LogInfo',
+    'OpaqueFunction',
+    'PopLaunchConfigurations',
+    'PushLaunchConfigurations',
+    'RegisterEventHandler',
+    'SetEnvironmentVariable',
+    'SetLaunchConfiguration',
+    'Shutdown',
+    'TimerAction',
+    'UnregisterEventHandler',
+    'UnsetEnvironmentVariable',
+    'UnsetLaunchConfiguration',
+]

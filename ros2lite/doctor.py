@@ -1,0 +1,441 @@
+"""`doctor`: checks of a ros2lite setup and the reports behind them (ros2doctor's shape).
+
+Six checks, each a *category* (what ``Failed modules:`` names):
+
+- ``platform`` — an operating system ros2lite is tested on, and a `python3` on PATH that
+  can import ros2lite;
+- ``network`` — a Zenoh router answers at the endpoint every session uses;
+- ``middleware`` — ``ROS_DOMAIN_ID``, the ``ZENOH_*`` variables and ``RMW_IMPLEMENTATION``
+  make a valid session configuration that talks to rmw_zenoh nodes;
+- ``topic`` — topics with publishers but no subscribers (and the reverse) are warnings;
+  endpoints of one topic disagreeing on the type or its RIHS01 hash are errors (rmw_zenoh
+  puts the hash in the key expression, so such endpoints never exchange a message);
+- ``qos`` — publisher/subscription pairs whose QoS is incompatible;
+- ``package`` — source workspace packages that cannot be read.
+
+The graph is read once, from the router (the daemon is never started by a diagnosis). A
+finding remembers the file and line that raised it, as ros2doctor's Python warnings do.
+"""
+
+from __future__ import annotations
+
+import os
+import platform
+import socket
+import sys
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from ros2lite.graph import Entity
+
+__all__ = ['CATEGORIES', 'CheckResult', 'Diagnosis', 'Finding', 'Report']
+
+CATEGORIES = ('platform', 'network', 'middleware', 'topic', 'qos', 'package')
+_QUIET_TOPICS = ('/parameter_events', '/rosout')  # every node has them; not worth a warning
+_GRAPH_TIMEOUT = 3.0
+
+
+@dataclass(frozen=True)
+class Finding:
+    """A warning or an error, with where in ros2lite it was found."""
+
+    severity: str  # 'warning' or 'error'
+    message: str
+    filename: str
+    lineno: int
+
+
+@dataclass
+class CheckResult:
+    category: str
+    findings: list[Finding] = field(default_factory=list)
+
+    @property
+    def errors(self) -> list[Finding]:
+        return [f for f in self.findings if f.severity == 'error']
+
+    @property
+    def warnings(self) -> list[Finding]:
+        return [f for f in self.findings if f.severity == 'warning']
+
+    def failed(self, include_warnings: bool = False) -> bool:
+        return bool(self.errors or (include_warnings and self.warnings))
+
+    def _add(self, severity: str, message: str) -> None:
+        frame = sys._getframe(2)
+        self.findings.append(Finding(severity, message, frame.f_code.co_filename, frame.f_lineno))
+
+    def warn(self, message: str) -> None:
+        self._add('warning', message)
+
+    def error(self, message: str) -> None:
+        self._add('error', message)
+
+
+@dataclass
+class Report:
+    """A titled list of key/value lines (`doctor --report`)."""
+
+    name: str
+    category: str
+    items: list[tuple[str, str]] = field(default_factory=list)
+
+    def add(self, key: str, value: object) -> None:
+        self.items.append((key, str(value)))
+
+
+def _version(dist: str) -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version(dist)
+    except PackageNotFoundError:
+        return 'not installed'
+
+
+class Diagnosis:
+    """One look at this setup; facts are gathered once and shared by checks and reports."""
+
+    def __init__(self, *, router: str | None = None, env: dict[str, str] | None = None) -> None:
+        self.router = router
+        self.env = dict(os.environ if env is None else env)
+        self._status: Any = None
+        self._endpoint: str | None = None
+        self._endpoint_error: str | None = None
+        self._graph: list[Entity] | None = None
+        self._graph_error: str | None = None
+        self._graph_read = False
+
+    # -- facts -----------------------------------------------------------------------------------
+    def endpoint(self) -> str | None:
+        if self._endpoint is None and self._endpoint_error is None:
+            from ros2lite.transport.config import router_endpoint
+            from ros2lite.transport.errors import ConfigError
+
+            try:
+                self._endpoint = router_endpoint(self.router, self.env)
+            except ConfigError as e:
+                self._endpoint_error = str(e)
+        return self._endpoint
+
+    def router_status(self) -> Any:
+        """The daemon module's status of the endpoint (None when the endpoint is invalid)."""
+        if self._status is None and self.endpoint() is not None:
+            from ros2lite import daemon
+            from ros2lite.exceptions import Ros2liteError
+
+            try:
+                self._status = daemon.status(self.endpoint(), sessions=True)
+            except Ros2liteError:  # e.g. a bad ROS_DOMAIN_ID: the middleware check says so
+                self._status = daemon.status(self.endpoint())
+        return self._status
+
+    def graph(self) -> list[Entity] | None:
+        """Every entity of the domain, or None (see :attr:`graph_error`)."""
+        if not self._graph_read:
+            self._graph_read = True
+            status = self.router_status()
+            if status is None or not status.running:
+                self._graph_error = 'no Zenoh router answers'
+                return None
+            from ros2lite.connection import Connection
+            from ros2lite.exceptions import Ros2liteError
+
+            try:
+                with Connection(router=self.router, autostart=False) as conn:
+                    self._graph = conn.entities(timeout=_GRAPH_TIMEOUT)
+            except Ros2liteError as e:
+                self._graph_error = str(e)
+        return self._graph
+
+    @property
+    def graph_error(self) -> str | None:
+        return self._graph_error
+
+    def _topics(self) -> dict[str, list[Entity]]:
+        from ros2lite.graph import EntityKind
+        from ros2lite.names import is_hidden_name
+
+        topics: dict[str, list[Entity]] = {}
+        for e in self.graph() or []:
+            endpoint = e.kind in (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION)
+            if endpoint and e.topic_name and not is_hidden_name(e.topic_name):
+                topics.setdefault(e.topic_name, []).append(e)
+        return dict(sorted(topics.items()))
+
+    # -- checks ----------------------------------------------------------------------------------
+    def check_platform(self) -> CheckResult:
+        import shutil
+
+        result = CheckResult('platform')
+        if platform.system() not in ('Linux', 'Darwin'):
+            result.warn(f'{platform.system()} is not a platform ros2lite is tested on')
+        python3 = shutil.which('python3', path=self.env.get('PATH'))
+        if python3 is not None and os.path.realpath(python3) != os.path.realpath(sys.executable):
+            import subprocess
+
+            try:
+                found = (
+                    subprocess.run(
+                        [python3, '-c', 'import ros2lite'], capture_output=True, timeout=10
+                    ).returncode
+                    == 0
+                )
+            except (OSError, subprocess.SubprocessError):
+                found = False
+            if not found:
+                result.warn(
+                    f'python3 on PATH ({python3}) cannot import ros2lite, which runs in '
+                    f'{sys.executable}: scripts started as `python3 script.py` will not find '
+                    'it (use `ros2lite run`, or that interpreter)'
+                )
+        return result
+
+    def check_network(self) -> CheckResult:
+        result = CheckResult('network')
+        if self._endpoint_error is not None or self.endpoint() is None:
+            result.error(f'the router endpoint is invalid: {self._endpoint_error}')
+            return result
+        status = self.router_status()
+        if not status.running:
+            if status.ours:
+                result.error(
+                    f'the ros2lite daemon (pid {status.pid}) does not answer at {status.endpoint}'
+                )
+            else:
+                result.error(
+                    f'No Zenoh router answers at {status.endpoint}: start one with '
+                    '`ros2lite daemon start` (or rmw_zenohd)'
+                )
+        return result
+
+    def check_middleware(self) -> CheckResult:
+        from ros2lite.transport.config import domain_id, router_check_attempts, session_config
+        from ros2lite.transport.errors import ConfigError
+
+        result = CheckResult('middleware')
+        try:
+            domain_id(self.env)
+        except ConfigError as e:
+            result.error(str(e))
+        try:
+            router_check_attempts(self.env)
+        except ConfigError as e:
+            result.error(str(e))
+        if self.endpoint() is not None:
+            try:
+                session_config(self.router, self.env, mode='peer')
+            except ConfigError as e:
+                result.error(f'the Zenoh session configuration is invalid: {e}')
+        rmw = self.env.get('RMW_IMPLEMENTATION', '')
+        if rmw and rmw != 'rmw_zenoh_cpp':
+            result.warn(
+                f'RMW_IMPLEMENTATION is {rmw}: ROS 2 nodes started from this shell will not '
+                'see ros2lite nodes (ros2lite speaks rmw_zenoh_cpp)'
+            )
+        return result
+
+    def check_topic(self) -> CheckResult:
+        from ros2lite.graph import EntityKind
+
+        result = CheckResult('topic')
+        if self.graph() is None:
+            result.warn(f'topics not checked: {self.graph_error}')
+            return result
+        for topic, endpoints in self._topics().items():
+            pubs = [e for e in endpoints if e.kind == EntityKind.PUBLISHER]
+            subs = [e for e in endpoints if e.kind == EntityKind.SUBSCRIPTION]
+            if topic not in _QUIET_TOPICS:
+                if pubs and not subs:
+                    result.warn(f'Publisher without subscriber detected on {topic}.')
+                elif subs and not pubs:
+                    result.warn(f'Subscriber without publisher detected on {topic}.')
+            types = sorted({e.type_name or '?' for e in endpoints})
+            if len(types) > 1:
+                result.error(
+                    f'Type mismatch on {topic}: '
+                    + ', '.join(f'{t} ({_who(endpoints, type_name=t)})' for t in types)
+                )
+                continue
+            hashes = sorted({e.type_hash or '?' for e in endpoints})
+            if len(hashes) > 1:
+                result.error(
+                    f'Type hash mismatch on {topic} ({types[0]}): '
+                    + ', '.join(f'{h} ({_who(endpoints, type_hash=h)})' for h in hashes)
+                    + '; these endpoints never exchange a message'
+                )
+        return result
+
+    def check_qos(self) -> CheckResult:
+        result = CheckResult('qos')
+        if self.graph() is None:
+            result.warn(f'QoS not checked: {self.graph_error}')
+            return result
+        for topic, pub, sub, compat in self._pairs():
+            if not compat.compatible:
+                result.warn(
+                    f'QoS incompatibility on {topic}: publisher {_node(pub)}, subscription '
+                    f'{_node(sub)}: {compat.reason}'
+                )
+        return result
+
+    def check_package(self) -> CheckResult:
+        from ros2lite.pkg.index import PackageIndex
+
+        result = CheckResult('package')
+        index = PackageIndex(self.env)
+        index.packages()
+        for problem in index.problems:
+            result.warn(f'workspace package skipped: {problem}')
+        return result
+
+    def _pairs(self) -> list[tuple[str, Entity, Entity, Any]]:
+        from ros2lite.graph import EntityKind
+        from ros2lite.qos import check_compatible
+
+        pairs = []
+        for topic, endpoints in self._topics().items():
+            pubs = [e for e in endpoints if e.kind == EntityKind.PUBLISHER and e.qos]
+            subs = [e for e in endpoints if e.kind == EntityKind.SUBSCRIPTION and e.qos]
+            for pub in pubs:
+                for sub in subs:
+                    assert pub.qos is not None and sub.qos is not None
+                    pairs.append((topic, pub, sub, check_compatible(pub.qos, sub.qos)))
+        return pairs
+
+    def run_checks(self, *, exclude: tuple[str, ...] = ()) -> list[CheckResult]:
+        """Every check not excluded, in CATEGORIES order."""
+        checks = {
+            'platform': self.check_platform,
+            'network': self.check_network,
+            'middleware': self.check_middleware,
+            'topic': self.check_topic,
+            'qos': self.check_qos,
+            'package': self.check_package,
+        }
+        return [checks[c]() for c in CATEGORIES if c not in exclude]
+
+    # -- reports ---------------------------------------------------------------------------------
+    def reports(self, categories: set[str] | None = None) -> list[Report]:
+        """The reports (of `categories` only, when given), in ros2doctor's order."""
+        makers = [
+            ('platform', self._report_platform),
+            ('platform', self._report_ros2lite),
+            ('network', self._report_network),
+            ('middleware', self._report_middleware),
+            ('topic', self._report_topics),
+            ('qos', self._report_qos),
+            ('package', self._report_packages),
+        ]
+        return [make() for cat, make in makers if categories is None or cat in categories]
+
+    def _report_platform(self) -> Report:
+        r = Report('PLATFORM INFORMATION', 'platform')
+        r.add('system', platform.system())
+        r.add('platform info', platform.platform())
+        r.add('release', platform.release())
+        r.add('processor', platform.processor() or platform.machine())
+        r.add('python version', platform.python_version())
+        r.add('python executable', sys.executable)
+        return r
+
+    def _report_ros2lite(self) -> Report:
+        from ros2lite.pkg.index import PackageIndex
+
+        r = Report('ROS2LITE INFORMATION', 'platform')
+        r.add('ros2lite version', _version('ros2lite'))
+        r.add('installed at', os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+        r.add('middleware', 'rmw_zenoh_cpp (wire-compatible)')
+        workspaces = PackageIndex(self.env).workspaces()
+        r.add('source workspaces', ', '.join(map(str, workspaces)) or 'none')
+        r.add('AMENT_PREFIX_PATH', self.env.get('AMENT_PREFIX_PATH') or 'not set')
+        return r
+
+    def _report_network(self) -> Report:
+        r = Report('NETWORK CONFIGURATION', 'network')
+        r.add('router endpoint', self.endpoint() or f'invalid ({self._endpoint_error})')
+        status = self.router_status()
+        if status is not None:
+            r.add('router answers', 'yes' if status.running else 'no')
+            if status.running and status.ours:
+                r.add('router', f'ros2lite daemon (pid {status.pid})')
+                if status.info is not None and status.info.listen:
+                    r.add('router listens on', ', '.join(status.info.listen))
+            elif status.running:
+                r.add('router', 'a Zenoh router not started by ros2lite (e.g. rmw_zenohd)')
+            if status.sessions is not None:
+                r.add('connected sessions', len(status.sessions))
+        try:
+            names = [name for _index, name in socket.if_nameindex()]
+        except OSError:
+            names = []
+        r.add('interfaces', ', '.join(names) or 'unknown')
+        r.add('hostname', socket.gethostname())
+        return r
+
+    def _report_middleware(self) -> Report:
+        r = Report('RMW MIDDLEWARE', 'middleware')
+        r.add('middleware name', 'rmw_zenoh_cpp')
+        r.add('zenoh version', _version('eclipse-zenoh'))
+        r.add('ROS_DOMAIN_ID', self.env.get('ROS_DOMAIN_ID') or '0 (not set)')
+        for name in (
+            'RMW_IMPLEMENTATION',
+            'ZENOH_CONFIG_OVERRIDE',
+            'ZENOH_SESSION_CONFIG_URI',
+            'ZENOH_ROUTER_CONFIG_URI',
+            'ZENOH_ROUTER_CHECK_ATTEMPTS',
+            'ROS2LITE_ROUTER',
+        ):
+            r.add(name, self.env.get(name) or 'not set')
+        return r
+
+    def _report_topics(self) -> Report:
+        from ros2lite.graph import EntityKind
+
+        r = Report('TOPIC LIST', 'topic')
+        if self.graph() is None:
+            r.add('topic', f'unknown ({self.graph_error})')
+            return r
+        topics = self._topics()
+        if not topics:
+            r.add('topic', 'none')
+        for topic, endpoints in topics.items():
+            r.add('topic', topic)
+            r.add('publisher count', sum(e.kind == EntityKind.PUBLISHER for e in endpoints))
+            r.add('subscriber count', sum(e.kind == EntityKind.SUBSCRIPTION for e in endpoints))
+        return r
+
+    def _report_qos(self) -> Report:
+        r = Report('QOS COMPATIBILITY LIST', 'qos')
+        if self.graph() is None:
+            r.add('compatibility status', f'unknown ({self.graph_error})')
+            return r
+        pairs = self._pairs()
+        if not pairs:
+            r.add('compatibility status', 'No publisher/subscriber pairs found')
+        for topic, pub, sub, compat in pairs:
+            r.add('topic [type]', f'{topic} [{pub.type_name}]')
+            r.add('publisher node', _node(pub))
+            r.add('subscriber node', _node(sub))
+            status = 'OK' if compat.compatible and not compat.reason else compat.reason
+            r.add('compatibility status', status)
+        return r
+
+    def _report_packages(self) -> Report:
+        r = Report('PACKAGE VERSIONS', 'package')
+        for dist in ('ros2lite', 'eclipse-zenoh', 'click', 'rich', 'pyyaml', 'mcap', 'xxhash'):
+            r.add(dist, _version(dist))
+        return r
+
+
+def _node(e: Entity) -> str:
+    ns = e.namespace if e.namespace.endswith('/') else e.namespace + '/'
+    return f'{ns}{e.node_name}'
+
+
+def _who(endpoints: list[Entity], **match: str) -> str:
+    names = sorted(
+        {_node(e) for e in endpoints if all((getattr(e, k) or '?') == v for k, v in match.items())}
+    )
+    return ', '.join(names)

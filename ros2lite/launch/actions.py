@@ -1,0 +1,617 @@
+"""Launch descriptions and the actions they are made of.
+
+An *entity* is anything a launch description holds. Visiting an entity (the launch service
+does it, depth first, in order) may return more entities to visit right away: that is how a
+group, an include or a launch description unfolds. An *action* is an entity with an optional
+condition, checked when the action is reached.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterable, Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from .conditions import Condition
+from .errors import LaunchError
+from .events import Event, ExecutionComplete
+from .events import Shutdown as ShutdownEvent
+from .substitutions import (
+    SomeSubstitutionsType,
+    TextSubstitution,
+    describe_substitutions,
+    normalize_to_list_of_substitutions,
+    perform_substitutions,
+)
+
+if TYPE_CHECKING:
+    from .context import LaunchContext
+    from .event_handlers import EventHandler
+    from .sources import LaunchDescriptionSource
+
+__all__ = [
+    'Action',
+    'AppendEnvironmentVariable',
+    'DeclareLaunchArgument',
+    'EmitEvent',
+    'GroupAction',
+    'IncludeLaunchDescription',
+    'LaunchDescription',
+    'LaunchDescriptionEntity',
+    'LogInfo',
+    'OpaqueFunction',
+    'PopLaunchConfigurations',
+    'PushLaunchConfigurations',
+    'RegisterEventHandler',
+    'SetEnvironmentVariable',
+    'SetLaunchConfiguration',
+    'Shutdown',
+    'TimerAction',
+    'UnregisterEventHandler',
+    'UnsetEnvironmentVariable',
+    'UnsetLaunchConfiguration',
+]
+
+Entities = list['LaunchDescriptionEntity']
+
+
+class LaunchDescriptionEntity:
+    """Anything a launch description holds."""
+
+    def visit(self, context: LaunchContext) -> Entities | None:
+        """Do this entity's work; return entities to visit next."""
+        return None
+
+    def describe(self) -> str:
+        return type(self).__name__
+
+    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        """Entities always reached through this one (for introspection)."""
+        return []
+
+    def describe_conditional_sub_entities(
+        self,
+    ) -> list[tuple[str, list[LaunchDescriptionEntity]]]:
+        """Entities reached only if something happens (a timer, an event)."""
+        return []
+
+
+class Action(LaunchDescriptionEntity):
+    """An entity that runs when reached, if its condition (if any) holds."""
+
+    # a process completes when it exits, not when it was started
+    completes_on_execute = True
+
+    def __init__(self, *, condition: Condition | None = None) -> None:
+        self.__condition = condition
+
+    @property
+    def condition(self) -> Condition | None:
+        return self.__condition
+
+    def visit(self, context: LaunchContext) -> Entities | None:
+        if self.__condition is not None and not self.__condition.evaluate(context):
+            return None
+        entities = self.execute(context)
+        if self.completes_on_execute:
+            done = ExecutionComplete(action=self)
+            if any(True for _ in context.handlers_for(done)):
+                context.emit_event_sync(done)
+        return entities
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        """The action's work (the condition has been checked)."""
+        return None
+
+    def describe(self) -> str:
+        return f'{type(self).__name__}()'
+
+
+class _PushLocals(LaunchDescriptionEntity):
+    def __init__(self, values: dict[str, Any]) -> None:
+        self.values = values
+
+    def visit(self, context: LaunchContext) -> Entities | None:
+        context.push_locals(self.values)
+        return None
+
+
+class _PopLocals(LaunchDescriptionEntity):
+    def visit(self, context: LaunchContext) -> Entities | None:
+        context.pop_locals()
+        return None
+
+
+class LaunchDescription(LaunchDescriptionEntity):
+    """An ordered list of entities: what a launch file returns."""
+
+    def __init__(
+        self,
+        initial_entities: Iterable[LaunchDescriptionEntity] | None = None,
+        *,
+        deprecated_reason: str | None = None,
+    ) -> None:
+        self.entities: list[LaunchDescriptionEntity] = list(initial_entities or [])
+        self.deprecated_reason = deprecated_reason
+        self.source_path: str | None = None  # set by the loader of a launch file
+
+    def visit(self, context: LaunchContext) -> Entities | None:
+        if self.deprecated_reason is not None and context.service is not None:
+            where = self.source_path or 'a launch description'
+            context.service.log(
+                'WARNING', 'launch', f'{where} is deprecated: {self.deprecated_reason}'
+            )
+        if self.source_path is None:
+            return list(self.entities)
+        frame = {
+            'current_launch_file_path': self.source_path,
+            'current_launch_file_directory': os.path.dirname(self.source_path),
+        }
+        return [_PushLocals(frame), *self.entities, _PopLocals()]
+
+    def add_entity(self, entity: LaunchDescriptionEntity) -> None:
+        self.entities.append(entity)
+
+    def add_action(self, action: Action) -> None:
+        self.entities.append(action)
+
+    def describe(self) -> str:
+        where = f' ({self.source_path})' if self.source_path else ''
+        return f'LaunchDescription{where}'
+
+    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        return list(self.entities)
+
+    def get_launch_arguments(
+        self, conditional_inclusion: bool = False
+    ) -> list[DeclareLaunchArgument]:
+        """Every DeclareLaunchArgument reachable from here (see
+        :func:`ros2lite.launch.introspection.launch_arguments`)."""
+        from .introspection import launch_arguments
+
+        return [arg for arg, _conditional in launch_arguments(self)]
+
+
+# -- arguments and configurations ----------------------------------------------------------------
+
+
+class DeclareLaunchArgument(Action):
+    """A launch argument (`name:=value` on the command line, or given by an include), with
+    an optional default and allowed choices."""
+
+    def __init__(
+        self,
+        name: str,
+        *,
+        default_value: SomeSubstitutionsType | None = None,
+        description: str | None = None,
+        choices: Sequence[str] | None = None,
+        **kwargs: Any,
+    ) -> None:
+        super().__init__(**kwargs)
+        self.name = name
+        self.default_value = (
+            None if default_value is None else normalize_to_list_of_substitutions(default_value)
+        )
+        self.description = description if description is not None else 'no description given'
+        self.choices = list(choices) if choices is not None else None
+        if self.choices is not None and self.default_value is not None:
+            texts = [s.text for s in self.default_value if isinstance(s, TextSubstitution)]
+            if len(texts) == len(self.default_value) and ''.join(texts) not in self.choices:
+                raise LaunchError(
+                    f"default value '{''.join(texts)}' of launch argument '{name}' is not "
+                    f'one of its choices {self.choices}'
+                )
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        if self.name not in context.launch_configurations:
+            if self.default_value is None:
+                raise LaunchError(
+                    f'Required launch argument "{self.name}" (description: '
+                    f'"{self.description}") was not provided'
+                )
+            context.launch_configurations[self.name] = perform_substitutions(
+                context, self.default_value
+            )
+        value = context.launch_configurations[self.name]
+        if self.choices is not None and value not in self.choices:
+            raise LaunchError(
+                f'Argument "{self.name}" provided value "{value}" is not valid. '
+                f'Valid options are: {self.choices}'
+            )
+        return None
+
+    def describe(self) -> str:
+        default = (
+            f', default={describe_substitutions(self.default_value)}'
+            if self.default_value is not None
+            else ''
+        )
+        return f'DeclareLaunchArgument({self.name!r}{default})'
+
+
+class SetLaunchConfiguration(Action):
+    """Sets a launch configuration in the current scope."""
+
+    def __init__(
+        self, name: SomeSubstitutionsType, value: SomeSubstitutionsType, **kwargs: Any
+    ) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+        self.value = normalize_to_list_of_substitutions(value)
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        name = perform_substitutions(context, self.name)
+        context.launch_configurations[name] = perform_substitutions(context, self.value)
+        return None
+
+    def describe(self) -> str:
+        return (
+            f'SetLaunchConfiguration({describe_substitutions(self.name)}, '
+            f'{describe_substitutions(self.value)})'
+        )
+
+
+class UnsetLaunchConfiguration(Action):
+    """Removes a launch configuration from the current scope."""
+
+    def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        context.launch_configurations.pop(perform_substitutions(context, self.name), None)
+        return None
+
+
+class PushLaunchConfigurations(Action):
+    """Starts a scope: what is set until the matching pop is forgotten then."""
+
+    def __init__(self, *, forwarding: bool = True, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.forwarding = forwarding
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        context.push_scope(forwarding=self.forwarding)
+        return None
+
+
+class PopLaunchConfigurations(Action):
+    """Ends the scope the matching push started."""
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        context.pop_scope()
+        return None
+
+
+class SetEnvironmentVariable(Action):
+    """Sets a variable in the environment of processes started after it (in this scope)."""
+
+    def __init__(
+        self, name: SomeSubstitutionsType, value: SomeSubstitutionsType, **kwargs: Any
+    ) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+        self.value = normalize_to_list_of_substitutions(value)
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        context.environment[perform_substitutions(context, self.name)] = perform_substitutions(
+            context, self.value
+        )
+        return None
+
+
+class UnsetEnvironmentVariable(Action):
+    """Removes a variable from the environment of processes started after it."""
+
+    def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        context.environment.pop(perform_substitutions(context, self.name), None)
+        return None
+
+
+class AppendEnvironmentVariable(Action):
+    """Appends (or prepends) a value to a path-like environment variable."""
+
+    def __init__(
+        self,
+        name: SomeSubstitutionsType,
+        value: SomeSubstitutionsType,
+        *,
+        prepend: bool = False,
+        separator: str = os.pathsep,
+        **kwargs: Any,
+    ) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+        self.value = normalize_to_list_of_substitutions(value)
+        self.prepend = prepend
+        self.separator = separator
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        name = perform_substitutions(context, self.name)
+        value = perform_substitutions(context, self.value)
+        old = context.environment.get(name, '')
+        if not old:
+            new = value
+        elif self.prepend:
+            new = value + self.separator + old
+        else:
+            new = old + self.separator + value
+        context.environment[name] = new
+        return None
+
+
+# -- structure -----------------------------------------------------------------------------------
+
+
+class GroupAction(Action):
+    """A list of actions under one condition; `scoped` (the default) keeps configurations,
+    environment, namespace, parameters and remaps set inside from leaking out."""
+
+    def __init__(
+        self,
+        actions: Iterable[LaunchDescriptionEntity],
+        *,
+        scoped: bool = True,
+        forwarding: bool = True,
+        launch_configurations: dict[Any, Any] | None = None,
+        **kwargs: Any,
+    ) -> None:
+        super().__init__(**kwargs)
+        self.actions = list(actions)
+        self.scoped = scoped
+        self.forwarding = forwarding
+        self.launch_configurations = dict(launch_configurations or {})
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        sets: Entities = [
+            SetLaunchConfiguration(k, v) for k, v in self.launch_configurations.items()
+        ]
+        if not self.scoped:
+            return [*sets, *self.actions]
+        return [
+            PushLaunchConfigurations(forwarding=self.forwarding),
+            *sets,
+            *self.actions,
+            PopLaunchConfigurations(),
+        ]
+
+    def describe(self) -> str:
+        return f'GroupAction(scoped={self.scoped})'
+
+    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        return list(self.actions)
+
+
+class IncludeLaunchDescription(Action):
+    """Includes another launch description (usually a file), setting its arguments."""
+
+    def __init__(
+        self,
+        launch_description_source: LaunchDescriptionSource | LaunchDescription,
+        *,
+        launch_arguments: Iterable[tuple[SomeSubstitutionsType, SomeSubstitutionsType]]
+        | dict[Any, Any]
+        | None = None,
+        **kwargs: Any,
+    ) -> None:
+        super().__init__(**kwargs)
+        from .sources import LaunchDescriptionSource
+
+        if isinstance(launch_description_source, LaunchDescription):
+            launch_description_source = LaunchDescriptionSource(launch_description_source)
+        self.launch_description_source = launch_description_source
+        items = (
+            launch_arguments.items()
+            if isinstance(launch_arguments, dict)
+            else (launch_arguments or [])
+        )
+        self.launch_arguments = [
+            (normalize_to_list_of_substitutions(k), normalize_to_list_of_substitutions(v))
+            for k, v in items
+        ]
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        description = self.launch_description_source.get_launch_description(context)
+        given = []
+        for key, value in self.launch_arguments:
+            name = perform_substitutions(context, key)
+            context.launch_configurations[name] = perform_substitutions(context, value)
+            given.append(name)
+        from .introspection import declared_arguments
+
+        for arg, conditional, via in declared_arguments(description):
+            if conditional or arg.default_value is not None:
+                continue
+            names = {*given, *context.launch_configurations}
+            for include in via:  # an include on the way may give it
+                names.update(include.argument_names_without_context())
+            if arg.name not in names:
+                raise LaunchError(
+                    f"Included launch description missing required argument '{arg.name}' "
+                    f"(description: '{arg.description}'), given: [{', '.join(given)}]"
+                )
+        return [description]
+
+    def describe(self) -> str:
+        return f'IncludeLaunchDescription({self.launch_description_source.describe()})'
+
+    def argument_names_without_context(self) -> list[str]:
+        """The names of the arguments it gives that are plain text."""
+        return [
+            ''.join(s.text for s in key if isinstance(s, TextSubstitution))
+            for key, _value in self.launch_arguments
+            if all(isinstance(s, TextSubstitution) for s in key)
+        ]
+
+    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        """The included description when it can be read without running the launch."""
+        from .context import LaunchContext
+
+        source = self.launch_description_source
+        try:
+            found = source.try_get_launch_description_without_context()
+            if found is None:
+                found = source.get_launch_description(LaunchContext())
+        except Exception:  # e.g. a path built from a launch argument: unknown until run
+            return []
+        return [found]
+
+
+class TimerAction(Action):
+    """Visits `actions` after `period` seconds (cancelled by shutdown unless told not)."""
+
+    def __init__(
+        self,
+        *,
+        period: float | SomeSubstitutionsType,
+        actions: Iterable[LaunchDescriptionEntity],
+        cancel_on_shutdown: bool = True,
+        **kwargs: Any,
+    ) -> None:
+        super().__init__(**kwargs)
+        self.period = normalize_to_list_of_substitutions(period)
+        self.actions = list(actions)
+        self.cancel_on_shutdown = cancel_on_shutdown
+        self.cancelled = False
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        text = perform_substitutions(context, self.period)
+        try:
+            seconds = float(text)
+        except ValueError:
+            raise LaunchError(f"TimerAction period '{text}' is not a number") from None
+        if seconds < 0:
+            raise LaunchError(f'TimerAction period {seconds} is negative')
+        # its actions run later, in the scope of now (the namespace, parameters and launch
+        # configurations of an enclosing group, as launch does since ros2/launch#836)
+        context.service.add_timer(self, seconds, context.capture_locals(), context.scope.copy())
+        return None
+
+    def cancel(self) -> None:
+        self.cancelled = True
+
+    def describe(self) -> str:
+        return f'TimerAction(period={describe_substitutions(self.period)})'
+
+    def describe_conditional_sub_entities(
+        self,
+    ) -> list[tuple[str, list[LaunchDescriptionEntity]]]:
+        return [(f'after {describe_substitutions(self.period)} s', list(self.actions))]
+
+
+class OpaqueFunction(Action):
+    """Calls `function(context, *args, **kwargs)`; what it returns is visited next."""
+
+    def __init__(
+        self,
+        *,
+        function: Callable[..., Any],
+        args: Sequence[Any] | None = None,
+        kwargs: dict[str, Any] | None = None,
+        **action_kwargs: Any,
+    ) -> None:
+        super().__init__(**action_kwargs)
+        self.function = function
+        self.args = list(args or [])
+        self.kwargs = dict(kwargs or {})
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        result = self.function(context, *self.args, **self.kwargs)
+        if result is None:
+            return None
+        if isinstance(result, LaunchDescriptionEntity):
+            return [result]
+        return list(result)
+
+    def describe(self) -> str:
+        name = getattr(self.function, '__name__', repr(self.function))
+        return f'OpaqueFunction({name})'
+
+
+class RegisterEventHandler(Action):
+    """Registers an event handler for the rest of the launch."""
+
+    def __init__(self, event_handler: EventHandler, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.event_handler = event_handler
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        context.register_event_handler(self.event_handler)
+        return None
+
+    def describe(self) -> str:
+        return f'RegisterEventHandler({self.event_handler.describe()})'
+
+    def describe_conditional_sub_entities(
+        self,
+    ) -> list[tuple[str, list[LaunchDescriptionEntity]]]:
+        return [(self.event_handler.describe(), self.event_handler.describe_sub_entities())]
+
+
+class UnregisterEventHandler(Action):
+    """Removes an event handler."""
+
+    def __init__(self, event_handler: EventHandler, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.event_handler = event_handler
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        context.unregister_event_handler(self.event_handler)
+        return None
+
+
+class EmitEvent(Action):
+    """Emits an event (e.g. ``Shutdown()``) for the handlers."""
+
+    def __init__(self, *, event: Event, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.event = event
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        context.emit_event_sync(self.event)
+        return None
+
+    def describe(self) -> str:
+        return f'EmitEvent({type(self.event).__name__})'
+
+
+class LogInfo(Action):
+    """Logs a line as `[INFO] [launch.user]: …`."""
+
+    def __init__(self, *, msg: SomeSubstitutionsType, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.msg = normalize_to_list_of_substitutions(msg)
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        context.service.log('INFO', 'launch.user', perform_substitutions(context, self.msg))
+        return None
+
+    def describe(self) -> str:
+        return f'LogInfo({describe_substitutions(self.msg)})'
+
+
+class Shutdown(EmitEvent):
+    """Shuts the launch down (every process is stopped)."""
+
+    def __init__(
+        self, *, reason: SomeSubstitutionsType = 'reason not given', **kwargs: Any
+    ) -> None:
+        self.reason = normalize_to_list_of_substitutions(reason)
+        super().__init__(event=ShutdownEvent(reason='reason not given'), **kwargs)
+
+    def execute(self, context: LaunchContext) -> Entities | None:
+        self.event = ShutdownEvent(reason=perform_substitutions(context, self.reason))
+        return super().execute(context)
+
+
+def path_of(value: SomeSubstitutionsType | Path, context: LaunchContext) -> str:
+    """A path given as text, Path or substitutions, performed."""
+    if isinstance(value, Path):
+        return str(value)
+    return perform_substitutions(context, normalize_to_list_of_substitutions(value))

@@ -1,0 +1,106 @@
+"""Conditions: whether an action runs, decided when it is reached."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
+
+from .errors import InvalidConditionExpressionError
+from .substitutions import (
+    SomeSubstitutionsType,
+    Substitution,
+    describe_substitutions,
+    normalize_to_list_of_substitutions,
+    perform_substitutions,
+)
+
+if TYPE_CHECKING:
+    from .context import LaunchContext
+
+__all__ = [
+    'Condition',
+    'IfCondition',
+    'LaunchConfigurationEquals',
+    'LaunchConfigurationNotEquals',
+    'UnlessCondition',
+    'evaluate_condition_expression',
+]
+
+_TRUE = ('true', '1')
+_FALSE = ('false', '0')
+
+
+def evaluate_condition_expression(context: LaunchContext, subs: Sequence[Substitution]) -> bool:
+    """'true'/'1' → True, 'false'/'0' → False (any case); anything else is an error."""
+    text = perform_substitutions(context, subs).strip().lower()
+    if text in _TRUE:
+        return True
+    if text in _FALSE:
+        return False
+    raise InvalidConditionExpressionError(
+        f"Unexpected condition expression '{text}', expected one of: {', '.join(_TRUE + _FALSE)}"
+    )
+
+
+class Condition:
+    """A predicate over the launch context."""
+
+    def __init__(self, *, predicate: Callable[[LaunchContext], bool] | None = None) -> None:
+        self._predicate = predicate
+
+    def evaluate(self, context: LaunchContext) -> bool:
+        return bool(self._predicate(context)) if self._predicate is not None else True
+
+    def describe(self) -> str:
+        return type(self).__name__
+
+
+class IfCondition(Condition):
+    """True when the expression performs to 'true' or '1'."""
+
+    def __init__(self, predicate_expression: SomeSubstitutionsType) -> None:
+        super().__init__()
+        self.expression = normalize_to_list_of_substitutions(predicate_expression)
+
+    def evaluate(self, context: LaunchContext) -> bool:
+        return evaluate_condition_expression(context, self.expression)
+
+    def describe(self) -> str:
+        return f'IfCondition({describe_substitutions(self.expression)})'
+
+
+class UnlessCondition(IfCondition):
+    """True when the expression performs to 'false' or '0'."""
+
+    def evaluate(self, context: LaunchContext) -> bool:
+        return not evaluate_condition_expression(context, self.expression)
+
+    def describe(self) -> str:
+        return f'UnlessCondition({describe_substitutions(self.expression)})'
+
+
+class LaunchConfigurationEquals(Condition):
+    """True when a launch configuration equals a value (None: when it is not set)."""
+
+    def __init__(self, launch_configuration_name: str, expected_value: Any) -> None:
+        super().__init__()
+        self.name = launch_configuration_name
+        self.expected = (
+            None if expected_value is None else normalize_to_list_of_substitutions(expected_value)
+        )
+
+    def _equal(self, context: LaunchContext) -> bool:
+        value = context.launch_configurations.get(self.name)
+        if self.expected is None:
+            return value is None
+        return value == perform_substitutions(context, self.expected)
+
+    def evaluate(self, context: LaunchContext) -> bool:
+        return self._equal(context)
+
+
+class LaunchConfigurationNotEquals(LaunchConfigurationEquals):
+    """True when a launch configuration differs from a value."""
+
+    def evaluate(self, context: LaunchContext) -> bool:
+        return not self._equal(context)

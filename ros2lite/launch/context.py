@@ -1,0 +1,181 @@
+"""The launch context: what actions read and change while a launch runs.
+
+Launch configurations, the environment for new processes, the ROS namespace, global
+parameters and remappings live in a *scope*; a scoped group (GroupAction) pushes a copy and
+pops it afterwards, so nothing set inside leaks out. *Locals* (the current launch file, the
+event being handled) live in a stack of frames pushed for the stretch that needs them.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from ros2lite.pkg.index import PackageIndex
+
+    from .event_handlers import EventHandler
+    from .events import Event
+    from .substitutions import Substitution
+
+__all__ = ['LaunchContext', 'Scope']
+
+
+@dataclass
+class Scope:
+    """What a scoped group isolates."""
+
+    configurations: dict[str, str] = field(default_factory=dict)
+    environment: dict[str, str] = field(default_factory=dict)
+    ros_namespace: str | None = None
+    # (name, value) pairs and parameter file paths, in the order they were set
+    global_params: list[Any] = field(default_factory=list)
+    remaps: list[tuple[str, str]] = field(default_factory=list)
+
+    def copy(self, *, forwarding: bool = True) -> Scope:
+        return Scope(
+            dict(self.configurations) if forwarding else {},
+            dict(self.environment),
+            self.ros_namespace,
+            list(self.global_params),
+            list(self.remaps),
+        )
+
+
+class _Locals:
+    """Attribute access to the merged local frames (`context.locals.event`)."""
+
+    def __init__(self, context: LaunchContext) -> None:
+        object.__setattr__(self, '_context', context)
+
+    def __getattr__(self, name: str) -> Any:
+        merged = self._context.get_locals_as_dict()
+        if name in merged:
+            return merged[name]
+        raise AttributeError(f"context.locals has no '{name}'")
+
+
+class LaunchContext:
+    """Shared state of one launch (see the module doc)."""
+
+    def __init__(
+        self,
+        *,
+        argv: Sequence[str] = (),
+        noninteractive: bool = False,
+        environment: Mapping[str, str] | None = None,
+    ) -> None:
+        self.argv = list(argv)
+        self.noninteractive = noninteractive
+        self._scopes = [Scope(environment=dict(os.environ if environment is None else environment))]
+        self._frames: list[dict[str, Any]] = [{}]
+        self._handlers: list[EventHandler] = []
+        self._anonymous: dict[str, str] = {}
+        self._index: PackageIndex | None = None
+        self.is_shutdown = False
+        self.output_override: str | None = None  # every process' output mode, if set
+        # set by the launch service that runs this context
+        self.emit_event_sync: Callable[[Event], None] = self._no_service
+        self.service: Any = None
+
+    @staticmethod
+    def _no_service(_event: Event) -> None:
+        raise RuntimeError('this launch context is not run by a launch service')
+
+    def emit_event(self, event: Event) -> None:
+        """Queue `event` for the handlers (same as :meth:`emit_event_sync` here)."""
+        self.emit_event_sync(event)
+
+    # -- scopes ----------------------------------------------------------------------------------
+    @property
+    def scope(self) -> Scope:
+        return self._scopes[-1]
+
+    @property
+    def launch_configurations(self) -> dict[str, str]:
+        return self.scope.configurations
+
+    @property
+    def environment(self) -> dict[str, str]:
+        return self.scope.environment
+
+    def push_scope(self, *, forwarding: bool = True, saved: Scope | None = None) -> None:
+        """A new innermost scope: a copy of the current one, or of `saved` (deferred work,
+        such as a timer's actions, runs in the scope it was scheduled from)."""
+        self._scopes.append((self.scope if saved is None else saved).copy(forwarding=forwarding))
+
+    def pop_scope(self) -> None:
+        if len(self._scopes) == 1:
+            raise RuntimeError('pop_scope() without a matching push_scope()')
+        self._scopes.pop()
+
+    # -- locals ----------------------------------------------------------------------------------
+    @property
+    def locals(self) -> Any:
+        return _Locals(self)
+
+    def get_locals_as_dict(self) -> dict[str, Any]:
+        merged: dict[str, Any] = {}
+        for frame in self._frames:
+            merged.update(frame)
+        return merged
+
+    def extend_locals(self, values: Mapping[str, Any]) -> None:
+        self._frames[-1].update(values)
+
+    def push_locals(self, values: Mapping[str, Any] | None = None) -> None:
+        self._frames.append(dict(values or {}))
+
+    def pop_locals(self) -> None:
+        if len(self._frames) > 1:
+            self._frames.pop()
+
+    def capture_locals(self) -> dict[str, Any]:
+        """The locals now, to restore later around deferred work (timers, handlers)."""
+        return self.get_locals_as_dict()
+
+    # -- event handlers --------------------------------------------------------------------------
+    def register_event_handler(self, handler: EventHandler, append: bool = False) -> None:
+        """Newest first, as launch does, unless `append`."""
+        handler.captured_locals = self.capture_locals()
+        if append:
+            self._handlers.append(handler)
+        else:
+            self._handlers.insert(0, handler)
+
+    def unregister_event_handler(self, handler: EventHandler) -> None:
+        if handler in self._handlers:
+            self._handlers.remove(handler)
+
+    @property
+    def event_handlers(self) -> list[EventHandler]:
+        return list(self._handlers)
+
+    def handlers_for(self, event: Event) -> Iterator[EventHandler]:
+        for handler in list(self._handlers):
+            if handler.matches(event):
+                yield handler
+
+    # -- values ----------------------------------------------------------------------------------
+    def perform_substitution(self, substitution: Substitution) -> str:
+        return substitution.perform(self)
+
+    @property
+    def package_index(self) -> PackageIndex:
+        """The package index as this launch sees it (read once per launch)."""
+        if self._index is None:
+            from ros2lite.pkg.index import PackageIndex
+
+            self._index = PackageIndex(self.environment)
+        return self._index
+
+    def use_package_index(self, index: PackageIndex) -> None:
+        """Answer package questions from `index` (one the caller has already read)."""
+        self._index = index
+
+    def anonymous_name(self, name: str, make: Callable[[], str]) -> str:
+        if name not in self._anonymous:
+            self._anonymous[name] = make()
+        return self._anonymous[name]

@@ -1,0 +1,188 @@
+"""Launch description sources: where an included launch description comes from.
+
+A Python launch file is a module defining ``generate_launch_description()``; it is imported
+with the compat directory on ``sys.path``, so its ``import launch`` / ``launch_ros`` /
+``ament_index_python`` find ros2lite's faces of those packages. XML and YAML files go
+through :mod:`.frontend`. :func:`load_launch_file` picks by extension.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import itertools
+import sys
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from .actions import LaunchDescription
+from .errors import InvalidFrontendLaunchFileError, LaunchError
+from .substitutions import (
+    SomeSubstitutionsType,
+    describe_substitutions,
+    normalize_to_list_of_substitutions,
+    perform_substitutions,
+)
+
+if TYPE_CHECKING:
+    from .context import LaunchContext
+
+__all__ = [
+    'AnyLaunchDescriptionSource',
+    'FrontendLaunchDescriptionSource',
+    'LaunchDescriptionSource',
+    'PythonLaunchDescriptionSource',
+    'XMLLaunchDescriptionSource',
+    'YAMLLaunchDescriptionSource',
+    'load_launch_file',
+    'load_python_launch_file',
+]
+
+_modules = itertools.count()
+
+
+def _compat_on_path() -> None:
+    from ros2lite.pkg.environment import COMPAT_DIR
+
+    if str(COMPAT_DIR) not in sys.path:
+        sys.path.insert(0, str(COMPAT_DIR))
+
+
+def load_python_launch_file(path: Path) -> LaunchDescription:
+    """Run a Python launch file and return what its ``generate_launch_description()`` gives."""
+    _compat_on_path()
+    if not path.is_file():
+        raise LaunchError(f"launch file '{path}' does not exist")
+    name = f'_ros2lite_launch_file_{next(_modules)}'
+    spec = importlib.util.spec_from_file_location(name, path)
+    if spec is None or spec.loader is None:
+        raise LaunchError(f"launch file '{path}' cannot be loaded as Python")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    try:
+        spec.loader.exec_module(module)
+    except SyntaxError as e:
+        raise LaunchError(f"launch file '{path}' is not valid Python: {e}") from None
+    generate = getattr(module, 'generate_launch_description', None)
+    if not callable(generate):
+        raise LaunchError(
+            f"launch file at '{path}' does not contain the required function "
+            "'generate_launch_description()'"
+        )
+    description = generate()
+    if not isinstance(description, LaunchDescription):
+        raise LaunchError(
+            f"generate_launch_description() of '{path}' returned "
+            f'{type(description).__name__}, not a LaunchDescription'
+        )
+    description.source_path = str(path.resolve())
+    return description
+
+
+def load_launch_file(path: Path, kind: str | None = None) -> LaunchDescription:
+    """Any launch file: 'python', 'xml' or 'yaml' (by extension when `kind` is None; a file
+    with another extension is tried as each in turn)."""
+    from .frontend.loader import FRONTEND_EXTENSIONS, load_frontend_file
+
+    if kind is None:
+        suffix = path.suffix.lower()
+        kind = 'python' if suffix == '.py' else FRONTEND_EXTENSIONS.get(suffix)
+    if kind == 'python':
+        return load_python_launch_file(path)
+    if kind in ('xml', 'yaml'):
+        return load_frontend_file(path, kind)
+    errors = []
+    for attempt in ('xml', 'yaml'):
+        try:
+            return load_frontend_file(path, attempt)
+        except InvalidFrontendLaunchFileError as e:
+            errors.append(str(e))
+    try:
+        return load_python_launch_file(path)
+    except Exception as e:  # not Python either: say what each reader found
+        errors.append(str(e))
+    raise LaunchError(f"'{path}' is not a launch file ({'; '.join(errors)})")
+
+
+class LaunchDescriptionSource:
+    """A launch description, given directly or loaded on first use."""
+
+    method = 'launch description'
+
+    def __init__(
+        self,
+        launch_description: LaunchDescription | None = None,
+        location: str = '<string>',
+        method: str | None = None,
+    ) -> None:
+        self._description = launch_description
+        self.location = location
+        if method is not None:
+            self.method = method
+
+    def try_get_launch_description_without_context(self) -> LaunchDescription | None:
+        return self._description
+
+    def get_launch_description(self, context: LaunchContext) -> LaunchDescription:
+        if self._description is None:
+            raise LaunchError('launch description source has no launch description')
+        return self._description
+
+    def describe(self) -> str:
+        return f'{self.method} at {self.location!r}'
+
+
+class _FileSource(LaunchDescriptionSource):
+    kind: str | None = None
+
+    def __init__(self, launch_file_path: SomeSubstitutionsType | Path) -> None:
+        super().__init__(None, '<unknown>')
+        value: Any = (
+            str(launch_file_path) if isinstance(launch_file_path, Path) else (launch_file_path)
+        )
+        self.path = normalize_to_list_of_substitutions(value)
+
+    def try_get_launch_description_without_context(self) -> LaunchDescription | None:
+        from .substitutions import TextSubstitution
+
+        if self._description is None and all(isinstance(s, TextSubstitution) for s in self.path):
+            path = Path(''.join(s.text for s in self.path))  # type: ignore[attr-defined]
+            self.location = str(path)
+            self._description = load_launch_file(path, self.kind)
+        return self._description
+
+    def get_launch_description(self, context: LaunchContext) -> LaunchDescription:
+        if self._description is None:
+            path = Path(perform_substitutions(context, self.path))
+            self.location = str(path)
+            self._description = load_launch_file(path, self.kind)
+        return self._description
+
+    def describe(self) -> str:
+        return f'{self.method} at {describe_substitutions(self.path)}'
+
+
+class PythonLaunchDescriptionSource(_FileSource):
+    """A Python launch file."""
+
+    kind = 'python'
+    method = 'interpreted python launch file'
+
+
+class FrontendLaunchDescriptionSource(_FileSource):
+    """An XML or YAML launch file (by extension)."""
+
+    method = 'interpreted frontend launch file'
+
+
+class XMLLaunchDescriptionSource(FrontendLaunchDescriptionSource):
+    kind = 'xml'
+
+
+class YAMLLaunchDescriptionSource(FrontendLaunchDescriptionSource):
+    kind = 'yaml'
+
+
+class AnyLaunchDescriptionSource(_FileSource):
+    """A launch file of any kind, by extension."""
+
+    method = 'interpreted launch file'

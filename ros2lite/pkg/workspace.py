@@ -1,0 +1,178 @@
+"""Source workspaces: packages straight from `src/`, with no build step.
+
+A workspace is a directory whose `src/` holds packages (each a directory with a
+`package.xml`, at any depth), as colcon sees it. ros2lite uses, in this order:
+
+1. the workspace enclosing the current directory: the nearest of the current directory and
+   its parents whose `src/` holds at least one package within four levels;
+2. each directory in ``ROS2LITE_WORKSPACE`` (`:`-separated): its `src/` if it has one,
+   else the directory itself.
+
+The walk follows colcon's rules: it does not descend into a package, skips hidden
+directories and any directory holding a `COLCON_IGNORE`, `AMENT_IGNORE` or `CATKIN_IGNORE`
+file, follows symlinked directories once (no loops), and is bounded in depth and size so a
+home directory with a huge `~/src` costs little. Within one workspace the first package found
+by a name wins (colcon would refuse the duplicate; we say so in :attr:`Scan.problems`).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .manifest import MANIFEST, Manifest, ManifestError, read_manifest
+
+__all__ = [
+    'IGNORE_MARKERS',
+    'SKIPPED_DIRS',
+    'WORKSPACE_ENV',
+    'Scan',
+    'SourcePackage',
+    'enclosing_workspace',
+    'scan_workspace',
+    'workspace_sources',
+    'workspaces',
+]
+
+WORKSPACE_ENV = 'ROS2LITE_WORKSPACE'
+IGNORE_MARKERS = ('COLCON_IGNORE', 'AMENT_IGNORE', 'CATKIN_IGNORE')
+# never holding packages, and possibly huge
+SKIPPED_DIRS = frozenset({'__pycache__', 'node_modules'})
+_MAX_DEPTH = 8
+_MAX_DIRS = 5000
+# finding the enclosing workspace runs in every process that uses types: look less far
+# (colcon workspaces keep packages at src/<repo>/<pkg>), so a big non-ROS ~/src costs little
+_DETECT_DEPTH = 4
+_DETECT_DIRS = 1000
+
+
+@dataclass(frozen=True)
+class SourcePackage:
+    """A package found in a workspace's sources."""
+
+    manifest: Manifest
+    workspace: Path
+
+    @property
+    def name(self) -> str:
+        return self.manifest.name
+
+    @property
+    def directory(self) -> Path:
+        return self.manifest.directory
+
+
+@dataclass
+class Scan:
+    """The packages of one source tree, and what could not be read there."""
+
+    root: Path
+    packages: dict[str, SourcePackage] = field(default_factory=dict)
+    problems: list[str] = field(default_factory=list)
+
+
+def _package_dirs(
+    root: Path, max_depth: int = _MAX_DEPTH, max_dirs: int = _MAX_DIRS
+) -> Iterator[Path]:
+    """Directories under `root` holding a package.xml, by colcon's walking rules."""
+    seen: set[tuple[int, int]] = set()
+    budget = max_dirs
+    stack: list[tuple[Path, int]] = [(root, 0)]
+    while stack and budget > 0:
+        directory, depth = stack.pop()
+        budget -= 1
+        try:
+            st = directory.stat()
+            if (st.st_dev, st.st_ino) in seen:
+                continue
+            seen.add((st.st_dev, st.st_ino))
+            entries = sorted(os.scandir(directory), key=lambda e: e.name)
+        except OSError:
+            continue
+        names = {e.name for e in entries}
+        if any(marker in names for marker in IGNORE_MARKERS):
+            continue
+        if MANIFEST in names:  # a package (perhaps `src` itself): do not look inside
+            yield directory
+            continue
+        if depth >= max_depth:
+            continue
+        children = [
+            Path(e.path)
+            for e in entries
+            if not e.name.startswith('.') and e.name not in SKIPPED_DIRS and _is_dir(e)
+        ]
+        # reversed so the stack pops them in name order
+        stack.extend((child, depth + 1) for child in reversed(children))
+
+
+def _is_dir(entry: os.DirEntry[str]) -> bool:
+    try:
+        return entry.is_dir()  # follows a symlink; loops are caught by `seen`
+    except OSError:
+        return False
+
+
+def scan_workspace(root: Path, workspace: Path | None = None) -> Scan:
+    """Every package under `root` (a workspace's `src/`)."""
+    scan = Scan(root)
+    owner = workspace if workspace is not None else root
+    for directory in _package_dirs(root):
+        try:
+            manifest = read_manifest(directory / MANIFEST)
+        except ManifestError as e:
+            scan.problems.append(str(e))
+            continue
+        first = scan.packages.get(manifest.name)
+        if first is not None:
+            scan.problems.append(
+                f"duplicate package '{manifest.name}': {directory} (using {first.directory})"
+            )
+            continue
+        scan.packages[manifest.name] = SourcePackage(manifest, owner)
+    return scan
+
+
+def _has_package(src: Path) -> bool:
+    return next(_package_dirs(src, _DETECT_DEPTH, _DETECT_DIRS), None) is not None
+
+
+def enclosing_workspace(cwd: Path) -> Path | None:
+    """The nearest of `cwd` and its parents whose `src/` holds a package."""
+    for directory in (cwd, *cwd.parents):
+        src = directory / 'src'
+        if src.is_dir() and _has_package(src):
+            return directory
+    return None
+
+
+def workspaces(env: Mapping[str, str] | None = None, cwd: Path | None = None) -> list[Path]:
+    """The source workspaces in priority order (see the module doc), each once."""
+    environ = os.environ if env is None else env
+    try:
+        here = Path.cwd() if cwd is None else cwd
+    except OSError:  # the current directory was removed
+        here = None
+    found: list[Path] = []
+    enclosing = enclosing_workspace(here.absolute()) if here is not None else None
+    if enclosing is not None:
+        found.append(enclosing)
+    for entry in environ.get(WORKSPACE_ENV, '').split(os.pathsep):
+        if entry:
+            found.append(Path(entry).expanduser().absolute())
+    unique: list[Path] = []
+    keys: set[Path] = set()
+    for ws in found:
+        key = ws.resolve()
+        if key not in keys:
+            keys.add(key)
+            unique.append(ws)
+    return unique
+
+
+def workspace_sources(workspace: Path) -> Path:
+    """Where a workspace's packages are: its `src/`, or the directory itself without one."""
+    src = workspace / 'src'
+    return src if src.is_dir() else workspace
