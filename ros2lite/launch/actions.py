@@ -137,7 +137,7 @@ class LaunchDescription(LaunchDescriptionEntity):
         self.source_path: str | None = None  # set by the loader of a launch file
 
     def visit(self, context: LaunchContext) -> Entities | None:
-        if self.deprecated_reason is not None and context.service is not None:
+        if self.deprecated_reason is not None and context.has_service:
             where = self.source_path or 'a launch description'
             context.service.log(
                 'WARNING', 'launch', f'{where} is deprecated: {self.deprecated_reason}'

@@ -15,8 +15,8 @@ import secrets
 import shlex
 import shutil
 import subprocess
-from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING, Any, TypeAlias
+from collections.abc import Iterable, Mapping, Sequence
+from typing import TYPE_CHECKING, TypeAlias
 
 from .errors import SubstitutionFailure
 
@@ -65,9 +65,13 @@ class Substitution:
 
 
 SomeSubstitutionsType: TypeAlias = 'str | Substitution | Iterable[str | Substitution]'
+# (key, value) settings given as a dict: names and values are text or substitutions
+SubstitutionMapping: TypeAlias = (
+    'Mapping[str, SomeSubstitutionsType] | Mapping[Substitution, SomeSubstitutionsType]'
+)
 
 
-def _one(value: Any) -> Substitution | None:
+def _one(value: object) -> Substitution | None:
     if isinstance(value, Substitution):
         return value
     if isinstance(value, bool):
@@ -79,7 +83,7 @@ def _one(value: Any) -> Substitution | None:
     return None
 
 
-def normalize_to_list_of_substitutions(value: Any) -> list[Substitution]:
+def normalize_to_list_of_substitutions(value: object) -> list[Substitution]:
     """A list of substitutions from a string, a substitution or a list of both."""
     single = _one(value)
     if single is not None:
@@ -124,7 +128,7 @@ class LaunchConfiguration(Substitution):
     """The value of a launch configuration (an argument, or what SetLaunchConfiguration set),
     or `default` when it is not set."""
 
-    def __init__(self, variable_name: SomeSubstitutionsType, *, default: Any = None) -> None:
+    def __init__(self, variable_name: SomeSubstitutionsType, *, default: object = None) -> None:
         self.variable_name = normalize_to_list_of_substitutions(variable_name)
         self.default = None if default is None else normalize_to_list_of_substitutions(default)
 
@@ -149,7 +153,7 @@ class LocalSubstitution(Substitution):
         self.description = description
 
     def perform(self, context: LaunchContext) -> str:
-        value: Any = context.get_locals_as_dict()
+        value: object = context.get_locals_as_dict()
         for part in self.expression.split('.'):
             value = value[part] if isinstance(value, dict) else getattr(value, part, None)
             if value is None:
@@ -163,7 +167,7 @@ class LocalSubstitution(Substitution):
 class EnvironmentVariable(Substitution):
     """An environment variable of the launch (which SetEnvironmentVariable can change)."""
 
-    def __init__(self, name: SomeSubstitutionsType, *, default_value: Any = None) -> None:
+    def __init__(self, name: SomeSubstitutionsType, *, default_value: object = None) -> None:
         self.name = normalize_to_list_of_substitutions(name)
         self.default_value = (
             None if default_value is None else normalize_to_list_of_substitutions(default_value)
@@ -316,7 +320,7 @@ class PythonExpression(Substitution):
 
     def perform(self, context: LaunchContext) -> str:
         text = perform_substitutions(context, self.expression)
-        scope: dict[str, Any] = {'__builtins__': _EXPRESSION_BUILTINS, 'math': math}
+        scope: dict[str, object] = {'__builtins__': _EXPRESSION_BUILTINS, 'math': math}
         scope.update({k: v for k, v in vars(math).items() if not k.startswith('_')})
         try:
             return str(eval(text, scope, {}))  # the launch file's own expression
@@ -364,7 +368,7 @@ class OrSubstitution(AndSubstitution):
 class EqualsSubstitution(Substitution):
     """'true' when both values perform to the same text (booleans compared as such)."""
 
-    def __init__(self, left: Any, right: Any) -> None:
+    def __init__(self, left: object, right: object) -> None:
         self.left = normalize_to_list_of_substitutions(_plain(left))
         self.right = normalize_to_list_of_substitutions(_plain(right))
 
@@ -402,7 +406,7 @@ class IfElseSubstitution(Substitution):
         return perform_substitutions(context, chosen)
 
 
-def _plain(value: Any) -> Any:
+def _plain(value: object) -> object:
     return '' if value is None else value
 
 
