@@ -9,9 +9,9 @@ condition, checked when the action is reached.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, TypedDict
 
 from .conditions import Condition
 from .errors import LaunchError
@@ -19,6 +19,7 @@ from .events import Event, ExecutionComplete
 from .events import Shutdown as ShutdownEvent
 from .substitutions import (
     SomeSubstitutionsType,
+    SubstitutionMapping,
     TextSubstitution,
     describe_substitutions,
     normalize_to_list_of_substitutions,
@@ -26,6 +27,8 @@ from .substitutions import (
 )
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
     from .context import LaunchContext
     from .event_handlers import EventHandler
     from .sources import LaunchDescriptionSource
@@ -54,6 +57,12 @@ __all__ = [
 ]
 
 Entities = list['LaunchDescriptionEntity']
+
+
+class ActionOptions(TypedDict, total=False):
+    """The keywords every action takes (what subclasses pass on to :class:`Action`)."""
+
+    condition: Condition | None
 
 
 class LaunchDescriptionEntity:
@@ -109,7 +118,7 @@ class Action(LaunchDescriptionEntity):
 
 
 class _PushLocals(LaunchDescriptionEntity):
-    def __init__(self, values: dict[str, Any]) -> None:
+    def __init__(self, values: Mapping[str, object]) -> None:
         self.values = values
 
     def visit(self, context: LaunchContext) -> Entities | None:
@@ -187,7 +196,7 @@ class DeclareLaunchArgument(Action):
         default_value: SomeSubstitutionsType | None = None,
         description: str | None = None,
         choices: Sequence[str] | None = None,
-        **kwargs: Any,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         self.name = name
@@ -235,7 +244,10 @@ class SetLaunchConfiguration(Action):
     """Sets a launch configuration in the current scope."""
 
     def __init__(
-        self, name: SomeSubstitutionsType, value: SomeSubstitutionsType, **kwargs: Any
+        self,
+        name: SomeSubstitutionsType,
+        value: SomeSubstitutionsType,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
@@ -256,7 +268,7 @@ class SetLaunchConfiguration(Action):
 class UnsetLaunchConfiguration(Action):
     """Removes a launch configuration from the current scope."""
 
-    def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
+    def __init__(self, name: SomeSubstitutionsType, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
 
@@ -268,7 +280,7 @@ class UnsetLaunchConfiguration(Action):
 class PushLaunchConfigurations(Action):
     """Starts a scope: what is set until the matching pop is forgotten then."""
 
-    def __init__(self, *, forwarding: bool = True, **kwargs: Any) -> None:
+    def __init__(self, *, forwarding: bool = True, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.forwarding = forwarding
 
@@ -289,7 +301,10 @@ class SetEnvironmentVariable(Action):
     """Sets a variable in the environment of processes started after it (in this scope)."""
 
     def __init__(
-        self, name: SomeSubstitutionsType, value: SomeSubstitutionsType, **kwargs: Any
+        self,
+        name: SomeSubstitutionsType,
+        value: SomeSubstitutionsType,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
@@ -305,7 +320,7 @@ class SetEnvironmentVariable(Action):
 class UnsetEnvironmentVariable(Action):
     """Removes a variable from the environment of processes started after it."""
 
-    def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
+    def __init__(self, name: SomeSubstitutionsType, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
 
@@ -324,7 +339,7 @@ class AppendEnvironmentVariable(Action):
         *,
         prepend: bool = False,
         separator: str = os.pathsep,
-        **kwargs: Any,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
@@ -359,8 +374,8 @@ class GroupAction(Action):
         *,
         scoped: bool = True,
         forwarding: bool = True,
-        launch_configurations: dict[Any, Any] | None = None,
-        **kwargs: Any,
+        launch_configurations: SubstitutionMapping | None = None,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         self.actions = list(actions)
@@ -396,9 +411,9 @@ class IncludeLaunchDescription(Action):
         launch_description_source: LaunchDescriptionSource | LaunchDescription,
         *,
         launch_arguments: Iterable[tuple[SomeSubstitutionsType, SomeSubstitutionsType]]
-        | dict[Any, Any]
+        | SubstitutionMapping
         | None = None,
-        **kwargs: Any,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         from .sources import LaunchDescriptionSource
@@ -408,7 +423,7 @@ class IncludeLaunchDescription(Action):
         self.launch_description_source = launch_description_source
         items = (
             launch_arguments.items()
-            if isinstance(launch_arguments, dict)
+            if isinstance(launch_arguments, Mapping)
             else (launch_arguments or [])
         )
         self.launch_arguments = [
@@ -472,7 +487,7 @@ class TimerAction(Action):
         period: float | SomeSubstitutionsType,
         actions: Iterable[LaunchDescriptionEntity],
         cancel_on_shutdown: bool = True,
-        **kwargs: Any,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         self.period = normalize_to_list_of_substitutions(period)
@@ -511,10 +526,10 @@ class OpaqueFunction(Action):
     def __init__(
         self,
         *,
-        function: Callable[..., Any],
-        args: Sequence[Any] | None = None,
-        kwargs: dict[str, Any] | None = None,
-        **action_kwargs: Any,
+        function: Callable[..., LaunchDescriptionEntity | Iterable[LaunchDescriptionEntity] | None],
+        args: Sequence[object] | None = None,
+        kwargs: Mapping[str, object] | None = None,
+        **action_kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**action_kwargs)
         self.function = function
@@ -537,7 +552,7 @@ class OpaqueFunction(Action):
 class RegisterEventHandler(Action):
     """Registers an event handler for the rest of the launch."""
 
-    def __init__(self, event_handler: EventHandler, **kwargs: Any) -> None:
+    def __init__(self, event_handler: EventHandler, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.event_handler = event_handler
 
@@ -557,7 +572,7 @@ class RegisterEventHandler(Action):
 class UnregisterEventHandler(Action):
     """Removes an event handler."""
 
-    def __init__(self, event_handler: EventHandler, **kwargs: Any) -> None:
+    def __init__(self, event_handler: EventHandler, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.event_handler = event_handler
 
@@ -569,7 +584,7 @@ class UnregisterEventHandler(Action):
 class EmitEvent(Action):
     """Emits an event (e.g. ``Shutdown()``) for the handlers."""
 
-    def __init__(self, *, event: Event, **kwargs: Any) -> None:
+    def __init__(self, *, event: Event, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.event = event
 
@@ -584,7 +599,7 @@ class EmitEvent(Action):
 class LogInfo(Action):
     """Logs a line as `[INFO] [launch.user]: …`."""
 
-    def __init__(self, *, msg: SomeSubstitutionsType, **kwargs: Any) -> None:
+    def __init__(self, *, msg: SomeSubstitutionsType, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.msg = normalize_to_list_of_substitutions(msg)
 
@@ -600,7 +615,7 @@ class Shutdown(EmitEvent):
     """Shuts the launch down (every process is stopped)."""
 
     def __init__(
-        self, *, reason: SomeSubstitutionsType = 'reason not given', **kwargs: Any
+        self, *, reason: SomeSubstitutionsType = 'reason not given', **kwargs: Unpack[ActionOptions]
     ) -> None:
         self.reason = normalize_to_list_of_substitutions(reason)
         super().__init__(event=ShutdownEvent(reason='reason not given'), **kwargs)

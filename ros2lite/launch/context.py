@@ -19,6 +19,7 @@ if TYPE_CHECKING:
 
     from .event_handlers import EventHandler
     from .events import Event
+    from .ros import ParameterData
     from .service import LaunchService
     from .substitutions import Substitution
 
@@ -33,7 +34,7 @@ class Scope:
     environment: dict[str, str] = field(default_factory=dict)
     ros_namespace: str | None = None
     # (name, value) pairs and parameter file paths, in the order they were set
-    global_params: list[tuple[str, object] | Path] = field(default_factory=list)
+    global_params: list[tuple[str, ParameterData] | Path] = field(default_factory=list)
     remaps: list[tuple[str, str]] = field(default_factory=list)
 
     def copy(self, *, forwarding: bool = True) -> Scope:

@@ -13,11 +13,11 @@ import re
 import shlex
 from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from ros2lite.pkg.environment import child_environment
 
-from .actions import Action, Entities
+from .actions import Action, ActionOptions, Entities
 from .errors import LaunchError
 from .event_handlers import OnProcessExit
 from .output import destinations
@@ -25,13 +25,18 @@ from .substitutions import (
     LaunchConfiguration,
     SomeSubstitutionsType,
     Substitution,
+    SubstitutionMapping,
     describe_substitutions,
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
     from .context import LaunchContext
+    from .event_handlers import Reaction
+    from .events import ProcessDetails
 
 __all__ = ['ExecuteProcess', 'ProcessSpec']
 
@@ -78,22 +83,22 @@ class ExecuteProcess(Action):
         cmd: Iterable[SomeSubstitutionsType],
         name: SomeSubstitutionsType | None = None,
         cwd: SomeSubstitutionsType | None = None,
-        env: dict[Any, Any] | None = None,
-        additional_env: dict[Any, Any] | None = None,
+        env: SubstitutionMapping | None = None,
+        additional_env: SubstitutionMapping | None = None,
         shell: bool = False,
         prefix: SomeSubstitutionsType | None = None,
         output: SomeSubstitutionsType = 'log',
         sigterm_timeout: SomeSubstitutionsType = _SIGTERM_TIMEOUT,
         sigkill_timeout: SomeSubstitutionsType = _SIGKILL_TIMEOUT,
         emulate_tty: bool = False,
-        on_exit: Any = None,
+        on_exit: Reaction = None,
         respawn: bool | SomeSubstitutionsType = False,
         respawn_delay: float | None = None,
         respawn_max_retries: int = -1,
         log_cmd: bool = False,
         cached_output: bool = False,
         arguments: Iterable[SomeSubstitutionsType] | None = None,
-        **kwargs: Any,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         self.cmd = [normalize_to_list_of_substitutions(c) for c in cmd]
@@ -117,7 +122,7 @@ class ExecuteProcess(Action):
         self.respawn_count = 0
         self.log_cmd = log_cmd
         self.cached_output = cached_output
-        self.process_details: dict[str, Any] | None = None
+        self.process_details: ProcessDetails | None = None
         self.return_code: int | None = None
 
     # -- resolving -------------------------------------------------------------------------------
@@ -213,7 +218,7 @@ class ExecuteProcess(Action):
 
 
 def _normalize_env(
-    env: dict[Any, Any] | None,
+    env: SubstitutionMapping | None,
 ) -> list[tuple[list[Substitution], list[Substitution]]] | None:
     if env is None:
         return None

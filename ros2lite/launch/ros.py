@@ -14,11 +14,11 @@ import os
 import tempfile
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 from ros2lite.names import NameValidationException, normalize_namespace, validate_namespace
 
-from .actions import Action, Entities, path_of
+from .actions import Action, ActionOptions, Entities, path_of
 from .errors import LaunchError, SubstitutionFailure
 from .execute import ExecuteProcess
 from .substitutions import (
@@ -30,7 +30,10 @@ from .substitutions import (
 )
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
     from ros2lite.pkg.executables import PackageExecutable
+    from ros2lite.pkg.index import Package
 
     from .context import LaunchContext
 
@@ -56,7 +59,7 @@ class FindPackagePrefix(Substitution):
     def __init__(self, package: SomeSubstitutionsType) -> None:
         self.package = normalize_to_list_of_substitutions(package)
 
-    def find(self, context: LaunchContext) -> Any:
+    def find(self, context: LaunchContext) -> Package:
         name = perform_substitutions(context, self.package)
         index = context.package_index
         pkg = index.find(name)
@@ -89,11 +92,19 @@ class FindPackageShare(FindPackagePrefix):
 
 # -- parameters ----------------------------------------------------------------------------------
 
+# what a node gets for one parameter: a YAML scalar, a list, or nothing
+ParameterData: TypeAlias = 'bool | int | float | str | list[object] | None'
+# one entry of Node(parameters=...): a dict of values, or a parameter file
+ParameterEntry: TypeAlias = (
+    'Mapping[str, object] | Mapping[Substitution, object] | ParameterFile'
+    ' | SomeSubstitutionsType | Path'
+)
+
 
 class ParameterValue:
     """A parameter value with an explicit type (None: read text as YAML)."""
 
-    def __init__(self, value: Any, *, value_type: Any = None) -> None:
+    def __init__(self, value: object, *, value_type: object = None) -> None:
         self.value = value
         self.value_type = value_type
 
@@ -102,12 +113,14 @@ class ParameterFile:
     """A parameter file; with `allow_substs`, `$(var …)` and friends inside it are
     performed before the node reads it."""
 
-    def __init__(self, param_file: Any, *, allow_substs: bool = False) -> None:
+    def __init__(
+        self, param_file: SomeSubstitutionsType | Path, *, allow_substs: bool = False
+    ) -> None:
         self.param_file = param_file
         self.allow_substs = allow_substs
 
 
-def _yaml_value(text: str) -> Any:
+def _yaml_value(text: str) -> ParameterData:
     """Text as launch_ros reads it: a YAML scalar or a list of one scalar type; else text."""
     from ros2lite.safe_yaml import YamlInputError, load
 
@@ -124,7 +137,7 @@ def _yaml_value(text: str) -> Any:
     return text
 
 
-def _is_substitutions(value: Any) -> bool:
+def _is_substitutions(value: object) -> bool:
     return isinstance(value, Substitution) or (
         isinstance(value, (list, tuple))
         and bool(value)
@@ -133,7 +146,7 @@ def _is_substitutions(value: Any) -> bool:
     )
 
 
-def evaluate_parameter(context: LaunchContext, value: Any) -> Any:
+def evaluate_parameter(context: LaunchContext, value: object) -> ParameterData:
     """The value a node gets for one parameter entry."""
     if isinstance(value, ParameterValue):
         inner = value.value
@@ -163,7 +176,7 @@ def evaluate_parameter(context: LaunchContext, value: Any) -> Any:
     raise LaunchError(f'unsupported parameter value {value!r}')
 
 
-def _typed(text: str, value_type: Any) -> Any:
+def _typed(text: str, value_type: object) -> ParameterData:
     from ros2lite.safe_yaml import YamlInputError, load
 
     try:
@@ -177,8 +190,12 @@ def _typed(text: str, value_type: Any) -> Any:
     return parsed
 
 
-def _flatten(context: LaunchContext, params: Mapping[Any, Any], prefix: str = '') -> dict[str, Any]:
-    flat: dict[str, Any] = {}
+def _flatten(
+    context: LaunchContext,
+    params: Mapping[str, object] | Mapping[Substitution, object],
+    prefix: str = '',
+) -> dict[str, ParameterData]:
+    flat: dict[str, ParameterData] = {}
     for key, value in params.items():
         name = perform_substitutions(context, normalize_to_list_of_substitutions(key))
         full = f'{prefix}{name}'
@@ -192,7 +209,9 @@ def _flatten(context: LaunchContext, params: Mapping[Any, Any], prefix: str = ''
 class SetParameter(Action):
     """A parameter every Node after it (in this scope) gets."""
 
-    def __init__(self, name: SomeSubstitutionsType, value: Any, **kwargs: Any) -> None:
+    def __init__(
+        self, name: SomeSubstitutionsType, value: object, **kwargs: Unpack[ActionOptions]
+    ) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
         self.value = value
@@ -209,7 +228,7 @@ class SetParameter(Action):
 class SetParametersFromFile(Action):
     """A parameter file every Node after it (in this scope) reads."""
 
-    def __init__(self, filename: SomeSubstitutionsType, **kwargs: Any) -> None:
+    def __init__(self, filename: SomeSubstitutionsType, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.filename = normalize_to_list_of_substitutions(filename)
 
@@ -221,7 +240,12 @@ class SetParametersFromFile(Action):
 class SetRemap(Action):
     """A remapping every Node after it (in this scope) gets."""
 
-    def __init__(self, src: SomeSubstitutionsType, dst: SomeSubstitutionsType, **kwargs: Any):
+    def __init__(
+        self,
+        src: SomeSubstitutionsType,
+        dst: SomeSubstitutionsType,
+        **kwargs: Unpack[ActionOptions],
+    ):
         super().__init__(**kwargs)
         self.src = normalize_to_list_of_substitutions(src)
         self.dst = normalize_to_list_of_substitutions(dst)
@@ -246,7 +270,7 @@ def _join_namespace(base: str | None, namespace: str | None) -> str | None:
 class PushRosNamespace(Action):
     """Puts the Nodes after it (in this scope) under a namespace (relative ones nest)."""
 
-    def __init__(self, namespace: SomeSubstitutionsType, **kwargs: Any) -> None:
+    def __init__(self, namespace: SomeSubstitutionsType, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.namespace = normalize_to_list_of_substitutions(namespace)
 
@@ -284,11 +308,11 @@ class Node(ExecuteProcess):
         name: SomeSubstitutionsType | None = None,
         namespace: SomeSubstitutionsType | None = None,
         exec_name: SomeSubstitutionsType | None = None,
-        parameters: Sequence[Any] | None = None,
+        parameters: Sequence[ParameterEntry] | None = None,
         remappings: Iterable[tuple[SomeSubstitutionsType, SomeSubstitutionsType]] | None = None,
         ros_arguments: Iterable[SomeSubstitutionsType] | None = None,
         arguments: Iterable[SomeSubstitutionsType] | None = None,
-        **kwargs: Any,
+        **kwargs: Any,  # ExecuteProcess's keywords, passed on as they are
     ) -> None:
         super().__init__(cmd=[], name=exec_name, **kwargs)
         self.package = None if package is None else normalize_to_list_of_substitutions(package)
@@ -320,7 +344,7 @@ class Node(ExecuteProcess):
             context.service.log('INFO', 'launch', resolved.note)
         return resolved.executable
 
-    def _params_file(self, context: LaunchContext, values: dict[str, Any]) -> str:
+    def _params_file(self, context: LaunchContext, values: dict[str, ParameterData]) -> str:
         import yaml
 
         fd, path = tempfile.mkstemp(prefix='launch_params_', suffix='.yaml')
@@ -345,7 +369,7 @@ class Node(ExecuteProcess):
 
     def _parameter_args(self, context: LaunchContext) -> list[str]:
         args: list[str] = []
-        pending: dict[str, Any] = {}
+        pending: dict[str, ParameterData] = {}
 
         def flush() -> None:
             if pending:
@@ -358,17 +382,17 @@ class Node(ExecuteProcess):
                 args.extend(['--params-file', str(entry)])
             else:
                 pending[entry[0]] = entry[1]
-        for entry in self.parameters:
-            if isinstance(entry, Mapping):
-                pending.update(_flatten(context, entry))
+        for param in self.parameters:
+            if isinstance(param, Mapping):
+                pending.update(_flatten(context, param))
                 continue
             flush()
-            if isinstance(entry, ParameterFile):
-                path = path_of(entry.param_file, context)
-                if entry.allow_substs:
+            if isinstance(param, ParameterFile):
+                path = path_of(param.param_file, context)
+                if param.allow_substs:
                     path = self._substituted_file(context, path)
             else:
-                path = path_of(entry, context)
+                path = path_of(param, context)
             args.extend(['--params-file', path])
         flush()
         return args

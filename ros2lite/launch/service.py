@@ -36,6 +36,7 @@ from .event_handlers import OnProcessIO
 from .events import (
     Event,
     ExecutionComplete,
+    ProcessDetails,
     ProcessExited,
     ProcessStarted,
     ProcessStderr,
@@ -163,12 +164,13 @@ class LaunchService:
             sigterm_timeout=spec.sigterm_timeout,
             sigkill_timeout=spec.sigkill_timeout,
         )
-        details: dict[str, Any] = {
+        details: ProcessDetails = {
             'action': action,
             'name': label,
             'cmd': spec.display_cmd,
             'cwd': spec.cwd,
             'env': spec.env,
+            'pid': 0,  # known once started
         }
         if spec.log_cmd:
             self.log(
@@ -356,7 +358,8 @@ class LaunchService:
                 running.label,
                 f"process has died [pid {running.pid}, exit code {code}, cmd '{cmd}'].",
             )
-        details = dict(action.process_details or {})
+        details = action.process_details
+        assert details is not None  # set when the process started
         self._dispatch(ProcessExited(returncode=code, **details))
         self._dispatch(ExecutionComplete(action=action))
         if not self._shutting_down and self._guard(lambda: action.should_respawn(self.context)):
