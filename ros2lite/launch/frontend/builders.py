@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import shlex
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..actions import (
     Action,
+    ActionOptions,
     DeclareLaunchArgument,
     GroupAction,
     IncludeLaunchDescription,
@@ -32,10 +33,13 @@ from ..substitutions import Substitution, TextSubstitution
 from .entity import Entity
 from .substitutions import parse_substitutions
 
+if TYPE_CHECKING:
+    from ..ros import ParameterEntry
+
 __all__ = ['BUILDERS', 'build', 'build_all']
 
 
-def _condition(e: Entity) -> dict[str, Any]:
+def _condition(e: Entity) -> ActionOptions:
     if_ = e.subs('if')
     unless = e.subs('unless')
     if if_ is not None and unless is not None:
@@ -95,7 +99,7 @@ def _let(e: Entity) -> Action:
     )
 
 
-def _process_options(e: Entity) -> dict[str, Any]:
+def _process_options(e: Entity) -> dict[str, Any]:  # ExecuteProcess's keywords
     options: dict[str, Any] = {}
     output = e.subs('output')
     if output is not None:
@@ -136,7 +140,7 @@ def _executable(e: Entity) -> Action:
     )
 
 
-def _param_value(p: Entity) -> Any:
+def _param_value(p: Entity) -> object:
     value = p.value('value')
     sep = p.text('value-sep')
     if isinstance(value, str):
@@ -146,10 +150,10 @@ def _param_value(p: Entity) -> Any:
     return value
 
 
-def _params(e: Entity) -> list[Any]:
+def _params(e: Entity) -> list[ParameterEntry]:
     """A node's parameters: dicts for name/value (nested params become `a.b`), paths for
     `from`."""
-    out: list[Any] = []
+    out: list[ParameterEntry] = []
     for p in e.child_list('param'):
         source = p.subs('from')
         if source is not None:
@@ -166,7 +170,7 @@ def _param_name(p: Entity) -> str:
     return name
 
 
-def _param_tree(p: Entity) -> Any:
+def _param_tree(p: Entity) -> object:
     nested = p.child_list('param')
     if nested:
         return {_param_name(child): _param_tree(child) for child in nested}

@@ -9,7 +9,6 @@ and `param`/`remap`/`env`/`arg` are lists of mappings.
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
-from typing import Any
 
 from ..errors import InvalidFrontendLaunchFileError
 from ..substitutions import Substitution, TextSubstitution
@@ -27,7 +26,7 @@ class Entity:
     type_name: str = ''
     where: str = ''
 
-    def raw(self, name: str) -> Any:
+    def raw(self, name: str) -> object:
         """The attribute as written (None when absent)."""
         raise NotImplementedError
 
@@ -42,7 +41,7 @@ class Entity:
     def error(self, message: str) -> InvalidFrontendLaunchFileError:
         return InvalidFrontendLaunchFileError(f'{self.where}: <{self.type_name}>: {message}')
 
-    def _required(self, name: str, optional: bool) -> Any:
+    def _required(self, name: str, optional: bool) -> object:
         value = self.raw(name)
         if value is None and not optional:
             raise self.error(f"missing attribute '{name}'")
@@ -88,11 +87,13 @@ class Entity:
         if value is None:
             return None
         try:
+            if not isinstance(value, (str, int, float)):
+                raise TypeError(value)
             return float(value)
         except (TypeError, ValueError):
             raise self.error(f"attribute '{name}' must be a number, not '{value}'") from None
 
-    def value(self, name: str) -> Any:
+    def value(self, name: str) -> object:
         """A parameter value: YAML keeps its type; text may hold substitutions."""
         return self.raw(name)
 
@@ -103,7 +104,7 @@ class XmlEntity(Entity):
         self.type_name = element.tag
         self.where = where
 
-    def raw(self, name: str) -> Any:
+    def raw(self, name: str) -> object:
         return self.element.get(name)
 
     def children(self) -> list[Entity]:
@@ -114,7 +115,7 @@ class XmlEntity(Entity):
 
 
 class YamlEntity(Entity):
-    def __init__(self, type_name: str, body: Any, where: str) -> None:
+    def __init__(self, type_name: str, body: object, where: str) -> None:
         if body is None:
             body = {}
         if not isinstance(body, dict):
@@ -125,7 +126,7 @@ class YamlEntity(Entity):
         self.body = body
         self.where = where
 
-    def raw(self, name: str) -> Any:
+    def raw(self, name: str) -> object:
         return self.body.get(name)
 
     def children(self) -> list[Entity]:
@@ -138,7 +139,7 @@ class YamlEntity(Entity):
         return [YamlEntity(tag, item, self.where) for item in items]
 
 
-def _entities(items: Any, where: str) -> list[Entity]:
+def _entities(items: object, where: str) -> list[Entity]:
     if not isinstance(items, list):
         raise InvalidFrontendLaunchFileError(f'{where}: expected a list of actions')
     out: list[Entity] = []
@@ -152,7 +153,7 @@ def _entities(items: Any, where: str) -> list[Entity]:
     return out
 
 
-def yaml_root(document: Any, where: str) -> list[Entity]:
+def yaml_root(document: object, where: str) -> list[Entity]:
     """The actions of a YAML launch document (`launch: [...]`)."""
     if not isinstance(document, dict) or 'launch' not in document:
         raise InvalidFrontendLaunchFileError(f"{where}: a YAML launch file starts with 'launch:'")
