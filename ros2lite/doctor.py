@@ -48,18 +48,23 @@ class Finding:
 
 @dataclass
 class CheckResult:
+    """The findings of one check category (`doctor` prints them; errors make it fail)."""
+
     category: str
     findings: list[Finding] = field(default_factory=list)
 
     @property
     def errors(self) -> list[Finding]:
+        """The findings of severity 'error'."""
         return [f for f in self.findings if f.severity == 'error']
 
     @property
     def warnings(self) -> list[Finding]:
+        """The findings of severity 'warning'."""
         return [f for f in self.findings if f.severity == 'warning']
 
     def failed(self, include_warnings: bool = False) -> bool:
+        """Whether the check failed: any error, or any warning when `include_warnings`."""
         return bool(self.errors or (include_warnings and self.warnings))
 
     def _add(self, severity: str, message: str) -> None:
@@ -67,9 +72,11 @@ class CheckResult:
         self.findings.append(Finding(severity, message, frame.f_code.co_filename, frame.f_lineno))
 
     def warn(self, message: str) -> None:
+        """Record a warning, with the file and line that raised it."""
         self._add('warning', message)
 
     def error(self, message: str) -> None:
+        """Record an error, with the file and line that raised it."""
         self._add('error', message)
 
 
@@ -82,6 +89,7 @@ class Report:
     items: list[tuple[str, str]] = field(default_factory=list)
 
     def add(self, key: str, value: object) -> None:
+        """Add a line; the value is shown as text."""
         self.items.append((key, str(value)))
 
 
@@ -109,6 +117,7 @@ class Diagnosis:
 
     # -- facts -----------------------------------------------------------------------------------
     def endpoint(self) -> str | None:
+        """The router endpoint to check (None when the configuration is invalid)."""
         if self._endpoint is None and self._endpoint_error is None:
             from ros2lite.transport.config import router_endpoint
             from ros2lite.transport.errors import ConfigError
@@ -151,6 +160,7 @@ class Diagnosis:
 
     @property
     def graph_error(self) -> str | None:
+        """Why the graph could not be read (None when it was, or was not tried)."""
         return self._graph_error
 
     def _topics(self) -> dict[str, list[Entity]]:
@@ -166,6 +176,7 @@ class Diagnosis:
 
     # -- checks ----------------------------------------------------------------------------------
     def check_platform(self) -> CheckResult:
+        """Warn about an untested platform, or a python3 on PATH that cannot import ros2lite."""
         import shutil
 
         result = CheckResult('platform')
@@ -193,6 +204,7 @@ class Diagnosis:
         return result
 
     def check_network(self) -> CheckResult:
+        """Check that the router endpoint is valid and reachable."""
         result = CheckResult('network')
         if self._endpoint_error is not None or self.endpoint() is None:
             result.error(f'the router endpoint is invalid: {self._endpoint_error}')
@@ -211,6 +223,7 @@ class Diagnosis:
         return result
 
     def check_middleware(self) -> CheckResult:
+        """Check the Zenoh session configuration and that RMW_IMPLEMENTATION is rmw_zenoh_cpp."""
         from ros2lite.transport.config import domain_id, router_check_attempts, session_config
         from ros2lite.transport.errors import ConfigError
 
@@ -237,6 +250,7 @@ class Diagnosis:
         return result
 
     def check_topic(self) -> CheckResult:
+        """Warn about one-sided topics; report type and type hash mismatches."""
         from ros2lite.graph import EntityKind
 
         result = CheckResult('topic')
@@ -268,6 +282,7 @@ class Diagnosis:
         return result
 
     def check_qos(self) -> CheckResult:
+        """Warn about publisher/subscriber pairs whose QoS cannot connect."""
         result = CheckResult('qos')
         if self.graph() is None:
             result.warn(f'QoS not checked: {self.graph_error}')
@@ -281,6 +296,7 @@ class Diagnosis:
         return result
 
     def check_package(self) -> CheckResult:
+        """Warn about workspace packages that could not be read."""
         from ros2lite.pkg.index import PackageIndex
 
         result = CheckResult('package')

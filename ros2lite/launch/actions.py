@@ -73,6 +73,7 @@ class LaunchDescriptionEntity:
         return None
 
     def describe(self) -> str:
+        """A short name for listings (`launch -p`)."""
         return type(self).__name__
 
     def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
@@ -97,9 +98,11 @@ class Action(LaunchDescriptionEntity):
 
     @property
     def condition(self) -> Condition | None:
+        """The condition checked when the action is reached (None: always runs)."""
         return self.__condition
 
     def visit(self, context: LaunchContext) -> Entities | None:
+        """Run the action if its condition holds, announcing its completion to any handler."""
         if self.__condition is not None and not self.__condition.evaluate(context):
             return None
         entities = self.execute(context)
@@ -114,6 +117,7 @@ class Action(LaunchDescriptionEntity):
         return None
 
     def describe(self) -> str:
+        """The action's class name, as introspection lists it."""
         return f'{type(self).__name__}()'
 
 
@@ -146,6 +150,7 @@ class LaunchDescription(LaunchDescriptionEntity):
         self.source_path: str | None = None  # set by the loader of a launch file
 
     def visit(self, context: LaunchContext) -> Entities | None:
+        """Unfold into its entities (warning first when the description is deprecated)."""
         if self.deprecated_reason is not None and context.has_service:
             where = self.source_path or 'a launch description'
             context.service.log(
@@ -160,16 +165,20 @@ class LaunchDescription(LaunchDescriptionEntity):
         return [_PushLocals(frame), *self.entities, _PopLocals()]
 
     def add_entity(self, entity: LaunchDescriptionEntity) -> None:
+        """Append an entity (launch files build descriptions step by step)."""
         self.entities.append(entity)
 
     def add_action(self, action: Action) -> None:
+        """Append an action (launch's older name for add_entity)."""
         self.entities.append(action)
 
     def describe(self) -> str:
+        """A one-line summary for `launch -p`."""
         where = f' ({self.source_path})' if self.source_path else ''
         return f'LaunchDescription{where}'
 
     def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        """The entities it holds, in order."""
         return list(self.entities)
 
     def get_launch_arguments(
@@ -214,6 +223,7 @@ class DeclareLaunchArgument(Action):
                 )
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Set the argument's default unless the caller gave it a value; check its choices."""
         if self.name not in context.launch_configurations:
             if self.default_value is None:
                 raise LaunchError(
@@ -232,6 +242,7 @@ class DeclareLaunchArgument(Action):
         return None
 
     def describe(self) -> str:
+        """The argument's name, as `launch -s` lists it."""
         default = (
             f', default={describe_substitutions(self.default_value)}'
             if self.default_value is not None
@@ -254,11 +265,13 @@ class SetLaunchConfiguration(Action):
         self.value = normalize_to_list_of_substitutions(value)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Store the performed value under the performed name in the current scope."""
         name = perform_substitutions(context, self.name)
         context.launch_configurations[name] = perform_substitutions(context, self.value)
         return None
 
     def describe(self) -> str:
+        """Name and value, for introspection."""
         return (
             f'SetLaunchConfiguration({describe_substitutions(self.name)}, '
             f'{describe_substitutions(self.value)})'
@@ -273,6 +286,7 @@ class UnsetLaunchConfiguration(Action):
         self.name = normalize_to_list_of_substitutions(name)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Remove the configuration from the current scope (if set)."""
         context.launch_configurations.pop(perform_substitutions(context, self.name), None)
         return None
 
@@ -285,6 +299,7 @@ class PushLaunchConfigurations(Action):
         self.forwarding = forwarding
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Open a scope, so that what follows cannot change the outer one."""
         context.push_scope(forwarding=self.forwarding)
         return None
 
@@ -293,6 +308,7 @@ class PopLaunchConfigurations(Action):
     """Ends the scope the matching push started."""
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Close the scope opened by the matching push."""
         context.pop_scope()
         return None
 
@@ -311,6 +327,7 @@ class SetEnvironmentVariable(Action):
         self.value = normalize_to_list_of_substitutions(value)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Set the variable for processes started after it in this scope."""
         context.environment[perform_substitutions(context, self.name)] = perform_substitutions(
             context, self.value
         )
@@ -325,6 +342,7 @@ class UnsetEnvironmentVariable(Action):
         self.name = normalize_to_list_of_substitutions(name)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Remove the variable for processes started after it in this scope."""
         context.environment.pop(perform_substitutions(context, self.name), None)
         return None
 
@@ -348,6 +366,7 @@ class AppendEnvironmentVariable(Action):
         self.separator = separator
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Add to the variable (before or after its value) with the separator."""
         name = perform_substitutions(context, self.name)
         value = perform_substitutions(context, self.value)
         old = context.environment.get(name, '')
@@ -384,6 +403,7 @@ class GroupAction(Action):
         self.launch_configurations = dict(launch_configurations or {})
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Its actions, wrapped in a scope unless unscoped, after its launch configurations."""
         sets: Entities = [
             SetLaunchConfiguration(k, v) for k, v in self.launch_configurations.items()
         ]
@@ -397,9 +417,11 @@ class GroupAction(Action):
         ]
 
     def describe(self) -> str:
+        """Whether the group is scoped, for introspection."""
         return f'GroupAction(scoped={self.scoped})'
 
     def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        """The grouped actions."""
         return list(self.actions)
 
 
@@ -432,6 +454,8 @@ class IncludeLaunchDescription(Action):
         ]
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """The included description, after setting its launch arguments and checking that
+        every argument it requires is given."""
         description = self.launch_description_source.get_launch_description(context)
         given = []
         for key, value in self.launch_arguments:
@@ -454,6 +478,7 @@ class IncludeLaunchDescription(Action):
         return [description]
 
     def describe(self) -> str:
+        """Where the description comes from, for introspection."""
         return f'IncludeLaunchDescription({self.launch_description_source.describe()})'
 
     def argument_names_without_context(self) -> list[str]:
@@ -496,6 +521,7 @@ class TimerAction(Action):
         self.cancelled = False
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Schedule its actions with the launch service, in the scope it was reached in."""
         text = perform_substitutions(context, self.period)
         try:
             seconds = float(text)
@@ -509,14 +535,17 @@ class TimerAction(Action):
         return None
 
     def cancel(self) -> None:
+        """Drop the pending actions (they will not run)."""
         self.cancelled = True
 
     def describe(self) -> str:
+        """The period, for introspection."""
         return f'TimerAction(period={describe_substitutions(self.period)})'
 
     def describe_conditional_sub_entities(
         self,
     ) -> list[tuple[str, list[LaunchDescriptionEntity]]]:
+        """The actions, run only when the period has passed."""
         return [(f'after {describe_substitutions(self.period)} s', list(self.actions))]
 
 
@@ -537,6 +566,7 @@ class OpaqueFunction(Action):
         self.kwargs = dict(kwargs or {})
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Call the function; what it returns is visited next."""
         result = self.function(context, *self.args, **self.kwargs)
         if result is None:
             return None
@@ -545,6 +575,7 @@ class OpaqueFunction(Action):
         return list(result)
 
     def describe(self) -> str:
+        """The function's name, for introspection."""
         name = getattr(self.function, '__name__', repr(self.function))
         return f'OpaqueFunction({name})'
 
@@ -557,15 +588,18 @@ class RegisterEventHandler(Action):
         self.event_handler = event_handler
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Add the handler to the context (newest first)."""
         context.register_event_handler(self.event_handler)
         return None
 
     def describe(self) -> str:
+        """The handler's description, for introspection."""
         return f'RegisterEventHandler({self.event_handler.describe()})'
 
     def describe_conditional_sub_entities(
         self,
     ) -> list[tuple[str, list[LaunchDescriptionEntity]]]:
+        """The entities the handler visits when its event happens."""
         return [(self.event_handler.describe(), self.event_handler.describe_sub_entities())]
 
 
@@ -577,6 +611,7 @@ class UnregisterEventHandler(Action):
         self.event_handler = event_handler
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Remove the handler from the context."""
         context.unregister_event_handler(self.event_handler)
         return None
 
@@ -589,10 +624,12 @@ class EmitEvent(Action):
         self.event = event
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Hand the event to the context's handlers."""
         context.emit_event_sync(self.event)
         return None
 
     def describe(self) -> str:
+        """The event's name, for introspection."""
         return f'EmitEvent({type(self.event).__name__})'
 
 
@@ -604,10 +641,12 @@ class LogInfo(Action):
         self.msg = normalize_to_list_of_substitutions(msg)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Log the performed message at INFO from `launch.user`."""
         context.service.log('INFO', 'launch.user', perform_substitutions(context, self.msg))
         return None
 
     def describe(self) -> str:
+        """The message, for introspection."""
         return f'LogInfo({describe_substitutions(self.msg)})'
 
 
@@ -621,6 +660,7 @@ class Shutdown(EmitEvent):
         super().__init__(event=ShutdownEvent(reason='reason not given'), **kwargs)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Start the launch's shutdown with the performed reason."""
         self.event = ShutdownEvent(reason=perform_substitutions(context, self.reason))
         return super().execute(context)
 

@@ -38,6 +38,7 @@ class Scope:
     remaps: list[tuple[str, str]] = field(default_factory=list)
 
     def copy(self, *, forwarding: bool = True) -> Scope:
+        """A copy for a nested scope; without `forwarding`, launch configurations start empty."""
         return Scope(
             dict(self.configurations) if forwarding else {},
             dict(self.environment),
@@ -112,14 +113,17 @@ class LaunchContext:
     # -- scopes ----------------------------------------------------------------------------------
     @property
     def scope(self) -> Scope:
+        """The innermost scope: where actions read and write settings."""
         return self._scopes[-1]
 
     @property
     def launch_configurations(self) -> dict[str, str]:
+        """The launch configurations visible now."""
         return self.scope.configurations
 
     @property
     def environment(self) -> dict[str, str]:
+        """The environment new processes get now."""
         return self.scope.environment
 
     def push_scope(self, *, forwarding: bool = True, saved: Scope | None = None) -> None:
@@ -128,6 +132,7 @@ class LaunchContext:
         self._scopes.append((self.scope if saved is None else saved).copy(forwarding=forwarding))
 
     def pop_scope(self) -> None:
+        """Return to the enclosing scope (what the nested one set is dropped)."""
         if len(self._scopes) == 1:
             raise RuntimeError('pop_scope() without a matching push_scope()')
         self._scopes.pop()
@@ -135,21 +140,26 @@ class LaunchContext:
     # -- locals ----------------------------------------------------------------------------------
     @property
     def locals(self) -> _Locals:
+        """Attribute access to the locals (`context.locals.event`)."""
         return _Locals(self)
 
     def get_locals_as_dict(self) -> dict[str, object]:
+        """Every local frame merged, innermost last."""
         merged: dict[str, object] = {}
         for frame in self._frames:
             merged.update(frame)
         return merged
 
     def extend_locals(self, values: Mapping[str, object]) -> None:
+        """Add values to the innermost frame."""
         self._frames[-1].update(values)
 
     def push_locals(self, values: Mapping[str, object] | None = None) -> None:
+        """A new innermost frame holding `values`."""
         self._frames.append(dict(values or {}))
 
     def pop_locals(self) -> None:
+        """Drop the innermost frame (the outermost one stays)."""
         if len(self._frames) > 1:
             self._frames.pop()
 
@@ -167,20 +177,24 @@ class LaunchContext:
             self._handlers.insert(0, handler)
 
     def unregister_event_handler(self, handler: EventHandler) -> None:
+        """Remove the handler, if registered."""
         if handler in self._handlers:
             self._handlers.remove(handler)
 
     @property
     def event_handlers(self) -> list[EventHandler]:
+        """The registered handlers, in the order they are asked."""
         return list(self._handlers)
 
     def handlers_for(self, event: Event) -> Iterator[EventHandler]:
+        """The handlers that accept `event`, in order."""
         for handler in list(self._handlers):
             if handler.matches(event):
                 yield handler
 
     # -- values ----------------------------------------------------------------------------------
     def perform_substitution(self, substitution: Substitution) -> str:
+        """The text of one substitution in this context."""
         return substitution.perform(self)
 
     @property
@@ -197,6 +211,7 @@ class LaunchContext:
         self._index = index
 
     def anonymous_name(self, name: str, make: Callable[[], str]) -> str:
+        """The same generated name for `name` throughout one launch."""
         if name not in self._anonymous:
             self._anonymous[name] = make()
         return self._anonymous[name]

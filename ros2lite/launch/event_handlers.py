@@ -62,6 +62,7 @@ class EventHandler:
         self.captured_locals: dict[str, object] = {}
 
     def matches(self, event: Event) -> bool:
+        """Whether this handler reacts to `event`."""
         return bool(self.matcher(event))
 
     def handle(self, event: Event, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
@@ -72,9 +73,11 @@ class EventHandler:
         return self.entities
 
     def describe(self) -> str:
+        """The handler's class name, for introspection."""
         return type(self).__name__
 
     def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        """The entities it visits when its event happens."""
         return list(self.entities or [])
 
 
@@ -179,6 +182,7 @@ class OnShutdown(EventHandler):
         )
 
     def handle(self, event: Event, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
+        """The entities to visit at shutdown (a function's result, or the given ones)."""
         entities = super().handle(event, context)
         if callable(self.on_shutdown):
             return _as_list(self.on_shutdown(event, context))
@@ -210,6 +214,7 @@ class OnProcessIO(EventHandler):
         )
 
     def handle(self, event: Event, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
+        """What the stdout/stderr callback returns for this line."""
         super().handle(event, context)
         if isinstance(event, ProcessStdout) and self.on_stdout is not None:
             return _as_list(self.on_stdout(event))

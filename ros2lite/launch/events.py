@@ -87,14 +87,19 @@ class ProcessEvent(Event):
 
     @property
     def execute_process_action(self) -> Action:
+        """The action that started the process (launch's name for `action`)."""
         return self.action
 
 
 class ProcessStarted(ProcessEvent):
+    """The process has started (its pid is known)."""
+
     name = 'launch.events.process.ProcessStarted'
 
 
 class ProcessExited(ProcessEvent):
+    """The process has exited with `returncode`."""
+
     name = 'launch.events.process.ProcessExited'
 
     def __init__(self, *, returncode: int, **kwargs: Unpack[ProcessDetails]) -> None:
@@ -115,6 +120,8 @@ class ProcessIO(ProcessEvent):
 
 
 class ProcessStdout(ProcessIO):
+    """A line the process wrote to stdout."""
+
     name = 'launch.events.process.ProcessStdout'
 
     def __init__(self, *, text: bytes, **kwargs: Unpack[ProcessDetails]) -> None:
@@ -122,6 +129,8 @@ class ProcessStdout(ProcessIO):
 
 
 class ProcessStderr(ProcessIO):
+    """A line the process wrote to stderr."""
+
     name = 'launch.events.process.ProcessStderr'
 
     def __init__(self, *, text: bytes, **kwargs: Unpack[ProcessDetails]) -> None:
@@ -159,4 +168,5 @@ class SignalProcess(Event):
 
     @property
     def signal_name(self) -> str:
+        """The signal's name (SIGINT, SIGTERM, …)."""
         return _signal.Signals(self.signal_number).name

@@ -134,6 +134,7 @@ class ExecuteProcess(Action):
         return cmd, cmd, []
 
     def label(self, context: LaunchContext, cmd: list[str]) -> str:
+        """The process' name before its number: `name` if given, else the command's base name."""
         if self.name is not None:
             return perform_substitutions(context, self.name)
         return os.path.basename(cmd[0])
@@ -194,6 +195,7 @@ class ExecuteProcess(Action):
         )
 
     def should_respawn(self, context: LaunchContext) -> bool:
+        """Whether to start the process again after it exited."""
         if isinstance(self.respawn, bool):
             wanted = self.respawn
         else:
@@ -204,6 +206,7 @@ class ExecuteProcess(Action):
         return wanted and (limit < 0 or self.respawn_count < limit)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Resolve the process and have the launch service start it."""
         if context.is_shutdown:
             return None
         spec = self.resolve(context)
@@ -213,6 +216,7 @@ class ExecuteProcess(Action):
         return None
 
     def describe(self) -> str:
+        """The command, for introspection."""
         cmd = ' '.join(describe_substitutions(c) for c in self.cmd)
         return f'{type(self).__name__}(cmd=[{cmd}])'
 

@@ -60,6 +60,7 @@ class FindPackagePrefix(Substitution):
         self.package = normalize_to_list_of_substitutions(package)
 
     def find(self, context: LaunchContext) -> Package:
+        """The package from the launch's package index (a substitution failure when unknown)."""
         name = perform_substitutions(context, self.package)
         index = context.package_index
         pkg = index.find(name)
@@ -70,9 +71,11 @@ class FindPackagePrefix(Substitution):
         return pkg
 
     def perform(self, context: LaunchContext) -> str:
+        """The package's prefix directory."""
         return str(self.find(context).prefix)
 
     def describe(self) -> str:
+        """The package, for introspection."""
         return f'FindPackagePrefix(pkg={describe_substitutions(self.package)})'
 
 
@@ -81,12 +84,14 @@ class FindPackageShare(FindPackagePrefix):
     launch/, config/ and package.xml are."""
 
     def perform(self, context: LaunchContext) -> str:
+        """The package's share directory (its source directory for a workspace package)."""
         pkg = self.find(context)
         if pkg.share is None:
             raise SubstitutionFailure(f"package '{pkg.name}' has no share directory")
         return str(pkg.share)
 
     def describe(self) -> str:
+        """The package, for introspection."""
         return f'FindPackageShare(pkg={describe_substitutions(self.package)})'
 
 
@@ -217,11 +222,13 @@ class SetParameter(Action):
         self.value = value
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Add the evaluated parameter to the current scope's global parameters."""
         name = perform_substitutions(context, self.name)
         context.scope.global_params.append((name, evaluate_parameter(context, self.value)))
         return None
 
     def describe(self) -> str:
+        """The parameter's name, for introspection."""
         return f'SetParameter({describe_substitutions(self.name)})'
 
 
@@ -233,6 +240,7 @@ class SetParametersFromFile(Action):
         self.filename = normalize_to_list_of_substitutions(filename)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Add the file to the current scope's global parameters."""
         context.scope.global_params.append(Path(perform_substitutions(context, self.filename)))
         return None
 
@@ -251,6 +259,7 @@ class SetRemap(Action):
         self.dst = normalize_to_list_of_substitutions(dst)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Add the remapping to the current scope."""
         context.scope.remaps.append(
             (perform_substitutions(context, self.src), perform_substitutions(context, self.dst))
         )
@@ -275,12 +284,14 @@ class PushRosNamespace(Action):
         self.namespace = normalize_to_list_of_substitutions(namespace)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Join the namespace to the current scope's one (a valid ROS namespace, or an error)."""
         text = perform_substitutions(context, self.namespace).strip()
         joined = _join_namespace(context.scope.ros_namespace, text)
         context.scope.ros_namespace = _valid_namespace(joined) if joined else joined
         return None
 
     def describe(self) -> str:
+        """The namespace, for introspection."""
         return f'PushRosNamespace({describe_substitutions(self.namespace)})'
 
 
@@ -422,6 +433,7 @@ class Node(ExecuteProcess):
         return out
 
     def command(self, context: LaunchContext) -> tuple[list[str], list[str], list[str]]:
+        """The package executable with the node's arguments and `--ros-args` part."""
         exe = self._find(context)
         self._resolved = exe
         argv = [perform_substitutions(context, a) for a in self.node_arguments]
@@ -431,10 +443,12 @@ class Node(ExecuteProcess):
         return exe.command(argv), [exe.path(), *argv], list(exe.pythonpath)
 
     def label(self, context: LaunchContext, cmd: list[str]) -> str:
+        """The process' name: the executable's name unless `exec_name` is given."""
         if self.name is not None:
             return perform_substitutions(context, self.name)
         return self._resolved.name if self._resolved is not None else super().label(context, cmd)
 
     def describe(self) -> str:
+        """Package and executable, for introspection."""
         pkg = describe_substitutions(self.package) if self.package else '?'
         return f'Node(package={pkg}, executable={describe_substitutions(self.executable)})'

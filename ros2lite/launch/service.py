@@ -120,6 +120,7 @@ class LaunchService:
 
     # -- what callers and actions use -----------------------------------------------------------
     def include_launch_description(self, description: LaunchDescription) -> None:
+        """Add a description to run when the service runs."""
         self._descriptions.append(description)
 
     def emit_event(self, event: Event) -> None:
@@ -131,10 +132,12 @@ class LaunchService:
         self._queue.put(('event', Shutdown(reason='LaunchService.shutdown() called')))
 
     def log(self, level: str, name: str, msg: str) -> None:
+        """Write a launch log line (to the screen and the launch log)."""
         self.output.log(level, name, msg)
 
     @property
     def log_directory(self) -> Path | None:
+        """Where this launch writes its logs (None when it writes none)."""
         return self.output.log_dir
 
     def add_timer(

@@ -120,14 +120,17 @@ class LaunchDescriptionSource:
             self.method = method
 
     def try_get_launch_description_without_context(self) -> LaunchDescription | None:
+        """The description if it is already known (introspection needs no context)."""
         return self._description
 
     def get_launch_description(self, context: LaunchContext) -> LaunchDescription:
+        """The description, loading it in this context if needed."""
         if self._description is None:
             raise LaunchError('launch description source has no launch description')
         return self._description
 
     def describe(self) -> str:
+        """Where the description comes from, for introspection."""
         return f'{self.method} at {self.location!r}'
 
 
@@ -175,10 +178,14 @@ class FrontendLaunchDescriptionSource(_FileSource):
 
 
 class XMLLaunchDescriptionSource(FrontendLaunchDescriptionSource):
+    """An XML launch file, whatever its extension."""
+
     kind = 'xml'
 
 
 class YAMLLaunchDescriptionSource(FrontendLaunchDescriptionSource):
+    """A YAML launch file, whatever its extension."""
+
     kind = 'yaml'
 
 

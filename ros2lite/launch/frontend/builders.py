@@ -309,4 +309,5 @@ def build(e: Entity) -> LaunchDescriptionEntity:
 
 
 def build_all(entities: list[Entity]) -> list[LaunchDescriptionEntity]:
+    """The launch actions of a list of frontend entities, in order."""
     return [build(e) for e in entities]

@@ -39,6 +39,7 @@ class Entity:
         raise NotImplementedError
 
     def error(self, message: str) -> InvalidFrontendLaunchFileError:
+        """An error naming the file and the element, for `raise`."""
         return InvalidFrontendLaunchFileError(f'{self.where}: <{self.type_name}>: {message}')
 
     def _required(self, name: str, optional: bool) -> object:
@@ -70,6 +71,7 @@ class Entity:
         return str(value)
 
     def flag(self, name: str, default: bool) -> bool:
+        """A boolean attribute ('true'/'false', '1'/'0', 'yes'/'no'), or `default` when absent."""
         value = self.raw(name)
         if value is None:
             return default
@@ -83,6 +85,7 @@ class Entity:
         raise self.error(f"attribute '{name}' must be true or false, not '{value}'")
 
     def number(self, name: str, *, optional: bool = True) -> float | None:
+        """A numeric attribute (None when absent and optional)."""
         value = self._required(name, optional)
         if value is None:
             return None
@@ -99,22 +102,29 @@ class Entity:
 
 
 class XmlEntity(Entity):
+    """An element of an XML launch file."""
+
     def __init__(self, element: ET.Element, where: str) -> None:
         self.element = element
         self.type_name = element.tag
         self.where = where
 
     def raw(self, name: str) -> object:
+        """The attribute's text (None when absent)."""
         return self.element.get(name)
 
     def children(self) -> list[Entity]:
+        """Every sub-element, as entities."""
         return [XmlEntity(child, self.where) for child in self.element]
 
     def child_list(self, tag: str) -> list[Entity]:
+        """The sub-elements with tag `tag`."""
         return [XmlEntity(child, self.where) for child in self.element if child.tag == tag]
 
 
 class YamlEntity(Entity):
+    """A mapping of a YAML launch file (its attributes and nested lists)."""
+
     def __init__(self, type_name: str, body: object, where: str) -> None:
         if body is None:
             body = {}
@@ -127,12 +137,15 @@ class YamlEntity(Entity):
         self.where = where
 
     def raw(self, name: str) -> object:
+        """The key's value as YAML typed it (None when absent)."""
         return self.body.get(name)
 
     def children(self) -> list[Entity]:
+        """The actions of its `children` list."""
         return _entities(self.body.get('children') or [], self.where)
 
     def child_list(self, tag: str) -> list[Entity]:
+        """The mappings of its list `tag`."""
         items = self.body.get(tag) or []
         if not isinstance(items, list):
             raise self.error(f"'{tag}' must be a list")
