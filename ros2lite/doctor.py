@@ -24,10 +24,12 @@ import platform
 import socket
 import sys
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from ros2lite.daemon.router import DaemonStatus
     from ros2lite.graph import Entity
+    from ros2lite.qos import Compatibility
 
 __all__ = ['CATEGORIES', 'CheckResult', 'Diagnosis', 'Finding', 'Report']
 
@@ -108,7 +110,7 @@ class Diagnosis:
     def __init__(self, *, router: str | None = None, env: dict[str, str] | None = None) -> None:
         self.router = router
         self.env = dict(os.environ if env is None else env)
-        self._status: Any = None
+        self._status: DaemonStatus | None = None
         self._endpoint: str | None = None
         self._endpoint_error: str | None = None
         self._graph: list[Entity] | None = None
@@ -128,7 +130,7 @@ class Diagnosis:
                 self._endpoint_error = str(e)
         return self._endpoint
 
-    def router_status(self) -> Any:
+    def router_status(self) -> DaemonStatus | None:
         """The daemon module's status of the endpoint (None when the endpoint is invalid)."""
         if self._status is None and self.endpoint() is not None:
             from ros2lite import daemon
@@ -210,6 +212,7 @@ class Diagnosis:
             result.error(f'the router endpoint is invalid: {self._endpoint_error}')
             return result
         status = self.router_status()
+        assert status is not None  # the endpoint is valid
         if not status.running:
             if status.ours:
                 result.error(
@@ -306,7 +309,7 @@ class Diagnosis:
             result.warn(f'workspace package skipped: {problem}')
         return result
 
-    def _pairs(self) -> list[tuple[str, Entity, Entity, Any]]:
+    def _pairs(self) -> list[tuple[str, Entity, Entity, Compatibility]]:
         from ros2lite.graph import EntityKind
         from ros2lite.qos import check_compatible
 
