@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from .errors import InvalidConditionExpressionError
 from .substitutions import (
@@ -88,7 +88,9 @@ class UnlessCondition(IfCondition):
 class LaunchConfigurationEquals(Condition):
     """True when a launch configuration equals a value (None: when it is not set)."""
 
-    def __init__(self, launch_configuration_name: str, expected_value: Any) -> None:
+    def __init__(
+        self, launch_configuration_name: str, expected_value: SomeSubstitutionsType | None
+    ) -> None:
         super().__init__()
         self.name = launch_configuration_name
         self.expected = (

@@ -12,7 +12,7 @@ import importlib.util
 import itertools
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from .actions import LaunchDescription
 from .errors import InvalidFrontendLaunchFileError, LaunchError
@@ -139,10 +139,9 @@ class _FileSource(LaunchDescriptionSource):
 
     def __init__(self, launch_file_path: SomeSubstitutionsType | Path) -> None:
         super().__init__(None, '<unknown>')
-        value: Any = (
-            str(launch_file_path) if isinstance(launch_file_path, Path) else (launch_file_path)
+        self.path = normalize_to_list_of_substitutions(
+            str(launch_file_path) if isinstance(launch_file_path, Path) else launch_file_path
         )
-        self.path = normalize_to_list_of_substitutions(value)
 
     def try_get_launch_description_without_context(self) -> LaunchDescription | None:
         from .substitutions import TextSubstitution
