@@ -251,24 +251,54 @@ class DeclareLaunchArgument(Action):
         return f'DeclareLaunchArgument({self.name!r}{default})'
 
 
-class SetLaunchConfiguration(Action):
-    """Sets a launch configuration in the current scope."""
+class _Setting(Action):
+    """An action on one named entry of a scope's table (its launch configurations or its
+    environment): the subclasses say which table and what they do to the entry."""
 
+    def __init__(self, name: SomeSubstitutionsType, **kwargs: Unpack[ActionOptions]) -> None:
+        super().__init__(**kwargs)
+        self.name = normalize_to_list_of_substitutions(name)
+
+    def _table(self, context: LaunchContext) -> dict[str, str]:
+        raise NotImplementedError
+
+
+class _Set(_Setting):
     def __init__(
         self,
         name: SomeSubstitutionsType,
         value: SomeSubstitutionsType,
         **kwargs: Unpack[ActionOptions],
     ) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
+        super().__init__(name, **kwargs)
         self.value = normalize_to_list_of_substitutions(value)
 
     def execute(self, context: LaunchContext) -> Entities | None:
         """Store the performed value under the performed name in the current scope."""
         name = perform_substitutions(context, self.name)
-        context.launch_configurations[name] = perform_substitutions(context, self.value)
+        self._table(context)[name] = perform_substitutions(context, self.value)
         return None
+
+
+class _Unset(_Setting):
+    def execute(self, context: LaunchContext) -> Entities | None:
+        """Remove the entry from the current scope (if set)."""
+        self._table(context).pop(perform_substitutions(context, self.name), None)
+        return None
+
+
+class _Configurations:
+    def _table(self, context: LaunchContext) -> dict[str, str]:
+        return context.launch_configurations
+
+
+class _Environment:
+    def _table(self, context: LaunchContext) -> dict[str, str]:
+        return context.environment
+
+
+class SetLaunchConfiguration(_Configurations, _Set):
+    """Sets a launch configuration in the current scope."""
 
     def describe(self) -> str:
         """Name and value, for introspection."""
@@ -278,17 +308,8 @@ class SetLaunchConfiguration(Action):
         )
 
 
-class UnsetLaunchConfiguration(Action):
+class UnsetLaunchConfiguration(_Configurations, _Unset):
     """Removes a launch configuration from the current scope."""
-
-    def __init__(self, name: SomeSubstitutionsType, **kwargs: Unpack[ActionOptions]) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-
-    def execute(self, context: LaunchContext) -> Entities | None:
-        """Remove the configuration from the current scope (if set)."""
-        context.launch_configurations.pop(perform_substitutions(context, self.name), None)
-        return None
 
 
 class PushLaunchConfigurations(Action):
@@ -313,38 +334,12 @@ class PopLaunchConfigurations(Action):
         return None
 
 
-class SetEnvironmentVariable(Action):
+class SetEnvironmentVariable(_Environment, _Set):
     """Sets a variable in the environment of processes started after it (in this scope)."""
 
-    def __init__(
-        self,
-        name: SomeSubstitutionsType,
-        value: SomeSubstitutionsType,
-        **kwargs: Unpack[ActionOptions],
-    ) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-        self.value = normalize_to_list_of_substitutions(value)
 
-    def execute(self, context: LaunchContext) -> Entities | None:
-        """Set the variable for processes started after it in this scope."""
-        context.environment[perform_substitutions(context, self.name)] = perform_substitutions(
-            context, self.value
-        )
-        return None
-
-
-class UnsetEnvironmentVariable(Action):
+class UnsetEnvironmentVariable(_Environment, _Unset):
     """Removes a variable from the environment of processes started after it."""
-
-    def __init__(self, name: SomeSubstitutionsType, **kwargs: Unpack[ActionOptions]) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-
-    def execute(self, context: LaunchContext) -> Entities | None:
-        """Remove the variable for processes started after it in this scope."""
-        context.environment.pop(perform_substitutions(context, self.name), None)
-        return None
 
 
 class AppendEnvironmentVariable(Action):
