@@ -19,6 +19,7 @@ from .events import Event, ExecutionComplete
 from .events import Shutdown as ShutdownEvent
 from .substitutions import (
     SomeSubstitutionsType,
+    Substitution,
     SubstitutionMapping,
     TextSubstitution,
     describe_substitutions,
@@ -517,13 +518,7 @@ class TimerAction(Action):
 
     def execute(self, context: LaunchContext) -> Entities | None:
         """Schedule its actions with the launch service, in the scope it was reached in."""
-        text = perform_substitutions(context, self.period)
-        try:
-            seconds = float(text)
-        except ValueError:
-            raise LaunchError(f"TimerAction period '{text}' is not a number") from None
-        if seconds < 0:
-            raise LaunchError(f'TimerAction period {seconds} is negative')
+        seconds = seconds_of(context, self.period, 'TimerAction period')
         # its actions run later, in the scope of now (the namespace, parameters and launch
         # configurations of an enclosing group, as launch does since ros2/launch#836)
         context.service.add_timer(self, seconds, context.capture_locals(), context.scope.copy())
@@ -658,6 +653,19 @@ class Shutdown(EmitEvent):
         """Start the launch's shutdown with the performed reason."""
         self.event = ShutdownEvent(reason=perform_substitutions(context, self.reason))
         return super().execute(context)
+
+
+def seconds_of(context: LaunchContext, subs: Sequence[Substitution], what: str) -> float:
+    """A duration given as substitutions, performed: a number of seconds, never negative
+    (`what` names it in the error)."""
+    text = perform_substitutions(context, subs)
+    try:
+        value = float(text)
+    except ValueError:
+        raise LaunchError(f"{what} '{text}' is not a number") from None
+    if value < 0:
+        raise LaunchError(f'{what} {value} is negative')
+    return value
 
 
 def path_of(value: SomeSubstitutionsType | Path, context: LaunchContext) -> str:

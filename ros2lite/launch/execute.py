@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 
 from ros2lite.pkg.environment import child_environment
 
-from .actions import Action, ActionOptions, Entities
+from .actions import Action, ActionOptions, Entities, seconds_of
 from .errors import LaunchError
 from .event_handlers import OnProcessExit
 from .output import destinations
@@ -59,17 +59,6 @@ class ProcessSpec:
 # launch's defaults: launch configurations, so `sigterm_timeout:=10` on the command line works
 _SIGTERM_TIMEOUT = LaunchConfiguration('sigterm_timeout', default=5)
 _SIGKILL_TIMEOUT = LaunchConfiguration('sigkill_timeout', default=5)
-
-
-def _seconds(context: LaunchContext, subs: list[Substitution], what: str) -> float:
-    text = perform_substitutions(context, subs)
-    try:
-        value = float(text)
-    except ValueError:
-        raise LaunchError(f"{what} '{text}' is not a number") from None
-    if value < 0:
-        raise LaunchError(f'{what} {value} is negative')
-    return value
 
 
 class ExecuteProcess(Action):
@@ -189,8 +178,8 @@ class ExecuteProcess(Action):
             cwd=cwd,
             env=env,
             output=output,
-            sigterm_timeout=_seconds(context, self.sigterm_timeout, 'sigterm_timeout'),
-            sigkill_timeout=_seconds(context, self.sigkill_timeout, 'sigkill_timeout'),
+            sigterm_timeout=seconds_of(context, self.sigterm_timeout, 'sigterm_timeout'),
+            sigkill_timeout=seconds_of(context, self.sigkill_timeout, 'sigkill_timeout'),
             log_cmd=self.log_cmd,
         )
 

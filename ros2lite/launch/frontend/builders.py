@@ -99,21 +99,22 @@ def _let(e: Entity) -> Action:
     )
 
 
+# ExecuteProcess keyword ← the launch file attribute that gives it
+_PROCESS_ATTRIBUTES = (
+    ('output', 'output'),
+    ('prefix', 'launch-prefix'),
+    ('sigterm_timeout', 'sigterm_timeout'),
+    ('sigkill_timeout', 'sigkill_timeout'),
+    ('respawn', 'respawn'),
+)
+
+
 def _process_options(e: Entity) -> dict[str, Any]:  # ExecuteProcess's keywords
     options: dict[str, Any] = {}
-    output = e.subs('output')
-    if output is not None:
-        options['output'] = output
-    prefix = e.subs('launch-prefix')
-    if prefix is not None:
-        options['prefix'] = prefix
-    for key in ('sigterm_timeout', 'sigkill_timeout'):
-        value = e.subs(key)
+    for key, attribute in _PROCESS_ATTRIBUTES:
+        value = e.subs(attribute)
         if value is not None:
             options[key] = value
-    respawn = e.subs('respawn')
-    if respawn is not None:
-        options['respawn'] = respawn
     delay = e.number('respawn_delay')
     if delay is not None:
         options['respawn_delay'] = delay
