@@ -200,20 +200,21 @@ def _ament_deps(target: str, deps: Sequence[str]) -> str:
     return f'ament_target_dependencies(\n  {target}\n{quoted})\n'
 
 
+def _cmake_head(project: str) -> str:
+    """What every generated CMakeLists.txt starts with, up to finding its dependencies."""
+    return (
+        f'cmake_minimum_required(VERSION 3.8)\n{project}\n\n'
+        'if(CMAKE_COMPILER_IS_GNUCXX OR CMAKE_CXX_COMPILER_ID MATCHES "Clang")\n'
+        '  add_compile_options(-Wall -Wextra -Wpedantic)\n'
+        'endif()\n\n'
+        '# find dependencies\n'
+    )
+
+
 def ament_cmake_lists(spec: PackageSpec) -> str:
     """CMakeLists.txt of an ament_cmake package (executable and/or library if asked)."""
     deps = spec.dependencies
-    out = [
-        'cmake_minimum_required(VERSION 3.8)\n',
-        f'project({spec.name})\n',
-        '\n',
-        'if(CMAKE_COMPILER_IS_GNUCXX OR CMAKE_CXX_COMPILER_ID MATCHES "Clang")\n',
-        '  add_compile_options(-Wall -Wextra -Wpedantic)\n',
-        'endif()\n',
-        '\n',
-        '# find dependencies\n',
-        'find_package(ament_cmake REQUIRED)\n',
-    ]
+    out = [_cmake_head(f'project({spec.name})'), 'find_package(ament_cmake REQUIRED)\n']
     if spec.library_name:
         out.append('find_package(ament_cmake_ros REQUIRED)\n')
     out.append(_find_packages(deps))
@@ -297,17 +298,7 @@ def cmake_lists(spec: PackageSpec) -> str:
     """CMakeLists.txt of a plain cmake package, with its package config files."""
     name = spec.name
     deps = spec.dependencies
-    out = [
-        'cmake_minimum_required(VERSION 3.8)\n',
-        f'project({name} VERSION {spec.version})\n',
-        '\n',
-        'if(CMAKE_COMPILER_IS_GNUCXX OR CMAKE_CXX_COMPILER_ID MATCHES "Clang")\n',
-        '  add_compile_options(-Wall -Wextra -Wpedantic)\n',
-        'endif()\n',
-        '\n',
-        '# find dependencies\n',
-        _find_packages(deps),
-    ]
+    out = [_cmake_head(f'project({name} VERSION {spec.version})'), _find_packages(deps)]
     targets: list[str] = []
     link = ''.join(f' ${{{d}_LIBRARIES}}' for d in deps)
     includes = ''.join(f'  PUBLIC ${{{d}_INCLUDE_DIRS}}\n' for d in deps)
