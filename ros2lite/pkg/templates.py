@@ -294,6 +294,18 @@ def ament_cmake_lists(spec: PackageSpec) -> str:
     return ''.join(out)
 
 
+def _plain_target_settings(target: str, includes: str) -> str:
+    """A plain cmake target's language standards and include directories (its own
+    include/ and its dependencies')."""
+    return (
+        f'target_compile_features({target} PUBLIC c_std_99 cxx_std_17)  # C99 and C++17\n'
+        f'target_include_directories({target} PUBLIC\n'
+        '  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>\n'
+        '  $<INSTALL_INTERFACE:include>\n'
+        f'{includes})\n'
+    )
+
+
 def cmake_lists(spec: PackageSpec) -> str:
     """CMakeLists.txt of a plain cmake package, with its package config files."""
     name = spec.name
@@ -309,12 +321,7 @@ def cmake_lists(spec: PackageSpec) -> str:
             '\n',
             f'add_library({lib} SHARED src/{lib}.cpp)\n',
             f'add_library({name}::{lib} ALIAS {lib})\n',
-            f'target_compile_features({lib} PUBLIC c_std_99 cxx_std_17)  # C99 and C++17\n',
-            f'target_include_directories({lib} PUBLIC\n',
-            '  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>\n',
-            '  $<INSTALL_INTERFACE:include>\n',
-            includes,
-            ')\n',
+            _plain_target_settings(lib, includes),
             f'target_link_libraries({lib}{link})\n' if deps else '',
             f'target_compile_definitions({lib} PRIVATE "{name.upper()}_BUILDING_LIBRARY")\n',
             '\n',
@@ -326,12 +333,7 @@ def cmake_lists(spec: PackageSpec) -> str:
         out += [
             '\n',
             f'add_executable({node} src/{node}.cpp)\n',
-            f'target_compile_features({node} PUBLIC c_std_99 cxx_std_17)  # C99 and C++17\n',
-            f'target_include_directories({node} PUBLIC\n',
-            '  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>\n',
-            '  $<INSTALL_INTERFACE:include>\n',
-            includes,
-            ')\n',
+            _plain_target_settings(node, includes),
         ]
         if spec.library_name:
             out.append(f'target_link_libraries({node} {spec.library_name})\n')
