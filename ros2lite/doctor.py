@@ -24,10 +24,12 @@ import platform
 import socket
 import sys
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from ros2lite.daemon.router import DaemonStatus
     from ros2lite.graph import Entity
+    from ros2lite.qos import Compatibility
 
 __all__ = ['CATEGORIES', 'CheckResult', 'Diagnosis', 'Finding', 'Report']
 
@@ -48,18 +50,23 @@ class Finding:
 
 @dataclass
 class CheckResult:
+    """The findings of one check category (`doctor` prints them; errors make it fail)."""
+
     category: str
     findings: list[Finding] = field(default_factory=list)
 
     @property
     def errors(self) -> list[Finding]:
+        """The findings of severity 'error'."""
         return [f for f in self.findings if f.severity == 'error']
 
     @property
     def warnings(self) -> list[Finding]:
+        """The findings of severity 'warning'."""
         return [f for f in self.findings if f.severity == 'warning']
 
     def failed(self, include_warnings: bool = False) -> bool:
+        """Whether the check failed: any error, or any warning when `include_warnings`."""
         return bool(self.errors or (include_warnings and self.warnings))
 
     def _add(self, severity: str, message: str) -> None:
@@ -67,9 +74,11 @@ class CheckResult:
         self.findings.append(Finding(severity, message, frame.f_code.co_filename, frame.f_lineno))
 
     def warn(self, message: str) -> None:
+        """Record a warning, with the file and line that raised it."""
         self._add('warning', message)
 
     def error(self, message: str) -> None:
+        """Record an error, with the file and line that raised it."""
         self._add('error', message)
 
 
@@ -82,6 +91,7 @@ class Report:
     items: list[tuple[str, str]] = field(default_factory=list)
 
     def add(self, key: str, value: object) -> None:
+        """Add a line; the value is shown as text."""
         self.items.append((key, str(value)))
 
 
@@ -100,7 +110,7 @@ class Diagnosis:
     def __init__(self, *, router: str | None = None, env: dict[str, str] | None = None) -> None:
         self.router = router
         self.env = dict(os.environ if env is None else env)
-        self._status: Any = None
+        self._status: DaemonStatus | None = None
         self._endpoint: str | None = None
         self._endpoint_error: str | None = None
         self._graph: list[Entity] | None = None
@@ -109,6 +119,7 @@ class Diagnosis:
 
     # -- facts -----------------------------------------------------------------------------------
     def endpoint(self) -> str | None:
+        """The router endpoint to check (None when the configuration is invalid)."""
         if self._endpoint is None and self._endpoint_error is None:
             from ros2lite.transport.config import router_endpoint
             from ros2lite.transport.errors import ConfigError
@@ -119,7 +130,7 @@ class Diagnosis:
                 self._endpoint_error = str(e)
         return self._endpoint
 
-    def router_status(self) -> Any:
+    def router_status(self) -> DaemonStatus | None:
         """The daemon module's status of the endpoint (None when the endpoint is invalid)."""
         if self._status is None and self.endpoint() is not None:
             from ros2lite import daemon
@@ -151,6 +162,7 @@ class Diagnosis:
 
     @property
     def graph_error(self) -> str | None:
+        """Why the graph could not be read (None when it was, or was not tried)."""
         return self._graph_error
 
     def _topics(self) -> dict[str, list[Entity]]:
@@ -166,6 +178,7 @@ class Diagnosis:
 
     # -- checks ----------------------------------------------------------------------------------
     def check_platform(self) -> CheckResult:
+        """Warn about an untested platform, or a python3 on PATH that cannot import ros2lite."""
         import shutil
 
         result = CheckResult('platform')
@@ -193,11 +206,13 @@ class Diagnosis:
         return result
 
     def check_network(self) -> CheckResult:
+        """Check that the router endpoint is valid and reachable."""
         result = CheckResult('network')
         if self._endpoint_error is not None or self.endpoint() is None:
             result.error(f'the router endpoint is invalid: {self._endpoint_error}')
             return result
         status = self.router_status()
+        assert status is not None  # the endpoint is valid
         if not status.running:
             if status.ours:
                 result.error(
@@ -211,6 +226,7 @@ class Diagnosis:
         return result
 
     def check_middleware(self) -> CheckResult:
+        """Check the Zenoh session configuration and that RMW_IMPLEMENTATION is rmw_zenoh_cpp."""
         from ros2lite.transport.config import domain_id, router_check_attempts, session_config
         from ros2lite.transport.errors import ConfigError
 
@@ -237,6 +253,7 @@ class Diagnosis:
         return result
 
     def check_topic(self) -> CheckResult:
+        """Warn about one-sided topics; report type and type hash mismatches."""
         from ros2lite.graph import EntityKind
 
         result = CheckResult('topic')
@@ -268,6 +285,7 @@ class Diagnosis:
         return result
 
     def check_qos(self) -> CheckResult:
+        """Warn about publisher/subscriber pairs whose QoS cannot connect."""
         result = CheckResult('qos')
         if self.graph() is None:
             result.warn(f'QoS not checked: {self.graph_error}')
@@ -281,6 +299,7 @@ class Diagnosis:
         return result
 
     def check_package(self) -> CheckResult:
+        """Warn about workspace packages that could not be read."""
         from ros2lite.pkg.index import PackageIndex
 
         result = CheckResult('package')
@@ -290,7 +309,7 @@ class Diagnosis:
             result.warn(f'workspace package skipped: {problem}')
         return result
 
-    def _pairs(self) -> list[tuple[str, Entity, Entity, Any]]:
+    def _pairs(self) -> list[tuple[str, Entity, Entity, Compatibility]]:
         from ros2lite.graph import EntityKind
         from ros2lite.qos import check_compatible
 

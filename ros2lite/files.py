@@ -31,6 +31,7 @@ __all__ = [
     'fallback_dir',
     'open_for_writing',
     'private_dir',
+    'read_bounded',
     'replace_file',
 ]
 
@@ -160,3 +161,16 @@ def private_dir(base: str | os.PathLike[str] | None, name: str = 'ros2lite') -> 
         f"no safe directory for ros2lite's files: '{fallback}' is not a private directory "
         'of this user (check its owner and mode, or remove it)'
     )
+
+
+def read_bounded(path: Path, limit: int, error: type[Exception], what: str) -> bytes:
+    """The bytes of a file we parse whole (a manifest, a launch file): a read error or a
+    file over `limit` bytes becomes one `error` naming the path (`what` says what the file
+    should have been)."""
+    try:
+        data = path.read_bytes()
+    except OSError as e:
+        raise error(f'{path}: {e.strerror or e}') from None
+    if len(data) > limit:
+        raise error(f'{path}: too large for {what}')
+    return data

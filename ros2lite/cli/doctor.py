@@ -11,7 +11,7 @@ from __future__ import annotations
 import click
 
 
-@click.command('doctor', context_settings={'help_option_names': ['-h', '--help']})
+@click.command('doctor')
 @click.option('-r', '--report', is_flag=True, help='Print all reports.')
 @click.option(
     '-rf',

@@ -12,7 +12,7 @@ from __future__ import annotations
 import click
 
 
-@click.command('env', context_settings={'help_option_names': ['-h', '--help']})
+@click.command('env')
 @click.option(
     '--shell',
     type=click.Choice(['bash', 'zsh', 'fish']),

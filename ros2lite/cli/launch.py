@@ -47,7 +47,6 @@ class _Colours:
         # options may follow the file (`launch pkg file.py -s`); arguments are `name:=value`
         'ignore_unknown_options': True,
         'allow_interspersed_args': True,
-        'help_option_names': ['-h', '--help'],
     },
 )
 @click.option(

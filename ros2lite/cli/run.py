@@ -23,7 +23,6 @@ from . import completion
     context_settings={
         'ignore_unknown_options': True,
         'allow_interspersed_args': False,
-        'help_option_names': ['-h', '--help'],
     },
 )
 @click.option(

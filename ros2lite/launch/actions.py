@@ -9,9 +9,9 @@ condition, checked when the action is reached.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, TypedDict
 
 from .conditions import Condition
 from .errors import LaunchError
@@ -19,6 +19,8 @@ from .events import Event, ExecutionComplete
 from .events import Shutdown as ShutdownEvent
 from .substitutions import (
     SomeSubstitutionsType,
+    Substitution,
+    SubstitutionMapping,
     TextSubstitution,
     describe_substitutions,
     normalize_to_list_of_substitutions,
@@ -26,6 +28,8 @@ from .substitutions import (
 )
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
     from .context import LaunchContext
     from .event_handlers import EventHandler
     from .sources import LaunchDescriptionSource
@@ -56,6 +60,12 @@ __all__ = [
 Entities = list['LaunchDescriptionEntity']
 
 
+class ActionOptions(TypedDict, total=False):
+    """The keywords every action takes (what subclasses pass on to :class:`Action`)."""
+
+    condition: Condition | None
+
+
 class LaunchDescriptionEntity:
     """Anything a launch description holds."""
 
@@ -64,6 +74,7 @@ class LaunchDescriptionEntity:
         return None
 
     def describe(self) -> str:
+        """A short name for listings (`launch -p`)."""
         return type(self).__name__
 
     def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
@@ -88,9 +99,11 @@ class Action(LaunchDescriptionEntity):
 
     @property
     def condition(self) -> Condition | None:
+        """The condition checked when the action is reached (None: always runs)."""
         return self.__condition
 
     def visit(self, context: LaunchContext) -> Entities | None:
+        """Run the action if its condition holds, announcing its completion to any handler."""
         if self.__condition is not None and not self.__condition.evaluate(context):
             return None
         entities = self.execute(context)
@@ -105,11 +118,12 @@ class Action(LaunchDescriptionEntity):
         return None
 
     def describe(self) -> str:
+        """The action's class name, as introspection lists it."""
         return f'{type(self).__name__}()'
 
 
 class _PushLocals(LaunchDescriptionEntity):
-    def __init__(self, values: dict[str, Any]) -> None:
+    def __init__(self, values: Mapping[str, object]) -> None:
         self.values = values
 
     def visit(self, context: LaunchContext) -> Entities | None:
@@ -137,7 +151,8 @@ class LaunchDescription(LaunchDescriptionEntity):
         self.source_path: str | None = None  # set by the loader of a launch file
 
     def visit(self, context: LaunchContext) -> Entities | None:
-        if self.deprecated_reason is not None and context.service is not None:
+        """Unfold into its entities (warning first when the description is deprecated)."""
+        if self.deprecated_reason is not None and context.has_service:
             where = self.source_path or 'a launch description'
             context.service.log(
                 'WARNING', 'launch', f'{where} is deprecated: {self.deprecated_reason}'
@@ -151,16 +166,20 @@ class LaunchDescription(LaunchDescriptionEntity):
         return [_PushLocals(frame), *self.entities, _PopLocals()]
 
     def add_entity(self, entity: LaunchDescriptionEntity) -> None:
+        """Append an entity (launch files build descriptions step by step)."""
         self.entities.append(entity)
 
     def add_action(self, action: Action) -> None:
+        """Append an action (launch's older name for add_entity)."""
         self.entities.append(action)
 
     def describe(self) -> str:
+        """A one-line summary for `launch -p`."""
         where = f' ({self.source_path})' if self.source_path else ''
         return f'LaunchDescription{where}'
 
     def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        """The entities it holds, in order."""
         return list(self.entities)
 
     def get_launch_arguments(
@@ -187,7 +206,7 @@ class DeclareLaunchArgument(Action):
         default_value: SomeSubstitutionsType | None = None,
         description: str | None = None,
         choices: Sequence[str] | None = None,
-        **kwargs: Any,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         self.name = name
@@ -205,6 +224,7 @@ class DeclareLaunchArgument(Action):
                 )
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Set the argument's default unless the caller gave it a value; check its choices."""
         if self.name not in context.launch_configurations:
             if self.default_value is None:
                 raise LaunchError(
@@ -223,6 +243,7 @@ class DeclareLaunchArgument(Action):
         return None
 
     def describe(self) -> str:
+        """The argument's name, as `launch -s` lists it."""
         default = (
             f', default={describe_substitutions(self.default_value)}'
             if self.default_value is not None
@@ -231,48 +252,76 @@ class DeclareLaunchArgument(Action):
         return f'DeclareLaunchArgument({self.name!r}{default})'
 
 
-class SetLaunchConfiguration(Action):
-    """Sets a launch configuration in the current scope."""
+class _Setting(Action):
+    """An action on one named entry of a scope's table (its launch configurations or its
+    environment): the subclasses say which table and what they do to the entry."""
 
-    def __init__(
-        self, name: SomeSubstitutionsType, value: SomeSubstitutionsType, **kwargs: Any
-    ) -> None:
+    def __init__(self, name: SomeSubstitutionsType, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
+
+    def _table(self, context: LaunchContext) -> dict[str, str]:
+        raise NotImplementedError
+
+
+class _Set(_Setting):
+    def __init__(
+        self,
+        name: SomeSubstitutionsType,
+        value: SomeSubstitutionsType,
+        **kwargs: Unpack[ActionOptions],
+    ) -> None:
+        super().__init__(name, **kwargs)
         self.value = normalize_to_list_of_substitutions(value)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Store the performed value under the performed name in the current scope."""
         name = perform_substitutions(context, self.name)
-        context.launch_configurations[name] = perform_substitutions(context, self.value)
+        self._table(context)[name] = perform_substitutions(context, self.value)
         return None
 
+
+class _Unset(_Setting):
+    def execute(self, context: LaunchContext) -> Entities | None:
+        """Remove the entry from the current scope (if set)."""
+        self._table(context).pop(perform_substitutions(context, self.name), None)
+        return None
+
+
+class _Configurations:
+    def _table(self, context: LaunchContext) -> dict[str, str]:
+        return context.launch_configurations
+
+
+class _Environment:
+    def _table(self, context: LaunchContext) -> dict[str, str]:
+        return context.environment
+
+
+class SetLaunchConfiguration(_Configurations, _Set):
+    """Sets a launch configuration in the current scope."""
+
     def describe(self) -> str:
+        """Name and value, for introspection."""
         return (
             f'SetLaunchConfiguration({describe_substitutions(self.name)}, '
             f'{describe_substitutions(self.value)})'
         )
 
 
-class UnsetLaunchConfiguration(Action):
+class UnsetLaunchConfiguration(_Configurations, _Unset):
     """Removes a launch configuration from the current scope."""
-
-    def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-
-    def execute(self, context: LaunchContext) -> Entities | None:
-        context.launch_configurations.pop(perform_substitutions(context, self.name), None)
-        return None
 
 
 class PushLaunchConfigurations(Action):
     """Starts a scope: what is set until the matching pop is forgotten then."""
 
-    def __init__(self, *, forwarding: bool = True, **kwargs: Any) -> None:
+    def __init__(self, *, forwarding: bool = True, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.forwarding = forwarding
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Open a scope, so that what follows cannot change the outer one."""
         context.push_scope(forwarding=self.forwarding)
         return None
 
@@ -281,37 +330,17 @@ class PopLaunchConfigurations(Action):
     """Ends the scope the matching push started."""
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Close the scope opened by the matching push."""
         context.pop_scope()
         return None
 
 
-class SetEnvironmentVariable(Action):
+class SetEnvironmentVariable(_Environment, _Set):
     """Sets a variable in the environment of processes started after it (in this scope)."""
 
-    def __init__(
-        self, name: SomeSubstitutionsType, value: SomeSubstitutionsType, **kwargs: Any
-    ) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-        self.value = normalize_to_list_of_substitutions(value)
 
-    def execute(self, context: LaunchContext) -> Entities | None:
-        context.environment[perform_substitutions(context, self.name)] = perform_substitutions(
-            context, self.value
-        )
-        return None
-
-
-class UnsetEnvironmentVariable(Action):
+class UnsetEnvironmentVariable(_Environment, _Unset):
     """Removes a variable from the environment of processes started after it."""
-
-    def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
-        self.name = normalize_to_list_of_substitutions(name)
-
-    def execute(self, context: LaunchContext) -> Entities | None:
-        context.environment.pop(perform_substitutions(context, self.name), None)
-        return None
 
 
 class AppendEnvironmentVariable(Action):
@@ -324,7 +353,7 @@ class AppendEnvironmentVariable(Action):
         *,
         prepend: bool = False,
         separator: str = os.pathsep,
-        **kwargs: Any,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
@@ -333,6 +362,7 @@ class AppendEnvironmentVariable(Action):
         self.separator = separator
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Add to the variable (before or after its value) with the separator."""
         name = perform_substitutions(context, self.name)
         value = perform_substitutions(context, self.value)
         old = context.environment.get(name, '')
@@ -359,8 +389,8 @@ class GroupAction(Action):
         *,
         scoped: bool = True,
         forwarding: bool = True,
-        launch_configurations: dict[Any, Any] | None = None,
-        **kwargs: Any,
+        launch_configurations: SubstitutionMapping | None = None,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         self.actions = list(actions)
@@ -369,6 +399,7 @@ class GroupAction(Action):
         self.launch_configurations = dict(launch_configurations or {})
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Its actions, wrapped in a scope unless unscoped, after its launch configurations."""
         sets: Entities = [
             SetLaunchConfiguration(k, v) for k, v in self.launch_configurations.items()
         ]
@@ -382,9 +413,11 @@ class GroupAction(Action):
         ]
 
     def describe(self) -> str:
+        """Whether the group is scoped, for introspection."""
         return f'GroupAction(scoped={self.scoped})'
 
     def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        """The grouped actions."""
         return list(self.actions)
 
 
@@ -396,9 +429,9 @@ class IncludeLaunchDescription(Action):
         launch_description_source: LaunchDescriptionSource | LaunchDescription,
         *,
         launch_arguments: Iterable[tuple[SomeSubstitutionsType, SomeSubstitutionsType]]
-        | dict[Any, Any]
+        | SubstitutionMapping
         | None = None,
-        **kwargs: Any,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         from .sources import LaunchDescriptionSource
@@ -408,7 +441,7 @@ class IncludeLaunchDescription(Action):
         self.launch_description_source = launch_description_source
         items = (
             launch_arguments.items()
-            if isinstance(launch_arguments, dict)
+            if isinstance(launch_arguments, Mapping)
             else (launch_arguments or [])
         )
         self.launch_arguments = [
@@ -417,6 +450,8 @@ class IncludeLaunchDescription(Action):
         ]
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """The included description, after setting its launch arguments and checking that
+        every argument it requires is given."""
         description = self.launch_description_source.get_launch_description(context)
         given = []
         for key, value in self.launch_arguments:
@@ -439,6 +474,7 @@ class IncludeLaunchDescription(Action):
         return [description]
 
     def describe(self) -> str:
+        """Where the description comes from, for introspection."""
         return f'IncludeLaunchDescription({self.launch_description_source.describe()})'
 
     def argument_names_without_context(self) -> list[str]:
@@ -472,7 +508,7 @@ class TimerAction(Action):
         period: float | SomeSubstitutionsType,
         actions: Iterable[LaunchDescriptionEntity],
         cancel_on_shutdown: bool = True,
-        **kwargs: Any,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         self.period = normalize_to_list_of_substitutions(period)
@@ -481,27 +517,25 @@ class TimerAction(Action):
         self.cancelled = False
 
     def execute(self, context: LaunchContext) -> Entities | None:
-        text = perform_substitutions(context, self.period)
-        try:
-            seconds = float(text)
-        except ValueError:
-            raise LaunchError(f"TimerAction period '{text}' is not a number") from None
-        if seconds < 0:
-            raise LaunchError(f'TimerAction period {seconds} is negative')
+        """Schedule its actions with the launch service, in the scope it was reached in."""
+        seconds = seconds_of(context, self.period, 'TimerAction period')
         # its actions run later, in the scope of now (the namespace, parameters and launch
         # configurations of an enclosing group, as launch does since ros2/launch#836)
         context.service.add_timer(self, seconds, context.capture_locals(), context.scope.copy())
         return None
 
     def cancel(self) -> None:
+        """Drop the pending actions (they will not run)."""
         self.cancelled = True
 
     def describe(self) -> str:
+        """The period, for introspection."""
         return f'TimerAction(period={describe_substitutions(self.period)})'
 
     def describe_conditional_sub_entities(
         self,
     ) -> list[tuple[str, list[LaunchDescriptionEntity]]]:
+        """The actions, run only when the period has passed."""
         return [(f'after {describe_substitutions(self.period)} s', list(self.actions))]
 
 
@@ -511,10 +545,10 @@ class OpaqueFunction(Action):
     def __init__(
         self,
         *,
-        function: Callable[..., Any],
-        args: Sequence[Any] | None = None,
-        kwargs: dict[str, Any] | None = None,
-        **action_kwargs: Any,
+        function: Callable[..., LaunchDescriptionEntity | Iterable[LaunchDescriptionEntity] | None],
+        args: Sequence[object] | None = None,
+        kwargs: Mapping[str, object] | None = None,
+        **action_kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**action_kwargs)
         self.function = function
@@ -522,6 +556,7 @@ class OpaqueFunction(Action):
         self.kwargs = dict(kwargs or {})
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Call the function; what it returns is visited next."""
         result = self.function(context, *self.args, **self.kwargs)
         if result is None:
             return None
@@ -530,6 +565,7 @@ class OpaqueFunction(Action):
         return list(result)
 
     def describe(self) -> str:
+        """The function's name, for introspection."""
         name = getattr(self.function, '__name__', repr(self.function))
         return f'OpaqueFunction({name})'
 
@@ -537,31 +573,35 @@ class OpaqueFunction(Action):
 class RegisterEventHandler(Action):
     """Registers an event handler for the rest of the launch."""
 
-    def __init__(self, event_handler: EventHandler, **kwargs: Any) -> None:
+    def __init__(self, event_handler: EventHandler, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.event_handler = event_handler
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Add the handler to the context (newest first)."""
         context.register_event_handler(self.event_handler)
         return None
 
     def describe(self) -> str:
+        """The handler's description, for introspection."""
         return f'RegisterEventHandler({self.event_handler.describe()})'
 
     def describe_conditional_sub_entities(
         self,
     ) -> list[tuple[str, list[LaunchDescriptionEntity]]]:
+        """The entities the handler visits when its event happens."""
         return [(self.event_handler.describe(), self.event_handler.describe_sub_entities())]
 
 
 class UnregisterEventHandler(Action):
     """Removes an event handler."""
 
-    def __init__(self, event_handler: EventHandler, **kwargs: Any) -> None:
+    def __init__(self, event_handler: EventHandler, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.event_handler = event_handler
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Remove the handler from the context."""
         context.unregister_event_handler(self.event_handler)
         return None
 
@@ -569,30 +609,34 @@ class UnregisterEventHandler(Action):
 class EmitEvent(Action):
     """Emits an event (e.g. ``Shutdown()``) for the handlers."""
 
-    def __init__(self, *, event: Event, **kwargs: Any) -> None:
+    def __init__(self, *, event: Event, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.event = event
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Hand the event to the context's handlers."""
         context.emit_event_sync(self.event)
         return None
 
     def describe(self) -> str:
+        """The event's name, for introspection."""
         return f'EmitEvent({type(self.event).__name__})'
 
 
 class LogInfo(Action):
     """Logs a line as `[INFO] [launch.user]: …`."""
 
-    def __init__(self, *, msg: SomeSubstitutionsType, **kwargs: Any) -> None:
+    def __init__(self, *, msg: SomeSubstitutionsType, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.msg = normalize_to_list_of_substitutions(msg)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Log the performed message at INFO from `launch.user`."""
         context.service.log('INFO', 'launch.user', perform_substitutions(context, self.msg))
         return None
 
     def describe(self) -> str:
+        """The message, for introspection."""
         return f'LogInfo({describe_substitutions(self.msg)})'
 
 
@@ -600,14 +644,28 @@ class Shutdown(EmitEvent):
     """Shuts the launch down (every process is stopped)."""
 
     def __init__(
-        self, *, reason: SomeSubstitutionsType = 'reason not given', **kwargs: Any
+        self, *, reason: SomeSubstitutionsType = 'reason not given', **kwargs: Unpack[ActionOptions]
     ) -> None:
         self.reason = normalize_to_list_of_substitutions(reason)
         super().__init__(event=ShutdownEvent(reason='reason not given'), **kwargs)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Start the launch's shutdown with the performed reason."""
         self.event = ShutdownEvent(reason=perform_substitutions(context, self.reason))
         return super().execute(context)
+
+
+def seconds_of(context: LaunchContext, subs: Sequence[Substitution], what: str) -> float:
+    """A duration given as substitutions, performed: a number of seconds, never negative
+    (`what` names it in the error)."""
+    text = perform_substitutions(context, subs)
+    try:
+        value = float(text)
+    except ValueError:
+        raise LaunchError(f"{what} '{text}' is not a number") from None
+    if value < 0:
+        raise LaunchError(f'{what} {value} is negative')
+    return value
 
 
 def path_of(value: SomeSubstitutionsType | Path, context: LaunchContext) -> str:

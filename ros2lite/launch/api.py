@@ -6,14 +6,24 @@ from __future__ import annotations
 import os
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import IO, TYPE_CHECKING
 
 from ros2lite.pkg.workspace import SKIPPED_DIRS
 
-from .actions import IncludeLaunchDescription, LaunchDescription, SetLaunchConfiguration
+from .actions import (
+    IncludeLaunchDescription,
+    LaunchDescription,
+    LaunchDescriptionEntity,
+    SetLaunchConfiguration,
+)
 from .errors import LaunchError
 from .service import LaunchService
 from .sources import AnyLaunchDescriptionSource
+
+if TYPE_CHECKING:
+    from ros2lite.pkg.index import PackageIndex
+
+    from .output import Style
 
 __all__ = [
     'find_launch_file',
@@ -36,7 +46,9 @@ def parse_launch_arguments(arguments: Sequence[str]) -> list[tuple[str, str]]:
     return pairs
 
 
-def find_launch_file(package: str, file_name: str, index: Any = None) -> tuple[Path, str | None]:
+def find_launch_file(
+    package: str, file_name: str, index: PackageIndex | None = None
+) -> tuple[Path, str | None]:
     """The launch file `file_name` anywhere under the package's share directory (a
     workspace package's source directory); and a note when a stand-in package was used
     (e.g. demo_nodes_py for an uninstalled demo_nodes_cpp)."""
@@ -80,7 +92,7 @@ def _is_launch_file(name: str) -> bool:
     )
 
 
-def launch_files(package: str, index: Any = None) -> list[str]:
+def launch_files(package: str, index: PackageIndex | None = None) -> list[str]:
     """The launch file names in a package's share directory (for completion), sorted."""
     from ros2lite.pkg.index import PackageIndex
 
@@ -112,10 +124,10 @@ def launch_a_launch_file(
     launch_prefix: str | None = None,
     launch_prefix_filter: str | None = None,
     output_override: str | None = None,
-    style: Any = None,
-    stream: Any = None,
+    style: Style | None = None,
+    stream: IO[str] | None = None,
     notes: Sequence[str] = (),
-    index: Any = None,
+    index: PackageIndex | None = None,
 ) -> int:
     """Run the launch file with its arguments until it is done or stopped; returns the
     launch's status (0, or 1 when the launch itself failed)."""
@@ -130,7 +142,7 @@ def launch_a_launch_file(
     )
     for note in notes:
         service.pending_notes.append(note)
-    entities: list[Any] = []
+    entities: list[LaunchDescriptionEntity] = []
     if launch_prefix:
         entities.append(SetLaunchConfiguration('launch-prefix', launch_prefix))
     if launch_prefix_filter:

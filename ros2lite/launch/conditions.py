@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from .errors import InvalidConditionExpressionError
 from .substitutions import (
@@ -49,9 +49,11 @@ class Condition:
         self._predicate = predicate
 
     def evaluate(self, context: LaunchContext) -> bool:
+        """Whether the guarded action runs, in this context."""
         return bool(self._predicate(context)) if self._predicate is not None else True
 
     def describe(self) -> str:
+        """A short description for introspection."""
         return type(self).__name__
 
 
@@ -63,9 +65,11 @@ class IfCondition(Condition):
         self.expression = normalize_to_list_of_substitutions(predicate_expression)
 
     def evaluate(self, context: LaunchContext) -> bool:
+        """True when the expression performs to 'true' or '1'."""
         return evaluate_condition_expression(context, self.expression)
 
     def describe(self) -> str:
+        """The expression, for introspection."""
         return f'IfCondition({describe_substitutions(self.expression)})'
 
 
@@ -73,16 +77,20 @@ class UnlessCondition(IfCondition):
     """True when the expression performs to 'false' or '0'."""
 
     def evaluate(self, context: LaunchContext) -> bool:
+        """True when the expression performs to 'false' or '0'."""
         return not evaluate_condition_expression(context, self.expression)
 
     def describe(self) -> str:
+        """The expression, for introspection."""
         return f'UnlessCondition({describe_substitutions(self.expression)})'
 
 
 class LaunchConfigurationEquals(Condition):
     """True when a launch configuration equals a value (None: when it is not set)."""
 
-    def __init__(self, launch_configuration_name: str, expected_value: Any) -> None:
+    def __init__(
+        self, launch_configuration_name: str, expected_value: SomeSubstitutionsType | None
+    ) -> None:
         super().__init__()
         self.name = launch_configuration_name
         self.expected = (
@@ -96,6 +104,7 @@ class LaunchConfigurationEquals(Condition):
         return value == perform_substitutions(context, self.expected)
 
     def evaluate(self, context: LaunchContext) -> bool:
+        """True when the configuration's value equals the expected one."""
         return self._equal(context)
 
 
@@ -103,4 +112,5 @@ class LaunchConfigurationNotEquals(LaunchConfigurationEquals):
     """True when a launch configuration differs from a value."""
 
     def evaluate(self, context: LaunchContext) -> bool:
+        """True when the configuration's value differs from the expected one."""
         return not self._equal(context)

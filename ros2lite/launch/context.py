@@ -11,13 +11,16 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from pathlib import Path
+from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from ros2lite.pkg.index import PackageIndex
 
     from .event_handlers import EventHandler
     from .events import Event
+    from .ros import ParameterData
+    from .service import LaunchService
     from .substitutions import Substitution
 
 __all__ = ['LaunchContext', 'Scope']
@@ -31,10 +34,11 @@ class Scope:
     environment: dict[str, str] = field(default_factory=dict)
     ros_namespace: str | None = None
     # (name, value) pairs and parameter file paths, in the order they were set
-    global_params: list[Any] = field(default_factory=list)
+    global_params: list[tuple[str, ParameterData] | Path] = field(default_factory=list)
     remaps: list[tuple[str, str]] = field(default_factory=list)
 
     def copy(self, *, forwarding: bool = True) -> Scope:
+        """A copy for a nested scope; without `forwarding`, launch configurations start empty."""
         return Scope(
             dict(self.configurations) if forwarding else {},
             dict(self.environment),
@@ -47,10 +51,12 @@ class Scope:
 class _Locals:
     """Attribute access to the merged local frames (`context.locals.event`)."""
 
+    _context: LaunchContext
+
     def __init__(self, context: LaunchContext) -> None:
         object.__setattr__(self, '_context', context)
 
-    def __getattr__(self, name: str) -> Any:
+    def __getattr__(self, name: str) -> object:
         merged = self._context.get_locals_as_dict()
         if name in merged:
             return merged[name]
@@ -70,7 +76,7 @@ class LaunchContext:
         self.argv = list(argv)
         self.noninteractive = noninteractive
         self._scopes = [Scope(environment=dict(os.environ if environment is None else environment))]
-        self._frames: list[dict[str, Any]] = [{}]
+        self._frames: list[dict[str, object]] = [{}]
         self._handlers: list[EventHandler] = []
         self._anonymous: dict[str, str] = {}
         self._index: PackageIndex | None = None
@@ -78,11 +84,27 @@ class LaunchContext:
         self.output_override: str | None = None  # every process' output mode, if set
         # set by the launch service that runs this context
         self.emit_event_sync: Callable[[Event], None] = self._no_service
-        self.service: Any = None
+        self._service: LaunchService | None = None
 
     @staticmethod
     def _no_service(_event: Event) -> None:
         raise RuntimeError('this launch context is not run by a launch service')
+
+    @property
+    def has_service(self) -> bool:
+        """Whether a launch service runs this context (actions may be visited without one)."""
+        return self._service is not None
+
+    @property
+    def service(self) -> LaunchService:
+        """The launch service running this context: where processes, timers and log lines go."""
+        if self._service is None:
+            raise RuntimeError('this launch context is not run by a launch service')
+        return self._service
+
+    @service.setter
+    def service(self, service: LaunchService) -> None:
+        self._service = service
 
     def emit_event(self, event: Event) -> None:
         """Queue `event` for the handlers (same as :meth:`emit_event_sync` here)."""
@@ -91,14 +113,17 @@ class LaunchContext:
     # -- scopes ----------------------------------------------------------------------------------
     @property
     def scope(self) -> Scope:
+        """The innermost scope: where actions read and write settings."""
         return self._scopes[-1]
 
     @property
     def launch_configurations(self) -> dict[str, str]:
+        """The launch configurations visible now."""
         return self.scope.configurations
 
     @property
     def environment(self) -> dict[str, str]:
+        """The environment new processes get now."""
         return self.scope.environment
 
     def push_scope(self, *, forwarding: bool = True, saved: Scope | None = None) -> None:
@@ -107,32 +132,38 @@ class LaunchContext:
         self._scopes.append((self.scope if saved is None else saved).copy(forwarding=forwarding))
 
     def pop_scope(self) -> None:
+        """Return to the enclosing scope (what the nested one set is dropped)."""
         if len(self._scopes) == 1:
             raise RuntimeError('pop_scope() without a matching push_scope()')
         self._scopes.pop()
 
     # -- locals ----------------------------------------------------------------------------------
     @property
-    def locals(self) -> Any:
+    def locals(self) -> _Locals:
+        """Attribute access to the locals (`context.locals.event`)."""
         return _Locals(self)
 
-    def get_locals_as_dict(self) -> dict[str, Any]:
-        merged: dict[str, Any] = {}
+    def get_locals_as_dict(self) -> dict[str, object]:
+        """Every local frame merged, innermost last."""
+        merged: dict[str, object] = {}
         for frame in self._frames:
             merged.update(frame)
         return merged
 
-    def extend_locals(self, values: Mapping[str, Any]) -> None:
+    def extend_locals(self, values: Mapping[str, object]) -> None:
+        """Add values to the innermost frame."""
         self._frames[-1].update(values)
 
-    def push_locals(self, values: Mapping[str, Any] | None = None) -> None:
+    def push_locals(self, values: Mapping[str, object] | None = None) -> None:
+        """A new innermost frame holding `values`."""
         self._frames.append(dict(values or {}))
 
     def pop_locals(self) -> None:
+        """Drop the innermost frame (the outermost one stays)."""
         if len(self._frames) > 1:
             self._frames.pop()
 
-    def capture_locals(self) -> dict[str, Any]:
+    def capture_locals(self) -> dict[str, object]:
         """The locals now, to restore later around deferred work (timers, handlers)."""
         return self.get_locals_as_dict()
 
@@ -146,20 +177,24 @@ class LaunchContext:
             self._handlers.insert(0, handler)
 
     def unregister_event_handler(self, handler: EventHandler) -> None:
+        """Remove the handler, if registered."""
         if handler in self._handlers:
             self._handlers.remove(handler)
 
     @property
     def event_handlers(self) -> list[EventHandler]:
+        """The registered handlers, in the order they are asked."""
         return list(self._handlers)
 
     def handlers_for(self, event: Event) -> Iterator[EventHandler]:
+        """The handlers that accept `event`, in order."""
         for handler in list(self._handlers):
             if handler.matches(event):
                 yield handler
 
     # -- values ----------------------------------------------------------------------------------
     def perform_substitution(self, substitution: Substitution) -> str:
+        """The text of one substitution in this context."""
         return substitution.perform(self)
 
     @property
@@ -176,6 +211,7 @@ class LaunchContext:
         self._index = index
 
     def anonymous_name(self, name: str, make: Callable[[], str]) -> str:
+        """The same generated name for `name` throughout one launch."""
         if name not in self._anonymous:
             self._anonymous[name] = make()
         return self._anonymous[name]

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
-from typing import TYPE_CHECKING, Any
+from collections.abc import Callable, Iterable, Sequence
+from typing import TYPE_CHECKING, TypeAlias, cast
 
 from .events import (
     Event,
@@ -17,6 +17,7 @@ from .events import (
 )
 
 if TYPE_CHECKING:
+    from .actions import Action, LaunchDescriptionEntity
     from .context import LaunchContext
 
 __all__ = [
@@ -29,12 +30,20 @@ __all__ = [
 ]
 
 
-def _as_list(entities: Any) -> list[Any] | None:
+# what a handler visits: one entity, several, or none
+SomeEntities: TypeAlias = 'LaunchDescriptionEntity | Sequence[LaunchDescriptionEntity] | None'
+# entities, or a function of the event that returns them
+Reaction: TypeAlias = 'SomeEntities | Callable[[Event, LaunchContext], SomeEntities]'
+# the action an event must be about: one action, a predicate on the action, or any (None)
+TargetAction: TypeAlias = 'Action | Callable[[Action | None], bool] | None'
+
+
+def _as_list(entities: SomeEntities) -> list[LaunchDescriptionEntity] | None:
     if entities is None:
         return None
     if isinstance(entities, (list, tuple)):
         return list(entities)
-    return [entities]
+    return [cast('LaunchDescriptionEntity', entities)]
 
 
 class EventHandler:
@@ -44,18 +53,19 @@ class EventHandler:
         self,
         *,
         matcher: Callable[[Event], bool],
-        entities: Any = None,
+        entities: SomeEntities = None,
         handle_once: bool = False,
     ) -> None:
         self.matcher = matcher
         self.entities = _as_list(entities)
         self.handle_once = handle_once
-        self.captured_locals: dict[str, Any] = {}
+        self.captured_locals: dict[str, object] = {}
 
     def matches(self, event: Event) -> bool:
+        """Whether this handler reacts to `event`."""
         return bool(self.matcher(event))
 
-    def handle(self, event: Event, context: LaunchContext) -> list[Any] | None:
+    def handle(self, event: Event, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
         """The entities to visit for `event` (`context.locals.event` is set meanwhile)."""
         context.extend_locals({'event': event})
         if self.handle_once:
@@ -63,13 +73,15 @@ class EventHandler:
         return self.entities
 
     def describe(self) -> str:
+        """The handler's class name, for introspection."""
         return type(self).__name__
 
-    def describe_sub_entities(self) -> list[Any]:
+    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        """The entities it visits when its event happens."""
         return list(self.entities or [])
 
 
-def _target_matcher(target: Any) -> Callable[[Any], bool]:
+def _target_matcher(target: TargetAction) -> Callable[[Action | None], bool]:
     if target is None:
         return lambda _action: True
     if callable(target) and not hasattr(target, 'execute'):
@@ -86,8 +98,8 @@ class _OnActionEvent(EventHandler):
     def __init__(
         self,
         *,
-        target_action: Any = None,
-        on_event: Any = None,
+        target_action: TargetAction = None,
+        on_event: Reaction = None,
         handle_once: bool = False,
     ) -> None:
         is_target = _target_matcher(target_action)
@@ -104,7 +116,7 @@ class _OnActionEvent(EventHandler):
             handle_once=handle_once,
         )
 
-    def handle(self, event: Event, context: LaunchContext) -> list[Any] | None:
+    def handle(self, event: Event, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
         entities = super().handle(event, context)
         if callable(self.on_event):
             return _as_list(self.on_event(event, context))
@@ -117,7 +129,11 @@ class OnProcessExit(_OnActionEvent):
     event_type = ProcessExited
 
     def __init__(
-        self, *, target_action: Any = None, on_exit: Any = None, handle_once: bool = False
+        self,
+        *,
+        target_action: TargetAction = None,
+        on_exit: Reaction = None,
+        handle_once: bool = False,
     ) -> None:
         super().__init__(target_action=target_action, on_event=on_exit, handle_once=handle_once)
 
@@ -128,7 +144,11 @@ class OnProcessStart(_OnActionEvent):
     event_type = ProcessStarted
 
     def __init__(
-        self, *, target_action: Any = None, on_start: Any = None, handle_once: bool = False
+        self,
+        *,
+        target_action: TargetAction = None,
+        on_start: Reaction = None,
+        handle_once: bool = False,
     ) -> None:
         super().__init__(target_action=target_action, on_event=on_start, handle_once=handle_once)
 
@@ -139,7 +159,11 @@ class OnExecutionComplete(_OnActionEvent):
     event_type = ExecutionComplete
 
     def __init__(
-        self, *, target_action: Any = None, on_completion: Any = None, handle_once: bool = False
+        self,
+        *,
+        target_action: TargetAction = None,
+        on_completion: Reaction = None,
+        handle_once: bool = False,
     ) -> None:
         super().__init__(
             target_action=target_action, on_event=on_completion, handle_once=handle_once
@@ -149,7 +173,7 @@ class OnExecutionComplete(_OnActionEvent):
 class OnShutdown(EventHandler):
     """When the launch begins to shut down; `on_shutdown` is entities or a function."""
 
-    def __init__(self, *, on_shutdown: Any, handle_once: bool = False) -> None:
+    def __init__(self, *, on_shutdown: Reaction, handle_once: bool = False) -> None:
         self.on_shutdown = on_shutdown
         super().__init__(
             matcher=lambda event: isinstance(event, Shutdown),
@@ -157,14 +181,16 @@ class OnShutdown(EventHandler):
             handle_once=handle_once,
         )
 
-    def handle(self, event: Event, context: LaunchContext) -> list[Any] | None:
+    def handle(self, event: Event, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
+        """The entities to visit at shutdown (a function's result, or the given ones)."""
         entities = super().handle(event, context)
         if callable(self.on_shutdown):
             return _as_list(self.on_shutdown(event, context))
         return entities
 
 
-IOCallback = Callable[[ProcessIO], Any]
+# what a line of output may trigger: entities to visit, or nothing
+IOCallback = Callable[[ProcessIO], 'SomeEntities']
 
 
 class OnProcessIO(EventHandler):
@@ -173,7 +199,7 @@ class OnProcessIO(EventHandler):
     def __init__(
         self,
         *,
-        target_action: Any = None,
+        target_action: TargetAction = None,
         on_stdin: IOCallback | None = None,
         on_stdout: IOCallback | None = None,
         on_stderr: IOCallback | None = None,
@@ -187,7 +213,8 @@ class OnProcessIO(EventHandler):
             matcher=lambda e: isinstance(e, ProcessIO) and is_target(getattr(e, 'action', None))
         )
 
-    def handle(self, event: Event, context: LaunchContext) -> list[Any] | None:
+    def handle(self, event: Event, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
+        """What the stdout/stderr callback returns for this line."""
         super().handle(event, context)
         if isinstance(event, ProcessStdout) and self.on_stdout is not None:
             return _as_list(self.on_stdout(event))
@@ -196,6 +223,6 @@ class OnProcessIO(EventHandler):
         return None
 
 
-def entities_of(handlers: Iterable[EventHandler]) -> list[Any]:
+def entities_of(handlers: Iterable[EventHandler]) -> list[LaunchDescriptionEntity]:
     """Every entity the handlers hold (for `launch -s`/`-p`)."""
     return [e for h in handlers for e in h.describe_sub_entities()]

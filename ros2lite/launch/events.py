@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import signal as _signal
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, TypedDict
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
     from .actions import Action
 
 __all__ = [
@@ -50,6 +52,17 @@ class ExecutionComplete(Event):
         self.action = action
 
 
+class ProcessDetails(TypedDict):
+    """What every event about a process carries (the launch service fills it in once)."""
+
+    action: Action
+    name: str
+    cmd: list[str]
+    cwd: str | None
+    env: dict[str, str] | None
+    pid: int
+
+
 class ProcessEvent(Event):
     """Something about one process: which action, its name, command, cwd, env and pid."""
 
@@ -74,17 +87,22 @@ class ProcessEvent(Event):
 
     @property
     def execute_process_action(self) -> Action:
+        """The action that started the process (launch's name for `action`)."""
         return self.action
 
 
 class ProcessStarted(ProcessEvent):
+    """The process has started (its pid is known)."""
+
     name = 'launch.events.process.ProcessStarted'
 
 
 class ProcessExited(ProcessEvent):
+    """The process has exited with `returncode`."""
+
     name = 'launch.events.process.ProcessExited'
 
-    def __init__(self, *, returncode: int, **kwargs: Any) -> None:
+    def __init__(self, *, returncode: int, **kwargs: Unpack[ProcessDetails]) -> None:
         super().__init__(**kwargs)
         self.returncode = returncode
 
@@ -94,7 +112,7 @@ class ProcessIO(ProcessEvent):
 
     name = 'launch.events.process.ProcessIO'
 
-    def __init__(self, *, text: bytes, fd: int, **kwargs: Any) -> None:
+    def __init__(self, *, text: bytes, fd: int, **kwargs: Unpack[ProcessDetails]) -> None:
         super().__init__(**kwargs)
         self.text = text
         self.from_stdout = fd == 1
@@ -102,20 +120,25 @@ class ProcessIO(ProcessEvent):
 
 
 class ProcessStdout(ProcessIO):
+    """A line the process wrote to stdout."""
+
     name = 'launch.events.process.ProcessStdout'
 
-    def __init__(self, **kwargs: Any) -> None:
-        super().__init__(fd=1, **kwargs)
+    def __init__(self, *, text: bytes, **kwargs: Unpack[ProcessDetails]) -> None:
+        super().__init__(text=text, fd=1, **kwargs)
 
 
 class ProcessStderr(ProcessIO):
+    """A line the process wrote to stderr."""
+
     name = 'launch.events.process.ProcessStderr'
 
-    def __init__(self, **kwargs: Any) -> None:
-        super().__init__(fd=2, **kwargs)
+    def __init__(self, *, text: bytes, **kwargs: Unpack[ProcessDetails]) -> None:
+        super().__init__(text=text, fd=2, **kwargs)
 
 
-ProcessMatcher = Callable[[Any], bool]
+# picks processes by their action
+ProcessMatcher = Callable[['Action'], bool]
 
 
 def matches_action(target_action: Action) -> ProcessMatcher:
@@ -145,4 +168,5 @@ class SignalProcess(Event):
 
     @property
     def signal_name(self) -> str:
+        """The signal's name (SIGINT, SIGTERM, …)."""
         return _signal.Signals(self.signal_number).name

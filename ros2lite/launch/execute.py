@@ -13,11 +13,11 @@ import re
 import shlex
 from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from ros2lite.pkg.environment import child_environment
 
-from .actions import Action, Entities
+from .actions import Action, ActionOptions, Entities, seconds_of
 from .errors import LaunchError
 from .event_handlers import OnProcessExit
 from .output import destinations
@@ -25,13 +25,18 @@ from .substitutions import (
     LaunchConfiguration,
     SomeSubstitutionsType,
     Substitution,
+    SubstitutionMapping,
     describe_substitutions,
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
     from .context import LaunchContext
+    from .event_handlers import Reaction
+    from .events import ProcessDetails
 
 __all__ = ['ExecuteProcess', 'ProcessSpec']
 
@@ -56,17 +61,6 @@ _SIGTERM_TIMEOUT = LaunchConfiguration('sigterm_timeout', default=5)
 _SIGKILL_TIMEOUT = LaunchConfiguration('sigkill_timeout', default=5)
 
 
-def _seconds(context: LaunchContext, subs: list[Substitution], what: str) -> float:
-    text = perform_substitutions(context, subs)
-    try:
-        value = float(text)
-    except ValueError:
-        raise LaunchError(f"{what} '{text}' is not a number") from None
-    if value < 0:
-        raise LaunchError(f'{what} {value} is negative')
-    return value
-
-
 class ExecuteProcess(Action):
     """Starts a process and watches it; stopping it follows launch's escalation."""
 
@@ -78,22 +72,22 @@ class ExecuteProcess(Action):
         cmd: Iterable[SomeSubstitutionsType],
         name: SomeSubstitutionsType | None = None,
         cwd: SomeSubstitutionsType | None = None,
-        env: dict[Any, Any] | None = None,
-        additional_env: dict[Any, Any] | None = None,
+        env: SubstitutionMapping | None = None,
+        additional_env: SubstitutionMapping | None = None,
         shell: bool = False,
         prefix: SomeSubstitutionsType | None = None,
         output: SomeSubstitutionsType = 'log',
         sigterm_timeout: SomeSubstitutionsType = _SIGTERM_TIMEOUT,
         sigkill_timeout: SomeSubstitutionsType = _SIGKILL_TIMEOUT,
         emulate_tty: bool = False,
-        on_exit: Any = None,
+        on_exit: Reaction = None,
         respawn: bool | SomeSubstitutionsType = False,
         respawn_delay: float | None = None,
         respawn_max_retries: int = -1,
         log_cmd: bool = False,
         cached_output: bool = False,
         arguments: Iterable[SomeSubstitutionsType] | None = None,
-        **kwargs: Any,
+        **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
         self.cmd = [normalize_to_list_of_substitutions(c) for c in cmd]
@@ -117,7 +111,7 @@ class ExecuteProcess(Action):
         self.respawn_count = 0
         self.log_cmd = log_cmd
         self.cached_output = cached_output
-        self.process_details: dict[str, Any] | None = None
+        self.process_details: ProcessDetails | None = None
         self.return_code: int | None = None
 
     # -- resolving -------------------------------------------------------------------------------
@@ -129,6 +123,7 @@ class ExecuteProcess(Action):
         return cmd, cmd, []
 
     def label(self, context: LaunchContext, cmd: list[str]) -> str:
+        """The process' name before its number: `name` if given, else the command's base name."""
         if self.name is not None:
             return perform_substitutions(context, self.name)
         return os.path.basename(cmd[0])
@@ -183,12 +178,13 @@ class ExecuteProcess(Action):
             cwd=cwd,
             env=env,
             output=output,
-            sigterm_timeout=_seconds(context, self.sigterm_timeout, 'sigterm_timeout'),
-            sigkill_timeout=_seconds(context, self.sigkill_timeout, 'sigkill_timeout'),
+            sigterm_timeout=seconds_of(context, self.sigterm_timeout, 'sigterm_timeout'),
+            sigkill_timeout=seconds_of(context, self.sigkill_timeout, 'sigkill_timeout'),
             log_cmd=self.log_cmd,
         )
 
     def should_respawn(self, context: LaunchContext) -> bool:
+        """Whether to start the process again after it exited."""
         if isinstance(self.respawn, bool):
             wanted = self.respawn
         else:
@@ -199,6 +195,7 @@ class ExecuteProcess(Action):
         return wanted and (limit < 0 or self.respawn_count < limit)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Resolve the process and have the launch service start it."""
         if context.is_shutdown:
             return None
         spec = self.resolve(context)
@@ -208,12 +205,13 @@ class ExecuteProcess(Action):
         return None
 
     def describe(self) -> str:
+        """The command, for introspection."""
         cmd = ' '.join(describe_substitutions(c) for c in self.cmd)
         return f'{type(self).__name__}(cmd=[{cmd}])'
 
 
 def _normalize_env(
-    env: dict[Any, Any] | None,
+    env: SubstitutionMapping | None,
 ) -> list[tuple[list[Substitution], list[Substitution]]] | None:
     if env is None:
         return None

@@ -51,9 +51,11 @@ class PlainStyle:
     """No decoration: what scripts and files get."""
 
     def label(self, text: str, index: int) -> str:
+        """The label as it is."""
         return text
 
     def level(self, text: str, level: str) -> str:
+        """The line as it is."""
         return text
 
 
@@ -171,6 +173,7 @@ class LaunchOutput:
                 self._file(f'{label}-stdout_stderr.log', line)
 
     def close(self) -> None:
+        """Close the launch log files."""
         with self._lock:
             for handle in self._files.values():
                 with contextlib.suppress(OSError):

@@ -14,11 +14,11 @@ import os
 import tempfile
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 from ros2lite.names import NameValidationException, normalize_namespace, validate_namespace
 
-from .actions import Action, Entities, path_of
+from .actions import Action, ActionOptions, Entities, path_of
 from .errors import LaunchError, SubstitutionFailure
 from .execute import ExecuteProcess
 from .substitutions import (
@@ -30,7 +30,10 @@ from .substitutions import (
 )
 
 if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
     from ros2lite.pkg.executables import PackageExecutable
+    from ros2lite.pkg.index import Package
 
     from .context import LaunchContext
 
@@ -56,7 +59,8 @@ class FindPackagePrefix(Substitution):
     def __init__(self, package: SomeSubstitutionsType) -> None:
         self.package = normalize_to_list_of_substitutions(package)
 
-    def find(self, context: LaunchContext) -> Any:
+    def find(self, context: LaunchContext) -> Package:
+        """The package from the launch's package index (a substitution failure when unknown)."""
         name = perform_substitutions(context, self.package)
         index = context.package_index
         pkg = index.find(name)
@@ -67,9 +71,11 @@ class FindPackagePrefix(Substitution):
         return pkg
 
     def perform(self, context: LaunchContext) -> str:
+        """The package's prefix directory."""
         return str(self.find(context).prefix)
 
     def describe(self) -> str:
+        """The package, for introspection."""
         return f'FindPackagePrefix(pkg={describe_substitutions(self.package)})'
 
 
@@ -78,22 +84,32 @@ class FindPackageShare(FindPackagePrefix):
     launch/, config/ and package.xml are."""
 
     def perform(self, context: LaunchContext) -> str:
+        """The package's share directory (its source directory for a workspace package)."""
         pkg = self.find(context)
         if pkg.share is None:
             raise SubstitutionFailure(f"package '{pkg.name}' has no share directory")
         return str(pkg.share)
 
     def describe(self) -> str:
+        """The package, for introspection."""
         return f'FindPackageShare(pkg={describe_substitutions(self.package)})'
 
 
 # -- parameters ----------------------------------------------------------------------------------
 
+# what a node gets for one parameter: a YAML scalar, a list, or nothing
+ParameterData: TypeAlias = 'bool | int | float | str | list[object] | None'
+# one entry of Node(parameters=...): a dict of values, or a parameter file
+ParameterEntry: TypeAlias = (
+    'Mapping[str, object] | Mapping[Substitution, object] | ParameterFile'
+    ' | SomeSubstitutionsType | Path'
+)
+
 
 class ParameterValue:
     """A parameter value with an explicit type (None: read text as YAML)."""
 
-    def __init__(self, value: Any, *, value_type: Any = None) -> None:
+    def __init__(self, value: object, *, value_type: object = None) -> None:
         self.value = value
         self.value_type = value_type
 
@@ -102,12 +118,14 @@ class ParameterFile:
     """A parameter file; with `allow_substs`, `$(var …)` and friends inside it are
     performed before the node reads it."""
 
-    def __init__(self, param_file: Any, *, allow_substs: bool = False) -> None:
+    def __init__(
+        self, param_file: SomeSubstitutionsType | Path, *, allow_substs: bool = False
+    ) -> None:
         self.param_file = param_file
         self.allow_substs = allow_substs
 
 
-def _yaml_value(text: str) -> Any:
+def _yaml_value(text: str) -> ParameterData:
     """Text as launch_ros reads it: a YAML scalar or a list of one scalar type; else text."""
     from ros2lite.safe_yaml import YamlInputError, load
 
@@ -124,7 +142,7 @@ def _yaml_value(text: str) -> Any:
     return text
 
 
-def _is_substitutions(value: Any) -> bool:
+def _is_substitutions(value: object) -> bool:
     return isinstance(value, Substitution) or (
         isinstance(value, (list, tuple))
         and bool(value)
@@ -133,7 +151,7 @@ def _is_substitutions(value: Any) -> bool:
     )
 
 
-def evaluate_parameter(context: LaunchContext, value: Any) -> Any:
+def evaluate_parameter(context: LaunchContext, value: object) -> ParameterData:
     """The value a node gets for one parameter entry."""
     if isinstance(value, ParameterValue):
         inner = value.value
@@ -163,7 +181,7 @@ def evaluate_parameter(context: LaunchContext, value: Any) -> Any:
     raise LaunchError(f'unsupported parameter value {value!r}')
 
 
-def _typed(text: str, value_type: Any) -> Any:
+def _typed(text: str, value_type: object) -> ParameterData:
     from ros2lite.safe_yaml import YamlInputError, load
 
     try:
@@ -177,8 +195,12 @@ def _typed(text: str, value_type: Any) -> Any:
     return parsed
 
 
-def _flatten(context: LaunchContext, params: Mapping[Any, Any], prefix: str = '') -> dict[str, Any]:
-    flat: dict[str, Any] = {}
+def _flatten(
+    context: LaunchContext,
+    params: Mapping[str, object] | Mapping[Substitution, object],
+    prefix: str = '',
+) -> dict[str, ParameterData]:
+    flat: dict[str, ParameterData] = {}
     for key, value in params.items():
         name = perform_substitutions(context, normalize_to_list_of_substitutions(key))
         full = f'{prefix}{name}'
@@ -192,28 +214,33 @@ def _flatten(context: LaunchContext, params: Mapping[Any, Any], prefix: str = ''
 class SetParameter(Action):
     """A parameter every Node after it (in this scope) gets."""
 
-    def __init__(self, name: SomeSubstitutionsType, value: Any, **kwargs: Any) -> None:
+    def __init__(
+        self, name: SomeSubstitutionsType, value: object, **kwargs: Unpack[ActionOptions]
+    ) -> None:
         super().__init__(**kwargs)
         self.name = normalize_to_list_of_substitutions(name)
         self.value = value
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Add the evaluated parameter to the current scope's global parameters."""
         name = perform_substitutions(context, self.name)
         context.scope.global_params.append((name, evaluate_parameter(context, self.value)))
         return None
 
     def describe(self) -> str:
+        """The parameter's name, for introspection."""
         return f'SetParameter({describe_substitutions(self.name)})'
 
 
 class SetParametersFromFile(Action):
     """A parameter file every Node after it (in this scope) reads."""
 
-    def __init__(self, filename: SomeSubstitutionsType, **kwargs: Any) -> None:
+    def __init__(self, filename: SomeSubstitutionsType, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.filename = normalize_to_list_of_substitutions(filename)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Add the file to the current scope's global parameters."""
         context.scope.global_params.append(Path(perform_substitutions(context, self.filename)))
         return None
 
@@ -221,12 +248,18 @@ class SetParametersFromFile(Action):
 class SetRemap(Action):
     """A remapping every Node after it (in this scope) gets."""
 
-    def __init__(self, src: SomeSubstitutionsType, dst: SomeSubstitutionsType, **kwargs: Any):
+    def __init__(
+        self,
+        src: SomeSubstitutionsType,
+        dst: SomeSubstitutionsType,
+        **kwargs: Unpack[ActionOptions],
+    ):
         super().__init__(**kwargs)
         self.src = normalize_to_list_of_substitutions(src)
         self.dst = normalize_to_list_of_substitutions(dst)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Add the remapping to the current scope."""
         context.scope.remaps.append(
             (perform_substitutions(context, self.src), perform_substitutions(context, self.dst))
         )
@@ -246,17 +279,19 @@ def _join_namespace(base: str | None, namespace: str | None) -> str | None:
 class PushRosNamespace(Action):
     """Puts the Nodes after it (in this scope) under a namespace (relative ones nest)."""
 
-    def __init__(self, namespace: SomeSubstitutionsType, **kwargs: Any) -> None:
+    def __init__(self, namespace: SomeSubstitutionsType, **kwargs: Unpack[ActionOptions]) -> None:
         super().__init__(**kwargs)
         self.namespace = normalize_to_list_of_substitutions(namespace)
 
     def execute(self, context: LaunchContext) -> Entities | None:
+        """Join the namespace to the current scope's one (a valid ROS namespace, or an error)."""
         text = perform_substitutions(context, self.namespace).strip()
         joined = _join_namespace(context.scope.ros_namespace, text)
         context.scope.ros_namespace = _valid_namespace(joined) if joined else joined
         return None
 
     def describe(self) -> str:
+        """The namespace, for introspection."""
         return f'PushRosNamespace({describe_substitutions(self.namespace)})'
 
 
@@ -284,11 +319,11 @@ class Node(ExecuteProcess):
         name: SomeSubstitutionsType | None = None,
         namespace: SomeSubstitutionsType | None = None,
         exec_name: SomeSubstitutionsType | None = None,
-        parameters: Sequence[Any] | None = None,
+        parameters: Sequence[ParameterEntry] | None = None,
         remappings: Iterable[tuple[SomeSubstitutionsType, SomeSubstitutionsType]] | None = None,
         ros_arguments: Iterable[SomeSubstitutionsType] | None = None,
         arguments: Iterable[SomeSubstitutionsType] | None = None,
-        **kwargs: Any,
+        **kwargs: Any,  # ExecuteProcess's keywords, passed on as they are
     ) -> None:
         super().__init__(cmd=[], name=exec_name, **kwargs)
         self.package = None if package is None else normalize_to_list_of_substitutions(package)
@@ -320,7 +355,7 @@ class Node(ExecuteProcess):
             context.service.log('INFO', 'launch', resolved.note)
         return resolved.executable
 
-    def _params_file(self, context: LaunchContext, values: dict[str, Any]) -> str:
+    def _params_file(self, context: LaunchContext, values: dict[str, ParameterData]) -> str:
         import yaml
 
         fd, path = tempfile.mkstemp(prefix='launch_params_', suffix='.yaml')
@@ -345,7 +380,7 @@ class Node(ExecuteProcess):
 
     def _parameter_args(self, context: LaunchContext) -> list[str]:
         args: list[str] = []
-        pending: dict[str, Any] = {}
+        pending: dict[str, ParameterData] = {}
 
         def flush() -> None:
             if pending:
@@ -358,17 +393,17 @@ class Node(ExecuteProcess):
                 args.extend(['--params-file', str(entry)])
             else:
                 pending[entry[0]] = entry[1]
-        for entry in self.parameters:
-            if isinstance(entry, Mapping):
-                pending.update(_flatten(context, entry))
+        for param in self.parameters:
+            if isinstance(param, Mapping):
+                pending.update(_flatten(context, param))
                 continue
             flush()
-            if isinstance(entry, ParameterFile):
-                path = path_of(entry.param_file, context)
-                if entry.allow_substs:
+            if isinstance(param, ParameterFile):
+                path = path_of(param.param_file, context)
+                if param.allow_substs:
                     path = self._substituted_file(context, path)
             else:
-                path = path_of(entry, context)
+                path = path_of(param, context)
             args.extend(['--params-file', path])
         flush()
         return args
@@ -398,6 +433,7 @@ class Node(ExecuteProcess):
         return out
 
     def command(self, context: LaunchContext) -> tuple[list[str], list[str], list[str]]:
+        """The package executable with the node's arguments and `--ros-args` part."""
         exe = self._find(context)
         self._resolved = exe
         argv = [perform_substitutions(context, a) for a in self.node_arguments]
@@ -407,10 +443,12 @@ class Node(ExecuteProcess):
         return exe.command(argv), [exe.path(), *argv], list(exe.pythonpath)
 
     def label(self, context: LaunchContext, cmd: list[str]) -> str:
+        """The process' name: the executable's name unless `exec_name` is given."""
         if self.name is not None:
             return perform_substitutions(context, self.name)
         return self._resolved.name if self._resolved is not None else super().label(context, cmd)
 
     def describe(self) -> str:
+        """Package and executable, for introspection."""
         pkg = describe_substitutions(self.package) if self.package else '?'
         return f'Node(package={pkg}, executable={describe_substitutions(self.executable)})'

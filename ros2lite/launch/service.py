@@ -15,6 +15,7 @@ group is killed when the launch ends, so nothing it started stays running.
 from __future__ import annotations
 
 import contextlib
+import functools
 import heapq
 import itertools
 import os
@@ -23,10 +24,10 @@ import signal
 import threading
 import time
 import traceback
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import IO, TYPE_CHECKING, Literal, TypeVar
 
 from ros2lite.process import ChildError, ChildProcess, signal_handler
 
@@ -36,6 +37,7 @@ from .event_handlers import OnProcessIO
 from .events import (
     Event,
     ExecutionComplete,
+    ProcessDetails,
     ProcessExited,
     ProcessStarted,
     ProcessStderr,
@@ -47,7 +49,18 @@ from .events import (
 from .execute import ExecuteProcess, ProcessSpec
 from .output import LaunchOutput, Style, log_base_directory, make_log_directory
 
+if TYPE_CHECKING:
+    from ros2lite.pkg.index import PackageIndex
+
 __all__ = ['LaunchService']
+
+_T = TypeVar('_T')
+# what the loop is woken with: an event, a signal number, or (action id, exit code)
+_Item = (
+    tuple[Literal['event'], Event]
+    | tuple[Literal['signal'], int]
+    | tuple[Literal['exit'], int, int]
+)
 
 _SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGQUIT)
 
@@ -72,11 +85,11 @@ class LaunchService:
         noninteractive: bool = False,
         debug: bool = False,
         style: Style | None = None,
-        stream: Any = None,
+        stream: IO[str] | None = None,
         log_dir: Path | None = None,
         write_logs: bool = True,
         output_override: str | None = None,
-        index: Any = None,
+        index: PackageIndex | None = None,
     ) -> None:
         self.context = LaunchContext(argv=argv, noninteractive=noninteractive)
         if index is not None:
@@ -89,11 +102,11 @@ class LaunchService:
         self._log_dir = log_dir
         self._write_logs = write_logs
         self.output = LaunchOutput(stream=stream, style=style)
-        self._queue: queue.SimpleQueue[tuple[Any, ...]] = queue.SimpleQueue()
+        self._queue: queue.SimpleQueue[_Item] = queue.SimpleQueue()
         self._descriptions: list[LaunchDescription] = []
         self._running: dict[int, _Running] = {}  # by id(action)
         self._started: list[ChildProcess] = []
-        self._timers: list[tuple[float, int, TimerAction, dict[str, Any], Scope]] = []
+        self._timers: list[tuple[float, int, TimerAction, dict[str, object], Scope]] = []
         self._seq = itertools.count()
         self._labels = itertools.count(1)
         self._shutting_down = False
@@ -107,6 +120,7 @@ class LaunchService:
 
     # -- what callers and actions use -----------------------------------------------------------
     def include_launch_description(self, description: LaunchDescription) -> None:
+        """Add a description to run when the service runs."""
         self._descriptions.append(description)
 
     def emit_event(self, event: Event) -> None:
@@ -118,14 +132,16 @@ class LaunchService:
         self._queue.put(('event', Shutdown(reason='LaunchService.shutdown() called')))
 
     def log(self, level: str, name: str, msg: str) -> None:
+        """Write a launch log line (to the screen and the launch log)."""
         self.output.log(level, name, msg)
 
     @property
     def log_directory(self) -> Path | None:
+        """Where this launch writes its logs (None when it writes none)."""
         return self.output.log_dir
 
     def add_timer(
-        self, action: TimerAction, seconds: float, frame: dict[str, Any], scope: Scope
+        self, action: TimerAction, seconds: float, frame: dict[str, object], scope: Scope
     ) -> None:
         """Visit `action`'s actions in `seconds`, with these locals and in this scope."""
         due = time.monotonic() + seconds
@@ -163,12 +179,13 @@ class LaunchService:
             sigterm_timeout=spec.sigterm_timeout,
             sigkill_timeout=spec.sigkill_timeout,
         )
-        details: dict[str, Any] = {
+        details: ProcessDetails = {
             'action': action,
             'name': label,
             'cmd': spec.display_cmd,
             'cwd': spec.cwd,
             'env': spec.env,
+            'pid': 0,  # known once started
         }
         if spec.log_cmd:
             self.log(
@@ -258,14 +275,14 @@ class LaunchService:
             return 1.0
         return max(0.0, min(min(deadlines) - now, 1.0))
 
-    def _handle(self, item: tuple[Any, ...]) -> None:
-        kind = item[0]
-        if kind == 'signal':
-            self._on_signal(item[1])
-        elif kind == 'exit':
-            self._on_exit(item[1], item[2])
-        elif kind == 'event':
-            self._dispatch(item[1])
+    def _handle(self, item: _Item) -> None:
+        match item:
+            case ('signal', signum):
+                self._on_signal(signum)
+            case ('exit', action_id, code):
+                self._on_exit(action_id, code)
+            case ('event', event):
+                self._dispatch(event)
 
     def _on_signal(self, signum: int) -> None:
         self._signals_seen += 1
@@ -306,7 +323,7 @@ class LaunchService:
         for handler in list(self.context.handlers_for(event)):
             self.context.push_locals(handler.captured_locals)
             try:
-                entities = self._guard(lambda h=handler: h.handle(event, self.context))
+                entities = self._guard(functools.partial(handler.handle, event, self.context))
                 for entity in entities or []:
                     self._visit_guarded(entity)
             finally:
@@ -356,7 +373,8 @@ class LaunchService:
                 running.label,
                 f"process has died [pid {running.pid}, exit code {code}, cmd '{cmd}'].",
             )
-        details = dict(action.process_details or {})
+        details = action.process_details
+        assert details is not None  # set when the process started
         self._dispatch(ProcessExited(returncode=code, **details))
         self._dispatch(ExecutionComplete(action=action))
         if not self._shutting_down and self._guard(lambda: action.should_respawn(self.context)):
@@ -397,13 +415,13 @@ class LaunchService:
         stack: list[LaunchDescriptionEntity] = [entity]
         while stack:
             current = stack.pop()
-            result = self._guard(lambda e=current: e.visit(self.context))
+            result = self._guard(functools.partial(current.visit, self.context))
             if result is _FAILED:
                 return
             if result:
                 stack.extend(reversed(result))
 
-    def _guard(self, fn: Any) -> Any:
+    def _guard(self, fn: Callable[[], _T]) -> _T | _Failed:
         try:
             return fn()
         except Exception as e:
@@ -437,7 +455,7 @@ class LaunchService:
 
 
 class _Failed:
-    def __bool__(self) -> bool:
+    def __bool__(self) -> Literal[False]:
         return False
 
 

@@ -12,7 +12,7 @@ import importlib.util
 import itertools
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from .actions import LaunchDescription
 from .errors import InvalidFrontendLaunchFileError, LaunchError
@@ -120,14 +120,17 @@ class LaunchDescriptionSource:
             self.method = method
 
     def try_get_launch_description_without_context(self) -> LaunchDescription | None:
+        """The description if it is already known (introspection needs no context)."""
         return self._description
 
     def get_launch_description(self, context: LaunchContext) -> LaunchDescription:
+        """The description, loading it in this context if needed."""
         if self._description is None:
             raise LaunchError('launch description source has no launch description')
         return self._description
 
     def describe(self) -> str:
+        """Where the description comes from, for introspection."""
         return f'{self.method} at {self.location!r}'
 
 
@@ -136,10 +139,9 @@ class _FileSource(LaunchDescriptionSource):
 
     def __init__(self, launch_file_path: SomeSubstitutionsType | Path) -> None:
         super().__init__(None, '<unknown>')
-        value: Any = (
-            str(launch_file_path) if isinstance(launch_file_path, Path) else (launch_file_path)
+        self.path = normalize_to_list_of_substitutions(
+            str(launch_file_path) if isinstance(launch_file_path, Path) else launch_file_path
         )
-        self.path = normalize_to_list_of_substitutions(value)
 
     def try_get_launch_description_without_context(self) -> LaunchDescription | None:
         from .substitutions import TextSubstitution
@@ -175,10 +177,14 @@ class FrontendLaunchDescriptionSource(_FileSource):
 
 
 class XMLLaunchDescriptionSource(FrontendLaunchDescriptionSource):
+    """An XML launch file, whatever its extension."""
+
     kind = 'xml'
 
 
 class YAMLLaunchDescriptionSource(FrontendLaunchDescriptionSource):
+    """A YAML launch file, whatever its extension."""
+
     kind = 'yaml'
 
 

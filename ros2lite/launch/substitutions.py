@@ -15,8 +15,8 @@ import secrets
 import shlex
 import shutil
 import subprocess
-from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING, Any, TypeAlias
+from collections.abc import Iterable, Mapping, Sequence
+from typing import TYPE_CHECKING, TypeAlias
 
 from .errors import SubstitutionFailure
 
@@ -65,9 +65,13 @@ class Substitution:
 
 
 SomeSubstitutionsType: TypeAlias = 'str | Substitution | Iterable[str | Substitution]'
+# (key, value) settings given as a dict: names and values are text or substitutions
+SubstitutionMapping: TypeAlias = (
+    'Mapping[str, SomeSubstitutionsType] | Mapping[Substitution, SomeSubstitutionsType]'
+)
 
 
-def _one(value: Any) -> Substitution | None:
+def _one(value: object) -> Substitution | None:
     if isinstance(value, Substitution):
         return value
     if isinstance(value, bool):
@@ -79,7 +83,7 @@ def _one(value: Any) -> Substitution | None:
     return None
 
 
-def normalize_to_list_of_substitutions(value: Any) -> list[Substitution]:
+def normalize_to_list_of_substitutions(value: object) -> list[Substitution]:
     """A list of substitutions from a string, a substitution or a list of both."""
     single = _one(value)
     if single is not None:
@@ -101,6 +105,7 @@ def perform_substitutions(context: LaunchContext, subs: Sequence[Substitution]) 
 
 
 def describe_substitutions(subs: Sequence[Substitution]) -> str:
+    """Substitutions described and joined with ' + ' (for `launch -s` and `-p`)."""
     return ' + '.join(s.describe() for s in subs)
 
 
@@ -114,9 +119,11 @@ class TextSubstitution(Substitution):
         self.text = str(text)
 
     def perform(self, context: LaunchContext) -> str:
+        """The text as given."""
         return self.text
 
     def describe(self) -> str:
+        """The text, quoted."""
         return repr(self.text)
 
 
@@ -124,11 +131,12 @@ class LaunchConfiguration(Substitution):
     """The value of a launch configuration (an argument, or what SetLaunchConfiguration set),
     or `default` when it is not set."""
 
-    def __init__(self, variable_name: SomeSubstitutionsType, *, default: Any = None) -> None:
+    def __init__(self, variable_name: SomeSubstitutionsType, *, default: object = None) -> None:
         self.variable_name = normalize_to_list_of_substitutions(variable_name)
         self.default = None if default is None else normalize_to_list_of_substitutions(default)
 
     def perform(self, context: LaunchContext) -> str:
+        """The configuration's value, else the default; a failure when neither exists."""
         name = perform_substitutions(context, self.variable_name)
         value = context.launch_configurations.get(name)
         if value is not None:
@@ -138,6 +146,7 @@ class LaunchConfiguration(Substitution):
         raise SubstitutionFailure(f"launch configuration '{name}' does not exist")
 
     def describe(self) -> str:
+        """The configuration's name, as launch shows it."""
         return f'LaunchConfig({describe_substitutions(self.variable_name)})'
 
 
@@ -149,7 +158,8 @@ class LocalSubstitution(Substitution):
         self.description = description
 
     def perform(self, context: LaunchContext) -> str:
-        value: Any = context.get_locals_as_dict()
+        """The dotted local (`event.returncode`) as text; a failure when it is not set."""
+        value: object = context.get_locals_as_dict()
         for part in self.expression.split('.'):
             value = value[part] if isinstance(value, dict) else getattr(value, part, None)
             if value is None:
@@ -157,19 +167,21 @@ class LocalSubstitution(Substitution):
         return str(value)
 
     def describe(self) -> str:
+        """The given description, or the expression."""
         return self.description or f'LocalVar({self.expression!r})'
 
 
 class EnvironmentVariable(Substitution):
     """An environment variable of the launch (which SetEnvironmentVariable can change)."""
 
-    def __init__(self, name: SomeSubstitutionsType, *, default_value: Any = None) -> None:
+    def __init__(self, name: SomeSubstitutionsType, *, default_value: object = None) -> None:
         self.name = normalize_to_list_of_substitutions(name)
         self.default_value = (
             None if default_value is None else normalize_to_list_of_substitutions(default_value)
         )
 
     def perform(self, context: LaunchContext) -> str:
+        """The variable's value, else the default; a failure when neither exists."""
         name = perform_substitutions(context, self.name)
         value = context.environment.get(name)
         if value is not None:
@@ -179,6 +191,7 @@ class EnvironmentVariable(Substitution):
         raise SubstitutionFailure(f"environment variable '{name}' does not exist")
 
     def describe(self) -> str:
+        """The variable's name, as launch shows it."""
         return f'EnvVar({describe_substitutions(self.name)})'
 
 
@@ -189,6 +202,7 @@ class PathJoinSubstitution(Substitution):
         self.parts = [normalize_to_list_of_substitutions(p) for p in substitutions]
 
     def perform(self, context: LaunchContext) -> str:
+        """The performed parts joined with the platform's separator."""
         return os.path.join(*(perform_substitutions(context, p) for p in self.parts))
 
     def __truediv__(self, other: SomeSubstitutionsType) -> PathJoinSubstitution:
@@ -197,6 +211,7 @@ class PathJoinSubstitution(Substitution):
         return joined
 
     def describe(self) -> str:
+        """The parts, as launch shows them."""
         return 'PathJoin(' + ', '.join(describe_substitutions(p) for p in self.parts) + ')'
 
 
@@ -204,12 +219,14 @@ class ThisLaunchFileDir(Substitution):
     """The directory of the launch file being read."""
 
     def perform(self, context: LaunchContext) -> str:
+        """The directory of the launch file being read; a failure outside one."""
         value = context.get_locals_as_dict().get('current_launch_file_directory')
         if value is None:
             raise SubstitutionFailure('ThisLaunchFileDir used outside of a launch file')
         return str(value)
 
     def describe(self) -> str:
+        """As launch shows it."""
         return 'ThisLaunchFileDir()'
 
 
@@ -217,12 +234,14 @@ class ThisLaunchFile(Substitution):
     """The path of the launch file being read."""
 
     def perform(self, context: LaunchContext) -> str:
+        """The path of the launch file being read; a failure outside one."""
         value = context.get_locals_as_dict().get('current_launch_file_path')
         if value is None:
             raise SubstitutionFailure('ThisLaunchFile used outside of a launch file')
         return str(value)
 
     def describe(self) -> str:
+        """As launch shows it."""
         return 'ThisLaunchFile()'
 
 
@@ -233,6 +252,7 @@ class FindExecutable(Substitution):
         self.name = normalize_to_list_of_substitutions(name)
 
     def perform(self, context: LaunchContext) -> str:
+        """The executable's full path on the launch's PATH; a failure when absent."""
         name = perform_substitutions(context, self.name)
         found = shutil.which(name, path=context.environment.get('PATH'))
         if found is None:
@@ -240,6 +260,7 @@ class FindExecutable(Substitution):
         return found
 
     def describe(self) -> str:
+        """The executable's name, as launch shows it."""
         return f'FindExec({describe_substitutions(self.name)})'
 
 
@@ -250,10 +271,12 @@ class AnonName(Substitution):
         self.name = normalize_to_list_of_substitutions(name)
 
     def perform(self, context: LaunchContext) -> str:
+        """The name with its suffix, the same for the whole launch."""
         name = perform_substitutions(context, self.name)
         return context.anonymous_name(name, lambda: f'{name}_{secrets.token_hex(8)}')
 
     def describe(self) -> str:
+        """The name, as launch shows it."""
         return f'AnonName({describe_substitutions(self.name)})'
 
 
@@ -266,6 +289,8 @@ class Command(Substitution):
         self.on_stderr = on_stderr
 
     def perform(self, context: LaunchContext) -> str:
+        """The command's standard output; a failure when it fails (or writes to stderr,
+        unless `on_stderr` allows it)."""
         text = perform_substitutions(context, self.command)
         try:
             argv = shlex.split(text)
@@ -286,6 +311,7 @@ class Command(Substitution):
         return done.stdout
 
     def describe(self) -> str:
+        """The command, as launch shows it."""
         return f'Command({describe_substitutions(self.command)})'
 
 
@@ -315,8 +341,9 @@ class PythonExpression(Substitution):
         self.expression = normalize_to_list_of_substitutions(expression)
 
     def perform(self, context: LaunchContext) -> str:
+        """The expression's value as text, evaluated with math and a few safe builtins."""
         text = perform_substitutions(context, self.expression)
-        scope: dict[str, Any] = {'__builtins__': _EXPRESSION_BUILTINS, 'math': math}
+        scope: dict[str, object] = {'__builtins__': _EXPRESSION_BUILTINS, 'math': math}
         scope.update({k: v for k, v in vars(math).items() if not k.startswith('_')})
         try:
             return str(eval(text, scope, {}))  # the launch file's own expression
@@ -324,6 +351,7 @@ class PythonExpression(Substitution):
             raise SubstitutionFailure(f"expression '{text}' failed: {e}") from None
 
     def describe(self) -> str:
+        """The expression, as launch shows it."""
         return f'PythonExpr({describe_substitutions(self.expression)})'
 
 
@@ -340,6 +368,7 @@ class NotSubstitution(Substitution):
         self.value = normalize_to_list_of_substitutions(value)
 
     def perform(self, context: LaunchContext) -> str:
+        """'true' or 'false'."""
         return str(not _truth(context, self.value)).lower()
 
 
@@ -351,6 +380,7 @@ class AndSubstitution(Substitution):
         self.right = normalize_to_list_of_substitutions(right)
 
     def perform(self, context: LaunchContext) -> str:
+        """'true' or 'false'."""
         return str(_truth(context, self.left) and _truth(context, self.right)).lower()
 
 
@@ -358,13 +388,14 @@ class OrSubstitution(AndSubstitution):
     """'true' when either value is true."""
 
     def perform(self, context: LaunchContext) -> str:
+        """'true' or 'false'."""
         return str(_truth(context, self.left) or _truth(context, self.right)).lower()
 
 
 class EqualsSubstitution(Substitution):
     """'true' when both values perform to the same text (booleans compared as such)."""
 
-    def __init__(self, left: Any, right: Any) -> None:
+    def __init__(self, left: object, right: object) -> None:
         self.left = normalize_to_list_of_substitutions(_plain(left))
         self.right = normalize_to_list_of_substitutions(_plain(right))
 
@@ -374,6 +405,7 @@ class EqualsSubstitution(Substitution):
         return _canonical(a) == _canonical(b)
 
     def perform(self, context: LaunchContext) -> str:
+        """'true' or 'false'."""
         return str(self._equal(context)).lower()
 
 
@@ -381,6 +413,7 @@ class NotEqualsSubstitution(EqualsSubstitution):
     """'true' when the values differ."""
 
     def perform(self, context: LaunchContext) -> str:
+        """'true' or 'false'."""
         return str(not self._equal(context)).lower()
 
 
@@ -398,11 +431,12 @@ class IfElseSubstitution(Substitution):
         self.else_value = normalize_to_list_of_substitutions(else_value)
 
     def perform(self, context: LaunchContext) -> str:
+        """The chosen value, performed."""
         chosen = self.if_value if _truth(context, self.condition) else self.else_value
         return perform_substitutions(context, chosen)
 
 
-def _plain(value: Any) -> Any:
+def _plain(value: object) -> object:
     return '' if value is None else value
 
 

@@ -39,6 +39,7 @@ def get_package_share_directory(package_name: str, print_warning: bool = True) -
 
 
 def get_package_share_path(package_name: str, print_warning: bool = True) -> Path:
+    """The share directory as a Path (ament_index_python's newer spelling)."""
     return Path(get_package_share_directory(package_name, print_warning))
 
 

@@ -83,12 +83,9 @@ def read_manifest(path: Path) -> Manifest:
     # imported here: every process that uses types loads this module, few read a manifest
     import xml.etree.ElementTree as ET
 
-    try:
-        data = path.read_bytes()
-    except OSError as e:
-        raise ManifestError(f'{path}: {e.strerror or e}') from None
-    if len(data) > _MAX_BYTES:
-        raise ManifestError(f'{path}: too large for a package manifest')
+    from ros2lite.files import read_bounded
+
+    data = read_bounded(path, _MAX_BYTES, ManifestError, 'a package manifest')
     try:
         root = ET.fromstring(data)
     except ET.ParseError as e:

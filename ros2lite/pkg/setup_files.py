@@ -18,7 +18,6 @@ import re
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
 
 __all__ = ['PythonPackageInfo', 'parse_console_script', 'read_python_package']
 
@@ -65,9 +64,9 @@ class _Evaluator:
     """Evaluates literal-ish expressions against module-level names; UNKNOWN otherwise."""
 
     def __init__(self) -> None:
-        self.names: dict[str, Any] = {}
+        self.names: dict[str, object] = {}
 
-    def value(self, node: ast.AST) -> Any:
+    def value(self, node: ast.AST) -> object:
         if isinstance(node, ast.Constant) and isinstance(
             node.value, (str, int, float, bool, type(None))
         ):
@@ -76,7 +75,7 @@ class _Evaluator:
             items = [self.value(e) for e in node.elts]
             return UNKNOWN if any(i is UNKNOWN for i in items) else items
         if isinstance(node, ast.Dict):
-            result: dict[Any, Any] = {}
+            result: dict[str | int, object] = {}
             for k, v in zip(node.keys, node.values, strict=True):
                 key = self.value(k) if k is not None else UNKNOWN
                 if isinstance(key, (str, int)):
@@ -110,9 +109,10 @@ class _Evaluator:
             return ''.join(parts)
         if isinstance(node, ast.Call) and _dotted(node.func) in ('os.path.join', 'path.join'):
             args = [self.value(a) for a in node.args]
-            if node.keywords or not args or not all(isinstance(a, str) for a in args):
+            texts = [a for a in args if isinstance(a, str)]
+            if node.keywords or not args or len(texts) != len(args):
                 return UNKNOWN
-            return os.path.join(*args)
+            return os.path.join(*texts)
         return UNKNOWN
 
 
@@ -124,7 +124,7 @@ def _dotted(node: ast.AST) -> str:
     return ''
 
 
-def _setup_keywords(tree: ast.Module) -> dict[str, Any]:
+def _setup_keywords(tree: ast.Module) -> dict[str, object]:
     """The keyword arguments of the `setup(...)` call, evaluated where literal."""
     ev = _Evaluator()
     for stmt in tree.body:
@@ -142,7 +142,7 @@ def _setup_keywords(tree: ast.Module) -> dict[str, Any]:
     return {}
 
 
-def _scripts_from(value: Any) -> Iterable[str]:
+def _scripts_from(value: object) -> Iterable[str]:
     """console_scripts lines from setup()'s entry_points (a dict, or an INI string)."""
     if isinstance(value, dict):
         scripts = value.get('console_scripts')

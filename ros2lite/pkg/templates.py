@@ -200,20 +200,21 @@ def _ament_deps(target: str, deps: Sequence[str]) -> str:
     return f'ament_target_dependencies(\n  {target}\n{quoted})\n'
 
 
+def _cmake_head(project: str) -> str:
+    """What every generated CMakeLists.txt starts with, up to finding its dependencies."""
+    return (
+        f'cmake_minimum_required(VERSION 3.8)\n{project}\n\n'
+        'if(CMAKE_COMPILER_IS_GNUCXX OR CMAKE_CXX_COMPILER_ID MATCHES "Clang")\n'
+        '  add_compile_options(-Wall -Wextra -Wpedantic)\n'
+        'endif()\n\n'
+        '# find dependencies\n'
+    )
+
+
 def ament_cmake_lists(spec: PackageSpec) -> str:
     """CMakeLists.txt of an ament_cmake package (executable and/or library if asked)."""
     deps = spec.dependencies
-    out = [
-        'cmake_minimum_required(VERSION 3.8)\n',
-        f'project({spec.name})\n',
-        '\n',
-        'if(CMAKE_COMPILER_IS_GNUCXX OR CMAKE_CXX_COMPILER_ID MATCHES "Clang")\n',
-        '  add_compile_options(-Wall -Wextra -Wpedantic)\n',
-        'endif()\n',
-        '\n',
-        '# find dependencies\n',
-        'find_package(ament_cmake REQUIRED)\n',
-    ]
+    out = [_cmake_head(f'project({spec.name})'), 'find_package(ament_cmake REQUIRED)\n']
     if spec.library_name:
         out.append('find_package(ament_cmake_ros REQUIRED)\n')
     out.append(_find_packages(deps))
@@ -293,21 +294,23 @@ def ament_cmake_lists(spec: PackageSpec) -> str:
     return ''.join(out)
 
 
+def _plain_target_settings(target: str, includes: str) -> str:
+    """A plain cmake target's language standards and include directories (its own
+    include/ and its dependencies')."""
+    return (
+        f'target_compile_features({target} PUBLIC c_std_99 cxx_std_17)  # C99 and C++17\n'
+        f'target_include_directories({target} PUBLIC\n'
+        '  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>\n'
+        '  $<INSTALL_INTERFACE:include>\n'
+        f'{includes})\n'
+    )
+
+
 def cmake_lists(spec: PackageSpec) -> str:
     """CMakeLists.txt of a plain cmake package, with its package config files."""
     name = spec.name
     deps = spec.dependencies
-    out = [
-        'cmake_minimum_required(VERSION 3.8)\n',
-        f'project({name} VERSION {spec.version})\n',
-        '\n',
-        'if(CMAKE_COMPILER_IS_GNUCXX OR CMAKE_CXX_COMPILER_ID MATCHES "Clang")\n',
-        '  add_compile_options(-Wall -Wextra -Wpedantic)\n',
-        'endif()\n',
-        '\n',
-        '# find dependencies\n',
-        _find_packages(deps),
-    ]
+    out = [_cmake_head(f'project({name} VERSION {spec.version})'), _find_packages(deps)]
     targets: list[str] = []
     link = ''.join(f' ${{{d}_LIBRARIES}}' for d in deps)
     includes = ''.join(f'  PUBLIC ${{{d}_INCLUDE_DIRS}}\n' for d in deps)
@@ -318,12 +321,7 @@ def cmake_lists(spec: PackageSpec) -> str:
             '\n',
             f'add_library({lib} SHARED src/{lib}.cpp)\n',
             f'add_library({name}::{lib} ALIAS {lib})\n',
-            f'target_compile_features({lib} PUBLIC c_std_99 cxx_std_17)  # C99 and C++17\n',
-            f'target_include_directories({lib} PUBLIC\n',
-            '  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>\n',
-            '  $<INSTALL_INTERFACE:include>\n',
-            includes,
-            ')\n',
+            _plain_target_settings(lib, includes),
             f'target_link_libraries({lib}{link})\n' if deps else '',
             f'target_compile_definitions({lib} PRIVATE "{name.upper()}_BUILDING_LIBRARY")\n',
             '\n',
@@ -335,12 +333,7 @@ def cmake_lists(spec: PackageSpec) -> str:
         out += [
             '\n',
             f'add_executable({node} src/{node}.cpp)\n',
-            f'target_compile_features({node} PUBLIC c_std_99 cxx_std_17)  # C99 and C++17\n',
-            f'target_include_directories({node} PUBLIC\n',
-            '  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>\n',
-            '  $<INSTALL_INTERFACE:include>\n',
-            includes,
-            ')\n',
+            _plain_target_settings(node, includes),
         ]
         if spec.library_name:
             out.append(f'target_link_libraries({node} {spec.library_name})\n')

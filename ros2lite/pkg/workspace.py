@@ -57,10 +57,12 @@ class SourcePackage:
 
     @property
     def name(self) -> str:
+        """The package's name, from its package.xml."""
         return self.manifest.name
 
     @property
     def directory(self) -> Path:
+        """The directory holding its package.xml."""
         return self.manifest.directory
 
 

@@ -1,18 +1,8 @@
 """`launch`, as ROS launch files import it: ros2lite's launch library under launch's names
 (names only; the code is in ros2lite.launch)."""
 
-from ros2lite.launch import (
-    Action,
-    Condition,
-    Event,
-    EventHandler,
-    LaunchContext,
-    LaunchDescription,
-    LaunchDescriptionEntity,
-    LaunchService,
-    SomeSubstitutionsType,
-    Substitution,
-)
+from ros2lite import launch as _launch
+from ros2lite.launch import *  # noqa: F403
 from ros2lite.launch.sources import LaunchDescriptionSource
 
 from . import (
@@ -26,17 +16,8 @@ from . import (
 )
 
 __all__ = [
-    'Action',
-    'Condition',
-    'Event',
-    'EventHandler',
-    'LaunchContext',
-    'LaunchDescription',
-    'LaunchDescriptionEntity',
+    *_launch.__all__,
     'LaunchDescriptionSource',
-    'LaunchService',
-    'SomeSubstitutionsType',
-    'Substitution',
     'actions',
     'conditions',
     'event_handlers',

@@ -1,19 +1,4 @@
 """`launch.conditions`: ros2lite's conditions under launch's names."""
 
-from ros2lite.launch.conditions import (
-    Condition,
-    IfCondition,
-    LaunchConfigurationEquals,
-    LaunchConfigurationNotEquals,
-    UnlessCondition,
-    evaluate_condition_expression,
-)
-
-__all__ = [
-    'Condition',
-    'IfCondition',
-    'LaunchConfigurationEquals',
-    'LaunchConfigurationNotEquals',
-    'UnlessCondition',
-    'evaluate_condition_expression',
-]
+from ros2lite.launch.conditions import *  # noqa: F403
+from ros2lite.launch.conditions import __all__  # noqa: F401

@@ -1,45 +1,4 @@
 """`launch.substitutions`: ros2lite's substitutions under launch's names."""
 
-from ros2lite.launch.errors import SubstitutionFailure
-from ros2lite.launch.substitutions import (
-    AndSubstitution,
-    AnonName,
-    Command,
-    EnvironmentVariable,
-    EqualsSubstitution,
-    FindExecutable,
-    IfElseSubstitution,
-    LaunchConfiguration,
-    LocalSubstitution,
-    NotEqualsSubstitution,
-    NotSubstitution,
-    OrSubstitution,
-    PathJoinSubstitution,
-    PythonExpression,
-    Substitution,
-    TextSubstitution,
-    ThisLaunchFile,
-    ThisLaunchFileDir,
-)
-
-__all__ = [
-    'AndSubstitution',
-    'AnonName',
-    'Command',
-    'EnvironmentVariable',
-    'EqualsSubstitution',
-    'FindExecutable',
-    'IfElseSubstitution',
-    'LaunchConfiguration',
-    'LocalSubstitution',
-    'NotEqualsSubstitution',
-    'NotSubstitution',
-    'OrSubstitution',
-    'PathJoinSubstitution',
-    'PythonExpression',
-    'Substitution',
-    'SubstitutionFailure',
-    'TextSubstitution',
-    'ThisLaunchFile',
-    'ThisLaunchFileDir',
-]
+from ros2lite.launch.substitutions import *  # noqa: F403
+from ros2lite.launch.substitutions import __all__  # noqa: F401

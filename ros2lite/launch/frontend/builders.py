@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import shlex
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..actions import (
     Action,
+    ActionOptions,
     DeclareLaunchArgument,
     GroupAction,
     IncludeLaunchDescription,
@@ -32,10 +33,13 @@ from ..substitutions import Substitution, TextSubstitution
 from .entity import Entity
 from .substitutions import parse_substitutions
 
+if TYPE_CHECKING:
+    from ..ros import ParameterEntry
+
 __all__ = ['BUILDERS', 'build', 'build_all']
 
 
-def _condition(e: Entity) -> dict[str, Any]:
+def _condition(e: Entity) -> ActionOptions:
     if_ = e.subs('if')
     unless = e.subs('unless')
     if if_ is not None and unless is not None:
@@ -95,21 +99,22 @@ def _let(e: Entity) -> Action:
     )
 
 
-def _process_options(e: Entity) -> dict[str, Any]:
+# ExecuteProcess keyword ← the launch file attribute that gives it
+_PROCESS_ATTRIBUTES = (
+    ('output', 'output'),
+    ('prefix', 'launch-prefix'),
+    ('sigterm_timeout', 'sigterm_timeout'),
+    ('sigkill_timeout', 'sigkill_timeout'),
+    ('respawn', 'respawn'),
+)
+
+
+def _process_options(e: Entity) -> dict[str, Any]:  # ExecuteProcess's keywords
     options: dict[str, Any] = {}
-    output = e.subs('output')
-    if output is not None:
-        options['output'] = output
-    prefix = e.subs('launch-prefix')
-    if prefix is not None:
-        options['prefix'] = prefix
-    for key in ('sigterm_timeout', 'sigkill_timeout'):
-        value = e.subs(key)
+    for key, attribute in _PROCESS_ATTRIBUTES:
+        value = e.subs(attribute)
         if value is not None:
             options[key] = value
-    respawn = e.subs('respawn')
-    if respawn is not None:
-        options['respawn'] = respawn
     delay = e.number('respawn_delay')
     if delay is not None:
         options['respawn_delay'] = delay
@@ -136,7 +141,7 @@ def _executable(e: Entity) -> Action:
     )
 
 
-def _param_value(p: Entity) -> Any:
+def _param_value(p: Entity) -> object:
     value = p.value('value')
     sep = p.text('value-sep')
     if isinstance(value, str):
@@ -146,10 +151,10 @@ def _param_value(p: Entity) -> Any:
     return value
 
 
-def _params(e: Entity) -> list[Any]:
+def _params(e: Entity) -> list[ParameterEntry]:
     """A node's parameters: dicts for name/value (nested params become `a.b`), paths for
     `from`."""
-    out: list[Any] = []
+    out: list[ParameterEntry] = []
     for p in e.child_list('param'):
         source = p.subs('from')
         if source is not None:
@@ -166,7 +171,7 @@ def _param_name(p: Entity) -> str:
     return name
 
 
-def _param_tree(p: Entity) -> Any:
+def _param_tree(p: Entity) -> object:
     nested = p.child_list('param')
     if nested:
         return {_param_name(child): _param_tree(child) for child in nested}
@@ -305,4 +310,5 @@ def build(e: Entity) -> LaunchDescriptionEntity:
 
 
 def build_all(entities: list[Entity]) -> list[LaunchDescriptionEntity]:
+    """The launch actions of a list of frontend entities, in order."""
     return [build(e) for e in entities]

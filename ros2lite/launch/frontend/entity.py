@@ -9,7 +9,6 @@ and `param`/`remap`/`env`/`arg` are lists of mappings.
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
-from typing import Any
 
 from ..errors import InvalidFrontendLaunchFileError
 from ..substitutions import Substitution, TextSubstitution
@@ -27,7 +26,7 @@ class Entity:
     type_name: str = ''
     where: str = ''
 
-    def raw(self, name: str) -> Any:
+    def raw(self, name: str) -> object:
         """The attribute as written (None when absent)."""
         raise NotImplementedError
 
@@ -40,9 +39,10 @@ class Entity:
         raise NotImplementedError
 
     def error(self, message: str) -> InvalidFrontendLaunchFileError:
+        """An error naming the file and the element, for `raise`."""
         return InvalidFrontendLaunchFileError(f'{self.where}: <{self.type_name}>: {message}')
 
-    def _required(self, name: str, optional: bool) -> Any:
+    def _required(self, name: str, optional: bool) -> object:
         value = self.raw(name)
         if value is None and not optional:
             raise self.error(f"missing attribute '{name}'")
@@ -71,6 +71,7 @@ class Entity:
         return str(value)
 
     def flag(self, name: str, default: bool) -> bool:
+        """A boolean attribute ('true'/'false', '1'/'0', 'yes'/'no'), or `default` when absent."""
         value = self.raw(name)
         if value is None:
             return default
@@ -84,37 +85,47 @@ class Entity:
         raise self.error(f"attribute '{name}' must be true or false, not '{value}'")
 
     def number(self, name: str, *, optional: bool = True) -> float | None:
+        """A numeric attribute (None when absent and optional)."""
         value = self._required(name, optional)
         if value is None:
             return None
         try:
+            if not isinstance(value, (str, int, float)):
+                raise TypeError(value)
             return float(value)
         except (TypeError, ValueError):
             raise self.error(f"attribute '{name}' must be a number, not '{value}'") from None
 
-    def value(self, name: str) -> Any:
+    def value(self, name: str) -> object:
         """A parameter value: YAML keeps its type; text may hold substitutions."""
         return self.raw(name)
 
 
 class XmlEntity(Entity):
+    """An element of an XML launch file."""
+
     def __init__(self, element: ET.Element, where: str) -> None:
         self.element = element
         self.type_name = element.tag
         self.where = where
 
-    def raw(self, name: str) -> Any:
+    def raw(self, name: str) -> object:
+        """The attribute's text (None when absent)."""
         return self.element.get(name)
 
     def children(self) -> list[Entity]:
+        """Every sub-element, as entities."""
         return [XmlEntity(child, self.where) for child in self.element]
 
     def child_list(self, tag: str) -> list[Entity]:
+        """The sub-elements with tag `tag`."""
         return [XmlEntity(child, self.where) for child in self.element if child.tag == tag]
 
 
 class YamlEntity(Entity):
-    def __init__(self, type_name: str, body: Any, where: str) -> None:
+    """A mapping of a YAML launch file (its attributes and nested lists)."""
+
+    def __init__(self, type_name: str, body: object, where: str) -> None:
         if body is None:
             body = {}
         if not isinstance(body, dict):
@@ -125,20 +136,23 @@ class YamlEntity(Entity):
         self.body = body
         self.where = where
 
-    def raw(self, name: str) -> Any:
+    def raw(self, name: str) -> object:
+        """The key's value as YAML typed it (None when absent)."""
         return self.body.get(name)
 
     def children(self) -> list[Entity]:
+        """The actions of its `children` list."""
         return _entities(self.body.get('children') or [], self.where)
 
     def child_list(self, tag: str) -> list[Entity]:
+        """The mappings of its list `tag`."""
         items = self.body.get(tag) or []
         if not isinstance(items, list):
             raise self.error(f"'{tag}' must be a list")
         return [YamlEntity(tag, item, self.where) for item in items]
 
 
-def _entities(items: Any, where: str) -> list[Entity]:
+def _entities(items: object, where: str) -> list[Entity]:
     if not isinstance(items, list):
         raise InvalidFrontendLaunchFileError(f'{where}: expected a list of actions')
     out: list[Entity] = []
@@ -152,7 +166,7 @@ def _entities(items: Any, where: str) -> list[Entity]:
     return out
 
 
-def yaml_root(document: Any, where: str) -> list[Entity]:
+def yaml_root(document: object, where: str) -> list[Entity]:
     """The actions of a YAML launch document (`launch: [...]`)."""
     if not isinstance(document, dict) or 'launch' not in document:
         raise InvalidFrontendLaunchFileError(f"{where}: a YAML launch file starts with 'launch:'")

@@ -5,6 +5,8 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+from ros2lite.files import read_bounded
+
 from ..actions import LaunchDescription
 from ..errors import InvalidFrontendLaunchFileError
 from .builders import build_all
@@ -16,22 +18,12 @@ FRONTEND_EXTENSIONS = {'.xml': 'xml', '.yaml': 'yaml', '.yml': 'yaml'}
 _MAX_BYTES = 4 << 20
 
 
-def _read(path: Path) -> bytes:
-    try:
-        data = path.read_bytes()
-    except OSError as e:
-        raise InvalidFrontendLaunchFileError(f'{path}: {e.strerror or e}') from None
-    if len(data) > _MAX_BYTES:
-        raise InvalidFrontendLaunchFileError(f'{path}: too large for a launch file')
-    return data
-
-
 def load_frontend_file(path: Path, kind: str | None = None) -> LaunchDescription:
     """The launch description of an XML or YAML launch file (`kind` 'xml'/'yaml', else by
     extension)."""
     kind = kind or FRONTEND_EXTENSIONS.get(path.suffix.lower())
     where = str(path)
-    data = _read(path)
+    data = read_bounded(path, _MAX_BYTES, InvalidFrontendLaunchFileError, 'a launch file')
     if kind == 'xml':
         try:
             root = ET.fromstring(data)

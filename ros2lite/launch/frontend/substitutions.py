@@ -42,6 +42,18 @@ def _one(name: str, args: Args, low: int, high: int) -> None:
         )
 
 
+def _fixed(
+    name: str, count: int, make: Callable[..., Substitution]
+) -> Callable[[Args], Substitution]:
+    """A substitution that takes exactly `count` arguments, passed to `make` in order."""
+
+    def build(args: Args) -> Substitution:
+        _one(name, args, count, count)
+        return make(*args)
+
+    return build
+
+
 def _var(args: Args) -> Substitution:
     _one('var', args, 1, 2)
     return LaunchConfiguration(args[0], default=args[1] if len(args) > 1 else None)
@@ -71,31 +83,6 @@ def _find_prefix(args: Args) -> Substitution:
     return FindPackagePrefix(args[0])
 
 
-def _find_exec(args: Args) -> Substitution:
-    _one('find-exec', args, 1, 1)
-    return FindExecutable(name=args[0])
-
-
-def _dirname(args: Args) -> Substitution:
-    _one('dirname', args, 0, 0)
-    return ThisLaunchFileDir()
-
-
-def _filename(args: Args) -> Substitution:
-    _one('filename', args, 0, 0)
-    return ThisLaunchFile()
-
-
-def _anon(args: Args) -> Substitution:
-    _one('anon', args, 1, 1)
-    return AnonName(args[0])
-
-
-def _eval(args: Args) -> Substitution:
-    _one('eval', args, 1, 1)
-    return PythonExpression(args[0])
-
-
 def _command(args: Args) -> Substitution:
     _one('command', args, 1, 2)
     mode = (
@@ -106,48 +93,23 @@ def _command(args: Args) -> Substitution:
     return Command(args[0], on_stderr=mode)
 
 
-def _not(args: Args) -> Substitution:
-    _one('not', args, 1, 1)
-    return NotSubstitution(args[0])
-
-
-def _and(args: Args) -> Substitution:
-    _one('and', args, 2, 2)
-    return AndSubstitution(args[0], args[1])
-
-
-def _or(args: Args) -> Substitution:
-    _one('or', args, 2, 2)
-    return OrSubstitution(args[0], args[1])
-
-
-def _equals(args: Args) -> Substitution:
-    _one('equals', args, 2, 2)
-    return EqualsSubstitution(args[0], args[1])
-
-
-def _not_equals(args: Args) -> Substitution:
-    _one('not-equals', args, 2, 2)
-    return NotEqualsSubstitution(args[0], args[1])
-
-
 SUBSTITUTIONS: dict[str, Callable[[Args], Substitution]] = {
     'var': _var,
     'env': _env,
     'optenv': _optenv,
     'find-pkg-share': _find_share,
     'find-pkg-prefix': _find_prefix,
-    'find-exec': _find_exec,
-    'dirname': _dirname,
-    'filename': _filename,
-    'anon': _anon,
-    'eval': _eval,
+    'find-exec': _fixed('find-exec', 1, lambda name: FindExecutable(name=name)),
+    'dirname': _fixed('dirname', 0, ThisLaunchFileDir),
+    'filename': _fixed('filename', 0, ThisLaunchFile),
+    'anon': _fixed('anon', 1, AnonName),
+    'eval': _fixed('eval', 1, PythonExpression),
     'command': _command,
-    'not': _not,
-    'and': _and,
-    'or': _or,
-    'equals': _equals,
-    'not-equals': _not_equals,
+    'not': _fixed('not', 1, NotSubstitution),
+    'and': _fixed('and', 2, AndSubstitution),
+    'or': _fixed('or', 2, OrSubstitution),
+    'equals': _fixed('equals', 2, EqualsSubstitution),
+    'not-equals': _fixed('not-equals', 2, NotEqualsSubstitution),
 }
 
 
