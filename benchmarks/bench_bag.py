@@ -11,6 +11,17 @@ Each benchmark starts its own router on a free loopback port with a private doma
   send rate is printed with BENCH_BAG_VERBOSE=1 (when it is lower than the record rate the
   publisher, not the recorder, set the pace). Small: `std_msgs/String` 'Hello World: i'
   (~30 B). Large: 1 MiB strings, reported in MB/s (10^6 B).
+* record, the two halves measured separately (same payloads, medians of RUNS):
+  - writer path (`bag_record_writer_*`): the Recorder's real writer loop draining a queue
+    that already holds the N received samples into a bag, against the raw mcap writer
+    (ratio; this is the part that must keep up with the raw writer).
+  - receive path (`bag_record_receive_*`): the recorder's subscription (a
+    MonitoredSubscription handing bytes, attachment and arrival time to the recorder's
+    queue) receiving the publisher's N samples with nothing written, against a raw zenoh
+    subscriber doing the same (payload and attachment copied out, stamped, queued).
+  The end-to-end ratio is also given against the floor those raw parts set together in one
+  process (`bag_record_*_vs_raw_floor`: 1 / (1/raw writer + 1/raw receive)), since Python
+  runs the receiving and the writing thread one at a time.
 * play: a 1 kHz bag of 3000 small messages played by the library's `Player`; lateness =
   actual publish time - scheduled time of every message; p50 and p99 reported in ms, ratio
   = value / the 1 ms target.
@@ -32,6 +43,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -39,7 +51,7 @@ from typing import Any
 
 from common import report, wall
 
-RUNS = 3
+RUNS = int(os.environ.get("BENCH_RUNS", 3))  # interleaved runs (median)
 VERBOSE = bool(os.environ.get("BENCH_BAG_VERBOSE"))
 
 PUBLISHER = r"""
@@ -172,6 +184,126 @@ def record_once(n: int, size: int, directory: str) -> tuple[float, float]:
         ctx.try_shutdown()
 
 
+def writer_path_rate(payloads: list[bytes], directory: str) -> float:
+    """Messages per second of the Recorder's writer loop over a queue of received samples."""
+    from ros2lite.bag import Writer
+    from ros2lite.bag.recorder import Recorder, RecordOptions, TopicStats
+    from ros2lite.context import Context
+    from ros2lite.node import Node
+    from ros2lite.transport.attachment import pack_attachment
+
+    ctx = Context()
+    ctx.init([])
+    try:
+        node = Node("bench_bag_writer", context=ctx, enable_rosout=False)
+        writer = Writer(os.path.join(directory, f"writer_{time.monotonic_ns()}"))
+        recorder = Recorder(node, writer, RecordOptions(topics=["/bench"]))
+        writer.open()
+        tid = writer.create_topic("/bench", "std_msgs/msg/String")
+        recorder._stats_by_tid[tid] = TopicStats("/bench", "std_msgs/msg/String")
+        stamp, gid = time.time_ns(), bytes(16)
+        recorder._queue.extend(
+            (tid, p, stamp + i, pack_attachment(i + 1, stamp + i, gid))
+            for i, p in enumerate(payloads)
+        )
+        t0 = time.perf_counter()
+        recorder._write_loop()  # (white box) the loop of the writer thread; ends when drained
+        writer.close()
+        dt = time.perf_counter() - t0
+        if recorder.error is not None or writer.message_count != len(payloads):
+            raise RuntimeError(f"writer path failed: {recorder.error}")
+        shutil.rmtree(writer.path)
+        return len(payloads) / dt
+    finally:
+        ctx.try_shutdown()
+
+
+def receive_rate(n: int, size: int, raw: bool) -> float:
+    """Messages per second received from a publisher process by the recorder's subscription
+    (raw=False) or by a raw zenoh subscriber doing the same work (raw=True); nothing written."""
+    import zenoh
+
+    from ros2lite.context import Context
+    from ros2lite.interfaces import type_hash
+    from ros2lite.monitor.subscription import MonitoredSubscription
+    from ros2lite.node import Node
+    from ros2lite.qos import HistoryPolicy, QoSProfile
+    from ros2lite.transport.keys import EntityKind, endpoint_token, topic_key
+
+    topic = f"/bench_bag_rx_{time.monotonic_ns()}"
+    ctx = Context()
+    ctx.init([])
+    stamps: list[int] = []
+    queue: list[tuple[bytes, bytes, int]] = []
+    done = threading.Event()
+
+    def on_payload(data: bytes, attachment: bytes, received: int) -> None:
+        queue.append((data, attachment, received))
+        if len(queue) == n:
+            stamps.append(time.perf_counter_ns())
+            done.set()
+        elif len(queue) == 1:
+            stamps.append(time.perf_counter_ns())
+
+    try:
+        node = Node("bench_bag_rx", context=ctx, enable_rosout=False)
+        qos = QoSProfile(history=HistoryPolicy.KEEP_ALL)
+        if raw:
+            from ros2lite.transport.session import as_zenoh, declare_token
+
+            session = as_zenoh(ctx.require())
+            key = topic_key(
+                ctx.domain_id, topic, "std_msgs/msg/String", type_hash("std_msgs/msg/String")
+            )
+            sub = session.declare_subscriber(key, zenoh.handlers.FifoChannel(4096))
+            # only the token of a subscription, so the publisher (which waits for one) goes
+            token = declare_token(
+                session,
+                endpoint_token(
+                    ctx.domain_id,
+                    ctx.zid,
+                    node.node_id,
+                    ctx.next_entity_id(),
+                    EntityKind.SUBSCRIPTION,
+                    node.get_namespace(),
+                    node.get_name(),
+                    topic,
+                    "std_msgs/msg/String",
+                    type_hash("std_msgs/msg/String"),
+                    qos,
+                ),
+            )
+
+            def drain() -> None:
+                now = time.time_ns
+                with contextlib.suppress(zenoh.ZError):
+                    for sample in sub.handler:
+                        att = sample.attachment
+                        if att is not None:
+                            on_payload(sample.payload.to_bytes(), att.to_bytes(), now())
+
+            threading.Thread(target=drain, daemon=True).start()
+        else:
+            MonitoredSubscription(
+                node, "std_msgs/msg/String", topic, None, qos, on_payload=on_payload
+            )
+        publisher = subprocess.Popen(
+            [sys.executable, "-c", PUBLISHER, topic, str(n), str(size)],
+            stdout=subprocess.PIPE,
+            text=True,
+        )
+        publisher_ok = done.wait(120)
+        publisher.communicate(timeout=60)
+        if not publisher_ok:
+            raise RuntimeError(f"lost messages: {len(queue)} of {n} arrived")
+        if raw:
+            sub.undeclare()
+            token.undeclare()
+        return (n - 1) / ((stamps[1] - stamps[0]) / 1e9)
+    finally:
+        ctx.try_shutdown()
+
+
 def bench_record(name: str, n: int, size: int) -> None:
     from ros2lite.interfaces import get_interface, serialize
 
@@ -181,24 +313,29 @@ def bench_record(name: str, n: int, size: int) -> None:
     else:
         payloads = [serialize(String(data=f"Hello World: {i}")) for i in range(n)]
     nbytes = sum(len(p) for p in payloads) / n
-    rec, raw = [], []
+    rates: dict[str, list[float]] = {k: [] for k in ("rec", "raw", "wpath", "rx", "rawrx")}
     with private_router(), tempfile.TemporaryDirectory(dir=os.environ.get("BENCH_TMP")) as tmp:
-        for _ in range(RUNS):
+        from ros2lite.memory import keep_large_buffers
+
+        keep_large_buffers()  # what the recorder's node does: the raw parts get it too
+        for _ in range(RUNS):  # interleaved, so drifting load hits every part alike
             rate, sent = record_once(n, size, tmp)
-            base = raw_mcap_rate(payloads, tmp)
-            rec.append(rate)
-            raw.append(base)
+            rates["rec"].append(rate)
+            rates["raw"].append(raw_mcap_rate(payloads, tmp))
+            rates["wpath"].append(writer_path_rate(payloads, tmp))
+            rates["rx"].append(receive_rate(n, size, raw=False))
+            rates["rawrx"].append(receive_rate(n, size, raw=True))
             if VERBOSE:
-                print(
-                    f"  {name}: recorded {rate:.0f} msg/s, publisher sent {sent:.0f} msg/s, "
-                    f"raw mcap {base:.0f} msg/s",
-                    file=sys.stderr,
-                )
-    r, b = statistics.median(rec), statistics.median(raw)
-    if size:
-        report(name, r * nbytes / 1e6, "MB/s", r / b)
-    else:
-        report(name, r, "msg/s", r / b)
+                last = {k: round(v[-1]) for k, v in rates.items()}
+                print(f"  {name}: {last} (publisher sent {sent:.0f} msg/s)", file=sys.stderr)
+    med = {k: statistics.median(v) for k, v in rates.items()}
+    floor = 1 / (1 / med["raw"] + 1 / med["rawrx"])
+    scale, unit = (nbytes / 1e6, "MB/s") if size else (1.0, "msg/s")
+    report(name, med["rec"] * scale, unit, med["rec"] / med["raw"])
+    report(f"{name}_vs_raw_floor", med["rec"] * scale, unit, med["rec"] / floor)
+    short = name.removeprefix("bag_record_")
+    report(f"bag_record_writer_{short}", med["wpath"] * scale, unit, med["wpath"] / med["raw"])
+    report(f"bag_record_receive_{short}", med["rx"] * scale, unit, med["rx"] / med["rawrx"])
 
 
 def bench_record_small() -> None:

@@ -1,26 +1,39 @@
-"""Client-library throughput: lossless `std_msgs/String` pub→sub through the node API, against
-raw zenoh-python moving the same CDR bytes, measured in the same run.
+"""Client-library pub→sub through the node API, against raw zenoh-python moving the same CDR
+bytes, measured in the same run: throughput of small and 1 MiB messages, and latency.
 
 Arrangement (identical for both sides): a router process on a free loopback port, the
 *subscriber* in this process and the *publisher* in a child process. Both sides open the
 sessions nodes open: peer mode, data on a direct loopback link (the baseline passes
 `node_session_mode()` to `ros2lite.transport.config.open_session`). The publisher sends warm-up
 samples until the subscriber has heard one (so routes exist and nothing is lost to discovery),
-then N samples `Hello World: i` back to back; the subscriber counts them and the rate is N over
-the time from the first to the last arrival. Every sample must arrive (KEEP_ALL + RELIABLE;
-congestion control BLOCK), otherwise the run fails instead of reporting a lossy rate.
+then N samples back to back; the subscriber counts them and the rate is N over the time from
+the first to the last arrival. Every sample must arrive (KEEP_ALL + RELIABLE; congestion
+control BLOCK), otherwise the run fails instead of reporting a lossy rate.
 
-* ros2lite: `create_publisher(String, …, KEEP_ALL)` / `publish(msg)` in the child (message
-  objects built beforehand, serialized by `publish`); `create_subscription(String, …,
-  KEEP_ALL)` spun by a SingleThreadedExecutor here, the callback getting decoded messages.
+* ros2lite: `create_publisher(T, …, KEEP_ALL)` / `publish(msg)` in the child (message objects
+  built beforehand, serialized by `publish`); `create_subscription(T, …, KEEP_ALL)` here, the
+  callback getting decoded messages, spun either by `spin_until_future_complete` (what
+  `spin()` does per turn) or, as many tutorials do, by `while ok(): spin_once(node)` on the
+  global executor (`_spin_once` lines).
 * baseline: `declare_publisher(key, RELIABLE, BLOCK)` / `put(cdr)` of the pre-serialized
   payloads, and `declare_subscriber(key, FifoChannel)` drained by a Python thread taking
   `sample.payload.to_bytes()`. (A plain callback subscriber is faster to write but not
-  lossless: zenoh-python's callback thread drops samples at these rates.)
+  lossless: zenoh-python's callback thread drops samples at these rates.) The raw side sends
+  no rmw_zenoh attachment; ros2lite must (33 bytes per sample: sequence number, timestamp,
+  GID), which zenoh-python charges on both ends. `node_pubsub_string_raw_attachment` shows
+  that cost: the same raw pair with the attachment put on every sample (ratio vs raw).
+* image: `sensor_msgs/Image` 512x512 rgba8 (1 MiB of `data`); the callback reads
+  `len(msg.data)`, the raw side `len(payload.to_bytes())`. Reported in MB/s (10^6 B). Every
+  process here, raw ones included, runs with the allocator setting a node makes
+  (`ros2lite.memory`: large buffers reused instead of mapped and unmapped per message).
+* latency: ping-pong, the child echoing each `std_msgs/String` ping back on a second topic
+  (node: a subscription callback publishing; raw: a FIFO-channel loop putting); this process
+  sends the next ping when the pong of the last arrives. Round-trip p50 and p99 in µs over
+  2000 pings after a warm-up; ratio = ours / raw.
 
-Reported: `node_pubsub_string <msg/s> msg/s <ratio vs raw zenoh>`, medians of 7 runs per side,
-raw and node runs interleaved (BENCH_NODE_VERBOSE=1 prints every run). On a small shared VM
-single runs scatter by ±25 %, which is why medians of interleaved runs are compared.
+Medians of RUNS runs per side, the sides interleaved so drifting machine load hits both alike
+(BENCH_NODE_VERBOSE=1 prints every run, and the publisher's own send rate). On a small shared
+VM single runs scatter by ±25 %, which is why medians of interleaved runs are compared.
 """
 
 from __future__ import annotations
@@ -39,42 +52,107 @@ from typing import Any
 from common import report
 
 N_MESSAGES = 200_000
-RUNS = 7
+N_IMAGES = 400
+N_PINGS = 2000
+RUNS = int(os.environ.get('BENCH_RUNS', 5))  # interleaved runs per side (median)
 WARMUP = 'warmup'
+VERBOSE = bool(os.environ.get('BENCH_NODE_VERBOSE'))
+STRING = 'std_msgs/msg/String'
+IMAGE = 'sensor_msgs/msg/Image'
 
+# the publisher child: argv = mode (node, raw, rawatt), kind (string, image), n, key
 PUBLISHER = r'''
 import sys, threading, time
-mode, n, key = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+mode, kind, n, key = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
 go = threading.Event()
 threading.Thread(target=lambda: (sys.stdin.readline(), go.set()), daemon=True).start()
+from array import array
 from ros2lite import interfaces
-String = interfaces.get_interface('std_msgs/msg/String')
+if kind == 'string':
+    T = interfaces.get_interface('std_msgs/msg/String')
+    msgs = [T(data=f'Hello World: {i}') for i in range(n)]
+    warm = T(data='warmup')
+else:
+    T = interfaces.get_interface('sensor_msgs/msg/Image')
+    image = T(height=512, width=512, encoding='rgba8', step=2048,
+              data=array('B', bytes(range(256))) * 4096)
+    msgs = [image] * n
+    warm = T(encoding='warmup')
 if mode == 'node':
     import ros2lite
     from ros2lite.qos import HistoryPolicy, QoSProfile
     ros2lite.init([])
     node = ros2lite.Node('bench_pub', enable_rosout=False)
-    pub = node.create_publisher(String, 'bench_chatter',
-                                QoSProfile(history=HistoryPolicy.KEEP_ALL))
-    msgs = [String(data=f'Hello World: {i}') for i in range(n)]
-    warm = String(data='warmup')
+    topic = 'bench_chatter' if kind == 'string' else 'bench_image'
+    pub = node.create_publisher(T, topic, QoSProfile(history=HistoryPolicy.KEEP_ALL))
     send = pub.publish
 else:
     import zenoh
+    from ros2lite.memory import keep_large_buffers
+    from ros2lite.transport.attachment import pack_attachment
+    keep_large_buffers()  # the allocator setting a node has: the same terms for both
     from ros2lite.transport.config import node_session_mode, open_session
     session = open_session(mode=node_session_mode())
-    pub = session.declare_publisher(key, reliability=zenoh.Reliability.RELIABLE,
-                                    congestion_control=zenoh.CongestionControl.BLOCK)
-    msgs = [interfaces.serialize(String(data=f'Hello World: {i}')) for i in range(n)]
-    warm = interfaces.serialize(String(data='warmup'))
-    send = pub.put
+    zpub = session.declare_publisher(key, reliability=zenoh.Reliability.RELIABLE,
+                                     congestion_control=zenoh.CongestionControl.BLOCK)
+    msgs = [interfaces.serialize(m) for m in msgs]
+    warm = interfaces.serialize(warm)
+    send = zpub.put
+    if mode == 'rawatt':  # what rmw_zenoh needs on every sample, nothing else
+        put, gid, clock, seq = zpub.put, bytes(16), time.time_ns, iter(range(1, 1 << 62))
+        def send(m):
+            put(m, attachment=pack_attachment(next(seq), clock(), gid))
 print('ready', flush=True)
 while not go.is_set():
     send(warm)
     time.sleep(0.01)
+t0 = time.perf_counter()
 for m in msgs:
     send(m)
+print(n / (time.perf_counter() - t0), flush=True)
 sys.stdin.readline()   # stay connected until the subscriber has everything
+'''
+
+# the latency echo child: argv = mode (node, raw), ping key, pong key
+ECHO = r'''
+import sys
+mode, ping_key, pong_key = sys.argv[1], sys.argv[2], sys.argv[3]
+if mode == 'node':
+    import threading
+    import ros2lite
+    from ros2lite.interfaces import get_interface
+    String = get_interface('std_msgs/msg/String')
+    ros2lite.init([])
+    node = ros2lite.Node('bench_echo', enable_rosout=False)
+    pong = node.create_publisher(String, 'bench_pong', 10)
+    node.create_subscription(String, 'bench_ping', pong.publish, 10)
+    threading.Thread(target=lambda: (sys.stdin.read(), ros2lite.shutdown()), daemon=True).start()
+    print('ready', flush=True)
+    ros2lite.spin(node)
+else:
+    import threading
+    import zenoh
+    from ros2lite.memory import keep_large_buffers
+    from ros2lite.transport.config import node_session_mode, open_session
+    keep_large_buffers()
+    session = open_session(mode=node_session_mode())
+    pub = session.declare_publisher(pong_key)
+    sub = session.declare_subscriber(ping_key, zenoh.handlers.FifoChannel(64))
+
+    def echo(put=pub.put, channel=sub.handler):
+        try:
+            for sample in channel:
+                put(sample.payload.to_bytes())
+        except zenoh.ZError:
+            pass
+
+    thread = threading.Thread(target=echo)
+    thread.start()
+    print('ready', flush=True)
+    sys.stdin.read()
+    sub.undeclare()
+    thread.join()
+    session.close()
 '''
 
 
@@ -138,6 +216,9 @@ def private_router() -> Iterator[None]:
     """
     import socket
 
+    from ros2lite.memory import keep_large_buffers
+
+    keep_large_buffers()  # as nodes do: the raw side measured here gets it too
     with socket.socket() as sock:
         sock.bind(('127.0.0.1', 0))
         port = sock.getsockname()[1]
@@ -180,9 +261,17 @@ def private_router() -> Iterator[None]:
                 os.environ[k] = v
 
 
-def run_once(
-    mode: str, n: int, key: str, subscribe: Callable[[Counter], Callable[[Flag, float], None]]
-) -> float:
+def _key(type_name: str, topic: str) -> str:
+    from ros2lite.interfaces import type_hash
+    from ros2lite.transport.keys import topic_key
+
+    return topic_key(int(os.environ['ROS_DOMAIN_ID']), topic, type_name, type_hash(type_name))
+
+
+Subscribe = Callable[[Counter], Callable[[Flag, float], None]]
+
+
+def run_once(mode: str, kind: str, n: int, key: str, subscribe: Subscribe) -> float:
     """One measured run: start the publisher child, let `subscribe` receive, return msg/s.
 
     `subscribe(counter)` sets up the receiving side and returns `wait(flag, timeout)`, which
@@ -191,7 +280,7 @@ def run_once(
     counter = Counter(n)
     wait = subscribe(counter)
     proc = subprocess.Popen(
-        [sys.executable, '-c', PUBLISHER, mode, str(n), key],
+        [sys.executable, '-c', PUBLISHER, mode, kind, str(n), key],
         stdin=subprocess.PIPE,
         stdout=subprocess.PIPE,
         text=True,
@@ -204,9 +293,10 @@ def run_once(
             raise RuntimeError('publisher never reached the subscriber')
         proc.stdin.write('go\n')
         proc.stdin.flush()
-        wait(counter.done, 8)
+        wait(counter.done, 20)
         if not counter.done.is_set():
             raise RuntimeError(f'lost samples: {counter.count} of {n} arrived')
+        sent = float(proc.stdout.readline())
         proc.stdin.write('done\n')
         proc.stdin.flush()
         proc.wait(timeout=10)
@@ -214,35 +304,15 @@ def run_once(
         if proc.poll() is None:
             proc.kill()
             proc.wait()
+    if VERBOSE:
+        print(
+            f'  {mode}/{kind}: received {counter.rate():.0f}/s, publisher sent {sent:.0f}/s',
+            file=sys.stderr,
+        )
     return counter.rate()
 
 
-def bench_node_throughput() -> tuple[float, float]:
-    """Median node and raw rates of interleaved runs; prints the report lines."""
-    from ros2lite.interfaces import get_interface, serialize, type_hash
-    from ros2lite.transport.keys import topic_key
-
-    String = get_interface('std_msgs/msg/String')
-    warm_cdr = serialize(String(data=WARMUP))
-    with private_router():
-        domain = int(os.environ['ROS_DOMAIN_ID'])
-        key = topic_key(
-            domain, '/bench_chatter', 'std_msgs/msg/String', type_hash('std_msgs/msg/String')
-        )
-        raw_rates: list[float] = []
-        node_rates: list[float] = []
-        for _ in range(RUNS):  # interleaved, so drifting machine load hits both alike
-            raw_rates.append(raw_run(key, warm_cdr))
-            node_rates.append(node_run(key, String))
-    ours, base = statistics.median(node_rates), statistics.median(raw_rates)
-    if os.environ.get('BENCH_NODE_VERBOSE'):
-        print('raw', [round(r) for r in raw_rates], 'node', [round(r) for r in node_rates])
-    report('node_pubsub_string', ours, 'msg/s', ours / base)
-    report('node_pubsub_string_raw_zenoh', base, 'msg/s', 1.0)
-    return ours, base
-
-
-def raw_run(key: str, warm_cdr: bytes) -> float:
+def raw_run(key: str, warm_cdr: bytes, kind: str, n: int, pub_mode: str = 'raw') -> float:
     """Baseline: a FIFO-channel subscriber drained by a Python thread (a plain callback
     subscriber is not lossless here: it drops samples under this load)."""
     import zenoh
@@ -263,18 +333,30 @@ def raw_run(key: str, warm_cdr: bytes) -> float:
                         else:
                             counter.hit()
 
-            threading.Thread(target=drain, daemon=True).start()
+            def drain_image() -> None:  # reads the bytes as the node side reads `data`
+                with contextlib.suppress(zenoh.ZError):
+                    for sample in sub.handler:
+                        data = sample.payload.to_bytes()
+                        if data == warm_cdr:
+                            counter.warm.set()
+                        elif len(data):
+                            counter.hit()
+
+            threading.Thread(target=drain if kind == 'string' else drain_image, daemon=True).start()
             return lambda flag, timeout: flag.future.wait(timeout) and None
 
-        return run_once('raw', N_MESSAGES, key, subscribe)
+        return run_once(pub_mode, kind, n, key, subscribe)
     finally:
         session.close()
 
 
-def node_run(key: str, string_type: Any) -> float:
-    """ros2lite: a node's KEEP_ALL subscription, callbacks run by the executor here."""
+def node_run(kind: str, n: int, key: str, how: str) -> float:
+    """ros2lite: a node's KEEP_ALL subscription, callbacks run here by `spin()`'s loop
+    (how='spin') or by the tutorials' `while ok(): spin_once(node)` (how='spin_once')."""
+    import ros2lite
     from ros2lite.context import Context
     from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.interfaces import get_interface
     from ros2lite.node import Node
     from ros2lite.qos import HistoryPolicy, QoSProfile
 
@@ -282,26 +364,239 @@ def node_run(key: str, string_type: Any) -> float:
     ctx.init([])
     try:
         node = Node('bench_sub', context=ctx, enable_rosout=False)
-        ex = SingleThreadedExecutor(context=ctx)
-        ex.add_node(node)
+        qos = QoSProfile(history=HistoryPolicy.KEEP_ALL)
 
         def subscribe(counter: Counter) -> Callable[[Flag, float], None]:
-            def on_msg(msg: Any) -> None:
-                if msg.data == WARMUP:
-                    counter.warm.set()
-                else:
-                    counter.hit()
+            if kind == 'string':
 
-            node.create_subscription(
-                string_type, 'bench_chatter', on_msg, QoSProfile(history=HistoryPolicy.KEEP_ALL)
-            )
-            return lambda flag, timeout: ex.spin_until_future_complete(
-                flag.future, timeout_sec=timeout
-            )
+                def on_msg(msg: Any) -> None:
+                    if msg.data == WARMUP:
+                        counter.warm.set()
+                    else:
+                        counter.hit()
 
-        return run_once('node', N_MESSAGES, key, subscribe)
+                node.create_subscription(get_interface(STRING), 'bench_chatter', on_msg, qos)
+            else:
+
+                def on_msg(msg: Any) -> None:
+                    if msg.encoding == WARMUP:
+                        counter.warm.set()
+                    elif len(msg.data):
+                        counter.hit()
+
+                node.create_subscription(get_interface(IMAGE), 'bench_image', on_msg, qos)
+            if how == 'spin':
+                ex = SingleThreadedExecutor(context=ctx)
+                ex.add_node(node)
+                return lambda flag, timeout: ex.spin_until_future_complete(
+                    flag.future, timeout_sec=timeout
+                )
+
+            def spin_once_loop(flag: Flag, timeout: float) -> None:
+                deadline = time.monotonic() + timeout
+                spin_once = ros2lite.spin_once
+                while ros2lite.ok(context=ctx) and not flag.is_set():
+                    spin_once(node, timeout_sec=0.1)
+                    if time.monotonic() > deadline:
+                        return
+
+            return spin_once_loop
+
+        return run_once('node', kind, n, key, subscribe)
     finally:
         ctx.shutdown()
 
 
-BENCHES = {'node': bench_node_throughput}
+def _serialized_warmup(type_name: str) -> bytes:
+    from ros2lite.interfaces import get_interface, serialize
+
+    cls = get_interface(type_name)
+    return serialize(cls(data=WARMUP) if type_name == STRING else cls(encoding=WARMUP))
+
+
+def bench_node_throughput() -> None:
+    """std_msgs/String: raw, raw + attachment, node with spin() and with spin_once loops."""
+    with private_router():
+        key = _key(STRING, '/bench_chatter')
+        warm = _serialized_warmup(STRING)
+        rates: dict[str, list[float]] = {'raw': [], 'rawatt': [], 'spin': [], 'spin_once': []}
+        for _ in range(RUNS):  # interleaved, so drifting machine load hits all alike
+            rates['raw'].append(raw_run(key, warm, 'string', N_MESSAGES))
+            rates['spin'].append(node_run('string', N_MESSAGES, key, 'spin'))
+            rates['rawatt'].append(raw_run(key, warm, 'string', N_MESSAGES, 'rawatt'))
+            rates['spin_once'].append(node_run('string', N_MESSAGES, key, 'spin_once'))
+    med = {k: statistics.median(v) for k, v in rates.items()}
+    if VERBOSE:
+        for k, v in rates.items():
+            print(f'  {k}: {[round(r) for r in v]}', file=sys.stderr)
+    base = med['raw']
+    report('node_pubsub_string', med['spin'], 'msg/s', med['spin'] / base)
+    report('node_pubsub_string_spin_once', med['spin_once'], 'msg/s', med['spin_once'] / base)
+    report('node_pubsub_string_raw_zenoh', base, 'msg/s', 1.0)
+    report('node_pubsub_string_raw_attachment', med['rawatt'], 'msg/s', med['rawatt'] / base)
+
+
+def bench_node_image() -> None:
+    """1 MiB sensor_msgs/Image, node (spin) against raw."""
+    from ros2lite.interfaces import get_interface, serialize
+
+    image = get_interface(IMAGE)(height=512, width=512, encoding='rgba8', step=2048)
+    image.data = bytes(1 << 20)
+    nbytes = len(serialize(image))
+    with private_router():
+        key = _key(IMAGE, '/bench_image')
+        warm = _serialized_warmup(IMAGE)
+        raw: list[float] = []
+        ours: list[float] = []
+        for _ in range(RUNS):
+            raw.append(raw_run(key, warm, 'image', N_IMAGES))
+            ours.append(node_run('image', N_IMAGES, key, 'spin'))
+    if VERBOSE:
+        print(f'  raw {[round(r) for r in raw]} node {[round(r) for r in ours]}', file=sys.stderr)
+    r, b = statistics.median(ours), statistics.median(raw)
+    report('node_pubsub_image_1mib', r * nbytes / 1e6, 'MB/s', r / b)
+    report('node_pubsub_image_1mib_raw_zenoh', b * nbytes / 1e6, 'MB/s', 1.0)
+
+
+def _ping_pong(mode: str) -> list[float]:
+    """Round-trip times (s) of N_PINGS pings through an echo child of `mode`."""
+    from ros2lite.interfaces import get_interface, serialize
+
+    String = get_interface(STRING)
+    ping_key, pong_key = _key(STRING, '/bench_ping'), _key(STRING, '/bench_pong')
+    echo = subprocess.Popen(
+        [sys.executable, '-c', ECHO, mode, ping_key, pong_key],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    assert echo.stdin is not None and echo.stdout is not None
+    try:
+        assert echo.stdout.readline().strip() == 'ready'
+        return (_node_pinger if mode == 'node' else _raw_pinger)(
+            ping_key, pong_key, serialize(String(data='ping'))
+        )
+    finally:
+        echo.stdin.close()
+        try:
+            echo.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            echo.kill()
+            echo.wait()
+
+
+def _raw_pinger(ping_key: str, pong_key: str, cdr: bytes) -> list[float]:
+    import zenoh
+
+    from ros2lite.transport.config import node_session_mode, open_session
+
+    session = open_session(mode=node_session_mode())
+    try:
+        sub = session.declare_subscriber(pong_key, zenoh.handlers.FifoChannel(64))
+        pub = session.declare_publisher(ping_key)
+        pongs, put = sub.handler, pub.put
+        deadline = time.monotonic() + 10
+        while pongs.try_recv() is None:  # until the echo is reachable both ways
+            if time.monotonic() > deadline:
+                raise RuntimeError('the echo never answered')
+            put(cdr)
+            time.sleep(0.01)
+        time.sleep(0.05)
+        while pongs.try_recv() is not None:
+            pass
+        times = []
+        clock = time.perf_counter
+        for i in range(N_PINGS + 100):
+            t0 = clock()
+            put(cdr)
+            pongs.recv()
+            if i >= 100:
+                times.append(clock() - t0)
+        return times
+    finally:
+        session.close()
+
+
+def _node_pinger(ping_key: str, pong_key: str, cdr: bytes) -> list[float]:
+    from ros2lite.context import Context
+    from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.interfaces import get_interface
+    from ros2lite.node import Node
+
+    String = get_interface(STRING)
+    ctx = Context()
+    ctx.init([])
+    try:
+        node = Node('bench_pinger', context=ctx, enable_rosout=False)
+        ex = SingleThreadedExecutor(context=ctx)
+        ex.add_node(node)
+        pub = node.create_publisher(String, 'bench_ping', 10)
+        ping = String(data='ping')
+        reached = Flag()
+        times: list[float] = []
+        clock = time.perf_counter
+        done = Flag()
+        sent = [0.0]
+        measuring = [False]
+
+        def on_pong(_msg: Any) -> None:
+            if not measuring[0]:
+                reached.set()  # the echo is reachable both ways
+                return
+            times.append(clock() - sent[0])
+            if len(times) == N_PINGS + 100:
+                done.set()
+            else:
+                sent[0] = clock()
+                pub.publish(ping)
+
+        node.create_subscription(String, 'bench_pong', on_pong, 10)
+        deadline = time.monotonic() + 10
+        while not reached.is_set():
+            if time.monotonic() > deadline:
+                raise RuntimeError('the echo never answered')
+            pub.publish(ping)
+            ex.spin_until_future_complete(reached.future, timeout_sec=0.01)
+        ex.spin_until_future_complete(Flag().future, timeout_sec=0.05)  # late pongs
+        measuring[0] = True
+        sent[0] = clock()
+        pub.publish(ping)
+        ex.spin_until_future_complete(done.future, timeout_sec=60)
+        if not done.is_set():
+            raise RuntimeError(f'latency run stalled after {len(times)} pongs')
+        return times[100:]
+    finally:
+        ctx.shutdown()
+
+
+def bench_node_latency() -> None:
+    """Ping-pong round trips, node against raw: p50 and p99."""
+
+    def pct(times: list[float], q: float) -> float:
+        s = sorted(times)
+        return s[min(len(s) - 1, int(len(s) * q))]
+
+    with private_router():
+        raw = {'p50': [], 'p99': []}  # type: dict[str, list[float]]
+        ours = {'p50': [], 'p99': []}  # type: dict[str, list[float]]
+        for _ in range(RUNS):
+            for side, mode in ((raw, 'raw'), (ours, 'node')):
+                times = _ping_pong(mode)
+                side['p50'].append(pct(times, 0.5) * 1e6)
+                side['p99'].append(pct(times, 0.99) * 1e6)
+                if VERBOSE:
+                    print(
+                        f'  {mode}: p50 {side["p50"][-1]:.0f} us, p99 {side["p99"][-1]:.0f} us',
+                        file=sys.stderr,
+                    )
+    for q in ('p50', 'p99'):
+        r, b = statistics.median(ours[q]), statistics.median(raw[q])
+        report(f'node_latency_{q}', r, 'us', r / b)
+        report(f'node_latency_{q}_raw_zenoh', b, 'us', 1.0)
+
+
+BENCHES = {
+    'node': bench_node_throughput,
+    'node_image': bench_node_image,
+    'node_latency': bench_node_latency,
+}

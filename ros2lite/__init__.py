@@ -12,6 +12,7 @@ Names are re-exported lazily so `import ros2lite` (and `ros2lite --help`) stays 
 from __future__ import annotations
 
 import importlib
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 __version__ = '0.1.0'
@@ -164,9 +165,22 @@ def try_shutdown(*, context: Context | None = None, uninstall_handlers: bool | N
 
 def ok(*, context: Context | None = None) -> bool:
     """Whether the context is open and no SIGTERM asked it to stop."""
+    if context is None:  # `while ok(): spin_once(node)` asks this per message: no import
+        context = (_default_context or _load_default_context())()
+    return context.ok()
+
+
+_default_context: Callable[[], Context] | None = None
+
+
+def _load_default_context() -> Callable[[], Context]:
+    """ros2lite.context.default_context, imported once (an import per call costs more than
+    the call)."""
+    global _default_context
     from ros2lite.context import default_context
 
-    return (context or default_context()).ok()
+    _default_context = default_context
+    return default_context
 
 
 def create_node(node_name: str, **kwargs: Unpack[NodeOptions]) -> Node:
@@ -180,4 +194,6 @@ def __getattr__(name: str) -> object:
     module = _EXPORTS.get(name)
     if module is None:
         raise AttributeError(f"module 'ros2lite' has no attribute '{name}'")
-    return getattr(importlib.import_module(module), name)
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value  # loaded once: `ros2lite.spin_once` in a loop costs no import
+    return value

@@ -19,25 +19,42 @@ import os
 import time
 from collections.abc import Callable, Iterable
 from types import TracebackType
+from typing import TYPE_CHECKING
 
 from ros2lite.context import Context
-from ros2lite.executors import SingleThreadedExecutor
-from ros2lite.graph import Entity
 from ros2lite.names import is_hidden_name
-from ros2lite.node import Node
-from ros2lite.task import Future
-from ros2lite.timer import Timer
+
+if TYPE_CHECKING:  # loaded when a verb needs them: `topic list` only asks the graph
+    from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.graph import Entity
+    from ros2lite.node import Node
+    from ros2lite.task import Future
+    from ros2lite.timer import Timer
 
 __all__ = ['Connection', 'wait_for_name']
 
 HIDDEN_NODE_PREFIX = '_ros2lite_'
 
 
-class _ToolNode(Node):
-    """A tool's node: it reports what it sees its own way, not with rclpy's QoS event
-    warnings, and answers graph questions from snapshots, not from a graph cache."""
+_tool_node_class: type[Node] | None = None
 
-    _default_event_callbacks = False
+
+def _tool_node_type() -> type[Node]:
+    """The class of a tool's node, made on first use (importing this module loads no node
+    code: `topic list` only asks the graph)."""
+    global _tool_node_class
+    if _tool_node_class is None:
+        from ros2lite.node import Node
+
+        class _ToolNode(Node):
+            """A tool's node: it reports what it sees its own way, not with rclpy's QoS
+            event warnings, and answers graph questions from snapshots, not from a graph
+            cache."""
+
+            _default_event_callbacks = False
+
+        _tool_node_class = _ToolNode
+    return _tool_node_class
 
 
 class Connection:
@@ -113,7 +130,7 @@ class Connection:
         if self._node is None:
             from ros2lite.parameter import Parameter
 
-            self._node = _ToolNode(
+            self._node = _tool_node_type()(
                 name or f'{HIDDEN_NODE_PREFIX}{os.getpid()}',
                 context=self.context,
                 enable_rosout=False,
@@ -131,6 +148,8 @@ class Connection:
     def executor(self) -> SingleThreadedExecutor:
         """The executor that runs the node's callbacks (on the thread that spins it)."""
         if self._executor is None:
+            from ros2lite.executors import SingleThreadedExecutor
+
             self._executor = SingleThreadedExecutor(context=self.context)
             self._executor.add_node(self.node())
         return self._executor

@@ -99,6 +99,10 @@ class Context:
         self.enclave = self.args.enclave or '/'
         self.domain_id = env_domain_id() if domain_id is None else domain_id
         self.router = router
+        if not short_lived:  # a node: large messages reuse freed buffers (ros2lite.memory)
+            from ros2lite.memory import keep_large_buffers
+
+            keep_large_buffers()
         self.session = connect(router, tool=short_lived, autostart=autostart)
         self.zid = str(self.session.info.zid())
         _live.add(self)

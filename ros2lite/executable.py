@@ -61,10 +61,17 @@ class Executable:
         if self._scheduled:
             return
         # only entities of a node queue work (a nodeless timer is never notified)
-        executor = self._node._executor  # type: ignore[union-attr]
-        if executor is not None:
-            self._scheduled = True
-            executor._enqueue(self)
+        node: Node = self._node  # type: ignore[assignment]
+        executor = node._executor
+        if executor is None:
+            # no executor: the next add_node must look (and, should one be added right now,
+            # the second look below queues the work itself, so it is never lost)
+            node._unqueued_work = True
+            executor = node._executor
+            if executor is None:
+                return
+        self._scheduled = True
+        executor._enqueue(self)
 
     def _executed(self) -> None:
         """Executor thread, after `_execute`: clear the flag *before* looking for more work,

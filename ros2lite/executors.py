@@ -105,13 +105,21 @@ class Executor:
         previous = node._executor
         if previous is not None and previous is not self:
             previous.remove_node(node)
+        entities = None
         if node._last_executor is not self:
             # entries of its entities may sit in another executor's queue: start afresh
-            for entity in node._executables():
+            entities = node._executables()
+            for entity in entities:
                 entity._scheduled = False
             node._last_executor = self
         node._executor = self
-        for entity in node._executables():
+        # what got work while the node had no executor: entities say so (Executable._notify),
+        # so a node coming back (`spin_once(node)` adds and removes it per call) is not
+        # searched; waitables of other kinds may not say, and are always looked at
+        if entities is None and node._unqueued_work:
+            entities = node._executables()
+        node._unqueued_work = False
+        for entity in node.waitables if entities is None else entities:
             if not entity._scheduled and entity._has_work():
                 entity._notify()
         if self._spinning:
@@ -353,6 +361,7 @@ class Executor:
             # went to another executor, that one has taken the entity over
             if node._last_executor is self:
                 item._scheduled = False
+                node._unqueued_work = True
             return
         group = item.callback_group
         if item.needs_group and not group.beginning_execution(item):
@@ -540,13 +549,22 @@ _global: weakref.WeakKeyDictionary[Context, SingleThreadedExecutor] = weakref.We
 _global_lock = threading.Lock()
 
 
+# the last one asked for: `spin_once(node)` in a loop asks every time
+_last_global: tuple[weakref.ref[Context], SingleThreadedExecutor] | None = None
+
+
 def get_global_executor(context: Context | None = None) -> SingleThreadedExecutor:
     """The context's shared single-threaded executor (what ros2lite.spin uses)."""
+    global _last_global
     ctx = context or default_context()
+    last = _last_global
+    if last is not None and last[0]() is ctx:
+        return last[1]
     with _global_lock:
         executor = _global.get(ctx)
         if executor is None:
             executor = _global[ctx] = SingleThreadedExecutor(context=ctx)
+        _last_global = (weakref.ref(ctx), executor)
         return executor
 
 

@@ -93,6 +93,8 @@ class Node(ParameterMixin):
         # (whose queue may still hold entries of its entities)
         self._executor: Executor | None = None
         self._last_executor: Executor | None = None
+        # an entity got work while the node had no executor (see Executor.add_node)
+        self._unqueued_work = True
         for level_name, level in self._args.log_levels.items():
             set_logger_level(level_name, level)
         from ros2lite.transport.session import declare_token

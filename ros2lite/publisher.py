@@ -8,9 +8,13 @@ from typing import TYPE_CHECKING, Generic
 
 from ros2lite.endpoint import Endpoint, EndpointOwner
 from ros2lite.qos import QoSProfile
-from ros2lite.transport.attachment import pack_attachment
+from ros2lite.transport.attachment import GID_SIZE, PACK_CURRENT
 from ros2lite.transport.keys import EntityKind
 from ros2lite.type_support import Msg, MsgT
+
+# per-message calls of publish(), bound once
+_pack = PACK_CURRENT
+_now = time.time_ns
 
 if TYPE_CHECKING:
     from ros2lite.duration import Duration
@@ -63,7 +67,7 @@ class Publisher(EndpointOwner, Generic[MsgT]):
 
             data = serialize(msg)
         self._seq = seq = self._seq + 1
-        self._put(data, attachment=pack_attachment(seq, time.time_ns(), self._gid))
+        self._put(data, attachment=_pack(seq, _now(), GID_SIZE, self._gid))
 
     def _codec_serializer(self) -> Callable[[Msg], bytes]:
         from ros2lite.interfaces.cdr import codec

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Generic, cast
 
 from ros2lite.bad_samples import BadSamples, gid_of
+from ros2lite.delivery import deliver, deliver_with_info
 from ros2lite.endpoint import Endpoint, EndpointOwner
 from ros2lite.executable import Executable
 from ros2lite.qos import HistoryPolicy, QoSProfile
@@ -23,6 +24,8 @@ if TYPE_CHECKING:
     from ros2lite.node import Node
     from ros2lite.task import Task
     from ros2lite.transport.handles import Sample
+    from ros2lite.transport.pull import PulledSamples
+    from ros2lite.transport.session import SampleReceiver
 
 
 @dataclass(frozen=True)
@@ -114,6 +117,7 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         raw: bool = False,
         callback_group: CallbackGroup | None = None,
     ) -> None:
+        from ros2lite.transport.pull import PulledSamples
         from ros2lite.transport.session import SampleReceiver
 
         Executable.__init__(self, node, callback_group)
@@ -125,9 +129,10 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self.raw = raw
         self._async = inspect.iscoroutinefunction(callback)
         keep_all = ep.qos.history == HistoryPolicy.KEEP_ALL
-        # zenoh samples as they came: `sample` for typed subscriptions, `(sample, arrival ns)`
-        # for raw ones (tools like `topic hz` need arrival times). Bytes are copied out on the
-        # executor thread, keeping the pump thread's share of the GIL small.
+        # zenoh samples as a pump thread moved them: `(sample, arrival ns)` for raw ones
+        # (tools like `topic hz` need arrival times), `sample` for typed ones fed by a
+        # subclass hook; other typed subscriptions pull from Zenoh on the executor thread
+        # (`_source` below). Bytes are copied out on the executor thread.
         self._buffer: deque[Any] = deque(maxlen=None if keep_all else max(ep.qos.depth, 1))
         self._deserialize: Callable[[bytes], MsgT] | None = None
         self._destroyed = False
@@ -135,16 +140,24 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self.bad_samples: BadSamples | None = None
         # a subclass hook (e.g. topic monitors) sees every sample instead of the buffer
         hook = None if type(self)._on_sample is Subscription._on_sample else self._on_sample
-        self._receiver = SampleReceiver(
-            node.context.require(),
-            ep.key,
-            ep.qos,
-            self._buffer,
-            self._notify,
-            stamp=raw,
-            hook=hook,
-            name=ep.topic_name,
-        )
+        # typed subscriptions: the executor pulls samples itself (ros2lite.transport.pull)
+        self._source: PulledSamples | None = None
+        self._receiver: SampleReceiver | PulledSamples
+        if raw or hook is not None:
+            self._receiver = SampleReceiver(
+                node.context.require(),
+                ep.key,
+                ep.qos,
+                self._buffer,
+                self._notify,
+                stamp=raw,
+                hook=hook,
+                name=ep.topic_name,
+            )
+        else:
+            self._receiver = self._source = PulledSamples(
+                node.context.require(), ep.key, ep.qos, self._notify, name=ep.topic_name
+            )
         ep._announce()
 
     def _on_sample(self, sample: Sample) -> None:
@@ -156,7 +169,9 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self._notify()
 
     def _has_work(self) -> bool:
-        return bool(self._buffer) and not self._destroyed
+        if self._destroyed:
+            return False
+        return self._source.ready if self._source is not None else bool(self._buffer)
 
     def _deserializer(self) -> Callable[[bytes], MsgT]:
         des = self._deserialize
@@ -172,6 +187,8 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
     def take(self) -> tuple[MsgT | bytes, MessageInfo] | None:
         """The oldest buffered sample as (message or bytes, info), or None. For typed
         subscriptions `received_timestamp` is the time of the take."""
+        if self._source is not None:
+            return self._take_typed(self._source)
         while True:
             try:
                 entry = self._buffer.popleft()
@@ -189,6 +206,22 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
                 return self._deserializer()(data), info
             except ValueError as e:  # a CdrError (imported lazily: tools stay light)
                 self._bad_sample(data, info.publisher_gid, e)  # dropped: take the next one
+
+    def _info(self, attachment: bytes, received: int) -> MessageInfo:
+        return _info(attachment, received)
+
+    def _take_typed(self, source: PulledSamples) -> tuple[MsgT, MessageInfo] | None:
+        while True:
+            taken = source.take(1)
+            if not taken:
+                return None
+            sample = taken[0]
+            data = sample.payload.to_bytes()
+            info = _info(sample.attachment.to_bytes(), time.time_ns())  # type: ignore[union-attr]
+            try:
+                return self._deserializer()(data), info
+            except ValueError as e:  # a CdrError: dropped, take the next one
+                self._bad_sample(data, info.publisher_gid, e)
 
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         """Deliver the oldest sample, or in spin()/spin_until_future_complete() a batch of
@@ -215,10 +248,13 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         if self.raw or self._with_info:
             self._deliver_with_info(limit, stop, deadline)
             return
-        # typed: the hot loop of a busy subscriber, kept to the bare minimum per sample. A
-        # sample that does not decode raises out of it; the handler (free until something
-        # raises) tells a bad sample, which is dropped, from the callback's own error
         des = self._deserialize or self._deserializer()
+        if self._source is not None:  # the hot path (ros2lite.delivery)
+            deliver(self, self._source, des, limit, stop)
+            return
+        # typed, fed by a hook of a subclass: a sample that does not decode raises out of
+        # the loop; the handler (free until something raises) tells a bad sample, which is
+        # dropped, from the callback's own error
         first = 0
         while True:
             try:
@@ -263,6 +299,11 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         """Raw bytes and/or MessageInfo: the slower loop (raw samples carry their arrival
         time; typed ones are stamped when taken). A typed sample that does not decode is
         dropped and reported, as in the hot loop."""
+        if self._source is not None:  # typed, pulled from Zenoh (ros2lite.delivery)
+            deliver_with_info(
+                self, self._source, self._deserialize or self._deserializer(), limit, stop, deadline
+            )
+            return
         popleft, perf_counter = self._buffer.popleft, time.perf_counter
         callback: Callable[..., object] = self.callback
         des = None if self.raw else (self._deserialize or self._deserializer())
@@ -300,6 +341,8 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self._destroy_event_handlers()
         self._destroyed = True
         self._buffer.clear()
+        if self._source is not None:
+            self._source.clear()
         self._ep._undeclare(self._receiver)  # ends the receive thread too
 
     def get_publisher_count(self) -> int:

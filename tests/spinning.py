@@ -53,6 +53,16 @@ def spin_for(executor: Any, seconds: float) -> None:
         executor.spin_once(timeout_sec=min(left, 0.05))
 
 
+def queued(sub: Any) -> list[bytes]:
+    """(white box) The payloads a typed subscription has received and not yet delivered,
+    moving what waits in Zenoh's channel into its queue first (as the executor would, before
+    delivering). Call it only while no executor spins the subscription."""
+    source = sub._source
+    if not source._armed:
+        source._pull(1 << 20)
+    return [sample.payload.to_bytes() for sample in source._pending]
+
+
 def wait_matched(pub: Any, sub_count: int = 1, timeout: float = 5.0) -> None:
     """Wait until the graph shows the publisher's subscriptions (so no early sample is lost)."""
     deadline = time.monotonic() + timeout

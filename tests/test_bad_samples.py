@@ -11,7 +11,7 @@ from typing import Any
 from ros2lite.bad_samples import BadSamples, describe_publisher
 from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
-from tests.spinning import spin_until, wait_until
+from tests.spinning import queued, spin_until, wait_until
 
 STRING_HASH = 'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18'
 CLOCK_TYPE = 'rosgraph_msgs::msg::dds_::Clock_'
@@ -99,7 +99,7 @@ def test_a_subscriber_survives_every_hostile_sample(
     # take() drops them too (async callbacks and rclpy's take go through it)
     _publish(alien_session, key, [(b'junk', attachment(1, gid(4)))])
     _publish(alien_session, key, [(cdr_string('taken'), attachment(2, gid(4)))])
-    wait_until(lambda: len(sub._buffer) == 2)
+    wait_until(lambda: len(queued(sub)) == 2)
     msg, info = sub.take()  # type: ignore[misc]
     assert msg.data == 'taken' and info.publisher_gid == gid(4)
     executor.shutdown()
@@ -189,7 +189,7 @@ def test_a_callbacks_own_value_error_still_reaches_the_caller(
         key,
         [(b'junk', attachment(1, gid(9))), (cdr_string('x'), attachment(2, gid(9)))],
     )
-    wait_until(lambda: len(sub._buffer) == 2)
+    wait_until(lambda: len(queued(sub)) == 2)
     executor = SingleThreadedExecutor(context=ros_context)
     executor.add_node(node)
     with pytest.raises(ValueError, match='user bug on x'):

@@ -15,7 +15,7 @@ from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.interfaces import get_interface
 from ros2lite.node import Node
 from ros2lite.task import Future
-from tests.spinning import spin_until, wait_matched
+from tests.spinning import queued, spin_until, wait_matched
 
 
 def test_future_result_and_callbacks() -> None:
@@ -142,7 +142,7 @@ def _buffered(ros_context: Any, n: int, depth: int = 100) -> tuple[Node, Any, li
     for i in range(n):
         pub.publish(String(data=str(i)))
     deadline = time.monotonic() + 5
-    while len(sub._buffer) < n:  # (white box) all arrived, none taken
+    while len(queued(sub)) < n:  # all arrived, none taken
         assert time.monotonic() < deadline
         time.sleep(0.01)
     return node, sub, got
@@ -405,3 +405,30 @@ def test_executor_as_context_manager_and_waiting_for_work(ros_context: Any) -> N
         assert task.result() == 'done'
     with pytest.raises(ShutdownException):
         executor.wait_for_ready_callbacks(timeout_sec=0)
+
+
+def test_module_spin_once_finds_work_that_came_while_the_node_was_detached(
+    ros_context: Any,
+) -> None:
+    """spin_once(node) adds and removes the node on each call, and add_node looks for work
+    that arrived in between only when an entity flagged it: none may be missed."""
+    String = get_interface('std_msgs/msg/String')
+    node = Node('detached', context=ros_context)
+    ran: list[int] = []
+    guard = node.create_guard_condition(lambda: ran.append(1))
+    ros2lite.spin_once(node, timeout_sec=0.05)  # attached and detached once
+    guard.trigger()  # while detached
+    start = time.monotonic()
+    ros2lite.spin_once(node, timeout_sec=5)
+    assert ran == [1] and time.monotonic() - start < 4
+    got: list[str] = []
+    node.create_subscription(String, 'detached', lambda m: got.append(m.data), 10)
+    pub = node.create_publisher(String, 'detached', 10)
+    wait_matched(pub)
+    ros2lite.spin_once(node, timeout_sec=0.05)
+    pub.publish(String(data='x'))
+    time.sleep(0.05)  # (arrives while detached, most likely; either order must work)
+    start = time.monotonic()
+    while not got and time.monotonic() - start < 5:
+        ros2lite.spin_once(node, timeout_sec=5)
+    assert got == ['x'] and time.monotonic() - start < 4

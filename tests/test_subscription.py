@@ -13,7 +13,7 @@ from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
 from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
 from ros2lite.subscription import MessageInfo
-from tests.spinning import spin_for, spin_until, wait_matched
+from tests.spinning import queued, spin_for, spin_until, wait_matched
 
 String = interfaces.get_interface('std_msgs/msg/String')
 
@@ -100,7 +100,7 @@ def test_keep_last_keeps_only_the_newest_depth_samples(
     # (white box) the last sample is in the subscription's buffer before any is taken
     last = interfaces.serialize(String(data='9'))
     deadline = time.monotonic() + 5
-    while not (sub._buffer and sub._buffer[-1].payload.to_bytes() == last):
+    while not ((held := queued(sub)) and held[-1] == last):
         assert time.monotonic() < deadline
         time.sleep(0.01)
     spin_for(executor, 0.3)

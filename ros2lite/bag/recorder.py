@@ -27,7 +27,7 @@ from ros2lite.bag.errors import BagError
 from ros2lite.bag.writer import Writer
 from ros2lite.qos import QoSProfile
 from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
-from ros2lite.transport.attachment import unpack_attachment
+from ros2lite.transport.attachment import source_timestamp
 
 if TYPE_CHECKING:
     from ros2lite.graph import Entity
@@ -415,7 +415,7 @@ class Recorder:
     def _write_loop(self) -> None:
         queue, writer = self._queue, self.writer
         popleft, write_raw = queue.popleft, writer.write_raw
-        unpack = unpack_attachment
+        timestamp_of = source_timestamp
         stats = self._stats_by_tid
         interval = max(self.options.flush_interval, 0.001)
         idle_wait = min(0.05, interval / 2)
@@ -447,9 +447,8 @@ class Recorder:
                         writer.flush()
                         last_flush, dirty = now, False
                 # the publisher's send time travels in the attachment (either layout)
-                fields = unpack(attachment)
-                sent = fields[1] if fields is not None else received
-                write_raw(tid, data, received, sent)
+                sent = timestamp_of(attachment)
+                write_raw(tid, data, received, received if sent is None else sent)
                 stats[tid].written_bytes += len(data)
                 dirty = True
         except Exception as e:  # a full disk, or anything else: recording ends, loudly

@@ -327,9 +327,13 @@ class Writer:
             self._require()
         f = self._file
         assert f is not None
-        if f.message_count and (
-            (self.max_bag_size and self._file_bytes >= self.max_bag_size)
-            or (self.max_bag_duration and log_time - f.starting_time >= self.max_bag_duration)
+        if (
+            (self.max_bag_size or self.max_bag_duration)
+            and f.message_count
+            and (
+                (self.max_bag_size and self._file_bytes >= self.max_bag_size)
+                or (self.max_bag_duration and log_time - f.starting_time >= self.max_bag_duration)
+            )
         ):
             self.split()
             f = self._file

@@ -22,6 +22,10 @@ if TYPE_CHECKING:
     from ros2lite.type_support import Msg
 
 HEADER_LE = b'\x00\x01\x00\x00'
+# its first two bytes read as a little-endian uint16 (the options that follow are ignored)
+HEADER_LE_WORD = 0x0100
+# all four bytes as a little-endian uint32 (what the serializers pack in front of the body)
+HEADER_LE_UINT32 = 0x0100
 # struct formats of the primitives: the array typecodes, plus bool and byte
 _FMT = {**TYPECODES, 'bool': '?', 'byte': 'c'}
 _SIZE = {k: struct.calcsize('<' + v) for k, v in _FMT.items()}
@@ -97,6 +101,7 @@ class _SerGen(_Gen):
         self.straight = straight
         self.track_offset = track_offset
         self.parts: list[str] = []
+        self.header_written = False
 
     def chunk(self, expr: str) -> None:
         if self.straight:
@@ -120,12 +125,19 @@ class _SerGen(_Gen):
 
     def flush(self) -> None:
         if not self.run_fmt:
+            if not self.header_written:  # a blob or loop comes first: the header goes alone
+                self.header_written = True
+                self.chunk('_HEADER')
             return
-        st = struct.Struct(self.endian + self.run_fmt)
+        fmt, args = self.run_fmt, ', '.join(e for _, e in self.run_items)
+        header = not self.header_written  # the first run carries the encapsulation header
+        if header:
+            fmt, args = 'I' + fmt, f'{HEADER_LE_UINT32}, {args}'
+            self.header_written = True
+        st = struct.Struct(self.endian + fmt)
         s = self.const('_S', st.pack)
-        args = ', '.join(e for _, e in self.run_items)
         self.chunk(f'{s}({args})')
-        self.moved(st.size)
+        self.moved(st.size - 4 if header else st.size)  # offsets count from the body
         self.run_fmt, self.run_items = '', []
 
     def align_now(self, align: int) -> None:
@@ -247,6 +259,8 @@ class _DesGen(_Gen):
         super().__init__(registry, endian)
         self.decode = "decode('utf-8', 'replace')" if lenient else 'decode()'
         self.uses_mv = False
+        # a line to emit right after the first unpack (the fast decoder's header check)
+        self.after_first: str | None = None
 
     def flush(self) -> None:
         if not self.run_fmt:
@@ -259,6 +273,7 @@ class _DesGen(_Gen):
             self.emit(f'{", ".join(t for _, t in targets)}, = {s}(d, o)')
             self.emit(f'o += {st.size}')
             self.run_fmt, self.run_items = '', []
+            self._after_first()
             return
         t = self.name('t')
         self.emit(f'{t} = {s}(d, o)')
@@ -277,6 +292,12 @@ class _DesGen(_Gen):
                     self.emit(f'{target} = _array({code!r}, {t}[{i}:{i + c}])')
                 i += c
         self.run_fmt, self.run_items = '', []
+        self._after_first()
+
+    def _after_first(self) -> None:
+        if self.after_first is not None:
+            self.emit(self.after_first)
+            self.after_first = None
 
     def add(self, fmt: str, size: int, align: int, kind: str, target: str | None) -> None:
         pad = self.static_pad(align)
@@ -429,10 +450,14 @@ def build_serializer(name: str, reg: Registry) -> Callable[[Msg], bytes]:
     gen.ns['_NUL'] = b'\x00'
     gen.ns['_HEADER'] = HEADER_LE
     head = ['    o = 0'] if track_offset else []
+    # every type has a first run of primitives (a length at least), which packs the header
+    assert gen.header_written
     if straight:
-        body = [*head, *gen.lines, f'    return _join(({", ".join(["_HEADER", *gen.parts])},))']
+        parts = gen.parts
+        done = parts[0] if len(parts) == 1 else f'_join(({", ".join(parts)},))'
+        body = [*head, *gen.lines, f'    return {done}']
     else:
-        body = ['    p = [_HEADER]', *head, *gen.lines, '    return _join(p)']
+        body = ['    p = []', *head, *gen.lines, '    return _join(p)']
     src = 'def ser(m):\n' + '\n'.join(body)
     exec(compile(src, f'<cdr ser {name}>', 'exec'), gen.ns)
     fn: Callable[[Msg], bytes] = gen.ns['ser']
@@ -444,13 +469,19 @@ _Des = Callable[[bytes, int], tuple[Message, int]]
 
 
 def _des_body(
-    name: str, reg: Registry, little: bool, lenient: bool, indent: int
+    name: str, reg: Registry, little: bool, lenient: bool, indent: int, header: bool = False
 ) -> tuple[_DesGen, str]:
     """Generated lines that build one `name` message from `d` at offset `o`, and the variable
-    that holds it at the end."""
+    that holds it at the end. With `header`, `o` starts at 0 and the encapsulation header is
+    read by the first unpack (checked right after it: little-endian CDR, or ValueError)."""
     gen = _DesGen(reg, '<' if little else '>', lenient)
     gen.indent = indent
     gen.ns['_new'] = object.__new__
+    if header:
+        # the 4 header bytes ride along in the first run without moving the body's
+        # alignment (which is relative to the byte after them)
+        gen.run_fmt, gen.run_items = 'H2x', [('v', '_h')]
+        gen.after_first = f'if _h != {HEADER_LE_WORD}: raise ValueError'
     v = gen.struct(reg.message(name))
     gen.flush()
     if gen.uses_mv:
@@ -476,15 +507,13 @@ def build_fast_decoder(
     """`decode(d)` for whole little-endian payloads with the header check inlined (one call
     per message on the subscription hot path); anything unusual goes to `slow`, which gives
     the precise error or handles big-endian and bad UTF-8."""
-    gen, v = _des_body(name, reg, True, False, 2)
+    gen, v = _des_body(name, reg, True, False, 2, header=True)
     gen.ns['_slow'] = slow
     src = '\n'.join(
         [
             'def decode(d):',
             '    try:',
-            '        if d[1] != 1 or d[0]:',
-            '            raise ValueError',
-            '        o = 4',
+            '        o = 0',
             *gen.lines,
             '    except Exception:',
             '        return _slow(d)',

@@ -18,6 +18,7 @@ __all__ = [
     "ATTACHMENT_SIZE",
     "GID_SIZE",
     "LEGACY_ATTACHMENT_SIZE",
+    "PACK_CURRENT",
     "Attachment",
     "decode_attachment",
     "encode_attachment",
@@ -25,6 +26,7 @@ __all__ = [
     "gid_from_token",
     "is_legacy_attachment",
     "pack_attachment",
+    "source_timestamp",
     "unpack_attachment",
 ]
 
@@ -77,6 +79,11 @@ def pack_attachment(sequence_number: int, source_timestamp: int, gid: bytes) -> 
     return _PACKED.pack(sequence_number, source_timestamp, GID_SIZE, gid)
 
 
+PACK_CURRENT = _PACKED.pack
+"""`PACK_CURRENT(seq, timestamp, GID_SIZE, gid)`: pack_attachment without its Python call
+(a publisher calls it per message)."""
+
+
 def unpack_attachment(data: bytes) -> tuple[int, int, bytes] | None:
     """(seq, timestamp, gid) of either layout, or None when it is neither; the current
     layout is unpacked inline because every received sample comes through here."""
@@ -88,6 +95,18 @@ def unpack_attachment(data: bytes) -> tuple[int, int, bytes] | None:
     except ValueError:
         return None
     return a.sequence_number, a.source_timestamp, a.source_gid
+
+
+_TIMESTAMP = struct.Struct("<q").unpack_from
+
+
+def source_timestamp(data: bytes) -> int | None:
+    """The publisher's timestamp of an attachment of either layout, or None when it is
+    neither (the bag recorder asks this per message: the current layout costs no tuple)."""
+    if len(data) == ATTACHMENT_SIZE and data[16] == GID_SIZE:
+        return int(_TIMESTAMP(data, 8)[0])
+    fields = unpack_attachment(data)
+    return fields[1] if fields is not None else None
 
 
 def encode_legacy_attachment(sequence_number: int, source_timestamp: int, gid: bytes) -> bytes:

@@ -230,6 +230,19 @@ def _fail(strict: bool, key: str, why: str) -> None:
         raise ValueError(f"not an rmw_zenoh liveliness token ({why}): {key!r}")
 
 
+_KINDS = {kind.value: kind for kind in EntityKind}
+_ros_type_name_cached = functools.lru_cache(maxsize=1024)(ros_type_name)
+_new = object.__new__
+
+
+def _entity(fields: dict[str, object]) -> Entity:
+    """An Entity from all its fields, without the frozen dataclass's per-field
+    ``object.__setattr__`` (a big graph snapshot makes thousands)."""
+    entity: Entity = _new(Entity)
+    entity.__dict__.update(fields)
+    return entity
+
+
 def parse_token(key: str, *, strict: bool = False) -> Entity | None:
     """Parse an ``@ros2_lv`` key into an :class:`Entity`.
 
@@ -246,22 +259,36 @@ def parse_token(key: str, *, strict: bool = False) -> Entity | None:
     except ValueError:
         _fail(strict, key, "domain, node id and entity id must be integers")
         return None
-    try:
-        kind = EntityKind(parts[5])
-    except ValueError:
+    kind = _KINDS.get(parts[5])
+    if kind is None:
         _fail(strict, key, f"unknown entity kind {parts[5]!r}")
         return None
-    if any(not p for p in parts[:9]):
+    if "" in parts[:9]:
         _fail(strict, key, "empty chunk")
         return None
-    enclave, namespace, node_name = (demangle(p) for p in parts[6:9])
-    who = (domain_id, parts[2], nid, eid, kind, enclave, namespace, node_name)
+    fields: dict[str, object] = {
+        "domain_id": domain_id,
+        "zid": parts[2],
+        "nid": nid,
+        "eid": eid,
+        "kind": kind,
+        "enclave": parts[6].replace("%", "/"),
+        "namespace": parts[7].replace("%", "/"),
+        "node_name": parts[8].replace("%", "/"),
+        "topic_name": None,
+        "type_name": None,
+        "dds_type_name": None,
+        "type_hash": None,
+        "qos": None,
+        "qos_chunk": None,
+    }
     if kind is EntityKind.NODE:
-        return Entity(*who, extra=tuple(parts[9:]))
-    if len(parts) < 13 or any(not p for p in parts[9:12]):
+        fields["extra"] = tuple(parts[9:])
+        return _entity(fields)
+    if len(parts) < 13 or "" in parts[9:12]:
         _fail(strict, key, "endpoint tokens need topic, type, hash and QoS chunks")
         return None
-    dds = demangle(parts[10])
+    dds = parts[10].replace("%", "/")
     qos: QoSProfile | None
     try:
         qos = _decode_qos_cached(parts[12])
@@ -269,13 +296,11 @@ def parse_token(key: str, *, strict: bool = False) -> Entity | None:
         if strict:
             raise
         qos = None
-    return Entity(
-        *who,
-        topic_name=demangle(parts[9]),
-        type_name=ros_type_name(dds),
-        dds_type_name=dds,
-        type_hash=demangle(parts[11]),
-        qos=qos,
-        qos_chunk=parts[12],
-        extra=tuple(parts[13:]),
-    )
+    fields["topic_name"] = parts[9].replace("%", "/")
+    fields["type_name"] = _ros_type_name_cached(dds)
+    fields["dds_type_name"] = dds
+    fields["type_hash"] = parts[11].replace("%", "/")
+    fields["qos"] = qos
+    fields["qos_chunk"] = parts[12]
+    fields["extra"] = tuple(parts[13:])
+    return _entity(fields)

@@ -153,6 +153,34 @@ def declare_publisher(session: Session, key: str, qos: QoSProfile) -> Publisher:
     )
 
 
+def declare_subscriber(
+    session: Session,
+    key: str,
+    qos: QoSProfile,
+    handler: zenoh.handlers.FifoChannel[zenoh.Sample] | zenoh.handlers.RingChannel[zenoh.Sample],
+) -> _Subscriber:
+    """A subscriber feeding `handler` (a zenoh channel), mapped from QoS as rmw_zenoh does:
+    transient local through zenoh-ext's advanced subscriber, which asks late-joining
+    publishers for their cache (and, when reliable, recovers missed samples by heartbeat)."""
+    if _transient_local(qos):
+        recovery = (
+            zenoh.ext.RecoveryConfig(periodic_queries=None, heartbeat=True)
+            if _reliable(qos)
+            else None
+        )
+        return zenoh.ext.declare_advanced_subscriber(
+            as_zenoh(session),
+            key,
+            handler,
+            history=zenoh.ext.HistoryConfig(
+                detect_late_publishers=True, max_samples=max(qos.depth, 1)
+            ),
+            recovery=recovery,
+            subscriber_detection=True,
+        )
+    return as_zenoh(session).declare_subscriber(key, handler)
+
+
 # Rust-side queue between zenoh and the pump thread (never below the QoS depth), and how many
 # samples the pump moves per GIL hold: up to a whole channel (about 1 ms of work), because a
 # pump that gives the GIL back mid-drain waits a switch interval (5 ms) to get it again
@@ -193,24 +221,7 @@ class SampleReceiver:
             if keep_all
             else zenoh.handlers.RingChannel(capacity)
         )  # KEEP_LAST may drop the oldest
-        if _transient_local(qos):
-            recovery = (
-                zenoh.ext.RecoveryConfig(periodic_queries=None, heartbeat=True)
-                if _reliable(qos)
-                else None
-            )
-            self._sub: _Subscriber = zenoh.ext.declare_advanced_subscriber(
-                as_zenoh(session),
-                key,
-                handler,
-                history=zenoh.ext.HistoryConfig(
-                    detect_late_publishers=True, max_samples=max(qos.depth, 1)
-                ),
-                recovery=recovery,
-                subscriber_detection=True,
-            )
-        else:
-            self._sub = as_zenoh(session).declare_subscriber(key, handler)
+        self._sub = declare_subscriber(session, key, qos, handler)
         self._buffer = buffer
         self._on_batch = on_batch
         self._stamp = stamp

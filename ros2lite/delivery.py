@@ -1,0 +1,172 @@
+"""The hot loop of a busy typed subscription: one batch of samples to `callback(msg)`.
+
+Per message it costs what cannot be avoided: the payload copied out of Zenoh, the generated
+decoder, the user's callback and three cheap checks (destroyed, the awaited future, every
+eighth message the batch deadline). Payload extraction and decoding run as C-level `map`s over
+the batch; the Python loop only calls back. A sample that does not decode raises out of the
+maps; the handler around the whole batch (free until something raises) tells such a bad
+sample, which is dropped and reported, from an error of the callback, which propagates.
+Samples of the batch that were not delivered go back to the front of the queue.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any, Protocol
+
+from ros2lite.bad_samples import gid_of
+from ros2lite.transport.pull import payloads
+
+if TYPE_CHECKING:
+    from ros2lite.subscription import MessageInfo
+
+if TYPE_CHECKING:
+    from ros2lite.transport.handles import Sample
+    from ros2lite.transport.pull import PulledSamples
+
+__all__ = ['BATCH', 'BATCH_TIME', 'deliver', 'deliver_with_info']
+
+# longest run of callbacks of one subscription in one executor turn: count and seconds
+BATCH = 512
+BATCH_TIME = 0.002
+
+
+class _Target(Protocol):
+    """What `deliver` needs of a subscription (ros2lite.subscription.Subscription)."""
+
+    callback: Callable[..., object]
+    _destroyed: bool
+
+    def _bad_sample(self, data: bytes, gid: bytes, error: Exception) -> None:
+        """Drop and report a sample that does not decode."""
+        ...
+
+    def _info(self, attachment: bytes, received: int) -> MessageInfo:
+        """The MessageInfo of a sample."""
+        ...
+
+
+def deliver(
+    sub: _Target,
+    source: PulledSamples,
+    decode: Callable[[bytes], Any],
+    limit: int,
+    stop: Callable[[], bool] | None,
+) -> None:
+    """Deliver up to `limit` samples of `source` to `sub.callback`, decoded by `decode`;
+    stop early when `stop()` holds, the subscription is destroyed, or (for batches) after
+    BATCH_TIME, so slow callbacks can't starve timers."""
+    batch = source.take(limit, rearm_later=True)
+    try:
+        _deliver(sub, source, batch, decode, stop)
+    finally:
+        source.rearm()
+
+
+def _deliver(
+    sub: _Target,
+    source: PulledSamples,
+    batch: list[Sample],
+    decode: Callable[[bytes], Any],
+    stop: Callable[[], bool] | None,
+) -> None:
+    if len(batch) == 1:  # spin_once: one message, without the batch machinery
+        sample = batch[0]
+        data = sample.payload.to_bytes()
+        try:
+            msg = decode(data)
+        except ValueError as e:  # a CdrError: dropped and reported
+            sub._bad_sample(data, gid_of(sample.attachment.to_bytes()), e)  # type: ignore[union-attr]
+            return
+        sub.callback(msg)
+        return
+    if not batch:
+        return
+    callback = sub.callback
+    perf_counter = time.perf_counter
+    deadline = perf_counter() + BATCH_TIME
+    start = 0
+    while True:
+        i = start
+        try:
+            for msg in map(decode, payloads(batch if start == 0 else batch[start:])):
+                callback(msg)
+                i += 1
+                if (
+                    sub._destroyed
+                    or (stop is not None and stop())
+                    or (i & 7 == 7 and perf_counter() > deadline)
+                ):
+                    break
+            else:
+                return  # the whole batch went out
+        except ValueError as e:  # a CdrError (imported lazily: tools stay light)?
+            sample = batch[i]
+            data = sample.payload.to_bytes()
+            try:
+                decode(data)
+            except ValueError:
+                attachment = sample.attachment
+                sub._bad_sample(data, gid_of(attachment.to_bytes() if attachment else None), e)
+                start = i + 1  # dropped: go on with the rest
+                continue
+            source.put_back(batch[i + 1 :])
+            raise  # it decodes: the error is the callback's
+        except BaseException:
+            source.put_back(batch[i + 1 :])
+            raise
+        if not sub._destroyed:
+            source.put_back(batch[i:])  # stopped early: the rest waits for the next turn
+        return
+
+
+def deliver_with_info(
+    sub: _Target,
+    source: PulledSamples,
+    decode: Callable[[bytes], Any],
+    limit: int,
+    stop: Callable[[], bool] | None,
+    deadline: float,
+) -> None:
+    """`callback(msg, MessageInfo)` for up to `limit` samples: the slower loop, the info
+    stamped with the time each sample is taken (as rclpy's take does). Stops early as
+    `deliver` does (`deadline` 0 for single deliveries: never checked then)."""
+    batch = source.take(limit, rearm_later=True)
+    try:
+        _deliver_with_info(sub, source, batch, decode, stop, deadline)
+    finally:
+        source.rearm()
+
+
+def _deliver_with_info(
+    sub: _Target,
+    source: PulledSamples,
+    batch: list[Sample],
+    decode: Callable[[bytes], Any],
+    stop: Callable[[], bool] | None,
+    deadline: float,
+) -> None:
+    callback = sub.callback
+    perf_counter = time.perf_counter
+    for i, sample in enumerate(batch):
+        if sub._destroyed:
+            return
+        if i & 7 == 7 and perf_counter() > deadline:
+            source.put_back(batch[i:])
+            return
+        data = sample.payload.to_bytes()
+        attachment = sample.attachment.to_bytes()  # type: ignore[union-attr]  # take() checked
+        try:
+            message = decode(data)
+        except ValueError as e:  # a CdrError: dropped and reported
+            sub._bad_sample(data, gid_of(attachment), e)
+            continue
+        try:
+            callback(message, sub._info(attachment, time.time_ns()))
+        except BaseException:
+            source.put_back(batch[i + 1 :])
+            raise
+        if stop is not None and stop():
+            source.put_back(batch[i + 1 :])
+            return
