@@ -13,15 +13,13 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Protocol
 
 from ros2lite.bad_samples import gid_of
 from ros2lite.transport.pull import payloads
 
 if TYPE_CHECKING:
     from ros2lite.subscription import MessageInfo
-
-if TYPE_CHECKING:
     from ros2lite.transport.handles import Sample
     from ros2lite.transport.pull import PulledSamples
 
@@ -50,7 +48,7 @@ class _Target(Protocol):
 def deliver(
     sub: _Target,
     source: PulledSamples,
-    decode: Callable[[bytes], Any],
+    decode: Callable[[bytes], object],
     limit: int,
     stop: Callable[[], bool] | None,
 ) -> None:
@@ -68,7 +66,7 @@ def _deliver(
     sub: _Target,
     source: PulledSamples,
     batch: list[Sample],
-    decode: Callable[[bytes], Any],
+    decode: Callable[[bytes], object],
     stop: Callable[[], bool] | None,
 ) -> None:
     if len(batch) == 1:  # spin_once: one message, without the batch machinery
@@ -124,7 +122,7 @@ def _deliver(
 def deliver_with_info(
     sub: _Target,
     source: PulledSamples,
-    decode: Callable[[bytes], Any],
+    decode: Callable[[bytes], object],
     limit: int,
     stop: Callable[[], bool] | None,
     deadline: float,
@@ -143,7 +141,7 @@ def _deliver_with_info(
     sub: _Target,
     source: PulledSamples,
     batch: list[Sample],
-    decode: Callable[[bytes], Any],
+    decode: Callable[[bytes], object],
     stop: Callable[[], bool] | None,
     deadline: float,
 ) -> None:
