@@ -7,14 +7,11 @@ from __future__ import annotations
 import sys
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING
 
 from ros2lite.demos.display import DisplayError
 from ros2lite.demos.rqt_graph.layout import Layout, layout
 from ros2lite.demos.rqt_graph.model import Graph
-
-if TYPE_CHECKING:  # rich itself is imported where it draws
-    from rich.text import Text
+from ros2lite.demos.terminal import BOLD, RESET, LivePicture, terminal_size
 
 
 def cell_layout(graph: Graph) -> Layout:
@@ -97,41 +94,37 @@ def render_text(graph: Graph) -> str:
 class GraphTerminal:
     """The graph on the terminal, redrawn when it changes; `run` until Ctrl-C."""
 
-    STYLES = {'': '', 'edge': 'bright_black', 'node': 'bold cyan', 'topic': 'yellow'}
+    STYLES = {'': RESET, 'edge': '\x1b[0;90m', 'node': '\x1b[0;1;36m', 'topic': '\x1b[0;33m'}
 
     def __init__(self) -> None:
         if not sys.stdout.isatty():
             raise DisplayError('cannot draw on the terminal: standard output is not a terminal')
 
-    def picture(self, graph: Graph) -> Text:
-        """The graph as rich text, one row per text line."""
-        from rich.text import Text
-
-        text = Text(no_wrap=True, overflow='crop')
-        text.append(
-            f'rqt_graph  {len(graph.nodes)} nodes, {len(graph.topics)} topics  (Ctrl-C to quit)\n',
-            style='bold',
-        )
-        for row in render_lines(graph):
-            start = 0
-            for i in range(1, len(row) + 1):  # one span per run of the same role
-                if i == len(row) or row[i][1] != row[start][1]:
-                    run = ''.join(ch for ch, _ in row[start:i])
-                    text.append(run, style=self.STYLES[row[start][1]])
-                    start = i
-            text.append('\n')
-        return text
+    def picture(self, graph: Graph, width: int = 10_000, height: int = 10_000) -> str:
+        """The graph as coloured text, cropped to `width` x `height` cells."""
+        title = f'rqt_graph  {len(graph.nodes)} nodes, {len(graph.topics)} topics  (Ctrl-C to quit)'
+        lines = [BOLD + title[:width] + RESET]
+        for row in render_lines(graph)[: max(height - 1, 0)]:
+            row = row[:width]
+            parts = []
+            role = None
+            for ch, r in row:  # one colour change per run of the same role
+                if r != role:
+                    parts.append(self.STYLES[r])
+                    role = r
+                parts.append(ch)
+            lines.append(''.join(parts) + RESET)
+        return '\n'.join(lines)
 
     def run(self, current: Callable[[], Graph], ok: Callable[[], bool], period: float) -> None:
-        """Redraw whenever `current()` changes, every `period` s, while `ok()`."""
-        from rich.console import Console
-        from rich.live import Live
-
+        """Redraw whenever `current()` or the terminal's size changes, every `period` s,
+        while `ok()`."""
         shown = None
-        with Live(console=Console(), auto_refresh=False) as live:
+        with LivePicture(sys.stdout) as live:
             while ok():
                 graph = current()
-                if graph != shown:
-                    shown = graph
-                    live.update(self.picture(graph), refresh=True)
+                size = terminal_size(sys.stdout)
+                if (graph, size) != shown:
+                    shown = (graph, size)
+                    live.show(self.picture(graph, *size))
                 time.sleep(period)

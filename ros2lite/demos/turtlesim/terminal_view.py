@@ -15,17 +15,14 @@ import sys
 import threading
 import time
 from collections import deque
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from ros2lite.demos.display import DisplayError
+from ros2lite.demos.terminal import RESET, LivePicture, rgb, terminal_size
 from ros2lite.demos.turtlesim import sim, sprite
 
-if TYPE_CHECKING:  # rich itself is imported where it draws
-    from rich.console import Console, ConsoleOptions
-    from rich.segment import Segment
-    from rich.style import Style
-
+if TYPE_CHECKING:
     from ros2lite.demos.turtlesim.node import TurtlesimNode
 
 FRAME_SECONDS = 0.05  # 20 redraws a second at most; only when something changed
@@ -72,54 +69,23 @@ class LogLines:
             return self._partial
 
 
-class Picture:
-    """A rich renderable of `pixels` (side x side colours), two pixel rows per text line."""
-
-    def __init__(self, pixels: list[tuple[int, int, int]], side: int, title: str) -> None:
-        self.pixels = pixels
-        self.side = side
-        self.title = title
-
-    def __rich_console__(self, console: Console, options: ConsoleOptions) -> Iterator[Segment]:
-        from rich.segment import Segment
-
-        yield from _segments(self.pixels, self.side)
-        yield Segment(self.title)
-
-
-_styles: dict[tuple[tuple[int, int, int], tuple[int, int, int]], Style] = {}
-
-
-def _style(top: tuple[int, int, int], bottom: tuple[int, int, int]) -> Style:
-    style = _styles.get((top, bottom))
-    if style is None:
-        from rich.color import Color
-        from rich.style import Style
-
-        style = Style(color=Color.from_rgb(*top), bgcolor=Color.from_rgb(*bottom))
-        _styles[(top, bottom)] = style
-    return style
-
-
-def _segments(pixels: list[tuple[int, int, int]], side: int) -> Iterator[Segment]:
-    from rich.segment import Segment
-
+def picture_text(pixels: list[tuple[int, int, int]], side: int, title: str) -> str:
+    """`pixels` (side x side colours) as terminal text, two pixel rows per line (upper half
+    blocks coloured top on bottom, one colour change per run), then `title`."""
+    lines = []
     for row in range(0, side - 1, 2):
         top = pixels[row * side : (row + 1) * side]
         bottom = pixels[(row + 1) * side : (row + 2) * side]
-        run_style = None
-        run = 0
+        parts: list[str] = []
+        last = None
         for pair in zip(top, bottom, strict=True):
-            style = _style(*pair)
-            if style is run_style:
-                run += 1
-                continue
-            if run:
-                yield Segment(UPPER_HALF * run, run_style)
-            run_style, run = style, 1
-        if run:
-            yield Segment(UPPER_HALF * run, run_style)
-        yield Segment.line()
+            if pair != last:
+                parts.append(rgb(*pair))
+                last = pair
+            parts.append(UPPER_HALF)
+        lines.append(''.join(parts) + RESET)
+    lines.append(title)
+    return '\n'.join(lines)
 
 
 class TerminalView:
@@ -128,9 +94,6 @@ class TerminalView:
     def __init__(self, node: TurtlesimNode) -> None:
         if not sys.stdout.isatty():
             raise DisplayError('cannot draw on the terminal: standard output is not a terminal')
-        from rich.console import Console
-
-        self.console = Console(highlight=False)
         self.node = node
         self.world: sim.World = node.world
         self.side = 0
@@ -140,7 +103,7 @@ class TerminalView:
 
     # -- the coarse trail image ------------------------------------------------------------
     def _fit(self) -> int:
-        width, height = self.console.size
+        width, height = terminal_size(sys.stdout)
         side = max(4, min(width, 2 * (height - 2)))
         return side - side % 2
 
@@ -183,7 +146,7 @@ class TerminalView:
                     self.trails[j * side + i] = rgb
 
     # -- a frame ---------------------------------------------------------------------------
-    def picture(self) -> Picture:
+    def picture(self) -> str:
         """The canvas as it is now, at the terminal's size."""
         side = self._fit()
         if side != self.side:
@@ -202,7 +165,7 @@ class TerminalView:
             self._disk(pixels, hx, hy, 0.0, scale, colours['skin'])
         count = len(frame.turtles)
         title = f'TurtleSim  {count} turtle{"s" if count != 1 else ""}'
-        return Picture(pixels, side, title[:side])
+        return picture_text(pixels, side, title[:side])
 
     def _disk(
         self,
@@ -228,25 +191,23 @@ class TerminalView:
 
     def run(self, stop: Callable[[], bool]) -> None:
         """Redraw whenever the world changed, at most every FRAME_SECONDS."""
-        from rich.live import Live
-        from rich.text import Text
-
         logs = LogLines() if sys.stderr.isatty() else None
         saved_stderr = sys.stderr
         if logs is not None:
             sys.stderr = logs
         last: object = None
         try:
-            with Live(console=self.console, auto_refresh=False, transient=False) as live:
+            with LivePicture(sys.stdout) as live:
                 while not stop():
                     lines = logs.drain() if logs is not None else []
                     frame = self.node.frame
-                    state = (frame.turtles, frame.background, self.node.revision, self.console.size)
+                    size = terminal_size(sys.stdout)
+                    state = (frame.turtles, frame.background, self.node.revision, size)
                     if lines:
-                        live.console.print(Text('\n'.join(lines)))
+                        live.print_above(lines)
                     if state != last or self.world.canvas.has_strokes():
                         last = state
-                        live.update(self.picture(), refresh=True)
+                        live.show(self.picture())
                         self.frames += 1
                         self.node.render_frames = self.frames
                     time.sleep(FRAME_SECONDS)
