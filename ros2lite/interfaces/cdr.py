@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 from .classes import TYPECODES, Message, factory
 from .errors import CdrError
-from .parser import Field, FieldType, MessageDef
+from .parser import Field, FieldType, MessageDef, check_definition
 from .registry import Registry
 
 if TYPE_CHECKING:
@@ -81,7 +81,15 @@ class _Gen:
         self.emit(f'if {n} > {bound}: raise _CdrError("sequence exceeds bound {bound}")')
 
     def element_def(self, ft: FieldType) -> MessageDef:
-        return self.reg.message(ft.base)
+        return checked_message(self.reg, ft.base)
+
+
+def checked_message(reg: Registry, name: str) -> MessageDef:
+    """A definition from `reg`, refused unless every name in it is an identifier: its names
+    become generated source text, and a registry may hold definitions from a bag or the wire."""
+    mdef = reg.message(name)
+    check_definition(mdef)
+    return mdef
 
 
 class _Restart(Exception):
@@ -441,7 +449,7 @@ def build_serializer(name: str, reg: Registry) -> Callable[[Msg], bytes]:
     for straight, track_offset in ((True, False), (True, True), (False, True)):
         gen = _SerGen(reg, straight, track_offset)
         try:
-            gen.struct(reg.message(name), 'm')
+            gen.struct(checked_message(reg, name), 'm')
             gen.flush()
         except _Restart:
             continue
@@ -482,7 +490,7 @@ def _des_body(
         # alignment (which is relative to the byte after them)
         gen.run_fmt, gen.run_items = 'H2x', [('v', '_h')]
         gen.after_first = f'if _h != {HEADER_LE_WORD}: raise ValueError'
-    v = gen.struct(reg.message(name))
+    v = gen.struct(checked_message(reg, name))
     gen.flush()
     if gen.uses_mv:
         gen.lines.insert(0, '    ' * indent + 'mv = memoryview(d)')

@@ -89,6 +89,18 @@ def test_a_definition_built_by_hand_is_checked_before_code_is_generated() -> Non
         ClassFactory(default_registry())._build(evil)
 
 
+def test_cdr_code_is_generated_from_checked_definitions_only() -> None:
+    from ros2lite.interfaces.cdr import build_deserializer, build_serializer
+    from ros2lite.interfaces.parser import Field, FieldType
+
+    evil = MessageDef('pkg/msg/Evil', [Field('a=__import__("os")', FieldType('int32'))])
+    reg = _Types({})
+    reg._messages['pkg/msg/Evil'] = evil
+    for build in (build_serializer, build_deserializer):
+        with pytest.raises(InterfaceError, match='invalid field name'):
+            build('pkg/msg/Evil', reg)
+
+
 class _Types(Registry):
     """A registry holding only the given definitions (what a bag brings)."""
 
