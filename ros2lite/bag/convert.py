@@ -10,6 +10,7 @@ recorded QoS and the definition the input bag carries.
 from __future__ import annotations
 
 import heapq
+import math
 import os
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
@@ -263,8 +264,8 @@ def convert(
 
 
 def _copy(readers: list[Reader], outputs: Sequence[OutputBag], writers: list[Writer]) -> None:
-    # (input index, topic) → the writers' topic ids it goes to
-    routes: dict[tuple[int, str], list[tuple[Writer, int]]] = {}
+    # (input index, topic) → where it goes: writer, its topic id, the output's time window
+    routes: dict[tuple[int, str], list[tuple[Writer, int, int, float]]] = {}
     types: dict[str, str] = {}  # topic → its type across the inputs
     for i, reader in enumerate(readers):
         for meta in reader.topics:
@@ -286,7 +287,8 @@ def _copy(readers: list[Reader], outputs: Sequence[OutputBag], writers: list[Wri
                     definition=reader.definition(meta.type),
                     serialization_format=meta.serialization_format,
                 )
-                targets.append((writer, tid))
+                end = math.inf if out.end_time_ns < 0 else out.end_time_ns
+                targets.append((writer, tid, out.start_time_ns, end))
             if targets:
                 routes[(i, meta.name)] = targets
     wanted = [{t for (j, t) in routes if j == i} for i in range(len(readers))]
@@ -295,13 +297,9 @@ def _copy(readers: list[Reader], outputs: Sequence[OutputBag], writers: list[Wri
         for topic, data, log_time, publish_time in readers[i].raw_messages(wanted[i]):
             yield log_time, i, topic, data, publish_time
 
-    windows = [(o.start_time_ns, o.end_time_ns) for o in outputs]
-    index = {id(w): k for k, w in enumerate(writers)}
     for log_time, i, topic, data, publish_time in heapq.merge(
-        *(stream(i) for i in range(len(readers)) if wanted[i])
+        *(stream(i) for i in range(len(readers)) if wanted[i]), key=lambda m: m[0]
     ):
-        for writer, tid in routes[(i, topic)]:
-            start, end = windows[index[id(writer)]]
-            if (start >= 0 and log_time < start) or (end >= 0 and log_time > end):
-                continue
-            writer.write_raw(tid, data, log_time, publish_time)
+        for writer, tid, start, end in routes[(i, topic)]:
+            if start <= log_time <= end:
+                writer.write_raw(tid, data, log_time, publish_time)
