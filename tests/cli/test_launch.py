@@ -5,7 +5,6 @@ given an argument); Ctrl-C stops every child; `-s`/`-p` and the errors."""
 from __future__ import annotations
 
 import os
-import queue
 import random
 import re
 import shutil
@@ -71,8 +70,8 @@ class Launch:
     def __init__(self, proc: subprocess.Popen[str]) -> None:
         self.proc = proc
         self.lines: list[str] = []
-        self._queue: queue.SimpleQueue[str] = queue.SimpleQueue()
-        threading.Thread(target=self._pump, daemon=True).start()
+        self._pumping = threading.Thread(target=self._pump, daemon=True)
+        self._pumping.start()
 
     def _pump(self) -> None:
         assert self.proc.stdout is not None
@@ -87,7 +86,10 @@ class Launch:
 
     def interrupt(self, timeout: float = 30.0) -> int:
         self.proc.send_signal(signal.SIGINT)
-        return self.proc.wait(timeout)
+        code = self.proc.wait(timeout)
+        # its last lines may still be in the pipe: read up to the end before anyone looks
+        self._pumping.join(timeout)
+        return code
 
 
 def start_launch(processes: Any, *args: str, cwd: Path | None = None, **env: str) -> Launch:
