@@ -152,9 +152,32 @@ def _main(args: list[str]) -> int:
     except Exception as e:  # any library failure: one line, no traceback
         if debug_enabled():
             raise
+        if _caused_by(e, KeyboardInterrupt):
+            # Python 3.11 wraps a Ctrl-C that lands in a class body's __set_name__ (a lazy
+            # import) in RuntimeError; it is still the user's interrupt, not a failure
+            return 2
+        from ros2lite.process import Terminated
+
+        if _caused_by(e, Terminated):
+            return signal.SIGTERM.value
         click.echo(str(e) or type(e).__name__, err=True)
         return 1
     return rc if isinstance(rc, int) else 0
+
+
+def _caused_by(error: BaseException, kind: type[BaseException]) -> bool:
+    """Whether `kind` is anywhere in the chain of exceptions that led to `error`."""
+    seen: set[int] = set()
+    todo: list[BaseException] = [error]
+    while todo:
+        e = todo.pop()
+        if id(e) in seen:
+            continue
+        seen.add(id(e))
+        if isinstance(e, kind):
+            return True
+        todo.extend(x for x in (e.__cause__, e.__context__) if x is not None)
+    return False
 
 
 def run() -> None:

@@ -112,3 +112,39 @@ def test_ctrl_c_leaves_with_status_2(processes: Any, ros_context: Any, verb: lis
     proc.send_signal(signal.SIGINT)
     _out, err = proc.communicate(timeout=10)
     assert (proc.returncode, err) == (2, '')
+
+
+@pytest.mark.parametrize(
+    ('raised', 'status'), [('KeyboardInterrupt', 2), ('Terminated', 15)], ids=['int', 'term']
+)
+def test_an_interrupt_wrapped_by_python_is_still_an_interrupt(
+    raised: str, status: int, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Python 3.11 turns an exception inside `__set_name__` (class creation during a lazy
+    import) into RuntimeError; a Ctrl-C landing there must not become an error message."""
+    import click
+
+    from ros2lite.cli import main as cli_main
+    from ros2lite.process import Terminated
+
+    kind = {'KeyboardInterrupt': KeyboardInterrupt, 'Terminated': Terminated}[raised]
+
+    class Descriptor:
+        def __set_name__(self, owner: type, name: str) -> None:
+            raise kind()
+
+    @click.command('interrupted-in-import')
+    def verb() -> None:
+        try:
+            type('Late', (), {'field': Descriptor()})
+        except BaseException as e:  # what 3.11 does; 3.12 lets the interrupt through as is
+            if isinstance(e, kind):
+                raise RuntimeError("Error calling __set_name__ on 'Descriptor'") from e
+            raise
+
+    cli_main.cli.add_command(verb)
+    try:
+        assert cli_main._main(['interrupted-in-import']) == status
+    finally:
+        cli_main.cli.commands.pop('interrupted-in-import')
+    assert capsys.readouterr().err == ''
