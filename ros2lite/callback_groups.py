@@ -7,37 +7,36 @@ A node's entities share its default `MutuallyExclusiveCallbackGroup` unless give
 from __future__ import annotations
 
 import threading
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:
-    from ros2lite.executable import Executable
 
 __all__ = ['CallbackGroup', 'MutuallyExclusiveCallbackGroup', 'ReentrantCallbackGroup']
 
 
 class CallbackGroup:
-    """Decides whether an entity's callback may start now; told when it ends."""
+    """Decides whether an entity's callback may start now; told when it ends.
+
+    Its entities (:class:`ros2lite.executable.Executable`) are only held and compared here, so
+    a group takes any object, and sits below the entities that name it."""
 
     def __init__(self) -> None:
-        self.entities: list[Executable] = []
+        self.entities: list[object] = []
 
-    def add_entity(self, entity: Executable) -> None:
+    def add_entity(self, entity: object) -> None:
         """Make `entity`'s callbacks part of this group."""
         self.entities.append(entity)
 
-    def has_entity(self, entity: Executable) -> bool:
+    def has_entity(self, entity: object) -> bool:
         """Whether `entity` belongs to this group."""
         return entity in self.entities
 
-    def can_execute(self, entity: Executable) -> bool:
+    def can_execute(self, entity: object) -> bool:
         """Whether `entity`'s callback could start now (without claiming the group)."""
         raise NotImplementedError
 
-    def beginning_execution(self, entity: Executable) -> bool:
+    def beginning_execution(self, entity: object) -> bool:
         """Claim the group for `entity`'s callback; False if it must wait."""
         raise NotImplementedError
 
-    def ending_execution(self, entity: Executable) -> None:
+    def ending_execution(self, entity: object) -> None:
         """`entity`'s callback is over: the group is free again for it."""
         raise NotImplementedError
 
@@ -45,15 +44,15 @@ class CallbackGroup:
 class ReentrantCallbackGroup(CallbackGroup):
     """Any number of its callbacks may run at the same time."""
 
-    def can_execute(self, entity: Executable) -> bool:
+    def can_execute(self, entity: object) -> bool:
         """Always: nothing in this group waits for anything else in it."""
         return True
 
-    def beginning_execution(self, entity: Executable) -> bool:
+    def beginning_execution(self, entity: object) -> bool:
         """Always succeeds."""
         return True
 
-    def ending_execution(self, entity: Executable) -> None:
+    def ending_execution(self, entity: object) -> None:
         """Nothing to release."""
 
 
@@ -63,13 +62,13 @@ class MutuallyExclusiveCallbackGroup(CallbackGroup):
     def __init__(self) -> None:
         super().__init__()
         self._lock = threading.Lock()
-        self._active: Executable | None = None
+        self._active: object | None = None
 
-    def can_execute(self, entity: Executable) -> bool:
+    def can_execute(self, entity: object) -> bool:
         """Whether no callback of the group runs now."""
         return self._active is None
 
-    def beginning_execution(self, entity: Executable) -> bool:
+    def beginning_execution(self, entity: object) -> bool:
         """Claim the group unless one of its callbacks runs."""
         with self._lock:
             if self._active is None:
@@ -77,7 +76,7 @@ class MutuallyExclusiveCallbackGroup(CallbackGroup):
                 return True
             return False
 
-    def ending_execution(self, entity: Executable) -> None:
+    def ending_execution(self, entity: object) -> None:
         """Release the group if `entity` holds it."""
         with self._lock:
             if self._active is entity:

@@ -18,17 +18,56 @@ import threading
 import weakref
 from collections.abc import Callable
 from types import FrameType
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Protocol
 
 from ros2lite.arguments import RosArgs, parse_ros_args
 from ros2lite.exceptions import NotInitializedException, Ros2liteError
 
 if TYPE_CHECKING:
-    from ros2lite.executors import Executor
+    from ros2lite.callback_groups import CallbackGroup
     from ros2lite.graph import GraphCache
-    from ros2lite.node import Node
-    from ros2lite.service import Service
     from ros2lite.transport.handles import Session
+
+
+# The context sits below the nodes, executors and services that register with it: it knows
+# them only by what it (or a blocking client) asks of them.
+
+
+class ContextNode(Protocol):
+    """A node of the context (:class:`ros2lite.node.Node`): destroyed when it shuts down."""
+
+    def destroy_node(self) -> None:
+        """Leave the graph: every entity of the node goes."""
+        ...
+
+
+class ContextExecutor(Protocol):
+    """An executor of the context (:class:`ros2lite.executors.Executor`): woken when it shuts
+    down or is told to terminate."""
+
+    def wake(self) -> None:
+        """Any thread: make a waiting spin look again (at ok())."""
+        ...
+
+
+class _ServerNode(Protocol):
+    @property
+    def _executor(self) -> object: ...
+
+
+class LocalService(Protocol):
+    """A service server of this process (:class:`ros2lite.service.Service`), as a client
+    calling it from a callback looks at it to tell a deadlock coming."""
+
+    @property
+    def _node(self) -> _ServerNode:
+        """The node serving it (its executor runs the server's callbacks)."""
+        ...
+
+    @property
+    def callback_group(self) -> CallbackGroup:
+        """The group the server's callback runs in."""
+        ...
 
 
 class InvalidDomainIdError(Ros2liteError, RuntimeError):
@@ -48,13 +87,13 @@ class Context:
         self.args = RosArgs()
         self.argv: list[str] = []
         # executors of this context, woken when it shuts down or is told to terminate
-        self._executors: weakref.WeakSet[Executor] = weakref.WeakSet()
+        self._executors: weakref.WeakSet[ContextExecutor] = weakref.WeakSet()
         # service servers of this process by key, so a blocking call can tell when waiting
         # for one of them would deadlock
-        self.local_services: dict[str, Service[Any, Any]] = {}
+        self.local_services: dict[str, LocalService] = {}
         self._ids = itertools.count()
         self._lock = threading.Lock()
-        self._nodes: list[Node] = []
+        self._nodes: list[ContextNode] = []
         self._on_shutdown: list[Callable[[], object]] = []
         self._graph: GraphCache | None = None
         # set by SIGTERM: ok() turns False at once and spinning executors raise
@@ -155,12 +194,12 @@ class Context:
         if graph is not None:
             graph._on_change(token_key, alive)
 
-    def add_node(self, node: Node) -> None:
+    def add_node(self, node: ContextNode) -> None:
         """Remember a node, to destroy it at shutdown."""
         with self._lock:
             self._nodes.append(node)
 
-    def remove_node(self, node: Node) -> None:
+    def remove_node(self, node: ContextNode) -> None:
         """Forget a destroyed node."""
         with self._lock:
             if node in self._nodes:
@@ -177,7 +216,7 @@ class Context:
             if fn in self._on_shutdown:
                 self._on_shutdown.remove(fn)
 
-    def add_executor(self, executor: Executor) -> None:
+    def add_executor(self, executor: ContextExecutor) -> None:
         """Remember an executor, to wake it at shutdown."""
         self._executors.add(executor)
 

@@ -19,7 +19,7 @@ from ros2lite.bad_samples import gid_of
 from ros2lite.transport.pull import payloads
 
 if TYPE_CHECKING:
-    from ros2lite.subscription import MessageInfo
+    from ros2lite.message_info import MessageInfo
     from ros2lite.transport.handles import Sample
     from ros2lite.transport.pull import PulledSamples
 

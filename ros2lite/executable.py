@@ -12,11 +12,18 @@ from typing import TYPE_CHECKING, Any, Protocol
 from ros2lite.callback_groups import CallbackGroup
 
 if TYPE_CHECKING:
-    from ros2lite.executors import Executor
-    from ros2lite.node import Node
+    from ros2lite.context import Context
+    from ros2lite.logging import RcutilsLogger
     from ros2lite.task import Task
 
-__all__ = ['Destroyable', 'Executable', 'GuardCondition', 'current_execution']
+__all__ = [
+    'Destroyable',
+    'EntityExecutor',
+    'EntityNode',
+    'Executable',
+    'GuardCondition',
+    'current_execution',
+]
 
 # which executor and entity the current thread runs a callback for (set by the executor):
 # coroutine callbacks continue on it, and blocking calls check it for deadlocks
@@ -31,7 +38,86 @@ class Destroyable(Protocol):
         ...
 
 
-def current_execution() -> tuple[Executor | None, Executable | None]:
+class EntityExecutor(Protocol):
+    """The executor as the entities it runs see it (:class:`ros2lite.executors.Executor`):
+    named here so that entities sit below the executor that imports them."""
+
+    def wake(self) -> None:
+        """Any thread: make a waiting spin look again."""
+        ...
+
+    def _enqueue(self, entity: Executable) -> None:
+        """Any thread: queue `entity`, whose work arrived."""
+        ...
+
+    def _run_callback(
+        self,
+        callback: Callable[..., object],
+        *args: object,
+        then: Callable[[object], None] | None = None,
+    ) -> Task | None:
+        """Call a user callback on the executor's terms (a coroutine goes on as a Task)."""
+        ...
+
+
+class EntityNode(Protocol):
+    """The node as the entities it owns see it (:class:`ros2lite.node.Node` is one): what
+    subscriptions, services, clients, timers and endpoints ask of their node, named here so
+    that they sit below the node that makes them."""
+
+    @property
+    def context(self) -> Context:
+        """The context whose session the node's entities use."""
+        ...
+
+    @property
+    def node_id(self) -> int:
+        """The node's id within its context (part of every token of its entities)."""
+        ...
+
+    @property
+    def default_callback_group(self) -> CallbackGroup:
+        """The group of entities that were given none."""
+        ...
+
+    @property
+    def _executor(self) -> EntityExecutor | None:
+        """The executor the node was added to, if any."""
+        ...
+
+    # an entity got work while the node had no executor (the next add_node looks)
+    _unqueued_work: bool
+
+    def get_name(self) -> str:
+        """The node's name."""
+        ...
+
+    def get_namespace(self) -> str:
+        """The node's namespace."""
+        ...
+
+    def resolve_topic_name(self, topic: str, *, only_expand: bool = False) -> str:
+        """A topic name as this node resolves it (expansion, remapping)."""
+        ...
+
+    def resolve_service_name(self, service: str, *, only_expand: bool = False) -> str:
+        """A service name as this node resolves it."""
+        ...
+
+    def get_logger(self) -> RcutilsLogger:
+        """The node's logger."""
+        ...
+
+    def remove_waitable(self, waitable: Executable) -> None:
+        """Stop running `waitable` with this node."""
+        ...
+
+    def _wake_executor(self) -> None:
+        """Make the node's executor (if any) look again (a timer's new deadline)."""
+        ...
+
+
+def current_execution() -> tuple[EntityExecutor | None, Executable | None]:
     """(executor, entity) whose callback this thread is running, or (None, None)."""
     return getattr(_running, 'executor', None), getattr(_running, 'entity', None)
 
@@ -45,7 +131,7 @@ class Executable:
     needs_group = True
     is_timer = False
 
-    def __init__(self, node: Node | None, callback_group: CallbackGroup | None) -> None:
+    def __init__(self, node: EntityNode | None, callback_group: CallbackGroup | None) -> None:
         from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup
 
         self._node = node
@@ -61,7 +147,7 @@ class Executable:
         if self._scheduled:
             return
         # only entities of a node queue work (a nodeless timer is never notified)
-        node: Node = self._node  # type: ignore[assignment]
+        node: EntityNode = self._node  # type: ignore[assignment]
         executor = node._executor
         if executor is None:
             # no executor: the next add_node must look (and, should one be added right now,
@@ -113,7 +199,7 @@ class GuardCondition(Executable):
 
     def __init__(
         self,
-        node: Node | None,
+        node: EntityNode | None,
         callback: Callable[[], object] | None,
         callback_group: CallbackGroup | None = None,
     ) -> None:

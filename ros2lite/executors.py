@@ -23,7 +23,7 @@ import warnings
 import weakref
 from collections.abc import Callable, Coroutine, Iterator
 from concurrent.futures import ThreadPoolExecutor
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 from ros2lite.context import Context, default_context
 from ros2lite.executable import Executable, _running, current_execution
@@ -276,7 +276,7 @@ class Executor:
             if condition is not None and condition():
                 raise ConditionReachedException()
             raise TimeoutException()
-        node = None if type(item) is Task else item._node
+        node = None if type(item) is Task else cast('Node | None', item._node)
         return (lambda: self._dispatch(item, False, None)), item, node
 
     def _wait_for_ready_callbacks(

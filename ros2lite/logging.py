@@ -20,12 +20,12 @@ import time
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from types import CodeType, FrameType
-from typing import TYPE_CHECKING, TypedDict, cast
+from typing import TYPE_CHECKING, Protocol, TypedDict, cast
 
 if TYPE_CHECKING:
     from typing_extensions import Unpack
 
-    from ros2lite.clock import Clock
+    from ros2lite.time import Time
 
 __all__ = [
     'DEBUG',
@@ -57,13 +57,22 @@ class LoggingSeverity(enum.IntEnum):
     FATAL = 50
 
 
+class ThrottleClock(Protocol):
+    """What a throttled log reads of its clock (:class:`ros2lite.clock.Clock` is one): named
+    here so that logging sits below the clocks, and so below the context."""
+
+    def now(self) -> Time:
+        """The clock's current time."""
+        ...
+
+
 class LogOptions(TypedDict, total=False):
     """The keyword options of `log()` and the level methods (rclpy's)."""
 
     once: bool
     skip_first: bool
     throttle_duration_sec: float | None
-    throttle_time_source_type: Clock  # the clock the throttle reads (system time if absent)
+    throttle_time_source_type: ThrottleClock  # the clock the throttle reads (system time if absent)
     name: str  # log under another logger name
 
 

@@ -7,13 +7,13 @@ import inspect
 import time
 from collections import deque
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Generic, cast
 
 from ros2lite.bad_samples import BadSamples, gid_of
 from ros2lite.delivery import deliver, deliver_with_info
 from ros2lite.endpoint import Endpoint, EndpointOwner
 from ros2lite.executable import Executable
+from ros2lite.message_info import MessageInfo
 from ros2lite.qos import HistoryPolicy, QoSProfile
 from ros2lite.transport.attachment import unpack_attachment
 from ros2lite.transport.keys import EntityKind
@@ -26,31 +26,6 @@ if TYPE_CHECKING:
     from ros2lite.transport.handles import Sample
     from ros2lite.transport.pull import PulledSamples
     from ros2lite.transport.session import SampleReceiver
-
-
-@dataclass(frozen=True)
-class MessageInfo:
-    """Delivery metadata from the rmw_zenoh attachment, plus our receive time. Readable as
-    attributes, or by key as rclpy's dict is (`info['source_timestamp']`)."""
-
-    source_timestamp: int  # ns since the epoch, from the publisher
-    received_timestamp: int  # ns since the epoch, when the sample arrived here
-    publication_sequence_number: int
-    publisher_gid: bytes
-
-    def __getitem__(self, key: str) -> int | bytes:
-        try:
-            return getattr(self, key)
-        except AttributeError:
-            raise KeyError(key) from None
-
-    def get(self, key: str, default: object = None) -> object:
-        """A field by name, or `default` (rclpy's info is a dict)."""
-        return getattr(self, key, default)
-
-    def keys(self) -> list[str]:
-        """The field names, as the keys of rclpy's info dict."""
-        return list(self.__dataclass_fields__)
 
 
 class CallbackType(enum.Enum):

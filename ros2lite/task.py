@@ -7,14 +7,25 @@ from __future__ import annotations
 import inspect
 import threading
 from collections.abc import Callable, Coroutine, Generator
-from typing import TYPE_CHECKING, Any, Generic, TypeVar, final
+from typing import Any, Generic, Protocol, TypeVar, final
 
-if TYPE_CHECKING:
-    from ros2lite.executors import Executor
-
-__all__ = ['Future', 'Task']
+__all__ = ['Future', 'Task', 'TaskRunner']
 
 T = TypeVar('T')
+
+
+class TaskRunner(Protocol):
+    """What a future needs of its executor (:class:`ros2lite.executors.Executor` is one): a
+    way to run its done-callbacks as tasks, named here so futures sit below executors."""
+
+    def create_task(
+        self,
+        callback: Callable[..., object] | Coroutine[object, object, object],
+        *args: object,
+        **kwargs: object,
+    ) -> Task:
+        """Run `callback(*args, **kwargs)` as a Task of this executor."""
+        ...
 
 
 class Future(Generic[T]):
@@ -24,7 +35,7 @@ class Future(Generic[T]):
     them), on the thread spinning it; without one, on the thread that completes the future.
     """
 
-    def __init__(self, *, executor: Executor | None = None) -> None:
+    def __init__(self, *, executor: TaskRunner | None = None) -> None:
         # a plain flag for done(), which executors poll after every callback; the Event is
         # only made for threads that block in wait()
         self._finished = False
@@ -141,7 +152,7 @@ class Task(Future[Any]):
         args: tuple[object, ...] = (),
         kwargs: dict[str, object] | None = None,
         *,
-        executor: Executor | None = None,
+        executor: TaskRunner | None = None,
         reschedule: Callable[[Task], None] | None = None,
     ) -> None:
         super().__init__(executor=executor)

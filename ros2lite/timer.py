@@ -4,21 +4,27 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
-from ros2lite.executable import Executable
+from ros2lite.executable import EntityNode, Executable
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
     from ros2lite.clock import Clock
-    from ros2lite.node import Node
     from ros2lite.task import Task
+
+
+class TimerNode(EntityNode, Protocol):
+    """The node of a timer (:class:`ros2lite.node.Node`): it keeps its timers in a list."""
+
+    timers: list[Timer]
 
 
 class Timer(Executable):
     """Calls `callback()` every period; the executor finds it due (no queue entry)."""
 
     is_timer = True
+    _node: TimerNode | None
 
     def __init__(
         self,
@@ -26,7 +32,7 @@ class Timer(Executable):
         callback: Callable[[], object],
         clock: Clock | None = None,
         *,
-        node: Node | None = None,
+        node: TimerNode | None = None,
         callback_group: CallbackGroup | None = None,
         autostart: bool = True,
     ) -> None:

@@ -26,7 +26,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
-from ros2lite.daemon import __all__ as _PACKAGE_NAMES
 from ros2lite.daemon.probe import router_answers, wait_answers
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.security.errors import SecurityError
@@ -36,8 +35,23 @@ from ros2lite.transport.errors import SessionError
 if TYPE_CHECKING:
     from ros2lite.transport.admin import ConnectedSession
 
-# the package's names (it loads them from here lazily), and what only the daemon process uses
-__all__ = [*_PACKAGE_NAMES, "connected_sessions", "serve"]
+# the names ros2lite.daemon hands on (loading them from here lazily), and what only the daemon
+# process uses
+__all__ = [
+    "DaemonError",
+    "DaemonInfo",
+    "DaemonStatus",
+    "StartResult",
+    "StopResult",
+    "connected_sessions",
+    "ensure_running",
+    "router_answers",
+    "runtime_dir",
+    "serve",
+    "start",
+    "status",
+    "stop",
+]
 
 START_TIMEOUT = 10.0
 STOP_TIMEOUT = 5.0

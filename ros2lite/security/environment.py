@@ -22,6 +22,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
+from ros2lite.security.enclaves import KEYSTORE_ENV, enclave_directory, validate_enclave_name
 from ros2lite.security.errors import EnclaveError, SecurityError
 
 __all__ = [
@@ -44,7 +45,6 @@ __all__ = [
 
 ENABLE_ENV = 'ROS_SECURITY_ENABLE'
 STRATEGY_ENV = 'ROS_SECURITY_STRATEGY'
-KEYSTORE_ENV = 'ROS_SECURITY_KEYSTORE'
 OVERRIDE_ENV = 'ROS_SECURITY_ENCLAVE_OVERRIDE'
 ROUTER_ENCLAVE_ENV = 'ROS2LITE_ROUTER_ENCLAVE'
 DEFAULT_ROUTER_ENCLAVE = '/zenohd'
@@ -96,25 +96,6 @@ def use_enclave(name: str | None) -> None:
 def process_enclave() -> str:
     """The enclave this process declared, ``/`` when none was (rcl's default)."""
     return _process_enclave or '/'
-
-
-def validate_enclave_name(name: str) -> None:
-    """An enclave name follows the namespace rules (absolute, no empty or '..' parts)."""
-    from ros2lite.exceptions import NameValidationException
-    from ros2lite.names import validate_namespace
-
-    try:
-        validate_namespace(name)
-    except NameValidationException as exc:
-        raise EnclaveError(f"'{name}' is not a valid enclave name: {exc}") from None
-
-
-def enclave_directory(keystore: Path, enclave: str) -> Path:
-    """``<keystore>/enclaves/<enclave>`` (``/`` is the enclaves directory itself)."""
-    validate_enclave_name(enclave)
-    relative = enclave.strip('/')
-    base = keystore / 'enclaves'
-    return base / relative if relative else base
 
 
 def _identity(keystore: Path, enclave: str) -> Identity | str:

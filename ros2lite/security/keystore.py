@@ -19,7 +19,7 @@ import xml.etree.ElementTree as ET
 from collections.abc import Callable, Mapping
 from pathlib import Path
 
-from ros2lite.security.environment import KEYSTORE_ENV, enclave_directory, validate_enclave_name
+from ros2lite.security.enclaves import KEYSTORE_ENV, enclave_directory, validate_enclave_name
 from ros2lite.security.errors import EnclaveError, KeystoreError
 from ros2lite.security.files import make_dirs, symlink, write_file
 

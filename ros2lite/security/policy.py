@@ -19,7 +19,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ros2lite.security.environment import validate_enclave_name
+from ros2lite.security.enclaves import validate_enclave_name
 from ros2lite.security.errors import EnclaveError, PolicyError
 from ros2lite.security.files import parse_xml, read_bytes
 

@@ -34,7 +34,12 @@ from typing import Literal
 
 import zenoh
 
-from ros2lite.transport.errors import ConfigError, RouterUnavailableError, SessionError
+from ros2lite.transport.errors import (
+    ConfigError,
+    RouterUnavailableError,
+    SessionError,
+    zerror_message,
+)
 from ros2lite.transport.handles import Session
 
 __all__ = [
@@ -89,13 +94,6 @@ RETRY_MAX_MS = 400
 
 def _env(env: Mapping[str, str] | None) -> Mapping[str, str]:
     return os.environ if env is None else env
-
-
-def zerror_message(exc: BaseException) -> str:
-    """A zenoh error as one readable line (without the trailing ' at /…/file.rs:NN.')."""
-    text = re.sub(r"\s+at /\S+?\.rs:\d+\.?", "", str(exc).strip())
-    m = re.search(r'msg: "(.*?)", location', text) or re.fullmatch(r'Str\("(.*)"\)', text)
-    return (m.group(1) if m else text).rstrip(". ")
 
 
 def default_router(env: Mapping[str, str] | None = None) -> str:

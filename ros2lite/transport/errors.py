@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import re
+
 from ros2lite.exceptions import Ros2liteError
 
-__all__ = ['ConfigError', 'RouterUnavailableError', 'SessionError']
+__all__ = ['ConfigError', 'RouterUnavailableError', 'SessionError', 'zerror_message']
 
 
 class ConfigError(Ros2liteError, ValueError):
@@ -24,3 +26,10 @@ class RouterUnavailableError(SessionError):
         super().__init__(
             f"No Zenoh router answers at {endpoint} (start one with 'ros2lite daemon start')"
         )
+
+
+def zerror_message(exc: BaseException) -> str:
+    """A zenoh error as one readable line (without the trailing ' at /…/file.rs:NN.')."""
+    text = re.sub(r"\s+at /\S+?\.rs:\d+\.?", "", str(exc).strip())
+    m = re.search(r'msg: "(.*?)", location', text) or re.fullmatch(r'Str\("(.*)"\)', text)
+    return (m.group(1) if m else text).rstrip(". ")

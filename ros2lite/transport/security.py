@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 
 import zenoh
 
-from ros2lite.transport.errors import ConfigError
+from ros2lite.transport.errors import ConfigError, zerror_message
 
 if TYPE_CHECKING:
     from ros2lite.security.access import AccessControl
@@ -36,8 +36,6 @@ def _insert(config: zenoh.Config, key: str, value: object, what: str) -> None:
     try:
         config.insert_json5(key, json.dumps(value))
     except zenoh.ZError as exc:
-        from ros2lite.transport.config import zerror_message
-
         raise ConfigError(f'{what}: cannot set {key}: {zerror_message(exc)}') from None
 
 

@@ -21,3 +21,12 @@ def test_a_planted_log_symlink_is_refused(endpoint: str, runtime: Path, tmp_path
     log.unlink()
     assert daemon.start(endpoint).started  # with the link gone it starts
     assert not log.is_symlink() and daemon.stop(endpoint).stopped
+
+
+def test_the_package_hands_on_names_the_router_module_defines() -> None:
+    # ros2lite.daemon loads its names lazily from the router module; each must be there
+    from ros2lite.daemon import router
+
+    assert set(daemon.__all__) <= set(router.__all__)
+    for name in daemon.__all__:
+        assert getattr(daemon, name) is getattr(router, name)
