@@ -24,7 +24,7 @@ from ros2lite.endpoint import Endpoint
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile
-from ros2lite.service_introspection import IntrospectionMixin, ServiceEventType
+from ros2lite.service_introspection import IntrospectionMixin, ServiceEventType, ServiceNode
 from ros2lite.task import Future
 from ros2lite.transport.attachment import pack_attachment
 from ros2lite.transport.keys import EntityKind
@@ -34,7 +34,6 @@ if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
     from ros2lite.graph import Entity
     from ros2lite.interfaces.cdr import Codec
-    from ros2lite.node import Node
     from ros2lite.task import Task
     from ros2lite.transport.session import Querier
     from ros2lite.type_support import Srv
@@ -56,11 +55,11 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
     # completing a future runs no user callback here: it must not wait for the group, or a
     # coroutine holding that group while awaiting this very future would never resume
     needs_group = False
-    _node: Node  # a client always belongs to a node
+    _node: ServiceNode  # a client always belongs to a node
 
     def __init__(
         self,
-        node: Node,
+        node: ServiceNode,
         srv_type: type[Srv[SrvRequestT, SrvResponseT]] | str,
         srv_name: str,
         qos: QoSProfile | int,

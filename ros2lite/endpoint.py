@@ -8,8 +8,9 @@ from ros2lite.qos import QoSProfile
 from ros2lite.transport.keys import EntityKind, endpoint_token, topic_key
 
 if TYPE_CHECKING:
-    from ros2lite.event_handler import EventHandler
-    from ros2lite.node import Node
+    from collections.abc import Sequence
+
+    from ros2lite.executable import Destroyable, EntityNode
     from ros2lite.transport.handles import Handle
 
 
@@ -40,8 +41,9 @@ class EndpointOwner:
     """What publishers and subscriptions expose about their endpoint (`self._ep`)."""
 
     _ep: Endpoint
-    # QoS event handlers, set by the node that made the endpoint (rclpy's attribute)
-    event_handlers: list[EventHandler] = []
+    # QoS event handlers (ros2lite.event_handler), set by the node that made the endpoint
+    # (rclpy's attribute)
+    event_handlers: Sequence[Destroyable] = []
 
     def _destroy_event_handlers(self) -> None:
         handlers, self.event_handlers = self.event_handlers, []
@@ -73,7 +75,9 @@ class Endpoint:
 
     kind: EntityKind
 
-    def __init__(self, node: Node, msg_type: type | str, topic: str, qos: QoSProfile | int) -> None:
+    def __init__(
+        self, node: EntityNode, msg_type: type | str, topic: str, qos: QoSProfile | int
+    ) -> None:
         from ros2lite.interfaces import type_hash
 
         self.node = node

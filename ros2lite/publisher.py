@@ -18,7 +18,7 @@ _now = time.time_ns
 
 if TYPE_CHECKING:
     from ros2lite.duration import Duration
-    from ros2lite.node import Node
+    from ros2lite.executable import EntityNode
     from ros2lite.transport.session import Publisher as ZenohPublisher
 
 
@@ -26,7 +26,7 @@ class Publisher(EndpointOwner, Generic[MsgT]):
     """Publishes messages (or ready CDR bytes) with rmw_zenoh's sequence/timestamp/GID."""
 
     def __init__(
-        self, node: Node, msg_type: type[MsgT] | str, topic: str, qos: QoSProfile | int
+        self, node: EntityNode, msg_type: type[MsgT] | str, topic: str, qos: QoSProfile | int
     ) -> None:
         from ros2lite.transport.session import declare_publisher
 

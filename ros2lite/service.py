@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Generic, cast
 from ros2lite.endpoint import Endpoint
 from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile
-from ros2lite.service_introspection import IntrospectionMixin, ServiceEventType
+from ros2lite.service_introspection import IntrospectionMixin, ServiceEventType, ServiceNode
 from ros2lite.transport.attachment import pack_attachment, unpack_attachment
 from ros2lite.transport.keys import EntityKind
 from ros2lite.type_support import SrvRequestT, SrvResponseT
@@ -24,7 +24,6 @@ from ros2lite.type_support import SrvRequestT, SrvResponseT
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
     from ros2lite.interfaces.cdr import Codec
-    from ros2lite.node import Node
     from ros2lite.task import Task
     from ros2lite.transport.handles import Handle
     from ros2lite.transport.session import Request
@@ -59,11 +58,11 @@ class Service(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]
     With `deferred=True` the callback is `callback(request, header)` and the owner answers
     later with `send_response(response, header)` (the action server's get_result does)."""
 
-    _node: Node  # a server always belongs to a node
+    _node: ServiceNode  # a server always belongs to a node
 
     def __init__(
         self,
-        node: Node,
+        node: ServiceNode,
         srv_type: type[Srv[SrvRequestT, SrvResponseT]] | str,
         srv_name: str,
         callback: ServiceCallback[SrvRequestT, SrvResponseT],

@@ -11,8 +11,9 @@ them and `bag record --services` records them, for ros2lite's nodes and C++/rclp
 from __future__ import annotations
 
 import enum
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
+from ros2lite.executable import EntityNode
 from ros2lite.qos import QoSProfile
 
 if TYPE_CHECKING:
@@ -20,9 +21,8 @@ if TYPE_CHECKING:
     from ros2lite.endpoint import Endpoint
     from ros2lite.interfaces import Message
     from ros2lite.interfaces.convert import FormatOptions
-    from ros2lite.node import Node
     from ros2lite.publisher import Publisher
-    from ros2lite.type_support import Msg
+    from ros2lite.type_support import Msg, MsgT
 
 __all__ = [
     'EVENT_TOPIC_SUFFIX',
@@ -30,6 +30,7 @@ __all__ = [
     'IntrospectionMixin',
     'ServiceEventType',
     'ServiceIntrospectionState',
+    'ServiceNode',
     'event_to_dict',
     'event_topic',
     'format_event',
@@ -116,10 +117,31 @@ def format_event(
     return dict_to_yaml(event_to_dict(message, **fmt), flow_style=flow_style)
 
 
+class ServiceNode(EntityNode, Protocol):
+    """The node of a service or client (:class:`ros2lite.node.Node`): an entity's node that
+    also makes the publisher of its introspection events, and stamps them with its clock."""
+
+    def create_publisher(
+        self, msg_type: type[MsgT], topic: str, qos_profile: QoSProfile | int
+    ) -> Publisher[MsgT]:
+        """A publisher of the node's."""
+        ...
+
+    def destroy_publisher(self, pub: Publisher[MsgT]) -> bool:
+        """Withdraw a publisher of the node's; False if it is not (or no longer) one."""
+        ...
+
+    def get_clock(self) -> Clock:
+        """The node's ROS clock."""
+        ...
+
+
 class _EventPublisher:
     """The `_service_event` publisher of one client or service, and its settings."""
 
-    def __init__(self, node: Node, type_name: str, service_name: str, qos: QoSProfile) -> None:
+    def __init__(
+        self, node: ServiceNode, type_name: str, service_name: str, qos: QoSProfile
+    ) -> None:
         from ros2lite.interfaces import get_interface
 
         self.node = node
@@ -156,8 +178,7 @@ class _EventPublisher:
         self.publisher.publish(event)
 
     def destroy(self) -> None:
-        if self.publisher in self.node.publishers:
-            self.node.destroy_publisher(self.publisher)
+        self.node.destroy_publisher(self.publisher)  # unless the node destroyed it already
 
 
 class Introspectable:
@@ -186,7 +207,7 @@ class IntrospectionMixin(Introspectable):
     `_node`, `srv_name` and `_ep.type_name` (the `pkg/srv/Name` of its type)."""
 
     _introspection: _EventPublisher | None = None
-    _node: Node
+    _node: ServiceNode
     _ep: Endpoint
     srv_name: str
 

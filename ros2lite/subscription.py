@@ -21,7 +21,7 @@ from ros2lite.type_support import MsgT
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
-    from ros2lite.node import Node
+    from ros2lite.executable import EntityNode
     from ros2lite.task import Task
     from ros2lite.transport.handles import Sample
     from ros2lite.transport.pull import PulledSamples
@@ -83,7 +83,7 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
 
     def __init__(
         self,
-        node: Node,
+        node: EntityNode,
         msg_type: type[MsgT] | str,
         topic: str,
         callback: SubscriptionCallback[MsgT],
