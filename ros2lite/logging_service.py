@@ -18,7 +18,13 @@ if TYPE_CHECKING:
         SetLoggerLevels_Request,
         SetLoggerLevels_Response,
     )
-    from ros2lite.node import Node
+    from ros2lite.node_interface import NodeInterface
+    from ros2lite.service import Service
+
+    _Services = tuple[
+        Service[GetLoggerLevels_Request, GetLoggerLevels_Response],
+        Service[SetLoggerLevels_Request, SetLoggerLevels_Response],
+    ]
 
 __all__ = ['LoggingService']
 
@@ -28,17 +34,17 @@ _INVALID = 'Failed reason: Invalid logger level.'
 class LoggingService:
     """Serves the two logger services on `node`."""
 
-    def __init__(self, node: Node) -> None:
+    def __init__(self, node: NodeInterface) -> None:
         name = node.get_name()
         self._node = node
-        self._services = [
+        self._services: _Services | None = (
             node.create_service(
                 'rcl_interfaces/srv/GetLoggerLevels', f'{name}/get_logger_levels', self._get
             ),
             node.create_service(
                 'rcl_interfaces/srv/SetLoggerLevels', f'{name}/set_logger_levels', self._set
             ),
-        ]
+        )
 
     def _get(
         self, request: GetLoggerLevels_Request, response: GetLoggerLevels_Response
@@ -72,6 +78,8 @@ class LoggingService:
 
     def destroy(self) -> None:
         """Withdraw both services."""
-        for service in self._services:
-            self._node.destroy_service(service)
-        self._services.clear()
+        services, self._services = self._services, None
+        if services is not None:
+            get_levels, set_levels = services
+            self._node.destroy_service(get_levels)
+            self._node.destroy_service(set_levels)

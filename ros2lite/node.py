@@ -5,7 +5,7 @@ from __future__ import annotations
 import inspect
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, Literal, overload
+from typing import TYPE_CHECKING, Any, Literal, Protocol, overload
 
 from ros2lite import names
 from ros2lite.arguments import RosArgs, parse_ros_args
@@ -13,7 +13,7 @@ from ros2lite.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGro
 from ros2lite.client import Client
 from ros2lite.clock import Clock, ROSClock
 from ros2lite.context import Context, default_context
-from ros2lite.executable import Executable, GuardCondition
+from ros2lite.executable import EntityExecutor, Executable, GuardCondition
 from ros2lite.logging import RcutilsLogger, set_logger_level
 from ros2lite.parameter import Parameter
 from ros2lite.parameters.node_api import ParameterMixin
@@ -26,13 +26,13 @@ from ros2lite.qos import (
 from ros2lite.rate import Rate
 from ros2lite.service import Service
 from ros2lite.subscription import Subscription
+from ros2lite.task import TaskRunner
 from ros2lite.timer import Timer
 from ros2lite.transport import keys
 
 if TYPE_CHECKING:
     from ros2lite.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
     from ros2lite.executable import Destroyable
-    from ros2lite.executors import Executor
     from ros2lite.graph import Entity, TopicEndpointInfo
     from ros2lite.logging_service import LoggingService
     from ros2lite.msgs.rcl_interfaces.msg import Log
@@ -44,6 +44,19 @@ if TYPE_CHECKING:
 
 # rcl's rosout profile, lifespan 10 s included: the token must read `:1:,1000:,:10,0:,,`
 ROSOUT_QOS = qos_profile_rosout_default
+
+
+class NodeExecutor(EntityExecutor, TaskRunner, Protocol):
+    """The executor a node was added to (:class:`ros2lite.executors.Executor` is one), as the
+    node sees it: named here, as executors import nodes to run them."""
+
+    def add_node(self, node: Node) -> bool:
+        """Take over `node`."""
+        ...
+
+    def remove_node(self, node: Node) -> None:
+        """Stop running `node`'s work."""
+        ...
 
 
 class Node(ParameterMixin):
@@ -91,8 +104,8 @@ class Node(ParameterMixin):
         self._callback_groups: list[CallbackGroup] = [self.default_callback_group]
         # the executor this node was added to (it owns the node's work), and the last one
         # (whose queue may still hold entries of its entities)
-        self._executor: Executor | None = None
-        self._last_executor: Executor | None = None
+        self._executor: NodeExecutor | None = None
+        self._last_executor: NodeExecutor | None = None
         # an entity got work while the node had no executor (see Executor.add_node)
         self._unqueued_work = True
         for level_name, level in self._args.log_levels.items():
@@ -120,6 +133,7 @@ class Node(ParameterMixin):
             self.get_logger_name(), self._publish_rosout if enable_rosout else None
         )
         self._init_parameters(
+            self._args,
             parameter_overrides,
             allow_undeclared_parameters,
             automatically_declare_parameters_from_overrides,
@@ -179,14 +193,14 @@ class Node(ParameterMixin):
 
     # -- executor and callback groups --------------------------------------------------------
     @property
-    def executor(self) -> Executor | None:
+    def executor(self) -> NodeExecutor | None:
         """The executor this node was last added to, or None. It stays after the node is
         removed from it (as in rclpy), so tasks created there, such as a deferred action
         goal's execution, run when that executor spins again."""
         return self._executor if self._executor is not None else self._last_executor
 
     @executor.setter
-    def executor(self, new_executor: Executor | None) -> None:
+    def executor(self, new_executor: NodeExecutor | None) -> None:
         """Move the node to `new_executor` (None: to no executor at all)."""
         current = self.executor
         if new_executor is current:

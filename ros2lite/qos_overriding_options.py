@@ -27,7 +27,7 @@ from ros2lite.qos import (
 
 if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
-    from ros2lite.node import Node
+    from ros2lite.node_interface import NodeInterface
     from ros2lite.parameter import Parameter
 
 __all__ = [
@@ -139,7 +139,7 @@ def _override_qos_policy_with_param(
 
 def _declare_qos_parameters(
     entity_type: type,
-    node: Node,
+    node: NodeInterface,
     topic_name: str,
     qos: QoSProfile,
     options: QoSOverridingOptions,

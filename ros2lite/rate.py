@@ -14,7 +14,7 @@ from ros2lite.exceptions import ROSInterruptException
 
 if TYPE_CHECKING:
     from ros2lite.clock import Clock
-    from ros2lite.node import Node
+    from ros2lite.node_interface import NodeInterface
 
 __all__ = ['Rate']
 
@@ -22,7 +22,7 @@ __all__ = ['Rate']
 class Rate:
     """Sleeps until the next tick; ROSInterruptException once destroyed or shut down."""
 
-    def __init__(self, node: Node, frequency: float, clock: Clock | None = None) -> None:
+    def __init__(self, node: NodeInterface, frequency: float, clock: Clock | None = None) -> None:
         if isinstance(frequency, bool) or not isinstance(frequency, (int, float)):
             raise TypeError(f'frequency must be a number, not {type(frequency).__name__}')
         if frequency <= 0:

@@ -11,7 +11,7 @@ them and `bag record --services` records them, for ros2lite's nodes and C++/rclp
 from __future__ import annotations
 
 import enum
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol, overload
 
 from ros2lite.executable import EntityNode
 from ros2lite.qos import QoSProfile
@@ -121,10 +121,20 @@ class ServiceNode(EntityNode, Protocol):
     """The node of a service or client (:class:`ros2lite.node.Node`): an entity's node that
     also makes the publisher of its introspection events, and stamps them with its clock."""
 
+    @overload
     def create_publisher(
         self, msg_type: type[MsgT], topic: str, qos_profile: QoSProfile | int
+    ) -> Publisher[MsgT]: ...
+
+    @overload
+    def create_publisher(
+        self, msg_type: str, topic: str, qos_profile: QoSProfile | int
+    ) -> Publisher[MsgT]: ...
+
+    def create_publisher(
+        self, msg_type: type[MsgT] | str, topic: str, qos_profile: QoSProfile | int
     ) -> Publisher[MsgT]:
-        """A publisher of the node's."""
+        """A publisher of the node's, of a message class or a 'pkg/msg/Name'."""
         ...
 
     def destroy_publisher(self, pub: Publisher[MsgT]) -> bool:

@@ -21,7 +21,7 @@ from ros2lite.time import ClockType, Time
 if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
     from ros2lite.msgs.rosgraph_msgs.msg import Clock as ClockMsg
-    from ros2lite.node import Node
+    from ros2lite.node_interface import NodeInterface
     from ros2lite.subscription import Subscription
 
 __all__ = ['CLOCK_TOPIC', 'USE_SIM_TIME_NAME', 'TimeSource']
@@ -35,10 +35,10 @@ CLOCK_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
 class TimeSource:
     """Keeps its attached ROS clocks on system time, or on `/clock` under sim time."""
 
-    def __init__(self, *, node: Node | None = None) -> None:
+    def __init__(self, *, node: NodeInterface | None = None) -> None:
         self._lock = threading.RLock()
         self._clock_sub: Subscription[ClockMsg] | None = None
-        self._node_weak_ref: weakref.ref[Node] | None = None
+        self._node_weak_ref: weakref.ref[NodeInterface] | None = None
         self._associated_clocks: list[ROSClock] = []
         self._last_time_set: Time | None = None
         self._ros_time_is_active = False
@@ -88,10 +88,10 @@ class TimeSource:
             clock.set_ros_time_override(time_point)
 
     # -- node ---------------------------------------------------------------------------------
-    def _get_node(self) -> Node | None:
+    def _get_node(self) -> NodeInterface | None:
         return self._node_weak_ref() if self._node_weak_ref is not None else None
 
-    def attach_node(self, node: Node) -> None:
+    def attach_node(self, node: NodeInterface) -> None:
         """Follow `node`'s `use_sim_time` (declared here if the node has none yet)."""
         with self._lock:
             if self._node_weak_ref is not None:

@@ -22,7 +22,7 @@ if TYPE_CHECKING:
         GetTypeDescription_Request,
         GetTypeDescription_Response,
     )
-    from ros2lite.node import Node
+    from ros2lite.node_interface import NodeInterface
     from ros2lite.service import Service
 
 __all__ = ['START_TYPE_DESCRIPTION_SERVICE_PARAM', 'TypeDescriptionService']
@@ -35,7 +35,7 @@ _ENCODING = {'msg': 'msg', 'srv': 'srv', 'action': 'action'}
 class TypeDescriptionService:
     """Declares the parameter and, if it is true, serves the descriptions on `node`."""
 
-    def __init__(self, node: Node) -> None:
+    def __init__(self, node: NodeInterface) -> None:
         from ros2lite.parameters.store import descriptor
 
         self._node = node

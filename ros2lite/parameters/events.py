@@ -8,7 +8,7 @@ from ros2lite.parameter import Parameter
 
 if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import ParameterEvent
-    from ros2lite.node import Node
+    from ros2lite.node_interface import NodeInterface
     from ros2lite.publisher import Publisher
 
 TOPIC = "/parameter_events"
@@ -18,7 +18,7 @@ TYPE = "rcl_interfaces/msg/ParameterEvent"
 class ParameterEventPublisher:
     """Turns a store's (new, changed, deleted) report into one ParameterEvent message."""
 
-    def __init__(self, node: Node) -> None:
+    def __init__(self, node: NodeInterface) -> None:
         from ros2lite.qos import qos_profile_parameter_events
 
         self._node = node

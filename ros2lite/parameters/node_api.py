@@ -20,13 +20,14 @@ from ros2lite.parameters.store import (
 )
 
 if TYPE_CHECKING:
+    from ros2lite.arguments import RosArgs
     from ros2lite.msgs.rcl_interfaces.msg import (
         ListParametersResult,
         ParameterDescriptor,
         ParameterValue,
         SetParametersResult,
     )
-    from ros2lite.node import Node
+    from ros2lite.node_interface import NodeInterface
 
 
 class ParameterMixin:
@@ -36,6 +37,7 @@ class ParameterMixin:
 
     def _init_parameters(
         self,
+        ros_args: RosArgs,
         parameter_overrides: Sequence[Parameter] | None,
         allow_undeclared_parameters: bool,
         automatically_declare_parameters_from_overrides: bool,
@@ -43,9 +45,9 @@ class ParameterMixin:
     ) -> None:
         from ros2lite.parameters.events import ParameterEventPublisher
 
-        node = cast('Node', self)  # the mixin of Node
+        node = cast('NodeInterface', self)  # the mixin of Node
         overrides = _override_parameters(
-            node._args.parameter_overrides(node.get_fully_qualified_name(), node.get_name())
+            ros_args.parameter_overrides(node.get_fully_qualified_name(), node.get_name())
         )
         overrides.update({p.name: p for p in parameter_overrides or []})
         self._parameter_store = ParameterStore(
@@ -65,7 +67,7 @@ class ParameterMixin:
     def _start_parameter_services(self) -> None:
         from ros2lite.parameters.services import ParameterService
 
-        self._parameter_service = ParameterService(cast('Node', self))
+        self._parameter_service = ParameterService(cast('NodeInterface', self))
 
     # -- declare -----------------------------------------------------------------------------
     def declare_parameter(

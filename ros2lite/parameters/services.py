@@ -16,7 +16,7 @@ if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces import srv
     from ros2lite.msgs.rcl_interfaces.msg import Parameter as ParameterMsg
     from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
-    from ros2lite.node import Node
+    from ros2lite.node_interface import NodeInterface
     from ros2lite.service import Service
 
 SERVICES = (
@@ -55,7 +55,7 @@ def _all_or_none(
 class ParameterService:
     """Creates the services on `node` (names relative to the node: `<node>/<service>`)."""
 
-    def __init__(self, node: Node) -> None:
+    def __init__(self, node: NodeInterface) -> None:
         from ros2lite.qos import qos_profile_parameters
 
         self._node = node
