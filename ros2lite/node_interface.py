@@ -12,11 +12,9 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Protocol
 
-from ros2lite.qos import qos_profile_services_default
 from ros2lite.service_introspection import ServiceNode
 
 if TYPE_CHECKING:
-    from ros2lite.callback_groups import CallbackGroup
     from ros2lite.clock import Clock
     from ros2lite.endpoint import EndpointOwner
     from ros2lite.msgs.rcl_interfaces.msg import (
@@ -85,7 +83,7 @@ class NodeInterface(ServiceNode, Protocol):
         srv_name: str,
         callback: ServiceCallback[SrvRequestT, SrvResponseT],
         *,
-        qos_profile: QoSProfile = qos_profile_services_default,
+        qos_profile: QoSProfile = ...,
     ) -> Service[SrvRequestT, SrvResponseT]:
         """A service server of the node's, of a 'pkg/srv/Name' type."""
         ...
@@ -95,11 +93,7 @@ class NodeInterface(ServiceNode, Protocol):
         ...
 
     def create_timer(
-        self,
-        timer_period_sec: float,
-        callback: Callable[[], object],
-        callback_group: CallbackGroup | None = None,
-        clock: Clock | None = None,
+        self, timer_period_sec: float, callback: Callable[[], object], *, clock: Clock | None = None
     ) -> Timer:
         """A timer of the node's."""
         ...

@@ -35,23 +35,6 @@ from ros2lite.transport.errors import SessionError
 if TYPE_CHECKING:
     from ros2lite.transport.admin import ConnectedSession
 
-# the names ros2lite.daemon hands on (loading them from here lazily), and what only the daemon
-# process uses
-__all__ = [
-    "DaemonError",
-    "DaemonInfo",
-    "DaemonStatus",
-    "StartResult",
-    "StopResult",
-    "connected_sessions",
-    "ensure_running",
-    "router_answers",
-    "runtime_dir",
-    "serve",
-    "start",
-    "status",
-    "stop",
-]
 
 START_TIMEOUT = 10.0
 STOP_TIMEOUT = 5.0
