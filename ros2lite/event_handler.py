@@ -184,6 +184,8 @@ _SUBSCRIPTION_EVENTS: dict[int, _Kind] = {
 class EventHandler(Executable):
     """One event of one publisher or subscription; `callback(info)` runs on the executor."""
 
+    notifies_itself = True  # every change that readies it calls _notify()
+
     def __init__(
         self,
         *,

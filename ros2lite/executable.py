@@ -25,9 +25,17 @@ __all__ = [
     'current_execution',
 ]
 
+
+class _Running(threading.local):
+    """What this thread is executing (class defaults: nothing, read without getattr)."""
+
+    executor: Executor | None = None
+    entity: Executable | None = None
+
+
 # which executor and entity the current thread runs a callback for (set by the executor):
 # coroutine callbacks continue on it, and blocking calls check it for deadlocks
-_running = threading.local()
+_running = _Running()
 
 
 class Destroyable(Protocol):
@@ -119,7 +127,7 @@ class EntityNode(Protocol):
 
 def current_execution() -> tuple[EntityExecutor | None, Executable | None]:
     """(executor, entity) whose callback this thread is running, or (None, None)."""
-    return getattr(_running, 'executor', None), getattr(_running, 'entity', None)
+    return _running.executor, _running.entity
 
 
 class Executable:
@@ -130,6 +138,9 @@ class Executable:
     # otherwise never resume
     needs_group = True
     is_timer = False
+    # the entity calls _notify() whenever it gets work, also while its node has no executor
+    # (so add_node need not ask it); user waitables that only answer is_ready() do not
+    notifies_itself = False
 
     def __init__(self, node: EntityNode | None, callback_group: CallbackGroup | None) -> None:
         from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup
@@ -178,7 +189,7 @@ class Executable:
         """Run a user callback on the executor's terms (a coroutine becomes a Task). That is
         the executor running this entity now: a multi-threaded one may run it after the node
         has moved on (spin_once's helper removes the node once the work is handed over)."""
-        executor = getattr(_running, 'executor', None)
+        executor = _running.executor
         if executor is None and self._node is not None:
             executor = self._node._executor
         if executor is not None:

@@ -26,7 +26,7 @@ from concurrent.futures import ThreadPoolExecutor
 from typing import TYPE_CHECKING, Any, cast
 
 from ros2lite.context import Context, default_context
-from ros2lite.executable import Executable, _running, current_execution
+from ros2lite.executable import Executable, _running
 from ros2lite.task import Future, Task
 
 if TYPE_CHECKING:
@@ -115,13 +115,18 @@ class Executor:
         node._executor = self
         # what got work while the node had no executor: entities say so (Executable._notify),
         # so a node coming back (`spin_once(node)` adds and removes it per call) is not
-        # searched; waitables of other kinds may not say, and are always looked at
+        # searched; waitables that only answer is_ready() may not say, and are always asked
         if entities is None and node._unqueued_work:
             entities = node._executables()
         node._unqueued_work = False
-        for entity in node.waitables if entities is None else entities:
-            if not entity._scheduled and entity._has_work():
-                entity._notify()
+        if entities is None:
+            for entity in node.waitables:
+                if not entity.notifies_itself and not entity._scheduled and entity._has_work():
+                    entity._notify()
+        else:
+            for entity in entities:
+                if not entity._scheduled and entity._has_work():
+                    entity._notify()
         if self._spinning:
             self.wake()  # a spinning thread must see the node's timers
         return True
@@ -193,7 +198,9 @@ class Executor:
         self._spin_once(timeout_sec, None)
 
     def _spin_once(self, timeout_sec: float | None, stop: Callable[[], bool] | None) -> None:
-        self._check_terminating()
+        context = self._context
+        if context.terminating:
+            raise ExternalShutdownException()
         self._spinning += 1
         try:
             item = self._next(timeout_sec, stop)
@@ -201,7 +208,8 @@ class Executor:
                 self._dispatch(item, False, None)
         finally:
             self._spinning -= 1
-        self._check_terminating()
+        if context.terminating:
+            raise ExternalShutdownException()
 
     def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None) -> None:
         """Run callbacks until `future` is done or `timeout_sec` passes (a future completed
@@ -311,8 +319,10 @@ class Executor:
         """The next entity, task or due timer; None when the timeout passed, `stop()` holds
         or the executor/context shut down. A bare wake-up is not work: waiting goes on."""
         work = self._queue
-        has_timers = any(node.timers for node in self._nodes)
-        if not has_timers:
+        for node in self._nodes:
+            if node.timers:
+                break
+        else:  # no timers (a loop, not any(): no generator per call)
             # hot path: work already queued runs at once, with no deadline arithmetic
             try:
                 item = work.get_nowait()
@@ -320,15 +330,14 @@ class Executor:
                 item = None
             if item is not None:
                 return item
-            if timeout is None:
-                while True:
-                    item = work.get()
-                    if item is not None:
-                        return item
-                    if not self._ok() or (stop is not None and stop()):
-                        return None
-                    if any(node.timers for node in self._nodes):
-                        break  # a timer was added meanwhile: take the general path
+            while timeout is None:
+                item = work.get()
+                if item is not None:
+                    return item
+                if not self._ok() or (stop is not None and stop()):
+                    return None
+                if any(node.timers for node in self._nodes):
+                    break  # a timer was added meanwhile: take the general path
         deadline = None if timeout is None else time.monotonic() + timeout
         while True:
             timer, next_timer = self._due_timer()
@@ -380,13 +389,14 @@ class Executor:
     def _run_entity(
         self, entity: Executable, group: CallbackGroup, batch: bool, stop: Callable[[], bool] | None
     ) -> None:
-        saved = current_execution()
-        _running.executor, _running.entity = self, entity
+        running = _running
+        saved = running.executor, running.entity
+        running.executor, running.entity = self, entity
         pending: Task | None = None
         try:
             pending = entity._execute(batch, stop)
         finally:
-            _running.executor, _running.entity = saved
+            running.executor, running.entity = saved
             entity._executed()
             if entity.needs_group:
                 if pending is None or pending.done():
@@ -576,7 +586,7 @@ def spin_once(
     node: Node, *, executor: Executor | None = None, timeout_sec: float | None = None
 ) -> None:
     """Run one callback of `node` (on the global executor unless one is given)."""
-    ex = _executor_for(node, executor)
+    ex = executor if executor is not None else get_global_executor(node.context)
     added = ex.add_node(node)
     try:
         ex.spin_once(timeout_sec)

@@ -209,7 +209,18 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
                 if entry is None
                 else self._call(self.callback, *(entry if self._with_info else entry[:1]))
             )
-        self._deliver_batch(_BATCH if batch else 1, stop)
+        source = self._source
+        if source is not None and not (self.raw or self._with_info):
+            # the hot path (ros2lite.delivery), straight from here: spin_once pays per call
+            deliver(
+                self,
+                source,
+                self._deserialize or self._deserializer(),
+                _BATCH if batch else 1,
+                stop,
+            )
+        else:
+            self._deliver_batch(_BATCH if batch else 1, stop)
         return None
 
     def _deliver_batch(self, limit: int, stop: Callable[[], bool] | None) -> None:
