@@ -29,7 +29,7 @@ __all__ = [
 class _Running(threading.local):
     """What this thread is executing (class defaults: nothing, read without getattr)."""
 
-    executor: Executor | None = None
+    executor: EntityExecutor | None = None
     entity: Executable | None = None
 
 
