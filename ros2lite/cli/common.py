@@ -275,6 +275,18 @@ def format_options(
     return decorate
 
 
+def print_event(type_name: str, data: bytes, fmt: MessageFormat, head: str = '') -> None:
+    """Print one serialized service event (or any message) as `service echo` and `action
+    echo` do: `head`, the message, then `---` (a CSV line ends with its newline alone)."""
+    import sys
+
+    from ros2lite.interfaces import deserialize
+    from ros2lite.service_introspection import format_event
+
+    text = format_event(deserialize(type_name, data), **fmt)
+    sys.stdout.write(head + text + ('\n' if fmt['csv'] else '---\n'))
+
+
 def qos_from_options(
     qos_profile: str,
     qos_depth: int | None,
