@@ -94,6 +94,13 @@ def count_option(kind: str) -> Callable[[F], F]:
     )
 
 
+def show_types_option(kind: str) -> Callable[[F], F]:
+    """`-t/--show-types` of the verbs that list services or actions, in ros2cli's words."""
+    return click.option(
+        '-t', '--show-types', is_flag=True, help=f'Additionally show the {kind} type'
+    )
+
+
 def values_argument(name: str = 'values', what: str = 'values') -> Callable[[F], F]:
     """The optional YAML argument `name` of pub/call/send_goal and its `--stdin` alternative
     (`what` the help reads: 'values', 'the goal'); see `check_stdin`."""
