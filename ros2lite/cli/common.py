@@ -101,6 +101,17 @@ def show_types_option(kind: str) -> Callable[[F], F]:
     )
 
 
+def prefix_option(name: str, metavar: str, before: str, example: str) -> Callable[[F], F]:
+    """The prefix command of `run` (`--prefix`) and `launch` (`--launch-prefix`), put before
+    the executable(s) `before` names; ros2cli's wording, with `example` as its example."""
+    return click.option(
+        name,
+        metavar=metavar,
+        help=f'Prefix command, which should go before {before}. Command must be wrapped in '
+        f"quotes if it contains spaces (e.g. {name} '{example}').",
+    )
+
+
 def values_argument(name: str = 'values', what: str = 'values') -> Callable[[F], F]:
     """The optional YAML argument `name` of pub/call/send_goal and its `--stdin` alternative
     (`what` the help reads: 'values', 'the goal'); see `check_stdin`."""
