@@ -229,7 +229,8 @@ def _rosbag2_record(record: Metadata) -> tuple[BagMetadata | None, str]:
 
 
 def _note_rosbag2_records(summary: FileSummary, records: Iterable[Metadata]) -> None:
-    """The bag metadata and ROS distro of the last `rosbag2` records that have them."""
+    """Put into `summary` the bag metadata and ROS distro of the last `rosbag2` records
+    that carry them."""
     for record in records:
         if record.name == "rosbag2":
             m, d = _rosbag2_record(record)
