@@ -13,20 +13,16 @@ import weakref
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Generic, Protocol, cast
 
+from ros2lite.action.entity import ActionEntity, GoalHandle
 from ros2lite.action.goals import (
     TERMINAL_STATES,
-    ActionNames,
     CancelGoal,
     GoalStatus,
     goal_key,
     new_goal_id,
-    resolve_action_name,
-    resolve_action_type,
 )
 from ros2lite.action.server import await_or_execute
-from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
-from ros2lite.service_introspection import Introspectable
 from ros2lite.task import Future
 from ros2lite.type_support import FeedbackT, GoalT, ResultT
 from ros2lite.waitable import NumberOfEntities
@@ -63,7 +59,7 @@ def _require_accepted(goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]) 
         raise TypeError('Action goal was not accepted')
 
 
-class ClientGoalHandle(Generic[GoalT, ResultT, FeedbackT]):
+class ClientGoalHandle(GoalHandle, Generic[GoalT, ResultT, FeedbackT]):
     """A goal as its client sees it: accepted or not, its status, and ways to end it."""
 
     def __init__(
@@ -72,32 +68,16 @@ class ClientGoalHandle(Generic[GoalT, ResultT, FeedbackT]):
         goal_id: UUID,
         goal_response: Message,
     ) -> None:
+        super().__init__(goal_id)
         self._action_client = action_client
-        self._goal_id = goal_id
         self._goal_response = cast(_SendGoalResponse, goal_response)
         self._status = GoalStatus.STATUS_UNKNOWN
 
-    def __eq__(self, other: object) -> bool:
-        return isinstance(other, ClientGoalHandle) and goal_key(self._goal_id) == goal_key(
-            other._goal_id
-        )
-
-    def __ne__(self, other: object) -> bool:
-        return not self == other
-
-    def __hash__(self) -> int:
-        return hash(goal_key(self._goal_id))
-
     def __repr__(self) -> str:
         return (
-            f'ClientGoalHandle <id: {list(goal_key(self._goal_id))}, '
+            f'ClientGoalHandle <id: {list(self._key)}, '
             f'accepted: {self.accepted}, status: {self.status}>'
         )
-
-    @property
-    def goal_id(self) -> UUID:
-        """The goal's id."""
-        return self._goal_id
 
     @property
     def stamp(self) -> Time:
@@ -131,10 +111,8 @@ class ClientGoalHandle(Generic[GoalT, ResultT, FeedbackT]):
         return self._action_client._get_result_async(self)
 
 
-class ActionClient(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT]):
+class ActionClient(ActionEntity[GoalT, ResultT, FeedbackT]):
     """Sends goals to one action (rclpy.action.ActionClient's arguments and defaults)."""
-
-    _node: Node
 
     def __init__(
         self,
@@ -152,12 +130,7 @@ class ActionClient(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT
     ) -> None:
         """rclpy's arguments; `fail_without_server=True` (a ros2lite extra, for tools) ends a
         request the server never answers in an error instead of leaving it pending."""
-        self._node = node
-        self._action_type = resolve_action_type(action_type)
-        self._action_name = action_name
-        self._names = ActionNames(
-            resolve_action_name(node, action_name), self._action_type._TYPE_NAME
-        )
+        super().__init__(node, action_type, action_name, callback_group)
         self._lock = threading.Lock()
         self._feedback_callbacks: dict[bytes, FeedbackCallback[FeedbackT]] = {}
         self._goal_handles: dict[
@@ -166,9 +139,6 @@ class ActionClient(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT
         # goals sent but not answered yet, with the last status seen for them: the server
         # may publish a goal's status before its answer to send_goal arrives here
         self._unanswered: dict[bytes, int] = {}
-        # a waitable of the node, as in rclpy: destroy_node() destroys it too; its work is
-        # done by its own services, clients and subscriptions
-        super().__init__(node, callback_group)
         group = self.callback_group
         impl = self._action_type.Impl
         names = self._names
@@ -200,25 +170,11 @@ class ActionClient(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT
             status_sub_qos_profile,
             callback_group=group,
         )
-        self._destroyed = False
         node.add_waitable(self)
-
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
-        return None  # never has work of its own
 
     def get_num_entities(self) -> NumberOfEntities:
         """What rcl_action counts: the feedback and status subscriptions, three clients."""
         return NumberOfEntities(num_subscriptions=2, num_clients=3)
-
-    @property
-    def action_type(self) -> type[Action[GoalT, ResultT, FeedbackT]]:
-        """The action class."""
-        return cast('type[Action[GoalT, ResultT, FeedbackT]]', self._action_type)
-
-    @property
-    def action_name(self) -> str:
-        """The fully resolved action name."""
-        return self._names.action
 
     # -- incoming ----------------------------------------------------------------------------
     async def _on_feedback(self, message: Message) -> None:
@@ -422,13 +378,9 @@ class ActionClient(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT
         """The action's three service clients, whose events its introspection reports."""
         return (self._goal_client, self._cancel_client, self._result_client)
 
-    def destroy(self) -> None:
-        """Withdraw the five entities from the graph."""
-        if self._destroyed:
-            return
-        self._destroyed = True
+    def _destroy_entities(self) -> None:
+        """The three service clients and the feedback and status subscriptions."""
         node = self._node
-        node.remove_waitable(self)
         for client in (self._goal_client, self._cancel_client, self._result_client):
             node.destroy_client(client)
         node.destroy_subscription(self._feedback_sub)

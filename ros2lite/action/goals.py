@@ -70,47 +70,39 @@ def resolve_action_name(node: Node, name: str) -> str:
     return resolved
 
 
+# rcl_action's five sub-entities, in its order: (role, name under the action's, type: a
+# suffix to the action type's name when it starts with '_', else a type name of its own)
+_ENTITIES = (
+    ('service', 'send_goal', '_SendGoal'),
+    ('service', 'cancel_goal', 'action_msgs/srv/CancelGoal'),
+    ('service', 'get_result', '_GetResult'),
+    ('topic', 'feedback', '_FeedbackMessage'),
+    ('topic', 'status', 'action_msgs/msg/GoalStatusArray'),
+)
+
+
 @dataclass(frozen=True)
 class ActionNames:
-    """Full names and types of the five entities rcl_action builds an action from."""
+    """Full names and types of the five entities rcl_action builds an action from: the
+    send_goal, cancel_goal and get_result services' and the feedback and status topics'."""
 
     action: str
     action_type: str
+    send_goal: str = field(init=False)
+    cancel_goal: str = field(init=False)
+    get_result: str = field(init=False)
+    feedback: str = field(init=False)
+    status: str = field(init=False)
 
-    @property
-    def send_goal(self) -> str:
-        """The send_goal service's name."""
-        return action_entity_name(self.action, 'send_goal')
-
-    @property
-    def cancel_goal(self) -> str:
-        """The cancel_goal service's name."""
-        return action_entity_name(self.action, 'cancel_goal')
-
-    @property
-    def get_result(self) -> str:
-        """The get_result service's name."""
-        return action_entity_name(self.action, 'get_result')
-
-    @property
-    def feedback(self) -> str:
-        """The feedback topic's name."""
-        return action_entity_name(self.action, 'feedback')
-
-    @property
-    def status(self) -> str:
-        """The status topic's name."""
-        return action_entity_name(self.action, 'status')
+    def __post_init__(self) -> None:
+        for _role, entity, _type in _ENTITIES:
+            object.__setattr__(self, entity, action_entity_name(self.action, entity))
 
     def entities(self) -> list[tuple[str, str, str]]:
         """(role, name, type) of each sub-entity; role 'service' or 'topic'."""
-        t = self.action_type
         return [
-            ('service', self.send_goal, t + '_SendGoal'),
-            ('service', self.cancel_goal, 'action_msgs/srv/CancelGoal'),
-            ('service', self.get_result, t + '_GetResult'),
-            ('topic', self.feedback, t + '_FeedbackMessage'),
-            ('topic', self.status, 'action_msgs/msg/GoalStatusArray'),
+            (role, getattr(self, entity), self.action_type + kind if kind[0] == '_' else kind)
+            for role, entity, kind in _ENTITIES
         ]
 
 

@@ -17,21 +17,17 @@ import traceback
 from collections.abc import Awaitable, Callable
 from typing import TYPE_CHECKING, Generic, Protocol, TypeVar, cast
 
+from ros2lite.action.entity import ActionEntity, GoalHandle
 from ros2lite.action.goals import (
     TERMINAL_STATES,
-    ActionNames,
     CancelGoal,
     GoalEvent,
     GoalInfo,
     GoalStatus,
     GoalTable,
     goal_key,
-    resolve_action_name,
-    resolve_action_type,
 )
-from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
-from ros2lite.service_introspection import Introspectable
 from ros2lite.task import Future
 from ros2lite.type_support import FeedbackT, GoalT, ResultT
 from ros2lite.waitable import NumberOfEntities
@@ -102,7 +98,7 @@ async def await_or_execute(callback: Callable[..., _T | Awaitable[_T]], *args: o
     return cast(_T, result)
 
 
-class ServerGoalHandle(Generic[GoalT, ResultT, FeedbackT]):
+class ServerGoalHandle(GoalHandle, Generic[GoalT, ResultT, FeedbackT]):
     """One accepted goal as the user's callbacks see it."""
 
     def __init__(
@@ -111,17 +107,11 @@ class ServerGoalHandle(Generic[GoalT, ResultT, FeedbackT]):
         goal_info: GoalInfoMsg,
         goal_request: GoalT,
     ) -> None:
+        super().__init__(goal_info.goal_id)
         self._action_server = action_server
         self._goal_info = goal_info
         self._goal_request = goal_request
-        self._key = goal_key(goal_info.goal_id)
         self._destroyed = False
-
-    def __eq__(self, other: object) -> bool:
-        return isinstance(other, ServerGoalHandle) and self._key == other._key
-
-    def __hash__(self) -> int:
-        return hash(self._key)
 
     def __repr__(self) -> str:
         return f'ServerGoalHandle <id: {self._key.hex()}, status: {self.status}>'
@@ -130,11 +120,6 @@ class ServerGoalHandle(Generic[GoalT, ResultT, FeedbackT]):
     def request(self) -> GoalT:
         """The goal the client sent."""
         return self._goal_request
-
-    @property
-    def goal_id(self) -> UUID:
-        """The goal's id."""
-        return self._goal_info.goal_id
 
     @property
     def status(self) -> int:
@@ -217,10 +202,8 @@ CancelCallback = Callable[
 """Accepts or rejects a request to cancel a goal."""
 
 
-class ActionServer(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT]):
+class ActionServer(ActionEntity[GoalT, ResultT, FeedbackT]):
     """Serves one action on a node (rclpy.action.ActionServer's arguments and defaults)."""
-
-    _node: Node
 
     def __init__(
         self,
@@ -242,12 +225,7 @@ class ActionServer(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT
         status_pub_qos_profile: QoSProfile = qos_profile_action_status_default,
         result_timeout: float = 900,
     ) -> None:
-        self._node = node
-        self._action_type = resolve_action_type(action_type)
-        self._action_name = action_name
-        self._names = ActionNames(
-            resolve_action_name(node, action_name), self._action_type._TYPE_NAME
-        )
+        super().__init__(node, action_type, action_name, callback_group)
         self._logger = node.get_logger()
         self._lock = threading.RLock()
         self._goals = GoalTable(result_timeout)
@@ -257,9 +235,6 @@ class ActionServer(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT
         self.register_goal_callback(goal_callback)
         self.register_handle_accepted_callback(handle_accepted_callback)
         self.register_cancel_callback(cancel_callback)
-        # a waitable of the node, as in rclpy: destroy_node() destroys it too; its work is
-        # done by its own services, clients and subscriptions
-        super().__init__(node, callback_group)
         group = self.callback_group
         impl = self._action_type.Impl
         names = self._names
@@ -306,11 +281,7 @@ class ActionServer(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT
             clock=Clock(clock_type=ClockType.STEADY_TIME),
             autostart=False,
         )
-        self._destroyed = False
         node.add_waitable(self)
-
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
-        return None  # never has work of its own
 
     def get_num_entities(self) -> NumberOfEntities:
         """What rcl_action counts: three services and the expiry timer."""
@@ -368,16 +339,6 @@ class ActionServer(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT
         self._cancel_callback: CancelCallback[GoalT, ResultT, FeedbackT] = (
             cancel_callback or default_cancel_callback
         )
-
-    @property
-    def action_type(self) -> type[Action[GoalT, ResultT, FeedbackT]]:
-        """The action class served."""
-        return cast('type[Action[GoalT, ResultT, FeedbackT]]', self._action_type)
-
-    @property
-    def action_name(self) -> str:
-        """The fully resolved action name."""
-        return self._names.action
 
     # -- requests (deferred service callbacks; coroutines, so user callbacks may be too) -----
     async def _execute_goal_request(self, message: Message, header: RequestHeader) -> None:
@@ -548,13 +509,9 @@ class ActionServer(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT
         if future is not None and not future.done():
             future.set_result(response)
 
-    def destroy(self) -> None:
-        """Withdraw the five entities from the graph."""
-        if self._destroyed:
-            return
-        self._destroyed = True
+    def _destroy_entities(self) -> None:
+        """The three services, the feedback and status publishers, and the expiry timer."""
         node = self._node
-        node.remove_waitable(self)
         for service in (self._goal_service, self._cancel_service, self._result_service):
             node.destroy_service(service)
         node.destroy_publisher(self._feedback_pub)

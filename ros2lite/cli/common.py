@@ -94,6 +94,24 @@ def count_option(kind: str) -> Callable[[F], F]:
     )
 
 
+def show_types_option(kind: str) -> Callable[[F], F]:
+    """`-t/--show-types` of the verbs that list services or actions, in ros2cli's words."""
+    return click.option(
+        '-t', '--show-types', is_flag=True, help=f'Additionally show the {kind} type'
+    )
+
+
+def prefix_option(name: str, metavar: str, before: str, example: str) -> Callable[[F], F]:
+    """The prefix command of `run` (`--prefix`) and `launch` (`--launch-prefix`), put before
+    the executable(s) `before` names; ros2cli's wording, with `example` as its example."""
+    return click.option(
+        name,
+        metavar=metavar,
+        help=f'Prefix command, which should go before {before}. Command must be wrapped in '
+        f"quotes if it contains spaces (e.g. {name} '{example}').",
+    )
+
+
 def values_argument(name: str = 'values', what: str = 'values') -> Callable[[F], F]:
     """The optional YAML argument `name` of pub/call/send_goal and its `--stdin` alternative
     (`what` the help reads: 'values', 'the goal'); see `check_stdin`."""
@@ -273,6 +291,18 @@ def format_options(
         return cast(F, decorated)
 
     return decorate
+
+
+def print_event(type_name: str, data: bytes, fmt: MessageFormat, head: str = '') -> None:
+    """Print one serialized service event (or any message) as `service echo` and `action
+    echo` do: `head`, the message, then `---` (a CSV line ends with its newline alone)."""
+    import sys
+
+    from ros2lite.interfaces import deserialize
+    from ros2lite.service_introspection import format_event
+
+    text = format_event(deserialize(type_name, data), **fmt)
+    sys.stdout.write(head + text + ('\n' if fmt['csv'] else '---\n'))
 
 
 def qos_from_options(

@@ -12,6 +12,7 @@ import sys
 import click
 
 from . import completion
+from .common import prefix_option
 from .errors import CliError
 
 # one colour per process, in order of start; launch's own warnings and errors by severity
@@ -80,12 +81,7 @@ class _Colours:
     help='Show all launched subprocesses\' output by overriding their output configuration '
     'using the OVERRIDE_LAUNCH_PROCESS_OUTPUT envvar.',
 )
-@click.option(
-    '--launch-prefix',
-    metavar='PREFIX',
-    help='Prefix command, which should go before all executables. Command must be wrapped in '
-    "quotes if it contains spaces (e.g. --launch-prefix 'xterm -e gdb -ex run --args').",
-)
+@prefix_option('--launch-prefix', 'PREFIX', 'all executables', 'xterm -e gdb -ex run --args')
 @click.option(
     '--launch-prefix-filter',
     metavar='REGEX',

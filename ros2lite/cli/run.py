@@ -16,6 +16,7 @@ import signal
 import click
 
 from . import completion
+from .common import prefix_option
 
 
 @click.command(
@@ -25,12 +26,7 @@ from . import completion
         'allow_interspersed_args': False,
     },
 )
-@click.option(
-    '--prefix',
-    metavar='CMD',
-    help="Prefix command, which should go before the executable. Command must be "
-    "wrapped in quotes if it contains spaces (e.g. --prefix 'gdb -ex run --args').",
-)
+@prefix_option('--prefix', 'CMD', 'the executable', 'gdb -ex run --args')
 @click.argument('package_name', shell_complete=completion.executable_packages)
 @click.argument('executable_name', shell_complete=completion.executables)
 @click.argument('argv', nargs=-1, type=click.UNPROCESSED)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from ros2lite.lifecycle.managed_entity import ManagedEntity
 from ros2lite.lifecycle.publisher import LifecyclePublisher
@@ -47,6 +47,7 @@ if TYPE_CHECKING:
 __all__ = ['LifecycleNode', 'LifecycleNodeMixin']
 
 TransitionCallback = Callable[[LifecycleState], TransitionCallbackReturn]
+_Response = TypeVar('_Response')
 
 # rcl_lifecycle publishes transition events with rcl's default publisher options
 TRANSITION_EVENT_QOS = QoSProfile(depth=10)
@@ -94,36 +95,38 @@ class LifecycleNodeMixin:
             'qos_profile': qos_profile_services_default,
             'callback_group': callback_group,
         }
-        self._service_change_state = node.create_service(
-            _msg('srv/ChangeState'), '~/change_state', self._on_change_state, **options
-        )
-        self._service_get_state = node.create_service(
-            _msg('srv/GetState'), '~/get_state', self._on_get_state, **options
-        )
-        self._service_get_available_states = node.create_service(
-            _msg('srv/GetAvailableStates'),
-            '~/get_available_states',
-            self._on_get_available_states,
-            **options,
-        )
-        self._service_get_available_transitions = node.create_service(
-            _msg('srv/GetAvailableTransitions'),
-            '~/get_available_transitions',
-            self._on_get_available_transitions,
-            **options,
-        )
-        self._service_get_transition_graph = node.create_service(
-            _msg('srv/GetAvailableTransitions'),
-            '~/get_transition_graph',
-            self._on_get_transition_graph,
-            **options,
-        )
         machine = self._state_machine
-        machine.service_change_state = self._service_change_state
-        machine.service_get_state = self._service_get_state
-        machine.service_get_available_states = self._service_get_available_states
-        machine.service_get_available_transitions = self._service_get_available_transitions
-        machine.service_get_transition_graph = self._service_get_transition_graph
+        # rcl_lifecycle's five services: (name, type, callback); but for change_state, each
+        # only reads the machine into one field of its response
+        services: tuple[tuple[str, str, Callable[..., object]], ...] = (
+            ('change_state', 'ChangeState', self._on_change_state),
+            ('get_state', 'GetState', _query('current_state', lambda: _state_msg(machine.current))),
+            (
+                'get_available_states',
+                'GetAvailableStates',
+                _query('available_states', lambda: [_state_msg(s) for s in STATES]),
+            ),
+            (
+                'get_available_transitions',
+                'GetAvailableTransitions',
+                _query(
+                    'available_transitions',
+                    lambda: [_description(t) for t in machine.available_transitions()],
+                ),
+            ),
+            (
+                'get_transition_graph',
+                'GetAvailableTransitions',
+                _query('available_transitions', lambda: [_description(t) for t in TRANSITIONS]),
+            ),
+        )
+        for name, type_name, callback in services:
+            service = node.create_service(
+                _msg(f'srv/{type_name}'), f'~/{name}', callback, **options
+            )
+            # rclpy's attributes: the node's `_service_<name>`, the machine's `service_<name>`
+            setattr(self, f'_service_{name}', service)
+            setattr(machine, f'service_{name}', service)
 
     # -- the user's side ------------------------------------------------------------------------
     @property
@@ -279,37 +282,15 @@ class LifecycleNodeMixin:
         response.success = result == TransitionCallbackReturn.SUCCESS
         return response
 
-    def _on_get_state(
-        self, request: lc_srv.GetState.Request, response: lc_srv.GetState.Response
-    ) -> lc_srv.GetState.Response:
-        response.current_state = _state_msg(self._state_machine.current)
+
+def _query(field: str, value: Callable[[], object]) -> Callable[[object, _Response], _Response]:
+    """The callback of a service that only reads: its response's `field` set to `value()`."""
+
+    def answer(request: object, response: _Response) -> _Response:
+        setattr(response, field, value())
         return response
 
-    def _on_get_available_states(
-        self,
-        request: lc_srv.GetAvailableStates.Request,
-        response: lc_srv.GetAvailableStates.Response,
-    ) -> lc_srv.GetAvailableStates.Response:
-        response.available_states = [_state_msg(state_id) for state_id in STATES]
-        return response
-
-    def _on_get_available_transitions(
-        self,
-        request: lc_srv.GetAvailableTransitions.Request,
-        response: lc_srv.GetAvailableTransitions.Response,
-    ) -> lc_srv.GetAvailableTransitions.Response:
-        response.available_transitions = [
-            _description(t) for t in self._state_machine.available_transitions()
-        ]
-        return response
-
-    def _on_get_transition_graph(
-        self,
-        request: lc_srv.GetAvailableTransitions.Request,
-        response: lc_srv.GetAvailableTransitions.Response,
-    ) -> lc_srv.GetAvailableTransitions.Response:
-        response.available_transitions = [_description(t) for t in TRANSITIONS]
-        return response
+    return answer
 
 
 def _state_msg(state_id: int) -> lc_msg.State:

@@ -17,6 +17,7 @@ from ros2lite.parameters.store import (
     ParameterStore,
     PostSetCallback,
     PreSetCallback,
+    SharedParameterMethods,
 )
 
 if TYPE_CHECKING:
@@ -30,7 +31,7 @@ if TYPE_CHECKING:
     from ros2lite.node_interface import NodeInterface
 
 
-class ParameterMixin:
+class ParameterMixin(SharedParameterMethods):
     """Parameters of a node: declare, get, set, describe, callbacks (as rclpy.node.Node)."""
 
     _parameter_store: ParameterStore
@@ -84,15 +85,6 @@ class ParameterMixin:
             else (name, value, descriptor if descriptor is not None else _descriptor())
         )
         return self._parameter_store.declare_parameters("", [entry], ignore_override)[0]
-
-    def declare_parameters(
-        self,
-        namespace: str,
-        parameters: Sequence[ParameterDeclaration],
-        ignore_override: bool = False,
-    ) -> list[Parameter]:
-        """Declare (name[, value or type[, descriptor]]) entries under `namespace`."""
-        return self._parameter_store.declare_parameters(namespace, parameters, ignore_override)
 
     def undeclare_parameter(self, name: str) -> None:
         """Forget a (not read-only) parameter."""
@@ -173,29 +165,8 @@ class ParameterMixin:
     def _post_set_parameters_callbacks(self) -> list[PostSetCallback]:
         return list(self._parameter_store._post_set)
 
-    def add_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
-        """`callback(parameters)` may change the list being set, before any check."""
-        self._parameter_store.add_pre_set_parameters_callback(callback)
-
-    def add_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
-        """`callback(parameters)` may refuse a set (an unsuccessful SetParametersResult)."""
-        self._parameter_store.add_on_set_parameters_callback(callback)
-
-    def add_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
-        """`callback(parameters)` learns of every successful set."""
-        self._parameter_store.add_post_set_parameters_callback(callback)
-
-    def remove_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
-        """Forget a pre-set callback."""
-        self._parameter_store.remove_pre_set_parameters_callback(callback)
-
-    def remove_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
-        """Forget an on-set callback."""
-        self._parameter_store.remove_on_set_parameters_callback(callback)
-
-    def remove_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
-        """Forget a post-set callback."""
-        self._parameter_store.remove_post_set_parameters_callback(callback)
+    def _own_store(self) -> ParameterStore:
+        return self._parameter_store
 
 
 def _descriptor() -> ParameterDescriptor:

@@ -5,8 +5,8 @@ is a failed result whose reason is the exception's message."""
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Callable, Iterable
-from typing import TYPE_CHECKING, Any, TypeVar
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 from ros2lite.exceptions import ParameterNotDeclaredException, ParameterUninitializedException
 from ros2lite.parameter import Parameter
@@ -19,14 +19,6 @@ if TYPE_CHECKING:
     from ros2lite.node_interface import NodeInterface
     from ros2lite.service import Service
 
-SERVICES = (
-    "describe_parameters",
-    "get_parameters",
-    "get_parameter_types",
-    "list_parameters",
-    "set_parameters",
-    "set_parameters_atomically",
-)
 TYPES = {
     "describe_parameters": "DescribeParameters",
     "get_parameters": "GetParameters",
@@ -35,21 +27,35 @@ TYPES = {
     "set_parameters": "SetParameters",
     "set_parameters_atomically": "SetParametersAtomically",
 }
+SERVICES = tuple(TYPES)
 
-_T = TypeVar('_T')
+_Response = TypeVar('_Response')
+
+
+class _NamesRequest(Protocol):
+    """What the get, describe and types requests share."""
+
+    names: Sequence[str]
 
 
 def _all_or_none(
-    names: Iterable[str],
-    lookup: Callable[[str], _T],
+    field: str,
+    lookup: Callable[[str], object],
     errors: type[Exception] | tuple[type[Exception], ...],
-) -> list[_T]:
-    """`lookup` of every name, or an empty list when one fails with `errors` (what rclpy's
-    parameter services answer for a name that is not there)."""
-    try:
-        return [lookup(n) for n in names]
-    except errors:
-        return []
+) -> Callable[[_NamesRequest, _Response], _Response]:
+    """The callback of a service that looks up each of the request's names into the list
+    `field` of its response; one lookup failing with `errors` empties the list (what
+    rclpy's parameter services answer for a name that is not there)."""
+
+    def answer(request: _NamesRequest, response: _Response) -> _Response:
+        try:
+            found = [lookup(n) for n in request.names]
+        except errors:
+            found = []
+        setattr(response, field, found)
+        return response
+
+    return answer
 
 
 class ParameterService:
@@ -59,43 +65,31 @@ class ParameterService:
         from ros2lite.qos import qos_profile_parameters
 
         self._node = node
+        callbacks: dict[str, Callable[..., object]] = {
+            "describe_parameters": _all_or_none(
+                "descriptors", node.describe_parameter, ParameterNotDeclaredException
+            ),
+            "get_parameters": _all_or_none(
+                "values",
+                lambda n: node.get_parameter(n).get_parameter_value(),
+                (ParameterNotDeclaredException, ParameterUninitializedException),
+            ),
+            "get_parameter_types": _all_or_none(
+                "types", lambda n: node.get_parameter_type(n).value, ParameterNotDeclaredException
+            ),
+            "list_parameters": self._list_parameters,
+            "set_parameters": self._set_parameters,
+            "set_parameters_atomically": self._set_parameters_atomically,
+        }
         self.services: list[Service[Any, Any]] = [
             node.create_service(
-                f"rcl_interfaces/srv/{TYPES[name]}",
+                f"rcl_interfaces/srv/{type_name}",
                 f"{node.get_name()}/{name}",
-                getattr(self, f"_{name}"),
+                callbacks[name],
                 qos_profile=qos_profile_parameters,
             )
-            for name in SERVICES
+            for name, type_name in TYPES.items()
         ]
-
-    def _describe_parameters(
-        self, request: srv.DescribeParameters.Request, response: srv.DescribeParameters.Response
-    ) -> srv.DescribeParameters.Response:
-        response.descriptors = _all_or_none(
-            request.names, self._node.describe_parameter, ParameterNotDeclaredException
-        )
-        return response
-
-    def _get_parameters(
-        self, request: srv.GetParameters.Request, response: srv.GetParameters.Response
-    ) -> srv.GetParameters.Response:
-        response.values = _all_or_none(
-            request.names,
-            lambda n: self._node.get_parameter(n).get_parameter_value(),
-            (ParameterNotDeclaredException, ParameterUninitializedException),
-        )
-        return response
-
-    def _get_parameter_types(
-        self, request: srv.GetParameterTypes.Request, response: srv.GetParameterTypes.Response
-    ) -> srv.GetParameterTypes.Response:
-        response.types = _all_or_none(
-            request.names,
-            lambda n: self._node.get_parameter_type(n).value,
-            ParameterNotDeclaredException,
-        )
-        return response
 
     def _list_parameters(
         self, request: srv.ListParameters.Request, response: srv.ListParameters.Response

@@ -94,7 +94,64 @@ def validate_parameter_name(name: str) -> bool:
     return True
 
 
-class ParameterStore:
+class SharedParameterMethods:
+    """rclpy's parameter methods that read the same on a node and on its store, written
+    once: the store does the work, and the node inherits these methods and hands them its
+    own store. The set callbacks are kept newest first, the order they run in."""
+
+    def _own_store(self) -> ParameterStore:
+        """The store that holds the parameters and the callbacks."""
+        raise NotImplementedError
+
+    def declare_parameters(
+        self,
+        namespace: str,
+        parameters: Sequence[ParameterDeclaration],
+        ignore_override: bool = False,
+    ) -> list[Parameter]:
+        """Declare each (name[, value or Parameter.Type[, descriptor]]) as `namespace.name`."""
+        store = self._own_store()
+        todo: list[tuple[Parameter, ParameterDescriptor]] = []
+        for index, entry in enumerate(parameters):
+            todo.append(store._prepare(namespace, index, entry, ignore_override))
+        with store._lock:
+            taken = [p.name for p, _ in todo if p.name in store._parameters]
+            if taken:
+                raise ParameterAlreadyDeclaredException(taken)
+            for param, desc in todo:
+                outcome = store._set_atomically([param], {param.name: desc}, allow_not_set=True)
+                if not outcome.successful:
+                    if outcome.reason.startswith(WRONG_TYPE):
+                        raise InvalidParameterTypeException(param, Parameter.Type(desc.type).name)
+                    raise InvalidParameterValueException(param.name, param.value, outcome.reason)
+            return [store._parameters[p.name] for p, _ in todo]
+
+    def add_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
+        """`callback(parameters)` may change the list being set, before any check."""
+        self._own_store()._pre_set.insert(0, callback)
+
+    def add_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
+        """`callback(parameters)` may refuse a set (an unsuccessful SetParametersResult)."""
+        self._own_store()._on_set.insert(0, callback)
+
+    def add_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
+        """`callback(parameters)` learns of every successful set."""
+        self._own_store()._post_set.insert(0, callback)
+
+    def remove_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
+        """Forget a pre-set callback."""
+        self._own_store()._pre_set.remove(callback)
+
+    def remove_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
+        """Forget an on-set callback."""
+        self._own_store()._on_set.remove(callback)
+
+    def remove_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
+        """Forget a post-set callback."""
+        self._own_store()._post_set.remove(callback)
+
+
+class ParameterStore(SharedParameterMethods):
     """A node's parameters and descriptors; thread-safe (services run on executor threads)."""
 
     PARAM_REL_TOL = 1e-6  # how close a double must be to a range's edge or step
@@ -116,28 +173,8 @@ class ParameterStore:
         self._post_set: list[PostSetCallback] = []
         self._lock = threading.RLock()
 
-    # -- declaring ---------------------------------------------------------------------------
-    def declare_parameters(
-        self,
-        namespace: str,
-        parameters: Sequence[ParameterDeclaration],
-        ignore_override: bool = False,
-    ) -> list[Parameter]:
-        """Declare each (name[, value or Parameter.Type[, descriptor]]) as `namespace.name`."""
-        todo: list[tuple[Parameter, ParameterDescriptor]] = []
-        for index, entry in enumerate(parameters):
-            todo.append(self._prepare(namespace, index, entry, ignore_override))
-        with self._lock:
-            taken = [p.name for p, _ in todo if p.name in self._parameters]
-            if taken:
-                raise ParameterAlreadyDeclaredException(taken)
-            for param, desc in todo:
-                outcome = self._set_atomically([param], {param.name: desc}, allow_not_set=True)
-                if not outcome.successful:
-                    if outcome.reason.startswith(WRONG_TYPE):
-                        raise InvalidParameterTypeException(param, Parameter.Type(desc.type).name)
-                    raise InvalidParameterValueException(param.name, param.value, outcome.reason)
-            return [self._parameters[p.name] for p, _ in todo]
+    def _own_store(self) -> ParameterStore:
+        return self
 
     def _prepare(
         self, namespace: str, index: int, entry: ParameterDeclaration, ignore_override: bool
@@ -488,32 +525,6 @@ class ParameterStore:
                 raise InvalidParameterValueException(name, candidates[-1].value, outcome.reason)
             self._descriptors[name] = desc
             return self._parameters[name].get_parameter_value()
-
-    # -- callbacks ---------------------------------------------------------------------------
-    # like rclpy, the newest callback runs first
-    def add_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
-        """`callback(parameters)` may change the list being set, before any check."""
-        self._pre_set.insert(0, callback)
-
-    def add_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
-        """`callback(parameters)` may refuse a set (an unsuccessful SetParametersResult)."""
-        self._on_set.insert(0, callback)
-
-    def add_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
-        """`callback(parameters)` learns of every successful set."""
-        self._post_set.insert(0, callback)
-
-    def remove_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
-        """Forget a pre-set callback."""
-        self._pre_set.remove(callback)
-
-    def remove_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
-        """Forget an on-set callback."""
-        self._on_set.remove(callback)
-
-    def remove_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
-        """Forget a post-set callback."""
-        self._post_set.remove(callback)
 
 
 def _is_value_msg(value: object) -> TypeGuard[ParameterValue]:

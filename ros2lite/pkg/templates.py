@@ -311,12 +311,12 @@ def cmake_lists(spec: PackageSpec) -> str:
     name = spec.name
     deps = spec.dependencies
     out = [_cmake_head(f'project({name} VERSION {spec.version})'), _find_packages(deps)]
-    targets: list[str] = []
+    # what is installed and exported: the library, then the node
+    targets = [t for t in (spec.library_name, spec.node_name) if t]
     link = ''.join(f' ${{{d}_LIBRARIES}}' for d in deps)
     includes = ''.join(f'  PUBLIC ${{{d}_INCLUDE_DIRS}}\n' for d in deps)
     if spec.library_name:
         lib = spec.library_name
-        targets.append(lib)
         out += [
             '\n',
             f'add_library({lib} SHARED src/{lib}.cpp)\n',
@@ -329,7 +329,6 @@ def cmake_lists(spec: PackageSpec) -> str:
         ]
     if spec.node_name:
         node = spec.node_name
-        targets.append(node)
         out += [
             '\n',
             f'add_executable({node} src/{node}.cpp)\n',

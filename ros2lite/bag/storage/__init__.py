@@ -34,13 +34,22 @@ class FileSummary:
 
     topics: list[TopicMetadata]
     counts: dict[str, int]  # messages per topic
-    message_count: int
-    start: int | None  # first log time (ns), None when empty
-    end: int | None
+    message_count: int = 0
+    start: int | None = None  # first log time (ns), None when empty
+    end: int | None = None
     definitions: dict[str, tuple[str, str]] = field(default_factory=dict)  # type → (enc, text)
     metadata: BagMetadata | None = None  # the last `rosbag2` record, if any
     complete: bool = True  # False: no summary, scanned up to a broken end
     ros_distro: str = ""
+
+    def add(self, topic: str | None, count: int, first: int, last: int) -> None:
+        """Count `count` messages of `topic` (None: of a topic the file does not list), logged
+        from `first` to `last` (ns): how a reader adds up aggregates or a scan."""
+        if topic is not None:
+            self.counts[topic] += count
+        self.message_count += count
+        self.start = first if self.start is None or first < self.start else self.start
+        self.end = last if self.end is None or last > self.end else self.end
 
 
 class StorageReader(Protocol):

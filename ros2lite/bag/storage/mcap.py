@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import contextlib
 import os
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from typing import IO, TYPE_CHECKING, BinaryIO
 
 from ros2lite.bag.errors import BagError, MetadataError
@@ -228,6 +228,29 @@ def _rosbag2_record(record: Metadata) -> tuple[BagMetadata | None, str]:
     return None, data.get("ROS_DISTRO", "")
 
 
+def _note_rosbag2_records(summary: FileSummary, records: Iterable[Metadata]) -> None:
+    """Put into `summary` the bag metadata and ROS distro of the last `rosbag2` records
+    that carry them."""
+    for record in records:
+        if record.name == "rosbag2":
+            m, d = _rosbag2_record(record)
+            summary.metadata, summary.ros_distro = m or summary.metadata, d or summary.ros_distro
+
+
+def _note_channel(
+    topics: dict[str, TopicMetadata],
+    definitions: dict[str, tuple[str, str]],
+    channel: Channel,
+    schema: Schema | None,
+) -> TopicMetadata:
+    """A channel's topic (the first channel of a name stands for it) and its schema's text."""
+    t = _topic(channel, schema)
+    topics.setdefault(t.name, t)
+    if schema is not None and schema.name not in definitions:
+        definitions[schema.name] = (schema.encoding, _text(schema.data))
+    return t
+
+
 class McapStorageReader:
     """One `.mcap` file, read through its summary when it has one."""
 
@@ -273,29 +296,18 @@ class McapStorageReader:
         definitions: dict[str, tuple[str, str]] = {}
         for cid, channel in s.channels.items():
             schema = s.schemas.get(channel.schema_id)
-            t = by_channel[cid] = _topic(channel, schema)
-            topics.setdefault(t.name, t)
-            if schema is not None and schema.name not in definitions:
-                definitions[schema.name] = (schema.encoding, _text(schema.data))
-        counts = dict.fromkeys(topics, 0)
+            by_channel[cid] = _note_channel(topics, definitions, channel, schema)
+        summary = FileSummary(
+            list(topics.values()), dict.fromkeys(topics, 0), definitions=definitions
+        )
         for cid, n in stats.channel_message_counts.items():
             if cid in by_channel:
-                counts[by_channel[cid].name] += n
-        metadata, distro = None, ""
-        for record in self._metadata_records():
-            m, d = _rosbag2_record(record)
-            metadata, distro = m or metadata, d or distro
-        empty = stats.message_count == 0
-        return FileSummary(
-            topics=list(topics.values()),
-            counts=counts,
-            message_count=stats.message_count,
-            start=None if empty else stats.message_start_time,
-            end=None if empty else stats.message_end_time,
-            definitions=definitions,
-            metadata=metadata,
-            ros_distro=distro,
-        )
+                summary.counts[by_channel[cid].name] += n
+        if stats.message_count:
+            summary.message_count = stats.message_count
+            summary.start, summary.end = stats.message_start_time, stats.message_end_time
+        _note_rosbag2_records(summary, self._metadata_records())
+        return summary
 
     def _metadata_records(self) -> Iterator[Metadata]:
         s = self._summary
@@ -395,43 +407,20 @@ class McapStorageReader:
     def _scan_summary(self) -> FileSummary:
         """Summary of a file without one, from its records up to the first broken one."""
         topics: dict[str, TopicMetadata] = {}
-        definitions: dict[str, tuple[str, str]] = {}
-        counts: dict[str, int] = {}
+        summary = FileSummary([], {}, complete=False)
         records: list[Metadata] = []
 
         def on_channel(channel: Channel, schema: Schema | None) -> None:
-            t = _topic(channel, schema)
-            topics.setdefault(t.name, t)
-            counts.setdefault(t.name, 0)
-            if schema is not None and schema.name not in definitions:
-                definitions[schema.name] = (schema.encoding, _text(schema.data))
+            t = _note_channel(topics, summary.definitions, channel, schema)
+            summary.counts.setdefault(t.name, 0)
 
-        start = end = None
-        total = 0
         for _schemas, channel, m in _scan(
             self._stream, on_metadata=records.append, on_channel=on_channel
         ):
-            total += 1
-            counts[channel.topic] += 1
-            t = m.log_time
-            start = t if start is None or t < start else start
-            end = t if end is None or t > end else end
-        metadata, distro = None, ""
-        for record in records:
-            if record.name == "rosbag2":
-                meta, d = _rosbag2_record(record)
-                metadata, distro = meta or metadata, d or distro
-        return FileSummary(
-            topics=list(topics.values()),
-            counts=counts,
-            message_count=total,
-            start=start,
-            end=end,
-            definitions=definitions,
-            metadata=metadata,
-            complete=False,
-            ros_distro=distro,
-        )
+            summary.add(channel.topic, 1, m.log_time, m.log_time)
+        summary.topics = list(topics.values())
+        _note_rosbag2_records(summary, records)
+        return summary
 
 
 def _warn(message: str) -> None:

@@ -93,46 +93,30 @@ class Sqlite3StorageReader:
             raise BagError(f"'{self.path}' is not a rosbag2 sqlite3 file (no topics/messages)")
         topics = self._topic_rows()
         by_id = {tid: t for tid, t in topics}
-        counts = {t.name: 0 for _, t in topics}
-        total, start, end = 0, None, None
+        summary = FileSummary([t for _, t in topics], {t.name: 0 for _, t in topics})
         for tid, n, lo, hi in self._db.execute(
             "SELECT topic_id, count(*), min(timestamp), max(timestamp) FROM messages "
             "GROUP BY topic_id"
         ):
-            if tid in by_id:
-                counts[by_id[tid].name] += n
-            total += n
-            start = lo if start is None or lo < start else start
-            end = hi if end is None or hi > end else end
-        definitions: dict[str, tuple[str, str]] = {}
+            summary.add(by_id[tid].name if tid in by_id else None, n, lo, hi)
         if "message_definitions" in tables:
             for type_name, encoding, text in self._db.execute(
                 "SELECT topic_type, encoding, encoded_message_definition FROM message_definitions"
             ):
-                definitions[type_name] = (encoding, text)
-        metadata, distro = None, ""
+                summary.definitions[type_name] = (encoding, text)
         if "metadata" in tables:
             with contextlib.suppress(sqlite3.DatabaseError, MetadataError):
                 row = self._db.execute(
                     "SELECT metadata FROM metadata ORDER BY id DESC LIMIT 1"
                 ).fetchone()
                 if row:
-                    metadata = parse_metadata(row[0], top_key=False)
-                    distro = metadata.ros_distro
-        if not distro and "schema" in tables:
+                    summary.metadata = parse_metadata(row[0], top_key=False)
+                    summary.ros_distro = summary.metadata.ros_distro
+        if not summary.ros_distro and "schema" in tables:
             with contextlib.suppress(sqlite3.DatabaseError):
                 row = self._db.execute("SELECT ros_distro FROM schema").fetchone()
-                distro = row[0] if row else ""
-        return FileSummary(
-            topics=[t for _, t in topics],
-            counts=counts,
-            message_count=total,
-            start=start,
-            end=end,
-            definitions=definitions,
-            metadata=metadata,
-            ros_distro=distro,
-        )
+                summary.ros_distro = row[0] if row else ""
+        return summary
 
     def messages(
         self, topics: set[str] | None = None, start: int | None = None, stop: int | None = None

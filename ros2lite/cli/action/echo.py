@@ -3,7 +3,6 @@ its feedback and its status — as Kilted's `ros2 action echo` does."""
 
 from __future__ import annotations
 
-import sys
 from typing import TYPE_CHECKING
 
 import click
@@ -13,6 +12,7 @@ from ..common import (
     connect,
     format_options,
     interface_type_name,
+    print_event,
     resolved_name,
     strategy_options,
 )
@@ -51,8 +51,6 @@ def cli(
     """
     from ros2lite.action.introspection import INTERFACES, action_interfaces
     from ros2lite.graph import action_names_and_types
-    from ros2lite.interfaces import deserialize
-    from ros2lite.service_introspection import format_event
 
     wanted = set(INTERFACES)
     if interfaces is not None:
@@ -85,8 +83,7 @@ def cli(
                 name: str = watched.interface,
                 t: str = watched.type_name,
             ) -> None:
-                text = format_event(deserialize(t, data), **fmt)
-                sys.stdout.write(f'interface: {name}\n{text}' + ('\n' if fmt['csv'] else '---\n'))
+                print_event(t, data, fmt, head=f'interface: {name}\n')
 
             node.create_subscription(watched.type_name, watched.topic, show, watched.qos, raw=True)
         conn.spin()

@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import connect, strategy_options
+from ..common import connect, show_types_option, strategy_options
 from ..errors import CliError
 
 
@@ -24,7 +24,7 @@ def _section(
 @click.command('info')
 @strategy_options()
 @click.argument('action_name', shell_complete=completion.actions)
-@click.option('-t', '--show-types', is_flag=True, help='Additionally show the action type')
+@show_types_option('action')
 @click.option(
     '-c',
     '--count',

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import click
 
-from ..common import connect, count_option, print_names, strategy_options
+from ..common import connect, count_option, print_names, show_types_option, strategy_options
 from ..lazy import include_hidden_option
 
 
 @click.command('list')
 @strategy_options()
-@click.option('-t', '--show-types', is_flag=True, help='Additionally show the action type')
+@show_types_option('action')
 @count_option('actions')
 @include_hidden_option('actions', 'list', all_alias=True)
 def cli(

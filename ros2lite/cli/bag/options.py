@@ -22,6 +22,10 @@ if TYPE_CHECKING:
 
 F = TypeVar("F", bound=Callable[..., Any])
 
+# the storage plugins' ids (the keys of ros2lite.bag.storage.PLUGINS), written out so that
+# parsing a bag verb's options imports no bag code
+STORAGE_IDS = ("mcap", "sqlite3")
+
 # -m/--remap, --start-offset and the player's (hidden) node name: play and burst alike
 remap_option = click.option(
     "-m", "--remap", cls=ManyValues, metavar="OLD:=NEW...", help="Topic remappings."
@@ -74,14 +78,21 @@ def qos_overrides_option(source: str) -> Callable[[F], F]:
     )
 
 
-def bag_argument(fn: F) -> F:
-    """BAG_PATH and `-s/--storage`, as every verb reading a bag takes them."""
-    fn = click.option(
+def storage_option(help: str, default: str | None = None) -> Callable[[F], F]:
+    """-s/--storage: a storage plugin's id (a `default` is shown in the help)."""
+    return click.option(
         "-s",
         "--storage",
-        type=click.Choice(["mcap", "sqlite3"]),
-        help="Storage identifier (default: from the file extension).",
-    )(fn)
+        type=click.Choice(STORAGE_IDS),
+        default=default,
+        show_default=default is not None,
+        help=help,
+    )
+
+
+def bag_argument(fn: F) -> F:
+    """BAG_PATH and `-s/--storage`, as every verb reading a bag takes them."""
+    fn = storage_option("Storage identifier (default: from the file extension).")(fn)
     decorated: F = click.argument("bag_path", type=click.Path())(fn)
     return decorated
 

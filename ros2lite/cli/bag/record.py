@@ -22,6 +22,7 @@ from .options import (
     qos_overrides,
     services_option,
     shared_options,
+    storage_option,
     topics_option,
     warn,
 )
@@ -73,14 +74,7 @@ SELECTION_ERROR = (
     metavar="URI",
     help="Destination of the bag (default rosbag2_<local date and time>).",
 )
-@click.option(
-    "-s",
-    "--storage",
-    type=click.Choice(["mcap", "sqlite3"]),
-    default="mcap",
-    show_default=True,
-    help="Storage identifier.",
-)
+@storage_option("Storage identifier.", default="mcap")
 @click.option(
     "-b",
     "--max-bag-size",

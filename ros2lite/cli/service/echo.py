@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import sys
 from typing import TYPE_CHECKING
 
 import click
@@ -12,6 +11,7 @@ from ..common import (
     connect,
     format_options,
     interface_type_name,
+    print_event,
     qos_from_options,
     qos_options,
     resolved_name,
@@ -48,8 +48,7 @@ def cli(
     requests and responses).
     """
     from ros2lite.graph import EntityKind, count, service_names_and_types, topic_names_and_types
-    from ros2lite.interfaces import deserialize
-    from ros2lite.service_introspection import event_topic, format_event
+    from ros2lite.service_introspection import event_topic
 
     with connect(no_daemon=no_daemon, use_sim_time=use_sim_time) as conn:
         node = conn.node()
@@ -77,8 +76,7 @@ def cli(
             )
 
         def show(data: bytes, _info: MessageInfo) -> None:
-            text = format_event(deserialize(event_type, data), **fmt)
-            sys.stdout.write(text + ('\n' if fmt['csv'] else '---\n'))
+            print_event(event_type, data, fmt)
 
         node.create_subscription(event_type, topic, show, qos_from_options(**qos), raw=True)
         conn.spin()
