@@ -12,7 +12,7 @@ Sources, first one first; **a package belongs entirely to the first source that 
    directory, then each ``ROS2LITE_WORKSPACE`` entry — every `package.xml` under their `src/`.
    These come before installed packages so the code you are editing is the code that runs,
    even after an older `colcon build` of the same package was sourced.
-3. Python entry points in the group ``ros2lite.executables`` (see :mod:`.executables`).
+3. Python entry points in the group :data:`ENTRY_POINT_GROUP` (see :mod:`.executables`).
 4. ``AMENT_PREFIX_PATH`` — a sourced ROS install or colcon `install/`: packages listed in each
    prefix's ament resource index, prefixes in order.
 5. The packages bundled with ros2lite: its demos and its interface definitions.
@@ -28,12 +28,14 @@ from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
+from .bundled import BUNDLED
 from .manifest import MANIFEST, is_valid_package_name
 from .workspace import SourcePackage, scan_workspace, workspace_sources, workspaces
 
 __all__ = [
     'BUNDLED_DEMOS',
     'BUNDLED_INTERFACES',
+    'ENTRY_POINT_GROUP',
     'INTERFACE_PATH_ENV',
     'ORIGINS',
     'Package',
@@ -44,6 +46,8 @@ __all__ = [
 ]
 
 INTERFACE_PATH_ENV = 'ROS2LITE_INTERFACE_PATH'
+ENTRY_POINT_GROUP = 'ros2lite.executables'
+"""The entry-point group whose `<package>.<executable>` names declare packages and executables."""
 _ROOT = Path(__file__).resolve().parent.parent
 BUNDLED_INTERFACES = _ROOT / 'msgs'
 BUNDLED_DEMOS = _ROOT / 'demos'
@@ -180,8 +184,6 @@ class PackageIndex:
         return found
 
     def _read_entry_points(self) -> dict[str, Package]:
-        from .executables import ENTRY_POINT_GROUP
-
         found: dict[str, Package] = {}
         if not _may_declare(ENTRY_POINT_GROUP):
             return found
@@ -211,8 +213,6 @@ class PackageIndex:
         return found
 
     def _read_bundled(self) -> dict[str, Package]:
-        from .executables import BUNDLED
-
         found: dict[str, Package] = {}
         for child in _children(BUNDLED_INTERFACES):
             if _has_interfaces(child):
