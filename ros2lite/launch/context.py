@@ -12,18 +12,21 @@ import os
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeAlias
 
 if TYPE_CHECKING:
     from ros2lite.pkg.index import PackageIndex
 
     from .event_handlers import EventHandler
     from .events import Event
-    from .ros import ParameterData
     from .service import LaunchService
     from .substitutions import Substitution
 
-__all__ = ['LaunchContext', 'Scope']
+__all__ = ['LaunchContext', 'ParameterData', 'Scope']
+
+# what a node gets for one parameter: a YAML scalar, a list, or nothing (global parameters
+# live in a scope; :mod:`.ros` reads and writes them)
+ParameterData: TypeAlias = 'bool | int | float | str | list[object] | None'
 
 
 @dataclass

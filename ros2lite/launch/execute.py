@@ -27,6 +27,7 @@ from .substitutions import (
     Substitution,
     SubstitutionMapping,
     describe_substitutions,
+    evaluate_condition_expression,
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
@@ -188,8 +189,6 @@ class ExecuteProcess(Action):
         if isinstance(self.respawn, bool):
             wanted = self.respawn
         else:
-            from .conditions import evaluate_condition_expression
-
             wanted = evaluate_condition_expression(context, self.respawn)
         limit = self.respawn_max_retries
         return wanted and (limit < 0 or self.respawn_count < limit)
