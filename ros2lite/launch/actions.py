@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, TypedDict
 
 from .conditions import Condition
+from .entity import Entities, LaunchDescriptionEntity
 from .errors import LaunchError
 from .events import Event, ExecutionComplete
 from .events import Shutdown as ShutdownEvent
@@ -57,35 +58,11 @@ __all__ = [
     'UnsetLaunchConfiguration',
 ]
 
-Entities = list['LaunchDescriptionEntity']
-
 
 class ActionOptions(TypedDict, total=False):
     """The keywords every action takes (what subclasses pass on to :class:`Action`)."""
 
     condition: Condition | None
-
-
-class LaunchDescriptionEntity:
-    """Anything a launch description holds."""
-
-    def visit(self, context: LaunchContext) -> Entities | None:
-        """Do this entity's work; return entities to visit next."""
-        return None
-
-    def describe(self) -> str:
-        """A short name for listings (`launch -p`)."""
-        return type(self).__name__
-
-    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
-        """Entities always reached through this one (for introspection)."""
-        return []
-
-    def describe_conditional_sub_entities(
-        self,
-    ) -> list[tuple[str, list[LaunchDescriptionEntity]]]:
-        """Entities reached only if something happens (a timer, an event)."""
-        return []
 
 
 class Action(LaunchDescriptionEntity):
