@@ -14,7 +14,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .actions import LaunchDescription
+from .actions import LaunchDescription, LaunchDescriptionSource
 from .errors import InvalidFrontendLaunchFileError, LaunchError
 from .substitutions import (
     SomeSubstitutionsType,
@@ -101,37 +101,6 @@ def load_launch_file(path: Path, kind: str | None = None) -> LaunchDescription:
     except Exception as e:  # not Python either: say what each reader found
         errors.append(str(e))
     raise LaunchError(f"'{path}' is not a launch file ({'; '.join(errors)})")
-
-
-class LaunchDescriptionSource:
-    """A launch description, given directly or loaded on first use."""
-
-    method = 'launch description'
-
-    def __init__(
-        self,
-        launch_description: LaunchDescription | None = None,
-        location: str = '<string>',
-        method: str | None = None,
-    ) -> None:
-        self._description = launch_description
-        self.location = location
-        if method is not None:
-            self.method = method
-
-    def try_get_launch_description_without_context(self) -> LaunchDescription | None:
-        """The description if it is already known (introspection needs no context)."""
-        return self._description
-
-    def get_launch_description(self, context: LaunchContext) -> LaunchDescription:
-        """The description, loading it in this context if needed."""
-        if self._description is None:
-            raise LaunchError('launch description source has no launch description')
-        return self._description
-
-    def describe(self) -> str:
-        """Where the description comes from, for introspection."""
-        return f'{self.method} at {self.location!r}'
 
 
 class _FileSource(LaunchDescriptionSource):
