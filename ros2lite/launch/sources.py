@@ -4,6 +4,11 @@ A Python launch file is a module defining ``generate_launch_description()``; it 
 with the compat directory on ``sys.path``, so its ``import launch`` / ``launch_ros`` /
 ``ament_index_python`` find ros2lite's faces of those packages. XML and YAML files go
 through :mod:`.frontend`. :func:`load_launch_file` picks by extension.
+
+The plain :class:`LaunchDescriptionSource` (a description given directly) stands in
+:mod:`.actions`, beside the include that wraps a description in one. The XML and YAML reader
+is handed in by :mod:`ros2lite.launch` (:func:`use_frontend`): the frontends' ``<include>``
+makes the sources of this module, so this module does not import the frontends.
 """
 
 from __future__ import annotations
@@ -11,6 +16,7 @@ from __future__ import annotations
 import importlib.util
 import itertools
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -35,9 +41,31 @@ __all__ = [
     'YAMLLaunchDescriptionSource',
     'load_launch_file',
     'load_python_launch_file',
+    'use_frontend',
 ]
 
 _modules = itertools.count()
+
+FRONTEND_EXTENSIONS = {'.xml': 'xml', '.yaml': 'yaml', '.yml': 'yaml'}
+"""The extensions of XML and YAML launch files, and the frontend kind of each."""
+
+FrontendReader = Callable[[Path, str], LaunchDescription]
+"""Reads an XML or YAML launch file: `reader(path, 'xml' | 'yaml')`."""
+
+_frontend: FrontendReader | None = None
+
+
+def use_frontend(reader: FrontendReader) -> None:
+    """Read XML and YAML launch files with `reader` (ros2lite.launch hands in
+    :mod:`.frontend`'s when it is imported)."""
+    global _frontend
+    _frontend = reader
+
+
+def _read_frontend(path: Path, kind: str) -> LaunchDescription:
+    if _frontend is None:  # only when this module was loaded outside its package
+        raise LaunchError(f"'{path}': no reader for {kind} launch files (import ros2lite.launch)")
+    return _frontend(path, kind)
 
 
 def _compat_on_path() -> None:
@@ -81,19 +109,17 @@ def load_python_launch_file(path: Path) -> LaunchDescription:
 def load_launch_file(path: Path, kind: str | None = None) -> LaunchDescription:
     """Any launch file: 'python', 'xml' or 'yaml' (by extension when `kind` is None; a file
     with another extension is tried as each in turn)."""
-    from .frontend.loader import FRONTEND_EXTENSIONS, load_frontend_file
-
     if kind is None:
         suffix = path.suffix.lower()
         kind = 'python' if suffix == '.py' else FRONTEND_EXTENSIONS.get(suffix)
     if kind == 'python':
         return load_python_launch_file(path)
     if kind in ('xml', 'yaml'):
-        return load_frontend_file(path, kind)
+        return _read_frontend(path, kind)
     errors = []
     for attempt in ('xml', 'yaml'):
         try:
-            return load_frontend_file(path, attempt)
+            return _read_frontend(path, attempt)
         except InvalidFrontendLaunchFileError as e:
             errors.append(str(e))
     try:
