@@ -12,7 +12,6 @@ import os
 import re
 import shlex
 from collections.abc import Iterable
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from ros2lite.pkg.environment import child_environment
@@ -21,6 +20,7 @@ from .actions import Action, ActionOptions, Entities, seconds_of
 from .errors import LaunchError
 from .event_handlers import OnProcessExit
 from .output import destinations
+from .process_spec import ProcessSpec
 from .substitutions import (
     LaunchConfiguration,
     SomeSubstitutionsType,
@@ -40,21 +40,6 @@ if TYPE_CHECKING:
     from .events import ProcessDetails
 
 __all__ = ['ExecuteProcess', 'ProcessSpec']
-
-
-@dataclass
-class ProcessSpec:
-    """A process as resolved when its action ran."""
-
-    name: str  # the label without its number
-    cmd: list[str]
-    display_cmd: list[str]  # what messages show (a Python node's module, not `python -c …`)
-    cwd: str | None
-    env: dict[str, str]
-    output: dict[str, set[str]]
-    sigterm_timeout: float
-    sigkill_timeout: float
-    log_cmd: bool = False
 
 
 # launch's defaults: launch configurations, so `sigterm_timeout:=10` on the command line works
