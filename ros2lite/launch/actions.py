@@ -1,9 +1,7 @@
 """Launch descriptions and the actions they are made of.
 
-An *entity* is anything a launch description holds. Visiting an entity (the launch service
-does it, depth first, in order) may return more entities to visit right away: that is how a
-group, an include or a launch description unfolds. An *action* is an entity with an optional
-condition, checked when the action is reached.
+An *action* is an entity (anything a launch description holds, :mod:`.entity`) with an
+optional condition, checked when the action is reached.
 """
 
 from __future__ import annotations

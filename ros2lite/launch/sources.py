@@ -63,7 +63,7 @@ def use_frontend(reader: FrontendReader) -> None:
 
 
 def _read_frontend(path: Path, kind: str) -> LaunchDescription:
-    if _frontend is None:  # only when this module was loaded outside its package
+    if _frontend is None:  # ros2lite.launch sets it, and importing this module runs that first
         raise LaunchError(f"'{path}': no reader for {kind} launch files (import ros2lite.launch)")
     return _frontend(path, kind)
 

@@ -12,7 +12,7 @@ Sources, first one first; **a package belongs entirely to the first source that 
    directory, then each ``ROS2LITE_WORKSPACE`` entry — every `package.xml` under their `src/`.
    These come before installed packages so the code you are editing is the code that runs,
    even after an older `colcon build` of the same package was sourced.
-3. Python entry points in the group :data:`ENTRY_POINT_GROUP` (see :mod:`.executables`).
+3. Python entry points in the group ``ros2lite.executables`` (see :mod:`.executables`).
 4. ``AMENT_PREFIX_PATH`` — a sourced ROS install or colcon `install/`: packages listed in each
    prefix's ament resource index, prefixes in order.
 5. The packages bundled with ros2lite: its demos and its interface definitions.
