@@ -9,10 +9,35 @@ as ``except ValueError`` keeps working. Subpackages keep their own errors (``bag
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import Protocol
 
-if TYPE_CHECKING:
-    from ros2lite.parameter import Parameter
+
+class _TypeName(Protocol):
+    """A parameter type (a member of `Parameter.Type`): what its name is."""
+
+    @property
+    def name(self) -> str: ...
+
+
+class _ParameterTypes(Protocol):
+    """`Parameter.Type` as this module needs it: which type a value maps to."""
+
+    def from_parameter_value(self, parameter_value: object, /) -> _TypeName: ...
+
+
+class _TypedParameter(Protocol):
+    """What an error about a parameter reads of it: the shape of
+    :class:`ros2lite.parameter.Parameter`, named here so that this base module imports none
+    of the modules that raise its errors."""
+
+    @property
+    def Type(self) -> _ParameterTypes: ...  # Parameter's nested enum, read through the instance
+
+    @property
+    def name(self) -> str: ...
+
+    @property
+    def value(self) -> object: ...
 
 
 class Ros2liteError(Exception):
@@ -95,9 +120,9 @@ class InvalidParameterException(ParameterException):
 class InvalidParameterTypeException(ParameterException):
     """A statically typed parameter was given a value of another type."""
 
-    def __init__(self, desired_parameter: Parameter, expected_type: str) -> None:
+    def __init__(self, desired_parameter: _TypedParameter, expected_type: str) -> None:
         # the Parameter's own Type enum names what it got (no import of ros2lite.parameter)
-        got = type(desired_parameter).Type.from_parameter_value(desired_parameter.value).name
+        got = desired_parameter.Type.from_parameter_value(desired_parameter.value).name
         super().__init__(
             f"Trying to set parameter '{desired_parameter.name}' to "
             f"'{desired_parameter.value}' of type '{got}', expecting type '{expected_type}'",

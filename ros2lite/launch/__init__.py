@@ -10,6 +10,8 @@ faces over this package in ``ros2lite/compat``. XML and YAML launch files are re
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from .actions import Action, LaunchDescription, LaunchDescriptionEntity
 from .conditions import Condition
 from .context import LaunchContext
@@ -17,6 +19,7 @@ from .errors import LaunchError, SubstitutionFailure
 from .event_handlers import EventHandler
 from .events import Event
 from .service import LaunchService
+from .sources import use_frontend
 from .substitutions import SomeSubstitutionsType, Substitution
 
 __all__ = [
@@ -33,3 +36,14 @@ __all__ = [
     'Substitution',
     'SubstitutionFailure',
 ]
+
+
+def _read_frontend_file(path: Path, kind: str) -> LaunchDescription:
+    """An XML or YAML launch file read by :mod:`.frontend`, imported when the first such file
+    is read (a Python launch does not pay for it)."""
+    from .frontend.loader import load_frontend_file
+
+    return load_frontend_file(path, kind)
+
+
+use_frontend(_read_frontend_file)

@@ -1,9 +1,7 @@
 """Launch descriptions and the actions they are made of.
 
-An *entity* is anything a launch description holds. Visiting an entity (the launch service
-does it, depth first, in order) may return more entities to visit right away: that is how a
-group, an include or a launch description unfolds. An *action* is an entity with an optional
-condition, checked when the action is reached.
+An *action* is an entity (anything a launch description holds, :mod:`.entity`) with an
+optional condition, checked when the action is reached.
 """
 
 from __future__ import annotations
@@ -14,6 +12,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, TypedDict
 
 from .conditions import Condition
+from .entity import Entities, LaunchDescriptionEntity
 from .errors import LaunchError
 from .events import Event, ExecutionComplete
 from .events import Shutdown as ShutdownEvent
@@ -32,7 +31,6 @@ if TYPE_CHECKING:
 
     from .context import LaunchContext
     from .event_handlers import EventHandler
-    from .sources import LaunchDescriptionSource
 
 __all__ = [
     'Action',
@@ -57,35 +55,11 @@ __all__ = [
     'UnsetLaunchConfiguration',
 ]
 
-Entities = list['LaunchDescriptionEntity']
-
 
 class ActionOptions(TypedDict, total=False):
     """The keywords every action takes (what subclasses pass on to :class:`Action`)."""
 
     condition: Condition | None
-
-
-class LaunchDescriptionEntity:
-    """Anything a launch description holds."""
-
-    def visit(self, context: LaunchContext) -> Entities | None:
-        """Do this entity's work; return entities to visit next."""
-        return None
-
-    def describe(self) -> str:
-        """A short name for listings (`launch -p`)."""
-        return type(self).__name__
-
-    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
-        """Entities always reached through this one (for introspection)."""
-        return []
-
-    def describe_conditional_sub_entities(
-        self,
-    ) -> list[tuple[str, list[LaunchDescriptionEntity]]]:
-        """Entities reached only if something happens (a timer, an event)."""
-        return []
 
 
 class Action(LaunchDescriptionEntity):
@@ -185,11 +159,40 @@ class LaunchDescription(LaunchDescriptionEntity):
     def get_launch_arguments(
         self, conditional_inclusion: bool = False
     ) -> list[DeclareLaunchArgument]:
-        """Every DeclareLaunchArgument reachable from here (see
-        :func:`ros2lite.launch.introspection.launch_arguments`)."""
-        from .introspection import launch_arguments
-
+        """Every DeclareLaunchArgument reachable from here (see :func:`launch_arguments`)."""
         return [arg for arg, _conditional in launch_arguments(self)]
+
+
+class LaunchDescriptionSource:
+    """Where an included launch description comes from: here, one given directly; the
+    launch files of :mod:`.sources` load theirs on first use."""
+
+    method = 'launch description'
+
+    def __init__(
+        self,
+        launch_description: LaunchDescription | None = None,
+        location: str = '<string>',
+        method: str | None = None,
+    ) -> None:
+        self._description = launch_description
+        self.location = location
+        if method is not None:
+            self.method = method
+
+    def try_get_launch_description_without_context(self) -> LaunchDescription | None:
+        """The description if it is already known (introspection needs no context)."""
+        return self._description
+
+    def get_launch_description(self, context: LaunchContext) -> LaunchDescription:
+        """The description, loading it in this context if needed."""
+        if self._description is None:
+            raise LaunchError('launch description source has no launch description')
+        return self._description
+
+    def describe(self) -> str:
+        """Where the description comes from, for introspection."""
+        return f'{self.method} at {self.location!r}'
 
 
 # -- arguments and configurations ----------------------------------------------------------------
@@ -434,8 +437,6 @@ class IncludeLaunchDescription(Action):
         **kwargs: Unpack[ActionOptions],
     ) -> None:
         super().__init__(**kwargs)
-        from .sources import LaunchDescriptionSource
-
         if isinstance(launch_description_source, LaunchDescription):
             launch_description_source = LaunchDescriptionSource(launch_description_source)
         self.launch_description_source = launch_description_source
@@ -458,8 +459,6 @@ class IncludeLaunchDescription(Action):
             name = perform_substitutions(context, key)
             context.launch_configurations[name] = perform_substitutions(context, value)
             given.append(name)
-        from .introspection import declared_arguments
-
         for arg, conditional, via in declared_arguments(description):
             if conditional or arg.default_value is not None:
                 continue
@@ -673,3 +672,39 @@ def path_of(value: SomeSubstitutionsType | Path, context: LaunchContext) -> str:
     if isinstance(value, Path):
         return str(value)
     return perform_substitutions(context, normalize_to_list_of_substitutions(value))
+
+
+# -- what a description declares -------------------------------------------------------------------
+
+
+def launch_arguments(
+    root: LaunchDescriptionEntity,
+) -> list[tuple[DeclareLaunchArgument, bool]]:
+    """(argument, only used under some condition) for every DeclareLaunchArgument reachable
+    from `root`, included files too, first declaration of a name only."""
+    return [(arg, conditional) for arg, conditional, _via in declared_arguments(root)]
+
+
+def declared_arguments(
+    root: LaunchDescriptionEntity,
+) -> list[tuple[DeclareLaunchArgument, bool, list[IncludeLaunchDescription]]]:
+    """Like :func:`launch_arguments`, with the includes each argument is reached through
+    (those may give it its value)."""
+    found: dict[str, tuple[DeclareLaunchArgument, bool, list[IncludeLaunchDescription]]] = {}
+
+    def walk(
+        entities: Iterable[LaunchDescriptionEntity],
+        conditional: bool,
+        via: list[IncludeLaunchDescription],
+    ) -> None:
+        for entity in entities:
+            cond = conditional or (isinstance(entity, Action) and entity.condition is not None)
+            if isinstance(entity, DeclareLaunchArgument) and entity.name not in found:
+                found[entity.name] = (entity, cond, via)
+            inner = [*via, entity] if isinstance(entity, IncludeLaunchDescription) else via
+            walk(entity.describe_sub_entities(), cond, inner)
+            for _label, subs in entity.describe_conditional_sub_entities():
+                walk(subs, True, inner)
+
+    walk([root], False, [])
+    return list(found.values())

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from .errors import InvalidConditionExpressionError
 from .substitutions import (
     SomeSubstitutionsType,
-    Substitution,
     describe_substitutions,
+    evaluate_condition_expression,
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
@@ -25,21 +24,6 @@ __all__ = [
     'UnlessCondition',
     'evaluate_condition_expression',
 ]
-
-_TRUE = ('true', '1')
-_FALSE = ('false', '0')
-
-
-def evaluate_condition_expression(context: LaunchContext, subs: Sequence[Substitution]) -> bool:
-    """'true'/'1' → True, 'false'/'0' → False (any case); anything else is an error."""
-    text = perform_substitutions(context, subs).strip().lower()
-    if text in _TRUE:
-        return True
-    if text in _FALSE:
-        return False
-    raise InvalidConditionExpressionError(
-        f"Unexpected condition expression '{text}', expected one of: {', '.join(_TRUE + _FALSE)}"
-    )
 
 
 class Condition:

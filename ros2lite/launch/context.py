@@ -12,18 +12,19 @@ import os
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol, TypeAlias
+
+from .events import Event, ProcessDetails
+from .process_spec import ProcessSpec
 
 if TYPE_CHECKING:
     from ros2lite.pkg.index import PackageIndex
 
-    from .event_handlers import EventHandler
-    from .events import Event
-    from .ros import ParameterData
-    from .service import LaunchService
-    from .substitutions import Substitution
+__all__ = ['LaunchContext', 'ParameterData', 'Scope']
 
-__all__ = ['LaunchContext', 'Scope']
+# what a node gets for one parameter: a YAML scalar, a list, or nothing (global parameters
+# live in a scope; :mod:`.ros` reads and writes them)
+ParameterData: TypeAlias = 'bool | int | float | str | list[object] | None'
 
 
 @dataclass
@@ -46,6 +47,114 @@ class Scope:
             list(self.global_params),
             list(self.remaps),
         )
+
+
+# -- what the context holds, by shape ------------------------------------------------------------
+# Entities, substitutions, event handlers and the launch service all take the context as an
+# argument, so it cannot import them: it names here the little it (and the service, through
+# it) asks of each. The classes named in each docstring are the real ones.
+
+
+class SubstitutionLike(Protocol):
+    """A :class:`~ros2lite.launch.substitutions.Substitution`: it becomes text in a context."""
+
+    def perform(self, context: LaunchContext) -> str:
+        """The text, in this context."""
+        ...
+
+
+class EntityLike(Protocol):
+    """A :class:`~ros2lite.launch.entity.LaunchDescriptionEntity`: visiting it in a context
+    does its work and may give more entities to visit."""
+
+    def visit(self, context: LaunchContext) -> Sequence[EntityLike] | None:
+        """Do the entity's work; return entities to visit next."""
+        ...
+
+
+class EventHandlerLike(Protocol):
+    """An :class:`~ros2lite.launch.event_handlers.EventHandler`, as the context keeps it."""
+
+    captured_locals: dict[str, object]
+
+    def matches(self, event: Event) -> bool:
+        """Whether it reacts to `event`."""
+        ...
+
+    def handle(self, event: Event, context: LaunchContext) -> Sequence[EntityLike] | None:
+        """The entities to visit for `event`."""
+        ...
+
+
+class TimerLike(Protocol):
+    """A :class:`~ros2lite.launch.actions.TimerAction`, as the service holds it until due."""
+
+    @property
+    def actions(self) -> Sequence[EntityLike]:
+        """What to visit when it fires."""
+        ...
+
+    @property
+    def cancelled(self) -> bool:
+        """Whether it was cancelled (it will not fire)."""
+        ...
+
+    @property
+    def cancel_on_shutdown(self) -> bool:
+        """Whether shutting down cancels it."""
+        ...
+
+    def cancel(self) -> None:
+        """Drop its pending actions."""
+        ...
+
+
+class ProcessActionLike(Protocol):
+    """An :class:`~ros2lite.launch.execute.ExecuteProcess`, as the service runs its process."""
+
+    process_details: ProcessDetails | None
+    return_code: int | None
+    respawn_count: int
+
+    @property
+    def env(self) -> Sequence[object] | None:
+        """The process' own environment, if given (None: the launch's)."""
+        ...
+
+    @property
+    def respawn_delay(self) -> float | None:
+        """Seconds to wait before a respawn."""
+        ...
+
+    def should_respawn(self, context: LaunchContext) -> bool:
+        """Whether to start the process again after it exited."""
+        ...
+
+    def describe(self) -> str:
+        """A short name for listings."""
+        ...
+
+
+class LaunchServiceLike(Protocol):
+    """What actions ask of the :class:`~ros2lite.launch.service.LaunchService` running them."""
+
+    def log(self, level: str, name: str, msg: str) -> None:
+        """Write a launch log line."""
+        ...
+
+    def add_timer(
+        self, action: TimerLike, seconds: float, frame: dict[str, object], scope: Scope
+    ) -> None:
+        """Visit the timer's actions in `seconds`, with these locals and in this scope."""
+        ...
+
+    def add_temp_file(self, path: str) -> None:
+        """A file to delete when the launch ends."""
+        ...
+
+    def start_process(self, action: ProcessActionLike, spec: ProcessSpec) -> None:
+        """Start the action's process."""
+        ...
 
 
 class _Locals:
@@ -77,14 +186,14 @@ class LaunchContext:
         self.noninteractive = noninteractive
         self._scopes = [Scope(environment=dict(os.environ if environment is None else environment))]
         self._frames: list[dict[str, object]] = [{}]
-        self._handlers: list[EventHandler] = []
+        self._handlers: list[EventHandlerLike] = []
         self._anonymous: dict[str, str] = {}
         self._index: PackageIndex | None = None
         self.is_shutdown = False
         self.output_override: str | None = None  # every process' output mode, if set
         # set by the launch service that runs this context
         self.emit_event_sync: Callable[[Event], None] = self._no_service
-        self._service: LaunchService | None = None
+        self._service: LaunchServiceLike | None = None
 
     @staticmethod
     def _no_service(_event: Event) -> None:
@@ -96,14 +205,14 @@ class LaunchContext:
         return self._service is not None
 
     @property
-    def service(self) -> LaunchService:
+    def service(self) -> LaunchServiceLike:
         """The launch service running this context: where processes, timers and log lines go."""
         if self._service is None:
             raise RuntimeError('this launch context is not run by a launch service')
         return self._service
 
     @service.setter
-    def service(self, service: LaunchService) -> None:
+    def service(self, service: LaunchServiceLike) -> None:
         self._service = service
 
     def emit_event(self, event: Event) -> None:
@@ -168,7 +277,7 @@ class LaunchContext:
         return self.get_locals_as_dict()
 
     # -- event handlers --------------------------------------------------------------------------
-    def register_event_handler(self, handler: EventHandler, append: bool = False) -> None:
+    def register_event_handler(self, handler: EventHandlerLike, append: bool = False) -> None:
         """Newest first, as launch does, unless `append`."""
         handler.captured_locals = self.capture_locals()
         if append:
@@ -176,24 +285,24 @@ class LaunchContext:
         else:
             self._handlers.insert(0, handler)
 
-    def unregister_event_handler(self, handler: EventHandler) -> None:
+    def unregister_event_handler(self, handler: EventHandlerLike) -> None:
         """Remove the handler, if registered."""
         if handler in self._handlers:
             self._handlers.remove(handler)
 
     @property
-    def event_handlers(self) -> list[EventHandler]:
+    def event_handlers(self) -> list[EventHandlerLike]:
         """The registered handlers, in the order they are asked."""
         return list(self._handlers)
 
-    def handlers_for(self, event: Event) -> Iterator[EventHandler]:
+    def handlers_for(self, event: Event) -> Iterator[EventHandlerLike]:
         """The handlers that accept `event`, in order."""
         for handler in list(self._handlers):
             if handler.matches(event):
                 yield handler
 
     # -- values ----------------------------------------------------------------------------------
-    def perform_substitution(self, substitution: Substitution) -> str:
+    def perform_substitution(self, substitution: SubstitutionLike) -> str:
         """The text of one substitution in this context."""
         return substitution.perform(self)
 

@@ -5,7 +5,9 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING, TypeAlias, cast
 
+from .entity import LaunchDescriptionEntity
 from .events import (
+    ActionLike,
     Event,
     ExecutionComplete,
     ProcessExited,
@@ -17,7 +19,6 @@ from .events import (
 )
 
 if TYPE_CHECKING:
-    from .actions import Action, LaunchDescriptionEntity
     from .context import LaunchContext
 
 __all__ = [
@@ -35,7 +36,7 @@ SomeEntities: TypeAlias = 'LaunchDescriptionEntity | Sequence[LaunchDescriptionE
 # entities, or a function of the event that returns them
 Reaction: TypeAlias = 'SomeEntities | Callable[[Event, LaunchContext], SomeEntities]'
 # the action an event must be about: one action, a predicate on the action, or any (None)
-TargetAction: TypeAlias = 'Action | Callable[[Action | None], bool] | None'
+TargetAction: TypeAlias = 'ActionLike | Callable[[ActionLike | None], bool] | None'
 
 
 def _as_list(entities: SomeEntities) -> list[LaunchDescriptionEntity] | None:
@@ -81,7 +82,7 @@ class EventHandler:
         return list(self.entities or [])
 
 
-def _target_matcher(target: TargetAction) -> Callable[[Action | None], bool]:
+def _target_matcher(target: TargetAction) -> Callable[[ActionLike | None], bool]:
     if target is None:
         return lambda _action: True
     if callable(target) and not hasattr(target, 'execute'):

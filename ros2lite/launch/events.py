@@ -4,12 +4,10 @@ from __future__ import annotations
 
 import signal as _signal
 from collections.abc import Callable
-from typing import TYPE_CHECKING, TypedDict
+from typing import TYPE_CHECKING, Protocol, TypedDict
 
 if TYPE_CHECKING:
     from typing_extensions import Unpack
-
-    from .actions import Action
 
 __all__ = [
     'Event',
@@ -25,6 +23,17 @@ __all__ = [
     'SignalProcess',
     'matches_action',
 ]
+
+
+class ActionLike(Protocol):
+    """The action an event is about (a :class:`ros2lite.launch.actions.Action`), by the one
+    thing every action can do: describe itself. Events only carry their action, to be matched
+    by identity, so this module names its shape instead of importing the actions that emit
+    them. (Not in ``__all__``: launch's ``events`` has no such name.)"""
+
+    def describe(self) -> str:
+        """A short name for listings."""
+        ...
 
 
 class Event:
@@ -48,14 +57,14 @@ class ExecutionComplete(Event):
 
     name = 'launch.events.ExecutionComplete'
 
-    def __init__(self, *, action: Action) -> None:
+    def __init__(self, *, action: ActionLike) -> None:
         self.action = action
 
 
 class ProcessDetails(TypedDict):
     """What every event about a process carries (the launch service fills it in once)."""
 
-    action: Action
+    action: ActionLike
     name: str
     cmd: list[str]
     cwd: str | None
@@ -71,7 +80,7 @@ class ProcessEvent(Event):
     def __init__(
         self,
         *,
-        action: Action,
+        action: ActionLike,
         name: str,
         cmd: list[str],
         cwd: str | None = None,
@@ -86,7 +95,7 @@ class ProcessEvent(Event):
         self.pid = pid
 
     @property
-    def execute_process_action(self) -> Action:
+    def execute_process_action(self) -> ActionLike:
         """The action that started the process (launch's name for `action`)."""
         return self.action
 
@@ -138,10 +147,10 @@ class ProcessStderr(ProcessIO):
 
 
 # picks processes by their action
-ProcessMatcher = Callable[['Action'], bool]
+ProcessMatcher = Callable[[ActionLike], bool]
 
 
-def matches_action(target_action: Action) -> ProcessMatcher:
+def matches_action(target_action: ActionLike) -> ProcessMatcher:
     """A matcher that picks exactly `target_action`."""
     return lambda action: action is target_action
 

@@ -12,7 +12,6 @@ import os
 import re
 import shlex
 from collections.abc import Iterable
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from ros2lite.pkg.environment import child_environment
@@ -21,12 +20,14 @@ from .actions import Action, ActionOptions, Entities, seconds_of
 from .errors import LaunchError
 from .event_handlers import OnProcessExit
 from .output import destinations
+from .process_spec import ProcessSpec
 from .substitutions import (
     LaunchConfiguration,
     SomeSubstitutionsType,
     Substitution,
     SubstitutionMapping,
     describe_substitutions,
+    evaluate_condition_expression,
     normalize_to_list_of_substitutions,
     perform_substitutions,
 )
@@ -39,21 +40,6 @@ if TYPE_CHECKING:
     from .events import ProcessDetails
 
 __all__ = ['ExecuteProcess', 'ProcessSpec']
-
-
-@dataclass
-class ProcessSpec:
-    """A process as resolved when its action ran."""
-
-    name: str  # the label without its number
-    cmd: list[str]
-    display_cmd: list[str]  # what messages show (a Python node's module, not `python -c …`)
-    cwd: str | None
-    env: dict[str, str]
-    output: dict[str, set[str]]
-    sigterm_timeout: float
-    sigkill_timeout: float
-    log_cmd: bool = False
 
 
 # launch's defaults: launch configurations, so `sigterm_timeout:=10` on the command line works
@@ -188,8 +174,6 @@ class ExecuteProcess(Action):
         if isinstance(self.respawn, bool):
             wanted = self.respawn
         else:
-            from .conditions import evaluate_condition_expression
-
             wanted = evaluate_condition_expression(context, self.respawn)
         limit = self.respawn_max_retries
         return wanted and (limit < 0 or self.respawn_count < limit)

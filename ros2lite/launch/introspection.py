@@ -2,50 +2,10 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable
-
-from .actions import (
-    Action,
-    DeclareLaunchArgument,
-    IncludeLaunchDescription,
-    LaunchDescriptionEntity,
-)
+from .actions import Action, LaunchDescriptionEntity, declared_arguments, launch_arguments
 from .substitutions import describe_substitutions
 
 __all__ = ['declared_arguments', 'describe_tree', 'format_arguments', 'launch_arguments']
-
-
-def launch_arguments(
-    root: LaunchDescriptionEntity,
-) -> list[tuple[DeclareLaunchArgument, bool]]:
-    """(argument, only used under some condition) for every DeclareLaunchArgument reachable
-    from `root`, included files too, first declaration of a name only."""
-    return [(arg, conditional) for arg, conditional, _via in declared_arguments(root)]
-
-
-def declared_arguments(
-    root: LaunchDescriptionEntity,
-) -> list[tuple[DeclareLaunchArgument, bool, list[IncludeLaunchDescription]]]:
-    """Like :func:`launch_arguments`, with the includes each argument is reached through
-    (those may give it its value)."""
-    found: dict[str, tuple[DeclareLaunchArgument, bool, list[IncludeLaunchDescription]]] = {}
-
-    def walk(
-        entities: Iterable[LaunchDescriptionEntity],
-        conditional: bool,
-        via: list[IncludeLaunchDescription],
-    ) -> None:
-        for entity in entities:
-            cond = conditional or (isinstance(entity, Action) and entity.condition is not None)
-            if isinstance(entity, DeclareLaunchArgument) and entity.name not in found:
-                found[entity.name] = (entity, cond, via)
-            inner = [*via, entity] if isinstance(entity, IncludeLaunchDescription) else via
-            walk(entity.describe_sub_entities(), cond, inner)
-            for _label, subs in entity.describe_conditional_sub_entities():
-                walk(subs, True, inner)
-
-    walk([root], False, [])
-    return list(found.values())
 
 
 def format_arguments(root: LaunchDescriptionEntity) -> str:

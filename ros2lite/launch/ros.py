@@ -19,8 +19,10 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 from ros2lite.names import NameValidationException, normalize_namespace, validate_namespace
 
 from .actions import Action, ActionOptions, Entities, path_of
-from .errors import LaunchError, SubstitutionFailure
+from .context import ParameterData
+from .errors import LaunchError
 from .execute import ExecuteProcess
+from .find_package import FindPackagePrefix, FindPackageShare
 from .substitutions import (
     SomeSubstitutionsType,
     Substitution,
@@ -33,7 +35,6 @@ if TYPE_CHECKING:
     from typing_extensions import Unpack
 
     from ros2lite.pkg.executables import PackageExecutable
-    from ros2lite.pkg.index import Package
 
     from .context import LaunchContext
 
@@ -50,55 +51,8 @@ __all__ = [
 ]
 
 
-# -- finding packages ----------------------------------------------------------------------------
-
-
-class FindPackagePrefix(Substitution):
-    """A package's prefix, as `ros2lite pkg prefix` prints it."""
-
-    def __init__(self, package: SomeSubstitutionsType) -> None:
-        self.package = normalize_to_list_of_substitutions(package)
-
-    def find(self, context: LaunchContext) -> Package:
-        """The package from the launch's package index (a substitution failure when unknown)."""
-        name = perform_substitutions(context, self.package)
-        index = context.package_index
-        pkg = index.find(name)
-        if pkg is None:
-            from ros2lite.pkg.executables import PackageNotFoundError
-
-            raise SubstitutionFailure(str(PackageNotFoundError(name, list(index.packages()))))
-        return pkg
-
-    def perform(self, context: LaunchContext) -> str:
-        """The package's prefix directory."""
-        return str(self.find(context).prefix)
-
-    def describe(self) -> str:
-        """The package, for introspection."""
-        return f'FindPackagePrefix(pkg={describe_substitutions(self.package)})'
-
-
-class FindPackageShare(FindPackagePrefix):
-    """A package's share directory (a workspace package's source directory), where its
-    launch/, config/ and package.xml are."""
-
-    def perform(self, context: LaunchContext) -> str:
-        """The package's share directory (its source directory for a workspace package)."""
-        pkg = self.find(context)
-        if pkg.share is None:
-            raise SubstitutionFailure(f"package '{pkg.name}' has no share directory")
-        return str(pkg.share)
-
-    def describe(self) -> str:
-        """The package, for introspection."""
-        return f'FindPackageShare(pkg={describe_substitutions(self.package)})'
-
-
 # -- parameters ----------------------------------------------------------------------------------
 
-# what a node gets for one parameter: a YAML scalar, a list, or nothing
-ParameterData: TypeAlias = 'bool | int | float | str | list[object] | None'
 # one entry of Node(parameters=...): a dict of values, or a parameter file
 ParameterEntry: TypeAlias = (
     'Mapping[str, object] | Mapping[Substitution, object] | ParameterFile'

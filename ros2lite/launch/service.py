@@ -32,7 +32,7 @@ from typing import IO, TYPE_CHECKING, Literal, TypeVar
 from ros2lite.process import ChildError, ChildProcess, signal_handler
 
 from .actions import Entities, LaunchDescription, LaunchDescriptionEntity, TimerAction
-from .context import LaunchContext, Scope
+from .context import EntityLike, LaunchContext, ProcessActionLike, Scope, TimerLike
 from .event_handlers import OnProcessIO
 from .events import (
     Event,
@@ -46,8 +46,8 @@ from .events import (
     ShutdownProcess,
     SignalProcess,
 )
-from .execute import ExecuteProcess, ProcessSpec
 from .output import LaunchOutput, Style, log_base_directory, make_log_directory
+from .process_spec import ProcessSpec
 
 if TYPE_CHECKING:
     from ros2lite.pkg.index import PackageIndex
@@ -67,7 +67,7 @@ _SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGQUIT)
 
 @dataclass
 class _Running:
-    action: ExecuteProcess
+    action: ProcessActionLike
     spec: ProcessSpec
     label: str
     index: int
@@ -106,7 +106,7 @@ class LaunchService:
         self._descriptions: list[LaunchDescription] = []
         self._running: dict[int, _Running] = {}  # by id(action)
         self._started: list[ChildProcess] = []
-        self._timers: list[tuple[float, int, TimerAction, dict[str, object], Scope]] = []
+        self._timers: list[tuple[float, int, TimerLike, dict[str, object], Scope]] = []
         self._seq = itertools.count()
         self._labels = itertools.count(1)
         self._shutting_down = False
@@ -141,7 +141,7 @@ class LaunchService:
         return self.output.log_dir
 
     def add_timer(
-        self, action: TimerAction, seconds: float, frame: dict[str, object], scope: Scope
+        self, action: TimerLike, seconds: float, frame: dict[str, object], scope: Scope
     ) -> None:
         """Visit `action`'s actions in `seconds`, with these locals and in this scope."""
         due = time.monotonic() + seconds
@@ -152,7 +152,7 @@ class LaunchService:
         self._temp_files.append(path)
 
     def start_process(
-        self, action: ExecuteProcess, spec: ProcessSpec, *, again: _Running | None = None
+        self, action: ProcessActionLike, spec: ProcessSpec, *, again: _Running | None = None
     ) -> None:
         """Start `action`'s process (ExecuteProcess.execute calls this); `again` is the run
         a respawn replaces (its label and colour are kept)."""
@@ -410,9 +410,9 @@ class LaunchService:
                 self.context.pop_locals()
 
     # -- visiting --------------------------------------------------------------------------------
-    def _visit_guarded(self, entity: LaunchDescriptionEntity) -> None:
+    def _visit_guarded(self, entity: EntityLike) -> None:
         """Visit depth first; an error stops the launch (as launch does) with one line."""
-        stack: list[LaunchDescriptionEntity] = [entity]
+        stack: list[EntityLike] = [entity]
         while stack:
             current = stack.pop()
             result = self._guard(functools.partial(current.visit, self.context))

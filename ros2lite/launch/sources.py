@@ -4,6 +4,11 @@ A Python launch file is a module defining ``generate_launch_description()``; it 
 with the compat directory on ``sys.path``, so its ``import launch`` / ``launch_ros`` /
 ``ament_index_python`` find ros2lite's faces of those packages. XML and YAML files go
 through :mod:`.frontend`. :func:`load_launch_file` picks by extension.
+
+The plain :class:`LaunchDescriptionSource` (a description given directly) stands in
+:mod:`.actions`, beside the include that wraps a description in one. The XML and YAML reader
+is handed in by :mod:`ros2lite.launch` (:func:`use_frontend`): the frontends' ``<include>``
+makes the sources of this module, so this module does not import the frontends.
 """
 
 from __future__ import annotations
@@ -11,10 +16,11 @@ from __future__ import annotations
 import importlib.util
 import itertools
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .actions import LaunchDescription
+from .actions import LaunchDescription, LaunchDescriptionSource
 from .errors import InvalidFrontendLaunchFileError, LaunchError
 from .substitutions import (
     SomeSubstitutionsType,
@@ -35,9 +41,31 @@ __all__ = [
     'YAMLLaunchDescriptionSource',
     'load_launch_file',
     'load_python_launch_file',
+    'use_frontend',
 ]
 
 _modules = itertools.count()
+
+FRONTEND_EXTENSIONS = {'.xml': 'xml', '.yaml': 'yaml', '.yml': 'yaml'}
+"""The extensions of XML and YAML launch files, and the frontend kind of each."""
+
+FrontendReader = Callable[[Path, str], LaunchDescription]
+"""Reads an XML or YAML launch file: `reader(path, 'xml' | 'yaml')`."""
+
+_frontend: FrontendReader | None = None
+
+
+def use_frontend(reader: FrontendReader) -> None:
+    """Read XML and YAML launch files with `reader` (ros2lite.launch hands in
+    :mod:`.frontend`'s when it is imported)."""
+    global _frontend
+    _frontend = reader
+
+
+def _read_frontend(path: Path, kind: str) -> LaunchDescription:
+    if _frontend is None:  # ros2lite.launch sets it, and importing this module runs that first
+        raise LaunchError(f"'{path}': no reader for {kind} launch files (import ros2lite.launch)")
+    return _frontend(path, kind)
 
 
 def _compat_on_path() -> None:
@@ -81,19 +109,17 @@ def load_python_launch_file(path: Path) -> LaunchDescription:
 def load_launch_file(path: Path, kind: str | None = None) -> LaunchDescription:
     """Any launch file: 'python', 'xml' or 'yaml' (by extension when `kind` is None; a file
     with another extension is tried as each in turn)."""
-    from .frontend.loader import FRONTEND_EXTENSIONS, load_frontend_file
-
     if kind is None:
         suffix = path.suffix.lower()
         kind = 'python' if suffix == '.py' else FRONTEND_EXTENSIONS.get(suffix)
     if kind == 'python':
         return load_python_launch_file(path)
     if kind in ('xml', 'yaml'):
-        return load_frontend_file(path, kind)
+        return _read_frontend(path, kind)
     errors = []
     for attempt in ('xml', 'yaml'):
         try:
-            return load_frontend_file(path, attempt)
+            return _read_frontend(path, attempt)
         except InvalidFrontendLaunchFileError as e:
             errors.append(str(e))
     try:
@@ -101,37 +127,6 @@ def load_launch_file(path: Path, kind: str | None = None) -> LaunchDescription:
     except Exception as e:  # not Python either: say what each reader found
         errors.append(str(e))
     raise LaunchError(f"'{path}' is not a launch file ({'; '.join(errors)})")
-
-
-class LaunchDescriptionSource:
-    """A launch description, given directly or loaded on first use."""
-
-    method = 'launch description'
-
-    def __init__(
-        self,
-        launch_description: LaunchDescription | None = None,
-        location: str = '<string>',
-        method: str | None = None,
-    ) -> None:
-        self._description = launch_description
-        self.location = location
-        if method is not None:
-            self.method = method
-
-    def try_get_launch_description_without_context(self) -> LaunchDescription | None:
-        """The description if it is already known (introspection needs no context)."""
-        return self._description
-
-    def get_launch_description(self, context: LaunchContext) -> LaunchDescription:
-        """The description, loading it in this context if needed."""
-        if self._description is None:
-            raise LaunchError('launch description source has no launch description')
-        return self._description
-
-    def describe(self) -> str:
-        """Where the description comes from, for introspection."""
-        return f'{self.method} at {self.location!r}'
 
 
 class _FileSource(LaunchDescriptionSource):

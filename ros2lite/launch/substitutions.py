@@ -18,7 +18,7 @@ import subprocess
 from collections.abc import Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING, TypeAlias
 
-from .errors import SubstitutionFailure
+from .errors import InvalidConditionExpressionError, SubstitutionFailure
 
 if TYPE_CHECKING:
     from .context import LaunchContext
@@ -44,6 +44,7 @@ __all__ = [
     'TextSubstitution',
     'ThisLaunchFile',
     'ThisLaunchFileDir',
+    'evaluate_condition_expression',
     'normalize_to_list_of_substitutions',
     'perform_substitutions',
 ]
@@ -355,10 +356,20 @@ class PythonExpression(Substitution):
         return f'PythonExpr({describe_substitutions(self.expression)})'
 
 
-def _truth(context: LaunchContext, subs: Sequence[Substitution]) -> bool:
-    from .conditions import evaluate_condition_expression
+_TRUE = ('true', '1')
+_FALSE = ('false', '0')
 
-    return evaluate_condition_expression(context, subs)
+
+def evaluate_condition_expression(context: LaunchContext, subs: Sequence[Substitution]) -> bool:
+    """'true'/'1' → True, 'false'/'0' → False (any case); anything else is an error."""
+    text = perform_substitutions(context, subs).strip().lower()
+    if text in _TRUE:
+        return True
+    if text in _FALSE:
+        return False
+    raise InvalidConditionExpressionError(
+        f"Unexpected condition expression '{text}', expected one of: {', '.join(_TRUE + _FALSE)}"
+    )
 
 
 class NotSubstitution(Substitution):
@@ -369,7 +380,7 @@ class NotSubstitution(Substitution):
 
     def perform(self, context: LaunchContext) -> str:
         """'true' or 'false'."""
-        return str(not _truth(context, self.value)).lower()
+        return str(not evaluate_condition_expression(context, self.value)).lower()
 
 
 class AndSubstitution(Substitution):
@@ -381,7 +392,10 @@ class AndSubstitution(Substitution):
 
     def perform(self, context: LaunchContext) -> str:
         """'true' or 'false'."""
-        return str(_truth(context, self.left) and _truth(context, self.right)).lower()
+        return str(
+            evaluate_condition_expression(context, self.left)
+            and evaluate_condition_expression(context, self.right)
+        ).lower()
 
 
 class OrSubstitution(AndSubstitution):
@@ -389,7 +403,10 @@ class OrSubstitution(AndSubstitution):
 
     def perform(self, context: LaunchContext) -> str:
         """'true' or 'false'."""
-        return str(_truth(context, self.left) or _truth(context, self.right)).lower()
+        return str(
+            evaluate_condition_expression(context, self.left)
+            or evaluate_condition_expression(context, self.right)
+        ).lower()
 
 
 class EqualsSubstitution(Substitution):
@@ -432,7 +449,11 @@ class IfElseSubstitution(Substitution):
 
     def perform(self, context: LaunchContext) -> str:
         """The chosen value, performed."""
-        chosen = self.if_value if _truth(context, self.condition) else self.else_value
+        chosen = (
+            self.if_value
+            if evaluate_condition_expression(context, self.condition)
+            else self.else_value
+        )
         return perform_substitutions(context, chosen)
 
 

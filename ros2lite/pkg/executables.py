@@ -14,7 +14,7 @@ owns a name); its executables depend on that source:
        "my_pkg.talker" = "my_pkg.nodes:talker_main"
 
 - an **ament prefix**: the executable files under ``lib/<package>`` — what ros2run looks at;
-- the packages **bundled** with ros2lite (:data:`BUNDLED`).
+- the packages **bundled** with ros2lite (:data:`BUNDLED`, from :mod:`.bundled`).
 
 Python targets are started as ``python -m ros2lite.pkg.runner <module:function> <name> …``
 with the same interpreter, so they run in this environment without needing a console script
@@ -35,7 +35,9 @@ from pathlib import Path
 
 from ros2lite.exceptions import Ros2liteError
 
+from .bundled import BUNDLED
 from .index import (
+    ENTRY_POINT_GROUP,
     ORIGIN_AMENT,
     ORIGIN_BUNDLED,
     ORIGIN_ENTRY_POINT,
@@ -44,35 +46,8 @@ from .index import (
     PackageIndex,
 )
 
-ENTRY_POINT_GROUP = 'ros2lite.executables'
 RUNNER = 'ros2lite.pkg.runner'
 _PYTHON = re.compile(r'python[0-9.]*\Z')
-
-# the demos bundled with ros2lite: package -> executables, each `main()` of
-# ros2lite.demos.<package>.<executable>
-_DEMOS = {
-    'action_tutorials_py': ['fibonacci_action_client', 'fibonacci_action_server'],
-    'demo_nodes_py': [
-        'add_two_ints_client',
-        'add_two_ints_client_async',
-        'add_two_ints_server',
-        'introspection_client',
-        'introspection_service',
-        'listener',
-        'parameter_blackboard',
-        'talker',
-    ],
-    'lifecycle': ['lifecycle_listener'],
-    'lifecycle_py': ['lifecycle_talker'],
-    'rclpy_components': ['component_container', 'component_container_mt'],
-    'rqt_graph': ['rqt_graph'],
-    'teleop_twist_keyboard': ['teleop_twist_keyboard'],
-    'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
-}
-BUNDLED: dict[str, dict[str, str]] = {
-    package: {name: f'ros2lite.demos.{package}.{name}:main' for name in names}
-    for package, names in _DEMOS.items()
-}
 
 # C++ packages that courses run, and the bundled Python package that does the same thing under
 # the same executable names (used only when the C++ package itself is not installed)

@@ -28,12 +28,14 @@ from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
+from .bundled import BUNDLED
 from .manifest import MANIFEST, is_valid_package_name
 from .workspace import SourcePackage, scan_workspace, workspace_sources, workspaces
 
 __all__ = [
     'BUNDLED_DEMOS',
     'BUNDLED_INTERFACES',
+    'ENTRY_POINT_GROUP',
     'INTERFACE_PATH_ENV',
     'ORIGINS',
     'Package',
@@ -44,6 +46,8 @@ __all__ = [
 ]
 
 INTERFACE_PATH_ENV = 'ROS2LITE_INTERFACE_PATH'
+ENTRY_POINT_GROUP = 'ros2lite.executables'
+"""The entry-point group whose `<package>.<executable>` names declare packages and executables."""
 _ROOT = Path(__file__).resolve().parent.parent
 BUNDLED_INTERFACES = _ROOT / 'msgs'
 BUNDLED_DEMOS = _ROOT / 'demos'
@@ -180,8 +184,6 @@ class PackageIndex:
         return found
 
     def _read_entry_points(self) -> dict[str, Package]:
-        from .executables import ENTRY_POINT_GROUP
-
         found: dict[str, Package] = {}
         if not _may_declare(ENTRY_POINT_GROUP):
             return found
@@ -211,8 +213,6 @@ class PackageIndex:
         return found
 
     def _read_bundled(self) -> dict[str, Package]:
-        from .executables import BUNDLED
-
         found: dict[str, Package] = {}
         for child in _children(BUNDLED_INTERFACES):
             if _has_interfaces(child):

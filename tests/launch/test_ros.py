@@ -14,7 +14,6 @@ from ros2lite.launch.actions import GroupAction
 from ros2lite.launch.context import LaunchContext
 from ros2lite.launch.errors import LaunchError
 from ros2lite.launch.ros import (
-    FindPackageShare,
     Node,
     ParameterFile,
     ParameterValue,
@@ -142,15 +141,6 @@ def test_parameter_files(context: Any, tmp_path: Path) -> None:
     ros = node.ros_args(context)
     assert ros[:2] == ['--params-file', str(params)]
     assert _param_file(ros[3]) == {'rate': 5}
-
-
-def test_find_package_share(context: Any) -> None:
-    share = FindPackageShare('turtlesim').perform(context)
-    assert Path(share, 'launch', 'multisim.launch.py').is_file()
-    from ros2lite.launch.errors import SubstitutionFailure
-
-    with pytest.raises(SubstitutionFailure, match=r"Package 'turtlesm' not found; did you mean"):
-        FindPackageShare('turtlesm').perform(context)
 
 
 def test_unknown_executable_is_an_error_naming_close_matches(context: Any) -> None:

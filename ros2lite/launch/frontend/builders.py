@@ -29,6 +29,7 @@ from ..actions import (
 from ..conditions import IfCondition, UnlessCondition
 from ..errors import InvalidFrontendLaunchFileError
 from ..execute import ExecuteProcess
+from ..sources import AnyLaunchDescriptionSource
 from ..substitutions import Substitution, TextSubstitution
 from .entity import Entity
 from .substitutions import parse_substitutions
@@ -205,8 +206,6 @@ def _node(e: Entity) -> Action:
 
 
 def _include(e: Entity) -> Action:
-    from ..sources import AnyLaunchDescriptionSource
-
     arguments = [
         (a.subs('name', optional=False) or [], a.subs('value', optional=False) or [])
         for a in e.child_list('arg')

@@ -9,12 +9,12 @@ from ros2lite.files import read_bounded
 
 from ..actions import LaunchDescription
 from ..errors import InvalidFrontendLaunchFileError
+from ..sources import FRONTEND_EXTENSIONS
 from .builders import build_all
 from .entity import XmlEntity, yaml_root
 
 __all__ = ['FRONTEND_EXTENSIONS', 'load_frontend_file']
 
-FRONTEND_EXTENSIONS = {'.xml': 'xml', '.yaml': 'yaml', '.yml': 'yaml'}
 _MAX_BYTES = 4 << 20
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from ..errors import InvalidFrontendLaunchFileError
+from ..find_package import FindPackagePrefix, FindPackageShare
 from ..substitutions import (
     AndSubstitution,
     AnonName,
@@ -70,15 +71,11 @@ def _optenv(args: Args) -> Substitution:
 
 
 def _find_share(args: Args) -> Substitution:
-    from ..ros import FindPackageShare
-
     _one('find-pkg-share', args, 1, 1)
     return FindPackageShare(args[0])
 
 
 def _find_prefix(args: Args) -> Substitution:
-    from ..ros import FindPackagePrefix
-
     _one('find-pkg-prefix', args, 1, 1)
     return FindPackagePrefix(args[0])
 
