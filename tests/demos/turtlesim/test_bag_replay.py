@@ -41,6 +41,6 @@ def test_recorded_drive_replays_to_the_same_pose(
     assert (start['x'], start['theta']) == (5.544444561004639, 0.0)
     played = run_process('bag', 'play', str(bag))
     assert played.code == 0, played.err
-    after = settle(run)
+    after = settle(run, moved_from=start)
     assert math.dist((after['x'], after['y']), (before['x'], before['y'])) < 0.1, (before, after)
     assert abs(after['theta'] - before['theta']) < 0.05

@@ -31,10 +31,11 @@ def test_turtle2_follows_turtle1(
         assert time.monotonic() < deadline
         time.sleep(0.1)
     start = pose(run, 'turtle2')
+    leader = pose(run, 'turtle1')
     run('topic', 'pub', '--once', '-w', '1', '/turtle1/cmd_vel', 'geometry_msgs/msg/Twist',
         '{linear: {x: 1.0}, angular: {z: 0.5}}')  # fmt: skip
-    settle(run, 'turtle1')
-    end = settle(run, 'turtle2')
+    settle(run, 'turtle1', moved_from=leader)
+    end = settle(run, 'turtle2', moved_from=start)
     # the same arc from its own start: about 1 m travelled, turned about 0.5 rad
     assert 0.85 < ((end['x'] - start['x']) ** 2 + (end['y'] - start['y']) ** 2) ** 0.5 < 1.05
     assert 0.4 < end['theta'] - start['theta'] < 0.55

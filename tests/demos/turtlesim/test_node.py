@@ -30,12 +30,20 @@ def pose(run: Callable[..., Result], turtle: str = 'turtle1') -> dict[str, float
     return dict(yaml.safe_load(result.out.split('---')[0]))
 
 
-def settle(run: Callable[..., Result], turtle: str = 'turtle1') -> dict[str, float]:
-    """The pose once the turtle stands still (its last command over)."""
+def settle(
+    run: Callable[..., Result],
+    turtle: str = 'turtle1',
+    *,
+    moved_from: dict[str, float] | None = None,
+) -> dict[str, float]:
+    """The pose once the turtle stands still (its last command over). With `moved_from`, the
+    pose it stood in before a command was sent: a command takes a moment to reach the
+    simulator (longer under load), and until it has, the turtle still stands there."""
     deadline = time.monotonic() + 10
     while True:
         p = pose(run, turtle)
-        if p['linear_velocity'] == 0.0 and p['angular_velocity'] == 0.0:
+        moved = moved_from is None or any(p[k] != moved_from[k] for k in ('x', 'y', 'theta'))
+        if moved and p['linear_velocity'] == 0.0 and p['angular_velocity'] == 0.0:
             return p
         assert time.monotonic() < deadline, p
         time.sleep(0.1)
@@ -72,6 +80,7 @@ def test_topics_services_and_node_info(run: Callable[..., Result], turtlesim: An
     assert 'Publisher count: 1' in run('topic', 'info', '/turtle1/pose').out
 
     # drive: a Twist lasts one second, then the turtle stops
+    still = pose(run)
     run(
         'topic',
         'pub',
@@ -82,7 +91,7 @@ def test_topics_services_and_node_info(run: Callable[..., Result], turtlesim: An
         'geometry_msgs/msg/Twist',
         '{linear: {x: 2.0}}',
     )
-    p = settle(run)
+    p = settle(run, moved_from=still)
     assert 7.4 < p['x'] < 7.6 and p['y'] == 5.544444561004639  # 62 or 63 steps at 2 m/s
 
     # spawn: a second turtle with its own interface; kill: it goes
@@ -137,6 +146,7 @@ def test_topics_services_and_node_info(run: Callable[..., Result], turtlesim: An
     assert p['x'] == 5.544444561004639 and p['theta'] == 0.0
 
     # the walls: driving into one clamps and warns with turtlesim's line
+    still = pose(run)
     run(
         'topic',
         'pub',
@@ -147,7 +157,7 @@ def test_topics_services_and_node_info(run: Callable[..., Result], turtlesim: An
         'geometry_msgs/msg/Twist',
         '{linear: {x: 9.0}}',
     )
-    p = settle(run)
+    p = settle(run, moved_from=still)
     assert p['x'] == 11.088889122009277
     wall = wait_for_log(proc, lines, r'Oh no! I hit the wall!')
     assert re.search(
@@ -192,6 +202,7 @@ def test_parameters(run: Callable[..., Result], turtlesim: Any, tmp_path: Any) -
 
     # holonomic, applied live: linear.y now moves the turtle sideways
     run('param', 'set', '/turtlesim', 'holonomic', 'true')
+    still = pose(run)
     run(
         'topic',
         'pub',
@@ -202,7 +213,7 @@ def test_parameters(run: Callable[..., Result], turtlesim: Any, tmp_path: Any) -
         'geometry_msgs/msg/Twist',
         '{linear: {y: 1.0}}',
     )
-    p = settle(run)
+    p = settle(run, moved_from=still)
     assert p['x'] == 5.544444561004639 and 6.5 < p['y'] < 6.6
 
 

@@ -55,12 +55,12 @@ def test_drive_rotate_cancel_quit(
     lflag = changed_lflag(proc)
     assert not lflag & termios.ECHO and not lflag & termios.ICANON  # keys arrive one by one
 
-    x0 = pose(run)['x']
+    p0 = pose(run)
     proc.send('\x1b[A')  # up: 2.0 m/s for a second
-    p = settle(run)
-    assert 1.95 < p['x'] - x0 < 2.05 and abs(p['theta']) < 1e-6  # 62 or 63 steps
+    p = settle(run, moved_from=p0)
+    assert 1.95 < p['x'] - p0['x'] < 2.05 and abs(p['theta']) < 1e-6  # 62 or 63 steps
     proc.send('\x1b[D')  # left: 2.0 rad/s for a second (62 steps, turned about 1.98 rad)
-    p = settle(run)
+    p = settle(run, moved_from=p)
     assert abs(p['theta'] - 62 * 0.016 * 2.0) < 0.04
 
     proc.send('r')  # rotate to pi/2
