@@ -64,6 +64,9 @@ _TYPE_RE = re.compile(
 )
 
 
+_CONTAINERS = frozenset({'', 'array', 'bounded', 'sequence'})
+
+
 @dataclass(frozen=True)
 class FieldType:
     """The type of one field: a primitive or nested message, optionally in a container."""
@@ -474,6 +477,12 @@ def check_definition(mdef: MessageDef) -> None:
             raise InterfaceError(f"{mdef.name}: invalid field name {f.name!r}")
         if not f.type.is_primitive:
             validate_type_name(f.type.base)
+        # bounds and sizes are written into the source as numbers: whole ints, nothing else
+        ft = f.type
+        if type(ft.size) is not int or type(ft.string_bound) is not int:
+            raise InterfaceError(f"{mdef.name}: field {f.name!r} has a size that is not a number")
+        if ft.container not in _CONTAINERS:
+            raise InterfaceError(f"{mdef.name}: field {f.name!r} has no known container kind")
     for c in mdef.constants:
         if not _CONST_RE.match(c.name):
             raise InterfaceError(f"{mdef.name}: invalid constant name {c.name!r}")

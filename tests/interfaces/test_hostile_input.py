@@ -101,6 +101,21 @@ def test_cdr_code_is_generated_from_checked_definitions_only() -> None:
             build('pkg/msg/Evil', reg)
 
 
+def test_sizes_of_a_definition_built_by_hand_are_numbers() -> None:
+    from ros2lite.interfaces.cdr import build_serializer
+    from ros2lite.interfaces.parser import Field, FieldType
+
+    bound = FieldType('string', string_bound='1: __import__("os")')  # type: ignore[arg-type]
+    size = FieldType('int32', container='array', size='2] + [__import__("os")')  # type: ignore[arg-type]
+    for ft in (bound, size):
+        reg = _Types({})
+        reg._messages['pkg/msg/Evil'] = MessageDef('pkg/msg/Evil', [Field('a', ft)])
+        with pytest.raises(InterfaceError, match='not a number'):
+            build_serializer('pkg/msg/Evil', reg)
+        with pytest.raises(InterfaceError, match='not a number'):
+            ClassFactory(default_registry())._build(reg._messages['pkg/msg/Evil'])
+
+
 class _Types(Registry):
     """A registry holding only the given definitions (what a bag brings)."""
 
