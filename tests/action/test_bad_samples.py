@@ -4,28 +4,12 @@ from __future__ import annotations
 
 import struct
 import time
-from collections.abc import Iterator
 from typing import Any
-
-import pytest
 
 from ros2lite.msgs.action_msgs.msg import GoalStatus  # type: ignore[attr-defined]
 from ros2lite.msgs.example_interfaces.action import Fibonacci  # type: ignore[attr-defined]
-from tests.action.test_server_client import Fixture
+from tests.action.fixtures import Fixture
 from tests.spinning import wait_until
-
-
-@pytest.fixture
-def fx(ros_context: Any) -> Iterator[Fixture]:
-    f = Fixture(ros_context)
-    f.thread.start()
-    try:
-        yield f
-    finally:
-        f.release.set()
-        f.executor.shutdown()
-        ros_context.try_shutdown()
-        f.thread.join(timeout=5)
 
 
 def test_garbage_feedback_and_status_do_not_end_the_goal(fx: Fixture, alien_session: Any) -> None:
