@@ -22,6 +22,7 @@ if TYPE_CHECKING:
 
     from ros2lite.connection import Connection
     from ros2lite.graph import Entity
+    from ros2lite.interfaces import Message
     from ros2lite.node import Node
     from ros2lite.qos import (
         DurabilityPolicy,
@@ -293,15 +294,14 @@ def format_options(
     return decorate
 
 
-def print_event(type_name: str, data: bytes, fmt: MessageFormat, head: str = '') -> None:
-    """Print one serialized service event (or any message) as `service echo` and `action
-    echo` do: `head`, the message, then `---` (a CSV line ends with its newline alone)."""
+def print_event(msg: Message, fmt: MessageFormat, head: str = '') -> None:
+    """Print one service event (or any message) as `service echo` and `action echo` do:
+    `head`, the message, then `---` (a CSV line ends with its newline alone)."""
     import sys
 
-    from ros2lite.interfaces import deserialize
     from ros2lite.service_introspection import format_event
 
-    text = format_event(deserialize(type_name, data), **fmt)
+    text = format_event(msg, **fmt)
     sys.stdout.write(head + text + ('\n' if fmt['csv'] else '---\n'))
 
 

@@ -19,7 +19,7 @@ from ..common import (
 from ..errors import CliError
 
 if TYPE_CHECKING:
-    from ros2lite.subscription import MessageInfo
+    from ros2lite.interfaces import Message
 
     from ..common import MessageFormat
 
@@ -77,13 +77,9 @@ def cli(
             if watched.interface not in wanted:
                 continue
 
-            def show(
-                data: bytes,
-                _info: MessageInfo,
-                name: str = watched.interface,
-                t: str = watched.type_name,
-            ) -> None:
-                print_event(t, data, fmt, head=f'interface: {name}\n')
+            def show(msg: Message, name: str = watched.interface) -> None:
+                print_event(msg, fmt, head=f'interface: {name}\n')
 
-            node.create_subscription(watched.type_name, watched.topic, show, watched.qos, raw=True)
+            # typed: a sample that is not the type is dropped and reported, not fatal
+            node.create_subscription(watched.type_name, watched.topic, show, watched.qos)
         conn.spin()

@@ -22,7 +22,7 @@ from ..errors import CliError
 if TYPE_CHECKING:
     from typing_extensions import Unpack
 
-    from ros2lite.subscription import MessageInfo
+    from ros2lite.interfaces import Message
 
     from ..common import MessageFormat, QosOptions
 
@@ -75,8 +75,9 @@ def cli(
                 'server enabled?'
             )
 
-        def show(data: bytes, _info: MessageInfo) -> None:
-            print_event(event_type, data, fmt)
+        def show(msg: Message) -> None:
+            print_event(msg, fmt)
 
-        node.create_subscription(event_type, topic, show, qos_from_options(**qos), raw=True)
+        # typed: a sample that is not the event type is dropped and reported, not fatal
+        node.create_subscription(event_type, topic, show, qos_from_options(**qos))
         conn.spin()

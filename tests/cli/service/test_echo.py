@@ -93,3 +93,28 @@ def test_echo_errors(run: Any, adder: Any) -> None:
         1,
         "The service type 'example_interfaces/srv/Nope' is invalid\n",
     )
+
+
+def test_a_sample_that_is_not_the_event_type_is_dropped(
+    adder: Any, processes: Any, alien_session: Any
+) -> None:
+    """Anyone can put bytes on the event topic: one bad sample is reported, the echo goes on."""
+    import struct
+    import time
+
+    from ros2lite.interfaces import get_interface, serialize, type_hash
+    from ros2lite.transport.keys import topic_key
+
+    event_type = 'example_interfaces/srv/AddTwoInts_Event'
+    topic = '/add_two_ints/_service_event'
+    echo = Echo(processes, '/add_two_ints', 'example_interfaces/srv/AddTwoInts')
+    wait_until(lambda: adder.count_subscribers(topic) == 1, timeout=20)
+    key = topic_key(adder.context.domain_id, topic, event_type, type_hash(event_type))
+    good = get_interface(event_type)()
+    good.info.sequence_number = 7
+    for seq, payload in enumerate((b'\x00\x01\x00\x00junk', serialize(good)), 1):
+        attachment = struct.pack('<qqB', seq, time.time_ns(), 16) + bytes([7]) * 16
+        alien_session.put(key, payload, attachment=attachment)
+    wait_until(lambda: 'sequence_number: 7' in echo.text(), timeout=20)
+    assert echo.proc.poll() is None
+    echo.stop()
