@@ -123,22 +123,26 @@ def _scalar_default(ft: FieldType) -> str:
     return f'_C[{base!r}]()'
 
 
-def _default_source(ft: FieldType, default: Any) -> str:
-    """Source of an expression building a field's default value (a new object every time)."""
+def _default_source(ft: FieldType, default: Any, values: list[Any]) -> str:
+    """Source of an expression building a field's default value (a new object every time).
+    A value from the definition is appended to `values` (the class's `_D`) and read from
+    there, never written into the source: no repr has to round-trip (`inf`, `nan`)."""
     if default is not None:
         if ft.base == 'byte':
             default = [bytes([v]) for v in default] if ft.is_container else bytes([default])
+        values.append(default)
+        ref = f'_D[{len(values) - 1}]'
         if ft.is_container and ft.base in TYPECODES:
-            return f'_array({TYPECODES[ft.base]!r}, {default!r})'
+            return f'_array({TYPECODES[ft.base]!r}, {ref})'
         if ft.is_container:
-            return repr(list(default))
-        return repr(default)
+            return f'list({ref})'
+        return ref
     if not ft.is_container:
         return _scalar_default(ft)
     if ft.container == 'array':
         if ft.base in TYPECODES:
             return f'_array({TYPECODES[ft.base]!r}, [{_scalar_default(ft)}]) * {ft.size}'
-        return f'[{_scalar_default(ft)} for _ in range({ft.size})]'
+        return f'[{_scalar_default(ft)} for _ in _range({ft.size})]'
     if ft.base in TYPECODES:
         return f'_array({TYPECODES[ft.base]!r})'
     return '[]'
@@ -339,14 +343,17 @@ class ClassFactory:
         short = mdef.short_name
         names = [f.name for f in mdef.fields]
         src = [f'class {short}(_Message):', f'    __slots__ = {tuple("_" + n for n in names)!r}']
-        for c in mdef.constants:
-            src.append(f'    {c.name} = {c.value!r}')
+        # values from the definition are bound through the namespace, not written as text
+        constants = tuple(c.value for c in mdef.constants)
+        for i, c in enumerate(mdef.constants):
+            src.append(f'    {c.name} = _K[{i}]')
+        defaults: list[Any] = []
         params = ''.join(f', {n}=_MISSING' for n in names)
         src.append(f'    def __init__(self{params}):')
         if not names:
             src.append('        pass')
         for f in mdef.fields:
-            default = _default_source(f.type, f.default)
+            default = _default_source(f.type, f.default, defaults)
             src.append(f'        if {f.name} is _MISSING: self._{f.name} = {default}')
             src.append(f'        else: self.{f.name} = {f.name}')
         for f in mdef.fields:
@@ -367,6 +374,10 @@ class ClassFactory:
             '_same_type': self.same_type,
             '_getter': operator.attrgetter,
             '_CHECK': _CHECK,
+            '_K': constants,
+            '_D': tuple(defaults),
+            # the __init__ body's only builtin, under a name no field can take
+            '_range': range,
         }
         exec(compile('\n'.join(src), f'<ros2lite {mdef.name}>', 'exec'), ns)
         cls: type[Message] = ns[short]

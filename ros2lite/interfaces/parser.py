@@ -53,14 +53,15 @@ SERVICE_SEPARATOR = '---'
 MAX_BOUND = 2**32 - 1
 MAX_ARRAY_SIZE = 1 << 20
 
-_PKG_RE = re.compile(r'^[a-z][a-z0-9_]*$')
-_TYPE_NAME_RE = re.compile(r'^[A-Z][A-Za-z0-9]*$')
-_FIELD_RE = re.compile(r'^[a-z][a-z0-9_]*$')
-_CONST_RE = re.compile(r'^[A-Z][A-Z0-9_]*$')
+# names become generated source text: \Z, since `$` also matches before a final newline
+_PKG_RE = re.compile(r'^[a-z][a-z0-9_]*\Z')
+_TYPE_NAME_RE = re.compile(r'^[A-Z][A-Za-z0-9]*\Z')
+_FIELD_RE = re.compile(r'^[a-z][a-z0-9_]*\Z')
+_CONST_RE = re.compile(r'^[A-Z][A-Z0-9_]*\Z')
 _TYPE_RE = re.compile(
     r'^(?P<base>[A-Za-z][A-Za-z0-9_]*(?:/[A-Za-z][A-Za-z0-9_]*){0,2})'
     r'(?:<=(?P<sbound>\d+))?'
-    r'(?:\[(?P<arr>(?:<=)?\d*)\])?$'
+    r'(?:\[(?P<arr>(?:<=)?\d*)\])?\Z'
 )
 
 
@@ -324,6 +325,24 @@ def parse_default(ftype: FieldType, text: str) -> Any:
 
 # names a generated class cannot use for a field (its constructor's own parameter)
 _RESERVED_FIELDS = frozenset({'self'})
+
+
+def field_name_ok(name: str) -> bool:
+    """The field-name rule, one place for the parser and for definitions built otherwise."""
+    return (
+        bool(_FIELD_RE.match(name))
+        and '__' not in name
+        and not name.endswith('_')
+        and not keyword.iskeyword(name)
+        and name not in _RESERVED_FIELDS
+    )
+
+
+def constant_name_ok(name: str) -> bool:
+    """The constant-name rule (UPPER_CASE, no dunder)."""
+    return bool(_CONST_RE.match(name)) and '__' not in name
+
+
 _LINE_RE = re.compile(r'^\s*(?P<type>\S+)\s+(?P<rest>.*)$')
 
 
@@ -337,7 +356,7 @@ def parse_line(code: str, package: str) -> Field | Constant:
     if '=' in rest:
         name, _, value = rest.partition('=')
         name = name.strip()
-        if not _CONST_RE.match(name) or '__' in name:
+        if not constant_name_ok(name):
             raise ValueError(f"invalid constant name '{name}' (UPPER_CASE expected)")
         if not ftype.is_primitive or ftype.is_container:
             raise ValueError(f"constant '{name}' must have a primitive, non-array type")
@@ -355,7 +374,7 @@ def parse_line(code: str, package: str) -> Field | Constant:
     default_text = default_text.strip()
     if not _FIELD_RE.match(name) or '__' in name or name.endswith('_'):
         raise ValueError(f"invalid field name '{name}' (lower_case expected)")
-    if keyword.iskeyword(name) or name in _RESERVED_FIELDS:
+    if not field_name_ok(name):
         raise ValueError(f"field name '{name}' is reserved (a Python keyword)")
     default = parse_default(ftype, default_text) if default_text else None
     return Field(name, ftype, default)
@@ -425,7 +444,7 @@ def parse_action(text: str, name: str, source: str = '<string>') -> ActionDef:
     )
 
 
-_SHORT_RE = re.compile(r'^[A-Z][A-Za-z0-9_]*$')
+_SHORT_RE = re.compile(r'^[A-Z][A-Za-z0-9_]*\Z')
 # longest type name accepted (ROS caps topic names at 255 characters; a type is shorter)
 MAX_TYPE_NAME_LENGTH = 255
 
@@ -473,7 +492,7 @@ def check_definition(mdef: MessageDef) -> None:
     source text is generated from them."""
     validate_type_name(mdef.name)
     for f in mdef.fields:
-        if not _FIELD_RE.match(f.name) or '__' in f.name or keyword.iskeyword(f.name):
+        if not field_name_ok(f.name):
             raise InterfaceError(f"{mdef.name}: invalid field name {f.name!r}")
         if not f.type.is_primitive:
             validate_type_name(f.type.base)
@@ -484,5 +503,5 @@ def check_definition(mdef: MessageDef) -> None:
         if ft.container not in _CONTAINERS:
             raise InterfaceError(f"{mdef.name}: field {f.name!r} has no known container kind")
     for c in mdef.constants:
-        if not _CONST_RE.match(c.name):
+        if not constant_name_ok(c.name):
             raise InterfaceError(f"{mdef.name}: invalid constant name {c.name!r}")

@@ -190,3 +190,31 @@ def test_every_bundled_type_rejects_payloads_without_a_header() -> None:
         for data in (b'', b'\x00', b'\x00\x01\x00', b'\x01\x01\x00\x00'):
             with pytest.raises(CdrError):
                 c.deserialize(data)
+
+
+def test_a_name_with_a_trailing_newline_is_refused() -> None:
+    from ros2lite.interfaces.parser import validate_type_name
+
+    with pytest.raises(InterfaceError, match='CamelCase'):
+        validate_type_name('foo_msgs/msg/Bar\n')
+    with pytest.raises(InterfaceError):
+        validate_type_name('foo_msgs\n/msg/Bar')
+
+
+def test_values_and_names_that_source_text_would_trip_on() -> None:
+    """Non-finite constants and defaults, and a field named like the builtin the generated
+    constructor uses, build a working class (values are bound, not written as text)."""
+    import math
+
+    reg = _Types(
+        {
+            'pkg/msg/Odd': 'float64 BIG=inf\nfloat64 y nan\nfloat64[2] z [inf, 1.0]\n'
+            'float32 range\nstring[2] names\nstring[] s ["a"]\n'
+        }
+    )
+    cls = ClassFactory(reg)._build(reg.message('pkg/msg/Odd'))
+    msg = cls()
+    assert math.isinf(cls.BIG) and math.isnan(msg.y) and list(msg.z) == [math.inf, 1.0]
+    assert msg.range == 0.0 and msg.names == ['', '']
+    msg.s.append('b')
+    assert cls().s == ['a']  # a default is a new object each time
