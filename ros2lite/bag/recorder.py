@@ -346,7 +346,8 @@ class Recorder:
         from ros2lite.monitor.subscription import MonitoredSubscription
 
         try:
-            validate_type_name(type_name)  # it came from the wire: it is written into the bag
+            # the writer refuses it too, fatally: here it only skips this topic
+            validate_type_name(type_name)
         except InterfaceError as e:
             self._skipped.add(topic)
             self._warn(f"Cannot record '{topic}': {e}")

@@ -265,6 +265,13 @@ class Writer:
         self._require()
         if name in self._by_name:
             return self._by_name[name]
+        from ros2lite.interfaces import InterfaceError
+        from ros2lite.interfaces.parser import validate_type_name
+
+        try:  # a name from the wire or from another bag is written into this one
+            validate_type_name(type_name)
+        except InterfaceError as e:
+            raise BagError(f"Topic '{name}': {e}") from None
         encoding, text, local_hash = type_definition(type_name)
         if definition is not None:
             encoding, text = definition

@@ -240,6 +240,12 @@ def test_bad_paths_and_files_give_one_line_errors(tmp_path: Path) -> None:
             Writer(locked / "bag").open()
     with pytest.raises(BagError, match="splitting size"):
         Writer(tmp_path / "tiny", max_bag_size=10)
+    # a type name from the wire or another bag is checked before it is written into this one
+    with (
+        Writer(tmp_path / "typed") as writer,
+        pytest.raises(BagError, match=r"^Topic '/t': Invalid interface name"),
+    ):
+        writer.create_topic("/t", "std_msgs/msg/String\n!!python/object")
 
 
 def test_qos_forms_round_trip() -> None:
