@@ -21,6 +21,7 @@ import time
 from collections import OrderedDict
 from collections.abc import Callable
 
+from ros2lite.topic_endpoint_info import format_gid
 from ros2lite.transport.attachment import unpack_attachment
 
 __all__ = ['BadSamples', 'describe_publisher']
@@ -33,7 +34,7 @@ def describe_publisher(gid: bytes) -> str:
     """A publisher as a warning names it: its GID in hex (what `topic info -v` shows)."""
     if not gid:
         return 'an unknown publisher (no attachment)'
-    return 'publisher ' + '.'.join(f'{b:02x}' for b in gid)
+    return 'publisher ' + format_gid(gid)
 
 
 def gid_of(attachment: bytes | None) -> bytes:

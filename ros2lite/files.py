@@ -80,7 +80,7 @@ def replace_file(
     """Write `data` as the whole new content of `path`, atomically (see the module doc)."""
     target = Path(path)
     blob = data.encode('utf-8') if isinstance(data, str) else data
-    fd, tmp = tempfile.mkstemp(prefix=f'.{target.name}.', suffix='.tmp', dir=target.parent)
+    fd, tmp = temp_beside(target)
     try:
         os.fchmod(fd, mode)
         view = memoryview(blob)
@@ -167,8 +167,9 @@ def read_bounded(path: Path, limit: int, error: type[Exception], what: str) -> b
     """The bytes of a file we parse whole (a manifest, a launch file): a read error or a
     file over `limit` bytes becomes one `error` naming the path (`what` says what the file
     should have been)."""
-    try:
-        data = path.read_bytes()
+    try:  # no more than one byte past the limit is read (a symlink to /dev/zero ends here)
+        with path.open('rb') as f:
+            data = f.read(limit + 1)
     except OSError as e:
         raise error(f'{path}: {e.strerror or e}') from None
     if len(data) > limit:

@@ -10,7 +10,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Generic, cast
 
 from ros2lite.bad_samples import BadSamples, gid_of
-from ros2lite.delivery import deliver, deliver_with_info
+from ros2lite.delivery import BATCH, BATCH_TIME, deliver, deliver_with_info
 from ros2lite.endpoint import Endpoint, EndpointOwner
 from ros2lite.executable import Executable
 from ros2lite.message_info import MessageInfo
@@ -51,11 +51,6 @@ def callback_type(callback: Callable[..., object]) -> CallbackType:
     raise RuntimeError(
         'a subscription callback must take one parameter (msg) or two (msg, msg_info)'
     )
-
-
-# longest run of callbacks of one subscription in one executor turn: count and seconds
-_BATCH = 512
-_BATCH_TIME = 0.002
 
 
 def _info(attachment: bytes, received: int) -> MessageInfo:
@@ -216,11 +211,11 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
                 self,
                 source,
                 self._deserialize or self._deserializer(),
-                _BATCH if batch else 1,
+                BATCH if batch else 1,
                 stop,
             )
         else:
-            self._deliver_batch(_BATCH if batch else 1, stop)
+            self._deliver_batch(BATCH if batch else 1, stop)
         return None
 
     def _deliver_batch(self, limit: int, stop: Callable[[], bool] | None) -> None:
@@ -229,15 +224,13 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         callback: Callable[..., object] = self.callback
         buffer = self._buffer
         popleft, perf_counter = buffer.popleft, time.perf_counter
-        # a batch also ends after _BATCH_TIME, so slow callbacks can't starve timers
-        deadline = perf_counter() + _BATCH_TIME if limit > 1 else 0.0
+        # a batch also ends after BATCH_TIME, so slow callbacks can't starve timers
+        deadline = perf_counter() + BATCH_TIME if limit > 1 else 0.0
         if self.raw or self._with_info:
             self._deliver_with_info(limit, stop, deadline)
             return
         des = self._deserialize or self._deserializer()
-        if self._source is not None:  # the hot path (ros2lite.delivery)
-            deliver(self, self._source, des, limit, stop)
-            return
+        # (typed and pulled from Zenoh without info: _execute hands those to delivery)
         # typed, fed by a hook of a subclass: a sample that does not decode raises out of
         # the loop; the handler (free until something raises) tells a bad sample, which is
         # dropped, from the callback's own error

@@ -9,6 +9,7 @@ from __future__ import annotations
 import threading
 from typing import TYPE_CHECKING
 
+from ros2lite.bad_samples import gid_of
 from ros2lite.qos import QoSProfile
 from ros2lite.subscription import Subscription
 from ros2lite.type_support import MsgT
@@ -21,19 +22,30 @@ __all__ = ['wait_for_message']
 
 
 class _FirstMessage(Subscription[MsgT]):
-    """A subscription that keeps the first sample it receives and wakes the waiter."""
+    """A subscription that keeps the first message it receives and wakes the waiter. A
+    sample that does not decode is dropped and reported, as every subscription does, and
+    the wait goes on."""
 
     def __init__(
         self, node: Node, msg_type: type[MsgT] | str, topic: str, qos: QoSProfile | int
     ) -> None:
-        self.first: Sample | None = None
+        self.first: MsgT | None = None
         self.arrived = threading.Event()
         super().__init__(node, msg_type, topic, lambda _msg: None, qos)
 
     def _on_sample(self, sample: Sample) -> None:
+        attachment = sample.attachment
         # rmw_zenoh ignores samples without an attachment; so does this
-        if self.first is None and sample.attachment is not None:
-            self.first = sample
+        if self.first is not None or attachment is None:
+            return
+        data = sample.payload.to_bytes()
+        try:
+            message = self._deserializer()(data)
+        except ValueError as e:  # a CdrError
+            self._bad_sample(data, gid_of(attachment.to_bytes()), e)
+            return
+        if self.first is None:
+            self.first = message
             self.arrived.set()
 
 
@@ -52,10 +64,10 @@ def wait_for_message(
     context.on_shutdown(waiter.arrived.set)
     try:
         waiter.arrived.wait(None if time_to_wait < 0 else time_to_wait)
-        sample = waiter.first
-        if sample is None:
+        message = waiter.first
+        if message is None:
             return False, None
-        return True, waiter._deserializer()(sample.payload.to_bytes())
+        return True, message
     finally:
         context.remove_on_shutdown(waiter.arrived.set)
         waiter.destroy()
