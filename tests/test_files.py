@@ -137,3 +137,12 @@ def test_daemon_files_leave_a_shared_runtime_dir_alone(
     log = log_file('tcp/127.0.0.1:1')
     assert log.parent == runtime_dir()
     shutil.rmtree(tmp_path / 'home')
+
+
+def test_read_bounded_reads_no_more_than_its_limit(tmp_path: Path) -> None:
+    from ros2lite.files import read_bounded
+
+    endless = tmp_path / 'package.xml'
+    endless.symlink_to('/dev/zero')  # read whole, this would never end
+    with pytest.raises(ValueError, match='too large for a manifest'):
+        read_bounded(endless, 1 << 16, ValueError, 'a manifest')
