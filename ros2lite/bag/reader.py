@@ -243,9 +243,7 @@ class Reader:
                 out.append(f"'{f}' cannot be read: {e}")
                 continue
             want = promised.get(f.name)
-            if want is None or (summary.complete and summary.message_count >= want):
-                continue
-            if summary.message_count < want:
+            if want is not None and summary.message_count < want:
                 out.append(
                     f"'{f}' is incomplete: metadata.yaml promises {want} messages, "
                     f"{summary.message_count} are readable (a recording cut short or a "

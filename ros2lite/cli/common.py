@@ -416,7 +416,6 @@ def print_names_of_type(
 
 
 def print_types_of(
-    ctx: click.Context,
     name: str,
     no_daemon: bool,
     names_and_types: Callable[[list[Entity]], list[tuple[str, list[str]]]],

@@ -11,13 +11,11 @@ from ..common import print_types_of, strategy_options
 @click.command('type')
 @strategy_options()
 @click.argument('action_name', shell_complete=completion.actions)
-@click.pass_context
-def cli(ctx: click.Context, action_name: str, no_daemon: bool, use_sim_time: bool) -> None:
+def cli(action_name: str, no_daemon: bool, use_sim_time: bool) -> None:
     """Print a action's type."""
     from ros2lite.graph import action_names_and_types
 
     print_types_of(
-        ctx,
         action_name,
         no_daemon,
         lambda entities: action_names_and_types(entities, include_hidden=True),

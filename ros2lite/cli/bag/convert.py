@@ -6,7 +6,7 @@ from __future__ import annotations
 import click
 
 from ..common import ValueGroups
-from .options import bag_error
+from .options import STORAGE_IDS, bag_error
 
 
 @click.command("convert")
@@ -36,8 +36,9 @@ def cli(inputs: tuple[tuple[str, ...], ...], output_options: str) -> None:
         if len(given) > 2:
             raise bag_error(f"--input expects 1 or 2 arguments, {len(given)} provided")
         storage = given[1] if len(given) == 2 else None
-        if storage not in (None, "mcap", "sqlite3"):
-            raise bag_error(f"Unknown storage id '{storage}' (choose from mcap, sqlite3)")
+        if storage is not None and storage not in STORAGE_IDS:
+            choices = ", ".join(STORAGE_IDS)
+            raise bag_error(f"Unknown storage id '{storage}' (choose from {choices})")
         sources.append((given[0], storage))
     try:
         convert(sources, read_output_options(output_options))

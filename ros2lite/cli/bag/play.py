@@ -39,7 +39,7 @@ if TYPE_CHECKING:
 @click.option(
     "-r",
     "--rate",
-    type=numbers.Finite(min=0, max=1e6, min_open=True),
+    type=numbers.rate(),
     default=1.0,
     show_default=True,
     help="Rate at which to play back messages.",

@@ -11,13 +11,11 @@ from ..common import print_types_of, strategy_options
 @click.command('type')
 @strategy_options()
 @click.argument('service_name', shell_complete=completion.services)
-@click.pass_context
-def cli(ctx: click.Context, service_name: str, no_daemon: bool, use_sim_time: bool) -> None:
+def cli(service_name: str, no_daemon: bool, use_sim_time: bool) -> None:
     """Output a service's type."""
     from ros2lite.graph import service_names_and_types
 
     print_types_of(
-        ctx,
         service_name,
         no_daemon,
         lambda entities: service_names_and_types(entities, include_hidden=True),

@@ -18,7 +18,6 @@ def cli(ctx: click.Context, topic_name: str, no_daemon: bool, use_sim_time: bool
     from ros2lite.graph import topic_names_and_types
 
     print_types_of(
-        ctx,
         topic_name,
         no_daemon,
         lambda entities: topic_names_and_types(entities, include_hidden(ctx, 'topics')),
