@@ -23,9 +23,9 @@ if TYPE_CHECKING:
 
 HEADER_LE = b'\x00\x01\x00\x00'
 # its first two bytes read as a little-endian uint16 (the options that follow are ignored)
-HEADER_LE_WORD = 0x0100
+(HEADER_LE_WORD,) = struct.unpack_from('<H', HEADER_LE)
 # all four bytes as a little-endian uint32 (what the serializers pack in front of the body)
-HEADER_LE_UINT32 = 0x0100
+(HEADER_LE_UINT32,) = struct.unpack('<I', HEADER_LE)
 # struct formats of the primitives: the array typecodes, plus bool and byte
 _FMT = {**TYPECODES, 'bool': '?', 'byte': 'c'}
 _SIZE = {k: struct.calcsize('<' + v) for k, v in _FMT.items()}

@@ -70,16 +70,6 @@ def _optenv(args: Args) -> Substitution:
     return EnvironmentVariable(args[0], default_value=args[1] if len(args) > 1 else '')
 
 
-def _find_share(args: Args) -> Substitution:
-    _one('find-pkg-share', args, 1, 1)
-    return FindPackageShare(args[0])
-
-
-def _find_prefix(args: Args) -> Substitution:
-    _one('find-pkg-prefix', args, 1, 1)
-    return FindPackagePrefix(args[0])
-
-
 def _command(args: Args) -> Substitution:
     _one('command', args, 1, 2)
     mode = (
@@ -94,8 +84,8 @@ SUBSTITUTIONS: dict[str, Callable[[Args], Substitution]] = {
     'var': _var,
     'env': _env,
     'optenv': _optenv,
-    'find-pkg-share': _find_share,
-    'find-pkg-prefix': _find_prefix,
+    'find-pkg-share': _fixed('find-pkg-share', 1, FindPackageShare),
+    'find-pkg-prefix': _fixed('find-pkg-prefix', 1, FindPackagePrefix),
     'find-exec': _fixed('find-exec', 1, lambda name: FindExecutable(name=name)),
     'dirname': _fixed('dirname', 0, ThisLaunchFileDir),
     'filename': _fixed('filename', 0, ThisLaunchFile),
