@@ -325,16 +325,8 @@ def raw_run(key: str, warm_cdr: bytes, kind: str, n: int, pub_mode: str = 'raw')
         def subscribe(counter: Counter) -> Callable[[Flag, float], None]:
             sub = session.declare_subscriber(key, zenoh.handlers.FifoChannel(4096))
 
-            def drain() -> None:
+            def drain() -> None:  # reads the bytes as the node side reads the message
                 with contextlib.suppress(zenoh.ZError):  # closed with the session
-                    for sample in sub.handler:
-                        if sample.payload.to_bytes() == warm_cdr:
-                            counter.warm.set()
-                        else:
-                            counter.hit()
-
-            def drain_image() -> None:  # reads the bytes as the node side reads `data`
-                with contextlib.suppress(zenoh.ZError):
                     for sample in sub.handler:
                         data = sample.payload.to_bytes()
                         if data == warm_cdr:
@@ -342,7 +334,7 @@ def raw_run(key: str, warm_cdr: bytes, kind: str, n: int, pub_mode: str = 'raw')
                         elif len(data):
                             counter.hit()
 
-            threading.Thread(target=drain if kind == 'string' else drain_image, daemon=True).start()
+            threading.Thread(target=drain, daemon=True).start()
             return lambda flag, timeout: flag.future.wait(timeout) and None
 
         return run_once(pub_mode, kind, n, key, subscribe)
@@ -473,9 +465,9 @@ def _ping_pong(mode: str) -> list[float]:
     assert echo.stdin is not None and echo.stdout is not None
     try:
         assert echo.stdout.readline().strip() == 'ready'
-        return (_node_pinger if mode == 'node' else _raw_pinger)(
-            ping_key, pong_key, serialize(String(data='ping'))
-        )
+        if mode == 'node':
+            return _node_pinger()
+        return _raw_pinger(ping_key, pong_key, serialize(String(data='ping')))
     finally:
         echo.stdin.close()
         try:
@@ -517,7 +509,7 @@ def _raw_pinger(ping_key: str, pong_key: str, cdr: bytes) -> list[float]:
         session.close()
 
 
-def _node_pinger(ping_key: str, pong_key: str, cdr: bytes) -> list[float]:
+def _node_pinger() -> list[float]:
     from ros2lite.context import Context
     from ros2lite.executors import SingleThreadedExecutor
     from ros2lite.interfaces import get_interface

@@ -22,11 +22,11 @@ import tempfile
 import time
 from typing import Any
 
-from common import report
+from common import cli_env, free_port, report
 
 OUTAGE = 6.0
 RATE = 1000
-SECONDS = OUTAGE + 3.0
+AFTER = 3.0  # seconds of publishing besides the outage
 TOPIC = '/outage_counter'
 
 PUBLISHER = '''
@@ -53,12 +53,6 @@ time.sleep(1.0)  # reliable: let the last samples reach the recorder
 '''
 
 
-def _free_endpoint() -> str:
-    with socket.socket() as sock:
-        sock.bind(('127.0.0.1', 0))
-        return f'tcp/127.0.0.1:{sock.getsockname()[1]}'
-
-
 def _router(endpoint: str, env: dict[str, str]) -> subprocess.Popen[str]:
     proc = subprocess.Popen(
         [sys.executable, '-m', 'ros2lite.daemon', '--router', endpoint, '--foreground'],
@@ -82,23 +76,22 @@ def record_through_outage(
     bag: str, *, outage: float = OUTAGE, recorder_mode: str | None = None
 ) -> tuple[int, int]:
     """One run; returns (messages published, distinct counter values in the bag)."""
+    with tempfile.TemporaryDirectory() as runtime:
+        endpoint = f'tcp/127.0.0.1:{free_port()}'
+        env = cli_env(endpoint, str(random.randint(100, 232)), runtime)
+        env['ROS2LITE_NO_DAEMON'] = '1'
+        return _run(bag, outage, recorder_mode, endpoint, env)
+
+
+def _run(
+    bag: str, outage: float, recorder_mode: str | None, endpoint: str, env: dict[str, str]
+) -> tuple[int, int]:
     from ros2lite.bag import Reader
 
-    endpoint = _free_endpoint()
-    runtime = tempfile.mkdtemp()
-    env = dict(os.environ)
-    for var in ('ZENOH_SESSION_CONFIG_URI', 'ZENOH_ROUTER_CONFIG_URI', 'ZENOH_CONFIG_OVERRIDE'):
-        env.pop(var, None)
-    env.update(
-        ROS2LITE_ROUTER=endpoint,
-        XDG_RUNTIME_DIR=runtime,
-        ROS2LITE_NO_DAEMON='1',
-        ROS_DOMAIN_ID=str(random.randint(100, 232)),
-    )
     rec_env = dict(env)
     if recorder_mode:
         rec_env['ZENOH_CONFIG_OVERRIDE'] = f'mode="{recorder_mode}"'
-    total = int(RATE * (outage + 3.0))
+    total = int(RATE * (outage + AFTER))
     router = _router(endpoint, env)
     procs: list[subprocess.Popen[str]] = [router]
     try:
