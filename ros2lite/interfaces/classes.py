@@ -123,7 +123,7 @@ def _scalar_default(ft: FieldType) -> str:
     return f'_C[{base!r}]()'
 
 
-def _default_source(ft: FieldType, default: Any, values: list[Any]) -> str:
+def _default_source(ft: FieldType, default: Any, values: list[object]) -> str:
     """Source of an expression building a field's default value (a new object every time).
     A value from the definition is appended to `values` (the class's `_D`) and read from
     there, never written into the source: no repr has to round-trip (`inf`, `nan`)."""
@@ -347,7 +347,7 @@ class ClassFactory:
         constants = tuple(c.value for c in mdef.constants)
         for i, c in enumerate(mdef.constants):
             src.append(f'    {c.name} = _K[{i}]')
-        defaults: list[Any] = []
+        defaults: list[object] = []
         params = ''.join(f', {n}=_MISSING' for n in names)
         src.append(f'    def __init__(self{params}):')
         if not names:

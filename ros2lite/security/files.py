@@ -13,6 +13,7 @@ import os
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+from ros2lite.files import read_bounded
 from ros2lite.security.errors import KeystoreError, PolicyError
 
 __all__ = ['make_dirs', 'parse_xml', 'read_bytes', 'symlink', 'write_file']
@@ -75,15 +76,8 @@ def symlink(target: str, link: Path) -> None:
 
 
 def read_bytes(path: Path, what: str, limit: int = MAX_XML_BYTES) -> bytes:
-    """A file's bytes, at most ``limit`` of them; errors name the file."""
-    try:
-        with open(path, 'rb') as fh:
-            data = fh.read(limit + 1)
-    except OSError as exc:
-        raise PolicyError(f"cannot read {what} '{path}': {exc.strerror}") from None
-    if len(data) > limit:
-        raise PolicyError(f"{what} '{path}' is larger than {limit} bytes")
-    return data
+    """A file's bytes, at most ``limit`` of them; errors (PolicyError) name the file."""
+    return read_bounded(path, limit, PolicyError, f'{what} (at most {limit} bytes)')
 
 
 def parse_xml(data: bytes, origin: str) -> ET.Element:
