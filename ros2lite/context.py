@@ -115,7 +115,7 @@ class Context:
         node's; such a tool starts the daemon only with `autostart`
         (see :func:`ros2lite.daemon.connect.connect`)."""
         from ros2lite.daemon.connect import connect
-        from ros2lite.transport.config import domain_id as env_domain_id
+        from ros2lite.transport.endpoints import domain_id as env_domain_id
 
         if self.session is not None:
             raise RuntimeError('Context.init() must only be called once')

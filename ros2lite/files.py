@@ -20,7 +20,6 @@ from __future__ import annotations
 import contextlib
 import os
 import stat
-import tempfile
 from pathlib import Path
 
 from ros2lite.exceptions import Ros2liteError
@@ -105,6 +104,8 @@ def replace_file(
 def temp_beside(path: str | os.PathLike[str], suffix: str = '.tmp') -> tuple[int, str]:
     """A new, randomly named file next to `path` (a name nobody could have planted)."""
     target = Path(path)
+    import tempfile  # (on first write: finding the runtime dir is on every CLI call's path)
+
     return tempfile.mkstemp(prefix=f'.{target.name}.', suffix=suffix, dir=target.parent)
 
 

@@ -16,14 +16,16 @@ from __future__ import annotations
 import contextlib
 import os
 import signal
-import subprocess
 import sys
 import threading
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from types import FrameType
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ros2lite.exceptions import Ros2liteError
+
+if TYPE_CHECKING:  # loaded by what spawns: every CLI call imports this module for its signals
+    import subprocess
 
 __all__ = [
     'SIGKILL_TIMEOUT',
@@ -159,6 +161,8 @@ def run_child(
         if proc is not None and proc.poll() is None:
             proc.send_signal(signum)
 
+    import subprocess
+
     with _handlers({signal.SIGINT: forward_int, signal.SIGTERM: forward_term}):
         try:
             try:
@@ -261,6 +265,8 @@ class ChildProcess:
     # -- life ------------------------------------------------------------------------------------
     def start(self) -> int:
         """Start it; returns the pid. Raises :class:`ChildError` when it cannot start."""
+        import subprocess
+
         try:
             self._proc = subprocess.Popen(
                 self.cmd,

@@ -128,7 +128,7 @@ def test_daemon_files_leave_a_shared_runtime_dir_alone(
 ) -> None:
     """A world-writable XDG_RUNTIME_DIR with a planted log symlink: the daemon's files go to
     ~/.cache/ros2lite instead, and the log is never written through a link."""
-    from ros2lite.daemon.router import log_file, runtime_dir
+    from ros2lite.daemon.paths import log_file, runtime_dir
 
     monkeypatch.setenv('HOME', str(tmp_path / 'home'))
     shared = _world_writable(tmp_path / 'shared')

@@ -10,6 +10,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from ros2lite.daemon.paths import runtime_dir
     from ros2lite.daemon.router import (
         DaemonError,
         DaemonInfo,
@@ -18,7 +19,6 @@ if TYPE_CHECKING:
         StopResult,
         ensure_running,
         router_answers,
-        runtime_dir,
         start,
         status,
         stop,
@@ -40,6 +40,10 @@ __all__ = [
 
 
 def __getattr__(name: str) -> Any:
+    if name == "runtime_dir":
+        from ros2lite.daemon.paths import runtime_dir
+
+        return runtime_dir
     if name in __all__:
         from ros2lite.daemon import router
 

@@ -29,16 +29,18 @@ from typing import TYPE_CHECKING
 
 from ros2lite.transport.config import (
     CONNECT_TIMEOUT_MS,
-    ROUTER_CHECK_ENV,
     check_router,
     configured_mode,
-    is_local_endpoint,
     node_session_mode,
     open_session,
-    router_check_attempts,
-    router_endpoint,
     session_config,
     session_endpoint,
+)
+from ros2lite.transport.endpoints import (
+    ROUTER_CHECK_ENV,
+    is_local_endpoint,
+    router_check_attempts,
+    router_endpoint,
 )
 from ros2lite.transport.errors import RouterUnavailableError
 

@@ -6,7 +6,7 @@ import re
 import socket
 import time
 
-from ros2lite.transport.config import endpoint_host_port
+from ros2lite.transport.endpoints import endpoint_host_port
 
 __all__ = ["not_a_router", "router_answers", "speaks_zenoh", "wait_answers"]
 

@@ -16,7 +16,6 @@ import contextlib
 import fcntl
 import json
 import os
-import re
 import signal
 import subprocess
 import sys
@@ -26,6 +25,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
+from ros2lite.daemon.paths import lock_file, log_file, pid_file
 from ros2lite.daemon.probe import router_answers, wait_answers
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.security.errors import SecurityError
@@ -143,40 +143,12 @@ class DaemonStatus:
 # --------------------------------------------------------------------------- files
 
 
-def runtime_dir() -> Path:
-    """Per-user directory for pid, lock and log files (created 0700 on first use).
-
-    ``$XDG_RUNTIME_DIR/ros2lite`` only when both are ours and closed to others; a shared or
-    foreign one falls back to ``~/.cache/ros2lite`` (see :func:`ros2lite.files.private_dir`)."""
-    from ros2lite.files import private_dir
-
-    return private_dir(os.environ.get("XDG_RUNTIME_DIR", ""))
-
-
-def _stem(endpoint: str) -> str:
-    return "router-" + re.sub(r"[^A-Za-z0-9.:_-]", "_", endpoint)
-
-
-def pid_file(endpoint: str) -> Path:
-    """The daemon's pid and lock file for an endpoint."""
-    return runtime_dir() / (_stem(endpoint) + ".pid")
-
-
-def log_file(endpoint: str) -> Path:
-    """The daemon's log file for an endpoint."""
-    return runtime_dir() / (_stem(endpoint) + ".log")
-
-
-def _lock_file(endpoint: str) -> Path:
-    return runtime_dir() / (_stem(endpoint) + ".lock")
-
-
 @contextlib.contextmanager
 def _start_lock(endpoint: str, timeout: float) -> Iterator[None]:
     """Serialise start/stop for one endpoint so two auto-starting CLIs don't race."""
     from ros2lite.files import NOFOLLOW
 
-    fd = os.open(_lock_file(endpoint), os.O_RDWR | os.O_CREAT | NOFOLLOW | os.O_CLOEXEC, 0o600)
+    fd = os.open(lock_file(endpoint), os.O_RDWR | os.O_CREAT | NOFOLLOW | os.O_CLOEXEC, 0o600)
     with os.fdopen(fd, "r+") as fh:
         deadline = time.monotonic() + timeout
         while True:

@@ -27,13 +27,29 @@ from __future__ import annotations
 
 import json
 import os
-import re
 import time
 from collections.abc import Callable, Mapping, Sequence
 from typing import Literal
 
 import zenoh
 
+from ros2lite.transport.endpoints import (
+    DEFAULT_ROUTER,
+    DEFAULT_SECURE_ROUTER,
+    OVERRIDE_ENV,
+    ROUTER_CONFIG_ENV,
+    ROUTER_ENV,
+    SESSION_CONFIG_ENV,
+    domain_id,
+    endpoint_host_port,
+    explicit_router,
+    is_local_endpoint,
+    router_check_attempts,
+    router_endpoint,
+)
+from ros2lite.transport.endpoints import (
+    environ as _env,
+)
 from ros2lite.transport.errors import (
     ConfigError,
     RouterUnavailableError,
@@ -71,17 +87,6 @@ __all__ = [
 
 SessionMode = Literal["peer", "client"]
 
-DEFAULT_ROUTER = "tcp/127.0.0.1:7447"
-# where the router listens when security is on (same port, TLS with mutual authentication)
-DEFAULT_SECURE_ROUTER = "tls/127.0.0.1:7447"
-ROUTER_ENV = "ROS2LITE_ROUTER"
-SESSION_CONFIG_ENV = "ZENOH_SESSION_CONFIG_URI"
-ROUTER_CONFIG_ENV = "ZENOH_ROUTER_CONFIG_URI"
-OVERRIDE_ENV = "ZENOH_CONFIG_OVERRIDE"
-DOMAIN_ENV = "ROS_DOMAIN_ID"
-ROUTER_CHECK_ENV = "ZENOH_ROUTER_CHECK_ATTEMPTS"
-MAX_DOMAIN_ID = 232
-
 # How long zenoh may keep retrying the router at open; short, because a router that is
 # starting is waited for by the daemon code before a session is ever opened.
 CONNECT_TIMEOUT_MS = 1000
@@ -90,70 +95,6 @@ CONNECT_TIMEOUT_MS = 1000
 # connect costs microseconds, so retrying often is cheap.
 RETRY_INIT_MS = 100
 RETRY_MAX_MS = 400
-
-
-def _env(env: Mapping[str, str] | None) -> Mapping[str, str]:
-    return os.environ if env is None else env
-
-
-def default_router(env: Mapping[str, str] | None = None) -> str:
-    """The endpoint used when none is named: TLS when this process runs secured (see
-    :mod:`ros2lite.security.environment`), plain TCP otherwise."""
-    from ros2lite.security.environment import enforced, resolve, security_enabled
-
-    if security_enabled(env) and (enforced(env) or resolve(env) is not None):
-        return DEFAULT_SECURE_ROUTER
-    return DEFAULT_ROUTER
-
-
-def router_endpoint(router: str | None = None, env: Mapping[str, str] | None = None) -> str:
-    """The router endpoint: explicit argument, else ``$ROS2LITE_ROUTER``, else the default."""
-    value = router or _env(env).get(ROUTER_ENV) or default_router(env)
-    value = value.strip()
-    if "/" not in value or not value.split("/", 1)[1]:
-        raise ConfigError(
-            f"bad router endpoint {value!r}: expected <protocol>/<address>, e.g. {DEFAULT_ROUTER}"
-        )
-    return value
-
-
-def _explicit_router(router: str | None, env: Mapping[str, str] | None) -> str | None:
-    if router or _env(env).get(ROUTER_ENV):
-        return router_endpoint(router, env)
-    return None
-
-
-def domain_id(env: Mapping[str, str] | None = None) -> int:
-    """``ROS_DOMAIN_ID`` (default 0), checked to be an integer in 0..232."""
-    raw = _env(env).get(DOMAIN_ENV, "").strip()
-    if not raw:
-        return 0
-    try:
-        value = int(raw)
-    except ValueError:
-        raise ConfigError(
-            f"ROS_DOMAIN_ID must be an integer in 0..{MAX_DOMAIN_ID}, got {raw!r}"
-        ) from None
-    if not 0 <= value <= MAX_DOMAIN_ID:
-        raise ConfigError(f"ROS_DOMAIN_ID must be in 0..{MAX_DOMAIN_ID}, got {value}")
-    return value
-
-
-def endpoint_host_port(endpoint: str) -> tuple[str, str, int] | None:
-    """Split ``tcp/127.0.0.1:7447`` into (``tcp``, ``127.0.0.1``, 7447); None if not host:port.
-
-    Bracketed IPv6 (``tcp/[::1]:7447``) is unwrapped; ``?metadata`` and ``#config`` are ignored.
-    """
-    proto, sep, rest = endpoint.partition("/")
-    if not sep:
-        return None
-    rest = re.split(r"[?#]", rest, maxsplit=1)[0]
-    m = re.fullmatch(r"\[([^\]]+)\]:(\d+)|([^:\[\]]+):(\d+)", rest)
-    if not m:
-        return None
-    host = m.group(1) or m.group(3)
-    port = int(m.group(2) or m.group(4))
-    return proto, host, port
 
 
 def default_listen(endpoint: str) -> list[str]:
@@ -240,17 +181,6 @@ def _endpoints_json(endpoints: Sequence[str]) -> str:
     return json.dumps(list(endpoints))
 
 
-def is_local_endpoint(endpoint: str) -> bool:
-    """Is ``endpoint`` on this host (loopback, a wildcard address or a unix socket)?"""
-    if endpoint.partition("/")[0].startswith("unixsock"):
-        return True
-    parsed = endpoint_host_port(endpoint)
-    if parsed is None:
-        return False
-    host = parsed[1].lower()
-    return host in ("localhost", "::1", "::", "0.0.0.0") or host.startswith("127.")
-
-
 def node_session_mode(
     router: str | None = None, env: Mapping[str, str] | None = None
 ) -> SessionMode:
@@ -268,7 +198,7 @@ def session_config(
     """The config for one ros2lite session (see the module docstring for the choices)."""
     environ = _env(env)
     config = _load_file(SESSION_CONFIG_ENV, environ)
-    endpoint = _explicit_router(None, env)  # ROS2LITE_ROUTER only; router= goes last
+    endpoint = explicit_router(None, env)  # ROS2LITE_ROUTER only; router= goes last
     if config is None:
         config = zenoh.Config()
         endpoint = endpoint or router_endpoint(None, env)
@@ -380,7 +310,7 @@ def router_config(
         ]
         for key, value in defaults:
             _insert(config, key, value, "built-in router config")
-    elif _explicit_router(None, env):
+    elif explicit_router(None, env):
         env_listen = default_listen(router_endpoint(None, env))
     if env_listen:
         _insert(config, "listen/endpoints", _endpoints_json(env_listen), "listen endpoints")
@@ -506,21 +436,6 @@ def wait_for_router(session: zenoh.Session, timeout: float) -> bool:
             return False
         time.sleep(0.02)
     return True
-
-
-def router_check_attempts(env: Mapping[str, str] | None = None) -> int:
-    """``ZENOH_ROUTER_CHECK_ATTEMPTS`` as rmw_zenoh reads it.
-
-    Unset or empty means 1 check; N > 0 means N checks one second apart; 0 means wait until a
-    router answers; a negative value skips the check.
-    """
-    raw = _env(env).get(ROUTER_CHECK_ENV, "").strip()
-    if not raw:
-        return 1
-    try:
-        return int(raw)
-    except ValueError:
-        raise ConfigError(f"{ROUTER_CHECK_ENV} must be an integer, got {raw!r}") from None
 
 
 def check_router(

@@ -24,8 +24,9 @@ def test_a_planted_log_symlink_is_refused(endpoint: str, runtime: Path, tmp_path
 
 
 def test_the_package_hands_on_names_the_router_module_defines() -> None:
-    # ros2lite.daemon loads its names lazily from the router module; each must be there
-    from ros2lite.daemon import router
+    # ros2lite.daemon loads its names lazily from the router module (the runtime dir from
+    # the paths module); each must be there
+    from ros2lite.daemon import paths, router
 
     for name in daemon.__all__:
-        assert getattr(daemon, name) is getattr(router, name)
+        assert getattr(daemon, name) is getattr(paths if name == "runtime_dir" else router, name)
