@@ -1,9 +1,10 @@
 """Graph benchmarks: `ros2lite topic list` against a graph of 1000 live endpoints.
 
 The endpoints are liveliness tokens (100 nodes x 10 endpoints) declared by a separate process
-(in a peer session, as nodes open) that also runs its own router on a free loopback port, so
-the measured CLI process pays for exactly what a user's would: start-up, connecting, one
-complete graph query and printing.
+(in a peer session, as nodes open) connected to the ros2lite daemon on a free loopback port,
+so the measured CLI process pays for exactly what a user's would: start-up, the graph from
+the daemon's cache, printing. `topic_list_1000_no_daemon_wall` is the same verb with
+`--no-daemon`: connecting and one complete liveliness query instead of the cache.
 """
 
 from __future__ import annotations
@@ -20,16 +21,14 @@ NODES = 100
 ENDPOINTS_PER_NODE = 10
 STRING_HASH = 'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18'
 
-# Runs in the child: a router, then a client session declaring the tokens; prints "ready".
+# Runs in the child: a node's session declaring the tokens; prints "ready".
 _GRAPH_CHILD = f'''
 import sys
-import zenoh
-from ros2lite.transport.config import node_session_mode, open_session, router_config
+from ros2lite.transport.config import node_session_mode, open_session
 from ros2lite.transport.keys import EntityKind, endpoint_token, node_token
 from ros2lite.qos import QoSProfile
 
 endpoint, domain = sys.argv[1], int(sys.argv[2])
-router = zenoh.open(router_config(endpoint, env={{}}))
 session = open_session(endpoint, mode=node_session_mode(endpoint), env={{}})  # as nodes do
 zid = str(session.info.zid())
 lv = session.liveliness()
@@ -59,6 +58,8 @@ def bench_topic_list() -> None:
     domain = '217'
     with tempfile.TemporaryDirectory() as runtime:
         env = cli_env(endpoint, domain, runtime)
+        exe = os.path.join(os.path.dirname(sys.executable), 'ros2lite')
+        subprocess.run([exe, 'daemon', 'start'], env=env, check=True, capture_output=True)
         child = subprocess.Popen(
             [sys.executable, '-c', _GRAPH_CHILD, endpoint, domain],
             stdin=subprocess.PIPE,
@@ -68,7 +69,6 @@ def bench_topic_list() -> None:
         )
         try:
             assert child.stdout is not None and child.stdout.readline().strip() == 'ready'
-            exe = os.path.join(os.path.dirname(sys.executable), 'ros2lite')
             cmd = [exe, 'topic', 'list']
             # sanity: the CLI sees every topic before we time it
             expected = NODES * ENDPOINTS_PER_NODE // 2
@@ -79,15 +79,21 @@ def bench_topic_list() -> None:
                     break
                 time.sleep(0.05)
             assert len(out.splitlines()) == expected, f'{len(out.splitlines())} topics'
+            direct = [*cmd, '--no-daemon']
+            out = subprocess.run(direct, env=env, capture_output=True, text=True).stdout
+            assert len(out.splitlines()) == expected, f'{len(out.splitlines())} topics'
             with environment(env):  # wall() runs commands with this process' environment
                 ours = wall(cmd, runs=9)
+                no_daemon = wall(direct, runs=9)
                 base = import_click_wall()
         finally:
             if child.stdin:
                 child.stdin.close()
             child.terminate()
             child.wait(timeout=10)
+            subprocess.run([exe, 'daemon', 'stop'], env=env, capture_output=True)
     report('topic_list_1000_wall', ours * 1000, 'ms', ours / base)
+    report('topic_list_1000_no_daemon_wall', no_daemon * 1000, 'ms', no_daemon / base)
 
 
 BENCHES = {'topic_list_1000': bench_topic_list}

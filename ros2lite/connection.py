@@ -1,11 +1,13 @@
 """A tool's connection to the graph: what a CLI verb, a completion or a script inspecting the
 graph needs, in one object.
 
-It opens a client session (the daemon started on demand, see
-:func:`ros2lite.daemon.connect.connect`), or with ``as_node=True`` a node's peer session,
-answers graph questions from one complete liveliness query, makes a hidden node for the
-tool's publishers and subscriptions, and owns the executor that runs that node's callbacks,
-so no caller builds or spins executors itself::
+Graph questions go first to the daemon's graph cache (:mod:`ros2lite.daemon.graph_cache`, as
+ros2cli's verbs ask its daemon): no session, no zenoh. When no daemon of ours answers (or
+``graph_cache=False``, the CLI's ``--no-daemon``) they are one complete liveliness query of a
+session opened on first need: a client session (the daemon started on demand, see
+:func:`ros2lite.daemon.connect.connect`), or with ``as_node=True`` a node's peer session.
+The connection also makes a hidden node for the tool's publishers and subscriptions, and owns
+the executor that runs that node's callbacks, so no caller builds or spins executors itself::
 
     with Connection() as conn:
         node = conn.node()
@@ -21,10 +23,10 @@ from collections.abc import Callable, Iterable
 from types import TracebackType
 from typing import TYPE_CHECKING
 
-from ros2lite.context import Context
 from ros2lite.names import is_hidden_name
 
 if TYPE_CHECKING:  # loaded when a verb needs them: `topic list` only asks the graph
+    from ros2lite.context import Context
     from ros2lite.executors import SingleThreadedExecutor
     from ros2lite.graph import Entity
     from ros2lite.node import Node
@@ -67,20 +69,31 @@ class Connection:
         autostart: bool = True,
         use_sim_time: bool = False,
         as_node: bool = False,
+        graph_cache: bool = True,
     ) -> None:
         self.router = router
         self.autostart = autostart
+        self.graph_cache = graph_cache
         # a node's peer session (a recorder's: it must keep hearing publishers while the
         # router is away) instead of a tool's client session
         self.as_node = as_node
         self.use_sim_time = use_sim_time
-        self.context = Context()
+        self._context: Context | None = None
         self._node: Node | None = None
         self._executor: SingleThreadedExecutor | None = None
 
+    @property
+    def context(self) -> Context:
+        """The context of this run's session (not initialised until something needs it)."""
+        if self._context is None:
+            from ros2lite.context import Context
+
+            self._context = Context()
+        return self._context
+
     def open(self) -> Connection:
         """Connect (see the module doc) unless already connected; raises a Ros2liteError
-        saying why it could not."""
+        saying why it could not. Whatever needs the session calls this itself."""
         if self.context.session is None:
             self.context.init(
                 [], router=self.router, short_lived=not self.as_node, autostart=self.autostart
@@ -92,10 +105,11 @@ class Connection:
         if self._executor is not None:
             self._executor.shutdown()
             self._executor = None
-        self.context.try_shutdown()
+        if self._context is not None:
+            self._context.try_shutdown()
 
     def __enter__(self) -> Connection:
-        return self.open()
+        return self
 
     def __exit__(
         self,
@@ -107,9 +121,19 @@ class Connection:
 
     # -- the graph ---------------------------------------------------------------------------
     def entities(self, timeout: float = 5.0) -> list[Entity]:
-        """Every entity in the domain, from one complete query."""
-        from ros2lite.graph import snapshot
+        """Every entity in the domain: the daemon's graph cache, else one complete query."""
+        from ros2lite.graph import parse_tokens, snapshot
 
+        if self.graph_cache:
+            from ros2lite.daemon.graph_cache import cache_endpoint, cached_keys
+            from ros2lite.transport.endpoints import domain_id
+
+            endpoint = cache_endpoint(self.router)
+            if endpoint is not None:
+                keys = cached_keys(endpoint, domain_id(), min(timeout, 1.0))
+                if keys is not None:
+                    return parse_tokens(keys)
+        self.open()
         return snapshot(self.context.require(), self.context.domain_id, timeout)
 
     def wait_for_node(self, fqn: str, *, include_hidden: bool, timeout: float) -> bool:
@@ -130,6 +154,7 @@ class Connection:
         if self._node is None:
             from ros2lite.parameter import Parameter
 
+            self.open()
             self._node = _tool_node_type()(
                 name or f'{HIDDEN_NODE_PREFIX}{os.getpid()}',
                 context=self.context,

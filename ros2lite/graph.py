@@ -36,6 +36,7 @@ __all__ = [
     'node_full_names',
     'node_info',
     'node_names_and_namespaces',
+    'parse_tokens',
     'service_names_and_types',
     'snapshot',
     'topic_counts',
@@ -50,9 +51,13 @@ def snapshot(session: Session, domain_id: int, timeout: float = 5.0) -> list[Ent
     """All entities in the domain, from one complete liveliness query."""
     from ros2lite.transport.session import liveliness_keys
 
-    # a peer session may hear a token twice (from its router and from the peer itself)
-    keys = dict.fromkeys(liveliness_keys(session, domain_id, timeout))
-    return [e for e in map(parse_token, keys) if e is not None]
+    return parse_tokens(liveliness_keys(session, domain_id, timeout))
+
+
+def parse_tokens(keys: Iterable[str]) -> list[Entity]:
+    """The entities of liveliness token keys (each once: a peer session may hear a token
+    from its router and from the peer itself); keys that are no rmw_zenoh token are dropped."""
+    return [e for e in map(parse_token, dict.fromkeys(keys)) if e is not None]
 
 
 class GraphCache:

@@ -155,11 +155,17 @@ def yaml_fields(values: str, *, allow_empty: bool = False) -> dict[str, object]:
 def connect(
     *, no_daemon: bool = False, use_sim_time: bool = False, as_node: bool = False
 ) -> Connection:
-    """This run's connection to the graph (the daemon started on demand unless
-    `--no-daemon`; a node's peer session with `as_node`); use it as a context manager."""
+    """This run's connection to the graph (the daemon's graph cache asked, and the daemon
+    started on demand, unless `--no-daemon`; a node's peer session with `as_node`); use it
+    as a context manager."""
     from ros2lite.connection import Connection
 
-    return Connection(autostart=not no_daemon, use_sim_time=use_sim_time, as_node=as_node)
+    return Connection(
+        autostart=not no_daemon,
+        use_sim_time=use_sim_time,
+        as_node=as_node,
+        graph_cache=not no_daemon,
+    )
 
 
 def _policies() -> list[tuple[str, type[Policy]]]:

@@ -33,7 +33,9 @@ from ros2lite.transport.config import domain_id, open_session, router_config, ro
 from ros2lite.transport.errors import SessionError
 
 if TYPE_CHECKING:
+    from ros2lite.daemon.graph_cache import GraphServer
     from ros2lite.transport.admin import ConnectedSession
+    from ros2lite.transport.handles import Session
 
 
 START_TIMEOUT = 10.0
@@ -269,6 +271,7 @@ def serve(
     )
     path = pid_path or pid_file(endpoint)
     lock = _write_pid_file(path, info)
+    cache = _graph_cache(session, endpoint)
     tell("ready")
     if ready_fd is not None:
         os.close(ready_fd)
@@ -276,6 +279,8 @@ def serve(
     try:
         sig = signal.sigwait(stop_signals)
         print(f"ros2lite daemon: {signal.Signals(sig).name}, shutting down", flush=True)
+        if cache is not None:
+            cache.close()
         session.close()
     finally:
         with contextlib.suppress(OSError):
@@ -283,6 +288,19 @@ def serve(
                 os.unlink(path)
         lock.close()
     return 0
+
+
+def _graph_cache(session: Session, endpoint: str) -> GraphServer | None:
+    """Serve the graph to local tools; a daemon that cannot (say, no room for the socket)
+    still routes, and tools ask the router instead."""
+    from ros2lite.daemon.graph_cache import GraphServer
+    from ros2lite.daemon.paths import graph_socket
+
+    try:
+        return GraphServer(session, graph_socket(endpoint))
+    except OSError as exc:
+        print(f"ros2lite daemon: no graph cache: {exc}", file=sys.stderr, flush=True)
+        return None
 
 
 # --------------------------------------------------------------------------- verbs

@@ -89,9 +89,10 @@ def liveliness_prefix(domain_id: int) -> str:
     return f"{LIVELINESS_PREFIX}/{int(domain_id)}"
 
 
-def liveliness_subscription_key(domain_id: int) -> str:
-    """What to subscribe/get for graph discovery; ``@ros2_lv`` is hermetic so ``**`` alone won't."""
-    return f"{liveliness_prefix(domain_id)}/**"
+def liveliness_subscription_key(domain_id: int | None) -> str:
+    """What to subscribe/get for graph discovery (None: every domain); ``@ros2_lv`` is
+    hermetic so ``**`` alone won't."""
+    return f"{LIVELINESS_PREFIX if domain_id is None else liveliness_prefix(domain_id)}/**"
 
 
 class EntityKind(str, enum.Enum):

@@ -95,10 +95,10 @@ def liveliness_keys(session: Session, domain_id: int, timeout: float = 5.0) -> l
 
 
 def declare_liveliness_subscriber(
-    session: Session, domain_id: int, on_change: Callable[[str, bool], None]
+    session: Session, domain_id: int | None, on_change: Callable[[str, bool], None]
 ) -> Handle:
-    """`on_change(key, alive)` for every token of the domain appearing or going away,
-    starting with the ones alive now (history)."""
+    """`on_change(key, alive)` for every token of the domain (None: of every domain)
+    appearing or going away, starting with the ones alive now (history)."""
     put = zenoh.SampleKind.PUT
 
     def callback(sample: zenoh.Sample) -> None:

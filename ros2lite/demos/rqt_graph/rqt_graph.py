@@ -47,10 +47,11 @@ def run(options: argparse.Namespace) -> None:
         show_debug=options.show_debug,
         show_leaf_topics=options.show_leaf_topics,
     )
-    # a tool's client session: it is linked to the router once open, so every picture is one
-    # complete liveliness query (a node's fresh peer session or graph cache may still be
-    # joining the graph)
+    # a tool's connection: every picture is the daemon's graph cache or one complete
+    # liveliness query (a node's fresh peer session or graph cache may still be joining the
+    # graph); the session is open for as long as the window is, so Ctrl-C ends both
     with Connection() as conn:
+        conn.open()
         _show(options, lambda: model.from_entities(conn.entities(), filters), conn.context.ok)
 
 

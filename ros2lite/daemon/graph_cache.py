@@ -1,0 +1,167 @@
+"""The daemon's graph cache: every liveliness token its router knows, served to local tools.
+
+ros2cli's daemon exists so that `ros2 topic list` need not join the graph to answer; this is
+ours. The daemon keeps a liveliness subscriber (with history) on every domain and answers a
+question on a Unix socket beside its pid file: a tool sends ``graph <domain>`` and reads back
+the token keys of that domain, one per line, after a version line. The tool parses them as
+it would the replies of a liveliness query, so a graph verb costs no zenoh import, no session
+and no query — what made `topic list` slow (see :class:`ros2lite.connection.Connection`).
+
+The socket lives in the user's private runtime dir (0700), so only the user reaches it; what
+it returns is parsed and validated like anything from the wire. A daemon that is not there (or
+not ours: rmw_zenohd) has no socket, and tools fall back to asking the router.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import socket
+import threading
+from collections.abc import Iterator, Mapping
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from ros2lite.daemon.paths import graph_socket
+
+if TYPE_CHECKING:
+    from ros2lite.transport.handles import Handle, Session
+
+__all__ = ["GraphServer", "cache_endpoint", "cached_keys"]
+
+_VERSION = b"ros2lite-graph 1\n"
+_REQUEST_MAX = 64  # bytes of a request line
+_REPLY_MAX = 64 << 20  # what a tool reads at most (a bounded read of a local peer)
+# Unix socket paths are short (108 bytes on Linux, less elsewhere); longer ones go through
+# the directory's descriptor (/proc/self/fd/N/name)
+_PATH_MAX = 100
+
+
+@contextlib.contextmanager
+def _address(path: Path) -> Iterator[str]:
+    """A name for `path` that fits a socket address."""
+    if len(os.fsencode(str(path))) < _PATH_MAX:
+        yield str(path)
+        return
+    fd = os.open(path.parent, os.O_PATH | os.O_DIRECTORY | os.O_CLOEXEC)
+    try:
+        yield f"/proc/self/fd/{fd}/{path.name}"
+    finally:
+        os.close(fd)
+
+
+class GraphServer:
+    """The daemon's side (its router session, its socket path): started at once, in threads."""
+
+    def __init__(self, session: Session, path: Path) -> None:
+        from ros2lite.transport.session import declare_liveliness_subscriber
+
+        self._lock = threading.Lock()
+        self._keys: dict[int, dict[str, None]] = {}  # by domain, in arrival order
+        self._path = path
+        self._listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(path)  # a dead daemon's socket (the runtime dir is ours alone)
+        with _address(path) as address:
+            self._listener.bind(address)
+        os.chmod(path, 0o600)
+        self._inode = os.stat(path).st_ino
+        self._listener.listen(16)
+        self._sub: Handle = declare_liveliness_subscriber(session, None, self._on_change)
+        self._thread = threading.Thread(target=self._serve, daemon=True, name="ros2lite-graph")
+        self._thread.start()
+
+    def _on_change(self, key: str, alive: bool) -> None:
+        domain = key.split("/", 2)[1] if key.count("/") >= 2 else ""
+        if not domain.isdigit():
+            return  # not a token rmw_zenoh would make: tools would drop it anyway
+        with self._lock:
+            keys = self._keys.setdefault(int(domain), {})
+            if alive:
+                keys[key] = None
+            else:
+                keys.pop(key, None)
+
+    def keys(self, domain: int) -> list[str]:
+        """The token keys of a domain now."""
+        with self._lock:
+            return list(self._keys.get(domain, ()))
+
+    def _serve(self) -> None:
+        while True:
+            try:
+                conn, _ = self._listener.accept()
+            except OSError:
+                return  # closed
+            with conn, contextlib.suppress(OSError):
+                conn.settimeout(1.0)  # a tool that connects and says nothing holds no one up
+                self._answer(conn)
+
+    def _answer(self, conn: socket.socket) -> None:
+        request = b""
+        while not request.endswith(b"\n") and len(request) < _REQUEST_MAX:
+            chunk = conn.recv(_REQUEST_MAX)
+            if not chunk:
+                return
+            request += chunk
+        verb, _, domain = request.decode("ascii", "replace").strip().partition(" ")
+        if verb != "graph" or not domain.isdigit():
+            return
+        conn.sendall(_VERSION + "\n".join(self.keys(int(domain))).encode())
+
+    def close(self) -> None:
+        """Stop serving; the socket file goes."""
+        from ros2lite.transport.session import undeclare_quietly
+
+        undeclare_quietly(self._sub)
+        with contextlib.suppress(OSError):
+            self._listener.shutdown(socket.SHUT_RDWR)  # wakes the accept()
+        self._listener.close()
+        self._thread.join(timeout=1.0)
+        with contextlib.suppress(OSError):
+            if os.stat(self._path).st_ino == self._inode:
+                os.unlink(self._path)
+
+
+def cache_endpoint(router: str | None = None, env: Mapping[str, str] | None = None) -> str | None:
+    """The endpoint whose daemon may answer graph questions, None when its cache would not
+    see what this process' session would: a session the user configured
+    (``ZENOH_SESSION_CONFIG_URI``/``ZENOH_CONFIG_OVERRIDE``) or a secured graph."""
+    from ros2lite.security.environment import security_enabled
+    from ros2lite.transport.endpoints import OVERRIDE_ENV, SESSION_CONFIG_ENV, environ
+    from ros2lite.transport.endpoints import router_endpoint as endpoint_of
+
+    values = environ(env)
+    if values.get(SESSION_CONFIG_ENV) or values.get(OVERRIDE_ENV) or security_enabled(env):
+        return None
+    return endpoint_of(router, env)
+
+
+def cached_keys(endpoint: str, domain: int, timeout: float = 1.0) -> list[str] | None:
+    """The token keys of `domain` from the daemon at `endpoint`, None when none answers."""
+    path = graph_socket(endpoint)
+    if not path.exists():
+        return None
+    chunks: list[bytes] = []
+    with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as sock:
+        sock.settimeout(timeout)
+        try:
+            with _address(path) as address:
+                sock.connect(address)
+            sock.sendall(f"graph {domain}\n".encode())
+            size = 0
+            while size <= _REPLY_MAX:
+                chunk = sock.recv(1 << 16)
+                if not chunk:
+                    break
+                chunks.append(chunk)
+                size += len(chunk)
+            else:
+                return None  # more than any graph: not our daemon talking
+        except OSError:  # gone (a stale socket), refused, timed out
+            return None
+    reply = b"".join(chunks)
+    if not reply.startswith(_VERSION):
+        return None
+    body = reply[len(_VERSION) :].decode("utf-8", "replace")
+    return body.split("\n") if body else []
