@@ -1,8 +1,10 @@
 """The ROS graph as seen through rmw_zenoh liveliness tokens.
 
 Two ways in: a live `GraphCache` that a node keeps up to date (like rmw_zenoh's graph cache), and
-`snapshot()`, a one-shot liveliness query that returns once every token has answered — the CLI
-uses it, so `topic list` needs no spin time and never misses a slow reply.
+`snapshot()`, a one-shot liveliness query that returns once every token has answered — tools
+use it when the daemon's graph cache (:mod:`ros2lite.daemon.graph_cache`) cannot answer, so
+`topic list` needs no spin time and never misses a slow reply. Both, and the daemon's answers,
+become entities through `parse_tokens`.
 """
 
 from __future__ import annotations
