@@ -18,34 +18,6 @@ def get(config: zenoh.Config, key: str) -> object:
     return json.loads(config.get_json(key))
 
 
-def test_domain_id() -> None:
-    assert cfg.domain_id({}) == 0
-    assert cfg.domain_id({"ROS_DOMAIN_ID": " 7 "}) == 7
-    assert cfg.domain_id({"ROS_DOMAIN_ID": "232"}) == 232
-    with pytest.raises(ConfigError, match=r"0\.\.232, got 233"):
-        cfg.domain_id({"ROS_DOMAIN_ID": "233"})
-    with pytest.raises(ConfigError, match="integer"):
-        cfg.domain_id({"ROS_DOMAIN_ID": "abc"})
-    with pytest.raises(ConfigError):
-        cfg.domain_id({"ROS_DOMAIN_ID": "-1"})
-
-
-def test_router_endpoint() -> None:
-    assert cfg.router_endpoint(env={}) == "tcp/127.0.0.1:7447"
-    assert cfg.router_endpoint(env={"ROS2LITE_ROUTER": "tcp/127.0.0.1:9"}) == "tcp/127.0.0.1:9"
-    assert cfg.router_endpoint("tcp/[::1]:5", env={"ROS2LITE_ROUTER": "x/y"}) == "tcp/[::1]:5"
-    with pytest.raises(ConfigError, match="protocol"):
-        cfg.router_endpoint("localhost:7447", env={})
-
-
-def test_endpoint_host_port() -> None:
-    assert cfg.endpoint_host_port("tcp/127.0.0.1:7447") == ("tcp", "127.0.0.1", 7447)
-    assert cfg.endpoint_host_port("tcp/[::1]:7447#iface=lo") == ("tcp", "::1", 7447)
-    assert cfg.endpoint_host_port("tls/localhost:1?x=y") == ("tls", "localhost", 1)
-    assert cfg.endpoint_host_port("unixsock-stream//tmp/sock") is None
-    assert cfg.endpoint_host_port("nonsense") is None
-
-
 def test_parse_config_override() -> None:
     text = 'mode="peer"; connect/endpoints=["tcp/a:1","tcp/b;c:2"];;x={a:"b;c"}; '
     assert cfg.parse_config_override(text) == [
@@ -107,15 +79,6 @@ def test_node_mode_is_peer_only_with_a_router_on_this_host(endpoint: str, mode: 
         "ROS2LITE_ROUTER": "tcp/127.0.0.1:7447",
     }
     assert cfg.node_session_mode(env=override) == mode
-
-
-def test_router_check_attempts() -> None:
-    assert cfg.router_check_attempts({}) == 1
-    assert cfg.router_check_attempts({"ZENOH_ROUTER_CHECK_ATTEMPTS": " 3 "}) == 3
-    assert cfg.router_check_attempts({"ZENOH_ROUTER_CHECK_ATTEMPTS": "0"}) == 0
-    assert cfg.router_check_attempts({"ZENOH_ROUTER_CHECK_ATTEMPTS": "-1"}) == -1
-    with pytest.raises(ConfigError, match="ZENOH_ROUTER_CHECK_ATTEMPTS must be an integer"):
-        cfg.router_check_attempts({"ZENOH_ROUTER_CHECK_ATTEMPTS": "many"})
 
 
 def test_router_admin_space_is_read_only() -> None:
