@@ -29,11 +29,15 @@ def _put(session: Any, key: str, payloads: list[bytes]) -> None:
         session.put(key, payload, attachment=attachment)
 
 
-def _subscription(node: Node, topic: str, callback: Any) -> tuple[Any, str]:
+def _subscription(node: Node, topic: str, callback: Any, alien: Any) -> tuple[Any, str]:
+    """The subscription, once `alien`'s samples reach it: its token, declared after its
+    subscriber on the same link, has reached the router that routes them (the node's own graph
+    knowing it says nothing about that router)."""
+    from ros2lite.transport.session import liveliness_keys
+
     sub = node.create_subscription('std_msgs/msg/String', topic, callback, 100)
-    probe = node.create_publisher('std_msgs/msg/String', topic, 10)
-    wait_until(lambda: probe.get_subscription_count() > 0)
-    node.destroy_publisher(probe)
+    token, domain = sub._ep.token_key, node.context.domain_id
+    wait_until(lambda: token in liveliness_keys(alien, domain, 1.0))
     return sub, sub._ep.key
 
 
@@ -42,7 +46,7 @@ def test_a_bad_sample_inside_a_batch_is_dropped_and_the_rest_delivered(
 ) -> None:
     node = Node('delivery_bad', context=ros_context)
     got: list[str] = []
-    sub, key = _subscription(node, '/delivery_bad', lambda m: got.append(m.data))
+    sub, key = _subscription(node, '/delivery_bad', lambda m: got.append(m.data), alien_session)
     _put(alien_session, key, [_cdr('a'), b'\x00\x01\x00\x00junk', _cdr('b'), _cdr('c')])
     wait_until(lambda: len(queued(sub)) == 4)
     executor = SingleThreadedExecutor(context=ros_context)
@@ -63,7 +67,7 @@ def test_a_callback_error_mid_batch_leaves_the_rest_for_later(
         if msg.data == '2':
             raise RuntimeError('user bug')
 
-    sub, key = _subscription(node, '/delivery_raise', callback)
+    sub, key = _subscription(node, '/delivery_raise', callback, alien_session)
     _put(alien_session, key, [_cdr(str(i)) for i in range(6)])
     wait_until(lambda: len(queued(sub)) == 6)
     executor = SingleThreadedExecutor(context=ros_context)
@@ -85,6 +89,7 @@ def test_message_info_comes_with_each_message_of_a_batch(
         node,
         '/delivery_info',
         lambda m, info: got.append((m.data, info.publication_sequence_number)),
+        alien_session,
     )
     _put(alien_session, key, [_cdr('x'), b'junk', _cdr('y'), _cdr('z')])
     wait_until(lambda: len(queued(sub)) == 4)
