@@ -109,3 +109,15 @@ class Listener:
         self._stop.set()
         self._thread.join(5)
         self.node.destroy_node()
+
+
+def wait_for_route(alien: Any, node: Any, topic: str) -> None:
+    """Until samples `alien` (a session of its own, through the router) puts on `topic` reach
+    `node`'s subscription: its token, declared after its subscriber on the same link, has
+    reached the router (the node's own graph lists its entities at once, which says nothing
+    about that router)."""
+    from ros2lite.transport.session import liveliness_keys
+
+    tokens = [s._ep.token_key for s in node.subscriptions if s.topic_name == topic]
+    assert tokens, f'{node.get_name()} has no subscription on {topic}'
+    wait_until(lambda: tokens[0] in liveliness_keys(alien, node.context.domain_id, 1.0))

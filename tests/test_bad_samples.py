@@ -11,7 +11,7 @@ from typing import Any
 from ros2lite.bad_samples import BadSamples, describe_publisher
 from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
-from tests.spinning import queued, spin_until, wait_until
+from tests.spinning import queued, spin_until, wait_for_route, wait_until
 
 STRING_HASH = 'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18'
 CLOCK_TYPE = 'rosgraph_msgs::msg::dds_::Clock_'
@@ -83,9 +83,8 @@ def test_a_subscriber_survives_every_hostile_sample(
     key = f'{ros_context.domain_id}/hostile/std_msgs::msg::dds_::String_/{STRING_HASH}'
     executor = SingleThreadedExecutor(context=ros_context)
     executor.add_node(node)
-    # the subscription must be matched before anything is sent
-    probe = node.create_publisher('std_msgs/msg/String', '/hostile', 10)
-    wait_until(lambda: probe.get_subscription_count() > 0)
+    # the router must route to the subscription before anything is sent
+    wait_for_route(alien_session, node, '/hostile')
     samples = [(p, attachment(i, gid(1))) for i, p in enumerate(HOSTILE)]
     samples += [(p, attachment(i, gid(2))) for i, p in enumerate(HOSTILE)]
     samples.append((cdr_string('still here'), attachment(99, gid(3))))
@@ -115,8 +114,7 @@ def test_a_bad_clock_sample_does_not_stop_sim_time(ros_context: Any, alien_sessi
     )
     executor = SingleThreadedExecutor(context=ros_context)
     executor.add_node(node)
-    probe = node.create_publisher('rosgraph_msgs/msg/Clock', '/clock', 10)
-    wait_until(lambda: probe.get_subscription_count() > 0)
+    wait_for_route(alien_session, node, '/clock')
     key = f'{ros_context.domain_id}/clock/{CLOCK_TYPE}/{CLOCK_HASH}'
     good = b'\x00\x01\x00\x00' + struct.pack('<iI', 42, 7)
     _publish(
@@ -181,8 +179,7 @@ def test_a_callbacks_own_value_error_still_reaches_the_caller(
         raise ValueError(f'user bug on {msg.data}')
 
     sub = node.create_subscription('std_msgs/msg/String', '/raiser', callback, 100)
-    probe = node.create_publisher('std_msgs/msg/String', '/raiser', 10)
-    wait_until(lambda: probe.get_subscription_count() > 0)
+    wait_for_route(alien_session, node, '/raiser')
     key = f'{ros_context.domain_id}/raiser/std_msgs::msg::dds_::String_/{STRING_HASH}'
     _publish(
         alien_session,
@@ -213,8 +210,7 @@ def test_a_message_and_info_callback_survives_hostile_samples(
         heard.append((msg.data, info.publisher_gid))
 
     sub = node.create_subscription('std_msgs/msg/String', '/hostile_info', callback, 100)
-    probe = node.create_publisher('std_msgs/msg/String', '/hostile_info', 10)
-    wait_until(lambda: probe.get_subscription_count() > 0)
+    wait_for_route(alien_session, node, '/hostile_info')
     key = f'{ros_context.domain_id}/hostile_info/std_msgs::msg::dds_::String_/{STRING_HASH}'
     samples = [(p, attachment(i, gid(6))) for i, p in enumerate(HOSTILE)]
     samples.append((cdr_string('with info'), attachment(99, gid(7))))

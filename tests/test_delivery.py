@@ -13,7 +13,7 @@ import pytest
 from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
 from ros2lite.task import Future
-from tests.spinning import queued, spin_until, wait_until
+from tests.spinning import queued, spin_until, wait_for_route, wait_until
 
 STRING_HASH = 'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18'
 
@@ -30,14 +30,8 @@ def _put(session: Any, key: str, payloads: list[bytes]) -> None:
 
 
 def _subscription(node: Node, topic: str, callback: Any, alien: Any) -> tuple[Any, str]:
-    """The subscription, once `alien`'s samples reach it: its token, declared after its
-    subscriber on the same link, has reached the router that routes them (the node's own graph
-    knowing it says nothing about that router)."""
-    from ros2lite.transport.session import liveliness_keys
-
     sub = node.create_subscription('std_msgs/msg/String', topic, callback, 100)
-    token, domain = sub._ep.token_key, node.context.domain_id
-    wait_until(lambda: token in liveliness_keys(alien, domain, 1.0))
+    wait_for_route(alien, node, topic)
     return sub, sub._ep.key
 
 
