@@ -15,7 +15,15 @@ import sys
 import tempfile
 import time
 
-from common import cli_env, environment, free_port, import_click_wall, report, wall
+from common import (
+    cli_env,
+    environment,
+    free_port,
+    import_click_wall,
+    ready_child,
+    report,
+    wall,
+)
 
 NODES = 100
 ENDPOINTS_PER_NODE = 10
@@ -60,37 +68,26 @@ def bench_topic_list() -> None:
         env = cli_env(endpoint, domain, runtime)
         exe = os.path.join(os.path.dirname(sys.executable), 'ros2lite')
         subprocess.run([exe, 'daemon', 'start'], env=env, check=True, capture_output=True)
-        child = subprocess.Popen(
-            [sys.executable, '-c', _GRAPH_CHILD, endpoint, domain],
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            text=True,
-            env=env,
-        )
         try:
-            assert child.stdout is not None and child.stdout.readline().strip() == 'ready'
-            cmd = [exe, 'topic', 'list']
-            # sanity: the CLI sees every topic before we time it
-            expected = NODES * ENDPOINTS_PER_NODE // 2
-            deadline = time.monotonic() + 10
-            while True:
-                out = subprocess.run(cmd, env=env, capture_output=True, text=True).stdout
-                if len(out.splitlines()) == expected or time.monotonic() > deadline:
-                    break
-                time.sleep(0.05)
-            assert len(out.splitlines()) == expected, f'{len(out.splitlines())} topics'
-            direct = [*cmd, '--no-daemon']
-            out = subprocess.run(direct, env=env, capture_output=True, text=True).stdout
-            assert len(out.splitlines()) == expected, f'{len(out.splitlines())} topics'
-            with environment(env):  # wall() runs commands with this process' environment
-                ours = wall(cmd, runs=9)
-                no_daemon = wall(direct, runs=9)
-                base = import_click_wall()
+            with ready_child(_GRAPH_CHILD, endpoint, domain, env=env):
+                cmd = [exe, 'topic', 'list']
+                # sanity: the CLI sees every topic before we time it
+                expected = NODES * ENDPOINTS_PER_NODE // 2
+                deadline = time.monotonic() + 10
+                while True:
+                    out = subprocess.run(cmd, env=env, capture_output=True, text=True).stdout
+                    if len(out.splitlines()) == expected or time.monotonic() > deadline:
+                        break
+                    time.sleep(0.05)
+                assert len(out.splitlines()) == expected, f'{len(out.splitlines())} topics'
+                direct = [*cmd, '--no-daemon']
+                out = subprocess.run(direct, env=env, capture_output=True, text=True).stdout
+                assert len(out.splitlines()) == expected, f'{len(out.splitlines())} topics'
+                with environment(env):  # wall() runs commands with this process' environment
+                    ours = wall(cmd, runs=9)
+                    no_daemon = wall(direct, runs=9)
+                    base = import_click_wall()
         finally:
-            if child.stdin:
-                child.stdin.close()
-            child.terminate()
-            child.wait(timeout=10)
             subprocess.run([exe, 'daemon', 'stop'], env=env, capture_output=True)
     report('topic_list_1000_wall', ours * 1000, 'ms', ours / base)
     report('topic_list_1000_no_daemon_wall', no_daemon * 1000, 'ms', no_daemon / base)

@@ -31,17 +31,10 @@ import uuid
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-from common import cli_env, free_port, report
+from common import cli_env, free_port, report, router_process
 
 RUNS = 5
 TRIALS = 20
-_ROUTER = '''
-import sys, zenoh
-from ros2lite.transport.config import router_config
-router = zenoh.open(router_config(sys.argv[1], env={}))
-print('ready', flush=True)
-sys.stdin.read()
-'''
 
 
 @contextmanager
@@ -50,20 +43,8 @@ def _router() -> Iterator[dict[str, str]]:
     with tempfile.TemporaryDirectory() as runtime:
         env = cli_env(endpoint, '219', runtime)
         env['ROS2LITE_NO_DAEMON'] = '1'
-        child = subprocess.Popen(
-            [sys.executable, '-c', _ROUTER, endpoint],
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            text=True,
-            env=env,
-        )
-        try:
-            assert child.stdout is not None and child.stdout.readline().strip() == 'ready'
+        with router_process(endpoint, env):
             yield env
-        finally:
-            if child.stdin:
-                child.stdin.close()
-            child.wait(timeout=10)
 
 
 def _until_heard(cmds: list[list[str]], env: dict[str, str], timeout: float = 30) -> float:

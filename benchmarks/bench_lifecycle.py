@@ -18,16 +18,7 @@ import tempfile
 import time
 from collections.abc import Iterator
 
-from common import cli_env, environment, free_port, import_click_wall, report
-
-_ROUTER_CHILD = """
-import sys
-import zenoh
-from ros2lite.transport.config import router_config
-router = zenoh.open(router_config(sys.argv[1], env={}))
-print('ready', flush=True)
-sys.stdin.read()
-"""
+from common import cli_env, environment, free_port, import_click_wall, report, router_process
 
 
 @contextlib.contextmanager
@@ -36,30 +27,20 @@ def graph_with(node_module: str) -> Iterator[tuple[dict[str, str], str]]:
     endpoint = f'tcp/127.0.0.1:{free_port()}'
     with tempfile.TemporaryDirectory() as runtime:
         env = cli_env(endpoint, '218', runtime)
-        router = subprocess.Popen(
-            [sys.executable, '-c', _ROUTER_CHILD, endpoint],
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            text=True,
-            env=env,
-        )
         node = None
-        try:
-            assert router.stdout is not None and router.stdout.readline().strip() == 'ready'
-            node = subprocess.Popen(
-                [sys.executable, '-m', node_module],
-                env=env,
-                stdout=subprocess.DEVNULL,
-                stderr=subprocess.DEVNULL,
-            )
-            yield env, os.path.join(os.path.dirname(sys.executable), 'ros2lite')
-        finally:
-            for proc in (node, router):
-                if proc is not None:
-                    if proc.stdin:
-                        proc.stdin.close()
-                    proc.terminate()
-                    proc.wait(timeout=10)
+        with router_process(endpoint, env):
+            try:
+                node = subprocess.Popen(
+                    [sys.executable, '-m', node_module],
+                    env=env,
+                    stdout=subprocess.DEVNULL,
+                    stderr=subprocess.DEVNULL,
+                )
+                yield env, os.path.join(os.path.dirname(sys.executable), 'ros2lite')
+            finally:
+                if node is not None:
+                    node.terminate()
+                    node.wait(timeout=10)
 
 
 def _until(cmd: list[str], env: dict[str, str], expected: str) -> None:

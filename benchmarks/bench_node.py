@@ -42,14 +42,13 @@ import contextlib
 import os
 import random
 import statistics
-import subprocess
 import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
 from typing import Any
 
-from common import report
+from common import environment, free_port, ready_child, report, router_process
 
 N_MESSAGES = 200_000
 N_IMAGES = 400
@@ -58,6 +57,8 @@ RUNS = int(os.environ.get('BENCH_RUNS', 5))  # interleaved runs per side (median
 WARMUP = 'warmup'
 VERBOSE = bool(os.environ.get('BENCH_NODE_VERBOSE'))
 STRING = 'std_msgs/msg/String'
+# what would replace the sessions' built-in configuration
+_CONFIG_VARS = ('ZENOH_CONFIG_OVERRIDE', 'ZENOH_SESSION_CONFIG_URI')
 IMAGE = 'sensor_msgs/msg/Image'
 
 # the publisher child: argv = mode (node, raw, rawatt), kind (string, image), n, key
@@ -110,7 +111,7 @@ t0 = time.perf_counter()
 for m in msgs:
     send(m)
 print(n / (time.perf_counter() - t0), flush=True)
-sys.stdin.readline()   # stay connected until the subscriber has everything
+sys.stdin.readline()   # stay connected until the subscriber has everything (stdin closes)
 '''
 
 # the latency echo child: argv = mode (node, raw), ping key, pong key
@@ -196,17 +197,6 @@ class Counter:
         return (self.n - 1) / (self.last - self.first)
 
 
-ROUTER = r'''
-import sys
-import zenoh
-from ros2lite.transport.config import router_config
-router = zenoh.open(router_config(sys.argv[1], env={}))
-print('ready', flush=True)
-sys.stdin.read()
-router.close()
-'''
-
-
 @contextlib.contextmanager
 def private_router() -> Iterator[None]:
     """A router process on a free loopback port and a private domain, exported to sessions.
@@ -214,51 +204,14 @@ def private_router() -> Iterator[None]:
     A process of its own: in the measuring process it would share zenoh's runtime threads
     with the subscriber, whose full channel can then stall the router itself.
     """
-    import socket
-
     from ros2lite.memory import keep_large_buffers
 
     keep_large_buffers()  # as nodes do: the raw side measured here gets it too
-    with socket.socket() as sock:
-        sock.bind(('127.0.0.1', 0))
-        port = sock.getsockname()[1]
-    endpoint = f'tcp/127.0.0.1:{port}'
-    saved = {
-        k: os.environ.get(k)
-        for k in (
-            'ROS2LITE_ROUTER',
-            'ROS_DOMAIN_ID',
-            'ZENOH_CONFIG_OVERRIDE',
-            'ZENOH_SESSION_CONFIG_URI',
-        )
-    }
-    os.environ.pop('ZENOH_CONFIG_OVERRIDE', None)
-    os.environ.pop('ZENOH_SESSION_CONFIG_URI', None)
-    router = subprocess.Popen(
-        [sys.executable, '-c', ROUTER, endpoint],
-        stdin=subprocess.PIPE,
-        stdout=subprocess.PIPE,
-        text=True,
-    )
-    assert router.stdout is not None and router.stdin is not None
-    os.environ['ROS2LITE_ROUTER'] = endpoint
-    os.environ['ROS_DOMAIN_ID'] = str(random.randint(100, 232))
-    try:
-        if router.stdout.readline().strip() != 'ready':
-            raise RuntimeError('benchmark router did not start')
+    endpoint = f'tcp/127.0.0.1:{free_port()}'
+    env = {k: v for k, v in os.environ.items() if k not in _CONFIG_VARS}
+    env.update(ROS2LITE_ROUTER=endpoint, ROS_DOMAIN_ID=str(random.randint(100, 232)))
+    with environment(env), router_process(endpoint):
         yield
-    finally:
-        router.stdin.close()
-        try:
-            router.wait(timeout=5)
-        except subprocess.TimeoutExpired:
-            router.kill()
-            router.wait()
-        for k, v in saved.items():
-            if v is None:
-                os.environ.pop(k, None)
-            else:
-                os.environ[k] = v
 
 
 def _key(type_name: str, topic: str) -> str:
@@ -279,15 +232,8 @@ def run_once(mode: str, kind: str, n: int, key: str, subscribe: Subscribe) -> fl
     """
     counter = Counter(n)
     wait = subscribe(counter)
-    proc = subprocess.Popen(
-        [sys.executable, '-c', PUBLISHER, mode, kind, str(n), key],
-        stdin=subprocess.PIPE,
-        stdout=subprocess.PIPE,
-        text=True,
-    )
-    assert proc.stdin is not None and proc.stdout is not None
-    try:
-        assert proc.stdout.readline().strip() == 'ready'
+    with ready_child(PUBLISHER, mode, kind, str(n), key) as proc:
+        assert proc.stdin is not None and proc.stdout is not None
         wait(counter.warm, 10)
         if not counter.warm.is_set():
             raise RuntimeError('publisher never reached the subscriber')
@@ -297,13 +243,6 @@ def run_once(mode: str, kind: str, n: int, key: str, subscribe: Subscribe) -> fl
         if not counter.done.is_set():
             raise RuntimeError(f'lost samples: {counter.count} of {n} arrived')
         sent = float(proc.stdout.readline())
-        proc.stdin.write('done\n')
-        proc.stdin.flush()
-        proc.wait(timeout=10)
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.wait()
     if VERBOSE:
         print(
             f'  {mode}/{kind}: received {counter.rate():.0f}/s, publisher sent {sent:.0f}/s',
@@ -456,25 +395,10 @@ def _ping_pong(mode: str) -> list[float]:
 
     String = get_interface(STRING)
     ping_key, pong_key = _key(STRING, '/bench_ping'), _key(STRING, '/bench_pong')
-    echo = subprocess.Popen(
-        [sys.executable, '-c', ECHO, mode, ping_key, pong_key],
-        stdin=subprocess.PIPE,
-        stdout=subprocess.PIPE,
-        text=True,
-    )
-    assert echo.stdin is not None and echo.stdout is not None
-    try:
-        assert echo.stdout.readline().strip() == 'ready'
+    with ready_child(ECHO, mode, ping_key, pong_key):
         if mode == 'node':
             return _node_pinger()
         return _raw_pinger(ping_key, pong_key, serialize(String(data='ping')))
-    finally:
-        echo.stdin.close()
-        try:
-            echo.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            echo.kill()
-            echo.wait()
 
 
 def _raw_pinger(ping_key: str, pong_key: str, cdr: bytes) -> list[float]:

@@ -14,64 +14,45 @@ import sys
 import tempfile
 import time
 
-from common import cli_env, environment, free_port, import_click_wall, report, wall
-
-_ROUTER_CHILD = """
-import sys
-import zenoh
-from ros2lite.transport.config import router_config
-router = zenoh.open(router_config(sys.argv[1], env={}))
-print('ready', flush=True)
-sys.stdin.read()
-"""
+from common import cli_env, environment, free_port, import_click_wall, report, router_process, wall
 
 
 def bench_param_get() -> None:
     endpoint = f"tcp/127.0.0.1:{free_port()}"
     with tempfile.TemporaryDirectory() as runtime:
         env = cli_env(endpoint, "219", runtime)
-        router = subprocess.Popen(
-            [sys.executable, "-c", _ROUTER_CHILD, endpoint],
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            text=True,
-            env=env,
-        )
         node = None
-        try:
-            assert router.stdout is not None and router.stdout.readline().strip() == "ready"
-            node = subprocess.Popen(
-                [
-                    sys.executable,
-                    "-m",
-                    "ros2lite.demos.demo_nodes_py.parameter_blackboard",
-                    "--ros-args",
-                    "-p",
-                    "answer:=42",
-                ],
-                env=env,
-                stdout=subprocess.DEVNULL,
-                stderr=subprocess.DEVNULL,
-            )
-            exe = os.path.join(os.path.dirname(sys.executable), "ros2lite")
-            cmd = [exe, "param", "get", "/parameter_blackboard", "answer"]
-            deadline = time.monotonic() + 15
-            while True:  # sanity: the node answers before we time it
-                out = subprocess.run(cmd, env=env, capture_output=True, text=True).stdout
-                if out == "Integer value is: 42\n" or time.monotonic() > deadline:
-                    break
-                time.sleep(0.1)
-            assert out == "Integer value is: 42\n", out
-            with environment(env):
-                ours = wall(cmd, runs=9)
-                base = import_click_wall()
-        finally:
-            for proc in (node, router):
-                if proc is not None:
-                    if proc.stdin:
-                        proc.stdin.close()
-                    proc.terminate()
-                    proc.wait(timeout=10)
+        with router_process(endpoint, env):
+            try:
+                node = subprocess.Popen(
+                    [
+                        sys.executable,
+                        "-m",
+                        "ros2lite.demos.demo_nodes_py.parameter_blackboard",
+                        "--ros-args",
+                        "-p",
+                        "answer:=42",
+                    ],
+                    env=env,
+                    stdout=subprocess.DEVNULL,
+                    stderr=subprocess.DEVNULL,
+                )
+                exe = os.path.join(os.path.dirname(sys.executable), "ros2lite")
+                cmd = [exe, "param", "get", "/parameter_blackboard", "answer"]
+                deadline = time.monotonic() + 15
+                while True:  # sanity: the node answers before we time it
+                    out = subprocess.run(cmd, env=env, capture_output=True, text=True).stdout
+                    if out == "Integer value is: 42\n" or time.monotonic() > deadline:
+                        break
+                    time.sleep(0.1)
+                assert out == "Integer value is: 42\n", out
+                with environment(env):
+                    ours = wall(cmd, runs=9)
+                    base = import_click_wall()
+            finally:
+                if node is not None:
+                    node.terminate()
+                    node.wait(timeout=10)
     report("param_get_wall", ours * 1000, "ms", ours / base)
 
 

@@ -22,76 +22,32 @@ from __future__ import annotations
 import contextlib
 import os
 import random
-import socket
 import statistics
-import subprocess
-import sys
 import tempfile
 import time
-from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
-from bench_node import RUNS, node_run
-from common import report
+from bench_node import N_MESSAGES, RUNS, STRING, _key, node_run
+from common import environment, free_port, report, router_process
 
-ROUTER = r'''
-import sys, os, zenoh
-from ros2lite.transport.config import router_config
-zenoh.init_log_from_env_or('error')
-router = zenoh.open(router_config(sys.argv[1]))
-print('ready', flush=True)
-sys.stdin.read()
-router.close()
-'''
 CONNECTS = 30
 ENCLAVE = '/bench/node'
 
 
-def _port() -> int:
-    with socket.socket() as sock:
-        sock.bind(('127.0.0.1', 0))
-        return int(sock.getsockname()[1])
+def _overlaid(values: dict[str, str | None]) -> dict[str, str]:
+    """This process' environment with `values` set (None: removed)."""
+    env = {k: v for k, v in os.environ.items() if k not in values}
+    env.update({k: v for k, v in values.items() if v is not None})
+    return env
 
 
-@contextlib.contextmanager
-def _environment(values: dict[str, str | None]) -> Iterator[None]:
-    saved = {k: os.environ.get(k) for k in values}
-    for key, value in values.items():
-        if value is None:
-            os.environ.pop(key, None)
-        else:
-            os.environ[key] = value
-    try:
-        yield
-    finally:
-        for key, value in saved.items():
-            if value is None:
-                os.environ.pop(key, None)
-            else:
-                os.environ[key] = value
+def _environment(values: dict[str, str | None]) -> contextlib.AbstractContextManager[None]:
+    return environment(_overlaid(values))
 
 
-@contextlib.contextmanager
-def _router(endpoint: str, env: dict[str, str | None]) -> Iterator[None]:
-    with _environment(env):
-        proc = subprocess.Popen(
-            [sys.executable, '-c', ROUTER, endpoint],
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            text=True,
-        )
-    assert proc.stdin is not None and proc.stdout is not None
-    try:
-        if proc.stdout.readline().strip() != 'ready':
-            raise RuntimeError(f'benchmark router at {endpoint} did not start')
-        yield
-    finally:
-        proc.stdin.close()
-        try:
-            proc.wait(timeout=5)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
+def _router(endpoint: str, env: dict[str, str | None]) -> contextlib.AbstractContextManager[Any]:
+    return router_process(endpoint, _overlaid(env), configured=True)
 
 
 def _connect_ms(env: dict[str, str | None]) -> float:
@@ -111,8 +67,8 @@ def bench_security() -> None:
     from ros2lite.security.keystore import create_enclave, create_keystore
 
     domain = str(random.randint(100, 232))
-    plain_endpoint = f'tcp/127.0.0.1:{_port()}'
-    tls_endpoint = f'tls/127.0.0.1:{_port()}'
+    plain_endpoint = f'tcp/127.0.0.1:{free_port()}'
+    tls_endpoint = f'tls/127.0.0.1:{free_port()}'
     base: dict[str, str | None] = {
         'ROS_DOMAIN_ID': domain,
         'ZENOH_CONFIG_OVERRIDE': None,
@@ -140,7 +96,8 @@ def bench_security() -> None:
             for _ in range(RUNS):
                 for name, env in graphs.items():
                     with _environment(env):
-                        rates[name].append(node_run('', _string()))
+                        key = _key(STRING, '/bench_chatter')  # in this graph's domain
+                        rates[name].append(node_run('string', N_MESSAGES, key, 'spin'))
             connect_tcp = _connect_ms(plain)
             connect_tls = _connect_ms(secured)
     medians = {name: statistics.median(values) for name, values in rates.items()}
@@ -159,12 +116,6 @@ def bench_security() -> None:
     report('security_pubsub_string_unsecured', baseline, 'msg/s', 1.0)
     report('security_connect_tls', connect_tls, 'ms', connect_tls / connect_tcp)
     report('security_connect_tcp', connect_tcp, 'ms', 1.0)
-
-
-def _string() -> object:
-    from ros2lite.interfaces import get_interface
-
-    return get_interface('std_msgs/msg/String')
 
 
 BENCHES = {'security': bench_security}

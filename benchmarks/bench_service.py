@@ -13,7 +13,7 @@ import sys
 import tempfile
 import time
 
-from common import cli_env, environment, free_port, import_click_wall, report, wall
+from common import cli_env, environment, free_port, import_click_wall, ready_child, report, wall
 
 ROUNDS = 2000
 ADD = 'example_interfaces/srv/AddTwoInts'
@@ -122,30 +122,18 @@ def bench_service() -> None:
     domain = '218'
     with tempfile.TemporaryDirectory() as runtime:
         env = cli_env(endpoint, domain, runtime)
-        child = subprocess.Popen(
-            [sys.executable, '-c', _SERVERS, endpoint],
-            env=env,
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            text=True,
-        )
-        try:
-            assert child.stdout is not None and child.stdout.readline().strip() == 'ready'
-            with environment(env):
-                # interleaved halves, so a slow phase of the machine hits both sides
-                raw, ours = [], []
-                for _ in range(2):
-                    raw += _raw_round_trips(endpoint)
-                    ours += _library_round_trips()
-                exe = os.path.join(os.path.dirname(sys.executable), 'ros2lite')
-                cmd = [exe, 'service', 'call', '/bench_add', ADD, '{a: 1, b: 2}']
-                subprocess.run(cmd, check=True, capture_output=True, timeout=30)
-                call_wall = wall(cmd, runs=9)
-                base = import_click_wall()
-        finally:
-            if child.stdin:
-                child.stdin.close()  # the child shuts down and closes its router
-            child.wait(timeout=30)
+        # the child serves until its stdin closes
+        with ready_child(_SERVERS, endpoint, env=env, timeout=30), environment(env):
+            # interleaved halves, so a slow phase of the machine hits both sides
+            raw, ours = [], []
+            for _ in range(2):
+                raw += _raw_round_trips(endpoint)
+                ours += _library_round_trips()
+            exe = os.path.join(os.path.dirname(sys.executable), 'ros2lite')
+            cmd = [exe, 'service', 'call', '/bench_add', ADD, '{a: 1, b: 2}']
+            subprocess.run(cmd, check=True, capture_output=True, timeout=30)
+            call_wall = wall(cmd, runs=9)
+            base = import_click_wall()
     raw50, raw99 = _percentiles(raw)
     our50, our99 = _percentiles(ours)
     report('service_rtt_p50', our50 * 1e6, 'us', our50 / raw50)

@@ -6,6 +6,7 @@ import contextlib
 import os
 import socket
 import subprocess
+import sys
 import time
 from collections.abc import Callable, Iterator
 from typing import Any
@@ -93,3 +94,52 @@ def import_click_wall(runs: int = 9) -> float:
 
     wall([sys.executable, '-c', 'import click'], runs=1)
     return wall([sys.executable, '-c', 'import click'], runs=runs)
+
+
+# a router on argv[1] until its stdin closes; with `--env` it reads the environment's
+# configuration (security, config files), else only its built-in defaults
+ROUTER = r'''
+import sys, zenoh
+from ros2lite.transport.config import router_config
+zenoh.init_log_from_env_or('error')
+router = zenoh.open(router_config(sys.argv[1], env=None if '--env' in sys.argv else {}))
+print('ready', flush=True)
+sys.stdin.read()
+router.close()
+'''
+
+
+@contextlib.contextmanager
+def ready_child(
+    code: str, *args: str, env: dict[str, str] | None = None, timeout: float = 10.0
+) -> Iterator[subprocess.Popen[str]]:
+    """`python -c code args` with piped stdin/stdout, once it has printed `ready`. Closing its
+    stdin on leaving is its cue to finish; it gets `timeout` s before it is killed."""
+    proc = subprocess.Popen(
+        [sys.executable, '-c', code, *args],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        text=True,
+        env=env,
+    )
+    assert proc.stdin is not None and proc.stdout is not None
+    try:
+        if proc.stdout.readline().strip() != 'ready':
+            raise RuntimeError(f'benchmark child {args} did not start')
+        yield proc
+    finally:
+        proc.stdin.close()
+        try:
+            proc.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+
+
+def router_process(
+    endpoint: str, env: dict[str, str] | None = None, *, configured: bool = False
+) -> contextlib.AbstractContextManager[subprocess.Popen[str]]:
+    """A router process on `endpoint` (a process of its own: in the measuring process it
+    would share zenoh's runtime threads with what is measured); `configured` lets it read
+    the environment's configuration."""
+    return ready_child(ROUTER, endpoint, *(['--env'] if configured else []), env=env)
