@@ -35,6 +35,7 @@ if TYPE_CHECKING:  # what type checkers see; at run time the names load lazily
         spin_until_future_complete,
     )
     from ros2lite.logging import get_logger
+    from ros2lite.message_info import MessageInfo
     from ros2lite.node import Node
     from ros2lite.node_options import NodeOptions
     from ros2lite.parameter import Parameter
@@ -46,7 +47,6 @@ if TYPE_CHECKING:  # what type checkers see; at run time the names load lazily
         qos_profile_sensor_data,
         qos_profile_system_default,
     )
-    from ros2lite.subscription import MessageInfo
     from ros2lite.task import Future, Task
     from ros2lite.time import Time
 
@@ -113,7 +113,7 @@ _EXPORTS = {
     'Duration': 'ros2lite.duration',
     'Clock': 'ros2lite.clock',
     'get_logger': 'ros2lite.logging',
-    'MessageInfo': 'ros2lite.subscription',
+    'MessageInfo': 'ros2lite.message_info',
 }
 
 

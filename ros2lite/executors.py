@@ -198,9 +198,7 @@ class Executor:
         self._spin_once(timeout_sec, None)
 
     def _spin_once(self, timeout_sec: float | None, stop: Callable[[], bool] | None) -> None:
-        context = self._context
-        if context.terminating:
-            raise ExternalShutdownException()
+        self._check_terminating()
         self._spinning += 1
         try:
             item = self._next(timeout_sec, stop)
@@ -208,8 +206,7 @@ class Executor:
                 self._dispatch(item, False, None)
         finally:
             self._spinning -= 1
-        if context.terminating:
-            raise ExternalShutdownException()
+        self._check_terminating()
 
     def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None) -> None:
         """Run callbacks until `future` is done or `timeout_sec` passes (a future completed
@@ -560,7 +557,7 @@ _global_lock = threading.Lock()
 
 
 # the last one asked for: `spin_once(node)` in a loop asks every time
-_last_global: tuple[weakref.ref[Context], SingleThreadedExecutor] | None = None
+_last_global: SingleThreadedExecutor | None = None
 
 
 def get_global_executor(context: Context | None = None) -> SingleThreadedExecutor:
@@ -568,13 +565,13 @@ def get_global_executor(context: Context | None = None) -> SingleThreadedExecuto
     global _last_global
     ctx = context or default_context()
     last = _last_global
-    if last is not None and last[0]() is ctx:
-        return last[1]
+    if last is not None and last._context is ctx:
+        return last
     with _global_lock:
         executor = _global.get(ctx)
         if executor is None:
             executor = _global[ctx] = SingleThreadedExecutor(context=ctx)
-        _last_global = (weakref.ref(ctx), executor)
+        _last_global = executor
         return executor
 
 
@@ -586,7 +583,7 @@ def spin_once(
     node: Node, *, executor: Executor | None = None, timeout_sec: float | None = None
 ) -> None:
     """Run one callback of `node` (on the global executor unless one is given)."""
-    ex = executor if executor is not None else get_global_executor(node.context)
+    ex = _executor_for(node, executor)
     added = ex.add_node(node)
     try:
         ex.spin_once(timeout_sec)

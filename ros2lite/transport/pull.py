@@ -11,7 +11,7 @@ consumer has emptied the channel again: at any moment exactly one of the two own
 channel, so samples keep their order and nobody competes for the GIL during a burst.
 
 Payloads and attachments stay Zenoh objects until the consumer reads them, and the consumer
-reads a batch through C-level iterators (:func:`payloads`): no Python loop per sample here.
+reads a batch through C-level iterators (:func:`ros2lite.delivery.payloads`).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from __future__ import annotations
 import contextlib
 import threading
 from collections import deque
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from itertools import islice
 from operator import attrgetter
 from typing import TYPE_CHECKING
@@ -32,7 +32,7 @@ from ros2lite.transport.session import declare_subscriber, undeclare_quietly
 if TYPE_CHECKING:
     from ros2lite.transport.handles import Sample, Session
 
-__all__ = ['PulledSamples', 'payloads']
+__all__ = ['PulledSamples']
 
 # a KEEP_ALL channel's capacity: a burst this long waits in Rust, then zenoh pushes back
 _CAPACITY = 4096
@@ -40,13 +40,6 @@ _CAPACITY = 4096
 _CHUNK = 64
 _NONE = type(None)
 _attachment_of = attrgetter('attachment')
-_payload_of = attrgetter('payload')
-_to_bytes = zenoh.ZBytes.to_bytes
-
-
-def payloads(samples: list[Sample]) -> Iterator[bytes]:
-    """The CDR bytes of each sample, lazily and in order (each copied out once, when asked)."""
-    return map(_to_bytes, map(_payload_of, samples))
 
 
 class PulledSamples:

@@ -7,9 +7,10 @@ import threading
 import time
 from typing import Any
 
+from ros2lite.delivery import payloads
 from ros2lite.qos import HistoryPolicy, QoSProfile
 from ros2lite.transport.attachment import encode_attachment
-from ros2lite.transport.pull import PulledSamples, payloads
+from ros2lite.transport.pull import PulledSamples
 from tests.spinning import wait_until
 
 KEEP_ALL = QoSProfile(history=HistoryPolicy.KEEP_ALL)
