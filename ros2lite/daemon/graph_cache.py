@@ -15,6 +15,7 @@ not ours: rmw_zenohd) has no socket, and tools fall back to asking the router.
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import socket
 import threading
@@ -43,7 +44,10 @@ def _address(path: Path) -> Iterator[str]:
     if len(os.fsencode(str(path))) < _PATH_MAX:
         yield str(path)
         return
-    fd = os.open(path.parent, os.O_PATH | os.O_DIRECTORY | os.O_CLOEXEC)
+    o_path = getattr(os, "O_PATH", None)  # Linux; elsewhere such a path has no cache
+    if o_path is None:
+        raise OSError(errno.ENAMETOOLONG, "path too long for a socket address", str(path))
+    fd = os.open(path.parent, o_path | os.O_DIRECTORY | os.O_CLOEXEC)
     try:
         yield f"/proc/self/fd/{fd}/{path.name}"
     finally:
@@ -73,7 +77,7 @@ class GraphServer:
 
     def _on_change(self, key: str, alive: bool) -> None:
         domain = key.split("/", 2)[1] if key.count("/") >= 2 else ""
-        if not domain.isdigit():
+        if not (domain.isascii() and domain.isdigit()):  # ('²' is a digit int() refuses)
             return  # not a token rmw_zenoh would make: tools would drop it anyway
         with self._lock:
             keys = self._keys.setdefault(int(domain), {})
@@ -105,7 +109,7 @@ class GraphServer:
                 return
             request += chunk
         verb, _, domain = request.decode("ascii", "replace").strip().partition(" ")
-        if verb != "graph" or not domain.isdigit():
+        if verb != "graph" or not (domain.isascii() and domain.isdigit()):
             return
         conn.sendall(_VERSION + "\n".join(self.keys(int(domain))).encode())
 
@@ -140,8 +144,6 @@ def cache_endpoint(router: str | None = None, env: Mapping[str, str] | None = No
 def cached_keys(endpoint: str, domain: int, timeout: float = 1.0) -> list[str] | None:
     """The token keys of `domain` from the daemon at `endpoint`, None when none answers."""
     path = graph_socket(endpoint)
-    if not path.exists():
-        return None
     chunks: list[bytes] = []
     with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as sock:
         sock.settimeout(timeout)
@@ -158,7 +160,7 @@ def cached_keys(endpoint: str, domain: int, timeout: float = 1.0) -> list[str] |
                 size += len(chunk)
             else:
                 return None  # more than any graph: not our daemon talking
-        except OSError:  # gone (a stale socket), refused, timed out
+        except OSError:  # none, a stale socket, refused, timed out, no address for it
             return None
     reply = b"".join(chunks)
     if not reply.startswith(_VERSION):

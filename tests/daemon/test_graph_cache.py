@@ -15,7 +15,7 @@ import pytest
 
 from ros2lite import daemon
 from ros2lite.daemon.graph_cache import cache_endpoint, cached_keys
-from ros2lite.daemon.paths import graph_socket
+from ros2lite.daemon.paths import graph_socket, log_file
 from ros2lite.qos import QoSProfile
 from ros2lite.transport.config import open_session
 from ros2lite.transport.keys import EntityKind, endpoint_token, node_token
@@ -173,3 +173,21 @@ def test_no_cache_for_a_session_the_user_configured(
     assert cache_endpoint() == 'tcp/127.0.0.1:7447'
     monkeypatch.setenv(var, value)
     assert cache_endpoint() is None
+
+
+def test_a_token_with_a_strange_domain_is_ignored(running: str) -> None:
+    # '²' passes str.isdigit() but not int(): the daemon's callback must not trip on it
+    session = open_session(running, mode='peer')
+    try:
+        token = session.liveliness().declare_token('@ros2_lv/²/zid/0/0/NN/%/%/odd')
+        tokens = Tokens(running, DOMAIN, '/after_odd')
+        try:
+            wait_until(lambda: len(cached_keys(running, DOMAIN) or ()) == 2)
+        finally:
+            tokens.close()
+            token.undeclare()
+    finally:
+        session.close()
+    assert daemon.status(running).running
+    log = log_file(running).read_text()
+    assert 'Traceback' not in log and 'ValueError' not in log, log

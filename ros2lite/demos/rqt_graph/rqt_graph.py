@@ -49,9 +49,10 @@ def run(options: argparse.Namespace) -> None:
     )
     # a tool's connection: every picture is the daemon's graph cache or one complete
     # liveliness query (a node's fresh peer session or graph cache may still be joining the
-    # graph); the session is open for as long as the window is, so Ctrl-C ends both
+    # graph); a live view keeps the session open for as long as it runs, so Ctrl-C ends both
     with Connection() as conn:
-        conn.open()
+        if not options.output:
+            conn.open()
         _show(options, lambda: model.from_entities(conn.entities(), filters), conn.context.ok)
 
 
