@@ -99,10 +99,9 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self.raw = raw
         self._async = inspect.iscoroutinefunction(callback)
         keep_all = ep.qos.history == HistoryPolicy.KEEP_ALL
-        # zenoh samples as a pump thread moved them: `(sample, arrival ns)` for raw ones
-        # (tools like `topic hz` need arrival times), `sample` for typed ones fed by a
-        # subclass hook; other typed subscriptions pull from Zenoh on the executor thread
-        # (`_source` below). Bytes are copied out on the executor thread.
+        # raw samples as a pump thread moved them, `(sample, arrival ns)` (tools like `topic
+        # hz` need arrival times); typed subscriptions pull from Zenoh on the executor thread
+        # (`_source` below), and a typed subclass with a hook consumes samples itself
         self._buffer: deque[Any] = deque(maxlen=None if keep_all else max(ep.qos.depth, 1))
         self._deserialize: Callable[[bytes], MsgT] | None = None
         self._destroyed = False
@@ -120,7 +119,6 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
                 ep.qos,
                 self._buffer,
                 self._notify,
-                stamp=raw,
                 hook=hook,
                 name=ep.topic_name,
             )
@@ -131,11 +129,12 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         ep._announce()
 
     def _on_sample(self, sample: Sample) -> None:
-        """Receive thread: keep the sample and make sure the executor will come for it.
-        Samples without an attachment, which rmw_zenoh ignores, are dropped when taken."""
+        """Receive thread (a raw subclass's hook passing a sample on): keep it with its arrival
+        time and make sure the executor will come for it. Samples without an attachment,
+        which rmw_zenoh ignores, are dropped when taken."""
         if self._destroyed:
             return
-        self._buffer.append((sample, time.time_ns()) if self.raw else sample)
+        self._buffer.append((sample, time.time_ns()))
         self._notify()
 
     def _has_work(self) -> bool:
@@ -155,27 +154,26 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         return des
 
     def take(self) -> tuple[MsgT | bytes, MessageInfo] | None:
-        """The oldest buffered sample as (message or bytes, info), or None. For typed
-        subscriptions `received_timestamp` is the time of the take."""
+        """The oldest sample as (message or bytes, info), or None. For typed subscriptions
+        `received_timestamp` is the time of the take."""
         if self._source is not None:
             return self._take_typed(self._source)
         while True:
             try:
-                entry = self._buffer.popleft()
+                sample, received = self._buffer.popleft()
             except IndexError:
                 return None
-            sample, received = entry if self.raw else (entry, time.time_ns())
             attachment = sample.attachment
-            if attachment is None:
-                continue  # rmw_zenoh drops samples without an attachment
-            data = sample.payload.to_bytes()
-            info = _info(attachment.to_bytes(), received)
-            if self.raw:
-                return data, info
-            try:
-                return self._deserializer()(data), info
-            except ValueError as e:  # a CdrError (imported lazily: tools stay light)
-                self._bad_sample(data, info.publisher_gid, e)  # dropped: take the next one
+            if attachment is not None:  # rmw_zenoh drops samples without one
+                return sample.payload.to_bytes(), _info(attachment.to_bytes(), received)
+
+    def _decoded(self, data: bytes, attachment: bytes) -> MsgT | None:
+        """The message in `data`; None when it does not decode (dropped and reported)."""
+        try:
+            return self._deserializer()(data)
+        except ValueError as e:  # a CdrError (imported lazily: tools stay light)
+            self._bad_sample(data, gid_of(attachment), e)
+            return None
 
     def _info(self, attachment: bytes, received: int) -> MessageInfo:
         return _info(attachment, received)
@@ -186,12 +184,10 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
             if not taken:
                 return None
             sample = taken[0]
-            data = sample.payload.to_bytes()
-            info = _info(sample.attachment.to_bytes(), time.time_ns())  # type: ignore[union-attr]
-            try:
-                return self._deserializer()(data), info
-            except ValueError as e:  # a CdrError: dropped, take the next one
-                self._bad_sample(data, info.publisher_gid, e)
+            attachment = sample.attachment.to_bytes()  # type: ignore[union-attr]  # take() checked
+            message = self._decoded(sample.payload.to_bytes(), attachment)
+            if message is not None:
+                return message, _info(attachment, time.time_ns())
 
     def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         """Deliver the oldest sample, or in spin()/spin_until_future_complete() a batch of
@@ -205,62 +201,16 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
                 else self._call(self.callback, *(entry if self._with_info else entry[:1]))
             )
         source = self._source
-        if source is not None and not (self.raw or self._with_info):
-            # the hot path (ros2lite.delivery), straight from here: spin_once pays per call
-            deliver(
-                self,
-                source,
-                self._deserialize or self._deserializer(),
-                BATCH if batch else 1,
-                stop,
-            )
-        else:
-            self._deliver_batch(BATCH if batch else 1, stop)
+        limit = BATCH if batch else 1
+        if source is None:  # raw: the buffer a pump thread fills
+            self._deliver_raw(limit, stop)
+        elif self._with_info:
+            # a batch also ends after BATCH_TIME, so slow callbacks can't starve timers
+            deadline = time.perf_counter() + BATCH_TIME if batch else 0.0
+            deliver_with_info(self, source, self._deserializer(), limit, stop, deadline)
+        else:  # the hot path (ros2lite.delivery), straight from here: spin_once pays per call
+            deliver(self, source, self._deserialize or self._deserializer(), limit, stop)
         return None
-
-    def _deliver_batch(self, limit: int, stop: Callable[[], bool] | None) -> None:
-        """MessageInfo is only built for callbacks that take it."""
-        # (msg) for the hot typed loop; the others go through _deliver_with_info
-        callback: Callable[..., object] = self.callback
-        buffer = self._buffer
-        popleft, perf_counter = buffer.popleft, time.perf_counter
-        # a batch also ends after BATCH_TIME, so slow callbacks can't starve timers
-        deadline = perf_counter() + BATCH_TIME if limit > 1 else 0.0
-        if self.raw or self._with_info:
-            self._deliver_with_info(limit, stop, deadline)
-            return
-        des = self._deserialize or self._deserializer()
-        # (typed and pulled from Zenoh without info: _execute hands those to delivery)
-        # typed, fed by a hook of a subclass: a sample that does not decode raises out of
-        # the loop; the handler (free until something raises) tells a bad sample, which is
-        # dropped, from the callback's own error
-        first = 0
-        while True:
-            try:
-                for i in range(first, limit):
-                    if i & 7 == 7 and perf_counter() > deadline:
-                        return
-                    try:
-                        sample = popleft()
-                    except IndexError:
-                        return
-                    if self._destroyed:
-                        return
-                    if sample.attachment is None:
-                        continue
-                    callback(des(sample.payload.to_bytes()))
-                    if stop is not None and stop():
-                        return
-                return
-            except ValueError as e:  # a CdrError (imported lazily: tools stay light)?
-                data = sample.payload.to_bytes()
-                try:
-                    des(data)
-                except ValueError:
-                    self._bad_sample(data, gid_of(sample.attachment.to_bytes()), e)
-                else:
-                    raise  # it decodes: the error is the callback's
-                first = i + 1
 
     def _bad_sample(self, data: bytes, gid: bytes, error: Exception) -> None:
         """A sample that is not the topic's type: dropped, counted, reported (rate-limited)."""
@@ -272,46 +222,29 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
             )
         bad.add(gid, error, len(data))
 
-    def _deliver_with_info(
-        self, limit: int, stop: Callable[[], bool] | None, deadline: float
-    ) -> None:
-        """Raw bytes and/or MessageInfo: the slower loop (raw samples carry their arrival
-        time; typed ones are stamped when taken). A typed sample that does not decode is
-        dropped and reported, as in the hot loop."""
-        if self._source is not None:  # typed, pulled from Zenoh (ros2lite.delivery)
-            deliver_with_info(
-                self, self._source, self._deserialize or self._deserializer(), limit, stop, deadline
-            )
-            return
+    def _deliver_raw(self, limit: int, stop: Callable[[], bool] | None) -> None:
+        """Raw bytes, with MessageInfo for callbacks that take it (stamped at arrival); a
+        batch also ends after BATCH_TIME, so slow callbacks can't starve timers."""
         popleft, perf_counter = self._buffer.popleft, time.perf_counter
+        deadline = perf_counter() + BATCH_TIME if limit > 1 else 0.0
         callback: Callable[..., object] = self.callback
-        des = None if self.raw else (self._deserialize or self._deserializer())
         for i in range(limit):
             if i & 7 == 7 and perf_counter() > deadline:
                 break
             try:
-                entry = popleft()
+                sample, received = popleft()
             except IndexError:
                 break  # KEEP_LAST dropped it, or take() got there first
             if self._destroyed:
                 break
-            sample, received = entry if self.raw else (entry, time.time_ns())
             attachment = sample.attachment
             if attachment is None:
                 continue  # rmw_zenoh drops samples without an attachment
             data = sample.payload.to_bytes()
-            if des is None:
-                message: object = data
-            else:
-                try:
-                    message = des(data)
-                except ValueError as e:  # a CdrError (imported lazily: tools stay light)
-                    self._bad_sample(data, gid_of(attachment.to_bytes()), e)
-                    continue
             if self._with_info:
-                callback(message, _info(attachment.to_bytes(), received))
+                callback(data, _info(attachment.to_bytes(), received))
             else:
-                callback(message)
+                callback(data)
             if stop is not None and stop():
                 break
 

@@ -9,7 +9,6 @@ from __future__ import annotations
 import threading
 from typing import TYPE_CHECKING
 
-from ros2lite.bad_samples import gid_of
 from ros2lite.qos import QoSProfile
 from ros2lite.subscription import Subscription
 from ros2lite.type_support import MsgT
@@ -38,13 +37,8 @@ class _FirstMessage(Subscription[MsgT]):
         # rmw_zenoh ignores samples without an attachment; so does this
         if self.first is not None or attachment is None:
             return
-        data = sample.payload.to_bytes()
-        try:
-            message = self._deserializer()(data)
-        except ValueError as e:  # a CdrError
-            self._bad_sample(data, gid_of(attachment.to_bytes()), e)
-            return
-        if self.first is None:
+        message = self._decoded(sample.payload.to_bytes(), attachment.to_bytes())
+        if message is not None and self.first is None:
             self.first = message
             self.arrived.set()
 

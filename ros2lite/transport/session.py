@@ -195,9 +195,9 @@ class SampleReceiver:
     sample while the executor thread runs user code; that ping-pong was most of the cost of
     a message. Instead samples wait in a Rust-side channel and the pump moves everything
     waiting while holding the GIL once, then calls `on_batch()` (which schedules delivery).
-    Typed consumers get the samples as they came (`extend`, no Python loop); with
-    `stamp=True` each is stored as `(sample, arrival ns)`; a `hook(sample)` replaces the
-    buffer entirely (monitors that must see every sample at arrival).
+    Each is stored as `(sample, arrival ns)` (raw consumers such as `topic hz` need arrival
+    times); a `hook(sample)` replaces the buffer entirely (monitors that must see every
+    sample at arrival, a typed waiter that keeps the first message).
     """
 
     def __init__(
@@ -205,10 +205,9 @@ class SampleReceiver:
         session: Session,
         key: str,
         qos: QoSProfile,
-        buffer: deque[Any],  # samples, or (sample, arrival ns) with `stamp`
+        buffer: deque[Any],  # (sample, arrival ns)
         on_batch: Callable[[], None],
         *,
-        stamp: bool = False,
         hook: Callable[[Sample], None] | None = None,
         name: str = "",
     ) -> None:
@@ -224,7 +223,6 @@ class SampleReceiver:
         self._sub = declare_subscriber(session, key, qos, handler)
         self._buffer = buffer
         self._on_batch = on_batch
-        self._stamp = stamp
         self._hook = hook
         self._now = time.time_ns
         self._thread = threading.Thread(
@@ -236,8 +234,8 @@ class SampleReceiver:
         """Block (GIL released) until a sample comes, then move the whole backlog at once.
         Ends when the subscriber is undeclared (the channel closes)."""
         recv = channel.recv
-        append, extend = self._buffer.append, self._buffer.extend
-        now, stamp, hook, on_batch = self._now, self._stamp, self._hook, self._on_batch
+        append = self._buffer.append
+        now, hook, on_batch = self._now, self._hook, self._on_batch
         while True:
             try:
                 first = recv()
@@ -255,13 +253,9 @@ class SampleReceiver:
 
                             traceback.print_exc()
                     continue
-                if stamp:
-                    append((first, now()))
-                    for sample in rest:
-                        append((sample, now()))
-                else:
-                    append(first)
-                    extend(rest)  # the whole batch moves without a Python loop
+                append((first, now()))
+                for sample in rest:
+                    append((sample, now()))
             except Exception:
                 pass  # closed mid-batch; the next recv() ends the thread
             on_batch()
