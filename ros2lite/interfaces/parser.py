@@ -372,10 +372,10 @@ def parse_line(code: str, package: str) -> Field | Constant:
         name, _, more = name.partition('\t')
         default_text = (more + ' ' + default_text).strip()
     default_text = default_text.strip()
-    if not _FIELD_RE.match(name) or '__' in name or name.endswith('_'):
-        raise ValueError(f"invalid field name '{name}' (lower_case expected)")
     if not field_name_ok(name):
-        raise ValueError(f"field name '{name}' is reserved (a Python keyword)")
+        if keyword.iskeyword(name) or name in _RESERVED_FIELDS:
+            raise ValueError(f"field name '{name}' is reserved (a Python keyword)")
+        raise ValueError(f"invalid field name '{name}' (lower_case expected)")
     default = parse_default(ftype, default_text) if default_text else None
     return Field(name, ftype, default)
 
