@@ -35,6 +35,7 @@ __all__ = [
     'StopSignals',
     'Terminated',
     'exit_code',
+    'forget_caught_interrupt',
     'run_child',
     'signal_handler',
     'sigterm_raises',
@@ -186,6 +187,18 @@ def run_child(
             return proc.wait()
         finally:
             sys.stdout.flush()
+
+
+def forget_caught_interrupt() -> None:
+    """Let a `python -m` program that caught Ctrl-C leave with the status it chose.
+
+    CPython remembers a KeyboardInterrupt that escaped an ``exec()`` of source text (which
+    dataclasses, namedtuples and generated codecs do as they are made) even when the program
+    caught it further out, and `-m` start-up then ends the process by SIGINT instead of with
+    the program's status. An ``exec()`` that completes clears that memory; call this just
+    before leaving.
+    """
+    exec('')
 
 
 def exit_code(returncode: int) -> int:

@@ -13,6 +13,8 @@ import os
 import sys
 from typing import Any
 
+from ros2lite.process import forget_caught_interrupt
+
 USAGE = 'usage: python -m ros2lite.pkg.runner <module:function> <name> [argv...]'
 
 
@@ -31,7 +33,13 @@ def main() -> None:
     fn: Any = importlib.import_module(module)
     for part in attr.split('.'):
         fn = getattr(fn, part)
-    sys.exit(fn())
+    try:
+        code = fn()
+    except SystemExit as e:
+        code = e.code
+    # a target that caught Ctrl-C leaves with its own status, as its installed script would
+    forget_caught_interrupt()
+    sys.exit(code)
 
 
 if __name__ == '__main__':
