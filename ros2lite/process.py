@@ -372,7 +372,9 @@ class ChildProcess:
             return None
         if self._stage == 1:
             return self._stop_started + self.sigterm_timeout
-        return self._stop_started + self.sigterm_timeout + self.sigkill_timeout
+        # one sum of the timeouts, as escalate() reports it: (start + a) + b can land a
+        # rounding step past start + (a + b)
+        return self._stop_started + (self.sigterm_timeout + self.sigkill_timeout)
 
     def escalate(self, now: float) -> tuple[str, str, float] | None:
         """Take the step that is due, if any: (signal sent, signal it follows, seconds since

@@ -117,7 +117,8 @@ def test_escalation_sigterm_then_sigkill() -> None:
     )
     child.start()
     wait_until(lambda: ('stdout', 'ready') in rec.lines, timeout=30)
-    start = time.monotonic()
+    # the clock is the caller's; this start once put start + 0.3 + 0.3 past start + 0.6
+    start = 33144.698931567
     child.begin_stop(start)
     assert child.escalate(start) is None  # nothing is due yet
     assert child.next_deadline() == pytest.approx(start + 0.3)
