@@ -96,6 +96,9 @@ class Context:
         self._nodes: list[ContextNode] = []
         self._on_shutdown: list[Callable[[], object]] = []
         self._graph: GraphCache | None = None
+        # held for the whole of a shutdown: ok() turns False as it begins, so whoever waits
+        # for it to end (a second caller, the interpreter's exit) needs more than ok()
+        self._shutdown_lock = threading.RLock()
         # set by SIGTERM: ok() turns False at once and spinning executors raise
         # ExternalShutdownException; the session itself closes on the way out
         self.terminating = False
@@ -229,28 +232,31 @@ class Context:
         """Destroy the nodes, close the session and wake the executors; a context that is
         not initialised cannot be shut down (RuntimeError, as in rclpy; :meth:`try_shutdown`
         does not mind)."""
-        if self.session is None:
-            raise RuntimeError('Context must be initialized before it can be shutdown')
-        with self._lock:
-            callbacks, self._on_shutdown = self._on_shutdown, []
-        for fn in callbacks:
-            fn()
-        for node in list(self._nodes):
-            node.destroy_node()
-        if self._graph is not None:
-            self._graph.close()
-            self._graph = None
-        session, self.session = self.session, None
-        try:
-            session.close()
-        finally:
-            self.wake()
-            self._ids = itertools.count()
+        with self._shutdown_lock:
+            if self.session is None:
+                raise RuntimeError('Context must be initialized before it can be shutdown')
+            with self._lock:
+                callbacks, self._on_shutdown = self._on_shutdown, []
+            for fn in callbacks:
+                fn()
+            for node in list(self._nodes):
+                node.destroy_node()
+            if self._graph is not None:
+                self._graph.close()
+                self._graph = None
+            session, self.session = self.session, None
+            try:
+                session.close()
+            finally:
+                self.wake()
+                self._ids = itertools.count()
 
     def try_shutdown(self) -> None:
-        """shutdown() unless already shut down."""
-        if self.session is not None:
-            self.shutdown()
+        """shutdown() unless already shut down (or once a shutdown under way on another thread
+        has finished)."""
+        with self._shutdown_lock:
+            if self.session is not None:
+                self.shutdown()
 
     def destroy(self) -> None:
         """Release the context for good (rclpy's); shuts it down first if it still runs."""
@@ -264,13 +270,23 @@ class Context:
 # Contexts still open at interpreter exit are shut down first: zenoh threads and our pump
 # threads must be gone before Python finalises, or the process aborts instead of exiting.
 _live: weakref.WeakSet[Context] = weakref.WeakSet()
+# how long the interpreter's exit waits for a shutdown under way on another thread
+_EXIT_WAIT = 10.0
 
 
 @atexit.register
 def _shutdown_live_contexts() -> None:
     for ctx in list(_live):
-        with contextlib.suppress(Exception):
-            ctx.try_shutdown()
+        # a shutdown() called from a daemon thread (say, on end of input) lets the main
+        # thread's spin return and the program end while the session is still closing;
+        # Python would stop that thread inside zenoh and abort the process: let it finish
+        if not ctx._shutdown_lock.acquire(timeout=_EXIT_WAIT):
+            continue
+        try:
+            with contextlib.suppress(Exception):
+                ctx.try_shutdown()
+        finally:
+            ctx._shutdown_lock.release()
 
 
 # Zenoh runs each callback handler (a service's queryable, a query's replies) on a non-daemon

@@ -123,6 +123,35 @@ def test_process_exits_cleanly_without_shutdown(ros_router: str) -> None:
     assert proc.returncode == 3, proc.stderr
 
 
+def test_exit_waits_for_a_shutdown_under_way_on_another_thread(ros_router: str) -> None:
+    """A daemon thread's shutdown() ends the main thread's loop before the session has
+    closed; the interpreter must not stop that thread halfway (inside zenoh it aborts)."""
+    import subprocess
+    import sys
+
+    code = (
+        'import threading, time\n'
+        'import ros2lite\n'
+        'from ros2lite.context import default_context\n'
+        'ros2lite.init([])\n'
+        "ros2lite.Node('closing')\n"
+        'ctx = default_context()\n'
+        'real = ctx.session\n'
+        'class SlowClose:\n'
+        '    def __getattr__(self, name): return getattr(real, name)\n'
+        '    def close(self):\n'
+        '        time.sleep(0.5)\n'
+        '        real.close()\n'
+        "        print('closed', flush=True)\n"
+        'ctx.session = SlowClose()\n'
+        'threading.Thread(target=ros2lite.shutdown, daemon=True).start()\n'
+        'while ros2lite.ok():\n'
+        '    time.sleep(0.01)\n'
+    )
+    proc = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, timeout=30)
+    assert (proc.returncode, proc.stdout, proc.stderr) == (0, 'closed\n', '')
+
+
 SIGTERM_PROGRAM = r'''
 import signal, sys, time
 import ros2lite
