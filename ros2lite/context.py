@@ -248,6 +248,10 @@ class Context:
             try:
                 session.close()
             finally:
+                # the last reference goes here, under the lock: zenoh lets go of the GIL
+                # while it drops a session, and a thread that is still inside zenoh when
+                # the interpreter finalises aborts the process
+                del session
                 self.wake()
                 self._ids = itertools.count()
 

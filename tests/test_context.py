@@ -152,6 +152,28 @@ def test_exit_waits_for_a_shutdown_under_way_on_another_thread(ros_router: str) 
     assert (proc.returncode, proc.stdout, proc.stderr) == (0, 'closed\n', '')
 
 
+def test_the_session_is_let_go_inside_the_shutdown(ros_router: str) -> None:
+    """Dropping a zenoh session releases the GIL; if the last reference went after the
+    shutdown lock (on a daemon thread), the interpreter's exit could stop that thread inside
+    zenoh, which aborts the process."""
+    ctx = Context().init([])
+    held: list[bool] = []
+
+    class Probe:
+        def __init__(self, real: Any) -> None:
+            self.real = real
+
+        def close(self) -> None:
+            self.real.close()
+
+        def __del__(self) -> None:
+            held.append(ctx._shutdown_lock._is_owned())  # type: ignore[attr-defined]
+
+    ctx.session = Probe(ctx.session)  # type: ignore[assignment]
+    ctx.shutdown()
+    assert held == [True]
+
+
 SIGTERM_PROGRAM = r'''
 import signal, sys, time
 import ros2lite
