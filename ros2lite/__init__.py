@@ -146,21 +146,28 @@ def shutdown(*, context: Context | None = None, uninstall_handlers: bool | None 
     """Close the context's session, so its nodes leave the graph (RuntimeError if it is not
     initialised). Signal handlers are put back when `uninstall_handlers` says so, by default
     when it is the default context."""
-    from ros2lite.context import default_context, uninstall_signal_handlers
-
-    ctx = context or default_context()
-    ctx.shutdown()
-    if uninstall_handlers or (uninstall_handlers is None and ctx is default_context()):
-        uninstall_signal_handlers()
-
-
-def try_shutdown(*, context: Context | None = None, uninstall_handlers: bool | None = None) -> None:
-    """:func:`shutdown` if the context is still open."""
     from ros2lite.context import default_context
 
     ctx = context or default_context()
-    if ctx.ok() or ctx.session is not None:
-        shutdown(context=ctx, uninstall_handlers=uninstall_handlers)
+    ctx.shutdown()
+    _after_shutdown(ctx, uninstall_handlers)
+
+
+def try_shutdown(*, context: Context | None = None, uninstall_handlers: bool | None = None) -> None:
+    """:func:`shutdown` if the context is still open (one under way on another thread is
+    waited for, not repeated: :meth:`Context.try_shutdown`)."""
+    from ros2lite.context import default_context
+
+    ctx = context or default_context()
+    ctx.try_shutdown()
+    _after_shutdown(ctx, uninstall_handlers)
+
+
+def _after_shutdown(ctx: Context, uninstall_handlers: bool | None) -> None:
+    from ros2lite.context import default_context, uninstall_signal_handlers
+
+    if uninstall_handlers or (uninstall_handlers is None and ctx is default_context()):
+        uninstall_signal_handlers()
 
 
 def ok(*, context: Context | None = None) -> bool:

@@ -105,6 +105,28 @@ def test_shutdown_from_another_thread_ends_spin(ros_router: str) -> None:
     assert done.wait(3.0)
 
 
+def test_try_shutdown_beside_a_shutdown_on_another_thread(ros_router: str) -> None:
+    """try_shutdown() waits for a shutdown under way instead of starting a second one
+    (which would find the session gone and raise)."""
+    ctx = Context().init([])
+    Node('twice', context=ctx)
+    errors: list[BaseException] = []
+
+    def close() -> None:
+        try:
+            ros2lite.try_shutdown(context=ctx)
+        except BaseException as e:  # what the test looks for
+            errors.append(e)
+
+    threads = [threading.Thread(target=close) for _ in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(30)
+    assert errors == []
+    assert not ctx.ok()
+
+
 def test_process_exits_cleanly_without_shutdown(ros_router: str) -> None:
     # a live subscription's threads must not hang or abort the interpreter at exit
     import subprocess
