@@ -26,6 +26,8 @@ _DEMOS = {
     'rclpy_components': ['component_container', 'component_container_mt'],
     'rqt_graph': ['rqt_graph'],
     'teleop_twist_keyboard': ['teleop_twist_keyboard'],
+    'tf2_ros': ['static_transform_publisher', 'tf2_echo', 'tf2_monitor'],
+    'turtle_tf2_py': ['turtle_tf2_broadcaster', 'turtle_tf2_listener'],
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
 }
 BUNDLED: dict[str, dict[str, str]] = {

@@ -1,0 +1,54 @@
+"""tf2's Python tutorials, unchanged, in a shell set up by `eval "$(ros2lite env)"`: the
+static broadcaster's frame reaches a tf2_echo started after it, and the broadcaster and
+listener make turtle2 follow turtle1 in turtlesim."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+from pathlib import Path
+from typing import Any
+
+from tests.compat.test_tutorials import in_ros_shell
+from tests.demos.tf2_ros.test_tf2_ros import read_until
+from tests.demos.turtle_tf2_py.following import assert_turtle2_follows_turtle1
+
+
+def start(processes: Any, tmp_path: Path, program: str, *args: str) -> Any:
+    log = tmp_path / f'{program}{len(processes.procs)}.log'
+    env = {
+        k: v for k, v in os.environ.items() if k not in ('PYTHONPATH', 'DISPLAY', 'WAYLAND_DISPLAY')
+    }
+    return processes.start(
+        in_ros_shell(program, *args), stdout=log.open('w'), stderr=subprocess.STDOUT, env=env
+    )
+
+
+def test_static_broadcaster_reaches_a_later_tf2_echo(processes: Any, tmp_path: Path) -> None:
+    start(processes, tmp_path, 'static_turtle_tf2_broadcaster.py', 'mystaticturtle', '0', '0',
+          '1', '0', '0', '0')  # fmt: skip
+    echo = processes.cli('run', 'tf2_ros', 'tf2_echo', 'world', 'mystaticturtle')
+    block = read_until(echo, '  0.000  0.000  0.000  1.000\n', timeout=60)
+    assert block.endswith(
+        'At time 0.0\n'
+        '- Translation: [0.000, 0.000, 1.000]\n'
+        '- Rotation: in Quaternion [0.000, 0.000, 0.000, 1.000]\n'
+        '- Rotation: in RPY (radian) [0.000, -0.000, 0.000]\n'
+        '- Rotation: in RPY (degree) [0.000, -0.000, 0.000]\n'
+        '- Matrix:\n'
+        '  1.000  0.000  0.000  0.000\n'
+        '  0.000  1.000  0.000  0.000\n'
+        '  0.000  0.000  1.000  1.000\n'
+        '  0.000  0.000  0.000  1.000\n'
+    ), block
+
+
+def test_broadcaster_and_listener_make_turtle2_follow(
+    processes: Any, tmp_path: Path, ros_context: Any
+) -> None:
+    processes.cli('run', 'turtlesim', 'turtlesim_node', '--display', 'none')
+    for turtle in ('turtle1', 'turtle2'):
+        start(processes, tmp_path, 'turtle_tf2_broadcaster.py', '--ros-args', '-p',
+              f'turtlename:={turtle}')  # fmt: skip
+    start(processes, tmp_path, 'turtle_tf2_listener.py')
+    assert_turtle2_follows_turtle1(ros_context)
