@@ -27,7 +27,13 @@ _DEMOS = {
     'rqt_graph': ['rqt_graph'],
     'teleop_twist_keyboard': ['teleop_twist_keyboard'],
     'tf2_ros': ['static_transform_publisher', 'tf2_echo', 'tf2_monitor'],
-    'turtle_tf2_py': ['turtle_tf2_broadcaster', 'turtle_tf2_listener'],
+    'turtle_tf2_py': [
+        'dynamic_frame_tf2_broadcaster',
+        'fixed_frame_tf2_broadcaster',
+        'static_turtle_tf2_broadcaster',
+        'turtle_tf2_broadcaster',
+        'turtle_tf2_listener',
+    ],
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
 }
 BUNDLED: dict[str, dict[str, str]] = {

@@ -12,9 +12,12 @@ from ros2lite.node import Node
 from tests.spinning import spin_until
 
 
-def assert_turtle2_follows_turtle1(context: Any, timeout: float = 60.0) -> list[float]:
-    """The distance turtle2 -> turtle1 falls from turtle2's spawn point (about 3.9 m away)
-    to under 1 m; returns the distances seen, one per turtle2 pose."""
+def assert_turtle2_follows_turtle1(
+    context: Any, timeout: float = 60.0, offset: tuple[float, float] = (0.0, 0.0)
+) -> list[float]:
+    """The distance from turtle2 to turtle1 (or to the point `offset` in turtle1's frame)
+    falls from turtle2's spawn point, over 3 m away, to under 1 m; returns the distances
+    seen, one per turtle2 pose."""
     node = Node('follow_watcher', context=context)
     poses: dict[str, Pose] = {}
     distances: list[float] = []
@@ -24,7 +27,10 @@ def assert_turtle2_follows_turtle1(context: Any, timeout: float = 60.0) -> list[
             poses[name] = msg
             if name == 'turtle2' and 'turtle1' in poses:
                 leader = poses['turtle1']
-                distances.append(math.hypot(msg.x - leader.x, msg.y - leader.y))
+                c, s = math.cos(leader.theta), math.sin(leader.theta)
+                x = leader.x + c * offset[0] - s * offset[1]
+                y = leader.y + s * offset[0] + c * offset[1]
+                distances.append(math.hypot(msg.x - x, msg.y - y))
 
         return store
 
