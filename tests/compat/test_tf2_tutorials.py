@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 import subprocess
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -52,3 +53,30 @@ def test_broadcaster_and_listener_make_turtle2_follow(
               f'turtlename:={turtle}')  # fmt: skip
     start(processes, tmp_path, 'turtle_tf2_listener.py')
     assert_turtle2_follows_turtle1(ros_context)
+
+
+FACES = r'''
+import tf2_ros, tf2_ros.buffer, tf2_ros.transform_listener, tf2_ros.transform_broadcaster
+import tf2_ros.static_transform_broadcaster, rclpy.time
+import ros2lite.tf2 as lib
+assert tf2_ros.buffer.Buffer is tf2_ros.Buffer is lib.Buffer
+assert tf2_ros.transform_listener.TransformListener is lib.TransformListener
+assert tf2_ros.transform_broadcaster.TransformBroadcaster is lib.TransformBroadcaster
+assert tf2_ros.static_transform_broadcaster.StaticTransformBroadcaster is (
+    lib.StaticTransformBroadcaster
+)
+for name in ('TransformException', 'LookupException', 'ConnectivityException',
+             'ExtrapolationException', 'InvalidArgumentException', 'TimeoutException'):
+    assert getattr(tf2_ros, name) is getattr(lib, name)
+    assert issubclass(getattr(tf2_ros, name), tf2_ros.TransformException)
+print(rclpy.time.Duration(seconds=5.0).nanoseconds)
+'''
+
+
+def test_tf2_ros_faces_are_the_library() -> None:
+    env = {k: v for k, v in os.environ.items() if k != 'PYTHONPATH'}
+    line = f'eval "$({sys.executable} -m ros2lite env)" && exec {sys.executable} -c "$0"'
+    done = subprocess.run(
+        ['bash', '-c', line, FACES], capture_output=True, text=True, env=env, timeout=60
+    )
+    assert (done.returncode, done.stdout) == (0, '5000000000\n'), done.stderr
