@@ -253,15 +253,6 @@ class BufferCore:
         with self._lock:
             return [self._names[i] for i, c in enumerate(self._caches) if c is not None]
 
-    def get_frames(self) -> dict[str, str]:
-        """Each frame with a transform of its own -> its newest parent."""
-        with self._lock:
-            return {
-                self._names[i]: self._names[c.latest()[1]]
-                for i, c in enumerate(self._caches)
-                if c is not None
-            }
-
     # -- the walk -----------------------------------------------------------------------------
     def _walk(
         self, target: int, source: int, ns: int, with_transform: bool
