@@ -5,8 +5,10 @@ report."""
 
 from __future__ import annotations
 
+import queue
 import subprocess
 import sys
+import threading
 import time
 from typing import Any
 
@@ -88,22 +90,51 @@ def test_bad_command_lines_say_why() -> None:
         assert 'Traceback' not in got.stderr
 
 
+def _lines(proc: Any) -> queue.Queue[str | None]:
+    """The process's stdout lines, read by a thread (None once it ends), so that waiting for
+    them can time out."""
+    lines: queue.Queue[str | None] | None = getattr(proc, 'stdout_lines', None)
+    if lines is None:
+        lines = proc.stdout_lines = queue.Queue()
+
+        def pump() -> None:
+            for line in proc.stdout:
+                lines.put(line)
+            lines.put(None)
+
+        threading.Thread(target=pump, daemon=True).start()
+    return lines
+
+
 def read_until(proc: Any, text: str, timeout: float = 30) -> str:
-    """stdout of `proc` up to and including the first block that ends with `text`."""
+    """stdout of `proc` up to and including the first line that completes `text`."""
     seen = ''
     deadline = time.monotonic() + timeout
+    lines = _lines(proc)
     while not seen.endswith(text):
-        assert time.monotonic() < deadline, seen
-        line = proc.stdout.readline()
-        assert line, f'{seen}\n{proc.stderr.read()}'
+        try:
+            line = lines.get(timeout=max(0.0, deadline - time.monotonic()))
+        except queue.Empty:
+            raise AssertionError(f'no {text!r} within {timeout} s in:\n{seen}') from None
+        assert line is not None, f'{seen}\n(the process ended)'
         seen += line
     return seen
 
 
+def stderr_until(proc: Any, text: str) -> str:
+    """The first line of the process's stderr that contains `text`."""
+    seen = []
+    while True:
+        line = proc.stderr.readline()
+        assert line, '\n'.join(seen)
+        if text in line:
+            return line
+        seen.append(line)
+
+
 def test_static_transform_reaches_a_later_tf2_echo(processes: Any) -> None:
     publisher = processes.cli('run', 'tf2_ros', 'static_transform_publisher', *NEW_STYLE)
-    line = publisher.stderr.readline()
-    assert 'Spinning until stopped - publishing transform' in line, line
+    stderr_until(publisher, 'Spinning until stopped - publishing transform')
     lines = [publisher.stderr.readline().rstrip('\n') for _ in range(3)]
     assert lines == [
         "translation: ('1.000000', '2.000000', '3.000000')",
@@ -125,7 +156,7 @@ def test_static_transform_reaches_a_later_tf2_echo(processes: Any) -> None:
         'run', 'tf2_ros', 'static_transform_publisher', '0', '0', '1', '0', '0', '0', 'robot',
         'camera',
     )  # fmt: skip
-    assert 'Old-style arguments are deprecated' in old.stderr.readline()
+    stderr_until(old, 'Old-style arguments are deprecated; see --help for new-style arguments')
     chained = processes.cli('run', 'tf2_ros', 'tf2_echo', 'world', 'camera')
     block = read_until(chained, '  0.000  0.000  0.000  1.000\n')
     assert '- Translation: [1.218, 1.963, 3.975]\n' in block  # robot's z axis, 1 m along
