@@ -188,3 +188,36 @@ def test_monitor_report(ros_context: Any, capsys: Any) -> None:
         and ' Hz, Average Delay: ' in lines[8]
     )
     assert err == '\nAll Broadcasters:\n'
+
+
+def test_monitor_of_two_frames(ros_context: Any, capsys: Any) -> None:
+    from ros2lite.demos.tf2_ros.tf2_monitor import Tf2Monitor
+
+    monitor = Tf2Monitor('base', 'map', context=ros_context)
+    try:
+        monitor.tick()  # nothing known yet: it waits, saying why
+        assert not monitor.gathering
+        now = monitor.get_clock().now().to_msg()  # one time: a lookup needs a shared one
+        for child, parent in (('base', 'odom'), ('odom', 'map')):
+            t = TransformStamped(child_frame_id=child)
+            t.header.frame_id = parent
+            t.header.stamp = now
+            monitor.buffer.set_transform(t, 'test')
+            monitor.on_message(TFMessage(transforms=[t]))
+        for _ in range(21):
+            monitor.tick()
+    finally:
+        monitor.listener.unregister()
+        monitor.destroy_node()
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[:5] == [
+        'Gathering data on base -> map for 10 seconds...',
+        '',
+        '',
+        '',
+        'RESULTS: for base to map',
+    ]
+    assert lines[5] == 'Chain is: base -> odom -> map'
+    assert lines[6].startswith('Net delay     avg = ') and ': max = ' in lines[6]
+    assert [line.split(',')[0] for line in lines[9:11]] == ['Frame: base', 'Frame: odom']
+    assert lines[11].startswith('Node: <no authority available> ')
