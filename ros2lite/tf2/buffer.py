@@ -514,7 +514,7 @@ class BufferCore:
             _raise(code, message)
         return Time(nanoseconds=ns)
 
-    def _chain(
+    def chain(
         self,
         target_frame: str,
         target_time: object,
@@ -532,6 +532,8 @@ class BufferCore:
         if first and second and first[-1] == second[0]:
             second = second[1:]
         return [self._names[f] for f in first + second]
+
+    _chain = chain  # tf2_py's name
 
     def _path(self, target: int, source: int, ns: int) -> list[int]:
         """The frames a walk passes from source to target (lock held)."""

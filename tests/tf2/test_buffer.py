@@ -198,7 +198,7 @@ def test_full_lookup_through_a_fixed_frame() -> None:
     tr = t.transform.translation
     # tool at 10 s in world: (10, 10, 1); arm at 12 s in world: (12, 12, 0)
     assert (tr.x, tr.y, tr.z) == (-2.0, -2.0, 1.0)
-    assert b._chain('world', 0, 'tool', 0, 'world') == ['tool', 'arm', 'base', 'world']
+    assert b.chain('world', 0, 'tool', 0, 'world') == ['tool', 'arm', 'base', 'world']
 
 
 def test_frames_as_text() -> None:

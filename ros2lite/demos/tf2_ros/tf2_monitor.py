@@ -84,7 +84,7 @@ class Tf2Monitor(Node):
                 )
                 return False
             try:
-                self.chain = self.buffer._chain(
+                self.chain = self.buffer.chain(
                     self.frame_b, Time(), self.frame_a, Time(), self.frame_b
                 )
             except TransformException as e:
