@@ -24,6 +24,7 @@ _DEMOS = {
     'lifecycle': ['lifecycle_listener'],
     'lifecycle_py': ['lifecycle_talker'],
     'rclpy_components': ['component_container', 'component_container_mt'],
+    'rqt_console': ['rqt_console'],
     'rqt_graph': ['rqt_graph'],
     'teleop_twist_keyboard': ['teleop_twist_keyboard'],
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
