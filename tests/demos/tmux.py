@@ -69,8 +69,9 @@ class TmuxPane:
         """The program's exit status, once it has ended."""
 
         def status() -> str:
+            # '1 <status>' once it ended (the status may lag a moment behind the '1')
             fields = self._tmux('list-panes', '-F', '#{pane_dead} #{pane_dead_status}').split()
-            return fields[1] if fields[0] == '1' else ''  # the status shows once it ended
+            return fields[1] if fields[:1] == ['1'] and len(fields) > 1 else ''
 
         return int(wait_until(status, timeout))
 
