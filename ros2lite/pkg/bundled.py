@@ -27,6 +27,7 @@ _DEMOS = {
     'rqt_console': ['rqt_console'],
     'rqt_graph': ['rqt_graph'],
     'teleop_twist_keyboard': ['teleop_twist_keyboard'],
+    'tf2_tools': ['view_frames'],
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
 }
 BUNDLED: dict[str, dict[str, str]] = {

@@ -36,9 +36,10 @@ class GraphWindow:
         c.configure(width=width, height=height)
         for _, target, points in lay.edges:
             flat = [v for point in points for v in point]
-            # an edge's label is on the edge: the arrow ends at the vertex after it
-            arrow = 'none' if lay.boxes[target].is_note else 'last'
-            c.create_line(*flat, arrow=arrow, fill='black', width=1.2)
+            if lay.boxes[target].is_note:  # an edge's label: the arrow ends past it
+                c.create_line(*flat, fill='black', width=1.2)
+            else:
+                c.create_line(*flat, arrow='last', fill='black', width=1.2)
         for box in lay.boxes.values():
             corners = (box.x - box.w / 2, box.y - box.h / 2, box.x + box.w / 2, box.y + box.h / 2)
             if box.is_note:
