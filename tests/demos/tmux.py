@@ -65,7 +65,7 @@ class TmuxPane:
             literal = key not in ('Enter', 'Escape', 'C-c')
             self._tmux('send-keys', *(['-l'] if literal else []), key)
 
-    def exit_status(self, timeout: float = 15.0) -> int:
+    def exit_status(self, timeout: float = 30.0) -> int:
         """The program's exit status, once it has ended."""
 
         def status() -> str:

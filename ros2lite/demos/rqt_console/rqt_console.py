@@ -8,7 +8,6 @@ line and changed while it runs; a pause holds the picture while messages are sti
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 import time
 from collections.abc import Callable
@@ -68,12 +67,13 @@ def print_lines(console: Console, ok: Callable[[], bool]) -> None:
 
 def run(console: Console, display: str) -> None:
     """Listen to `/rosout` with a node of our own (named as rqt's node is) and show it."""
+    from ros2lite.demos.runner import rqt_node_name
     from ros2lite.demos.teleop.spinning import BackgroundSpin
     from ros2lite.msgs.rcl_interfaces.msg import Log
     from ros2lite.node import Node
     from ros2lite.qos import qos_profile_rosout_default
 
-    node = Node(f'rqt_gui_py_node_{os.getpid()}')
+    node = Node(rqt_node_name())
     node.create_subscription(Log, '/rosout', console.add, qos_profile_rosout_default)
     try:
         with BackgroundSpin(node):

@@ -49,9 +49,10 @@ def render_lines(graph: Graph) -> list[list[tuple[str, str]]]:
         for y in range(mid, y1 + 1):
             put(x1, y, '│', 'edge')
         if x0 != x1:
-            for x in range(min(x0, x1), max(x0, x1)):
+            for x in range(min(x0, x1) + 1, max(x0, x1)):
                 put(x, mid, '─', 'edge')
-            put(x0, mid, '╰' if x1 > x0 else '╯', 'edge')
+            # children on both sides of their parent share a junction: ┴
+            put(x0, mid, '┴' if grid[mid][x0][0] in '╰╯┴' else '╰' if x1 > x0 else '╯', 'edge')
             put(x1, mid, '╮' if x1 > x0 else '╭', 'edge')
         if not lay.boxes[target].is_note:
             put(x1, y1, '▼', 'edge')

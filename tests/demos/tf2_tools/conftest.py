@@ -7,6 +7,7 @@ from typing import Any
 
 BROADCASTER = r'''
 import ros2lite
+from ros2lite.executors import ExternalShutdownException
 from ros2lite.msgs.geometry_msgs.msg import TransformStamped
 from ros2lite.node import Node
 from ros2lite.tf2 import StaticTransformBroadcaster, TransformBroadcaster
@@ -30,7 +31,7 @@ with ros2lite.init():
     print('broadcasting', flush=True)
     try:
         ros2lite.spin(node)
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, ExternalShutdownException):
         pass
 '''
 FRAMES = ('world', 'turtle1', 'turtle2', 'carrot1')
