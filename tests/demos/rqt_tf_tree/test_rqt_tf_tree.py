@@ -90,7 +90,7 @@ def test_window(processes: Any, xdisplay: str) -> None:
     assert proc.returncode == 0
 
 
-NODE_COLOUR_RGB = tuple(int(NODE_COLOUR[i : i + 2], 16) for i in (1, 3, 5))
+NODE_COLOUR_RGB = (int(NODE_COLOUR[1:3], 16), int(NODE_COLOUR[3:5], 16), int(NODE_COLOUR[5:7], 16))
 
 
 def test_no_display_prints_the_dot(processes: Any) -> None:
