@@ -29,6 +29,14 @@ _DEMOS = {
     'rqt_tf_tree': ['rqt_tf_tree'],
     'teleop_twist_keyboard': ['teleop_twist_keyboard'],
     'tf2_tools': ['view_frames'],
+    'tf2_ros': ['static_transform_publisher', 'tf2_echo', 'tf2_monitor'],
+    'turtle_tf2_py': [
+        'dynamic_frame_tf2_broadcaster',
+        'fixed_frame_tf2_broadcaster',
+        'static_turtle_tf2_broadcaster',
+        'turtle_tf2_broadcaster',
+        'turtle_tf2_listener',
+    ],
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
 }
 BUNDLED: dict[str, dict[str, str]] = {

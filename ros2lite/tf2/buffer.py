@@ -14,12 +14,14 @@ import time as _time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from ros2lite.clock import Clock, JumpThreshold
 from ros2lite.duration import Duration
 from ros2lite.logging import get_logger
 from ros2lite.msgs.builtin_interfaces.msg import Time as TimeMsg
 from ros2lite.msgs.geometry_msgs.msg import Quaternion, TransformStamped, Vector3
 from ros2lite.msgs.geometry_msgs.msg import Transform as TransformMsg
 from ros2lite.msgs.std_msgs.msg import Header
+from ros2lite.msgs.tf2_msgs.srv import FrameGraph
 from ros2lite.task import Future
 from ros2lite.tf2.cache import FrameCache, StaticCache, TimeCache, display_time
 from ros2lite.tf2.errors import (
@@ -250,15 +252,6 @@ class BufferCore:
         """The frames that have a transform of their own (not bare parents)."""
         with self._lock:
             return [self._names[i] for i, c in enumerate(self._caches) if c is not None]
-
-    def get_frames(self) -> dict[str, str]:
-        """Each frame with a transform of its own -> its newest parent."""
-        with self._lock:
-            return {
-                self._names[i]: self._names[c.latest()[1]]
-                for i, c in enumerate(self._caches)
-                if c is not None
-            }
 
     # -- the walk -----------------------------------------------------------------------------
     def _walk(
@@ -642,17 +635,12 @@ class Buffer(BufferCore):
         self._waiting = 0
         self._new_data_callbacks: list[Callable[[], None]] = []
         self._callbacks_lock = threading.RLock()
+        self.clock: Clock
         if node is not None:
-            from ros2lite.msgs.tf2_msgs.srv import FrameGraph
-
             self.srv = node.create_service(FrameGraph, 'tf2_frames', self._get_frames)
             self.clock = node.get_clock()
         else:
-            from ros2lite.clock import Clock
-
             self.clock = Clock()
-        from ros2lite.clock import JumpThreshold
-
         threshold = JumpThreshold(
             min_forward=None, min_backward=Duration(seconds=-1), on_clock_change=True
         )

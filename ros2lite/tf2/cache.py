@@ -64,17 +64,22 @@ class TimeCache:
         stamps = self._stamps
         if len(stamps) > self._start:
             latest = stamps[-1]
-            self._prune(latest)
+            if stamps[self._start] + self._cache_ns < latest:
+                self._prune(latest)
             if stamp < latest - self._cache_ns:
                 return False
+            if stamp > latest:  # the usual case: the newest sample goes at the end
+                stamps.append(stamp)
+                self._parents.append(parent)
+                self._values.extend(translation)
+                self._values.extend(rotation)
+                return True
         values = (*translation, *rotation)
         at = bisect_right(stamps, stamp, self._start)
         same = at - 1
         while same >= self._start and stamps[same] == stamp:
-            if (
-                self._parents[same] == parent
-                and tuple(self._values[same * 7 : same * 7 + 7]) == values
-            ):
+            stored = tuple(self._values[same * 7 : same * 7 + 7])
+            if self._parents[same] == parent and stored == values:
                 return True
             same -= 1
         if at == len(stamps):

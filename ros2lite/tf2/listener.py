@@ -8,7 +8,9 @@ import threading
 from typing import TYPE_CHECKING
 
 from ros2lite.callback_groups import ReentrantCallbackGroup
+from ros2lite.executors import ExternalShutdownException, SingleThreadedExecutor
 from ros2lite.msgs.tf2_msgs.msg import TFMessage
+from ros2lite.node import Node
 from ros2lite.qos import QoSProfile
 from ros2lite.tf2.qos import (
     TF_STATIC_TOPIC,
@@ -18,8 +20,6 @@ from ros2lite.tf2.qos import (
 )
 
 if TYPE_CHECKING:
-    from ros2lite.executors import SingleThreadedExecutor
-    from ros2lite.node import Node
     from ros2lite.tf2.buffer import BufferCore
 
 __all__ = ['TransformListener']
@@ -51,9 +51,7 @@ class TransformListener:
         self.dedicated_listener_thread: threading.Thread | None = None
         listening = node
         if spin_thread:
-            from ros2lite.node import Node as _Node
-
-            listening = _Node(
+            listening = Node(
                 f'transform_listener_impl_{secrets.token_hex(6)}',
                 context=node.context,
                 start_parameter_services=False,
@@ -75,8 +73,6 @@ class TransformListener:
             callback_group=self.group,
         )
         if spin_thread:
-            from ros2lite.executors import SingleThreadedExecutor
-
             self.executor = SingleThreadedExecutor(context=node.context)
             self.executor.add_node(listening)
             self.dedicated_listener_thread = threading.Thread(
@@ -85,8 +81,6 @@ class TransformListener:
             self.dedicated_listener_thread.start()
 
     def _spin(self) -> None:
-        from ros2lite.executors import ExternalShutdownException
-
         assert self.executor is not None
         with contextlib.suppress(ExternalShutdownException):
             self.executor.spin()
