@@ -9,6 +9,7 @@ import sys
 import time
 
 from ros2lite.demos.display import own_arguments
+from ros2lite.tf2.qos import TF_STATIC_TOPIC, TF_TOPIC
 
 
 def view(options: argparse.Namespace) -> None:
@@ -21,7 +22,10 @@ def view(options: argparse.Namespace) -> None:
     from ros2lite.node import Node
     from ros2lite.tf2 import Buffer, TransformListener
 
-    node = Node('view_frames')
+    # other topics are remaps of the listener's: the node's own rules, as `-r` would give
+    remaps = [(TF_TOPIC, options.tf_topic), (TF_STATIC_TOPIC, options.tf_static_topic)]
+    rules = [arg for old, new in remaps if new != old for arg in ('-r', f'{old}:={new}')]
+    node = Node('view_frames', cli_args=['--ros-args', *rules] if rules else None)
     buffer = Buffer(node=node)  # serves tf2_frames too, as tf2_ros's buffer with a node does
     TransformListener(buffer, node)
     log = node.get_logger()
@@ -81,6 +85,10 @@ def main(args: list[str] | None = None) -> int:
         help='Listen to the /tf topic for this many seconds before rendering the frame tree',
     )
     parser.add_argument('-o', '--output', help='Output filename')
+    parser.add_argument('--tf_topic', default=TF_TOPIC, help='Topic for dynamic transforms')
+    parser.add_argument(
+        '--tf_static_topic', default=TF_STATIC_TOPIC, help='Topic for static transforms'
+    )
     options = parser.parse_args(own_arguments(args))
     return run_main(lambda: view(options), args)
 

@@ -42,11 +42,17 @@ def test_view_frames_writes_both_files(processes: Any, tmp_path: Path) -> None:
     assert all(frame in words for frame in FRAMES), words
     assert ink(pdf) > 500
 
+    # -o names both files; --tf_topic listens elsewhere (nothing moves there: the static
+    # frame alone is left)
     named = subprocess.run(
-        [*VIEW_FRAMES, '-t', '0.5', '-o', str(tmp_path / 'tree')], capture_output=True, text=True
+        [*VIEW_FRAMES, '-t', '1', '-o', str(tmp_path / 'tree'), '--tf_topic', '/elsewhere'],
+        capture_output=True,
+        text=True,
     )
     assert named.returncode == 0, named.stderr
-    assert (tmp_path / 'tree.gv').exists() and (tmp_path / 'tree.pdf').exists()
+    assert (tmp_path / 'tree.pdf').exists()
+    dot = (tmp_path / 'tree.gv').read_text()
+    assert '"world" -> "turtle2"' in dot and 'turtle1' not in dot
 
 
 def test_bad_input() -> None:
