@@ -8,6 +8,7 @@ invalid remapped name — become one line on stderr and status 1.
 
 from __future__ import annotations
 
+import os
 import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING
@@ -38,3 +39,8 @@ def run_main(body: Callable[[], object], args: list[str] | None = None) -> int:
         print(str(e), file=sys.stderr, flush=True)
         return 1
     return 0
+
+
+def rqt_node_name() -> str:
+    """The name of the node an rqt tool runs (rqt's own: one per process)."""
+    return f'rqt_gui_py_node_{os.getpid()}'

@@ -24,8 +24,11 @@ _DEMOS = {
     'lifecycle': ['lifecycle_listener'],
     'lifecycle_py': ['lifecycle_talker'],
     'rclpy_components': ['component_container', 'component_container_mt'],
+    'rqt_console': ['rqt_console'],
     'rqt_graph': ['rqt_graph'],
+    'rqt_tf_tree': ['rqt_tf_tree'],
     'teleop_twist_keyboard': ['teleop_twist_keyboard'],
+    'tf2_tools': ['view_frames'],
     'tf2_ros': ['static_transform_publisher', 'tf2_echo', 'tf2_monitor'],
     'turtle_tf2_py': [
         'dynamic_frame_tf2_broadcaster',

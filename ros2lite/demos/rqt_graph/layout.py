@@ -23,6 +23,7 @@ class Box:
     y: float
     w: float
     h: float
+    is_note: bool = False  # bare text (an edge's label), see Graph.notes
 
 
 @dataclass(frozen=True)
@@ -42,16 +43,19 @@ def layout(
     node_gap: float,
     margin: float,
 ) -> Layout:
-    """Lay `graph` out left to right: layers `layer_gap` apart, boxes `node_gap` apart."""
+    """Lay `graph` out left to right (or top down, as it says): layers `layer_gap` apart,
+    boxes `node_gap` apart."""
     from grandalf.graphs import Edge, Vertex
     from grandalf.graphs import Graph as GGraph
     from grandalf.layouts import SugiyamaLayout
     from grandalf.routing import route_with_lines
 
+    across = not graph.top_down
+
     class View:
         def __init__(self, w: float, h: float) -> None:
             # grandalf lays out top-down; swapping w and h and then x and y gives left-right
-            self.w, self.h = h, w
+            self.w, self.h = (h, w) if across else (w, h)
             self.xy = (0.0, 0.0)
 
     class EdgeView:
@@ -62,8 +66,9 @@ def layout(
             self.points = list(points)
 
     topics = set(graph.topics)
+    notes = set(graph.notes)
     vertices = {}
-    for name in (*graph.nodes, *graph.topics):
+    for name in (*graph.nodes, *graph.topics, *graph.notes):
         v = Vertex(name)
         v.view = View(*size(name, name in topics))
         vertices[name] = v
@@ -89,18 +94,23 @@ def layout(
             placed[v.data] = (v.view.xy[0] - top + offset, v.view.xy[1])
             shift[v.data] = offset - top
         offset += max(v.view.xy[0] + v.view.w / 2 for v in component.sV) - top + node_gap
-    # transpose (layers become columns), shift into the margin
+    # left to right: transpose (layers become columns); then shift into the margin
     ys = [placed[n][1] - vertices[n].view.h / 2 for n in placed] or [0.0]
     left = min(ys)
+
+    def point(gx: float, gy: float) -> tuple[float, float]:
+        return (gy - left + margin, gx + margin) if across else (gx + margin, gy - left + margin)
+
     boxes = {}
     for name, (gx, gy) in placed.items():
-        w, h = vertices[name].view.h, vertices[name].view.w
-        boxes[name] = Box(name, name in topics, gy - left + margin, gx + margin, w, h)
+        view = vertices[name].view
+        w, h = (view.h, view.w) if across else (view.w, view.h)
+        boxes[name] = Box(name, name in topics, *point(gx, gy), w, h, is_note=name in notes)
     paths = []
     for e in edges:
         s, t = e.v[0].data, e.v[1].data
         dx = shift[s]
-        points = [(py - left + margin, px + dx + margin) for px, py in e.view.points]
+        points = [point(px + dx, py) for px, py in e.view.points]
         if len(points) < 2:
             points = [(boxes[s].x, boxes[s].y), (boxes[t].x, boxes[t].y)]
         paths.append((s, t, tuple(points)))

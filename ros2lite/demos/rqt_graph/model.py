@@ -37,11 +37,26 @@ class Options:
 
 @dataclass(frozen=True)
 class Graph:
-    """What to draw: node and topic names, and edges (source, target) between them."""
+    """What to draw: node and topic names, and edges (source, target) between them.
+
+    Other pictures laid out the same way (rqt_tf_tree's frames) add `notes`, vertices drawn as
+    bare text (an edge's label, placed on the edge as Graphviz places its labels), `labels`
+    where the text shown differs from a vertex's name (several lines too), and may run
+    `top_down` instead of left to right."""
 
     nodes: tuple[str, ...]
     topics: tuple[str, ...]
     edges: tuple[tuple[str, str], ...] = field(default=())
+    notes: tuple[str, ...] = ()
+    labels: tuple[tuple[str, str], ...] = ()  # (name, text shown)
+    top_down: bool = False
+
+    def text(self, name: str) -> str:
+        """What the vertex `name` shows."""
+        for key, text in self.labels:
+            if key == name:
+                return text
+        return name
 
 
 def build(nodes: Iterable[str], endpoints: Iterable[Endpoint], options: Options) -> Graph:

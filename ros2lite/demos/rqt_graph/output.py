@@ -10,6 +10,7 @@ from ros2lite.demos.rqt_graph.model import Graph
 FONT_SIZE = 14
 CHAR_WIDTH = 8.4  # px per character at FONT_SIZE, for sizing the boxes
 BOX_HEIGHT = 36
+LINE_HEIGHT = 17  # px between the lines of a label of several
 NODE_COLOUR = '#1f4e79'
 TOPIC_COLOUR = '#7f3f00'
 
@@ -32,15 +33,22 @@ def to_dot(graph: Graph) -> str:
     return '\n'.join(lines) + '\n'
 
 
-def pixel_size(name: str, is_topic: bool) -> tuple[float, float]:
+def pixel_size(text: str, is_topic: bool) -> tuple[float, float]:
     """A label's box in pixels (ellipses need more room than boxes for the same text)."""
-    width = len(name) * CHAR_WIDTH + (24 if is_topic else 40)
-    return (width, BOX_HEIGHT)
+    lines = text.split('\n')
+    width = max(len(line) for line in lines) * CHAR_WIDTH + (24 if is_topic else 40)
+    return (width, BOX_HEIGHT + (len(lines) - 1) * LINE_HEIGHT)
 
 
 def pixel_layout(graph: Graph) -> Layout:
     """The graph laid out in pixels (the SVG's and the window's sizes)."""
-    return layout(graph, pixel_size, layer_gap=70, node_gap=24, margin=16)
+    return layout(
+        graph,
+        lambda name, is_topic: pixel_size(graph.text(name), is_topic),
+        layer_gap=70 if not graph.top_down else 40,
+        node_gap=24,
+        margin=16,
+    )
 
 
 def to_svg(graph: Graph) -> str:

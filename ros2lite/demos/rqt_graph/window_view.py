@@ -12,12 +12,13 @@ from ros2lite.demos.rqt_graph.output import NODE_COLOUR, TOPIC_COLOUR, pixel_lay
 
 
 class GraphWindow:
-    """A window titled `rqt_graph`; `run` until closed, `ok()` turns False or Ctrl-C."""
+    """A window titled `title` (rqt_graph's own, or another tool's drawing a graph); `run`
+    until closed, `ok()` turns False or Ctrl-C."""
 
-    def __init__(self) -> None:
+    def __init__(self, title: str = 'rqt_graph') -> None:
         import tkinter
 
-        self.root = open_window('rqt_graph', 'rqt_graph')
+        self.root = open_window(title, title)
         self.canvas = tkinter.Canvas(self.root, background='white', highlightthickness=0)
         self.canvas.pack(fill='both', expand=True)
         self.closed = False
@@ -33,16 +34,21 @@ class GraphWindow:
         c.delete('all')
         width, height = int(max(lay.width, 200)), int(max(lay.height, 100))
         c.configure(width=width, height=height)
-        for _, _, points in lay.edges:
+        for _, target, points in lay.edges:
             flat = [v for point in points for v in point]
-            c.create_line(*flat, arrow='last', fill='black', width=1.2)
+            if lay.boxes[target].is_note:  # an edge's label: the arrow ends past it
+                c.create_line(*flat, fill='black', width=1.2)
+            else:
+                c.create_line(*flat, arrow='last', fill='black', width=1.2)
         for box in lay.boxes.values():
             corners = (box.x - box.w / 2, box.y - box.h / 2, box.x + box.w / 2, box.y + box.h / 2)
-            if box.is_topic:
+            if box.is_note:
+                c.create_rectangle(*corners, fill='white', outline='')
+            elif box.is_topic:
                 c.create_rectangle(*corners, fill='white', outline=TOPIC_COLOUR, width=1.5)
             else:
                 c.create_oval(*corners, fill='white', outline=NODE_COLOUR, width=1.5)
-            c.create_text(box.x, box.y, text=box.name, fill='black')
+            c.create_text(box.x, box.y, text=graph.text(box.name), fill='black', justify='center')
 
     def run(self, current: Callable[[], Graph], ok: Callable[[], bool], period: float) -> None:
         """Redraw whenever `current()` changes, every `period` s, until closed or not `ok()`."""
