@@ -16,6 +16,7 @@ import click
 
 from ..common import connect
 from ..errors import CliError
+from ..parsing import command
 from .common import component_options, load
 
 START_TIMEOUT = 30.0  # a container that has not come up by then is given up on
@@ -40,7 +41,7 @@ def _container_command(package: str, plugin: str, name: str) -> list[str]:
     return exe.command(['--ros-args', '-r', f'__node:={name}'])
 
 
-@click.command('standalone')
+@command('standalone')
 @component_options
 @click.option(
     '-c',
