@@ -3,8 +3,8 @@ with a parser that keeps the habits of ros2cli's argparse that hands and scripts
 
 - A word is an option when argparse would take it for one: a known option (also with
   `=value`), an unambiguous prefix of a long option (`--include-warning`), or any other word
-  starting with `-` but a negative number (`-5`, `-1.5`, `-.5`: values, unless the command
-  has an option spelled like one) or a word with a space in it.
+  starting with `-` but a negative number (`-5`, `-1.5`, `-1e-3`: values, unless the
+  command has an option spelled like one, as `topic pub -1`) or a word with a space in it.
 - An option taking a value never takes an option as its value (`-o --all` is a usage error);
   a negative number is a value (`-r -1`).
 - `ManyValues` takes every following word up to the next option or `--` (argparse's
@@ -26,8 +26,11 @@ from click.parser import _Option, _OptionParser, _ParsingState
 
 F = TypeVar('F', bound=Callable[..., Any])
 
-# what argparse (Python 3.12, as ROS 2 Jazzy runs it) takes for a negative number
-NEGATIVE_NUMBER = re.compile(r'^-\d+$|^-\d*\.\d+$')
+# a negative number: argparse's (`-5`, `-1.5`, `-.5`) and the other words float() reads
+# (`-1e-3`, `-inf`), which argparse refuses as unknown options, so no ros2cli line changes
+NEGATIVE_NUMBER = re.compile(
+    r'-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?|-(inf|infinity|nan)', re.IGNORECASE
+)
 
 
 class Option(click.Option):
@@ -75,12 +78,12 @@ class _Parser(_OptionParser):
             return True
         if arg == '--' or (arg.startswith('--') and self._candidates(name)):
             return True
-        if NEGATIVE_NUMBER.match(arg) and not self._has_negative_options():
+        if NEGATIVE_NUMBER.fullmatch(arg) and not self._has_negative_options():
             return False
         return ' ' not in arg
 
     def _has_negative_options(self) -> bool:
-        return any(NEGATIVE_NUMBER.match(o) for o in (*self._long_opt, *self._short_opt))
+        return any(NEGATIVE_NUMBER.fullmatch(o) for o in (*self._long_opt, *self._short_opt))
 
     def _candidates(self, prefix: str) -> list[str]:
         """The long options `prefix` abbreviates, one spelling per option."""

@@ -94,8 +94,8 @@ def test_negative_numbers_are_values(run: Callable[..., Result]) -> None:
     from ros2lite.cli.param.set import cli as param_set
     from ros2lite.cli.topic.pub import cli as pub
 
-    got = params(param_set, '/node', 'a', '-5', 'b', '-1.5', 'c', '-.5')
-    assert got['params_and_values'] == ('a', '-5', 'b', '-1.5', 'c', '-.5')
+    got = params(param_set, '/node', 'a', '-5', 'b', '-1.5', 'c', '-.5', 'd', '-1e-3')
+    assert got['params_and_values'] == ('a', '-5', 'b', '-1.5', 'c', '-.5', 'd', '-1e-3')
     # ... unless the command has an option spelled like one (`topic pub -1`), as in argparse
     assert params(pub, '/t', 'std_msgs/msg/String', '-1')['once'] is True
     refused = run('topic', 'pub', '-r', '-1', '/t', 'std_msgs/msg/String')
