@@ -153,7 +153,9 @@ class _Parser(_OptionParser):
         """Hand `option` its value(s): `explicit` (`--opt=v`, `-ov`) or the next words."""
         if not option.takes_value:
             if explicit is not None:
-                raise click.BadOptionUsage(name, f'Option {name!r} does not take a value.')
+                raise click.BadOptionUsage(
+                    name, f'Option {name!r} does not take a value.', ctx=self.ctx
+                )
             option.process(None, state)  # a flag's constant or count: no value to pass
             return
         obj = option.obj

@@ -187,3 +187,14 @@ def test_only_parsing_subclasses_clicks_parsing_classes() -> None:
                 clicks = text.removeprefix('click.') if text.startswith('click.') else None
                 clicks = clicks or from_click.get(text)
                 assert clicks not in names, f'{file}: {node.name}({text})'
+
+
+def test_use_python_default_buffering(run: Callable[..., Result]) -> None:
+    """ros2cli's root flag: stdout keeps Python's buffering instead of a flush per line."""
+    import sys
+
+    assert not sys.stdout.line_buffering  # pytest's capture starts block-buffered
+    assert run('--use-python-default-buffering', 'extension_points').code == 0
+    assert not sys.stdout.line_buffering
+    assert run('extension_points').code == 0
+    assert sys.stdout.line_buffering
