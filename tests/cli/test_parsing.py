@@ -162,7 +162,7 @@ def test_every_command_uses_the_shared_classes() -> None:
     assert {'ros2lite pkg create', 'ros2lite bag record', 'ros2lite run'} <= set(paths)
 
 
-def test_only_parsing_subclasses_clicks_parsing_classes() -> None:
+def test_cli_parsing_in_one_place() -> None:
     """One place parses: no other module subclasses click's Command/Group/Option/Parameter
     or reaches into click's parser."""
     cli_dir = Path(parsing.__file__).parent
