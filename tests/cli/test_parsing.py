@@ -104,7 +104,7 @@ def test_negative_numbers_are_values(run: Callable[..., Result]) -> None:
     refused = run('bag', 'record', '-o', '--all')
     assert refused.code == 2 and "Option '-o' requires an argument." in refused.err
     unknown = run('param', 'set', '/node', 'a', '-x')
-    assert unknown.code == 2 and "No such option '-x'" in unknown.err
+    assert unknown.code == 2 and 'No such option' in unknown.err and '-x' in unknown.err
     assert params(param_set, '/node', 'a', '--', '-x')['params_and_values'][-1] == '-x'
 
 
