@@ -7,6 +7,7 @@ from __future__ import annotations
 import click
 
 from .errors import CliError
+from .parsing import command
 
 _WORDS = {'msg': 'message', 'srv': 'service'}
 _FLAGS = {'msg': '-m', 'srv': '-s'}
@@ -42,7 +43,7 @@ def _names(kind: str, package: str) -> list[str]:
 def list_verb(kind: str) -> click.Command:
     """`<kind> list`: every type of that kind, sorted by package and name."""
 
-    @click.command('list', help=verbs(kind)['list'] + '.')
+    @command('list', help=verbs(kind)['list'] + '.')
     def cli() -> None:
         from ros2lite.interfaces import list_interfaces
 
@@ -57,7 +58,7 @@ def list_verb(kind: str) -> click.Command:
 def package_verb(kind: str) -> click.Command:
     """`<kind> package NAME`: the types of that kind in one package."""
 
-    @click.command('package', help=verbs(kind)['package'] + '.')
+    @command('package', help=verbs(kind)['package'] + '.')
     @click.argument('package_name')
     def cli(package_name: str) -> None:
         _deprecated(kind, f'package {package_name}')
@@ -70,7 +71,7 @@ def package_verb(kind: str) -> click.Command:
 def packages_verb(kind: str) -> click.Command:
     """`<kind> packages`: the packages that define types of that kind."""
 
-    @click.command('packages', help=verbs(kind)['packages'] + '.')
+    @command('packages', help=verbs(kind)['packages'] + '.')
     def cli() -> None:
         from ros2lite.interfaces import list_interfaces
 
@@ -85,7 +86,7 @@ def packages_verb(kind: str) -> click.Command:
 def show_verb(kind: str) -> click.Command:
     """`<kind> show TYPE`: the definition file as written."""
 
-    @click.command('show', help=verbs(kind)['show'] + '.')
+    @command('show', help=verbs(kind)['show'] + '.')
     @click.argument('type_name', metavar='TYPE')
     def cli(type_name: str) -> None:
         from ros2lite.interfaces.registry import default_registry

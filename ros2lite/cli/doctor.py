@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import click
 
+from .parsing import command
 
-@click.command('doctor')
+
+@command('doctor')
 @click.option('-r', '--report', is_flag=True, help='Print all reports.')
 @click.option(
     '-rf',

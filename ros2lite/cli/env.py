@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import click
 
+from .parsing import command
 
-@click.command('env')
+
+@command('env')
 @click.option(
     '--shell',
     type=click.Choice(['bash', 'zsh', 'fish']),

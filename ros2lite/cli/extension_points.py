@@ -9,8 +9,10 @@ from __future__ import annotations
 
 import click
 
+from . import parsing
 
-@click.command('extension_points')
+
+@parsing.command('extension_points')
 @click.option(
     '-a',
     '--all',

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import click
 
+from .parsing import command
 
-@click.command('extensions')
+
+@command('extensions')
 @click.option(
     '-a',
     '--all',

@@ -14,6 +14,7 @@ import click
 from . import completion
 from .common import prefix_option
 from .errors import CliError
+from .parsing import command
 
 # one colour per process, in order of start; launch's own warnings and errors by severity
 _PALETTE = (
@@ -42,7 +43,7 @@ class _Colours:
         return click.style(text, fg=colour) if colour else text
 
 
-@click.command(
+@command(
     'launch',
     context_settings={
         # options may follow the file (`launch pkg file.py -s`); arguments are `name:=value`

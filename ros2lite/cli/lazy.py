@@ -11,6 +11,8 @@ from typing import Any, TypeVar
 
 import click
 
+from .parsing import Group
+
 F = TypeVar('F', bound=Callable[..., Any])
 
 
@@ -59,7 +61,7 @@ def include_hidden(ctx: click.Context, kind: str, flag: bool = False) -> bool:
     return flag or bool((ctx.obj or {}).get(f'include_hidden_{kind}'))
 
 
-class LazyGroup(click.Group):
+class LazyGroup(Group):
     """`lazy` maps a command name to ('module.path', 'one-line help'); `hidden_commands` work
     but stay out of the help. An unknown name gets the closest match (cli/suggest.py);
     the root group's `lacking` maps names ros2lite lacks on purpose to the reason."""

@@ -84,14 +84,26 @@ def debug_enabled() -> bool:
 )
 @click.option('--debug', is_flag=True, help='Show full tracebacks on errors.')
 @click.option(
+    '--use-python-default-buffering',
+    is_flag=True,
+    help='Leave the buffering of stdout to Python (PYTHONUNBUFFERED, -u, whether stdout is a '
+    'terminal) instead of writing out every line at once.',
+)
+@click.option(
     '--router',
     metavar='ENDPOINT',
     help='Zenoh router endpoint to use (default $ROS2LITE_ROUTER or tcp/127.0.0.1:7447).',
 )
 @click.version_option(package_name='ros2lite', prog_name='ros2lite')
 @click.pass_context
-def cli(ctx: click.Context, debug: bool, router: str | None) -> None:
+def cli(
+    ctx: click.Context, debug: bool, use_python_default_buffering: bool, router: str | None
+) -> None:
     """ros2lite is an extensible command-line tool for ROS 2."""
+    if not use_python_default_buffering:
+        # a line printed is a line a reader of the pipe sees (ros2cli does the same)
+        with contextlib.suppress(AttributeError, ValueError):
+            sys.stdout.reconfigure(line_buffering=True)  # type: ignore[union-attr]
     if debug:
         os.environ['ROS2LITE_DEBUG'] = '1'
     if router:
@@ -112,8 +124,6 @@ def main(argv: list[str] | None = None) -> int:
         return shell_complete(cli, {}, 'ros2lite', COMPLETE_VAR, instruction)
     if '--debug' in args[:1]:
         os.environ['ROS2LITE_DEBUG'] = '1'
-    with contextlib.suppress(AttributeError, ValueError):
-        sys.stdout.reconfigure(line_buffering=True)  # type: ignore[union-attr]
     from ros2lite.process import Terminated, sigterm_raises
 
     # ros2cli leaves with status 15 on SIGTERM, through rclpy's ExternalShutdownException

@@ -17,9 +17,10 @@ import click
 
 from . import completion
 from .common import prefix_option
+from .parsing import command
 
 
-@click.command(
+@command(
     'run',
     context_settings={
         'ignore_unknown_options': True,

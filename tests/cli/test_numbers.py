@@ -7,18 +7,20 @@ from typing import Any
 
 import pytest
 
+# topic pub has an option `-1` (--once), so there, as in argparse, `-1` is never a value:
+# a negative number is given as `-r=-1`
 CASES = [
     ('topic', 'pub', '/x', 'std_msgs/msg/String', '{}', '--max-wait-time-secs', 'nan'),
     ('topic', 'pub', '/x', 'std_msgs/msg/String', '{}', '-r', 'inf'),
-    ('topic', 'pub', '/x', 'std_msgs/msg/String', '{}', '-r', '-1'),
-    ('topic', 'pub', '/x', 'std_msgs/msg/String', '{}', '-t', '-1'),
+    ('topic', 'pub', '/x', 'std_msgs/msg/String', '{}', '-r=-1'),
+    ('topic', 'pub', '/x', 'std_msgs/msg/String', '{}', '-t=-1'),
     ('topic', 'pub', '/x', 'std_msgs/msg/String', '{}', '-t', '99999999999999999999999'),
     ('topic', 'pub', '/x', 'std_msgs/msg/String', '{}', '--keep-alive', '1e300'),
-    ('topic', 'pub', '/x', 'std_msgs/msg/String', '{}', '-p', '-3'),
+    ('topic', 'pub', '/x', 'std_msgs/msg/String', '{}', '-p=-3'),
     ('topic', 'echo', '/x', '--timeout', 'nan'),
     ('topic', 'echo', '/x', '-l', '-1'),
     ('topic', 'echo', '/x', '--qos-depth', '99999999999999999999'),
-    ('topic', 'echo', '/x', '--qos-liveliness-lease-duration-seconds', '-inf'),
+    ('topic', 'echo', '/x', '--qos-liveliness-lease-duration-seconds=-inf'),  # -i is an option
     ('topic', 'hz', '/x', '-w', '0'),
     ('topic', 'hz', '/x', '-w', '1e3'),
     ('topic', 'list', '--spin-time', 'nan'),

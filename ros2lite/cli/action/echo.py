@@ -17,6 +17,7 @@ from ..common import (
     strategy_options,
 )
 from ..errors import CliError
+from ..parsing import command
 
 if TYPE_CHECKING:
     from ros2lite.interfaces import Message
@@ -24,7 +25,7 @@ if TYPE_CHECKING:
     from ..common import MessageFormat
 
 
-@click.command('echo')
+@command('echo')
 @click.argument('action_name', shell_complete=completion.actions)
 @click.argument('action_type', required=False, shell_complete=completion.action_types)
 @strategy_options()

@@ -7,6 +7,7 @@ import click
 from .. import completion
 from ..common import connect, show_types_option, strategy_options
 from ..errors import CliError
+from ..parsing import command
 
 
 def _section(
@@ -21,7 +22,7 @@ def _section(
     return lines
 
 
-@click.command('info')
+@command('info')
 @strategy_options()
 @click.argument('action_name', shell_complete=completion.actions)
 @show_types_option('action')

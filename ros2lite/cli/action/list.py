@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import click
-
 from ..common import connect, count_option, print_names, show_types_option, strategy_options
 from ..lazy import include_hidden_option
+from ..parsing import command
 
 
-@click.command('list')
+@command('list')
 @strategy_options()
 @show_types_option('action')
 @count_option('actions')

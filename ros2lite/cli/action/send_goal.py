@@ -14,6 +14,7 @@ import click
 from .. import completion, numbers
 from ..common import check_stdin, connect, values_argument, wait_saying_other_types
 from ..errors import CliError
+from ..parsing import command
 
 if TYPE_CHECKING:
     from ros2lite.action import ClientGoalHandle
@@ -73,7 +74,7 @@ class FeedbackPrinter:
         click.echo(f'Feedback:\n    {message_to_yaml(message.feedback)}')
 
 
-@click.command('send_goal')
+@command('send_goal')
 @click.argument('action_name', shell_complete=completion.actions)
 @click.argument('action_type', shell_complete=completion.action_types)
 @values_argument('goal', 'the goal')

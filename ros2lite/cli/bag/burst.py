@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import numbers
+from ..parsing import command
 from .options import (
     bag_argument,
     bag_error,
@@ -29,7 +30,7 @@ if TYPE_CHECKING:
     from ros2lite.node import Node
 
 
-@click.command("burst")
+@command("burst")
 @bag_argument
 @read_ahead_option(
     "Messages read ahead of publishing (accepted for ros2bag's sake: a burst reads "

@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import click
 
-from ..common import ValueGroups
+from ..parsing import ValueGroups, command
 from .options import STORAGE_IDS, bag_error
 
 
-@click.command("convert")
+@command("convert")
 @click.option(
     "-i",
     "--input",

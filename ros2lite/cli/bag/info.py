@@ -16,6 +16,7 @@ import click
 
 from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
 
+from ..parsing import command
 from .options import bag_argument, bag_error, existing_bag, warn
 
 if TYPE_CHECKING:
@@ -132,7 +133,7 @@ def message_sizes(reader: Reader) -> dict[str, int]:
     return sizes
 
 
-@click.command("info")
+@command("info")
 @bag_argument
 @click.option("-t", "--topic-name", is_flag=True, help="Only print topic names.")
 @click.option(

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import click
 
+from ..parsing import command
+
 # plugin kind → [(name, description, type, base class)], pluginlib's fields
 PLUGINS: dict[str, list[tuple[str, str, str, str]]] = {
     "storage": [
@@ -40,7 +42,7 @@ PLUGINS: dict[str, list[tuple[str, str, str, str]]] = {
 }
 
 
-@click.command("list")
+@command("list")
 @click.argument("plugin_type", type=click.Choice(list(PLUGINS)))
 @click.option("-v", "--verbose", is_flag=True, help="List out verbose information.")
 def cli(plugin_type: str, verbose: bool) -> None:

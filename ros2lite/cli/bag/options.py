@@ -11,8 +11,8 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import click
 
 from .. import completion, numbers
-from ..common import ManyValues
 from ..errors import CliError
+from ..parsing import ManyValues
 
 if TYPE_CHECKING:
     from ros2lite.bag.player import Player, PlayOptions

@@ -14,6 +14,7 @@ import click
 
 from .. import keyboard as keys_module
 from .. import numbers, render
+from ..parsing import command
 from .options import (
     bag_argument,
     bag_error,
@@ -33,7 +34,7 @@ if TYPE_CHECKING:
     from ros2lite.node import Node
 
 
-@click.command("play")
+@command("play")
 @bag_argument
 @read_ahead_option("Messages read ahead of playback.")
 @click.option(

@@ -15,7 +15,8 @@ import click
 
 from .. import completion, numbers, render
 from .. import keyboard as keys_module
-from ..common import ManyValues, connect
+from ..common import connect
+from ..parsing import ManyValues, command
 from .options import (
     bag_error,
     check_patterns,
@@ -38,7 +39,7 @@ SELECTION_ERROR = (
 )
 
 
-@click.command("record")
+@command("record")
 @click.argument(
     "positional_topics", metavar="[TOPICS]...", nargs=-1, shell_complete=completion.topics
 )

@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import click
-
+from ..parsing import command
 from .options import bag_argument, bag_error
 
 
-@click.command("reindex")
+@command("reindex")
 @bag_argument
 def cli(bag_path: str, storage: str | None) -> None:
     """Reconstruct metadata file for a bag."""

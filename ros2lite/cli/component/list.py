@@ -7,10 +7,11 @@ import click
 from .. import completion
 from ..common import connect, strategy_options
 from ..errors import CliError
+from ..parsing import command
 from .common import unable_to_find
 
 
-@click.command('list')
+@command('list')
 @click.argument('container_node_name', required=False, shell_complete=completion.nodes)
 @strategy_options()
 @click.option('--containers-only', is_flag=True, help='List found containers nodes only')

@@ -8,10 +8,11 @@ import click
 
 from .. import completion
 from ..common import connect, strategy_options
+from ..parsing import command
 from .common import component_options, load, unable_to_find
 
 
-@click.command('load')
+@command('load')
 @click.argument('container_node_name', shell_complete=completion.nodes)
 @component_options
 @strategy_options()

@@ -14,8 +14,9 @@ from typing import Any
 
 import click
 
-from ..common import connect
+from ..common import connect, strategy_options
 from ..errors import CliError
+from ..parsing import command
 from .common import component_options, load
 
 START_TIMEOUT = 30.0  # a container that has not come up by then is given up on
@@ -40,14 +41,17 @@ def _container_command(package: str, plugin: str, name: str) -> list[str]:
     return exe.command(['--ros-args', '-r', f'__node:={name}'])
 
 
-@click.command('standalone')
+@command('standalone')
+@strategy_options()
 @component_options
 @click.option(
     '-c',
     '--container-node-name',
     help='Name of the standalone container node to be run (default: standalone_container_<random>)',
 )
-def cli(container_node_name: str | None, **options: Any) -> None:
+def cli(
+    container_node_name: str | None, no_daemon: bool, use_sim_time: bool, **options: Any
+) -> None:
     """Run a component into its own standalone container node."""
     from ros2lite.components.remote import wait_for_container
     from ros2lite.process import exit_code, run_child
@@ -56,7 +60,7 @@ def cli(container_node_name: str | None, **options: Any) -> None:
     full = name if name.startswith('/') else '/' + name
 
     def load_into(child: subprocess.Popen[bytes]) -> None:
-        with connect() as conn:
+        with connect(no_daemon=no_daemon, use_sim_time=use_sim_time) as conn:
             if not wait_for_container(
                 conn.entities, full, START_TIMEOUT, lambda: child.poll() is None
             ):

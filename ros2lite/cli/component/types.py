@@ -5,9 +5,10 @@ from __future__ import annotations
 import click
 
 from ..errors import CliError
+from ..parsing import command
 
 
-@click.command('types')
+@command('types')
 @click.argument('package_name', required=False)
 def cli(package_name: str | None) -> None:
     """Output a list of components registered in the ament index.

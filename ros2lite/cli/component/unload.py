@@ -7,10 +7,11 @@ import click
 from .. import completion
 from ..common import connect, strategy_options
 from ..errors import CliError
+from ..parsing import command
 from .common import unable_to_find
 
 
-@click.command('unload')
+@command('unload')
 @click.argument('container_node_name', shell_complete=completion.nodes)
 @click.argument('component_uid', nargs=-1, required=True, type=click.IntRange(min=0))
 @strategy_options()

@@ -5,9 +5,10 @@ from __future__ import annotations
 import click
 
 from ..errors import CliError
+from ..parsing import command
 
 
-@click.command('start')
+@command('start')
 @click.option(
     '-d',
     '--debug',

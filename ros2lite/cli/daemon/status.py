@@ -5,8 +5,10 @@ from __future__ import annotations
 
 import click
 
+from ..parsing import command
 
-@click.command('status')
+
+@command('status')
 def cli() -> None:
     """Output the status of the daemon."""
     from ros2lite import daemon

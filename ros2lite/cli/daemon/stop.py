@@ -6,9 +6,10 @@ from __future__ import annotations
 import click
 
 from ..errors import CliError
+from ..parsing import command
 
 
-@click.command('stop')
+@command('stop')
 def cli() -> None:
     """Stop the daemon if it is running."""
     from ros2lite import daemon

@@ -6,6 +6,8 @@ import click
 
 from ros2lite.interfaces import list_interfaces
 
+from ..parsing import command
+
 _SECTIONS = (('msg', 'Messages:'), ('srv', 'Services:'), ('action', 'Actions:'))
 
 
@@ -18,7 +20,7 @@ def print_sections(kinds: list[str], names: list[str]) -> None:
                     click.echo(f'    {name}')
 
 
-@click.command('list')
+@command('list')
 @click.option('-m', '--only-msgs', is_flag=True, help='Print out only the message types')
 @click.option('-s', '--only-srvs', is_flag=True, help='Print out only the service types')
 @click.option('-a', '--only-actions', is_flag=True, help='Print out only the action types')

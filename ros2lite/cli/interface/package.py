@@ -7,9 +7,10 @@ import click
 from ros2lite.interfaces.registry import default_registry
 
 from .. import completion
+from ..parsing import command
 
 
-@click.command('package')
+@command('package')
 @click.argument('package_name', shell_complete=completion.interface_packages)
 @click.option('-m', '--only-msgs', is_flag=True, help='Print out only the message types')
 @click.option('-s', '--only-srvs', is_flag=True, help='Print out only the service types')

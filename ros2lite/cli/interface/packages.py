@@ -6,8 +6,10 @@ import click
 
 from ros2lite.interfaces import list_interfaces
 
+from ..parsing import command
 
-@click.command('packages')
+
+@command('packages')
 @click.option('-m', '--only-msgs', is_flag=True, help='Only list packages that generate messages')
 @click.option('-s', '--only-srvs', is_flag=True, help='Only list packages that generate services')
 @click.option('-a', '--only-actions', is_flag=True, help='Only list packages that generate actions')

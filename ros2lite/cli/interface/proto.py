@@ -8,9 +8,10 @@ from ros2lite.interfaces.registry import default_registry
 from ros2lite.interfaces.text import proto_yaml
 
 from .. import completion
+from ..parsing import command
 
 
-@click.command('proto')
+@command('proto')
 @click.argument('type_name', metavar='TYPE', shell_complete=completion.interface_types)
 @click.option('--no-quotes', is_flag=True, help='if true output has no outer quotes.')
 def cli(type_name: str, no_quotes: bool) -> None:

@@ -10,6 +10,7 @@ from ros2lite.interfaces.registry import default_registry
 from ros2lite.interfaces.text import show_lines
 
 from .. import completion
+from ..parsing import command
 
 
 def read_type_argument(value: str) -> str:
@@ -23,7 +24,7 @@ def read_type_argument(value: str) -> str:
     return value
 
 
-@click.command('show')
+@command('show')
 @click.argument('type_name', metavar='TYPE', shell_complete=completion.interface_types)
 @click.option(
     '--all-comments',

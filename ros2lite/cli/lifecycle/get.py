@@ -7,10 +7,11 @@ import click
 from .. import completion
 from ..common import connect, strategy_options
 from ..errors import CliError
+from ..parsing import command
 from .common import NODE_NOT_FOUND, absolute, call_failed, managed_nodes
 
 
-@click.command('get')
+@command('get')
 @click.argument('node_name', required=False, shell_complete=completion.nodes)
 @strategy_options()
 @click.option(

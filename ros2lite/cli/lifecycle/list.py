@@ -7,10 +7,11 @@ import click
 from .. import completion
 from ..common import connect, strategy_options
 from ..errors import CliError
+from ..parsing import command
 from .common import call_failed, require_node
 
 
-@click.command('list')
+@command('list')
 @click.argument('node_name', shell_complete=completion.nodes)
 @strategy_options()
 @click.option('--include-hidden-nodes', is_flag=True, help='Consider hidden nodes as well')

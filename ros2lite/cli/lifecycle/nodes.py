@@ -5,10 +5,11 @@ from __future__ import annotations
 import click
 
 from ..common import connect, count_option, strategy_options
+from ..parsing import command
 from .common import managed_nodes
 
 
-@click.command('nodes')
+@command('nodes')
 @strategy_options()
 @click.option('-a', '--all', 'show_all', is_flag=True, help='Display all nodes even hidden ones')
 @count_option('nodes')

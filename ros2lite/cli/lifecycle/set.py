@@ -7,10 +7,11 @@ import click
 from .. import completion
 from ..common import connect, strategy_options
 from ..errors import CliError
+from ..parsing import command
 from .common import call_failed, require_node
 
 
-@click.command('set')
+@command('set')
 @click.argument('node_name', shell_complete=completion.nodes)
 @click.argument('transition')
 @strategy_options()

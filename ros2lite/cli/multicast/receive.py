@@ -5,10 +5,11 @@ from __future__ import annotations
 import click
 
 from ..errors import CliError
+from ..parsing import command
 from .common import address_options
 
 
-@click.command('receive')
+@command('receive')
 @address_options
 @click.option(
     '-t',

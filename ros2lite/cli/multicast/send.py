@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import click
 
+from ..parsing import command
 from .common import address_options
 
 
-@click.command('send')
+@command('send')
 @address_options
 @click.option(
     '--ttl',

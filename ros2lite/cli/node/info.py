@@ -7,6 +7,7 @@ import click
 from .. import completion
 from ..common import connect, strategy_options
 from ..errors import CliError
+from ..parsing import command
 
 
 def _section(title: str, items: list[tuple[str, list[str]]]) -> str:
@@ -15,7 +16,7 @@ def _section(title: str, items: list[tuple[str, list[str]]]) -> str:
     return f'  {title}:\n{body}\n'
 
 
-@click.command('info')
+@command('info')
 @strategy_options()
 @click.argument('node_name', shell_complete=completion.nodes)
 @click.option(

@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 
 from ..common import connect, strategy_options
+from ..parsing import command
 
 DUPLICATE_WARNING = (
     'WARNING: Be aware that there are nodes in the graph that share an exact '
@@ -12,7 +13,7 @@ DUPLICATE_WARNING = (
 )
 
 
-@click.command('list')
+@command('list')
 @strategy_options()
 @click.option(
     '-a', '--all', 'show_all', is_flag=True, help="Also list hidden nodes (name starts with '_')"

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import click
 
+from ..parsing import command
 from .common import Target, complete_parameter_names, node_options, with_remote
 
 
-@click.command("delete")
+@command("delete")
 @node_options()
 @click.argument("parameter_name", shell_complete=complete_parameter_names)
 def cli(

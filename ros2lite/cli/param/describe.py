@@ -6,6 +6,8 @@ from typing import TYPE_CHECKING
 
 import click
 
+from ..parsing import command
+
 if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import (
         FloatingPointRange,
@@ -16,7 +18,7 @@ if TYPE_CHECKING:
 from .common import Target, complete_parameter_names, node_options, type_name, with_remote
 
 
-@click.command("describe")
+@command("describe")
 @node_options()
 @click.argument("parameter_names", nargs=-1, required=True, shell_complete=complete_parameter_names)
 def cli(

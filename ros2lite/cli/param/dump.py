@@ -7,10 +7,11 @@ from pathlib import Path
 import click
 
 from ..errors import CliError
+from ..parsing import command
 from .common import Remote, Target, node_options, with_remote
 
 
-@click.command("dump")
+@command("dump")
 @node_options()
 @click.option(
     "--output-dir",

@@ -6,6 +6,8 @@ from typing import TYPE_CHECKING
 
 import click
 
+from ..parsing import command
+
 if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import ParameterValue
 
@@ -26,7 +28,7 @@ LABELS = {
 }
 
 
-@click.command("get")
+@command("get")
 @node_options()
 @click.argument("parameter_name", shell_complete=complete_parameter_names)
 @click.option("--hide-type", is_flag=True, help="Hide the type information")

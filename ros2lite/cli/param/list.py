@@ -6,12 +6,13 @@ import re
 
 import click
 
-from ..common import ManyValues, connect
+from ..common import connect
 from ..errors import CliError
+from ..parsing import ManyValues, command
 from .common import Remote, Target, node_options, type_name
 
 
-@click.command("list")
+@command("list")
 @node_options(timeout=False, node_required=False)
 @click.option(
     "--filter",

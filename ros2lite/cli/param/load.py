@@ -7,13 +7,15 @@ from typing import TYPE_CHECKING
 
 import click
 
+from ..parsing import command
+
 if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
 
 from .common import Remote, Target, node_options, with_remote
 
 
-@click.command("load")
+@command("load")
 @node_options()
 @click.argument("parameter_file")
 @click.option(

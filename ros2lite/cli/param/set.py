@@ -5,10 +5,11 @@ from __future__ import annotations
 import click
 
 from ..errors import CliError
+from ..parsing import command
 from .common import Target, node_options, with_remote
 
 
-@click.command("set")
+@command("set")
 @node_options()
 @click.argument("params_and_values", nargs=-1, required=True, metavar="NAME VALUE...")
 @click.option(

@@ -7,17 +7,10 @@ import os
 import click
 
 from ..errors import CliError
+from ..parsing import ManyValues, command
 
 
-def _dependencies(
-    _ctx: click.Context, _param: click.Parameter, value: tuple[str, ...]
-) -> tuple[str, ...]:
-    return tuple(value)
-
-
-@click.command(
-    'create', context_settings={'ignore_unknown_options': False, 'allow_interspersed_args': True}
-)
+@command('create')
 @click.argument('package_name')
 @click.option(
     '--package-format',
@@ -57,15 +50,14 @@ def _dependencies(
 )
 @click.option(
     '--dependencies',
-    multiple=True,
-    metavar='DEP',
-    help='list of dependencies (repeat the option, or give several names after it)',
+    cls=ManyValues,
+    metavar='DEP...',
+    help='list of dependencies',
 )
 @click.option('--maintainer-email', help='email address of the maintainer of this package')
 @click.option('--maintainer-name', help='name of the maintainer of this package')
 @click.option('--node-name', help='name of the empty executable')
 @click.option('--library-name', help='name of the empty library')
-@click.argument('more_dependencies', nargs=-1, metavar='')
 def cli(
     package_name: str,
     package_format: str,
@@ -78,7 +70,6 @@ def cli(
     maintainer_name: str | None,
     node_name: str | None,
     library_name: str | None,
-    more_dependencies: tuple[str, ...],
 ) -> None:
     """Create a new ROS 2 package."""
     from ros2lite.pkg.create import (
@@ -92,8 +83,6 @@ def cli(
     if license_ == '?':
         click.echo('Supported licenses:\n' + '\n'.join(LICENSES))
         return
-    if more_dependencies and not dependencies:
-        raise click.UsageError(f'Got unexpected extra argument ({more_dependencies[0]})')
     name, email = default_maintainer(maintainer_name)
     email = maintainer_email or email
     spec, warnings = prepare_spec(
@@ -105,7 +94,7 @@ def cli(
             license=license_,
             maintainer_name=name,
             maintainer_email=email,
-            dependencies=(*dependencies, *more_dependencies),
+            dependencies=dependencies,
             node_name=node_name,
             library_name=library_name,
         )

@@ -5,9 +5,10 @@ from __future__ import annotations
 import click
 
 from .. import completion
+from ..parsing import command
 
 
-@click.command('executables')
+@command('executables')
 @click.argument('package_name', required=False, shell_complete=completion.executable_packages)
 @click.option('--full-path', is_flag=True, help='Show full path of each executable')
 def cli(package_name: str | None, full_path: bool) -> None:

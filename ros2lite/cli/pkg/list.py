@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import click
 
+from ..parsing import command
 
-@click.command('list')
+
+@command('list')
 def cli() -> None:
     """Output a list of available packages."""
     from ros2lite.pkg.executables import list_packages

@@ -7,9 +7,10 @@ import click
 
 from .. import completion
 from ..errors import CliError
+from ..parsing import command
 
 
-@click.command('prefix')
+@command('prefix')
 @click.argument('package_name', shell_complete=completion.executable_packages)
 @click.option('--share', is_flag=True, help='Show share directory for the package')
 def cli(package_name: str, share: bool) -> None:

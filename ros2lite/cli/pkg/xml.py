@@ -6,9 +6,10 @@ import click
 
 from .. import completion
 from ..errors import CliError
+from ..parsing import command
 
 
-@click.command('xml')
+@command('xml')
 @click.argument('package_name', shell_complete=completion.executable_packages)
 @click.option('-t', '--tag', help="The package's xml's tag to print")
 def cli(package_name: str, tag: str | None) -> None:

@@ -6,10 +6,11 @@ from pathlib import Path
 
 import click
 
+from ..parsing import command
 from .common import create
 
 
-@click.command('create_enclave')
+@command('create_enclave')
 @click.argument('root', metavar='ROOT', type=click.Path(path_type=Path))
 @click.argument('name', metavar='NAME')
 def cli(root: Path, name: str) -> None:

@@ -7,9 +7,10 @@ from pathlib import Path
 import click
 
 from ..errors import CliError
+from ..parsing import command
 
 
-@click.command('create_keystore')
+@command('create_keystore')
 @click.argument('root', metavar='ROOT', type=click.Path(path_type=Path))
 def cli(root: Path) -> None:
     """Create keystore."""

@@ -8,9 +8,10 @@ from pathlib import Path
 import click
 
 from ..errors import CliError
+from ..parsing import command
 
 
-@click.command('create_permission')
+@command('create_permission')
 @click.argument('root', metavar='ROOT', type=click.Path(path_type=Path))
 @click.argument('name', metavar='NAME')
 @click.argument('policy_file_path', metavar='POLICY_FILE_PATH', type=click.Path(path_type=Path))

@@ -7,12 +7,11 @@ from pathlib import Path
 
 import click
 
-# argparse's nargs='*' (`-e /a /b`); the bag verbs' helper, so there is one such parser hack
-from ..common import ManyValues
 from ..errors import CliError
+from ..parsing import ManyValues, command
 
 
-@click.command('generate_artifacts')
+@command('generate_artifacts')
 @click.option(
     '-k',
     '--keystore-root-path',
@@ -21,12 +20,17 @@ from ..errors import CliError
     help='root path of keystore (default: $ROS_SECURITY_KEYSTORE)',
 )
 @click.option(
-    '-e', '--enclaves', cls=ManyValues, help='list of identities, aka ROS security enclave names'
+    '-e',
+    '--enclaves',
+    cls=ManyValues,
+    at_least=0,
+    help='list of identities, aka ROS security enclave names',
 )
 @click.option(
     '-p',
     '--policy-files',
     cls=ManyValues,
+    at_least=0,
     type=click.Path(path_type=Path),
     help='list of policy xml file paths',
 )

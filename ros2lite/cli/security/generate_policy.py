@@ -9,9 +9,10 @@ import click
 
 from ..common import connect, strategy_options
 from ..errors import CliError
+from ..parsing import command
 
 
-@click.command('generate_policy')
+@command('generate_policy')
 @click.argument('policy_file_path', metavar='POLICY_FILE_PATH', type=click.Path(path_type=Path))
 @strategy_options()
 def cli(policy_file_path: Path, use_sim_time: bool, no_daemon: bool) -> None:

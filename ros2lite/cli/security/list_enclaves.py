@@ -7,9 +7,10 @@ from pathlib import Path
 import click
 
 from ..errors import CliError
+from ..parsing import command
 
 
-@click.command('list_enclaves')
+@command('list_enclaves')
 @click.argument('root', metavar='ROOT', type=click.Path(path_type=Path))
 def cli(root: Path) -> None:
     """List enclaves in keystore."""

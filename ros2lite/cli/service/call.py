@@ -8,6 +8,8 @@ from typing import TYPE_CHECKING
 
 import click
 
+from ..parsing import command
+
 if TYPE_CHECKING:
     from ros2lite.client import Client
     from ros2lite.interfaces import Message, ServiceType
@@ -25,7 +27,7 @@ from ..common import (
 from ..errors import CliError
 
 
-@click.command('call')
+@command('call')
 @click.argument('service_name', shell_complete=completion.services)
 @click.argument('service_type', shell_complete=completion.service_types)
 @values_argument()

@@ -18,6 +18,7 @@ from ..common import (
     strategy_options,
 )
 from ..errors import CliError
+from ..parsing import command
 
 if TYPE_CHECKING:
     from typing_extensions import Unpack
@@ -27,7 +28,7 @@ if TYPE_CHECKING:
     from ..common import MessageFormat, QosOptions
 
 
-@click.command('echo')
+@command('echo')
 @click.argument('service_name', shell_complete=completion.services)
 @click.argument('service_type', required=False, shell_complete=completion.service_types)
 @strategy_options()

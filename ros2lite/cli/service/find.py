@@ -7,9 +7,10 @@ import click
 from .. import completion
 from ..common import count_option, print_names_of_type, strategy_options
 from ..lazy import include_hidden, include_hidden_option
+from ..parsing import command
 
 
-@click.command('find')
+@command('find')
 @strategy_options()
 @click.argument('service_type', shell_complete=completion.service_types)
 @count_option('services')

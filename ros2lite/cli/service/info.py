@@ -7,9 +7,10 @@ import click
 from .. import completion
 from ..common import connect, strategy_options
 from ..errors import CliError
+from ..parsing import command
 
 
-@click.command('info')
+@command('info')
 @strategy_options()
 @click.argument('service_name', shell_complete=completion.services)
 @click.pass_context

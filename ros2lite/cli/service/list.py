@@ -6,9 +6,10 @@ import click
 
 from ..common import connect, count_option, print_names, show_types_option, strategy_options
 from ..lazy import include_hidden, include_hidden_option
+from ..parsing import command
 
 
-@click.command('list')
+@command('list')
 @strategy_options()
 @show_types_option('service')
 @count_option('services')

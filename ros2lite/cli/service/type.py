@@ -6,9 +6,10 @@ import click
 
 from .. import completion
 from ..common import print_types_of, strategy_options
+from ..parsing import command
 
 
-@click.command('type')
+@command('type')
 @strategy_options()
 @click.argument('service_name', shell_complete=completion.services)
 def cli(service_name: str, no_daemon: bool, use_sim_time: bool) -> None:

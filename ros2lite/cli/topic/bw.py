@@ -10,6 +10,7 @@ import click
 
 from .. import completion
 from ..common import connect, strategy_options
+from ..parsing import command
 from .common import watch, window_option
 
 if TYPE_CHECKING:
@@ -36,7 +37,7 @@ def bw_line(s: BandwidthSummary) -> str:
     )
 
 
-@click.command('bw')
+@command('bw')
 @click.argument('topic', shell_complete=completion.topics)
 @window_option(DEFAULT_WINDOW_SIZE, 'maximum window')
 @strategy_options(no_daemon=False)

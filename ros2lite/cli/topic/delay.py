@@ -9,6 +9,7 @@ import click
 from .. import completion
 from ..common import connect, strategy_options
 from ..errors import CliError
+from ..parsing import command
 from .common import watch, window_option
 
 if TYPE_CHECKING:
@@ -34,7 +35,7 @@ def delay_line(s: IntervalSummary) -> str:
     )
 
 
-@click.command('delay')
+@command('delay')
 @click.argument('topic', shell_complete=completion.topics)
 @window_option(DEFAULT_WINDOW_SIZE, 'window', minimum=0)
 @strategy_options(no_daemon=False)

@@ -19,6 +19,7 @@ from ..common import (
     strategy_options,
 )
 from ..errors import CliError
+from ..parsing import command
 from .common import compile_filter, graph_type, message_type_name, monitor
 
 if TYPE_CHECKING:
@@ -163,7 +164,7 @@ def info_dict(info: MessageInfo) -> dict[str, int]:
     }
 
 
-@click.command('echo')
+@command('echo')
 @click.argument('topic_name', shell_complete=completion.topics)
 @click.argument('message_type', required=False, shell_complete=completion.message_types)
 @strategy_options()

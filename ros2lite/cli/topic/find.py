@@ -7,9 +7,10 @@ import click
 from .. import completion
 from ..common import print_names_of_type, strategy_options
 from ..lazy import include_hidden, include_hidden_option
+from ..parsing import command
 
 
-@click.command('find')
+@command('find')
 @strategy_options()
 @click.argument('topic_type', shell_complete=completion.message_types)
 @click.option('-c', '--count-topics', is_flag=True, help='Print only how many topics match')

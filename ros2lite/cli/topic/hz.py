@@ -15,6 +15,7 @@ import click
 
 from .. import completion, render
 from ..common import connect, strategy_options
+from ..parsing import command
 from .common import compile_filter, watch, window_option
 
 if TYPE_CHECKING:
@@ -63,7 +64,7 @@ def ros_or_arrival_time(node: Node, wall_time: bool) -> Callable[[int], int]:
     return ros_time
 
 
-@click.command('hz')
+@command('hz')
 @click.argument(
     'topic_names',
     metavar='TOPIC_NAME...',

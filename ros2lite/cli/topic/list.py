@@ -6,6 +6,7 @@ import click
 
 from ..common import connect, print_names, strategy_options
 from ..lazy import include_hidden, include_hidden_option
+from ..parsing import command
 
 
 def _section(rows: list[tuple[str, list[str], int]], publishers: bool) -> str:
@@ -20,7 +21,7 @@ def _section(rows: list[tuple[str, list[str], int]], publishers: bool) -> str:
     return '\n'.join(lines) + '\n'
 
 
-@click.command('list')
+@command('list')
 @strategy_options()
 @click.option('-t', '--show-types', is_flag=True, help="Also print each topic's type(s)")
 @click.option(

@@ -19,6 +19,7 @@ from ..common import (
     yaml_fields,
 )
 from ..errors import CliError
+from ..parsing import command
 from .common import message_type_name
 
 if TYPE_CHECKING:
@@ -32,7 +33,7 @@ if TYPE_CHECKING:
 WAIT_STEP = 0.1  # seconds between subscription-count checks while waiting
 
 
-@click.command('pub')
+@command('pub')
 @click.argument('topic_name', shell_complete=completion.topics)
 @click.argument('message_type', shell_complete=completion.message_types)
 @values_argument()

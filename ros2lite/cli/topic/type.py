@@ -7,9 +7,10 @@ import click
 from .. import completion
 from ..common import print_types_of, strategy_options
 from ..lazy import include_hidden
+from ..parsing import command
 
 
-@click.command('type')
+@command('type')
 @strategy_options()
 @click.argument('topic_name', shell_complete=completion.topics)
 @click.pass_context

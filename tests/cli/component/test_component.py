@@ -153,6 +153,7 @@ def test_standalone(processes: Any, ros_context: Any) -> None:
     proc = processes.cli(
         'component', 'standalone', 'composition', 'composition::Talker',
         '-c', 'sa_container', '--node-namespace', '/sa',
+        '--no-daemon', '-s', '--spin-time', '1',  # ros2cli's strategy options
     )  # fmt: skip
     try:
         spin_until(executor, lambda: heard, timeout=20)
