@@ -48,18 +48,15 @@ def cli(
             click.echo(_message("Set parameters atomically successful", outcome.reason))
         else:
             click.echo(_message("Setting parameters atomically failed", outcome.reason), err=True)
-            click.get_current_context().exit(1)
         return
     for (name, _), result in zip(pairs, results, strict=False):
         text = _message(
             "Set parameter successful" if result.successful else "Setting parameter failed",
             result.reason,
         )
-        # the reason is on stderr, and a failure is exit 1 (ros2cli exits 0, which scripts
-        # cannot tell from success)
+        # a refusal is the node's answer, not a failure of the verb: its reason goes to stderr
+        # and the exit status stays 0, as ros2cli's (scripts written for ros2 rely on it)
         click.echo(f"{name}: {text}" if len(pairs) > 1 else text, err=not result.successful)
-    if not all(result.successful for result in results):
-        click.get_current_context().exit(1)
 
 
 def _message(text: str, reason: str) -> str:
