@@ -748,9 +748,6 @@ class Buffer(BufferCore):
         self, ready: Callable[[], bool], lookup: Callable[[], TransformStamped]
     ) -> Future[TransformStamped]:
         future: Future[TransformStamped] = Future()
-        if ready():
-            future.set_result(lookup())
-            return future
 
         def on_new_data() -> None:
             if future.done():
@@ -766,9 +763,13 @@ class Buffer(BufferCore):
                 if on_new_data in self._new_data_callbacks:
                     self._new_data_callbacks.remove(on_new_data)
 
+        # registered before the first look, so a transform stored in between (by the
+        # listener's thread) still completes the future: a static one never comes again
         with self._callbacks_lock:
             self._new_data_callbacks.append(on_new_data)
         future.add_done_callback(forget)
+        with self._callbacks_lock:  # one completion at a time (_new_data holds it too)
+            on_new_data()
         return future
 
     def wait_for_transform_async(

@@ -261,3 +261,23 @@ def test_waiting_and_futures() -> None:
     assert b.lookup_transform('world', 'base', Time(), Duration(seconds=1)).header.stamp.sec == 5
     b.clear()  # the frames are still known, their histories are gone
     assert raises(ConnectivityException, lambda: b.lookup_transform('world', 'base', Time()))
+
+
+def test_a_transform_arriving_while_the_future_is_made_completes_it() -> None:
+    """The one (static) transform may land between the future's first check and its
+    registration for new data; the future must still complete, as no second message comes."""
+    b = Buffer()
+    check = b.can_transform_core
+    arrived: list[bool] = []
+
+    def racing(target: str, source: str, time: object) -> tuple[bool, str]:
+        result = check(target, source, time)
+        if not arrived:  # the listener thread stores it right after this check
+            arrived.append(True)
+            b.set_transform_static(stamped('world', 'base', 0, (1.0, 0.0, 0.0)), 'a')
+        return result
+
+    b.can_transform_core = racing  # type: ignore[method-assign]
+    future = b.wait_for_transform_async('world', 'base', Time())
+    assert future.done() and future.result().transform.translation.x == 1.0
+    assert b._new_data_callbacks == []
