@@ -249,9 +249,9 @@ class BufferCore:
             return frame_id in self._ids and frame_id != 'NO_PARENT'
 
     def _getFrameStrings(self) -> list[str]:
-        """The frames that have a transform of their own (not bare parents)."""
+        """Every frame the buffer has heard of, roots (bare parents) too, as tf2 lists them."""
         with self._lock:
-            return [self._names[i] for i, c in enumerate(self._caches) if c is not None]
+            return self._names[1:]
 
     # -- the walk -----------------------------------------------------------------------------
     def _walk(

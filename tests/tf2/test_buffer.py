@@ -217,6 +217,8 @@ def test_frames_as_text() -> None:
     )
     assert "tool: \n  parent: 'arm'\n  broadcaster: 'c'\n  rate: 10000.000\n" in yaml
     assert BufferCore().all_frames_as_yaml() == '[]'
+    # every frame named so far, roots too, in the order first heard of (child before parent)
+    assert b._getFrameStrings() == ['base', 'world', 'arm', 'tool', 'lost', 'elsewhere']
 
 
 def test_memory_is_bounded_by_the_cache_length() -> None:
