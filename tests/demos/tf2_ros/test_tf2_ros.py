@@ -6,6 +6,7 @@ report."""
 from __future__ import annotations
 
 import queue
+import re
 import subprocess
 import sys
 import threading
@@ -88,6 +89,26 @@ def test_bad_command_lines_say_why() -> None:
         assert got.returncode == code
         assert f"Failed to convert rate argument '{rate}' to a floating-point number" in got.stderr
         assert 'Traceback' not in got.stderr
+
+
+def test_publisher_logs_as_tf2_ros_does(capfd: Any) -> None:
+    """tf2_ros's program logs through rcutils' unnamed logger (`[]`), and warns of the old
+    style as soon as it sees it, before finding the command line wrong."""
+    from ros2lite.demos.tf2_ros.static_transform_publisher import main
+
+    assert main(['--x', '1', '0', '0', '0', '0', '0', '0', 'a', 'b']) == 1
+    err = capfd.readouterr().err.splitlines()
+    assert len(err) == 2, err
+    assert re.fullmatch(
+        r'\[WARN\] \[\d+\.\d+\] \[\]: Old-style arguments are deprecated; see --help for '
+        r'new-style arguments',
+        err[0],
+    ), err
+    assert re.fullmatch(
+        r'\[ERROR\] \[\d+\.\d+\] \[\]: error parsing command line arguments: Cannot specify '
+        r'both new-style \(flags\) and old-style \(arguments\)',
+        err[1],
+    ), err
 
 
 def _lines(proc: Any) -> queue.Queue[str | None]:
