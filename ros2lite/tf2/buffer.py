@@ -23,7 +23,7 @@ from ros2lite.msgs.geometry_msgs.msg import Transform as TransformMsg
 from ros2lite.msgs.std_msgs.msg import Header
 from ros2lite.msgs.tf2_msgs.srv import FrameGraph
 from ros2lite.task import Future
-from ros2lite.tf2.cache import FrameCache, StaticCache, TimeCache, display_time
+from ros2lite.tf2.cache import FrameCache, StaticCache, TimeCache, display_time, to_seconds
 from ros2lite.tf2.errors import (
     ConnectivityException,
     ExtrapolationException,
@@ -605,14 +605,9 @@ class BufferCore:
                 out.append(f'  most_recent_transform: {display_time(latest)}\n')
                 out.append(f'  oldest_transform: {display_time(oldest)}\n')
                 if now:
-                    out.append(f'  transform_delay: {_seconds(now - latest):.3f}\n')
-                out.append(f'  buffer_length: {_seconds(span):.3f}\n')
+                    out.append(f'  transform_delay: {to_seconds(now - latest):.3f}\n')
+                out.append(f'  buffer_length: {to_seconds(span):.3f}\n')
         return ''.join(out)
-
-
-def _seconds(ns: int) -> float:
-    nsec = ns % _NS if ns >= 0 else -((-ns) % _NS)
-    return float((ns - nsec) // _NS) + 1e-9 * nsec
 
 
 def _message(target: str, source: str, transform: Transform, ns: int) -> TransformStamped:

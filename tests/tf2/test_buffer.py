@@ -216,6 +216,10 @@ def test_frames_as_text() -> None:
         '  buffer_length: 2.000\n'
     )
     assert "tool: \n  parent: 'arm'\n  broadcaster: 'c'\n  rate: 10000.000\n" in yaml
+    later = b.all_frames_as_yaml(Time(seconds=15, nanoseconds=250_000_000))
+    assert (
+        '  oldest_transform: 10.000000\n  transform_delay: 3.250\n  buffer_length: 2.000\n' in later
+    )
     assert BufferCore().all_frames_as_yaml() == '[]'
     # every frame named so far, roots too, in the order first heard of (child before parent)
     assert b._getFrameStrings() == ['base', 'world', 'arm', 'tool', 'lost', 'elsewhere']
