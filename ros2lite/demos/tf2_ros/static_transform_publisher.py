@@ -9,6 +9,7 @@ command line gets one error line and the usage.
 
 from __future__ import annotations
 
+import re
 import secrets
 import string
 import sys
@@ -83,11 +84,13 @@ class StaticTransform:
     values: dict[str, float] = field(default_factory=dict)
 
 
-def _number(name: str, text: str) -> float:
-    """A float the way C's strtod reads the start of `text` (what std::stod accepts)."""
-    import re
+C_FLOAT = re.compile(r'\s*[+-]?(inf(inity)?|nan|(\d+\.?\d*|\.\d+)(e[+-]?\d+)?)', re.I)
+"""The start of a text that C's strtod (so std::stod and std::stof) reads as a number."""
 
-    match = re.match(r'\s*[+-]?(inf(inity)?|nan|(\d+\.?\d*|\.\d+)(e[+-]?\d+)?)', text, re.I)
+
+def _number(name: str, text: str) -> float:
+    """A float the way std::stod reads the start of `text`."""
+    match = C_FLOAT.match(text)
     if match is None:
         raise UsageError(f'Failed to parse {name} argument as float')
     return float(match.group(0))
