@@ -1,11 +1,13 @@
-"""The buffer without a network: lookups along random frame trees against an independent
+"""The buffer, without a network: lookups along random frame trees against an independent
 oracle (transforms3d matrices, slerp by axis and angle), tf2's errors and texts, Time(0) as
-the latest common time, and memory bounded by the cache length."""
+the latest common time, memory bounded by the cache length; and futures, one awaited in an
+executor."""
 
 from __future__ import annotations
 
 import math
 import random
+import threading
 import tracemalloc
 from collections.abc import Callable
 from typing import Any
@@ -15,7 +17,9 @@ import pytest
 from transforms3d import affines, quaternions
 
 from ros2lite.duration import Duration
+from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.msgs.geometry_msgs.msg import TransformStamped
+from ros2lite.node import Node
 from ros2lite.tf2 import (
     Buffer,
     BufferCore,
@@ -25,6 +29,7 @@ from ros2lite.tf2 import (
     LookupException,
 )
 from ros2lite.time import Time
+from tests.spinning import spin_until
 
 NS = 1_000_000_000
 
@@ -288,3 +293,31 @@ def test_a_transform_arriving_while_the_future_is_made_completes_it(monkeypatch:
     future = b.wait_for_transform_async('world', 'base', Time())
     assert future.done() and future.result().transform.translation.x == 1.0
     assert b._new_data_callbacks == []
+
+
+def test_lookup_transform_async_resumes_a_coroutine(ros_context: Any) -> None:
+    """An async callback awaits a transform that another thread stores later (as the
+    listener's would): the executor resumes it with the transform."""
+    node = Node('tf2_async_user', context=ros_context)
+    b = Buffer(node=node)
+    got: list[TransformStamped] = []
+
+    async def once() -> None:
+        timer.cancel()
+        got.append(await b.lookup_transform_async('world', 'base', Time()))
+
+    timer = node.create_timer(0.01, once)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(node)
+    try:
+        spin_until(executor, lambda: b._new_data_callbacks)  # the coroutine waits
+        storer = threading.Thread(
+            target=b.set_transform_static, args=(stamped('world', 'base', 0, (4.0, 0, 0)), 'a')
+        )
+        storer.start()
+        storer.join()
+        spin_until(executor, lambda: got)
+    finally:
+        executor.shutdown()
+        node.destroy_node()
+    assert got[0].transform.translation.x == 4.0
