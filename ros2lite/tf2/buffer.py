@@ -29,7 +29,6 @@ from ros2lite.tf2.errors import (
     ExtrapolationException,
     InvalidArgumentException,
     LookupException,
-    TransformException,
 )
 from ros2lite.tf2.math import IDENTITY, Transform, compose, inverse
 from ros2lite.time import Time
@@ -750,7 +749,7 @@ class Buffer(BufferCore):
             try:
                 if ready():
                     future.set_result(lookup())
-            except TransformException as e:
+            except Exception as e:  # the caller's to see, never the listener thread's
                 future.set_exception(e)
 
         def forget(_: Future[TransformStamped]) -> None:

@@ -295,6 +295,16 @@ def test_a_transform_arriving_while_the_future_is_made_completes_it(monkeypatch:
     assert b._new_data_callbacks == []
 
 
+def test_a_future_keeps_its_error_from_the_listener_thread() -> None:
+    """A time that is no time fails the future, once; the listener storing transforms later
+    never meets the error (it stays registered for no new data)."""
+    b = Buffer()
+    future = b.wait_for_transform_async('world', 'base', 1.5)
+    assert future.done() and isinstance(future.exception(), TypeError)
+    assert b._new_data_callbacks == []
+    assert b.set_transform(stamped('world', 'base', 5 * NS), 'a')  # no error raised here
+
+
 def test_lookup_transform_async_resumes_a_coroutine(ros_context: Any) -> None:
     """An async callback awaits a transform that another thread stores later (as the
     listener's would): the executor resumes it with the transform."""
