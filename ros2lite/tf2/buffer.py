@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from ros2lite.clock import Clock, JumpThreshold
 from ros2lite.duration import Duration
-from ros2lite.logging import get_logger
+from ros2lite.logging import RcutilsLogger, get_logger
 from ros2lite.msgs.builtin_interfaces.msg import Time as TimeMsg
 from ros2lite.msgs.geometry_msgs.msg import Quaternion, TransformStamped, Vector3
 from ros2lite.msgs.geometry_msgs.msg import Transform as TransformMsg
@@ -50,7 +50,8 @@ _NS = 1_000_000_000
 _CONNECTIVITY = 10
 _LOOKUP = 11
 
-_log = get_logger('tf2_buffer')
+# tf2's core reports refused data through rcutils' unnamed logger: `[WARN] [time] []: ...`
+_log = RcutilsLogger()
 
 
 def to_ns(time: object) -> int:

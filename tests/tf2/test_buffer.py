@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 import random
+import re
 import threading
 import tracemalloc
 from collections.abc import Callable
@@ -195,6 +196,26 @@ def test_errors_are_tf2s() -> None:
     assert not b.set_transform(stamped('world', 'world', 11 * NS), 'a')
     assert not b.set_transform(stamped('world', 'base', 11 * NS, q=(0.0, 0.0, 0.0, 2.0)), 'a')
     assert not b.set_transform(stamped('world', 'base', 11 * NS, (math.nan, 0.0, 0.0)), 'a')
+
+
+def test_refused_data_is_logged_as_tf2_logs_it(capfd: Any) -> None:
+    """tf2's core logs through rcutils' unnamed logger, so its lines carry an empty name."""
+    b = small_tree()
+    capfd.readouterr()
+    assert not b.set_transform(stamped('world', 'base', 1 * NS), 'a')
+    assert not b.set_transform(stamped('world', 'world', 11 * NS), 'a')
+    err = capfd.readouterr().err.splitlines()
+    assert re.fullmatch(
+        r'\[WARN\] \[\d+\.\d+\] \[\]: TF_OLD_DATA ignoring data from the past for frame base '
+        'at time 1.000000 according to authority a',
+        err[0],
+    ), err
+    assert err[1] == 'Possible reasons are listed at http://wiki.ros.org/tf/Errors%20explained'
+    assert re.fullmatch(
+        r'\[ERROR\] \[\d+\.\d+\] \[\]: TF_SELF_TRANSFORM: Ignoring transform from authority '
+        '"a" with frame_id and  child_frame_id "world" because they are the same',
+        err[2],
+    ), err
 
 
 def test_full_lookup_through_a_fixed_frame() -> None:
