@@ -16,20 +16,19 @@ from typing import TYPE_CHECKING, Any
 
 from ros2lite.clock import Clock, JumpThreshold
 from ros2lite.duration import Duration
-from ros2lite.logging import get_logger
+from ros2lite.logging import RcutilsLogger, get_logger
 from ros2lite.msgs.builtin_interfaces.msg import Time as TimeMsg
 from ros2lite.msgs.geometry_msgs.msg import Quaternion, TransformStamped, Vector3
 from ros2lite.msgs.geometry_msgs.msg import Transform as TransformMsg
 from ros2lite.msgs.std_msgs.msg import Header
 from ros2lite.msgs.tf2_msgs.srv import FrameGraph
 from ros2lite.task import Future
-from ros2lite.tf2.cache import FrameCache, StaticCache, TimeCache, display_time
+from ros2lite.tf2.cache import FrameCache, StaticCache, TimeCache, display_time, to_seconds
 from ros2lite.tf2.errors import (
     ConnectivityException,
     ExtrapolationException,
     InvalidArgumentException,
     LookupException,
-    TransformException,
 )
 from ros2lite.tf2.math import IDENTITY, Transform, compose, inverse
 from ros2lite.time import Time
@@ -51,7 +50,8 @@ _NS = 1_000_000_000
 _CONNECTIVITY = 10
 _LOOKUP = 11
 
-_log = get_logger('tf2_buffer')
+# tf2's core reports refused data through rcutils' unnamed logger: `[WARN] [time] []: ...`
+_log = RcutilsLogger()
 
 
 def to_ns(time: object) -> int:
@@ -249,9 +249,9 @@ class BufferCore:
             return frame_id in self._ids and frame_id != 'NO_PARENT'
 
     def _getFrameStrings(self) -> list[str]:
-        """The frames that have a transform of their own (not bare parents)."""
+        """Every frame the buffer has heard of, roots (bare parents) too, as tf2 lists them."""
         with self._lock:
-            return [self._names[i] for i, c in enumerate(self._caches) if c is not None]
+            return self._names[1:]
 
     # -- the walk -----------------------------------------------------------------------------
     def _walk(
@@ -605,14 +605,9 @@ class BufferCore:
                 out.append(f'  most_recent_transform: {display_time(latest)}\n')
                 out.append(f'  oldest_transform: {display_time(oldest)}\n')
                 if now:
-                    out.append(f'  transform_delay: {_seconds(now - latest):.3f}\n')
-                out.append(f'  buffer_length: {_seconds(span):.3f}\n')
+                    out.append(f'  transform_delay: {to_seconds(now - latest):.3f}\n')
+                out.append(f'  buffer_length: {to_seconds(span):.3f}\n')
         return ''.join(out)
-
-
-def _seconds(ns: int) -> float:
-    nsec = ns % _NS if ns >= 0 else -((-ns) % _NS)
-    return float((ns - nsec) // _NS) + 1e-9 * nsec
 
 
 def _message(target: str, source: str, transform: Transform, ns: int) -> TransformStamped:
@@ -748,9 +743,6 @@ class Buffer(BufferCore):
         self, ready: Callable[[], bool], lookup: Callable[[], TransformStamped]
     ) -> Future[TransformStamped]:
         future: Future[TransformStamped] = Future()
-        if ready():
-            future.set_result(lookup())
-            return future
 
         def on_new_data() -> None:
             if future.done():
@@ -758,7 +750,7 @@ class Buffer(BufferCore):
             try:
                 if ready():
                     future.set_result(lookup())
-            except TransformException as e:
+            except Exception as e:  # the caller's to see, never the listener thread's
                 future.set_exception(e)
 
         def forget(_: Future[TransformStamped]) -> None:
@@ -766,9 +758,13 @@ class Buffer(BufferCore):
                 if on_new_data in self._new_data_callbacks:
                     self._new_data_callbacks.remove(on_new_data)
 
+        # registered before the first look, so a transform stored in between (by the
+        # listener's thread) still completes the future: a static one never comes again
         with self._callbacks_lock:
             self._new_data_callbacks.append(on_new_data)
         future.add_done_callback(forget)
+        with self._callbacks_lock:  # one completion at a time (_new_data holds it too)
+            on_new_data()
         return future
 
     def wait_for_transform_async(

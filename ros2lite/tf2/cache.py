@@ -15,7 +15,7 @@ from bisect import bisect_left, bisect_right
 
 from ros2lite.tf2.math import Quat, Vec, lerp, slerp
 
-__all__ = ['CacheError', 'FrameCache', 'StaticCache', 'TimeCache', 'display_time']
+__all__ = ['CacheError', 'FrameCache', 'StaticCache', 'TimeCache', 'display_time', 'to_seconds']
 
 _COMPACT_AT = 256  # dead entries at the front (and at least half) before a shift down
 
@@ -30,10 +30,10 @@ class CacheError(enum.IntEnum):
 
 def display_time(ns: int) -> str:
     """A time point as tf2 writes it in messages: seconds with 6 decimals."""
-    return f'{_to_sec(ns):.6f}'
+    return f'{to_seconds(ns):.6f}'
 
 
-def _to_sec(ns: int) -> float:
+def to_seconds(ns: int) -> float:
     """Seconds as tf2's durationToSec computes them (whole and fraction scaled apart)."""
     nsec = ns % 1_000_000_000 if ns >= 0 else -((-ns) % 1_000_000_000)
     return float((ns - nsec) // 1_000_000_000) + 1e-9 * nsec

@@ -1,20 +1,26 @@
-"""The buffer without a network: lookups along random frame trees against an independent
+"""The buffer, without a network: lookups along random frame trees against an independent
 oracle (transforms3d matrices, slerp by axis and angle), tf2's errors and texts, Time(0) as
-the latest common time, and memory bounded by the cache length."""
+the latest common time, memory bounded by the cache length; and futures, one awaited in an
+executor."""
 
 from __future__ import annotations
 
 import math
 import random
+import re
+import threading
 import tracemalloc
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import pytest
 from transforms3d import affines, quaternions
 
 from ros2lite.duration import Duration
+from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.msgs.geometry_msgs.msg import TransformStamped
+from ros2lite.node import Node
 from ros2lite.tf2 import (
     Buffer,
     BufferCore,
@@ -24,6 +30,7 @@ from ros2lite.tf2 import (
     LookupException,
 )
 from ros2lite.time import Time
+from tests.spinning import spin_until
 
 NS = 1_000_000_000
 
@@ -191,6 +198,26 @@ def test_errors_are_tf2s() -> None:
     assert not b.set_transform(stamped('world', 'base', 11 * NS, (math.nan, 0.0, 0.0)), 'a')
 
 
+def test_refused_data_is_logged_as_tf2_logs_it(capfd: Any) -> None:
+    """tf2's core logs through rcutils' unnamed logger, so its lines carry an empty name."""
+    b = small_tree()
+    capfd.readouterr()
+    assert not b.set_transform(stamped('world', 'base', 1 * NS), 'a')
+    assert not b.set_transform(stamped('world', 'world', 11 * NS), 'a')
+    err = capfd.readouterr().err.splitlines()
+    assert re.fullmatch(
+        r'\[WARN\] \[\d+\.\d+\] \[\]: TF_OLD_DATA ignoring data from the past for frame base '
+        'at time 1.000000 according to authority a',
+        err[0],
+    ), err
+    assert err[1] == 'Possible reasons are listed at http://wiki.ros.org/tf/Errors%20explained'
+    assert re.fullmatch(
+        r'\[ERROR\] \[\d+\.\d+\] \[\]: TF_SELF_TRANSFORM: Ignoring transform from authority '
+        '"a" with frame_id and  child_frame_id "world" because they are the same',
+        err[2],
+    ), err
+
+
 def test_full_lookup_through_a_fixed_frame() -> None:
     b = small_tree()
     # where the tool was at 10 s, seen from the arm at 12 s, with the world fixed
@@ -216,7 +243,13 @@ def test_frames_as_text() -> None:
         '  buffer_length: 2.000\n'
     )
     assert "tool: \n  parent: 'arm'\n  broadcaster: 'c'\n  rate: 10000.000\n" in yaml
+    later = b.all_frames_as_yaml(Time(seconds=15, nanoseconds=250_000_000))
+    assert (
+        '  oldest_transform: 10.000000\n  transform_delay: 3.250\n  buffer_length: 2.000\n' in later
+    )
     assert BufferCore().all_frames_as_yaml() == '[]'
+    # every frame named so far, roots too, in the order first heard of (child before parent)
+    assert b._getFrameStrings() == ['base', 'world', 'arm', 'tool', 'lost', 'elsewhere']
 
 
 def test_memory_is_bounded_by_the_cache_length() -> None:
@@ -261,3 +294,61 @@ def test_waiting_and_futures() -> None:
     assert b.lookup_transform('world', 'base', Time(), Duration(seconds=1)).header.stamp.sec == 5
     b.clear()  # the frames are still known, their histories are gone
     assert raises(ConnectivityException, lambda: b.lookup_transform('world', 'base', Time()))
+
+
+def test_a_transform_arriving_while_the_future_is_made_completes_it(monkeypatch: Any) -> None:
+    """The one (static) transform may land between the future's first check and its
+    registration for new data; the future must still complete, as no second message comes."""
+    b = Buffer()
+    check = b.can_transform_core
+    arrived: list[bool] = []
+
+    def racing(target: str, source: str, time: object) -> tuple[bool, str]:
+        result = check(target, source, time)
+        if not arrived:  # the listener thread stores it right after this check
+            arrived.append(True)
+            b.set_transform_static(stamped('world', 'base', 0, (1.0, 0.0, 0.0)), 'a')
+        return result
+
+    monkeypatch.setattr(b, 'can_transform_core', racing)
+    future = b.wait_for_transform_async('world', 'base', Time())
+    assert future.done() and future.result().transform.translation.x == 1.0
+    assert b._new_data_callbacks == []
+
+
+def test_a_future_keeps_its_error_from_the_listener_thread() -> None:
+    """A time that is no time fails the future, once; the listener storing transforms later
+    never meets the error (it stays registered for no new data)."""
+    b = Buffer()
+    future = b.wait_for_transform_async('world', 'base', 1.5)
+    assert future.done() and isinstance(future.exception(), TypeError)
+    assert b._new_data_callbacks == []
+    assert b.set_transform(stamped('world', 'base', 5 * NS), 'a')  # no error raised here
+
+
+def test_lookup_transform_async_resumes_a_coroutine(ros_context: Any) -> None:
+    """An async callback awaits a transform that another thread stores later (as the
+    listener's would): the executor resumes it with the transform."""
+    node = Node('tf2_async_user', context=ros_context)
+    b = Buffer(node=node)
+    got: list[TransformStamped] = []
+
+    async def once() -> None:
+        timer.cancel()
+        got.append(await b.lookup_transform_async('world', 'base', Time()))
+
+    timer = node.create_timer(0.01, once)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(node)
+    try:
+        spin_until(executor, lambda: b._new_data_callbacks)  # the coroutine waits
+        storer = threading.Thread(
+            target=b.set_transform_static, args=(stamped('world', 'base', 0, (4.0, 0, 0)), 'a')
+        )
+        storer.start()
+        storer.join()
+        spin_until(executor, lambda: got)
+    finally:
+        executor.shutdown()
+        node.destroy_node()
+    assert got[0].transform.translation.x == 4.0

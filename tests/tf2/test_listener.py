@@ -18,7 +18,7 @@ from ros2lite.tf2 import (
     TransformListener,
 )
 from ros2lite.time import Time
-from tests.spinning import wait_until
+from tests.spinning import spin_until, wait_until
 
 
 def stamped(parent: str, child: str, sec: int, x: float) -> TransformStamped:
@@ -49,29 +49,25 @@ def test_static_before_listener_and_dynamic_after(ros_context: Any) -> None:
     executor.add_node(sender)
     executor.add_node(receiver)
 
-    def spun_until(check: Any) -> bool:
-        executor.spin_once(timeout_sec=0.05)
-        return bool(check())
-
     # the static message was published before the listener existed: history brings it
-    wait_until(lambda: spun_until(lambda: buffer.can_transform('world', 'cup', Time())))
+    spin_until(executor, lambda: buffer.can_transform('world', 'cup', Time()), timeout=10)
     got = buffer.lookup_transform('world', 'cup', Time())
     assert got.transform.translation.x == 2.5  # the replaced table, then the cup on it
 
-    def sent_and_seen() -> bool:
+    def send() -> None:  # /tf is volatile: sent again until the subscription matches
         dynamic.sendTransform(stamped('cup', 'spoon', 7, 0.25))
-        return spun_until(lambda: buffer.can_transform('world', 'spoon', Time()))
+        executor.spin_once(timeout_sec=0.05)
 
-    wait_until(sent_and_seen)
+    wait_until(lambda: buffer.can_transform('world', 'spoon', Time()), step=send)
     assert buffer.lookup_transform('world', 'spoon', Time()).transform.translation.x == 2.75
     assert 'spoon: \n  parent: \'cup\'\n  broadcaster: \'default_authority\'' in (
         buffer.all_frames_as_yaml()
     )
     # the buffer's service hands the same YAML to tools (view_frames)
     client = sender.create_client(FrameGraph, 'tf2_frames')
-    wait_until(lambda: spun_until(client.service_is_ready))
+    spin_until(executor, client.service_is_ready, timeout=10)
     future = client.call_async(FrameGraph.Request())
-    wait_until(lambda: spun_until(future.done))
+    spin_until(executor, future.done, timeout=10)
     assert "cup: \n  parent: 'table'" in future.result().frame_yaml
     listener.unregister()
     executor.shutdown()

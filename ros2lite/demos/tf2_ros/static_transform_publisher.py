@@ -9,6 +9,7 @@ command line gets one error line and the usage.
 
 from __future__ import annotations
 
+import re
 import secrets
 import string
 import sys
@@ -16,7 +17,7 @@ from dataclasses import dataclass, field
 
 from ros2lite.demos.display import own_arguments
 from ros2lite.demos.runner import run_node
-from ros2lite.logging import get_logger
+from ros2lite.logging import RcutilsLogger
 from ros2lite.node import Node
 from ros2lite.tf2.math import quaternion_from_rpy
 
@@ -60,6 +61,10 @@ _NUMBERS = {
 _QUAT = ('qx', 'qy', 'qz', 'qw')
 _RPY = ('roll', 'pitch', 'yaw')
 _TRANS = ('x', 'y', 'z')
+_OLD_STYLE = 'Old-style arguments are deprecated; see --help for new-style arguments'
+
+# tf2_ros's program logs through rcutils' unnamed macros: its lines read `[WARN] [time] []: ...`
+_log = RcutilsLogger()
 
 
 class UsageError(ValueError):
@@ -79,11 +84,13 @@ class StaticTransform:
     values: dict[str, float] = field(default_factory=dict)
 
 
-def _number(name: str, text: str) -> float:
-    """A float the way C's strtod reads the start of `text` (what std::stod accepts)."""
-    import re
+C_FLOAT = re.compile(r'\s*[+-]?(inf(inity)?|nan|(\d+\.?\d*|\.\d+)(e[+-]?\d+)?)', re.I)
+"""The start of a text that C's strtod (so std::stod and std::stof) reads as a number."""
 
-    match = re.match(r'\s*[+-]?(inf(inity)?|nan|(\d+\.?\d*|\.\d+)(e[+-]?\d+)?)', text, re.I)
+
+def _number(name: str, text: str) -> float:
+    """A float the way std::stod reads the start of `text`."""
+    match = C_FLOAT.match(text)
     if match is None:
         raise UsageError(f'Failed to parse {name} argument as float')
     return float(match.group(0))
@@ -122,6 +129,7 @@ def parse(args: list[str]) -> StaticTransform:
         raise UsageError('Cannot specify both quaternion and Euler rotations')
     if len(positional) in (8, 9):
         out.old_style = True
+        _log.warning(_OLD_STYLE)  # before it is checked, as tf2_ros warns
         if saw_frame or saw_trans or saw_quat:
             raise UsageError('Cannot specify both new-style (flags) and old-style (arguments)')
         names = (
@@ -224,18 +232,15 @@ class StaticTransformPublisher(Node):
 
 def main(args: list[str] | None = None) -> int:
     """`static_transform_publisher`'s entry point."""
-    log = get_logger('static_transform_publisher')
     try:
         spec = parse(own_arguments(args))
     except UsageError as e:
-        log.error(f'error parsing command line arguments: {e}')
+        _log.error(f'error parsing command line arguments: {e}')
         print(USAGE, flush=True)
         return 1
     if spec.help:
         print(USAGE, flush=True)
         return 0
-    if spec.old_style:
-        log.warning('Old-style arguments are deprecated; see --help for new-style arguments')
     return run_node(lambda: StaticTransformPublisher(spec), args)
 
 

@@ -9,12 +9,12 @@ SOURCE's frame, i.e. what takes data from TARGET into SOURCE.
 from __future__ import annotations
 
 import math
-import re
 import sys
 from typing import TYPE_CHECKING
 
 from ros2lite.demos.display import own_arguments
 from ros2lite.demos.runner import run_node
+from ros2lite.demos.tf2_ros.static_transform_publisher import C_FLOAT
 from ros2lite.node import Node
 from ros2lite.tf2 import Buffer, TransformException, TransformListener
 from ros2lite.tf2.math import matrix_from_quaternion, rpy_from_matrix
@@ -30,8 +30,6 @@ USAGE = (
     'Note: This is the transform to get data from target_frame into the source_frame.\n'
     'Default echo rate is 1 if echo_rate is not given.\n'
 )
-
-_FLOAT_PREFIX = re.compile(r'\s*[+-]?(inf(inity)?|nan|(\d+\.?\d*|\.\d+)(e[+-]?\d+)?)', re.I)
 
 
 def format_transform(t: TransformStamped) -> str:
@@ -97,7 +95,7 @@ class Tf2Echo(Node):
 def _rate(text: str) -> float | int:
     """The rate argument as std::stof reads it; an exit status (2: no number, 3: junk after
     the number) when it is not one."""
-    match = _FLOAT_PREFIX.match(text)
+    match = C_FLOAT.match(text)
     if match is None:
         return 2
     if match.end() != len(text):

@@ -6,6 +6,7 @@ report."""
 from __future__ import annotations
 
 import queue
+import re
 import subprocess
 import sys
 import threading
@@ -90,15 +91,37 @@ def test_bad_command_lines_say_why() -> None:
         assert 'Traceback' not in got.stderr
 
 
-def _lines(proc: Any) -> queue.Queue[str | None]:
-    """The process's stdout lines, read by a thread (None once it ends), so that waiting for
-    them can time out."""
-    lines: queue.Queue[str | None] | None = getattr(proc, 'stdout_lines', None)
+def test_publisher_logs_as_tf2_ros_does(capfd: Any) -> None:
+    """tf2_ros's program logs through rcutils' unnamed logger (`[]`), and warns of the old
+    style as soon as it sees it, before finding the command line wrong."""
+    from ros2lite.demos.tf2_ros.static_transform_publisher import main
+
+    assert main(['--x', '1', '0', '0', '0', '0', '0', '0', 'a', 'b']) == 1
+    err = capfd.readouterr().err.splitlines()
+    assert len(err) == 2, err
+    assert re.fullmatch(
+        r'\[WARN\] \[\d+\.\d+\] \[\]: Old-style arguments are deprecated; see --help for '
+        r'new-style arguments',
+        err[0],
+    ), err
+    assert re.fullmatch(
+        r'\[ERROR\] \[\d+\.\d+\] \[\]: error parsing command line arguments: Cannot specify '
+        r'both new-style \(flags\) and old-style \(arguments\)',
+        err[1],
+    ), err
+
+
+def _lines(proc: Any, stream: str = 'stdout') -> queue.Queue[str | None]:
+    """The lines of the process's stdout or stderr, read by a thread (None once it ends), so
+    that waiting for them can time out."""
+    lines: queue.Queue[str | None] | None = getattr(proc, f'{stream}_lines', None)
     if lines is None:
-        lines = proc.stdout_lines = queue.Queue()
+        lines = queue.Queue()
+        setattr(proc, f'{stream}_lines', lines)
+        source = getattr(proc, stream)
 
         def pump() -> None:
-            for line in proc.stdout:
+            for line in source:
                 lines.put(line)
             lines.put(None)
 
@@ -106,36 +129,44 @@ def _lines(proc: Any) -> queue.Queue[str | None]:
     return lines
 
 
+def _next_line(proc: Any, stream: str, deadline: float, seen: str) -> str:
+    """The next line of the stream, failing the test at the deadline or when it ends."""
+    try:
+        line = _lines(proc, stream).get(timeout=max(0.0, deadline - time.monotonic()))
+    except queue.Empty:
+        raise AssertionError(f'no line in time on {stream} after:\n{seen}') from None
+    assert line is not None, f'{seen}\n(the process ended)'
+    return line
+
+
 def read_until(proc: Any, text: str, timeout: float = 30) -> str:
     """stdout of `proc` up to and including the first line that completes `text`."""
     seen = ''
     deadline = time.monotonic() + timeout
-    lines = _lines(proc)
     while not seen.endswith(text):
-        try:
-            line = lines.get(timeout=max(0.0, deadline - time.monotonic()))
-        except queue.Empty:
-            raise AssertionError(f'no {text!r} within {timeout} s in:\n{seen}') from None
-        assert line is not None, f'{seen}\n(the process ended)'
-        seen += line
+        seen += _next_line(proc, 'stdout', deadline, seen)
     return seen
 
 
-def stderr_until(proc: Any, text: str) -> str:
+def stderr_until(proc: Any, text: str, timeout: float = 30) -> str:
     """The first line of the process's stderr that contains `text`."""
-    seen = []
-    while True:
-        line = proc.stderr.readline()
-        assert line, '\n'.join(seen)
-        if text in line:
-            return line
-        seen.append(line)
+    seen = ''
+    deadline = time.monotonic() + timeout
+    while text not in (line := _next_line(proc, 'stderr', deadline, seen)):
+        seen += line
+    return line
+
+
+def stderr_lines(proc: Any, count: int, timeout: float = 30) -> list[str]:
+    """The next `count` lines of the process's stderr, without their line ends."""
+    deadline = time.monotonic() + timeout
+    return [_next_line(proc, 'stderr', deadline, '').rstrip('\n') for _ in range(count)]
 
 
 def test_static_transform_reaches_a_later_tf2_echo(processes: Any) -> None:
     publisher = processes.cli('run', 'tf2_ros', 'static_transform_publisher', *NEW_STYLE)
     stderr_until(publisher, 'Spinning until stopped - publishing transform')
-    lines = [publisher.stderr.readline().rstrip('\n') for _ in range(3)]
+    lines = stderr_lines(publisher, 3)
     assert lines == [
         "translation: ('1.000000', '2.000000', '3.000000')",
         "rotation: ('0.034271', '0.106021', '0.143572', '0.983347')",
