@@ -113,6 +113,16 @@ class StopSignals:
             self._block = None
 
 
+def _has_terminal() -> bool:
+    """Whether this process has a controlling terminal."""
+    try:
+        fd = os.open('/dev/tty', os.O_RDONLY | os.O_NOCTTY)
+    except OSError:
+        return False
+    os.close(fd)
+    return True
+
+
 def terminal_signals_child() -> bool:
     """True when we run in the foreground of a terminal, where Ctrl-C hits the whole process
     group — the child included — so forwarding it would deliver it twice."""
@@ -153,11 +163,12 @@ def run_child(
     proc: subprocess.Popen[bytes] | None = None
     interrupts = 0
     terminated = False
-    # Outside a terminal's foreground the child gets a process group of its own: a signal
-    # sent to our group (a supervisor, `kill -INT -PGID`) then reaches it once, through us,
-    # not a second time as we forward it — a second Ctrl-C landing in its clean-up
-    # (`destroy_node()` after `except KeyboardInterrupt`) would end it with a traceback.
-    own_group = not terminal_signals_child()
+    # Without a terminal the child gets a process group of its own: a signal sent to our
+    # group (a supervisor, `kill -INT -PGID`) then reaches it once, through us, not a second
+    # time as we forward it — a second Ctrl-C landing in its clean-up (`destroy_node()` after
+    # `except KeyboardInterrupt`) would end it with a traceback. With one, the child stays in
+    # our group, the shell's job, so `fg` gives it the terminal too.
+    own_group = not _has_terminal()
 
     def forward_int(_signum: int, _frame: FrameType | None) -> None:
         nonlocal interrupts
