@@ -9,7 +9,8 @@ as ``except ValueError`` keeps working. Subpackages keep their own errors (``bag
 
 from __future__ import annotations
 
-from typing import Protocol
+import sys
+from typing import Any, Protocol
 
 
 class _TypeName(Protocol):
@@ -154,3 +155,19 @@ class ParameterUninitializedException(ParameterException):
 
 
 # -- end of parameters -------------------------------------------------------------------------
+
+
+def quiet_interrupt_exit() -> None:
+    """From now on a Ctrl-C nobody caught ends this process without a traceback. Python
+    still runs the `atexit` handlers and dies of SIGINT as usual (status 130 in a shell);
+    only the printing is left out. For program start-up, where a Ctrl-C lands in an import
+    before any code of ours can catch it, and for user code run by `ros2lite run` that
+    lets one through (an `rclpy.init()` outside its `try`). Other exceptions print as ever."""
+    if sys.excepthook is sys.__excepthook__:
+        sys.excepthook = _quiet_interrupt_hook
+
+
+def _quiet_interrupt_hook(kind: type[BaseException], error: BaseException, tb: Any) -> None:
+    if issubclass(kind, KeyboardInterrupt):
+        return
+    sys.__excepthook__(kind, error, tb)

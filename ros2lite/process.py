@@ -36,6 +36,7 @@ __all__ = [
     'Terminated',
     'exit_code',
     'forget_caught_interrupt',
+    'release_interrupts',
     'run_child',
     'signal_handler',
     'sigterm_raises',
@@ -112,6 +113,16 @@ class StopSignals:
             self._block = None
 
 
+def _has_terminal() -> bool:
+    """Whether this process has a controlling terminal."""
+    try:
+        fd = os.open('/dev/tty', os.O_RDONLY | os.O_NOCTTY)
+    except OSError:
+        return False
+    os.close(fd)
+    return True
+
+
 def terminal_signals_child() -> bool:
     """True when we run in the foreground of a terminal, where Ctrl-C hits the whole process
     group — the child included — so forwarding it would deliver it twice."""
@@ -131,6 +142,8 @@ def run_child(
     cmd: Sequence[str],
     on_start: Callable[[subprocess.Popen[bytes]], object] | None = None,
     env: Mapping[str, str] | None = None,
+    *,
+    hold_interrupts: bool = False,
 ) -> int:
     """Start `cmd` (in `env`, default this process's environment), forward SIGINT/SIGTERM to
     it (see the module doc), return its returncode (negative: killed by that signal).
@@ -141,10 +154,21 @@ def run_child(
     Signals are taken by handlers installed before the child starts, not as
     KeyboardInterrupt: a Ctrl-C landing between the child's start and our wait would
     otherwise end this process early, and the terminal would hang up on the child.
+
+    `hold_interrupts`: the child starts with SIGINT blocked and unblocks it itself with
+    :func:`release_interrupts` (`ros2lite.pkg.runner` does, first thing): a Ctrl-C during
+    its interpreter's start-up then waits for it instead of landing in `site`, which
+    prints it and carries on (a node that then never stops) or dies with a traceback.
     """
     proc: subprocess.Popen[bytes] | None = None
     interrupts = 0
     terminated = False
+    # Without a terminal the child gets a process group of its own: a signal sent to our
+    # group (a supervisor, `kill -INT -PGID`) then reaches it once, through us, not a second
+    # time as we forward it — a second Ctrl-C landing in its clean-up (`destroy_node()` after
+    # `except KeyboardInterrupt`) would end it with a traceback. With one, the child stays in
+    # our group, the shell's job, so `fg` gives it the terminal too.
+    own_group = not _has_terminal()
 
     def forward_int(_signum: int, _frame: FrameType | None) -> None:
         nonlocal interrupts
@@ -152,7 +176,7 @@ def run_child(
         if (
             proc is not None
             and proc.poll() is None
-            and (interrupts > 1 or not terminal_signals_child())
+            and (interrupts > 1 or own_group or not terminal_signals_child())
         ):
             proc.send_signal(signal.SIGINT)
 
@@ -167,14 +191,19 @@ def run_child(
     with _handlers({signal.SIGINT: forward_int, signal.SIGTERM: forward_term}):
         try:
             try:
-                proc = subprocess.Popen(list(cmd), env=None if env is None else dict(env))
+                with _blocked(signal.SIGINT) if hold_interrupts else contextlib.nullcontext():
+                    proc = subprocess.Popen(
+                        list(cmd),
+                        env=None if env is None else dict(env),
+                        **_group_options(own_group),
+                    )
             except OSError as e:
                 raise ChildError(f'{cmd[0]}: {e.strerror or e}') from None
             # signals that came while the child was starting (it may already run and be
             # seen running, so a SIGTERM then is no rarer than one later)
             if terminated:
                 proc.send_signal(signal.SIGTERM)
-            elif interrupts and not terminal_signals_child():
+            elif interrupts and (own_group or not terminal_signals_child()):
                 proc.send_signal(signal.SIGINT)
             if on_start is not None:
                 try:
@@ -187,6 +216,33 @@ def run_child(
             return proc.wait()
         finally:
             sys.stdout.flush()
+
+
+@contextlib.contextmanager
+def _blocked(sig: int) -> Iterator[None]:
+    """`sig` blocked in this thread for the block (a child started meanwhile inherits the
+    mask); one that came meanwhile is delivered, to our handler, as the block ends."""
+    signal.pthread_sigmask(signal.SIG_BLOCK, {sig})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {sig})
+
+
+def release_interrupts() -> None:
+    """Unblock SIGINT, which `run_child(hold_interrupts=True)` started us with blocked; a
+    Ctrl-C that came during start-up arrives now (KeyboardInterrupt, as ever)."""
+    if _in_main_thread():
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
+def _group_options(own_group: bool) -> dict[str, Any]:
+    """Popen's arguments that put the child in a process group of its own (when asked)."""
+    if not own_group:
+        return {}
+    if sys.version_info >= (3, 11):
+        return {'process_group': 0}
+    return {'preexec_fn': os.setpgrp}  # pragma: no cover - Python 3.10
 
 
 def forget_caught_interrupt() -> None:

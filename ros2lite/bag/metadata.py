@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 from ros2lite.bag.errors import MetadataError
 from ros2lite.duration import Duration
+from ros2lite.pkg.distro import ros_distro
 from ros2lite.qos import (
     DURATION_INFINITE,
     DurabilityPolicy,
@@ -46,7 +47,6 @@ METADATA_FILENAME = "metadata.yaml"
 METADATA_VERSION = 9
 # what rosbag2 writes as the start of a bag that has no message yet (INT64_MAX)
 EMPTY_STARTING_TIME = 2**63 - 1
-ROS_DISTRO = "jazzy"
 
 
 @dataclass
@@ -93,7 +93,7 @@ class BagMetadata:
     relative_file_paths: list[str] = field(default_factory=list)
     files: list[FileInformation] = field(default_factory=list)
     custom_data: dict[str, str] | None = None
-    ros_distro: str = ROS_DISTRO
+    ros_distro: str = field(default_factory=ros_distro)  # the distro we speak, as recorded
 
     def topic(self, name: str) -> TopicInformation | None:
         """The entry of one topic, if the bag has it."""

@@ -15,6 +15,7 @@ from ros2lite.bag.errors import BagError
 from ros2lite.bag.metadata import BagMetadata, write_metadata_file
 from ros2lite.bag.reader import bag_files, metadata_from_files
 from ros2lite.bag.storage import open_storage_reader, plugin_for
+from ros2lite.pkg.distro import ros_distro
 
 __all__ = ["reindex"]
 
@@ -49,7 +50,7 @@ def reindex(directory: str | os.PathLike[str], storage_id: str | None = None) ->
             reader.close()
     metadata = metadata_from_files([f.name for f in files], summaries, sid)
     if not metadata.ros_distro:
-        metadata.ros_distro = "jazzy"
+        metadata.ros_distro = ros_distro()
     try:
         write_metadata_file(path, metadata)
     except OSError as e:

@@ -45,7 +45,8 @@ def cli(prefix: str | None, package_name: str, executable_name: str, argv: tuple
     exe = resolved.executable
     cmd = exe.prefixed_command(shlex.split(prefix or ''), list(argv))
     env = child_environment(pythonpath=exe.pythonpath, workspaces=index.workspaces())
-    code = run_child(cmd, env=env)
+    # a Python target runs through the runner, which takes a Ctrl-C of its start-up late
+    code = run_child(cmd, env=env, hold_interrupts=exe.is_python and not prefix)
     if code < 0:
         signum = -code
         name = signal.strsignal(signum) or f'signal {signum}'

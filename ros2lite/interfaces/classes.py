@@ -16,7 +16,7 @@ from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any, ClassVar
 
 from .errors import FieldError, InterfaceError
-from .parser import INT_RANGES, PRIMITIVES, FieldType, MessageDef, check_definition
+from .parser import INT_RANGES, PRIMITIVES, Constant, FieldType, MessageDef, check_definition
 from .registry import Registry, default_registry, normalize_name
 
 # array typecodes for primitive sequences/arrays (as rclpy: array.array for numbers)
@@ -105,6 +105,15 @@ def rosidl_type_string(ft: FieldType) -> str:
     if ft.container == 'sequence':
         return f'sequence<{base}>'
     return base
+
+
+def constant_value(constant: Constant) -> Any:
+    """A constant's value as the class holds it: rosidl's Python classes make a `byte`
+    constant `bytes` (`DiagnosticStatus.WARN == b'\\x01'`), ready to assign to a byte field;
+    `char` is uint8 there, an int like the rest."""
+    if constant.type == 'byte':
+        return bytes((constant.value,))
+    return constant.value
 
 
 def _scalar_default(ft: FieldType) -> str:
@@ -344,7 +353,7 @@ class ClassFactory:
         names = [f.name for f in mdef.fields]
         src = [f'class {short}(_Message):', f'    __slots__ = {tuple("_" + n for n in names)!r}']
         # values from the definition are bound through the namespace, not written as text
-        constants = tuple(c.value for c in mdef.constants)
+        constants = tuple(constant_value(c) for c in mdef.constants)
         for i, c in enumerate(mdef.constants):
             src.append(f'    {c.name} = _K[{i}]')
         defaults: list[object] = []

@@ -28,7 +28,7 @@ import sys
 from collections.abc import Iterable
 from pathlib import Path
 
-from .classes import TYPECODES
+from .classes import TYPECODES, constant_value
 from .parser import PRIMITIVES, FieldType, MessageDef
 from .registry import BUNDLED, Registry
 
@@ -126,7 +126,7 @@ def _constant(module: _Module, ctype: str, value: object) -> str:
     final = module.use('Final')
     if isinstance(value, float) and not math.isfinite(value):
         return f'{final}[float]'
-    if isinstance(value, (bool, int, float, str)):
+    if isinstance(value, (bool, int, float, str, bytes)):
         return f'{final} = {value!r}'
     raise ValueError(f'constant of unexpected type {ctype}: {value!r}')
 
@@ -138,7 +138,7 @@ def _message_class(module: _Module, mdef: MessageDef) -> list[str]:
         raise ValueError(f'{mdef.name}: a member named {clash[0]!r} would shadow the builtin')
     lines = [f'class {mdef.short_name}({module.use("Message")}):', f'    """{mdef.name}"""', '']
     for c in mdef.constants:
-        lines.append(f'    {c.name}: {_constant(module, c.type, c.value)}')
+        lines.append(f'    {c.name}: {_constant(module, c.type, constant_value(c))}')
     if mdef.constants:
         lines.append('')
     params = []

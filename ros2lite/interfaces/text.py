@@ -7,6 +7,7 @@ dependency once (depth first, siblings sorted) after an 80-'=' line and `MSG: <n
 from __future__ import annotations
 
 import re
+import textwrap
 from dataclasses import dataclass
 
 from .errors import InterfaceError, UnknownInterfaceError
@@ -75,8 +76,25 @@ def definition_text(name: str, reg: Registry) -> str:
     return expand(synthesized_text(reg.message(name)), pkg)
 
 
+# rosidl_adapter takes exactly one bracketed span without a comma out of a comment as its unit
+_UNIT_RE = re.compile(r'(\s*\[([^,\]]+)\])')
+
+
+def _comment_annotation(comment: str) -> str | None:
+    """What rosidl_adapter keeps of a one-line comment (None: nothing, which ros2cli then
+    does not count as a comment): a lone '[unit]' taken out, then dedented."""
+    units = _UNIT_RE.findall(comment)
+    if len(units) == 1:
+        comment = comment.replace(units[0][0], '')
+    return textwrap.dedent(comment) if comment else None
+
+
 @dataclass
 class _Line:
+    """One line of a definition file as ros2cli's `interface show` sees it: it hands each
+    line alone to rosidl_adapter's parser, whose comment rules this follows (a whole-line
+    comment starts in column 0; a trailing one is split at the first '#', quotes or not)."""
+
     raw: str
     is_comment: bool = False
     trailing_comment: str | None = None
@@ -87,24 +105,47 @@ def _classify(raw: str, package: str) -> _Line:
     line = _Line(raw)
     if raw.strip() == SERVICE_SEPARATOR:
         return line
-    code, comment = split_comment(raw)
+    spaced = raw.replace('\t', ' ')
+    if spaced.startswith('#'):
+        line.is_comment = _comment_annotation(spaced.lstrip('#')) is not None
+        return line
+    code = split_comment(raw)[0]
     if not code.strip():
-        line.is_comment = comment is not None
-        return line
+        return line  # empty, or indented comment: neither for rosidl_adapter
     item = parse_line(code, package)
-    if isinstance(item, Constant):
-        return line
-    if comment is not None and comment.strip():
-        line.trailing_comment = comment.strip()
-    if not item.type.is_primitive:
+    cut = spaced.find('#')
+    if cut >= 0:
+        line.trailing_comment = _comment_annotation(spaced[cut:].lstrip('#'))
+    if not isinstance(item, Constant) and not item.type.is_primitive:
         line.nested = item.type.base
     return line
+
+
+def _without_comment(line: _Line) -> str | None:
+    """The line as `--no-comments` prints it; None when it is left out. A trailing comment is
+    cut where its text first occurs in the line, one character before it, as ros2cli does."""
+    text = line.raw
+    if not text or line.is_comment:
+        return None
+    if line.trailing_comment is not None:
+        text = text[: text.find(line.trailing_comment) - 1].strip()
+    return text
+
+
+def _file_lines(text: str) -> list[str]:
+    """The lines as iterating over the opened file gives them (only '\n' ends one)."""
+    lines = text.split('\n')
+    if lines[-1] == '':
+        lines.pop()
+    return [line.rstrip() for line in lines]
 
 
 def show_lines(
     name: str, reg: Registry, *, all_comments: bool = False, no_comments: bool = False
 ) -> list[str]:
-    """Lines of `ros2 interface show`: nested types expanded with one tab per level."""
+    """Lines of `ros2 interface show`: nested types expanded with one tab per level. The
+    top-level type shows its comments unless `no_comments`; nested ones only with
+    `all_comments` (blank lines go with the comments)."""
     parts = name.split('/')
     if len(parts) != 3:
         raise InterfaceError(f"Invalid name '{name}'. Expected three parts separated by '/'")
@@ -114,21 +155,13 @@ def show_lines(
         package = type_name.split('/')[0]
         path = reg.interface_path(type_name)
         text = path.read_text(encoding='utf-8')
-        for lineno, raw in enumerate(text.splitlines(), start=1):
-            raw = raw.rstrip()
+        for lineno, raw in enumerate(_file_lines(text), start=1):
             try:
                 line = _classify(raw, package)
             except ValueError as e:
                 raise InterfaceError(f'{path}:{lineno}: {e}') from None
-            shown = raw
-            if not comments:
-                if not raw or line.is_comment:
-                    shown = ''
-                elif line.trailing_comment is not None:
-                    shown = split_comment(raw)[0].strip()
-                if shown:
-                    out.append('\t' * level + shown)
-            else:
+            shown = raw if comments else _without_comment(line)
+            if shown is not None:
                 out.append('\t' * level + shown if shown else '')
             if line.nested:
                 show(line.nested, all_comments, level + 1)

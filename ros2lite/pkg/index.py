@@ -15,7 +15,12 @@ Sources, first one first; **a package belongs entirely to the first source that 
 3. Python entry points in the group ``ros2lite.executables`` (see :mod:`.executables`).
 4. ``AMENT_PREFIX_PATH`` — a sourced ROS install or colcon `install/`: packages listed in each
    prefix's ament resource index, prefixes in order.
-5. The packages bundled with ros2lite: its demos and its interface definitions.
+5. The Python environment's own prefix (:func:`environment_prefixes`), found with no variable
+   set: interface packages that wheels such as ``ros-jazzy-std-msgs`` installed there (listed
+   in its ament resource index, with `share/<pkg>/msg|srv|action`). They carry upstream's
+   comments, which the bundled copies leave out. A name ros2lite bundles a demo for is not
+   taken from here, so installing a ROS wheel never swaps a bundled node for a binary.
+6. The packages bundled with ros2lite: its demos and its interface definitions.
 
 `ros2lite pkg prefix <pkg>` prints where the winner lives and, when it is not an ament
 prefix or when it shadows another source, a line on stderr naming the source.
@@ -24,6 +29,9 @@ prefix or when it shadows another source, a line on stderr naming the source.
 from __future__ import annotations
 
 import os
+import site
+import sys
+import sysconfig
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -41,6 +49,7 @@ __all__ = [
     'Package',
     'PackageIndex',
     'ament_prefixes',
+    'environment_prefixes',
     'interface_packages',
     'interface_roots',
 ]
@@ -58,12 +67,14 @@ ORIGIN_INTERFACE_PATH = 'interface path'
 ORIGIN_WORKSPACE = 'workspace'
 ORIGIN_ENTRY_POINT = 'entry point'
 ORIGIN_AMENT = 'ament'
+ORIGIN_ENVIRONMENT = 'environment'
 ORIGIN_BUNDLED = 'bundled'
 ORIGINS = (
     ORIGIN_INTERFACE_PATH,
     ORIGIN_WORKSPACE,
     ORIGIN_ENTRY_POINT,
     ORIGIN_AMENT,
+    ORIGIN_ENVIRONMENT,
     ORIGIN_BUNDLED,
 )
 
@@ -77,13 +88,37 @@ def ament_prefixes(env: Mapping[str, str] | None = None) -> list[Path]:
     return _paths((os.environ if env is None else env).get('AMENT_PREFIX_PATH', ''))
 
 
+_environment: list[Path] | None = None
+
+
+def environment_prefixes() -> list[Path]:
+    """The prefixes where pip puts this interpreter's data files (a wheel's
+    `share/...`): the install scheme's data directory (a venv's root; Debian's /usr/local),
+    `sys.prefix`, and the user base when user site-packages are on. Only those holding an
+    ament resource index, so an environment without ROS wheels costs a few `stat`s, once."""
+    global _environment
+    if _environment is None:
+        candidates = [sysconfig.get_path('data'), sys.prefix]
+        if site.ENABLE_USER_SITE:
+            candidates.append(sysconfig.get_path('data', f'{os.name}_user'))
+        found: list[Path] = []
+        for candidate in candidates:
+            prefix = Path(candidate)
+            if prefix not in found and (prefix / _AMENT_INDEX).is_dir():
+                found.append(prefix)
+        _environment = found
+    return list(_environment)
+
+
 def interface_roots(env: Mapping[str, str] | None = None) -> list[Path]:
     """Directories whose children are interface packages (`<pkg>/msg|srv|action`), in
-    priority order: `ROS2LITE_INTERFACE_PATH`, each prefix's `share/`, the bundled set.
-    (Source workspaces hold packages at any depth; :func:`interface_packages` has them.)"""
+    priority order: `ROS2LITE_INTERFACE_PATH`, each ament prefix's `share/`, the Python
+    environment's `share/`, the bundled set. (Source workspaces hold packages at any depth;
+    :func:`interface_packages` has them.)"""
     environ = os.environ if env is None else env
     roots = _paths(environ.get(INTERFACE_PATH_ENV, ''))
     roots += [prefix / 'share' for prefix in ament_prefixes(environ)]
+    roots += [prefix / 'share' for prefix in environment_prefixes()]
     roots.append(BUNDLED_INTERFACES)
     return roots
 
@@ -120,6 +155,8 @@ class Package:
             return f'{INTERFACE_PATH_ENV} entry {self.prefix}'
         if self.origin == ORIGIN_ENTRY_POINT:
             return f'Python entry points installed in {self.prefix}'
+        if self.origin == ORIGIN_ENVIRONMENT:
+            return f'Python environment {self.prefix}'
         return 'packages bundled with ros2lite'
 
 
@@ -150,6 +187,7 @@ class PackageIndex:
                 ORIGIN_WORKSPACE: self._read_workspaces,
                 ORIGIN_ENTRY_POINT: self._read_entry_points,
                 ORIGIN_AMENT: self._read_ament,
+                ORIGIN_ENVIRONMENT: self._read_environment,
                 ORIGIN_BUNDLED: self._read_bundled,
             }[origin]
             found = self._sources[origin] = reader()
@@ -210,6 +248,18 @@ class PackageIndex:
                 share = prefix / 'share' / name
                 interfaces = share if _has_interfaces(share) else None
                 found[name] = Package(name, ORIGIN_AMENT, prefix, share, interfaces)
+        return found
+
+    def _read_environment(self) -> dict[str, Package]:
+        found: dict[str, Package] = {}
+        for prefix in environment_prefixes():
+            for marker in _children(prefix / _AMENT_INDEX):
+                name = marker.name
+                if name in found or name in BUNDLED or not is_valid_package_name(name):
+                    continue
+                share = prefix / 'share' / name
+                if marker.is_file() and _has_interfaces(share):
+                    found[name] = Package(name, ORIGIN_ENVIRONMENT, prefix, share, share)
         return found
 
     def _read_bundled(self) -> dict[str, Package]:

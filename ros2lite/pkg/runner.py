@@ -13,13 +13,18 @@ import os
 import sys
 from typing import Any
 
-from ros2lite.process import forget_caught_interrupt
+from ros2lite.exceptions import quiet_interrupt_exit
+from ros2lite.process import forget_caught_interrupt, release_interrupts
 
 USAGE = 'usage: python -m ros2lite.pkg.runner <module:function> <name> [argv...]'
 
 
 def main() -> None:
     """Run the target named on the command line; exits with its status."""
+    # a Ctrl-C the program does not catch (one in its start-up, before its `try`) ends it
+    # by SIGINT as ever, without a traceback
+    quiet_interrupt_exit()
+    release_interrupts()  # `ros2lite run` held a Ctrl-C of our start-up until now
     if len(sys.argv) < 3 or ':' not in sys.argv[1]:
         print(USAGE, file=sys.stderr)
         raise SystemExit(2)

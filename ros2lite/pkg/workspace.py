@@ -4,7 +4,11 @@ A workspace is a directory whose `src/` holds packages (each a directory with a
 `package.xml`, at any depth), as colcon sees it. ros2lite uses, in this order:
 
 1. the workspace enclosing the current directory: the nearest of the current directory and
-   its parents whose `src/` holds at least one package within four levels;
+   its parents whose `src/` holds at least one package within four levels, and that looks
+   like a workspace a user made for where they stand: it is the current directory itself,
+   or the current directory lies inside its `src/`, or colcon has built there (its
+   `build/`, `install/` or `log/` holds colcon's `COLCON_IGNORE`). A folder further up
+   whose `src/` merely holds packages (a home directory's `~/src`) is not taken;
 2. each directory in ``ROS2LITE_WORKSPACE`` (`:`-separated): its `src/` if it has one,
    else the directory itself.
 
@@ -141,10 +145,22 @@ def _has_package(src: Path) -> bool:
     return next(_package_dirs(src, _DETECT_DEPTH, _DETECT_DIRS), None) is not None
 
 
+# what colcon leaves beside `src/` once it has built a workspace
+_COLCON_BASES = ('build', 'install', 'log')
+
+
+def _colcon_built(directory: Path) -> bool:
+    return any((directory / base / 'COLCON_IGNORE').is_file() for base in _COLCON_BASES)
+
+
 def enclosing_workspace(cwd: Path) -> Path | None:
-    """The nearest of `cwd` and its parents whose `src/` holds a package."""
+    """The workspace the user stands in (see the module doc): the nearest of `cwd` and its
+    parents whose `src/` holds a package, when it is `cwd`, holds `cwd` in its `src/`, or
+    was built by colcon."""
     for directory in (cwd, *cwd.parents):
         src = directory / 'src'
+        if not (directory == cwd or cwd.is_relative_to(src) or _colcon_built(directory)):
+            continue
         if src.is_dir() and _has_package(src):
             return directory
     return None

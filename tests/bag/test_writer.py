@@ -278,3 +278,15 @@ def test_library_api_round_trip(tmp_path: Path) -> None:
         assert [(t, m.data) for t, m, _ in bag] == [("/a", "one"), ("/raw", "two")]
         assert [type(m) for _, m, _ in bag.messages(raw=True)] == [bytes, bytes]
         assert dump_metadata(bag.metadata).startswith("rosbag2_bagfile_information:\n")
+
+
+def test_metadata_records_the_distro(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """As rosbag2 records its ROS_DISTRO: Jazzy by default, Kilted when that is the distro."""
+    import yaml
+
+    for distro, expected in (("", "jazzy"), ("kilted", "kilted")):
+        monkeypatch.setenv("ROS_DISTRO", distro)
+        with Writer(tmp_path / f"bag_{expected}") as bag:
+            bag.write("/chatter", String(data="x"), 1_700_000_000_000_000_000)
+        meta = yaml.safe_load((tmp_path / f"bag_{expected}" / "metadata.yaml").read_text())
+        assert meta["rosbag2_bagfile_information"]["ros_distro"] == expected

@@ -109,3 +109,28 @@ def test_field_checks_can_be_off_as_in_jazzy(monkeypatch: pytest.MonkeyPatch) ->
     monkeypatch.setattr(_CHECK, 'on', True)
     with pytest.raises(FieldError):
         event_type(new_parameters=[stand_in])
+
+
+@pytest.mark.parametrize('checks', [True, False])
+def test_byte_constants_are_bytes_and_fill_byte_fields(
+    monkeypatch: pytest.MonkeyPatch, checks: bool
+) -> None:
+    """As rosidl's Python classes: a `byte` constant is one-byte `bytes`, so
+    `DiagnosticStatus(level=DiagnosticStatus.WARN)` serializes whether or not assignments
+    are checked; `byte` fields default to b'\\x00', `char` ones are uint8 ints."""
+    from ros2lite.interfaces import deserialize, serialize
+    from ros2lite.interfaces.classes import _CHECK
+
+    monkeypatch.setattr(_CHECK, 'on', checks)
+    status = get_interface('diagnostic_msgs/msg/DiagnosticStatus')
+    assert (status.OK, status.WARN, status.ERROR, status.STALE) == (
+        b'\x00',
+        b'\x01',
+        b'\x02',
+        b'\x03',
+    )
+    warn = status(level=status.WARN, name='n')
+    assert deserialize(status, serialize(warn)).level == status.WARN
+    assert status().level == b'\x00'
+    assert get_interface('std_msgs/msg/Char')().data == 0
+    assert get_interface('std_msgs/msg/Byte')().data == b'\x00'

@@ -106,3 +106,14 @@ def test_each_registry_hashes_its_own_definitions(tmp_path: Path) -> None:
         seen.add((fields, hash_in('lesson_msgs/msg/Age', Registry([tmp_path / str(i)]))))
     assert len(seen) == 3  # one hash per definition, the same each time
     assert len({h for _, h in seen}) == 3
+
+
+def test_kilted_hashes_equal_jazzys() -> None:
+    """`ROS_DISTRO=kilted` changes names, not the wire: the hashes in Kilted's own type
+    descriptions (the `.json` files of the ros-kilted-{std,geometry,sensor}-msgs and
+    builtin-interfaces wheels, 5.5.1/2.3.0) are Jazzy's and ours."""
+    kilted = json.loads((TABLE_PATH.parent / 'rihs01_kilted_core.json').read_text())
+    assert len(kilted) == 96
+    jazzy = load_table()
+    assert {name: jazzy[name] for name in kilted} == kilted
+    assert {name: type_hash(name) for name in kilted} == kilted

@@ -82,10 +82,12 @@ def test_show_comment_modes(tmp_path: pytest.TempPathFactory) -> None:
     )
     (root / 'demo' / 'msg' / 'Inner.msg').write_text('# inner doc\n\nbool flag # a flag\n')
     reg = Registry([root, BUNDLED])
+    # a trailing comment is cut one character before where its text starts: the '#' stays,
+    # as the real ros2cli prints it (checked with shared/tools/ros2cli-oracle)
     assert show_lines('demo/msg/Outer', reg) == [
         '# A short, varied, and nested type',
         'Inner inner # Comment - nesting',
-        '\tbool flag',
+        '\tbool flag #',
         '',
         'int32 X=1 # const comment',
         '# Trailing comment',
@@ -101,7 +103,69 @@ def test_show_comment_modes(tmp_path: pytest.TempPathFactory) -> None:
         '# Trailing comment',
     ]
     assert show_lines('demo/msg/Outer', reg, no_comments=True) == [
-        'Inner inner',
-        '\tbool flag',
-        'int32 X=1 # const comment',
+        'Inner inner #',
+        '\tbool flag #',
+        'int32 X=1 #',
+    ]
+
+
+QUIRKS = [
+    '# doc line',
+    '#',
+    '#[m]',
+    '# [m] after unit',
+    '  # indented comment',
+    '',
+    'bool flag # a flag',
+    'float64 x # [m]',
+    'float64 y # a [m] b',
+    'float64 z #',
+    'int32 X=1 # const comment',
+    'string S="a#b" # str const',
+    'Inner inner # nested one',
+    'int32\ttabbed\t# tab\there',
+    'float64 w ## two hashes',
+    'float64 v # [m] [s] two units',
+    '#trailing',
+]
+
+
+def test_show_follows_ros2cli_comment_rules_to_the_letter(tmp_path: pytest.TempPathFactory) -> None:
+    """ros2cli hands each line alone to rosidl_adapter: a comment emptied by taking out its
+    one '[unit]' is no comment, an indented one neither, a trailing one is cut where its
+    dedented text first occurs. The expected lines are what the real ros2cli printed for
+    these files (shared/tools/ros2cli-oracle, `real ros2 interface show`)."""
+    from pathlib import Path
+
+    from ros2lite.interfaces.registry import BUNDLED, Registry
+
+    root = Path(str(tmp_path))
+    (root / 'quirk_msgs' / 'msg').mkdir(parents=True)
+    (root / 'quirk_msgs' / 'msg' / 'Quirk.msg').write_text('\n'.join(QUIRKS) + '\n')
+    (root / 'quirk_msgs' / 'msg' / 'Inner.msg').write_text(
+        '# inner doc\n\nbool flag # a flag\n  # indented\nint8 k\n'
+    )
+    reg = Registry([root, BUNDLED])
+    nested = ['\tbool flag #', '\t  # indented', '\tint8 k']
+    at = QUIRKS.index('Inner inner # nested one') + 1
+    assert show_lines('quirk_msgs/msg/Quirk', reg) == QUIRKS[:at] + nested + QUIRKS[at:]
+    nested_all = ['\t# inner doc', '', '\tbool flag # a flag', *nested[1:]]
+    assert show_lines('quirk_msgs/msg/Quirk', reg, all_comments=True) == (
+        QUIRKS[:at] + nested_all + QUIRKS[at:]
+    )
+    assert show_lines('quirk_msgs/msg/Quirk', reg, no_comments=True) == [
+        '#',
+        '#[m]',
+        '  # indented comment',
+        'bool flag #',
+        'float64 x # [m]',
+        'float64 y # a [m]',
+        'float64 z #',
+        'int32 X=1 #',
+        'string S="a',
+        'Inner inner #',
+        *nested,
+        'int32\ttabbed\t# tab\the',
+        'float64 w ##',
+        'float64 v #',
     ]

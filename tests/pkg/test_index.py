@@ -92,3 +92,29 @@ def test_workspace_interfaces_reach_the_type_system(
     assert [f.name for f in person.fields] == ['name', 'age']
     age = get_interface('tutorial_interfaces/msg/Age', reg)
     assert age(years=3).years == 3
+
+
+def test_the_python_environment_is_a_source_of_its_own(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Interface packages installed into the interpreter's prefix (ROS's PyPI wheels) are
+    found with no variable set, after AMENT_PREFIX_PATH and before the bundled copies; a
+    name ros2lite bundles a demo for stays bundled, and non-interface packages stay out."""
+    from ros2lite.pkg import index as index_module
+    from ros2lite.pkg.index import PackageIndex
+
+    venv = tmp_path / 'venv'
+    _ament_package(venv, 'std_msgs', msgs={'Bool.msg': '# documented\nbool data\n'})
+    _ament_package(venv, 'turtlesim', msgs={'Pose.msg': 'float32 x\n'})
+    _ament_package(venv, 'rosidl_cmake')  # build tooling: no interfaces
+    opt = tmp_path / 'opt'
+    _ament_package(opt, 'std_msgs', msgs={'Bool.msg': 'bool data\n'})
+    monkeypatch.setattr(index_module, '_environment', [venv])
+    assert interface_roots({})[-2:] == [venv / 'share', BUNDLED_INTERFACES]
+    index = PackageIndex({}, cwd=tmp_path)
+    assert [p.origin for p in index.candidates('std_msgs')] == ['environment', 'bundled']
+    assert index.interface_packages()['std_msgs'] == venv / 'share' / 'std_msgs'
+    assert index.find('turtlesim').origin == 'bundled'  # type: ignore[union-attr]
+    assert index.find('rosidl_cmake') is None
+    over = PackageIndex({'AMENT_PREFIX_PATH': str(opt)}, cwd=tmp_path)
+    assert [p.origin for p in over.candidates('std_msgs')] == ['ament', 'environment', 'bundled']

@@ -40,6 +40,24 @@ def test_enclosing_workspace(tmp_path: Path) -> None:
     assert enclosing_workspace(tmp_path) is None
 
 
+def test_a_folder_above_is_a_workspace_only_when_it_looks_made_for_it(tmp_path: Path) -> None:
+    """Standing in ~/projects/x, a ~/src holding some package does not make ~ a workspace
+    (it used to, and its packages shadowed the bundled demos); standing inside its src/, or
+    anywhere in it once colcon has built it, does."""
+    home = tmp_path / 'home'
+    write_package(home / 'src' / 'demo_nodes_py', 'demo_nodes_py')
+    elsewhere = home / 'projects' / 'x'
+    elsewhere.mkdir(parents=True)
+    assert enclosing_workspace(elsewhere) is None
+    assert workspaces({}, elsewhere) == []
+    assert enclosing_workspace(home) == home  # standing in it
+    assert enclosing_workspace(home / 'src' / 'demo_nodes_py') == home  # inside its sources
+    (home / 'log').mkdir()
+    assert enclosing_workspace(elsewhere) is None  # a bare log/ is not colcon's
+    (home / 'log' / 'COLCON_IGNORE').write_text('')
+    assert enclosing_workspace(elsewhere) == home
+
+
 def test_workspaces_in_order(tmp_path: Path) -> None:
     here = tmp_path / 'here'
     write_package(here / 'src' / 'p', 'p')

@@ -38,4 +38,4 @@ def cli(type_name: str, all_comments: bool, no_comments: bool) -> None:
         raise click.UsageError('--all-comments and --no-comments are mutually exclusive')
     name = read_type_argument(type_name)
     lines = show_lines(name, default_registry(), all_comments=all_comments, no_comments=no_comments)
-    click.echo('\n'.join(lines))
+    click.echo(''.join(line + '\n' for line in lines), nl=False)  # an empty type: nothing

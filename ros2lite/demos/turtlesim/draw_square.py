@@ -12,10 +12,10 @@ import sys
 from typing import Any
 
 from ros2lite.demos.runner import run_node
+from ros2lite.demos.turtlesim.interfaces import Pose
 from ros2lite.demos.turtlesim.sim import f32
 from ros2lite.msgs.geometry_msgs.msg import Twist
 from ros2lite.msgs.std_srvs.srv import Empty
-from ros2lite.msgs.turtlesim.msg import Pose
 from ros2lite.node import Node
 
 PI = 3.141592  # the tutorial's own

@@ -9,8 +9,8 @@ from __future__ import annotations
 import sys
 
 from ros2lite.demos.runner import run_node
+from ros2lite.demos.turtlesim.interfaces import Pose
 from ros2lite.msgs.geometry_msgs.msg import Twist
-from ros2lite.msgs.turtlesim.msg import Pose
 from ros2lite.node import Node
 
 

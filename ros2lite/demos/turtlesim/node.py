@@ -6,8 +6,9 @@ world, which applies them at the next step as turtlesim does. Views (window, ter
 touch this thread: they read `frame` (replaced whole after every step) and drain the canvas
 strokes, so drawing can never hold the simulation up.
 
-Types are the `turtlesim` package's, as the Jazzy node advertises them (the interfaces moved
-to `turtlesim_msgs` only after Jazzy).
+Types are the `turtlesim` package's, as the Jazzy node advertises them, or with
+``ROS_DISTRO=kilted`` (or rolling) `turtlesim_msgs`', where the interfaces moved after Jazzy
+(:mod:`ros2lite.demos.turtlesim.interfaces`).
 """
 
 from __future__ import annotations
@@ -19,6 +20,16 @@ from typing import TYPE_CHECKING, Any, cast
 from ros2lite.action import ActionServer, CancelResponse
 from ros2lite.action.server import ServerGoalHandle
 from ros2lite.demos.turtlesim import sim
+from ros2lite.demos.turtlesim.interfaces import (
+    Color,
+    Kill,
+    Pose,
+    RotateAbsolute,
+    SetPen,
+    Spawn,
+    TeleportAbsolute,
+    TeleportRelative,
+)
 from ros2lite.msgs.geometry_msgs.msg import Twist
 from ros2lite.msgs.rcl_interfaces.msg import (
     IntegerRange,
@@ -26,15 +37,6 @@ from ros2lite.msgs.rcl_interfaces.msg import (
     ParameterEvent,
 )
 from ros2lite.msgs.std_srvs.srv import Empty
-from ros2lite.msgs.turtlesim.action import RotateAbsolute
-from ros2lite.msgs.turtlesim.msg import Color, Pose
-from ros2lite.msgs.turtlesim.srv import (
-    Kill,
-    SetPen,
-    Spawn,
-    TeleportAbsolute,
-    TeleportRelative,
-)
 from ros2lite.node import Node
 from ros2lite.parameter import Parameter
 from ros2lite.qos import QoSProfile, ReliabilityPolicy

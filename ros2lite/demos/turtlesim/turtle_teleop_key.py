@@ -15,7 +15,7 @@ from ros2lite.demos.runner import run_main
 
 if TYPE_CHECKING:
     from ros2lite.action import ClientGoalHandle
-    from ros2lite.msgs.turtlesim.action import RotateAbsolute
+    from ros2lite.demos.turtlesim.interfaces import RotateAbsolute
     from ros2lite.task import Future
 
     _Handle = ClientGoalHandle[RotateAbsolute.Goal, RotateAbsolute.Result, RotateAbsolute.Feedback]
@@ -48,8 +48,8 @@ class TeleopTurtle:
 
     def __init__(self) -> None:
         from ros2lite.action import ActionClient
+        from ros2lite.demos.turtlesim.interfaces import RotateAbsolute
         from ros2lite.msgs.geometry_msgs.msg import Twist
-        from ros2lite.msgs.turtlesim.action import RotateAbsolute
         from ros2lite.node import Node
 
         self.node = Node('teleop_turtle')

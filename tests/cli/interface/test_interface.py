@@ -50,6 +50,7 @@ def test_show(run: Run) -> None:
         'Vector3  linear\n\tfloat64 x\n\tfloat64 y\n\tfloat64 z\n'
         'Vector3  angular\n\tfloat64 x\n\tfloat64 y\n\tfloat64 z\n'
     )
+    assert run('interface', 'show', 'std_msgs/msg/Empty').out == ''  # as ros2cli: no blank line
     bad = run('interface', 'show', 'std_msgs/String')
     assert bad.code == 1
     assert bad.err == "Invalid name 'std_msgs/String'. Expected three parts separated by '/'\n"

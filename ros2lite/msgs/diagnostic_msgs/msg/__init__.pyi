@@ -25,10 +25,10 @@ class DiagnosticArray(_Message):
 class DiagnosticStatus(_Message):
     """diagnostic_msgs/msg/DiagnosticStatus"""
 
-    OK: _Final = 0
-    WARN: _Final = 1
-    ERROR: _Final = 2
-    STALE: _Final = 3
+    OK: _Final = b'\x00'
+    WARN: _Final = b'\x01'
+    ERROR: _Final = b'\x02'
+    STALE: _Final = b'\x03'
 
     def __init__(
         self,
