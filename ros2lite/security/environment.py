@@ -9,6 +9,11 @@ rcl's rules, kept as they are so the same shell works for ROS 2 and ros2lite:
   (``--ros-args --enclave``, registered with :func:`use_enclave`), else ``/``;
 * its directory is ``$ROS_SECURITY_KEYSTORE/enclaves/<enclave>``.
 
+Material that is there but would be refused or ignored by the router (permissions for
+another ``ROS_DOMAIN_ID``) is named in one line by
+:func:`enclave_problems`, the same words for every node and verb: fatal under Enforce, a
+warning under Permissive.  Every session and router config passes through here.
+
 On Zenoh an identity is what TLS needs: the keystore's identity CA (to check the other end),
 and the enclave's certificate and key (to be checked).  The router has an enclave of its own
 (``ROS2LITE_ROUTER_ENCLAVE``, default ``/zenohd`` as rmw_zenoh's tools name it), created on
@@ -17,12 +22,18 @@ first use when the keystore's CA key is at hand.
 
 from __future__ import annotations
 
+import datetime
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-from ros2lite.security.enclaves import KEYSTORE_ENV, enclave_directory, validate_enclave_name
+from ros2lite.security.enclaves import (
+    KEYSTORE_ENV,
+    enclave_directory,
+    env_domain_id,
+    validate_enclave_name,
+)
 from ros2lite.security.errors import EnclaveError, SecurityError
 
 __all__ = [
@@ -34,6 +45,7 @@ __all__ = [
     'STRATEGY_ENV',
     'Identity',
     'enclave_directory',
+    'enclave_problems',
     'enforced',
     'process_enclave',
     'resolve',
@@ -129,12 +141,67 @@ def _fallback(reason: str) -> None:
     )
 
 
-def _decide(keystore_raw: str, enclave: str, env: Mapping[str, str] | None) -> Identity | None:
+def _domains_phrase(domains: list[int]) -> str:
+    if not domains:
+        return 'no domain'
+    listed = ', '.join(str(d) for d in domains)
+    return f'domain {listed}' if len(domains) == 1 else f'domains {listed}'
+
+
+def enclave_problems(
+    identity: Identity, domain: int | None, now: datetime.datetime | None = None
+) -> list[str]:
+    """Why the router would refuse or ignore this enclave, one phrase each (empty: none):
+    its permissions (a grant for the enclave valid now, covering ``domain`` unless None, as
+    for the router itself)."""
+    from ros2lite.security.files import read_bytes
+    from ros2lite.security.permissions import parse_permissions
+
+    when = now or datetime.datetime.now(datetime.timezone.utc)
+    enclave = identity.enclave
+    problems: list[str] = []
+    what = f'permissions of enclave {enclave}'
+    path = identity.directory / 'permissions.xml'
+    try:
+        grants = parse_permissions(read_bytes(path, what), str(path))
+    except SecurityError as exc:
+        return [str(exc)]
+    grant = next((g for g in grants if g.common_name == enclave), None)
+    if grant is None:
+        return [*problems, f'{what} grant nothing to CN={enclave}']
+    if not grant.valid_at(when):
+        problems.append(f'{what} are not valid now')
+    covered = sorted({d for rule in grant.rules if rule.allow for d in rule.domains})
+    if domain is not None and domain not in covered:
+        problems.append(f'{what} cover {_domains_phrase(covered)}, not {domain}')
+    return problems
+
+
+def _warn(reason: str) -> None:
+    """Permissive: carry on with the material as it is, and say what is wrong once."""
+    if reason in _reported:
+        return
+    _reported.add(reason)
+    from ros2lite.logging import get_logger
+
+    get_logger('ros2lite.security').warn(
+        f'SECURITY: {reason} (going on: {STRATEGY_ENV} is not Enforce)'
+    )
+
+
+def _decide(
+    keystore_raw: str, enclave: str, env: Mapping[str, str] | None, domain: int | None
+) -> Identity | None:
     if not keystore_raw:
         reason = f'{ENABLE_ENV}=true but {KEYSTORE_ENV} is not set'
     else:
         found = _identity(Path(keystore_raw), enclave)
         if isinstance(found, Identity):
+            problems = enclave_problems(found, domain)
+            if problems and enforced(env):
+                raise SecurityError(f'SECURITY ERROR: {problems[0]} ({STRATEGY_ENV}=Enforce)')
+            for problem in problems:
+                _warn(problem)
             return found
         reason = found
     if enforced(env):
@@ -143,9 +210,15 @@ def _decide(keystore_raw: str, enclave: str, env: Mapping[str, str] | None) -> I
     return None
 
 
-def resolve(env: Mapping[str, str] | None = None, enclave: str | None = None) -> Identity | None:
+def resolve(
+    env: Mapping[str, str] | None = None,
+    enclave: str | None = None,
+    domain_id: int | None = None,
+) -> Identity | None:
     """This process's identity when security applies; None when it is off, or Permissive
-    without material.  Enforce without material raises :class:`SecurityError`."""
+    without material.  Enforce without material, or with material the router would refuse
+    (:func:`enclave_problems`; ``domain_id`` defaults to ``ROS_DOMAIN_ID``), raises
+    :class:`SecurityError`."""
     environ = _env(env)
     if not security_enabled(environ):
         return None
@@ -157,7 +230,8 @@ def resolve(env: Mapping[str, str] | None = None, enclave: str | None = None) ->
             raise SecurityError(f'SECURITY ERROR: {exc}') from None
         _fallback(str(exc))
         return None
-    return _decide(environ.get(KEYSTORE_ENV, ''), name, environ)
+    domain = env_domain_id(environ) if domain_id is None else domain_id
+    return _decide(environ.get(KEYSTORE_ENV, ''), name, environ, domain)
 
 
 def router_identity(env: Mapping[str, str] | None = None) -> Identity | None:
@@ -175,4 +249,4 @@ def router_identity(env: Mapping[str, str] | None = None) -> Identity | None:
 
             if is_valid_keystore(keystore):  # its CA keys are here: make the router one
                 create_enclave(keystore, name)
-    return _decide(keystore_raw, name, environ)
+    return _decide(keystore_raw, name, environ, None)  # a router serves every domain

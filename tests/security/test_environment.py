@@ -73,3 +73,23 @@ def test_config_builders(keystore: Path) -> None:
     assert tls['enable_mtls'] is True
     assert tls['connect_certificate'].endswith('enclaves/robot/talker/cert.pem')
     assert tls['root_ca_certificate'].endswith('identity_ca.cert.pem')
+
+
+def test_permissions_of_another_domain(keystore: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """The keystore's permissions cover domain 0: a process in 177 would be denied all by
+    the router. Enforce refuses in one line; Permissive warns once and goes on."""
+    env = secure(keystore, ROS_DOMAIN_ID='177')
+    with pytest.raises(SecurityError) as caught:
+        environment.resolve(env, enclave='/robot/talker')
+    assert str(caught.value) == (
+        'SECURITY ERROR: permissions of enclave /robot/talker cover domain 0, not 177 '
+        '(ROS_SECURITY_STRATEGY=Enforce)'
+    )
+    assert environment.resolve(secure(keystore, ROS_DOMAIN_ID='0'), enclave='/robot/talker')
+    permissive = {**env, 'ROS_SECURITY_STRATEGY': 'Permissive'}
+    for _ in range(2):
+        found = environment.resolve(permissive, enclave='/robot/talker')
+        assert found is not None and found.enclave == '/robot/talker'
+    warnings = [line for line in capsys.readouterr().err.splitlines() if 'SECURITY' in line]
+    assert len(warnings) == 1, warnings
+    assert 'permissions of enclave /robot/talker cover domain 0, not 177' in warnings[0]

@@ -298,3 +298,27 @@ def test_permissive_without_material_runs_unsecured(
     warnings = [line for line in talker.text().splitlines() if 'SECURITY' in line]
     assert len(warnings) == 1, talker.text()
     assert 'running unsecured' in warnings[0]
+
+
+def test_permissions_of_another_domain_refused(secured: dict[str, str]) -> None:
+    """F2: permissions made for another ROS_DOMAIN_ID: the node and the verb each refuse in
+    the same one line under Enforce (before, both ran and heard nothing)."""
+    other = str((int(secured['ROS_DOMAIN_ID']) + 1 - 100) % 100 + 100)
+    env = environ({**secured, 'ROS_DOMAIN_ID': other})
+    reason = (
+        f"permissions of enclave /sec/talker cover domain {secured['ROS_DOMAIN_ID']}, not {other}"
+    )
+    node = run_cli(
+        ['run', 'demo_nodes_py', 'talker', '--ros-args', '--enclave', '/sec/talker'], env
+    )
+    assert node.returncode != 0
+    assert node.stderr.splitlines()[0] == (
+        f'SECURITY ERROR: {reason} (ROS_SECURITY_STRATEGY=Enforce)'
+    ), node.stderr
+    verb = run_cli(
+        ['topic', 'echo', '--once', '/chatter', 'std_msgs/msg/String'],
+        {**env, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/talker'},
+        timeout=20,
+    )
+    assert verb.returncode == 1
+    assert verb.stderr.strip() == f'SECURITY ERROR: {reason} (ROS_SECURITY_STRATEGY=Enforce)'
