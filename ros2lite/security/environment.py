@@ -9,8 +9,9 @@ rcl's rules, kept as they are so the same shell works for ROS 2 and ros2lite:
   (``--ros-args --enclave``, registered with :func:`use_enclave`), else ``/``;
 * its directory is ``$ROS_SECURITY_KEYSTORE/enclaves/<enclave>``.
 
-Material that is there but would be refused or ignored by the router (permissions for
-another ``ROS_DOMAIN_ID``) is named in one line by
+Material that is there but would be refused or ignored by the router (a certificate for
+another enclave, expired, or from another CA; permissions for another ``ROS_DOMAIN_ID``)
+is named in one line by
 :func:`enclave_problems`, the same words for every node and verb: fatal under Enforce, a
 warning under Permissive.  Every session and router config passes through here.
 
@@ -152,20 +153,33 @@ def enclave_problems(
     identity: Identity, domain: int | None, now: datetime.datetime | None = None
 ) -> list[str]:
     """Why the router would refuse or ignore this enclave, one phrase each (empty: none):
-    its permissions (a grant for the enclave valid now, covering ``domain`` unless None, as
-    for the router itself)."""
+    its certificate (issued by the keystore's identity CA, naming the enclave, valid now)
+    and its permissions (a grant for the enclave valid now, covering ``domain`` unless None,
+    as for the router itself)."""
+    from ros2lite.security import pki
     from ros2lite.security.files import read_bytes
     from ros2lite.security.permissions import parse_permissions
 
     when = now or datetime.datetime.now(datetime.timezone.utc)
     enclave = identity.enclave
     problems: list[str] = []
+    try:
+        problem = pki.certificate_problem(
+            pki.load_certificate(identity.certificate),
+            pki.load_certificate(identity.ca_certificate),
+            enclave,
+            when,
+        )
+    except SecurityError as exc:
+        problem = str(exc)
+    if problem:
+        problems.append(problem)
     what = f'permissions of enclave {enclave}'
     path = identity.directory / 'permissions.xml'
     try:
         grants = parse_permissions(read_bytes(path, what), str(path))
     except SecurityError as exc:
-        return [str(exc)]
+        return [*problems, str(exc)]
     grant = next((g for g in grants if g.common_name == enclave), None)
     if grant is None:
         return [*problems, f'{what} grant nothing to CN={enclave}']

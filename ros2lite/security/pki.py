@@ -16,6 +16,7 @@ import datetime
 from pathlib import Path
 
 from cryptography import x509
+from cryptography.exceptions import InvalidSignature
 from cryptography.hazmat.primitives import hashes, serialization
 from cryptography.hazmat.primitives.asymmetric import ec, rsa
 from cryptography.hazmat.primitives.serialization import pkcs7
@@ -26,6 +27,7 @@ from ros2lite.security.files import write_file
 __all__ = [
     'CA_COMMON_NAME',
     'SigningKey',
+    'certificate_problem',
     'load_certificate',
     'load_private_key',
     'new_ca',
@@ -125,3 +127,24 @@ def sign_document(cert: x509.Certificate, key: SigningKey, content: bytes) -> by
             [pkcs7.PKCS7Options.Text, pkcs7.PKCS7Options.DetachedSignature],
         )
     )
+
+
+def certificate_problem(
+    cert: x509.Certificate, ca: x509.Certificate, enclave: str, now: datetime.datetime
+) -> str | None:
+    """Why an enclave's certificate would be refused (one phrase), None when it is usable:
+    issued by the keystore's identity CA, naming the enclave, valid now."""
+    what = f'the certificate of enclave {enclave}'
+    try:
+        cert.verify_directly_issued_by(ca)
+    except (ValueError, TypeError, InvalidSignature):
+        return f"{what} is not issued by the keystore's identity CA"
+    names = cert.subject.get_attributes_for_oid(x509.oid.NameOID.COMMON_NAME)
+    common_name = str(names[0].value) if names else ''
+    if common_name != enclave:
+        return f'{what} names CN={common_name}, not {enclave}'
+    if now > cert.not_valid_after_utc:
+        return f'{what} expired on {cert.not_valid_after_utc:%Y-%m-%d %H:%M} UTC'
+    if now < cert.not_valid_before_utc:
+        return f'{what} is not valid before {cert.not_valid_before_utc:%Y-%m-%d %H:%M} UTC'
+    return None

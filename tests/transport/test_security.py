@@ -322,3 +322,26 @@ def test_permissions_of_another_domain_refused(secured: dict[str, str]) -> None:
     )
     assert verb.returncode == 1
     assert verb.stderr.strip() == f'SECURITY ERROR: {reason} (ROS_SECURITY_STRATEGY=Enforce)'
+
+
+def test_expired_certificate_refused_alike(secured: dict[str, str]) -> None:
+    """An expired enclave certificate: node and verb refuse with the same one line, before
+    the router would (which said only 'refused the TLS handshake')."""
+    from ros2lite.security.keystore import create_enclave
+    from tests.security.test_environment import replace_certificate
+
+    keystore = Path(secured['ROS_SECURITY_KEYSTORE'])
+    create_enclave(keystore, '/sec/expired', secured)
+    replace_certificate(keystore, '/sec/expired', '/sec/expired', expired=True)
+    env = environ(secured)
+    node = run_cli(
+        ['run', 'demo_nodes_py', 'talker', '--ros-args', '--enclave', '/sec/expired'], env
+    )
+    verb = run_cli(
+        ['topic', 'pub', '--times', '1', '/chatter', 'std_msgs/msg/String'],
+        {**env, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/expired'},
+    )
+    assert node.returncode != 0 and verb.returncode == 1
+    line = verb.stderr.strip()
+    assert line.startswith('SECURITY ERROR: the certificate of enclave /sec/expired expired on')
+    assert node.stderr.splitlines()[0] == line, node.stderr
