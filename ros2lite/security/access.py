@@ -22,7 +22,8 @@ call (``rq/NRequest`` pub,    in: query on K; out: declare_queryable, reply on K
 
 Every enclave with a valid grant also gets the graph: its own liveliness tokens in its
 domains, reading every token (``@ros2_lv/**``) and reading the router's admin space (``@/**``).
-Everything else is denied (``default_permission: deny``); an enclave with no grant, or a
+Everything else is denied (``default_permission: deny``); an enclave with no grant, with
+permissions the permissions CA did not sign as they are (``permissions.p7s``), or a
 certificate the keystore does not know, gets nothing.  DENY rules win over ALLOW rules, as
 in DDS.  In a name ``*`` as a whole segment stands for one or more segments; inside a segment
 it matches within that segment (ALLOW) or, to stay on the safe side, the whole segment and
@@ -38,7 +39,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ros2lite.security.errors import SecurityError
-from ros2lite.security.files import read_bytes
 from ros2lite.security.permissions import Grant, parse_permissions
 
 __all__ = ['AccessControl', 'AccessRule', 'AccessSubject', 'keys_for_name', 'router_access']
@@ -199,10 +199,16 @@ def router_access(keystore: Path, now: datetime.datetime | None = None) -> Acces
     when = now or datetime.datetime.now(datetime.timezone.utc)
     if not (keystore / 'enclaves').is_dir():
         raise SecurityError(f"'{keystore}' is not a keystore (no enclaves directory)")
+    from ros2lite.security.pki import read_signed
+
     result = AccessControl()
+    permissions_ca = keystore / 'public' / 'permissions_ca.cert.pem'
     for index, (enclave, path) in enumerate(_enclaves(keystore)):
         try:
-            grants = parse_permissions(read_bytes(path, 'permissions'), str(path))
+            signature = path.with_name('permissions.p7s')
+            what = f'permissions of enclave {enclave}'
+            document = read_signed(path, signature, permissions_ca, what)
+            grants = parse_permissions(document, str(path))
         except SecurityError as exc:
             result.warnings.append(f'{enclave}: ignored ({exc})')
             continue

@@ -10,8 +10,8 @@ rcl's rules, kept as they are so the same shell works for ROS 2 and ros2lite:
 * its directory is ``$ROS_SECURITY_KEYSTORE/enclaves/<enclave>``.
 
 Material that is there but would be refused or ignored by the router (a certificate for
-another enclave, expired, or from another CA; permissions for another ``ROS_DOMAIN_ID``)
-is named in one line by
+another enclave, expired, or from another CA; governance or permissions whose signature
+does not verify; permissions for another ``ROS_DOMAIN_ID``) is named in one line by
 :func:`enclave_problems`, the same words for every node and verb: fatal under Enforce, a
 warning under Permissive.  Every session and router config passes through here.
 
@@ -153,11 +153,10 @@ def enclave_problems(
     identity: Identity, domain: int | None, now: datetime.datetime | None = None
 ) -> list[str]:
     """Why the router would refuse or ignore this enclave, one phrase each (empty: none):
-    its certificate (issued by the keystore's identity CA, naming the enclave, valid now)
-    and its permissions (a grant for the enclave valid now, covering ``domain`` unless None,
-    as for the router itself)."""
+    its certificate (issued by the keystore's identity CA, naming the enclave, valid now),
+    the keystore's governance and the enclave's permissions (signed by the permissions CA),
+    a grant for the enclave valid now, covering ``domain`` unless None (the router's)."""
     from ros2lite.security import pki
-    from ros2lite.security.files import read_bytes
     from ros2lite.security.permissions import parse_permissions
 
     when = now or datetime.datetime.now(datetime.timezone.utc)
@@ -174,10 +173,23 @@ def enclave_problems(
         problem = str(exc)
     if problem:
         problems.append(problem)
+    permissions_ca = identity.keystore / 'public' / 'permissions_ca.cert.pem'
+    try:
+        pki.read_signed(
+            identity.keystore / 'enclaves' / 'governance.xml',
+            identity.keystore / 'enclaves' / 'governance.p7s',
+            permissions_ca,
+            f'the governance of keystore {identity.keystore}',
+        )
+    except SecurityError as exc:
+        problems.append(str(exc))
     what = f'permissions of enclave {enclave}'
     path = identity.directory / 'permissions.xml'
     try:
-        grants = parse_permissions(read_bytes(path, what), str(path))
+        document = pki.read_signed(
+            path, identity.directory / 'permissions.p7s', permissions_ca, what
+        )
+        grants = parse_permissions(document, str(path))
     except SecurityError as exc:
         return [*problems, str(exc)]
     grant = next((g for g in grants if g.common_name == enclave), None)

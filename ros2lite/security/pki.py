@@ -5,7 +5,8 @@
 * an enclave: ``CN=<enclave name>``, signed by the CA, basicConstraints not-CA;
 * all valid from now for 3650 days, signed with SHA-256;
 * documents (governance, permissions): detached, text-mode S/MIME (``multipart/signed``,
-  ``micalg="sha-256"``), which ``openssl smime -verify`` checks against the CA.
+  ``micalg="sha-256"``), which ``openssl smime -verify`` checks against the CA, and so does
+  :func:`verify_document` (OpenSSL's own PKCS#7 verification, as ``cryptography`` binds it).
 
 Importing this module loads ``cryptography``; nothing on a hot path does.
 """
@@ -16,13 +17,13 @@ import datetime
 from pathlib import Path
 
 from cryptography import x509
-from cryptography.exceptions import InvalidSignature
+from cryptography.exceptions import InternalError, InvalidSignature
 from cryptography.hazmat.primitives import hashes, serialization
 from cryptography.hazmat.primitives.asymmetric import ec, rsa
 from cryptography.hazmat.primitives.serialization import pkcs7
 
 from ros2lite.security.errors import KeystoreError
-from ros2lite.security.files import write_file
+from ros2lite.security.files import read_bytes, write_file
 
 __all__ = [
     'CA_COMMON_NAME',
@@ -32,7 +33,9 @@ __all__ = [
     'load_private_key',
     'new_ca',
     'new_identity',
+    'read_signed',
     'sign_document',
+    'verify_document',
     'write_certificate',
     'write_private_key',
 ]
@@ -148,3 +151,45 @@ def certificate_problem(
     if now < cert.not_valid_before_utc:
         return f'{what} is not valid before {cert.not_valid_before_utc:%Y-%m-%d %H:%M} UTC'
     return None
+
+
+def _text_mode(content: bytes) -> bytes:
+    """The content as text-mode S/MIME signs it: a text/plain part with CRLF line ends."""
+    lines = content.replace(b'\r\n', b'\n').replace(b'\n', b'\r\n')
+    return b'Content-Type: text/plain\r\n\r\n' + lines
+
+
+def verify_document(ca: x509.Certificate, signed: bytes, content: bytes) -> bool:
+    """Whether ``signed`` (a detached S/MIME .p7s) is a signature of ``content`` by ``ca``
+    or a certificate it issued (``openssl smime -verify -CAfile ca -content``).
+
+    ``cryptography`` exposes OpenSSL's PKCS#7 verification only in its test-support
+    bindings; without them nothing can be verified, and that is an error, never a pass."""
+    try:
+        from cryptography.hazmat.bindings._rust import test_support
+    except ImportError:  # pragma: no cover - a cryptography built without them
+        raise KeystoreError('this cryptography package cannot verify S/MIME signatures') from None
+    try:
+        test_support.pkcs7_verify(
+            serialization.Encoding.SMIME, signed, _text_mode(content), [ca], []
+        )
+    except (ValueError, TypeError, InternalError):
+        return False
+    return True
+
+
+def read_signed(document: Path, signature: Path, ca_certificate: Path, what: str) -> bytes:
+    """``document``'s bytes once ``signature`` proves the permissions CA signed exactly
+    them; else a one-line PolicyError naming ``what`` (e.g. ``permissions of enclave /a``)."""
+    from ros2lite.security.errors import PolicyError
+
+    content = read_bytes(document, what)
+    if not signature.is_file():
+        raise PolicyError(f'{what}: {signature.name} (its signature) is missing')
+    signed = read_bytes(signature, f'{what} signature')
+    if not verify_document(load_certificate(ca_certificate), signed, content):
+        raise PolicyError(
+            f'{what}: {document.name} does not match its signature {signature.name} '
+            'by the permissions CA'
+        )
+    return content

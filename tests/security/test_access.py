@@ -67,17 +67,45 @@ def test_rules_follow_permissions(tmp_path: Path) -> None:
     }
 
 
+def signed(keystore: Path, enclave: str, document: bytes) -> None:
+    """Write an enclave's permissions, signed by the keystore's permissions CA."""
+    from ros2lite.security import pki
+
+    directory = keystore / 'enclaves' / enclave.strip('/')
+    cert = pki.load_certificate(keystore / 'public' / 'permissions_ca.cert.pem')
+    key = pki.load_private_key(keystore / 'private' / 'permissions_ca.key.pem')
+    (directory / 'permissions.xml').write_bytes(document)
+    (directory / 'permissions.p7s').write_bytes(pki.sign_document(cert, key, document))
+
+
 def test_bad_or_foreign_grants_are_left_out(tmp_path: Path) -> None:
     keystore = tmp_path / 'ks'
     create_keystore(keystore, {})
     create_enclave(keystore, '/a', {})
     create_enclave(keystore, '/b', {})
     create_enclave(keystore, '/c', {})
-    # /b's file grants to someone else; /c's is not XML
-    text = (keystore / 'enclaves/b/permissions.xml').read_text()
-    (keystore / 'enclaves/b/permissions.xml').write_text(text.replace('CN=/b', 'CN=/a'))
-    (keystore / 'enclaves/c/permissions.xml').write_text('<dds')
+    # /b's file grants to someone else; /c's is not XML (both signed by the CA)
+    text = (keystore / 'enclaves/b/permissions.xml').read_bytes()
+    signed(keystore, '/b', text.replace(b'CN=/b', b'CN=/a'))
+    signed(keystore, '/c', b'<dds')
     access = router_access(keystore)
     assert [s.common_name for s in access.subjects] == ['/a']
     assert any(w.startswith('/b: its permissions grant nothing') for w in access.warnings)
     assert any(w.startswith('/c: ignored') for w in access.warnings)
+
+
+def test_tampered_permissions_are_denied(tmp_path: Path) -> None:
+    """R-S13: permissions.xml edited after signing (an enclave granting itself a topic) is
+    not obeyed: its permissions.p7s no longer verifies against the permissions CA."""
+    keystore = tmp_path / 'ks'
+    create_keystore(keystore, {})
+    create_enclave(keystore, '/ok', {})
+    create_enclave(keystore, '/other', {})
+    path = keystore / 'enclaves/other/permissions.xml'
+    path.write_bytes(path.read_bytes().replace(b'rt/*', b'rt/*x', 1))
+    access = router_access(keystore)
+    assert [s.common_name for s in access.subjects] == ['/ok']
+    assert access.warnings == [
+        '/other: ignored (permissions of enclave /other: permissions.xml does not match its '
+        'signature permissions.p7s by the permissions CA)'
+    ]

@@ -163,3 +163,30 @@ def test_certificates_the_router_would_refuse(
         permissive = secure(root, ROS_SECURITY_STRATEGY='Permissive')
         assert environment.resolve(permissive, enclave=enclave) is not None
         assert reason in capsys.readouterr().err
+
+
+def test_unsigned_or_tampered_documents(tmp_path: Path) -> None:
+    """R-S13: permissions or governance changed after the permissions CA signed them (or a
+    signature that is missing) are refused in one line under Enforce."""
+    root = tmp_path / 'ks'
+    create_keystore(root, {})
+    create_enclave(root, '/p', {})
+    permissions = root / 'enclaves' / 'p' / 'permissions.xml'
+    original = permissions.read_bytes()
+    permissions.write_bytes(original.replace(b'<topic>rt/*</topic>', b'<topic>rt/**</topic>'))
+    with pytest.raises(SecurityError) as caught:
+        environment.resolve(secure(root), enclave='/p')
+    assert str(caught.value) == (
+        'SECURITY ERROR: permissions of enclave /p: permissions.xml does not match its '
+        'signature permissions.p7s by the permissions CA (ROS_SECURITY_STRATEGY=Enforce)'
+    )
+    permissions.write_bytes(original)
+    assert environment.resolve(secure(root), enclave='/p') is not None
+    (root / 'enclaves' / 'p' / 'permissions.p7s').unlink()
+    with pytest.raises(SecurityError, match=r'permissions.p7s \(its signature\) is missing'):
+        environment.resolve(secure(root), enclave='/p')
+    create_enclave(root, '/p', {})  # signs them again
+    governance = root / 'enclaves' / 'governance.xml'
+    governance.write_bytes(governance.read_bytes().replace(b'ENCRYPT', b'NONE'))
+    with pytest.raises(SecurityError, match=r'governance of keystore .*: governance.xml does not'):
+        environment.resolve(secure(root), enclave='/p')
