@@ -23,7 +23,7 @@ from cryptography.hazmat.primitives.asymmetric import ec, rsa
 from cryptography.hazmat.primitives.serialization import pkcs7
 
 from ros2lite.security.errors import KeystoreError
-from ros2lite.security.files import read_bytes, write_file
+from ros2lite.security.files import read_bytes, write_file, write_private
 
 __all__ = [
     'CA_COMMON_NAME',
@@ -86,13 +86,13 @@ def new_identity(
 
 
 def write_private_key(key: SigningKey, path: Path) -> None:
-    """PKCS#8 PEM, readable by the owner only."""
+    """PKCS#8 PEM in a new file readable by its owner only (see ``files.write_private``)."""
     data = key.private_bytes(
         serialization.Encoding.PEM,
         serialization.PrivateFormat.PKCS8,
         serialization.NoEncryption(),
     )
-    write_file(path, data, 0o600)
+    write_private(path, data)
 
 
 def write_certificate(cert: x509.Certificate, path: Path) -> None:
