@@ -82,7 +82,8 @@ class Context:
         self.domain_id = 0
         self.zid = ''
         self.router: str | None = None
-        # the enclave named by `--ros-args --enclave` ('/' if none), announced in every token
+        # the enclave announced in every token: `--ros-args --enclave` ('/' if none), or
+        # the one whose certificate a secured process shows (security.announced_enclave)
         self.enclave = '/'
         self.args = RosArgs()
         self.argv: list[str] = []
@@ -134,11 +135,11 @@ class Context:
             from ros2lite.logging import set_console_output
 
             set_console_output(self.args.stdout_logs)
-        if self.args.enclave is not None:
-            from ros2lite.security.environment import use_enclave
+        from ros2lite.security.environment import announced_enclave, use_enclave
 
+        if self.args.enclave is not None:
             use_enclave(self.args.enclave)  # the security material this process loads
-        self.enclave = self.args.enclave or '/'
+        self.enclave = announced_enclave(self.args.enclave)
         self.domain_id = env_domain_id() if domain_id is None else domain_id
         self.router = router
         if not short_lived:  # a node: large messages reuse freed buffers (ros2lite.memory)

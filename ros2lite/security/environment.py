@@ -45,6 +45,7 @@ __all__ = [
     'ROUTER_ENCLAVE_ENV',
     'STRATEGY_ENV',
     'Identity',
+    'announced_enclave',
     'enclave_directory',
     'enclave_problems',
     'enforced',
@@ -109,6 +110,22 @@ def use_enclave(name: str | None) -> None:
 def process_enclave() -> str:
     """The enclave this process declared, ``/`` when none was (rcl's default)."""
     return _process_enclave or '/'
+
+
+def announced_enclave(enclave: str | None, env: Mapping[str, str] | None = None) -> str:
+    """The enclave a context names in its graph tokens: with security on, the one whose
+    certificate it shows (``ROS_SECURITY_ENCLAVE_OVERRIDE`` wins), so the router can bind
+    tokens to the enclave that declares them; else ``enclave`` (``--enclave``, default
+    ``/``), as rmw_zenoh does."""
+    environ = _env(env)
+    override = environ.get(OVERRIDE_ENV, '')
+    if security_enabled(environ) and override:
+        try:
+            validate_enclave_name(override)
+        except EnclaveError:
+            return enclave or '/'  # resolve() says why, once
+        return override
+    return enclave or '/'
 
 
 def _identity(keystore: Path, enclave: str) -> Identity | str:

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from ros2lite.security.access import keys_for_name, router_access
+from ros2lite.security.access import keys_for_name, router_access, token_topic
 from ros2lite.security.keystore import create_enclave, create_keystore, create_permission
 
 
@@ -62,9 +62,30 @@ def test_rules_follow_permissions(tmp_path: Path) -> None:
     assert keys(True, 'ingress', 'query') >= {'5/add/*/*'}
     assert keys(True, 'egress', 'reply') >= {'5/add/*/*'}
     assert keys(True, 'ingress', 'liveliness_token') == {
-        '@ros2_lv/5/**',  # its own graph tokens, in its domain only
+        # its own graph tokens, named after it, in its domain only, for what it may do
+        '@ros2_lv/5/*/*/*/NN/%narrow/*/*',
+        '@ros2_lv/5/*/*/*/MS/%narrow/*/*/%chatter/**',
+        '@ros2_lv/5/*/*/*/SC/%narrow/*/*/%add/**',
         '5/chatter/*/*/@adv/sub/**',  # its TRANSIENT_LOCAL subscriber's
     }
+    assert '@ros2_lv/5/*/*/*/MP/%narrow/*/*/%chatter/**' in keys(
+        False, 'ingress', 'liveliness_token'
+    )
+
+
+@pytest.mark.parametrize(
+    ('name', 'allow', 'chunk'),
+    [
+        ('/chatter', True, '%chatter'),
+        ('/robot/chatter', True, '%robot%chatter'),
+        ('/*', True, '%$*'),
+        ('/robot/*', True, '%robot%$*'),
+        ('/chat*', True, '%chat$*'),
+        ('/chat*/x', False, '%$*'),
+    ],
+)
+def test_token_topic(name: str, allow: bool, chunk: str) -> None:
+    assert token_topic(name, allow=allow) == chunk
 
 
 def signed(keystore: Path, enclave: str, document: bytes) -> None:

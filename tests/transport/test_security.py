@@ -345,3 +345,44 @@ def test_expired_certificate_refused_alike(secured: dict[str, str]) -> None:
     line = verb.stderr.strip()
     assert line.startswith('SECURITY ERROR: the certificate of enclave /sec/expired expired on')
     assert node.stderr.splitlines()[0] == line, node.stderr
+
+
+def test_graph_tokens_bound_to_the_enclave(secured: dict[str, str]) -> None:
+    """R-S10: an enclave declares graph tokens only under its own name and for what its
+    permissions allow; a publisher token on a topic it may not publish, or a node token
+    naming another enclave, never reaches the graph (it did: /spoofed showed in node list)."""
+    import zenoh
+
+    from ros2lite.transport.config import session_config
+
+    env = {**secured, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/restricted'}
+    domain = secured['ROS_DOMAIN_ID']
+    string = (
+        'std_msgs::msg::dds_::String_/RIHS01_'
+        + 'df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18'
+    )
+    zid = os.urandom(16).hex()
+    head = f'@ros2_lv/{domain}/{zid}'
+    tokens = [
+        f'{head}/1/2/MP/%sec%restricted/%/spoofed_pub/%chatter/{string}/::,10:,:,:,,',
+        f'{head}/3/3/NN/%sec%talker/%/spoofed_node',
+        f'{head}/4/4/NN/%/%/spoofed_root',
+        f'{head}/5/6/MP/%sec%restricted/%/allowed_node/%other/{string}/::,10:,:,:,,',
+    ]
+    session = zenoh.open(session_config(env=environ(env)))
+    try:
+        declared = [session.liveliness().declare_token(key) for key in tokens]
+        listing = ''
+        deadline = time.monotonic() + 15
+        while '/allowed_node' not in listing and time.monotonic() < deadline:
+            verb = run_cli(
+                ['node', 'list'],
+                environ({**secured, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/listener'}),
+            )
+            listing = verb.stdout
+        assert '/allowed_node' in listing, listing
+        assert 'spoofed' not in listing, listing
+        for token in declared:
+            token.undeclare()
+    finally:
+        session.close()
