@@ -272,6 +272,29 @@ class Context:
         self.wake()
 
 
+class RouterLink:
+    """Tells, once per change, whether a context's session still reaches a router: a tool's
+    client session hears nothing while its router is away, a node's peers only what they
+    already met, and neither may let that pass in silence."""
+
+    def __init__(self, context: Context, on_change: Callable[[bool], object]) -> None:
+        self.context = context
+        self.on_change = on_change
+        self.linked = True  # as far as we know: a session opens with its router
+
+    def check(self) -> None:
+        """Look now; call ``on_change(linked)`` if it differs from the last look."""
+        session = self.context.session
+        if session is None:
+            return
+        from ros2lite.transport.config import router_connected
+
+        linked = router_connected(session)
+        if linked != self.linked:
+            self.linked = linked
+            self.on_change(linked)
+
+
 # Contexts still open at interpreter exit are shut down first: zenoh threads and our pump
 # threads must be gone before Python finalises, or the process aborts instead of exiting.
 _live: weakref.WeakSet[Context] = weakref.WeakSet()
