@@ -386,3 +386,33 @@ def test_graph_tokens_bound_to_the_enclave(secured: dict[str, str]) -> None:
             token.undeclare()
     finally:
         session.close()
+
+
+def test_secured_echo_says_when_the_router_goes_and_comes_back(secured: dict[str, str]) -> None:
+    """R-F2, secured: a TLS client's echo says when its router goes and when it is back."""
+    import zenoh
+
+    from ros2lite.transport.config import router_config
+
+    endpoint = f'tls/127.0.0.1:{free_port()}'
+    env = {**secured, 'ROS2LITE_ROUTER': endpoint}
+    router = zenoh.open(router_config(env=env))
+    echo_proc, echo = start_cli(
+        ['topic', 'echo', '/outage', 'std_msgs/msg/String'],
+        environ({**env, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/listener'}),
+    )
+    pub_proc, _ = start_cli(
+        ['topic', 'pub', '-r', '5', '/outage', 'std_msgs/msg/String', '{data: tick}'],
+        environ({**env, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/talker'}),
+    )
+    try:
+        echo.wait_for('data: tick')  # connected, authenticated, hearing
+        router.close()
+        echo.wait_for(f'Lost the link to the Zenoh router at {endpoint}', timeout=10)
+        router = zenoh.open(router_config(env=env))
+        echo.wait_for(f'The link to the Zenoh router at {endpoint} is back', timeout=15)
+    finally:
+        for proc in (echo_proc, pub_proc):
+            proc.terminate()
+            proc.wait(timeout=10)
+        router.close()
