@@ -36,6 +36,9 @@ if TYPE_CHECKING:  # loaded when a verb needs them: `topic list` only asks the g
 __all__ = ['Connection', 'wait_for_name']
 
 HIDDEN_NODE_PREFIX = '_ros2lite_'
+# how often a spinning tool looks whether its router is still there (a SIGKILLed router is
+# seen at once: its TCP link closes; a cut network only when zenoh's lease runs out)
+ROUTER_CHECK_PERIOD = 0.25
 
 
 _tool_node_class: type[Node] | None = None
@@ -81,6 +84,7 @@ class Connection:
         self._context: Context | None = None
         self._node: Node | None = None
         self._executor: SingleThreadedExecutor | None = None
+        self._router_watch: Timer | None = None
 
     @property
     def context(self) -> Context:
@@ -188,8 +192,34 @@ class Connection:
             period, callback, clock=Clock(clock_type=ClockType.STEADY_TIME)
         )
 
+    def watch_router(self) -> None:
+        """While the tool spins, say when its session loses the router and when it is back:
+        a client hears nothing meanwhile.  A node's session (``as_node``: the recorder) keeps
+        hearing the peers it met and says so itself."""
+        if self._router_watch is not None or self.as_node:
+            return
+        from ros2lite.context import RouterLink
+        from ros2lite.transport.endpoints import router_endpoint
+
+        endpoint = router_endpoint(self.router)
+        logger = self.node().get_logger()
+
+        def changed(linked: bool) -> None:
+            if linked:
+                logger.warn(f'The link to the Zenoh router at {endpoint} is back')
+            else:
+                logger.warn(
+                    f'Lost the link to the Zenoh router at {endpoint}: what is published '
+                    'until it is back does not reach this tool'
+                )
+
+        self._router_watch = self.every(
+            ROUTER_CHECK_PERIOD, RouterLink(self.context, changed).check
+        )
+
     def spin(self) -> None:
         """Run the node's callbacks until the context shuts down (Ctrl-C raises as usual)."""
+        self.watch_router()
         self.executor.spin_until(None)
 
     def spin_until(
@@ -197,6 +227,7 @@ class Connection:
     ) -> bool:
         """Run the node's callbacks until `condition()` holds or `timeout` s pass; True when
         the condition ended it."""
+        self.watch_router()
         return self.executor.spin_until(condition, timeout)
 
     def spin_until_future_complete(self, future: Future, timeout: float | None = None) -> None:

@@ -82,7 +82,8 @@ class Context:
         self.domain_id = 0
         self.zid = ''
         self.router: str | None = None
-        # the enclave named by `--ros-args --enclave` ('/' if none), announced in every token
+        # the enclave announced in every token: `--ros-args --enclave` ('/' if none), or
+        # the one whose certificate a secured process shows (security.announced_enclave)
         self.enclave = '/'
         self.args = RosArgs()
         self.argv: list[str] = []
@@ -134,11 +135,11 @@ class Context:
             from ros2lite.logging import set_console_output
 
             set_console_output(self.args.stdout_logs)
-        if self.args.enclave is not None:
-            from ros2lite.security.environment import use_enclave
+        from ros2lite.security.environment import announced_enclave, use_enclave
 
+        if self.args.enclave is not None:
             use_enclave(self.args.enclave)  # the security material this process loads
-        self.enclave = self.args.enclave or '/'
+        self.enclave = announced_enclave(self.args.enclave)
         self.domain_id = env_domain_id() if domain_id is None else domain_id
         self.router = router
         if not short_lived:  # a node: large messages reuse freed buffers (ros2lite.memory)
@@ -269,6 +270,29 @@ class Context:
     def _terminate(self) -> None:
         self.terminating = True
         self.wake()
+
+
+class RouterLink:
+    """Tells, once per change, whether a context's session still reaches a router: a tool's
+    client session hears nothing while its router is away, a node's peers only what they
+    already met, and neither may let that pass in silence."""
+
+    def __init__(self, context: Context, on_change: Callable[[bool], object]) -> None:
+        self.context = context
+        self.on_change = on_change
+        self.linked = True  # as far as we know: a session opens with its router
+
+    def check(self) -> None:
+        """Look now; call ``on_change(linked)`` if it differs from the last look."""
+        session = self.context.session
+        if session is None:
+            return
+        from ros2lite.transport.config import router_connected
+
+        linked = router_connected(session)
+        if linked != self.linked:
+            self.linked = linked
+            self.on_change(linked)
 
 
 # Contexts still open at interpreter exit are shut down first: zenoh threads and our pump

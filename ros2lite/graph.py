@@ -46,6 +46,8 @@ __all__ = [
 ]
 
 _TOPIC_KINDS = (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION)
+# how long a node's graph cache waits for its first complete picture of the graph (s)
+SEED_TIMEOUT = 0.5
 _SERVICE_KINDS = (EntityKind.SERVICE, EntityKind.CLIENT)
 
 
@@ -71,8 +73,11 @@ class GraphCache:
         self._entities: dict[str, Entity] = {}
         self._cond = threading.Condition()
         # seed synchronously (as rmw_zenoh does with a liveliness get) so the first query
-        # after creation already sees the graph; the subscriber then keeps it current
-        for entity in snapshot(session, domain_id):
+        # after creation already sees the graph; the subscriber then keeps it current.  The
+        # wait is bounded: a router busy with a token flood answers a first query slowly
+        # (10k tokens: several seconds, upstream), and a node must not wait for all of it:
+        # the subscriber's history brings the rest
+        for entity in snapshot(session, domain_id, SEED_TIMEOUT):
             self._entities[entity.to_token()] = entity
         # called with (entity, alive) for each change, on the thread that saw it
         self._listeners: list[Callable[[Entity, bool], None]] = []

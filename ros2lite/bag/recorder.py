@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING
 
 from ros2lite.bag.errors import BagError
 from ros2lite.bag.writer import Writer
+from ros2lite.context import RouterLink
 from ros2lite.qos import QoSProfile
 from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
 from ros2lite.transport.attachment import source_timestamp
@@ -150,7 +151,7 @@ class Recorder:
         self._discovery_thread: threading.Thread | None = None
         self._discovery_done = threading.Event()
         self.error: BaseException | None = None
-        self._router_seen = True  # as far as we know: a warning comes when it goes
+        self._router = RouterLink(node.context, self._router_changed)
         self._router_checked = 0.0
 
     # -- control -------------------------------------------------------------------------------
@@ -245,15 +246,9 @@ class Recorder:
         if now - self._router_checked < _ROUTER_CHECK_PERIOD:
             return
         self._router_checked = now
-        session = self.node.context.session
-        if session is None:
-            return
-        from ros2lite.transport.config import router_connected
+        self._router.check()
 
-        connected = router_connected(session)
-        if connected == self._router_seen:
-            return
-        self._router_seen = connected
+    def _router_changed(self, connected: bool) -> None:
         if connected:
             self._log("The Zenoh router is back: topics that appear are picked up again.")
         else:

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any, TypedDict, TypeVar, cast
 
 import click
 
-from . import numbers
+from . import numbers, render
 from .errors import CliError
 
 if TYPE_CHECKING:
@@ -401,7 +401,7 @@ def print_names(names_and_types: list[tuple[str, list[str]]], count: bool, types
     if count:
         click.echo(len(names_and_types))
     elif names_and_types:
-        click.echo('\n'.join(f'{n} [{", ".join(t)}]' if types else n for n, t in names_and_types))
+        render.echo('\n'.join(f'{n} [{", ".join(t)}]' if types else n for n, t in names_and_types))
 
 
 def print_names_of_type(
@@ -441,7 +441,7 @@ def print_types_of(
     types = dict(names_and_types(entities)).get(full)
     if types is None:
         raise CliError(f"Unknown {kind} '{full}' (not in the graph now)")
-    click.echo('\n'.join(types))
+    render.echo('\n'.join(types))
 
 
 def wait_saying_other_types(

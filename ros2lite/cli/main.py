@@ -11,6 +11,7 @@ import click
 
 from ros2lite.exceptions import Ros2liteError
 
+from . import render
 from .errors import CliError
 from .lazy import LazyGroup
 
@@ -157,7 +158,7 @@ def _main(args: list[str]) -> int:
     except Ros2liteError as e:  # the library's and the CLI's own: their message is the line
         if debug_enabled():
             raise
-        click.echo(str(e), err=True)
+        render.echo(str(e), err=True)  # it may name what came from outside
         return e.code if isinstance(e, CliError) else 1
     except Exception as e:  # any library failure: one line, no traceback
         if debug_enabled():
@@ -170,7 +171,7 @@ def _main(args: list[str]) -> int:
 
         if _caused_by(e, Terminated):
             return signal.SIGTERM.value
-        click.echo(str(e) or type(e).__name__, err=True)
+        render.echo(str(e) or type(e).__name__, err=True)
         return 1
     return rc if isinstance(rc, int) else 0
 

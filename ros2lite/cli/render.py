@@ -2,23 +2,52 @@
 
 The rule lives here once: extras appear only when the stream is a TTY and `NO_COLOR` is not
 set, because scripts parse the plain output (ros2cli's formats) and must never see escapes.
+Names from outside (the graph, bags, datagrams) go to a terminal through :func:`echo`, which
+shows their control characters escaped: a name must not clear the screen or retitle it.
 """
 
 from __future__ import annotations
 
 import os
+import re
 import sys
 from collections.abc import Sequence
 from typing import TextIO
 
+import click
+
+# C0 and C1 controls but newline and tab, DEL, and the bidirectional overrides that reorder
+# what a terminal shows
+_UNSAFE = re.compile('[\x00-\x08\x0b-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]')
+
 
 def fancy(stream: TextIO | None = None) -> bool:
     """May we draw live tables, progress and colour on `stream` (stdout by default)?"""
-    out = sys.stdout if stream is None else stream
+    return _tty(sys.stdout if stream is None else stream) and 'NO_COLOR' not in os.environ
+
+
+def _tty(stream: TextIO) -> bool:
     try:
-        return out.isatty() and 'NO_COLOR' not in os.environ
+        return stream.isatty()
     except (AttributeError, ValueError):  # replaced or closed stream
         return False
+
+
+def _escaped(match: re.Match[str]) -> str:
+    code = ord(match.group())
+    return f'\\x{code:02x}' if code < 0x100 else f'\\u{code:04x}'
+
+
+def shown(text: str, stream: TextIO | None = None) -> str:
+    """`text` as it may reach `stream` (stdout by default): on a terminal, control characters
+    are written as escapes (``\\x1b``); piped, it stays byte for byte what came."""
+    out = sys.stdout if stream is None else stream
+    return _UNSAFE.sub(_escaped, text) if _tty(out) else text
+
+
+def echo(text: str, *, err: bool = False, nl: bool = True) -> None:
+    """``click.echo`` of text that holds names from outside (see :func:`shown`)."""
+    click.echo(shown(text, sys.stderr if err else sys.stdout), err=err, nl=nl)
 
 
 def ascii_table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:

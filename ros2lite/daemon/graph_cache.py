@@ -10,6 +10,11 @@ and no query — what made `topic list` slow (see :class:`ros2lite.connection.Co
 The socket lives in the user's private runtime dir (0700), so only the user reaches it; what
 it returns is parsed and validated like anything from the wire. A daemon that is not there (or
 not ours: rmw_zenohd) has no socket, and tools fall back to asking the router.
+
+The cache is bounded (:data:`LIMIT` tokens over all domains): a flood of tokens cannot grow the
+daemon without end.  Tokens past the bound are dropped and counted, the daemon's log says so,
+and while a domain has dropped tokens alive the cache answers that it is incomplete, so tools
+ask the router for that domain instead (slower, never wrong); ``stats`` tells the counts.
 """
 
 from __future__ import annotations
@@ -18,6 +23,7 @@ import contextlib
 import errno
 import os
 import socket
+import sys
 import threading
 from collections.abc import Iterator, Mapping
 from pathlib import Path
@@ -28,9 +34,12 @@ from ros2lite.daemon.paths import graph_socket
 if TYPE_CHECKING:
     from ros2lite.transport.handles import Handle, Session
 
-__all__ = ["GraphServer", "cache_endpoint", "cached_keys"]
+__all__ = ["LIMIT", "GraphServer", "cache_endpoint", "cache_stats", "cached_keys"]
 
+# tokens kept over all domains: a ROS graph has hundreds, a flood (R-G18) hundreds of thousands
+LIMIT = 50_000
 _VERSION = b"ros2lite-graph 1\n"
+_INCOMPLETE = b"ros2lite-graph incomplete\n"
 _REQUEST_MAX = 64  # bytes of a request line
 _REPLY_MAX = 64 << 20  # what a tool reads at most (a bounded read of a local peer)
 # Unix socket paths are short (108 bytes on Linux, less elsewhere); longer ones go through
@@ -57,11 +66,15 @@ def _address(path: Path) -> Iterator[str]:
 class GraphServer:
     """The daemon's side (its router session, its socket path): started at once, in threads."""
 
-    def __init__(self, session: Session, path: Path) -> None:
+    def __init__(self, session: Session, path: Path, limit: int = LIMIT) -> None:
         from ros2lite.transport.session import declare_liveliness_subscriber
 
         self._lock = threading.Lock()
         self._keys: dict[int, dict[str, None]] = {}  # by domain, in arrival order
+        self.limit = limit
+        self.kept = 0  # tokens in the cache
+        self.dropped = 0  # tokens not kept since the start, the cache being full
+        self._missing: dict[int, int] = {}  # by domain: dropped tokens still alive
         self._path = path
         self._listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
         with contextlib.suppress(FileNotFoundError):
@@ -79,16 +92,39 @@ class GraphServer:
         domain = key.split("/", 2)[1] if key.count("/") >= 2 else ""
         if not (domain.isascii() and domain.isdigit()):  # ('²' is a digit int() refuses)
             return  # not a token rmw_zenoh would make: tools would drop it anyway
+        number = int(domain)
         with self._lock:
-            keys = self._keys.setdefault(int(domain), {})
-            if alive:
+            keys = self._keys.setdefault(number, {})
+            if not alive:
+                if key in keys:
+                    del keys[key]
+                    self.kept -= 1
+                elif self._missing.get(number):
+                    self._missing[number] -= 1
+                return
+            if key in keys:
+                return
+            if self.kept < self.limit:
                 keys[key] = None
-            else:
-                keys.pop(key, None)
+                self.kept += 1
+                return
+            self._missing[number] = self._missing.get(number, 0) + 1
+            self.dropped += 1
+            dropped = self.dropped
+        if dropped & (dropped - 1) == 0:  # the first drop, then at every power of two
+            print(
+                f"ros2lite daemon: graph cache full ({self.limit} tokens): {dropped} token(s) "
+                f"not kept so far (last in domain {number}); tools ask the router for a "
+                "domain while any of its dropped tokens lives",
+                file=sys.stderr,
+                flush=True,
+            )
 
-    def keys(self, domain: int) -> list[str]:
-        """The token keys of a domain now."""
+    def keys(self, domain: int) -> list[str] | None:
+        """The token keys of a domain now; None while some are missing (dropped)."""
         with self._lock:
+            if self._missing.get(domain):
+                return None
             return list(self._keys.get(domain, ()))
 
     def _serve(self) -> None:
@@ -109,9 +145,15 @@ class GraphServer:
                 return
             request += chunk
         verb, _, domain = request.decode("ascii", "replace").strip().partition(" ")
+        if verb == "stats" and not domain:
+            with self._lock:
+                counts = f"kept {self.kept}\ndropped {self.dropped}\nlimit {self.limit}"
+            conn.sendall(_VERSION + counts.encode())
+            return
         if verb != "graph" or not (domain.isascii() and domain.isdigit()):
             return
-        conn.sendall(_VERSION + "\n".join(self.keys(int(domain))).encode())
+        keys = self.keys(int(domain))
+        conn.sendall(_INCOMPLETE if keys is None else _VERSION + "\n".join(keys).encode())
 
     def close(self) -> None:
         """Stop serving; the socket file goes."""
@@ -141,8 +183,9 @@ def cache_endpoint(router: str | None = None, env: Mapping[str, str] | None = No
     return endpoint_of(router, env)
 
 
-def cached_keys(endpoint: str, domain: int, timeout: float = 1.0) -> list[str] | None:
-    """The token keys of `domain` from the daemon at `endpoint`, None when none answers."""
+def _ask(endpoint: str, request: str, timeout: float) -> str | None:
+    """The daemon's answer to one request line (after the version line), None when no
+    daemon of ours answers it."""
     path = graph_socket(endpoint)
     chunks: list[bytes] = []
     with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as sock:
@@ -150,7 +193,7 @@ def cached_keys(endpoint: str, domain: int, timeout: float = 1.0) -> list[str] |
         try:
             with _address(path) as address:
                 sock.connect(address)
-            sock.sendall(f"graph {domain}\n".encode())
+            sock.sendall(f"{request}\n".encode())
             size = 0
             while size <= _REPLY_MAX:
                 chunk = sock.recv(1 << 16)
@@ -164,6 +207,27 @@ def cached_keys(endpoint: str, domain: int, timeout: float = 1.0) -> list[str] |
             return None
     reply = b"".join(chunks)
     if not reply.startswith(_VERSION):
+        return None  # not ours, or a domain the cache could not keep whole
+    return reply[len(_VERSION) :].decode("utf-8", "replace")
+
+
+def cached_keys(endpoint: str, domain: int, timeout: float = 1.0) -> list[str] | None:
+    """The token keys of `domain` from the daemon at `endpoint`, None when none answers
+    (or its cache, full, lacks some of that domain's)."""
+    body = _ask(endpoint, f"graph {domain}", timeout)
+    if body is None:
         return None
-    body = reply[len(_VERSION) :].decode("utf-8", "replace")
     return body.split("\n") if body else []
+
+
+def cache_stats(endpoint: str, timeout: float = 1.0) -> dict[str, int] | None:
+    """The daemon cache's counts (``kept``, ``dropped``, ``limit``), None without one."""
+    body = _ask(endpoint, "stats", timeout)
+    if body is None:
+        return None
+    stats: dict[str, int] = {}
+    for line in body.split("\n"):
+        name, _, value = line.partition(" ")
+        if name in ("kept", "dropped", "limit") and value.isascii() and value.isdigit():
+            stats[name] = int(value)
+    return stats

@@ -19,6 +19,7 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
@@ -29,7 +30,13 @@ from ros2lite.daemon.paths import lock_file, log_file, pid_file
 from ros2lite.daemon.probe import router_answers, wait_answers
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.security.errors import SecurityError
-from ros2lite.transport.config import domain_id, open_session, router_config, router_endpoint
+from ros2lite.transport.config import (
+    domain_id,
+    linked_routers,
+    open_session,
+    router_config,
+    router_endpoint,
+)
 from ros2lite.transport.errors import SessionError
 
 if TYPE_CHECKING:
@@ -272,6 +279,7 @@ def serve(
     path = pid_path or pid_file(endpoint)
     lock = _write_pid_file(path, info)
     cache = _graph_cache(session, endpoint)
+    mesh = _watch_mesh(session)
     tell("ready")
     if ready_fd is not None:
         os.close(ready_fd)
@@ -279,6 +287,7 @@ def serve(
     try:
         sig = signal.sigwait(stop_signals)
         print(f"ros2lite daemon: {signal.Signals(sig).name}, shutting down", flush=True)
+        mesh.set()
         if cache is not None:
             cache.close()
         session.close()
@@ -288,6 +297,32 @@ def serve(
                 os.unlink(path)
         lock.close()
     return 0
+
+
+def _watch_mesh(session: Session, period: float = 0.5) -> threading.Event:
+    """Say in the daemon's log when a router it is meshed with (``--connect``, or one that
+    connected to it) links and when that link is lost: what is published on the far side
+    meanwhile does not come across, and no tool of either side would notice.  Setting the
+    event returned stops the watch."""
+    stop = threading.Event()
+
+    def watch() -> None:
+        linked: set[str] = set()
+        while not stop.wait(period):
+            now = linked_routers(session)
+            for zid in sorted(now - linked):
+                print(f"ros2lite daemon: linked to router {zid}", flush=True)
+            for zid in sorted(linked - now):
+                print(
+                    f"ros2lite daemon: lost the link to router {zid}: what is published on "
+                    "its side does not come across until it is back",
+                    file=sys.stderr,
+                    flush=True,
+                )
+            linked = now
+
+    threading.Thread(target=watch, daemon=True, name="ros2lite-mesh").start()
+    return stop
 
 
 def _graph_cache(session: Session, endpoint: str) -> GraphServer | None:

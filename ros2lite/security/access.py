@@ -20,9 +20,13 @@ call (``rq/NRequest`` pub,    in: query on K; out: declare_queryable, reply on K
 ``rr/NReply`` sub)
 ============================  ==========================================================
 
-Every enclave with a valid grant also gets the graph: its own liveliness tokens in its
-domains, reading every token (``@ros2_lv/**``) and reading the router's admin space (``@/**``).
-Everything else is denied (``default_permission: deny``); an enclave with no grant, or a
+Graph tokens are bound as DDS binds discovery: an enclave may declare liveliness tokens
+only with its own name in their enclave chunk, a node token (``NN``) in its domains, and an
+endpoint token only for what it may do: ``MP``/``MS`` on topics it may publish/subscribe,
+``SS``/``SC`` on services it may serve/call.  Every enclave with a valid grant also reads
+every token (``@ros2_lv/**``) and the router's admin space (``@/**``).
+Everything else is denied (``default_permission: deny``); an enclave with no grant, with
+permissions the permissions CA did not sign as they are (``permissions.p7s``), or a
 certificate the keystore does not know, gets nothing.  DENY rules win over ALLOW rules, as
 in DDS.  In a name ``*`` as a whole segment stands for one or more segments; inside a segment
 it matches within that segment (ALLOW) or, to stay on the safe side, the whole segment and
@@ -38,10 +42,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ros2lite.security.errors import SecurityError
-from ros2lite.security.files import read_bytes
 from ros2lite.security.permissions import Grant, parse_permissions
 
-__all__ = ['AccessControl', 'AccessRule', 'AccessSubject', 'keys_for_name', 'router_access']
+__all__ = [
+    'AccessControl',
+    'AccessRule',
+    'AccessSubject',
+    'keys_for_name',
+    'router_access',
+    'token_topic',
+]
 
 INGRESS, EGRESS = 'ingress', 'egress'
 _SEGMENT = re.compile(r'[A-Za-z0-9_]+')
@@ -96,6 +106,31 @@ def keys_for_name(name: str, domain_id: int, *, allow: bool) -> str:
     return f'{domain_id}/' + '/'.join(tokens) + '/*/*'
 
 
+def token_topic(name: str, *, allow: bool) -> str:
+    """The topic chunk of a graph token for ``name`` (``/a/b`` → ``%a%b``, ``*`` allowed):
+    one chunk, so ``*`` becomes ``$*``, which also spans the ``%`` of deeper names."""
+    chunk = ''
+    for segment in name.strip('/').split('/'):
+        if _SEGMENT.fullmatch(segment):
+            chunk += '%' + segment
+        elif segment == '*' or (_PARTIAL.fullmatch(segment) and not allow):
+            return chunk + '%$*'
+        elif _PARTIAL.fullmatch(segment):
+            chunk += '%' + segment.replace('*', '$*')
+        else:
+            raise _Invalid(name)
+    return chunk
+
+
+def _token(domain: int, kind: str, enclave: str, topic: str | None = None) -> str:
+    """The tokens of ``kind`` an enclave may declare (rmw_zenoh's key layout)."""
+    head = f'@ros2_lv/{domain}/*/*/*/{kind}/{enclave.replace("/", "%")}/*/*'
+    return head if topic is None else f'{head}/{topic}/**'
+
+
+_TOKEN_KINDS = {'publish': 'MP', 'subscribe': 'MS', 'serve': 'SS', 'call': 'SC'}
+
+
 def _service_name(dds: str, prefix: str, suffix: str) -> str | None:
     if not dds.startswith(prefix):
         return None
@@ -143,8 +178,8 @@ def _role_rules(role: str, key: str) -> list[tuple[str, tuple[str, ...], str]]:
     return [(INGRESS, ('query',), key), (EGRESS, ('declare_queryable', 'reply'), key)]
 
 
-def _graph_rules(domains: Iterable[int]) -> list[tuple[str, tuple[str, ...], str]]:
-    rules = [(INGRESS, ('liveliness_token',), f'@ros2_lv/{d}/**') for d in sorted(domains)]
+def _graph_rules(domains: Iterable[int], enclave: str) -> list[tuple[str, tuple[str, ...], str]]:
+    rules = [(INGRESS, ('liveliness_token',), _token(d, 'NN', enclave)) for d in sorted(domains)]
     return [
         *rules,
         (INGRESS, ('declare_liveliness_subscriber', 'liveliness_query'), '@ros2_lv/**'),
@@ -155,7 +190,7 @@ def _graph_rules(domains: Iterable[int]) -> list[tuple[str, tuple[str, ...], str
 
 
 def _grant_rules(
-    grant: Grant,
+    grant: Grant, enclave: str
 ) -> tuple[dict[tuple[bool, str, tuple[str, ...]], set[str]], set[int], list[str]]:
     """Rules of one grant, grouped; the domains it covers; the names it had to skip."""
     grouped: dict[tuple[bool, str, tuple[str, ...]], set[str]] = {}
@@ -176,9 +211,14 @@ def _grant_rules(
                         )
                         if not name or name == '/':
                             raise _Invalid(dds)
+                        topic = token_topic(name, allow=rule.allow)
                         for domain in rule.domains:
                             key = keys_for_name(name, domain, allow=rule.allow)
-                            for flow, messages, ke in _role_rules(role, key):
+                            token = _token(domain, _TOKEN_KINDS[role], enclave, topic)
+                            for flow, messages, ke in [
+                                *_role_rules(role, key),
+                                (INGRESS, ('liveliness_token',), token),
+                            ]:
                                 grouped.setdefault((rule.allow, flow, messages), set()).add(ke)
                     except _Invalid:
                         if not rule.allow:
@@ -199,10 +239,16 @@ def router_access(keystore: Path, now: datetime.datetime | None = None) -> Acces
     when = now or datetime.datetime.now(datetime.timezone.utc)
     if not (keystore / 'enclaves').is_dir():
         raise SecurityError(f"'{keystore}' is not a keystore (no enclaves directory)")
+    from ros2lite.security.pki import read_signed
+
     result = AccessControl()
+    permissions_ca = keystore / 'public' / 'permissions_ca.cert.pem'
     for index, (enclave, path) in enumerate(_enclaves(keystore)):
         try:
-            grants = parse_permissions(read_bytes(path, 'permissions'), str(path))
+            signature = path.with_name('permissions.p7s')
+            what = f'permissions of enclave {enclave}'
+            document = read_signed(path, signature, permissions_ca, what)
+            grants = parse_permissions(document, str(path))
         except SecurityError as exc:
             result.warnings.append(f'{enclave}: ignored ({exc})')
             continue
@@ -214,7 +260,7 @@ def router_access(keystore: Path, now: datetime.datetime | None = None) -> Acces
             result.warnings.append(f'{enclave}: its grant is not valid now; enclave denied')
             continue
         try:
-            grouped, domains, skipped = _grant_rules(grant)
+            grouped, domains, skipped = _grant_rules(grant, enclave)
         except _Invalid as exc:
             result.warnings.append(f'{enclave}: unsupported DENY name {exc}; enclave denied')
             continue
@@ -223,7 +269,8 @@ def router_access(keystore: Path, now: datetime.datetime | None = None) -> Acces
         subject = f'enclave{index}'
         ids = []
         entries = sorted(grouped.items()) + [
-            ((True, flow, messages), {key}) for flow, messages, key in _graph_rules(domains)
+            ((True, flow, messages), {key})
+            for flow, messages, key in _graph_rules(domains, enclave)
         ]
         for n, ((allow, flow, messages), keys) in enumerate(entries):
             rule_id = f'{subject}-{n}'

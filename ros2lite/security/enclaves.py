@@ -7,13 +7,29 @@ key live in ``$ROS_SECURITY_KEYSTORE/enclaves/<enclave>``.
 
 from __future__ import annotations
 
+import os
+from collections.abc import Mapping
 from pathlib import Path
 
-from ros2lite.security.errors import EnclaveError
+from ros2lite.security.errors import EnclaveError, KeystoreError
 
-__all__ = ['KEYSTORE_ENV', 'enclave_directory', 'validate_enclave_name']
+__all__ = ['KEYSTORE_ENV', 'enclave_directory', 'env_domain_id', 'validate_enclave_name']
 
 KEYSTORE_ENV = 'ROS_SECURITY_KEYSTORE'
+MAX_DOMAIN_ID = 232
+
+
+def env_domain_id(env: Mapping[str, str] | None = None) -> int:
+    """``ROS_DOMAIN_ID`` as sros2 writes it into documents and as a secured process checks
+    its permissions against (0 when unset)."""
+    raw = (os.environ if env is None else env).get('ROS_DOMAIN_ID', '').strip() or '0'
+    try:
+        value = int(raw)
+    except ValueError:
+        raise KeystoreError(f'ROS_DOMAIN_ID must be an integer, got {raw!r}') from None
+    if not 0 <= value <= MAX_DOMAIN_ID:
+        raise KeystoreError(f'ROS_DOMAIN_ID must be in 0..{MAX_DOMAIN_ID}, got {value}')
+    return value
 
 
 def validate_enclave_name(name: str) -> None:

@@ -9,6 +9,12 @@ rcl's rules, kept as they are so the same shell works for ROS 2 and ros2lite:
   (``--ros-args --enclave``, registered with :func:`use_enclave`), else ``/``;
 * its directory is ``$ROS_SECURITY_KEYSTORE/enclaves/<enclave>``.
 
+Material that is there but would be refused or ignored by the router (a certificate for
+another enclave, expired, or from another CA; governance or permissions whose signature
+does not verify; permissions for another ``ROS_DOMAIN_ID``) is named in one line by
+:func:`enclave_problems`, the same words for every node and verb: fatal under Enforce, a
+warning under Permissive.  Every session and router config passes through here.
+
 On Zenoh an identity is what TLS needs: the keystore's identity CA (to check the other end),
 and the enclave's certificate and key (to be checked).  The router has an enclave of its own
 (``ROS2LITE_ROUTER_ENCLAVE``, default ``/zenohd`` as rmw_zenoh's tools name it), created on
@@ -17,12 +23,18 @@ first use when the keystore's CA key is at hand.
 
 from __future__ import annotations
 
+import datetime
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-from ros2lite.security.enclaves import KEYSTORE_ENV, enclave_directory, validate_enclave_name
+from ros2lite.security.enclaves import (
+    KEYSTORE_ENV,
+    enclave_directory,
+    env_domain_id,
+    validate_enclave_name,
+)
 from ros2lite.security.errors import EnclaveError, SecurityError
 
 __all__ = [
@@ -33,7 +45,9 @@ __all__ = [
     'ROUTER_ENCLAVE_ENV',
     'STRATEGY_ENV',
     'Identity',
+    'announced_enclave',
     'enclave_directory',
+    'enclave_problems',
     'enforced',
     'process_enclave',
     'resolve',
@@ -98,6 +112,22 @@ def process_enclave() -> str:
     return _process_enclave or '/'
 
 
+def announced_enclave(enclave: str | None, env: Mapping[str, str] | None = None) -> str:
+    """The enclave a context names in its graph tokens: with security on, the one whose
+    certificate it shows (``ROS_SECURITY_ENCLAVE_OVERRIDE`` wins), so the router can bind
+    tokens to the enclave that declares them; else ``enclave`` (``--enclave``, default
+    ``/``), as rmw_zenoh does."""
+    environ = _env(env)
+    override = environ.get(OVERRIDE_ENV, '')
+    if security_enabled(environ) and override:
+        try:
+            validate_enclave_name(override)
+        except EnclaveError:
+            return enclave or '/'  # resolve() says why, once
+        return override
+    return enclave or '/'
+
+
 def _identity(keystore: Path, enclave: str) -> Identity | str:
     """The enclave's identity, or why it cannot be had (one phrase)."""
     directory = enclave_directory(keystore, enclave)
@@ -129,12 +159,92 @@ def _fallback(reason: str) -> None:
     )
 
 
-def _decide(keystore_raw: str, enclave: str, env: Mapping[str, str] | None) -> Identity | None:
+def _domains_phrase(domains: list[int]) -> str:
+    if not domains:
+        return 'no domain'
+    listed = ', '.join(str(d) for d in domains)
+    return f'domain {listed}' if len(domains) == 1 else f'domains {listed}'
+
+
+def enclave_problems(
+    identity: Identity, domain: int | None, now: datetime.datetime | None = None
+) -> list[str]:
+    """Why the router would refuse or ignore this enclave, one phrase each (empty: none):
+    its certificate (issued by the keystore's identity CA, naming the enclave, valid now),
+    the keystore's governance and the enclave's permissions (signed by the permissions CA),
+    a grant for the enclave valid now, covering ``domain`` unless None (the router's)."""
+    from ros2lite.security import pki
+    from ros2lite.security.permissions import parse_permissions
+
+    when = now or datetime.datetime.now(datetime.timezone.utc)
+    enclave = identity.enclave
+    problems: list[str] = []
+    try:
+        problem = pki.certificate_problem(
+            pki.load_certificate(identity.certificate),
+            pki.load_certificate(identity.ca_certificate),
+            enclave,
+            when,
+        )
+    except SecurityError as exc:
+        problem = str(exc)
+    if problem:
+        problems.append(problem)
+    permissions_ca = identity.keystore / 'public' / 'permissions_ca.cert.pem'
+    try:
+        pki.read_signed(
+            identity.keystore / 'enclaves' / 'governance.xml',
+            identity.keystore / 'enclaves' / 'governance.p7s',
+            permissions_ca,
+            f'the governance of keystore {identity.keystore}',
+        )
+    except SecurityError as exc:
+        problems.append(str(exc))
+    what = f'permissions of enclave {enclave}'
+    path = identity.directory / 'permissions.xml'
+    try:
+        document = pki.read_signed(
+            path, identity.directory / 'permissions.p7s', permissions_ca, what
+        )
+        grants = parse_permissions(document, str(path))
+    except SecurityError as exc:
+        return [*problems, str(exc)]
+    grant = next((g for g in grants if g.common_name == enclave), None)
+    if grant is None:
+        return [*problems, f'{what} grant nothing to CN={enclave}']
+    if not grant.valid_at(when):
+        problems.append(f'{what} are not valid now')
+    covered = sorted({d for rule in grant.rules if rule.allow for d in rule.domains})
+    if domain is not None and domain not in covered:
+        problems.append(f'{what} cover {_domains_phrase(covered)}, not {domain}')
+    return problems
+
+
+def _warn(reason: str) -> None:
+    """Permissive: carry on with the material as it is, and say what is wrong once."""
+    if reason in _reported:
+        return
+    _reported.add(reason)
+    from ros2lite.logging import get_logger
+
+    get_logger('ros2lite.security').warn(
+        f'SECURITY: {reason} (going on: {STRATEGY_ENV} is not Enforce)'
+    )
+
+
+def _decide(
+    keystore_raw: str, enclave: str, env: Mapping[str, str] | None, domain: int | None
+) -> Identity | None:
     if not keystore_raw:
         reason = f'{ENABLE_ENV}=true but {KEYSTORE_ENV} is not set'
     else:
         found = _identity(Path(keystore_raw), enclave)
         if isinstance(found, Identity):
+            problems = enclave_problems(found, domain)
+            if problems and enforced(env):
+                raise SecurityError(f'SECURITY ERROR: {problems[0]} ({STRATEGY_ENV}=Enforce)')
+            for problem in problems:
+                _warn(problem)
             return found
         reason = found
     if enforced(env):
@@ -143,9 +253,15 @@ def _decide(keystore_raw: str, enclave: str, env: Mapping[str, str] | None) -> I
     return None
 
 
-def resolve(env: Mapping[str, str] | None = None, enclave: str | None = None) -> Identity | None:
+def resolve(
+    env: Mapping[str, str] | None = None,
+    enclave: str | None = None,
+    domain_id: int | None = None,
+) -> Identity | None:
     """This process's identity when security applies; None when it is off, or Permissive
-    without material.  Enforce without material raises :class:`SecurityError`."""
+    without material.  Enforce without material, or with material the router would refuse
+    (:func:`enclave_problems`; ``domain_id`` defaults to ``ROS_DOMAIN_ID``), raises
+    :class:`SecurityError`."""
     environ = _env(env)
     if not security_enabled(environ):
         return None
@@ -157,7 +273,8 @@ def resolve(env: Mapping[str, str] | None = None, enclave: str | None = None) ->
             raise SecurityError(f'SECURITY ERROR: {exc}') from None
         _fallback(str(exc))
         return None
-    return _decide(environ.get(KEYSTORE_ENV, ''), name, environ)
+    domain = env_domain_id(environ) if domain_id is None else domain_id
+    return _decide(environ.get(KEYSTORE_ENV, ''), name, environ, domain)
 
 
 def router_identity(env: Mapping[str, str] | None = None) -> Identity | None:
@@ -175,4 +292,4 @@ def router_identity(env: Mapping[str, str] | None = None) -> Identity | None:
 
             if is_valid_keystore(keystore):  # its CA keys are here: make the router one
                 create_enclave(keystore, name)
-    return _decide(keystore_raw, name, environ)
+    return _decide(keystore_raw, name, environ, None)  # a router serves every domain

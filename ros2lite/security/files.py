@@ -4,19 +4,23 @@ A keystore lives in a directory other users may share; a planted symlink must no
 a private key or a signed document elsewhere.  Every write here opens with ``O_NOFOLLOW``
 and every directory we write into is checked to be a real directory below the keystore.
 The symlinks sros2's layout has (``identity_ca.cert.pem`` → ``ca.cert.pem`` …) are made by
-us, never written through.
+us, never written through.  A private key is never written into a file that exists: it is
+created afresh (``O_EXCL``, 0600) in a directory of ours, so a file or directory another user
+planted there (to read the key, or swap it later) is refused.
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
+import stat
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from ros2lite.files import read_bounded
+from ros2lite.files import UnsafePathError, create_new, read_bounded
 from ros2lite.security.errors import KeystoreError, PolicyError
 
-__all__ = ['make_dirs', 'parse_xml', 'read_bytes', 'symlink', 'write_file']
+__all__ = ['make_dirs', 'parse_xml', 'read_bytes', 'symlink', 'write_file', 'write_private']
 
 # Policies and permissions are small; anything bigger is not one.
 MAX_XML_BYTES = 4 * 1024 * 1024
@@ -52,6 +56,40 @@ def write_file(path: Path, data: bytes, mode: int = 0o644) -> None:
         raise KeystoreError(f"cannot write '{path}': {exc.strerror}") from None
     try:
         os.fchmod(fd, mode)
+        view = memoryview(data)
+        while view:
+            view = view[os.write(fd, view) :]
+    finally:
+        os.close(fd)
+
+
+def write_private(path: Path, data: bytes) -> None:
+    """Write a private key as a new file of ours, 0600; a stale one of ours is replaced, one
+    another user owns (or a directory they own) is refused, a symlink is never followed."""
+    uid = os.geteuid()
+    what = f"refusing to write the private key '{path}'"
+    existing: os.stat_result | None = None
+    try:
+        parent = os.stat(path.parent)
+        with contextlib.suppress(FileNotFoundError):
+            existing = os.lstat(path)
+    except OSError as exc:
+        raise KeystoreError(f"cannot write '{path}': {exc.strerror}") from None
+    if parent.st_uid != uid:
+        raise KeystoreError(f'{what}: its directory belongs to another user (uid {parent.st_uid})')
+    if existing is not None:
+        if stat.S_ISLNK(existing.st_mode):
+            raise KeystoreError(f'{what}: it is a symlink')
+        if existing.st_uid != uid:
+            raise KeystoreError(
+                f'{what}: it exists and belongs to another user (uid {existing.st_uid})'
+            )
+        path.unlink()
+    try:
+        fd = create_new(path, 0o600)
+    except (UnsafePathError, OSError) as exc:
+        raise KeystoreError(f'{what}: {exc}') from None
+    try:
         view = memoryview(data)
         while view:
             view = view[os.write(fd, view) :]

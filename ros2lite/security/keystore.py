@@ -19,7 +19,12 @@ import xml.etree.ElementTree as ET
 from collections.abc import Callable, Mapping
 from pathlib import Path
 
-from ros2lite.security.enclaves import KEYSTORE_ENV, enclave_directory, validate_enclave_name
+from ros2lite.security.enclaves import (
+    KEYSTORE_ENV,
+    enclave_directory,
+    env_domain_id,
+    validate_enclave_name,
+)
 from ros2lite.security.errors import EnclaveError, KeystoreError
 from ros2lite.security.files import make_dirs, symlink, write_file
 
@@ -34,19 +39,6 @@ __all__ = [
 ]
 
 PUBLIC, PRIVATE, ENCLAVES = 'public', 'private', 'enclaves'
-MAX_DOMAIN_ID = 232
-
-
-def _domain_id(env: Mapping[str, str] | None = None) -> int:
-    """``ROS_DOMAIN_ID`` as sros2 writes it into documents (0 when unset)."""
-    raw = (os.environ if env is None else env).get('ROS_DOMAIN_ID', '').strip() or '0'
-    try:
-        value = int(raw)
-    except ValueError:
-        raise KeystoreError(f'ROS_DOMAIN_ID must be an integer, got {raw!r}') from None
-    if not 0 <= value <= MAX_DOMAIN_ID:
-        raise KeystoreError(f'ROS_DOMAIN_ID must be in 0..{MAX_DOMAIN_ID}, got {value}')
-    return value
 
 
 def is_valid_keystore(path: Path) -> bool:
@@ -102,7 +94,7 @@ def create_keystore(path: Path, env: Mapping[str, str] | None = None) -> None:
             symlink('ca.key.pem', private / f'{role}.key.pem')
     governance = enclaves / 'governance.xml'
     if not governance.is_file():
-        write_file(governance, governance_xml(_domain_id(env)))
+        write_file(governance, governance_xml(env_domain_id(env)))
     signed = enclaves / 'governance.p7s'
     if not signed.is_file():
         _sign(path, governance, signed)
@@ -119,7 +111,7 @@ def _write_permissions(
     cert = pki.load_certificate(directory / 'cert.pem')
     document = permissions_xml(
         policy,
-        _domain_id(env),
+        env_domain_id(env),
         cert.not_valid_before_utc,
         cert.not_valid_after_utc,
     )

@@ -5,7 +5,8 @@
 * an enclave: ``CN=<enclave name>``, signed by the CA, basicConstraints not-CA;
 * all valid from now for 3650 days, signed with SHA-256;
 * documents (governance, permissions): detached, text-mode S/MIME (``multipart/signed``,
-  ``micalg="sha-256"``), which ``openssl smime -verify`` checks against the CA.
+  ``micalg="sha-256"``), which ``openssl smime -verify`` checks against the CA, and so does
+  :func:`verify_document` (OpenSSL's own PKCS#7 verification, as ``cryptography`` binds it).
 
 Importing this module loads ``cryptography``; nothing on a hot path does.
 """
@@ -16,21 +17,25 @@ import datetime
 from pathlib import Path
 
 from cryptography import x509
+from cryptography.exceptions import InternalError, InvalidSignature
 from cryptography.hazmat.primitives import hashes, serialization
 from cryptography.hazmat.primitives.asymmetric import ec, rsa
 from cryptography.hazmat.primitives.serialization import pkcs7
 
 from ros2lite.security.errors import KeystoreError
-from ros2lite.security.files import write_file
+from ros2lite.security.files import read_bytes, write_file, write_private
 
 __all__ = [
     'CA_COMMON_NAME',
     'SigningKey',
+    'certificate_problem',
     'load_certificate',
     'load_private_key',
     'new_ca',
     'new_identity',
+    'read_signed',
     'sign_document',
+    'verify_document',
     'write_certificate',
     'write_private_key',
 ]
@@ -81,13 +86,13 @@ def new_identity(
 
 
 def write_private_key(key: SigningKey, path: Path) -> None:
-    """PKCS#8 PEM, readable by the owner only."""
+    """PKCS#8 PEM in a new file readable by its owner only (see ``files.write_private``)."""
     data = key.private_bytes(
         serialization.Encoding.PEM,
         serialization.PrivateFormat.PKCS8,
         serialization.NoEncryption(),
     )
-    write_file(path, data, 0o600)
+    write_private(path, data)
 
 
 def write_certificate(cert: x509.Certificate, path: Path) -> None:
@@ -125,3 +130,68 @@ def sign_document(cert: x509.Certificate, key: SigningKey, content: bytes) -> by
             [pkcs7.PKCS7Options.Text, pkcs7.PKCS7Options.DetachedSignature],
         )
     )
+
+
+def certificate_problem(
+    cert: x509.Certificate, ca: x509.Certificate, enclave: str, now: datetime.datetime
+) -> str | None:
+    """Why an enclave's certificate would be refused (one phrase), None when it is usable:
+    issued by the keystore's identity CA, naming the enclave, valid now."""
+    what = f'the certificate of enclave {enclave}'
+    try:
+        cert.verify_directly_issued_by(ca)
+    except (ValueError, TypeError, InvalidSignature):
+        return f"{what} is not issued by the keystore's identity CA"
+    names = cert.subject.get_attributes_for_oid(x509.oid.NameOID.COMMON_NAME)
+    common_name = str(names[0].value) if names else ''
+    if common_name != enclave:
+        return f'{what} names CN={common_name}, not {enclave}'
+    if now > cert.not_valid_after_utc:
+        return f'{what} expired on {cert.not_valid_after_utc:%Y-%m-%d %H:%M} UTC'
+    if now < cert.not_valid_before_utc:
+        return f'{what} is not valid before {cert.not_valid_before_utc:%Y-%m-%d %H:%M} UTC'
+    return None
+
+
+def _text_mode(content: bytes) -> bytes:
+    """The content as text-mode S/MIME signs it: a text/plain part with CRLF line ends."""
+    lines = content.replace(b'\r\n', b'\n').replace(b'\n', b'\r\n')
+    return b'Content-Type: text/plain\r\n\r\n' + lines
+
+
+def verify_document(ca: x509.Certificate, signed: bytes, content: bytes) -> bool:
+    """Whether ``signed`` (a detached S/MIME .p7s) is a signature of ``content`` by ``ca``
+    or a certificate it issued (``openssl smime -verify -CAfile ca -content``).
+
+    ``cryptography`` exposes OpenSSL's PKCS#7 verification only in its test-support
+    bindings; without them nothing can be verified, and that is an error, never a pass."""
+    try:
+        from cryptography.hazmat.bindings._rust import test_support
+    except ImportError:  # pragma: no cover - a cryptography built without them
+        pkcs7_verify = None
+    else:
+        pkcs7_verify = getattr(test_support, 'pkcs7_verify', None)
+    if pkcs7_verify is None:  # pragma: no cover - cryptography < 43
+        raise KeystoreError('this cryptography package cannot verify S/MIME signatures')
+    try:
+        pkcs7_verify(serialization.Encoding.SMIME, signed, _text_mode(content), [ca], [])
+    except (ValueError, TypeError, InternalError):
+        return False
+    return True
+
+
+def read_signed(document: Path, signature: Path, ca_certificate: Path, what: str) -> bytes:
+    """``document``'s bytes once ``signature`` proves the permissions CA signed exactly
+    them; else a one-line PolicyError naming ``what`` (e.g. ``permissions of enclave /a``)."""
+    from ros2lite.security.errors import PolicyError
+
+    content = read_bytes(document, what)
+    if not signature.is_file():
+        raise PolicyError(f'{what}: {signature.name} (its signature) is missing')
+    signed = read_bytes(signature, f'{what} signature')
+    if not verify_document(load_certificate(ca_certificate), signed, content):
+        raise PolicyError(
+            f'{what}: {document.name} does not match its signature {signature.name} '
+            'by the permissions CA'
+        )
+    return content

@@ -471,12 +471,17 @@ def open_router(
         raise SessionError(zerror_message(exc)) from None
 
 
+def linked_routers(session: Session) -> set[str]:
+    """The ids of the routers `session` is linked to now (for a router: its mesh)."""
+    try:
+        return {str(zid) for zid in session.info.routers_zid()}
+    except zenoh.ZError:
+        return set()
+
+
 def router_connected(session: Session) -> bool:
     """Whether `session` is linked to a router now (a peer goes on without one)."""
-    try:
-        return bool(session.info.routers_zid())
-    except zenoh.ZError:
-        return False
+    return bool(linked_routers(session))
 
 
 def router_reachable(endpoint: str, timeout: float) -> bool:

@@ -191,3 +191,47 @@ def test_a_token_with_a_strange_domain_is_ignored(running: str) -> None:
     assert daemon.status(running).running
     log = log_file(running).read_text()
     assert 'Traceback' not in log and 'ValueError' not in log, log
+
+
+def test_a_token_flood_is_bounded_counted_and_said(
+    ros_router: str,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    capfd: pytest.CaptureFixture[str],
+) -> None:
+    """R-G18/G16: past its limit the cache keeps no more tokens; it counts the dropped ones,
+    says so in the daemon's log, and answers 'incomplete' for a domain while any of its
+    dropped tokens lives (tools then ask the router); other domains are served as before."""
+    from ros2lite.daemon.graph_cache import GraphServer, cache_stats
+
+    monkeypatch.setenv('XDG_RUNTIME_DIR', str(tmp_path))
+    flood, calm = 201, 202
+    server_session = open_session(ros_router, mode='client')
+    server = GraphServer(server_session, graph_socket(ros_router), limit=100)
+    client = open_session(ros_router, mode='client')
+    try:
+        lv = client.liveliness()
+        calm_key = f'@ros2_lv/{calm}/{"c" * 32}/0/0/NN/%/%/calm'
+        calm_token = lv.declare_token(calm_key)
+        wait_until(lambda: cached_keys(ros_router, calm) is not None and server.kept == 1)
+        flood_tokens = [
+            lv.declare_token(f'@ros2_lv/{flood}/{"f" * 32}/0/{i}/NN/%/%/flood{i}')
+            for i in range(150)
+        ]
+        wait_until(lambda: server.kept + server.dropped == 151, timeout=20)
+        assert (server.kept, server.dropped) == (100, 51)
+        assert cached_keys(ros_router, flood) is None  # incomplete: tools ask the router
+        assert cached_keys(ros_router, calm) == [calm_key]  # another domain: served
+        assert cache_stats(ros_router) == {'kept': 100, 'dropped': 51, 'limit': 100}
+        for token in flood_tokens:
+            token.undeclare()
+        wait_until(lambda: cached_keys(ros_router, flood) == [], timeout=20)
+        assert server.kept == 1
+        calm_token.undeclare()
+    finally:
+        server.close()
+        client.close()
+        server_session.close()
+    log = capfd.readouterr().err
+    assert 'ros2lite daemon: graph cache full (100 tokens): 1 token(s) not kept so far' in log
+    assert log.count('graph cache full') == 6, log  # at 1, 2, 4, … 32: said, never flooding

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from ros2lite.security.access import keys_for_name, router_access
+from ros2lite.security.access import keys_for_name, router_access, token_topic
 from ros2lite.security.keystore import create_enclave, create_keystore, create_permission
 
 
@@ -62,9 +62,41 @@ def test_rules_follow_permissions(tmp_path: Path) -> None:
     assert keys(True, 'ingress', 'query') >= {'5/add/*/*'}
     assert keys(True, 'egress', 'reply') >= {'5/add/*/*'}
     assert keys(True, 'ingress', 'liveliness_token') == {
-        '@ros2_lv/5/**',  # its own graph tokens, in its domain only
+        # its own graph tokens, named after it, in its domain only, for what it may do
+        '@ros2_lv/5/*/*/*/NN/%narrow/*/*',
+        '@ros2_lv/5/*/*/*/MS/%narrow/*/*/%chatter/**',
+        '@ros2_lv/5/*/*/*/SC/%narrow/*/*/%add/**',
         '5/chatter/*/*/@adv/sub/**',  # its TRANSIENT_LOCAL subscriber's
     }
+    assert '@ros2_lv/5/*/*/*/MP/%narrow/*/*/%chatter/**' in keys(
+        False, 'ingress', 'liveliness_token'
+    )
+
+
+@pytest.mark.parametrize(
+    ('name', 'allow', 'chunk'),
+    [
+        ('/chatter', True, '%chatter'),
+        ('/robot/chatter', True, '%robot%chatter'),
+        ('/*', True, '%$*'),
+        ('/robot/*', True, '%robot%$*'),
+        ('/chat*', True, '%chat$*'),
+        ('/chat*/x', False, '%$*'),
+    ],
+)
+def test_token_topic(name: str, allow: bool, chunk: str) -> None:
+    assert token_topic(name, allow=allow) == chunk
+
+
+def signed(keystore: Path, enclave: str, document: bytes) -> None:
+    """Write an enclave's permissions, signed by the keystore's permissions CA."""
+    from ros2lite.security import pki
+
+    directory = keystore / 'enclaves' / enclave.strip('/')
+    cert = pki.load_certificate(keystore / 'public' / 'permissions_ca.cert.pem')
+    key = pki.load_private_key(keystore / 'private' / 'permissions_ca.key.pem')
+    (directory / 'permissions.xml').write_bytes(document)
+    (directory / 'permissions.p7s').write_bytes(pki.sign_document(cert, key, document))
 
 
 def test_bad_or_foreign_grants_are_left_out(tmp_path: Path) -> None:
@@ -73,11 +105,28 @@ def test_bad_or_foreign_grants_are_left_out(tmp_path: Path) -> None:
     create_enclave(keystore, '/a', {})
     create_enclave(keystore, '/b', {})
     create_enclave(keystore, '/c', {})
-    # /b's file grants to someone else; /c's is not XML
-    text = (keystore / 'enclaves/b/permissions.xml').read_text()
-    (keystore / 'enclaves/b/permissions.xml').write_text(text.replace('CN=/b', 'CN=/a'))
-    (keystore / 'enclaves/c/permissions.xml').write_text('<dds')
+    # /b's file grants to someone else; /c's is not XML (both signed by the CA)
+    text = (keystore / 'enclaves/b/permissions.xml').read_bytes()
+    signed(keystore, '/b', text.replace(b'CN=/b', b'CN=/a'))
+    signed(keystore, '/c', b'<dds')
     access = router_access(keystore)
     assert [s.common_name for s in access.subjects] == ['/a']
     assert any(w.startswith('/b: its permissions grant nothing') for w in access.warnings)
     assert any(w.startswith('/c: ignored') for w in access.warnings)
+
+
+def test_tampered_permissions_are_denied(tmp_path: Path) -> None:
+    """R-S13: permissions.xml edited after signing (an enclave granting itself a topic) is
+    not obeyed: its permissions.p7s no longer verifies against the permissions CA."""
+    keystore = tmp_path / 'ks'
+    create_keystore(keystore, {})
+    create_enclave(keystore, '/ok', {})
+    create_enclave(keystore, '/other', {})
+    path = keystore / 'enclaves/other/permissions.xml'
+    path.write_bytes(path.read_bytes().replace(b'rt/*', b'rt/*x', 1))
+    access = router_access(keystore)
+    assert [s.common_name for s in access.subjects] == ['/ok']
+    assert access.warnings == [
+        '/other: ignored (permissions of enclave /other: permissions.xml does not match its '
+        'signature permissions.p7s by the permissions CA)'
+    ]

@@ -73,3 +73,120 @@ def test_config_builders(keystore: Path) -> None:
     assert tls['enable_mtls'] is True
     assert tls['connect_certificate'].endswith('enclaves/robot/talker/cert.pem')
     assert tls['root_ca_certificate'].endswith('identity_ca.cert.pem')
+
+
+def test_permissions_of_another_domain(keystore: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """The keystore's permissions cover domain 0: a process in 177 would be denied all by
+    the router. Enforce refuses in one line; Permissive warns once and goes on."""
+    env = secure(keystore, ROS_DOMAIN_ID='177')
+    with pytest.raises(SecurityError) as caught:
+        environment.resolve(env, enclave='/robot/talker')
+    assert str(caught.value) == (
+        'SECURITY ERROR: permissions of enclave /robot/talker cover domain 0, not 177 '
+        '(ROS_SECURITY_STRATEGY=Enforce)'
+    )
+    assert environment.resolve(secure(keystore, ROS_DOMAIN_ID='0'), enclave='/robot/talker')
+    permissive = {**env, 'ROS_SECURITY_STRATEGY': 'Permissive'}
+    for _ in range(2):
+        found = environment.resolve(permissive, enclave='/robot/talker')
+        assert found is not None and found.enclave == '/robot/talker'
+    warnings = [line for line in capsys.readouterr().err.splitlines() if 'SECURITY' in line]
+    assert len(warnings) == 1, warnings
+    assert 'permissions of enclave /robot/talker cover domain 0, not 177' in warnings[0]
+
+
+def replace_certificate(
+    keystore: Path, enclave: str, common_name: str, *, expired: bool = False
+) -> None:
+    """Give `enclave` a certificate the keystore's CA signed for `common_name`, valid now
+    or expired a day ago."""
+    import datetime
+
+    from cryptography import x509
+    from cryptography.hazmat.primitives import hashes
+    from cryptography.hazmat.primitives.asymmetric import ec
+
+    from ros2lite.security import pki
+
+    directory = keystore / 'enclaves' / enclave.strip('/')
+    ca = pki.load_certificate(keystore / 'public' / 'ca.cert.pem')
+    ca_key = pki.load_private_key(keystore / 'private' / 'ca.key.pem')
+    key = ec.generate_private_key(ec.SECP256R1())
+    now = datetime.datetime.now(datetime.timezone.utc)
+    end = now - datetime.timedelta(days=1) if expired else now + datetime.timedelta(days=1)
+    cert = (
+        x509.CertificateBuilder()
+        .issuer_name(ca.subject)
+        .subject_name(x509.Name([x509.NameAttribute(x509.oid.NameOID.COMMON_NAME, common_name)]))
+        .serial_number(x509.random_serial_number())
+        .not_valid_before(end - datetime.timedelta(days=30))
+        .not_valid_after(end)
+        .public_key(key.public_key())
+        .sign(ca_key, hashes.SHA256())
+    )
+    (directory / 'cert.pem').unlink()
+    (directory / 'key.pem').unlink()
+    pki.write_certificate(cert, directory / 'cert.pem')
+    pki.write_private_key(key, directory / 'key.pem')
+
+
+def test_certificates_the_router_would_refuse(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Another enclave's certificate, an expired one, one from another CA: each refused in
+    one line under Enforce, said once under Permissive."""
+    from ros2lite.security import pki
+
+    root = tmp_path / 'ks'
+    create_keystore(root, {})
+    for name in ('/a', '/b', '/c'):
+        create_enclave(root, name, {})
+    replace_certificate(root, '/a', '/wrong')
+    replace_certificate(root, '/b', '/b', expired=True)
+    other_ca, other_key = pki.new_ca()
+    cert, key = pki.new_identity('/c', other_ca, other_key)
+    for name in ('cert.pem', 'key.pem'):
+        (root / 'enclaves' / 'c' / name).unlink()
+    pki.write_certificate(cert, root / 'enclaves' / 'c' / 'cert.pem')
+    pki.write_private_key(key, root / 'enclaves' / 'c' / 'key.pem')
+    expected = {
+        '/a': 'the certificate of enclave /a names CN=/wrong, not /a',
+        '/b': 'the certificate of enclave /b expired on ',
+        '/c': "the certificate of enclave /c is not issued by the keystore's identity CA",
+    }
+    for enclave, reason in expected.items():
+        with pytest.raises(SecurityError) as caught:
+            environment.resolve(secure(root), enclave=enclave)
+        message = str(caught.value)
+        assert message.startswith(f'SECURITY ERROR: {reason}'), message
+        assert message.endswith('(ROS_SECURITY_STRATEGY=Enforce)') and '\n' not in message
+        permissive = secure(root, ROS_SECURITY_STRATEGY='Permissive')
+        assert environment.resolve(permissive, enclave=enclave) is not None
+        assert reason in capsys.readouterr().err
+
+
+def test_unsigned_or_tampered_documents(tmp_path: Path) -> None:
+    """R-S13: permissions or governance changed after the permissions CA signed them (or a
+    signature that is missing) are refused in one line under Enforce."""
+    root = tmp_path / 'ks'
+    create_keystore(root, {})
+    create_enclave(root, '/p', {})
+    permissions = root / 'enclaves' / 'p' / 'permissions.xml'
+    original = permissions.read_bytes()
+    permissions.write_bytes(original.replace(b'<topic>rt/*</topic>', b'<topic>rt/**</topic>'))
+    with pytest.raises(SecurityError) as caught:
+        environment.resolve(secure(root), enclave='/p')
+    assert str(caught.value) == (
+        'SECURITY ERROR: permissions of enclave /p: permissions.xml does not match its '
+        'signature permissions.p7s by the permissions CA (ROS_SECURITY_STRATEGY=Enforce)'
+    )
+    permissions.write_bytes(original)
+    assert environment.resolve(secure(root), enclave='/p') is not None
+    (root / 'enclaves' / 'p' / 'permissions.p7s').unlink()
+    with pytest.raises(SecurityError, match=r'permissions.p7s \(its signature\) is missing'):
+        environment.resolve(secure(root), enclave='/p')
+    create_enclave(root, '/p', {})  # signs them again
+    governance = root / 'enclaves' / 'governance.xml'
+    governance.write_bytes(governance.read_bytes().replace(b'ENCRYPT', b'NONE'))
+    with pytest.raises(SecurityError, match=r'governance of keystore .*: governance.xml does not'):
+        environment.resolve(secure(root), enclave='/p')

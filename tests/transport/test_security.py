@@ -298,3 +298,121 @@ def test_permissive_without_material_runs_unsecured(
     warnings = [line for line in talker.text().splitlines() if 'SECURITY' in line]
     assert len(warnings) == 1, talker.text()
     assert 'running unsecured' in warnings[0]
+
+
+def test_permissions_of_another_domain_refused(secured: dict[str, str]) -> None:
+    """F2: permissions made for another ROS_DOMAIN_ID: the node and the verb each refuse in
+    the same one line under Enforce (before, both ran and heard nothing)."""
+    other = str((int(secured['ROS_DOMAIN_ID']) + 1 - 100) % 100 + 100)
+    env = environ({**secured, 'ROS_DOMAIN_ID': other})
+    reason = (
+        f"permissions of enclave /sec/talker cover domain {secured['ROS_DOMAIN_ID']}, not {other}"
+    )
+    node = run_cli(
+        ['run', 'demo_nodes_py', 'talker', '--ros-args', '--enclave', '/sec/talker'], env
+    )
+    assert node.returncode != 0
+    assert node.stderr.splitlines()[0] == (
+        f'SECURITY ERROR: {reason} (ROS_SECURITY_STRATEGY=Enforce)'
+    ), node.stderr
+    verb = run_cli(
+        ['topic', 'echo', '--once', '/chatter', 'std_msgs/msg/String'],
+        {**env, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/talker'},
+        timeout=20,
+    )
+    assert verb.returncode == 1
+    assert verb.stderr.strip() == f'SECURITY ERROR: {reason} (ROS_SECURITY_STRATEGY=Enforce)'
+
+
+def test_expired_certificate_refused_alike(secured: dict[str, str]) -> None:
+    """An expired enclave certificate: node and verb refuse with the same one line, before
+    the router would (which said only 'refused the TLS handshake')."""
+    from ros2lite.security.keystore import create_enclave
+    from tests.security.test_environment import replace_certificate
+
+    keystore = Path(secured['ROS_SECURITY_KEYSTORE'])
+    create_enclave(keystore, '/sec/expired', secured)
+    replace_certificate(keystore, '/sec/expired', '/sec/expired', expired=True)
+    env = environ(secured)
+    node = run_cli(
+        ['run', 'demo_nodes_py', 'talker', '--ros-args', '--enclave', '/sec/expired'], env
+    )
+    verb = run_cli(
+        ['topic', 'pub', '--times', '1', '/chatter', 'std_msgs/msg/String'],
+        {**env, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/expired'},
+    )
+    assert node.returncode != 0 and verb.returncode == 1
+    line = verb.stderr.strip()
+    assert line.startswith('SECURITY ERROR: the certificate of enclave /sec/expired expired on')
+    assert node.stderr.splitlines()[0] == line, node.stderr
+
+
+def test_graph_tokens_bound_to_the_enclave(secured: dict[str, str]) -> None:
+    """R-S10: an enclave declares graph tokens only under its own name and for what its
+    permissions allow; a publisher token on a topic it may not publish, or a node token
+    naming another enclave, never reaches the graph (it did: /spoofed showed in node list)."""
+    import zenoh
+
+    from ros2lite.transport.config import session_config
+
+    env = {**secured, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/restricted'}
+    domain = secured['ROS_DOMAIN_ID']
+    string = (
+        'std_msgs::msg::dds_::String_/RIHS01_'
+        + 'df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18'
+    )
+    zid = os.urandom(16).hex()
+    head = f'@ros2_lv/{domain}/{zid}'
+    tokens = [
+        f'{head}/1/2/MP/%sec%restricted/%/spoofed_pub/%chatter/{string}/::,10:,:,:,,',
+        f'{head}/3/3/NN/%sec%talker/%/spoofed_node',
+        f'{head}/4/4/NN/%/%/spoofed_root',
+        f'{head}/5/6/MP/%sec%restricted/%/allowed_node/%other/{string}/::,10:,:,:,,',
+    ]
+    session = zenoh.open(session_config(env=environ(env)))
+    try:
+        declared = [session.liveliness().declare_token(key) for key in tokens]
+        listing = ''
+        deadline = time.monotonic() + 15
+        while '/allowed_node' not in listing and time.monotonic() < deadline:
+            verb = run_cli(
+                ['node', 'list'],
+                environ({**secured, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/listener'}),
+            )
+            listing = verb.stdout
+        assert '/allowed_node' in listing, listing
+        assert 'spoofed' not in listing, listing
+        for token in declared:
+            token.undeclare()
+    finally:
+        session.close()
+
+
+def test_secured_echo_says_when_the_router_goes_and_comes_back(secured: dict[str, str]) -> None:
+    """R-F2, secured: a TLS client's echo says when its router goes and when it is back."""
+    import zenoh
+
+    from ros2lite.transport.config import router_config
+
+    endpoint = f'tls/127.0.0.1:{free_port()}'
+    env = {**secured, 'ROS2LITE_ROUTER': endpoint}
+    router = zenoh.open(router_config(env=env))
+    echo_proc, echo = start_cli(
+        ['topic', 'echo', '/outage', 'std_msgs/msg/String'],
+        environ({**env, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/listener'}),
+    )
+    pub_proc, _ = start_cli(
+        ['topic', 'pub', '-r', '5', '/outage', 'std_msgs/msg/String', '{data: tick}'],
+        environ({**env, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/talker'}),
+    )
+    try:
+        echo.wait_for('data: tick')  # connected, authenticated, hearing
+        router.close()
+        echo.wait_for(f'Lost the link to the Zenoh router at {endpoint}', timeout=10)
+        router = zenoh.open(router_config(env=env))
+        echo.wait_for(f'The link to the Zenoh router at {endpoint} is back', timeout=15)
+    finally:
+        for proc in (echo_proc, pub_proc):
+            proc.terminate()
+            proc.wait(timeout=10)
+        router.close()

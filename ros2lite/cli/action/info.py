@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from .. import completion
+from .. import completion, render
 from ..common import connect, show_types_option, strategy_options
 from ..errors import CliError
 from ..parsing import command
@@ -51,4 +51,4 @@ def cli(
     lines = [f'Action: {action_name}']
     lines += _section('Action clients', clients, show_types, count)
     lines += _section('Action servers', servers, show_types, count)
-    click.echo('\n'.join(lines))
+    render.echo('\n'.join(lines))

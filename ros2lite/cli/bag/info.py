@@ -17,6 +17,7 @@ import click
 from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
 
 from ..parsing import command
+from ..render import echo as echo_shown
 from .options import bag_argument, bag_error, existing_bag, warn
 
 if TYPE_CHECKING:
@@ -165,11 +166,11 @@ def cli(bag_path: str, storage: str | None, topic_name: bool, verbose: bool, sor
         with Reader(path, storage) as reader:
             if topic_name:
                 names = sorted(t.name for t in reader.topics)
-                click.echo("".join(n + "\n" for n in names), nl=False)
+                echo_shown("".join(n + "\n" for n in names), nl=False)
                 return
             sizes = message_sizes(reader) if verbose else None
             for problem in reader.shortfalls():
                 warn(problem)
-            click.echo(render(path, reader, verbose=verbose, sort=sort, sizes=sizes), nl=False)
+            echo_shown(render(path, reader, verbose=verbose, sort=sort, sizes=sizes), nl=False)
     except BagError as e:
         raise bag_error(str(e)) from None

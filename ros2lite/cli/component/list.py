@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from .. import completion
+from .. import completion, render
 from ..common import connect, strategy_options
 from ..errors import CliError
 from ..parsing import command
@@ -36,7 +36,7 @@ def cli(
             indent, heading = '  ', True
         for name in containers:
             if heading:
-                click.echo(name)
+                render.echo(name)
             if containers_only:
                 continue
             try:
@@ -44,4 +44,4 @@ def cli(
             except ContainerError as e:
                 raise CliError(str(e)) from None
             for component in loaded:
-                click.echo(f'{indent}{component.unique_id}  {component.name}')
+                render.echo(f'{indent}{component.unique_id}  {component.name}')

@@ -32,6 +32,15 @@ def cli() -> None:
         )
     else:
         click.echo(f'No Zenoh router answers at {st.endpoint}')
+    if st.running and st.ours:
+        from ros2lite.daemon.graph_cache import cache_stats
+
+        stats = cache_stats(st.endpoint)
+        if stats and stats.get('dropped'):
+            click.echo(
+                f"Graph cache full: {stats['dropped']} token(s) dropped past its "
+                f"{stats.get('limit')}; tools ask the router for the domains concerned"
+            )
     if st.running:
         if st.sessions is None:
             click.echo("Connected sessions: unknown (the router's admin space does not answer)")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from .. import render
 from ..common import connect, count_option, strategy_options
 from ..parsing import command
 from .common import managed_nodes
@@ -20,4 +21,4 @@ def cli(show_all: bool, count_nodes: bool, no_daemon: bool, use_sim_time: bool) 
     if count_nodes:
         click.echo(len(names))
     elif names:
-        click.echo('\n'.join(names))
+        render.echo('\n'.join(names))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from .. import render
 from ..errors import CliError
 from ..parsing import command
 from .common import address_options
@@ -37,7 +38,7 @@ def cli(group: str, port: int, interface: str | None, timeout: float | None) -> 
             'need it: nodes meet through the router)'
         ) from None
     text = data.decode('utf-8', errors='replace')
-    click.echo(f"Received from {host}:{sender_port}: '{text}'")
+    render.echo(f"Received from {host}:{sender_port}: '{text}'")
     click.echo(
         'Multicast passes here: Zenoh peers could also find each other by multicast scouting '
         f'({ZENOH_SCOUTING}), which ros2lite and rmw_zenoh leave off (they meet through the '

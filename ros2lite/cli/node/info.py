@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from .. import completion
+from .. import completion, render
 from ..common import connect, strategy_options
 from ..errors import CliError
 from ..parsing import command
@@ -41,7 +41,7 @@ def cli(node_name: str, include_hidden: bool, no_daemon: bool, use_sim_time: boo
     info = node_info(entities, name, namespace, include_hidden) if count else None
     if info is None:
         raise CliError(f"Unable to find node '{full}'")
-    click.echo(
+    render.echo(
         ''.join(
             [
                 full + '\n',

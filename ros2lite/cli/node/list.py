@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from .. import render
 from ..common import connect, strategy_options
 from ..parsing import command
 
@@ -39,4 +40,4 @@ def cli(show_all: bool, count_nodes: bool, no_daemon: bool, use_sim_time: bool) 
         return
     if len(set(names)) < len(names):
         click.echo(DUPLICATE_WARNING, err=True)
-    click.echo('\n'.join(names))
+    render.echo('\n'.join(names))

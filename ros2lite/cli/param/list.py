@@ -6,6 +6,7 @@ import re
 
 import click
 
+from .. import render
 from ..common import connect
 from ..errors import CliError
 from ..parsing import ManyValues, command
@@ -66,8 +67,8 @@ def cli(
                 click.echo(str(e), err=True)
                 continue
             if target.node_name is None:
-                click.echo(f"{fqn}:")
+                render.echo(f"{fqn}:")
             for name in names:
-                click.echo(
+                render.echo(
                     f"  {name} (type: {types.get(name, 'not set')})" if param_type else f"  {name}"
                 )

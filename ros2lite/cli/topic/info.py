@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from .. import completion
+from .. import completion, render
 from ..common import connect, strategy_options
 from ..errors import CliError
 from ..parsing import command
@@ -53,4 +53,4 @@ def cli(topic_name: str, verbose: bool, no_daemon: bool, use_sim_time: bool) -> 
                 key=lambda i: (i.node_namespace, i.node_name, i.endpoint_gid),
             )
             out += [format_endpoint_info(info) + end for info in endpoints]
-    click.echo(''.join(out), nl=False)
+    render.echo(''.join(out), nl=False)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from .. import render
 from ..common import connect, print_names, strategy_options
 from ..lazy import include_hidden, include_hidden_option
 from ..parsing import command
@@ -54,7 +55,7 @@ def cli(
         counts = topic_counts(entities)
         pubs = [(name, types, counts[name][0]) for name, types in topics]
         subs = [(name, types, counts[name][1]) for name, types in topics]
-        click.echo(_section(pubs, True))
-        click.echo(_section(subs, False))
+        render.echo(_section(pubs, True))
+        render.echo(_section(subs, False))
         return
     print_names(topics, count_topics, show_types)
