@@ -541,7 +541,7 @@ def get_global_executor(context: Context | None = None) -> SingleThreadedExecuto
     global _last_global
     ctx = context or default_context()
     last = _last_global
-    if last is not None and last._context is ctx:
+    if last is not None and last.context is ctx:
         return last
     with _global_lock:
         executor = _global.get(ctx)
