@@ -222,7 +222,7 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
         if executor is None:
             return
         server = self._node.context.local_services.get(self._ep.key)
-        if server is None or server._node._executor is not executor:
+        if server is None or not server.runs_on(executor):
             return
         # only a multi-threaded executor has threads to spare
         blocked = getattr(executor, 'num_threads', 1) < 2

@@ -50,18 +50,13 @@ class ContextExecutor(Protocol):
         ...
 
 
-class _ServerNode(Protocol):
-    @property
-    def _executor(self) -> object: ...
-
-
 class LocalService(Protocol):
     """A service server of this process (:class:`ros2lite.service.Service`), as a client
     calling it from a callback looks at it to tell a deadlock coming."""
 
-    @property
-    def _node(self) -> _ServerNode:
-        """The node serving it (its executor runs the server's callbacks)."""
+    def runs_on(self, executor: object) -> bool:
+        """Whether the node serving it is attached to `executor` (which then runs the
+        server's callbacks)."""
         ...
 
     @property

@@ -1,6 +1,7 @@
 """What subscriptions, services, clients, timers and guard conditions share: they belong to a
-node and a callback group, and when work arrives (on any thread) they wake the executor their
-node was added to, at most once until it has run them.
+node and a callback group, and when work arrives (on any thread) they tell their node's
+:class:`~ros2lite.runtime.scheduling.NodeWork`, which queues them on the node's executor at
+most once until it has run them.
 """
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Protocol
 
 from ros2lite.callback_groups import CallbackGroup
+from ros2lite.runtime.scheduling import NodeWork, Scheduled
 
 if TYPE_CHECKING:
     from ros2lite.context import Context
@@ -54,10 +56,6 @@ class EntityExecutor(Protocol):
         """Any thread: make a waiting spin look again."""
         ...
 
-    def _enqueue(self, entity: Executable) -> None:
-        """Any thread: queue `entity`, whose work arrived."""
-        ...
-
     def _run_callback(
         self,
         callback: Callable[..., object],
@@ -89,12 +87,9 @@ class EntityNode(Protocol):
         ...
 
     @property
-    def _executor(self) -> EntityExecutor | None:
-        """The executor the node was added to, if any."""
+    def work(self) -> NodeWork[Any]:
+        """Who runs the node's work: its executor and what waits for one."""
         ...
-
-    # an entity got work while the node had no executor (the next add_node looks)
-    _unqueued_work: bool
 
     def get_name(self) -> str:
         """The node's name."""
@@ -120,17 +115,13 @@ class EntityNode(Protocol):
         """Stop running `waitable` with this node."""
         ...
 
-    def _wake_executor(self) -> None:
-        """Make the node's executor (if any) look again (a timer's new deadline)."""
-        ...
-
 
 def current_execution() -> tuple[EntityExecutor | None, Executable | None]:
     """(executor, entity) whose callback this thread is running, or (None, None)."""
     return _running.executor, _running.entity
 
 
-class Executable:
+class Executable(Scheduled):
     """Base of everything an executor runs for a node."""
 
     # completing a client's future runs no user callback of its own, so it need not wait for
@@ -138,9 +129,6 @@ class Executable:
     # otherwise never resume
     needs_group = True
     is_timer = False
-    # the entity calls _notify() whenever it gets work, also while its node has no executor
-    # (so add_node need not ask it); user waitables that only answer is_ready() do not
-    notifies_itself = False
 
     def __init__(self, node: EntityNode | None, callback_group: CallbackGroup | None) -> None:
         from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup
@@ -150,35 +138,16 @@ class Executable:
             node.default_callback_group if node is not None else MutuallyExclusiveCallbackGroup()
         )
         self.callback_group.add_entity(self)
-        # in the executor's queue, or running: set and cleared by the owner of the queue
-        self._scheduled = False
 
     def _notify(self) -> None:
-        """Any thread: work arrived; queue this entity on its node's executor (once)."""
-        if self._scheduled:
-            return
+        """Any thread: work arrived; the node's NodeWork queues this entity (once)."""
         # only entities of a node queue work (a nodeless timer is never notified)
-        node: EntityNode = self._node  # type: ignore[assignment]
-        executor = node._executor
-        if executor is None:
-            # no executor: the next add_node must look (and, should one be added right now,
-            # the second look below queues the work itself, so it is never lost)
-            node._unqueued_work = True
-            executor = node._executor
-            if executor is None:
-                return
-        self._scheduled = True
-        executor._enqueue(self)
+        self._node.work.notify(self)  # type: ignore[union-attr]
 
-    def _executed(self) -> None:
-        """Executor thread, after `_execute`: clear the flag *before* looking for more work,
-        so work that arrives meanwhile is either seen here or queued by `_notify`."""
-        self._scheduled = False
-        if self._has_work():
-            self._notify()
-
-    def _has_work(self) -> bool:
-        return False
+    def runs_on(self, executor: object) -> bool:
+        """Whether its node is attached to `executor` now."""
+        node = self._node
+        return node is not None and node.work.executor is executor
 
     def _call(
         self,
@@ -191,7 +160,7 @@ class Executable:
         has moved on (spin_once's helper removes the node once the work is handed over)."""
         executor = _running.executor
         if executor is None and self._node is not None:
-            executor = self._node._executor
+            executor = self._node.work.executor
         if executor is not None:
             return executor._run_callback(callback, *args, then=then)
         result = callback(*args)

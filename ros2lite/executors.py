@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Any, cast
 
 from ros2lite.context import Context, default_context
 from ros2lite.executable import Executable, _running
+from ros2lite.runtime.scheduling import NodeWork
 from ros2lite.task import Future, Task
 
 if TYPE_CHECKING:
@@ -102,31 +103,12 @@ class Executor:
             if node in self._nodes:
                 return False
             self._nodes.append(node)
-        previous = node._executor
+        work = node.work
+        previous = work.executor
         if previous is not None and previous is not self:
             previous.remove_node(node)
-        entities = None
-        if node._last_executor is not self:
-            # entries of its entities may sit in another executor's queue: start afresh
-            entities = node._executables()
-            for entity in entities:
-                entity._scheduled = False
-            node._last_executor = self
-        node._executor = self
-        # what got work while the node had no executor: entities say so (Executable._notify),
-        # so a node coming back (`spin_once(node)` adds and removes it per call) is not
-        # searched; waitables that only answer is_ready() may not say, and are always asked
-        if entities is None and node._unqueued_work:
-            entities = node._executables()
-        node._unqueued_work = False
-        if entities is None:
-            for entity in node.waitables:
-                if not entity.notifies_itself and not entity._scheduled and entity._has_work():
-                    entity._notify()
-        else:
-            for entity in entities:
-                if not entity._scheduled and entity._has_work():
-                    entity._notify()
+        # what got work while the node had no executor is queued now (NodeWork.attach)
+        work.attach(self, self._enqueue)
         if self._spinning:
             self.wake()  # a spinning thread must see the node's timers
         return True
@@ -137,8 +119,7 @@ class Executor:
             if node not in self._nodes:
                 return
             self._nodes.remove(node)
-        if node._executor is self:
-            node._executor = None
+        node.work.detach(self)
 
     def get_nodes(self) -> list[Node]:
         """The nodes added to this executor."""
@@ -297,7 +278,7 @@ class Executor:
         wait: float | None = None
         for node in self._nodes:
             for timer in node.timers:
-                if timer._scheduled:
+                if timer.scheduled:
                     continue
                 remaining = timer._seconds_until_next_call()
                 if remaining is None:
@@ -362,13 +343,8 @@ class Executor:
             self._run_task(item)
             return
         node: Node = item._node  # type: ignore[assignment]  # queued entities have a node
-        if node._executor is not self:
-            # its node left: if it comes back here, add_node queues the entity again; if it
-            # went to another executor, that one has taken the entity over
-            if node._last_executor is self:
-                item._scheduled = False
-                node._unqueued_work = True
-            return
+        if not node.work.claim(self, item):
+            return  # its node left (NodeWork.claim): not ours to run
         group = item.callback_group
         if item.needs_group and not group.beginning_execution(item):
             with self._lock:
@@ -394,7 +370,7 @@ class Executor:
             pending = entity._execute(batch, stop)
         finally:
             running.executor, running.entity = saved
-            entity._executed()
+            entity._node.work.executed(entity)  # type: ignore[union-attr]  # run: has a node
             if entity.needs_group:
                 if pending is None or pending.done():
                     self._release(group, entity)
@@ -526,10 +502,10 @@ class MultiThreadedExecutor(Executor):
         self, entity: Executable, group: CallbackGroup, batch: bool, stop: Callable[[], bool] | None
     ) -> None:
         if entity.is_timer:
-            entity._scheduled = True  # not due again for us while it runs
+            NodeWork.hold(entity)  # not due again for us while it runs
         if not self._submit(self._run_entity, entity, group, batch, stop):
             # not run: leave the entity as another executor would want to find it
-            entity._scheduled = False
+            NodeWork.unhold(entity)
             if entity.needs_group:
                 group.ending_execution(entity)
 
@@ -565,7 +541,7 @@ def get_global_executor(context: Context | None = None) -> SingleThreadedExecuto
     global _last_global
     ctx = context or default_context()
     last = _last_global
-    if last is not None and last._context is ctx:
+    if last is not None and last.context is ctx:
         return last
     with _global_lock:
         executor = _global.get(ctx)

@@ -24,6 +24,7 @@ from ros2lite.qos import (
     qos_profile_services_default,
 )
 from ros2lite.rate import Rate
+from ros2lite.runtime.scheduling import NodeWork
 from ros2lite.service import Service
 from ros2lite.subscription import Subscription
 from ros2lite.task import TaskRunner
@@ -102,12 +103,8 @@ class Node(ParameterMixin):
         self.waitables: list[Executable] = []
         self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
         self._callback_groups: list[CallbackGroup] = [self.default_callback_group]
-        # the executor this node was added to (it owns the node's work), and the last one
-        # (whose queue may still hold entries of its entities)
-        self._executor: NodeExecutor | None = None
-        self._last_executor: NodeExecutor | None = None
-        # an entity got work while the node had no executor (see Executor.add_node)
-        self._unqueued_work = True
+        # who runs the node's work: the executor it is attached to, what waits for one
+        self.work: NodeWork[NodeExecutor] = NodeWork(self._executables, self.waitables)
         for level_name, level in self._args.log_levels.items():
             set_logger_level(level_name, level)
         from ros2lite.transport.session import declare_token
@@ -197,7 +194,8 @@ class Node(ParameterMixin):
         """The executor this node was last added to, or None. It stays after the node is
         removed from it (as in rclpy), so tasks created there, such as a deferred action
         goal's execution, run when that executor spins again."""
-        return self._executor if self._executor is not None else self._last_executor
+        work = self.work
+        return work.executor if work.executor is not None else work.last_executor
 
     @executor.setter
     def executor(self, new_executor: NodeExecutor | None) -> None:
@@ -207,10 +205,9 @@ class Node(ParameterMixin):
             return
         if current is not None:
             current.remove_node(self)
-        self._last_executor = None
+        self.work.forget()
         if new_executor is not None:
             new_executor.add_node(self)
-            self._last_executor = new_executor
 
     @property
     def callback_groups(self) -> list[CallbackGroup]:
@@ -224,8 +221,39 @@ class Node(ParameterMixin):
             waitable._node = self
             self._remember_group(waitable.callback_group)
         self.waitables.append(waitable)
-        if waitable._has_work():
-            waitable._notify()
+        self.work.notify_if_ready(waitable)
+
+    def adopt(self, entity: Executable) -> None:
+        """Make an entity built outside this node's factories its own (a tool's subscription
+        class, say): destroyed with the node, its group remembered and, if it has work
+        already, queued on the node's executor. An entity of another node is refused; one
+        without a node (a waitable) is added as add_waitable() does."""
+        owner = entity._node
+        if owner is not None and owner is not self:
+            raise ValueError('the entity belongs to another node')
+        # the node's list of the entity's kind
+        kinds: tuple[tuple[type, list[Any]], ...] = (
+            (Subscription, self.subscriptions),
+            (Service, self.services),
+            (Client, self.clients),
+            (Timer, self.timers),
+            (GuardCondition, self.guards),
+        )
+        entities = next((own for kind, own in kinds if isinstance(entity, kind)), None)
+        if entities is None:
+            if entity not in self.waitables:
+                self.add_waitable(entity)
+            return
+        if entity in entities:
+            return
+        if owner is None:
+            entity._node = self
+        entities.append(entity)
+        self._remember_group(entity.callback_group)
+        if isinstance(entity, Timer):
+            self.work.wake()  # a spinning executor must see its deadline
+        else:
+            self.work.notify_if_ready(entity)
 
     def remove_waitable(self, waitable: Executable) -> None:
         """Stop running `waitable` with this node."""
@@ -239,10 +267,6 @@ class Node(ParameterMixin):
     def _remember_group(self, group: CallbackGroup | None) -> None:
         if group is not None and group not in self._callback_groups:
             self._callback_groups.append(group)
-
-    def _wake_executor(self) -> None:
-        if self._executor is not None:
-            self._executor.wake()
 
     def resolve_service_name(self, service: str, *, only_expand: bool = False) -> str:
         """Services resolve (expansion, remapping) exactly as topics do."""
@@ -443,7 +467,7 @@ class Node(ParameterMixin):
             autostart=autostart,
         )
         self.timers.append(timer)
-        self._wake_executor()
+        self.work.wake()
         return timer
 
     def create_rate(self, frequency: float, clock: Clock | None = None) -> Rate:
@@ -657,8 +681,9 @@ class Node(ParameterMixin):
         self.waitables.clear()
         undeclare_quietly(self._token)
         self._token = None
-        if self._executor is not None:
-            self._executor.remove_node(self)
+        executor = self.work.executor
+        if executor is not None:
+            executor.remove_node(self)
         self.context.remove_node(self)
 
     # -- time and logging ---------------------------------------------------------------------

@@ -16,6 +16,7 @@ from ros2lite.executable import Executable
 from ros2lite.message_info import MessageInfo
 from ros2lite.qos import HistoryPolicy, QoSProfile
 from ros2lite.transport.attachment import unpack_attachment
+from ros2lite.transport.handles import Receiving
 from ros2lite.transport.keys import EntityKind
 from ros2lite.type_support import MsgT
 
@@ -26,6 +27,8 @@ if TYPE_CHECKING:
     from ros2lite.transport.handles import Sample
     from ros2lite.transport.pull import PulledSamples
     from ros2lite.transport.session import SampleReceiver
+
+__all__ = ['CallbackType', 'Receiving', 'Subscription', 'SubscriptionCallback', 'callback_type']
 
 
 class CallbackType(enum.Enum):
@@ -72,7 +75,12 @@ with raw=True the message is its CDR bytes; `async def` ones too."""
 
 class Subscription(EndpointOwner, Executable, Generic[MsgT]):
     """Calls `callback(msg)` or `callback(msg, MessageInfo)` (told apart by its signature);
-    with raw=True the message is its CDR bytes."""
+    with raw=True the message is its CDR bytes.
+
+    How samples arrive is a named strategy (:class:`Receiving`): typed subscriptions pull
+    them on the executor thread, raw ones get them queued by a pump thread, and a tool that
+    must see every sample at arrival gives `on_arrival(sample)`, which then runs on the
+    receive thread instead of any queueing (it may call :meth:`_keep` to queue the sample)."""
 
     CallbackType = CallbackType
 
@@ -86,9 +94,10 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         *,
         raw: bool = False,
         callback_group: CallbackGroup | None = None,
+        on_arrival: Callable[[Sample], None] | None = None,
     ) -> None:
         from ros2lite.transport.pull import PulledSamples
-        from ros2lite.transport.session import SampleReceiver
+        from ros2lite.transport.receivers import open_receiver
 
         Executable.__init__(self, node, callback_group)
         self._ep = _SubscriptionEndpoint(node, msg_type, topic, qos)
@@ -99,39 +108,43 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self.raw = raw
         self._async = inspect.iscoroutinefunction(callback)
         keep_all = ep.qos.history == HistoryPolicy.KEEP_ALL
-        # raw samples as a pump thread moved them, `(sample, arrival ns)` (tools like `topic
-        # hz` need arrival times); typed subscriptions pull from Zenoh on the executor thread
-        # (`_source` below), and a typed subclass with a hook consumes samples itself
+        # raw samples as a pump thread (or an arrival hook, through _keep) queued them,
+        # `(sample, arrival ns)` (tools like `topic hz` need arrival times); typed
+        # subscriptions pull from Zenoh on the executor thread (`_source` below)
         self._buffer: deque[Any] = deque(maxlen=None if keep_all else max(ep.qos.depth, 1))
         self._deserialize: Callable[[bytes], MsgT] | None = None
         self._destroyed = False
         # undecodable samples so far (None until the first one)
         self.bad_samples: BadSamples | None = None
-        # a subclass hook (e.g. topic monitors) sees every sample instead of the buffer
-        hook = None if type(self)._on_sample is Subscription._on_sample else self._on_sample
-        # typed subscriptions: the executor pulls samples itself (ros2lite.transport.pull)
-        self._source: PulledSamples | None = None
-        self._receiver: SampleReceiver | PulledSamples
-        if raw or hook is not None:
-            self._receiver = SampleReceiver(
-                node.context.require(),
-                ep.key,
-                ep.qos,
-                self._buffer,
-                self._notify,
-                hook=hook,
-                name=ep.topic_name,
-            )
-        else:
-            self._receiver = self._source = PulledSamples(
-                node.context.require(), ep.key, ep.qos, self._notify, name=ep.topic_name
-            )
+        # how samples arrive: an arrival hook (topic monitors, a waiter for one message)
+        # sees every sample instead of the buffer; else raw bytes are queued, typed ones
+        # pulled by the executor itself (ros2lite.transport.pull)
+        self.receiving = (
+            Receiving.ARRIVAL_HOOK
+            if on_arrival is not None
+            else Receiving.RAW_QUEUE
+            if raw
+            else Receiving.TYPED_PULL
+        )
+        receiver = open_receiver(
+            self.receiving,
+            node.context.require(),
+            ep.key,
+            ep.qos,
+            self._notify,
+            buffer=self._buffer if self.receiving is Receiving.RAW_QUEUE else None,
+            hook=on_arrival,
+            name=ep.topic_name,
+        )
+        self._receiver: SampleReceiver | PulledSamples = receiver
+        # typed pull: the executor takes samples from here (None for the other two)
+        self._source = receiver if isinstance(receiver, PulledSamples) else None
         ep._announce()
 
-    def _on_sample(self, sample: Sample) -> None:
-        """Receive thread (a raw subclass's hook passing a sample on): keep it with its arrival
-        time and make sure the executor will come for it. Samples without an attachment,
-        which rmw_zenoh ignores, are dropped when taken."""
+    def _keep(self, sample: Sample) -> None:
+        """Receive thread (an arrival hook passing a sample on): queue it with its arrival
+        time, as a raw queue does, and make sure the executor will come for it. Samples
+        without an attachment, which rmw_zenoh ignores, are dropped when taken."""
         if self._destroyed:
             return
         self._buffer.append((sample, time.time_ns()))

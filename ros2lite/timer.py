@@ -136,7 +136,7 @@ class Timer(Executable):
         self._canceled = False
         self._next = self._now() + self._period_ns
         if self._node is not None:
-            self._node._wake_executor()  # a spinning executor must see the new deadline
+            self._node.work.wake()  # a spinning executor must see the new deadline
 
     def destroy(self) -> None:
         """Never fire again (the node forgets it too)."""

@@ -30,9 +30,9 @@ class _FirstMessage(Subscription[MsgT]):
     ) -> None:
         self.first: MsgT | None = None
         self.arrived = threading.Event()
-        super().__init__(node, msg_type, topic, lambda _msg: None, qos)
+        super().__init__(node, msg_type, topic, lambda _msg: None, qos, on_arrival=self._arrived)
 
-    def _on_sample(self, sample: Sample) -> None:
+    def _arrived(self, sample: Sample) -> None:
         attachment = sample.attachment
         # rmw_zenoh ignores samples without an attachment; so does this
         if self.first is not None or attachment is None:

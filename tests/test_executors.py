@@ -376,7 +376,7 @@ def test_work_taken_just_before_shutdown_is_dropped_cleanly(ros_context: Any) ->
     group = timer.callback_group
     assert group.beginning_execution(timer)
     executor._start(timer, group, False, None)
-    assert group.can_execute(timer) and not timer._scheduled
+    assert group.can_execute(timer) and not timer.scheduled
 
 
 def test_spin_once_until_future_complete_ends_when_another_thread_completes_it(

@@ -223,3 +223,33 @@ def test_wait_for_node_and_the_executor_property(ros_context: Any) -> None:
     assert node not in first.get_nodes() and node.executor is second
     node.executor = None
     assert node.executor is None and node not in second.get_nodes()
+
+
+def test_adopt_makes_an_entity_built_outside_the_node_its_own(ros_context: Any) -> None:
+    from ros2lite.executable import GuardCondition
+    from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.subscription import Subscription
+    from tests.spinning import spin_until
+
+    node = Node('adopter', context=ros_context)
+    other = Node('other_adopter', context=ros_context)
+    sub = Subscription(node, 'std_msgs/msg/String', 'adopted', lambda m: None, 1)
+    assert sub not in node.subscriptions
+    node.adopt(sub)
+    node.adopt(sub)
+    assert node.subscriptions.count(sub) == 1
+    with pytest.raises(ValueError, match='another node'):
+        other.adopt(sub)
+    fired: list[bool] = []
+    guard = GuardCondition(None, lambda: fired.append(True))
+    guard_group = guard.callback_group
+    node.adopt(guard)  # a nodeless one becomes the node's, and runs with it
+    assert guard in node.guards and guard_group in node.callback_groups
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(node)
+    guard.trigger()
+    spin_until(executor, lambda: fired)
+    assert node.count_subscribers('adopted') == 1
+    node.destroy_node()  # the adopted subscription goes with the node
+    assert other.count_subscribers('/adopted') == 0
+    executor.shutdown()

@@ -232,3 +232,35 @@ def test_callbacks_that_take_message_info(node: Node, executor: SingleThreadedEx
     assert before <= info['source_timestamp'] <= info.received_timestamp
     with pytest.raises(RuntimeError, match='one parameter'):
         node.create_subscription(String, 'with_info', lambda a, b, c: None, 10)
+
+
+def test_receiving_strategies(node: Node, executor: SingleThreadedExecutor) -> None:
+    """Typed subscriptions pull, raw ones queue, and one given `on_arrival` sees every sample
+    on the receive thread, where keeping one hands it to the executor as a raw queue would."""
+    import threading
+
+    from ros2lite.subscription import Receiving, Subscription
+
+    assert node.create_subscription(String, 'rs', print, 1).receiving is Receiving.TYPED_PULL
+    raw = node.create_subscription(String, 'rs', print, 1, raw=True)
+    assert raw.receiving is Receiving.RAW_QUEUE
+    arrivals: list[str] = []
+    delivered: list[bytes] = []
+
+    def arrived(sample: Any) -> None:
+        arrivals.append(threading.current_thread().name)
+        if len(arrivals) % 2:
+            hooked._keep(sample)  # every other one goes on to the callback
+
+    hooked = Subscription(
+        node, String, 'rs', delivered.append, QoSProfile(depth=10), raw=True, on_arrival=arrived
+    )
+    node.adopt(hooked)
+    assert hooked.receiving is Receiving.ARRIVAL_HOOK
+    pub = node.create_publisher(String, 'rs', 10)
+    wait_matched(pub, 3)
+    for i in range(4):
+        pub.publish(String(data=f'{i}'))
+    spin_until(executor, lambda: len(arrivals) == 4 and len(delivered) == 2)
+    assert threading.current_thread().name not in arrivals
+    assert delivered == [interfaces.serialize(String(data=f'{i}')) for i in (0, 2)]

@@ -65,10 +65,12 @@ class MonitoredSubscription(Subscription):
         self._on_arrival = on_arrival
         self._on_payload = on_payload
         self._deliver = callback is not None
-        super().__init__(node, msg_type, topic, callback or _ignore, qos, raw=True)
-        node.subscriptions.append(self)  # destroyed with the node, like its own ones
+        super().__init__(
+            node, msg_type, topic, callback or _ignore, qos, raw=True, on_arrival=self._arrived
+        )
+        node.adopt(self)  # destroyed with the node, like its own ones
 
-    def _on_sample(self, sample: Sample) -> None:
+    def _arrived(self, sample: Sample) -> None:
         attachment = sample.attachment
         if attachment is None:
             return  # rmw_zenoh ignores samples without one
@@ -81,7 +83,7 @@ class MonitoredSubscription(Subscription):
                 time.time_ns(),
             )
         if self._deliver:
-            super()._on_sample(sample)
+            self._keep(sample)
 
 
 def _ignore(*_: object) -> None:

@@ -9,10 +9,11 @@ at the seam, so the zenoh object never crosses it untyped.
 
 from __future__ import annotations
 
+import enum
 from collections.abc import Sequence
 from typing import Protocol
 
-__all__ = ['Handle', 'Payload', 'Sample', 'Session', 'SessionInfo']
+__all__ = ['Handle', 'Payload', 'Receiving', 'Sample', 'Session', 'SessionInfo']
 
 
 class SessionInfo(Protocol):
@@ -76,3 +77,16 @@ class Sample(Protocol):
     def attachment(self) -> Payload | None:
         """The rmw_zenoh attachment (sequence number, timestamp, GID), if any."""
         ...
+
+
+class Receiving(enum.Enum):
+    """How a subscription receives its samples (the strategies of
+    :func:`ros2lite.transport.receivers.open_receiver`)."""
+
+    # the executor thread pulls typed samples straight from Zenoh's channel; a doorbell
+    # thread only waits while it is empty (ros2lite.transport.pull)
+    TYPED_PULL = 'typed pull'
+    # a pump thread moves raw samples, with their arrival times, into a bounded deque
+    RAW_QUEUE = 'raw queue'
+    # a tool's function sees every sample on the receive thread, at arrival
+    ARRIVAL_HOOK = 'arrival hook'

@@ -1,0 +1,44 @@
+"""The one place that turns a subscription's receiving strategy into a receiver: typed pull
+(:class:`~ros2lite.transport.pull.PulledSamples`), raw queue or arrival hook
+(:class:`~ros2lite.transport.session.SampleReceiver`)."""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Callable
+from typing import Any
+
+from ros2lite.qos import QoSProfile
+from ros2lite.transport.handles import Receiving, Sample, Session
+from ros2lite.transport.pull import PulledSamples
+from ros2lite.transport.session import SampleReceiver
+
+__all__ = ['Receiving', 'open_receiver']
+
+
+def open_receiver(
+    receiving: Receiving,
+    session: Session,
+    key: str,
+    qos: QoSProfile,
+    on_ready: Callable[[], None],
+    *,
+    buffer: deque[Any] | None = None,
+    hook: Callable[[Sample], None] | None = None,
+    name: str = '',
+) -> PulledSamples | SampleReceiver:
+    """Declare a subscriber on `key` that receives the `receiving` way. `on_ready()` (any
+    thread) says samples wait: typed pull takes nothing else; raw queue fills `buffer` with
+    `(sample, arrival ns)`; arrival hook calls `hook(sample)` on the receive thread and
+    fills nothing (the hook calls on_ready itself if it queues anything)."""
+    if (buffer is not None) != (receiving is Receiving.RAW_QUEUE):
+        raise ValueError('a buffer goes with the raw queue, and only with it')
+    if (hook is not None) != (receiving is Receiving.ARRIVAL_HOOK):
+        raise ValueError('a hook goes with the arrival hook, and only with it')
+    if receiving is Receiving.TYPED_PULL:
+        return PulledSamples(session, key, qos, on_ready, name=name)
+    if receiving is Receiving.RAW_QUEUE:
+        assert buffer is not None
+        return SampleReceiver(session, key, qos, buffer, on_ready, name=name)
+    assert hook is not None
+    return SampleReceiver(session, key, qos, deque(maxlen=0), on_ready, hook=hook, name=name)
