@@ -39,7 +39,7 @@ __all__ = [
     'release_interrupts',
     'run_child',
     'signal_handler',
-    'sigterm_raises',
+    'stop_signals_raise',
     'switch_interval',
     'terminal_signals_child',
 ]
@@ -75,13 +75,18 @@ def _handlers(handlers: dict[int, _Handler]) -> Iterator[None]:
 
 
 @contextlib.contextmanager
-def sigterm_raises() -> Iterator[None]:
-    """Within the block, SIGTERM raises :class:`Terminated` in the main thread."""
+def stop_signals_raise() -> Iterator[None]:
+    """Within the block, SIGTERM raises :class:`Terminated` and SIGINT KeyboardInterrupt in the
+    main thread, SIGINT even when it came ignored: a shell script's background job starts with
+    SIGINT ignored, and ros2cli (rclpy takes SIGINT whatever it inherited) still stops on it."""
 
     def raise_terminated(_signum: int, _frame: FrameType | None) -> None:
         raise Terminated()
 
-    with _handlers({signal.SIGTERM: raise_terminated}):
+    handlers: dict[int, _Handler] = {signal.SIGTERM: raise_terminated}
+    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+        handlers[signal.SIGINT] = signal.default_int_handler
+    with _handlers(handlers):
         yield
 
 

@@ -125,11 +125,12 @@ def main(argv: list[str] | None = None) -> int:
         return shell_complete(cli, {}, 'ros2lite', COMPLETE_VAR, instruction)
     if '--debug' in args[:1]:
         os.environ['ROS2LITE_DEBUG'] = '1'
-    from ros2lite.process import Terminated, sigterm_raises
+    from ros2lite.process import Terminated, stop_signals_raise
 
-    # ros2cli leaves with status 15 on SIGTERM, through rclpy's ExternalShutdownException
+    # ros2cli leaves with status 15 on SIGTERM, through rclpy's ExternalShutdownException, and
+    # with 2 on SIGINT
     try:
-        with sigterm_raises():
+        with stop_signals_raise():
             return _main(args)
     except Terminated:
         return signal.SIGTERM.value

@@ -89,3 +89,28 @@ def test_call_timeout_when_nobody_serves(ros_router: str) -> None:
     assert result.out == 'waiting for service to become available...\n'
     assert result.err == "Timed out after 0.5 s waiting for service '/nobody'\n"
     assert time.monotonic() - start < 30
+
+
+def test_ctrl_c_stops_the_wait_even_when_sigint_came_ignored(adder: Any) -> None:
+    # a background job of a shell script starts with SIGINT ignored; ros2cli stops on it anyway
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            '-m',
+            'ros2lite',
+            'service',
+            'call',
+            '/nobody/serves/this',
+            'example_interfaces/srv/AddTwoInts',
+            '{a: 1}',
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN),
+    )
+    assert proc.stdout is not None
+    assert proc.stdout.readline() == 'waiting for service to become available...\n'
+    proc.send_signal(signal.SIGINT)
+    _out, err = proc.communicate(timeout=20)
+    assert proc.returncode == 2 and 'Traceback' not in err
