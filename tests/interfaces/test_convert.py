@@ -54,12 +54,21 @@ def test_nested_block_and_flow_style() -> None:
     assert I.message_to_yaml(twist) == (
         'linear:\n  x: 2.0\n  y: 0.0\n  z: 0.0\nangular:\n  x: 0.0\n  y: 0.0\n  z: 0.0\n'
     )
+    # --flow-style flows sequences (and all inside them); mappings stay block as in ros2cli
     assert (
         I.message_to_yaml(msg('std_msgs/msg/String', data='Hello World: 1'), flow_style=True)
-        == "{data: 'Hello World: 1'}\n"
+        == "data: 'Hello World: 1'\n"
     )
     seq = msg('std_msgs/msg/Int32MultiArray', data=[1, 2])
     assert I.message_to_yaml(seq) == ('layout:\n  dim: []\n  data_offset: 0\ndata:\n- 1\n- 2\n')
+    path = msg('nav_msgs/msg/Path', poses=[msg('geometry_msgs/msg/PoseStamped')])
+    for fast in (True, False):
+        text = I.message_to_yaml(path, flow_style=True, fast=fast)
+        assert text.startswith('header:\n  stamp:\n    sec: 0\n'), text
+        assert text.endswith(
+            "poses: [{header: {stamp: {sec: 0, nanosec: 0}, frame_id: ''}, pose: {position: "
+            '{x: 0.0, y: 0.0, z: 0.0}, orientation: {x: 0.0, y: 0.0, z: 0.0, w: 1.0}}}]\n'
+        ), text
 
 
 def test_truncation_and_placeholders() -> None:
@@ -94,6 +103,16 @@ def test_csv() -> None:
     assert I.message_to_csv(scan, no_arr=True).endswith(
         '<sequence type: float, length: 3>,<sequence type: float, length: 0>'
     )
+
+
+def test_csv_writes_a_separator_only_after_something() -> None:
+    # rosidl_runtime_py adds ',' only when the text so far is not empty: an empty sequence
+    # or a message without fields in first place leaves no column; later ones leave one
+    arr = msg('std_msgs/msg/Int32MultiArray', data=[1, 2])
+    assert I.message_to_csv(arr) == '0,1,2'
+    assert I.message_to_csv(msg('std_msgs/msg/Int32MultiArray')) == '0,'
+    goals = msg('nav_msgs/msg/Goals')
+    assert I.message_to_csv(goals) == '0,0,,'
 
 
 def test_dict() -> None:
