@@ -528,10 +528,10 @@ class Hello:
         self.message = String(data=f"hello, it's me {self.host}")
         self._lock = threading.Lock()
         self._counts = HelloCounts()
-        where = {'group': group or DEFAULT_GROUP, 'port': port or DEFAULT_PORT}
-        self._receiver = MulticastReceiver(**where, interface=interface)
+        group, port = group or DEFAULT_GROUP, port or DEFAULT_PORT
+        self._receiver = MulticastReceiver(group=group, port=port, interface=interface)
         try:
-            self._sender = MulticastSender(**where, ttl=ttl, interface=interface)
+            self._sender = MulticastSender(group=group, port=port, ttl=ttl, interface=interface)
         except BaseException:
             self._receiver.close()
             raise
