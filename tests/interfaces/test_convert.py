@@ -264,3 +264,47 @@ def test_fast_yaml_path_is_byte_identical(name: str) -> None:
                 ) == I.message_to_yaml(m, flow_style=flow, truncate_length=trunc, fast=False)
 
     check()
+
+
+# the CSV ros2cli 0.32.2 printed for this test_msgs/Arrays (the oracle's /t_arrays): 163
+# columns; constants_values, three messages without fields, make one empty column in all
+ARRAYS_CSV = (
+    "True,False,True,b'\\x00',b'\\x7f',b'\\xff',65,0,127,1.5,nan,-0.0,1e+300,-inf,3.14159,"
+    '-128,0,127,0,128,255,-32768,0,32767,0,1,65535,-2147483648,0,2147483647,0,1,4294967295,'
+    '-9223372036854775808,0,9223372036854775807,0,1,18446744073709551615,a,,'
+    'quote " and \' and : colon,False,b\'\\x00\',0,0.0,0.0,0,0,0,0,0,0,0,0,False,b\'\\x00\','
+    "0,0.0,0.0,0,0,0,0,0,0,0,0,False,b'\\x00',0,0.0,0.0,0,0,0,0,0,0,0,0,,True,b'2',100,"
+    "1.125,1.125,-50,200,-1000,2000,-30000,60000,-40000000,50000000,True,b'2',100,1.125,"
+    "1.125,-50,200,-1000,2000,-30000,60000,-40000000,50000000,True,b'2',100,1.125,1.125,-50,"
+    "200,-1000,2000,-30000,60000,-40000000,50000000,False,True,False,b'\\x00',b'\\x01',"
+    "b'\\xff',0,1,127,1.125,0.0,-1.125,3.1415,0.0,-3.1415,0,127,-128,0,1,255,0,32767,-32768,"
+    '0,1,65535,0,2147483647,-2147483648,0,1,4294967295,0,9223372036854775807,'
+    '-9223372036854775808,0,1,18446744073709551615,max value,min value,0'
+)
+
+
+def test_csv_of_test_msgs_arrays_as_ros2cli_prints_it() -> None:
+    from pathlib import Path
+
+    from ros2lite.interfaces import registry
+    from ros2lite.interfaces.classes import get_interface
+
+    reg = registry.Registry([Path(__file__).parent / 'data', registry.BUNDLED])
+    a = get_interface('test_msgs/msg/Arrays', reg)()
+    a.bool_values = [True, False, True]
+    a.byte_values = [b'\x00', b'\x7f', b'\xff']
+    a.char_values = [65, 0, 127]
+    a.float32_values = [1.5, float('nan'), -0.0]
+    a.float64_values = [1e300, float('-inf'), 3.14159]
+    a.int8_values = [-128, 0, 127]
+    a.uint8_values = [0, 128, 255]
+    a.int16_values = [-32768, 0, 32767]
+    a.uint16_values = [0, 1, 65535]
+    a.int32_values = [-2147483648, 0, 2147483647]
+    a.uint32_values = [0, 1, 4294967295]
+    a.int64_values = [-9223372036854775808, 0, 9223372036854775807]
+    a.uint64_values = [0, 1, 18446744073709551615]
+    a.string_values = ['a', '', 'quote " and \' and : colon']
+    csv = I.message_to_csv(a)
+    assert len(csv.split(',')) == 163
+    assert csv == ARRAYS_CSV
