@@ -7,7 +7,6 @@ level at work."""
 from __future__ import annotations
 
 import threading
-import time
 
 import ros2lite
 from ros2lite.demos.runner import run_main
@@ -18,7 +17,7 @@ from ros2lite.msgs.rcl_interfaces.srv import GetLoggerLevels, SetLoggerLevels
 from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.node import Node
 
-SETTLE = 0.5  # how long a published message is given to be logged before the next step
+SETTLE = 5.0  # how long a published message may take to be logged before the next step
 
 
 class LoggerServiceNode(Node):
@@ -27,6 +26,7 @@ class LoggerServiceNode(Node):
     def __init__(self) -> None:
         super().__init__('LoggerServiceNode', enable_logger_service=True)
         self.sub = self.create_subscription(String, 'output', self.callback, 10)
+        self.handled = threading.Event()  # set once a message has been logged
 
     def callback(self, msg: String) -> None:
         """Say it at each level; the logger's level decides which lines appear."""
@@ -35,13 +35,15 @@ class LoggerServiceNode(Node):
         logger.info(msg.data + ' with INFO logger level.')
         logger.warn(msg.data + ' with WARN logger level.')
         logger.error(msg.data + ' with ERROR logger level.')
+        self.handled.set()
 
 
 class TestNode(Node):
     """Publishes on `output` and calls the other node's logger services."""
 
-    def __init__(self, remote_node_name: str) -> None:
+    def __init__(self, remote_node_name: str, handled: threading.Event) -> None:
         super().__init__('TestNode')
+        self.handled = handled
         self.pub = self.create_publisher(String, 'output', 10)
         self.get_client = self.create_client(
             GetLoggerLevels, remote_node_name + '/get_logger_levels'
@@ -86,20 +88,25 @@ class TestNode(Node):
             self.get_logger().info(f'Current logger level: {level}')
 
     def send(self, text: str) -> None:
-        """Publish `text` and give it time to be logged."""
+        """Publish `text` and wait until it has been logged (ROS's demo sleeps half a
+        second instead, which a busy machine can outrun)."""
+        self.handled.clear()
         self.pub.publish(String(data=text))
-        time.sleep(SETTLE)
+        self.handled.wait(SETTLE)
 
 
 def walk_through() -> None:
     """Default level, then DEBUG, WARN and ERROR, a message and a level read at each."""
     service_node = LoggerServiceNode()
-    test_node = TestNode('LoggerServiceNode')
+    test_node = TestNode('LoggerServiceNode', service_node.handled)
     executor = SingleThreadedExecutor()
     executor.add_node(service_node)
     thread = threading.Thread(target=executor.spin, daemon=True)
     thread.start()
     try:
+        # the services are a step away in the graph; half a second of ROS's sleeps hid that
+        for client in (test_node.get_client, test_node.set_client):
+            client.wait_for_service(timeout_sec=SETTLE)
         test_node.get_logger().info('Output with default logger level:')
         test_node.send('Output 1')
         test_node.log_remote_level()
