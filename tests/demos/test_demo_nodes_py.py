@@ -370,7 +370,7 @@ def test_set_parameters_callback(ros_context: Any, processes: Any) -> None:
     assert proc.returncode == 0
 
 
-def test_async_param_client(processes: Any) -> None:
+def test_async_param_client(ros_context: Any, processes: Any) -> None:
     code, err = run_to_end(processes, 'async_param_client')
     assert code == 1  # one line where rclpy's demo raises, then `run`'s own
     assert err.splitlines() == [
@@ -379,6 +379,8 @@ def test_async_param_client(processes: Any) -> None:
         '[ros2run]: Process exited with failure 1',
     ]
     board = processes.cli('run', 'demo_nodes_cpp', 'parameter_blackboard')
+    # the demo gives the blackboard 3 s, which a busy machine may spend starting it
+    wait_for_node(Node('board_watch', context=ros_context), 'parameter_blackboard', timeout=30)
     code, err = run_to_end(processes, 'async_param_client')
     assert code == 0
     said = [
