@@ -276,9 +276,15 @@ def resolve_executable(
     idx = _index(env, index)
     twin = EQUIVALENTS.get(package)
     if twin is not None and idx.find(package) is None:
-        exe = find_executable(twin, name, index=idx) or _stand_in(twin, name, idx)
+        exe = find_executable(twin, name, index=idx)
         if exe is not None:
             note = f'{package} (C++) is not installed; running {twin} {name}, its Python equivalent'
+            return Resolved(exe, note)
+        exe = _stand_in(twin, name, idx)
+        if exe is not None:
+            note = (
+                f'{package} (C++) is not installed; running a Python {name} bundled with ros2lite'
+            )
             return Resolved(exe, note)
     exe = find_executable(package, name, index=idx)
     if exe is None:

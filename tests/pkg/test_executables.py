@@ -205,8 +205,12 @@ def test_cpp_demo_names_run_the_python_twins() -> None:
     assert resolve_executable('demo_nodes_py', 'talker').note is None
     # demo_nodes_cpp's own executables (Jazzy's demo_nodes_py has none of these) run too,
     # and only under the C++ package's name
-    board = resolve_executable('demo_nodes_cpp', 'parameter_blackboard').executable
-    assert board.target == 'ros2lite.demos.demo_nodes_py.parameter_blackboard:main'
+    board = resolve_executable('demo_nodes_cpp', 'parameter_blackboard')
+    assert board.executable.target == 'ros2lite.demos.demo_nodes_py.parameter_blackboard:main'
+    assert board.note == (
+        'demo_nodes_cpp (C++) is not installed; running a Python parameter_blackboard bundled '
+        'with ros2lite'
+    )
     with pytest.raises(ExecutableNotFoundError):
         resolve_executable('demo_nodes_py', 'parameter_blackboard')
 
