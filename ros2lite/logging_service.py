@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from ros2lite.logging import LoggingSeverity, get_logger_effective_level, set_logger_level
+from ros2lite.logging import LoggingSeverity, get_logger_level, set_logger_level
 
 if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import LoggerLevel, SetLoggerLevelsResult
@@ -52,9 +52,9 @@ class LoggingService:
         from ros2lite.interfaces import get_interface
 
         level_msg: type[LoggerLevel] = get_interface('rcl_interfaces/msg/LoggerLevel')
+        # the logger's own level, UNSET (0) when none was set for it, as rclpy answers
         response.levels = [
-            level_msg(name=name, level=int(get_logger_effective_level(name)))
-            for name in request.names
+            level_msg(name=name, level=int(get_logger_level(name))) for name in request.names
         ]
         return response
 

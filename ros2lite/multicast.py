@@ -20,6 +20,8 @@ __all__ = [
     'HELLO',
     'ZENOH_SCOUTING',
     'MulticastError',
+    'MulticastReceiver',
+    'MulticastSender',
     'check_settings',
     'receive',
     'send',
@@ -69,6 +71,94 @@ def _default_interface(group: str) -> str:
         probe.close()
 
 
+class MulticastSender:
+    """A socket that sends datagrams to `group`:`port` from `interface` (default: the routed
+    one). TTL 0 keeps them on this host; None leaves the system default (1: this subnet)."""
+
+    def __init__(
+        self,
+        *,
+        group: str = DEFAULT_GROUP,
+        port: int = DEFAULT_PORT,
+        ttl: int | None = None,
+        interface: str | None = None,
+    ) -> None:
+        check_settings(group, port, interface, ttl)
+        self.group, self.port = group, port
+        self._sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM, socket.IPPROTO_UDP)
+        try:
+            if ttl is not None:
+                ttl_bytes = struct.pack('B', ttl)
+                self._sock.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_TTL, ttl_bytes)
+            iface = interface or _default_interface(group)
+            self._sock.setsockopt(
+                socket.IPPROTO_IP, socket.IP_MULTICAST_IF, socket.inet_aton(iface)
+            )
+        except OSError as e:
+            self._sock.close()
+            raise MulticastError(f'cannot send to {group}:{port}: {e.strerror or e}') from None
+
+    def send(self, data: bytes = HELLO) -> None:
+        """One datagram out; MulticastError when the system refuses it."""
+        try:
+            self._sock.sendto(data, (self.group, self.port))
+        except OSError as e:
+            raise MulticastError(
+                f'cannot send to {self.group}:{self.port}: {e.strerror or e}'
+            ) from None
+
+    def close(self) -> None:
+        """Let the socket go."""
+        self._sock.close()
+
+
+class MulticastReceiver:
+    """A socket that has joined `group`:`port` on `interface` (default: any) and takes what
+    arrives, one datagram at a time, until closed."""
+
+    def __init__(
+        self, *, group: str = DEFAULT_GROUP, port: int = DEFAULT_PORT, interface: str | None = None
+    ) -> None:
+        check_settings(group, port, interface)
+        self.group, self.port = group, port
+        self._sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM, socket.IPPROTO_UDP)
+        local = socket.inet_aton(interface) if interface else struct.pack('!I', socket.INADDR_ANY)
+        self._membership = socket.inet_aton(group) + local
+        try:
+            self._sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+            if hasattr(socket, 'SO_REUSEPORT'):
+                self._sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEPORT, 1)
+            self._sock.bind(('', port))
+            self._sock.setsockopt(socket.IPPROTO_IP, socket.IP_ADD_MEMBERSHIP, self._membership)
+        except OSError as e:
+            self._sock.close()
+            raise MulticastError(
+                f'cannot join {group}:{port}'
+                + (f' on {interface}' if interface else '')
+                + f': {e.strerror or e}'
+            ) from None
+
+    def receive(self, timeout: float | None = None) -> tuple[bytes, tuple[str, int]]:
+        """The next datagram and its sender's (host, port); TimeoutError after `timeout` s."""
+        self._sock.settimeout(timeout)
+        try:
+            data, sender = self._sock.recvfrom(4096)
+        except TimeoutError:
+            raise TimeoutError(
+                f'no datagram to {self.group}:{self.port} within {timeout:g} s'
+            ) from None
+        return data, (str(sender[0]), int(sender[1]))
+
+    def close(self) -> None:
+        """Leave the group and let the socket go."""
+        try:
+            self._sock.setsockopt(socket.IPPROTO_IP, socket.IP_DROP_MEMBERSHIP, self._membership)
+        except OSError:
+            pass  # already gone with the interface: nothing left to leave
+        finally:
+            self._sock.close()
+
+
 def send(
     data: bytes = HELLO,
     *,
@@ -77,20 +167,12 @@ def send(
     ttl: int | None = None,
     interface: str | None = None,
 ) -> None:
-    """Send one datagram to `group`:`port` from `interface` (default: the routed one).
-    TTL 0 keeps it on this host; None leaves the system default (1: this subnet)."""
-    check_settings(group, port, interface, ttl)
-    sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM, socket.IPPROTO_UDP)
+    """Send one datagram to `group`:`port` (see :class:`MulticastSender`)."""
+    sender = MulticastSender(group=group, port=port, ttl=ttl, interface=interface)
     try:
-        if ttl is not None:
-            sock.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_TTL, struct.pack('B', ttl))
-        iface = interface or _default_interface(group)
-        sock.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_IF, socket.inet_aton(iface))
-        sock.sendto(data, (group, port))
-    except OSError as e:
-        raise MulticastError(f'cannot send to {group}:{port}: {e.strerror or e}') from None
+        sender.send(data)
     finally:
-        sock.close()
+        sender.close()
 
 
 def receive(
@@ -102,30 +184,8 @@ def receive(
 ) -> tuple[bytes, tuple[str, int]]:
     """Wait for one datagram to `group`:`port` (joined on `interface`, default: any) and
     return it with the sender's (host, port); TimeoutError after `timeout` s."""
-    check_settings(group, port, interface)
-    sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM, socket.IPPROTO_UDP)
+    receiver = MulticastReceiver(group=group, port=port, interface=interface)
     try:
-        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-        if hasattr(socket, 'SO_REUSEPORT'):
-            sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEPORT, 1)
-        local = socket.inet_aton(interface) if interface else struct.pack('!I', socket.INADDR_ANY)
-        membership = socket.inet_aton(group) + local
-        try:
-            sock.bind(('', port))
-            sock.setsockopt(socket.IPPROTO_IP, socket.IP_ADD_MEMBERSHIP, membership)
-        except OSError as e:
-            raise MulticastError(
-                f'cannot join {group}:{port}'
-                + (f' on {interface}' if interface else '')
-                + f': {e.strerror or e}'
-            ) from None
-        sock.settimeout(timeout)
-        try:
-            data, sender = sock.recvfrom(4096)
-        except TimeoutError:
-            raise TimeoutError(f'no datagram to {group}:{port} within {timeout:g} s') from None
-        finally:
-            sock.setsockopt(socket.IPPROTO_IP, socket.IP_DROP_MEMBERSHIP, membership)
+        return receiver.receive(timeout)
     finally:
-        sock.close()
-    return data, (str(sender[0]), int(sender[1]))
+        receiver.close()

@@ -370,7 +370,7 @@ class Node(ParameterMixin):
         self,
         msg_type: type[MsgT] | str,
         topic: str,
-        callback: Callable[[bytes, MessageInfo], object],
+        callback: Callable[[bytes], object] | Callable[[bytes, MessageInfo], object],
         qos_profile: QoSProfile | int,
         *,
         callback_group: CallbackGroup | None = None,

@@ -67,6 +67,7 @@ def _info(attachment: bytes, received: int) -> MessageInfo:
 SubscriptionCallback = (
     Callable[[MsgT], object]
     | Callable[[MsgT, MessageInfo], object]
+    | Callable[[bytes], object]
     | Callable[[bytes, MessageInfo], object]
 )
 """`callback(msg)` or `callback(msg, info)` (told apart by the signature, as rclpy does), and

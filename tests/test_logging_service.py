@@ -50,3 +50,6 @@ def test_levels_through_the_services(ros_context: Any) -> None:
     assert rlog.get_logger_effective_level('rcl') == rlog.LoggingSeverity.DEBUG
     got = call(GetLevels, '/with_levels/get_logger_levels', GetLevels.Request(names=['rcl']))
     assert [(lv.name, lv.level) for lv in got.levels] == [('rcl', 10)]
+    # a logger nobody set answers UNSET (0), not the default it follows, as rclpy's service
+    got = call(GetLevels, '/with_levels/get_logger_levels', GetLevels.Request(names=['never']))
+    assert [(lv.name, lv.level) for lv in got.levels] == [('never', 0)]

@@ -112,7 +112,11 @@ def _dumper(fast: bool = False) -> type[yaml.SafeDumper]:
             pass
 
         def represent_dict(d: yaml.SafeDumper, data: dict[str, object]) -> yaml.MappingNode:
-            return d.represent_mapping('tag:yaml.org,2002:map', data.items())
+            # a node with no flow style of its own: mappings stay block whatever
+            # default_flow_style says, so --flow-style flows only the sequences (and what is
+            # inside them), as rosidl_runtime_py's representer does
+            items = [(d.represent_data(k), d.represent_data(v)) for k, v in data.items()]
+            return yaml.MappingNode('tag:yaml.org,2002:map', items)
 
         Dumper.add_representer(dict, represent_dict)
         dumper = _DUMPERS[fast] = Dumper
@@ -165,6 +169,15 @@ def dict_to_yaml(data: dict[str, Any], *, flow_style: bool = False, fast: bool =
     )
 
 
+def _joined(parts: list[str]) -> str:
+    """Join as rosidl_runtime_py's CSV does: a separator only once something was written, so
+    empty leading items (an empty sequence, a message without fields) leave no column."""
+    out = ''
+    for part in parts:
+        out = out + ',' + part if out else part
+    return out
+
+
 def _csv_value(
     val: object, ft: FieldType | None, trunc: int | None, no_arr: bool, no_str: bool
 ) -> str:
@@ -177,7 +190,7 @@ def _csv_value(
                 parts.append('...')
                 break
             parts.append(_csv_value(v, None, trunc, no_arr, no_str))
-        return ','.join(parts)
+        return _joined(parts)
     if isinstance(val, Message):
         return message_to_csv(val, truncate_length=trunc, no_arr=no_arr, no_str=no_str)
     if no_str and isinstance(val, str):
@@ -193,9 +206,11 @@ def message_to_csv(
     msg: Message, *, truncate_length: int | None = None, no_arr: bool = False, no_str: bool = False
 ) -> str:
     """Comma-separated leaf values, depth first, as `ros2 topic echo --csv` prints them."""
-    return ','.join(
-        _csv_value(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
-        for name, ft in zip(msg._fields_and_field_types, msg.SLOT_TYPES, strict=True)
+    return _joined(
+        [
+            _csv_value(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
+            for name, ft in zip(msg._fields_and_field_types, msg.SLOT_TYPES, strict=True)
+        ]
     )
 
 

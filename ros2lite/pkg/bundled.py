@@ -6,20 +6,26 @@ Both the package index (which lists them as packages of its last source) and the
 
 from __future__ import annotations
 
-__all__ = ['BUNDLED']
+__all__ = ['BUNDLED', 'STAND_INS']
 
 # package -> executables, each `main()` of ros2lite.demos.<package>.<executable>
 _DEMOS = {
     'action_tutorials_py': ['fibonacci_action_client', 'fibonacci_action_server'],
+    # Jazzy's demo_nodes_py (0.33.x), exactly
     'demo_nodes_py': [
         'add_two_ints_client',
         'add_two_ints_client_async',
         'add_two_ints_server',
-        'introspection_client',
-        'introspection_service',
+        'async_param_client',
+        'introspection',
         'listener',
-        'parameter_blackboard',
+        'listener_qos',
+        'listener_serialized',
+        'matched_event_detect',
+        'set_parameters_callback',
         'talker',
+        'talker_qos',
+        'use_logger_service',
     ],
     'lifecycle': ['lifecycle_listener'],
     'lifecycle_py': ['lifecycle_talker'],
@@ -44,3 +50,15 @@ BUNDLED: dict[str, dict[str, str]] = {
     for package, names in _DEMOS.items()
 }
 """Bundled demo package -> executable name -> its `module:function` target."""
+
+# executables that only the C++ twin of a bundled package has (demo_nodes_cpp's, next to the
+# demo_nodes_py ones of the same name): modules of the bundled package, run only as that twin's
+# stand-in, so the package's own list stays the real one
+_STAND_INS = {
+    'demo_nodes_py': ['introspection_client', 'introspection_service', 'parameter_blackboard']
+}
+STAND_INS: dict[str, dict[str, str]] = {
+    package: {name: f'ros2lite.demos.{package}.{name}:main' for name in names}
+    for package, names in _STAND_INS.items()
+}
+"""Bundled package -> executable its C++ twin has and it does not -> `module:function`."""

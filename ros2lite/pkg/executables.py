@@ -35,7 +35,7 @@ from pathlib import Path
 
 from ros2lite.exceptions import Ros2liteError
 
-from .bundled import BUNDLED
+from .bundled import BUNDLED, STAND_INS
 from .index import (
     ENTRY_POINT_GROUP,
     ORIGIN_AMENT,
@@ -193,6 +193,16 @@ def _bundled(package: str) -> list[PackageExecutable]:
     ]
 
 
+def _stand_in(twin: str, name: str, idx: PackageIndex) -> PackageExecutable | None:
+    """`name` of the C++ package `twin` stands in for, when only the C++ one has it (and
+    `twin` is still the bundled package, not one that shadows it)."""
+    pkg = idx.find(twin)
+    target = STAND_INS.get(twin, {}).get(name)
+    if pkg is None or pkg.origin != ORIGIN_BUNDLED or target is None:
+        return None
+    return PackageExecutable(twin, name, target, ORIGIN_BUNDLED)
+
+
 def package_executables(pkg: Package) -> list[PackageExecutable]:
     """Everything `pkg` can run, as its source defines it."""
     if pkg.origin == ORIGIN_WORKSPACE:
@@ -269,6 +279,12 @@ def resolve_executable(
         exe = find_executable(twin, name, index=idx)
         if exe is not None:
             note = f'{package} (C++) is not installed; running {twin} {name}, its Python equivalent'
+            return Resolved(exe, note)
+        exe = _stand_in(twin, name, idx)
+        if exe is not None:
+            note = (
+                f'{package} (C++) is not installed; running a Python {name} bundled with ros2lite'
+            )
             return Resolved(exe, note)
     exe = find_executable(package, name, index=idx)
     if exe is None:

@@ -81,11 +81,16 @@ def test_types_packages_and_executables() -> None:
         'add_two_ints_client',
         'add_two_ints_client_async',
         'add_two_ints_server',
-        'introspection_client',
-        'introspection_service',
+        'async_param_client',
+        'introspection',
         'listener',
-        'parameter_blackboard',
+        'listener_qos',
+        'listener_serialized',
+        'matched_event_detect',
+        'set_parameters_callback',
         'talker',
+        'talker_qos',
+        'use_logger_service',
     ]
     assert complete('ros2lite run no_such_pkg ') == []
     assert complete('ros2lite top') == ['topic']

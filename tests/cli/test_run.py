@@ -323,7 +323,7 @@ def test_python_prefix_runs_the_target_under_pdb(tmp_path: Path) -> None:
 
 def test_unknown_names_get_close_matches(run: Callable[..., Result]) -> None:
     assert run('run', 'demo_nodes_py', 'listner').err == (
-        'No executable found; did you mean: listener?\n'
+        'No executable found; did you mean: listener, listener_qos?\n'
     )
     assert run('run', 'turtlesin', 'turtlesim_node').err == (
         "Package 'turtlesin' not found; did you mean: turtlesim, turtlesim_msgs?\n"

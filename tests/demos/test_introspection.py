@@ -1,5 +1,5 @@
-"""`demo_nodes_py introspection_service|introspection_client`: introspection that follows
-their parameters, at start and at run time."""
+"""`demo_nodes_py introspection` (Jazzy's: service and client nodes in one process):
+introspection that follows their parameters, at start and at run time."""
 
 from __future__ import annotations
 
@@ -15,11 +15,10 @@ Event = get_interface('example_interfaces/srv/AddTwoInts_Event')
 
 
 def test_introspection_follows_the_parameters(ros_context: Any, processes: Any) -> None:
-    service = processes.cli(
-        'run', 'demo_nodes_py', 'introspection_service',
+    both = processes.cli(
+        'run', 'demo_nodes_py', 'introspection',
         '--ros-args', '-p', 'service_configure_introspection:=contents',
     )  # fmt: skip
-    client = processes.cli('run', 'demo_nodes_py', 'introspection_client')
     events: list[Any] = []
     observer = Node('introspection_observer', context=ros_context, enable_rosout=False)
     observer.create_subscription(Event, '/add_two_ints/_service_event', events.append, 100)
@@ -48,6 +47,7 @@ def test_introspection_follows_the_parameters(ros_context: Any, processes: Any) 
     finally:
         executor.shutdown()
         observer.destroy_node()
-    for proc in (service, client):
-        _out, err = processes.stop(proc)
-        assert proc.returncode == 0 and 'Traceback' not in err
+    _out, err = processes.stop(both)
+    assert both.returncode == 0 and 'Traceback' not in err
+    assert '[introspection_service]: Incoming request\na: 2 b: 3\n' in err
+    assert '[introspection_client]: Result of add_two_ints: 5\n' in err

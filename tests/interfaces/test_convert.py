@@ -54,12 +54,21 @@ def test_nested_block_and_flow_style() -> None:
     assert I.message_to_yaml(twist) == (
         'linear:\n  x: 2.0\n  y: 0.0\n  z: 0.0\nangular:\n  x: 0.0\n  y: 0.0\n  z: 0.0\n'
     )
+    # --flow-style flows sequences (and all inside them); mappings stay block as in ros2cli
     assert (
         I.message_to_yaml(msg('std_msgs/msg/String', data='Hello World: 1'), flow_style=True)
-        == "{data: 'Hello World: 1'}\n"
+        == "data: 'Hello World: 1'\n"
     )
     seq = msg('std_msgs/msg/Int32MultiArray', data=[1, 2])
     assert I.message_to_yaml(seq) == ('layout:\n  dim: []\n  data_offset: 0\ndata:\n- 1\n- 2\n')
+    path = msg('nav_msgs/msg/Path', poses=[msg('geometry_msgs/msg/PoseStamped')])
+    for fast in (True, False):
+        text = I.message_to_yaml(path, flow_style=True, fast=fast)
+        assert text.startswith('header:\n  stamp:\n    sec: 0\n'), text
+        assert text.endswith(
+            "poses: [{header: {stamp: {sec: 0, nanosec: 0}, frame_id: ''}, pose: {position: "
+            '{x: 0.0, y: 0.0, z: 0.0}, orientation: {x: 0.0, y: 0.0, z: 0.0, w: 1.0}}}]\n'
+        ), text
 
 
 def test_truncation_and_placeholders() -> None:
@@ -94,6 +103,16 @@ def test_csv() -> None:
     assert I.message_to_csv(scan, no_arr=True).endswith(
         '<sequence type: float, length: 3>,<sequence type: float, length: 0>'
     )
+
+
+def test_csv_writes_a_separator_only_after_something() -> None:
+    # rosidl_runtime_py adds ',' only when the text so far is not empty: an empty sequence
+    # or a message without fields in first place leaves no column; later ones leave one
+    arr = msg('std_msgs/msg/Int32MultiArray', data=[1, 2])
+    assert I.message_to_csv(arr) == '0,1,2'
+    assert I.message_to_csv(msg('std_msgs/msg/Int32MultiArray')) == '0,'
+    goals = msg('nav_msgs/msg/Goals')
+    assert I.message_to_csv(goals) == '0,0,,'
 
 
 def test_dict() -> None:
@@ -245,3 +264,47 @@ def test_fast_yaml_path_is_byte_identical(name: str) -> None:
                 ) == I.message_to_yaml(m, flow_style=flow, truncate_length=trunc, fast=False)
 
     check()
+
+
+# the CSV ros2cli 0.32.2 printed for this test_msgs/Arrays (the oracle's /t_arrays): 163
+# columns; constants_values, three messages without fields, make one empty column in all
+ARRAYS_CSV = (
+    "True,False,True,b'\\x00',b'\\x7f',b'\\xff',65,0,127,1.5,nan,-0.0,1e+300,-inf,3.14159,"
+    '-128,0,127,0,128,255,-32768,0,32767,0,1,65535,-2147483648,0,2147483647,0,1,4294967295,'
+    '-9223372036854775808,0,9223372036854775807,0,1,18446744073709551615,a,,'
+    'quote " and \' and : colon,False,b\'\\x00\',0,0.0,0.0,0,0,0,0,0,0,0,0,False,b\'\\x00\','
+    "0,0.0,0.0,0,0,0,0,0,0,0,0,False,b'\\x00',0,0.0,0.0,0,0,0,0,0,0,0,0,,True,b'2',100,"
+    "1.125,1.125,-50,200,-1000,2000,-30000,60000,-40000000,50000000,True,b'2',100,1.125,"
+    "1.125,-50,200,-1000,2000,-30000,60000,-40000000,50000000,True,b'2',100,1.125,1.125,-50,"
+    "200,-1000,2000,-30000,60000,-40000000,50000000,False,True,False,b'\\x00',b'\\x01',"
+    "b'\\xff',0,1,127,1.125,0.0,-1.125,3.1415,0.0,-3.1415,0,127,-128,0,1,255,0,32767,-32768,"
+    '0,1,65535,0,2147483647,-2147483648,0,1,4294967295,0,9223372036854775807,'
+    '-9223372036854775808,0,1,18446744073709551615,max value,min value,0'
+)
+
+
+def test_csv_of_test_msgs_arrays_as_ros2cli_prints_it() -> None:
+    from pathlib import Path
+
+    from ros2lite.interfaces import registry
+    from ros2lite.interfaces.classes import get_interface
+
+    reg = registry.Registry([Path(__file__).parent / 'data', registry.BUNDLED])
+    a = get_interface('test_msgs/msg/Arrays', reg)()
+    a.bool_values = [True, False, True]
+    a.byte_values = [b'\x00', b'\x7f', b'\xff']
+    a.char_values = [65, 0, 127]
+    a.float32_values = [1.5, float('nan'), -0.0]
+    a.float64_values = [1e300, float('-inf'), 3.14159]
+    a.int8_values = [-128, 0, 127]
+    a.uint8_values = [0, 128, 255]
+    a.int16_values = [-32768, 0, 32767]
+    a.uint16_values = [0, 1, 65535]
+    a.int32_values = [-2147483648, 0, 2147483647]
+    a.uint32_values = [0, 1, 4294967295]
+    a.int64_values = [-9223372036854775808, 0, 9223372036854775807]
+    a.uint64_values = [0, 1, 18446744073709551615]
+    a.string_values = ['a', '', 'quote " and \' and : colon']
+    csv = I.message_to_csv(a)
+    assert len(csv.split(',')) == 163
+    assert csv == ARRAYS_CSV

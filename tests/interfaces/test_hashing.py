@@ -45,6 +45,14 @@ def test_published_hashes(name: str, expected: str) -> None:
     assert type_hash(name) == expected
 
 
+def test_nav_msgs_goals_is_bundled_as_jazzy_has_it() -> None:
+    # added to Jazzy's nav_msgs (5.3.6) after the reference table was made; the value is the
+    # one in that release's share/nav_msgs/msg/Goals.json
+    assert type_hash('nav_msgs/msg/Goals') == (
+        'RIHS01_02305a51633b5c04d8979b878a7577cafd422f8a07465c878b17a920af3759e9'
+    )
+
+
 def test_short_message_name_is_accepted() -> None:
     assert type_hash('std_msgs/String') == type_hash('std_msgs/msg/String')
 

@@ -54,11 +54,16 @@ def test_bundled_demos() -> None:
         'add_two_ints_client',
         'add_two_ints_client_async',
         'add_two_ints_server',
-        'introspection_client',
-        'introspection_service',
+        'async_param_client',
+        'introspection',
         'listener',
-        'parameter_blackboard',
+        'listener_qos',
+        'listener_serialized',
+        'matched_event_detect',
+        'set_parameters_callback',
         'talker',
+        'talker_qos',
+        'use_logger_service',
     ]
     talker = find_executable('demo_nodes_py', 'talker')
     assert talker is not None and talker.origin == 'bundled' and talker.is_python
@@ -188,7 +193,7 @@ def test_workspace_python_package_runs_from_its_sources(
 
 
 def test_cpp_demo_names_run_the_python_twins() -> None:
-    from ros2lite.pkg.executables import resolve_executable
+    from ros2lite.pkg.executables import ExecutableNotFoundError, resolve_executable
 
     resolved = resolve_executable('demo_nodes_cpp', 'add_two_ints_server')
     assert resolved.executable.package == 'demo_nodes_py'
@@ -198,6 +203,16 @@ def test_cpp_demo_names_run_the_python_twins() -> None:
         'its Python equivalent'
     )
     assert resolve_executable('demo_nodes_py', 'talker').note is None
+    # demo_nodes_cpp's own executables (Jazzy's demo_nodes_py has none of these) run too,
+    # and only under the C++ package's name
+    board = resolve_executable('demo_nodes_cpp', 'parameter_blackboard')
+    assert board.executable.target == 'ros2lite.demos.demo_nodes_py.parameter_blackboard:main'
+    assert board.note == (
+        'demo_nodes_cpp (C++) is not installed; running a Python parameter_blackboard bundled '
+        'with ros2lite'
+    )
+    with pytest.raises(ExecutableNotFoundError):
+        resolve_executable('demo_nodes_py', 'parameter_blackboard')
 
 
 def test_cpp_demo_installed_is_used_as_is(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:

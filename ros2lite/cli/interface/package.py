@@ -17,9 +17,12 @@ from ..parsing import command
 @click.option('-a', '--only-actions', is_flag=True, help='Print out only the action types')
 def cli(package_name: str, only_msgs: bool, only_srvs: bool, only_actions: bool) -> None:
     """Output a list of available interface types within one package."""
-    kinds = {
-        k for k, flag in (('msg', only_msgs), ('srv', only_srvs), ('action', only_actions)) if flag
-    } or {'msg', 'srv', 'action'}
-    for name in default_registry().package_interfaces(package_name):
-        if name.split('/')[1] in kinds:
-            click.echo(name)
+    # ros2cli's grouping (the messages, then the services, then the actions), each group
+    # sorted where ros2cli prints a set's random order; no flag is all three
+    flags = (('msg', only_msgs), ('srv', only_srvs), ('action', only_actions))
+    kinds = [kind for kind, flag in flags if flag] or [kind for kind, _ in flags]
+    names = default_registry().package_interfaces(package_name)
+    for kind in kinds:
+        for name in names:
+            if name.split('/')[1] == kind:
+                click.echo(name)

@@ -9,7 +9,7 @@ VERBS = {
     'delay': 'Display delay of topic from timestamp in header',
     'echo': 'Output messages from a topic',
     'find': 'Output a list of available topics of a given type',
-    'hz': 'Print the average receiving rate to screen',
+    'hz': 'Print the average publishing rate to screen',
     'info': 'Print information about a topic',
     'list': 'Output a list of available topics',
     'pub': 'Publish a message to a topic',

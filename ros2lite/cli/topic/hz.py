@@ -93,7 +93,7 @@ def cli(
     wall_time: bool,
     use_sim_time: bool,
 ) -> None:
-    """Print the average receiving rate to screen.
+    """Print the average publishing rate to screen
 
     The rate is measured where the subscription receives samples, so it can differ from the
     publisher's rate when resources or QoS get in the way.

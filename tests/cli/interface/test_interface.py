@@ -36,6 +36,15 @@ def test_packages_and_package(run: Run) -> None:
         'std_srvs/srv/SetBool',
         'std_srvs/srv/Trigger',
     ]
+    # ros2cli's grouping: messages, then services, then actions, whatever the flags' order
+    assert run('interface', 'package', 'turtlesim', '-a', '-m').out.split() == [
+        'turtlesim/msg/Color',
+        'turtlesim/msg/Pose',
+        'turtlesim/action/RotateAbsolute',
+    ]
+    assert run('interface', 'package', 'turtlesim').out.split()[-1] == (
+        'turtlesim/action/RotateAbsolute'
+    )
     bad = run('interface', 'package', 'nope')
     assert bad.code == 1 and bad.err == "Unknown package 'nope'\n"
 

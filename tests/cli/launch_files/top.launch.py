@@ -25,7 +25,7 @@ def generate_launch_description():
                         output='screen',
                     ),
                     Node(
-                        package='demo_nodes_py',
+                        package='demo_nodes_cpp',
                         executable='parameter_blackboard',
                         name='board',
                         parameters=[

@@ -72,3 +72,24 @@ def test_xml(run: Callable[..., Result], workspace: Path) -> None:
     assert run('pkg', 'xml', 'py_pubsub', '--tag', 'nope').err == 'XML tag not found\n'
     assert run('pkg', 'xml', 'tools').err == 'Package XML manifest not found\n'
     assert run('pkg', 'xml', 'nope').err == 'Package not found\n'
+
+
+def test_xml_of_bundled_packages(run: Callable[..., Result]) -> None:
+    # the versions and descriptions of the Jazzy packages they stand for
+    assert run('pkg', 'xml', 'demo_nodes_py', '-t', 'version').out == '0.33.5\n'
+    assert run('pkg', 'xml', 'std_msgs', '-t', 'version').out == '5.3.6\n'
+    assert run('pkg', 'xml', 'rcl_interfaces', '-t', 'version').out == '2.0.3\n'
+    assert run('pkg', 'xml', 'nav_msgs', '-t', 'depend').out == (
+        'builtin_interfaces\ngeometry_msgs\nstd_msgs\n'
+    )
+
+
+def test_every_bundled_package_has_its_manifest() -> None:
+    from ros2lite.pkg.index import ORIGIN_BUNDLED, PackageIndex
+    from ros2lite.pkg.manifest import read_manifest
+
+    bundled = [p for p in PackageIndex({}).packages().values() if p.origin == ORIGIN_BUNDLED]
+    assert len(bundled) > 30
+    for pkg in bundled:
+        assert pkg.manifest_path is not None, pkg.name
+        assert read_manifest(pkg.manifest_path).name == pkg.name

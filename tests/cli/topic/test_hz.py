@@ -118,3 +118,15 @@ def test_table_on_a_terminal(processes: Any, talker: Any, topic: str) -> None:
     assert b'min_delta' in seen, seen
     assert fast.encode() in seen and proc.returncode == 2, err
     assert '━'.encode() in seen and b'=====' not in seen  # rich's table, not the ASCII one
+
+
+def test_help_says_what_ros2cli_says() -> None:
+    from click.testing import CliRunner
+
+    from ros2lite.cli.main import cli
+
+    runner = CliRunner()
+    page = runner.invoke(cli, ['topic', 'hz', '--help']).output
+    assert page.splitlines()[2] == '  Print the average publishing rate to screen'
+    listing = runner.invoke(cli, ['topic', '--help']).output
+    assert '  hz     Print the average publishing rate to screen\n' in listing

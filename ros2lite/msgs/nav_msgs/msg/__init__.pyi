@@ -8,6 +8,22 @@ import ros2lite.msgs.builtin_interfaces.msg as _builtin_interfaces_msg
 import ros2lite.msgs.geometry_msgs.msg as _geometry_msgs_msg
 import ros2lite.msgs.std_msgs.msg as _std_msgs_msg
 
+class Goals(_Message):
+    """nav_msgs/msg/Goals"""
+
+    def __init__(
+        self,
+        *,
+        header: _std_msgs_msg.Header = ...,
+        goals: _Sequence[_geometry_msgs_msg.PoseStamped] = ...,
+    ) -> None: ...
+    header: _std_msgs_msg.Header
+    @property
+    def goals(self) -> list[_geometry_msgs_msg.PoseStamped]: ...
+    @goals.setter
+    def goals(self, value: _Sequence[_geometry_msgs_msg.PoseStamped]) -> None: ...
+
+
 class GridCells(_Message):
     """nav_msgs/msg/GridCells"""
 

@@ -1,4 +1,5 @@
-"""`ros2lite doctor` (and `wtf`): ros2doctor's checks summary, warnings and reports.
+"""`ros2lite doctor` (and `wtf`): ros2doctor's checks summary, warnings and reports, and
+its verb `hello`.
 
 Warnings and errors go to stderr as ros2doctor's Python warnings print them
 (`<file>: <line>: UserWarning: <message>`, errors prefixed `ERROR: `); the summary
@@ -10,10 +11,17 @@ from __future__ import annotations
 
 import click
 
-from .parsing import command
+from ..lazy import LazyGroup
+
+VERBS = {'hello': 'Check network connectivity between multiple hosts'}
 
 
-@command('doctor')
+@click.group(
+    'doctor',
+    cls=LazyGroup,
+    lazy={verb: (f'{__name__}.{verb}', summary) for verb, summary in VERBS.items()},
+    invoke_without_command=True,
+)
 @click.option('-r', '--report', is_flag=True, help='Print all reports.')
 @click.option(
     '-rf',
@@ -35,8 +43,17 @@ from .parsing import command
     is_flag=True,
     help='Include warnings as failed checks. Warnings are ignored by default.',
 )
-def cli(report: bool, report_failed: bool, exclude_packages: bool, include_warnings: bool) -> None:
+@click.pass_context
+def cli(
+    ctx: click.Context,
+    report: bool,
+    report_failed: bool,
+    exclude_packages: bool,
+    include_warnings: bool,
+) -> None:
     """Check ROS setup and other potential issues."""
+    if ctx.invoked_subcommand is not None:
+        return  # the verb does the work
     from ros2lite.doctor import Diagnosis, Report
 
     diagnosis = Diagnosis()
