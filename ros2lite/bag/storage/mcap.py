@@ -506,12 +506,17 @@ def first_damaged_byte(data: bytes | bytearray, expected: int) -> int | None:
 
 
 def _inflate(compression: str, data: bytes, limit: int) -> Iterator[bytes]:
-    """A chunk's records in pieces of at most `_PIECE` bytes. Input cut short yields what it
-    holds."""
+    """A chunk's records in pieces of at most `_PIECE` bytes, never more than `limit` (its
+    declared uncompressed size) in all: a chunk that inflates past what it declared raises
+    `_Damage` there (a zip bomb costs one piece of memory, not what it inflates to). Input
+    cut short yields what it holds."""
     if compression == "":
+        if len(data) > limit:
+            raise _Damage(f"holds {len(data)} bytes but declares {limit}")
         for i in range(0, len(data), _PIECE):
             yield data[i : i + _PIECE]
         return
+    total = 0
     try:
         if compression == "zstd":
             import io
@@ -520,6 +525,10 @@ def _inflate(compression: str, data: bytes, limit: int) -> Iterator[bytes]:
 
             with zstandard.ZstdDecompressor().stream_reader(io.BytesIO(data)) as src:
                 while piece := src.read(_PIECE):
+                    total += len(piece)
+                    if total > limit:
+                        yield piece[: len(piece) - (total - limit)]
+                        raise _Damage(f"inflates past its declared {limit} bytes")
                     yield piece
         elif compression == "lz4":
             import lz4.frame
@@ -527,6 +536,10 @@ def _inflate(compression: str, data: bytes, limit: int) -> Iterator[bytes]:
             lz4_src = lz4.frame.LZ4FrameDecompressor()
             piece = lz4_src.decompress(data, max_length=_PIECE)
             while piece:
+                total += len(piece)
+                if total > limit:
+                    yield piece[: len(piece) - (total - limit)]
+                    raise _Damage(f"inflates past its declared {limit} bytes")
                 yield piece
                 if lz4_src.eof or lz4_src.needs_input:
                     break
@@ -587,6 +600,8 @@ def _chunk_records(
     CRC holds; else those before the first bad record (cut short, inflating past its size,
     a length running out of the chunk, a body that does not parse) or before the byte that
     broke its CRC. Returns what was wrong, or None."""
+    if head.size > (1 << 40):
+        return f"declares an impossible size ({head.size} bytes)"
     good_until = head.size
     problem = None
     if whole and head.crc:
