@@ -127,6 +127,31 @@ def terminal_signals_child() -> bool:
         os.close(fd)
 
 
+def die_with_us() -> Callable[[], None] | None:
+    """What a child runs between fork and exec so that it gets SIGTERM when this process
+    dies, even by SIGKILL (Linux's PR_SET_PDEATHSIG; None elsewhere): a node must not run on
+    orphaned after its `run` or `launch` is gone. SIGTERM, not SIGKILL, lets it end cleanly.
+
+    The request holds for the thread that starts the child (its exit counts as the parent's
+    death): children are started by the thread that also stops them."""
+    if not sys.platform.startswith('linux'):
+        return None
+    import ctypes
+
+    try:
+        prctl = ctypes.CDLL(None, use_errno=True).prctl  # resolved before the fork
+    except (OSError, AttributeError):
+        return None
+    parent = os.getpid()
+
+    def arm() -> None:
+        prctl(1, int(signal.SIGTERM), 0, 0, 0)  # PR_SET_PDEATHSIG
+        if os.getppid() != parent:  # we died before the request took hold
+            os.kill(os.getpid(), signal.SIGTERM)
+
+    return arm
+
+
 def run_child(
     cmd: Sequence[str],
     on_start: Callable[[subprocess.Popen[bytes]], object] | None = None,
@@ -167,7 +192,9 @@ def run_child(
     with _handlers({signal.SIGINT: forward_int, signal.SIGTERM: forward_term}):
         try:
             try:
-                proc = subprocess.Popen(list(cmd), env=None if env is None else dict(env))
+                proc = subprocess.Popen(
+                    list(cmd), env=None if env is None else dict(env), preexec_fn=die_with_us()
+                )
             except OSError as e:
                 raise ChildError(f'{cmd[0]}: {e.strerror or e}') from None
             # signals that came while the child was starting (it may already run and be
@@ -289,6 +316,7 @@ class ChildProcess:
                 stdout=subprocess.PIPE,
                 stderr=subprocess.PIPE,
                 start_new_session=True,
+                preexec_fn=die_with_us(),
             )
         except OSError as e:
             raise ChildError(f'{self.cmd[0]}: {e.strerror or e}') from None

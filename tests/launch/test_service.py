@@ -317,3 +317,38 @@ def test_a_signal_ends_launch_in_every_state(
     for pid in pids:
         with pytest.raises(ProcessLookupError):
             os.kill(pid, 0)
+
+
+def test_sigkill_of_launch_takes_its_children_along(tmp_path: Path) -> None:
+    """R-L16: a child ran on (until its next write) after its launch was SIGKILLed."""
+    (tmp_path / 'x.launch.py').write_text(
+        'from launch import LaunchDescription\n'
+        'from launch.actions import ExecuteProcess\n'
+        'def generate_launch_description():\n'
+        "    return LaunchDescription([ExecuteProcess(cmd=['sleep', '30'], output='screen')])\n"
+    )
+    out = tmp_path / 'out.txt'
+    with open(out, 'w') as f:
+        proc = subprocess.Popen(
+            [sys.executable, '-m', 'ros2lite', 'launch', str(tmp_path / 'x.launch.py')],
+            stdout=f,
+            stderr=subprocess.STDOUT,
+            env={**os.environ, 'ROS_LOG_DIR': str(tmp_path / 'log')},
+        )
+    try:
+        found = wait_until(
+            lambda: re.findall(r'process started with pid \[(\d+)\]', out.read_text()),
+            timeout=30,
+        )
+    finally:
+        proc.kill()
+        proc.wait()
+    [pid] = [int(p) for p in found]
+
+    def gone() -> bool:
+        try:
+            return Path(f'/proc/{pid}/stat').read_text().rsplit(')', 1)[1].split()[0] == 'Z'
+        except OSError:
+            return True
+
+    wait_until(gone, timeout=10)
