@@ -119,7 +119,10 @@ def test_sigkill_then_reindex_recovers(
     rec.finish(signal.SIGKILL)
     assert not (tmp_path / "bag" / "metadata.yaml").exists()
     result = run_process("bag", "reindex", str(tmp_path / "bag"))
-    assert (result.code, result.err) == (0, "")
+    # one line says what the killed recording left
+    assert result.code == 0 and len(result.err.splitlines()) == 1, result.err
+    assert result.err.startswith(f"[WARN] [ros2bag]: '{tmp_path / 'bag' / 'bag_0.mcap'}' is ")
+    assert result.err.endswith(": 500 messages recovered\n"), result.err
     from rosbags.highlevel import AnyReader
 
     with AnyReader([tmp_path / "bag"]) as oracle:
@@ -445,3 +448,4 @@ def test_services_are_recorded_from_their_introspection_events(
         got = [m for _, m, _ in bag]
     assert sorted(e.info.event_type for e in got) == [0, 1, 2, 3]
     assert {r.sum for e in got for r in e.response} == {42}
+
