@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ros2lite.daemon.paths import graph_socket
+from ros2lite.files import UnsafePathError
 
 if TYPE_CHECKING:
     from ros2lite.transport.handles import Handle, Session
@@ -142,8 +143,12 @@ def cache_endpoint(router: str | None = None, env: Mapping[str, str] | None = No
 
 
 def cached_keys(endpoint: str, domain: int, timeout: float = 1.0) -> list[str] | None:
-    """The token keys of `domain` from the daemon at `endpoint`, None when none answers."""
-    path = graph_socket(endpoint)
+    """The token keys of `domain` from the daemon at `endpoint`, None when none answers (or
+    this user has no safe place for a daemon's files: no usable home, say)."""
+    try:
+        path = graph_socket(endpoint)
+    except UnsafePathError:
+        return None
     chunks: list[bytes] = []
     with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as sock:
         sock.settimeout(timeout)
