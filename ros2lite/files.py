@@ -133,8 +133,12 @@ def fallback_dir() -> Path:
 
 
 def _make_private(path: Path, uid: int) -> bool:
-    with contextlib.suppress(FileExistsError):
+    try:
         path.mkdir(mode=0o700, parents=True)
+    except FileExistsError:
+        pass
+    except OSError:  # no usable home (missing, not ours, not a directory): not private
+        return False
     try:
         st = os.lstat(path)
     except OSError:
@@ -158,6 +162,11 @@ def private_dir(base: str | os.PathLike[str] | None, name: str = 'ros2lite') -> 
     fallback = fallback_dir()
     if _make_private(fallback, uid):
         return fallback
+    if not os.path.lexists(fallback):
+        raise UnsafePathError(
+            f"no place for ros2lite's files: '{fallback}' cannot be created (no usable home "
+            'directory); set HOME or XDG_RUNTIME_DIR to a directory of this user'
+        )
     raise UnsafePathError(
         f"no safe directory for ros2lite's files: '{fallback}' is not a private directory "
         'of this user (check its owner and mode, or remove it)'

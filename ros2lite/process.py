@@ -143,6 +143,31 @@ def terminal_signals_child() -> bool:
         os.close(fd)
 
 
+def die_with_us() -> Callable[[], None] | None:
+    """What a child runs between fork and exec so that it gets SIGTERM when this process
+    dies, even by SIGKILL (Linux's PR_SET_PDEATHSIG; None elsewhere): a node must not run on
+    orphaned after its `run` or `launch` is gone. SIGTERM, not SIGKILL, lets it end cleanly.
+
+    The request holds for the thread that starts the child (its exit counts as the parent's
+    death): children are started by the thread that also stops them."""
+    if not sys.platform.startswith('linux'):
+        return None
+    import ctypes
+
+    try:
+        prctl = ctypes.CDLL(None, use_errno=True).prctl  # resolved before the fork
+    except (OSError, AttributeError):
+        return None
+    parent = os.getpid()
+
+    def arm() -> None:
+        prctl(1, int(signal.SIGTERM), 0, 0, 0)  # PR_SET_PDEATHSIG
+        if os.getppid() != parent:  # we died before the request took hold
+            os.kill(os.getpid(), signal.SIGTERM)
+
+    return arm
+
+
 def run_child(
     cmd: Sequence[str],
     on_start: Callable[[subprocess.Popen[bytes]], object] | None = None,
@@ -200,7 +225,7 @@ def run_child(
                     proc = subprocess.Popen(
                         list(cmd),
                         env=None if env is None else dict(env),
-                        **_group_options(own_group),
+                        **_child_options(own_group),
                     )
             except OSError as e:
                 raise ChildError(f'{cmd[0]}: {e.strerror or e}') from None
@@ -241,13 +266,21 @@ def release_interrupts() -> None:
         signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
 
 
-def _group_options(own_group: bool) -> dict[str, Any]:
-    """Popen's arguments that put the child in a process group of its own (when asked)."""
+def _child_options(own_group: bool) -> dict[str, Any]:
+    """Popen's arguments for a child that dies with us (:func:`die_with_us`) and, when asked,
+    has a process group of its own."""
+    arm = die_with_us()
     if not own_group:
-        return {}
+        return {'preexec_fn': arm}
     if sys.version_info >= (3, 11):
-        return {'process_group': 0}
-    return {'preexec_fn': os.setpgrp}  # pragma: no cover - Python 3.10
+        return {'process_group': 0, 'preexec_fn': arm}
+
+    def own_group_and_arm() -> None:  # pragma: no cover - Python 3.10
+        os.setpgrp()
+        if arm is not None:
+            arm()
+
+    return {'preexec_fn': own_group_and_arm}
 
 
 def forget_caught_interrupt() -> None:
@@ -350,6 +383,7 @@ class ChildProcess:
                 stdout=subprocess.PIPE,
                 stderr=subprocess.PIPE,
                 start_new_session=True,
+                preexec_fn=die_with_us(),
             )
         except OSError as e:
             raise ChildError(f'{self.cmd[0]}: {e.strerror or e}') from None

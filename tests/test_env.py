@@ -86,3 +86,38 @@ def _have(program: str) -> bool:
     import shutil
 
     return shutil.which(program) is not None
+
+
+def test_a_workspace_package_never_shadows_what_ros2lite_imports(tmp_path: Path) -> None:
+    """R-V1: an interface package named `click` in a workspace took `import click` from the
+    CLI itself (AttributeError: module 'click' has no attribute 'Group')."""
+    pkg = tmp_path / 'ws' / 'src' / 'click'
+    (pkg / 'msg').mkdir(parents=True)
+    (pkg / 'package.xml').write_text(
+        '<?xml version="1.0"?><package format="3"><name>click</name><version>0.0.1</version>'
+        '<description>x</description><maintainer email="a@b.c">a</maintainer>'
+        '<license>MIT</license><buildtool_depend>ament_cmake</buildtool_depend>'
+        '<export><build_type>ament_cmake</build_type></export></package>\n'
+    )
+    (pkg / 'msg' / 'Foo.msg').write_text('int32 x\n')
+    env = {k: v for k, v in os.environ.items() if k != 'PYTHONPATH'}
+    env.update(ros_environment(env))
+
+    def run(*args: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            [sys.executable, *args],
+            capture_output=True,
+            text=True,
+            env=env,
+            cwd=tmp_path / 'ws',
+            timeout=60,
+        )
+
+    cli = run('-m', 'ros2lite', '--help')
+    assert cli.returncode == 0 and 'Usage: ros2lite' in cli.stdout, cli.stderr
+    probe = run(
+        '-c',
+        'import click; from ros2lite.msgs.click.msg import Foo; '
+        'print(hasattr(click, "command"), Foo(x=3).x)',
+    )
+    assert probe.stdout == 'True 3\n', probe.stderr

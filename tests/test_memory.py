@@ -66,3 +66,67 @@ def test_large_messages_reuse_buffers_instead_of_mapping_them_per_message(
 def test_the_users_own_malloc_settings_win(ros_router: Any) -> None:
     tuned, _ = _probe(MALLOC_TRIM_THRESHOLD_='1048576')
     assert not tuned
+
+
+SINK = r'''
+import ros2lite
+from ros2lite.msgs.std_msgs.msg import String
+ros2lite.init([])
+node = ros2lite.Node('memory_sink', enable_rosout=False)
+node.create_subscription(String, 'memory_big', lambda m: print(len(m.data), flush=True), 10)
+print('ready', flush=True)
+ros2lite.spin(node)
+'''
+
+# publishes 'small', then six 16 MiB strings, each once the sink (its output file: argv[1])
+# said it had the one before
+SOURCE = r'''
+import sys, time
+import ros2lite
+from ros2lite.msgs.std_msgs.msg import String
+ros2lite.init([])
+node = ros2lite.Node('memory_source', enable_rosout=False)
+pub = node.create_publisher(String, 'memory_big', 10)
+def heard():
+    return len(open(sys.argv[1]).read().split()) - 1
+deadline = time.monotonic() + 30
+while pub.get_subscription_count() == 0 and time.monotonic() < deadline:
+    time.sleep(0.05)
+big = String(data='z' * (16 << 20))
+for msg in [String(data='small')] + [big] * 6:
+    before = heard()
+    pub.publish(msg)
+    deadline = time.monotonic() + 10
+    while heard() == before and time.monotonic() < deadline:
+        time.sleep(0.05)
+ros2lite.shutdown()
+'''
+
+
+@pytest.mark.skipif(not sys.platform.startswith('linux'), reason='glibc malloc tuning')
+def test_memory_returns_after_large_samples(ros_router: Any, tmp_path: Any) -> None:
+    """R-W5: a listener kept ~200 MB after a few 16 MiB samples (freed, but kept by malloc)."""
+    from tests.spinning import wait_until
+
+    out = tmp_path / 'sink.txt'
+    with open(out, 'w') as f:
+        sink = subprocess.Popen([sys.executable, '-c', SINK], stdout=f)
+    try:
+        wait_until(lambda: 'ready' in out.read_text(), timeout=30)
+
+        def rss_mib() -> int:
+            with open(f'/proc/{sink.pid}/status') as status:
+                line = next(x for x in status if x.startswith('VmRSS:'))
+            return int(line.split()[1]) // 1024
+
+        base = rss_mib()
+        source = subprocess.run(
+            [sys.executable, '-c', SOURCE, str(out)], capture_output=True, text=True, timeout=90
+        )
+        heard = out.read_text().split()[1:]
+        assert heard.count('16777216') >= 4, (heard, source.stderr)
+        # the freed samples go back to the system within a release period or two
+        wait_until(lambda: rss_mib() < base + 64, timeout=15)
+    finally:
+        sink.terminate()
+        sink.wait(timeout=10)

@@ -108,6 +108,7 @@ class Reader:
         self._summaries: dict[Path, FileSummary] = {}
         self._types: BagTypes | None = None
         self._decoders: dict[str, Callable[[bytes], Message | bytes]] = {}
+        self._told: set[Path] = set()  # files whose damage was said (by shortfalls())
         if not self.path.exists():
             raise BagError(f"Bag path '{path}' does not exist!")
         self.directory: Path
@@ -242,6 +243,8 @@ class Reader:
             except BagError as e:
                 out.append(f"'{f}' cannot be read: {e}")
                 continue
+            self._told.add(f)
+            out.extend(summary.problems)
             want = promised.get(f.name)
             if want is not None and summary.message_count < want:
                 out.append(
@@ -258,11 +261,28 @@ class Reader:
         """(topic, CDR bytes, log_time, publish_time) in log-time order across all files,
         with `start <= log_time < stop`."""
         wanted = set(topics) if topics is not None else None
+        self._tell_damage()
         streams = [self._reader(f).messages(wanted, start, stop) for f in self.files]
         if len(streams) == 1:
             yield from streams[0]
             return
         yield from heapq.merge(*streams, key=lambda m: m[2])
+
+    def _tell_damage(self) -> None:
+        """Say once, as a warning, what damaged files lost, unless `shortfalls()` (which
+        the CLI renders itself) already did: a damaged bag is never read in silence."""
+        from ros2lite.logging import get_logger
+
+        for f in self.files:
+            if f in self._told:
+                continue
+            self._told.add(f)
+            try:
+                problems = self.summary(f).problems
+            except BagError:
+                continue  # opening its messages says why
+            for line in problems:
+                get_logger("rosbag2_storage").warn(line)
 
     def messages(
         self,

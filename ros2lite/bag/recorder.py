@@ -339,7 +339,14 @@ class Recorder:
         from ros2lite.interfaces import InterfaceError, get_interface
         from ros2lite.interfaces.parser import validate_type_name
         from ros2lite.monitor.subscription import MonitoredSubscription
+        from ros2lite.names import validate_full_topic_name
 
+        try:
+            validate_full_topic_name(topic)
+        except ValueError:  # a hostile or broken graph entry: skip it, record the others
+            self._skipped.add(topic)
+            self._warn(f"Not recording topic {topic!a}: not a valid topic name")
+            return
         try:
             # the writer refuses it too, fatally: here it only skips this topic
             validate_type_name(type_name)

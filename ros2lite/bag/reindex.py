@@ -1,14 +1,16 @@
 """Rebuilding a bag's metadata.yaml from its files (`ros2 bag reindex`).
 
 A recorder that was killed (SIGKILL, power loss) leaves MCAP files without their summary and
-no metadata.yaml. Such a file is first rewritten into a complete MCAP holding every message up
-to its last complete chunk; then metadata.yaml is written from what the files say, keeping
-the custom data and distro found in their `rosbag2` records.
+no metadata.yaml. Such a file is first rewritten into a complete MCAP holding every record up
+to the first one that cannot be trusted (what was lost is said in one line); then
+metadata.yaml is written from what the files say, keeping the custom data and distro found in
+their `rosbag2` records.
 """
 
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from pathlib import Path
 
 from ros2lite.bag.errors import BagError
@@ -20,8 +22,13 @@ from ros2lite.pkg.distro import ros_distro
 __all__ = ["reindex"]
 
 
-def reindex(directory: str | os.PathLike[str], storage_id: str | None = None) -> BagMetadata:
-    """Recover unfinished MCAP files and write metadata.yaml; returns the new metadata."""
+def reindex(
+    directory: str | os.PathLike[str],
+    storage_id: str | None = None,
+    report: Callable[[str], object] | None = None,
+) -> BagMetadata:
+    """Recover unfinished MCAP files and write metadata.yaml; returns the new metadata.
+    What a damaged file lost is told to `report`, one line each."""
     path = Path(directory)
     if not path.exists():
         raise BagError(f"Bag directory '{directory}' does not exist")
@@ -40,9 +47,12 @@ def reindex(directory: str | os.PathLike[str], storage_id: str | None = None) ->
 
             if not is_complete(str(f)):
                 try:
-                    recover(str(f))
+                    _, problems = recover(str(f))
                 except OSError as e:
                     raise BagError(f"Cannot rewrite '{f}': {e.strerror or e}") from None
+                if report is not None:
+                    for line in problems:
+                        report(line)
         reader = open_storage_reader(str(f), plugin_for(f.name))
         try:
             summaries.append(reader.summary())

@@ -11,6 +11,8 @@ nothing named on the wire is imported unless some installed package registered i
 
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -86,14 +88,27 @@ class ComponentManager(Node):
             cli_args += ['-r', f'__ns:={node_namespace}']
         for rule in remap_rules or []:
             cli_args += ['-r', rule]
+        kwargs: dict[str, Any] = {
+            'context': self.context,
+            'cli_args': cli_args,
+            'parameter_overrides': list(parameters or []),
+            'use_global_arguments': use_global,
+        }
+        made: Node | None = None
         try:
-            node = cls(
-                context=self.context,
-                cli_args=cli_args,
-                parameter_overrides=list(parameters or []),
-                use_global_arguments=use_global,
-            )
+            if isinstance(cls, type) and issubclass(cls, Node):
+                # made first and built after: a constructor failing half way (a publisher
+                # refused after the node announced itself) must leave no ghost node
+                made = cls.__new__(cls)
+                init: Callable[..., None] = cls.__init__
+                init(made, **kwargs)
+                node: object = made
+            else:
+                node = cls(**kwargs)
         except Exception as e:
+            if made is not None:
+                with contextlib.suppress(Exception):  # as much of it as was built
+                    made.destroy_node()
             raise ComponentLoadError(
                 f'Component constructor threw an exception: {type(e).__name__}: {e}'
             ) from None

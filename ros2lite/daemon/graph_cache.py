@@ -30,6 +30,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ros2lite.daemon.paths import graph_socket
+from ros2lite.files import UnsafePathError
 
 if TYPE_CHECKING:
     from ros2lite.transport.handles import Handle, Session
@@ -185,8 +186,12 @@ def cache_endpoint(router: str | None = None, env: Mapping[str, str] | None = No
 
 def _ask(endpoint: str, request: str, timeout: float) -> str | None:
     """The daemon's answer to one request line (after the version line), None when no
-    daemon of ours answers it."""
-    path = graph_socket(endpoint)
+    daemon of ours answers it (or this user has no safe place for a daemon's files: no
+    usable home, say)."""
+    try:
+        path = graph_socket(endpoint)
+    except UnsafePathError:
+        return None
     chunks: list[bytes] = []
     with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as sock:
         sock.settimeout(timeout)

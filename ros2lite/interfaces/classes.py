@@ -367,9 +367,10 @@ class ClassFactory:
             src.append(f'        else: self.{f.name} = {f.name}')
         for f in mdef.fields:
             src += ['    ' + s for s in _setter_source(f.name, f.type)]
-            # a C-level getter: reading a field costs a third less than through a lambda
+            # a C-level getter: reading a field costs a third less than through a lambda;
+            # `_property`: a field may be named `property` (the class body would then see it)
             src.append(
-                f"    {f.name} = property(_getter('_{f.name}'), _set_{f.name}, "
+                f"    {f.name} = _property(_getter('_{f.name}'), _set_{f.name}, "
                 f"doc={rosidl_type_string(f.type)!r})"
             )
         ns: dict[str, Any] = {
@@ -382,6 +383,7 @@ class ClassFactory:
             '_isinf': math.isinf,
             '_same_type': self.same_type,
             '_getter': operator.attrgetter,
+            '_property': property,
             '_CHECK': _CHECK,
             '_K': constants,
             '_D': tuple(defaults),

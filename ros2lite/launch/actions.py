@@ -6,8 +6,10 @@ optional condition, checked when the action is reached.
 
 from __future__ import annotations
 
+import contextlib
 import os
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from contextvars import ContextVar
 from pathlib import Path
 from typing import TYPE_CHECKING, TypedDict
 
@@ -424,8 +426,48 @@ class GroupAction(Action):
         return list(self.actions)
 
 
+MAX_INCLUDE_DEPTH = 64
+"""Launch files nested deeper than this are refused (a runaway, not a design)."""
+
+# the launch files being read, outermost first: what led to the file read now
+_INCLUDES: ContextVar[tuple[str, ...]] = ContextVar('ros2lite_launch_includes', default=())
+
+
+@contextlib.contextmanager
+def including(path: str) -> Iterator[None]:
+    """While the launch file `path` (resolved) is read: refuse it when it is already on the
+    way to itself (a cycle would load forever) or nested too deep, in one line."""
+    chain = _INCLUDES.get()
+    if path in chain:
+        loop = [*chain[chain.index(path) :], path]
+        if len(loop) == 2:
+            raise LaunchError(f"launch file '{path}' includes itself")
+        raise LaunchError(f'launch files include each other in a cycle: {" -> ".join(loop)}')
+    if len(chain) >= MAX_INCLUDE_DEPTH:
+        raise LaunchError(
+            f'launch files are nested more than {MAX_INCLUDE_DEPTH} deep '
+            f"(… {' -> '.join(chain[-3:])} -> {path})"
+        )
+    token = _INCLUDES.set((*chain, path))
+    try:
+        yield
+    finally:
+        _INCLUDES.reset(token)
+
+
+@contextlib.contextmanager
+def _includes(chain: tuple[str, ...]) -> Iterator[None]:
+    token = _INCLUDES.set(chain)
+    try:
+        yield
+    finally:
+        _INCLUDES.reset(token)
+
+
 class IncludeLaunchDescription(Action):
-    """Includes another launch description (usually a file), setting its arguments."""
+    """Includes another launch description (usually a file), setting its arguments. It
+    remembers the launch files that led to it, so that reading what it includes later (it
+    runs after the file holding it was read) can tell a cycle."""
 
     def __init__(
         self,
@@ -449,11 +491,17 @@ class IncludeLaunchDescription(Action):
             (normalize_to_list_of_substitutions(k), normalize_to_list_of_substitutions(v))
             for k, v in items
         ]
+        self._chain = _INCLUDES.get()
 
     def execute(self, context: LaunchContext) -> Entities | None:
         """The included description, after setting its launch arguments and checking that
         every argument it requires is given."""
-        description = self.launch_description_source.get_launch_description(context)
+        with _includes(self._chain):
+            description = self.launch_description_source.get_launch_description(context)
+        location = getattr(self.launch_description_source, 'location', None)
+        if isinstance(location, str) and os.path.realpath(location) in self._chain:
+            with _includes(self._chain), including(os.path.realpath(location)):
+                pass  # (a source read before, included again on its own way: says the cycle)
         given = []
         for key, value in self.launch_arguments:
             name = perform_substitutions(context, key)
@@ -490,10 +538,11 @@ class IncludeLaunchDescription(Action):
 
         source = self.launch_description_source
         try:
-            found = source.try_get_launch_description_without_context()
-            if found is None:
-                found = source.get_launch_description(LaunchContext())
-        except Exception:  # e.g. a path built from a launch argument: unknown until run
+            with _includes(self._chain):
+                found = source.try_get_launch_description_without_context()
+                if found is None:
+                    found = source.get_launch_description(LaunchContext())
+        except Exception:  # a path built from a launch argument (unknown until run), a cycle
             return []
         return [found]
 

@@ -111,6 +111,8 @@ class LaunchService:
         self._labels = itertools.count(1)
         self._shutting_down = False
         self._signals_seen = 0
+        self._visiting = 0  # visits under way (reading launch files, running their code)
+        self._stop_visiting = False  # a signal cut the visit under way short
         self._temp_files: list[str] = []
         self.return_code = 0
         # `launch -a`: every process' output to the screen too (else OVERRIDE_LAUNCH_PROCESS_OUTPUT)
@@ -211,7 +213,7 @@ class LaunchService:
         """Run until idle (or shut down); returns 0, or 1 when the launch itself failed."""
         in_main = threading.current_thread() is threading.main_thread()
         signals = (
-            signal_handler(lambda signum: self._queue.put(('signal', signum)), _SIGNALS)
+            signal_handler(self._on_signal_received, _SIGNALS)
             if in_main
             else contextlib.nullcontext()
         )
@@ -225,6 +227,15 @@ class LaunchService:
             finally:
                 self._cleanup()
         return self.return_code
+
+    def _on_signal_received(self, signum: int) -> None:
+        """The signal handler: the loop stops everything in order. A visit under way (a
+        launch file being read or its code run, which may take long or never end) is cut
+        short first, once, so the loop gets to it."""
+        self._queue.put(('signal', signum))
+        if self._visiting and not self._stop_visiting and self._signals_seen == 0:
+            self._stop_visiting = True
+            raise _Interrupted
 
     def _open_logs(self) -> None:
         if self._write_logs:
@@ -286,6 +297,7 @@ class LaunchService:
 
     def _on_signal(self, signum: int) -> None:
         self._signals_seen += 1
+        self._stop_visiting = False  # (the visit it cut short has ended: shutdown visits)
         if signum == signal.SIGINT:
             message = 'user interrupted with ctrl-c (SIGINT)'
         else:
@@ -411,15 +423,22 @@ class LaunchService:
 
     # -- visiting --------------------------------------------------------------------------------
     def _visit_guarded(self, entity: EntityLike) -> None:
-        """Visit depth first; an error stops the launch (as launch does) with one line."""
+        """Visit depth first; an error stops the launch (as launch does) with one line, a
+        signal stops the visit (the loop then stops the launch)."""
         stack: list[EntityLike] = [entity]
-        while stack:
-            current = stack.pop()
-            result = self._guard(functools.partial(current.visit, self.context))
-            if result is _FAILED:
-                return
-            if result:
-                stack.extend(reversed(result))
+        self._visiting += 1
+        try:
+            while stack and not self._stop_visiting:
+                current = stack.pop()
+                result = self._guard(functools.partial(current.visit, self.context))
+                if result is _FAILED:
+                    return
+                if result:
+                    stack.extend(reversed(result))
+        except _Interrupted:
+            self.log('WARNING', 'launch', 'stopped reading the launch description')
+        finally:
+            self._visiting -= 1
 
     def _guard(self, fn: Callable[[], _T]) -> _T | _Failed:
         try:
@@ -452,6 +471,10 @@ class LaunchService:
             with contextlib.suppress(OSError):
                 os.unlink(path)
         self.output.close()
+
+
+class _Interrupted(BaseException):
+    """Raised by the signal handler into a visit under way (not an error of the launch)."""
 
 
 class _Failed:

@@ -20,7 +20,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .actions import LaunchDescription, LaunchDescriptionSource
+from .actions import LaunchDescription, LaunchDescriptionSource, including
 from .errors import InvalidFrontendLaunchFileError, LaunchError
 from .substitutions import (
     SomeSubstitutionsType,
@@ -108,7 +108,13 @@ def load_python_launch_file(path: Path) -> LaunchDescription:
 
 def load_launch_file(path: Path, kind: str | None = None) -> LaunchDescription:
     """Any launch file: 'python', 'xml' or 'yaml' (by extension when `kind` is None; a file
-    with another extension is tried as each in turn)."""
+    with another extension is tried as each in turn). A file already on the way to itself
+    is refused (see `including`)."""
+    with including(str(path.resolve())):
+        return _load(path, kind)
+
+
+def _load(path: Path, kind: str | None) -> LaunchDescription:
     if kind is None:
         suffix = path.suffix.lower()
         kind = 'python' if suffix == '.py' else FRONTEND_EXTENSIONS.get(suffix)

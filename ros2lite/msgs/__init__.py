@@ -158,9 +158,50 @@ class InterfaceFinder:
             # a Python package of the same name elsewhere on the path keeps its other modules
             # importable (`my_interfaces.helpers`); its msg/srv/action are ours
             other = importlib.machinery.PathFinder.find_spec(fullname)
+            if other is not None and fullname in _our_modules():
+                return None  # never shadow what ros2lite itself imports (a package `click`)
             if other is not None and other.submodule_search_locations:
                 spec.submodule_search_locations = list(other.submodule_search_locations)
         return spec
+
+
+_ours: frozenset[str] | None = None
+
+
+def _our_modules() -> frozenset[str]:
+    """The top-level modules of ros2lite and of everything it depends on (its requirements,
+    theirs, …; extras left out), from the installed metadata: an interface package of the
+    same name must not take their place. Read once, and only for a name that is both an
+    interface package and something else on the path."""
+    global _ours
+    if _ours is None:
+        import re
+        from importlib import metadata
+
+        def key(name: str) -> str:
+            return re.sub(r'[-_.]+', '-', name).lower()
+
+        seen: set[str] = set()
+        todo = ['ros2lite']
+        while todo:
+            dist = key(todo.pop())
+            if dist in seen:
+                continue
+            seen.add(dist)
+            try:
+                requires = metadata.requires(dist) or []
+            except metadata.PackageNotFoundError:
+                continue
+            for req in requires:
+                name = re.match(r'[A-Za-z0-9][A-Za-z0-9._-]*', req.strip())
+                if name and 'extra ==' not in req.replace('extra==', 'extra =='):
+                    todo.append(name.group())
+        modules = {'ros2lite'}
+        for module, dists in metadata.packages_distributions().items():
+            if any(key(d) in seen for d in dists):
+                modules.add(module)
+        _ours = frozenset(modules)
+    return _ours
 
 
 def install_top_level() -> None:

@@ -179,6 +179,25 @@ def test_sigterm_death_of_the_child(scripts: dict[str, str], processes: Any) -> 
     assert err.strip().splitlines()[-1] == '[ros2run]: Terminated'
 
 
+def test_sigkill_of_run_takes_the_child_along(scripts: dict[str, str], processes: Any) -> None:
+    """R-L16: the node ran on with ppid 1 after its `run` was SIGKILLed."""
+    proc = start_run(processes, 'tools', 'wait_term', env={**os.environ, **scripts})
+    assert proc.stdout.readline() == 'ready\n'
+    children = Path(f'/proc/{proc.pid}/task/{proc.pid}/children')
+    [child] = [int(c) for c in children.read_text().split()]
+    proc.kill()
+    proc.wait(timeout=10)
+    wait_until(lambda: not _alive(child), timeout=10)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        state = Path(f'/proc/{pid}/stat').read_text().rsplit(')', 1)[1].split()[0]
+    except OSError:
+        return False
+    return state != 'Z'
+
+
 def test_ctrl_c_in_a_terminal_reaches_the_child_once(tmp_path: Path) -> None:
     """Typed Ctrl-C goes to the terminal's whole foreground group, child included, so `run`
     must not forward another one; elsewhere (see above) it must forward."""

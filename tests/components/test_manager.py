@@ -143,3 +143,22 @@ def test_refusals(
 def test_bad_assignment() -> None:
     with pytest.raises(ContainerError, match="'greeting' is not in the 'name:=value' form"):
         parse_assignments(['greeting'])
+
+
+def test_a_failed_load_leaves_no_ghost_node(
+    container: tuple[ComponentManager, RemoteContainer], ros_context: Any
+) -> None:
+    """R-K3: a constructor failing after its node announced itself (here a remap that makes
+    the publisher's name invalid) left the node on the graph, unlisted and unreachable."""
+    _manager, remote = container
+    for _ in range(3):
+        with pytest.raises(ContainerError, match='InvalidTopicNameException'):
+            remote.load('composition', 'composition::Talker', remap_rules=['chatter:=/a//b'])
+    remote.load('probe_pkg', 'probe_pkg::Probe', node_name='after')
+
+    def graph_nodes() -> set[str]:  # the context's own graph cache: no query to miss a token
+        return {e.node_name for e in ros_context.graph.entities()}
+
+    wait_until(lambda: 'after' in graph_nodes())
+    assert 'talker' not in graph_nodes()
+    assert remote.list_nodes() == [LoadedNode(1, '/after')]

@@ -138,6 +138,31 @@ def test_nesting_is_bounded() -> None:
         codec('pkg/msg/T0', _Types(defs))
 
 
+def test_fields_named_like_builtins_build_and_round_trip() -> None:
+    """R-W15: a field named `property` broke the class body of every later field."""
+    from ros2lite.interfaces.convert import message_to_yaml
+
+    text = (
+        'string property\nstring value\nint32 len\nfloat64 float\nstring[] list\n'
+        'int32 isinstance\nint32 type\nint32 range\nint32 staticmethod\nint32 y'
+    )
+    reg = _Types({'pkg/msg/Prop': text})
+    cls = ClassFactory(reg).message_class('pkg/msg/Prop')
+    msg = cls(property='a', value='b', len=3, float=1.5, list=['x'], type=7, y=9)
+    assert (msg.property, msg.value, msg.len, msg.float, msg.list, msg.y) == (
+        'a',
+        'b',
+        3,
+        1.5,
+        ['x'],
+        9,
+    )
+    c = codec('pkg/msg/Prop', reg)
+    text = message_to_yaml(msg)
+    assert text.startswith('property: a\nvalue: b\nlen: 3\n')
+    assert message_to_yaml(c.deserialize(c.serialize(msg))) == text
+
+
 def _bundled_messages() -> list[str]:
     reg = default_registry()
     names = []

@@ -41,6 +41,7 @@ class FileSummary:
     metadata: BagMetadata | None = None  # the last `rosbag2` record, if any
     complete: bool = True  # False: no summary, scanned up to a broken end
     ros_distro: str = ""
+    problems: list[str] = field(default_factory=list)  # what a scan lost, one line each
 
     def add(self, topic: str | None, count: int, first: int, last: int) -> None:
         """Count `count` messages of `topic` (None: of a topic the file does not list), logged

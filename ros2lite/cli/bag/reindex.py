@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..parsing import command
-from .options import bag_argument, bag_error
+from .options import bag_argument, bag_error, warn
 
 
 @command("reindex")
@@ -14,6 +14,6 @@ def cli(bag_path: str, storage: str | None) -> None:
     from ros2lite.bag.reindex import reindex
 
     try:
-        reindex(bag_path, storage)
+        reindex(bag_path, storage, report=warn)
     except BagError as e:
         raise bag_error(str(e)) from None

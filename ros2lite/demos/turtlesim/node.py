@@ -13,12 +13,13 @@ Types are the `turtlesim` package's, as the Jazzy node advertises them, or with
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, cast
 
 from ros2lite.action import ActionServer, CancelResponse
-from ros2lite.action.server import ServerGoalHandle
+from ros2lite.action.server import GoalResponse, ServerGoalHandle
 from ros2lite.demos.turtlesim import sim
 from ros2lite.demos.turtlesim.interfaces import (
     Color,
@@ -103,6 +104,7 @@ class _TurtleInterface:
             RotateAbsolute,
             f'{name}/rotate_absolute',
             self._execute,
+            goal_callback=self._on_goal,
             handle_accepted_callback=self._on_accepted,
             cancel_callback=self._on_cancel,
         )
@@ -110,6 +112,13 @@ class _TurtleInterface:
 
     # -- inputs ----------------------------------------------------------------------------
     def _on_twist(self, msg: Twist) -> None:
+        if not self.node.finite(
+            'velocity command',
+            linear_x=msg.linear.x,
+            linear_y=msg.linear.y,
+            angular_z=msg.angular.z,
+        ):
+            return
         world = self.node.world
         aborted = self.turtle.command(
             msg.linear.x, msg.linear.y, msg.angular.z, world.time, world.holonomic
@@ -127,16 +136,23 @@ class _TurtleInterface:
     def _on_teleport_relative(
         self, request: TeleportRelative.Request, response: TeleportRelative.Response
     ) -> TeleportRelative.Response:
-        self.turtle.teleport_relative(request.linear, request.angular)
+        if self.node.finite('teleport', linear=request.linear, angular=request.angular):
+            self.turtle.teleport_relative(request.linear, request.angular)
         return response
 
     def _on_teleport_absolute(
         self, request: TeleportAbsolute.Request, response: TeleportAbsolute.Response
     ) -> TeleportAbsolute.Response:
-        self.turtle.teleport_absolute(request.x, request.y, request.theta)
+        if self.node.finite('teleport', x=request.x, y=request.y, theta=request.theta):
+            self.turtle.teleport_absolute(request.x, request.y, request.theta)
         return response
 
     # -- rotate_absolute: the world works the goal; the execute callback waits for its end ---
+    def _on_goal(self, goal: RotateAbsolute.Goal) -> GoalResponse:
+        if self.node.finite('rotation goal', theta=goal.theta):
+            return GoalResponse.ACCEPT
+        return GoalResponse.REJECT
+
     def _on_accepted(self, handle: _RotateHandle) -> None:
         result: Future[RotateAbsolute.Result] = Future()
         self._results[handle] = result
@@ -299,7 +315,19 @@ class TurtlesimNode(Node):
         self.revision += 1
         return real_name
 
+    def finite(self, what: str, **values: float) -> bool:
+        """Whether every value is a finite number; else the request is refused with a log
+        line (NaN or infinity would end the simulation, not just this turtle's step)."""
+        bad = {k: v for k, v in values.items() if not math.isfinite(v)}
+        if bad:
+            shown = ', '.join(f'{k}={v}' for k, v in bad.items())
+            self.get_logger().error(f'Ignoring a {what} with a value that is not finite ({shown})')
+        return not bad
+
     def _on_spawn(self, request: Spawn.Request, response: Spawn.Response) -> Spawn.Response:
+        if not self.finite('spawn request', x=request.x, y=request.y, theta=request.theta):
+            response.name = ''
+            return response
         name = self._spawn(request.name, request.x, request.y, request.theta)
         if not name and request.name in self.world.turtles:
             self.get_logger().error(f'A turtle named [{request.name}] already exists')

@@ -119,7 +119,10 @@ def test_sigkill_then_reindex_recovers(
     rec.finish(signal.SIGKILL)
     assert not (tmp_path / "bag" / "metadata.yaml").exists()
     result = run_process("bag", "reindex", str(tmp_path / "bag"))
-    assert (result.code, result.err) == (0, "")
+    # one line says what the killed recording left
+    assert result.code == 0 and len(result.err.splitlines()) == 1, result.err
+    assert result.err.startswith(f"[WARN] [ros2bag]: '{tmp_path / 'bag' / 'bag_0.mcap'}' is ")
+    assert result.err.endswith(": 500 messages recovered\n"), result.err
     from rosbags.highlevel import AnyReader
 
     with AnyReader([tmp_path / "bag"]) as oracle:
@@ -445,3 +448,44 @@ def test_services_are_recorded_from_their_introspection_events(
         got = [m for _, m, _ in bag]
     assert sorted(e.info.event_type for e in got) == [0, 1, 2, 3]
     assert {r.sum for e in got for r in e.response} == {42}
+
+
+STRING_HASH = "RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18"
+
+
+def test_a_hostile_topic_name_is_skipped_and_recording_goes_on(
+    tmp_path: Path, node: Any, ros_context: Any, recording: Any, topic: str, alien_session: Any
+) -> None:
+    """R-W12: one liveliness token with an invalid topic name stopped `bag record -a` at
+    start (exit 1) or ended its discovery (nothing more recorded)."""
+    domain = os.environ["ROS_DOMAIN_ID"]
+
+    def hostile(name: str) -> Any:
+        key = (
+            f"@ros2_lv/{domain}/{os.urandom(16).hex()}/0/0/MP/%/%/ctl/%{name}/"
+            f"std_msgs::msg::dds_::String_/{STRING_HASH}/::,10:,:,:,,"
+        )
+        return alien_session.liveliness().declare_token(key)
+
+    before = hostile("t0\x1b[2J")
+    rec = recording(tmp_path / "bag", "-a", "-p", "50")
+    first = node.create_publisher(String, f"{topic}/first", KEEP_ALL)
+    wait_until(lambda: subscribed(ros_context, f"{topic}/first"), timeout=20)
+    during = hostile("t1 bad")
+    late = node.create_publisher(String, f"{topic}/late", KEEP_ALL)
+    wait_until(lambda: subscribed(ros_context, f"{topic}/late"), timeout=20)
+    publish_all(first, 10, "first")
+    publish_all(late, 10, "late")
+    time.sleep(0.5)
+    code, _out, err = rec.finish()
+    before.undeclare()
+    during.undeclare()
+    assert code == 0, err
+    assert "Not recording topic '/t0\\x1b[2J': not a valid topic name" in err
+    assert "Not recording topic '/t1 bad': not a valid topic name" in err
+    assert "\x1b" not in err
+    with Reader(tmp_path / "bag") as bag:
+        counts = {
+            t.topic_metadata.name: t.message_count for t in bag.metadata.topics_with_message_count
+        }
+    assert counts[f"{topic}/first"] == 10 and counts[f"{topic}/late"] == 10

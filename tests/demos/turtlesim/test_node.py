@@ -283,3 +283,39 @@ def test_rotate_absolute_action(run: Callable[..., Result], turtlesim: Any) -> N
     goal.join(30)
     assert holder and holder[0].out.endswith('Goal finished with status: ABORTED\n'), holder
     wait_for_log(proc, lines, r'Velocity command received during rotation goal. Aborting goal$')
+
+
+def test_nan_and_infinity_are_refused_and_the_node_lives(
+    run: Callable[..., Result], turtlesim: Any
+) -> None:
+    """R-W13: a NaN in cmd_vel (or /spawn, a teleport) ended the node ('cannot convert float
+    NaN to integer')."""
+    proc, lines = turtlesim
+    before = pose(run)
+    sent = [
+        ('topic', 'pub', '-t', '1', '-w', '1', '/turtle1/cmd_vel', 'geometry_msgs/msg/Twist',
+         '{linear: {x: .nan}}'),
+        ('service', 'call', '/spawn', 'turtlesim/srv/Spawn',
+         '{x: .nan, y: .inf, theta: 0.2, name: n}'),
+        ('service', 'call', '/turtle1/teleport_absolute', 'turtlesim/srv/TeleportAbsolute',
+         '{x: .nan, y: 1.0, theta: .inf}'),
+        ('service', 'call', '/turtle1/teleport_relative', 'turtlesim/srv/TeleportRelative',
+         '{linear: .inf, angular: .nan}'),
+        ('action', 'send_goal', '/turtle1/rotate_absolute', 'turtlesim/action/RotateAbsolute',
+         '{theta: -.inf}'),
+    ]  # fmt: skip
+    for args in sent:
+        assert run(*args).code == 0, args
+    for what, values in [
+        ('velocity command', 'linear_x=nan'),
+        ('spawn request', 'x=nan, y=inf'),
+        ('teleport', 'x=nan, theta=inf'),
+        ('teleport', 'linear=inf, angular=nan'),
+        ('rotation goal', 'theta=-inf'),
+    ]:
+        line = f'Ignoring a {what} with a value that is not finite ({values})'
+        wait_for_log(proc, lines, re.escape(line))
+    assert proc.poll() is None
+    assert '/n/pose' not in run('topic', 'list').out.split('\n')
+    after = pose(run)
+    assert all(after[k] == before[k] for k in ('x', 'y', 'theta')), (before, after)
