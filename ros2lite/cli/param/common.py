@@ -11,8 +11,9 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import click
 
 from .. import completion, numbers
-from ..common import connect, strategy_options
+from ..common import connect
 from ..errors import CliError
+from ..options import strategy_options
 
 if TYPE_CHECKING:
     from click.shell_completion import CompletionItem

@@ -1,4 +1,4 @@
-"""The option blocks the verbs share (cli/common.py), on a bare click command: what the
+"""The option blocks the verbs share (cli/options.py), on a bare click command: what the
 verb receives, and what the help lists in which order."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ from typing import Any
 import click
 from click.testing import CliRunner
 
-from ros2lite.cli.common import MessageFormat, format_options, qos_from_options, qos_options
+from ros2lite.cli.options import MessageFormat, format_options, qos_from_options, qos_options
 
 
 @click.command()
