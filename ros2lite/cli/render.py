@@ -55,6 +55,17 @@ def echo(text: str, *, err: bool = False, nl: bool = True) -> None:
     click.echo(shown(text, sys.stderr if err else sys.stdout), err=err, nl=nl)
 
 
+def format_size(size: float) -> str:
+    """rosbag2's 1024-based size (`bag info`, the recorder's live table): bytes without
+    decimals, then one decimal."""
+    units = ['B', 'KiB', 'MiB', 'GiB', 'TiB']
+    i = 0
+    while size >= 1024 and i < len(units) - 1:
+        size /= 1024
+        i += 1
+    return f'{size:.0f} {units[i]}' if i == 0 else f'{size:.1f} {units[i]}'
+
+
 def ascii_table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
     """ros2cli's table: centred headers, left-justified cells, 3-space gaps, '=' rule."""
     widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(header)]

@@ -308,14 +308,6 @@ def _record(
     return recorder
 
 
-def _size(n: float) -> str:
-    for unit in ("B", "KiB", "MiB", "GiB"):
-        if n < 1024 or unit == "GiB":
-            return f"{n:.0f} {unit}" if unit == "B" else f"{n:.1f} {unit}"
-        n /= 1024
-    return f"{n:.1f} TiB"
-
-
 class _LiveStatus:
     """Per-topic count, bytes and rate, redrawn in place on a terminal."""
 
@@ -342,7 +334,7 @@ class _LiveStatus:
                     s.name,
                     s.type,
                     str(s.received),
-                    _size(s.bytes),
+                    render.format_size(s.bytes),
                     f"{self._rates.get(s.name, 0.0):.1f} Hz",
                 )
             )
