@@ -8,6 +8,7 @@ complete liveliness query, so there is nothing to wait for.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any, TypedDict, TypeVar, cast
@@ -17,6 +18,7 @@ import click
 from . import numbers
 
 if TYPE_CHECKING:
+    from _typeshed import DataclassInstance
     from typing_extensions import Unpack
 
     from ros2lite.qos import (
@@ -43,6 +45,7 @@ class QosOptions(TypedDict):
 
 
 F = TypeVar('F', bound=Callable[..., Any])
+D = TypeVar('D', bound='DataclassInstance')
 
 QOS_PROFILES = [
     'unknown',
@@ -312,3 +315,30 @@ def explicit_qos(**options: Unpack[QosOptions]) -> bool:
             'qos_liveliness_lease_duration_seconds',
         )
     )
+
+
+def bind(load: Callable[[], type[D]], to: str = 'options') -> Callable[[F], F]:
+    """Hand the verb, as its one `to` argument, the dataclass `load()` returns filled from the
+    click values named as its fields (click's tuples become lists); the other values reach the
+    verb as before. A field whose option means something else (milliseconds, names still to
+    resolve) gets a dest of its own, or the verb sets it with `dataclasses.replace`. `load`
+    runs when the verb does, so the library's class stays out of `--help`."""
+
+    def decorate(fn: F) -> F:
+        @functools.wraps(fn)
+        def verb(*args: Any, **kwargs: Any) -> Any:
+            cls = load()
+            values = {
+                f.name: _field_value(kwargs.pop(f.name))
+                for f in dataclasses.fields(cls)
+                if f.init and f.name in kwargs
+            }
+            return fn(*args, **{to: cls(**values)}, **kwargs)
+
+        return cast(F, verb)
+
+    return decorate
+
+
+def _field_value(value: object) -> object:
+    return list(value) if isinstance(value, tuple) else value
