@@ -12,8 +12,8 @@ import sys
 import click
 
 from . import completion
-from .common import prefix_option
 from .errors import CliError
+from .options import prefix_option
 from .parsing import command
 
 # one colour per process, in order of start; launch's own warnings and errors by severity

@@ -12,9 +12,14 @@ import os
 import re
 import sys
 from collections.abc import Sequence
-from typing import TextIO
+from typing import TYPE_CHECKING, TextIO
 
 import click
+
+if TYPE_CHECKING:
+    from ros2lite.interfaces import Message
+
+    from .options import MessageFormat
 
 # C0 and C1 controls but newline and tab, DEL, and the bidirectional overrides that reorder
 # what a terminal shows
@@ -48,6 +53,17 @@ def shown(text: str, stream: TextIO | None = None) -> str:
 def echo(text: str, *, err: bool = False, nl: bool = True) -> None:
     """``click.echo`` of text that holds names from outside (see :func:`shown`)."""
     click.echo(shown(text, sys.stderr if err else sys.stdout), err=err, nl=nl)
+
+
+def format_size(size: float) -> str:
+    """rosbag2's 1024-based size (`bag info`, the recorder's live table): bytes without
+    decimals, then one decimal."""
+    units = ['B', 'KiB', 'MiB', 'GiB', 'TiB']
+    i = 0
+    while size >= 1024 and i < len(units) - 1:
+        size /= 1024
+        i += 1
+    return f'{size:.0f} {units[i]}' if i == 0 else f'{size:.1f} {units[i]}'
 
 
 def ascii_table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
@@ -102,3 +118,21 @@ class ProgressLine:
         """End the line, so what follows starts on a fresh one."""
         self.stream.write('\n')
         self.stream.flush()
+
+
+def print_names(names_and_types: list[tuple[str, list[str]]], count: bool, types: bool) -> None:
+    """What the list and find verbs print: how many there are, or one name a line (with
+    `[type, …]` when asked)."""
+    if count:
+        click.echo(len(names_and_types))
+    elif names_and_types:
+        echo('\n'.join(f'{n} [{", ".join(t)}]' if types else n for n, t in names_and_types))
+
+
+def print_event(msg: Message, fmt: MessageFormat, head: str = '') -> None:
+    """Print one service event (or any message) as `service echo` and `action echo` do:
+    `head`, the message, then `---` (a CSV line ends with its newline alone)."""
+    from ros2lite.service_introspection import format_event
+
+    text = format_event(msg, **fmt)
+    sys.stdout.write(head + text + ('\n' if fmt['csv'] else '---\n'))

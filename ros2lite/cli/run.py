@@ -16,7 +16,7 @@ import signal
 import click
 
 from . import completion
-from .common import prefix_option
+from .options import prefix_option
 from .parsing import command
 
 

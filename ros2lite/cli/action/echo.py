@@ -8,21 +8,16 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion
-from ..common import (
-    connect,
-    format_options,
-    interface_type_name,
-    print_event,
-    resolved_name,
-    strategy_options,
-)
+from ..common import connect, interface_type_name, resolved_name
 from ..errors import CliError
+from ..options import format_options, strategy_options
 from ..parsing import command
+from ..render import print_event
 
 if TYPE_CHECKING:
     from ros2lite.interfaces import Message
 
-    from ..common import MessageFormat
+    from ..options import MessageFormat
 
 
 @command('echo')

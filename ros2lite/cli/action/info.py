@@ -5,8 +5,9 @@ from __future__ import annotations
 import click
 
 from .. import completion, render
-from ..common import connect, show_types_option, strategy_options
+from ..common import connect
 from ..errors import CliError
+from ..options import show_types_option, strategy_options
 from ..parsing import command
 
 

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
-from ..common import connect, count_option, print_names, show_types_option, strategy_options
+from ..common import connect
 from ..lazy import include_hidden_option
+from ..options import count_option, show_types_option, strategy_options
 from ..parsing import command
+from ..render import print_names
 
 
 @command('list')

@@ -12,8 +12,9 @@ from typing import TYPE_CHECKING, TypeVar
 import click
 
 from .. import completion, numbers
-from ..common import check_stdin, connect, values_argument, wait_saying_other_types
+from ..common import connect, wait_saying_other_types
 from ..errors import CliError
+from ..options import check_stdin, values_argument
 from ..parsing import command
 
 if TYPE_CHECKING:

@@ -5,7 +5,8 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import print_types_of, strategy_options
+from ..common import print_types_of
+from ..options import strategy_options
 from ..parsing import command
 
 

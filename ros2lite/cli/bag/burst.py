@@ -6,17 +6,20 @@ copes with a flood). `-n` bursts that many messages (0: all); Ctrl-C stops early
 
 from __future__ import annotations
 
+import dataclasses
 from typing import TYPE_CHECKING
 
 import click
 
 from .. import numbers
+from ..options import bind
 from ..parsing import command
 from .options import (
     bag_argument,
     bag_error,
     bag_names,
     bag_player,
+    play_options,
     player_node_option,
     qos_overrides_option,
     read_ahead_option,
@@ -27,6 +30,7 @@ from .options import (
 )
 
 if TYPE_CHECKING:
+    from ros2lite.bag.player import PlayOptions
     from ros2lite.node import Node
 
 
@@ -50,37 +54,32 @@ if TYPE_CHECKING:
     help="Messages to burst (0: all).",
 )
 @player_node_option
+@bind(play_options)
 def cli(
+    options: PlayOptions,
     bag_path: str,
     storage: str | None,
-    read_ahead_queue_size: int,
-    topics: tuple[str, ...],
     services: tuple[str, ...],
     qos_profile_overrides_path: str | None,
-    remap: tuple[str, ...],
-    start_offset: float,
+    remap_rules: tuple[str, ...],
     num_messages: int,
     node_name: str,
 ) -> None:
     """Burst data from a bag."""
     from ros2lite.bag.errors import BagError
-    from ros2lite.bag.player import PlayOptions
     from ros2lite.process import StopSignals
     from ros2lite.service_introspection import event_topic
 
-    def options(node: Node) -> PlayOptions:
+    def named(node: Node) -> PlayOptions:
         selected = None
-        if topics or services:
+        if options.topics or services:
             events = [event_topic(node.resolve_service_name(s)) for s in services]
-            selected = bag_names(node, topics) + events
-        return PlayOptions(
-            topics=selected, start_offset=start_offset, read_ahead_queue_size=read_ahead_queue_size
-        )
+            selected = bag_names(node, options.topics or []) + events
+        return dataclasses.replace(options, topics=selected)
 
-    with bag_player(bag_path, storage, node_name, remap, qos_profile_overrides_path, options) as (
-        player,
-        log,
-    ):
+    with bag_player(
+        bag_path, storage, node_name, remap_rules, qos_profile_overrides_path, named
+    ) as (player, log):
         try:
             with StopSignals(on_stop=player.stop):
                 sent = player.burst(num_messages)

@@ -18,22 +18,13 @@ from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_S
 
 from ..parsing import command
 from ..render import echo as echo_shown
+from ..render import format_size
 from .options import bag_argument, bag_error, existing_bag, warn
 
 if TYPE_CHECKING:
     from ros2lite.bag.reader import Reader
 
 LABEL = 19
-
-
-def format_size(size: float) -> str:
-    """rosbag2's 1024-based size: bytes without decimals, then one decimal."""
-    units = ["B", "KiB", "MiB", "GiB", "TiB"]
-    i = 0
-    while size >= 1024 and i < len(units) - 1:
-        size /= 1024
-        i += 1
-    return f"{size:.0f} {units[i]}" if i == 0 else f"{size:.1f} {units[i]}"
 
 
 def format_time(ns: int) -> str:

@@ -16,6 +16,7 @@ from ..parsing import ManyValues
 
 if TYPE_CHECKING:
     from ros2lite.bag.player import Player, PlayOptions
+    from ros2lite.bag.recorder import RecordOptions
     from ros2lite.logging import RcutilsLogger
     from ros2lite.node import Node
     from ros2lite.qos import QoSProfile
@@ -28,7 +29,12 @@ STORAGE_IDS = ("mcap", "sqlite3")
 
 # -m/--remap, --start-offset and the player's (hidden) node name: play and burst alike
 remap_option = click.option(
-    "-m", "--remap", cls=ManyValues, metavar="OLD:=NEW...", help="Topic remappings."
+    "-m",
+    "--remap",
+    "remap_rules",
+    cls=ManyValues,
+    metavar="OLD:=NEW...",
+    help="Topic remappings.",
 )
 start_offset_option = click.option(
     "--start-offset",
@@ -39,6 +45,20 @@ start_offset_option = click.option(
 player_node_option = click.option(
     "--node-name", default="rosbag2_player", show_default=True, hidden=True
 )
+
+
+def play_options() -> type[PlayOptions]:
+    """The library's play options, for `bind` (imported when the verb runs)."""
+    from ros2lite.bag.player import PlayOptions
+
+    return PlayOptions
+
+
+def record_options() -> type[RecordOptions]:
+    """The library's record options, for `bind` (imported when the verb runs)."""
+    from ros2lite.bag.recorder import RecordOptions
+
+    return RecordOptions
 
 
 def read_ahead_option(help: str) -> Callable[[F], F]:

@@ -6,6 +6,7 @@ On a terminal: a progress line on stderr and keys (SPACE pause/resume, → next 
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 import time
 from typing import TYPE_CHECKING
@@ -14,12 +15,14 @@ import click
 
 from .. import keyboard as keys_module
 from .. import numbers, render
+from ..options import bind
 from ..parsing import command
 from .options import (
     bag_argument,
     bag_error,
     bag_names,
     bag_player,
+    play_options,
     player_node_option,
     read_ahead_option,
     remap_option,
@@ -29,7 +32,7 @@ from .options import (
 )
 
 if TYPE_CHECKING:
-    from ros2lite.bag.player import Player
+    from ros2lite.bag.player import Player, PlayOptions
     from ros2lite.logging import RcutilsLogger
     from ros2lite.node import Node
 
@@ -68,51 +71,33 @@ if TYPE_CHECKING:
 )
 @start_offset_option
 @player_node_option
+@bind(play_options)
 def cli(
+    options: PlayOptions,
     bag_path: str,
     storage: str | None,
-    read_ahead_queue_size: int,
-    rate: float,
-    topics: tuple[str, ...],
-    regex: str | None,
-    exclude_regex: str | None,
-    exclude_topics: tuple[str, ...],
     qos_profile_overrides_path: str | None,
-    loop: bool,
-    remap: tuple[str, ...],
-    clock_hz: float,
-    delay: float,
-    start_offset: float,
-    start_paused: bool,
+    remap_rules: tuple[str, ...],
     disable_keyboard_controls: bool,
     node_name: str,
 ) -> None:
     """Play back ROS data from a bag."""
-    from ros2lite.bag.player import PlayOptions
 
-    def options(node: Node) -> PlayOptions:
-        return PlayOptions(
-            rate=rate,
-            loop=loop,
-            topics=bag_names(node, topics) if topics else None,
-            exclude_topics=bag_names(node, exclude_topics),
-            regex=regex,
-            exclude_regex=exclude_regex,
-            start_offset=start_offset,
-            delay=delay,
-            clock_hz=clock_hz,
-            start_paused=start_paused,
-            read_ahead_queue_size=read_ahead_queue_size,
+    def named(node: Node) -> PlayOptions:
+        return dataclasses.replace(
+            options,
+            topics=bag_names(node, options.topics) if options.topics else None,
+            exclude_topics=bag_names(node, options.exclude_topics),
         )
 
     with bag_player(
         bag_path,
         storage,
         node_name,
-        remap,
+        remap_rules,
         qos_profile_overrides_path,
-        options,
-        patterns=(regex, exclude_regex),
+        named,
+        patterns=(options.regex, options.exclude_regex),
     ) as (player, log):
         _play(player, log, keyboard=not disable_keyboard_controls)
 

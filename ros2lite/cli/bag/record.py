@@ -7,6 +7,7 @@ keeps a live per-topic status and takes SPACE to pause/resume.
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import time
 from typing import TYPE_CHECKING
@@ -16,11 +17,13 @@ import click
 from .. import completion, numbers, render
 from .. import keyboard as keys_module
 from ..common import connect
+from ..options import bind
 from ..parsing import ManyValues, command
 from .options import (
     bag_error,
     check_patterns,
     qos_overrides,
+    record_options,
     services_option,
     shared_options,
     storage_option,
@@ -121,6 +124,7 @@ SELECTION_ERROR = (
 @click.option(
     "-p",
     "--polling-interval",
+    "polling_interval_ms",
     type=numbers.Count(min=1, max=3_600_000),
     default=100,
     show_default=True,
@@ -128,6 +132,7 @@ SELECTION_ERROR = (
 )
 @click.option(
     "--flush-interval",
+    "flush_interval_ms",
     type=numbers.Count(min=1, max=3_600_000),
     default=100,
     show_default=True,
@@ -144,34 +149,25 @@ SELECTION_ERROR = (
     metavar="KEY=VALUE...",
     help="Custom metadata stored in the bag.",
 )
+@bind(record_options)
 def cli(
+    options: RecordOptions,
     positional_topics: tuple[str, ...],
-    topics: tuple[str, ...],
     services: tuple[str, ...],
-    topic_types: tuple[str, ...],
-    exclude_topic_types: tuple[str, ...],
     all_: bool,
-    all_topics: bool,
-    all_services: bool,
-    regex: str | None,
-    exclude_regex: str | None,
-    exclude_topics: tuple[str, ...],
     exclude_services: tuple[str, ...],
-    include_hidden_topics: bool,
     output: str | None,
     storage: str,
     max_bag_size: int,
     max_bag_duration: float,
-    max_cache_size: int,
     storage_preset_profile: str | None,
     compression_mode: str,
     compression_format: str | None,
     qos_profile_overrides_path: str | None,
-    start_paused: bool,
     use_sim_time: bool,
     no_discovery: bool,
-    polling_interval: int,
-    flush_interval: int,
+    polling_interval_ms: int,
+    flush_interval_ms: int,
     node_name: str,
     custom_data: tuple[str, ...],
     disable_keyboard_controls: bool,
@@ -179,7 +175,6 @@ def cli(
     """Record ROS data to a bag."""
 
     from ros2lite.bag.errors import BagError
-    from ros2lite.bag.recorder import RecordOptions
     from ros2lite.bag.writer import Writer
 
     if positional_topics:
@@ -187,10 +182,18 @@ def cli(
             'Positional "topics" argument deprecated. Please use optional "--topics" '
             "argument instead."
         )
-    selected = list(positional_topics) + list(topics)
-    if not (selected or services or topic_types or all_ or all_topics or all_services or regex):
+    selected = list(positional_topics) + options.topics
+    if not (
+        selected
+        or services
+        or options.topic_types
+        or all_
+        or options.all_topics
+        or options.all_services
+        or options.regex
+    ):
         raise bag_error(SELECTION_ERROR)
-    check_patterns(regex, exclude_regex)
+    check_patterns(options.regex, options.exclude_regex)
     if storage != "mcap":
         raise bag_error(f"Recording to '{storage}' is not supported; use -s mcap")
     if compression_mode != "none":
@@ -202,22 +205,16 @@ def cli(
 
     events = [event_topic(s) for s in services]
     excluded_events = [event_topic(s) for s in exclude_services]
-    options = RecordOptions(
+    options = dataclasses.replace(
+        options,
         topics=list(dict.fromkeys(_absolute(selected + events, node_name))),
-        all_topics=all_ or all_topics,
-        all_services=all_ or all_services,
-        regex=regex,
-        exclude_regex=exclude_regex,
-        exclude_topics=_absolute(list(exclude_topics) + excluded_events, node_name),
-        topic_types=list(topic_types),
-        exclude_topic_types=list(exclude_topic_types),
-        include_hidden_topics=include_hidden_topics,
+        all_topics=all_ or options.all_topics,
+        all_services=all_ or options.all_services,
+        exclude_topics=_absolute(options.exclude_topics + excluded_events, node_name),
         qos_overrides=qos_overrides(qos_profile_overrides_path),
-        polling_interval=polling_interval / 1000,
-        max_cache_size=max_cache_size,
-        start_paused=start_paused,
+        polling_interval=polling_interval_ms / 1000,
         discovery=not no_discovery,
-        flush_interval=flush_interval / 1000,
+        flush_interval=flush_interval_ms / 1000,
     )
     custom = _custom_data(custom_data)
     uri = output or time.strftime("rosbag2_%Y_%m_%d-%H_%M_%S")
@@ -308,14 +305,6 @@ def _record(
     return recorder
 
 
-def _size(n: float) -> str:
-    for unit in ("B", "KiB", "MiB", "GiB"):
-        if n < 1024 or unit == "GiB":
-            return f"{n:.0f} {unit}" if unit == "B" else f"{n:.1f} {unit}"
-        n /= 1024
-    return f"{n:.1f} TiB"
-
-
 class _LiveStatus:
     """Per-topic count, bytes and rate, redrawn in place on a terminal."""
 
@@ -342,7 +331,7 @@ class _LiveStatus:
                     s.name,
                     s.type,
                     str(s.received),
-                    _size(s.bytes),
+                    render.format_size(s.bytes),
                     f"{self._rates.get(s.name, 0.0):.1f} Hz",
                 )
             )

@@ -7,7 +7,8 @@ from typing import Any
 import click
 
 from .. import completion
-from ..common import connect, strategy_options
+from ..common import connect
+from ..options import strategy_options
 from ..parsing import command
 from .common import component_options, load, unable_to_find
 

@@ -14,8 +14,9 @@ from typing import Any
 
 import click
 
-from ..common import connect, strategy_options
+from ..common import connect
 from ..errors import CliError
+from ..options import strategy_options
 from ..parsing import command
 from .common import component_options, load
 

@@ -5,7 +5,8 @@ from __future__ import annotations
 import click
 
 from .. import render
-from ..common import connect, count_option, strategy_options
+from ..common import connect
+from ..options import count_option, strategy_options
 from ..parsing import command
 from .common import managed_nodes
 

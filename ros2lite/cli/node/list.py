@@ -5,7 +5,8 @@ from __future__ import annotations
 import click
 
 from .. import render
-from ..common import connect, strategy_options
+from ..common import connect
+from ..options import strategy_options
 from ..parsing import command
 
 DUPLICATE_WARNING = (

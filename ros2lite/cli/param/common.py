@@ -3,16 +3,16 @@ parameter services through the library's client), completion and type names."""
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Callable
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 
 from .. import completion, numbers
-from ..common import connect, strategy_options
+from ..common import connect
 from ..errors import CliError
+from ..options import bind, strategy_options
 
 if TYPE_CHECKING:
     from click.shell_completion import CompletionItem
@@ -52,20 +52,12 @@ class Target:
     service_timeout: float | None = None
 
 
-_TARGET_OPTIONS = tuple(f.name for f in fields(Target))
-
-
 def node_options(*, timeout: bool = True, node_required: bool = True) -> Callable[[F], F]:
     """node_name, --include-hidden-nodes, the strategy options and (but for list) --timeout
     and --service-timeout, handed to the verb as one `target: Target`."""
 
     def decorate(fn: F) -> F:
-        @functools.wraps(fn)
-        def verb(**kwargs: Any) -> Any:  # click hands over its option values
-            shared = {k: kwargs.pop(k) for k in _TARGET_OPTIONS if k in kwargs}
-            return fn(target=Target(**shared), **kwargs)
-
-        cmd: Any = verb
+        cmd: Any = bind(lambda: Target, 'target')(fn)
         if timeout:
             cmd = click.option(
                 "--service-timeout",

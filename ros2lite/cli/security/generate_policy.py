@@ -7,8 +7,9 @@ from pathlib import Path
 
 import click
 
-from ..common import connect, strategy_options
+from ..common import connect
 from ..errors import CliError
+from ..options import strategy_options
 from ..parsing import command
 
 

@@ -16,15 +16,9 @@ if TYPE_CHECKING:
     from ros2lite.node import Node
 
 from .. import completion, numbers
-from ..common import (
-    check_stdin,
-    connect,
-    interface_type_name,
-    values_argument,
-    wait_saying_other_types,
-    yaml_fields,
-)
+from ..common import connect, interface_type_name, wait_saying_other_types, yaml_fields
 from ..errors import CliError
+from ..options import check_stdin, values_argument
 
 
 @command('call')

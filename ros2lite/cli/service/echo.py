@@ -7,25 +7,18 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion
-from ..common import (
-    connect,
-    format_options,
-    interface_type_name,
-    print_event,
-    qos_from_options,
-    qos_options,
-    resolved_name,
-    strategy_options,
-)
+from ..common import connect, interface_type_name, resolved_name
 from ..errors import CliError
+from ..options import format_options, qos_from_options, qos_options, strategy_options
 from ..parsing import command
+from ..render import print_event
 
 if TYPE_CHECKING:
     from typing_extensions import Unpack
 
     from ros2lite.interfaces import Message
 
-    from ..common import MessageFormat, QosOptions
+    from ..options import MessageFormat, QosOptions
 
 
 @command('echo')

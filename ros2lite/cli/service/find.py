@@ -5,8 +5,9 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import count_option, print_names_of_type, strategy_options
+from ..common import print_names_of_type
 from ..lazy import include_hidden, include_hidden_option
+from ..options import count_option, strategy_options
 from ..parsing import command
 
 

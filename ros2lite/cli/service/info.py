@@ -5,8 +5,9 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import connect, strategy_options
+from ..common import connect
 from ..errors import CliError
+from ..options import strategy_options
 from ..parsing import command
 
 

@@ -9,7 +9,8 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion
-from ..common import connect, strategy_options
+from ..common import connect
+from ..options import strategy_options
 from ..parsing import command
 from .common import watch, window_option
 

@@ -7,8 +7,9 @@ from typing import TYPE_CHECKING, Protocol, cast
 import click
 
 from .. import completion
-from ..common import connect, strategy_options
+from ..common import connect
 from ..errors import CliError
+from ..options import strategy_options
 from ..parsing import command
 from .common import watch, window_option
 

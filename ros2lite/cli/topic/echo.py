@@ -9,16 +9,16 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion, numbers
-from ..common import (
+from ..common import connect
+from ..errors import CliError
+from ..options import (
     CSV_HELP,
-    connect,
     explicit_qos,
     format_options,
     qos_from_options,
     qos_options,
     strategy_options,
 )
-from ..errors import CliError
 from ..parsing import command
 from .common import compile_filter, graph_type, message_type_name, monitor
 
@@ -31,7 +31,7 @@ if TYPE_CHECKING:
     from ros2lite.qos import QoSProfile
     from ros2lite.subscription import MessageInfo
 
-    from ..common import MessageFormat, QosOptions
+    from ..options import MessageFormat, QosOptions
 
 PRUNE_PERIOD = 5.0  # seconds between prunings of the lost-message table
 CLEAR_SCREEN = '\x1b[H\x1b[2J'

@@ -14,7 +14,8 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion, render
-from ..common import connect, strategy_options
+from ..common import connect
+from ..options import strategy_options
 from ..parsing import command
 from .common import compile_filter, watch, window_option
 

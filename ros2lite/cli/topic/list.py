@@ -5,9 +5,11 @@ from __future__ import annotations
 import click
 
 from .. import render
-from ..common import connect, print_names, strategy_options
+from ..common import connect
 from ..lazy import include_hidden, include_hidden_option
+from ..options import strategy_options
 from ..parsing import command
+from ..render import print_names
 
 
 def _section(rows: list[tuple[str, list[str], int]], publishers: bool) -> str:

@@ -9,16 +9,9 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion, numbers
-from ..common import (
-    check_stdin,
-    connect,
-    qos_from_options,
-    qos_options,
-    strategy_options,
-    values_argument,
-    yaml_fields,
-)
+from ..common import connect, yaml_fields
 from ..errors import CliError
+from ..options import check_stdin, qos_from_options, qos_options, strategy_options, values_argument
 from ..parsing import command
 from .common import message_type_name
 
@@ -28,7 +21,7 @@ if TYPE_CHECKING:
     from ros2lite.connection import Connection
     from ros2lite.qos import QoSProfile
 
-    from ..common import QosOptions
+    from ..options import QosOptions
 
 WAIT_STEP = 0.1  # seconds between subscription-count checks while waiting
 

@@ -5,8 +5,9 @@ from __future__ import annotations
 import click
 
 from .. import completion
-from ..common import print_types_of, strategy_options
+from ..common import print_types_of
 from ..lazy import include_hidden
+from ..options import strategy_options
 from ..parsing import command
 
 

@@ -1,15 +1,25 @@
-"""The option blocks the verbs share (cli/common.py), on a bare click command: what the
+"""The option blocks the verbs share (cli/options.py), on a bare click command: what the
 verb receives, and what the help lists in which order."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from typing import Any
 
 import click
 from click.testing import CliRunner
 
-from ros2lite.cli.common import MessageFormat, format_options, qos_from_options, qos_options
+from ros2lite.bag.player import PlayOptions
+from ros2lite.cli.bag.play import cli as bag_play
+from ros2lite.cli.options import (
+    MessageFormat,
+    bind,
+    format_options,
+    qos_from_options,
+    qos_options,
+)
+from ros2lite.cli.parsing import ManyValues, command
 
 
 @click.command()
@@ -115,3 +125,69 @@ def test_qos_options_offer_ros2cli_choices_only() -> None:
         "'system_default', 'automatic', 'manual_by_topic', 'unknown', 'best_available'"
         in refused.output
     )
+
+
+@dataclasses.dataclass
+class Settings:
+    name: str
+    topics: list[str] = dataclasses.field(default_factory=list)
+    rate: float = 1.0
+    quiet: bool = False
+
+
+loads: list[type[Settings]] = []
+
+
+def load_settings() -> type[Settings]:
+    loads.append(Settings)
+    return Settings
+
+
+@command('configure')
+@click.argument('name')
+@click.option('--topics', cls=ManyValues)
+@click.option('--rate', type=float)
+@click.option('--node-name', default='n')
+@bind(load_settings, 'settings')
+def configure(settings: Settings, node_name: str) -> None:
+    click.echo(json.dumps({'settings': dataclasses.asdict(settings), 'node_name': node_name}))
+
+
+def test_bind_fills_the_dataclass_from_the_options_named_as_its_fields() -> None:
+    runner = CliRunner()
+    assert runner.invoke(configure, ['--help']).exit_code == 0
+    assert loads == []  # the class is loaded when the verb runs, not for its help
+    given = runner.invoke(configure, ['x', '--topics', '/a', '/b', '--rate', '2.5'])
+    assert json.loads(given.output) == {
+        'settings': {'name': 'x', 'topics': ['/a', '/b'], 'rate': 2.5, 'quiet': False},
+        'node_name': 'n',
+    }
+    # an option not given is handed over as click has it; a field with no option keeps its
+    # default
+    plain = json.loads(runner.invoke(configure, ['y']).output)
+    assert plain['settings'] == {'name': 'y', 'topics': [], 'rate': None, 'quiet': False}
+    assert loads == [Settings, Settings]
+
+
+def test_bind_gives_bag_play_the_library_options(monkeypatch: Any) -> None:
+    seen: list[PlayOptions] = []
+
+    def player(*args: Any, **kwargs: Any) -> Any:
+        seen.append(args[5](None))  # the verb's options(node), before names are resolved
+        raise click.exceptions.Exit(0)
+
+    monkeypatch.setattr('ros2lite.cli.bag.play.bag_player', player)
+    monkeypatch.setattr('ros2lite.cli.bag.play.bag_names', lambda node, names: list(names))
+    args = ['b', '-r', '2', '-l', '--topics', '/t', '-x', 'z', '--clock', '-d', '1', '-p']
+    assert CliRunner().invoke(bag_play, args).exit_code == 0
+    assert seen == [
+        PlayOptions(
+            rate=2.0,
+            loop=True,
+            topics=['/t'],
+            exclude_regex='z',
+            delay=1.0,
+            clock_hz=40.0,
+            start_paused=True,
+        )
+    ]
