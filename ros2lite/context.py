@@ -20,8 +20,8 @@ from collections.abc import Callable
 from types import FrameType
 from typing import TYPE_CHECKING, Protocol
 
-from ros2lite.arguments import RosArgs, parse_ros_args
 from ros2lite.exceptions import NotInitializedException, Ros2liteError
+from ros2lite.runtime.arguments import RosArgs, parse_ros_args
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
@@ -137,8 +137,8 @@ class Context:
         self.enclave = announced_enclave(self.args.enclave)
         self.domain_id = env_domain_id() if domain_id is None else domain_id
         self.router = router
-        if not short_lived:  # a node: large messages reuse freed buffers (ros2lite.memory)
-            from ros2lite.memory import keep_large_buffers
+        if not short_lived:  # a node: large messages reuse freed buffers (ros2lite.runtime.memory)
+            from ros2lite.runtime.memory import keep_large_buffers
 
             keep_large_buffers()
         self.session = connect(router, tool=short_lived, autostart=autostart)

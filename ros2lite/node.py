@@ -8,12 +8,10 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Literal, Protocol, overload
 
 from ros2lite import names
-from ros2lite.arguments import RosArgs, parse_ros_args
 from ros2lite.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup
 from ros2lite.client import Client
 from ros2lite.clock import Clock, ROSClock
 from ros2lite.context import Context, default_context
-from ros2lite.executable import EntityExecutor, Executable, GuardCondition
 from ros2lite.logging import RcutilsLogger, set_logger_level
 from ros2lite.parameter import Parameter
 from ros2lite.parameters.node_api import ParameterMixin
@@ -24,6 +22,8 @@ from ros2lite.qos import (
     qos_profile_services_default,
 )
 from ros2lite.rate import Rate
+from ros2lite.runtime.arguments import RosArgs, parse_ros_args
+from ros2lite.runtime.executable import EntityExecutor, Executable, GuardCondition
 from ros2lite.runtime.scheduling import NodeWork
 from ros2lite.service import Service
 from ros2lite.subscription import Subscription
@@ -33,11 +33,11 @@ from ros2lite.transport import keys
 
 if TYPE_CHECKING:
     from ros2lite.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
-    from ros2lite.executable import Destroyable
     from ros2lite.graph import Entity, TopicEndpointInfo
     from ros2lite.logging_service import LoggingService
     from ros2lite.msgs.rcl_interfaces.msg import Log
     from ros2lite.qos_overriding_options import QoSOverridingOptions
+    from ros2lite.runtime.executable import Destroyable
     from ros2lite.service import ServiceCallback
     from ros2lite.subscription import MessageInfo, SubscriptionCallback
     from ros2lite.transport.handles import Handle
@@ -435,7 +435,7 @@ class Node(ParameterMixin):
         qos: QoSProfile | int,
         options: QoSOverridingOptions | None,
     ) -> QoSProfile:
-        from ros2lite.endpoint import as_qos
+        from ros2lite.runtime.endpoint import as_qos
 
         profile = as_qos(qos)
         if options is not None and options.policy_kinds:
