@@ -360,11 +360,13 @@ class Diagnosis:
         return r
 
     def _report_ros2lite(self) -> Report:
+        import ros2lite
         from ros2lite.pkg.index import PackageIndex
 
         r = Report('ROS2LITE INFORMATION', 'platform')
         r.add('ros2lite version', _version('ros2lite'))
-        r.add('installed at', os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+        # the directory holding the package, wherever this module sits inside it
+        r.add('installed at', os.path.dirname(os.path.dirname(os.path.abspath(ros2lite.__file__))))
         r.add('middleware', 'rmw_zenoh_cpp (wire-compatible)')
         workspaces = PackageIndex(self.env).workspaces()
         r.add('source workspaces', ', '.join(map(str, workspaces)) or 'none')
