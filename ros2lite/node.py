@@ -64,7 +64,7 @@ class Node(ParameterMixin):
     """rclpy-shaped node. Create after `ros2lite.init()`; destroy with `destroy_node()`."""
 
     # rclpy's default QoS event callbacks (warnings, fed by the live graph); a tool's node
-    # (ros2lite.connection) goes without them, and without a graph cache of its own
+    # (ros2lite.tools.connection) goes without them, and without a graph cache of its own
     _default_event_callbacks = True
 
     def __init__(

@@ -136,7 +136,7 @@ def test_listener_demo_and_topic_echo_go_on(processes: Any, alien_session: Any) 
     from ros2lite.graph import EntityKind
 
     def subscribers() -> int:
-        from ros2lite.connection import Connection
+        from ros2lite.tools.connection import Connection
 
         with Connection() as conn:
             return sum(

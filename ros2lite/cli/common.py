@@ -20,7 +20,6 @@ from .errors import CliError
 if TYPE_CHECKING:
     from typing_extensions import Unpack
 
-    from ros2lite.connection import Connection
     from ros2lite.graph import Entity
     from ros2lite.interfaces import Message
     from ros2lite.node import Node
@@ -31,6 +30,7 @@ if TYPE_CHECKING:
         QoSProfile,
         ReliabilityPolicy,
     )
+    from ros2lite.tools.connection import Connection
 
     Policy = HistoryPolicy | ReliabilityPolicy | DurabilityPolicy | LivelinessPolicy
 
@@ -137,7 +137,7 @@ def yaml_fields(values: str, *, allow_empty: bool = False) -> dict[str, object]:
     """The field values given in YAML (VALUES or --stdin) as a mapping, or ros2cli's line
     saying why they are not one (`allow_empty`: empty text means no fields, as in
     `service call`)."""
-    from ros2lite.safe_yaml import YamlInputError, load
+    from ros2lite.util.safe_yaml import YamlInputError, load
 
     try:
         parsed = load(values, 'the passed value')
@@ -158,7 +158,7 @@ def connect(
     """This run's connection to the graph (the daemon's graph cache asked, and the daemon
     started on demand, unless `--no-daemon`; a node's peer session with `as_node`); use it
     as a context manager."""
-    from ros2lite.connection import Connection
+    from ros2lite.tools.connection import Connection
 
     return Connection(
         autostart=not no_daemon,

@@ -37,7 +37,7 @@ from .parsing import command
 )
 def cli(report: bool, report_failed: bool, exclude_packages: bool, include_warnings: bool) -> None:
     """Check ROS setup and other potential issues."""
-    from ros2lite.doctor import Diagnosis, Report
+    from ros2lite.tools.doctor import Diagnosis, Report
 
     diagnosis = Diagnosis()
     exclude = ('package',) if exclude_packages else ()
@@ -67,7 +67,7 @@ def cli(report: bool, report_failed: bool, exclude_packages: bool, include_warni
 
 
 def _print_report(report: object) -> None:
-    from ros2lite.doctor import Report
+    from ros2lite.tools.doctor import Report
 
     assert isinstance(report, Report)
     click.echo(f'\n   {report.name}')

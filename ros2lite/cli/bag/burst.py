@@ -65,8 +65,8 @@ def cli(
     """Burst data from a bag."""
     from ros2lite.bag.errors import BagError
     from ros2lite.bag.player import PlayOptions
-    from ros2lite.process import StopSignals
     from ros2lite.service_introspection import event_topic
+    from ros2lite.util.process import StopSignals
 
     def options(node: Node) -> PlayOptions:
         selected = None

@@ -12,7 +12,8 @@ from typing import TYPE_CHECKING
 
 import click
 
-from .. import keyboard as keys_module
+from ros2lite.util import keyboard as keys_module
+
 from .. import numbers, render
 from ..parsing import command
 from .options import (
@@ -120,7 +121,7 @@ def cli(
 def _play(player: Player, log: RcutilsLogger, keyboard: bool) -> None:
     from ros2lite.bag.errors import BagError
     from ros2lite.bag.player import SWITCH_INTERVAL
-    from ros2lite.process import StopSignals, switch_interval
+    from ros2lite.util.process import StopSignals, switch_interval
 
     keys = None
     if keyboard and keys_module.available() and sys.stderr.isatty():

@@ -150,8 +150,8 @@ class Diagnosis:
             if status is None or not status.running:
                 self._graph_error = 'no Zenoh router answers'
                 return None
-            from ros2lite.connection import Connection
             from ros2lite.exceptions import Ros2liteError
+            from ros2lite.tools.connection import Connection
 
             try:
                 with Connection(router=self.router, autostart=False) as conn:
