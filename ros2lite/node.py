@@ -5,7 +5,7 @@ from __future__ import annotations
 import inspect
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, Literal, Protocol, overload
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 from ros2lite import names
 from ros2lite.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup
@@ -24,11 +24,10 @@ from ros2lite.qos import (
 )
 from ros2lite.rate import Rate
 from ros2lite.runtime.arguments import RosArgs, parse_ros_args
-from ros2lite.runtime.executable import EntityExecutor, Executable, GuardCondition
+from ros2lite.runtime.executable import Executable, GuardCondition, NodeExecutor
 from ros2lite.runtime.scheduling import NodeWork
 from ros2lite.service import Service
 from ros2lite.subscription import Subscription
-from ros2lite.task import TaskRunner
 from ros2lite.timer import Timer
 from ros2lite.transport import keys
 
@@ -45,19 +44,6 @@ if TYPE_CHECKING:
 
 # rcl's rosout profile, lifespan 10 s included: the token must read `:1:,1000:,:10,0:,,`
 ROSOUT_QOS = qos_profile_rosout_default
-
-
-class NodeExecutor(EntityExecutor, TaskRunner, Protocol):
-    """The executor a node was added to (:class:`ros2lite.executors.Executor` is one), as the
-    node sees it: named here, as executors import nodes to run them."""
-
-    def add_node(self, node: Node) -> bool:
-        """Take over `node`."""
-        ...
-
-    def remove_node(self, node: Node) -> None:
-        """Stop running `node`'s work."""
-        ...
 
 
 class Node(ParameterMixin, GraphMixin):
@@ -312,8 +298,10 @@ class Node(ParameterMixin, GraphMixin):
         """Publish `msg_type` (a class, or 'pkg/msg/Name') on `topic` (a depth is a
         KEEP_LAST profile of that depth); with `qos_overriding_options` its QoS may be
         overridden by parameters (see :mod:`ros2lite.qos_overriding_options`)."""
-        qos_profile = self._qos_with_overrides(
-            Publisher, topic, qos_profile, qos_overriding_options
+        from ros2lite.qos_overriding_options import qos_with_overrides
+
+        qos_profile = qos_with_overrides(
+            Publisher, self, topic, qos_profile, qos_overriding_options
         )
         pub = Publisher(self, msg_type, topic, qos_profile)
         self.publishers.append(pub)
@@ -395,8 +383,10 @@ class Node(ParameterMixin, GraphMixin):
         """Call `callback(msg)` (or `callback(msg, info)`, told apart by its signature) on
         the executor for each message on `topic`; with `raw`, the message is its CDR bytes,
         undecoded."""
-        qos_profile = self._qos_with_overrides(
-            Subscription, topic, qos_profile, qos_overriding_options
+        from ros2lite.qos_overriding_options import qos_with_overrides
+
+        qos_profile = qos_with_overrides(
+            Subscription, self, topic, qos_profile, qos_overriding_options
         )
         self._remember_group(callback_group)
         sub = Subscription(
@@ -427,25 +417,6 @@ class Node(ParameterMixin, GraphMixin):
         entity.event_handlers = callbacks.create_event_handlers(group, entity, topic)
         for handler in entity.event_handlers:
             self.add_waitable(handler)
-
-    def _qos_with_overrides(
-        self,
-        entity_type: type,
-        topic: str,
-        qos: QoSProfile | int,
-        options: QoSOverridingOptions | None,
-    ) -> QoSProfile:
-        from ros2lite.runtime.endpoint import as_qos
-
-        profile = as_qos(qos)
-        if options is not None and options.policy_kinds:
-            from ros2lite.qos_overriding_options import _declare_qos_parameters
-
-            profile = profile.replace()  # the caller's profile stays as it was
-            _declare_qos_parameters(
-                entity_type, self, self.resolve_topic_name(topic), profile, options
-            )
-        return profile
 
     def create_timer(
         self,
