@@ -315,7 +315,7 @@ def bench_record(name: str, n: int, size: int) -> None:
     nbytes = sum(len(p) for p in payloads) / n
     rates: dict[str, list[float]] = {k: [] for k in ("rec", "raw", "wpath", "rx", "rawrx")}
     with private_router(), tempfile.TemporaryDirectory(dir=os.environ.get("BENCH_TMP")) as tmp:
-        from ros2lite.memory import keep_large_buffers
+        from ros2lite.runtime.memory import keep_large_buffers
 
         keep_large_buffers()  # what the recorder's node does: the raw parts get it too
         for _ in range(RUNS):  # interleaved, so drifting load hits every part alike

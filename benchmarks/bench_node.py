@@ -25,7 +25,7 @@ control BLOCK), otherwise the run fails instead of reporting a lossy rate.
 * image: `sensor_msgs/Image` 512x512 rgba8 (1 MiB of `data`); the callback reads
   `len(msg.data)`, the raw side `len(payload.to_bytes())`. Reported in MB/s (10^6 B). Every
   process here, raw ones included, runs with the allocator setting a node makes
-  (`ros2lite.memory`: large buffers reused instead of mapped and unmapped per message).
+  (`ros2lite.runtime.memory`: large buffers reused instead of mapped and unmapped per message).
 * latency: ping-pong, the child echoing each `std_msgs/String` ping back on a second topic
   (node: a subscription callback publishing; raw: a FIFO-channel loop putting); this process
   sends the next ping when the pong of the last arrives. Round-trip p50 and p99 in µs over
@@ -89,7 +89,7 @@ if mode == 'node':
     send = pub.publish
 else:
     import zenoh
-    from ros2lite.memory import keep_large_buffers
+    from ros2lite.runtime.memory import keep_large_buffers
     from ros2lite.transport.attachment import pack_attachment
     keep_large_buffers()  # the allocator setting a node has: the same terms for both
     from ros2lite.transport.config import node_session_mode, open_session
@@ -133,7 +133,7 @@ if mode == 'node':
 else:
     import threading
     import zenoh
-    from ros2lite.memory import keep_large_buffers
+    from ros2lite.runtime.memory import keep_large_buffers
     from ros2lite.transport.config import node_session_mode, open_session
     keep_large_buffers()
     session = open_session(mode=node_session_mode())
@@ -204,7 +204,7 @@ def private_router() -> Iterator[None]:
     A process of its own: in the measuring process it would share zenoh's runtime threads
     with the subscriber, whose full channel can then stall the router itself.
     """
-    from ros2lite.memory import keep_large_buffers
+    from ros2lite.runtime.memory import keep_large_buffers
 
     keep_large_buffers()  # as nodes do: the raw side measured here gets it too
     endpoint = f'tcp/127.0.0.1:{free_port()}'

@@ -22,7 +22,7 @@ if TYPE_CHECKING:  # what type checkers see; at run time the names load lazily
 
     from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
     from ros2lite.clock import Clock
-    from ros2lite.context import Context, SignalHandlerOptions, default_context
+    from ros2lite.context import Context, default_context
     from ros2lite.duration import Duration
     from ros2lite.executors import (
         Executor,
@@ -47,6 +47,7 @@ if TYPE_CHECKING:  # what type checkers see; at run time the names load lazily
         qos_profile_sensor_data,
         qos_profile_system_default,
     )
+    from ros2lite.signals import SignalHandlerOptions
     from ros2lite.task import Future, Task
     from ros2lite.time import Time
 
@@ -134,7 +135,8 @@ def init(
     spinning ends (SIGTERM: with ExternalShutdownException; Ctrl-C still raises
     KeyboardInterrupt).
     """
-    from ros2lite.context import SignalHandlerOptions, default_context, install_signal_handlers
+    from ros2lite.context import default_context
+    from ros2lite.signals import SignalHandlerOptions, install_signal_handlers
 
     ctx = (context or default_context()).init(args, router=router, domain_id=domain_id)
     options = SignalHandlerOptions.ALL if signal_handler_options is None else signal_handler_options
@@ -164,7 +166,8 @@ def try_shutdown(*, context: Context | None = None, uninstall_handlers: bool | N
 
 
 def _after_shutdown(ctx: Context, uninstall_handlers: bool | None) -> None:
-    from ros2lite.context import default_context, uninstall_signal_handlers
+    from ros2lite.context import default_context
+    from ros2lite.signals import uninstall_signal_handlers
 
     if uninstall_handlers or (uninstall_handlers is None and ctx is default_context()):
         uninstall_signal_handlers()

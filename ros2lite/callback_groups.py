@@ -14,8 +14,8 @@ __all__ = ['CallbackGroup', 'MutuallyExclusiveCallbackGroup', 'ReentrantCallback
 class CallbackGroup:
     """Decides whether an entity's callback may start now; told when it ends.
 
-    Its entities (:class:`ros2lite.executable.Executable`) are only held and compared here, so
-    a group takes any object, and sits below the entities that name it."""
+    Its entities (:class:`ros2lite.runtime.executable.Executable`) are only held and compared
+    here, so a group takes any object, and sits below the entities that name it."""
 
     def __init__(self) -> None:
         self.entities: list[object] = []

@@ -9,19 +9,15 @@ from __future__ import annotations
 
 import atexit
 import contextlib
-import enum
 import itertools
-import os
-import signal
 import sys
 import threading
 import weakref
 from collections.abc import Callable
-from types import FrameType
 from typing import TYPE_CHECKING, Protocol
 
-from ros2lite.arguments import RosArgs, parse_ros_args
 from ros2lite.exceptions import NotInitializedException, Ros2liteError
+from ros2lite.runtime.arguments import RosArgs, parse_ros_args
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
@@ -137,8 +133,8 @@ class Context:
         self.enclave = announced_enclave(self.args.enclave)
         self.domain_id = env_domain_id() if domain_id is None else domain_id
         self.router = router
-        if not short_lived:  # a node: large messages reuse freed buffers (ros2lite.memory)
-            from ros2lite.memory import keep_large_buffers
+        if not short_lived:  # a node: large messages reuse freed buffers (ros2lite.runtime.memory)
+            from ros2lite.runtime.memory import keep_large_buffers
 
             keep_large_buffers()
         self.session = connect(router, tool=short_lived, autostart=autostart)
@@ -297,6 +293,11 @@ _live: weakref.WeakSet[Context] = weakref.WeakSet()
 _EXIT_WAIT = 10.0
 
 
+def open_contexts() -> list[Context]:
+    """This process' contexts that are still ok() (what SIGINT and SIGTERM stop)."""
+    return [ctx for ctx in list(_live) if ctx.ok()]
+
+
 @atexit.register
 def _shutdown_live_contexts() -> None:
     for ctx in list(_live):
@@ -318,82 +319,6 @@ def _shutdown_live_contexts() -> None:
 _register_early = getattr(threading, '_register_atexit', None)
 if _register_early is not None:
     _register_early(_shutdown_live_contexts)
-
-
-class SignalHandlerOptions(enum.IntEnum):
-    """Which of ros2lite's signal handlers are installed (rclpy's names)."""
-
-    NO = 0
-    SigInt = 1
-    SigTerm = 2
-    ALL = 3
-
-
-# a handler signal.getsignal() may give back
-_Handler = Callable[[int, FrameType | None], object] | int | signal.Handlers | None
-_previous: dict[int, _Handler] = {}
-
-
-def _stop_open_contexts(signum: int, frame: FrameType | None) -> None:
-    """SIGINT and SIGTERM as rclpy handles them: open contexts stop being ok() and spinning
-    executors end (SIGTERM: with ExternalShutdownException), so `main()` can leave through its
-    normal clean-up; the handler that was there before still runs (Ctrl-C still raises
-    KeyboardInterrupt). Doing the shutdown itself here could interrupt a zenoh call on this
-    very thread."""
-    open_contexts = [ctx for ctx in list(_live) if ctx.ok()]
-    for ctx in open_contexts:
-        ctx._terminate()
-    previous = _previous.get(signum, signal.SIG_DFL)
-    if callable(previous):
-        previous(signum, frame)
-    elif not open_contexts and previous == signal.SIG_DFL:
-        # nothing of ours to stop: die of the signal as if we had never been installed
-        signal.signal(signum, signal.SIG_DFL)
-        os.kill(os.getpid(), signum)
-
-
-def _wanted(options: SignalHandlerOptions) -> list[signal.Signals]:
-    return [
-        sig
-        for sig, flag in (
-            (signal.SIGINT, SignalHandlerOptions.SigInt),
-            (signal.SIGTERM, SignalHandlerOptions.SigTerm),
-        )
-        if options & flag
-    ]
-
-
-def install_signal_handlers(options: SignalHandlerOptions = SignalHandlerOptions.ALL) -> None:
-    """Route the chosen signals through ros2lite's handler (main thread only; the handler
-    already there is still called after ours)."""
-    if threading.current_thread() is not threading.main_thread():
-        return
-    for sig in _wanted(SignalHandlerOptions(options)):
-        current = signal.getsignal(sig)
-        if current is _stop_open_contexts:
-            continue
-        _previous[sig] = current
-        signal.signal(sig, _stop_open_contexts)
-
-
-def uninstall_signal_handlers() -> None:
-    """Put back the handlers that were there before :func:`install_signal_handlers`."""
-    if threading.current_thread() is not threading.main_thread():
-        return
-    for sig, previous in list(_previous.items()):
-        if signal.getsignal(sig) is _stop_open_contexts:
-            signal.signal(sig, previous if previous is not None else signal.SIG_DFL)
-        del _previous[sig]
-
-
-def get_current_signal_handlers_options() -> SignalHandlerOptions:
-    """Which of ros2lite's handlers are installed now."""
-    options = 0
-    if signal.getsignal(signal.SIGINT) is _stop_open_contexts:
-        options |= SignalHandlerOptions.SigInt
-    if signal.getsignal(signal.SIGTERM) is _stop_open_contexts:
-        options |= SignalHandlerOptions.SigTerm
-    return SignalHandlerOptions(options)
 
 
 _default = Context()

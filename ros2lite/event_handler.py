@@ -17,14 +17,14 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, NamedTuple
 
 from ros2lite.exceptions import Ros2liteError
-from ros2lite.executable import Executable
 from ros2lite.qos import QoSPolicyKind, incompatible_policy
+from ros2lite.runtime.executable import Executable
 from ros2lite.transport.keys import EntityKind
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
-    from ros2lite.endpoint import EndpointOwner
     from ros2lite.graph import Entity, GraphCache
+    from ros2lite.runtime.endpoint import EndpointOwner
     from ros2lite.task import Task
 
 __all__ = [

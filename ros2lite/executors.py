@@ -26,7 +26,7 @@ from concurrent.futures import ThreadPoolExecutor
 from typing import TYPE_CHECKING, Any, cast
 
 from ros2lite.context import Context, default_context
-from ros2lite.executable import Executable, _running
+from ros2lite.runtime.executable import Executable, _running
 from ros2lite.runtime.scheduling import NodeWork
 from ros2lite.task import Future, Task
 

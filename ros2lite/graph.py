@@ -14,11 +14,12 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from ros2lite.names import action_entity_name, is_hidden_name
+from ros2lite.names import absolute_node_name, action_entity_name, is_hidden_name
 from ros2lite.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum, format_gid
 from ros2lite.transport.keys import Entity, EntityKind, parse_token
 
 if TYPE_CHECKING:
+    from ros2lite.context import Context
     from ros2lite.transport.handles import Session
 
 # Entity and EntityKind are the graph's vocabulary; other modules import them from here
@@ -26,6 +27,7 @@ __all__ = [
     'Entity',
     'EntityKind',
     'GraphCache',
+    'GraphMixin',
     'NodeInfo',
     'TopicEndpointInfo',
     'action_endpoints',
@@ -363,3 +365,118 @@ def node_info(
 def format_endpoint_info(info: TopicEndpointInfo) -> str:
     """One endpoint as rclpy's `TopicEndpointInfo.__str__` prints it (no trailing newline)."""
     return str(info)
+
+
+class GraphMixin:
+    """Node's graph queries, rclpy's `get_*`/`count_*`/`wait_for_node`, answered from the
+    context's live `GraphCache`. Node supplies `context` and name resolution."""
+
+    if TYPE_CHECKING:
+        context: Context
+
+        def resolve_topic_name(self, topic: str, *, only_expand: bool = False) -> str: ...
+
+        def resolve_service_name(self, service: str, *, only_expand: bool = False) -> str: ...
+
+    def _entities(self) -> list[Entity]:
+        entities: list[Entity] = self.context.graph.entities()
+        return entities
+
+    def get_node_names(self) -> list[str]:
+        """Names of the nodes on the graph."""
+        return [n for n, _ in self.get_node_names_and_namespaces()]
+
+    def get_node_names_and_namespaces(self) -> list[tuple[str, str]]:
+        """(name, namespace) of the nodes on the graph."""
+        return node_names_and_namespaces(self._entities())
+
+    def get_node_names_and_namespaces_with_enclaves(self) -> list[tuple[str, str, str]]:
+        """(name, namespace, enclave) of every node in the graph."""
+        seen: dict[tuple[str, int], tuple[str, str, str]] = {}
+        for e in self._entities():
+            seen.setdefault((e.zid, e.nid), (e.node_name, e.namespace, e.enclave))
+        return sorted(seen.values(), key=lambda n: n[1].rstrip('/') + '/' + n[0])
+
+    def get_fully_qualified_node_names(self) -> list[str]:
+        """`/ns/name` of every node in the graph (this one included)."""
+        return node_full_names(self._entities(), include_hidden=True)
+
+    def wait_for_node(self, fully_qualified_node_name: str, timeout: float) -> bool:
+        """Wait until a node of that name is in the graph; False if `timeout` s passed first
+        (rclpy's; the name is made absolute if it is not)."""
+        fqn = absolute_node_name(fully_qualified_node_name)
+        context = self.context
+        context.graph.wait_for(
+            lambda entities: (
+                fqn in node_full_names(entities, include_hidden=True) or not context.ok()
+            ),
+            timeout,
+        )
+        return fqn in self.get_fully_qualified_node_names()
+
+    def get_topic_names_and_types(
+        self, no_demangle: bool = False, *, include_hidden_topics: bool = True
+    ) -> list[tuple[str, list[str]]]:
+        """Every topic in the graph with its types, hidden ones too (as rcl lists them;
+        tools filter those out). `no_demangle` is rclpy's DDS option: rmw_zenoh's names are
+        never mangled."""
+        return topic_names_and_types(self._entities(), include_hidden_topics)
+
+    def get_service_names_and_types(self) -> list[tuple[str, list[str]]]:
+        """(service, types) on the graph."""
+        return service_names_and_types(self._entities(), include_hidden=True)
+
+    def _by_node(self, node: str, namespace: str, kind: EntityKind) -> list[tuple[str, list[str]]]:
+        return names_and_types_by_node(self._entities(), node, namespace, kind)
+
+    def get_publisher_names_and_types_by_node(
+        self, node_name: str, node_namespace: str
+    ) -> list[tuple[str, list[str]]]:
+        """(topic, types) that node publishes."""
+        return self._by_node(node_name, node_namespace, EntityKind.PUBLISHER)
+
+    def get_subscriber_names_and_types_by_node(
+        self, node_name: str, node_namespace: str
+    ) -> list[tuple[str, list[str]]]:
+        """(topic, types) that node subscribes to."""
+        return self._by_node(node_name, node_namespace, EntityKind.SUBSCRIPTION)
+
+    def get_service_names_and_types_by_node(
+        self, node_name: str, node_namespace: str
+    ) -> list[tuple[str, list[str]]]:
+        """(service, types) that node serves."""
+        return self._by_node(node_name, node_namespace, EntityKind.SERVICE)
+
+    def get_client_names_and_types_by_node(
+        self, node_name: str, node_namespace: str
+    ) -> list[tuple[str, list[str]]]:
+        """(service, types) that node has clients of."""
+        return self._by_node(node_name, node_namespace, EntityKind.CLIENT)
+
+    def get_publishers_info_by_topic(self, topic_name: str) -> list[TopicEndpointInfo]:
+        """Node, type, GID and QoS of each publisher of a topic."""
+        return endpoints_by_topic(
+            self._entities(), self.resolve_topic_name(topic_name), EntityKind.PUBLISHER
+        )
+
+    def get_subscriptions_info_by_topic(self, topic_name: str) -> list[TopicEndpointInfo]:
+        """Node, type, GID and QoS of each subscription of a topic."""
+        return endpoints_by_topic(
+            self._entities(), self.resolve_topic_name(topic_name), EntityKind.SUBSCRIPTION
+        )
+
+    def count_publishers(self, topic_name: str) -> int:
+        """How many publishers a topic has on the graph."""
+        return len(self.get_publishers_info_by_topic(topic_name))
+
+    def count_subscribers(self, topic_name: str) -> int:
+        """How many subscriptions a topic has on the graph."""
+        return len(self.get_subscriptions_info_by_topic(topic_name))
+
+    def count_services(self, service_name: str) -> int:
+        """How many servers a service has on the graph."""
+        return count(self._entities(), self.resolve_service_name(service_name), EntityKind.SERVICE)
+
+    def count_clients(self, service_name: str) -> int:
+        """How many clients a service has on the graph."""
+        return count(self._entities(), self.resolve_service_name(service_name), EntityKind.CLIENT)

@@ -5,15 +5,14 @@ from __future__ import annotations
 import inspect
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, Literal, Protocol, overload
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 from ros2lite import names
-from ros2lite.arguments import RosArgs, parse_ros_args
 from ros2lite.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup
 from ros2lite.client import Client
 from ros2lite.clock import Clock, ROSClock
 from ros2lite.context import Context, default_context
-from ros2lite.executable import EntityExecutor, Executable, GuardCondition
+from ros2lite.graph import GraphMixin
 from ros2lite.logging import RcutilsLogger, set_logger_level
 from ros2lite.parameter import Parameter
 from ros2lite.parameters.node_api import ParameterMixin
@@ -24,20 +23,20 @@ from ros2lite.qos import (
     qos_profile_services_default,
 )
 from ros2lite.rate import Rate
+from ros2lite.runtime.arguments import RosArgs, parse_ros_args
+from ros2lite.runtime.executable import Executable, GuardCondition, NodeExecutor
 from ros2lite.runtime.scheduling import NodeWork
 from ros2lite.service import Service
 from ros2lite.subscription import Subscription
-from ros2lite.task import TaskRunner
 from ros2lite.timer import Timer
 from ros2lite.transport import keys
 
 if TYPE_CHECKING:
     from ros2lite.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
-    from ros2lite.executable import Destroyable
-    from ros2lite.graph import Entity, TopicEndpointInfo
     from ros2lite.logging_service import LoggingService
     from ros2lite.msgs.rcl_interfaces.msg import Log
     from ros2lite.qos_overriding_options import QoSOverridingOptions
+    from ros2lite.runtime.executable import Destroyable
     from ros2lite.service import ServiceCallback
     from ros2lite.subscription import MessageInfo, SubscriptionCallback
     from ros2lite.transport.handles import Handle
@@ -47,24 +46,11 @@ if TYPE_CHECKING:
 ROSOUT_QOS = qos_profile_rosout_default
 
 
-class NodeExecutor(EntityExecutor, TaskRunner, Protocol):
-    """The executor a node was added to (:class:`ros2lite.executors.Executor` is one), as the
-    node sees it: named here, as executors import nodes to run them."""
-
-    def add_node(self, node: Node) -> bool:
-        """Take over `node`."""
-        ...
-
-    def remove_node(self, node: Node) -> None:
-        """Stop running `node`'s work."""
-        ...
-
-
-class Node(ParameterMixin):
+class Node(ParameterMixin, GraphMixin):
     """rclpy-shaped node. Create after `ros2lite.init()`; destroy with `destroy_node()`."""
 
     # rclpy's default QoS event callbacks (warnings, fed by the live graph); a tool's node
-    # (ros2lite.connection) goes without them, and without a graph cache of its own
+    # (ros2lite.tools.connection) goes without them, and without a graph cache of its own
     _default_event_callbacks = True
 
     def __init__(
@@ -312,8 +298,10 @@ class Node(ParameterMixin):
         """Publish `msg_type` (a class, or 'pkg/msg/Name') on `topic` (a depth is a
         KEEP_LAST profile of that depth); with `qos_overriding_options` its QoS may be
         overridden by parameters (see :mod:`ros2lite.qos_overriding_options`)."""
-        qos_profile = self._qos_with_overrides(
-            Publisher, topic, qos_profile, qos_overriding_options
+        from ros2lite.qos_overriding_options import qos_with_overrides
+
+        qos_profile = qos_with_overrides(
+            Publisher, self, topic, qos_profile, qos_overriding_options
         )
         pub = Publisher(self, msg_type, topic, qos_profile)
         self.publishers.append(pub)
@@ -395,8 +383,10 @@ class Node(ParameterMixin):
         """Call `callback(msg)` (or `callback(msg, info)`, told apart by its signature) on
         the executor for each message on `topic`; with `raw`, the message is its CDR bytes,
         undecoded."""
-        qos_profile = self._qos_with_overrides(
-            Subscription, topic, qos_profile, qos_overriding_options
+        from ros2lite.qos_overriding_options import qos_with_overrides
+
+        qos_profile = qos_with_overrides(
+            Subscription, self, topic, qos_profile, qos_overriding_options
         )
         self._remember_group(callback_group)
         sub = Subscription(
@@ -427,25 +417,6 @@ class Node(ParameterMixin):
         entity.event_handlers = callbacks.create_event_handlers(group, entity, topic)
         for handler in entity.event_handlers:
             self.add_waitable(handler)
-
-    def _qos_with_overrides(
-        self,
-        entity_type: type,
-        topic: str,
-        qos: QoSProfile | int,
-        options: QoSOverridingOptions | None,
-    ) -> QoSProfile:
-        from ros2lite.endpoint import as_qos
-
-        profile = as_qos(qos)
-        if options is not None and options.policy_kinds:
-            from ros2lite.qos_overriding_options import _declare_qos_parameters
-
-            profile = profile.replace()  # the caller's profile stays as it was
-            _declare_qos_parameters(
-                entity_type, self, self.resolve_topic_name(topic), profile, options
-            )
-        return profile
 
     def create_timer(
         self,
@@ -716,134 +687,4 @@ class Node(ParameterMixin):
                 function=caller.function,
                 line=caller.lineno,
             )
-        )
-
-    # -- graph --------------------------------------------------------------------------------
-    def _entities(self) -> list[Entity]:
-        entities: list[Entity] = self.context.graph.entities()
-        return entities
-
-    def get_node_names(self) -> list[str]:
-        """Names of the nodes on the graph."""
-        return [n for n, _ in self.get_node_names_and_namespaces()]
-
-    def get_node_names_and_namespaces(self) -> list[tuple[str, str]]:
-        """(name, namespace) of the nodes on the graph."""
-        from ros2lite.graph import node_names_and_namespaces
-
-        return node_names_and_namespaces(self._entities())
-
-    def get_node_names_and_namespaces_with_enclaves(self) -> list[tuple[str, str, str]]:
-        """(name, namespace, enclave) of every node in the graph."""
-        seen: dict[tuple[str, int], tuple[str, str, str]] = {}
-        for e in self._entities():
-            seen.setdefault((e.zid, e.nid), (e.node_name, e.namespace, e.enclave))
-        return sorted(seen.values(), key=lambda n: n[1].rstrip('/') + '/' + n[0])
-
-    def get_fully_qualified_node_names(self) -> list[str]:
-        """`/ns/name` of every node in the graph (this one included)."""
-        from ros2lite.graph import node_full_names
-
-        return node_full_names(self._entities(), include_hidden=True)
-
-    def wait_for_node(self, fully_qualified_node_name: str, timeout: float) -> bool:
-        """Wait until a node of that name is in the graph; False if `timeout` s passed first
-        (rclpy's; the name is made absolute if it is not)."""
-        from ros2lite.graph import node_full_names
-
-        fqn = names.absolute_node_name(fully_qualified_node_name)
-        context = self.context
-        context.graph.wait_for(
-            lambda entities: (
-                fqn in node_full_names(entities, include_hidden=True) or not context.ok()
-            ),
-            timeout,
-        )
-        return fqn in self.get_fully_qualified_node_names()
-
-    def get_topic_names_and_types(
-        self, no_demangle: bool = False, *, include_hidden_topics: bool = True
-    ) -> list[tuple[str, list[str]]]:
-        """Every topic in the graph with its types, hidden ones too (as rcl lists them;
-        tools filter those out). `no_demangle` is rclpy's DDS option: rmw_zenoh's names are
-        never mangled."""
-        from ros2lite.graph import topic_names_and_types
-
-        return topic_names_and_types(self._entities(), include_hidden_topics)
-
-    def get_service_names_and_types(self) -> list[tuple[str, list[str]]]:
-        """(service, types) on the graph."""
-        from ros2lite.graph import service_names_and_types
-
-        return service_names_and_types(self._entities(), include_hidden=True)
-
-    def _by_node(
-        self, node: str, namespace: str, kind: keys.EntityKind
-    ) -> list[tuple[str, list[str]]]:
-        from ros2lite.graph import names_and_types_by_node
-
-        return names_and_types_by_node(self._entities(), node, namespace, kind)
-
-    def get_publisher_names_and_types_by_node(
-        self, node_name: str, node_namespace: str
-    ) -> list[tuple[str, list[str]]]:
-        """(topic, types) that node publishes."""
-        return self._by_node(node_name, node_namespace, keys.EntityKind.PUBLISHER)
-
-    def get_subscriber_names_and_types_by_node(
-        self, node_name: str, node_namespace: str
-    ) -> list[tuple[str, list[str]]]:
-        """(topic, types) that node subscribes to."""
-        return self._by_node(node_name, node_namespace, keys.EntityKind.SUBSCRIPTION)
-
-    def get_service_names_and_types_by_node(
-        self, node_name: str, node_namespace: str
-    ) -> list[tuple[str, list[str]]]:
-        """(service, types) that node serves."""
-        return self._by_node(node_name, node_namespace, keys.EntityKind.SERVICE)
-
-    def get_client_names_and_types_by_node(
-        self, node_name: str, node_namespace: str
-    ) -> list[tuple[str, list[str]]]:
-        """(service, types) that node has clients of."""
-        return self._by_node(node_name, node_namespace, keys.EntityKind.CLIENT)
-
-    def get_publishers_info_by_topic(self, topic_name: str) -> list[TopicEndpointInfo]:
-        """Node, type, GID and QoS of each publisher of a topic."""
-        from ros2lite.graph import endpoints_by_topic
-
-        return endpoints_by_topic(
-            self._entities(), self.resolve_topic_name(topic_name), keys.EntityKind.PUBLISHER
-        )
-
-    def get_subscriptions_info_by_topic(self, topic_name: str) -> list[TopicEndpointInfo]:
-        """Node, type, GID and QoS of each subscription of a topic."""
-        from ros2lite.graph import endpoints_by_topic
-
-        return endpoints_by_topic(
-            self._entities(), self.resolve_topic_name(topic_name), keys.EntityKind.SUBSCRIPTION
-        )
-
-    def count_publishers(self, topic_name: str) -> int:
-        """How many publishers a topic has on the graph."""
-        return len(self.get_publishers_info_by_topic(topic_name))
-
-    def count_subscribers(self, topic_name: str) -> int:
-        """How many subscriptions a topic has on the graph."""
-        return len(self.get_subscriptions_info_by_topic(topic_name))
-
-    def count_services(self, service_name: str) -> int:
-        """How many servers a service has on the graph."""
-        from ros2lite.graph import count
-
-        return count(
-            self._entities(), self.resolve_service_name(service_name), keys.EntityKind.SERVICE
-        )
-
-    def count_clients(self, service_name: str) -> int:
-        """How many clients a service has on the graph."""
-        from ros2lite.graph import count
-
-        return count(
-            self._entities(), self.resolve_service_name(service_name), keys.EntityKind.CLIENT
         )

@@ -199,7 +199,7 @@ def get_parameter_value(string_value: str) -> _rcl_msg.ParameterValue:
     text 5); anything else (mixed lists, maps, null) is the text as written — what rclpy's
     `ros2 param set` sends.
     """
-    from ros2lite.safe_yaml import YamlInputError, load
+    from ros2lite.util.safe_yaml import YamlInputError, load
 
     try:
         loaded = load(string_value, "the value")

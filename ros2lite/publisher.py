@@ -6,8 +6,8 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Generic
 
-from ros2lite.endpoint import Endpoint, EndpointOwner
 from ros2lite.qos import QoSProfile
+from ros2lite.runtime.endpoint import Endpoint, EndpointOwner
 from ros2lite.transport.attachment import GID_SIZE, PACK_CURRENT
 from ros2lite.transport.keys import EntityKind
 from ros2lite.type_support import Msg, MsgT
@@ -18,7 +18,7 @@ _now = time.time_ns
 
 if TYPE_CHECKING:
     from ros2lite.duration import Duration
-    from ros2lite.executable import EntityNode
+    from ros2lite.runtime.executable import EntityNode
     from ros2lite.transport.session import Publisher as ZenohPublisher
 
 

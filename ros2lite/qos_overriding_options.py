@@ -27,14 +27,15 @@ from ros2lite.qos import (
 
 if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
-    from ros2lite.node_interface import NodeInterface
     from ros2lite.parameter import Parameter
+    from ros2lite.runtime.node_interface import NodeInterface
 
 __all__ = [
     'InvalidQosOverridesError',
     'QoSOverridingOptions',
     'QoSPolicyKind',
     'QosCallbackResult',
+    'qos_with_overrides',
 ]
 
 #: what a validation callback returns (rclpy uses SetParametersResult)
@@ -88,6 +89,25 @@ class QoSOverridingOptions:
             callback=callback,
             entity_id=entity_id,
         )
+
+
+def qos_with_overrides(
+    entity_type: type,
+    node: NodeInterface,
+    topic: str,
+    qos: QoSProfile | int,
+    options: QoSOverridingOptions | None,
+) -> QoSProfile:
+    """The profile a new publisher or subscription of `node` gets: `qos` (a depth is a
+    KEEP_LAST profile of that depth), with the override parameters `options` asks for declared
+    and applied to a copy (the caller's profile stays as it was)."""
+    from ros2lite.runtime.endpoint import as_qos
+
+    profile = as_qos(qos)
+    if options is not None and options.policy_kinds:
+        profile = profile.replace()
+        _declare_qos_parameters(entity_type, node, node.resolve_topic_name(topic), profile, options)
+    return profile
 
 
 def _entity_type_str(entity_type: type) -> str:

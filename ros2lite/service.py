@@ -13,9 +13,9 @@ from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Generic, cast
 
-from ros2lite.endpoint import Endpoint
-from ros2lite.executable import Executable
 from ros2lite.qos import QoSProfile
+from ros2lite.runtime.endpoint import Endpoint
+from ros2lite.runtime.executable import Executable
 from ros2lite.service_introspection import IntrospectionMixin, ServiceEventType, ServiceNode
 from ros2lite.transport.attachment import pack_attachment, unpack_attachment
 from ros2lite.transport.keys import EntityKind

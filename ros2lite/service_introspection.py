@@ -13,15 +13,15 @@ from __future__ import annotations
 import enum
 from typing import TYPE_CHECKING, Any, Protocol, overload
 
-from ros2lite.executable import EntityNode
 from ros2lite.qos import QoSProfile
+from ros2lite.runtime.executable import EntityNode
 
 if TYPE_CHECKING:
     from ros2lite.clock import Clock
-    from ros2lite.endpoint import Endpoint
     from ros2lite.interfaces import Message
     from ros2lite.interfaces.convert import FormatOptions
     from ros2lite.publisher import Publisher
+    from ros2lite.runtime.endpoint import Endpoint
     from ros2lite.type_support import Msg, MsgT
 
 __all__ = [

@@ -9,12 +9,12 @@ from collections import deque
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Generic, cast
 
-from ros2lite.bad_samples import BadSamples, gid_of
-from ros2lite.delivery import BATCH, BATCH_TIME, deliver, deliver_with_info
-from ros2lite.endpoint import Endpoint, EndpointOwner
-from ros2lite.executable import Executable
 from ros2lite.message_info import MessageInfo
 from ros2lite.qos import HistoryPolicy, QoSProfile
+from ros2lite.runtime.bad_samples import BadSamples, gid_of
+from ros2lite.runtime.delivery import BATCH, BATCH_TIME, deliver, deliver_with_info
+from ros2lite.runtime.endpoint import Endpoint, EndpointOwner
+from ros2lite.runtime.executable import Executable
 from ros2lite.transport.attachment import unpack_attachment
 from ros2lite.transport.handles import Receiving
 from ros2lite.transport.keys import EntityKind
@@ -22,7 +22,7 @@ from ros2lite.type_support import MsgT
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup
-    from ros2lite.executable import EntityNode
+    from ros2lite.runtime.executable import EntityNode
     from ros2lite.task import Task
     from ros2lite.transport.handles import Sample
     from ros2lite.transport.pull import PulledSamples
@@ -222,7 +222,7 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
             # a batch also ends after BATCH_TIME, so slow callbacks can't starve timers
             deadline = time.perf_counter() + BATCH_TIME if batch else 0.0
             deliver_with_info(self, source, self._deserializer(), limit, stop, deadline)
-        else:  # the hot path (ros2lite.delivery), straight from here: spin_once pays per call
+        else:  # the hot path (runtime/delivery.py), straight from here: spin_once pays per call
             deliver(self, source, self._deserialize or self._deserializer(), limit, stop)
         return None
 

@@ -6,7 +6,7 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Protocol
 
-from ros2lite.executable import EntityNode, Executable
+from ros2lite.runtime.executable import EntityNode, Executable
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup

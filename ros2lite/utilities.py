@@ -4,8 +4,8 @@ them, and which middleware this is.
 
 from __future__ import annotations
 
-from ros2lite.arguments import remove_ros_args
 from ros2lite.duration import S_TO_NS
+from ros2lite.runtime.arguments import remove_ros_args
 
 __all__ = [
     'RMW_IMPLEMENTATION',

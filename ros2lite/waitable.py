@@ -13,7 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Generic, TypeVar, cast
 
-from ros2lite.executable import Executable
+from ros2lite.runtime.executable import Executable
 
 if TYPE_CHECKING:
     from ros2lite.callback_groups import CallbackGroup

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from ros2lite.arguments import (
+from ros2lite.runtime.arguments import (
     Remap,
     RosArgs,
     RosArgsError,

@@ -8,9 +8,9 @@ import threading
 import time
 from typing import Any
 
-from ros2lite.bad_samples import BadSamples, describe_publisher
 from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.node import Node
+from ros2lite.runtime.bad_samples import BadSamples, describe_publisher
 from tests.spinning import queued, spin_until, wait_for_route, wait_until
 
 STRING_HASH = 'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18'
@@ -136,7 +136,7 @@ def test_listener_demo_and_topic_echo_go_on(processes: Any, alien_session: Any) 
     from ros2lite.graph import EntityKind
 
     def subscribers() -> int:
-        from ros2lite.connection import Connection
+        from ros2lite.tools.connection import Connection
 
         with Connection() as conn:
             return sum(

@@ -239,10 +239,7 @@ def test_sigterm(processes: Any, mode: str, said: str, code: int) -> None:
 
 
 def test_rclpy_context_rules(ros_router: str) -> None:
-    from ros2lite.context import (
-        SignalHandlerOptions,
-        get_current_signal_handlers_options,
-    )
+    from ros2lite.signals import SignalHandlerOptions, get_current_signal_handlers_options
 
     ctx = Context()
     with pytest.raises(RuntimeError, match='initialized'):

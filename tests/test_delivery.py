@@ -1,6 +1,6 @@
-"""The typed hot loop (ros2lite.delivery): batches keep their order whatever happens in them —
-a bad sample is dropped and the rest delivered, a callback's error propagates and the rest of
-the batch is delivered later, a callback with MessageInfo gets its info."""
+"""The typed hot loop (ros2lite.runtime.delivery): batches keep their order whatever happens
+in them — a bad sample is dropped and the rest delivered, a callback's error propagates and the
+rest of the batch is delivered later, a callback with MessageInfo gets its info."""
 
 from __future__ import annotations
 

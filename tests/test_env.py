@@ -1,5 +1,5 @@
-"""What makes a ROS shell (`ros2lite.env`): the compat directory first on PYTHONPATH, said
-once however often it is applied, and shell lines that survive any path."""
+"""What makes a ROS shell (`ros2lite.pkg.environment`): the compat directory first on
+PYTHONPATH, said once however often it is applied, and shell lines that survive any path."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from ros2lite.env import COMPAT_DIR, UnknownShellError, ros_environment, shell_lines
+from ros2lite.pkg.environment import COMPAT_DIR, UnknownShellError, ros_environment, shell_lines
 
 
 def test_compat_directory_goes_first_and_only_once() -> None:

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from ros2lite.files import (
+from ros2lite.util.files import (
     UnsafePathError,
     create_new,
     open_for_writing,
@@ -140,7 +140,7 @@ def test_daemon_files_leave_a_shared_runtime_dir_alone(
 
 
 def test_read_bounded_reads_no_more_than_its_limit(tmp_path: Path) -> None:
-    from ros2lite.files import read_bounded
+    from ros2lite.util.files import read_bounded
 
     endless = tmp_path / 'package.xml'
     endless.symlink_to('/dev/zero')  # read whole, this would never end

@@ -15,7 +15,7 @@ PROBE = r'''
 import resource
 from array import array
 import ros2lite
-from ros2lite.memory import keep_large_buffers
+from ros2lite.runtime.memory import keep_large_buffers
 from ros2lite.msgs.sensor_msgs.msg import Image
 ros2lite.init([])
 node = ros2lite.Node('memory_probe', enable_rosout=False)

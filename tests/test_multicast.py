@@ -8,7 +8,7 @@ import time
 
 import pytest
 
-from ros2lite.multicast import HELLO, MulticastError, receive, send
+from ros2lite.tools.multicast import HELLO, MulticastError, receive, send
 from tests.spinning import free_port
 
 LOOPBACK = {'interface': '127.0.0.1'}

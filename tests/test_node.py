@@ -226,8 +226,8 @@ def test_wait_for_node_and_the_executor_property(ros_context: Any) -> None:
 
 
 def test_adopt_makes_an_entity_built_outside_the_node_its_own(ros_context: Any) -> None:
-    from ros2lite.executable import GuardCondition
     from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.runtime.executable import GuardCondition
     from ros2lite.subscription import Subscription
     from tests.spinning import spin_until
 

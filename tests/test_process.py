@@ -1,4 +1,4 @@
-"""Supervised children (ros2lite.process.ChildProcess): output lines, exit, the stop
+"""Supervised children (ros2lite.util.process.ChildProcess): output lines, exit, the stop
 escalation and nothing left behind. (`run_child` is tested through `ros2lite run`.)"""
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from ros2lite.process import ChildError, ChildProcess
+from ros2lite.util.process import ChildError, ChildProcess
 from tests.spinning import wait_until
 
 

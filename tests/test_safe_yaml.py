@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from ros2lite.safe_yaml import MAX_DEPTH, YamlInputError, load
+from ros2lite.util.safe_yaml import MAX_DEPTH, YamlInputError, load
 
 LAUGHS = '\n'.join(
     [

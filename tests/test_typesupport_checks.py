@@ -9,7 +9,7 @@ import pytest
 
 from ros2lite.exceptions import NoTypeSupportImportedException
 from ros2lite.interfaces import get_interface
-from ros2lite.typesupport_checks import (
+from ros2lite.runtime.typesupport_checks import (
     check_for_type_support,
     check_is_valid_action_type,
     check_is_valid_msg_type,

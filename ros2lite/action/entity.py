@@ -11,7 +11,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Generic, cast
 
 from ros2lite.action.goals import ActionNames, goal_key, resolve_action_name, resolve_action_type
-from ros2lite.executable import Executable
+from ros2lite.runtime.executable import Executable
 from ros2lite.service_introspection import Introspectable
 from ros2lite.type_support import FeedbackT, GoalT, ResultT
 

@@ -193,7 +193,7 @@ def _entry(entry: object, index: int) -> OutputBag:
 
 def parse_output_options(text: str) -> list[OutputBag]:
     """The `--output-options` YAML: `output_bags:` and one mapping of options per bag."""
-    from ros2lite.safe_yaml import YamlInputError, load
+    from ros2lite.util.safe_yaml import YamlInputError, load
 
     try:
         doc = load(text, "output options")

@@ -197,7 +197,7 @@ def parse_qos_list(value: object) -> list[QoSProfile]:
     if value is None or value == "":
         return []
     if isinstance(value, str):
-        from ros2lite.safe_yaml import YamlInputError, load
+        from ros2lite.util.safe_yaml import YamlInputError, load
 
         try:
             value = load(value, "offered_qos_profiles")
@@ -336,7 +336,7 @@ def _int(value: Any, what: str) -> int:
 
 def parse_metadata(text: str, *, top_key: bool = True) -> BagMetadata:
     """Parse metadata.yaml (any version 1-9) or a `serialized_metadata` string."""
-    from ros2lite.safe_yaml import YamlInputError, load
+    from ros2lite.util.safe_yaml import YamlInputError, load
 
     try:
         doc = load(text, "metadata")
@@ -418,7 +418,7 @@ def write_metadata_file(directory: str | os.PathLike[str], m: BagMetadata) -> No
     never leaves half a file."""
     from pathlib import Path
 
-    from ros2lite.files import replace_file
+    from ros2lite.util.files import replace_file
 
     # a randomly named temporary file, renamed over the old one: never through a symlink
     replace_file(Path(directory) / METADATA_FILENAME, dump_metadata(m))

@@ -41,7 +41,7 @@ __all__ = ["SWITCH_INTERVAL", "PlayOptions", "Player"]
 _SPIN = 300_000  # ns spent spinning (not sleeping) before each deadline
 # The read-ahead thread must not keep the GIL for long while a message is due: with Python's
 # default 5 ms switch interval it could make a message that late. The switch interval is the
-# process' to set (see ros2lite.process.switch_interval), so this is what players ask for.
+# process' to set (see ros2lite.util.process.switch_interval), so this is what players ask for.
 SWITCH_INTERVAL = 0.0002
 _END = None  # what the read-ahead thread puts after the last message
 

@@ -117,7 +117,7 @@ _QOS_KEYS = {
 def parse_qos_overrides(text: str) -> dict[str, QoSProfile]:
     """A `--qos-profile-overrides-path` file: topic name → profile (names or numbers for the
     policies; durations as {sec, nsec}). Keys left out keep rclpy's defaults."""
-    from ros2lite.safe_yaml import YamlInputError, load
+    from ros2lite.util.safe_yaml import YamlInputError, load
 
     try:
         doc = load(text, "QoS override file")

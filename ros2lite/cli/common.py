@@ -15,16 +15,16 @@ from . import render
 from .errors import CliError
 
 if TYPE_CHECKING:
-    from ros2lite.connection import Connection
     from ros2lite.graph import Entity
     from ros2lite.node import Node
+    from ros2lite.tools.connection import Connection
 
 
 def yaml_fields(values: str, *, allow_empty: bool = False) -> dict[str, object]:
     """The field values given in YAML (VALUES or --stdin) as a mapping, or ros2cli's line
     saying why they are not one (`allow_empty`: empty text means no fields, as in
     `service call`)."""
-    from ros2lite.safe_yaml import YamlInputError, load
+    from ros2lite.util.safe_yaml import YamlInputError, load
 
     try:
         parsed = load(values, 'the passed value')
@@ -45,7 +45,7 @@ def connect(
     """This run's connection to the graph (the daemon's graph cache asked, and the daemon
     started on demand, unless `--no-daemon`; a node's peer session with `as_node`); use it
     as a context manager."""
-    from ros2lite.connection import Connection
+    from ros2lite.tools.connection import Connection
 
     return Connection(
         autostart=not no_daemon,

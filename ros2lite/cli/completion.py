@@ -44,7 +44,7 @@ def _quietly(fn: Callable[[click.Context, str], list[CompletionItem]]) -> Comple
 
 def _graph_entities(ctx: click.Context) -> list[Entity]:
     """The domain's entities if a router answers now; [] otherwise (no daemon start)."""
-    from ros2lite.connection import Connection
+    from ros2lite.tools.connection import Connection
 
     # a `--router` typed on the line being completed counts (no group callback runs here)
     router = ctx.find_root().params.get('router')

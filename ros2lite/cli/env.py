@@ -4,7 +4,7 @@
     ros2lite env --shell fish | source
 
 The counterpart of sourcing ROS's setup script: afterwards ``python3 my_node.py`` finds
-``rclpy`` and every interface package ros2lite knows (see :mod:`ros2lite.env`).
+``rclpy`` and every interface package ros2lite knows (see :mod:`ros2lite.pkg.environment`).
 """
 
 from __future__ import annotations
@@ -24,6 +24,6 @@ from .parsing import command
 )
 def cli(shell: str) -> None:
     """Print shell lines that let code written for rclpy run on ros2lite."""
-    from ros2lite.env import shell_lines
+    from ros2lite.pkg.environment import shell_lines
 
     click.echo(shell_lines(shell), nl=False)

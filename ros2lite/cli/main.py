@@ -125,7 +125,7 @@ def main(argv: list[str] | None = None) -> int:
         return shell_complete(cli, {}, 'ros2lite', COMPLETE_VAR, instruction)
     if '--debug' in args[:1]:
         os.environ['ROS2LITE_DEBUG'] = '1'
-    from ros2lite.process import Terminated, stop_signals_raise
+    from ros2lite.util.process import Terminated, stop_signals_raise
 
     # ros2cli leaves with status 15 on SIGTERM, through rclpy's ExternalShutdownException, and
     # with 2 on SIGINT
@@ -168,7 +168,7 @@ def _main(args: list[str]) -> int:
             # Python 3.11 wraps a Ctrl-C that lands in a class body's __set_name__ (a lazy
             # import) in RuntimeError; it is still the user's interrupt, not a failure
             return 2
-        from ros2lite.process import Terminated
+        from ros2lite.util.process import Terminated
 
         if _caused_by(e, Terminated):
             return signal.SIGTERM.value

@@ -5,7 +5,7 @@ The executable runs as a child process with everything after its name passed thr
 status. Finding it is the package index's (:func:`ros2lite.pkg.executables.resolve_executable`,
 source workspaces included); the child gets the environment `ros2lite env` gives a shell, so
 code written for rclpy runs as it is; signal forwarding is the library's
-(:func:`ros2lite.process.run_child`).
+(:func:`ros2lite.util.process.run_child`).
 """
 
 from __future__ import annotations
@@ -36,7 +36,7 @@ def cli(prefix: str | None, package_name: str, executable_name: str, argv: tuple
     from ros2lite.pkg.environment import child_environment
     from ros2lite.pkg.executables import resolve_executable
     from ros2lite.pkg.index import PackageIndex
-    from ros2lite.process import exit_code, run_child
+    from ros2lite.util.process import exit_code, run_child
 
     index = PackageIndex()
     resolved = resolve_executable(package_name, executable_name, index=index)

@@ -31,7 +31,7 @@ def _detach(log_path: str | None) -> None:
     os.chdir("/")
     devnull = os.open(os.devnull, os.O_RDWR)
     if log_path:
-        from ros2lite.files import open_for_writing
+        from ros2lite.util.files import open_for_writing
 
         out = open_for_writing(log_path, 0o600)  # never through a planted symlink
     else:

@@ -5,7 +5,7 @@ ours. The daemon keeps a liveliness subscriber (with history) on every domain an
 question on a Unix socket beside its pid file: a tool sends ``graph <domain>`` and reads back
 the token keys of that domain, one per line, after a version line. The tool parses them as
 it would the replies of a liveliness query, so a graph verb costs no zenoh import, no session
-and no query — what made `topic list` slow (see :class:`ros2lite.connection.Connection`).
+and no query — what made `topic list` slow (see :class:`ros2lite.tools.connection.Connection`).
 
 The socket lives in the user's private runtime dir (0700), so only the user reaches it; what
 it returns is parsed and validated like anything from the wire. A daemon that is not there (or
@@ -30,7 +30,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ros2lite.daemon.paths import graph_socket
-from ros2lite.files import UnsafePathError
+from ros2lite.util.files import UnsafePathError
 
 if TYPE_CHECKING:
     from ros2lite.transport.handles import Handle, Session

@@ -17,8 +17,9 @@ def runtime_dir() -> Path:
     """Per-user directory for pid, lock and log files (created 0700 on first use).
 
     ``$XDG_RUNTIME_DIR/ros2lite`` only when both are ours and closed to others; a shared or
-    foreign one falls back to ``~/.cache/ros2lite`` (see :func:`ros2lite.files.private_dir`)."""
-    from ros2lite.files import private_dir
+    foreign one falls back to ``~/.cache/ros2lite``
+    (see :func:`ros2lite.util.files.private_dir`)."""
+    from ros2lite.util.files import private_dir
 
     return private_dir(os.environ.get("XDG_RUNTIME_DIR", ""))
 

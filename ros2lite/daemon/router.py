@@ -155,7 +155,7 @@ class DaemonStatus:
 @contextlib.contextmanager
 def _start_lock(endpoint: str, timeout: float) -> Iterator[None]:
     """Serialise start/stop for one endpoint so two auto-starting CLIs don't race."""
-    from ros2lite.files import NOFOLLOW
+    from ros2lite.util.files import NOFOLLOW
 
     fd = os.open(lock_file(endpoint), os.O_RDWR | os.O_CREAT | NOFOLLOW | os.O_CLOEXEC, 0o600)
     with os.fdopen(fd, "r+") as fh:
@@ -222,7 +222,7 @@ def _is_our_process(pid: int) -> bool:
 
 def _write_pid_file(path: Path, info: DaemonInfo) -> TextIO:
     """Write the pid file atomically and return its handle, locked for the process' life."""
-    from ros2lite.files import temp_beside
+    from ros2lite.util.files import temp_beside
 
     fd, tmp = temp_beside(path)
     fh = os.fdopen(fd, "w")

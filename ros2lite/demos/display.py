@@ -89,7 +89,7 @@ def add_display_argument(parser: argparse.ArgumentParser) -> None:
 
 def own_arguments(argv: list[str] | None) -> list[str]:
     """A demo's own arguments: argv without the program name and the `--ros-args` blocks."""
-    from ros2lite.arguments import split_ros_args
+    from ros2lite.runtime.arguments import split_ros_args
 
     user, _ = split_ros_args(list(sys.argv[1:] if argv is None else argv))
     return user

@@ -311,7 +311,7 @@ def set_message_fields(
     'Failed to populate field: '.
     """
     if isinstance(values, str):
-        from ros2lite.safe_yaml import YamlInputError, load
+        from ros2lite.util.safe_yaml import YamlInputError, load
 
         try:
             values = load(values, 'the values')

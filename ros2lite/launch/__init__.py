@@ -1,6 +1,6 @@
 """ros2lite's launch system: launch descriptions made of actions, substitutions, conditions
 and event handlers, run by a :class:`LaunchService` — modelled on ROS 2's launch and
-launch_ros, written for ros2lite (processes through :mod:`ros2lite.process`, packages
+launch_ros, written for ros2lite (processes through :mod:`ros2lite.util.process`, packages
 through :mod:`ros2lite.pkg.index`).
 
 Python launch files written for ROS import ``launch`` and ``launch_ros``; those names are

@@ -3,7 +3,7 @@
 What it resolves when reached — the command with its prefix, the label (`talker-1`), the
 working directory, the environment, where output goes, the stop timeouts — becomes a
 :class:`ProcessSpec`; the launch service starts and watches the process
-(:class:`ros2lite.process.ChildProcess`).
+(:class:`ros2lite.util.process.ChildProcess`).
 """
 
 from __future__ import annotations

@@ -81,7 +81,7 @@ class ParameterFile:
 
 def _yaml_value(text: str) -> ParameterData:
     """Text as launch_ros reads it: a YAML scalar or a list of one scalar type; else text."""
-    from ros2lite.safe_yaml import YamlInputError, load
+    from ros2lite.util.safe_yaml import YamlInputError, load
 
     try:
         value = load(text, 'a launch value')
@@ -136,7 +136,7 @@ def evaluate_parameter(context: LaunchContext, value: object) -> ParameterData:
 
 
 def _typed(text: str, value_type: object) -> ParameterData:
-    from ros2lite.safe_yaml import YamlInputError, load
+    from ros2lite.util.safe_yaml import YamlInputError, load
 
     try:
         parsed = load(text, 'a launch parameter value')

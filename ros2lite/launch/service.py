@@ -29,7 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, TYPE_CHECKING, Literal, TypeVar
 
-from ros2lite.process import ChildError, ChildProcess, signal_handler
+from ros2lite.util.process import ChildError, ChildProcess, signal_handler
 
 from .actions import Entities, LaunchDescription, LaunchDescriptionEntity, TimerAction
 from .context import EntityLike, LaunchContext, ProcessActionLike, Scope, TimerLike

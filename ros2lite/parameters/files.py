@@ -68,7 +68,7 @@ def _entries_loader() -> type[yaml.SafeLoader]:
 def read_params_file(path: str | Path) -> list[tuple[str, Values]]:
     """Every (node name, flattened parameters) entry of the file, in file order (a node key
     that appears twice gives two entries, as rcl reads it)."""
-    from ros2lite.safe_yaml import YamlInputError, load
+    from ros2lite.util.safe_yaml import YamlInputError, load
 
     path = Path(path)
     try:

@@ -21,14 +21,14 @@ from ros2lite.parameters.store import (
 )
 
 if TYPE_CHECKING:
-    from ros2lite.arguments import RosArgs
     from ros2lite.msgs.rcl_interfaces.msg import (
         ListParametersResult,
         ParameterDescriptor,
         ParameterValue,
         SetParametersResult,
     )
-    from ros2lite.node_interface import NodeInterface
+    from ros2lite.runtime.arguments import RosArgs
+    from ros2lite.runtime.node_interface import NodeInterface
 
 
 class ParameterMixin(SharedParameterMethods):
@@ -177,7 +177,7 @@ def _descriptor() -> ParameterDescriptor:
 
 def _override_parameters(values: Mapping[str, object]) -> dict[str, Parameter]:
     """`-p`/params-file values as Parameters; a value no parameter type can hold is an error."""
-    from ros2lite.arguments import RosArgsError
+    from ros2lite.runtime.arguments import RosArgsError
 
     out: dict[str, Parameter] = {}
     for name, value in values.items():

@@ -162,7 +162,7 @@ class _Writer:
     def file(self, path: str, content: str, *, quiet: bool = False) -> None:
         if not quiet:
             self.report(f'creating {path}')
-        from ros2lite.files import create_new
+        from ros2lite.util.files import create_new
 
         with os.fdopen(create_new(path), 'w', encoding='utf-8') as out:
             out.write(content)

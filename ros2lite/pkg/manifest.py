@@ -83,7 +83,7 @@ def read_manifest(path: Path) -> Manifest:
     # imported here: every process that uses types loads this module, few read a manifest
     import xml.etree.ElementTree as ET
 
-    from ros2lite.files import read_bounded
+    from ros2lite.util.files import read_bounded
 
     data = read_bounded(path, _MAX_BYTES, ManifestError, 'a package manifest')
     try:

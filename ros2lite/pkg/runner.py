@@ -14,7 +14,7 @@ import sys
 from typing import Any
 
 from ros2lite.exceptions import quiet_interrupt_exit
-from ros2lite.process import forget_caught_interrupt, release_interrupts
+from ros2lite.util.process import forget_caught_interrupt, release_interrupts
 
 USAGE = 'usage: python -m ros2lite.pkg.runner <module:function> <name> [argv...]'
 

@@ -17,8 +17,8 @@ import stat
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from ros2lite.files import UnsafePathError, create_new, read_bounded
 from ros2lite.security.errors import KeystoreError, PolicyError
+from ros2lite.util.files import UnsafePathError, create_new, read_bounded
 
 __all__ = ['make_dirs', 'parse_xml', 'read_bytes', 'symlink', 'write_file', 'write_private']
 

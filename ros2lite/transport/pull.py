@@ -11,7 +11,7 @@ consumer has emptied the channel again: at any moment exactly one of the two own
 channel, so samples keep their order and nobody competes for the GIL during a burst.
 
 Payloads and attachments stay Zenoh objects until the consumer reads them, and the consumer
-reads a batch through C-level iterators (:func:`ros2lite.delivery.payloads`).
+reads a batch through C-level iterators (:func:`ros2lite.runtime.delivery.payloads`).
 """
 
 from __future__ import annotations

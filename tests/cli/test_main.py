@@ -125,7 +125,7 @@ def test_an_interrupt_wrapped_by_python_is_still_an_interrupt(
     import click
 
     from ros2lite.cli import main as cli_main
-    from ros2lite.process import Terminated
+    from ros2lite.util.process import Terminated
 
     kind = {'KeyboardInterrupt': KeyboardInterrupt, 'Terminated': Terminated}[raised]
 

@@ -9,7 +9,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from ros2lite.env import COMPAT_DIR, ros_environment
+from ros2lite.pkg.environment import COMPAT_DIR, ros_environment
 
 FACES = sorted(
     '.'.join(p.relative_to(COMPAT_DIR).with_suffix('').parts).removesuffix('.__init__')

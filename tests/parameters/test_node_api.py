@@ -9,12 +9,12 @@ from typing import Any
 
 import pytest
 
-from ros2lite.arguments import RosArgsError
 from ros2lite.exceptions import InvalidParameterTypeException, ParameterNotDeclaredException
 from ros2lite.interfaces import get_interface
 from ros2lite.node import Node
 from ros2lite.parameter import Parameter
 from ros2lite.qos import qos_profile_parameter_events
+from ros2lite.runtime.arguments import RosArgsError
 from tests.spinning import spin_until
 
 ParameterEvent = get_interface("rcl_interfaces/msg/ParameterEvent")

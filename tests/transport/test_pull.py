@@ -7,8 +7,8 @@ import threading
 import time
 from typing import Any
 
-from ros2lite.delivery import payloads
 from ros2lite.qos import HistoryPolicy, QoSProfile
+from ros2lite.runtime.delivery import payloads
 from ros2lite.transport.attachment import encode_attachment
 from ros2lite.transport.pull import PulledSamples
 from tests.spinning import wait_until

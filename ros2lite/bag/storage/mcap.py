@@ -72,7 +72,7 @@ class _DirectFile:
 
     def __init__(self, path: str) -> None:
         self.path = path
-        from ros2lite.files import create_new
+        from ros2lite.util.files import create_new
 
         self._fd = create_new(path)
         self._pos = 0
@@ -806,7 +806,7 @@ def recover(path: str) -> tuple[int, list[str]]:
 
     The new file is written beside the old one and renamed over it, so an interrupted
     recovery leaves the original untouched."""
-    from ros2lite.files import temp_beside
+    from ros2lite.util.files import temp_beside
 
     fd, tmp = temp_beside(path, ".recovering")  # a fresh name: no planted file is written
     try:

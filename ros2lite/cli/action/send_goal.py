@@ -19,9 +19,9 @@ from ..parsing import command
 
 if TYPE_CHECKING:
     from ros2lite.action import ClientGoalHandle
-    from ros2lite.connection import Connection
     from ros2lite.interfaces import ActionType, Message
     from ros2lite.task import Future
+    from ros2lite.tools.connection import Connection
     from ros2lite.type_support import FeedbackMessage
 
 _T = TypeVar('_T')

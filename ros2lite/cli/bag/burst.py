@@ -67,8 +67,8 @@ def cli(
 ) -> None:
     """Burst data from a bag."""
     from ros2lite.bag.errors import BagError
-    from ros2lite.process import StopSignals
     from ros2lite.service_introspection import event_topic
+    from ros2lite.util.process import StopSignals
 
     def named(node: Node) -> PlayOptions:
         selected = None

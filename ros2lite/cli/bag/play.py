@@ -13,7 +13,8 @@ from typing import TYPE_CHECKING
 
 import click
 
-from .. import keyboard as keys_module
+from ros2lite.util import keyboard as keys_module
+
 from .. import numbers, render
 from ..options import bind
 from ..parsing import command
@@ -105,7 +106,7 @@ def cli(
 def _play(player: Player, log: RcutilsLogger, keyboard: bool) -> None:
     from ros2lite.bag.errors import BagError
     from ros2lite.bag.player import SWITCH_INTERVAL
-    from ros2lite.process import StopSignals, switch_interval
+    from ros2lite.util.process import StopSignals, switch_interval
 
     keys = None
     if keyboard and keys_module.available() and sys.stderr.isatty():

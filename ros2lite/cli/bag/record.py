@@ -14,8 +14,9 @@ from typing import TYPE_CHECKING
 
 import click
 
+from ros2lite.util import keyboard as keys_module
+
 from .. import completion, numbers, render
-from .. import keyboard as keys_module
 from ..common import connect
 from ..options import bind
 from ..parsing import ManyValues, command
@@ -34,7 +35,7 @@ from .options import (
 if TYPE_CHECKING:
     from ros2lite.bag.recorder import Recorder, RecordOptions
     from ros2lite.bag.writer import Writer
-    from ros2lite.connection import Connection
+    from ros2lite.tools.connection import Connection
 
 SELECTION_ERROR = (
     "Need to specify at least one option out of --all, --all-topics, "
@@ -278,7 +279,7 @@ def _record(
     """Run the recorder until a signal (or a write error); returns it, stopped."""
     from ros2lite.bag.recorder import Recorder
     from ros2lite.logging import get_logger
-    from ros2lite.process import StopSignals
+    from ros2lite.util.process import StopSignals
 
     log = get_logger(node_name)
     node = conn.node(node_name)

@@ -11,7 +11,7 @@ from ..errors import CliError
 
 if TYPE_CHECKING:
     from ros2lite.components.remote import LoadedNode
-    from ros2lite.connection import Connection
+    from ros2lite.tools.connection import Connection
 
 F = TypeVar('F', bound=Callable[..., Any])
 

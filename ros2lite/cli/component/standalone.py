@@ -55,7 +55,7 @@ def cli(
 ) -> None:
     """Run a component into its own standalone container node."""
     from ros2lite.components.remote import wait_for_container
-    from ros2lite.process import exit_code, run_child
+    from ros2lite.util.process import exit_code, run_child
 
     name = container_node_name or 'standalone_container_' + uuid.uuid4().hex[:12]
     full = name if name.startswith('/') else '/' + name

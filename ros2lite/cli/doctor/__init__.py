@@ -54,7 +54,7 @@ def cli(
     """Check ROS setup and other potential issues."""
     if ctx.invoked_subcommand is not None:
         return  # the verb does the work
-    from ros2lite.doctor import Diagnosis, Report
+    from ros2lite.tools.doctor import Diagnosis, Report
 
     diagnosis = Diagnosis()
     exclude = ('package',) if exclude_packages else ()
@@ -84,7 +84,7 @@ def cli(
 
 
 def _print_report(report: object) -> None:
-    from ros2lite.doctor import Report
+    from ros2lite.tools.doctor import Report
 
     assert isinstance(report, Report)
     click.echo(f'\n   {report.name}')

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 from ..errors import CliError
 
 if TYPE_CHECKING:
-    from ros2lite.connection import Connection
+    from ros2lite.tools.connection import Connection
 
 NODE_NOT_FOUND = 'Node not found'
 

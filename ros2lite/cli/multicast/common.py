@@ -9,7 +9,7 @@ import click
 
 F = TypeVar('F', bound=Callable[..., Any])
 
-DEFAULT_GROUP = '225.0.0.1'  # ros2lite.multicast's defaults, kept here so --help stays light
+DEFAULT_GROUP = '225.0.0.1'  # ros2lite.tools.multicast's defaults, kept here so --help stays light
 DEFAULT_PORT = 49150
 
 

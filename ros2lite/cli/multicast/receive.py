@@ -21,7 +21,7 @@ from .common import address_options
 )
 def cli(group: str, port: int, interface: str | None, timeout: float | None) -> None:
     """Receive a single UDP multicast packet."""
-    from ros2lite.multicast import ZENOH_SCOUTING, check_settings, receive
+    from ros2lite.tools.multicast import ZENOH_SCOUTING, check_settings, receive
 
     check_settings(group, port, interface)
     click.echo('Waiting for UDP multicast datagram...')

@@ -17,7 +17,7 @@ from .common import address_options
 )
 def cli(group: str, port: int, interface: str | None, ttl: int | None) -> None:
     """Send a single UDP multicast packet."""
-    from ros2lite.multicast import check_settings, send
+    from ros2lite.tools.multicast import check_settings, send
 
     check_settings(group, port, interface, ttl)
     click.echo('Sending one UDP multicast datagram...')

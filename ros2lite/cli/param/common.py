@@ -17,8 +17,8 @@ from ..options import bind, strategy_options
 if TYPE_CHECKING:
     from click.shell_completion import CompletionItem
 
-    from ros2lite.connection import Connection
     from ros2lite.task import Future
+    from ros2lite.tools.connection import Connection
 
 F = TypeVar("F", bound=Callable[..., Any])
 T = TypeVar("T")
@@ -148,8 +148,8 @@ def complete_parameter_names(
 
 
 def _remote_parameter_names(ctx: click.Context) -> list[str]:
-    from ros2lite.connection import Connection
     from ros2lite.parameter_client import AsyncParameterClient
+    from ros2lite.tools.connection import Connection
 
     node_name = ctx.params.get("node_name")
     if not node_name:

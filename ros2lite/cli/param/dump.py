@@ -33,7 +33,7 @@ def cli(
         return
     path = output_dir / dump_file_name(fqn)
     try:
-        from ros2lite.files import open_for_writing
+        from ros2lite.util.files import open_for_writing
 
         output_dir.mkdir(parents=True, exist_ok=True)
         with open(open_for_writing(path), "w", encoding="utf-8") as f:

@@ -14,8 +14,8 @@ from ..errors import CliError
 F = TypeVar('F', bound=Callable[..., Any])
 
 if TYPE_CHECKING:
-    from ros2lite.connection import Connection
     from ros2lite.monitor.topic import TopicMonitor
+    from ros2lite.tools.connection import Connection
 
 
 def message_type_name(name: str) -> str:

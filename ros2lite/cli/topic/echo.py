@@ -62,9 +62,9 @@ class Printer:
         warn: Callable[[str], object],
         topic: str = '',
     ) -> None:
-        from ros2lite.bad_samples import BadSamples
         from ros2lite.interfaces import deserialize
         from ros2lite.interfaces.classes import Message
+        from ros2lite.runtime.bad_samples import BadSamples
 
         self._deserialize = deserialize
         self._message_class = Message
@@ -121,7 +121,7 @@ class Printer:
     def bad_sample(self, data: bytes, info: MessageInfo, error: Exception) -> None:
         """A sample that is not the type: dropped with a (rate-limited) warning, or shown
         with its message info when the user asked for message info."""
-        from ros2lite.bad_samples import describe_publisher
+        from ros2lite.runtime.bad_samples import describe_publisher
 
         self.bad.add(info.publisher_gid, error, len(data))
         if not self.include_info:

@@ -18,8 +18,8 @@ from .common import message_type_name
 if TYPE_CHECKING:
     from typing_extensions import Unpack
 
-    from ros2lite.connection import Connection
     from ros2lite.qos import QoSProfile
+    from ros2lite.tools.connection import Connection
 
     from ..options import QosOptions
 

@@ -1,5 +1,5 @@
 """rclpy.guard_condition."""
 
-from ros2lite.executable import GuardCondition
+from ros2lite.runtime.executable import GuardCondition
 
 __all__ = ['GuardCondition']

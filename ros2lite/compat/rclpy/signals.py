@@ -1,6 +1,6 @@
 """rclpy.signals."""
 
-from ros2lite.context import (
+from ros2lite.signals import (
     SignalHandlerOptions,
     get_current_signal_handlers_options,
     install_signal_handlers,

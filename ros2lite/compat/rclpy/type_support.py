@@ -1,6 +1,6 @@
 """rclpy.type_support."""
 
-from ros2lite.typesupport_checks import (
+from ros2lite.runtime.typesupport_checks import (
     check_for_type_support,
     check_is_valid_action_type,
     check_is_valid_msg_type,

@@ -8,11 +8,11 @@ import sys
 from collections.abc import Callable
 
 import ros2lite
-from ros2lite.arguments import remove_ros_args
 from ros2lite.demos.runner import run_main
 from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.node import Node
 from ros2lite.qos import QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
+from ros2lite.runtime.arguments import remove_ros_args
 
 
 def qos_demo_options(argv: list[str], cycles_help: str) -> tuple[QoSProfile, int]:

@@ -40,7 +40,7 @@ def write_output(path: str, graph: model.Graph) -> None:
 
 def run(options: argparse.Namespace) -> None:
     """Show the live graph (or write it to a file) as the options say."""
-    from ros2lite.connection import Connection
+    from ros2lite.tools.connection import Connection
 
     filters = model.Options(
         include_hidden=options.include_hidden,

@@ -44,7 +44,7 @@ _NUMBERS = ('rate', 'buffer_length', 'most_recent_transform', 'oldest_transform'
 def parse(text: str) -> tuple[Frame, ...]:
     """The frames of tf2's YAML (an empty tree is `[]` or nothing), in its order; raises
     ValueError naming what is wrong."""
-    from ros2lite import safe_yaml
+    from ros2lite.util import safe_yaml
 
     data = safe_yaml.load(text, 'the frame tree')
     if data is None or data == []:

@@ -17,10 +17,10 @@ def view(options: argparse.Namespace) -> None:
     import ros2lite
     from ros2lite.demos.tf2_tools.frames import parse, to_dot
     from ros2lite.demos.tf2_tools.pdf import to_pdf
-    from ros2lite.files import replace_file
     from ros2lite.msgs.tf2_msgs.srv import FrameGraph
     from ros2lite.node import Node
     from ros2lite.tf2 import Buffer, TransformListener
+    from ros2lite.util.files import replace_file
 
     # other topics are remaps of the listener's: the node's own rules, as `-r` would give
     remaps = [(TF_TOPIC, options.tf_topic), (TF_STATIC_TOPIC, options.tf_static_topic)]

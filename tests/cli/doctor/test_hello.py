@@ -11,8 +11,8 @@ from typing import Any
 import pytest
 
 from ros2lite.interfaces import get_interface
-from ros2lite.multicast import MulticastSender
 from ros2lite.node import Node
+from ros2lite.tools.multicast import MulticastSender
 from tests.cli.conftest import Result
 from tests.spinning import free_port, wait_until
 from tests.test_multicast import multicast_on_loopback

@@ -34,8 +34,8 @@ def lesson_graph(ros_context: Any, processes: Any) -> Iterator[None]:
         time.sleep(0.05)
     # every edge the tests look for is in the graph as a tool (a client of the router, as
     # rqt_graph is) sees it, before any of them looks
-    from ros2lite.connection import Connection
     from ros2lite.graph import EntityKind
+    from ros2lite.tools.connection import Connection
 
     def edges() -> set[tuple[str, str]]:
         with Connection(autostart=False) as conn:

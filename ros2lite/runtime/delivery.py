@@ -16,7 +16,7 @@ from collections.abc import Callable, Iterator
 from operator import attrgetter
 from typing import TYPE_CHECKING, Protocol
 
-from ros2lite.bad_samples import gid_of
+from ros2lite.runtime.bad_samples import gid_of
 
 if TYPE_CHECKING:
     from ros2lite.message_info import MessageInfo

@@ -167,8 +167,8 @@ class Diagnosis:
             if status is None or not status.running:
                 self._graph_error = 'no Zenoh router answers'
                 return None
-            from ros2lite.connection import Connection
             from ros2lite.exceptions import Ros2liteError
+            from ros2lite.tools.connection import Connection
 
             try:
                 with Connection(router=self.router, autostart=False) as conn:
@@ -377,11 +377,13 @@ class Diagnosis:
         return r
 
     def _report_ros2lite(self) -> Report:
+        import ros2lite
         from ros2lite.pkg.index import PackageIndex
 
         r = Report('ROS2LITE INFORMATION', 'platform')
         r.add('ros2lite version', _version('ros2lite'))
-        r.add('installed at', os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+        # the directory holding the package, wherever this module sits inside it
+        r.add('installed at', os.path.dirname(os.path.dirname(os.path.abspath(ros2lite.__file__))))
         r.add('middleware', 'rmw_zenoh_cpp (wire-compatible)')
         workspaces = PackageIndex(self.env).workspaces()
         r.add('source workspaces', ', '.join(map(str, workspaces)) or 'none')
@@ -516,13 +518,13 @@ class Hello:
         interface: str | None = None,
     ) -> None:
         from ros2lite.msgs.std_msgs.msg import String
-        from ros2lite.multicast import (
+        from ros2lite.qos import qos_profile_system_default
+        from ros2lite.tools.multicast import (
             DEFAULT_GROUP,
             DEFAULT_PORT,
             MulticastReceiver,
             MulticastSender,
         )
-        from ros2lite.qos import qos_profile_system_default
 
         self.host = socket.gethostname()
         self.message = String(data=f"hello, it's me {self.host}")

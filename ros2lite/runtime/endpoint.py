@@ -10,7 +10,7 @@ from ros2lite.transport.keys import EntityKind, endpoint_token, topic_key
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-    from ros2lite.executable import Destroyable, EntityNode
+    from ros2lite.runtime.executable import Destroyable, EntityNode
     from ros2lite.transport.handles import Handle
 
 

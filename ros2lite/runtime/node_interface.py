@@ -4,7 +4,8 @@ A node is made of parts that call back into its public API: the parameter events
 services, the time source, the logger and type-description services, rates and QoS
 overrides. node.py makes them, so they cannot import node.py; they take a `NodeInterface`
 instead, which :class:`ros2lite.node.Node` is. Entities ask less of their node
-(:class:`ros2lite.executable.EntityNode`, :class:`ros2lite.service_introspection.ServiceNode`).
+(:class:`ros2lite.runtime.executable.EntityNode`,
+:class:`ros2lite.service_introspection.ServiceNode`).
 """
 
 from __future__ import annotations
@@ -16,7 +17,6 @@ from ros2lite.service_introspection import ServiceNode
 
 if TYPE_CHECKING:
     from ros2lite.clock import Clock
-    from ros2lite.endpoint import EndpointOwner
     from ros2lite.msgs.rcl_interfaces.msg import (
         ListParametersResult,
         ParameterDescriptor,
@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from ros2lite.parameter import AllowableParameterValue, Parameter
     from ros2lite.parameters.store import OnSetCallback
     from ros2lite.qos import QoSProfile
+    from ros2lite.runtime.endpoint import EndpointOwner
     from ros2lite.service import Service, ServiceCallback
     from ros2lite.service_introspection import IntrospectionMixin
     from ros2lite.subscription import Subscription

@@ -114,7 +114,7 @@ def _split_assignment(text: str, what: str) -> tuple[str | None, str, str]:
 
 def parse_value(text: str) -> object:
     """A parameter value from the command line, typed the YAML way ('1' → int)."""
-    from ros2lite.safe_yaml import YamlInputError, load
+    from ros2lite.util.safe_yaml import YamlInputError, load
 
     try:
         return load(text, "the value")

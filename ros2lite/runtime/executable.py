@@ -12,10 +12,12 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 from ros2lite.callback_groups import CallbackGroup
 from ros2lite.runtime.scheduling import NodeWork, Scheduled
+from ros2lite.task import TaskRunner
 
 if TYPE_CHECKING:
     from ros2lite.context import Context
     from ros2lite.logging import RcutilsLogger
+    from ros2lite.node import Node
     from ros2lite.task import Task
 
 __all__ = [
@@ -24,6 +26,7 @@ __all__ = [
     'EntityNode',
     'Executable',
     'GuardCondition',
+    'NodeExecutor',
     'current_execution',
 ]
 
@@ -63,6 +66,19 @@ class EntityExecutor(Protocol):
         then: Callable[[object], None] | None = None,
     ) -> Task | None:
         """Call a user callback on the executor's terms (a coroutine goes on as a Task)."""
+        ...
+
+
+class NodeExecutor(EntityExecutor, TaskRunner, Protocol):
+    """The executor a node was added to (:class:`ros2lite.executors.Executor` is one), as the
+    node sees it: named below both, as executors import nodes to run them."""
+
+    def add_node(self, node: Node) -> bool:
+        """Take over `node`."""
+        ...
+
+    def remove_node(self, node: Node) -> None:
+        """Stop running `node`'s work."""
         ...
 
 
