@@ -100,7 +100,9 @@ def environment_prefixes() -> list[Path]:
     if _environment is None:
         candidates = [sysconfig.get_path('data'), sys.prefix]
         if site.ENABLE_USER_SITE:
-            candidates.append(sysconfig.get_path('data', f'{os.name}_user'))
+            # the user scheme's data directory is the user base; asking sysconfig for it fails
+            # while `site` is still starting up (a sitecustomize importing a message package)
+            candidates.append(site.getuserbase())
         found: list[Path] = []
         for candidate in candidates:
             prefix = Path(candidate)
