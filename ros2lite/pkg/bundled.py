@@ -21,6 +21,7 @@ _DEMOS = {
         'parameter_blackboard',
         'talker',
     ],
+    'foxglove_bridge': ['foxglove_bridge'],
     'lifecycle': ['lifecycle_listener'],
     'lifecycle_py': ['lifecycle_talker'],
     'rclpy_components': ['component_container', 'component_container_mt'],
