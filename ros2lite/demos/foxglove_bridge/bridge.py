@@ -30,6 +30,7 @@ from foxglove.websocket import (
     ChannelView,
     Client,
     ClientChannel,
+    ServerListener,
     ServiceRequest,
     StatusLevel,
     WebSocketServer,
@@ -141,7 +142,7 @@ class _ClientPublication:
     msg_class: Any = None
 
 
-class Bridge:
+class Bridge(ServerListener):
     """Serves `node`'s graph on a Foxglove WebSocket server until `close()`."""
 
     def __init__(
@@ -205,11 +206,11 @@ class Bridge:
             names.add('time')
         # the SDK's Capability is not hashable: one per distinct value, by name
         capabilities = list({CAPABILITIES[c].name: CAPABILITIES[c] for c in names}.values())
-        tls: dict[str, bytes] = {}
+        cert = key = None
         if s.tls:
             if not s.certfile or not s.keyfile:
                 raise ValueError("tls needs both 'certfile' and 'keyfile'")
-            tls = {'tls_cert': _read(s.certfile), 'tls_key': _read(s.keyfile)}
+            cert, key = _read(s.certfile), _read(s.keyfile)
         self.server = foxglove.start_server(
             name=self._own,
             host=s.address,
@@ -219,7 +220,8 @@ class Bridge:
             supported_encodings=list(CLIENT_ENCODINGS),
             context=self._context,
             message_backlog_size=max(1, s.message_backlog_size),
-            **tls,
+            tls_cert=cert,
+            tls_key=key,
         )
         self.node.context.graph.add_listener(self._graph_changed)
         if 'parametersSubscribe' in self._caps:

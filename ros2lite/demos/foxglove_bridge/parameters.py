@@ -121,7 +121,7 @@ class RemoteParameters:
         results: dict[str, Any] = {}
         for node, future in futures.items():
             done = threading.Event()
-            future.add_done_callback(lambda _f, d=done: d.set())
+            future.add_done_callback(_setter(done))
             if not done.wait(max(0.0, deadline - time.monotonic())) or future.exception():
                 if self._ignore_unresponsive:
                     self._unresponsive.add(node)
@@ -150,7 +150,7 @@ class RemoteParameters:
         out: list[foxglove.Parameter] = []
         replies = self._wait({n: self._client(n).get_parameters(ps) for n, ps in wanted.items()})
         for node, reply in replies.items():
-            for pname, value in zip(wanted[node], reply.values):
+            for pname, value in zip(wanted[node], reply.values, strict=False):
                 if not self.allowed(f'{node}.{pname}'):
                     continue
                 param = Parameter.from_parameter_msg(_message(pname, value))
@@ -170,6 +170,7 @@ class RemoteParameters:
             f'{p.name}': p for p in self.get([q.name for ps in by_node.values() for q in ps])
         }
         futures: dict[str, Future[Any]] = {}
+        sent: dict[str, list[Parameter]] = {}
         for node, ps in by_node.items():
             ros_params = []
             for p in ps:
@@ -182,11 +183,20 @@ class RemoteParameters:
                     self._warn(f"Cannot set '{p.name}': {e}")
             if ros_params:
                 futures[node] = self._client(node).set_parameters(ros_params)
+                sent[node] = ros_params
         for node, reply in self._wait(futures).items():
-            for p, result in zip(by_node[node], reply.results):
+            # one result per parameter sent, in order (rcl_interfaces/srv/SetParameters)
+            for q, result in zip(sent[node], reply.results, strict=False):
                 if not result.successful:
-                    self._warn(f"Failed to set '{p.name}': {result.reason}")
+                    self._warn(f"Failed to set '{node}.{q.name}': {result.reason}")
         return self.get([p.name for ps in by_node.values() for p in ps])
+
+
+def _setter(event: threading.Event) -> Callable[[object], None]:
+    def done(_future: object) -> None:
+        event.set()
+
+    return done
 
 
 def _message(name: str, value: Any) -> Any:
