@@ -4,6 +4,7 @@ through tests/js/foxglove_client.js, against turtlesim and publishers of images 
 
 from __future__ import annotations
 
+import base64
 import json
 import math
 import queue
@@ -12,6 +13,7 @@ import shutil
 import subprocess
 import threading
 import time
+from collections import Counter
 from pathlib import Path
 from typing import Any
 
@@ -80,8 +82,11 @@ class JsClient:
 
     def send(self, **cmd: Any) -> None:
         assert self.proc.stdin is not None
-        self.proc.stdin.write(json.dumps(cmd) + '\n')
-        self.proc.stdin.flush()
+        try:
+            self.proc.stdin.write(json.dumps(cmd) + '\n')
+            self.proc.stdin.flush()
+        except BrokenPipeError:  # the server dropped it, and it ended: events tell
+            pass
 
     def expect(self, pred: Any, timeout: float = 20.0) -> dict[str, Any]:
         """The first event (seen before or arriving) for which `pred` holds."""
@@ -92,7 +97,7 @@ class JsClient:
         deadline = time.monotonic() + timeout
         while True:
             left = deadline - time.monotonic()
-            assert left > 0, f'no matching event; saw {[e.get("event") for e in self.seen]}'
+            assert left > 0, f'no matching event; saw {Counter(e["event"] for e in self.seen)}'
             try:
                 ev = self.events.get(timeout=left)
             except queue.Empty:
@@ -118,21 +123,28 @@ class JsClient:
         self.proc.wait()
 
 
-def start_bridge(processes: Any, *params: str) -> tuple[Any, int]:
+def start_bridge(processes: Any, *params: str) -> tuple[Any, int, list[str]]:
+    """The bridge on a free port, once it listens; its stderr lines keep arriving in the
+    list (read on a thread, so a chatty bridge never blocks on a full pipe)."""
     port = free_port()
     args = ['-p', f'port:={port}']
     for p in params:
         args += ['-p', p]
     proc = processes.cli('run', 'foxglove_bridge', 'foxglove_bridge', '--ros-args', *args)
+    lines: list[str] = []
+    listening = threading.Event()
+
+    def read() -> None:
+        for line in proc.stderr:
+            lines.append(line)
+            if 'Foxglove bridge listening on ws://127.0.0.1:' in line:
+                listening.set()
+
+    threading.Thread(target=read, daemon=True).start()
     deadline = time.monotonic() + 30
-    lines = []
-    while time.monotonic() < deadline:
-        line = proc.stderr.readline()
-        lines.append(line)
-        if 'Foxglove bridge listening on ws://127.0.0.1:' in line:
-            return proc, port
-        assert line or proc.poll() is None, ''.join(lines)
-    raise AssertionError(''.join(lines))
+    while not listening.wait(0.1):
+        assert proc.poll() is None and time.monotonic() < deadline, ''.join(lines)
+    return proc, port, lines
 
 
 @pytest.fixture
@@ -154,7 +166,7 @@ def test_npm_client_sees_decodes_publishes_calls_and_sets(
 ) -> None:
     processes.cli('run', 'turtlesim', 'turtlesim_node', '--display', 'none')
     processes.python(PUBLISHERS)
-    bridge, port = start_bridge(processes)
+    bridge, port, _ = start_bridge(processes)
     client = client_factory(port)
     opened = client.expect(lambda e: e['event'] == 'open')
     assert opened['protocol'] == 'foxglove.sdk.v1'
@@ -248,23 +260,43 @@ def test_npm_client_sees_decodes_publishes_calls_and_sets(
 
 def test_bad_clients_get_errors_not_a_crash(processes: Any, client_factory: Any) -> None:
     processes.python(PUBLISHERS)
-    bridge, port = start_bridge(processes)
+    bridge, port, log = start_bridge(processes)
     bad = client_factory(port)
     bad.expect(lambda e: e['event'] == 'open')
     bad.channels({'/chatter'})
+
+    def error_status(text: str) -> str:
+        ev = bad.expect(lambda e: e['event'] == 'status' and text in e['message'])
+        assert ev['level'] == 2  # error
+        return str(ev['message'])
+
     bad.send(cmd='raw', data='{"op": "nonsense"')
+    error_status('Invalid message')
     bad.send(cmd='raw', data='AAECAwQFBgc=', binary=True)
-    bad.send(cmd='subscribeIds', first=5000, count=10000)
+    error_status('Unknown binary opcode')
     bad.send(
-        cmd='publish', topic='/nowhere', schemaName='no_such/msg/Type', encoding='cdr', value={}
+        cmd='publish', topic='/nowhere', schemaName='no_such/msg/Type', encoding='cdr', bytes=[0]
     )
-    # a client that sends data on a channel it never advertised, 32 MiB of it
+    assert "Cannot advertise '/nowhere'" in bad.expect(lambda e: e['event'] == 'status')['message']
+    # 10,000 unknown channel ids: an error each, until the client's control queue is full
+    # (the SDK's message_backlog_size) and it is dropped
+    bad.send(cmd='subscribeIds', first=5000, count=10000)
+    error_status('Unknown channel ID: 5000')
+    last = bad.expect(
+        lambda e: (
+            e['event'] == 'close'
+            or (e['event'] == 'status' and e['message'] == 'Unknown channel ID: 14999')
+        )
+    )
+    assert last['event'] == 'close' or last['level'] == 2
+    # data on a channel it never advertised, 32 MiB of it: over the SDK's frame limit
     huge = bytearray(32 * 1024 * 1024)
     huge[0] = 0x01  # client message data opcode
     huge[1:5] = (77).to_bytes(4, 'little')
-    import base64
-
-    bad.send(cmd='raw', data=base64.b64encode(bytes(huge)).decode(), binary=True)
+    big = client_factory(port)
+    big.expect(lambda e: e['event'] == 'open')
+    big.send(cmd='raw', data=base64.b64encode(bytes(huge)).decode(), binary=True)
+    assert big.expect(lambda e: e['event'] == 'close')['code'] == 1006  # dropped
     # the bridge lives, and a well-behaved client is served meanwhile
     good = client_factory(port, 'foxglove.sdk.v1,foxglove.websocket.v1')
     assert good.expect(lambda e: e['event'] == 'open')['protocol'] == 'foxglove.sdk.v1'
@@ -273,3 +305,43 @@ def test_bad_clients_get_errors_not_a_crash(processes: Any, client_factory: Any)
     for _ in range(3):
         assert good.message('/chatter')['data'].startswith('fox ')
     assert bridge.poll() is None, processes.stop(bridge)
+    # the SDK's one warning per unknown id is throttled, not 10,000 lines
+    unknown = [line for line in log if 'unknown channel' in line]
+    assert 1 <= len(unknown) <= 50, len(unknown)
+
+
+BIG_IMAGES = r'''
+import ros2lite
+from ros2lite.node import Node
+from ros2lite.interfaces import serialize
+from ros2lite.msgs.sensor_msgs.msg import Image
+ros2lite.init()
+node = Node('big_images')
+pub = node.create_publisher(Image, 'big', 10)
+data = serialize(Image(height=512, width=512, encoding='rgba8', step=2048, data=bytes(1 << 20)))
+node.create_timer(1 / 30, lambda: pub.publish(data))
+ros2lite.spin(node)
+'''
+
+
+def test_a_client_that_stops_reading_is_told_its_messages_drop(
+    processes: Any, client_factory: Any
+) -> None:
+    processes.python(BIG_IMAGES)
+    bridge, port, _ = start_bridge(processes, 'message_backlog_size:=8')
+    client = client_factory(port)
+    client.channels({'/big'})
+    client.send(cmd='subscribe', topic='/big', decode=0)
+    client.send(cmd='counts')
+    deadline = time.monotonic() + 20
+    while client.expect(lambda e: e['event'] == 'counts')['counts']['/big']['received'] < 3:
+        assert time.monotonic() < deadline
+        time.sleep(0.1)
+        client.send(cmd='counts')
+    client.send(cmd='pause')  # the socket stops being read: the kernel's buffers fill, then ours
+    time.sleep(3)
+    client.send(cmd='resume')
+    status = client.expect(lambda e: e['event'] == 'status')
+    assert status['level'] == 1  # warning
+    assert 'Send buffer limit reached for client 127.0.0.1:' in status['message']
+    assert bridge.poll() is None

@@ -105,6 +105,9 @@ client.on('advertiseServices', (list) => {
 client.on('message', (m) => {
   const sub = subscriptions.get(m.subscriptionId);
   if (!sub) return;
+  const now = performance.now();
+  if (sub.received === 0) sub.first = now;
+  sub.last = now;
   sub.received += 1;
   sub.bytes += m.data.byteLength;
   if (sub.decode > 0) {
@@ -151,7 +154,10 @@ function handle(cmd) {
     }
     case 'counts': {
       const counts = {};
-      for (const sub of subscriptions.values()) counts[sub.topic] = { received: sub.received, bytes: sub.bytes };
+      for (const sub of subscriptions.values()) {
+        // arrival times in ms of this process' clock, for rates
+        counts[sub.topic] = { received: sub.received, bytes: sub.bytes, first: sub.first, last: sub.last };
+      }
       return emit({ event: 'counts', counts });
     }
     case 'publish': {
@@ -166,7 +172,7 @@ function handle(cmd) {
       }
       const data = pub.encoding === 'json'
         ? new TextEncoder().encode(JSON.stringify(cmd.value))
-        : pub.writer.writeMessage(cmd.value);
+        : pub.writer ? pub.writer.writeMessage(cmd.value) : Uint8Array.from(cmd.bytes || []);
       client.sendMessage(pub.id, data);
       return emit({ event: 'published', topic: cmd.topic });
     }

@@ -16,6 +16,7 @@ each with a deadline, as the C++ bridge does.
 from __future__ import annotations
 
 import json
+import logging
 import queue
 import re
 import threading
@@ -51,6 +52,8 @@ if TYPE_CHECKING:
 
 __all__ = ['CAPABILITIES', 'Bridge', 'Settings']
 
+Say = Callable[[str], object]
+
 # capability names of the C++ bridge's `capabilities` parameter -> the SDK's
 CAPABILITIES = {
     'clientPublish': Capability.ClientPublish,
@@ -71,6 +74,8 @@ DEFAULT_CAPABILITIES = [
 CLIENT_ENCODINGS = ('cdr', 'json')
 # how often the graph is looked at when no change was heard (seconds)
 _REFRESH_PERIOD = 1.0
+# what the SDK logs (at INFO) when a client's queue overflowed and it dropped the oldest
+_OUTBOX_FULL = re.compile(r'outbox for client (\S+) full')
 # a client's queued publish data beyond this is dropped (bytes), so a flood cannot grow memory
 _CLIENT_DATA_LIMIT = 64 * 1024 * 1024
 
@@ -211,6 +216,7 @@ class Bridge(ServerListener):
             if not s.certfile or not s.keyfile:
                 raise ValueError("tls needs both 'certfile' and 'keyfile'")
             cert, key = _read(s.certfile), _read(s.keyfile)
+        _follow_sdk_log(self.tell_clients, self._warn, self._log)
         self.server = foxglove.start_server(
             name=self._own,
             host=s.address,
@@ -297,6 +303,8 @@ class Bridge(ServerListener):
             pub = self._client_channels.pop((event[1], event[2]), None)
             if pub is not None and pub.publisher is not None:
                 self.node.destroy_publisher(pub.publisher)
+        elif kind == 'status':
+            self._status(event[1])
         elif kind == 'data':
             with self._client_bytes_lock:
                 self._client_bytes -= len(event[3])
@@ -581,6 +589,10 @@ class Bridge(ServerListener):
             graph.set_advertised_service(service, sorted(ids))
         self.server.publish_connection_graph(graph)
 
+    def tell_clients(self, message: str) -> None:
+        """A warning status for every client, sent from the worker (safe on any thread)."""
+        self._events.put(('status', message))
+
     def _status(self, message: str, level: StatusLevel = StatusLevel.Warning) -> None:
         self._warn(message)
         if self.server is not None:
@@ -646,6 +658,59 @@ class Bridge(ServerListener):
     def on_connection_graph_unsubscribe(self) -> None:
         """No client wants the connection graph any more."""
         self._graph_subscribed = False
+
+
+class _SdkLog(logging.Handler):
+    """The SDK's log: a client whose queue overflowed is told so (a status message, from
+    the worker: never from inside the SDK's send path); its warnings go to the node's log."""
+
+    # a bad client can make the SDK warn thousands of times a second (one per unknown
+    # channel id): at most this many warnings a second reach the log
+    WARNINGS_PER_SECOND = 5
+
+    def __init__(self, tell: Say, warn: Say, log: Say) -> None:
+        super().__init__(logging.INFO)
+        self.tell, self.warn, self.log = tell, warn, log
+        self._second = 0
+        self._warned = 0
+        self._suppressed = 0
+
+    def emit(self, record: logging.LogRecord) -> None:
+        message = record.getMessage()
+        full = _OUTBOX_FULL.search(message)
+        if full:
+            self.tell(
+                f'Send buffer limit reached for client {full[1]}: '
+                'its oldest messages are being dropped'
+            )
+        elif record.levelno >= logging.WARNING:
+            self._throttled_warning(message)
+        elif 'egistered client' in message:  # (Un)registered client <address>
+            self.log(message)
+
+    def _throttled_warning(self, message: str) -> None:
+        second = int(time.monotonic())
+        if second != self._second:
+            if self._suppressed:
+                self.warn(f'({self._suppressed} more warnings of the WebSocket server suppressed)')
+            self._second, self._warned, self._suppressed = second, 0, 0
+        if self._warned < self.WARNINGS_PER_SECOND:
+            self._warned += 1
+            self.warn(message)
+        else:
+            self._suppressed += 1
+
+
+def _follow_sdk_log(tell: Say, warn: Say, log: Say) -> None:
+    """Route the SDK's log (Rust's, through Python's logging) to the bridge; the level is
+    the SDK's process-wide choice, made once (FOXGLOVE_LOG_LEVEL overrides it)."""
+    logger = logging.getLogger('foxglove')
+    logger.propagate = False
+    for handler in list(logger.handlers):
+        if isinstance(handler, _SdkLog):
+            logger.removeHandler(handler)
+    logger.addHandler(_SdkLog(tell, warn, log))
+    foxglove.set_log_level('INFO')
 
 
 def _message_schema(name: str, text: str) -> foxglove.MessageSchema:
