@@ -65,7 +65,8 @@ import sys, time
 from ros2lite.context import Context
 from ros2lite.node import Node
 from ros2lite.interfaces import get_interface, serialize
-topic, kind, hz, count, subscribers = sys.argv[1], sys.argv[2], float(sys.argv[3]), int(sys.argv[4]), int(sys.argv[5])
+topic, kind = sys.argv[1], sys.argv[2]
+hz, count, subscribers = float(sys.argv[3]), int(sys.argv[4]), int(sys.argv[5])
 ctx = Context(); ctx.init([])
 node = Node('bench_source', context=ctx, enable_rosout=False)
 if kind == 'image':
