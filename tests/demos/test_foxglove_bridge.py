@@ -19,8 +19,9 @@ from typing import Any
 
 import pytest
 
-from ros2lite.interfaces import definition_text
-from tests.spinning import free_port
+from ros2lite.executors import SingleThreadedExecutor
+from ros2lite.interfaces import definition_text, get_interface
+from tests.spinning import free_port, spin_for
 
 JS = Path(__file__).resolve().parents[1] / 'js'
 pytestmark = pytest.mark.skipif(
@@ -162,7 +163,7 @@ def client_factory() -> Any:
 
 
 def test_npm_client_sees_decodes_publishes_calls_and_sets(
-    processes: Any, client_factory: Any
+    processes: Any, client_factory: Any, ros_context: Any
 ) -> None:
     processes.cli('run', 'turtlesim', 'turtlesim_node', '--display', 'none')
     processes.python(PUBLISHERS)
@@ -221,6 +222,29 @@ def test_npm_client_sees_decodes_publishes_calls_and_sets(
     deadline = time.monotonic() + 20
     while client.message('/turtle1/pose')['x'] < 5.8:
         assert time.monotonic() < deadline
+
+    # a client that sends JSON (the bridge advertises both encodings)
+    from ros2lite.node import Node
+
+    got: list[str] = []
+    listener = Node('fox_listener', context=ros_context)
+    listener.create_subscription(
+        get_interface('std_msgs/msg/String'), '/from_json', lambda m: got.append(m.data), 10
+    )
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(listener)
+    deadline = time.monotonic() + 20
+    while not got:  # the first may go out before the new publisher has met the listener
+        assert time.monotonic() < deadline
+        client.send(
+            cmd='publish',
+            topic='/from_json',
+            schemaName='std_msgs/msg/String',
+            encoding='json',
+            value={'data': 'json hello'},
+        )
+        spin_for(executor, 0.3)
+    assert set(got) == {'json hello'}
 
     # /spawn through the bridge
     client.expect(
