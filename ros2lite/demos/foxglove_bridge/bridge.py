@@ -173,6 +173,11 @@ class Bridge(ServerListener):
         if unknown:
             raise ValueError(f'unknown capabilities: {", ".join(sorted(unknown))}')
         self._caps = caps
+        if settings.send_buffer_limit != Settings.send_buffer_limit:
+            self._warn(
+                'send_buffer_limit (bytes) is not used: foxglove-sdk bounds each client\'s '
+                'queue by message_backlog_size (messages)'
+            )
         self._own = node.get_fully_qualified_name()
         self._context = foxglove.Context()
         self._topics: dict[tuple[str, str], _Topic] = {}
