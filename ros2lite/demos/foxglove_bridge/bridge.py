@@ -78,6 +78,8 @@ _REFRESH_PERIOD = 1.0
 _OUTBOX_FULL = re.compile(r'outbox for client (\S+) full')
 # a client's queued publish data beyond this is dropped (bytes), so a flood cannot grow memory
 _CLIENT_DATA_LIMIT = 64 * 1024 * 1024
+# channels one client may advertise (each is a publisher in the graph)
+_CLIENT_CHANNEL_LIMIT = 1000
 
 
 @dataclass
@@ -193,6 +195,10 @@ class Bridge(ServerListener):
         self._param_names: set[str] = set()
         self._param_lock = threading.Lock()
         self._events: queue.Queue[tuple[Any, ...]] = queue.Queue()
+        # (client, channel) -> subscribed, the latest wish only: a client flipping a
+        # subscription a million times leaves one entry, not a million events
+        self._wishes: dict[tuple[int, int], bool] = {}
+        self._wishes_lock = threading.Lock()
         self._dirty = threading.Event()
         self._stopping = threading.Event()
         self._worker: threading.Thread | None = None
@@ -298,10 +304,14 @@ class Bridge(ServerListener):
 
     def _handle(self, event: tuple[Any, ...]) -> None:
         kind = event[0]
-        if kind == 'subscribe':
-            self._subscribe(event[1], event[2])
-        elif kind == 'unsubscribe':
-            self._unsubscribe(event[1], event[2])
+        if kind == 'wishes':
+            with self._wishes_lock:
+                wishes, self._wishes = self._wishes, {}
+            for (client_id, channel_id), subscribed in wishes.items():
+                if subscribed:
+                    self._subscribe(client_id, channel_id)
+                else:
+                    self._unsubscribe(client_id, channel_id)
         elif kind == 'advertise':
             self._advertise(event[1], event[2])
         elif kind == 'unadvertise':
@@ -314,6 +324,13 @@ class Bridge(ServerListener):
             with self._client_bytes_lock:
                 self._client_bytes -= len(event[3])
             self._publish(event[1], event[2], event[3])
+
+    def _wish(self, client_id: int, channel_id: int, subscribed: bool) -> None:
+        with self._wishes_lock:
+            first = not self._wishes
+            self._wishes[(client_id, channel_id)] = subscribed
+        if first:
+            self._events.put(('wishes',))
 
     def _graph_changed(self, _entity: Entity, _alive: bool) -> None:
         self._dirty.set()
@@ -446,6 +463,9 @@ class Bridge(ServerListener):
             return
         if not _matches(self._client_topic_patterns, channel.topic):
             self._status(f"Topic '{channel.topic}' is not whitelisted for client publishing")
+            return
+        if sum(1 for c, _ in self._client_channels if c == client_id) >= _CLIENT_CHANNEL_LIMIT:
+            self._status(f'A client may advertise {_CLIENT_CHANNEL_LIMIT} channels at most')
             return
         type_name = _type_name(channel.schema_name)
         try:
@@ -606,11 +626,11 @@ class Bridge(ServerListener):
     # -- the SDK's listener (its threads) ------------------------------------------------------
     def on_subscribe(self, client: Client, channel: ChannelView) -> None:
         """A client subscribes to a channel."""
-        self._events.put(('subscribe', client.id, channel.id))
+        self._wish(client.id, channel.id, True)
 
     def on_unsubscribe(self, client: Client, channel: ChannelView) -> None:
         """A client unsubscribes (or left, or the channel went)."""
-        self._events.put(('unsubscribe', client.id, channel.id))
+        self._wish(client.id, channel.id, False)
 
     def on_client_advertise(self, client: Client, channel: ClientChannel) -> None:
         """A client will publish on a topic."""
