@@ -412,3 +412,31 @@ def test_channels_follow_the_graph_and_zenoh_subscriptions_follow_clients(
     gone: set[str] = set()
     while not {'/chatter', '/camera/image', '/tf'} <= gone:
         gone.update(client.expect(lambda e: e['event'] == 'unadvertise')['topics'])
+
+
+def test_launch_file_takes_the_cpp_packages_arguments(processes: Any, client_factory: Any) -> None:
+    port = free_port()
+    launch = processes.cli(
+        'launch',
+        'foxglove_bridge',
+        'foxglove_bridge_launch.xml',
+        f'port:={port}',
+        "topic_whitelist:=['/chatter']",
+        'capabilities:=[services]',
+    )
+    processes.python(PUBLISHERS)
+    client = client_factory(port)
+    deadline = time.monotonic() + 30
+    while client.expect(lambda e: e['event'] in ('open', 'error'))['event'] != 'open':
+        assert time.monotonic() < deadline and launch.poll() is None  # not listening yet
+        client.close()
+        time.sleep(0.2)
+        client = client_factory(port)
+    info = client.expect(lambda e: e['event'] == 'serverInfo')['info']
+    assert info['capabilities'] == ['services']
+    client.channels({'/chatter'})
+    client.send(cmd='subscribe', topic='/chatter', decode=1)
+    client.message('/chatter')  # the publishers are up: their channels (if any) exist now
+    late = client_factory(port)
+    shown = late.expect(lambda e: e['event'] == 'advertise')['channels']
+    assert [c['topic'] for c in shown] == ['/chatter']  # the whitelist holds
