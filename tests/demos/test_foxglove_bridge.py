@@ -423,8 +423,18 @@ def test_launch_file_takes_the_cpp_packages_arguments(processes: Any, client_fac
         f'port:={port}',
         "topic_whitelist:=['/chatter']",
         'capabilities:=[services]',
+        'use_sim_time:=true',
     )
     processes.python(PUBLISHERS)
+    processes.cli(
+        'topic',
+        'pub',
+        '-r',
+        '20',
+        '/clock',
+        'rosgraph_msgs/msg/Clock',
+        '{clock: {sec: 1234, nanosec: 5}}',
+    )
     client = client_factory(port)
     deadline = time.monotonic() + 30
     while client.expect(lambda e: e['event'] in ('open', 'error'))['event'] != 'open':
@@ -433,10 +443,11 @@ def test_launch_file_takes_the_cpp_packages_arguments(processes: Any, client_fac
         time.sleep(0.2)
         client = client_factory(port)
     info = client.expect(lambda e: e['event'] == 'serverInfo')['info']
-    assert info['capabilities'] == ['services']
+    assert sorted(info['capabilities']) == ['services', 'time']  # time: use_sim_time
+    assert client.expect(lambda e: e['event'] == 'time')['timestamp'] == 1234_000_000_005
     client.channels({'/chatter'})
     client.send(cmd='subscribe', topic='/chatter', decode=1)
     client.message('/chatter')  # the publishers are up: their channels (if any) exist now
     late = client_factory(port)
     shown = late.expect(lambda e: e['event'] == 'advertise')['channels']
-    assert [c['topic'] for c in shown] == ['/chatter']  # the whitelist holds
+    assert [c['topic'] for c in shown] == ['/chatter']  # the whitelist holds (not /clock)
