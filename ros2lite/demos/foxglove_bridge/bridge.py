@@ -227,7 +227,13 @@ class Bridge(ServerListener):
             if not s.certfile or not s.keyfile:
                 raise ValueError("tls needs both 'certfile' and 'keyfile'")
             cert, key = _read(s.certfile), _read(s.keyfile)
-        _follow_sdk_log(self.tell_clients, self._warn, self._log)
+        # the SDK logs on its own threads, some holding its locks: no I/O there, the worker
+        # writes (a blocked stderr then stalls only the worker, never the SDK)
+        _follow_sdk_log(
+            self.tell_clients,
+            lambda m: self._events.put(('warn', m)),
+            lambda m: self._events.put(('log', m)),
+        )
         self.server = foxglove.start_server(
             name=self._own,
             host=s.address,
@@ -320,6 +326,10 @@ class Bridge(ServerListener):
                 self.node.destroy_publisher(pub.publisher)
         elif kind == 'status':
             self._status(event[1])
+        elif kind == 'warn':
+            self._warn(event[1])
+        elif kind == 'log':
+            self._log(event[1])
         elif kind == 'data':
             with self._client_bytes_lock:
                 self._client_bytes -= len(event[3])
@@ -686,8 +696,8 @@ class Bridge(ServerListener):
 
 
 class _SdkLog(logging.Handler):
-    """The SDK's log: a client whose queue overflowed is told so (a status message, from
-    the worker: never from inside the SDK's send path); its warnings go to the node's log."""
+    """The SDK's log: a client whose queue overflowed is told so (a status message); its
+    warnings go to the node's log. Every callable only queues for the worker."""
 
     # a bad client can make the SDK warn thousands of times a second (one per unknown
     # channel id): at most this many warnings a second reach the log
