@@ -260,13 +260,24 @@ def test_npm_client_sees_decodes_publishes_calls_and_sets(
 
     # a turtlesim parameter, read and set under the C++ bridge's /node.param name
     client.send(cmd='getParameters', names=['/turtlesim.background_r'], id='get')
-    got = client.expect(lambda e: e['event'] == 'parameterValues' and e['id'] == 'get')
+    got = client.expect(lambda e: e['event'] == 'parameterValues' and e.get('id') == 'get')
     assert got['parameters'] == [{'name': '/turtlesim.background_r', 'value': 69}]
     client.send(
         cmd='setParameters', parameters=[{'name': '/turtlesim.background_r', 'value': 10}], id='set'
     )
-    done = client.expect(lambda e: e['event'] == 'parameterValues' and e['id'] == 'set')
+    done = client.expect(lambda e: e['event'] == 'parameterValues' and e.get('id') == 'set')
     assert done['parameters'] == [{'name': '/turtlesim.background_r', 'value': 10}]
+    # all of them (what the Foxglove app asks first), and one watched for changes
+    client.send(cmd='getParameters', names=[], id='all')
+    every = client.expect(lambda e: e['event'] == 'parameterValues' and e.get('id') == 'all')
+    names = {p['name'] for p in every['parameters']}
+    assert {'/turtlesim.background_g', '/foxglove_bridge.port'} <= names
+    client.send(cmd='subscribeParameters', names=['/turtlesim.background_g'])
+    client.send(
+        cmd='setParameters', parameters=[{'name': '/turtlesim.background_g', 'value': 7}], id='g'
+    )
+    changed = client.expect(lambda e: e['event'] == 'parameterValues' and e.get('id') is None)
+    assert changed['parameters'] == [{'name': '/turtlesim.background_g', 'value': 7}]
 
     # the connection graph
     client.send(cmd='subscribeGraph')
