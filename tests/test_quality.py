@@ -199,6 +199,7 @@ CLI_SHARED = {'bag': 'options'} | dict.fromkeys(
 NOT_YET_ON_MAP = {
     'cli/doctor/',  # doctor became a command with verbs (hello), as ros2cli's
     'compat/tf2_ros/',
+    'demos/foxglove_bridge/',
     'demos/rqt_console/',
     'demos/rqt_tf_tree/',
     # Jazzy's demo_nodes_py executables (issue 23)

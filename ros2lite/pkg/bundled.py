@@ -27,6 +27,7 @@ _DEMOS = {
         'talker_qos',
         'use_logger_service',
     ],
+    'foxglove_bridge': ['foxglove_bridge'],
     'lifecycle': ['lifecycle_listener'],
     'lifecycle_py': ['lifecycle_talker'],
     'rclpy_components': ['component_container', 'component_container_mt'],
