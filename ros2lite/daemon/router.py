@@ -21,23 +21,28 @@ import subprocess
 import sys
 import threading
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
+from ros2lite.daemon.connect import refuse_plain, secured_endpoint, session_security
 from ros2lite.daemon.paths import lock_file, log_file, pid_file
 from ros2lite.daemon.probe import router_answers, wait_answers
 from ros2lite.exceptions import Ros2liteError
+from ros2lite.logging import get_logger
+from ros2lite.security.access import router_access
+from ros2lite.security.environment import router_identity
 from ros2lite.security.errors import SecurityError
 from ros2lite.transport.config import (
     domain_id,
     linked_routers,
+    open_router,
     open_session,
     router_config,
-    router_endpoint,
 )
 from ros2lite.transport.errors import SessionError
+from ros2lite.transport.security import Security
 
 if TYPE_CHECKING:
     from ros2lite.daemon.graph_cache import GraphServer
@@ -149,6 +154,22 @@ class DaemonStatus:
         return "The daemon is not running"
 
 
+# --------------------------------------------------------------------------- security
+
+
+def router_security(env: Mapping[str, str] | None = None) -> Security:
+    """The daemon router's security: its own enclave (made on first use when the CA key is
+    here), and access control made from every enclave's permissions in the keystore (what
+    it had to leave out goes to the log)."""
+    identity = router_identity(env)
+    if identity is None:
+        return Security(None, refuse_plain(env))
+    access = router_access(identity.keystore)
+    for line in access.warnings:
+        get_logger("ros2lite.security").warn(line)
+    return Security(identity, refuse_plain(env), access)
+
+
 # --------------------------------------------------------------------------- files
 
 
@@ -257,11 +278,9 @@ def serve(
     signal.pthread_sigmask(signal.SIG_BLOCK, stop_signals)
     signal.signal(signal.SIGHUP, signal.SIG_IGN)
     tell(f"pid {os.getpid()}")
-    from ros2lite.transport.config import open_router
-
-    endpoint = router_endpoint(router)
+    endpoint = secured_endpoint(router)
     try:
-        session = open_router(endpoint, list(listen) or None, connect)
+        session = open_router(endpoint, list(listen) or None, connect, security=router_security())
     except Exception as exc:
         msg = str(exc)
         print(f"ros2lite daemon: {msg}", file=sys.stderr, flush=True)
@@ -344,7 +363,7 @@ def _graph_cache(session: Session, endpoint: str) -> GraphServer | None:
 def daemon_pid(router: str | None = None) -> int | None:
     """The pid of our live daemon for the endpoint, if there is one (reads its pid file)."""
     try:
-        info = _read_info(pid_file(router_endpoint(router)))
+        info = _read_info(pid_file(secured_endpoint(router)))
     except OSError:
         return None
     return info.pid if info is not None else None
@@ -356,7 +375,7 @@ def status(router: str | None = None, *, sessions: bool = False) -> DaemonStatus
     A listener that does not answer as a Zenoh router is told apart (``answers_zenoh``)."""
     from ros2lite.daemon.probe import speaks_zenoh
 
-    endpoint = router_endpoint(router)
+    endpoint = secured_endpoint(router)
     info = _read_info(pid_file(endpoint))
     running = router_answers(endpoint)
     zenoh = not running or speaks_zenoh(endpoint)
@@ -372,7 +391,9 @@ def connected_sessions(
     from ros2lite.transport.admin import router_sessions
 
     try:
-        session = open_session(router_endpoint(router), mode="client", timeout=timeout)
+        security = session_security()
+        endpoint = secured_endpoint(router)
+        session = open_session(endpoint, mode="client", timeout=timeout, security=security)
     except (SessionError, SecurityError):  # e.g. no enclave of our own on a secured graph
         return None
     try:
@@ -397,9 +418,10 @@ def start(
     ``known_absent``: the caller has just probed the endpoint and nothing answered, so only
     a daemon that another process started meanwhile (its pid file) is waited for.
     """
-    endpoint = router_endpoint(router)
+    endpoint = secured_endpoint(router)
     # Validate config and env up front so mistakes surface here, not in a log file.
-    router_config(endpoint, listen=list(listen) or None, connect=list(connect))
+    security = router_security()
+    router_config(endpoint, listen=list(listen) or None, connect=list(connect), security=security)
     with _start_lock(endpoint, timeout):
         info = _read_info(pid_file(endpoint))
         if (not known_absent and router_answers(endpoint)) or (
@@ -532,7 +554,7 @@ def _exited(path: Path, pid: int) -> bool:
 
 def stop(router: str | None = None, *, timeout: float = STOP_TIMEOUT) -> StopResult:
     """Stop our own daemon for the endpoint (never a foreign router); clean stale files."""
-    endpoint = router_endpoint(router)
+    endpoint = secured_endpoint(router)
     path = pid_file(endpoint)
     with _start_lock(endpoint, timeout + 1):
         info = _read_info(path)

@@ -21,6 +21,10 @@ Precedence, lowest first: built-in defaults, or the json5 file in ``ZENOH_SESSIO
 / ``ZENOH_ROUTER_CONFIG_URI`` instead of them (as rmw_zenoh does); ``ROS2LITE_ROUTER``;
 ``ZENOH_CONFIG_OVERRIDE``; and last the explicit ``router=`` argument (the CLI's
 ``--router``), because a flag typed on the command line should beat the environment.
+
+Security arrives as a :class:`~ros2lite.transport.security.Security` value (``security=``),
+decided by :mod:`ros2lite.security` for the caller (:mod:`ros2lite.daemon.connect`); without
+one a config is unsecured.
 """
 
 from __future__ import annotations
@@ -52,11 +56,19 @@ from ros2lite.transport.endpoints import (
 )
 from ros2lite.transport.errors import (
     ConfigError,
+    InsecureLinkError,
     RouterUnavailableError,
     SessionError,
     zerror_message,
 )
 from ros2lite.transport.handles import Session
+from ros2lite.transport.security import (
+    UNSECURED,
+    Security,
+    apply_access_control,
+    apply_tls,
+    is_tls_endpoint,
+)
 
 __all__ = [
     "DEFAULT_ROUTER",
@@ -182,11 +194,15 @@ def _endpoints_json(endpoints: Sequence[str]) -> str:
 
 
 def node_session_mode(
-    router: str | None = None, env: Mapping[str, str] | None = None
+    router: str | None = None,
+    env: Mapping[str, str] | None = None,
+    *,
+    security: Security = UNSECURED,
 ) -> SessionMode:
     """The mode a long-lived node opens: peer when the router it connects to (after config
     files and overrides) is on this host, else client."""
-    return "peer" if is_local_endpoint(session_endpoint(router, env)) else "client"
+    endpoint = session_endpoint(router, env, security=security)
+    return "peer" if is_local_endpoint(endpoint) else "client"
 
 
 def session_config(
@@ -194,6 +210,7 @@ def session_config(
     env: Mapping[str, str] | None = None,
     *,
     mode: SessionMode = "client",
+    security: Security = UNSECURED,
 ) -> zenoh.Config:
     """The config for one ros2lite session (see the module docstring for the choices)."""
     environ = _env(env)
@@ -201,7 +218,7 @@ def session_config(
     endpoint = explicit_router(None, env)  # ROS2LITE_ROUTER only; router= goes last
     if config is None:
         config = zenoh.Config()
-        endpoint = endpoint or router_endpoint(None, env)
+        endpoint = endpoint or router_endpoint(None, env, secure=security.secure_default)
         retry = (
             f"{{period_init_ms: {RETRY_INIT_MS}, period_max_ms: {RETRY_MAX_MS}, "
             "period_increase_factor: 2}"
@@ -230,38 +247,23 @@ def session_config(
             _insert(config, key, value, "built-in session config")
     if endpoint:
         _insert(config, "connect/endpoints", _endpoints_json([endpoint]), ROUTER_ENV)
-    secured = _secure_session(config, env)
+    if security.credentials is not None:
+        # this process's enclave certificate on every TLS link, and client mode, so all
+        # traffic crosses the router that enforces the permissions (a peer-to-peer link
+        # would bypass it)
+        apply_tls(config, security.credentials)
+        _insert(config, "mode", '"client"', "security")
     apply_config_override(config, env=env)
     if router:
         _insert(config, "connect/endpoints", _endpoints_json([router_endpoint(router)]), "router")
-    if secured:
-        _require_tls(config, "connect/endpoints", env)
+    if security.credentials is not None:
+        _require_tls(config, "connect/endpoints", security)
     return config
 
 
-def _secure_session(config: zenoh.Config, env: Mapping[str, str] | None) -> bool:
-    """With security on: this process's enclave certificate on every TLS link, and client
-    mode, so all traffic crosses the router that enforces the permissions (a peer-to-peer
-    link would bypass it).  Enforce without material raises; Permissive says so once."""
-    from ros2lite.security.environment import resolve
-
-    identity = resolve(env)
-    if identity is None:
-        return False
-    from ros2lite.transport.security import apply_tls
-
-    apply_tls(config, identity)
-    _insert(config, "mode", '"client"', "security")
-    return True
-
-
-def _require_tls(config: zenoh.Config, key: str, env: Mapping[str, str] | None) -> None:
-    """Under Enforce, a link that is not TLS is refused in one line."""
-    from ros2lite.security.environment import STRATEGY_ENV, enforced
-    from ros2lite.security.errors import SecurityError
-    from ros2lite.transport.security import is_tls_endpoint
-
-    if not enforced(env):
+def _require_tls(config: zenoh.Config, key: str, security: Security) -> None:
+    """When security says so (Enforce), a link that is not TLS is refused in one line."""
+    if not security.refuse_plain:
         return
     try:
         value = json.loads(config.get_json(key))
@@ -271,8 +273,8 @@ def _require_tls(config: zenoh.Config, key: str, env: Mapping[str, str] | None) 
         value = [e for endpoints in value.values() for e in endpoints or []]
     for endpoint in value or []:
         if not is_tls_endpoint(str(endpoint)):
-            raise SecurityError(
-                f"SECURITY ERROR: {STRATEGY_ENV}=Enforce refuses the unencrypted endpoint "
+            raise InsecureLinkError(
+                f"SECURITY ERROR: {security.refuse_plain} refuses the unencrypted endpoint "
                 f"{endpoint}; use a tls/ endpoint (e.g. {DEFAULT_SECURE_ROUTER})"
             )
 
@@ -282,6 +284,8 @@ def router_config(
     listen: Sequence[str] | None = None,
     connect: Sequence[str] = (),
     env: Mapping[str, str] | None = None,
+    *,
+    security: Security = UNSECURED,
 ) -> zenoh.Config:
     """The config for the ros2lite daemon's router (rmw_zenohd's settings, loopback by default).
 
@@ -295,7 +299,7 @@ def router_config(
     env_listen: list[str] = []
     if config is None:
         config = zenoh.Config()
-        env_listen = default_listen(router_endpoint(None, env))
+        env_listen = default_listen(router_endpoint(None, env, secure=security.secure_default))
         defaults = [
             ("mode", '"router"'),
             ("scouting/multicast/enabled", "false"),
@@ -311,7 +315,7 @@ def router_config(
         for key, value in defaults:
             _insert(config, key, value, "built-in router config")
     elif explicit_router(None, env):
-        env_listen = default_listen(router_endpoint(None, env))
+        env_listen = default_listen(router_endpoint(None, env))  # ROS2LITE_ROUTER: named
     if env_listen:
         _insert(config, "listen/endpoints", _endpoints_json(env_listen), "listen endpoints")
     apply_config_override(config, env=env)
@@ -321,29 +325,15 @@ def router_config(
         _insert(config, "listen/endpoints", _endpoints_json(listen), "listen endpoints")
     if connect:
         _insert(config, "connect/endpoints", _endpoints_json(connect), "connect endpoints")
-    _secure_router(config, env)
+    if security.credentials is not None:
+        # the router's own enclave on its TLS links, and access control made from every
+        # enclave's permissions in the keystore (default deny)
+        apply_tls(config, security.credentials)
+        if security.access is not None:
+            apply_access_control(config, security.access)
+        _require_tls(config, "listen/endpoints", security)
+        _require_tls(config, "connect/endpoints", security)
     return config
-
-
-def _secure_router(config: zenoh.Config, env: Mapping[str, str] | None) -> None:
-    """With security on: the router's own enclave on its TLS links, and access control made
-    from every enclave's permissions in the keystore (default deny)."""
-    from ros2lite.security.environment import router_identity
-
-    identity = router_identity(env)
-    if identity is None:
-        return
-    from ros2lite.logging import get_logger
-    from ros2lite.security.access import router_access
-    from ros2lite.transport.security import apply_access_control, apply_tls
-
-    apply_tls(config, identity)
-    access = router_access(identity.keystore)
-    for line in access.warnings:
-        get_logger("ros2lite.security").warn(line)
-    apply_access_control(config, access)
-    _require_tls(config, "listen/endpoints", env)
-    _require_tls(config, "connect/endpoints", env)
 
 
 def _configured_endpoint(config: zenoh.Config, fallback: str) -> str:
@@ -375,6 +365,7 @@ def open_session(
     timeout: float = 1.0,
     require_router: bool = True,
     env: Mapping[str, str] | None = None,
+    security: Security = UNSECURED,
 ) -> zenoh.Session:
     """Open a zenoh session for ros2lite and (by default) make sure a router is really there.
 
@@ -384,8 +375,9 @@ def open_session(
     seconds for ``session.info.routers_zid()`` to list one, and raise
     :class:`RouterUnavailableError` (one clear line) otherwise.
     """
-    config = session_config(router, env, mode=mode)
-    endpoint = _configured_endpoint(config, router_endpoint(router, env))
+    config = session_config(router, env, mode=mode, security=security)
+    fallback = router_endpoint(router, env, secure=security.secure_default)
+    endpoint = _configured_endpoint(config, fallback)
     try:
         session = zenoh.open(config)
     except zenoh.ZError as exc:
@@ -410,8 +402,6 @@ def _handshake_refused(endpoint: str) -> bool:
     """A TLS endpoint where something accepts TCP connections, yet no session opened."""
     import socket
 
-    from ros2lite.transport.security import is_tls_endpoint
-
     parsed = endpoint_host_port(endpoint)
     if not is_tls_endpoint(endpoint) or parsed is None:
         return False
@@ -423,9 +413,16 @@ def _handshake_refused(endpoint: str) -> bool:
         return False
 
 
-def session_endpoint(router: str | None = None, env: Mapping[str, str] | None = None) -> str:
+def session_endpoint(
+    router: str | None = None,
+    env: Mapping[str, str] | None = None,
+    *,
+    security: Security = UNSECURED,
+) -> str:
     """The router endpoint(s) a session would connect to, as one line for messages."""
-    return _configured_endpoint(session_config(router, env), router_endpoint(router, env))
+    config = session_config(router, env, security=security)
+    fallback = router_endpoint(router, env, secure=security.secure_default)
+    return _configured_endpoint(config, fallback)
 
 
 def wait_for_router(session: zenoh.Session, timeout: float) -> bool:
@@ -460,13 +457,18 @@ def check_router(
 
 
 def open_router(
-    endpoint: str, listen: Sequence[str] | None = None, connect: Sequence[str] = ()
+    endpoint: str,
+    listen: Sequence[str] | None = None,
+    connect: Sequence[str] = (),
+    *,
+    security: Security = UNSECURED,
 ) -> zenoh.Session:
     """A router session (the daemon's), logging zenoh's errors only; a refusal (port taken,
     bad endpoint) is a SessionError with zenoh's message in one line."""
     zenoh.init_log_from_env_or("error")
     try:
-        return zenoh.open(router_config(endpoint, listen=listen, connect=list(connect)))
+        config = router_config(endpoint, listen=listen, connect=list(connect), security=security)
+        return zenoh.open(config)
     except zenoh.ZError as exc:
         raise SessionError(zerror_message(exc)) from None
 
