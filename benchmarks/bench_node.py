@@ -4,7 +4,7 @@ bytes, measured in the same run: throughput of small and 1 MiB messages, and lat
 Arrangement (identical for both sides): a router process on a free loopback port, the
 *subscriber* in this process and the *publisher* in a child process. Both sides open the
 sessions nodes open: peer mode, data on a direct loopback link (the baseline passes
-`node_session_mode()` to `ros2lite.transport.config.open_session`). The publisher sends warm-up
+`node_session_mode()` to `ros2lite.transport.open.open_session`). The publisher sends warm-up
 samples until the subscriber has heard one (so routes exist and nothing is lost to discovery),
 then N samples back to back; the subscriber counts them and the rate is N over the time from
 the first to the last arrival. Every sample must arrive (KEEP_ALL + RELIABLE; congestion
@@ -92,7 +92,8 @@ else:
     from ros2lite.memory import keep_large_buffers
     from ros2lite.transport.attachment import pack_attachment
     keep_large_buffers()  # the allocator setting a node has: the same terms for both
-    from ros2lite.transport.config import node_session_mode, open_session
+    from ros2lite.transport.config import node_session_mode
+    from ros2lite.transport.open import open_session
     session = open_session(mode=node_session_mode())
     zpub = session.declare_publisher(key, reliability=zenoh.Reliability.RELIABLE,
                                      congestion_control=zenoh.CongestionControl.BLOCK)
@@ -134,7 +135,8 @@ else:
     import threading
     import zenoh
     from ros2lite.memory import keep_large_buffers
-    from ros2lite.transport.config import node_session_mode, open_session
+    from ros2lite.transport.config import node_session_mode
+    from ros2lite.transport.open import open_session
     keep_large_buffers()
     session = open_session(mode=node_session_mode())
     pub = session.declare_publisher(pong_key)
@@ -256,7 +258,8 @@ def raw_run(key: str, warm_cdr: bytes, kind: str, n: int, pub_mode: str = 'raw')
     subscriber is not lossless here: it drops samples under this load)."""
     import zenoh
 
-    from ros2lite.transport.config import node_session_mode, open_session
+    from ros2lite.transport.config import node_session_mode
+    from ros2lite.transport.open import open_session
 
     session = open_session(mode=node_session_mode())
     try:
@@ -404,7 +407,8 @@ def _ping_pong(mode: str) -> list[float]:
 def _raw_pinger(ping_key: str, pong_key: str, cdr: bytes) -> list[float]:
     import zenoh
 
-    from ros2lite.transport.config import node_session_mode, open_session
+    from ros2lite.transport.config import node_session_mode
+    from ros2lite.transport.open import open_session
 
     session = open_session(mode=node_session_mode())
     try:

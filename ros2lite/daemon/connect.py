@@ -40,10 +40,8 @@ from ros2lite.security.environment import (
 )
 from ros2lite.transport.config import (
     CONNECT_TIMEOUT_MS,
-    check_router,
     configured_mode,
     node_session_mode,
-    open_session,
     session_config,
     session_endpoint,
 )
@@ -54,6 +52,7 @@ from ros2lite.transport.endpoints import (
     router_endpoint,
 )
 from ros2lite.transport.errors import RouterUnavailableError
+from ros2lite.transport.open import check_router, open_session
 from ros2lite.transport.security import Security
 
 if TYPE_CHECKING:

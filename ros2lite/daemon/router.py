@@ -34,14 +34,9 @@ from ros2lite.logging import get_logger
 from ros2lite.security.access import router_access
 from ros2lite.security.environment import router_identity
 from ros2lite.security.errors import SecurityError
-from ros2lite.transport.config import (
-    domain_id,
-    linked_routers,
-    open_router,
-    open_session,
-    router_config,
-)
+from ros2lite.transport.config import domain_id, router_config
 from ros2lite.transport.errors import SessionError
+from ros2lite.transport.open import linked_routers, open_router, open_session
 from ros2lite.transport.security import Security
 
 if TYPE_CHECKING:

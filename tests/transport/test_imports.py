@@ -13,7 +13,7 @@ def test_keys_qos_attachment_and_daemon_do_not_import_zenoh() -> None:
         "import ros2lite.transport.attachment, ros2lite.daemon\n"
         "import ros2lite.names, ros2lite.qos\n"
         "assert 'zenoh' not in sys.modules, 'zenoh imported'\n"
-        "from ros2lite.transport.config import open_session\n"
+        "from ros2lite.transport.open import open_session\n"
         "assert 'zenoh' in sys.modules\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True, timeout=60)

@@ -28,7 +28,8 @@ def test_round_trip(
 
     from ros2lite.daemon.router import router_security
     from ros2lite.graph import snapshot
-    from ros2lite.transport.config import open_session, router_config
+    from ros2lite.transport.config import router_config
+    from ros2lite.transport.open import open_session
 
     for exe, enclave in (('talker', '/gp/talker'), ('listener', '/gp/listener')):
         processes.start(
