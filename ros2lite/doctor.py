@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from ros2lite.daemon.router import DaemonStatus
+    from ros2lite.daemon.control import DaemonStatus
     from ros2lite.graph import Entity
     from ros2lite.qos import Compatibility
 

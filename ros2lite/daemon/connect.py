@@ -122,7 +122,8 @@ def _autostart(router: str | None, security: Security) -> None:
         or router_answers(endpoint)
     ):
         return
-    from ros2lite.daemon.router import DaemonError, start
+    from ros2lite.daemon.control import start
+    from ros2lite.daemon.errors import DaemonError
 
     try:
         result = start(endpoint, known_absent=True)
@@ -196,7 +197,7 @@ def connect(
         if not router_answers(endpoint, timeout=min(timeout, 0.5)):
             if not autostart:
                 raise RouterUnavailableError(endpoint, "nothing listens there")
-            from ros2lite.daemon.router import start
+            from ros2lite.daemon.control import start
 
             start(endpoint, known_absent=True)
     try:
@@ -212,7 +213,7 @@ def _diagnosed(exc: RouterUnavailableError) -> RouterUnavailableError:
 
     if not router_answers(exc.endpoint):
         return exc
-    from ros2lite.daemon.router import daemon_pid
+    from ros2lite.daemon.control import daemon_pid
 
     pid = daemon_pid(exc.endpoint)
     better = RouterUnavailableError(exc.endpoint, exc.detail)
