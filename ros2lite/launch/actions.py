@@ -9,7 +9,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, TypedDict
+from typing import TYPE_CHECKING, Protocol, TypedDict, runtime_checkable
 
 from .conditions import Condition
 from .entity import Entities, LaunchDescriptionEntity
@@ -677,6 +677,15 @@ def path_of(value: SomeSubstitutionsType | Path, context: LaunchContext) -> str:
 # -- what a description declares -------------------------------------------------------------------
 
 
+@runtime_checkable
+class GivesArguments(Protocol):
+    """An entity that gives the description below it launch arguments (an include)."""
+
+    def argument_names_without_context(self) -> list[str]:
+        """The names of the arguments it gives that are plain text."""
+        ...
+
+
 def launch_arguments(
     root: LaunchDescriptionEntity,
 ) -> list[tuple[DeclareLaunchArgument, bool]]:
@@ -687,21 +696,21 @@ def launch_arguments(
 
 def declared_arguments(
     root: LaunchDescriptionEntity,
-) -> list[tuple[DeclareLaunchArgument, bool, list[IncludeLaunchDescription]]]:
+) -> list[tuple[DeclareLaunchArgument, bool, list[GivesArguments]]]:
     """Like :func:`launch_arguments`, with the includes each argument is reached through
     (those may give it its value)."""
-    found: dict[str, tuple[DeclareLaunchArgument, bool, list[IncludeLaunchDescription]]] = {}
+    found: dict[str, tuple[DeclareLaunchArgument, bool, list[GivesArguments]]] = {}
 
     def walk(
         entities: Iterable[LaunchDescriptionEntity],
         conditional: bool,
-        via: list[IncludeLaunchDescription],
+        via: list[GivesArguments],
     ) -> None:
         for entity in entities:
             cond = conditional or (isinstance(entity, Action) and entity.condition is not None)
             if isinstance(entity, DeclareLaunchArgument) and entity.name not in found:
                 found[entity.name] = (entity, cond, via)
-            inner = [*via, entity] if isinstance(entity, IncludeLaunchDescription) else via
+            inner = [*via, entity] if isinstance(entity, GivesArguments) else via
             walk(entity.describe_sub_entities(), cond, inner)
             for _label, subs in entity.describe_conditional_sub_entities():
                 walk(subs, True, inner)
