@@ -7,20 +7,18 @@ import re
 from pathlib import Path
 from typing import Any
 
-from ros2lite.launch.actions import (
-    DeclareLaunchArgument,
+from ros2lite.launch.actions import DeclareLaunchArgument, OpaqueFunction, SetLaunchConfiguration
+from ros2lite.launch.conditions import IfCondition, UnlessCondition
+from ros2lite.launch.event_handlers import OnProcessExit, OnProcessIO, OnProcessStart
+from ros2lite.launch.events import Shutdown
+from ros2lite.launch.flow import (
     EmitEvent,
     GroupAction,
     IncludeLaunchDescription,
     LogInfo,
-    OpaqueFunction,
     RegisterEventHandler,
-    SetLaunchConfiguration,
     TimerAction,
 )
-from ros2lite.launch.conditions import IfCondition, UnlessCondition
-from ros2lite.launch.event_handlers import OnProcessExit, OnProcessIO, OnProcessStart
-from ros2lite.launch.events import Shutdown
 from ros2lite.launch.sources import PythonLaunchDescriptionSource
 from ros2lite.launch.substitutions import LaunchConfiguration
 from tests.launch.helpers import run_launch, sh
