@@ -94,7 +94,9 @@ else:
     keep_large_buffers()  # the allocator setting a node has: the same terms for both
     from ros2lite.transport.config import node_session_mode
     from ros2lite.transport.open import open_session
-    session = open_session(mode=node_session_mode())
+    from ros2lite.daemon.connect import session_security
+    security = session_security()  # as nodes have it (a secured graph too)
+    session = open_session(mode=node_session_mode(security=security), security=security)
     zpub = session.declare_publisher(key, reliability=zenoh.Reliability.RELIABLE,
                                      congestion_control=zenoh.CongestionControl.BLOCK)
     msgs = [interfaces.serialize(m) for m in msgs]
@@ -137,8 +139,10 @@ else:
     from ros2lite.memory import keep_large_buffers
     from ros2lite.transport.config import node_session_mode
     from ros2lite.transport.open import open_session
+    from ros2lite.daemon.connect import session_security
     keep_large_buffers()
-    session = open_session(mode=node_session_mode())
+    security = session_security()  # as nodes have it (a secured graph too)
+    session = open_session(mode=node_session_mode(security=security), security=security)
     pub = session.declare_publisher(pong_key)
     sub = session.declare_subscriber(ping_key, zenoh.handlers.FifoChannel(64))
 
@@ -258,10 +262,12 @@ def raw_run(key: str, warm_cdr: bytes, kind: str, n: int, pub_mode: str = 'raw')
     subscriber is not lossless here: it drops samples under this load)."""
     import zenoh
 
+    from ros2lite.daemon.connect import session_security
     from ros2lite.transport.config import node_session_mode
     from ros2lite.transport.open import open_session
 
-    session = open_session(mode=node_session_mode())
+    security = session_security()  # as nodes have it (a secured graph too)
+    session = open_session(mode=node_session_mode(security=security), security=security)
     try:
 
         def subscribe(counter: Counter) -> Callable[[Flag, float], None]:
@@ -407,10 +413,12 @@ def _ping_pong(mode: str) -> list[float]:
 def _raw_pinger(ping_key: str, pong_key: str, cdr: bytes) -> list[float]:
     import zenoh
 
+    from ros2lite.daemon.connect import session_security
     from ros2lite.transport.config import node_session_mode
     from ros2lite.transport.open import open_session
 
-    session = open_session(mode=node_session_mode())
+    security = session_security()  # as nodes have it (a secured graph too)
+    session = open_session(mode=node_session_mode(security=security), security=security)
     try:
         sub = session.declare_subscriber(pong_key, zenoh.handlers.FifoChannel(64))
         pub = session.declare_publisher(ping_key)
