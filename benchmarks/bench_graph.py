@@ -32,7 +32,8 @@ STRING_HASH = 'RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f
 # Runs in the child: a node's session declaring the tokens; prints "ready".
 _GRAPH_CHILD = f'''
 import sys
-from ros2lite.transport.config import node_session_mode, open_session
+from ros2lite.transport.config import node_session_mode
+from ros2lite.transport.open import open_session
 from ros2lite.transport.keys import EntityKind, endpoint_token, node_token
 from ros2lite.qos import QoSProfile
 

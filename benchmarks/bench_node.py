@@ -4,7 +4,7 @@ bytes, measured in the same run: throughput of small and 1 MiB messages, and lat
 Arrangement (identical for both sides): a router process on a free loopback port, the
 *subscriber* in this process and the *publisher* in a child process. Both sides open the
 sessions nodes open: peer mode, data on a direct loopback link (the baseline passes
-`node_session_mode()` to `ros2lite.transport.config.open_session`). The publisher sends warm-up
+`node_session_mode()` to `ros2lite.transport.open.open_session`). The publisher sends warm-up
 samples until the subscriber has heard one (so routes exist and nothing is lost to discovery),
 then N samples back to back; the subscriber counts them and the rate is N over the time from
 the first to the last arrival. Every sample must arrive (KEEP_ALL + RELIABLE; congestion
@@ -92,8 +92,11 @@ else:
     from ros2lite.runtime.memory import keep_large_buffers
     from ros2lite.transport.attachment import pack_attachment
     keep_large_buffers()  # the allocator setting a node has: the same terms for both
-    from ros2lite.transport.config import node_session_mode, open_session
-    session = open_session(mode=node_session_mode())
+    from ros2lite.transport.config import node_session_mode
+    from ros2lite.transport.open import open_session
+    from ros2lite.daemon.connect import session_security
+    security = session_security()  # as nodes have it (a secured graph too)
+    session = open_session(mode=node_session_mode(security=security), security=security)
     zpub = session.declare_publisher(key, reliability=zenoh.Reliability.RELIABLE,
                                      congestion_control=zenoh.CongestionControl.BLOCK)
     msgs = [interfaces.serialize(m) for m in msgs]
@@ -134,9 +137,12 @@ else:
     import threading
     import zenoh
     from ros2lite.runtime.memory import keep_large_buffers
-    from ros2lite.transport.config import node_session_mode, open_session
+    from ros2lite.transport.config import node_session_mode
+    from ros2lite.transport.open import open_session
+    from ros2lite.daemon.connect import session_security
     keep_large_buffers()
-    session = open_session(mode=node_session_mode())
+    security = session_security()  # as nodes have it (a secured graph too)
+    session = open_session(mode=node_session_mode(security=security), security=security)
     pub = session.declare_publisher(pong_key)
     sub = session.declare_subscriber(ping_key, zenoh.handlers.FifoChannel(64))
 
@@ -256,9 +262,12 @@ def raw_run(key: str, warm_cdr: bytes, kind: str, n: int, pub_mode: str = 'raw')
     subscriber is not lossless here: it drops samples under this load)."""
     import zenoh
 
-    from ros2lite.transport.config import node_session_mode, open_session
+    from ros2lite.daemon.connect import session_security
+    from ros2lite.transport.config import node_session_mode
+    from ros2lite.transport.open import open_session
 
-    session = open_session(mode=node_session_mode())
+    security = session_security()  # as nodes have it (a secured graph too)
+    session = open_session(mode=node_session_mode(security=security), security=security)
     try:
 
         def subscribe(counter: Counter) -> Callable[[Flag, float], None]:
@@ -404,9 +413,12 @@ def _ping_pong(mode: str) -> list[float]:
 def _raw_pinger(ping_key: str, pong_key: str, cdr: bytes) -> list[float]:
     import zenoh
 
-    from ros2lite.transport.config import node_session_mode, open_session
+    from ros2lite.daemon.connect import session_security
+    from ros2lite.transport.config import node_session_mode
+    from ros2lite.transport.open import open_session
 
-    session = open_session(mode=node_session_mode())
+    security = session_security()  # as nodes have it (a secured graph too)
+    session = open_session(mode=node_session_mode(security=security), security=security)
     try:
         sub = session.declare_subscriber(pong_key, zenoh.handlers.FifoChannel(64))
         pub = session.declare_publisher(ping_key)

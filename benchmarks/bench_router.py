@@ -117,7 +117,8 @@ def _environment(env: dict[str, str]) -> Iterator[None]:
 
 def _node_names(endpoint: str) -> set[str]:
     from ros2lite.graph import node_names_and_namespaces, snapshot
-    from ros2lite.transport.config import domain_id, open_session
+    from ros2lite.transport.config import domain_id
+    from ros2lite.transport.open import open_session
 
     try:
         session = open_session(endpoint, timeout=0.5)

@@ -51,13 +51,14 @@ def _router(endpoint: str, env: dict[str, str | None]) -> contextlib.AbstractCon
 
 
 def _connect_ms(env: dict[str, str | None]) -> float:
-    from ros2lite.transport.config import open_session
+    from ros2lite.daemon.connect import session_security
+    from ros2lite.transport.open import open_session
 
     times = []
     with _environment(env):
         for _ in range(CONNECTS):
             t0 = time.perf_counter()
-            session = open_session(mode='client')
+            session = open_session(mode='client', security=session_security())
             times.append(time.perf_counter() - t0)
             session.close()
     return statistics.median(times) * 1000

@@ -100,9 +100,11 @@ def import_click_wall(runs: int = 9) -> float:
 # configuration (security, config files), else only its built-in defaults
 ROUTER = r'''
 import sys, zenoh
+from ros2lite.daemon.router import router_security
 from ros2lite.transport.config import router_config
 zenoh.init_log_from_env_or('error')
-router = zenoh.open(router_config(sys.argv[1], env=None if '--env' in sys.argv else {}))
+env = None if '--env' in sys.argv else {}
+router = zenoh.open(router_config(sys.argv[1], env=env, security=router_security(env)))
 print('ready', flush=True)
 sys.stdin.read()
 router.close()

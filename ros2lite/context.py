@@ -278,7 +278,7 @@ class RouterLink:
         session = self.context.session
         if session is None:
             return
-        from ros2lite.transport.config import router_connected
+        from ros2lite.transport.open import router_connected
 
         linked = router_connected(session)
         if linked != self.linked:

@@ -6,11 +6,11 @@ from pathlib import Path
 
 import pytest
 
+from ros2lite.parameters.node_api import load_params_file, node_overrides
 from ros2lite.runtime.arguments import (
     Remap,
     RosArgs,
     RosArgsError,
-    load_params_file,
     parse_ros_args,
     split_ros_args,
 )
@@ -87,8 +87,8 @@ def test_parameters_are_yaml_typed() -> None:
         'e': None,
     }
     assert args.params['node'] == {'x': 1}
-    assert args.parameter_overrides('/node', 'node')['x'] == 1
-    assert 'x' not in args.parameter_overrides('/other', 'other')
+    assert node_overrides(args, '/node', 'node')['x'] == 1
+    assert 'x' not in node_overrides(args, '/other', 'other')
 
 
 def test_log_levels_and_enclave() -> None:
@@ -153,7 +153,7 @@ def test_params_file_matching(tmp_path: Path) -> None:
         'only_listener': True,
     }
     args = parse_ros_args(['--ros-args', '--params-file', str(path), '-p', 'shared:=cli'])
-    assert args.parameter_overrides('/robot1/talker', 'talker')['shared'] == 'cli'
+    assert node_overrides(args, '/robot1/talker', 'talker')['shared'] == 'cli'
 
 
 def test_params_file_errors(tmp_path: Path) -> None:
@@ -178,6 +178,6 @@ def test_later_rules_win_over_earlier_files_and_back(tmp_path: Path) -> None:
     args = parse_ros_args(
         ['--ros-args', '-p', 'a:=early', '--params-file', str(path), '-p', 'b:=late']
     )
-    assert args.parameter_overrides('/n', 'n') == {'a': 'file', 'b': 'late'}
+    assert node_overrides(args, '/n', 'n') == {'a': 'file', 'b': 'late'}
     flags = parse_ros_args(['--ros-args', '--disable-rosout-logs', '--enable-stdout-logs'])
     assert (flags.rosout_logs, flags.stdout_logs) == (False, True)

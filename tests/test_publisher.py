@@ -53,7 +53,7 @@ class Tap:
 
 @pytest.fixture
 def bare_session(ros_router: str) -> Iterator[Any]:
-    from ros2lite.transport.config import open_session
+    from ros2lite.transport.open import open_session
 
     session = open_session()
     try:

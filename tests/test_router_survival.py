@@ -139,7 +139,8 @@ def private(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Iterator[dict[st
 def node_names(endpoint: str) -> set[str]:
     """Node names as a CLI verb sees them: one client session asking the router."""
     from ros2lite.graph import node_names_and_namespaces, snapshot
-    from ros2lite.transport.config import domain_id, open_session
+    from ros2lite.transport.config import domain_id
+    from ros2lite.transport.open import open_session
 
     session = open_session(endpoint)
     try:

@@ -7,22 +7,38 @@ is imported.
 
 from __future__ import annotations
 
+import importlib
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from ros2lite.daemon.paths import runtime_dir
-    from ros2lite.daemon.router import (
-        DaemonError,
-        DaemonInfo,
+    from ros2lite.daemon.control import (
         DaemonStatus,
         StartResult,
         StopResult,
         ensure_running,
-        router_answers,
         start,
         status,
         stop,
     )
+    from ros2lite.daemon.errors import DaemonError
+    from ros2lite.daemon.paths import runtime_dir
+    from ros2lite.daemon.probe import router_answers
+    from ros2lite.daemon.router import DaemonInfo
+
+# each name, and the module of this package that defines it
+_HOMES = {
+    "DaemonError": "errors",
+    "DaemonInfo": "router",
+    "DaemonStatus": "control",
+    "StartResult": "control",
+    "StopResult": "control",
+    "ensure_running": "control",
+    "router_answers": "probe",
+    "runtime_dir": "paths",
+    "start": "control",
+    "status": "control",
+    "stop": "control",
+}
 
 __all__ = [
     "DaemonError",
@@ -40,12 +56,7 @@ __all__ = [
 
 
 def __getattr__(name: str) -> Any:
-    if name == "runtime_dir":
-        from ros2lite.daemon.paths import runtime_dir
-
-        return runtime_dir
-    if name in __all__:
-        from ros2lite.daemon import router
-
-        return getattr(router, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    home = _HOMES.get(name)
+    if home is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return getattr(importlib.import_module(f"{__name__}.{home}"), name)

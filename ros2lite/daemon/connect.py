@@ -19,6 +19,11 @@ verb has started the daemon, so a missing router must not be fatal.  In order:
 
 A session forced into client mode (a remote router, or ``mode="client"`` in an override)
 cannot open without its router and fails with :class:`RouterUnavailableError` instead.
+
+Security is decided here, once per session, from :mod:`ros2lite.security` and handed to
+:mod:`ros2lite.transport` as a value (:func:`session_security`, :func:`router_security`), so
+every session and router this package opens has its enclave checked the same way
+(:func:`ros2lite.security.environment.enclave_problems`).
 """
 
 from __future__ import annotations
@@ -27,12 +32,16 @@ import os
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
+from ros2lite.security.environment import (
+    STRATEGY_ENV,
+    enforced,
+    resolve,
+    security_enabled,
+)
 from ros2lite.transport.config import (
     CONNECT_TIMEOUT_MS,
-    check_router,
     configured_mode,
     node_session_mode,
-    open_session,
     session_config,
     session_endpoint,
 )
@@ -43,11 +52,21 @@ from ros2lite.transport.endpoints import (
     router_endpoint,
 )
 from ros2lite.transport.errors import RouterUnavailableError
+from ros2lite.transport.open import check_router, open_session
+from ros2lite.transport.security import Security
 
 if TYPE_CHECKING:
     from ros2lite.transport.handles import Session
 
-__all__ = ["NO_DAEMON_ENV", "autostart_enabled", "connect", "open_node_session"]
+__all__ = [
+    "NO_DAEMON_ENV",
+    "autostart_enabled",
+    "connect",
+    "open_node_session",
+    "refuse_plain",
+    "secured_endpoint",
+    "session_security",
+]
 
 NO_DAEMON_ENV = "ROS2LITE_NO_DAEMON"
 LOGGER_NAME = "ros2lite"
@@ -67,6 +86,24 @@ def autostart_enabled(env: Mapping[str, str] | None = None) -> bool:
     )
 
 
+def refuse_plain(env: Mapping[str, str] | None) -> str:
+    """Why unencrypted links are refused, '' when they are not (only under Enforce)."""
+    return f"{STRATEGY_ENV}=Enforce" if enforced(env) else ""
+
+
+def session_security(env: Mapping[str, str] | None = None) -> Security:
+    """This process's security for its sessions: its enclave's material, checked
+    (Enforce without usable material raises SecurityError; Permissive says so once)."""
+    return Security(resolve(env), refuse_plain(env))
+
+
+def secured_endpoint(router: str | None = None, env: Mapping[str, str] | None = None) -> str:
+    """The router endpoint: ``router``, else ``$ROS2LITE_ROUTER``, else the default, the TLS
+    one when this process runs secured (Enforce, or an enclave it can use)."""
+    secure = enforced(env) or (security_enabled(env) and resolve(env) is not None)
+    return router_endpoint(router, env, secure=secure)
+
+
 def _log(severity: str, message: str) -> None:
     from ros2lite.logging import get_logger
 
@@ -74,18 +111,19 @@ def _log(severity: str, message: str) -> None:
     (logger.warn if severity == "warn" else logger.info)(message)
 
 
-def _autostart(router: str | None) -> None:
+def _autostart(router: str | None, security: Security) -> None:
     """Start our daemon at the node's endpoint when nothing answers there (see module doc)."""
     from ros2lite.daemon.probe import router_answers
 
-    endpoint = router_endpoint(router)
+    endpoint = router_endpoint(router, secure=security.secure_default)
     if (
-        session_endpoint(router) != endpoint
+        session_endpoint(router, security=security) != endpoint
         or not is_local_endpoint(endpoint)
         or router_answers(endpoint)
     ):
         return
-    from ros2lite.daemon.router import DaemonError, start
+    from ros2lite.daemon.control import start
+    from ros2lite.daemon.errors import DaemonError
 
     try:
         result = start(endpoint, known_absent=True)
@@ -102,14 +140,15 @@ def _autostart(router: str | None) -> None:
 
 def open_node_session(router: str | None = None) -> Session:
     """The session of a long-lived node (module doc); raises ConfigError/SessionError."""
+    security = session_security()
     if autostart_enabled():
-        _autostart(router)
-    mode = node_session_mode(router)
+        _autostart(router, security)
+    mode = node_session_mode(router, security=security)
     attempts = router_check_attempts()
-    if configured_mode(session_config(router, mode=mode)) != "peer":
-        return open_session(router, mode=mode)
-    session = open_session(router, mode=mode, require_router=False)
-    endpoint = session_endpoint(router)
+    if configured_mode(session_config(router, mode=mode, security=security)) != "peer":
+        return open_session(router, mode=mode, security=security)
+    session = open_session(router, mode=mode, require_router=False, security=security)
+    endpoint = session_endpoint(router, security=security)
 
     def waiting(n: int) -> None:
         if n == 1 and attempts != 1:
@@ -150,18 +189,19 @@ def connect(
     """
     if not tool:
         return open_node_session(router)
-    endpoint = router_endpoint(router)
-    if session_endpoint(router) == endpoint:
+    security = session_security()
+    endpoint = router_endpoint(router, secure=security.secure_default)
+    if session_endpoint(router, security=security) == endpoint:
         from ros2lite.daemon.probe import router_answers
 
         if not router_answers(endpoint, timeout=min(timeout, 0.5)):
             if not autostart:
                 raise RouterUnavailableError(endpoint, "nothing listens there")
-            from ros2lite.daemon.router import start
+            from ros2lite.daemon.control import start
 
             start(endpoint, known_absent=True)
     try:
-        return open_session(router, mode="client", timeout=timeout)
+        return open_session(router, mode="client", timeout=timeout, security=security)
     except RouterUnavailableError as exc:
         raise _diagnosed(exc) from None
 
@@ -173,7 +213,7 @@ def _diagnosed(exc: RouterUnavailableError) -> RouterUnavailableError:
 
     if not router_answers(exc.endpoint):
         return exc
-    from ros2lite.daemon.router import daemon_pid
+    from ros2lite.daemon.control import daemon_pid
 
     pid = daemon_pid(exc.endpoint)
     better = RouterUnavailableError(exc.endpoint, exc.detail)

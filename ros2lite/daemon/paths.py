@@ -1,7 +1,7 @@
 """Where the daemon of an endpoint keeps its files: pid (and liveness lock), log, start lock
 and the graph cache's socket, one set per router endpoint in the user's private runtime dir.
 
-Apart from :mod:`ros2lite.daemon.router` so that finding them loads no zenoh.
+Apart from :mod:`ros2lite.daemon.control` so that finding them loads no zenoh.
 """
 
 from __future__ import annotations

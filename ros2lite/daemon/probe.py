@@ -64,7 +64,7 @@ def not_a_router(endpoint: str, pid: int | None = None) -> str:
 
 
 def _zenoh_probe(endpoint: str, timeout: float) -> bool:
-    from ros2lite.transport.config import router_reachable
+    from ros2lite.transport.open import router_reachable
 
     return router_reachable(endpoint, timeout)
 

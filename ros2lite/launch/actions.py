@@ -11,17 +11,15 @@ import os
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextvars import ContextVar
 from pathlib import Path
-from typing import TYPE_CHECKING, TypedDict
+from typing import TYPE_CHECKING, Protocol, TypedDict, runtime_checkable
 
 from .conditions import Condition
 from .entity import Entities, LaunchDescriptionEntity
 from .errors import LaunchError
-from .events import Event, ExecutionComplete
-from .events import Shutdown as ShutdownEvent
+from .events import ExecutionComplete
 from .substitutions import (
     SomeSubstitutionsType,
     Substitution,
-    SubstitutionMapping,
     TextSubstitution,
     describe_substitutions,
     normalize_to_list_of_substitutions,
@@ -32,27 +30,18 @@ if TYPE_CHECKING:
     from typing_extensions import Unpack
 
     from .context import LaunchContext
-    from .event_handlers import EventHandler
 
 __all__ = [
     'Action',
     'AppendEnvironmentVariable',
     'DeclareLaunchArgument',
-    'EmitEvent',
-    'GroupAction',
-    'IncludeLaunchDescription',
     'LaunchDescription',
     'LaunchDescriptionEntity',
-    'LogInfo',
     'OpaqueFunction',
     'PopLaunchConfigurations',
     'PushLaunchConfigurations',
-    'RegisterEventHandler',
     'SetEnvironmentVariable',
     'SetLaunchConfiguration',
-    'Shutdown',
-    'TimerAction',
-    'UnregisterEventHandler',
     'UnsetEnvironmentVariable',
     'UnsetLaunchConfiguration',
 ]
@@ -381,212 +370,6 @@ class AppendEnvironmentVariable(Action):
         return None
 
 
-# -- structure -----------------------------------------------------------------------------------
-
-
-class GroupAction(Action):
-    """A list of actions under one condition; `scoped` (the default) keeps configurations,
-    environment, namespace, parameters and remaps set inside from leaking out."""
-
-    def __init__(
-        self,
-        actions: Iterable[LaunchDescriptionEntity],
-        *,
-        scoped: bool = True,
-        forwarding: bool = True,
-        launch_configurations: SubstitutionMapping | None = None,
-        **kwargs: Unpack[ActionOptions],
-    ) -> None:
-        super().__init__(**kwargs)
-        self.actions = list(actions)
-        self.scoped = scoped
-        self.forwarding = forwarding
-        self.launch_configurations = dict(launch_configurations or {})
-
-    def execute(self, context: LaunchContext) -> Entities | None:
-        """Its actions, wrapped in a scope unless unscoped, after its launch configurations."""
-        sets: Entities = [
-            SetLaunchConfiguration(k, v) for k, v in self.launch_configurations.items()
-        ]
-        if not self.scoped:
-            return [*sets, *self.actions]
-        return [
-            PushLaunchConfigurations(forwarding=self.forwarding),
-            *sets,
-            *self.actions,
-            PopLaunchConfigurations(),
-        ]
-
-    def describe(self) -> str:
-        """Whether the group is scoped, for introspection."""
-        return f'GroupAction(scoped={self.scoped})'
-
-    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
-        """The grouped actions."""
-        return list(self.actions)
-
-
-MAX_INCLUDE_DEPTH = 64
-"""Launch files nested deeper than this are refused (a runaway, not a design)."""
-
-# the launch files being read, outermost first: what led to the file read now
-_INCLUDES: ContextVar[tuple[str, ...]] = ContextVar('ros2lite_launch_includes', default=())
-
-
-@contextlib.contextmanager
-def including(path: str) -> Iterator[None]:
-    """While the launch file `path` (resolved) is read: refuse it when it is already on the
-    way to itself (a cycle would load forever) or nested too deep, in one line."""
-    chain = _INCLUDES.get()
-    if path in chain:
-        loop = [*chain[chain.index(path) :], path]
-        if len(loop) == 2:
-            raise LaunchError(f"launch file '{path}' includes itself")
-        raise LaunchError(f'launch files include each other in a cycle: {" -> ".join(loop)}')
-    if len(chain) >= MAX_INCLUDE_DEPTH:
-        raise LaunchError(
-            f'launch files are nested more than {MAX_INCLUDE_DEPTH} deep '
-            f"(… {' -> '.join(chain[-3:])} -> {path})"
-        )
-    token = _INCLUDES.set((*chain, path))
-    try:
-        yield
-    finally:
-        _INCLUDES.reset(token)
-
-
-@contextlib.contextmanager
-def _includes(chain: tuple[str, ...]) -> Iterator[None]:
-    token = _INCLUDES.set(chain)
-    try:
-        yield
-    finally:
-        _INCLUDES.reset(token)
-
-
-class IncludeLaunchDescription(Action):
-    """Includes another launch description (usually a file), setting its arguments. It
-    remembers the launch files that led to it, so that reading what it includes later (it
-    runs after the file holding it was read) can tell a cycle."""
-
-    def __init__(
-        self,
-        launch_description_source: LaunchDescriptionSource | LaunchDescription,
-        *,
-        launch_arguments: Iterable[tuple[SomeSubstitutionsType, SomeSubstitutionsType]]
-        | SubstitutionMapping
-        | None = None,
-        **kwargs: Unpack[ActionOptions],
-    ) -> None:
-        super().__init__(**kwargs)
-        if isinstance(launch_description_source, LaunchDescription):
-            launch_description_source = LaunchDescriptionSource(launch_description_source)
-        self.launch_description_source = launch_description_source
-        items = (
-            launch_arguments.items()
-            if isinstance(launch_arguments, Mapping)
-            else (launch_arguments or [])
-        )
-        self.launch_arguments = [
-            (normalize_to_list_of_substitutions(k), normalize_to_list_of_substitutions(v))
-            for k, v in items
-        ]
-        self._chain = _INCLUDES.get()
-
-    def execute(self, context: LaunchContext) -> Entities | None:
-        """The included description, after setting its launch arguments and checking that
-        every argument it requires is given."""
-        with _includes(self._chain):
-            description = self.launch_description_source.get_launch_description(context)
-        location = getattr(self.launch_description_source, 'location', None)
-        if isinstance(location, str) and os.path.realpath(location) in self._chain:
-            with _includes(self._chain), including(os.path.realpath(location)):
-                pass  # (a source read before, included again on its own way: says the cycle)
-        given = []
-        for key, value in self.launch_arguments:
-            name = perform_substitutions(context, key)
-            context.launch_configurations[name] = perform_substitutions(context, value)
-            given.append(name)
-        for arg, conditional, via in declared_arguments(description):
-            if conditional or arg.default_value is not None:
-                continue
-            names = {*given, *context.launch_configurations}
-            for include in via:  # an include on the way may give it
-                names.update(include.argument_names_without_context())
-            if arg.name not in names:
-                raise LaunchError(
-                    f"Included launch description missing required argument '{arg.name}' "
-                    f"(description: '{arg.description}'), given: [{', '.join(given)}]"
-                )
-        return [description]
-
-    def describe(self) -> str:
-        """Where the description comes from, for introspection."""
-        return f'IncludeLaunchDescription({self.launch_description_source.describe()})'
-
-    def argument_names_without_context(self) -> list[str]:
-        """The names of the arguments it gives that are plain text."""
-        return [
-            ''.join(s.text for s in key if isinstance(s, TextSubstitution))
-            for key, _value in self.launch_arguments
-            if all(isinstance(s, TextSubstitution) for s in key)
-        ]
-
-    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
-        """The included description when it can be read without running the launch."""
-        from .context import LaunchContext
-
-        source = self.launch_description_source
-        try:
-            with _includes(self._chain):
-                found = source.try_get_launch_description_without_context()
-                if found is None:
-                    found = source.get_launch_description(LaunchContext())
-        except Exception:  # a path built from a launch argument (unknown until run), a cycle
-            return []
-        return [found]
-
-
-class TimerAction(Action):
-    """Visits `actions` after `period` seconds (cancelled by shutdown unless told not)."""
-
-    def __init__(
-        self,
-        *,
-        period: float | SomeSubstitutionsType,
-        actions: Iterable[LaunchDescriptionEntity],
-        cancel_on_shutdown: bool = True,
-        **kwargs: Unpack[ActionOptions],
-    ) -> None:
-        super().__init__(**kwargs)
-        self.period = normalize_to_list_of_substitutions(period)
-        self.actions = list(actions)
-        self.cancel_on_shutdown = cancel_on_shutdown
-        self.cancelled = False
-
-    def execute(self, context: LaunchContext) -> Entities | None:
-        """Schedule its actions with the launch service, in the scope it was reached in."""
-        seconds = seconds_of(context, self.period, 'TimerAction period')
-        # its actions run later, in the scope of now (the namespace, parameters and launch
-        # configurations of an enclosing group, as launch does since ros2/launch#836)
-        context.service.add_timer(self, seconds, context.capture_locals(), context.scope.copy())
-        return None
-
-    def cancel(self) -> None:
-        """Drop the pending actions (they will not run)."""
-        self.cancelled = True
-
-    def describe(self) -> str:
-        """The period, for introspection."""
-        return f'TimerAction(period={describe_substitutions(self.period)})'
-
-    def describe_conditional_sub_entities(
-        self,
-    ) -> list[tuple[str, list[LaunchDescriptionEntity]]]:
-        """The actions, run only when the period has passed."""
-        return [(f'after {describe_substitutions(self.period)} s', list(self.actions))]
-
-
 class OpaqueFunction(Action):
     """Calls `function(context, *args, **kwargs)`; what it returns is visited next."""
 
@@ -618,91 +401,6 @@ class OpaqueFunction(Action):
         return f'OpaqueFunction({name})'
 
 
-class RegisterEventHandler(Action):
-    """Registers an event handler for the rest of the launch."""
-
-    def __init__(self, event_handler: EventHandler, **kwargs: Unpack[ActionOptions]) -> None:
-        super().__init__(**kwargs)
-        self.event_handler = event_handler
-
-    def execute(self, context: LaunchContext) -> Entities | None:
-        """Add the handler to the context (newest first)."""
-        context.register_event_handler(self.event_handler)
-        return None
-
-    def describe(self) -> str:
-        """The handler's description, for introspection."""
-        return f'RegisterEventHandler({self.event_handler.describe()})'
-
-    def describe_conditional_sub_entities(
-        self,
-    ) -> list[tuple[str, list[LaunchDescriptionEntity]]]:
-        """The entities the handler visits when its event happens."""
-        return [(self.event_handler.describe(), self.event_handler.describe_sub_entities())]
-
-
-class UnregisterEventHandler(Action):
-    """Removes an event handler."""
-
-    def __init__(self, event_handler: EventHandler, **kwargs: Unpack[ActionOptions]) -> None:
-        super().__init__(**kwargs)
-        self.event_handler = event_handler
-
-    def execute(self, context: LaunchContext) -> Entities | None:
-        """Remove the handler from the context."""
-        context.unregister_event_handler(self.event_handler)
-        return None
-
-
-class EmitEvent(Action):
-    """Emits an event (e.g. ``Shutdown()``) for the handlers."""
-
-    def __init__(self, *, event: Event, **kwargs: Unpack[ActionOptions]) -> None:
-        super().__init__(**kwargs)
-        self.event = event
-
-    def execute(self, context: LaunchContext) -> Entities | None:
-        """Hand the event to the context's handlers."""
-        context.emit_event_sync(self.event)
-        return None
-
-    def describe(self) -> str:
-        """The event's name, for introspection."""
-        return f'EmitEvent({type(self.event).__name__})'
-
-
-class LogInfo(Action):
-    """Logs a line as `[INFO] [launch.user]: …`."""
-
-    def __init__(self, *, msg: SomeSubstitutionsType, **kwargs: Unpack[ActionOptions]) -> None:
-        super().__init__(**kwargs)
-        self.msg = normalize_to_list_of_substitutions(msg)
-
-    def execute(self, context: LaunchContext) -> Entities | None:
-        """Log the performed message at INFO from `launch.user`."""
-        context.service.log('INFO', 'launch.user', perform_substitutions(context, self.msg))
-        return None
-
-    def describe(self) -> str:
-        """The message, for introspection."""
-        return f'LogInfo({describe_substitutions(self.msg)})'
-
-
-class Shutdown(EmitEvent):
-    """Shuts the launch down (every process is stopped)."""
-
-    def __init__(
-        self, *, reason: SomeSubstitutionsType = 'reason not given', **kwargs: Unpack[ActionOptions]
-    ) -> None:
-        self.reason = normalize_to_list_of_substitutions(reason)
-        super().__init__(event=ShutdownEvent(reason='reason not given'), **kwargs)
-
-    def execute(self, context: LaunchContext) -> Entities | None:
-        """Start the launch's shutdown with the performed reason."""
-        self.event = ShutdownEvent(reason=perform_substitutions(context, self.reason))
-        return super().execute(context)
-
-
 def seconds_of(context: LaunchContext, subs: Sequence[Substitution], what: str) -> float:
     """A duration given as substitutions, performed: a number of seconds, never negative
     (`what` names it in the error)."""
@@ -726,6 +424,15 @@ def path_of(value: SomeSubstitutionsType | Path, context: LaunchContext) -> str:
 # -- what a description declares -------------------------------------------------------------------
 
 
+@runtime_checkable
+class GivesArguments(Protocol):
+    """An entity that gives the description below it launch arguments (an include)."""
+
+    def argument_names_without_context(self) -> list[str]:
+        """The names of the arguments it gives that are plain text."""
+        ...
+
+
 def launch_arguments(
     root: LaunchDescriptionEntity,
 ) -> list[tuple[DeclareLaunchArgument, bool]]:
@@ -736,24 +443,69 @@ def launch_arguments(
 
 def declared_arguments(
     root: LaunchDescriptionEntity,
-) -> list[tuple[DeclareLaunchArgument, bool, list[IncludeLaunchDescription]]]:
+) -> list[tuple[DeclareLaunchArgument, bool, list[GivesArguments]]]:
     """Like :func:`launch_arguments`, with the includes each argument is reached through
     (those may give it its value)."""
-    found: dict[str, tuple[DeclareLaunchArgument, bool, list[IncludeLaunchDescription]]] = {}
+    found: dict[str, tuple[DeclareLaunchArgument, bool, list[GivesArguments]]] = {}
 
     def walk(
         entities: Iterable[LaunchDescriptionEntity],
         conditional: bool,
-        via: list[IncludeLaunchDescription],
+        via: list[GivesArguments],
     ) -> None:
         for entity in entities:
             cond = conditional or (isinstance(entity, Action) and entity.condition is not None)
             if isinstance(entity, DeclareLaunchArgument) and entity.name not in found:
                 found[entity.name] = (entity, cond, via)
-            inner = [*via, entity] if isinstance(entity, IncludeLaunchDescription) else via
+            inner = [*via, entity] if isinstance(entity, GivesArguments) else via
             walk(entity.describe_sub_entities(), cond, inner)
             for _label, subs in entity.describe_conditional_sub_entities():
                 walk(subs, True, inner)
 
     walk([root], False, [])
     return list(found.values())
+
+
+MAX_INCLUDE_DEPTH = 64
+"""Launch files nested deeper than this are refused (a runaway, not a design)."""
+
+# the launch files being read, outermost first: what led to the file read now
+_INCLUDES: ContextVar[tuple[str, ...]] = ContextVar('ros2lite_launch_includes', default=())
+
+
+@contextlib.contextmanager
+def including(path: str) -> Iterator[None]:
+    """While the launch file `path` (resolved) is read: refuse it when it is already on the
+    way to itself (a cycle would load forever) or nested too deep, in one line."""
+    chain = _INCLUDES.get()
+    if path in chain:
+        loop = [*chain[chain.index(path) :], path]
+        if len(loop) == 2:
+            raise LaunchError(f"launch file '{path}' includes itself")
+        raise LaunchError(f'launch files include each other in a cycle: {" -> ".join(loop)}')
+    if len(chain) >= MAX_INCLUDE_DEPTH:
+        raise LaunchError(
+            f'launch files are nested more than {MAX_INCLUDE_DEPTH} deep '
+            f"(… {' -> '.join(chain[-3:])} -> {path})"
+        )
+    token = _INCLUDES.set((*chain, path))
+    try:
+        yield
+    finally:
+        _INCLUDES.reset(token)
+
+
+def include_chain() -> tuple[str, ...]:
+    """The launch files being read now, outermost first (what an include made now keeps)."""
+    return _INCLUDES.get()
+
+
+@contextlib.contextmanager
+def reading_from(chain: tuple[str, ...]) -> Iterator[None]:
+    """Read with `chain` as the files that led here (an include runs after its file was
+    read, so it puts back the chain it was made under)."""
+    token = _INCLUDES.set(chain)
+    try:
+        yield
+    finally:
+        _INCLUDES.reset(token)

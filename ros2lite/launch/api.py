@@ -10,13 +10,9 @@ from typing import IO, TYPE_CHECKING
 
 from ros2lite.pkg.workspace import SKIPPED_DIRS
 
-from .actions import (
-    IncludeLaunchDescription,
-    LaunchDescription,
-    LaunchDescriptionEntity,
-    SetLaunchConfiguration,
-)
+from .actions import LaunchDescription, LaunchDescriptionEntity, SetLaunchConfiguration
 from .errors import LaunchError
+from .flow import IncludeLaunchDescription
 from .service import LaunchService
 from .sources import AnyLaunchDescriptionSource
 

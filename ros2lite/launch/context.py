@@ -87,7 +87,7 @@ class EventHandlerLike(Protocol):
 
 
 class TimerLike(Protocol):
-    """A :class:`~ros2lite.launch.actions.TimerAction`, as the service holds it until due."""
+    """A :class:`~ros2lite.launch.flow.TimerAction`, as the service holds it until due."""
 
     @property
     def actions(self) -> Sequence[EntityLike]:

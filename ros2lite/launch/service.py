@@ -31,7 +31,7 @@ from typing import IO, TYPE_CHECKING, Literal, TypeVar
 
 from ros2lite.util.process import ChildError, ChildProcess, signal_handler
 
-from .actions import Entities, LaunchDescription, LaunchDescriptionEntity, TimerAction
+from .actions import Entities, LaunchDescription, LaunchDescriptionEntity
 from .context import EntityLike, LaunchContext, ProcessActionLike, Scope, TimerLike
 from .event_handlers import OnProcessIO
 from .events import (
@@ -46,6 +46,7 @@ from .events import (
     ShutdownProcess,
     SignalProcess,
 )
+from .flow import TimerAction
 from .output import LaunchOutput, Style, log_base_directory, make_log_directory
 from .process_spec import ProcessSpec
 

@@ -8,9 +8,11 @@ overrides from `--ros-args`, /parameter_events, the parameter services and `use_
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 from typing import TYPE_CHECKING, cast
 
 from ros2lite.parameter import AllowableParameterValue, Parameter
+from ros2lite.parameters.files import ParamsFileError, values_for_node
 from ros2lite.parameters.store import (
     OnSetCallback,
     ParameterDeclaration,
@@ -19,6 +21,7 @@ from ros2lite.parameters.store import (
     PreSetCallback,
     SharedParameterMethods,
 )
+from ros2lite.runtime.arguments import RosArgs, RosArgsError
 
 if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import (
@@ -27,7 +30,6 @@ if TYPE_CHECKING:
         ParameterValue,
         SetParametersResult,
     )
-    from ros2lite.runtime.arguments import RosArgs
     from ros2lite.runtime.node_interface import NodeInterface
 
 
@@ -48,7 +50,7 @@ class ParameterMixin(SharedParameterMethods):
 
         node = cast('NodeInterface', self)  # the mixin of Node
         overrides = _override_parameters(
-            ros_args.parameter_overrides(node.get_fully_qualified_name(), node.get_name())
+            node_overrides(ros_args, node.get_fully_qualified_name(), node.get_name())
         )
         overrides.update({p.name: p for p in parameter_overrides or []})
         self._parameter_store = ParameterStore(
@@ -177,8 +179,6 @@ def _descriptor() -> ParameterDescriptor:
 
 def _override_parameters(values: Mapping[str, object]) -> dict[str, Parameter]:
     """`-p`/params-file values as Parameters; a value no parameter type can hold is an error."""
-    from ros2lite.runtime.arguments import RosArgsError
-
     out: dict[str, Parameter] = {}
     for name, value in values.items():
         try:
@@ -187,3 +187,25 @@ def _override_parameters(values: Mapping[str, object]) -> dict[str, Parameter]:
         except (TypeError, ValueError) as e:
             raise RosArgsError(f"Invalid value for parameter override '{name}': {e}") from None
     return out
+
+
+def node_overrides(ros_args: RosArgs, node_fqn: str, node_name: str) -> dict[str, object]:
+    """Values for one node from -p rules and params files, in the order they were given
+    (global arguments before the node's own): a later one wins, as in rcl."""
+    values: dict[str, object] = {}
+    for source in ros_args.param_sources:
+        if isinstance(source, Path):
+            values.update(load_params_file(source, node_fqn, node_name))
+        else:
+            node, name, value = source
+            if node in (None, node_name):
+                values[name] = value
+    return values
+
+
+def load_params_file(path: Path, node_fqn: str, node_name: str | None = None) -> dict[str, object]:
+    """Parameters for one node from a ROS 2 YAML params file (rules: parameters/files.py)."""
+    try:
+        return values_for_node(path, node_fqn)
+    except ParamsFileError as e:
+        raise RosArgsError(str(e)) from None

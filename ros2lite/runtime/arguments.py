@@ -2,7 +2,8 @@
 
 Supported: ``-r/--remap [node:]from:=to`` (including ``__node``/``__name`` and ``__ns``),
 ``-p/--param [node:]name:=value`` (YAML-typed), ``--params-file FILE``,
-``--log-level [name:=]LEVEL`` and ``-e/--enclave``.
+``--log-level [name:=]LEVEL`` and ``-e/--enclave``.  Params files are named here and read
+by :mod:`ros2lite.parameters.node_api` (which imports this module, never the other way).
 """
 
 from __future__ import annotations
@@ -85,19 +86,6 @@ class RosArgs:
             if r.source in keys and r.node in (None, node):
                 found = r.target
         return found
-
-    def parameter_overrides(self, node_fqn: str, node_name: str) -> dict[str, object]:
-        """Values for one node from -p rules and params files, in the order they were given
-        (global arguments before the node's own): a later one wins, as in rcl."""
-        values: dict[str, object] = {}
-        for source in self.param_sources:
-            if isinstance(source, Path):
-                values.update(load_params_file(source, node_fqn, node_name))
-            else:
-                node, name, value = source
-                if node in (None, node_name):
-                    values[name] = value
-        return values
 
 
 def _split_assignment(text: str, what: str) -> tuple[str | None, str, str]:
@@ -202,13 +190,3 @@ def _next(it: Iterator[str], flag: str) -> str:
     except StopIteration:
         raise RosArgsError(f"Argument '{flag}' needs a value") from None
     return value
-
-
-def load_params_file(path: Path, node_fqn: str, node_name: str | None = None) -> dict[str, object]:
-    """Parameters for one node from a ROS 2 YAML params file (rules: parameters/files.py)."""
-    from ros2lite.parameters.files import ParamsFileError, values_for_node
-
-    try:
-        return values_for_node(path, node_fqn)
-    except ParamsFileError as e:
-        raise RosArgsError(str(e)) from None

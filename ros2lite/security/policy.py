@@ -13,11 +13,13 @@ children by tag, then text, then ``ns``+``node``, then ``path``; repeated names 
 from __future__ import annotations
 
 import copy
+import enum
 import re
 import xml.etree.ElementTree as ET
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Protocol
 
 from ros2lite.security.enclaves import validate_enclave_name
 from ros2lite.security.errors import EnclaveError, PolicyError
@@ -25,6 +27,7 @@ from ros2lite.security.files import parse_xml, read_bytes
 
 __all__ = [
     'POLICY_VERSION',
+    'GraphEntity',
     'NodeAccess',
     'add_node_access',
     'default_policy',
@@ -289,23 +292,43 @@ def add_node_access(policy: ET.Element, nodes: Iterable[NodeAccess]) -> None:
                 ET.SubElement(group, item).text = _relative(name, node)
 
 
-def graph_access(entities: Iterable[object]) -> list[NodeAccess]:
+class GraphEntity(Protocol):
+    """A node or endpoint of a graph snapshot, as :func:`graph_access` reads it (the graph's
+    own entities are such; this package does not import the transport that parses them)."""
+
+    @property
+    def zid(self) -> str: ...
+    @property
+    def nid(self) -> int: ...
+    @property
+    def kind(self) -> enum.Enum: ...
+    @property
+    def is_node(self) -> bool: ...
+    @property
+    def enclave(self) -> str: ...
+    @property
+    def namespace(self) -> str: ...
+    @property
+    def node_name(self) -> str: ...
+    @property
+    def topic_name(self) -> str | None: ...
+
+
+def graph_access(entities: Iterable[GraphEntity]) -> list[NodeAccess]:
     """What every visible node of a graph snapshot does, one entry per node instance with
     its own enclave (hidden nodes are left out, as sros2's ``generate_policy`` does)."""
-    from ros2lite.transport.keys import Entity, EntityKind
-
-    listed = [e for e in entities if isinstance(e, Entity)]
+    listed = list(entities)
     nodes = {
         (e.zid, e.nid): e
         for e in listed
         if e.is_node and e.node_name and not e.node_name.startswith('_')
     }
-    names: dict[tuple[str, int, EntityKind], set[str]] = {}
+    names: dict[tuple[str, int, str], set[str]] = {}
     for e in listed:
         if not e.is_node and e.topic_name and (e.zid, e.nid) in nodes:
-            names.setdefault((e.zid, e.nid, e.kind), set()).add(e.topic_name)
+            names.setdefault((e.zid, e.nid, e.kind.name), set()).add(e.topic_name)
 
-    def of(node: Entity, kind: EntityKind) -> list[str]:
+    def of(node: GraphEntity, kind: str) -> list[str]:
         return sorted(names.get((node.zid, node.nid, kind), ()))
 
     return [
@@ -313,10 +336,10 @@ def graph_access(entities: Iterable[object]) -> list[NodeAccess]:
             node.node_name,
             node.namespace,
             node.enclave,
-            publishes=of(node, EntityKind.PUBLISHER),
-            subscribes=of(node, EntityKind.SUBSCRIPTION),
-            serves=of(node, EntityKind.SERVICE),
-            calls=of(node, EntityKind.CLIENT),
+            publishes=of(node, 'PUBLISHER'),
+            subscribes=of(node, 'SUBSCRIPTION'),
+            serves=of(node, 'SERVICE'),
+            calls=of(node, 'CLIENT'),
         )
         for node in sorted(nodes.values(), key=lambda n: (n.namespace, n.node_name, n.enclave))
     ]

@@ -199,9 +199,9 @@ class Connection:
         if self._router_watch is not None or self.as_node:
             return
         from ros2lite.context import RouterLink
-        from ros2lite.transport.endpoints import router_endpoint
+        from ros2lite.daemon.connect import secured_endpoint
 
-        endpoint = router_endpoint(self.router)
+        endpoint = secured_endpoint(self.router)
         logger = self.node().get_logger()
 
         def changed(linked: bool) -> None:

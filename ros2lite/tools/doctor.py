@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from ros2lite.daemon.router import DaemonStatus
+    from ros2lite.daemon.control import DaemonStatus
     from ros2lite.graph import Entity
     from ros2lite.msgs.std_msgs.msg import String
     from ros2lite.node import Node
@@ -138,11 +138,11 @@ class Diagnosis:
     def endpoint(self) -> str | None:
         """The router endpoint to check (None when the configuration is invalid)."""
         if self._endpoint is None and self._endpoint_error is None:
-            from ros2lite.transport.config import router_endpoint
+            from ros2lite.daemon.connect import secured_endpoint
             from ros2lite.transport.errors import ConfigError
 
             try:
-                self._endpoint = router_endpoint(self.router, self.env)
+                self._endpoint = secured_endpoint(self.router, self.env)
             except ConfigError as e:
                 self._endpoint_error = str(e)
         return self._endpoint

@@ -21,14 +21,17 @@ Precedence, lowest first: built-in defaults, or the json5 file in ``ZENOH_SESSIO
 / ``ZENOH_ROUTER_CONFIG_URI`` instead of them (as rmw_zenoh does); ``ROS2LITE_ROUTER``;
 ``ZENOH_CONFIG_OVERRIDE``; and last the explicit ``router=`` argument (the CLI's
 ``--router``), because a flag typed on the command line should beat the environment.
+
+Security arrives as a :class:`~ros2lite.transport.security.Security` value (``security=``),
+decided by :mod:`ros2lite.security` for the caller (:mod:`ros2lite.daemon.connect`); without
+one a config is unsecured.
 """
 
 from __future__ import annotations
 
 import json
 import os
-import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from typing import Literal
 
 import zenoh
@@ -52,11 +55,18 @@ from ros2lite.transport.endpoints import (
 )
 from ros2lite.transport.errors import (
     ConfigError,
+    InsecureLinkError,
     RouterUnavailableError,
     SessionError,
     zerror_message,
 )
-from ros2lite.transport.handles import Session
+from ros2lite.transport.security import (
+    UNSECURED,
+    Security,
+    apply_access_control,
+    apply_tls,
+    is_tls_endpoint,
+)
 
 __all__ = [
     "DEFAULT_ROUTER",
@@ -67,21 +77,19 @@ __all__ = [
     "SessionError",
     "SessionMode",
     "apply_config_override",
-    "check_router",
+    "configured_endpoint",
     "configured_mode",
     "default_listen",
     "domain_id",
     "endpoint_host_port",
     "is_local_endpoint",
     "node_session_mode",
-    "open_session",
     "parse_config_override",
     "router_check_attempts",
     "router_config",
     "router_endpoint",
     "session_config",
     "session_endpoint",
-    "wait_for_router",
     "zerror_message",
 ]
 
@@ -182,11 +190,15 @@ def _endpoints_json(endpoints: Sequence[str]) -> str:
 
 
 def node_session_mode(
-    router: str | None = None, env: Mapping[str, str] | None = None
+    router: str | None = None,
+    env: Mapping[str, str] | None = None,
+    *,
+    security: Security = UNSECURED,
 ) -> SessionMode:
     """The mode a long-lived node opens: peer when the router it connects to (after config
     files and overrides) is on this host, else client."""
-    return "peer" if is_local_endpoint(session_endpoint(router, env)) else "client"
+    endpoint = session_endpoint(router, env, security=security)
+    return "peer" if is_local_endpoint(endpoint) else "client"
 
 
 def session_config(
@@ -194,6 +206,7 @@ def session_config(
     env: Mapping[str, str] | None = None,
     *,
     mode: SessionMode = "client",
+    security: Security = UNSECURED,
 ) -> zenoh.Config:
     """The config for one ros2lite session (see the module docstring for the choices)."""
     environ = _env(env)
@@ -201,7 +214,7 @@ def session_config(
     endpoint = explicit_router(None, env)  # ROS2LITE_ROUTER only; router= goes last
     if config is None:
         config = zenoh.Config()
-        endpoint = endpoint or router_endpoint(None, env)
+        endpoint = endpoint or router_endpoint(None, env, secure=security.secure_default)
         retry = (
             f"{{period_init_ms: {RETRY_INIT_MS}, period_max_ms: {RETRY_MAX_MS}, "
             "period_increase_factor: 2}"
@@ -230,38 +243,23 @@ def session_config(
             _insert(config, key, value, "built-in session config")
     if endpoint:
         _insert(config, "connect/endpoints", _endpoints_json([endpoint]), ROUTER_ENV)
-    secured = _secure_session(config, env)
+    if security.credentials is not None:
+        # this process's enclave certificate on every TLS link, and client mode, so all
+        # traffic crosses the router that enforces the permissions (a peer-to-peer link
+        # would bypass it)
+        apply_tls(config, security.credentials)
+        _insert(config, "mode", '"client"', "security")
     apply_config_override(config, env=env)
     if router:
         _insert(config, "connect/endpoints", _endpoints_json([router_endpoint(router)]), "router")
-    if secured:
-        _require_tls(config, "connect/endpoints", env)
+    if security.credentials is not None:
+        _require_tls(config, "connect/endpoints", security)
     return config
 
 
-def _secure_session(config: zenoh.Config, env: Mapping[str, str] | None) -> bool:
-    """With security on: this process's enclave certificate on every TLS link, and client
-    mode, so all traffic crosses the router that enforces the permissions (a peer-to-peer
-    link would bypass it).  Enforce without material raises; Permissive says so once."""
-    from ros2lite.security.environment import resolve
-
-    identity = resolve(env)
-    if identity is None:
-        return False
-    from ros2lite.transport.security import apply_tls
-
-    apply_tls(config, identity)
-    _insert(config, "mode", '"client"', "security")
-    return True
-
-
-def _require_tls(config: zenoh.Config, key: str, env: Mapping[str, str] | None) -> None:
-    """Under Enforce, a link that is not TLS is refused in one line."""
-    from ros2lite.security.environment import STRATEGY_ENV, enforced
-    from ros2lite.security.errors import SecurityError
-    from ros2lite.transport.security import is_tls_endpoint
-
-    if not enforced(env):
+def _require_tls(config: zenoh.Config, key: str, security: Security) -> None:
+    """When security says so (Enforce), a link that is not TLS is refused in one line."""
+    if not security.refuse_plain:
         return
     try:
         value = json.loads(config.get_json(key))
@@ -271,8 +269,8 @@ def _require_tls(config: zenoh.Config, key: str, env: Mapping[str, str] | None) 
         value = [e for endpoints in value.values() for e in endpoints or []]
     for endpoint in value or []:
         if not is_tls_endpoint(str(endpoint)):
-            raise SecurityError(
-                f"SECURITY ERROR: {STRATEGY_ENV}=Enforce refuses the unencrypted endpoint "
+            raise InsecureLinkError(
+                f"SECURITY ERROR: {security.refuse_plain} refuses the unencrypted endpoint "
                 f"{endpoint}; use a tls/ endpoint (e.g. {DEFAULT_SECURE_ROUTER})"
             )
 
@@ -282,6 +280,8 @@ def router_config(
     listen: Sequence[str] | None = None,
     connect: Sequence[str] = (),
     env: Mapping[str, str] | None = None,
+    *,
+    security: Security = UNSECURED,
 ) -> zenoh.Config:
     """The config for the ros2lite daemon's router (rmw_zenohd's settings, loopback by default).
 
@@ -295,7 +295,7 @@ def router_config(
     env_listen: list[str] = []
     if config is None:
         config = zenoh.Config()
-        env_listen = default_listen(router_endpoint(None, env))
+        env_listen = default_listen(router_endpoint(None, env, secure=security.secure_default))
         defaults = [
             ("mode", '"router"'),
             ("scouting/multicast/enabled", "false"),
@@ -311,7 +311,7 @@ def router_config(
         for key, value in defaults:
             _insert(config, key, value, "built-in router config")
     elif explicit_router(None, env):
-        env_listen = default_listen(router_endpoint(None, env))
+        env_listen = default_listen(router_endpoint(None, env))  # ROS2LITE_ROUTER: named
     if env_listen:
         _insert(config, "listen/endpoints", _endpoints_json(env_listen), "listen endpoints")
     apply_config_override(config, env=env)
@@ -321,32 +321,18 @@ def router_config(
         _insert(config, "listen/endpoints", _endpoints_json(listen), "listen endpoints")
     if connect:
         _insert(config, "connect/endpoints", _endpoints_json(connect), "connect endpoints")
-    _secure_router(config, env)
+    if security.credentials is not None:
+        # the router's own enclave on its TLS links, and access control made from every
+        # enclave's permissions in the keystore (default deny)
+        apply_tls(config, security.credentials)
+        if security.access is not None:
+            apply_access_control(config, security.access)
+        _require_tls(config, "listen/endpoints", security)
+        _require_tls(config, "connect/endpoints", security)
     return config
 
 
-def _secure_router(config: zenoh.Config, env: Mapping[str, str] | None) -> None:
-    """With security on: the router's own enclave on its TLS links, and access control made
-    from every enclave's permissions in the keystore (default deny)."""
-    from ros2lite.security.environment import router_identity
-
-    identity = router_identity(env)
-    if identity is None:
-        return
-    from ros2lite.logging import get_logger
-    from ros2lite.security.access import router_access
-    from ros2lite.transport.security import apply_access_control, apply_tls
-
-    apply_tls(config, identity)
-    access = router_access(identity.keystore)
-    for line in access.warnings:
-        get_logger("ros2lite.security").warn(line)
-    apply_access_control(config, access)
-    _require_tls(config, "listen/endpoints", env)
-    _require_tls(config, "connect/endpoints", env)
-
-
-def _configured_endpoint(config: zenoh.Config, fallback: str) -> str:
+def configured_endpoint(config: zenoh.Config, fallback: str) -> str:
     """The connect endpoint(s) the session will use, for error messages."""
     try:
         value = json.loads(config.get_json("connect/endpoints"))
@@ -368,135 +354,13 @@ def configured_mode(config: zenoh.Config) -> str:
         return "peer"
 
 
-def open_session(
+def session_endpoint(
     router: str | None = None,
-    *,
-    mode: SessionMode = "client",
-    timeout: float = 1.0,
-    require_router: bool = True,
     env: Mapping[str, str] | None = None,
-) -> zenoh.Session:
-    """Open a zenoh session for ros2lite and (by default) make sure a router is really there.
-
-    zenoh-python behaves differently per mode when the router is down: a client fails in
-    ``zenoh.open`` (after ``connect/timeout_ms``), but a peer opens anyway with no router
-    and just hears nothing.  So with ``require_router`` we also wait up to ``timeout``
-    seconds for ``session.info.routers_zid()`` to list one, and raise
-    :class:`RouterUnavailableError` (one clear line) otherwise.
-    """
-    config = session_config(router, env, mode=mode)
-    endpoint = _configured_endpoint(config, router_endpoint(router, env))
-    try:
-        session = zenoh.open(config)
-    except zenoh.ZError as exc:
-        detail = zerror_message(exc)
-        if "connect" in detail.lower():
-            if _handshake_refused(endpoint):
-                raise SessionError(
-                    f"the router at {endpoint} refused the TLS handshake (is this enclave's "
-                    "certificate from the router's keystore?)"
-                ) from None
-            raise RouterUnavailableError(endpoint, detail) from None
-        raise SessionError(f"cannot open a Zenoh session: {detail}") from None
-    if not require_router:
-        return session
-    if not wait_for_router(session, timeout):
-        session.close()
-        raise RouterUnavailableError(endpoint, "session opened but no router is connected")
-    return session
-
-
-def _handshake_refused(endpoint: str) -> bool:
-    """A TLS endpoint where something accepts TCP connections, yet no session opened."""
-    import socket
-
-    from ros2lite.transport.security import is_tls_endpoint
-
-    parsed = endpoint_host_port(endpoint)
-    if not is_tls_endpoint(endpoint) or parsed is None:
-        return False
-    host = {"0.0.0.0": "127.0.0.1", "::": "::1"}.get(parsed[1], parsed[1])
-    try:
-        with socket.create_connection((host, parsed[2]), timeout=0.5):
-            return True
-    except OSError:
-        return False
-
-
-def session_endpoint(router: str | None = None, env: Mapping[str, str] | None = None) -> str:
+    *,
+    security: Security = UNSECURED,
+) -> str:
     """The router endpoint(s) a session would connect to, as one line for messages."""
-    return _configured_endpoint(session_config(router, env), router_endpoint(router, env))
-
-
-def wait_for_router(session: zenoh.Session, timeout: float) -> bool:
-    """Wait up to ``timeout`` s for the session to be connected to a router."""
-    deadline = time.monotonic() + timeout
-    while not session.info.routers_zid():
-        if time.monotonic() >= deadline:
-            return False
-        time.sleep(0.02)
-    return True
-
-
-def check_router(
-    session: zenoh.Session, attempts: int, on_miss: Callable[[int], None] | None = None
-) -> bool:
-    """rmw_zenoh's start-up router check: ``attempts`` checks 1 s apart (0: until one answers).
-
-    ``on_miss(n)`` is called after the n-th failed check (to log that we wait).  Returns
-    whether a router is connected; a negative ``attempts`` skips the check (returns True).
-    """
-    if attempts < 0:
-        return True
-    n = 0
-    while True:
-        if wait_for_router(session, 1.0 if n else 0.2):
-            return True
-        n += 1
-        if on_miss is not None:
-            on_miss(n)
-        if attempts and n >= attempts:
-            return False
-
-
-def open_router(
-    endpoint: str, listen: Sequence[str] | None = None, connect: Sequence[str] = ()
-) -> zenoh.Session:
-    """A router session (the daemon's), logging zenoh's errors only; a refusal (port taken,
-    bad endpoint) is a SessionError with zenoh's message in one line."""
-    zenoh.init_log_from_env_or("error")
-    try:
-        return zenoh.open(router_config(endpoint, listen=listen, connect=list(connect)))
-    except zenoh.ZError as exc:
-        raise SessionError(zerror_message(exc)) from None
-
-
-def linked_routers(session: Session) -> set[str]:
-    """The ids of the routers `session` is linked to now (for a router: its mesh)."""
-    try:
-        return {str(zid) for zid in session.info.routers_zid()}
-    except zenoh.ZError:
-        return set()
-
-
-def router_connected(session: Session) -> bool:
-    """Whether `session` is linked to a router now (a peer goes on without one)."""
-    return bool(linked_routers(session))
-
-
-def router_reachable(endpoint: str, timeout: float) -> bool:
-    """Whether a client session to `endpoint` finds a router there (for protocols a plain
-    socket connect cannot probe)."""
-    config = zenoh.Config()
-    config.insert_json5("mode", '"client"')
-    config.insert_json5("connect/endpoints", json.dumps([endpoint]))
-    config.insert_json5("connect/timeout_ms", str(max(1, int(timeout * 1000))))
-    config.insert_json5("scouting/multicast/enabled", "false")
-    try:
-        session = zenoh.open(config)
-    except zenoh.ZError:
-        return False
-    try:
-        return bool(session.info.routers_zid())
-    finally:
-        session.close()
+    config = session_config(router, env, security=security)
+    fallback = router_endpoint(router, env, secure=security.secure_default)
+    return configured_endpoint(config, fallback)

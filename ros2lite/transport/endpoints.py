@@ -49,19 +49,18 @@ def environ(env: Mapping[str, str] | None = None) -> Mapping[str, str]:
     return os.environ if env is None else env
 
 
-def default_router(env: Mapping[str, str] | None = None) -> str:
-    """The endpoint used when none is named: TLS when this process runs secured (see
-    :mod:`ros2lite.security.environment`), plain TCP otherwise."""
-    from ros2lite.security.environment import enforced, resolve, security_enabled
-
-    if security_enabled(env) and (enforced(env) or resolve(env) is not None):
-        return DEFAULT_SECURE_ROUTER
-    return DEFAULT_ROUTER
+def default_router(secure: bool = False) -> str:
+    """The endpoint used when none is named: TLS when this process runs secured (its caller
+    knows: see :func:`ros2lite.daemon.connect.secure_default`), plain TCP otherwise."""
+    return DEFAULT_SECURE_ROUTER if secure else DEFAULT_ROUTER
 
 
-def router_endpoint(router: str | None = None, env: Mapping[str, str] | None = None) -> str:
-    """The router endpoint: explicit argument, else ``$ROS2LITE_ROUTER``, else the default."""
-    value = router or environ(env).get(ROUTER_ENV) or default_router(env)
+def router_endpoint(
+    router: str | None = None, env: Mapping[str, str] | None = None, *, secure: bool = False
+) -> str:
+    """The router endpoint: explicit argument, else ``$ROS2LITE_ROUTER``, else the default
+    (TLS when ``secure``)."""
+    value = router or environ(env).get(ROUTER_ENV) or default_router(secure)
     value = value.strip()
     if "/" not in value or not value.split("/", 1)[1]:
         raise ConfigError(

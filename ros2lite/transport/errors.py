@@ -6,7 +6,13 @@ import re
 
 from ros2lite.exceptions import Ros2liteError
 
-__all__ = ['ConfigError', 'RouterUnavailableError', 'SessionError', 'zerror_message']
+__all__ = [
+    'ConfigError',
+    'InsecureLinkError',
+    'RouterUnavailableError',
+    'SessionError',
+    'zerror_message',
+]
 
 
 class ConfigError(Ros2liteError, ValueError):
@@ -33,3 +39,7 @@ def zerror_message(exc: BaseException) -> str:
     text = re.sub(r"\s+at /\S+?\.rs:\d+\.?", "", str(exc).strip())
     m = re.search(r'msg: "(.*?)", location', text) or re.fullmatch(r'Str\("(.*)"\)', text)
     return (m.group(1) if m else text).rstrip(". ")
+
+
+class InsecureLinkError(SessionError):
+    """Security forbids a link that is not TLS, and the config names one."""

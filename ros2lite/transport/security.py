@@ -1,7 +1,9 @@
 """Security on the Zenoh side: TLS with mutual authentication, and the router's access control.
 
 The library (:mod:`ros2lite.security`) decides *what* — which certificate, which CA, which
-rules from which permissions; this module only writes it into a ``zenoh.Config``:
+rules from which permissions — and its callers hand that down as a :class:`Security` value
+(this package imports nothing from ``ros2lite.security``); this module only writes it into a
+``zenoh.Config``:
 
 * ``transport/link/tls``: the keystore's identity CA as ``root_ca_certificate``, the enclave's
   certificate and key for both listening and connecting, ``enable_mtls`` (a peer without a
@@ -14,17 +16,96 @@ rules from which permissions; this module only writes it into a ``zenoh.Config``
 from __future__ import annotations
 
 import json
-from typing import TYPE_CHECKING
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Protocol
 
 import zenoh
 
 from ros2lite.transport.errors import ConfigError, zerror_message
 
-if TYPE_CHECKING:
-    from ros2lite.security.access import AccessControl
-    from ros2lite.security.environment import Identity
+__all__ = [
+    'UNSECURED',
+    'AccessControl',
+    'AccessRule',
+    'AccessSubject',
+    'Credentials',
+    'Security',
+    'apply_access_control',
+    'apply_tls',
+    'is_tls_endpoint',
+]
 
-__all__ = ['apply_access_control', 'apply_tls', 'is_tls_endpoint']
+
+class Credentials(Protocol):
+    """One enclave's TLS material: whom to trust and who we are."""
+
+    @property
+    def enclave(self) -> str: ...
+    @property
+    def ca_certificate(self) -> Path: ...
+    @property
+    def certificate(self) -> Path: ...
+    @property
+    def private_key(self) -> Path: ...
+
+
+class AccessRule(Protocol):
+    """One Zenoh ACL rule (key expressions are canonised here)."""
+
+    @property
+    def id(self) -> str: ...
+    @property
+    def allow(self) -> bool: ...
+    @property
+    def flow(self) -> str: ...
+    @property
+    def messages(self) -> Sequence[str]: ...
+    @property
+    def key_exprs(self) -> Sequence[str]: ...
+
+
+class AccessSubject(Protocol):
+    """One enclave as the router knows it: by its certificate's common name."""
+
+    @property
+    def id(self) -> str: ...
+    @property
+    def common_name(self) -> str: ...
+    @property
+    def rules(self) -> Sequence[str]: ...
+
+
+class AccessControl(Protocol):
+    """What a router enforces."""
+
+    @property
+    def rules(self) -> Sequence[AccessRule]: ...
+    @property
+    def subjects(self) -> Sequence[AccessSubject]: ...
+
+
+@dataclass(frozen=True)
+class Security:
+    """Security as a session or router config needs it, decided outside transport.
+
+    ``credentials``: this process's (or the router's) enclave, None when it runs unsecured;
+    ``refuse_plain``: why a link that is not TLS is refused (``''``: it is not refused);
+    ``access``: a router's access control (None for sessions).
+    """
+
+    credentials: Credentials | None = None
+    refuse_plain: str = ''
+    access: AccessControl | None = None
+
+    @property
+    def secure_default(self) -> bool:
+        """Is the default router endpoint the TLS one?"""
+        return self.credentials is not None or bool(self.refuse_plain)
+
+
+UNSECURED = Security()
 
 
 def is_tls_endpoint(endpoint: str) -> bool:
@@ -39,7 +120,7 @@ def _insert(config: zenoh.Config, key: str, value: object, what: str) -> None:
         raise ConfigError(f'{what}: cannot set {key}: {zerror_message(exc)}') from None
 
 
-def apply_tls(config: zenoh.Config, identity: Identity) -> None:
+def apply_tls(config: zenoh.Config, identity: Credentials) -> None:
     """Make every TLS link of ``config`` authenticate both ends with ``identity``."""
     what = f'security (enclave {identity.enclave})'
     tls = {

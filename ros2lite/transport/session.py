@@ -56,7 +56,7 @@ _Subscriber = (
 
 def as_zenoh(session: Session) -> zenoh.Session:
     """The zenoh session behind the library's handle (only zenoh sessions are ever opened:
-    see :func:`ros2lite.transport.config.open_session`)."""
+    see :func:`ros2lite.transport.open.open_session`)."""
     return cast(zenoh.Session, session)
 
 

@@ -120,7 +120,7 @@ class TokenGraph:
     """A bare Zenoh session (no ros2lite Context) declaring liveliness tokens."""
 
     def __init__(self, domain: int) -> None:
-        from ros2lite.transport.config import open_session
+        from ros2lite.transport.open import open_session
 
         self.domain = domain
         self.session = open_session()

@@ -13,8 +13,10 @@ import pytest
 import zenoh
 
 from ros2lite import daemon
-from ros2lite.daemon.router import DaemonError, pid_file
-from ros2lite.transport.config import open_session, router_config
+from ros2lite.daemon.errors import DaemonError
+from ros2lite.daemon.paths import pid_file
+from ros2lite.transport.config import router_config
+from ros2lite.transport.open import open_session
 
 from .conftest import free_port
 

@@ -7,7 +7,8 @@ from pathlib import Path
 import pytest
 
 from ros2lite import daemon
-from ros2lite.daemon.router import DaemonError, log_file
+from ros2lite.daemon.errors import DaemonError
+from ros2lite.daemon.paths import log_file
 
 
 def test_a_planted_log_symlink_is_refused(endpoint: str, runtime: Path, tmp_path: Path) -> None:
@@ -23,10 +24,12 @@ def test_a_planted_log_symlink_is_refused(endpoint: str, runtime: Path, tmp_path
     assert not log.is_symlink() and daemon.stop(endpoint).stopped
 
 
-def test_the_package_hands_on_names_the_router_module_defines() -> None:
-    # ros2lite.daemon loads its names lazily from the router module (the runtime dir from
-    # the paths module); each must be there
-    from ros2lite.daemon import paths, router
+def test_the_package_hands_on_names_its_modules_define() -> None:
+    # ros2lite.daemon loads its names lazily from the module of the package that defines
+    # each (control, errors, paths, probe, router); each must be there, and be that one
+    import importlib
 
     for name in daemon.__all__:
-        assert getattr(daemon, name) is getattr(paths if name == "runtime_dir" else router, name)
+        value = getattr(daemon, name)
+        home = importlib.import_module(value.__module__)
+        assert home.__name__.startswith("ros2lite.daemon.") and getattr(home, name) is value

@@ -17,8 +17,8 @@ from ros2lite import daemon
 from ros2lite.daemon.graph_cache import cache_endpoint, cached_keys
 from ros2lite.daemon.paths import graph_socket, log_file
 from ros2lite.qos import QoSProfile
-from ros2lite.transport.config import open_session
 from ros2lite.transport.keys import EntityKind, endpoint_token, node_token
+from ros2lite.transport.open import open_session
 from tests.spinning import wait_until
 
 DOMAIN = 231  # the daemon fixtures' ROS_DOMAIN_ID

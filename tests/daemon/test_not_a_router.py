@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from ros2lite import daemon
-from ros2lite.daemon.router import DaemonError
+from ros2lite.daemon.errors import DaemonError
 
 
 def _cli(endpoint: str, *args: str) -> subprocess.CompletedProcess[str]:

@@ -90,7 +90,7 @@ def test_a_definition_built_by_hand_is_checked_before_code_is_generated() -> Non
 
 
 def test_cdr_code_is_generated_from_checked_definitions_only() -> None:
-    from ros2lite.interfaces.cdr import build_deserializer, build_serializer
+    from ros2lite.interfaces.cdr_gen import build_deserializer, build_serializer
     from ros2lite.interfaces.parser import Field, FieldType
 
     evil = MessageDef('pkg/msg/Evil', [Field('a=__import__("os")', FieldType('int32'))])
@@ -102,7 +102,7 @@ def test_cdr_code_is_generated_from_checked_definitions_only() -> None:
 
 
 def test_sizes_of_a_definition_built_by_hand_are_numbers() -> None:
-    from ros2lite.interfaces.cdr import build_serializer
+    from ros2lite.interfaces.cdr_gen import build_serializer
     from ros2lite.interfaces.parser import Field, FieldType
 
     bound = FieldType('string', string_bound='1: __import__("os")')  # type: ignore[arg-type]

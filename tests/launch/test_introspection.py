@@ -4,15 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ros2lite.launch.actions import (
-    DeclareLaunchArgument,
-    GroupAction,
-    IncludeLaunchDescription,
-    LaunchDescription,
-    LogInfo,
-    TimerAction,
-)
+from ros2lite.launch.actions import DeclareLaunchArgument, LaunchDescription
 from ros2lite.launch.conditions import IfCondition
+from ros2lite.launch.flow import GroupAction, IncludeLaunchDescription, LogInfo, TimerAction
 from ros2lite.launch.introspection import describe_tree, format_arguments
 from ros2lite.launch.sources import PythonLaunchDescriptionSource
 from ros2lite.launch.substitutions import LaunchConfiguration

@@ -10,9 +10,9 @@ from typing import Any
 import pytest
 import yaml
 
-from ros2lite.launch.actions import GroupAction
 from ros2lite.launch.context import LaunchContext
 from ros2lite.launch.errors import LaunchError
+from ros2lite.launch.flow import GroupAction
 from ros2lite.launch.ros import (
     Node,
     ParameterFile,

@@ -3,35 +3,25 @@ shutdown and escalation, errors — launch's behaviour, without ROS in the way."
 
 from __future__ import annotations
 
-import os
 import re
-import signal
-import subprocess
-import sys
-import time
 from pathlib import Path
 from typing import Any
 
-import pytest
-
-from ros2lite.launch.actions import (
-    DeclareLaunchArgument,
+from ros2lite.launch.actions import DeclareLaunchArgument, OpaqueFunction, SetLaunchConfiguration
+from ros2lite.launch.conditions import IfCondition, UnlessCondition
+from ros2lite.launch.event_handlers import OnProcessExit, OnProcessIO, OnProcessStart
+from ros2lite.launch.events import Shutdown
+from ros2lite.launch.flow import (
     EmitEvent,
     GroupAction,
     IncludeLaunchDescription,
     LogInfo,
-    OpaqueFunction,
     RegisterEventHandler,
-    SetLaunchConfiguration,
     TimerAction,
 )
-from ros2lite.launch.conditions import IfCondition, UnlessCondition
-from ros2lite.launch.event_handlers import OnProcessExit, OnProcessIO, OnProcessStart
-from ros2lite.launch.events import Shutdown
 from ros2lite.launch.sources import PythonLaunchDescriptionSource
 from ros2lite.launch.substitutions import LaunchConfiguration
 from tests.launch.helpers import run_launch, sh
-from tests.spinning import wait_until
 
 PID = re.compile(r'\d+')
 
@@ -256,99 +246,3 @@ def test_respawn(tmp_path: Path) -> None:
     )
     assert code == 0
     assert lines.count('[flaky-1] run') == 3
-
-
-STUBBORN = '''\
-from launch import LaunchDescription
-from launch.actions import ExecuteProcess
-def generate_launch_description():
-    return LaunchDescription([ExecuteProcess(
-        cmd=['sh', '-c', "trap '' INT TERM; echo ready; while :; do sleep 0.05; done"],
-        output='screen', sigterm_timeout='0.5', sigkill_timeout='0.5')])
-'''
-
-BUSY = '''\
-from launch import LaunchDescription
-from launch.actions import ExecuteProcess
-def generate_launch_description():
-    print('loading', flush=True)
-    while True:
-        pass
-'''
-
-
-@pytest.mark.parametrize(
-    ('moment', 'text', 'signum'),
-    [
-        ('loading', BUSY, signal.SIGTERM),
-        ('loading', BUSY, signal.SIGINT),
-        ('ready', STUBBORN, signal.SIGTERM),
-        ('ready', STUBBORN, signal.SIGINT),
-    ],
-)
-def test_a_signal_ends_launch_in_every_state(
-    tmp_path: Path, moment: str, text: str, signum: int
-) -> None:
-    """While a launch file is read (its code may never return) and while a child ignores
-    SIGINT and SIGTERM: one signal ends the launch within its escalation timeouts (0.5 s +
-    0.5 s here) and leaves no child."""
-    (tmp_path / 'x.launch.py').write_text(text)
-    out = tmp_path / 'out.txt'
-    with open(out, 'w') as f:
-        proc = subprocess.Popen(
-            [sys.executable, '-m', 'ros2lite', 'launch', str(tmp_path / 'x.launch.py')],
-            stdout=f,
-            stderr=subprocess.STDOUT,
-            env={**os.environ, 'ROS_LOG_DIR': str(tmp_path / 'log')},
-        )
-    try:
-        wait_until(lambda: moment in out.read_text(), timeout=30)
-        pids = [int(p) for p in re.findall(r'process started with pid \[(\d+)\]', out.read_text())]
-        sent = time.monotonic()
-        proc.send_signal(signum)
-        proc.wait(timeout=30)
-        took = time.monotonic() - sent
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.wait()
-    assert took < 1.0 + 4.0, out.read_text()  # the escalation's 1 s, and room for a slow CI
-    assert moment != 'ready' or pids, out.read_text()
-    for pid in pids:
-        with pytest.raises(ProcessLookupError):
-            os.kill(pid, 0)
-
-
-def test_sigkill_of_launch_takes_its_children_along(tmp_path: Path) -> None:
-    """R-L16: a child ran on (until its next write) after its launch was SIGKILLed."""
-    (tmp_path / 'x.launch.py').write_text(
-        'from launch import LaunchDescription\n'
-        'from launch.actions import ExecuteProcess\n'
-        'def generate_launch_description():\n'
-        "    return LaunchDescription([ExecuteProcess(cmd=['sleep', '30'], output='screen')])\n"
-    )
-    out = tmp_path / 'out.txt'
-    with open(out, 'w') as f:
-        proc = subprocess.Popen(
-            [sys.executable, '-m', 'ros2lite', 'launch', str(tmp_path / 'x.launch.py')],
-            stdout=f,
-            stderr=subprocess.STDOUT,
-            env={**os.environ, 'ROS_LOG_DIR': str(tmp_path / 'log')},
-        )
-    try:
-        found = wait_until(
-            lambda: re.findall(r'process started with pid \[(\d+)\]', out.read_text()),
-            timeout=30,
-        )
-    finally:
-        proc.kill()
-        proc.wait()
-    [pid] = [int(p) for p in found]
-
-    def gone() -> bool:
-        try:
-            return Path(f'/proc/{pid}/stat').read_text().rsplit(')', 1)[1].split()[0] == 'Z'
-        except OSError:
-            return True
-
-    wait_until(gone, timeout=10)

@@ -62,12 +62,13 @@ def test_permissive_says_it_once(keystore: Path, capsys: pytest.CaptureFixture[s
 def test_config_builders(keystore: Path) -> None:
     import json
 
-    from ros2lite.transport.config import router_endpoint, session_config
+    from ros2lite.daemon.connect import secured_endpoint, session_security
+    from ros2lite.transport.config import session_config
 
     env = secure(keystore, ROS_SECURITY_ENCLAVE_OVERRIDE='/robot/talker')
-    assert router_endpoint(env=env) == 'tls/127.0.0.1:7447'
-    assert router_endpoint(env={}) == 'tcp/127.0.0.1:7447'
-    config = session_config(env=env, mode='peer')
+    assert secured_endpoint(env=env) == 'tls/127.0.0.1:7447'
+    assert secured_endpoint(env={}) == 'tcp/127.0.0.1:7447'
+    config = session_config(env=env, mode='peer', security=session_security(env))
     assert json.loads(config.get_json('mode')) == 'client'  # all traffic crosses the router
     tls = json.loads(config.get_json('transport/link/tls'))
     assert tls['enable_mtls'] is True

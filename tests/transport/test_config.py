@@ -9,9 +9,9 @@ import pytest
 import zenoh
 
 from ros2lite.transport import config as cfg
-from ros2lite.transport.config import open_session
 from ros2lite.transport.errors import ConfigError, RouterUnavailableError
 from ros2lite.transport.keys import liveliness_subscription_key, node_token, topic_key
+from ros2lite.transport.open import open_session
 
 
 def get(config: zenoh.Config, key: str) -> object:

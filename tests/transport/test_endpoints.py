@@ -56,3 +56,11 @@ def test_router_check_attempts() -> None:
     assert ep.router_check_attempts({"ZENOH_ROUTER_CHECK_ATTEMPTS": "-1"}) == -1
     with pytest.raises(ConfigError, match="ZENOH_ROUTER_CHECK_ATTEMPTS must be an integer"):
         ep.router_check_attempts({"ZENOH_ROUTER_CHECK_ATTEMPTS": "many"})
+
+
+def test_secure_default_is_handed_down() -> None:
+    """transport knows nothing of security: whether the default router is the TLS one is
+    the caller's value (ros2lite.daemon.connect decides it from ros2lite.security)."""
+    assert ep.router_endpoint(env={}, secure=True) == "tls/127.0.0.1:7447"
+    assert ep.router_endpoint(env={"ROS_SECURITY_ENABLE": "true"}) == "tcp/127.0.0.1:7447"
+    assert ep.router_endpoint("tcp/127.0.0.1:9", env={}, secure=True) == "tcp/127.0.0.1:9"

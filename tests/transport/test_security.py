@@ -81,6 +81,7 @@ def secured(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, str]
     environment a secured process runs with."""
     import zenoh
 
+    from ros2lite.daemon.router import router_security
     from ros2lite.security.keystore import create_enclave, create_keystore, create_permission
     from ros2lite.transport.config import router_config
 
@@ -101,7 +102,7 @@ def secured(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, str]
         'ROS_SECURITY_KEYSTORE': str(keystore),
         'ROS2LITE_ROUTER': endpoint,
     }
-    router = zenoh.open(router_config(env=secure))
+    router = zenoh.open(router_config(env=secure, security=router_security(secure)))
     try:
         yield secure
     finally:
@@ -353,6 +354,7 @@ def test_graph_tokens_bound_to_the_enclave(secured: dict[str, str]) -> None:
     naming another enclave, never reaches the graph (it did: /spoofed showed in node list)."""
     import zenoh
 
+    from ros2lite.daemon.connect import session_security
     from ros2lite.transport.config import session_config
 
     env = {**secured, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/restricted'}
@@ -369,7 +371,8 @@ def test_graph_tokens_bound_to_the_enclave(secured: dict[str, str]) -> None:
         f'{head}/4/4/NN/%/%/spoofed_root',
         f'{head}/5/6/MP/%sec%restricted/%/allowed_node/%other/{string}/::,10:,:,:,,',
     ]
-    session = zenoh.open(session_config(env=environ(env)))
+    process_env = environ(env)
+    session = zenoh.open(session_config(env=process_env, security=session_security(process_env)))
     try:
         declared = [session.liveliness().declare_token(key) for key in tokens]
         listing = ''
@@ -392,11 +395,12 @@ def test_secured_echo_says_when_the_router_goes_and_comes_back(secured: dict[str
     """R-F2, secured: a TLS client's echo says when its router goes and when it is back."""
     import zenoh
 
+    from ros2lite.daemon.router import router_security
     from ros2lite.transport.config import router_config
 
     endpoint = f'tls/127.0.0.1:{free_port()}'
     env = {**secured, 'ROS2LITE_ROUTER': endpoint}
-    router = zenoh.open(router_config(env=env))
+    router = zenoh.open(router_config(env=env, security=router_security(env)))
     echo_proc, echo = start_cli(
         ['topic', 'echo', '/outage', 'std_msgs/msg/String'],
         environ({**env, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/listener'}),
@@ -409,7 +413,7 @@ def test_secured_echo_says_when_the_router_goes_and_comes_back(secured: dict[str
         echo.wait_for('data: tick')  # connected, authenticated, hearing
         router.close()
         echo.wait_for(f'Lost the link to the Zenoh router at {endpoint}', timeout=10)
-        router = zenoh.open(router_config(env=env))
+        router = zenoh.open(router_config(env=env, security=router_security(env)))
         echo.wait_for(f'The link to the Zenoh router at {endpoint} is back', timeout=15)
     finally:
         for proc in (echo_proc, pub_proc):

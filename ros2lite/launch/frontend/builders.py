@@ -16,19 +16,15 @@ from ..actions import (
     Action,
     ActionOptions,
     DeclareLaunchArgument,
-    GroupAction,
-    IncludeLaunchDescription,
     LaunchDescriptionEntity,
-    LogInfo,
     SetEnvironmentVariable,
     SetLaunchConfiguration,
-    Shutdown,
-    TimerAction,
     UnsetEnvironmentVariable,
 )
 from ..conditions import IfCondition, UnlessCondition
 from ..errors import InvalidFrontendLaunchFileError
 from ..execute import ExecuteProcess
+from ..flow import GroupAction, IncludeLaunchDescription, LogInfo, Shutdown, TimerAction
 from ..sources import AnyLaunchDescriptionSource
 from ..substitutions import Substitution, TextSubstitution
 from .entity import Entity

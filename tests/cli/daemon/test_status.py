@@ -76,7 +76,7 @@ time.sleep(60)
 def test_sessions_and_their_nodes(private: Private) -> None:
     """A peer node and a client session are both listed, the node by name; the status
     command's own session is not counted."""
-    from ros2lite.transport.config import open_session
+    from ros2lite.transport.open import open_session
 
     daemon.start(private.endpoint)
     node = subprocess.Popen(

@@ -31,7 +31,7 @@ def test_cycle(private: Private) -> None:
 
 
 def test_stop_says_who_was_connected(private: Private) -> None:
-    from ros2lite.transport.config import open_session
+    from ros2lite.transport.open import open_session
 
     daemon.start(private.endpoint)
     client = open_session(private.endpoint)  # a CLI verb or a client-mode node

@@ -26,8 +26,10 @@ def test_round_trip(
 ) -> None:
     import zenoh
 
+    from ros2lite.daemon.router import router_security
     from ros2lite.graph import snapshot
-    from ros2lite.transport.config import open_session, router_config
+    from ros2lite.transport.config import router_config
+    from ros2lite.transport.open import open_session
 
     for exe, enclave in (('talker', '/gp/talker'), ('listener', '/gp/listener')):
         processes.start(
@@ -87,7 +89,7 @@ def test_round_trip(
         'ROS2LITE_ROUTER': f'tls/127.0.0.1:{free_port()}',
         'ROS_DOMAIN_ID': os.environ['ROS_DOMAIN_ID'],
     }
-    router = zenoh.open(router_config(env=secure))
+    router = zenoh.open(router_config(env=secure, security=router_security(secure)))
     procs: list[Any] = []
     try:
         env = environ(secure)

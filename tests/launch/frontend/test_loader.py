@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from ros2lite.launch.actions import IncludeLaunchDescription
 from ros2lite.launch.errors import InvalidFrontendLaunchFileError
+from ros2lite.launch.flow import IncludeLaunchDescription
 from ros2lite.launch.frontend.builders import split_words
 from ros2lite.launch.frontend.loader import load_frontend_file
 from ros2lite.launch.frontend.substitutions import parse_substitutions
