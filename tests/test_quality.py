@@ -213,7 +213,6 @@ NOT_YET_ON_MAP = {
     'demos/demo_nodes_py/set_parameters_callback.py',
     'demos/demo_nodes_py/talker_qos.py',
     'demos/demo_nodes_py/use_logger_service.py',
-    'demos/teleop/keyboard.py',  # the teleop keyboard; util/keyboard.py is the CLI's (issue 24)
     'demos/tf2_ros/',
     'demos/tf2_tools/',
     'demos/turtle_tf2_py/',
