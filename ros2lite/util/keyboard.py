@@ -10,9 +10,8 @@ the terminal's signal keys, so Ctrl-C arrives as the character '\\x03' (what
 teleop_twist_keyboard expects); otherwise Ctrl-C raises KeyboardInterrupt as usual.
 When stdin is not a terminal (a pipe, a file) keys are read from it unchanged.
 
-`KeyHandlers` puts the terminal in cbreak mode (no line editing, no echo; Ctrl-C still raises
-SIGINT) and restores it on close. Arrow keys arrive as escape sequences and are named 'right',
-'up' …
+`KeyHandlers` reads through a `Keyboard` (so Ctrl-C still raises SIGINT), each key of a burst
+on its own: two arrows that arrive in one read are two presses.
 """
 
 from __future__ import annotations
@@ -27,9 +26,6 @@ from collections.abc import Callable
 
 ARROWS = {'A': 'up', 'B': 'down', 'C': 'right', 'D': 'left'}
 ESCAPE_WAIT = 0.05  # s: how long the rest of an escape sequence may take to arrive
-
-
-_ARROWS = {b"\x1b[A": "up", b"\x1b[B": "down", b"\x1b[C": "right", b"\x1b[D": "left"}
 
 
 def available() -> bool:
@@ -106,41 +102,28 @@ class Keyboard:
 
 
 class KeyHandlers:
-    """Calls `handlers[key]()` from a background thread for each key pressed."""
+    """Calls `handlers[key]()` from a background thread for each key pressed on stdin (see
+    `available`), read by a `Keyboard` until `close()`."""
 
     def __init__(self, handlers: dict[str, Callable[[], object]]) -> None:
-        import termios
-        import tty
-
         self.handlers = handlers
-        self._fd = sys.stdin.fileno()
-        self._saved = termios.tcgetattr(self._fd)
-        tty.setcbreak(self._fd)
+        self._keyboard = Keyboard().__enter__()
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._run, daemon=True, name="ros2lite-keys")
         self._thread.start()
 
     def _run(self) -> None:
         while not self._stop.is_set():
-            ready, _, _ = select.select([self._fd], [], [], 0.1)
-            if not ready:
-                continue
-            data = os.read(self._fd, 16)
-            if not data:
+            try:
+                key = self._keyboard.read(0.1)
+            except (EOFError, OSError):  # input ended, or the terminal hung up
                 return
-            key = (
-                _ARROWS.get(data[:3])
-                if data.startswith(b"\x1b")
-                else data[:1].decode(errors="replace")
-            )
-            handler = self.handlers.get(key or "")
+            handler = self.handlers.get(key) if key is not None else None
             if handler is not None:
                 with contextlib.suppress(Exception):
                     handler()
 
     def close(self) -> None:
-        import termios
-
         self._stop.set()
         self._thread.join(timeout=1)
-        termios.tcsetattr(self._fd, termios.TCSADRAIN, self._saved)
+        self._keyboard.restore()
