@@ -3,7 +3,8 @@ listener that fills it from `/tf` and `/tf_static`, the broadcasters that send t
 quaternion arithmetic beneath; `compat/tf2_ros` gives these tf2_ros's module names."""
 
 from ros2lite.tf2.broadcasters import StaticTransformBroadcaster, TransformBroadcaster
-from ros2lite.tf2.buffer import DEFAULT_CACHE_TIME, Buffer, BufferCore
+from ros2lite.tf2.buffer import Buffer
+from ros2lite.tf2.core import DEFAULT_CACHE_TIME, BufferCore
 from ros2lite.tf2.errors import (
     ConnectivityException,
     ExtrapolationException,

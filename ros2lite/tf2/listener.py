@@ -20,7 +20,7 @@ from ros2lite.tf2.qos import (
 )
 
 if TYPE_CHECKING:
-    from ros2lite.tf2.buffer import BufferCore
+    from ros2lite.tf2.core import BufferCore
 
 __all__ = ['TransformListener']
 

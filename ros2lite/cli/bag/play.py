@@ -115,7 +115,7 @@ def _play(player: Player, log: RcutilsLogger, keyboard: bool) -> None:
         log.info("Press CURSOR_RIGHT for Play Next Message")
         log.info("Press CURSOR_UP for Increase Rate 10%")
         log.info("Press CURSOR_DOWN for Decrease Rate 10%")
-        keys = keys_module.Keyboard(
+        keys = keys_module.KeyHandlers(
             {
                 " ": player.toggle_paused,
                 "right": player.play_next,

@@ -290,7 +290,7 @@ def _record(
     keys = None
     if keyboard and keys_module.available():
         log.info("Press SPACE for pausing/resuming")
-        keys = keys_module.Keyboard({" ": recorder.toggle_paused})
+        keys = keys_module.KeyHandlers({" ": recorder.toggle_paused})
     try:
         with StopSignals() as stop:
             recorder.run(

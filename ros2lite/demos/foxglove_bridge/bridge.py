@@ -15,7 +15,6 @@ each with a deadline, as the C++ bridge does.
 
 from __future__ import annotations
 
-import json
 import logging
 import queue
 import re
@@ -32,22 +31,18 @@ from foxglove.websocket import (
     Client,
     ClientChannel,
     ServerListener,
-    ServiceRequest,
-    StatusLevel,
     WebSocketServer,
 )
 
+from ros2lite.demos.foxglove_bridge.channels import GraphChannels
 from ros2lite.demos.foxglove_bridge.parameters import RemoteParameters, split_name, to_foxglove
+from ros2lite.demos.foxglove_bridge.publishing import CLIENT_ENCODINGS, ClientPublishing
+from ros2lite.demos.foxglove_bridge.services import GraphServices
 from ros2lite.graph import EntityKind
-from ros2lite.names import is_hidden_name
-from ros2lite.qos import HistoryPolicy, QoSProfile, match_publishers_qos
 
 if TYPE_CHECKING:
-    from ros2lite.client import Client as RosClient
     from ros2lite.graph import Entity
-    from ros2lite.monitor.subscription import MonitoredSubscription
     from ros2lite.node import Node
-    from ros2lite.publisher import Publisher
     from ros2lite.subscription import Subscription
 
 __all__ = ['CAPABILITIES', 'Bridge', 'Settings']
@@ -71,15 +66,12 @@ DEFAULT_CAPABILITIES = [
     'connectionGraph',
     'assets',
 ]
-CLIENT_ENCODINGS = ('cdr', 'json')
 # how often the graph is looked at when no change was heard (seconds)
 _REFRESH_PERIOD = 1.0
 # what the SDK logs (at INFO) when a client's queue overflowed and it dropped the oldest
 _OUTBOX_FULL = re.compile(r'outbox for client (\S+) full')
 # a client's queued publish data beyond this is dropped (bytes), so a flood cannot grow memory
 _CLIENT_DATA_LIMIT = 64 * 1024 * 1024
-# channels one client may advertise (each is a publisher in the graph)
-_CLIENT_CHANNEL_LIMIT = 1000
 
 
 @dataclass
@@ -117,39 +109,7 @@ def compile_patterns(patterns: list[str], what: str) -> list[re.Pattern[str]]:
     return out
 
 
-def _matches(patterns: list[re.Pattern[str]], name: str) -> bool:
-    return any(p.fullmatch(name) for p in patterns)
-
-
-def _type_name(schema_name: str) -> str:
-    """'pkg/msg/Type' from what a client names ('pkg/Type' too)."""
-    parts = schema_name.split('/')
-    return f'{parts[0]}/msg/{parts[1]}' if len(parts) == 2 else schema_name
-
-
-@dataclass
-class _Topic:
-    """One advertised (topic, type): its channel and, while clients watch, its subscription."""
-
-    name: str
-    type_name: str
-    channel: foxglove.Channel
-    subscribers: set[int] = field(default_factory=set)  # client ids
-    subscription: MonitoredSubscription | None = None
-
-
-@dataclass
-class _ClientPublication:
-    """A channel a client advertised, and the publisher that carries its messages."""
-
-    topic: str
-    type_name: str
-    encoding: str
-    publisher: Publisher[Any] | None = None
-    msg_class: Any = None
-
-
-class Bridge(ServerListener):
+class Bridge(GraphChannels, ClientPublishing, GraphServices, ServerListener):
     """Serves `node`'s graph on a Foxglove WebSocket server until `close()`."""
 
     def __init__(
@@ -182,12 +142,12 @@ class Bridge(ServerListener):
             )
         self._own = node.get_fully_qualified_name()
         self._context = foxglove.Context()
-        self._topics: dict[tuple[str, str], _Topic] = {}
-        self._by_channel: dict[int, _Topic] = {}
-        self._unknown_types: set[str] = set()
-        self._services: dict[str, str] = {}  # name -> type, as advertised
-        self._service_clients: dict[str, RosClient[Any, Any]] = {}
-        self._client_channels: dict[tuple[int, int], _ClientPublication] = {}
+        self._topics = {}
+        self._by_channel = {}
+        self._unknown_types = set()
+        self._services = {}
+        self._service_clients = {}
+        self._client_channels = {}
         self._client_bytes = 0
         self._client_bytes_lock = threading.Lock()
         self._graph_subscribed = False
@@ -350,229 +310,6 @@ class Bridge(ServerListener):
             {e.node_fqn for e in self.node.context.graph.entities() if e.kind is EntityKind.NODE}
         )
 
-    # -- topics -> channels --------------------------------------------------------------------
-    def _visible(self, name: str, patterns: list[re.Pattern[str]]) -> bool:
-        return (self.settings.include_hidden or not is_hidden_name(name)) and _matches(
-            patterns, name
-        )
-
-    def _refresh(self) -> None:
-        """Bring channels and services in line with the graph; send the connection graph."""
-        from ros2lite.interfaces import definition_text
-
-        entities = [
-            e for e in self.node.context.graph.entities() if e.node_fqn != self._own or e.is_node
-        ]
-        wanted: dict[tuple[str, str], list[Entity]] = {}
-        services: dict[str, str] = {}
-        for e in entities:
-            if not (e.topic_name and e.type_name):
-                continue
-            if e.kind in (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION):
-                if self._visible(e.topic_name, self._topic_patterns):
-                    wanted.setdefault((e.topic_name, e.type_name), []).append(e)
-            elif e.kind is EntityKind.SERVICE and self._visible(
-                e.topic_name, self._service_patterns
-            ):
-                services.setdefault(e.topic_name, e.type_name)
-        for key in list(self._topics):
-            if key not in wanted:
-                topic = self._topics.pop(key)
-                self._by_channel.pop(topic.channel.id(), None)
-                self._unsubscribe_topic(topic)
-                topic.channel.close()
-        for (name, type_name), _ in sorted(wanted.items()):
-            if (name, type_name) in self._topics or type_name in self._unknown_types:
-                continue
-            try:
-                text = definition_text(type_name)
-            except Exception as e:  # a type not defined here: no schema a client could use
-                self._unknown_types.add(type_name)
-                self._warn(f"Topic '{name}': type {type_name} is unknown here ({e}); not shown")
-                continue
-            schema = foxglove.Schema(name=type_name, encoding='ros2msg', data=text.encode())
-            channel = foxglove.Channel(
-                name, message_encoding='cdr', schema=schema, context=self._context
-            )
-            topic = _Topic(name, type_name, channel)
-            self._topics[(name, type_name)] = topic
-            self._by_channel[channel.id()] = topic
-        for (name, type_name), topic in self._topics.items():
-            if topic.subscription is not None:
-                continue
-            if topic.subscribers:  # publishers came back for a channel clients still watch
-                self._subscribe_topic(topic, wanted.get((name, type_name), []))
-        if 'services' in self._caps:
-            self._refresh_services(services)
-        if self._graph_subscribed:
-            self._publish_graph(entities)
-
-    def _subscribe(self, client_id: int, channel_id: int) -> None:
-        topic = self._by_channel.get(channel_id)
-        if topic is None:
-            return
-        topic.subscribers.add(client_id)
-        if topic.subscription is None:
-            pubs = [
-                e
-                for e in self.node.context.graph.entities()
-                if e.kind is EntityKind.PUBLISHER
-                and e.topic_name == topic.name
-                and e.type_name == topic.type_name
-            ]
-            self._subscribe_topic(topic, pubs)
-
-    def _subscribe_topic(self, topic: _Topic, pubs: list[Entity]) -> None:
-        from ros2lite.bag.definitions import type_ref
-        from ros2lite.monitor.subscription import MonitoredSubscription
-
-        s = self.settings
-        depth = sum(p.qos.depth for p in pubs if p.qos is not None)
-        depth = min(max(depth, s.min_qos_depth, 1), max(s.max_qos_depth, 1))
-        offered = [p.qos for p in pubs if p.qos is not None and p.kind is EntityKind.PUBLISHER]
-        qos = match_publishers_qos(
-            QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=depth), offered
-        ).profile
-        hashes = {p.type_hash for p in pubs if p.type_hash}
-        msg_type: type | str = topic.type_name
-        if len(hashes) == 1:
-            # the publishers' own hash, so a type that changed here still matches them
-            msg_type = type_ref(topic.type_name, next(iter(hashes)))
-        log = topic.channel.base.log
-        clock = self.node.get_clock()
-
-        def receive(data: bytes, _attachment: bytes, received: int) -> None:
-            if clock.ros_time_is_active:
-                received = clock.now().nanoseconds
-            log(data, received)
-
-        topic.subscription = MonitoredSubscription(
-            self.node, msg_type, topic.name, None, qos, on_payload=receive
-        )
-
-    def _unsubscribe(self, client_id: int, channel_id: int) -> None:
-        topic = self._by_channel.get(channel_id)
-        if topic is None:
-            return
-        topic.subscribers.discard(client_id)
-        if not topic.subscribers:
-            self._unsubscribe_topic(topic)
-
-    def _unsubscribe_topic(self, topic: _Topic) -> None:
-        sub, topic.subscription = topic.subscription, None
-        if sub is not None:
-            self.node.destroy_subscription(sub)
-
-    # -- client publishing ---------------------------------------------------------------------
-    def _advertise(self, client_id: int, channel: ClientChannel) -> None:
-        from ros2lite.interfaces import get_interface
-
-        key = (client_id, channel.id)
-        if channel.encoding not in CLIENT_ENCODINGS:
-            self._status(f'Unsupported encoding {channel.encoding!r} for {channel.topic}')
-            return
-        if not _matches(self._client_topic_patterns, channel.topic):
-            self._status(f"Topic '{channel.topic}' is not whitelisted for client publishing")
-            return
-        if sum(1 for c, _ in self._client_channels if c == client_id) >= _CLIENT_CHANNEL_LIMIT:
-            self._status(f'A client may advertise {_CLIENT_CHANNEL_LIMIT} channels at most')
-            return
-        type_name = _type_name(channel.schema_name)
-        try:
-            msg_class = get_interface(type_name)
-            publisher = self.node.create_publisher(msg_class, channel.topic, 10)
-        except Exception as e:
-            self._status(f"Cannot advertise '{channel.topic}' ({channel.schema_name}): {e}")
-            return
-        self._client_channels[key] = _ClientPublication(
-            channel.topic, type_name, channel.encoding, publisher, msg_class
-        )
-
-    def _publish(self, client_id: int, channel_id: int, data: bytes) -> None:
-        pub = self._client_channels.get((client_id, channel_id))
-        if pub is None or pub.publisher is None:
-            return  # the SDK refuses unknown channel ids; one we could not advertise
-        try:
-            if pub.encoding == 'cdr':
-                pub.publisher.publish(data)
-                return
-            from ros2lite.interfaces import set_message_fields
-
-            fields = json.loads(data)
-            if not isinstance(fields, dict):
-                raise ValueError('a JSON message is an object')
-            msg = pub.msg_class()
-            set_message_fields(msg, fields)
-            pub.publisher.publish(msg)
-        except Exception as e:
-            self._status(f"Dropped a message to '{pub.topic}': {e}")
-
-    # -- services ------------------------------------------------------------------------------
-    def _refresh_services(self, services: dict[str, str]) -> None:
-        from ros2lite.interfaces import definition_text
-
-        assert self.server is not None
-        gone = [n for n, t in self._services.items() if services.get(n) != t]
-        if gone:
-            self.server.remove_services(gone)
-            for name in gone:
-                del self._services[name]
-                client = self._service_clients.pop(name, None)
-                if client is not None:
-                    self.node.destroy_client(client)
-        added = []
-        for name, type_name in sorted(services.items()):
-            if name in self._services or type_name in self._unknown_types:
-                continue
-            try:
-                request = definition_text(f'{type_name}_Request')
-                response = definition_text(f'{type_name}_Response')
-            except Exception as e:
-                self._unknown_types.add(type_name)
-                self._warn(f"Service '{name}': type {type_name} is unknown here ({e}); not shown")
-                continue
-            schema = foxglove.ServiceSchema(
-                type_name,
-                request=_message_schema(f'{type_name}_Request', request),
-                response=_message_schema(f'{type_name}_Response', response),
-            )
-            added.append(foxglove.Service(name, schema=schema, handler=self._call_service))
-            self._services[name] = type_name
-        if added:
-            self.server.add_services(added)
-
-    def _call_service(self, request: ServiceRequest) -> bytes:
-        """A client's call of a graph service, answered with the response's CDR bytes (or an
-        error the SDK sends back as a failed call)."""
-        from ros2lite.interfaces import get_interface, serialize, set_message_fields
-        from ros2lite.interfaces.cdr import service_codecs
-
-        name = request.service_name
-        type_name = self._services.get(name)
-        if type_name is None:
-            raise ValueError(f"service '{name}' is gone")
-        srv = get_interface(type_name)
-        if request.encoding == 'json':
-            fields = json.loads(request.payload or b'{}')
-            if not isinstance(fields, dict):
-                raise ValueError('a JSON request is an object')
-            msg = srv.Request()
-            set_message_fields(msg, fields)
-        else:
-            msg = service_codecs(type_name)[0].deserialize(request.payload)
-        client = self._service_clients.get(name)
-        if client is None:
-            client = self.node.create_client(srv, name, fail_without_server=True)
-            self._service_clients[name] = client
-        response = client.call(msg, timeout_sec=self.settings.service_timeout)
-        if response is None:
-            raise TimeoutError(f"service '{name}' did not answer in time")
-        if request.encoding == 'json':
-            from ros2lite.interfaces import message_to_dict
-
-            return json.dumps(message_to_dict(response)).encode()
-        return serialize(response)
-
     # -- parameters ----------------------------------------------------------------------------
     def _on_parameter_event(self, event: Any) -> None:
         node = event.node
@@ -593,45 +330,9 @@ class Bridge(ServerListener):
         if self.server is not None:
             self.server.broadcast_time(msg.clock.sec * 1_000_000_000 + msg.clock.nanosec)
 
-    # -- connection graph ----------------------------------------------------------------------
-    def _publish_graph(self, entities: list[Entity]) -> None:
-        assert self.server is not None
-        published: dict[str, set[str]] = {}
-        subscribed: dict[str, set[str]] = {}
-        provided: dict[str, set[str]] = {}
-        table = {
-            EntityKind.PUBLISHER: published,
-            EntityKind.SUBSCRIPTION: subscribed,
-            EntityKind.SERVICE: provided,
-        }
-        for e in entities:
-            into = table.get(e.kind)
-            if into is not None and e.topic_name:
-                into.setdefault(e.topic_name, set()).add(e.node_fqn)
-        picture = tuple(
-            tuple(sorted((k, tuple(sorted(v))) for k, v in t.items()))
-            for t in (published, subscribed, provided)
-        )
-        if picture == self._last_graph:
-            return
-        self._last_graph = picture
-        graph = foxglove.ConnectionGraph()
-        for topic, ids in published.items():
-            graph.set_published_topic(topic, sorted(ids))
-        for topic, ids in subscribed.items():
-            graph.set_subscribed_topic(topic, sorted(ids))
-        for service, ids in provided.items():
-            graph.set_advertised_service(service, sorted(ids))
-        self.server.publish_connection_graph(graph)
-
     def tell_clients(self, message: str) -> None:
         """A warning status for every client, sent from the worker (safe on any thread)."""
         self._events.put(('status', message))
-
-    def _status(self, message: str, level: StatusLevel = StatusLevel.Warning) -> None:
-        self._warn(message)
-        if self.server is not None:
-            self.server.publish_status(message, level)
 
     # -- the SDK's listener (its threads) ------------------------------------------------------
     def on_subscribe(self, client: Client, channel: ChannelView) -> None:
@@ -746,12 +447,6 @@ def _follow_sdk_log(tell: Say, warn: Say, log: Say) -> None:
             logger.removeHandler(handler)
     logger.addHandler(_SdkLog(tell, warn, log))
     foxglove.set_log_level('INFO')
-
-
-def _message_schema(name: str, text: str) -> foxglove.MessageSchema:
-    return foxglove.MessageSchema(
-        encoding='cdr', schema=foxglove.Schema(name=name, encoding='ros2msg', data=text.encode())
-    )
 
 
 def _interface(name: str) -> Any:

@@ -88,7 +88,7 @@ class ConsoleTerminal:
 
     def run(self, ok: Callable[[], bool], period: float) -> None:
         """Redraw when the console or the terminal's size changed; read keys meanwhile."""
-        from ros2lite.demos.teleop.keyboard import Keyboard
+        from ros2lite.util.keyboard import Keyboard
 
         shown = None
         keys = True  # until the input ends (then the table is only shown)

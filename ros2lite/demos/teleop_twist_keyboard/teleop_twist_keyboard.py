@@ -140,7 +140,7 @@ class TeleopTwistKeyboard:
 def key_loop(teleop: TeleopTwistKeyboard) -> None:
     """Keys until Ctrl-C, the end of input or shutdown; always a stopping Twist at the end
     and the terminal restored."""
-    from ros2lite.demos.teleop.keyboard import key_loop as read_keys
+    from ros2lite.demos.teleop.spinning import key_loop as read_keys
 
     try:
         read_keys(teleop.node, f'{USAGE}\n{vels(teleop.speed, teleop.turn)}', teleop.key, raw=True)

@@ -96,7 +96,7 @@ class TeleopTurtle:
 
 def key_loop(teleop: TeleopTurtle) -> None:
     """Read keys until Q, the end of input, or shutdown (the terminal restored either way)."""
-    from ros2lite.demos.teleop.keyboard import key_loop as read_keys
+    from ros2lite.demos.teleop.spinning import key_loop as read_keys
 
     read_keys(teleop.node, INSTRUCTIONS, teleop.key)
 

@@ -9,7 +9,7 @@ import termios
 
 import pytest
 
-from ros2lite.demos.teleop.keyboard import Keyboard
+from ros2lite.util.keyboard import Keyboard
 
 
 def test_keys_and_arrows_on_a_terminal() -> None:
