@@ -7,6 +7,7 @@ import importlib
 import re
 import subprocess
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -288,3 +289,150 @@ def test_every_module_is_on_the_map() -> None:
     )
     stale_waivers += sorted(w for w in NOT_YET_BUILT if w in on_disk or w not in mapped)
     assert stale_waivers == [], 'waived yet placed or built: take them out of the lists'
+
+
+# --- imports: floors, laziness, circles (DESIGN.md §2, rules of the house) -------------------
+# Every checker below takes the sources as {path relative to the repo: text}, so each rule's
+# test also feeds it a small probe that breaks the rule and asserts the probe is caught.
+
+
+@dataclass(frozen=True)
+class _Import:
+    """One imported module: `source` imports `target` (fully resolved, dotted) at `line`;
+    `lazy` when the import sits inside a function."""
+
+    source: str
+    target: str
+    line: int
+    lazy: bool
+
+
+def _sources() -> dict[str, str]:
+    return {
+        str(p.relative_to(ROOT)): p.read_text() for p in sorted((ROOT / 'ros2lite').rglob('*.py'))
+    }
+
+
+def _module_of(path: str) -> str:
+    parts = path.removesuffix('.py').split('/')
+    return '.'.join(parts[:-1] if parts[-1] == '__init__' else parts)
+
+
+def _is_type_checking(test: ast.expr) -> bool:
+    return (isinstance(test, ast.Name) and test.id == 'TYPE_CHECKING') or (
+        isinstance(test, ast.Attribute) and test.attr == 'TYPE_CHECKING'
+    )
+
+
+def _import_statements(tree: ast.AST) -> list[tuple[ast.Import | ast.ImportFrom, bool]]:
+    """Every import statement with whether it sits in a function; `if TYPE_CHECKING:` bodies
+    are skipped (their `else:` is not)."""
+    found: list[tuple[ast.Import | ast.ImportFrom, bool]] = []
+    functions = (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)
+
+    def visit(node: ast.AST, lazy: bool) -> None:
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, ast.If) and _is_type_checking(child.test):
+                for stmt in child.orelse:
+                    visit_one(stmt, lazy)
+            else:
+                visit_one(child, lazy)
+
+    def visit_one(node: ast.AST, lazy: bool) -> None:
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            found.append((node, lazy))
+        visit(node, lazy or isinstance(node, functions))
+
+    visit(tree, False)
+    return found
+
+
+def _imports(sources: dict[str, str]) -> list[_Import]:
+    """Every import of every module, relative ones resolved; `from pkg import mod` names the
+    module, `from mod import name` the module; compat/'s faces (`rclpy`, `launch`...) are
+    resolved to ros2lite.compat.<face> when a compat module imports them."""
+    modules = {_module_of(p) for p in sources}
+    faces = {m.split('.')[2] for m in modules if m.startswith('ros2lite.compat.')}
+
+    def known(name: str) -> str:
+        while name and name not in modules:
+            name = name.rpartition('.')[0]
+        return name
+
+    out = []
+    for path, text in sources.items():
+        me = _module_of(path)
+        package = me if path.endswith('__init__.py') else me.rpartition('.')[0]
+        in_compat = me.startswith('ros2lite.compat.')
+        for node, lazy in _import_statements(ast.parse(text)):
+            if isinstance(node, ast.Import):
+                names = [alias.name for alias in node.names]
+            else:
+                base = package.rsplit('.', node.level - 1)[0] if node.level > 1 else package
+                mod = (f'{base}.{node.module}' if node.module else base) if node.level else ''
+                mod = mod or node.module or ''
+                names = [
+                    f'{mod}.{a.name}' if known(f'{mod}.{a.name}') == f'{mod}.{a.name}' else mod
+                    for a in node.names
+                ]
+            for name in names:
+                if in_compat and name.split('.')[0] in faces:
+                    name = f'ros2lite.compat.{name}'
+                if name.split('.')[0] == 'ros2lite':
+                    name = known(name) or name
+                out.append(_Import(me, name, node.lineno, lazy))
+    return out
+
+
+# DESIGN.md §2's floors; a top-level module not named is on 4, a folder not named on 7
+FLOORS = {
+    0: 'exceptions util/',
+    1: 'duration names qos time logging type_support message_info topic_endpoint_info'
+    ' callback_groups task destroyable parameter interfaces/ msgs/ pkg/',
+    2: 'transport/ security/',
+    3: 'runtime/ graph context signals service_introspection daemon/',
+    4: 'parameters/',
+    5: 'action/ lifecycle/ components/ monitor/ bag/ launch/ tf2/',
+    6: 'tools/',
+    7: 'cli/ demos/ compat/ __main__',
+}
+_FLOOR_OF = {n.rstrip('/'): floor for floor, names in FLOORS.items() for n in names.split()}
+
+
+def _floor(module: str) -> int:
+    """A ros2lite module's floor (the package itself, its lazy face, is a top-level module)."""
+    parts = module.split('.')
+    if len(parts) == 1:
+        return 4
+    if parts[1] in _FLOOR_OF:
+        return _FLOOR_OF[parts[1]]
+    return 4 if len(parts) == 2 else 7
+
+
+def _floor_breaks(sources: dict[str, str]) -> list[str]:
+    """Imports going up a floor, and transport/ and security/ importing each other."""
+    breaks = []
+    for imp in _imports(sources):
+        if not imp.target.startswith('ros2lite'):
+            continue
+        pair = {[*m.split('.'), ''][1] for m in (imp.source, imp.target)}
+        up = _floor(imp.target) > _floor(imp.source)
+        if up or pair == {'transport', 'security'}:
+            breaks.append(f'{imp.source}:{imp.line} -> {imp.target}')
+    return breaks
+
+
+def test_floors() -> None:
+    """Every import, in a function too, goes to its own floor or lower (DESIGN.md §2), so a
+    lower floor never needs a higher one to load; transport/ and security/ never meet."""
+    assert _floor_breaks(_sources()) == []
+    probe = {
+        'ros2lite/util/probe.py': 'def f():\n    from ros2lite.node import Node\n',
+        'ros2lite/transport/probe.py': 'from ..security import keystore\n',
+        'ros2lite/runtime/probe.py': 'from typing import TYPE_CHECKING\n'
+        'if TYPE_CHECKING:\n    from ros2lite.tools import doctor\n',
+    }
+    assert _floor_breaks(probe) == [
+        'ros2lite.util.probe:2 -> ros2lite.node',
+        'ros2lite.transport.probe:1 -> ros2lite.security',
+    ]
