@@ -217,6 +217,7 @@ NOT_YET_ON_MAP = {
     'demos/tf2_tools/',
     'demos/turtle_tf2_py/',
     'demos/turtlesim/interfaces.py',
+    'daemon/security.py',  # security as values, shared by connect/control/router (issue 24)
     'pkg/distro.py',
     'tf2/',
 }
@@ -435,4 +436,82 @@ def test_floors() -> None:
     assert _floor_breaks(probe) == [
         'ros2lite.util.probe:2 -> ros2lite.node',
         'ros2lite.transport.probe:1 -> ros2lite.security',
+    ]
+
+
+def _circles(edges: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected components of more than one node (Tarjan, iterative)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    found = []
+    for root in sorted(edges):
+        if root in index:
+            continue
+        work = [(root, iter(sorted(edges.get(root, ()))))]
+        index[root] = low[root] = len(index)
+        stack.append(root)
+        on_stack.add(root)
+        while work:
+            node, children = work[-1]
+            child = next(children, None)
+            if child is None:
+                work.pop()
+                if work:
+                    low[work[-1][0]] = min(low[work[-1][0]], low[node])
+                if low[node] == index[node]:
+                    component = []
+                    while True:
+                        member = stack.pop()
+                        on_stack.discard(member)
+                        component.append(member)
+                        if member == node:
+                            break
+                    if len(component) > 1:
+                        found.append(sorted(component))
+            elif child not in index:
+                index[child] = low[child] = len(index)
+                stack.append(child)
+                on_stack.add(child)
+                work.append((child, iter(sorted(edges.get(child, ())))))
+            elif child in on_stack:
+                low[node] = min(low[node], index[child])
+    return found
+
+
+def _import_circles(sources: dict[str, str], *, folders: bool = False) -> list[list[str]]:
+    """Circles among ros2lite's modules over every import (in-function ones too); with
+    `folders`, among its top-level folders (a top-level module stands for itself)."""
+
+    def node(module: str) -> str:
+        parts = module.split('.')
+        folder = len(parts) > 2 or any(p.startswith(f'ros2lite/{parts[-1]}/') for p in sources)
+        return '.'.join(parts[:2]) if folders and folder else module
+
+    edges: dict[str, set[str]] = {}
+    for imp in _imports(sources):
+        a, b = node(imp.source), node(imp.target)
+        if b.startswith('ros2lite') and a != b:
+            edges.setdefault(a, set()).add(b)
+    return _circles(edges)
+
+
+def test_no_import_circles() -> None:
+    """No module needs itself to load, even through an import inside a function, and no
+    folder needs another that needs it back: the floors then order every import."""
+    sources = _sources()
+    assert _import_circles(sources) == []
+    assert _import_circles(sources, folders=True) == []
+    probe = {
+        'ros2lite/graph.py': 'def f():\n    from ros2lite import context\n',
+        'ros2lite/context.py': 'import ros2lite.graph\n',
+        'ros2lite/bag/reader.py': 'from ros2lite.launch.api import x\n',
+        'ros2lite/launch/api.py': 'def f():\n    from ..bag import writer\n',
+        'ros2lite/bag/writer.py': '',
+    }
+    assert _import_circles(probe) == [['ros2lite.context', 'ros2lite.graph']]
+    assert _import_circles(probe, folders=True) == [
+        ['ros2lite.bag', 'ros2lite.launch'],
+        ['ros2lite.context', 'ros2lite.graph'],
     ]

@@ -26,11 +26,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ros2lite.daemon.connect import secured_endpoint, session_security
 from ros2lite.daemon.errors import DaemonError
 from ros2lite.daemon.paths import lock_file, log_file, pid_file
 from ros2lite.daemon.probe import router_answers, wait_answers
 from ros2lite.daemon.router import DaemonInfo, router_security
+from ros2lite.daemon.security import secured_endpoint, session_security
 from ros2lite.security.errors import SecurityError
 from ros2lite.transport.config import domain_id, router_config
 from ros2lite.transport.errors import SessionError

@@ -20,8 +20,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
 
-from ros2lite.daemon.connect import refuse_plain, secured_endpoint
 from ros2lite.daemon.paths import pid_file
+from ros2lite.daemon.security import refuse_plain, secured_endpoint
 from ros2lite.logging import get_logger
 from ros2lite.security.access import router_access
 from ros2lite.security.environment import router_identity

@@ -138,7 +138,7 @@ class Diagnosis:
     def endpoint(self) -> str | None:
         """The router endpoint to check (None when the configuration is invalid)."""
         if self._endpoint is None and self._endpoint_error is None:
-            from ros2lite.daemon.connect import secured_endpoint
+            from ros2lite.daemon.security import secured_endpoint
             from ros2lite.transport.errors import ConfigError
 
             try:
