@@ -515,3 +515,220 @@ def test_no_import_circles() -> None:
         ['ros2lite.bag', 'ros2lite.launch'],
         ['ros2lite.context', 'ros2lite.graph'],
     ]
+
+
+def _cli_breaks(sources: dict[str, str]) -> list[str]:
+    """cli/ reaching under the library (transport/, executors, spinning) or a verb imported
+    by anything but its own command."""
+    breaks = []
+    for imp in _imports(sources):
+        parts = imp.source.split('.')
+        target = imp.target.split('.')
+        if parts[1:2] == ['cli'] and target[1:2] in (['transport'], ['executors']):
+            breaks.append(f'{imp.source}:{imp.line} -> {imp.target}')
+        verb = target[1:2] == ['cli'] and len(target) == 4
+        verb = verb and target[3] not in ('common', 'options')
+        verb = verb and imp.source != '.'.join(target[:3])  # its own command may
+        if verb and any(p.startswith(f'ros2lite/cli/{target[2]}/') for p in sources):
+            breaks.append(f'{imp.source}:{imp.line} -> verb {imp.target}')
+    for path, text in sources.items():
+        if not path.startswith('ros2lite/cli/'):
+            continue
+        for node in ast.walk(ast.parse(text)):
+            name = getattr(node, 'attr', None) or getattr(node, 'id', None)
+            if name in ('spin_once', 'get_global_executor'):
+                breaks.append(f'{_module_of(path)}:{node.lineno} {name}')  # type: ignore[attr-defined]
+    return breaks
+
+
+def test_cli_is_thin() -> None:
+    """The CLI parses, calls the library and renders: it opens no session, runs no executor,
+    and each command owns its verbs, whose VERBS table names exactly its folder's modules."""
+    sources = _sources()
+    assert _cli_breaks(sources) == []
+    package = ROOT / 'ros2lite' / 'cli'
+    for folder in sorted(p.parent for p in package.glob('*/__init__.py')):
+        verbs = set(importlib.import_module(f'ros2lite.cli.{folder.name}').VERBS)
+        files = {p.stem for p in folder.glob('*.py')} - {'__init__', 'common', 'options'}
+        assert verbs == files, folder.name
+    probe = {
+        'ros2lite/cli/topic/__init__.py': 'from . import echo\n',
+        'ros2lite/cli/topic/echo.py': 'from ros2lite.executors import x\n',
+        'ros2lite/cli/topic/common.py': '',
+        'ros2lite/cli/node/list.py': 'from ..topic import echo, common\nspin_once()\n',
+        'ros2lite/cli/render.py': 'def f(node):\n    node.context.get_global_executor()\n',
+    }
+    assert _cli_breaks(probe) == [
+        'ros2lite.cli.topic.echo:1 -> ros2lite.executors',
+        'ros2lite.cli.node.list:1 -> verb ros2lite.cli.topic.echo',
+        'ros2lite.cli.node.list:2 spin_once',
+        'ros2lite.cli.render:2 get_global_executor',
+    ]
+
+
+SIGNAL_OWNERS = ('ros2lite/signals.py', 'ros2lite/util/process.py')
+
+
+def _signal_breaks(sources: dict[str, str]) -> list[str]:
+    """Calls that install signal handlers, outside the two modules that own them."""
+    setters = {'signal', 'setitimer', 'set_wakeup_fd', 'add_signal_handler'}
+    breaks = []
+    for path, text in sources.items():
+        if path in SIGNAL_OWNERS:
+            continue
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, ast.Call):
+                func = node.func
+                name = func.attr if isinstance(func, ast.Attribute) else getattr(func, 'id', '')
+                if name in setters:
+                    breaks.append(f'{path}:{node.lineno} {name}')
+    return breaks
+
+
+def test_signal_handlers() -> None:
+    """Who handles a signal is decided in two places (rclpy's handlers; children and stop
+    signals), so no module silently takes SIGINT or SIGTERM from another."""
+    assert _signal_breaks(_sources()) == []
+    probe = {
+        'ros2lite/daemon/router.py': 'import signal\nsignal.signal(signal.SIGHUP, 1)\n',
+        'ros2lite/launch/api.py': 'def f(loop):\n    loop.add_signal_handler(2, f)\n',
+        'ros2lite/util/process.py': 'import signal\nsignal.signal(2, 0)\n',
+    }
+    assert _signal_breaks(probe) == [
+        'ros2lite/daemon/router.py:2 signal',
+        'ros2lite/launch/api.py:2 add_signal_handler',
+    ]
+
+
+# rclpy's executor exceptions are plain Exceptions there, and Terminated is a BaseException
+# (like KeyboardInterrupt) so that nothing catching Exception swallows a SIGTERM
+OWN_BASES = {
+    'ros2lite.executors.ExternalShutdownException',
+    'ros2lite.executors.ShutdownException',
+    'ros2lite.executors.TimeoutException',
+    'ros2lite.executors.ConditionReachedException',
+    'ros2lite.util.process.Terminated',
+}
+
+
+def _errors_off_base(modules: list[object]) -> list[str]:
+    """Public exception classes defined in `modules` that do not derive from Ros2liteError."""
+    from ros2lite.exceptions import Ros2liteError
+
+    found = []
+    for module in modules:
+        name = getattr(module, '__name__', '')
+        for attr, obj in vars(module).items():
+            error = isinstance(obj, type) and issubclass(obj, BaseException)
+            own = error and obj.__module__ == name and not attr.startswith('_')
+            if own and not issubclass(obj, Ros2liteError) and f'{name}.{attr}' not in OWN_BASES:
+                found.append(f'{name}.{attr}')
+    return found
+
+
+def test_errors_share_one_base() -> None:
+    """Every error the library raises on purpose is a Ros2liteError, so the CLI turns each
+    into one clear line (save rclpy's own executor exceptions and Terminated)."""
+    import types
+
+    names = [
+        _module_of(p)
+        for p in _sources()
+        if not p.startswith(('ros2lite/compat/', 'ros2lite/msgs/'))
+        and not p.endswith(('__main__.py', '.launch.py'))
+    ]
+    assert _errors_off_base([importlib.import_module(n) for n in names]) == []
+    probe = types.ModuleType('ros2lite.probe')
+    exec('class BagGone(KeyError): pass\nclass _Hidden(Exception): pass', vars(probe))
+    executors = importlib.import_module('ros2lite.executors')
+    assert _errors_off_base([probe, executors]) == ['ros2lite.probe.BagGone']
+
+
+def _interface_writes(sources: dict[str, str]) -> list[str]:
+    """File writes under interfaces/ outside stubs.py (which writes msgs/'s .pyi stubs)."""
+    writers = {
+        'write_text', 'write_bytes', 'mkdir', 'makedirs', 'unlink', 'rmdir', 'rmtree',
+        'copyfile', 'create_new', 'open_for_writing', 'replace_file', 'temp_beside',
+        'private_dir',
+    }  # fmt: skip
+    os_writers = {'replace', 'rename', 'remove', 'write'}  # as os.<name> (str has .replace)
+    breaks = []
+    for path, text in sources.items():
+        if not path.startswith('ros2lite/interfaces/') or path.endswith('/stubs.py'):
+            continue
+        for node in ast.walk(ast.parse(text)):
+            if not isinstance(node, ast.Call):
+                continue
+            func = node.func
+            name = func.attr if isinstance(func, ast.Attribute) else getattr(func, 'id', '')
+            modes: list[ast.expr] = [a for a in node.args[1:2] if isinstance(a, ast.Constant)]
+            modes += [k.value for k in node.keywords if k.arg == 'mode']
+            writing = name == 'open' and any(
+                not isinstance(m, ast.Constant) or set(str(m.value)) & set('wax+') for m in modes
+            )
+            owner = getattr(func, 'value', None)
+            by_os = isinstance(owner, ast.Name) and owner.id == 'os' and name in os_writers
+            if name in writers or by_os or writing:
+                breaks.append(f'{path}:{node.lineno} {name}')
+    return breaks
+
+
+def test_interfaces_write_nothing() -> None:
+    """Parsing, hashing and code generation only read: the one writer is stubs.py, so a
+    `ros2lite interface` verb can never change the files it shows."""
+    assert _interface_writes(_sources()) == []
+    probe = {
+        'ros2lite/interfaces/registry.py': 'def f(p):\n    p.write_text("x")\n'
+        '    open(p, "a")\n    open(p)\n    open(p, mode="rb")\n    "a".replace("a", "b")\n'
+        '    os.replace(p, p)\n',
+        'ros2lite/interfaces/stubs.py': 'def f(p):\n    p.write_text("x")\n',
+    }
+    assert _interface_writes(probe) == [
+        'ros2lite/interfaces/registry.py:2 write_text',
+        'ros2lite/interfaces/registry.py:3 open',
+        'ros2lite/interfaces/registry.py:7 replace',
+    ]
+
+
+def _cli_parsing_breaks(sources: dict[str, str]) -> list[str]:
+    """cli/ modules but parsing.py that subclass click's Command/Group/Option/Parameter or
+    reach into click's parser."""
+    names = {'Command', 'Group', 'Option', 'Parameter', 'Argument', 'MultiCommand'}
+    breaks = []
+    for path, text in sources.items():
+        if not path.startswith('ros2lite/cli/') or path == 'ros2lite/cli/parsing.py':
+            continue
+        tree = ast.parse(text)
+        from_click = {
+            alias.asname or alias.name: alias.name
+            for node in ast.walk(tree)
+            if isinstance(node, ast.ImportFrom) and node.module == 'click'
+            for alias in node.names
+        }
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and (node.module or '').startswith('click.parser'):
+                breaks.append(f'{path}:{node.lineno} click.parser')
+            if isinstance(node, ast.ClassDef):
+                for base in node.bases:
+                    text = ast.unparse(base)
+                    clicks = text.removeprefix('click.') if text.startswith('click.') else None
+                    if (clicks or from_click.get(text)) in names:
+                        breaks.append(f'{path}:{node.lineno} {node.name}({text})')
+    return breaks
+
+
+def test_cli_parsing_in_one_place() -> None:
+    """One place parses (cli/parsing.py): no other module subclasses click's
+    Command/Group/Option/Parameter or reaches into click's parser."""
+    assert _cli_parsing_breaks(_sources()) == []
+    probe = {
+        'ros2lite/cli/topic/echo.py': 'import click\nfrom click import Option as O\n'
+        'class A(click.Command): pass\nclass B(O): pass\nclass C(dict): pass\n',
+        'ros2lite/cli/render.py': 'from click.parser import OptionParser\n',
+        'ros2lite/cli/parsing.py': 'import click\nclass Command(click.Command): pass\n',
+    }
+    assert _cli_parsing_breaks(probe) == [
+        'ros2lite/cli/topic/echo.py:3 A(click.Command)',
+        'ros2lite/cli/topic/echo.py:4 B(O)',
+        'ros2lite/cli/render.py:1 click.parser',
+    ]

@@ -27,6 +27,7 @@ from ros2lite.security.access import router_access
 from ros2lite.security.environment import router_identity
 from ros2lite.transport.open import linked_routers, open_router
 from ros2lite.transport.security import Security
+from ros2lite.util.process import ignore_hangup
 
 if TYPE_CHECKING:
     from ros2lite.daemon.graph_cache import GraphServer
@@ -102,7 +103,7 @@ def serve(
     stop_signals = {signal.SIGTERM, signal.SIGINT}
     # Block before zenoh starts its threads so only our sigwait() sees these signals.
     signal.pthread_sigmask(signal.SIG_BLOCK, stop_signals)
-    signal.signal(signal.SIGHUP, signal.SIG_IGN)
+    ignore_hangup()
     tell(f"pid {os.getpid()}")
     endpoint = secured_endpoint(router)
     try:
