@@ -12,6 +12,7 @@ from __future__ import annotations
 import heapq
 import math
 import os
+import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -22,6 +23,7 @@ from ros2lite.bag.metadata import BagMetadata
 from ros2lite.bag.reader import Reader
 from ros2lite.bag.recorder import RecordOptions
 from ros2lite.bag.writer import Writer
+from ros2lite.service_introspection import event_topic
 
 __all__ = ["OutputBag", "convert", "parse_output_options", "read_output_options"]
 
@@ -152,13 +154,10 @@ def _entry(entry: object, index: int) -> OutputBag:
         raise BagError(f"{where}: 'custom_data' must map strings to strings")
     for key in ("regex", "exclude_regex"):
         if text[key]:
-            import re
-
             try:
                 re.compile(text[key])
             except re.error as e:
                 raise BagError(f"{where}: '{key}' is not a regular expression: {e}") from None
-    from ros2lite.service_introspection import event_topic
 
     record = RecordOptions(
         topics=_absolute(lists["topics"]) + [event_topic(s) for s in _absolute(lists["services"])],

@@ -12,6 +12,7 @@ import os
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from ros2lite.bag.errors import MetadataError
@@ -404,7 +405,6 @@ def parse_metadata(text: str, *, top_key: bool = True) -> BagMetadata:
 
 def read_metadata_file(path: str | os.PathLike[str]) -> BagMetadata:
     """Parse a metadata.yaml file (MetadataError when unreadable or malformed)."""
-    from pathlib import Path
 
     try:
         text = Path(path).read_text(encoding="utf-8")

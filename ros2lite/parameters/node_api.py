@@ -20,6 +20,7 @@ from ros2lite.parameters.store import (
     PostSetCallback,
     PreSetCallback,
     SharedParameterMethods,
+    descriptor,
 )
 from ros2lite.runtime.arguments import RosArgs, RosArgsError
 
@@ -172,7 +173,6 @@ class ParameterMixin(SharedParameterMethods):
 
 
 def _descriptor() -> ParameterDescriptor:
-    from ros2lite.parameters.store import descriptor
 
     return descriptor()
 

@@ -8,6 +8,7 @@ by :mod:`ros2lite.parameters.node_api` (which imports this module, never the oth
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -134,7 +135,6 @@ def split_ros_args(argv: list[str]) -> tuple[list[str], list[list[str]]]:
 def remove_ros_args(args: list[str] | None = None) -> list[str]:
     """The arguments (default: `sys.argv`) without their `--ros-args` blocks: what a
     program's own argument parser should see."""
-    import sys
 
     return split_ros_args(list(sys.argv if args is None else args))[0]
 

@@ -31,6 +31,8 @@ import threading
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+import ros2lite
+
 if TYPE_CHECKING:
     from ros2lite.daemon.control import DaemonStatus
     from ros2lite.graph import Entity
@@ -377,7 +379,6 @@ class Diagnosis:
         return r
 
     def _report_ros2lite(self) -> Report:
-        import ros2lite
         from ros2lite.pkg.index import PackageIndex
 
         r = Report('ROS2LITE INFORMATION', 'platform')
