@@ -217,7 +217,6 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
     def _refuse_deadlock(self) -> None:
         """Inside a callback, a server of ours on the same executor may be unable to run
         until that callback returns: then waiting would never end, so say so instead."""
-
         executor, entity = current_execution()
         if executor is None:
             return

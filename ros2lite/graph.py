@@ -124,7 +124,6 @@ class GraphCache:
 
     def wait_for(self, predicate: Callable[[list[Entity]], bool], timeout: float | None) -> bool:
         """Block until `predicate(entities)` holds or the timeout passes."""
-
         deadline = None if timeout is None else time.monotonic() + timeout
         with self._cond:
             while not predicate(list(self._entities.values())):
@@ -245,7 +244,6 @@ def node_full_names(entities: Iterable[Entity], include_hidden: bool = False) ->
     Like ros2cli, a node is hidden when its own name starts with '_' (the namespace is not
     looked at).
     """
-
     return sorted(
         node_fqn(ns, name)
         for name, ns in node_names_and_namespaces(entities)

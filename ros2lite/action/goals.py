@@ -61,7 +61,6 @@ def status_name(status: int) -> str:
 
 def resolve_action_name(node: Node, name: str) -> str:
     """`name` resolved as the node resolves topics; a bad one is said to be an action name."""
-
     try:
         resolved: str = node.resolve_topic_name(name)
     except NameValidationException as e:

@@ -24,6 +24,7 @@ from ros2lite.bag.reader import Reader
 from ros2lite.bag.recorder import RecordOptions
 from ros2lite.bag.writer import Writer
 from ros2lite.service_introspection import event_topic
+from ros2lite.util.safe_yaml import YamlInputError, load
 
 __all__ = ["OutputBag", "convert", "parse_output_options", "read_output_options"]
 
@@ -192,8 +193,6 @@ def _entry(entry: object, index: int) -> OutputBag:
 
 def parse_output_options(text: str) -> list[OutputBag]:
     """The `--output-options` YAML: `output_bags:` and one mapping of options per bag."""
-    from ros2lite.util.safe_yaml import YamlInputError, load
-
     try:
         doc = load(text, "output options")
     except YamlInputError as e:

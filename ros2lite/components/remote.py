@@ -52,7 +52,6 @@ class LoadedNode:
 
 def container_node_names(entities: Iterable[Entity]) -> list[str]:
     """Full names of the nodes serving all three container services, sorted."""
-
     offered: dict[str, set[str]] = {}
     for e in entities:
         if e.kind != EntityKind.SERVICE or not e.topic_name:

@@ -145,7 +145,6 @@ class DaemonStatus:
 @contextlib.contextmanager
 def _start_lock(endpoint: str, timeout: float) -> Iterator[None]:
     """Serialise start/stop for one endpoint so two auto-starting CLIs don't race."""
-
     fd = os.open(lock_file(endpoint), os.O_RDWR | os.O_CREAT | NOFOLLOW | os.O_CLOEXEC, 0o600)
     with os.fdopen(fd, "r+") as fh:
         deadline = time.monotonic() + timeout
@@ -225,7 +224,6 @@ def status(router: str | None = None, *, sessions: bool = False) -> DaemonStatus
     """Is a router answering at the endpoint, and is it ours?  With ``sessions``, also
     which sessions are connected to it (one short client session asks its admin space).
     A listener that does not answer as a Zenoh router is told apart (``answers_zenoh``)."""
-
     endpoint = secured_endpoint(router)
     info = _read_info(pid_file(endpoint))
     running = router_answers(endpoint)
@@ -362,7 +360,6 @@ def _spawn(endpoint: str, listen: list[str], connect: list[str], timeout: float)
 
 def _site_dirs() -> set[str]:
     """Directories a fresh interpreter finds packages in anyway (never put them first)."""
-
     dirs = set(site.getsitepackages()) if hasattr(site, "getsitepackages") else set()
     dirs.add(site.getusersitepackages())
     return {str(Path(d).resolve()) for d in dirs}

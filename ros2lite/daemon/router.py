@@ -71,7 +71,6 @@ def router_security(env: Mapping[str, str] | None = None) -> Security:
 
 def _write_pid_file(path: Path, info: DaemonInfo) -> TextIO:
     """Write the pid file atomically and return its handle, locked for the process' life."""
-
     fd, tmp = temp_beside(path)
     fh = os.fdopen(fd, "w")
     fcntl.flock(fh, fcntl.LOCK_EX)

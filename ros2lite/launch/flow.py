@@ -168,7 +168,6 @@ class IncludeLaunchDescription(Action):
 
     def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
         """The included description when it can be read without running the launch."""
-
         source = self.launch_description_source
         try:
             with reading_from(self._chain):

@@ -28,7 +28,6 @@ GET_STATE_TYPE = 'lifecycle_msgs/srv/GetState'
 def lifecycle_node_names(entities: Iterable[Entity], *, include_hidden: bool = False) -> list[str]:
     """Full names of the nodes that serve `<node>/get_state` (lifecycle_msgs' GetState),
     sorted; a node is hidden when its own name starts with '_'."""
-
     found = {
         node_fqn(e.namespace, e.node_name)
         for e in entities

@@ -150,7 +150,6 @@ def values_for_node(path: str | Path, node_fqn: str, *, use_wildcard: bool = Tru
 def parameters_for_node(path: str | Path, node_fqn: str, use_wildcard: bool) -> list[Parameter]:
     """The file's parameters for the node as Parameters; an error naming the nodes the file
     has when it has none for this one, or naming a value that cannot be a parameter."""
-
     values = values_for_node(path, node_fqn, use_wildcard=use_wildcard)
     if not values:
         nodes = [name for name, _ in read_params_file(path)]

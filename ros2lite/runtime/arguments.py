@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ros2lite.exceptions import Ros2liteError
+from ros2lite.util.safe_yaml import YamlInputError, load
 
 LOG_LEVELS = {
     'debug': 10,
@@ -103,8 +104,6 @@ def _split_assignment(text: str, what: str) -> tuple[str | None, str, str]:
 
 def parse_value(text: str) -> object:
     """A parameter value from the command line, typed the YAML way ('1' → int)."""
-    from ros2lite.util.safe_yaml import YamlInputError, load
-
     try:
         return load(text, "the value")
     except YamlInputError:
@@ -135,7 +134,6 @@ def split_ros_args(argv: list[str]) -> tuple[list[str], list[list[str]]]:
 def remove_ros_args(args: list[str] | None = None) -> list[str]:
     """The arguments (default: `sys.argv`) without their `--ros-args` blocks: what a
     program's own argument parser should see."""
-
     return split_ros_args(list(sys.argv if args is None else args))[0]
 
 

@@ -183,7 +183,6 @@ def verify_document(ca: x509.Certificate, signed: bytes, content: bytes) -> bool
 def read_signed(document: Path, signature: Path, ca_certificate: Path, what: str) -> bytes:
     """``document``'s bytes once ``signature`` proves the permissions CA signed exactly
     them; else a one-line PolicyError naming ``what`` (e.g. ``permissions of enclave /a``)."""
-
     content = read_bytes(document, what)
     if not signature.is_file():
         raise PolicyError(f'{what}: {signature.name} (its signature) is missing')
