@@ -94,7 +94,7 @@ else:
     keep_large_buffers()  # the allocator setting a node has: the same terms for both
     from ros2lite.transport.config import node_session_mode
     from ros2lite.transport.open import open_session
-    from ros2lite.daemon.connect import session_security
+    from ros2lite.daemon.security import session_security
     security = session_security()  # as nodes have it (a secured graph too)
     session = open_session(mode=node_session_mode(security=security), security=security)
     zpub = session.declare_publisher(key, reliability=zenoh.Reliability.RELIABLE,
@@ -139,7 +139,7 @@ else:
     from ros2lite.runtime.memory import keep_large_buffers
     from ros2lite.transport.config import node_session_mode
     from ros2lite.transport.open import open_session
-    from ros2lite.daemon.connect import session_security
+    from ros2lite.daemon.security import session_security
     keep_large_buffers()
     security = session_security()  # as nodes have it (a secured graph too)
     session = open_session(mode=node_session_mode(security=security), security=security)
@@ -262,7 +262,7 @@ def raw_run(key: str, warm_cdr: bytes, kind: str, n: int, pub_mode: str = 'raw')
     subscriber is not lossless here: it drops samples under this load)."""
     import zenoh
 
-    from ros2lite.daemon.connect import session_security
+    from ros2lite.daemon.security import session_security
     from ros2lite.transport.config import node_session_mode
     from ros2lite.transport.open import open_session
 
@@ -413,7 +413,7 @@ def _ping_pong(mode: str) -> list[float]:
 def _raw_pinger(ping_key: str, pong_key: str, cdr: bytes) -> list[float]:
     import zenoh
 
-    from ros2lite.daemon.connect import session_security
+    from ros2lite.daemon.security import session_security
     from ros2lite.transport.config import node_session_mode
     from ros2lite.transport.open import open_session
 

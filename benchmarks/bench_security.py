@@ -51,7 +51,7 @@ def _router(endpoint: str, env: dict[str, str | None]) -> contextlib.AbstractCon
 
 
 def _connect_ms(env: dict[str, str | None]) -> float:
-    from ros2lite.daemon.connect import session_security
+    from ros2lite.daemon.security import session_security
     from ros2lite.transport.open import open_session
 
     times = []

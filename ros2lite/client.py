@@ -20,10 +20,11 @@ from collections import deque
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Generic, cast, overload
 
+from ros2lite.callback_groups import ReentrantCallbackGroup
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.qos import QoSProfile
 from ros2lite.runtime.endpoint import Endpoint
-from ros2lite.runtime.executable import Executable
+from ros2lite.runtime.executable import Executable, current_execution
 from ros2lite.service_introspection import IntrospectionMixin, ServiceEventType, ServiceNode
 from ros2lite.task import Future
 from ros2lite.transport.attachment import pack_attachment
@@ -216,8 +217,6 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
     def _refuse_deadlock(self) -> None:
         """Inside a callback, a server of ours on the same executor may be unable to run
         until that callback returns: then waiting would never end, so say so instead."""
-        from ros2lite.runtime.executable import current_execution
-
         executor, entity = current_execution()
         if executor is None:
             return
@@ -228,8 +227,6 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
         blocked = getattr(executor, 'num_threads', 1) < 2
         group = server.callback_group
         if not blocked and entity is not None and group is entity.callback_group:
-            from ros2lite.callback_groups import ReentrantCallbackGroup
-
             blocked = not isinstance(group, ReentrantCallbackGroup)
         if blocked:
             raise RuntimeError(

@@ -17,6 +17,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from ros2lite.context import default_context
 from ros2lite.duration import Duration
 from ros2lite.exceptions import NotInitializedException
 from ros2lite.time import ClockType, Time
@@ -190,8 +191,6 @@ class Clock:
     def sleep_until(self, until: Time, context: Context | None = None) -> bool:
         """Sleep until this clock reaches `until`. False when the context shut down or ROS
         time was switched on or off meanwhile (the target then means something else)."""
-        from ros2lite.context import default_context
-
         ctx = context if context is not None else default_context()
         if not ctx.ok():
             raise NotInitializedException()

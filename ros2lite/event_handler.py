@@ -16,6 +16,7 @@ import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING, NamedTuple
 
+from ros2lite import logging
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.qos import QoSPolicyKind, incompatible_policy
 from ros2lite.runtime.executable import Executable
@@ -396,7 +397,6 @@ class SubscriptionEventCallbacks(_EventCallbacks):
 
 
 def _warn(message: str) -> None:
-    from ros2lite import logging
 
     logging.get_logger('rclpy.qos_event').warn(message)
 

@@ -10,11 +10,12 @@ become entities through `parse_tokens`.
 from __future__ import annotations
 
 import threading
+import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from ros2lite.names import absolute_node_name, action_entity_name, is_hidden_name
+from ros2lite.names import absolute_node_name, action_entity_name, is_hidden_name, node_fqn
 from ros2lite.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum, format_gid
 from ros2lite.transport.keys import Entity, EntityKind, parse_token
 
@@ -123,8 +124,6 @@ class GraphCache:
 
     def wait_for(self, predicate: Callable[[list[Entity]], bool], timeout: float | None) -> bool:
         """Block until `predicate(entities)` holds or the timeout passes."""
-        import time
-
         deadline = None if timeout is None else time.monotonic() + timeout
         with self._cond:
             while not predicate(list(self._entities.values())):
@@ -245,8 +244,6 @@ def node_full_names(entities: Iterable[Entity], include_hidden: bool = False) ->
     Like ros2cli, a node is hidden when its own name starts with '_' (the namespace is not
     looked at).
     """
-    from ros2lite.names import node_fqn
-
     return sorted(
         node_fqn(ns, name)
         for name, ns in node_names_and_namespaces(entities)

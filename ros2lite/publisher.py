@@ -6,6 +6,7 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Generic
 
+from ros2lite.exceptions import InvalidHandle
 from ros2lite.qos import QoSProfile
 from ros2lite.runtime.endpoint import Endpoint, EndpointOwner
 from ros2lite.transport.attachment import GID_SIZE, PACK_CURRENT
@@ -103,7 +104,6 @@ class Publisher(EndpointOwner, Generic[MsgT]):
 
 
 def _destroyed(*_: object, **__: object) -> None:
-    from ros2lite.exceptions import InvalidHandle
 
     raise InvalidHandle('publisher has been destroyed')
 

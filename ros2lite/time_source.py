@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 
 from ros2lite.clock import ROSClock
 from ros2lite.parameter import Parameter
+from ros2lite.parameters.store import result
 from ros2lite.qos import QoSProfile, ReliabilityPolicy
 from ros2lite.time import ClockType, Time
 
@@ -121,7 +122,6 @@ class TimeSource:
             self._node_weak_ref = None
 
     def _on_parameters(self, parameters: list[Parameter]) -> SetParametersResult:
-        from ros2lite.parameters.store import result
 
         for param in parameters:
             if param.name != USE_SIM_TIME_NAME:

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.interfaces import get_interface
 from ros2lite.interfaces.classes import ActionType
-from ros2lite.names import action_entity_name
+from ros2lite.names import NameValidationException, action_entity_name
 
 if TYPE_CHECKING:
     from ros2lite.msgs.action_msgs import msg as _action_msgs_msg
@@ -61,8 +61,6 @@ def status_name(status: int) -> str:
 
 def resolve_action_name(node: Node, name: str) -> str:
     """`name` resolved as the node resolves topics; a bad one is said to be an action name."""
-    from ros2lite.names import NameValidationException
-
     try:
         resolved: str = node.resolve_topic_name(name)
     except NameValidationException as e:

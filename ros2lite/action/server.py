@@ -27,6 +27,7 @@ from ros2lite.action.goals import (
     GoalTable,
     goal_key,
 )
+from ros2lite.clock import Clock, ClockType
 from ros2lite.qos import QoSProfile, qos_profile_action_status_default, qos_profile_services_default
 from ros2lite.task import Future
 from ros2lite.type_support import FeedbackT, GoalT, ResultT
@@ -272,7 +273,6 @@ class ActionServer(ActionEntity[GoalT, ResultT, FeedbackT]):
         )
         # as rcl_action's timer: finished goals are forgotten `result_timeout` after they
         # ended, whether or not anyone asks the server anything meanwhile
-        from ros2lite.clock import Clock, ClockType
 
         self._expiry_timer = node.create_timer(
             max(result_timeout, 0.001),

@@ -12,6 +12,7 @@ from __future__ import annotations
 import heapq
 import math
 import os
+import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -22,6 +23,8 @@ from ros2lite.bag.metadata import BagMetadata
 from ros2lite.bag.reader import Reader
 from ros2lite.bag.recorder import RecordOptions
 from ros2lite.bag.writer import Writer
+from ros2lite.service_introspection import event_topic
+from ros2lite.util.safe_yaml import YamlInputError, load
 
 __all__ = ["OutputBag", "convert", "parse_output_options", "read_output_options"]
 
@@ -152,13 +155,10 @@ def _entry(entry: object, index: int) -> OutputBag:
         raise BagError(f"{where}: 'custom_data' must map strings to strings")
     for key in ("regex", "exclude_regex"):
         if text[key]:
-            import re
-
             try:
                 re.compile(text[key])
             except re.error as e:
                 raise BagError(f"{where}: '{key}' is not a regular expression: {e}") from None
-    from ros2lite.service_introspection import event_topic
 
     record = RecordOptions(
         topics=_absolute(lists["topics"]) + [event_topic(s) for s in _absolute(lists["services"])],
@@ -193,8 +193,6 @@ def _entry(entry: object, index: int) -> OutputBag:
 
 def parse_output_options(text: str) -> list[OutputBag]:
     """The `--output-options` YAML: `output_bags:` and one mapping of options per bag."""
-    from ros2lite.util.safe_yaml import YamlInputError, load
-
     try:
         doc = load(text, "output options")
     except YamlInputError as e:

@@ -12,6 +12,7 @@ import os
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from ros2lite.bag.errors import MetadataError
@@ -25,6 +26,8 @@ from ros2lite.qos import (
     QoSProfile,
     ReliabilityPolicy,
 )
+from ros2lite.util.files import replace_file
+from ros2lite.util.safe_yaml import YamlInputError, load
 
 __all__ = [
     "EMPTY_STARTING_TIME",
@@ -197,8 +200,6 @@ def parse_qos_list(value: object) -> list[QoSProfile]:
     if value is None or value == "":
         return []
     if isinstance(value, str):
-        from ros2lite.util.safe_yaml import YamlInputError, load
-
         try:
             value = load(value, "offered_qos_profiles")
         except YamlInputError as e:
@@ -336,8 +337,6 @@ def _int(value: Any, what: str) -> int:
 
 def parse_metadata(text: str, *, top_key: bool = True) -> BagMetadata:
     """Parse metadata.yaml (any version 1-9) or a `serialized_metadata` string."""
-    from ros2lite.util.safe_yaml import YamlInputError, load
-
     try:
         doc = load(text, "metadata")
     except YamlInputError as e:
@@ -404,8 +403,6 @@ def parse_metadata(text: str, *, top_key: bool = True) -> BagMetadata:
 
 def read_metadata_file(path: str | os.PathLike[str]) -> BagMetadata:
     """Parse a metadata.yaml file (MetadataError when unreadable or malformed)."""
-    from pathlib import Path
-
     try:
         text = Path(path).read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as e:
@@ -416,9 +413,6 @@ def read_metadata_file(path: str | os.PathLike[str]) -> BagMetadata:
 def write_metadata_file(directory: str | os.PathLike[str], m: BagMetadata) -> None:
     """Write metadata.yaml atomically (a temp file renamed over it), so a crash mid-write
     never leaves half a file."""
-    from pathlib import Path
-
-    from ros2lite.util.files import replace_file
 
     # a randomly named temporary file, renamed over the old one: never through a symlink
     replace_file(Path(directory) / METADATA_FILENAME, dump_metadata(m))

@@ -26,6 +26,7 @@ from ros2lite.bag.metadata import TopicMetadata
 from ros2lite.bag.qos import playback_qos
 from ros2lite.bag.reader import Reader
 from ros2lite.qos import QoSProfile
+from ros2lite.qos import QoSProfile as Q
 
 if TYPE_CHECKING:
     from ros2lite.node import Node
@@ -465,7 +466,6 @@ class Player:
 
         clock_type = get_interface("rosgraph_msgs/msg/Clock")
         time_type = get_interface("builtin_interfaces/msg/Time")
-        from ros2lite.qos import QoSProfile as Q
 
         pub = self.node.create_publisher(clock_type, "/clock", Q(depth=1))
         period = 1.0 / self.options.clock_hz

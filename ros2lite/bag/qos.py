@@ -15,6 +15,7 @@ from pathlib import Path
 from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import qos_from_dict, qos_to_dict
 from ros2lite.qos import HistoryPolicy, QoSProfile, match_publishers_qos
+from ros2lite.util.safe_yaml import YamlInputError, load
 
 __all__ = [
     "QoSOverrideError",
@@ -117,8 +118,6 @@ _QOS_KEYS = {
 def parse_qos_overrides(text: str) -> dict[str, QoSProfile]:
     """A `--qos-profile-overrides-path` file: topic name → profile (names or numbers for the
     policies; durations as {sec, nsec}). Keys left out keep rclpy's defaults."""
-    from ros2lite.util.safe_yaml import YamlInputError, load
-
     try:
         doc = load(text, "QoS override file")
     except YamlInputError as e:

@@ -17,6 +17,7 @@ from ros2lite.bag.errors import BagError
 from ros2lite.bag.metadata import BagMetadata, write_metadata_file
 from ros2lite.bag.reader import bag_files, metadata_from_files
 from ros2lite.bag.storage import open_storage_reader, plugin_for
+from ros2lite.bag.storage.mcap import is_complete, recover
 from ros2lite.pkg.distro import ros_distro
 
 __all__ = ["reindex"]
@@ -42,17 +43,14 @@ def reindex(
     sid = storage_id or plugin_for(files[0].name) or "mcap"
     summaries = []
     for f in files:
-        if plugin_for(f.name) == "mcap":
-            from ros2lite.bag.storage.mcap import is_complete, recover
-
-            if not is_complete(str(f)):
-                try:
-                    _, problems = recover(str(f))
-                except OSError as e:
-                    raise BagError(f"Cannot rewrite '{f}': {e.strerror or e}") from None
-                if report is not None:
-                    for line in problems:
-                        report(line)
+        if plugin_for(f.name) == "mcap" and not is_complete(str(f)):
+            try:
+                _, problems = recover(str(f))
+            except OSError as e:
+                raise BagError(f"Cannot rewrite '{f}': {e.strerror or e}") from None
+            if report is not None:
+                for line in problems:
+                    report(line)
         reader = open_storage_reader(str(f), plugin_for(f.name))
         try:
             summaries.append(reader.summary())

@@ -27,8 +27,9 @@ from ros2lite.bag.metadata import (
     TopicMetadata,
     write_metadata_file,
 )
+from ros2lite.bag.reader import metadata_from_files
 from ros2lite.bag.storage import StorageWriter
-from ros2lite.bag.storage.mcap import DEFAULT_CHUNK_SIZE, PRESETS, open_writer
+from ros2lite.bag.storage.mcap import DEFAULT_CHUNK_SIZE, PRESETS, McapStorageReader, open_writer
 from ros2lite.qos import QoSProfile
 
 if TYPE_CHECKING:
@@ -216,8 +217,6 @@ class Writer:
     def _write_metadata_from_disk(self) -> None:
         # after a failed write the counts in memory include messages that never reached
         # the file, so the metadata is read back from the files themselves
-        from ros2lite.bag.reader import metadata_from_files
-        from ros2lite.bag.storage.mcap import McapStorageReader
 
         with contextlib.suppress(Exception):
             summaries = []

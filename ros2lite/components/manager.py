@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 
 from ros2lite.components.registry import ComponentLoadError, find_component, load_class
 from ros2lite.node import Node
+from ros2lite.parameter import Parameter
 
 if TYPE_CHECKING:
     from typing_extensions import Unpack
@@ -161,7 +162,6 @@ class ComponentManager(Node):
     def _on_load_node(
         self, request: srv.LoadNode.Request, response: srv.LoadNode.Response
     ) -> srv.LoadNode.Response:
-        from ros2lite.parameter import Parameter
 
         try:
             parameters = [Parameter.from_parameter_msg(p) for p in request.parameters]

@@ -11,9 +11,12 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from ros2lite.client import ServiceCallError
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.graph import Entity, EntityKind
+from ros2lite.names import node_fqn
 from ros2lite.node import Node
+from ros2lite.parameter import get_parameter_value
 
 if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import Parameter as ParameterMsg
@@ -49,8 +52,6 @@ class LoadedNode:
 
 def container_node_names(entities: Iterable[Entity]) -> list[str]:
     """Full names of the nodes serving all three container services, sorted."""
-    from ros2lite.names import node_fqn
-
     offered: dict[str, set[str]] = {}
     for e in entities:
         if e.kind != EntityKind.SERVICE or not e.topic_name:
@@ -65,7 +66,6 @@ def parse_assignments(items: Iterable[str]) -> list[ParameterMsg]:
     """'name:=value' strings as rcl_interfaces/msg/Parameter messages, values typed the
     YAML way (what `ros2 component load -p/-e` sends)."""
     from ros2lite.interfaces import get_interface
-    from ros2lite.parameter import get_parameter_value
 
     param: type[ParameterMsg] = get_interface('rcl_interfaces/msg/Parameter')
     result = []
@@ -88,7 +88,6 @@ class RemoteContainer:
         self.timeout = timeout
 
     def _call(self, service: str, **fields: object) -> Any:  # the response of `service`
-        from ros2lite.client import ServiceCallError
         from ros2lite.interfaces import get_interface
 
         srv = get_interface(CONTAINER_SERVICES[service])

@@ -13,6 +13,7 @@ import argparse
 import contextlib
 import os
 import sys
+from pathlib import Path
 
 
 def _parse(argv: list[str] | None) -> argparse.Namespace:
@@ -42,7 +43,6 @@ def _detach(log_path: str | None) -> None:
 
 
 def _run(args: argparse.Namespace, ready_fd: int | None) -> int:
-    from pathlib import Path
 
     from ros2lite.daemon.router import serve
 

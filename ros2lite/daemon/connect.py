@@ -20,10 +20,7 @@ verb has started the daemon, so a missing router must not be fatal.  In order:
 A session forced into client mode (a remote router, or ``mode="client"`` in an override)
 cannot open without its router and fails with :class:`RouterUnavailableError` instead.
 
-Security is decided here, once per session, from :mod:`ros2lite.security` and handed to
-:mod:`ros2lite.transport` as a value (:func:`session_security`, :func:`router_security`), so
-every session and router this package opens has its enclave checked the same way
-(:func:`ros2lite.security.environment.enclave_problems`).
+Security comes from :mod:`ros2lite.daemon.security`, decided once per session.
 """
 
 from __future__ import annotations
@@ -32,12 +29,7 @@ import os
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-from ros2lite.security.environment import (
-    STRATEGY_ENV,
-    enforced,
-    resolve,
-    security_enabled,
-)
+from ros2lite.daemon.security import session_security
 from ros2lite.transport.config import (
     CONNECT_TIMEOUT_MS,
     configured_mode,
@@ -63,9 +55,6 @@ __all__ = [
     "autostart_enabled",
     "connect",
     "open_node_session",
-    "refuse_plain",
-    "secured_endpoint",
-    "session_security",
 ]
 
 NO_DAEMON_ENV = "ROS2LITE_NO_DAEMON"
@@ -84,24 +73,6 @@ def autostart_enabled(env: Mapping[str, str] | None = None) -> bool:
         not _truthy(environ.get(NO_DAEMON_ENV, ""))
         and not environ.get(ROUTER_CHECK_ENV, "").strip()
     )
-
-
-def refuse_plain(env: Mapping[str, str] | None) -> str:
-    """Why unencrypted links are refused, '' when they are not (only under Enforce)."""
-    return f"{STRATEGY_ENV}=Enforce" if enforced(env) else ""
-
-
-def session_security(env: Mapping[str, str] | None = None) -> Security:
-    """This process's security for its sessions: its enclave's material, checked
-    (Enforce without usable material raises SecurityError; Permissive says so once)."""
-    return Security(resolve(env), refuse_plain(env))
-
-
-def secured_endpoint(router: str | None = None, env: Mapping[str, str] | None = None) -> str:
-    """The router endpoint: ``router``, else ``$ROS2LITE_ROUTER``, else the default, the TLS
-    one when this process runs secured (Enforce, or an enclave it can use)."""
-    secure = enforced(env) or (security_enabled(env) and resolve(env) is not None)
-    return router_endpoint(router, env, secure=secure)
 
 
 def _log(severity: str, message: str) -> None:

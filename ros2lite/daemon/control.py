@@ -18,6 +18,7 @@ import fcntl
 import json
 import os
 import signal
+import site
 import subprocess
 import sys
 import time
@@ -26,15 +27,16 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ros2lite.daemon.connect import secured_endpoint, session_security
 from ros2lite.daemon.errors import DaemonError
 from ros2lite.daemon.paths import lock_file, log_file, pid_file
-from ros2lite.daemon.probe import router_answers, wait_answers
+from ros2lite.daemon.probe import not_a_router, router_answers, speaks_zenoh, wait_answers
 from ros2lite.daemon.router import DaemonInfo, router_security
+from ros2lite.daemon.security import secured_endpoint, session_security
 from ros2lite.security.errors import SecurityError
 from ros2lite.transport.config import domain_id, router_config
 from ros2lite.transport.errors import SessionError
 from ros2lite.transport.open import open_session
+from ros2lite.util.files import NOFOLLOW
 
 if TYPE_CHECKING:
     from ros2lite.transport.admin import ConnectedSession
@@ -123,8 +125,6 @@ class DaemonStatus:
     def message(self) -> str:
         """The line `daemon status` prints."""
         if self.running and not self.answers_zenoh:
-            from ros2lite.daemon.probe import not_a_router
-
             return not_a_router(self.endpoint, self.pid)
         if self.running and self.ours:
             return "The daemon is running"
@@ -145,8 +145,6 @@ class DaemonStatus:
 @contextlib.contextmanager
 def _start_lock(endpoint: str, timeout: float) -> Iterator[None]:
     """Serialise start/stop for one endpoint so two auto-starting CLIs don't race."""
-    from ros2lite.util.files import NOFOLLOW
-
     fd = os.open(lock_file(endpoint), os.O_RDWR | os.O_CREAT | NOFOLLOW | os.O_CLOEXEC, 0o600)
     with os.fdopen(fd, "r+") as fh:
         deadline = time.monotonic() + timeout
@@ -226,8 +224,6 @@ def status(router: str | None = None, *, sessions: bool = False) -> DaemonStatus
     """Is a router answering at the endpoint, and is it ours?  With ``sessions``, also
     which sessions are connected to it (one short client session asks its admin space).
     A listener that does not answer as a Zenoh router is told apart (``answers_zenoh``)."""
-    from ros2lite.daemon.probe import speaks_zenoh
-
     endpoint = secured_endpoint(router)
     info = _read_info(pid_file(endpoint))
     running = router_answers(endpoint)
@@ -364,8 +360,6 @@ def _spawn(endpoint: str, listen: list[str], connect: list[str], timeout: float)
 
 def _site_dirs() -> set[str]:
     """Directories a fresh interpreter finds packages in anyway (never put them first)."""
-    import site
-
     dirs = set(site.getsitepackages()) if hasattr(site, "getsitepackages") else set()
     dirs.add(site.getusersitepackages())
     return {str(Path(d).resolve()) for d in dirs}

@@ -20,13 +20,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
 
-from ros2lite.daemon.connect import refuse_plain, secured_endpoint
-from ros2lite.daemon.paths import pid_file
+from ros2lite.daemon.paths import graph_socket, pid_file
+from ros2lite.daemon.security import refuse_plain, secured_endpoint
 from ros2lite.logging import get_logger
 from ros2lite.security.access import router_access
 from ros2lite.security.environment import router_identity
 from ros2lite.transport.open import linked_routers, open_router
 from ros2lite.transport.security import Security
+from ros2lite.util.files import temp_beside
+from ros2lite.util.process import ignore_hangup
 
 if TYPE_CHECKING:
     from ros2lite.daemon.graph_cache import GraphServer
@@ -69,8 +71,6 @@ def router_security(env: Mapping[str, str] | None = None) -> Security:
 
 def _write_pid_file(path: Path, info: DaemonInfo) -> TextIO:
     """Write the pid file atomically and return its handle, locked for the process' life."""
-    from ros2lite.util.files import temp_beside
-
     fd, tmp = temp_beside(path)
     fh = os.fdopen(fd, "w")
     fcntl.flock(fh, fcntl.LOCK_EX)
@@ -102,7 +102,7 @@ def serve(
     stop_signals = {signal.SIGTERM, signal.SIGINT}
     # Block before zenoh starts its threads so only our sigwait() sees these signals.
     signal.pthread_sigmask(signal.SIG_BLOCK, stop_signals)
-    signal.signal(signal.SIGHUP, signal.SIG_IGN)
+    ignore_hangup()
     tell(f"pid {os.getpid()}")
     endpoint = secured_endpoint(router)
     try:
@@ -174,7 +174,6 @@ def _graph_cache(session: Session, endpoint: str) -> GraphServer | None:
     """Serve the graph to local tools; a daemon that cannot (say, no room for the socket)
     still routes, and tools ask the router instead."""
     from ros2lite.daemon.graph_cache import GraphServer
-    from ros2lite.daemon.paths import graph_socket
 
     try:
         return GraphServer(session, graph_socket(endpoint))

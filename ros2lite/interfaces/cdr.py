@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 from .cdr_gen import Des, build_deserializer, build_fast_decoder, build_serializer
 from .classes import Message, factory
 from .errors import CdrError
-from .registry import Registry
+from .registry import Registry, default_registry
 
 if TYPE_CHECKING:
     from ros2lite.type_support import Msg
@@ -102,8 +102,6 @@ def codec(name: str, reg: Registry | None = None) -> Codec:
     """The codec of a type (from the default registry unless told), cached on its class so
     lookups cost one attribute access."""
     if reg is None:
-        from .registry import default_registry
-
         reg = default_registry()
     cls = factory(reg).message_class(name)
     c: Codec | None = cls.__dict__.get('_CODEC')

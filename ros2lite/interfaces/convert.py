@@ -14,7 +14,7 @@ from collections.abc import Callable, Sized
 from functools import partial
 from typing import TYPE_CHECKING, Any, TypedDict
 
-from .classes import ROSIDL_NAMES, Message, get_interface
+from .classes import ROSIDL_NAMES, Message, checked_fields, get_interface
 from .errors import FieldError, PopulateError
 from .parser import INT_RANGES, FieldType
 
@@ -319,7 +319,6 @@ def set_message_fields(
             raise PopulateError(f'invalid YAML: {e.detail}' if e.syntax else str(e)) from None
     if values is None:
         values = {}
-    from .classes import checked_fields
 
     setters: list[_Setter] = []
     with checked_fields():  # values from outside are checked whatever the default

@@ -10,6 +10,8 @@ import re
 import textwrap
 from dataclasses import dataclass
 
+from .classes import get_interface
+from .convert import message_to_yaml
 from .errors import InterfaceError, UnknownInterfaceError
 from .parser import PRIMITIVES, SERVICE_SEPARATOR, Constant, MessageDef, parse_line, split_comment
 from .registry import Registry, normalize_name
@@ -172,9 +174,6 @@ def show_lines(
 
 def proto_yaml(name: str, reg: Registry) -> str:
     """Default-valued YAML of a message, a service request or an action goal."""
-    from .classes import get_interface
-    from .convert import message_to_yaml
-
     name = normalize_name(name)
     kind = reg.kind_of(name)
     cls = get_interface(name, reg)

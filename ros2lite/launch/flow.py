@@ -21,6 +21,7 @@ from .actions import (
     reading_from,
     seconds_of,
 )
+from .context import LaunchContext
 from .entity import Entities, LaunchDescriptionEntity
 from .errors import LaunchError
 from .events import Event
@@ -167,8 +168,6 @@ class IncludeLaunchDescription(Action):
 
     def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
         """The included description when it can be read without running the launch."""
-        from .context import LaunchContext
-
         source = self.launch_description_source
         try:
             with reading_from(self._chain):

@@ -24,6 +24,7 @@ from .actions import LaunchDescription, LaunchDescriptionSource, including
 from .errors import InvalidFrontendLaunchFileError, LaunchError
 from .substitutions import (
     SomeSubstitutionsType,
+    TextSubstitution,
     describe_substitutions,
     normalize_to_list_of_substitutions,
     perform_substitutions,
@@ -145,7 +146,6 @@ class _FileSource(LaunchDescriptionSource):
         )
 
     def try_get_launch_description_without_context(self) -> LaunchDescription | None:
-        from .substitutions import TextSubstitution
 
         if self._description is None and all(isinstance(s, TextSubstitution) for s in self.path):
             path = Path(''.join(s.text for s in self.path))  # type: ignore[attr-defined]

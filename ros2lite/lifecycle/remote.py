@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 from ros2lite.graph import Entity, EntityKind
 from ros2lite.lifecycle.state_machine import LifecycleState, TransitionDef
+from ros2lite.names import node_fqn
 from ros2lite.node import Node
 
 if TYPE_CHECKING:
@@ -27,8 +28,6 @@ GET_STATE_TYPE = 'lifecycle_msgs/srv/GetState'
 def lifecycle_node_names(entities: Iterable[Entity], *, include_hidden: bool = False) -> list[str]:
     """Full names of the nodes that serve `<node>/get_state` (lifecycle_msgs' GetState),
     sorted; a node is hidden when its own name starts with '_'."""
-    from ros2lite.names import node_fqn
-
     found = {
         node_fqn(e.namespace, e.node_name)
         for e in entities

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, cast
 
 from ros2lite.exceptions import Ros2liteError
-from ros2lite.parameter import PARAMETER_SEPARATOR_STRING
+from ros2lite.parameter import PARAMETER_SEPARATOR_STRING, Parameter
 
 if TYPE_CHECKING:
     import yaml
@@ -150,8 +150,6 @@ def values_for_node(path: str | Path, node_fqn: str, *, use_wildcard: bool = Tru
 def parameters_for_node(path: str | Path, node_fqn: str, use_wildcard: bool) -> list[Parameter]:
     """The file's parameters for the node as Parameters; an error naming the nodes the file
     has when it has none for this one, or naming a value that cannot be a parameter."""
-    from ros2lite.parameter import Parameter
-
     values = values_for_node(path, node_fqn, use_wildcard=use_wildcard)
     if not values:
         nodes = [name for name, _ in read_params_file(path)]

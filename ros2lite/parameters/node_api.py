@@ -12,7 +12,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING, cast
 
 from ros2lite.parameter import AllowableParameterValue, Parameter
+from ros2lite.parameters.events import ParameterEventPublisher
 from ros2lite.parameters.files import ParamsFileError, values_for_node
+from ros2lite.parameters.services import ParameterService
 from ros2lite.parameters.store import (
     OnSetCallback,
     ParameterDeclaration,
@@ -20,6 +22,7 @@ from ros2lite.parameters.store import (
     PostSetCallback,
     PreSetCallback,
     SharedParameterMethods,
+    descriptor,
 )
 from ros2lite.runtime.arguments import RosArgs, RosArgsError
 
@@ -46,7 +49,6 @@ class ParameterMixin(SharedParameterMethods):
         automatically_declare_parameters_from_overrides: bool,
         start_parameter_services: bool = True,
     ) -> None:
-        from ros2lite.parameters.events import ParameterEventPublisher
 
         node = cast('NodeInterface', self)  # the mixin of Node
         overrides = _override_parameters(
@@ -68,7 +70,6 @@ class ParameterMixin(SharedParameterMethods):
             self._start_parameter_services()
 
     def _start_parameter_services(self) -> None:
-        from ros2lite.parameters.services import ParameterService
 
         self._parameter_service = ParameterService(cast('NodeInterface', self))
 
@@ -172,7 +173,6 @@ class ParameterMixin(SharedParameterMethods):
 
 
 def _descriptor() -> ParameterDescriptor:
-    from ros2lite.parameters.store import descriptor
 
     return descriptor()
 

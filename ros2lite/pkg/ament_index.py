@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ros2lite.exceptions import Ros2liteError
+
 from .index import PackageIndex
 
 __all__ = [
@@ -16,7 +18,7 @@ __all__ = [
 ]
 
 
-class PackageNotFoundError(KeyError):
+class PackageNotFoundError(Ros2liteError, KeyError):
     """No source knows the package (a KeyError, as ament_index_python's is)."""
 
 

@@ -17,6 +17,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from ros2lite.exceptions import Ros2liteError
+from ros2lite.util.files import create_new
 
 from . import templates
 from .templates import PackageSpec
@@ -162,7 +163,6 @@ class _Writer:
     def file(self, path: str, content: str, *, quiet: bool = False) -> None:
         if not quiet:
             self.report(f'creating {path}')
-        from ros2lite.util.files import create_new
 
         with os.fdopen(create_new(path), 'w', encoding='utf-8') as out:
             out.write(content)

@@ -31,6 +31,7 @@ import re
 import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from importlib.machinery import PathFinder
 from pathlib import Path
 
 from ros2lite.exceptions import Ros2liteError
@@ -129,7 +130,6 @@ class PackageExecutable:
 
 
 def _module_file(module: str, pythonpath: Sequence[str]) -> str | None:
-    from importlib.machinery import PathFinder
 
     search: list[str] | None = [*pythonpath, *sys.path]
     spec = None

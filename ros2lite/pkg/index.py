@@ -322,8 +322,6 @@ def _may_declare(group: str) -> bool:
     """Could an installed distribution declare entry points in `group`? A quick look at the
     entry_points.txt files on sys.path, so the common answer (none) costs no importlib.metadata
     scan of every distribution — that scan is what reads them properly when one may."""
-    import sys
-
     needle = f'[{group}]'.encode()
     for entry in sys.path:
         try:

@@ -8,11 +8,13 @@ by :mod:`ros2lite.parameters.node_api` (which imports this module, never the oth
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from ros2lite.exceptions import Ros2liteError
+from ros2lite.util.safe_yaml import YamlInputError, load
 
 LOG_LEVELS = {
     'debug': 10,
@@ -102,8 +104,6 @@ def _split_assignment(text: str, what: str) -> tuple[str | None, str, str]:
 
 def parse_value(text: str) -> object:
     """A parameter value from the command line, typed the YAML way ('1' → int)."""
-    from ros2lite.util.safe_yaml import YamlInputError, load
-
     try:
         return load(text, "the value")
     except YamlInputError:
@@ -134,8 +134,6 @@ def split_ros_args(argv: list[str]) -> tuple[list[str], list[list[str]]]:
 def remove_ros_args(args: list[str] | None = None) -> list[str]:
     """The arguments (default: `sys.argv`) without their `--ros-args` blocks: what a
     program's own argument parser should see."""
-    import sys
-
     return split_ros_args(list(sys.argv if args is None else args))[0]
 
 

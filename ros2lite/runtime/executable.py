@@ -10,7 +10,7 @@ import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Protocol
 
-from ros2lite.callback_groups import CallbackGroup
+from ros2lite.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup
 from ros2lite.runtime.scheduling import NodeWork, Scheduled
 from ros2lite.task import TaskRunner
 
@@ -147,7 +147,6 @@ class Executable(Scheduled):
     is_timer = False
 
     def __init__(self, node: EntityNode | None, callback_group: CallbackGroup | None) -> None:
-        from ros2lite.callback_groups import MutuallyExclusiveCallbackGroup
 
         self._node = node
         self.callback_group = callback_group or (

@@ -11,6 +11,8 @@ import os
 from collections.abc import Mapping
 from pathlib import Path
 
+from ros2lite.exceptions import NameValidationException
+from ros2lite.names import validate_namespace
 from ros2lite.security.errors import EnclaveError, KeystoreError
 
 __all__ = ['KEYSTORE_ENV', 'enclave_directory', 'env_domain_id', 'validate_enclave_name']
@@ -34,9 +36,6 @@ def env_domain_id(env: Mapping[str, str] | None = None) -> int:
 
 def validate_enclave_name(name: str) -> None:
     """An enclave name follows the namespace rules (absolute, no empty or '..' parts)."""
-    from ros2lite.exceptions import NameValidationException
-    from ros2lite.names import validate_namespace
-
     try:
         validate_namespace(name)
     except NameValidationException as exc:

@@ -22,7 +22,7 @@ from cryptography.hazmat.primitives import hashes, serialization
 from cryptography.hazmat.primitives.asymmetric import ec, rsa
 from cryptography.hazmat.primitives.serialization import pkcs7
 
-from ros2lite.security.errors import KeystoreError
+from ros2lite.security.errors import KeystoreError, PolicyError
 from ros2lite.security.files import read_bytes, write_file, write_private
 
 __all__ = [
@@ -183,8 +183,6 @@ def verify_document(ca: x509.Certificate, signed: bytes, content: bytes) -> bool
 def read_signed(document: Path, signature: Path, ca_certificate: Path, what: str) -> bytes:
     """``document``'s bytes once ``signature`` proves the permissions CA signed exactly
     them; else a one-line PolicyError naming ``what`` (e.g. ``permissions of enclave /a``)."""
-    from ros2lite.security.errors import PolicyError
-
     content = read_bytes(document, what)
     if not signature.is_file():
         raise PolicyError(f'{what}: {signature.name} (its signature) is missing')

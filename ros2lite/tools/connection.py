@@ -199,7 +199,7 @@ class Connection:
         if self._router_watch is not None or self.as_node:
             return
         from ros2lite.context import RouterLink
-        from ros2lite.daemon.connect import secured_endpoint
+        from ros2lite.daemon.security import secured_endpoint
 
         endpoint = secured_endpoint(self.router)
         logger = self.node().get_logger()

@@ -31,6 +31,8 @@ import threading
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+import ros2lite
+
 if TYPE_CHECKING:
     from ros2lite.daemon.control import DaemonStatus
     from ros2lite.graph import Entity
@@ -138,7 +140,7 @@ class Diagnosis:
     def endpoint(self) -> str | None:
         """The router endpoint to check (None when the configuration is invalid)."""
         if self._endpoint is None and self._endpoint_error is None:
-            from ros2lite.daemon.connect import secured_endpoint
+            from ros2lite.daemon.security import secured_endpoint
             from ros2lite.transport.errors import ConfigError
 
             try:
@@ -377,7 +379,6 @@ class Diagnosis:
         return r
 
     def _report_ros2lite(self) -> Report:
-        import ros2lite
         from ros2lite.pkg.index import PackageIndex
 
         r = Report('ROS2LITE INFORMATION', 'platform')

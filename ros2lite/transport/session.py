@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import contextlib
 import threading
+import time
 from collections import deque
 from collections.abc import Callable
 from itertools import chain, islice
@@ -211,7 +212,6 @@ class SampleReceiver:
         hook: Callable[[Sample], None] | None = None,
         name: str = "",
     ) -> None:
-        import time
 
         keep_all = qos.history == HistoryPolicy.KEEP_ALL
         capacity = max(qos.depth, _CHANNEL_CAPACITY)

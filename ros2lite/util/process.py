@@ -36,6 +36,7 @@ __all__ = [
     'Terminated',
     'exit_code',
     'forget_caught_interrupt',
+    'ignore_hangup',
     'release_interrupts',
     'run_child',
     'signal_handler',
@@ -320,6 +321,11 @@ SIGKILL_TIMEOUT = 5.0
 
 LineCallback = Callable[[str, str], None]  # (stream 'stdout'|'stderr', line without newline)
 ExitCallback = Callable[[int], None]
+
+
+def ignore_hangup() -> None:
+    """From now on SIGHUP is ignored: a daemon outlives the terminal that started it."""
+    signal.signal(signal.SIGHUP, signal.SIG_IGN)
 
 
 @contextlib.contextmanager

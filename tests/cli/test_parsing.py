@@ -5,7 +5,6 @@ options, usage errors exit 2."""
 
 from __future__ import annotations
 
-import ast
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -160,33 +159,6 @@ def test_every_command_uses_the_shared_classes() -> None:
         shared = parsing.Group if isinstance(command, click.Group) else parsing.Command
         assert isinstance(command, shared), f'{path} is a {type(command).__name__}'
     assert {'ros2lite pkg create', 'ros2lite bag record', 'ros2lite run'} <= set(paths)
-
-
-def test_cli_parsing_in_one_place() -> None:
-    """One place parses: no other module subclasses click's Command/Group/Option/Parameter
-    or reaches into click's parser."""
-    cli_dir = Path(parsing.__file__).parent
-    names = {'Command', 'Group', 'Option', 'Parameter', 'Argument', 'MultiCommand'}
-    for file in sorted(cli_dir.rglob('*.py')):
-        if file.name == 'parsing.py':
-            continue
-        tree = ast.parse(file.read_text(), str(file))
-        from_click = {
-            alias.asname or alias.name: alias.name
-            for node in ast.walk(tree)
-            if isinstance(node, ast.ImportFrom) and node.module == 'click'
-            for alias in node.names
-        }
-        for node in ast.walk(tree):
-            if isinstance(node, ast.ImportFrom):
-                assert not (node.module or '').startswith('click.parser'), str(file)
-            if not isinstance(node, ast.ClassDef):
-                continue
-            for base in node.bases:
-                text = ast.unparse(base)
-                clicks = text.removeprefix('click.') if text.startswith('click.') else None
-                clicks = clicks or from_click.get(text)
-                assert clicks not in names, f'{file}: {node.name}({text})'
 
 
 def test_use_python_default_buffering(run: Callable[..., Result]) -> None:

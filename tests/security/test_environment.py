@@ -62,7 +62,7 @@ def test_permissive_says_it_once(keystore: Path, capsys: pytest.CaptureFixture[s
 def test_config_builders(keystore: Path) -> None:
     import json
 
-    from ros2lite.daemon.connect import secured_endpoint, session_security
+    from ros2lite.daemon.security import secured_endpoint, session_security
     from ros2lite.transport.config import session_config
 
     env = secure(keystore, ROS_SECURITY_ENCLAVE_OVERRIDE='/robot/talker')

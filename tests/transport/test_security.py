@@ -354,7 +354,7 @@ def test_graph_tokens_bound_to_the_enclave(secured: dict[str, str]) -> None:
     naming another enclave, never reaches the graph (it did: /spoofed showed in node list)."""
     import zenoh
 
-    from ros2lite.daemon.connect import session_security
+    from ros2lite.daemon.security import session_security
     from ros2lite.transport.config import session_config
 
     env = {**secured, 'ROS_SECURITY_ENCLAVE_OVERRIDE': '/sec/restricted'}

@@ -8,8 +8,10 @@ A db3 message has one timestamp: it is both the log and the publish time.
 from __future__ import annotations
 
 import contextlib
+import os
 import sqlite3
 from collections.abc import Iterator
+from urllib.parse import quote
 
 from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import TopicMetadata, parse_metadata, parse_qos_list
@@ -22,7 +24,6 @@ class Sqlite3StorageReader:
     """One `.db3` file of an older rosbag2 bag, read with SQL."""
 
     def __init__(self, path: str) -> None:
-        import os
 
         self.path = path
         if not os.path.isfile(path):
@@ -31,7 +32,6 @@ class Sqlite3StorageReader:
 
     @staticmethod
     def _connect(path: str) -> sqlite3.Connection:
-        from urllib.parse import quote
 
         uri = "file:" + quote(path)
         # read-only; a bag in a read-only directory (no -shm can be made) is opened as

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 from ros2lite.demos.display import own_arguments
 from ros2lite.demos.runner import run_node
+from ros2lite.exceptions import Ros2liteError
 from ros2lite.logging import RcutilsLogger
 from ros2lite.node import Node
 from ros2lite.tf2.math import quaternion_from_rpy
@@ -67,7 +68,7 @@ _OLD_STYLE = 'Old-style arguments are deprecated; see --help for new-style argum
 _log = RcutilsLogger()
 
 
-class UsageError(ValueError):
+class UsageError(Ros2liteError, ValueError):
     """The command line cannot be understood (the text says why, as tf2_ros words it)."""
 
 

@@ -6,6 +6,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 from ros2lite.util.files import read_bounded
+from ros2lite.util.safe_yaml import YamlInputError, load
 
 from ..actions import LaunchDescription
 from ..errors import InvalidFrontendLaunchFileError
@@ -35,8 +36,6 @@ def load_frontend_file(path: Path, kind: str | None = None) -> LaunchDescription
             )
         entities = XmlEntity(root, where).children()
     elif kind == 'yaml':
-        from ros2lite.util.safe_yaml import YamlInputError, load  # a Python file does not pay
-
         try:
             document = load(data.decode('utf-8'), where)
         except UnicodeDecodeError:
