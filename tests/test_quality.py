@@ -743,7 +743,11 @@ LAZY = {
     'bag.player': '+19 modules ~11 ms: the interface registry, bag definitions',
     'bag.reader': '+20 modules ~15 ms: the interface registry, bag definitions',
     'bag.recorder': '+35 modules ~33 ms: the interface registry, graph.py',
-    'bag.storage.mcap': '+85 modules ~46 ms: mcap, lz4, zstandard, importlib.metadata, tempfile',
+    'bag.storage.mcap.read': '+42 modules ~44 ms: mcap.reader (+26 ~19 ms: mcap.records)',
+    'bag.storage.mcap.recover': '+97 modules ~59 ms: mcap.writer; util.files (tempfile)',
+    'bag.storage.mcap.scan': '+26 ~19 ms mcap.records; zstandard, lz4 (C extensions) only '
+    'for a compressed damaged chunk',
+    'bag.storage.mcap.write': '+97 modules ~59 ms: mcap.writer; util.files (tempfile)',
     'bag.writer': '+18 modules ~10 ms: the interface registry',
     'client': '+27 modules ~16 ms: zenoh, the interface registry',
     'components.manager': '+17 modules ~10 ms: the interface registry',
