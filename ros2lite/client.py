@@ -86,7 +86,7 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
         self._querier: Querier | None = declare_querier(
             node.context.require(), self._ep.key, timeout
         )
-        self._ep._announce()
+        self._ep.announce()
 
     @property
     def service_name(self) -> str:
@@ -270,7 +270,7 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
             pending, self._pending = self._pending, {}
         for future in pending.values():
             future.cancel()
-        self._ep._undeclare(self._querier)
+        self._ep.undeclare(self._querier)
         self._querier = None
 
 

@@ -192,7 +192,7 @@ class Executor:
     def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None) -> None:
         """Run callbacks until `future` is done or `timeout_sec` passes (a future completed
         on another thread ends the wait at once)."""
-        future._add_done_callback_now(lambda _f: self.wake())
+        future.add_done_callback_now(lambda _f: self.wake())
         deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
         self._spinning += 1
         try:
@@ -239,7 +239,7 @@ class Executor:
         thread)."""
         if future.done():
             return
-        future._add_done_callback_now(lambda _f: self.wake())
+        future.add_done_callback_now(lambda _f: self.wake())
         self._spin_once(timeout_sec, future.done)
 
     def wait_for_ready_callbacks(
@@ -375,7 +375,7 @@ class Executor:
                 if pending is None or pending.done():
                     self._release(group, entity)
                 else:
-                    pending._add_done_callback_now(lambda _f: self._release(group, entity))
+                    pending.add_done_callback_now(lambda _f: self._release(group, entity))
 
     def _run_task(self, task: Task) -> None:
         task()
@@ -412,7 +412,7 @@ class Executor:
         coro = result
         task = Task(lambda: coro, executor=self, reschedule=self._enqueue)
         if then is not None:
-            task._add_done_callback_now(
+            task.add_done_callback_now(
                 lambda t: then(t.result()) if t.exception() is None else None
             )
         self._run_task(task)

@@ -88,7 +88,7 @@ class Service(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]
         self._queryable: Handle | None = declare_queryable(
             node.context.require(), self._ep.key, self._on_request
         )
-        self._ep._announce()
+        self._ep.announce()
         node.context.local_services[self._ep.key] = self
 
     @property
@@ -192,7 +192,7 @@ class Service(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]
         self._node.context.local_services.pop(self._ep.key, None)
         while self._requests:
             self._requests.popleft().drop()
-        self._ep._undeclare(self._queryable)
+        self._ep.undeclare(self._queryable)
         self._queryable = None
 
 

@@ -140,7 +140,7 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self._receiver: SampleReceiver | PulledSamples = receiver
         # typed pull: the executor takes samples from here (None for the other two)
         self._source = receiver if isinstance(receiver, PulledSamples) else None
-        ep._announce()
+        ep.announce()
 
     def _keep(self, sample: Sample) -> None:
         """Receive thread (an arrival hook passing a sample on): queue it with its arrival
@@ -269,7 +269,7 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self._buffer.clear()
         if self._source is not None:
             self._source.clear()
-        self._ep._undeclare(self._receiver)  # ends the receive thread too
+        self._ep.undeclare(self._receiver)  # ends the receive thread too
 
     def get_publisher_count(self) -> int:
         """How many publishers on the graph match this topic name."""

@@ -65,27 +65,67 @@ def test_only_transport_imports_zenoh() -> None:
     assert offenders == []
 
 
-def _others_private_reads(tree: ast.AST) -> list[ast.Attribute]:
-    """`x._name` read where x is not the object itself (`self`, `cls`, `super()`); dunders
-    are not private."""
-    found = []
-    for node in ast.walk(tree):
-        if not (isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Load)):
-            continue
-        name = node.attr
-        if not name.startswith('_') or (name.startswith('__') and name.endswith('__')):
-            continue
-        owner = node.value
-        if isinstance(owner, ast.Name) and owner.id in ('self', 'cls'):
-            continue
-        if (
-            isinstance(owner, ast.Call)
-            and isinstance(owner.func, ast.Name)
-            and owner.func.id == 'super'
+# private names that the standard library documents as public API
+_STDLIB_UNDERSCORE_API = {('sys', '_getframe'), ('os', '_exit')}
+
+
+def _declared_private(cls: ast.ClassDef) -> set[str]:
+    """The `_names` a class body declares: methods, class attributes, `self._x = …`."""
+    names = set()
+    for stmt in cls.body:  # class attributes
+        targets = stmt.targets if isinstance(stmt, ast.Assign) else []
+        if isinstance(stmt, ast.AnnAssign):
+            targets = [stmt.target]
+        names.update(t.id for t in targets if isinstance(t, ast.Name))
+    for node in ast.walk(cls):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            names.add(node.name)
+        elif (
+            isinstance(node, ast.Attribute)
+            and isinstance(node.ctx, ast.Store)
+            and isinstance(node.value, ast.Name)
+            and node.value.id == 'self'
         ):
-            continue
-        found.append(node)
+            names.add(node.attr)
+    return {n for n in names if n.startswith('_')}
+
+
+def _others_private_reads(tree: ast.AST) -> list[ast.Attribute]:
+    """`x._name` reads that reach into another object's insides. Not counted: the object
+    itself (`self`, `cls`, `super()`); a name the enclosing class declares itself, read on
+    another instance of its kind (`__eq__`, ordering, `Duration + Duration`: privacy is the
+    class's, not the instance's); dunders; and the few underscore names the standard library
+    documents as public (`sys._getframe`, `os._exit`). A helper or a second class reading a
+    class's `_x`, even in the same module, counts: it goes through a public name instead."""
+    found = []
+
+    def visit(node: ast.AST, own: frozenset[str]) -> None:
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, ast.ClassDef):
+                visit(child, frozenset(_declared_private(child)))
+                continue
+            if isinstance(child, ast.Attribute) and isinstance(child.ctx, ast.Load):
+                if _is_others_private(child, own):
+                    found.append(child)
+            visit(child, own)
+
+    visit(tree, frozenset())
     return found
+
+
+def _is_others_private(node: ast.Attribute, own: frozenset[str]) -> bool:
+    name = node.attr
+    if not name.startswith('_') or (name.startswith('__') and name.endswith('__')):
+        return False
+    owner = node.value
+    if isinstance(owner, ast.Name) and (
+        owner.id in ('self', 'cls') or (owner.id, name) in _STDLIB_UNDERSCORE_API
+    ):
+        return False
+    if isinstance(owner, ast.Call) and isinstance(owner.func, ast.Name):
+        if owner.func.id == 'super':
+            return False
+    return name not in own
 
 
 # reads of other objects' private attributes in ros2lite/: may only fall (lower it when it does)

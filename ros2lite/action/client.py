@@ -249,7 +249,7 @@ class ActionClient(ActionEntity[GoalT, ResultT, FeedbackT]):
                 self._drop_feedback(key)
             future.set_result(handle)
 
-        call._add_done_callback_now(answered)
+        call.add_done_callback_now(answered)
         return future
 
     def send_goal(
@@ -338,7 +338,7 @@ class ActionClient(ActionEntity[GoalT, ResultT, FeedbackT]):
             if response is not None and response.status in TERMINAL_STATES:
                 goal_handle._status = response.status
 
-        future._add_done_callback_now(done)
+        future.add_done_callback_now(done)
         return future
 
     def _get_result(

@@ -423,7 +423,7 @@ class ActionServer(ActionEntity[GoalT, ResultT, FeedbackT]):
             self._result_service.send_response(response, header)
             return
         # answered now if the goal is over, or the moment it ends
-        future._add_done_callback_now(lambda f: self._send_result(f.result(), header))
+        future.add_done_callback_now(lambda f: self._send_result(f.result(), header))
 
     def _send_result(self, response: Message | None, header: RequestHeader) -> None:
         if self._destroyed or response is None:
