@@ -104,9 +104,12 @@ def _others_private_reads(tree: ast.AST) -> list[ast.Attribute]:
             if isinstance(child, ast.ClassDef):
                 visit(child, frozenset(_declared_private(child)))
                 continue
-            if isinstance(child, ast.Attribute) and isinstance(child.ctx, ast.Load):
-                if _is_others_private(child, own):
-                    found.append(child)
+            if (
+                isinstance(child, ast.Attribute)
+                and isinstance(child.ctx, ast.Load)
+                and _is_others_private(child, own)
+            ):
+                found.append(child)
             visit(child, own)
 
     visit(tree, frozenset())
@@ -122,10 +125,9 @@ def _is_others_private(node: ast.Attribute, own: frozenset[str]) -> bool:
         owner.id in ('self', 'cls') or (owner.id, name) in _STDLIB_UNDERSCORE_API
     ):
         return False
-    if isinstance(owner, ast.Call) and isinstance(owner.func, ast.Name):
-        if owner.func.id == 'super':
-            return False
-    return name not in own
+    func = owner.func if isinstance(owner, ast.Call) else None
+    is_super = isinstance(func, ast.Name) and func.id == 'super'
+    return not is_super and name not in own
 
 
 # reads of other objects' private attributes in ros2lite/: may only fall (lower it when it does)
