@@ -154,10 +154,10 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
         self._responses.append((seq, data, error))
         self._notify()
 
-    def _has_work(self) -> bool:
+    def has_work(self) -> bool:
         return bool(self._responses)
 
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+    def run_pending(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         while self._responses:
             seq, data, error = self._responses.popleft()
             with self._lock:

@@ -263,10 +263,10 @@ class EventHandler(Executable):
         self._notify()
 
     # -- the executor ------------------------------------------------------------------------
-    def _has_work(self) -> bool:
+    def has_work(self) -> bool:
         return self._ready
 
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+    def run_pending(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         if not self._ready:
             return None
         return self._call(self.callback, self.take_event())

@@ -280,9 +280,10 @@ class Executor:
             for timer in node.timers:
                 if timer.scheduled:
                     continue
-                remaining = timer._seconds_until_next_call()
-                if remaining is None:
+                ns = timer.time_until_next_call()
+                if ns is None:
                     continue
+                remaining = ns / 1e9
                 if remaining <= 0:
                     if timer.callback_group.can_execute(timer):
                         return timer, None
@@ -367,7 +368,7 @@ class Executor:
         running.executor, running.entity = self, entity
         pending: Task | None = None
         try:
-            pending = entity._execute(batch, stop)
+            pending = entity.run_pending(batch, stop)
         finally:
             running.executor, running.entity = saved
             entity._node.work.executed(entity)  # type: ignore[union-attr]  # run: has a node
@@ -396,7 +397,7 @@ class Executor:
             self._timer_waits = False
             self.wake()  # due timers of the group may run now
 
-    def _run_callback(
+    def run_callback(
         self,
         callback: Callable[..., object],
         *args: object,

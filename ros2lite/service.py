@@ -104,7 +104,7 @@ class Service(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]
         self._requests.append(request)
         self._notify()
 
-    def _has_work(self) -> bool:
+    def has_work(self) -> bool:
         return bool(self._requests)
 
     def _codecs(self) -> tuple[Codec, Codec]:
@@ -135,7 +135,7 @@ class Service(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]
             return cast('SrvRequestT', message), header
         return None
 
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+    def run_pending(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         taken = self._take()
         if taken is None:
             return None

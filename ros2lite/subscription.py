@@ -152,7 +152,7 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self._buffer.append((sample, time.time_ns()))
         self._notify()
 
-    def _has_work(self) -> bool:
+    def has_work(self) -> bool:
         if self.destroyed:
             return False
         return self._source.ready if self._source is not None else bool(self._buffer)
@@ -201,7 +201,7 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
             if message is not None:
                 return message, _info(attachment, time.time_ns())
 
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+    def run_pending(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         """Deliver the oldest sample, or in spin()/spin_until_future_complete() a batch of
         them (stopping early once `stop()` holds), so a burst is not paid for per sample in
         executor overhead; what is left goes back in the queue behind other work."""
