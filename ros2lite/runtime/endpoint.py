@@ -51,6 +51,11 @@ class EndpointOwner:
             handler.destroy()
 
     @property
+    def endpoint(self) -> Endpoint:
+        """The graph endpoint it announces (names, type, QoS, node, kind)."""
+        return self._ep
+
+    @property
     def topic_name(self) -> str:
         """The fully resolved topic (or service) name."""
         return self._ep.topic_name
