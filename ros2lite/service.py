@@ -43,6 +43,11 @@ class RequestHeader:
     source_timestamp: int
     _request: Request | None = field(default=None, repr=False, compare=False)
 
+    def take_request(self) -> Request | None:
+        """The query to answer, handed out once (None once answered or abandoned)."""
+        request, self._request = self._request, None
+        return request
+
 
 ServiceCallback = (
     Callable[[SrvRequestT, SrvResponseT], SrvResponseT | Awaitable[SrvResponseT]]
@@ -158,13 +163,13 @@ class Service(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]
 
     def _abandon(self, header: RequestHeader) -> None:
         """The callback failed: end the query so the client is not left waiting."""
-        request, header._request = header._request, None
+        request = header.take_request()
         if request is not None:
             request.drop()
 
     def send_response(self, response: SrvResponseT, header: RequestHeader) -> None:
         """Answer the request `header` came with (once)."""
-        request, header._request = header._request, None
+        request = header.take_request()
         if request is None:
             raise RuntimeError('this request has already been answered')
         if getattr(response, '_TYPE_NAME', None) != f'{self._ep.type_name}_Response':
