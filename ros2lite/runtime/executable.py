@@ -155,6 +155,14 @@ class Executable(Scheduled):
         )
         self.callback_group.add_entity(self)
 
+    def settle_owner(self, node: EntityNode) -> EntityNode | None:
+        """Make `node` its owner unless it has one; the owner it had (None: joined now). A
+        waitable joins the node that adds it; a node adopting an entity checks the owner."""
+        owner = self._node
+        if owner is None:
+            self._node = node
+        return owner
+
     def _notify(self) -> None:
         """Any thread: work arrived; the node's NodeWork queues this entity (once)."""
         # only entities of a node queue work (a nodeless timer is never notified)
