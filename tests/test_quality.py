@@ -131,7 +131,12 @@ def _is_others_private(node: ast.Attribute, own: frozenset[str]) -> bool:
 
 
 # reads of other objects' private attributes in ros2lite/: may only fall (lower it when it does)
-PRIVATE_REACH_CEILING = 109
+# What is left, each for a reason: NodeWork's `_scheduled` flag on entities (scheduling.py's
+# own state, read per sample on receive threads; test_scheduling_state keeps it there); the
+# executor's reads of an entity's `_node` (per dispatch on the hot path; a public `node` would
+# clash with user Waitables' own attributes); `_TYPE_NAME`, the name every generated message
+# class carries (rosidl's `_TYPE_SUPPORT` habit); bag/storage/mcap.py's one (being split).
+PRIVATE_REACH_CEILING = 11
 
 
 def test_private_reach() -> None:

@@ -155,10 +155,11 @@ class ServerGoalHandle(GoalHandle, Generic[GoalT, ResultT, FeedbackT]):
     def publish_feedback(self, feedback: FeedbackT) -> None:
         """Send feedback to the client(s) on the action's feedback topic."""
         server = self._action_server
-        if not isinstance(feedback, server.action_type.Feedback):
+        # the class's Feedback (the Action protocol types it as an instance's property)
+        feedback_type = cast('type[FeedbackT]', server.action_type.Feedback)
+        if not isinstance(feedback, feedback_type):
             raise TypeError(
-                f'feedback must be a {server.action_type.Feedback.__name__}, '
-                f'got {type(feedback).__name__}'
+                f'feedback must be a {feedback_type.__name__}, got {type(feedback).__name__}'
             )
         if not self._destroyed:
             server.publish_feedback(self._goal_info.goal_id, feedback)
