@@ -87,7 +87,7 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
         self._querier: Querier | None = declare_querier(
             node.context.require(), self._ep.key, timeout
         )
-        self._ep._announce()
+        self._ep.announce()
 
     @property
     def service_name(self) -> str:
@@ -155,10 +155,10 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
         self._responses.append((seq, data, error))
         self._notify()
 
-    def _has_work(self) -> bool:
+    def has_work(self) -> bool:
         return bool(self._responses)
 
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+    def run_pending(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         while self._responses:
             seq, data, error = self._responses.popleft()
             with self._lock:
@@ -267,7 +267,7 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
             pending, self._pending = self._pending, {}
         for future in pending.values():
             future.cancel()
-        self._ep._undeclare(self._querier)
+        self._ep.undeclare(self._querier)
         self._querier = None
 
 

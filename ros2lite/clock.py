@@ -93,21 +93,21 @@ class JumpHandle:
 
     def __init__(
         self,
-        clock: Clock,
+        forget: Callable[[JumpHandle], None],
         threshold: JumpThreshold,
         pre_callback: Callable[[], object] | None,
         post_callback: Callable[[TimeJump], object] | None,
     ) -> None:
-        self._clock: Clock | None = clock
+        self._forget: Callable[[JumpHandle], None] | None = forget  # the clock's
         self.threshold = threshold
         self.pre_callback = pre_callback
         self.post_callback = post_callback
 
     def unregister(self) -> None:
         """Stop calling the callbacks (again: nothing happens)."""
-        clock, self._clock = self._clock, None
-        if clock is not None:
-            clock._remove_jump_handle(self)
+        forget, self._forget = self._forget, None
+        if forget is not None:
+            forget(self)
 
     def __enter__(self) -> JumpHandle:
         return self
@@ -163,7 +163,7 @@ class Clock:
     ) -> JumpHandle:
         """Call `pre_callback()` before and `post_callback(jump)` after each time jump that
         `threshold` selects, until the returned handle is unregistered."""
-        handle = JumpHandle(self, threshold, pre_callback, post_callback)
+        handle = JumpHandle(self._remove_jump_handle, threshold, pre_callback, post_callback)
         with self._changed:
             self._jump_handles.append(handle)
         return handle
@@ -249,8 +249,9 @@ class ROSClock(Clock):
             return Time(nanoseconds=self._override_ns, clock_type=ClockType.ROS_TIME)
         return Time(nanoseconds=time.time_ns(), clock_type=ClockType.ROS_TIME)
 
-    def _set_ros_time_is_active(self, enabled: bool) -> None:
-        """Switch between system time and the override (a time jump if it changes)."""
+    def set_ros_time_is_active(self, enabled: bool) -> None:
+        """Switch between system time and the override (a time jump if it changes): the
+        time source's switch."""
         if bool(enabled) == self._ros_time_active:
             return
         before = self.now().nanoseconds
@@ -261,6 +262,9 @@ class ROSClock(Clock):
             self._ros_time_active = bool(enabled)
 
         self._jump(TimeJump(change, Duration(nanoseconds=after - before)), switch)
+
+    # rclpy's name, which rclpy code and tests call
+    _set_ros_time_is_active = set_ros_time_is_active
 
     def set_ros_time_override(self, time_point: Time) -> None:
         """The time this clock reads while ROS time is active (a jump if it is active)."""

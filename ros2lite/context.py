@@ -187,7 +187,7 @@ class Context:
         learns it now, not when the liveliness subscription reports it back."""
         graph = self._graph
         if graph is not None:
-            graph._on_change(token_key, alive)
+            graph.token_changed(token_key, alive)
 
     def add_node(self, node: ContextNode) -> None:
         """Remember a node, to destroy it at shutdown."""
@@ -258,9 +258,22 @@ class Context:
         """Release the context for good (rclpy's); shuts it down first if it still runs."""
         self.try_shutdown()
 
-    def _terminate(self) -> None:
+    def terminate(self) -> None:
+        """SIGINT/SIGTERM (signals.py): stop being ok() and wake the spinning executors,
+        leaving the shutdown itself to the program's clean-up."""
         self.terminating = True
         self.wake()
+
+    def shutdown_at_exit(self, wait: float) -> None:
+        """try_shutdown() at interpreter exit, unless a shutdown under way on another
+        thread holds on longer than `wait` seconds (errors are of no use any more)."""
+        if not self._shutdown_lock.acquire(timeout=wait):
+            return
+        try:
+            with contextlib.suppress(Exception):
+                self.try_shutdown()
+        finally:
+            self._shutdown_lock.release()
 
 
 class RouterLink:
@@ -304,13 +317,7 @@ def _shutdown_live_contexts() -> None:
         # a shutdown() called from a daemon thread (say, on end of input) lets the main
         # thread's spin return and the program end while the session is still closing;
         # Python would stop that thread inside zenoh and abort the process: let it finish
-        if not ctx._shutdown_lock.acquire(timeout=_EXIT_WAIT):
-            continue
-        try:
-            with contextlib.suppress(Exception):
-                ctx.try_shutdown()
-        finally:
-            ctx._shutdown_lock.release()
+        ctx.shutdown_at_exit(_EXIT_WAIT)
 
 
 # Zenoh runs each callback handler (a service's queryable, a query's replies) on a non-daemon

@@ -202,7 +202,7 @@ class EventHandler(Executable):
                 f'{event_type.name}: rmw_zenoh reports no such event (only matched, '
                 'incompatible QoS and incompatible type)'
             )
-        node = parent._ep.node
+        node = parent.endpoint.node
         super().__init__(node, callback_group)
         self.callback = callback
         self.event_type = event_type
@@ -221,7 +221,7 @@ class EventHandler(Executable):
 
     # -- from the graph (any thread) -------------------------------------------------------
     def _on_graph(self, entity: Entity, alive: bool) -> None:
-        ep = self._parent._ep
+        ep = self._parent.endpoint
         other = EntityKind.SUBSCRIPTION if ep.kind == EntityKind.PUBLISHER else EntityKind.PUBLISHER
         if entity.kind != other or entity.topic_name != ep.topic_name:
             return
@@ -264,10 +264,10 @@ class EventHandler(Executable):
         self._notify()
 
     # -- the executor ------------------------------------------------------------------------
-    def _has_work(self) -> bool:
+    def has_work(self) -> bool:
         return self._ready
 
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+    def run_pending(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         if not self._ready:
             return None
         return self._call(self.callback, self.take_event())
@@ -298,7 +298,7 @@ class EventHandler(Executable):
 
 
 def _is_publisher(parent: EndpointOwner) -> bool:
-    return bool(parent._ep.kind == EntityKind.PUBLISHER)
+    return bool(parent.endpoint.kind == EntityKind.PUBLISHER)
 
 
 class _EventCallbacks:

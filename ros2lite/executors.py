@@ -192,7 +192,7 @@ class Executor:
     def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None) -> None:
         """Run callbacks until `future` is done or `timeout_sec` passes (a future completed
         on another thread ends the wait at once)."""
-        future._add_done_callback_now(lambda _f: self.wake())
+        future.add_done_callback_now(lambda _f: self.wake())
         deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
         self._spinning += 1
         try:
@@ -239,7 +239,7 @@ class Executor:
         thread)."""
         if future.done():
             return
-        future._add_done_callback_now(lambda _f: self.wake())
+        future.add_done_callback_now(lambda _f: self.wake())
         self._spin_once(timeout_sec, future.done)
 
     def wait_for_ready_callbacks(
@@ -280,9 +280,10 @@ class Executor:
             for timer in node.timers:
                 if timer.scheduled:
                     continue
-                remaining = timer._seconds_until_next_call()
-                if remaining is None:
+                ns = timer.time_until_next_call()
+                if ns is None:
                     continue
+                remaining = ns / 1e9
                 if remaining <= 0:
                     if timer.callback_group.can_execute(timer):
                         return timer, None
@@ -367,7 +368,7 @@ class Executor:
         running.executor, running.entity = self, entity
         pending: Task | None = None
         try:
-            pending = entity._execute(batch, stop)
+            pending = entity.run_pending(batch, stop)
         finally:
             running.executor, running.entity = saved
             entity._node.work.executed(entity)  # type: ignore[union-attr]  # run: has a node
@@ -375,7 +376,7 @@ class Executor:
                 if pending is None or pending.done():
                     self._release(group, entity)
                 else:
-                    pending._add_done_callback_now(lambda _f: self._release(group, entity))
+                    pending.add_done_callback_now(lambda _f: self._release(group, entity))
 
     def _run_task(self, task: Task) -> None:
         task()
@@ -396,7 +397,7 @@ class Executor:
             self._timer_waits = False
             self.wake()  # due timers of the group may run now
 
-    def _run_callback(
+    def run_callback(
         self,
         callback: Callable[..., object],
         *args: object,
@@ -412,7 +413,7 @@ class Executor:
         coro = result
         task = Task(lambda: coro, executor=self, reschedule=self._enqueue)
         if then is not None:
-            task._add_done_callback_now(
+            task.add_done_callback_now(
                 lambda t: then(t.result()) if t.exception() is None else None
             )
         self._run_task(task)

@@ -84,9 +84,11 @@ class GraphCache:
             self._entities[entity.to_token()] = entity
         # called with (entity, alive) for each change, on the thread that saw it
         self._listeners: list[Callable[[Entity, bool], None]] = []
-        self._sub = declare_liveliness_subscriber(session, domain_id, self._on_change)
+        self._sub = declare_liveliness_subscriber(session, domain_id, self.token_changed)
 
-    def _on_change(self, key: str, alive: bool) -> None:
+    def token_changed(self, key: str, alive: bool) -> None:
+        """A liveliness token appeared or went (the subscriber's callback; the context
+        tells its own entities' at once)."""
         with self._cond:
             if alive:
                 if key in self._entities:

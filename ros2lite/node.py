@@ -203,8 +203,10 @@ class Node(ParameterMixin, GraphMixin):
     def add_waitable(self, waitable: Executable) -> None:
         """Run `waitable` with this node's entities (its executor, its groups); action
         clients and servers are such waitables."""
-        if waitable._node is None:
-            waitable._node = self
+        self._add_waitable(waitable, joined=waitable.settle_owner(self) is None)
+
+    def _add_waitable(self, waitable: Executable, *, joined: bool) -> None:
+        if joined:  # it had no node: its group is this node's now
             self._remember_group(waitable.callback_group)
         self.waitables.append(waitable)
         self.work.notify_if_ready(waitable)
@@ -214,7 +216,7 @@ class Node(ParameterMixin, GraphMixin):
         class, say): destroyed with the node, its group remembered and, if it has work
         already, queued on the node's executor. An entity of another node is refused; one
         without a node (a waitable) is added as add_waitable() does."""
-        owner = entity._node
+        owner = entity.settle_owner(self)
         if owner is not None and owner is not self:
             raise ValueError('the entity belongs to another node')
         # the node's list of the entity's kind
@@ -228,12 +230,10 @@ class Node(ParameterMixin, GraphMixin):
         entities = next((own for kind, own in kinds if isinstance(entity, kind)), None)
         if entities is None:
             if entity not in self.waitables:
-                self.add_waitable(entity)
+                self._add_waitable(entity, joined=owner is None)
             return
         if entity in entities:
             return
-        if owner is None:
-            entity._node = self
         entities.append(entity)
         self._remember_group(entity.callback_group)
         if isinstance(entity, Timer):

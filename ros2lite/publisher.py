@@ -34,7 +34,7 @@ class Publisher(EndpointOwner, Generic[MsgT]):
         self._ep = _PublisherEndpoint(node, msg_type, topic, qos)
         ep = self._ep
         self._pub: ZenohPublisher | None = declare_publisher(node.context.require(), ep.key, ep.qos)
-        ep._announce()
+        ep.announce()
         self._gid = ep.gid
         self._seq = 0
         self._serialize: Callable[[Msg], bytes] | None = None
@@ -98,7 +98,7 @@ class Publisher(EndpointOwner, Generic[MsgT]):
     def destroy(self) -> None:
         """Withdraw the publisher and its token; publishing afterwards raises."""
         self._destroy_event_handlers()
-        self._ep._undeclare(self._pub)
+        self._ep.undeclare(self._pub)
         self._pub = None
         self._put = _destroyed
 

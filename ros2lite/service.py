@@ -43,6 +43,11 @@ class RequestHeader:
     source_timestamp: int
     _request: Request | None = field(default=None, repr=False, compare=False)
 
+    def take_request(self) -> Request | None:
+        """The query to answer, handed out once (None once answered or abandoned)."""
+        request, self._request = self._request, None
+        return request
+
 
 ServiceCallback = (
     Callable[[SrvRequestT, SrvResponseT], SrvResponseT | Awaitable[SrvResponseT]]
@@ -88,7 +93,7 @@ class Service(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]
         self._queryable: Handle | None = declare_queryable(
             node.context.require(), self._ep.key, self._on_request
         )
-        self._ep._announce()
+        self._ep.announce()
         node.context.local_services[self._ep.key] = self
 
     @property
@@ -104,7 +109,7 @@ class Service(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]
         self._requests.append(request)
         self._notify()
 
-    def _has_work(self) -> bool:
+    def has_work(self) -> bool:
         return bool(self._requests)
 
     def _codecs(self) -> tuple[Codec, Codec]:
@@ -135,7 +140,7 @@ class Service(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]
             return cast('SrvRequestT', message), header
         return None
 
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+    def run_pending(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         taken = self._take()
         if taken is None:
             return None
@@ -158,13 +163,13 @@ class Service(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]
 
     def _abandon(self, header: RequestHeader) -> None:
         """The callback failed: end the query so the client is not left waiting."""
-        request, header._request = header._request, None
+        request = header.take_request()
         if request is not None:
             request.drop()
 
     def send_response(self, response: SrvResponseT, header: RequestHeader) -> None:
         """Answer the request `header` came with (once)."""
-        request, header._request = header._request, None
+        request = header.take_request()
         if request is None:
             raise RuntimeError('this request has already been answered')
         if getattr(response, '_TYPE_NAME', None) != f'{self._ep.type_name}_Response':
@@ -192,7 +197,7 @@ class Service(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT]
         self._node.context.local_services.pop(self._ep.key, None)
         while self._requests:
             self._requests.popleft().drop()
-        self._ep._undeclare(self._queryable)
+        self._ep.undeclare(self._queryable)
         self._queryable = None
 
 

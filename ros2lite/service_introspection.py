@@ -58,6 +58,9 @@ class ServiceEventType(enum.IntEnum):
     RESPONSE_RECEIVED = 3
 
 
+_EVENT_NAMES = {e.value: e.name for e in ServiceEventType}
+
+
 # the words the introspection demos' parameters take
 STATE_NAMES = {
     'disabled': ServiceIntrospectionState.OFF,
@@ -92,8 +95,8 @@ def event_to_dict(
 
     data = message_to_dict(event, truncate_length=truncate_length, no_arr=no_arr, no_str=no_str)
     info = data.get('info')
-    if isinstance(info, dict) and info.get('event_type') in ServiceEventType._value2member_map_:
-        info['event_type'] = ServiceEventType(info['event_type']).name
+    if isinstance(info, dict) and info.get('event_type') in _EVENT_NAMES:
+        info['event_type'] = _EVENT_NAMES[info['event_type']]
     return data
 
 
@@ -180,24 +183,33 @@ class Introspectable:
         topic (an action's: its three services', which is what `action echo` shows)."""
         state = ServiceIntrospectionState(introspection_state)
         for endpoint in self._introspected():
-            endpoint._set_introspection(clock, service_event_qos_profile, state)
+            endpoint.configure_introspection(clock, service_event_qos_profile, state)
 
 
 class IntrospectionMixin(Introspectable):
     """What `Service` and `Client` share for introspection. The class using it provides
-    `_node`, `srv_name` and `_ep.type_name` (the `pkg/srv/Name` of its type)."""
+    `_node`, `srv_name` and `_ep` (whose `type_name` is the `pkg/srv/Name` of its type)."""
 
     _introspection: _EventPublisher | None = None
     _node: ServiceNode
     _ep: Endpoint
     srv_name: str
 
-    def _introspected(self) -> tuple[IntrospectionMixin, ...]:
-        return (self,)
+    @property
+    def endpoint(self) -> Endpoint:
+        """The graph endpoint it announces (names, type, QoS, node)."""
+        return self._ep
 
-    def _set_introspection(
-        self, clock: Clock, qos: QoSProfile, state: ServiceIntrospectionState
+    def configure_introspection(
+        self,
+        clock: Clock,
+        service_event_qos_profile: QoSProfile,
+        introspection_state: ServiceIntrospectionState,
     ) -> None:
+        """Report this service's or client's events from now on (OFF: stop) on its
+        `_service_event` topic."""
+        qos = service_event_qos_profile
+        state = ServiceIntrospectionState(introspection_state)
         if state == ServiceIntrospectionState.OFF:
             self._destroy_introspection()
             return

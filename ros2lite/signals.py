@@ -44,7 +44,7 @@ def _stop_open_contexts(signum: int, frame: FrameType | None) -> None:
     very thread."""
     stopped = open_contexts()
     for ctx in stopped:
-        ctx._terminate()
+        ctx.terminate()
     previous = _previous.get(signum, signal.SIG_DFL)
     if callable(previous):
         previous(signum, frame)

@@ -114,7 +114,8 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         # subscriptions pull from Zenoh on the executor thread (`_source` below)
         self._buffer: deque[Any] = deque(maxlen=None if keep_all else max(ep.qos.depth, 1))
         self._deserialize: Callable[[bytes], MsgT] | None = None
-        self._destroyed = False
+        # read per message by runtime/delivery.py, a plain attribute; only destroy() sets it
+        self.destroyed = False
         # undecodable samples so far (None until the first one)
         self.bad_samples: BadSamples | None = None
         # how samples arrive: an arrival hook (topic monitors, a waiter for one message)
@@ -140,19 +141,19 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self._receiver: SampleReceiver | PulledSamples = receiver
         # typed pull: the executor takes samples from here (None for the other two)
         self._source = receiver if isinstance(receiver, PulledSamples) else None
-        ep._announce()
+        ep.announce()
 
     def _keep(self, sample: Sample) -> None:
         """Receive thread (an arrival hook passing a sample on): queue it with its arrival
         time, as a raw queue does, and make sure the executor will come for it. Samples
         without an attachment, which rmw_zenoh ignores, are dropped when taken."""
-        if self._destroyed:
+        if self.destroyed:
             return
         self._buffer.append((sample, time.time_ns()))
         self._notify()
 
-    def _has_work(self) -> bool:
-        if self._destroyed:
+    def has_work(self) -> bool:
+        if self.destroyed:
             return False
         return self._source.ready if self._source is not None else bool(self._buffer)
 
@@ -189,9 +190,6 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
             self._bad_sample(data, gid_of(attachment), e)
             return None
 
-    def _info(self, attachment: bytes, received: int) -> MessageInfo:
-        return _info(attachment, received)
-
     def _take_typed(self, source: PulledSamples) -> tuple[MsgT, MessageInfo] | None:
         while True:
             taken = source.take(1)
@@ -203,7 +201,7 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
             if message is not None:
                 return message, _info(attachment, time.time_ns())
 
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+    def run_pending(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         """Deliver the oldest sample, or in spin()/spin_until_future_complete() a batch of
         them (stopping early once `stop()` holds), so a burst is not paid for per sample in
         executor overhead; what is left goes back in the queue behind other work."""
@@ -221,9 +219,12 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         elif self._with_info:
             # a batch also ends after BATCH_TIME, so slow callbacks can't starve timers
             deadline = time.perf_counter() + BATCH_TIME if batch else 0.0
-            deliver_with_info(self, source, self._deserializer(), limit, stop, deadline)
+            deliver_with_info(
+                self, source, self._deserializer(), limit, stop, deadline, self._bad_sample, _info
+            )
         else:  # the hot path (runtime/delivery.py), straight from here: spin_once pays per call
-            deliver(self, source, self._deserialize or self._deserializer(), limit, stop)
+            decode = self._deserialize or self._deserializer()
+            deliver(self, source, decode, limit, stop, self._bad_sample)
         return None
 
     def _bad_sample(self, data: bytes, gid: bytes, error: Exception) -> None:
@@ -249,7 +250,7 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
                 sample, received = popleft()
             except IndexError:
                 break  # KEEP_LAST dropped it, or take() got there first
-            if self._destroyed:
+            if self.destroyed:
                 break
             attachment = sample.attachment
             if attachment is None:
@@ -265,11 +266,11 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
     def destroy(self) -> None:
         """Stop receiving: buffered samples are dropped and the token withdrawn."""
         self._destroy_event_handlers()
-        self._destroyed = True
+        self.destroyed = True
         self._buffer.clear()
         if self._source is not None:
             self._source.clear()
-        self._ep._undeclare(self._receiver)  # ends the receive thread too
+        self._ep.undeclare(self._receiver)  # ends the receive thread too
 
     def get_publisher_count(self) -> int:
         """How many publishers on the graph match this topic name."""

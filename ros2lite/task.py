@@ -118,9 +118,9 @@ class Future(Generic[T]):
                 return
         self._schedule(callback)
 
-    def _add_done_callback_now(self, callback: Callable[[Future[T]], object]) -> None:
-        """ros2lite's own bookkeeping (wake-ups, releasing a group): run on the completing
-        thread, never as a task."""
+    def add_done_callback_now(self, callback: Callable[[Future[T]], object]) -> None:
+        """`callback(self)` on the completing thread, never as a task: for bookkeeping that
+        must not wait for an executor (wake-ups, releasing a group, answering a request)."""
         with self._lock:
             if not self._finished:
                 self._callbacks.append((callback, True))
@@ -217,7 +217,7 @@ class Task(Future[Any]):
         if self._reschedule is None:
             return
         if isinstance(awaited, Future) and not awaited.done():
-            awaited._add_done_callback_now(lambda _f: self._resume())
+            awaited.add_done_callback_now(lambda _f: self._resume())
         else:
             self._resume()
 

@@ -60,7 +60,7 @@ class TimeSource:
                 return
             self._ros_time_is_active = bool(enabled)
             for clock in self._associated_clocks:
-                clock._set_ros_time_is_active(enabled)
+                clock.set_ros_time_is_active(enabled)
             if enabled:
                 self._subscribe_to_clock_topic()
             else:
@@ -142,7 +142,7 @@ class TimeSource:
         with self._lock:
             if self._last_time_set is not None:
                 clock.set_ros_time_override(self._last_time_set)
-            clock._set_ros_time_is_active(self._ros_time_is_active)
+            clock.set_ros_time_is_active(self._ros_time_is_active)
             self._associated_clocks.append(clock)
 
     def destroy(self) -> None:

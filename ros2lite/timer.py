@@ -85,10 +85,6 @@ class Timer(Executable):
         now = self._now()  # first: it may re-base `_next`
         return self._next - now
 
-    def _seconds_until_next_call(self) -> float | None:
-        remaining = self.time_until_next_call()
-        return None if remaining is None else remaining / 1e9
-
     def time_since_last_call(self) -> int:
         """Nanoseconds since the timer last fired (or was started)."""
         return self._now() - self._last_call
@@ -108,7 +104,7 @@ class Timer(Executable):
         if self._fire():
             self.callback()
 
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+    def run_pending(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         return self._call(self.callback) if self._fire() else None
 
     def _fire(self) -> bool:

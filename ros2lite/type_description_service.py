@@ -58,7 +58,7 @@ class TypeDescriptionService:
         node = self._node
         topics = [*node.publishers, *node.subscriptions]
         services = [*node.services, *node.clients]
-        return {e._ep.type_name for e in topics} | {e._ep.type_name for e in services}
+        return {e.endpoint.type_name for e in topics} | {e.endpoint.type_name for e in services}
 
     def _describe(
         self, request: GetTypeDescription_Request, response: GetTypeDescription_Response

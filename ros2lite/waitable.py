@@ -61,10 +61,10 @@ class Waitable(Executable, Generic[T]):
         if self._node is not None:
             self._notify()
 
-    def _has_work(self) -> bool:
+    def has_work(self) -> bool:
         return self._ready
 
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+    def run_pending(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         self._ready = False
         return self._call(self.execute, self.take_data())
 

@@ -38,31 +38,78 @@ def test_mypy_clean() -> None:
     assert proc.returncode == 0, proc.stdout + proc.stderr
 
 
-def _others_private_reads(tree: ast.AST) -> list[ast.Attribute]:
-    """`x._name` read where x is not the object itself (`self`, `cls`, `super()`); dunders
-    are not private."""
-    found = []
-    for node in ast.walk(tree):
-        if not (isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Load)):
-            continue
-        name = node.attr
-        if not name.startswith('_') or (name.startswith('__') and name.endswith('__')):
-            continue
-        owner = node.value
-        if isinstance(owner, ast.Name) and owner.id in ('self', 'cls'):
-            continue
-        if (
-            isinstance(owner, ast.Call)
-            and isinstance(owner.func, ast.Name)
-            and owner.func.id == 'super'
+# private names that the standard library documents as public API
+_STDLIB_UNDERSCORE_API = {('sys', '_getframe'), ('os', '_exit')}
+
+
+def _declared_private(cls: ast.ClassDef) -> set[str]:
+    """The `_names` a class body declares: methods, class attributes, `self._x = …`."""
+    names = set()
+    for stmt in cls.body:  # class attributes
+        targets = stmt.targets if isinstance(stmt, ast.Assign) else []
+        if isinstance(stmt, ast.AnnAssign):
+            targets = [stmt.target]
+        names.update(t.id for t in targets if isinstance(t, ast.Name))
+    for node in ast.walk(cls):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            names.add(node.name)
+        elif (
+            isinstance(node, ast.Attribute)
+            and isinstance(node.ctx, ast.Store)
+            and isinstance(node.value, ast.Name)
+            and node.value.id == 'self'
         ):
-            continue
-        found.append(node)
+            names.add(node.attr)
+    return {n for n in names if n.startswith('_')}
+
+
+def _others_private_reads(tree: ast.AST) -> list[ast.Attribute]:
+    """`x._name` reads that reach into another object's insides. Not counted: the object
+    itself (`self`, `cls`, `super()`); a name the enclosing class declares itself, read on
+    another instance of its kind (`__eq__`, ordering, `Duration + Duration`: privacy is the
+    class's, not the instance's); dunders; and the few underscore names the standard library
+    documents as public (`sys._getframe`, `os._exit`). A helper or a second class reading a
+    class's `_x`, even in the same module, counts: it goes through a public name instead."""
+    found = []
+
+    def visit(node: ast.AST, own: frozenset[str]) -> None:
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, ast.ClassDef):
+                visit(child, frozenset(_declared_private(child)))
+                continue
+            if (
+                isinstance(child, ast.Attribute)
+                and isinstance(child.ctx, ast.Load)
+                and _is_others_private(child, own)
+            ):
+                found.append(child)
+            visit(child, own)
+
+    visit(tree, frozenset())
     return found
 
 
+def _is_others_private(node: ast.Attribute, own: frozenset[str]) -> bool:
+    name = node.attr
+    if not name.startswith('_') or (name.startswith('__') and name.endswith('__')):
+        return False
+    owner = node.value
+    if isinstance(owner, ast.Name) and (
+        owner.id in ('self', 'cls') or (owner.id, name) in _STDLIB_UNDERSCORE_API
+    ):
+        return False
+    func = owner.func if isinstance(owner, ast.Call) else None
+    is_super = isinstance(func, ast.Name) and func.id == 'super'
+    return not is_super and name not in own
+
+
 # reads of other objects' private attributes in ros2lite/: may only fall (lower it when it does)
-PRIVATE_REACH_CEILING = 109
+# What is left, each for a reason: NodeWork's `_scheduled` flag on entities (scheduling.py's
+# own state, read per sample on receive threads; test_scheduling_state keeps it there); the
+# executor's reads of an entity's `_node` (per dispatch on the hot path; a public `node` would
+# clash with user Waitables' own attributes); `_TYPE_NAME`, the name every generated message
+# class carries (rosidl's `_TYPE_SUPPORT` habit); the mcap recovery's read of its reader's summary.
+PRIVATE_REACH_CEILING = 11
 
 
 def test_private_reach() -> None:
@@ -76,8 +123,11 @@ def test_private_reach() -> None:
     total = sum(per_file.values())
     worst = sorted(per_file.items(), key=lambda kv: -kv[1])[:10]
     assert total <= PRIVATE_REACH_CEILING, f'{total} private reads of other objects: {worst}'
-    probe = 'def f(self, other):\n    return self._a, other._b, super()._c, other.__len__, cls._d\n'
-    assert [n.attr for n in _others_private_reads(ast.parse(probe))] == ['_b']
+    probe = (
+        'def f(self, other):\n    return self._a, other._b, super()._c, other.__len__, cls._d\n'
+        'class A:\n    _x = 1\n    def __eq__(self, o):\n        return o._x == self._x and o._y\n'
+    )
+    assert [n.attr for n in _others_private_reads(ast.parse(probe))] == ['_b', '_y']
 
 
 def _scheduling_breaks(sources: dict[str, str], slots: set[str]) -> list[str]:

@@ -50,8 +50,8 @@ def test_a_call_while_a_step_runs_is_not_lost() -> None:
     queued: list[Task] = []
 
     class CompletesWhileRegistering(Future):
-        def _add_done_callback_now(self, callback: Any) -> None:
-            super()._add_done_callback_now(callback)
+        def add_done_callback_now(self, callback: Any) -> None:
+            super().add_done_callback_now(callback)
             self.set_result(5)  # runs the callback: the task is re-queued…
             queued.pop()()  # …and called at once, while its step is still running
 

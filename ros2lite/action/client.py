@@ -96,19 +96,19 @@ class ClientGoalHandle(GoalHandle, Generic[GoalT, ResultT, FeedbackT]):
 
     def cancel_goal(self) -> CancelGoal_Response:
         """Ask the server to cancel; blocks until it answers (CancelGoal.Response)."""
-        return self._action_client._cancel_goal(self)
+        return self._action_client.cancel_goal(self)
 
     def cancel_goal_async(self) -> Future[CancelGoal_Response]:
         """Ask the server to cancel; the future gives its CancelGoal.Response."""
-        return self._action_client._cancel_goal_async(self)
+        return self._action_client.cancel_goal_async(self)
 
     def get_result(self) -> GetResultResponse[ResultT]:
         """Block until the goal ends; gives its GetResult response (status and result)."""
-        return self._action_client._get_result(self)
+        return self._action_client.get_result(self)
 
     def get_result_async(self) -> Future[GetResultResponse[ResultT]]:
         """The future of the goal's GetResult response (status and result)."""
-        return self._action_client._get_result_async(self)
+        return self._action_client.get_result_async(self)
 
 
 class ActionClient(ActionEntity[GoalT, ResultT, FeedbackT]):
@@ -249,7 +249,7 @@ class ActionClient(ActionEntity[GoalT, ResultT, FeedbackT]):
                 self._drop_feedback(key)
             future.set_result(handle)
 
-        call._add_done_callback_now(answered)
+        call.add_done_callback_now(answered)
         return future
 
     def send_goal(
@@ -282,7 +282,7 @@ class ActionClient(ActionEntity[GoalT, ResultT, FeedbackT]):
             with self._lock:
                 handle._status = self._unanswered.pop(key, GoalStatus.STATUS_UNKNOWN)
                 self._goal_handles[key] = weakref.ref(handle)
-            return self._get_result(handle)
+            return self.get_result(handle)
         finally:
             self._forget_goal(key)
 
@@ -308,24 +308,27 @@ class ActionClient(ActionEntity[GoalT, ResultT, FeedbackT]):
         _require_accepted(goal_handle)
         return self._action_type.Impl.GetResultService.Request(goal_id=goal_handle.goal_id)
 
-    def _cancel_goal_async(
+    def cancel_goal_async(
         self, goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]
     ) -> Future[CancelGoal_Response]:
+        """Ask the server to cancel the goal (ClientGoalHandle.cancel_goal_async)."""
         if not isinstance(goal_handle, ClientGoalHandle):
             raise TypeError('expected a ClientGoalHandle')
         request = self._cancel_request(goal_handle)
         return cast('Future[CancelGoal_Response]', self._cancel_client.call_async(request))
 
-    def _cancel_goal(
+    def cancel_goal(
         self, goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]
     ) -> CancelGoal_Response:
+        """Ask the server to cancel, blocking until it answers (ClientGoalHandle.cancel_goal)."""
         return cast(
             'CancelGoal_Response', self._cancel_client.call(self._cancel_request(goal_handle))
         )
 
-    def _get_result_async(
+    def get_result_async(
         self, goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]
     ) -> Future[GetResultResponse[ResultT]]:
+        """The future of the goal's GetResult response (ClientGoalHandle.get_result_async)."""
         if not isinstance(goal_handle, ClientGoalHandle):
             raise TypeError('expected a ClientGoalHandle')
         key = goal_key(goal_handle.goal_id)
@@ -338,12 +341,13 @@ class ActionClient(ActionEntity[GoalT, ResultT, FeedbackT]):
             if response is not None and response.status in TERMINAL_STATES:
                 goal_handle._status = response.status
 
-        future._add_done_callback_now(done)
+        future.add_done_callback_now(done)
         return future
 
-    def _get_result(
+    def get_result(
         self, goal_handle: ClientGoalHandle[GoalT, ResultT, FeedbackT]
     ) -> GetResultResponse[ResultT]:
+        """Block until the goal ends; its GetResult response (ClientGoalHandle.get_result)."""
         response = cast(
             'GetResultResponse[ResultT]',
             self._result_client.call(self._result_request(goal_handle)),

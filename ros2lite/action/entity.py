@@ -44,7 +44,7 @@ class ActionEntity(Introspectable, Executable, Generic[GoalT, ResultT, FeedbackT
         # a waitable of the node, as in rclpy: destroy_node() destroys it too
         super().__init__(node, callback_group)
 
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> None:
+    def run_pending(self, batch: bool, stop: Callable[[], bool] | None) -> None:
         return None  # never has work of its own
 
     @property

@@ -125,7 +125,7 @@ class ServerGoalHandle(GoalHandle, Generic[GoalT, ResultT, FeedbackT]):
     @property
     def status(self) -> int:
         """The goal's action_msgs/GoalStatus value now."""
-        return self._action_server._goal_status(self._key)
+        return self._action_server.goal_status(self._key)
 
     @property
     def is_active(self) -> bool:
@@ -151,22 +151,19 @@ class ServerGoalHandle(GoalHandle, Generic[GoalT, ResultT, FeedbackT]):
         still runs, so that it can finish the goal as canceled."""
         if not self.is_cancel_requested:
             self._update_state(GoalEvent.EXECUTE)
-        self._action_server._notify_execute(self, execute_callback)
+        self._action_server.notify_execute(self, execute_callback)
 
     def publish_feedback(self, feedback: FeedbackT) -> None:
         """Send feedback to the client(s) on the action's feedback topic."""
         server = self._action_server
-        if not isinstance(feedback, server._action_type.Feedback):
+        # the class's Feedback (the Action protocol types it as an instance's property)
+        feedback_type = cast('type[FeedbackT]', server.action_type.Feedback)
+        if not isinstance(feedback, feedback_type):
             raise TypeError(
-                f'feedback must be a {server._action_type.Feedback.__name__}, '
-                f'got {type(feedback).__name__}'
+                f'feedback must be a {feedback_type.__name__}, got {type(feedback).__name__}'
             )
-        if self._destroyed:
-            return
-        message = server._action_type.Impl.FeedbackMessage(
-            goal_id=self._goal_info.goal_id, feedback=feedback
-        )
-        server._feedback_pub.publish(message)
+        if not self._destroyed:
+            server.publish_feedback(self._goal_info.goal_id, feedback)
 
     def succeed(self) -> None:
         """Mark the goal succeeded (the execute callback's result is sent)."""
@@ -186,7 +183,7 @@ class ServerGoalHandle(GoalHandle, Generic[GoalT, ResultT, FeedbackT]):
 
     def _update_state(self, event: GoalEvent) -> None:
         if not self._destroyed:
-            self._action_server._update_goal(self._key, event)
+            self._action_server.update_goal(self._key, event)
 
 
 ExecuteCallback = Callable[
@@ -390,7 +387,8 @@ class ActionServer(ActionEntity[GoalT, ResultT, FeedbackT]):
             code, infos = self._goals.select_cancel(request)
         canceling = []
         for info in infos:
-            goal_handle = self._goal_handles.get(goal_key(info.goal_id))
+            key = goal_key(info.goal_id)
+            goal_handle = self._goal_handles.get(key)
             if goal_handle is None:
                 continue
             try:
@@ -400,7 +398,7 @@ class ActionServer(ActionEntity[GoalT, ResultT, FeedbackT]):
                 answer = CancelResponse.REJECT
             if answer == CancelResponse.ACCEPT:
                 try:
-                    goal_handle._update_state(GoalEvent.CANCEL_GOAL)
+                    self.update_goal(key, GoalEvent.CANCEL_GOAL)
                 except RuntimeError:
                     continue  # it ended while the callback ran
                 canceling.append(info)
@@ -423,7 +421,7 @@ class ActionServer(ActionEntity[GoalT, ResultT, FeedbackT]):
             self._result_service.send_response(response, header)
             return
         # answered now if the goal is over, or the moment it ends
-        future._add_done_callback_now(lambda f: self._send_result(f.result(), header))
+        future.add_done_callback_now(lambda f: self._send_result(f.result(), header))
 
     def _send_result(self, response: Message | None, header: RequestHeader) -> None:
         if self._destroyed or response is None:
@@ -435,13 +433,16 @@ class ActionServer(ActionEntity[GoalT, ResultT, FeedbackT]):
         except Exception as e:  # e.g. the session closed meanwhile
             self._logger.debug(f'could not send a result: {e}')
 
-    # -- goal bookkeeping ---------------------------------------------------------------------
-    def _goal_status(self, key: bytes) -> int:
+    # -- goal bookkeeping (its goal handles ask through these) -------------------------------
+    def goal_status(self, key: bytes) -> int:
+        """The action_msgs/GoalStatus value of the goal `key` (UNKNOWN once forgotten)."""
         with self._lock:
             entry = self._goals.get(key)
             return GoalStatus.STATUS_UNKNOWN if entry is None else entry.state
 
-    def _update_goal(self, key: bytes, event: GoalEvent) -> None:
+    def update_goal(self, key: bytes, event: GoalEvent) -> None:
+        """Move the goal `key` on by `event` and publish the statuses (RuntimeError for a
+        transition its state does not allow; nothing for a goal already forgotten)."""
         with self._lock:
             if key not in self._goals:
                 return  # expired already
@@ -461,11 +462,18 @@ class ActionServer(ActionEntity[GoalT, ResultT, FeedbackT]):
             self._forget_expired()
             self._status_pub.publish(self._goals.status_array())
 
-    def _notify_execute(
+    def publish_feedback(self, goal_id: UUID, feedback: FeedbackT) -> None:
+        """Send `feedback` for the goal `goal_id` on the action's feedback topic."""
+        message = self._action_type.Impl.FeedbackMessage(goal_id=goal_id, feedback=feedback)
+        self._feedback_pub.publish(message)
+
+    def notify_execute(
         self,
         goal_handle: ServerGoalHandle[GoalT, ResultT, FeedbackT],
         execute_callback: ExecuteCallback[GoalT, ResultT, FeedbackT] | None,
     ) -> None:
+        """Run the goal's execute callback (the server's unless one is given) as a task of
+        the node's executor (rclpy's name)."""
         callback = execute_callback or self._execute_callback
         executor = self._node.executor
         if executor is None:
@@ -479,7 +487,7 @@ class ActionServer(ActionEntity[GoalT, ResultT, FeedbackT]):
         execute_callback: ExecuteCallback[GoalT, ResultT, FeedbackT],
         goal_handle: ServerGoalHandle[GoalT, ResultT, FeedbackT],
     ) -> None:
-        key = goal_handle._key
+        key = goal_key(goal_handle.goal_id)
         result_type = self._action_type.Result
         result: object
         try:

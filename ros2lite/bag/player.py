@@ -191,7 +191,7 @@ class Player:
         if not digest:
             from ros2lite.interfaces.hashing import type_hash
 
-            types = self.reader._bag_types()
+            types = self.reader.bag_types()
             if type_name not in types.known:
                 return None
             try:

@@ -311,7 +311,8 @@ class Reader:
 
         return codec(normalize_name(type_name), self._registry_for(type_name, "")).deserialize(data)
 
-    def _bag_types(self) -> BagTypes:
+    def bag_types(self) -> BagTypes:
+        """The type definitions the bag itself carries (every file's schemas), read once."""
         if self._types is None:
             from ros2lite.bag.definitions import BagTypes
 
@@ -336,7 +337,7 @@ class Reader:
             local = type_hash(full)
         except (InterfaceError, LookupError, ValueError):
             local = None
-        types = self._bag_types()
+        types = self.bag_types()
         if local is not None and (not bag_hash or bag_hash == local or full not in types.known):
             return default_registry()
         if full in types.known:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import sys
 from array import array
 from collections.abc import Callable, Sized
-from functools import partial
+from functools import cache, partial
 from typing import TYPE_CHECKING, Any, TypedDict
 
 from .classes import ROSIDL_NAMES, Message, checked_fields, get_interface
@@ -82,13 +82,19 @@ def _convert(
     return value
 
 
+@cache
+def _fields(cls: type[Message]) -> tuple[tuple[str, FieldType], ...]:
+    """(name, type) of each field of a message class, in order; worked out once per class."""
+    return tuple(zip(cls.get_fields_and_field_types(), cls.SLOT_TYPES, strict=True))
+
+
 def message_to_dict(
     msg: Message, *, truncate_length: int | None = None, no_arr: bool = False, no_str: bool = False
 ) -> dict[str, Any]:
     """Nested plain dict/list/scalar form of a message, in field order."""
     return {
         name: _convert(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
-        for name, ft in zip(msg._fields_and_field_types, msg.SLOT_TYPES, strict=True)
+        for name, ft in _fields(type(msg))
     }
 
 
@@ -209,7 +215,7 @@ def message_to_csv(
     return _joined(
         [
             _csv_value(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
-            for name, ft in zip(msg._fields_and_field_types, msg.SLOT_TYPES, strict=True)
+            for name, ft in _fields(type(msg))
         ]
     )
 
@@ -250,7 +256,7 @@ def _populate(
         raise PopulateError(
             f"Value '{values}' is expected to be a dictionary but is a {type(values).__name__}"
         )
-    types = dict(zip(msg._fields_and_field_types, msg.SLOT_TYPES, strict=True))
+    types = dict(_fields(type(msg)))
     for name, value in values.items():
         if name not in types:
             raise PopulateError(f"'{type(msg).__name__}' object has no attribute '{name}'")

@@ -158,15 +158,15 @@ class ParameterMixin(SharedParameterMethods):
     # rclpy's names for the registered callbacks, newest first (read-only views)
     @property
     def _pre_set_parameters_callbacks(self) -> list[PreSetCallback]:
-        return list(self._parameter_store._pre_set)
+        return list(self._parameter_store.pre_set_callbacks)
 
     @property
     def _on_set_parameters_callbacks(self) -> list[OnSetCallback]:
-        return list(self._parameter_store._on_set)
+        return list(self._parameter_store.on_set_callbacks)
 
     @property
     def _post_set_parameters_callbacks(self) -> list[PostSetCallback]:
-        return list(self._parameter_store._post_set)
+        return list(self._parameter_store.post_set_callbacks)
 
     def _own_store(self) -> ParameterStore:
         return self._parameter_store

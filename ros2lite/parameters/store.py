@@ -110,45 +110,31 @@ class SharedParameterMethods:
         ignore_override: bool = False,
     ) -> list[Parameter]:
         """Declare each (name[, value or Parameter.Type[, descriptor]]) as `namespace.name`."""
-        store = self._own_store()
-        todo: list[tuple[Parameter, ParameterDescriptor]] = []
-        for index, entry in enumerate(parameters):
-            todo.append(store._prepare(namespace, index, entry, ignore_override))
-        with store._lock:
-            taken = [p.name for p, _ in todo if p.name in store._parameters]
-            if taken:
-                raise ParameterAlreadyDeclaredException(taken)
-            for param, desc in todo:
-                outcome = store._set_atomically([param], {param.name: desc}, allow_not_set=True)
-                if not outcome.successful:
-                    if outcome.reason.startswith(WRONG_TYPE):
-                        raise InvalidParameterTypeException(param, Parameter.Type(desc.type).name)
-                    raise InvalidParameterValueException(param.name, param.value, outcome.reason)
-            return [store._parameters[p.name] for p, _ in todo]
+        return self._own_store().declare_all(namespace, parameters, ignore_override)
 
     def add_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
         """`callback(parameters)` may change the list being set, before any check."""
-        self._own_store()._pre_set.insert(0, callback)
+        self._own_store().pre_set_callbacks.insert(0, callback)
 
     def add_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
         """`callback(parameters)` may refuse a set (an unsuccessful SetParametersResult)."""
-        self._own_store()._on_set.insert(0, callback)
+        self._own_store().on_set_callbacks.insert(0, callback)
 
     def add_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
         """`callback(parameters)` learns of every successful set."""
-        self._own_store()._post_set.insert(0, callback)
+        self._own_store().post_set_callbacks.insert(0, callback)
 
     def remove_pre_set_parameters_callback(self, callback: PreSetCallback) -> None:
         """Forget a pre-set callback."""
-        self._own_store()._pre_set.remove(callback)
+        self._own_store().pre_set_callbacks.remove(callback)
 
     def remove_on_set_parameters_callback(self, callback: OnSetCallback) -> None:
         """Forget an on-set callback."""
-        self._own_store()._on_set.remove(callback)
+        self._own_store().on_set_callbacks.remove(callback)
 
     def remove_post_set_parameters_callback(self, callback: PostSetCallback) -> None:
         """Forget a post-set callback."""
-        self._own_store()._post_set.remove(callback)
+        self._own_store().post_set_callbacks.remove(callback)
 
 
 class ParameterStore(SharedParameterMethods):
@@ -175,6 +161,44 @@ class ParameterStore(SharedParameterMethods):
 
     def _own_store(self) -> ParameterStore:
         return self
+
+    @property
+    def pre_set_callbacks(self) -> list[PreSetCallback]:
+        """The pre-set callbacks, newest first: the list itself, which the shared methods edit."""
+        return self._pre_set
+
+    @property
+    def on_set_callbacks(self) -> list[OnSetCallback]:
+        """The on-set callbacks, newest first (the list itself)."""
+        return self._on_set
+
+    @property
+    def post_set_callbacks(self) -> list[PostSetCallback]:
+        """The post-set callbacks, newest first (the list itself)."""
+        return self._post_set
+
+    def declare_all(
+        self,
+        namespace: str,
+        parameters: Sequence[ParameterDeclaration],
+        ignore_override: bool = False,
+    ) -> list[Parameter]:
+        """declare_parameters' work, under the store's lock: a name already taken declares
+        none of them."""
+        todo: list[tuple[Parameter, ParameterDescriptor]] = []
+        for index, entry in enumerate(parameters):
+            todo.append(self._prepare(namespace, index, entry, ignore_override))
+        with self._lock:
+            taken = [p.name for p, _ in todo if p.name in self._parameters]
+            if taken:
+                raise ParameterAlreadyDeclaredException(taken)
+            for param, desc in todo:
+                outcome = self._set_atomically([param], {param.name: desc}, allow_not_set=True)
+                if not outcome.successful:
+                    if outcome.reason.startswith(WRONG_TYPE):
+                        raise InvalidParameterTypeException(param, Parameter.Type(desc.type).name)
+                    raise InvalidParameterValueException(param.name, param.value, outcome.reason)
+            return [self._parameters[p.name] for p, _ in todo]
 
     def _prepare(
         self, namespace: str, index: int, entry: ParameterDeclaration, ignore_override: bool

@@ -181,7 +181,8 @@ class PackageIndex:
             self._workspaces = workspaces(self.env, self.cwd)
         return self._workspaces
 
-    def _source(self, origin: str) -> dict[str, Package]:
+    def packages_from(self, origin: str) -> dict[str, Package]:
+        """The packages one source (an ORIGIN_* name) provides, read once."""
         found = self._sources.get(origin)
         if found is None:
             reader = {
@@ -280,12 +281,12 @@ class PackageIndex:
     # -- queries -----------------------------------------------------------------------------
     def candidates(self, name: str) -> list[Package]:
         """Every source's `name`, winner first (the rest are shadowed by it)."""
-        return [pkg for origin in ORIGINS if (pkg := self._source(origin).get(name))]
+        return [pkg for origin in ORIGINS if (pkg := self.packages_from(origin).get(name))]
 
     def find(self, name: str) -> Package | None:
         """The package `name` from the first source that knows it."""
         for origin in ORIGINS:
-            pkg = self._source(origin).get(name)
+            pkg = self.packages_from(origin).get(name)
             if pkg is not None:
                 return pkg
         return None
@@ -294,7 +295,7 @@ class PackageIndex:
         """Every package (the winner for each name), sorted by name."""
         winners: dict[str, Package] = {}
         for origin in ORIGINS:
-            for name, pkg in self._source(origin).items():
+            for name, pkg in self.packages_from(origin).items():
                 winners.setdefault(name, pkg)
         return dict(sorted(winners.items()))
 
@@ -310,7 +311,7 @@ class PackageIndex:
         for origin in ORIGINS:
             if origin == ORIGIN_ENTRY_POINT:
                 continue
-            for name, pkg in self._source(origin).items():
+            for name, pkg in self.packages_from(origin).items():
                 if name not in owned:
                     owned.add(name)
                     if pkg.interfaces is not None:
@@ -352,7 +353,7 @@ def workspace_interface_packages(env: Mapping[str, str] | None = None) -> dict[s
     index = PackageIndex(env)
     return {
         name: pkg.interfaces
-        for name, pkg in index._source(ORIGIN_WORKSPACE).items()
+        for name, pkg in index.packages_from(ORIGIN_WORKSPACE).items()
         if pkg.interfaces is not None
     }
 

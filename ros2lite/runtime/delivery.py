@@ -45,18 +45,15 @@ BATCH_TIME = 0.002
 
 
 class _Target(Protocol):
-    """What `deliver` needs of a subscription (ros2lite.subscription.Subscription)."""
+    """What `deliver` needs of a subscription (ros2lite.subscription.Subscription): read per
+    message, so plain attributes, not properties."""
 
     callback: Callable[..., object]
-    _destroyed: bool
+    destroyed: bool
 
-    def _bad_sample(self, data: bytes, gid: bytes, error: Exception) -> None:
-        """Drop and report a sample that does not decode."""
-        ...
 
-    def _info(self, attachment: bytes, received: int) -> MessageInfo:
-        """The MessageInfo of a sample."""
-        ...
+BadSample = Callable[[bytes, bytes, Exception], None]
+"""`(data, gid, error)`: drop and report a sample that does not decode."""
 
 
 def deliver(
@@ -65,13 +62,14 @@ def deliver(
     decode: Callable[[bytes], object],
     limit: int,
     stop: Callable[[], bool] | None,
+    bad_sample: BadSample,
 ) -> None:
     """Deliver up to `limit` samples of `source` to `sub.callback`, decoded by `decode`;
     stop early when `stop()` holds, the subscription is destroyed, or (for batches) after
     BATCH_TIME, so slow callbacks can't starve timers."""
     batch = source.take(limit, rearm_later=True)
     try:
-        _deliver(sub, source, batch, decode, stop)
+        _deliver(sub, source, batch, decode, stop, bad_sample)
     finally:
         source.rearm()
 
@@ -82,6 +80,7 @@ def _deliver(
     batch: list[Sample],
     decode: Callable[[bytes], object],
     stop: Callable[[], bool] | None,
+    bad_sample: BadSample,
 ) -> None:
     if len(batch) == 1:  # spin_once: one message, without the batch machinery
         sample = batch[0]
@@ -89,7 +88,7 @@ def _deliver(
         try:
             msg = decode(data)
         except ValueError as e:  # a CdrError: dropped and reported
-            sub._bad_sample(data, gid_of(sample.attachment.to_bytes()), e)  # type: ignore[union-attr]
+            bad_sample(data, gid_of(sample.attachment.to_bytes()), e)  # type: ignore[union-attr]
             return
         sub.callback(msg)
         return
@@ -106,7 +105,7 @@ def _deliver(
                 callback(msg)
                 i += 1
                 if (
-                    sub._destroyed
+                    sub.destroyed
                     or (stop is not None and stop())
                     or (i & 7 == 7 and perf_counter() > deadline)
                 ):
@@ -120,7 +119,7 @@ def _deliver(
                 decode(data)
             except ValueError:
                 attachment = sample.attachment
-                sub._bad_sample(data, gid_of(attachment.to_bytes() if attachment else None), e)
+                bad_sample(data, gid_of(attachment.to_bytes() if attachment else None), e)
                 start = i + 1  # dropped: go on with the rest
                 continue
             source.put_back(batch[i + 1 :])
@@ -128,7 +127,7 @@ def _deliver(
         except BaseException:
             source.put_back(batch[i + 1 :])
             raise
-        if not sub._destroyed:
+        if not sub.destroyed:
             source.put_back(batch[i:])  # stopped early: the rest waits for the next turn
         return
 
@@ -140,13 +139,15 @@ def deliver_with_info(
     limit: int,
     stop: Callable[[], bool] | None,
     deadline: float,
+    bad_sample: BadSample,
+    info: Callable[[bytes, int], MessageInfo],
 ) -> None:
     """`callback(msg, MessageInfo)` for up to `limit` samples: the slower loop, the info
     stamped with the time each sample is taken (as rclpy's take does). Stops early as
     `deliver` does (`deadline` 0 for single deliveries: never checked then)."""
     batch = source.take(limit, rearm_later=True)
     try:
-        _deliver_with_info(sub, source, batch, decode, stop, deadline)
+        _deliver_with_info(sub, source, batch, decode, stop, deadline, bad_sample, info)
     finally:
         source.rearm()
 
@@ -158,11 +159,13 @@ def _deliver_with_info(
     decode: Callable[[bytes], object],
     stop: Callable[[], bool] | None,
     deadline: float,
+    bad_sample: BadSample,
+    info: Callable[[bytes, int], MessageInfo],
 ) -> None:
     callback = sub.callback
     perf_counter = time.perf_counter
     for i, sample in enumerate(batch):
-        if sub._destroyed:
+        if sub.destroyed:
             return
         if i & 7 == 7 and perf_counter() > deadline:
             source.put_back(batch[i:])
@@ -172,10 +175,10 @@ def _deliver_with_info(
         try:
             message = decode(data)
         except ValueError as e:  # a CdrError: dropped and reported
-            sub._bad_sample(data, gid_of(attachment), e)
+            bad_sample(data, gid_of(attachment), e)
             continue
         try:
-            callback(message, sub._info(attachment, time.time_ns()))
+            callback(message, info(attachment, time.time_ns()))
         except BaseException:
             source.put_back(batch[i + 1 :])
             raise

@@ -51,6 +51,11 @@ class EndpointOwner:
             handler.destroy()
 
     @property
+    def endpoint(self) -> Endpoint:
+        """The graph endpoint it announces (names, type, QoS, node, kind)."""
+        return self._ep
+
+    @property
     def topic_name(self) -> str:
         """The fully resolved topic (or service) name."""
         return self._ep.topic_name
@@ -108,7 +113,7 @@ class Endpoint:
         )
         self._token: Handle | None = None
 
-    def _announce(self) -> None:
+    def announce(self) -> None:
         # rmw_zenoh declares the data entity first, then the token
         from ros2lite.transport.session import declare_token
 
@@ -116,7 +121,7 @@ class Endpoint:
         # this process' graph sees its own new endpoint at once (rcl's does)
         self.node.context.graph_changed_locally(self.token_key, True)
 
-    def _undeclare(self, *entities: Handle | None) -> None:
+    def undeclare(self, *entities: Handle | None) -> None:
         from ros2lite.transport.session import undeclare_quietly
 
         if self._token is not None:

@@ -59,7 +59,7 @@ class EntityExecutor(Protocol):
         """Any thread: make a waiting spin look again."""
         ...
 
-    def _run_callback(
+    def run_callback(
         self,
         callback: Callable[..., object],
         *args: object,
@@ -154,6 +154,14 @@ class Executable(Scheduled):
         )
         self.callback_group.add_entity(self)
 
+    def settle_owner(self, node: EntityNode) -> EntityNode | None:
+        """Make `node` its owner unless it has one; the owner it had (None: joined now). A
+        waitable joins the node that adds it; a node adopting an entity checks the owner."""
+        owner = self._node
+        if owner is None:
+            self._node = node
+        return owner
+
     def _notify(self) -> None:
         """Any thread: work arrived; the node's NodeWork queues this entity (once)."""
         # only entities of a node queue work (a nodeless timer is never notified)
@@ -177,13 +185,13 @@ class Executable(Scheduled):
         if executor is None and self._node is not None:
             executor = self._node.work.executor
         if executor is not None:
-            return executor._run_callback(callback, *args, then=then)
+            return executor.run_callback(callback, *args, then=then)
         result = callback(*args)
         if then is not None:
             then(result)
         return None
 
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+    def run_pending(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         """Run pending work; return a Task if a coroutine callback is still running (it
         keeps the callback group until it finishes)."""
         raise NotImplementedError
@@ -207,10 +215,10 @@ class GuardCondition(Executable):
         self._triggered = True
         self._notify()
 
-    def _has_work(self) -> bool:
+    def has_work(self) -> bool:
         return self._triggered
 
-    def _execute(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
+    def run_pending(self, batch: bool, stop: Callable[[], bool] | None) -> Task | None:
         self._triggered = False
         return self._call(self.callback) if self.callback is not None else None
 

@@ -30,7 +30,7 @@ class Scheduled:
         """Queued on an executor or running now (read-only: NodeWork decides)."""
         return self._scheduled
 
-    def _has_work(self) -> bool:
+    def has_work(self) -> bool:
         """Whether running it now would find something to do."""
         return False
 
@@ -100,11 +100,11 @@ class NodeWork(Generic[ExecutorT]):
         if entities is None:
             # a node coming back is not searched; waitables that may not say are asked
             for entity in self._waitables:
-                if not entity.notifies_itself and not entity._scheduled and entity._has_work():
+                if not entity.notifies_itself and not entity._scheduled and entity.has_work():
                     self.notify(entity)
         else:
             for entity in entities:
-                if not entity._scheduled and entity._has_work():
+                if not entity._scheduled and entity.has_work():
                     self.notify(entity)
 
     def detach(self, executor: ExecutorT) -> None:
@@ -135,7 +135,7 @@ class NodeWork(Generic[ExecutorT]):
         """Executor thread, after `entity` ran: clear its flag *before* looking for more
         work, so work that arrives meanwhile is either seen here or queued by `notify`."""
         entity._scheduled = False
-        if entity._has_work():
+        if entity.has_work():
             self.notify(entity)
 
     @staticmethod
@@ -160,7 +160,7 @@ class NodeWork(Generic[ExecutorT]):
     # -- entities ------------------------------------------------------------------------------
     def notify_if_ready(self, entity: Scheduled) -> None:
         """An entity joined the node: queue it if work waits for it already."""
-        if not entity._scheduled and entity._has_work():
+        if not entity._scheduled and entity.has_work():
             self.notify(entity)
 
     def notify(self, entity: Scheduled) -> None:

@@ -40,7 +40,7 @@ class Entity(Scheduled):
         self.pending = pending
         self.notifies_itself = notifies_itself
 
-    def _has_work(self) -> bool:
+    def has_work(self) -> bool:
         return self.pending > 0
 
 

@@ -204,6 +204,11 @@ class Turtle:
         """Turn, then move `linear` ahead, at the next step."""
         self._teleports.append(_Teleport(0.0, 0.0, angular, linear, True))
 
+    def take_teleports(self) -> list[_Teleport]:
+        """The teleports asked for since the last step, in order (handed out once)."""
+        teleports, self._teleports = self._teleports, []
+        return teleports
+
     def start_goal(self, goal: RotateGoal) -> GoalDone | None:
         """Work on `goal` from the next step; a goal still running is aborted (returned)."""
         previous = self.goal
@@ -369,7 +374,7 @@ class World:
         events: list[Event] = []
         canvas = self.canvas
         # teleports first, in order, each drawn with the pen
-        for req in t._teleports:
+        for req in t.take_teleports():
             old = (t.x, t.y)
             if req.relative:
                 t.theta += req.theta
@@ -381,7 +386,6 @@ class World:
                 t.theta = req.theta
             if not t.pen.off:
                 canvas.draw_line(*_px(*old), *_px(t.x, t.y), t.pen.rgb, t.pen.width)
-        t._teleports.clear()
 
         goal = t.goal
         if goal is not None:

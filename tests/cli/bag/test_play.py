@@ -110,7 +110,7 @@ def test_types_known_only_from_the_bag_are_played_raw(
     bag = DATA / "mcap" / "cdr_test"
     with Reader(bag) as reader:
         expected = [data for topic, data, _ in reader.messages(raw=True) if topic == "/test_topic"]
-        digest = type_hash("test_msgs/msg/BasicTypes", reader._bag_types())
+        digest = type_hash("test_msgs/msg/BasicTypes", reader.bag_types())
     assert digest.startswith("RIHS01_")
     lst = listener("/test_topic", type_ref("test_msgs/msg/BasicTypes", digest), raw=True)
     wait_until(lambda: subscribed(ros_context, "/test_topic"))
