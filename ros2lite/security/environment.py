@@ -149,14 +149,7 @@ def _identity(keystore: Path, enclave: str) -> Identity | str:
 
 def _fallback(reason: str) -> None:
     """Permissive: carry on unsecured, and say so once per reason."""
-    if reason in _reported:
-        return
-    _reported.add(reason)
-    from ros2lite.logging import get_logger
-
-    get_logger('ros2lite.security').warn(
-        f'SECURITY: {reason}; running unsecured ({STRATEGY_ENV} is not Enforce)'
-    )
+    _warn_once(reason, f'SECURITY: {reason}; running unsecured ({STRATEGY_ENV} is not Enforce)')
 
 
 def _domains_phrase(domains: list[int]) -> str:
@@ -222,14 +215,17 @@ def enclave_problems(
 
 def _warn(reason: str) -> None:
     """Permissive: carry on with the material as it is, and say what is wrong once."""
+    _warn_once(reason, f'SECURITY: {reason} (going on: {STRATEGY_ENV} is not Enforce)')
+
+
+def _warn_once(reason: str, text: str) -> None:
+    """Log `text` the first time `reason` comes up in this process (permissive modes)."""
     if reason in _reported:
         return
     _reported.add(reason)
     from ros2lite.logging import get_logger
 
-    get_logger('ros2lite.security').warn(
-        f'SECURITY: {reason} (going on: {STRATEGY_ENV} is not Enforce)'
-    )
+    get_logger('ros2lite.security').warn(text)
 
 
 def _decide(
