@@ -250,14 +250,11 @@ class Diagnosis:
         from ros2lite.transport.errors import ConfigError
 
         result = CheckResult('middleware')
-        try:
-            domain_id(self.env)
-        except ConfigError as e:
-            result.error(str(e))
-        try:
-            router_check_attempts(self.env)
-        except ConfigError as e:
-            result.error(str(e))
+        for read_setting in (domain_id, router_check_attempts):
+            try:
+                read_setting(self.env)
+            except ConfigError as e:
+                result.error(str(e))
         if self.endpoint() is not None:
             try:
                 session_config(self.router, self.env, mode='peer')
