@@ -38,7 +38,6 @@ from .substitutions import (
 if TYPE_CHECKING:
     from typing_extensions import Unpack
 
-    from .context import LaunchContext
     from .event_handlers import EventHandler
 
 __all__ = [
