@@ -5,14 +5,16 @@ from __future__ import annotations
 from ros2lite.demos.runner import run_node
 from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.node import Node
+from ros2lite.qos import QoSProfile
 
 
 class Listener(Node):
-    """demo_nodes_py's listener of `chatter`."""
+    """demo_nodes_py's listener of `chatter` (`listener_qos` is one under another name and
+    QoS)."""
 
-    def __init__(self) -> None:
-        super().__init__('listener')
-        self.sub = self.create_subscription(String, 'chatter', self.chatter_callback, 10)
+    def __init__(self, node_name: str = 'listener', qos_profile: QoSProfile | int = 10) -> None:
+        super().__init__(node_name)
+        self.sub = self.create_subscription(String, 'chatter', self.chatter_callback, qos_profile)
 
     def chatter_callback(self, msg: String) -> None:
         """Log what was heard."""

@@ -5,25 +5,19 @@ from __future__ import annotations
 
 import sys
 
+from ros2lite.demos.demo_nodes_py.listener import Listener
 from ros2lite.demos.demo_nodes_py.talker_qos import qos_demo_options, spin_cycles
 from ros2lite.demos.runner import run_main
-from ros2lite.msgs.std_msgs.msg import String
-from ros2lite.node import Node
 from ros2lite.qos import QoSProfile, ReliabilityPolicy
 
 
-class ListenerQos(Node):
+class ListenerQos(Listener):
     """Says which reliability it uses, then logs what arrives on `chatter`."""
 
     def __init__(self, qos_profile: QoSProfile) -> None:
-        super().__init__('listener_qos')
+        super().__init__('listener_qos', qos_profile)
         reliable = qos_profile.reliability == ReliabilityPolicy.RELIABLE
         self.get_logger().info('Reliable listener' if reliable else 'Best effort listener')
-        self.sub = self.create_subscription(String, 'chatter', self.chatter_callback, qos_profile)
-
-    def chatter_callback(self, msg: String) -> None:
-        """Log what was heard."""
-        self.get_logger().info(f'I heard: [{msg.data}]')
 
 
 def main(args: list[str] | None = None) -> int:

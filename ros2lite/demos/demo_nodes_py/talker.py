@@ -5,15 +5,16 @@ from __future__ import annotations
 from ros2lite.demos.runner import run_node
 from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.node import Node
+from ros2lite.qos import QoSProfile
 
 
 class Talker(Node):
-    """demo_nodes_py's talker on `chatter`."""
+    """demo_nodes_py's talker on `chatter` (`talker_qos` is one under another name and QoS)."""
 
-    def __init__(self) -> None:
-        super().__init__('talker')
+    def __init__(self, node_name: str = 'talker', qos_profile: QoSProfile | int = 10) -> None:
+        super().__init__(node_name)
         self.i = 0
-        self.pub = self.create_publisher(String, 'chatter', 10)
+        self.pub = self.create_publisher(String, 'chatter', qos_profile)
         self.tmr = self.create_timer(1.0, self.timer_callback)
 
     def timer_callback(self) -> None:

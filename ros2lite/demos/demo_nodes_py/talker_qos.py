@@ -8,8 +8,8 @@ import sys
 from collections.abc import Callable
 
 import ros2lite
+from ros2lite.demos.demo_nodes_py.talker import Talker
 from ros2lite.demos.runner import run_main
-from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.node import Node
 from ros2lite.qos import QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
 from ros2lite.runtime.arguments import remove_ros_args
@@ -43,23 +43,13 @@ def spin_cycles(make_node: Callable[[], Node], cycles: int) -> None:
         node.destroy_node()
 
 
-class TalkerQos(Node):
+class TalkerQos(Talker):
     """Says which reliability it uses, then publishes `Hello World: N` once a second."""
 
     def __init__(self, qos_profile: QoSProfile) -> None:
-        super().__init__('talker_qos')
-        self.i = 0
+        super().__init__('talker_qos', qos_profile)
         reliable = qos_profile.reliability == ReliabilityPolicy.RELIABLE
         self.get_logger().info('Reliable talker' if reliable else 'Best effort talker')
-        self.pub = self.create_publisher(String, 'chatter', qos_profile)
-        self.tmr = self.create_timer(1.0, self.timer_callback)
-
-    def timer_callback(self) -> None:
-        """Publish the next 'Hello World: N'."""
-        msg = String(data=f'Hello World: {self.i}')
-        self.i += 1
-        self.get_logger().info(f'Publishing: "{msg.data}"')
-        self.pub.publish(msg)
 
 
 def main(args: list[str] | None = None) -> int:
