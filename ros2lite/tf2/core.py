@@ -5,6 +5,7 @@ chain shares, tf2's errors and its texts. `buffer.Buffer` adds tf2_ros's waiting
 from __future__ import annotations
 
 import threading
+from collections.abc import Iterator
 
 from ros2lite.duration import Duration
 from ros2lite.logging import RcutilsLogger
@@ -332,46 +333,26 @@ class BufferCore:
         chain: list[tuple[int, int]] = []  # (stamp, parent) from the source up
         never = 1 << 63
         common = never
-        frame = source
-        depth = 0
-        while frame != 0:
-            cache = caches[frame]
-            if cache is None:
-                break
-            stamp, parent = cache.latest()
-            if parent == 0:
-                break
+        for depth, (stamp, parent) in enumerate(self._latest_links(source)):
             if stamp != 0:
                 common = min(common, stamp)
             chain.append((stamp, parent))
-            frame = parent
-            if frame == target:
+            if parent == target:
                 return 0, '', 0 if common == never else common
-            depth += 1
-            if depth > _MAX_GRAPH_DEPTH:
+            if depth >= _MAX_GRAPH_DEPTH:
                 return _LOOKUP, self._loop_message(), 0
-        frame = target
-        depth = 0
         common = never
         common_parent = 0
         parents = {parent for _, parent in chain}
-        while True:
-            cache = caches[frame]
-            if cache is None:
-                break
-            stamp, parent = cache.latest()
-            if parent == 0:
-                break
+        for depth, (stamp, parent) in enumerate(self._latest_links(target)):
             if stamp != 0:
                 common = min(common, stamp)
             if parent in parents:
                 common_parent = parent
                 break
-            frame = parent
-            if frame == source:
+            if parent == source:
                 return 0, '', 0 if common == never else common
-            depth += 1
-            if depth > _MAX_GRAPH_DEPTH:
+            if depth >= _MAX_GRAPH_DEPTH:
                 return _LOOKUP, self._loop_message(), 0
         if common_parent == 0:
             return _CONNECTIVITY, self._disconnected(source, target), 0
@@ -381,6 +362,20 @@ class BufferCore:
             if parent == common_parent:
                 break
         return 0, '', 0 if common == never else common
+
+    def _latest_links(self, frame: int) -> Iterator[tuple[int, int]]:
+        """(newest stamp, parent) of each frame from `frame` up, while the frame has a
+        transform of its own (lock held)."""
+        caches = self._caches
+        while frame != 0:
+            cache = caches[frame]
+            if cache is None:
+                return
+            stamp, parent = cache.latest()
+            if parent == 0:
+                return
+            yield stamp, parent
+            frame = parent
 
     # -- lookups (tf2_py's names) -------------------------------------------------------------
     def lookup(self, target_frame: str, source_frame: str, ns: int) -> tuple[Transform, int]:
