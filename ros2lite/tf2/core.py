@@ -13,7 +13,15 @@ from ros2lite.msgs.builtin_interfaces.msg import Time as TimeMsg
 from ros2lite.msgs.geometry_msgs.msg import Quaternion, TransformStamped, Vector3
 from ros2lite.msgs.geometry_msgs.msg import Transform as TransformMsg
 from ros2lite.msgs.std_msgs.msg import Header
-from ros2lite.tf2.cache import FrameCache, StaticCache, TimeCache, display_time, to_seconds
+from ros2lite.tf2.cache import (
+    CacheError,
+    FrameCache,
+    Sample,
+    StaticCache,
+    TimeCache,
+    display_time,
+    to_seconds,
+)
 from ros2lite.tf2.errors import (
     ConnectivityException,
     ExtrapolationException,
@@ -52,6 +60,18 @@ def to_ns(time: object) -> int:
     if isinstance(sec, int):
         return sec * _NS + int(getattr(time, 'nanosec', 0))
     raise TypeError(f'expected a Time, got {type(time).__name__}')
+
+
+def _hop(
+    cache: FrameCache, ns: int, with_transform: bool
+) -> tuple[Sample | None, int, CacheError | None, str]:
+    """One step of a walk up from a frame at `ns`: (its sample, only when the transform is
+    wanted, its parent, a cache error, its text)."""
+    if with_transform:
+        sample, error, message = cache.get(ns)
+        return sample, sample[0] if sample is not None else 0, error, message
+    parent, error, message = cache.parent(ns)
+    return None, parent, error, message
 
 
 def _raise(code: int, message: str) -> None:
@@ -255,12 +275,7 @@ class BufferCore:
             if cache is None:  # the root of a tree has no transform of its own
                 top = frame
                 break
-            if with_transform:
-                sample, error, message = cache.get(ns)
-                parent = sample[0] if sample is not None else 0
-            else:
-                sample = None
-                parent, error, message = cache.parent(ns)
+            sample, parent, error, message = _hop(cache, ns, with_transform)
             if error is not None:  # a target further down may still be reached
                 top = frame
                 extrapolation = (int(error), message)
@@ -282,12 +297,7 @@ class BufferCore:
             cache = caches[frame]
             if cache is None:
                 break
-            if with_transform:
-                sample, error, message = cache.get(ns)
-                parent = sample[0] if sample is not None else 0
-            else:
-                sample = None
-                parent, error, message = cache.parent(ns)
+            sample, parent, error, message = _hop(cache, ns, with_transform)
             if error is not None:
                 return int(error), self._between(message, source, target), IDENTITY, ns
             if frame == source:  # the source is an ancestor of the target
