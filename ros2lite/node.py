@@ -194,6 +194,7 @@ class Node(ParameterMixin, GraphMixin):
         self.work.forget()
         if new_executor is not None:
             new_executor.add_node(self)
+            self.work.handed_to(new_executor)
 
     @property
     def callback_groups(self) -> list[CallbackGroup]:

@@ -223,6 +223,18 @@ def test_wait_for_node_and_the_executor_property(ros_context: Any) -> None:
     assert node not in first.get_nodes() and node.executor is second
     node.executor = None
     assert node.executor is None and node not in second.get_nodes()
+    # an executor of another make (here a mock) that does not attach the node itself is still
+    # the node's executor once handed to it, as in rclpy; moving on removes the node from it
+    from unittest.mock import Mock
+
+    foreign = Mock()
+    node.executor = foreign
+    assert node.executor is foreign
+    foreign.add_node.assert_called_once_with(node)
+    node.executor = first
+    foreign.remove_node.assert_called_once_with(node)
+    assert node.executor is first
+    node.executor = None
 
 
 def test_adopt_makes_an_entity_built_outside_the_node_its_own(ros_context: Any) -> None:

@@ -114,6 +114,13 @@ class NodeWork(Generic[ExecutorT]):
             self._put = None
             self._executor = None
 
+    def handed_to(self, executor: ExecutorT) -> None:
+        """The node was given to `executor` (``node.executor = …``): it is the node's executor
+        from now on, also when that executor does not attach the node itself (another make of
+        executor, a test's mock), as rclpy's node remembers the executor it was handed."""
+        if self._executor is not executor:
+            self._last = executor
+
     def forget(self) -> None:
         """Detached for good: no executor is kept as the node's last one."""
         self._put = None
