@@ -104,12 +104,9 @@ class BufferCore:
 
     def _store(self, msg: TransformStamped, authority: str, is_static: bool) -> bool:
         header = msg.header
-        parent_name = header.frame_id
-        if parent_name[:1] == '/':
-            parent_name = parent_name[1:]
-        child_name = msg.child_frame_id
-        if child_name[:1] == '/':
-            child_name = child_name[1:]
+        # tf2 drops one leading slash of either name
+        parent_name = header.frame_id.removeprefix('/')
+        child_name = msg.child_frame_id.removeprefix('/')
         transform = msg.transform
         t = transform.translation
         r = transform.rotation
