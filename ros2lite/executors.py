@@ -10,6 +10,12 @@ callback groups allow. Coroutine callbacks run as Tasks that keep their group un
 `spin_until_future_complete` let a subscription deliver a short batch per turn (bounded in count
 and time, and ended as soon as the awaited future completes), which is what makes high message
 rates affordable in Python.
+
+An idle single-threaded executor whose nodes keep one emptied channel waits in that channel
+rather than on its queue (NodeWork's kept channels): the next message then wakes the spinning
+thread straight from Zenoh, with no doorbell thread between. Anything queued meanwhile
+interrupts that wait, and an :class:`~ros2lite.runtime.scheduling.Alarm` ends it at a timer's
+or the caller's deadline.
 """
 
 from __future__ import annotations
@@ -27,7 +33,7 @@ from typing import TYPE_CHECKING, Any, cast
 
 from ros2lite.context import Context, default_context
 from ros2lite.runtime.executable import Executable, _running
-from ros2lite.runtime.scheduling import NodeWork
+from ros2lite.runtime.scheduling import Alarm, Channel, NodeWork
 from ros2lite.task import Future, Task
 
 if TYPE_CHECKING:
@@ -66,8 +72,18 @@ class ConditionReachedException(Exception):
     """The condition given to wait_for_ready_callbacks held before work came."""
 
 
+# a wait shorter than this (seconds) is not parked: the queue's own timed wait is exact, and a
+# park would pay the alarm's hand-over to end it
+_PARK_MIN = 0.002
+# what _park returns when it did not park: wait on the queue instead
+_QUEUE = Task(lambda: None)
+
+
 class Executor:
     """Runs the callbacks of its nodes; subclasses decide on which threads."""
+
+    # waits in a kept channel when idle (the spinning thread runs every callback itself)
+    _parks = True
 
     def __init__(self, *, context: Context | None = None) -> None:
         self._context = context or default_context()
@@ -75,7 +91,11 @@ class Executor:
         self._lock = threading.RLock()
         # entities and tasks with work; None is a bare wake-up
         self._queue: queue.SimpleQueue[Executable | Task | None] = queue.SimpleQueue()
-        self._enqueue = self._queue.put
+        self._put = self._queue.put
+        # the kept channel the spinning thread waits in, and that thread
+        self._parked: Channel | None = None
+        self._ident = 0
+        self._alarm: Alarm | None = None
         # entities whose callback group was busy, re-queued when the group frees
         self._blocked: list[Executable] = []
         # a due timer waits for its group: releasing a group must wake the loop
@@ -128,7 +148,24 @@ class Executor:
 
     def wake(self) -> None:
         """Any thread: make a waiting spin look again (at ok(), timers, conditions)."""
-        self._queue.put(None)
+        self._enqueue(None)
+
+    def _enqueue(self, item: Executable | Task | None) -> None:
+        """Any thread: queue work (None: a bare wake-up), ending a wait in a kept channel."""
+        self._put(item)
+        parked = self._parked
+        if parked is not None:
+            parked.interrupt()
+
+    @property
+    def parks(self) -> bool:
+        """Whether an idle spin waits in a kept channel (NodeWork) instead of its queue."""
+        return self._parks
+
+    def keeps_here(self) -> bool:
+        """Whether the calling thread is the one spinning this executor, which looks at kept
+        channels before it waits (a channel emptied on any other thread is handed back)."""
+        return self._parks and threading.get_ident() == self._ident
 
     def create_task(
         self,
@@ -152,6 +189,9 @@ class Executor:
         for node in self.get_nodes():
             self.remove_node(node)
         self.wake()
+        if self._alarm is not None:
+            self._alarm.close()
+            self._alarm = None
         return True
 
     # -- spinning --------------------------------------------------------------------------------
@@ -298,6 +338,7 @@ class Executor:
         """The next entity, task or due timer; None when the timeout passed, `stop()` holds
         or the executor/context shut down. A bare wake-up is not work: waiting goes on."""
         work = self._queue
+        self._ident = threading.get_ident()
         for node in self._nodes:
             if node.timers:
                 break
@@ -310,7 +351,7 @@ class Executor:
             if item is not None:
                 return item
             while timeout is None:
-                item = work.get()
+                item = self._wait(None)
                 if item is not None:
                     return item
                 if not self._ok() or (stop is not None and stop()):
@@ -325,16 +366,77 @@ class Executor:
             wait = None if deadline is None else max(0.0, deadline - time.monotonic())
             if next_timer is not None:
                 wait = max(0.0, next_timer) if wait is None else min(wait, max(0.0, next_timer))
-            try:
-                item = work.get(timeout=wait) if wait != 0 else work.get_nowait()
-            except queue.Empty:
-                item = None
+            item = self._wait(wait)
             if item is not None:
                 return item
             if not self._ok() or (stop is not None and stop()):
                 return None
             if deadline is not None and time.monotonic() >= deadline:
                 return None
+
+    def _wait(self, wait: float | None) -> Executable | Task | None:
+        """Up to `wait` seconds (None: no limit) for the next queued item; None after a bare
+        wake-up or when the time passed. Parks in a kept channel when it can."""
+        if self._parks and wait != 0:
+            for node in self._nodes:
+                if node.work.keeps:
+                    item = self._park(wait)
+                    if item is not _QUEUE:
+                        return item
+                    break
+        try:
+            return self._queue.get(timeout=wait) if wait != 0 else self._queue.get_nowait()
+        except queue.Empty:
+            return None
+
+    def _park(self, wait: float | None) -> Executable | Task | None:
+        """Wait in the one kept channel of this executor's nodes: the entity whose sample
+        came, queued work, or None (interrupted, or `wait` passed). More than one kept
+        channel, or a wait too short to park, hands them back: then `_QUEUE`."""
+        works: list[NodeWork[Any]] = []
+        count = 0
+        for node in self._nodes:
+            work = node.work
+            if work.keeps:
+                kept = work.kept_count(self)
+                if kept:
+                    works.append(work)
+                    count += kept
+        # (a sample that came meanwhile is found by the park's recv, or by the doorbell)
+        if count != 1 or (wait is not None and wait < _PARK_MIN):
+            for work in works:
+                work.release_kept(self)
+            return _QUEUE
+        work = works[0]
+        begun = work.begin_park(self)
+        if begun is None:
+            return _QUEUE
+        entity, channel = begun
+        self._parked = channel
+        got = parked = False
+        try:
+            try:  # queued before the park was armed: no interrupt came for it
+                return self._queue.get_nowait()
+            except queue.Empty:
+                pass
+            if not self._ok():
+                return None
+            if wait is not None:
+                alarm = self._alarm
+                if alarm is None:
+                    alarm = self._alarm = Alarm('ros2lite-executor-alarm')
+                    weakref.finalize(self, alarm.close)  # its thread ends with the executor
+                alarm.set(time.monotonic() + wait, channel.interrupt)
+            parked = True
+            got = channel.park()
+        finally:
+            self._parked = None
+            if not parked:
+                channel.disarm()
+            elif wait is not None and self._alarm is not None:
+                self._alarm.cancel()
+            run = work.end_park(self, entity, got)
+        return cast(Executable, entity) if run else None
 
     # -- running work ----------------------------------------------------------------------------
     def _dispatch(
@@ -434,6 +536,8 @@ class MultiThreadedExecutor(Executor):
 
     An exception in a callback is raised from the spinning call (this one or the next), as
     rclpy does."""
+
+    _parks = False  # callbacks run on workers: channels go back to their doorbells
 
     def __init__(self, num_threads: int | None = None, *, context: Context | None = None) -> None:
         super().__init__(context=context)

@@ -137,6 +137,7 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
             buffer=self._buffer if self.receiving is Receiving.RAW_QUEUE else None,
             hook=on_arrival,
             name=ep.topic_name,
+            keeper=self._keep_channel,
         )
         self._receiver: SampleReceiver | PulledSamples = receiver
         # typed pull: the executor takes samples from here (None for the other two)
@@ -151,6 +152,11 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
             return
         self._buffer.append((sample, time.time_ns()))
         self._notify()
+
+    def _keep_channel(self, channel: PulledSamples) -> bool:
+        """The typed source emptied its channel: may the node keep it for its executor to
+        wait in (NodeWork.keep)?"""
+        return self._node.work.keep(self, channel)  # type: ignore[union-attr]  # typed: has one
 
     def has_work(self) -> bool:
         if self.destroyed:
@@ -270,6 +276,7 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self._buffer.clear()
         if self._source is not None:
             self._source.clear()
+            self._node.work.unkeep(self)  # type: ignore[union-attr]  # subscriptions have one
         self._ep.undeclare(self._receiver)  # ends the receive thread too
 
     def get_publisher_count(self) -> int:

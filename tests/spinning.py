@@ -58,6 +58,8 @@ def queued(sub: Any) -> list[bytes]:
     moving what waits in Zenoh's channel into its queue first (as the executor would, before
     delivering). Call it only while no executor spins the subscription."""
     source = sub._source
+    if source.kept:  # the channel waits for the executor to park in it: look, as it would
+        source.poll()
     if not source._armed:
         source._pull(1 << 20)
     return [sample.payload.to_bytes() for sample in source._pending]

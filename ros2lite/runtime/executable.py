@@ -81,6 +81,15 @@ class NodeExecutor(EntityExecutor, TaskRunner, Protocol):
         """Stop running `node`'s work."""
         ...
 
+    @property
+    def parks(self) -> bool:
+        """Whether an idle spin waits in a kept channel (NodeWork) instead of its queue."""
+        ...
+
+    def keeps_here(self) -> bool:
+        """Whether the calling thread spins this executor, which would park."""
+        ...
+
 
 class EntityNode(Protocol):
     """The node as the entities it owns see it (:class:`ros2lite.node.Node` is one): what

@@ -6,14 +6,22 @@ and removes it per call), a multi-threaded worker finishing a callback and an ex
 shut down all meet here, so their order is decided in one place: an entity is queued at most
 once until it has run, work that arrives while the node has no executor is held until
 `attach`, and an entry left in a former executor's queue is dropped, not run twice.
+
+It also holds the node's *kept* channels (see ros2lite.transport.pull): a subscription that
+emptied its channel on an executor that would only wait afterwards leaves the channel with
+the node, and that executor waits in it itself instead of on its queue, saving the doorbell's
+hand-over. A kept channel stays with the node across `spin_once(node)` calls (which add and
+remove the node each time); an executor that cannot park gets them handed back on attach.
 """
 
 from __future__ import annotations
 
+import threading
+import time
 from collections.abc import Callable, Sequence
 from typing import Any, Generic, Protocol, TypeVar
 
-__all__ = ['NodeWork', 'Scheduled', 'WorkExecutor']
+__all__ = ['Alarm', 'Channel', 'NodeWork', 'Scheduled', 'WorkExecutor']
 
 
 class Scheduled:
@@ -38,8 +46,41 @@ class Scheduled:
 class WorkExecutor(Protocol):
     """An executor as a NodeWork sees it."""
 
+    @property
+    def parks(self) -> bool:
+        """Whether it waits in kept channels itself (single-threaded executors do)."""
+        ...
+
     def wake(self) -> None:
         """Any thread: make a waiting spin look again."""
+        ...
+
+    def keeps_here(self) -> bool:
+        """Whether the calling thread is the one it spins on, and it would park."""
+        ...
+
+
+class Channel(Protocol):
+    """A kept channel as executors use it (ros2lite.transport.pull.PulledSamples)."""
+
+    def arm(self) -> None:
+        """About to park: interrupts from now on end it."""
+        ...
+
+    def disarm(self) -> None:
+        """Armed, but will not park after all."""
+        ...
+
+    def park(self) -> bool:
+        """Wait in the channel: True when a sample came, False when interrupted."""
+        ...
+
+    def interrupt(self) -> None:
+        """Any thread: end a park."""
+        ...
+
+    def release(self) -> None:
+        """Hand the channel back to its doorbell."""
         ...
 
 
@@ -51,7 +92,17 @@ class NodeWork(Generic[ExecutorT]):
     whose queue may still hold entries of its entities), and whether work arrived while it
     had none. Executors attach, detach, claim and report back; entities notify."""
 
-    __slots__ = ('_entities', '_executor', '_last', '_put', '_unqueued', '_waitables')
+    __slots__ = (
+        '_entities',
+        '_executor',
+        '_kept',
+        '_last',
+        '_lock',
+        '_parking',
+        '_put',
+        '_unqueued',
+        '_waitables',
+    )
 
     def __init__(
         self,
@@ -68,6 +119,10 @@ class NodeWork(Generic[ExecutorT]):
         self._put: Callable[[Any], None] | None = None
         # an entity got work while the node had no executor: the next attach looks
         self._unqueued = True
+        # kept channels, by the entity whose channel it is; the one an executor waits in
+        self._kept: dict[Scheduled, Channel] = {}
+        self._parking: tuple[WorkExecutor, Scheduled] | None = None
+        self._lock = threading.Lock()
 
     @property
     def executor(self) -> ExecutorT | None:
@@ -94,6 +149,8 @@ class NodeWork(Generic[ExecutorT]):
         # executor before queue: an entity queued from now on is claimed by `executor`
         self._executor = executor
         self._put = put
+        if self._kept and not executor.parks:
+            self._hand_back()
         if entities is None and self._unqueued:
             entities = self._entities()
         self._unqueued = False
@@ -109,10 +166,103 @@ class NodeWork(Generic[ExecutorT]):
 
     def detach(self, executor: ExecutorT) -> None:
         """`executor` stops running the node (no effect if it is attached elsewhere). Entries
-        left in its queue are dropped when claimed."""
+        left in its queue are dropped when claimed; a wait in one of its channels ends."""
         if self._executor is executor:
             self._put = None
             self._executor = None
+            parked = self._parking
+            if parked is not None and parked[0] is executor:
+                self._interrupt(parked[1])
+
+    # -- kept channels ---------------------------------------------------------------------------
+    @property
+    def keeps(self) -> bool:
+        """Whether any channel is kept (read unlocked: a hint for the executor's idle path)."""
+        return bool(self._kept)
+
+    def keep(self, entity: Scheduled, channel: Channel) -> bool:
+        """Consumer thread, `entity` emptied `channel`: may it stay with the node, for the
+        executor to wait in? Only for a parking executor that spins on this very thread
+        (which looks at kept channels before it waits)."""
+        executor = self._executor
+        if executor is None or not executor.keeps_here():
+            return False
+        with self._lock:
+            self._kept[entity] = channel
+        return True
+
+    def unkeep(self, entity: Scheduled) -> None:
+        """`entity` is going away: forget its kept channel (its undeclare closes it)."""
+        with self._lock:
+            self._kept.pop(entity, None)
+
+    def kept_count(self, executor: ExecutorT) -> int:
+        """Executor thread: how many channels the node keeps for `executor` (0 when the node
+        is not its, or another executor is parked in one: a node moved mid-wait)."""
+        if self._executor is not executor or self._parking is not None:
+            return 0
+        return len(self._kept)
+
+    def release_kept(self, executor: ExecutorT) -> None:
+        """Executor thread, about to wait elsewhere: every kept channel goes back to its
+        doorbell."""
+        with self._lock:
+            if self._executor is not executor or self._parking is not None:
+                return
+            kept, self._kept = self._kept, {}
+        for channel in kept.values():
+            channel.release()
+
+    def begin_park(self, executor: ExecutorT) -> tuple[Scheduled, Channel] | None:
+        """Executor thread: the one kept channel to wait in, armed (interrupts reach it
+        from now on); None when the node is not the executor's or keeps not exactly one."""
+        with self._lock:
+            if self._executor is not executor or self._parking is not None:
+                return None
+            if len(self._kept) != 1:
+                return None
+            ((entity, channel),) = self._kept.items()
+            channel.arm()
+            self._parking = (executor, entity)
+            return entity, channel
+
+    def end_park(self, executor: ExecutorT, entity: Scheduled, got: bool) -> bool:
+        """Executor thread, its park on `entity` ended (`got`: with a sample): whether it
+        may run the entity now. If the node moved meanwhile, the sample (or the channel)
+        goes where the node went."""
+        with self._lock:
+            self._parking = None
+            if got:
+                self._kept.pop(entity, None)
+            if self._executor is executor:
+                return got
+            new = self._executor
+            channel = None if got or new is None or new.parks else self._kept.pop(entity, None)
+        if channel is not None:
+            channel.release()  # the node's new executor does not park: the doorbell serves it
+        elif got:
+            self.notify(entity)  # queued where the node is now (or when it is attached)
+        elif new is not None:
+            new.wake()  # it may park in the channel now
+        return False
+
+    def _hand_back(self) -> None:
+        """Attach to an executor that does not park: kept channels go back to their
+        doorbells, except one another executor is parked in (its end_park hands it back)."""
+        with self._lock:
+            parked = self._parking
+            kept = {e: c for e, c in self._kept.items() if parked is None or e is not parked[1]}
+            for entity in kept:
+                del self._kept[entity]
+        for channel in kept.values():
+            channel.release()
+        if parked is not None:
+            self._interrupt(parked[1])
+
+    def _interrupt(self, entity: Scheduled) -> None:
+        channel = self._kept.get(entity)
+        if channel is not None:
+            channel.interrupt()
 
     def handed_to(self, executor: ExecutorT) -> None:
         """The node was given to `executor` (``node.executor = …``): it is the node's executor
@@ -185,3 +335,60 @@ class NodeWork(Generic[ExecutorT]):
                 return
         entity._scheduled = True
         put(entity)
+
+
+class Alarm:
+    """One thread that calls an action at a deadline, for a wait with no timeout of its own
+    (an executor parked in a channel). `set` replaces what is pending and wakes the thread
+    only when the new deadline is earlier than the one it sleeps until, so a loop of waits
+    with growing deadlines (`spin_once(timeout_sec=…)` in a loop) costs no hand-over each."""
+
+    def __init__(self, name: str) -> None:
+        self._cond = threading.Condition(threading.Lock())
+        self._deadline = 0.0
+        self._action: Callable[[], None] | None = None
+        self._sleeping_until = float('inf')
+        self._name = name
+        self._thread: threading.Thread | None = None
+        self._closed = False
+
+    def set(self, deadline: float, action: Callable[[], None]) -> None:
+        """Call `action()` at `deadline` (time.monotonic), unless set again or cancelled."""
+        with self._cond:
+            self._deadline, self._action = deadline, action
+            if self._thread is None:
+                self._thread = threading.Thread(target=self._run, daemon=True, name=self._name)
+                self._thread.start()
+            elif deadline < self._sleeping_until:
+                self._cond.notify()
+
+    def cancel(self) -> None:
+        """Drop what is pending (the thread is not woken; a late call finds nothing)."""
+        self._action = None
+
+    def close(self) -> None:
+        """End the thread (whatever is pending is dropped)."""
+        with self._cond:
+            self._action = None
+            self._closed = True
+            self._cond.notify()
+
+    def _run(self) -> None:
+        cond = self._cond
+        with cond:
+            while not self._closed:
+                if self._action is None:
+                    self._sleeping_until = float('inf')
+                    cond.wait()
+                    continue
+                remaining = self._deadline - time.monotonic()
+                if remaining > 0:
+                    self._sleeping_until = self._deadline
+                    cond.wait(remaining)
+                    continue
+                action, self._action = self._action, None
+                cond.release()
+                try:
+                    action()
+                finally:
+                    cond.acquire()

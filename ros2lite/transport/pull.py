@@ -12,6 +12,15 @@ channel, so samples keep their order and nobody competes for the GIL during a bu
 
 Payloads and attachments stay Zenoh objects until the consumer reads them, and the consumer
 reads a batch through C-level iterators (:func:`ros2lite.runtime.delivery.payloads`).
+
+One message at a time, the doorbell is a thread hand-over of its own on every delivery (Rust
+wakes the doorbell, the doorbell wakes the executor). So a consumer whose executor would only
+sit idle afterwards may *keep* the emptied channel instead of handing it back (`keeper`), and
+then *park*: wait in `recv()` itself, woken by Rust directly, as a raw zenoh program is. Work
+for anything else wakes a parked consumer with :meth:`interrupt`: an empty sample without an
+attachment, put on the subscriber's own key and kept inside this session. Every receiver here
+drops such samples (rmw_zenoh's rule: no attachment, no ROS message), and a KEEP_LAST ring has
+one slot more than its depth, so a stray interrupt never pushes out a sample the QoS keeps.
 """
 
 from __future__ import annotations
@@ -26,8 +35,8 @@ from typing import TYPE_CHECKING
 
 import zenoh
 
-from ros2lite.qos import HistoryPolicy, QoSProfile
-from ros2lite.transport.session import declare_subscriber, undeclare_quietly
+from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
+from ros2lite.transport.session import declare_subscriber, put_local, undeclare_quietly
 
 if TYPE_CHECKING:
     from ros2lite.transport.handles import Sample, Session
@@ -38,8 +47,9 @@ __all__ = ['PulledSamples']
 _CAPACITY = 4096
 # how many samples a KEEP_ALL consumer pulls at least once it pulls
 _CHUNK = 64
-_NONE = type(None)
-_attachment_of = attrgetter('attachment')
+# a sample without an attachment (an interrupt, or not a ROS message) never enters `pending`,
+# where it could push a real one out of a KEEP_LAST deque
+_attached = attrgetter('attachment')
 
 
 class PulledSamples:
@@ -60,6 +70,7 @@ class PulledSamples:
         on_ready: Callable[[], None],
         *,
         name: str = '',
+        keeper: Callable[[PulledSamples], bool] | None = None,
     ) -> None:
         keep_all = qos.history == HistoryPolicy.KEEP_ALL
         depth = max(qos.depth, 1)
@@ -69,9 +80,15 @@ class PulledSamples:
         ) = (
             zenoh.handlers.FifoChannel(max(qos.depth, _CAPACITY))
             if keep_all
-            else zenoh.handlers.RingChannel(depth)  # the ring drops the oldest
+            # the ring drops the oldest; its spare slot is for an interrupt (see above)
+            else zenoh.handlers.RingChannel(depth + 1)
         )
         self._sub = declare_subscriber(session, key, qos, handler)
+        self._session, self._key = session, key
+        # a transient-local subscriber is zenoh-ext's, with a history of its own: never parked
+        self._keeper = None if qos.durability == DurabilityPolicy.TRANSIENT_LOCAL else keeper
+        self._kept = False  # emptied, the doorbell asleep, the consumer may park
+        self._interrupted = True  # an interrupt is on its way (or nobody is parked)
         channel = self._sub.handler
         self._recv = channel.recv
         self._try_recv = channel.try_recv
@@ -103,6 +120,8 @@ class PulledSamples:
                 sample = recv()  # GIL released while the channel is empty
             except Exception:
                 return  # closed: undeclared, or the session went away
+            if not sample.attachment:
+                continue  # an interrupt left over, or not a ROS message: wait on
             pending.append(sample)
             self._armed = False  # after the append: a consumer seeing this sees the sample
             self._on_ready()
@@ -118,7 +137,7 @@ class PulledSamples:
         pending = self._pending
         # KEEP_ALL: a chunk at a time, so one-by-one consumers (spin_once) pull rarely
         want = max(limit, _CHUNK) - len(pending) if self._depth is None else self._depth + limit
-        it = iter(self._try_recv, None)
+        it = filter(_attached, iter(self._try_recv, None))
         try:
             if want > 0:
                 pending.extend(islice(it, want))
@@ -135,18 +154,93 @@ class PulledSamples:
 
     def rearm(self) -> None:
         """Consumer thread, after delivering what `take(…, rearm_later=True)` gave: wake the
-        doorbell if the channel ran dry. Waking it only now keeps it from taking the GIL in
-        the middle of a callback (which costs a delivery its latency)."""
+        doorbell if the channel ran dry, unless the keeper keeps the channel for the consumer
+        to park on. Waking it only now keeps it from taking the GIL in the middle of a
+        callback (which costs a delivery its latency)."""
         self._rearm_later = False
-        if self._owed:
+        if self._owed and not self._kept:
+            keeper = self._keeper
+            if keeper is not None and not self._closed and keeper(self):
+                self._kept = True
+                return
             self._owed = False
             self._rearm.release()
+
+    # -- a kept channel: the consumer waits on it itself -------------------------------------------
+    @property
+    def kept(self) -> bool:
+        """The consumer keeps the emptied channel (the doorbell sleeps): it must `poll`,
+        `park` or `release` it before it waits for work anywhere else."""
+        return self._kept
+
+    def _arrived(self, sample: Sample) -> bool:
+        """A sample from the kept channel: a real one ends the keeping (the consumer owns
+        the channel, with this sample pending); an interrupt is dropped."""
+        if not sample.attachment:
+            return False
+        self._pending.append(sample)
+        self._armed = False
+        self._owed = False  # owed again once the consumer has emptied the channel
+        self._kept = False
+        return True
+
+    def poll(self) -> bool:
+        """Consumer thread, kept channel: whether a sample came meanwhile (it is pending
+        now, and the channel no longer kept)."""
+        try:
+            while (sample := self._try_recv()) is not None:
+                if self._arrived(sample):
+                    return True
+        except Exception:  # closed: undeclared, or the session went away
+            pass
+        return False
+
+    def arm(self) -> None:
+        """Consumer thread, kept channel, about to park: interrupts from now on end the
+        park (also one that comes before `park()` is called: it then returns at once)."""
+        self._interrupted = False
+
+    def disarm(self) -> None:
+        """Consumer thread: it armed, and will not park after all."""
+        self._interrupted = True
+
+    def park(self) -> bool:
+        """Consumer thread, kept and armed channel: wait in `recv()` (GIL released) until a
+        sample comes (True, as after `poll`) or :meth:`interrupt` (False). A closed channel
+        returns False at once."""
+        try:
+            while True:
+                if self._arrived(self._recv()):
+                    return True
+                if self._interrupted:
+                    return False  # (an older interrupt's sample is dropped on the way)
+        except Exception:  # closed
+            return False
+        finally:
+            self._interrupted = True
+
+    def interrupt(self) -> None:
+        """Any thread: end a `park()` (once per arming; no effect unless armed)."""
+        if not self._interrupted:
+            self._interrupted = True
+            with contextlib.suppress(Exception):  # closed: the park has ended anyway
+                put_local(self._session, self._key)
+
+    def release(self) -> None:
+        """Consumer thread (nobody parked): hand a kept channel back to the doorbell."""
+        if self._kept:
+            self._kept = False
+            self._owed = False
+            with contextlib.suppress(RuntimeError):  # undeclare released it already
+                self._rearm.release()
 
     def take(self, limit: int, *, rearm_later: bool = False) -> list[Sample]:
         """Consumer thread: up to `limit` samples, oldest first (fewer, or none, when fewer
         wait). With `rearm_later` the caller must call `rearm()` once it has delivered them."""
         self._rearm_later = rearm_later
         pending = self._pending
+        if self._kept:  # a take outside the executor's wait (rclpy's Subscription.take)
+            self.poll()
         # `_armed` is read before `pending` (see _doorbell); KEEP_LAST always drains the
         # ring first, so that what is handed out is the newest `depth`
         if not self._armed and (self._depth is not None or len(pending) < limit):
@@ -155,14 +249,12 @@ class PulledSamples:
         try:
             if n == 1:
                 sample = pending.popleft()
-                return [] if sample.attachment is None else [sample]
+                return [sample]
             if n <= 0:
                 return []
             batch = list(islice(iter(pending.popleft, None), n))
         except IndexError:  # cleared meanwhile (destroyed)
             return []
-        if _NONE in set(map(type, map(_attachment_of, batch))):
-            batch = [s for s in batch if s.attachment is not None]
         return batch
 
     def put_back(self, samples: list[Sample]) -> None:

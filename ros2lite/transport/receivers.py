@@ -26,17 +26,19 @@ def open_receiver(
     buffer: deque[Any] | None = None,
     hook: Callable[[Sample], None] | None = None,
     name: str = '',
+    keeper: Callable[[PulledSamples], bool] | None = None,
 ) -> PulledSamples | SampleReceiver:
     """Declare a subscriber on `key` that receives the `receiving` way. `on_ready()` (any
     thread) says samples wait: typed pull takes nothing else; raw queue fills `buffer` with
     `(sample, arrival ns)`; arrival hook calls `hook(sample)` on the receive thread and
-    fills nothing (the hook calls on_ready itself if it queues anything)."""
+    fills nothing (the hook calls on_ready itself if it queues anything). `keeper` (typed
+    pull only) may keep an emptied channel for its consumer to wait in."""
     if (buffer is not None) != (receiving is Receiving.RAW_QUEUE):
         raise ValueError('a buffer goes with the raw queue, and only with it')
     if (hook is not None) != (receiving is Receiving.ARRIVAL_HOOK):
         raise ValueError('a hook goes with the arrival hook, and only with it')
     if receiving is Receiving.TYPED_PULL:
-        return PulledSamples(session, key, qos, on_ready, name=name)
+        return PulledSamples(session, key, qos, on_ready, name=name, keeper=keeper)
     if receiving is Receiving.RAW_QUEUE:
         assert buffer is not None
         return SampleReceiver(session, key, qos, buffer, on_ready, name=name)

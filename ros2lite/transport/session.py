@@ -41,6 +41,7 @@ __all__ = [
     "declare_queryable",
     "declare_token",
     "liveliness_keys",
+    "put_local",
     "undeclare_quietly",
 ]
 
@@ -180,6 +181,13 @@ def declare_subscriber(
             subscriber_detection=True,
         )
     return as_zenoh(session).declare_subscriber(key, handler)
+
+
+def put_local(session: Session, key: str) -> None:
+    """An empty sample without an attachment on `key`, for this session's own subscribers
+    only: it wakes a consumer waiting in a channel's `recv()` (ros2lite.transport.pull), and
+    every receiver drops it, as rmw_zenoh drops samples without an attachment."""
+    as_zenoh(session).put(key, b"", allowed_destination=zenoh.Locality.SESSION_LOCAL)
 
 
 # Rust-side queue between zenoh and the pump thread (never below the QoS depth), and how many

@@ -109,9 +109,12 @@ def test_samples_without_attachment_are_never_handed_out(ros_context: Any) -> No
         got: list[str] = []
         wait_until(lambda: got.extend(p.decode() for p in payloads(src.take(64))) or len(got) >= 3)
         assert got == ['1', '2', '3']
-        _put(ros_context, key, ['bare'], attachment=None)  # alone: the one-sample path
+        _put(ros_context, key, ['bare'], attachment=None)  # alone, at the doorbell: dropped
+        time.sleep(0.2)
+        assert not src.ready and src.take(1) == []
+        _put(ros_context, key, ['4'])  # the one-sample path
         wait_until(lambda: src.ready)
-        assert src.take(1) == []
+        assert [p.decode() for p in payloads(src.take(1))] == ['4']
     finally:
         src.undeclare()
 

@@ -1,0 +1,227 @@
+"""An idle single-threaded executor waits in its node's kept channel (no doorbell hand-over per
+message), and everything else still reaches it: other work interrupts the wait, deadlines end
+it, a node moved to another executor gets its channel back, and no sample is lost."""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Iterator
+from typing import Any
+
+import pytest
+
+import ros2lite
+from ros2lite.context import Context
+from ros2lite.executors import MultiThreadedExecutor, SingleThreadedExecutor
+from ros2lite.interfaces import get_interface
+from ros2lite.node import Node
+from ros2lite.qos import QoSProfile
+from tests.spinning import wait_matched, wait_until
+
+String = get_interface('std_msgs/msg/String')
+
+
+@pytest.fixture
+def talker(ros_router: str) -> Iterator[Any]:
+    """A publisher in a context of its own: samples cross the router's network path."""
+    ctx = Context()
+    ctx.init([])
+    node = Node('park_talker', context=ctx, enable_rosout=False)
+    try:
+        yield node
+    finally:
+        ctx.try_shutdown()
+
+
+class Listener:
+    """A subscription whose doorbell notifications are counted (each is a hand-over)."""
+
+    def __init__(self, ctx: Any, topic: str, qos: QoSProfile | int = 10) -> None:
+        self.node = Node(f'park_listener_{time.monotonic_ns()}', context=ctx, enable_rosout=False)
+        self.got: list[str] = []
+        self.threads: set[str] = set()
+
+        def on_msg(msg: Any) -> None:
+            self.threads.add(threading.current_thread().name)
+            self.got.append(msg.data)
+
+        self.sub = self.node.create_subscription(String, topic, on_msg, qos)
+        self.source = self.sub._source
+        self.doorbells = 0
+        notify = self.source._on_ready
+
+        def counted() -> None:
+            self.doorbells += 1
+            notify()
+
+        self.source._on_ready = counted
+
+
+def _spin_in_thread(executor: Any) -> threading.Thread:
+    thread = threading.Thread(target=executor.spin, daemon=True, name='spinner')
+    thread.start()
+    return thread
+
+
+def _send(pub: Any, text: str) -> None:
+    pub.publish(String(data=text))
+
+
+def test_messages_after_the_first_skip_the_doorbell(ros_context: Any, talker: Any) -> None:
+    listener = Listener(ros_context, 'park_skip')
+    pub = talker.create_publisher(String, 'park_skip', 10)
+    wait_matched(pub)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(listener.node)
+    thread = _spin_in_thread(executor)
+    try:
+        _send(pub, 'first')
+        wait_until(lambda: listener.got == ['first'])
+        wait_until(lambda: executor._parked is listener.source)
+        rung = listener.doorbells
+        for i in range(20):
+            _send(pub, str(i))
+            wait_until(lambda i=i: listener.got[-1:] == [str(i)])
+        # every one of them woke the spinning thread straight from the channel
+        assert listener.doorbells == rung == 1
+        assert listener.threads == {'spinner'}  # callbacks stay on the executor's thread
+    finally:
+        executor.shutdown()
+        thread.join(5)
+    assert not thread.is_alive()
+
+
+def test_other_work_interrupts_the_wait(ros_context: Any, talker: Any) -> None:
+    listener = Listener(ros_context, 'park_interrupt')
+    pub = talker.create_publisher(String, 'park_interrupt', 10)
+    wait_matched(pub)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(listener.node)
+    thread = _spin_in_thread(executor)
+    try:
+        _send(pub, 'a')
+        wait_until(lambda: executor._parked is listener.source)
+        fired = threading.Event()
+        guard = listener.node.create_guard_condition(fired.set)
+        guard.trigger()  # from this thread, while the executor waits in the channel
+        assert fired.wait(5)
+        ticks: list[float] = []
+        timer = listener.node.create_timer(0.05, lambda: ticks.append(time.monotonic()))
+        wait_until(lambda: len(ticks) >= 3)  # the alarm ends each wait at the timer's time
+        timer.cancel()
+        wait_until(lambda: executor._parked is listener.source)
+        _send(pub, 'b')  # and the channel still delivers afterwards
+        wait_until(lambda: listener.got == ['a', 'b'])
+    finally:
+        executor.shutdown()
+        thread.join(5)
+    assert not thread.is_alive()
+
+
+def test_spin_once_loop_keeps_the_channel_and_honours_its_timeout(
+    ros_context: Any, talker: Any
+) -> None:
+    listener = Listener(ros_context, 'park_once')
+    pub = talker.create_publisher(String, 'park_once', 10)
+    wait_matched(pub)
+    _send(pub, 'first')
+    wait_until(
+        lambda: listener.got, step=lambda: ros2lite.spin_once(listener.node, timeout_sec=0.05)
+    )
+    assert listener.source.kept  # spin_once(node) removed the node; the channel stayed
+    rung = listener.doorbells
+    started = time.monotonic()
+    ros2lite.spin_once(listener.node, timeout_sec=0.3)  # nothing comes: the alarm ends it
+    waited = time.monotonic() - started
+    assert 0.25 <= waited < 3.0
+    for i in range(10):
+        _send(pub, str(i))
+        wait_until(
+            lambda i=i: listener.got[-1:] == [str(i)],
+            step=lambda: ros2lite.spin_once(listener.node, timeout_sec=1.0),
+        )
+    assert listener.doorbells == rung
+
+
+def test_take_outside_spinning_sees_a_kept_channel(ros_context: Any, talker: Any) -> None:
+    listener = Listener(ros_context, 'park_take')
+    pub = talker.create_publisher(String, 'park_take', 10)
+    wait_matched(pub)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(listener.node)
+    _send(pub, 'first')
+    wait_until(lambda: listener.got, step=lambda: executor.spin_once(timeout_sec=0.05))
+    assert listener.source.kept
+    _send(pub, 'taken')
+    taken = wait_until(listener.sub.take)
+    assert taken[0].data == 'taken'
+
+
+def test_a_node_moved_to_a_multithreaded_executor_gets_its_channel_back(
+    ros_context: Any, talker: Any
+) -> None:
+    listener = Listener(ros_context, 'park_move')
+    pub = talker.create_publisher(String, 'park_move', 10)
+    wait_matched(pub)
+    single = SingleThreadedExecutor(context=ros_context)
+    single.add_node(listener.node)
+    thread = _spin_in_thread(single)
+    multi = MultiThreadedExecutor(num_threads=2, context=ros_context)
+    try:
+        _send(pub, 'a')
+        wait_until(lambda: single._parked is listener.source)
+        multi.add_node(listener.node)  # taken away mid-wait
+        assert not listener.source.kept or single._parked is listener.source
+        mthread = threading.Thread(target=multi.spin, daemon=True)
+        mthread.start()
+        wait_until(lambda: not listener.source.kept)  # the doorbell serves the pool again
+        for text in ('b', 'c'):
+            _send(pub, text)
+            wait_until(lambda text=text: listener.got[-1:] == [text])
+        assert single._parked is None
+    finally:
+        multi.shutdown()
+        single.shutdown()
+        thread.join(5)
+    assert listener.got == ['a', 'b', 'c']
+
+
+def test_an_interrupt_never_pushes_out_the_newest_sample(ros_context: Any, talker: Any) -> None:
+    listener = Listener(ros_context, 'park_depth', qos=1)
+    pub = talker.create_publisher(String, 'park_depth', 10)
+    wait_matched(pub)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(listener.node)
+    _send(pub, 'first')
+    wait_until(lambda: listener.got, step=lambda: executor.spin_once(timeout_sec=0.05))
+    source = listener.source
+    assert source.kept
+    _send(pub, 'newest')  # the depth-1 ring holds it, not yet taken ...
+    time.sleep(0.3)
+    source.arm()
+    source.interrupt()  # ... when a late interrupt lands behind it
+    source.disarm()
+    executor.spin_once(timeout_sec=2.0)
+    assert listener.got == ['first', 'newest']
+
+
+def test_destroying_the_subscription_ends_the_wait(ros_context: Any, talker: Any) -> None:
+    listener = Listener(ros_context, 'park_destroy')
+    pub = talker.create_publisher(String, 'park_destroy', 10)
+    wait_matched(pub)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(listener.node)
+    thread = _spin_in_thread(executor)
+    try:
+        _send(pub, 'a')
+        wait_until(lambda: executor._parked is listener.source)
+        listener.node.destroy_subscription(listener.sub)
+        wait_until(lambda: executor._parked is None)
+        ticks: list[int] = []
+        listener.node.create_timer(0.02, lambda: ticks.append(1))
+        wait_until(lambda: len(ticks) >= 2)  # the executor went on with the node's work
+    finally:
+        executor.shutdown()
+        thread.join(5)
+    assert not thread.is_alive()
