@@ -18,7 +18,7 @@ import threading
 import time
 from collections import deque
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Generic, cast, overload
+from typing import TYPE_CHECKING, Generic, NoReturn, cast, overload
 
 from ros2lite.callback_groups import ReentrantCallbackGroup
 from ros2lite.exceptions import Ros2liteError
@@ -102,6 +102,15 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
             self._codec_pair = service_codecs(self._ep.type_name)
         return self._codec_pair
 
+    def _request_bytes(self, request: SrvRequestT) -> bytes:
+        """The CDR bytes of `request` (TypeError for a request of another service type)."""
+        if getattr(request, '_TYPE_NAME', None) != f'{self._ep.type_name}_Request':
+            raise TypeError(
+                f"client of '{self._ep.type_name}' got {type(request).__name__}; "
+                f'expected {self._ep.type_name}_Request'
+            )
+        return self._codecs()[0].serialize(request)
+
     def _send(
         self,
         request: SrvRequestT,
@@ -110,12 +119,7 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
     ) -> None:
         """Serialize and send; `on_response(seq, data or None, error)` once, on a Zenoh
         thread. A `future` is registered under the request's sequence number first."""
-        if getattr(request, '_TYPE_NAME', None) != f'{self._ep.type_name}_Request':
-            raise TypeError(
-                f"client of '{self._ep.type_name}' got {type(request).__name__}; "
-                f'expected {self._ep.type_name}_Request'
-            )
-        data = self._codecs()[0].serialize(request)
+        data = self._request_bytes(request)
         with self._lock:
             self._seq = seq = self._seq + 1
             if future is not None:
@@ -197,6 +201,8 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
         """Send and wait for the response; None when `timeout_sec` passes first (as rclpy).
         Unlike rclpy, no executor needs to spin the node meanwhile."""
         self._refuse_deadlock()
+        if timeout_sec is None:
+            return self._call_waiting_in_zenoh(request)
         done = threading.Event()
         outcome: list[tuple[int, bytes | None, str]] = []
 
@@ -211,6 +217,25 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
         if data is None:
             raise ServiceCallError(error)
         response = self._codecs()[1].deserialize(data)
+        self._introspect(ServiceEventType.RESPONSE_RECEIVED, seq, self._gid, response)
+        return cast('SrvResponseT', response)
+
+    def _call_waiting_in_zenoh(self, request: SrvRequestT) -> SrvResponseT:
+        """`call` without a timeout: the calling thread waits in the query's reply channel,
+        so the reply wakes it once, straight from Zenoh (no callback thread, no event)."""
+        data = self._request_bytes(request)
+        querier = self._querier
+        if querier is None:
+            raise RuntimeError('client has been destroyed')
+        with self._lock:
+            self._seq = seq = self._seq + 1
+        self._introspect(ServiceEventType.REQUEST_SENT, seq, self._gid, request)
+        answer = querier.ask(data, pack_attachment(seq, time.time_ns(), self._gid))
+        if isinstance(answer, str):
+            if not self.fail_without_server:
+                _forever()  # unanswered: the request stays pending, as with rclpy
+            raise ServiceCallError(answer or f"no server of '{self.srv_name}' answered")
+        response = self._codecs()[1].deserialize(answer[0])
         self._introspect(ServiceEventType.RESPONSE_RECEIVED, seq, self._gid, response)
         return cast('SrvResponseT', response)
 
@@ -273,3 +298,9 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
 
 class _ClientEndpoint(Endpoint):
     kind = EntityKind.CLIENT
+
+
+def _forever() -> NoReturn:
+    """Wait for good (Ctrl-C still ends it): a call nobody will ever answer."""
+    while True:
+        threading.Event().wait()

@@ -68,6 +68,51 @@ def test_blocking_call_needs_no_executor_for_a_remote_server(
     assert client.call(AddTwoInts.Request(a=2, b=3), timeout_sec=10).sum == 5
 
 
+def test_untimed_call_waits_on_the_calling_thread_alone(
+    ros_context: Any, background: Any
+) -> None:
+    """`call()` without a timeout waits in Zenoh's reply channel: the answer ends it, and
+    so does a missing server for a client that asks to know; no executor is involved."""
+    server = Node('untimed_server', context=ros_context)
+    server.create_service(AddTwoInts, 'untimed_add', add)
+    background(SingleThreadedExecutor(context=ros_context)).add_node(server)
+    caller = Node('untimed_caller', context=ros_context)
+    client = caller.create_client(AddTwoInts, 'untimed_add')
+    assert client.wait_for_service(timeout_sec=10)
+    assert [client.call(AddTwoInts.Request(a=i, b=10)).sum for i in range(20)] == [
+        i + 10 for i in range(20)
+    ]
+    assert caller.executor is None  # nobody spun the caller
+    eager = caller.create_client(Trigger, 'untimed_nobody', fail_without_server=True)
+    start = time.monotonic()
+    with pytest.raises(ServiceCallError, match="no server of '/untimed_nobody' answered"):
+        eager.call(Trigger.Request())
+    assert time.monotonic() - start < 5  # the query ends at once: no queryable matches
+
+
+def test_untimed_call_nobody_answers_stays_pending_until_ctrl_c(processes: Any) -> None:
+    """As with rclpy, `call()` of a service nobody serves waits for good; Ctrl-C ends it
+    (the wait is in Zenoh's channel, which gives signals their turn)."""
+    code = (
+        'import ros2lite, sys\n'
+        'from ros2lite.msgs.std_srvs.srv import Trigger\n'
+        'ros2lite.init()\n'
+        "client = ros2lite.create_node('forever').create_client(Trigger, 'untimed_forever')\n"
+        "print('calling', flush=True)\n"
+        'try:\n'
+        '    client.call(Trigger.Request())\n'
+        'except KeyboardInterrupt:\n'
+        "    print('interrupted', flush=True)\n"
+    )
+    proc = processes.python(code)
+    assert proc.stdout is not None
+    assert proc.stdout.readline().strip() == 'calling'
+    time.sleep(1.0)
+    assert proc.poll() is None  # still waiting
+    out, _ = processes.stop(proc)
+    assert 'interrupted' in out
+
+
 def test_call_timeout_and_unavailable_service(ros_context: Any, background: Any) -> None:
     node = Node('slow_server', context=ros_context)
     release = threading.Event()

@@ -364,6 +364,25 @@ class Querier:
             attachment=attachment,
         )
 
+    def ask(self, payload: bytes, attachment: bytes) -> tuple[bytes, bytes | None] | str:
+        """Send one request and wait for its first answer on the calling thread, in the
+        reply channel's `recv()` (GIL released, Ctrl-C ends it), so Zenoh's receive thread
+        wakes the caller itself: (payload, attachment), or, when the query ended unanswered,
+        the text of its error reply ('' for none: no server, or the query's timeout)."""
+        replies = self._querier.get(
+            zenoh.handlers.FifoChannel(4), payload=payload, attachment=attachment
+        )
+        error = ""
+        for reply in replies:  # ends when the query does
+            ok = reply.ok
+            if ok is not None:
+                att = ok.attachment
+                return ok.payload.to_bytes(), att.to_bytes() if att is not None else None
+            err = reply.err
+            if err is not None:
+                error = err.payload.to_bytes().decode("utf-8", "replace")
+        return error
+
     def undeclare(self) -> None:
         """Withdraw the querier."""
         undeclare_quietly(self._querier)
