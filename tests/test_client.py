@@ -68,9 +68,7 @@ def test_blocking_call_needs_no_executor_for_a_remote_server(
     assert client.call(AddTwoInts.Request(a=2, b=3), timeout_sec=10).sum == 5
 
 
-def test_untimed_call_waits_on_the_calling_thread_alone(
-    ros_context: Any, background: Any
-) -> None:
+def test_untimed_call_waits_on_the_calling_thread_alone(ros_context: Any, background: Any) -> None:
     """`call()` without a timeout waits in Zenoh's reply channel: the answer ends it, and
     so does a missing server for a client that asks to know; no executor is involved."""
     server = Node('untimed_server', context=ros_context)
