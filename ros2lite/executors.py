@@ -343,13 +343,12 @@ class Executor:
             if node.timers:
                 break
         else:  # no timers (a loop, not any(): no generator per call)
-            # hot path: work already queued runs at once, with no deadline arithmetic
-            try:
+            # hot path: work already queued runs at once, with no deadline arithmetic (and no
+            # queue.Empty raised when there is none: one consumer, so empty() is exact)
+            if not work.empty():
                 item = work.get_nowait()
-            except queue.Empty:
-                item = None
-            if item is not None:
-                return item
+                if item is not None:
+                    return item
             while timeout is None:
                 item = self._wait(None)
                 if item is not None:
@@ -415,10 +414,8 @@ class Executor:
         self._parked = channel
         got = parked = False
         try:
-            try:  # queued before the park was armed: no interrupt came for it
+            if not self._queue.empty():  # queued before the park was armed: no interrupt
                 return self._queue.get_nowait()
-            except queue.Empty:
-                pass
             if not self._ok():
                 return None
             if wait is not None:
