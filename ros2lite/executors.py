@@ -376,7 +376,7 @@ class Executor:
     def _wait(self, wait: float | None) -> Executable | Task | None:
         """Up to `wait` seconds (None: no limit) for the next queued item; None after a bare
         wake-up or when the time passed. Parks in a kept channel when it can."""
-        if self._parks and wait != 0:
+        if self._parks:
             for node in self._nodes:
                 if node.work.keeps:
                     item = self._park(wait)
@@ -390,8 +390,9 @@ class Executor:
 
     def _park(self, wait: float | None) -> Executable | Task | None:
         """Wait in the one kept channel of this executor's nodes: the entity whose sample
-        came, queued work, or None (interrupted, or `wait` passed). More than one kept
-        channel, or a wait too short to park, hands them back: then `_QUEUE`."""
+        came, queued work, or None (interrupted, or `wait` passed); `wait` 0 only looks into
+        it. More than one kept channel, or a wait too short to park, hands them back to their
+        doorbells; then, as after a poll that found nothing, `_QUEUE`."""
         works: list[NodeWork[Any]] = []
         count = 0
         for node in self._nodes:
@@ -402,7 +403,7 @@ class Executor:
                     works.append(work)
                     count += kept
         # (a sample that came meanwhile is found by the park's recv, or by the doorbell)
-        if count != 1 or (wait is not None and wait < _PARK_MIN):
+        if count != 1 or (wait is not None and 0 < wait < _PARK_MIN):
             for work in works:
                 work.release_kept(self)
             return _QUEUE
@@ -418,14 +419,17 @@ class Executor:
                 return self._queue.get_nowait()
             if not self._ok():
                 return None
-            if wait is not None:
-                alarm = self._alarm
-                if alarm is None:
-                    alarm = self._alarm = Alarm('ros2lite-executor-alarm')
-                    weakref.finalize(self, alarm.close)  # its thread ends with the executor
-                alarm.set(time.monotonic() + wait, channel.interrupt)
-            parked = True
-            got = channel.park()
+            if wait == 0:  # a poll (spin_once(timeout_sec=0)): look into the channel only
+                got = channel.poll()
+            else:
+                if wait is not None:
+                    alarm = self._alarm
+                    if alarm is None:
+                        alarm = self._alarm = Alarm('ros2lite-executor-alarm')
+                        weakref.finalize(self, alarm.close)  # its thread ends with the executor
+                    alarm.set(time.monotonic() + wait, channel.interrupt)
+                parked = True
+                got = channel.park()
         finally:
             self._parked = None
             if not parked:
@@ -433,7 +437,9 @@ class Executor:
             elif wait is not None and self._alarm is not None:
                 self._alarm.cancel()
             run = work.end_park(self, entity, got)
-        return cast(Executable, entity) if run else None
+        if run:
+            return cast(Executable, entity)
+        return _QUEUE if wait == 0 else None  # a poll found nothing: the queue is looked at
 
     # -- running work ----------------------------------------------------------------------------
     def _dispatch(

@@ -225,3 +225,22 @@ def test_destroying_the_subscription_ends_the_wait(ros_context: Any, talker: Any
         executor.shutdown()
         thread.join(5)
     assert not thread.is_alive()
+
+
+def test_a_polling_loop_looks_into_the_kept_channel(ros_context: Any, talker: Any) -> None:
+    """`spin_once(timeout_sec=0)` never waits, so it looks into the kept channel itself."""
+    listener = Listener(ros_context, 'park_poll')
+    pub = talker.create_publisher(String, 'park_poll', 10)
+    wait_matched(pub)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(listener.node)
+    _send(pub, 'first')
+    wait_until(lambda: listener.got, step=lambda: executor.spin_once(timeout_sec=0.05))
+    assert listener.source.kept
+    for i in range(5):
+        _send(pub, str(i))
+        wait_until(
+            lambda i=i: listener.got[-1:] == [str(i)],
+            step=lambda: executor.spin_once(timeout_sec=0),
+        )
+    assert listener.source.kept
