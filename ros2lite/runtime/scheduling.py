@@ -63,6 +63,10 @@ class WorkExecutor(Protocol):
 class Channel(Protocol):
     """A kept channel as executors use it (ros2lite.transport.pull.PulledSamples)."""
 
+    def poll(self) -> bool:
+        """Without waiting: a sample came (now pending; the channel is not kept any more)."""
+        ...
+
     def arm(self) -> None:
         """About to park: interrupts from now on end it."""
         ...
