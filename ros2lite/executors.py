@@ -348,7 +348,7 @@ class Executor:
             if not work.empty():
                 item = work.get_nowait()
                 if item is not None:
-                    return item
+                    return self._queued(item)
             while timeout is None:
                 item = self._wait(None)
                 if item is not None:
@@ -361,7 +361,7 @@ class Executor:
         while True:
             timer, next_timer = self._due_timer()
             if timer is not None:
-                return timer
+                return self._queued(timer)
             wait = None if deadline is None else max(0.0, deadline - time.monotonic())
             if next_timer is not None:
                 wait = max(0.0, next_timer) if wait is None else min(wait, max(0.0, next_timer))
@@ -384,9 +384,19 @@ class Executor:
                         return item
                     break
         try:
-            return self._queue.get(timeout=wait) if wait != 0 else self._queue.get_nowait()
+            item = self._queue.get(timeout=wait) if wait != 0 else self._queue.get_nowait()
         except queue.Empty:
             return None
+        return None if item is None else self._queued(item)
+
+    def _queued(self, item: Executable | Task) -> Executable | Task:
+        """`item` (queued work or a due timer) runs next: kept channels go back to their
+        doorbells, so a sample that comes while other work keeps the executor busy is queued
+        behind that work rather than waiting until the executor is idle again."""
+        for node in self._nodes:
+            if node.work.keeps:
+                node.work.release_kept(self)
+        return item
 
     def _park(self, wait: float | None) -> Executable | Task | None:
         """Wait in the one kept channel of this executor's nodes: the entity whose sample
@@ -402,21 +412,25 @@ class Executor:
                 if kept:
                     works.append(work)
                     count += kept
-        # (a sample that came meanwhile is found by the park's recv, or by the doorbell)
-        if count != 1 or (wait is not None and 0 < wait < _PARK_MIN):
+        # (a sample that came meanwhile is found by the park's recv, or by the doorbell); a
+        # second thread spinning this executor waits on the queue (one park per executor)
+        if count != 1 or (wait is not None and 0 < wait < _PARK_MIN) or self._spinning > 1:
             for work in works:
                 work.release_kept(self)
             return _QUEUE
         work = works[0]
-        begun = work.begin_park(self)
-        if begun is None:
-            return _QUEUE
-        entity, channel = begun
-        self._parked = channel
+        begun = None
         got = parked = False
+        queued: Executable | Task | None = None
         try:
+            begun = work.begin_park(self)
+            if begun is None:
+                return _QUEUE
+            entity, channel = begun
+            self._parked = channel
             if not self._queue.empty():  # queued before the park was armed: no interrupt
-                return self._queue.get_nowait()
+                queued = self._queue.get_nowait()
+                return queued  # (None, a bare wake-up: the caller looks at ok() and stop())
             if not self._ok():
                 return None
             if wait == 0:  # a poll (spin_once(timeout_sec=0)): look into the channel only
@@ -431,12 +445,15 @@ class Executor:
                 parked = True
                 got = channel.park()
         finally:
-            self._parked = None
-            if not parked:
-                channel.disarm()
-            elif wait is not None and self._alarm is not None:
-                self._alarm.cancel()
-            run = work.end_park(self, entity, got)
+            if begun is not None:
+                self._parked = None
+                if not parked:
+                    channel.disarm()
+                elif wait is not None and self._alarm is not None:
+                    self._alarm.cancel()
+                run = work.end_park(self, entity, got)
+                if queued is not None:
+                    self._queued(queued)
         if run:
             return cast(Executable, entity)
         return _QUEUE if wait == 0 else None  # a poll found nothing: the queue is looked at

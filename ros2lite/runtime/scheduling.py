@@ -32,6 +32,8 @@ class Scheduled:
     # the entity tells its NodeWork whenever it gets work, also while its node has no
     # executor (so attach need not ask it); user waitables that only answer is_ready() do not
     notifies_itself = False
+    # going away (set before its channel closes): its node keeps no channel for it
+    destroyed = False
 
     @property
     def scheduled(self) -> bool:
@@ -62,6 +64,11 @@ class WorkExecutor(Protocol):
 
 class Channel(Protocol):
     """A kept channel as executors use it (ros2lite.transport.pull.PulledSamples)."""
+
+    @property
+    def kept(self) -> bool:
+        """Still kept (a take() that found a sample, or an undeclare, ends it)."""
+        ...
 
     def poll(self) -> bool:
         """Without waiting: a sample came (now pending; the channel is not kept any more)."""
@@ -153,8 +160,8 @@ class NodeWork(Generic[ExecutorT]):
         # executor before queue: an entity queued from now on is claimed by `executor`
         self._executor = executor
         self._put = put
-        if self._kept and not executor.parks:
-            self._hand_back()
+        if not executor.parks:
+            self._hand_back()  # (under the lock that keep() checks the executor under)
         if entities is None and self._unqueued:
             entities = self._entities()
         self._unqueued = False
@@ -171,12 +178,17 @@ class NodeWork(Generic[ExecutorT]):
     def detach(self, executor: ExecutorT) -> None:
         """`executor` stops running the node (no effect if it is attached elsewhere). Entries
         left in its queue are dropped when claimed; a wait in one of its channels ends."""
-        if self._executor is executor:
+        with self._lock:
+            if self._executor is not executor:
+                return
             self._put = None
             self._executor = None
             parked = self._parking
-            if parked is not None and parked[0] is executor:
-                self._interrupt(parked[1])
+            channel = (
+                self._kept.get(parked[1]) if parked is not None and parked[0] is executor else None
+            )
+        if channel is not None:
+            channel.interrupt()
 
     # -- kept channels ---------------------------------------------------------------------------
     @property
@@ -192,6 +204,10 @@ class NodeWork(Generic[ExecutorT]):
         if executor is None or not executor.keeps_here():
             return False
         with self._lock:
+            # checked again where attach and destroy change them: a node moved to an
+            # executor that does not park, or an entity going away, keeps nothing
+            if self._executor is not executor or not executor.parks or entity.destroyed:
+                return False
             self._kept[entity] = channel
         return True
 
@@ -202,10 +218,16 @@ class NodeWork(Generic[ExecutorT]):
 
     def kept_count(self, executor: ExecutorT) -> int:
         """Executor thread: how many channels the node keeps for `executor` (0 when the node
-        is not its, or another executor is parked in one: a node moved mid-wait)."""
-        if self._executor is not executor or self._parking is not None:
-            return 0
-        return len(self._kept)
+        is not its, or another executor is parked in one: a node moved mid-wait). Entries
+        whose channel is no longer kept (a take() found a sample, an undeclare closed it)
+        are dropped on the way."""
+        with self._lock:
+            if self._executor is not executor or self._parking is not None:
+                return 0
+            stale = [entity for entity, channel in self._kept.items() if not channel.kept]
+            for entity in stale:
+                del self._kept[entity]
+            return len(self._kept)
 
     def release_kept(self, executor: ExecutorT) -> None:
         """Executor thread, about to wait elsewhere: every kept channel goes back to its
@@ -254,19 +276,17 @@ class NodeWork(Generic[ExecutorT]):
         """Attach to an executor that does not park: kept channels go back to their
         doorbells, except one another executor is parked in (its end_park hands it back)."""
         with self._lock:
+            if not self._kept:
+                return
             parked = self._parking
             kept = {e: c for e, c in self._kept.items() if parked is None or e is not parked[1]}
             for entity in kept:
                 del self._kept[entity]
+            waiting = self._kept.get(parked[1]) if parked is not None else None
         for channel in kept.values():
             channel.release()
-        if parked is not None:
-            self._interrupt(parked[1])
-
-    def _interrupt(self, entity: Scheduled) -> None:
-        channel = self._kept.get(entity)
-        if channel is not None:
-            channel.interrupt()
+        if waiting is not None:
+            waiting.interrupt()
 
     def handed_to(self, executor: ExecutorT) -> None:
         """The node was given to `executor` (``node.executor = …``): it is the node's executor

@@ -36,7 +36,12 @@ from typing import TYPE_CHECKING
 import zenoh
 
 from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
-from ros2lite.transport.session import declare_subscriber, put_local, undeclare_quietly
+from ros2lite.transport.session import (
+    declare_subscriber,
+    put_local,
+    sole_subscriber,
+    undeclare_subscriber,
+)
 
 if TYPE_CHECKING:
     from ros2lite.transport.handles import Sample, Session
@@ -89,6 +94,7 @@ class PulledSamples:
         self._keeper = None if qos.durability == DurabilityPolicy.TRANSIENT_LOCAL else keeper
         self._kept = False  # emptied, the doorbell asleep, the consumer may park
         self._interrupted = True  # an interrupt is on its way (or nobody is parked)
+        self._interrupting = threading.Lock()  # one interrupt per arming, whoever sends it
         channel = self._sub.handler
         self._recv = channel.recv
         self._try_recv = channel.try_recv
@@ -160,7 +166,13 @@ class PulledSamples:
         self._rearm_later = False
         if self._owed and not self._kept:
             keeper = self._keeper
-            if keeper is not None and not self._closed and keeper(self):
+            if (
+                keeper is not None
+                and not self._closed
+                # an interrupt reaches every subscriber of the key in this session
+                and sole_subscriber(self._session, self._key)
+                and keeper(self)
+            ):
                 self._kept = True
                 return
             self._owed = False
@@ -170,8 +182,9 @@ class PulledSamples:
     @property
     def kept(self) -> bool:
         """The consumer keeps the emptied channel (the doorbell sleeps): it must `poll`,
-        `park` or `release` it before it waits for work anywhere else."""
-        return self._kept
+        `park` or `release` it before it waits for work anywhere else. An undeclared
+        subscriber's channel is never kept."""
+        return self._kept and not self._closed
 
     def _arrived(self, sample: Sample) -> bool:
         """A sample from the kept channel: a real one ends the keeping (the consumer owns
@@ -221,10 +234,12 @@ class PulledSamples:
 
     def interrupt(self) -> None:
         """Any thread: end a `park()` (once per arming; no effect unless armed)."""
-        if not self._interrupted:
+        with self._interrupting:
+            if self._interrupted:
+                return
             self._interrupted = True
-            with contextlib.suppress(Exception):  # closed: the park has ended anyway
-                put_local(self._session, self._key)
+        with contextlib.suppress(Exception):  # closed: the park has ended anyway
+            put_local(self._session, self._key)
 
     def release(self) -> None:
         """Consumer thread (nobody parked): hand a kept channel back to the doorbell."""
@@ -274,7 +289,8 @@ class PulledSamples:
     def undeclare(self) -> None:
         """Stop receiving; the doorbell thread ends."""
         self._closed = True
-        undeclare_quietly(self._sub)  # closes the channel: a doorbell in recv() returns
+        # closes the channel: a doorbell (or a parked consumer) in recv() returns
+        undeclare_subscriber(self._session, self._key, self._sub)
         with contextlib.suppress(RuntimeError):  # (not held: the doorbell is in recv())
             self._rearm.release()  # a doorbell waiting for the consumer returns
         if self._thread is not threading.current_thread():

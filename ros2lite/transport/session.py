@@ -42,7 +42,9 @@ __all__ = [
     "declare_token",
     "liveliness_keys",
     "put_local",
+    "sole_subscriber",
     "undeclare_quietly",
+    "undeclare_subscriber",
 ]
 
 
@@ -155,6 +157,32 @@ def declare_publisher(session: Session, key: str, qos: QoSProfile) -> Publisher:
     )
 
 
+# subscribers declared per (session, key expression): an interrupt (put_local) reaches every
+# subscriber of its key in the session, so only a key's sole subscriber may be parked in
+_subscribers: dict[tuple[int, str], int] = {}
+_subscribers_lock = threading.Lock()
+
+
+def sole_subscriber(session: Session, key: str) -> bool:
+    """Whether exactly one subscriber of this session listens on `key` (see put_local)."""
+    return _subscribers.get((id(session), key), 0) == 1
+
+
+def _count_subscriber(session: Session, key: str, change: int) -> None:
+    with _subscribers_lock:
+        n = _subscribers.get((id(session), key), 0) + change
+        if n > 0:
+            _subscribers[(id(session), key)] = n
+        else:
+            _subscribers.pop((id(session), key), None)
+
+
+def undeclare_subscriber(session: Session, key: str, subscriber: Handle) -> None:
+    """Undeclare a subscriber made by declare_subscriber (errors: the session is closed)."""
+    _count_subscriber(session, key, -1)
+    undeclare_quietly(subscriber)
+
+
 def declare_subscriber(
     session: Session,
     key: str,
@@ -163,7 +191,9 @@ def declare_subscriber(
 ) -> _Subscriber:
     """A subscriber feeding `handler` (a zenoh channel), mapped from QoS as rmw_zenoh does:
     transient local through zenoh-ext's advanced subscriber, which asks late-joining
-    publishers for their cache (and, when reliable, recovers missed samples by heartbeat)."""
+    publishers for their cache (and, when reliable, recovers missed samples by heartbeat).
+    Undeclare it with undeclare_subscriber."""
+    _count_subscriber(session, key, +1)
     if _transient_local(qos):
         recovery = (
             zenoh.ext.RecoveryConfig(periodic_queries=None, heartbeat=True)
@@ -229,6 +259,7 @@ class SampleReceiver:
             else zenoh.handlers.RingChannel(capacity)
         )  # KEEP_LAST may drop the oldest
         self._sub = declare_subscriber(session, key, qos, handler)
+        self._session, self._key = session, key
         self._buffer = buffer
         self._on_batch = on_batch
         self._hook = hook
@@ -270,7 +301,7 @@ class SampleReceiver:
 
     def undeclare(self) -> None:
         """Stop receiving; the pump thread ends."""
-        undeclare_quietly(self._sub)  # closes the channel, which ends the pump thread
+        undeclare_subscriber(self._session, self._key, self._sub)  # ends the pump thread
         if self._thread is not threading.current_thread():
             # a pump still inside zenoh when the interpreter finalises aborts the process
             self._thread.join(timeout=1.0)

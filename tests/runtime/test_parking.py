@@ -109,10 +109,10 @@ def test_other_work_interrupts_the_wait(ros_context: Any, talker: Any) -> None:
         ticks: list[float] = []
         timer = listener.node.create_timer(0.05, lambda: ticks.append(time.monotonic()))
         wait_until(lambda: len(ticks) >= 3)  # the alarm ends each wait at the timer's time
-        timer.cancel()
-        wait_until(lambda: executor._parked is listener.source)
-        _send(pub, 'b')  # and the channel still delivers afterwards
+        timer.cancel()  # (a due timer handed the channel back to its doorbell)
+        _send(pub, 'b')  # and the channel still delivers afterwards ...
         wait_until(lambda: listener.got == ['a', 'b'])
+        wait_until(lambda: executor._parked is listener.source)  # ... and is waited in again
     finally:
         executor.shutdown()
         thread.join(5)
@@ -244,3 +244,101 @@ def test_a_polling_loop_looks_into_the_kept_channel(ros_context: Any, talker: An
             step=lambda: executor.spin_once(timeout_sec=0),
         )
     assert listener.source.kept
+
+
+def test_a_subscription_destroyed_mid_callback_is_not_kept(ros_context: Any, talker: Any) -> None:
+    """Destroyed while its callback runs: its channel is not kept afterwards, so the idle
+    executor does not keep waking up in a closed channel."""
+    listener = Listener(ros_context, 'park_destroy_mid')
+    inside, leave = threading.Event(), threading.Event()
+
+    def slow(msg: Any) -> None:
+        inside.set()
+        leave.wait(5)
+
+    sub = listener.node.create_subscription(String, 'park_destroy_mid_slow', slow, 10)
+    pub = talker.create_publisher(String, 'park_destroy_mid_slow', 10)
+    wait_matched(pub)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(listener.node)
+    turns = [0]
+    park = executor._park
+
+    def counted(wait: Any) -> Any:
+        turns[0] += 1
+        return park(wait)
+
+    executor._park = counted  # type: ignore[method-assign]
+    thread = _spin_in_thread(executor)
+    try:
+        _send(pub, 'x')
+        assert inside.wait(5)
+        listener.node.destroy_subscription(sub)  # while its callback runs
+        leave.set()
+        time.sleep(0.3)
+        before = turns[0]
+        time.sleep(0.5)
+        assert turns[0] - before < 20  # idle, not spinning on a closed channel
+        assert sub._source is not None and not sub._source.kept
+    finally:
+        leave.set()
+        executor.shutdown()
+        thread.join(5)
+
+
+def test_a_topic_with_two_local_subscriptions_is_never_parked_in(
+    ros_context: Any, talker: Any
+) -> None:
+    """An interrupt reaches every subscriber of its key in the session, so a channel is kept
+    only by a key's sole subscriber: a second, depth-1 subscription keeps its newest sample."""
+    first = Listener(ros_context, 'park_shared')
+    second = Listener(ros_context, 'park_shared', qos=1)
+    pub = talker.create_publisher(String, 'park_shared', 10)
+    wait_matched(pub, 2)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(first.node)
+    _send(pub, 'r1')
+    wait_until(lambda: first.got, step=lambda: executor.spin_once(timeout_sec=0.05))
+    assert not first.source.kept
+    _send(pub, 'r2')
+    wait_until(lambda: first.got == ['r1', 'r2'], step=lambda: executor.spin_once(timeout_sec=0.05))
+    for _ in range(3):  # work elsewhere while the executor waits
+        guard = first.node.create_guard_condition(lambda: None)
+        guard.trigger()
+        executor.spin_once(timeout_sec=0.05)
+    other = SingleThreadedExecutor(context=ros_context)
+    other.add_node(second.node)
+    wait_until(lambda: second.got, step=lambda: other.spin_once(timeout_sec=0.05))
+    assert second.got == ['r2']
+
+
+def test_a_kept_channel_is_not_starved_by_a_busy_executor(ros_context: Any, talker: Any) -> None:
+    """While other work keeps the executor busy, a kept channel goes back to its doorbell, so
+    its sample is queued behind that work instead of waiting until the executor is idle."""
+    quick = Listener(ros_context, 'park_starve_quick')
+    busy: list[str] = []
+
+    def slow(msg: Any) -> None:
+        busy.append(msg.data)
+        time.sleep(0.05)
+
+    quick.node.create_subscription(String, 'park_starve_busy', slow, QoSProfile(depth=200))
+    pub_quick = talker.create_publisher(String, 'park_starve_quick', 10)
+    pub_busy = talker.create_publisher(String, 'park_starve_busy', QoSProfile(depth=200))
+    wait_matched(pub_quick)
+    wait_matched(pub_busy)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(quick.node)
+    thread = _spin_in_thread(executor)
+    try:
+        _send(pub_quick, 'first')
+        wait_until(lambda: executor._parked is quick.source)
+        for i in range(100):  # five seconds of work for the executor
+            _send(pub_busy, str(i))
+        wait_until(lambda: busy)
+        _send(pub_quick, 'second')
+        wait_until(lambda: quick.got == ['first', 'second'], timeout=2.0)
+        assert len(busy) < 100  # it came while the backlog was still being worked off
+    finally:
+        executor.shutdown()
+        thread.join(10)

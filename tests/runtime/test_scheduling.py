@@ -15,6 +15,11 @@ from ros2lite.runtime.scheduling import NodeWork, Scheduled
 class FakeExecutor:
     """A queue and a wake-up counter: what a NodeWork asks of an executor."""
 
+    parks = False  # never waits in a kept channel
+
+    def keeps_here(self) -> bool:
+        return False
+
     def __init__(self) -> None:
         self.queue: list[Scheduled] = []
         self.wakes = 0
