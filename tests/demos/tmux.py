@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import signal
 import subprocess
 import uuid
 from pathlib import Path
@@ -41,6 +42,7 @@ class TmuxPane:
             *argv,
             env=env,
         )
+        self.server_pid = int(self._tmux('display-message', '-p', '#{pid}'))
 
     def _tmux(self, *args: str, env: dict[str, str] | None = None) -> str:
         return subprocess.run(
@@ -71,9 +73,18 @@ class TmuxPane:
         def status() -> str:
             # '1 <status>' once it ended (the status may lag a moment behind the '1')
             fields = self._tmux('list-panes', '-F', '#{pane_dead} #{pane_dead_status}').split()
+            if fields == ['1']:
+                self._reap()
             return fields[1] if fields[:1] == ['1'] and len(fields) > 1 else ''
 
         return int(wait_until(status, timeout))
+
+    def _reap(self) -> None:
+        """Make the tmux server collect the exit status of a pane whose terminal closed.
+        Built with libutempter (Debian's tmux 3.3a), it drops the SIGCHLD of a program that
+        ends while the pane's utmp record is being removed, and then never reaps it: the pane
+        stays dead without a status (tmux issue 4559; tmux 3.6 signals itself as we do)."""
+        os.kill(self.server_pid, signal.SIGCHLD)
 
     def close(self) -> None:
         subprocess.run(['tmux', '-L', self.socket, 'kill-server'], capture_output=True)

@@ -342,3 +342,26 @@ def test_a_kept_channel_is_not_starved_by_a_busy_executor(ros_context: Any, talk
     finally:
         executor.shutdown()
         thread.join(10)
+
+
+@pytest.mark.parametrize('way_out', ['stop', 'terminate', 'shutdown'])
+def test_every_way_out_ends_the_wait_at_once(ros_context: Any, talker: Any, way_out: str) -> None:
+    """A program's ways out each end a spin parked in a channel (which has no timeout of its
+    own): the key loop's BackgroundSpin.stop, Ctrl-C or SIGTERM (the context terminates), and
+    the context's shutdown (which closes the channel)."""
+    from ros2lite.demos.teleop.spinning import BackgroundSpin
+
+    listener = Listener(ros_context, f'park_exit_{way_out}')
+    pub = talker.create_publisher(String, f'park_exit_{way_out}', 10)
+    wait_matched(pub)
+    spin = BackgroundSpin(listener.node)
+    with spin:
+        _send(pub, 'a')
+        wait_until(lambda: spin.executor._parked is listener.source)
+        {
+            'stop': spin.executor.shutdown,
+            'terminate': ros_context.terminate,
+            'shutdown': ros_context.try_shutdown,
+        }[way_out]()
+        spin._thread.join(2.0)
+        assert not spin._thread.is_alive()
