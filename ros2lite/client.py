@@ -201,28 +201,6 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
         """Send and wait for the response; None when `timeout_sec` passes first (as rclpy).
         Unlike rclpy, no executor needs to spin the node meanwhile."""
         self._refuse_deadlock()
-        if timeout_sec is None:
-            return self._call_waiting_in_zenoh(request)
-        done = threading.Event()
-        outcome: list[tuple[int, bytes | None, str]] = []
-
-        def on_response(seq: int, data: bytes | None, error: str) -> None:
-            outcome.append((seq, data, error))
-            done.set()
-
-        self._send(request, on_response)
-        if not done.wait(timeout_sec):
-            return None
-        seq, data, error = outcome[0]
-        if data is None:
-            raise ServiceCallError(error)
-        response = self._codecs()[1].deserialize(data)
-        self._introspect(ServiceEventType.RESPONSE_RECEIVED, seq, self._gid, response)
-        return cast('SrvResponseT', response)
-
-    def _call_waiting_in_zenoh(self, request: SrvRequestT) -> SrvResponseT:
-        """`call` without a timeout: the calling thread waits in the query's reply channel,
-        so the reply wakes it once, straight from Zenoh (no callback thread, no event)."""
         data = self._request_bytes(request)
         querier = self._querier
         if querier is None:
@@ -230,11 +208,21 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
         with self._lock:
             self._seq = seq = self._seq + 1
         self._introspect(ServiceEventType.REQUEST_SENT, seq, self._gid, request)
-        answer = querier.ask(data, pack_attachment(seq, time.time_ns(), self._gid))
-        if isinstance(answer, str):
-            if not self.fail_without_server:
-                _forever()  # unanswered: the request stays pending, as with rclpy
-            raise ServiceCallError(answer or f"no server of '{self.srv_name}' answered")
+        # the calling thread waits in the query's reply channel: the reply wakes it once,
+        # straight from Zenoh (no callback thread, no event)
+        start = time.monotonic()
+        answer = querier.ask(data, pack_attachment(seq, time.time_ns(), self._gid), timeout_sec)
+        if isinstance(answer, str):  # the query ended unanswered
+            left = None if timeout_sec is None else timeout_sec - (time.monotonic() - start)
+            if left is not None and left < 0.005:
+                return None  # the time passed first
+            if self.fail_without_server:  # no server, or it dropped the request
+                raise ServiceCallError(answer or f"no server of '{self.srv_name}' answered")
+            # the request stays pending, as with rclpy (a default client hears no answer)
+            if left is None:
+                _forever()
+            time.sleep(left)
+            return None
         response = self._codecs()[1].deserialize(answer[0])
         self._introspect(ServiceEventType.RESPONSE_RECEIVED, seq, self._gid, response)
         return cast('SrvResponseT', response)

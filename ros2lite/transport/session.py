@@ -355,6 +355,7 @@ class Querier:
     """A service client's querier: one query per request (ALL_COMPLETE, no consolidation)."""
 
     def __init__(self, session: Session, key: str, timeout: float | None) -> None:
+        self._session, self._key = as_zenoh(session), key
         target, consolidation = zenoh.QueryTarget.ALL_COMPLETE, zenoh.ConsolidationMode.NONE
         if timeout is not None:
             self._querier = as_zenoh(session).declare_querier(
@@ -395,14 +396,28 @@ class Querier:
             attachment=attachment,
         )
 
-    def ask(self, payload: bytes, attachment: bytes) -> tuple[bytes, bytes | None] | str:
+    def ask(
+        self, payload: bytes, attachment: bytes, timeout: float | None = None
+    ) -> tuple[bytes, bytes | None] | str:
         """Send one request and wait for its first answer on the calling thread, in the
         reply channel's `recv()` (GIL released, Ctrl-C ends it), so Zenoh's receive thread
         wakes the caller itself: (payload, attachment), or, when the query ended unanswered,
-        the text of its error reply ('' for none: no server, or the query's timeout)."""
-        replies = self._querier.get(
-            zenoh.handlers.FifoChannel(4), payload=payload, attachment=attachment
-        )
+        the text of its error reply ('' for none: no server, or the query's timeout). A
+        `timeout` (seconds) is this query's own: it is sent as a one-off query of the same
+        key, target and consolidation, which Zenoh ends at that time."""
+        handler = zenoh.handlers.FifoChannel(4)
+        if timeout is None:
+            replies = self._querier.get(handler, payload=payload, attachment=attachment)
+        else:
+            replies = self._session.get(
+                self._key,
+                handler,
+                target=zenoh.QueryTarget.ALL_COMPLETE,
+                consolidation=zenoh.ConsolidationMode.NONE,
+                timeout=max(timeout, 0.001),
+                payload=payload,
+                attachment=attachment,
+            )
         error = ""
         for reply in replies:  # ends when the query does
             ok = reply.ok
