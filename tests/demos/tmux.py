@@ -73,9 +73,12 @@ class TmuxPane:
         def status() -> str:
             # '1 <status>' once it ended (the status may lag a moment behind the '1')
             fields = self._tmux('list-panes', '-F', '#{pane_dead} #{pane_dead_status}').split()
-            if fields == ['1']:
-                self._reap()
-            return fields[1] if fields[:1] == ['1'] and len(fields) > 1 else ''
+            if fields[:1] == ['1'] and len(fields) > 1:
+                return fields[1]
+            # no status yet: the nudge is harmless when tmux lost nothing (a reap that finds
+            # no child), and needed when it did, whether or not it has marked the pane dead
+            self._reap()
+            return ''
 
         return int(wait_until(status, timeout))
 
