@@ -306,10 +306,12 @@ def test_a_topic_with_two_local_subscriptions_is_never_parked_in(
         guard = first.node.create_guard_condition(lambda: None)
         guard.trigger()
         executor.spin_once(timeout_sec=0.05)
+    assert not first.source.kept
     other = SingleThreadedExecutor(context=ros_context)
     other.add_node(second.node)
-    wait_until(lambda: second.got, step=lambda: other.spin_once(timeout_sec=0.05))
-    assert second.got == ['r2']
+    # the newest sample was not pushed out of the depth-1 subscription's channel (under load
+    # its doorbell may still hand r1 over first)
+    wait_until(lambda: 'r2' in second.got, step=lambda: other.spin_once(timeout_sec=0.05))
 
 
 def test_a_kept_channel_is_not_starved_by_a_busy_executor(ros_context: Any, talker: Any) -> None:
