@@ -111,19 +111,14 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
             )
         return self._codecs()[0].serialize(request)
 
-    def _send(
-        self,
-        request: SrvRequestT,
-        on_response: Callable[[int, bytes | None, str], None],
-        future: Future[SrvResponseT] | None = None,
-    ) -> None:
-        """Serialize and send; `on_response(seq, data or None, error)` once, on a Zenoh
-        thread. A `future` is registered under the request's sequence number first."""
+    def _send(self, request: SrvRequestT, future: Future[SrvResponseT]) -> None:
+        """Serialize and send, `future` registered under the request's sequence number;
+        `_on_response(seq, data or None, error)` follows once, on a Zenoh thread."""
+        on_response = self._on_response
         data = self._request_bytes(request)
         with self._lock:
             self._seq = seq = self._seq + 1
-            if future is not None:
-                self._pending[seq] = future
+            self._pending[seq] = future
         answered = threading.Event()
 
         def reply(payload: bytes, attachment: bytes | None) -> None:
@@ -152,7 +147,7 @@ class Client(IntrospectionMixin, Executable, Generic[SrvRequestT, SrvResponseT])
     def call_async(self, request: SrvRequestT) -> Future[SrvResponseT]:
         """Send `request`; the future completes with the response on the node's executor."""
         future: Future[SrvResponseT] = Future()
-        self._send(request, self._on_response, future)
+        self._send(request, future)
         return future
 
     def _on_response(self, seq: int, data: bytes | None, error: str) -> None:
