@@ -58,6 +58,17 @@ class Listener:
         self.source._on_ready = counted
 
 
+def _listening(ctx: Any, talker: Any, topic: str) -> tuple[Listener, Any, SingleThreadedExecutor]:
+    """A counted listener on `topic`, the talker's matched publisher, and a single-threaded
+    executor that has the listener's node."""
+    listener = Listener(ctx, topic)
+    pub = talker.create_publisher(String, topic, 10)
+    wait_matched(pub)
+    executor = SingleThreadedExecutor(context=ctx)
+    executor.add_node(listener.node)
+    return listener, pub, executor
+
+
 def _spin_in_thread(executor: Any) -> threading.Thread:
     thread = threading.Thread(target=executor.spin, daemon=True, name='spinner')
     thread.start()
@@ -69,11 +80,7 @@ def _send(pub: Any, text: str) -> None:
 
 
 def test_messages_after_the_first_skip_the_doorbell(ros_context: Any, talker: Any) -> None:
-    listener = Listener(ros_context, 'park_skip')
-    pub = talker.create_publisher(String, 'park_skip', 10)
-    wait_matched(pub)
-    executor = SingleThreadedExecutor(context=ros_context)
-    executor.add_node(listener.node)
+    listener, pub, executor = _listening(ros_context, talker, 'park_skip')
     thread = _spin_in_thread(executor)
     try:
         _send(pub, 'first')
@@ -93,11 +100,7 @@ def test_messages_after_the_first_skip_the_doorbell(ros_context: Any, talker: An
 
 
 def test_other_work_interrupts_the_wait(ros_context: Any, talker: Any) -> None:
-    listener = Listener(ros_context, 'park_interrupt')
-    pub = talker.create_publisher(String, 'park_interrupt', 10)
-    wait_matched(pub)
-    executor = SingleThreadedExecutor(context=ros_context)
-    executor.add_node(listener.node)
+    listener, pub, executor = _listening(ros_context, talker, 'park_interrupt')
     thread = _spin_in_thread(executor)
     try:
         _send(pub, 'a')
@@ -145,11 +148,7 @@ def test_spin_once_loop_keeps_the_channel_and_honours_its_timeout(
 
 
 def test_take_outside_spinning_sees_a_kept_channel(ros_context: Any, talker: Any) -> None:
-    listener = Listener(ros_context, 'park_take')
-    pub = talker.create_publisher(String, 'park_take', 10)
-    wait_matched(pub)
-    executor = SingleThreadedExecutor(context=ros_context)
-    executor.add_node(listener.node)
+    listener, pub, executor = _listening(ros_context, talker, 'park_take')
     _send(pub, 'first')
     wait_until(lambda: listener.got, step=lambda: executor.spin_once(timeout_sec=0.05))
     assert listener.source.kept
@@ -207,11 +206,7 @@ def test_an_interrupt_never_pushes_out_the_newest_sample(ros_context: Any, talke
 
 
 def test_destroying_the_subscription_ends_the_wait(ros_context: Any, talker: Any) -> None:
-    listener = Listener(ros_context, 'park_destroy')
-    pub = talker.create_publisher(String, 'park_destroy', 10)
-    wait_matched(pub)
-    executor = SingleThreadedExecutor(context=ros_context)
-    executor.add_node(listener.node)
+    listener, pub, executor = _listening(ros_context, talker, 'park_destroy')
     thread = _spin_in_thread(executor)
     try:
         _send(pub, 'a')
@@ -229,11 +224,7 @@ def test_destroying_the_subscription_ends_the_wait(ros_context: Any, talker: Any
 
 def test_a_polling_loop_looks_into_the_kept_channel(ros_context: Any, talker: Any) -> None:
     """`spin_once(timeout_sec=0)` never waits, so it looks into the kept channel itself."""
-    listener = Listener(ros_context, 'park_poll')
-    pub = talker.create_publisher(String, 'park_poll', 10)
-    wait_matched(pub)
-    executor = SingleThreadedExecutor(context=ros_context)
-    executor.add_node(listener.node)
+    listener, pub, executor = _listening(ros_context, talker, 'park_poll')
     _send(pub, 'first')
     wait_until(lambda: listener.got, step=lambda: executor.spin_once(timeout_sec=0.05))
     assert listener.source.kept
