@@ -172,7 +172,8 @@ def test_scheduling_state() -> None:
 
 # DESIGN.md §2, the package map, folder by folder ('' is ros2lite/ itself): module names
 # (`name` is name.py), `{a,b}` expanded as the map writes them; `sub/` names a subpackage and
-# `sub/name` a file in a plain folder (demos' launch files). Keep it in step with the map.
+# `sub/name` a file in a plain folder (bundled packages' launch files). Keep it in step with
+# the map.
 MAP = {
     '': '__init__ __main__ node publisher subscription service client timer executors'
     ' callback_groups task waitable destroyable context signals exceptions type_support qos'
@@ -181,7 +182,7 @@ MAP = {
     ' type_description_service serialization topic_endpoint_info utilities wait_for_message'
     ' names message_info node_options rate graph'
     ' action/ lifecycle/ parameters/ runtime/ tools/ util/ transport/ interfaces/ msgs/ daemon/'
-    ' bag/ pkg/ launch/ security/ components/ monitor/ demos/ cli/',
+    ' bag/ pkg/ launch/ security/ components/ monitor/ bundled/ cli/',
     'action': 'client server goals entity graph introspection',
     'lifecycle': 'node state_machine managed_entity publisher remote',
     'parameters': 'store node_api services events files',
@@ -205,21 +206,21 @@ MAP = {
     'security': 'keystore pki enclaves policy permissions access environment files errors',
     'components': 'manager registry remote',
     'monitor': 'topic subscription stats',
-    'demos': 'runner display terminal demo_nodes_py/ action_tutorials_py/ lifecycle_py/'
+    'bundled': 'runner display terminal demo_nodes_py/ action_tutorials_py/ lifecycle_py/'
     ' lifecycle/ composition/ rclpy_components/ turtlesim/ teleop/ teleop_twist_keyboard/'
     ' rqt_graph/',
-    'demos/demo_nodes_py': 'talker listener add_two_ints_{server,client,client_async}'
+    'bundled/demo_nodes_py': 'talker listener add_two_ints_{server,client,client_async}'
     ' introspection_{client,service} parameter_blackboard launch/talker_listener.launch.py',
-    'demos/action_tutorials_py': 'fibonacci_action_{server,client}',
-    'demos/lifecycle_py': 'lifecycle_talker',
-    'demos/lifecycle': 'lifecycle_listener',
-    'demos/composition': 'talker listener server client',
-    'demos/rclpy_components': 'component_container{,_mt}',
-    'demos/turtlesim': 'sim node sprite turtlesim_node turtle_teleop_key draw_square mimic'
+    'bundled/action_tutorials_py': 'fibonacci_action_{server,client}',
+    'bundled/lifecycle_py': 'lifecycle_talker',
+    'bundled/lifecycle': 'lifecycle_listener',
+    'bundled/composition': 'talker listener server client',
+    'bundled/rclpy_components': 'component_container{,_mt}',
+    'bundled/turtlesim': 'sim node sprite turtlesim_node turtle_teleop_key draw_square mimic'
     ' window_view terminal_view launch/multisim.launch.py',
-    'demos/teleop': 'spinning',
-    'demos/teleop_twist_keyboard': 'teleop_twist_keyboard',
-    'demos/rqt_graph': 'rqt_graph model layout output window_view terminal_view',
+    'bundled/teleop': 'spinning',
+    'bundled/teleop_twist_keyboard': 'teleop_twist_keyboard',
+    'bundled/rqt_graph': 'rqt_graph model layout output window_view terminal_view',
     'cli': 'main lazy errors suggest completion numbers deprecated_interfaces common render'
     ' options parsing run launch env doctor extensions extension_points'
     ' action/ bag/ component/ daemon/ interface/ lifecycle/ msg/ multicast/ node/ param/ pkg/'
@@ -242,22 +243,22 @@ NOT_YET_ON_MAP = {
     'bag/storage/mcap/',
     'cli/doctor/',  # doctor became a command with verbs (hello), as ros2cli's
     'compat/tf2_ros/',
-    'demos/foxglove_bridge/',
-    'demos/rqt_console/',
-    'demos/rqt_tf_tree/',
+    'bundled/foxglove_bridge/',
+    'bundled/rqt_console/',
+    'bundled/rqt_tf_tree/',
     # Jazzy's demo_nodes_py executables (issue 23)
-    'demos/demo_nodes_py/async_param_client.py',
-    'demos/demo_nodes_py/introspection.py',
-    'demos/demo_nodes_py/listener_qos.py',
-    'demos/demo_nodes_py/listener_serialized.py',
-    'demos/demo_nodes_py/matched_event_detect.py',
-    'demos/demo_nodes_py/set_parameters_callback.py',
-    'demos/demo_nodes_py/talker_qos.py',
-    'demos/demo_nodes_py/use_logger_service.py',
-    'demos/tf2_ros/',
-    'demos/tf2_tools/',
-    'demos/turtle_tf2_py/',
-    'demos/turtlesim/interfaces.py',
+    'bundled/demo_nodes_py/async_param_client.py',
+    'bundled/demo_nodes_py/introspection.py',
+    'bundled/demo_nodes_py/listener_qos.py',
+    'bundled/demo_nodes_py/listener_serialized.py',
+    'bundled/demo_nodes_py/matched_event_detect.py',
+    'bundled/demo_nodes_py/set_parameters_callback.py',
+    'bundled/demo_nodes_py/talker_qos.py',
+    'bundled/demo_nodes_py/use_logger_service.py',
+    'bundled/tf2_ros/',
+    'bundled/tf2_tools/',
+    'bundled/turtle_tf2_py/',
+    'bundled/turtlesim/interfaces.py',
     'daemon/security.py',  # security as values, shared by connect/control/router (issue 24)
     'pkg/distro.py',
     'tf2/',
@@ -445,7 +446,7 @@ FLOORS = {
     4: 'parameters/',
     5: 'action/ lifecycle/ components/ monitor/ bag/ launch/ tf2/',
     6: 'tools/',
-    7: 'cli/ demos/ compat/ __main__',
+    7: 'cli/ bundled/ compat/ __main__',
 }
 _FLOOR_OF = {n.rstrip('/'): floor for floor, names in FLOORS.items() for n in names.split()}
 
@@ -784,7 +785,7 @@ def test_cli_parsing_in_one_place() -> None:
     ]
 
 
-# Modules under ros2lite/ (outside cli/, demos/, compat/ and the __init__s) that keep imports
+# Modules under ros2lite/ (outside cli/, bundled/, compat/ and the __init__s) that keep imports
 # inside functions, each with what importing them at the top would add to every program that
 # imports the module (measured: a fresh interpreter imports the module, then its in-function
 # targets; Python 3.11). It may only shrink: an entry whose module has none left fails.
@@ -861,7 +862,7 @@ def _lazy_breaks(sources: dict[str, str], lazy: dict[str, str]) -> list[str]:
     """In-function imports in modules that may not have them, and LAZY entries whose module
     has none left."""
     inits = {_module_of(p) for p in sources if p.endswith('__init__.py')}
-    free = ('ros2lite.cli.', 'ros2lite.demos.', 'ros2lite.compat.')
+    free = ('ros2lite.cli.', 'ros2lite.bundled.', 'ros2lite.compat.')
     lazy_in = {i.source for i in _imports(sources) if i.lazy}
     listed = {f'ros2lite.{module}' for module in lazy}
     breaks = [
@@ -875,8 +876,8 @@ def _lazy_breaks(sources: dict[str, str], lazy: dict[str, str]) -> list[str]:
 
 def test_lazy_imports() -> None:
     """An import inside a function hides a dependency from the reader and the floors; it is
-    kept only where start-up pays for it (the CLI's lazy table, demos, compat's faces, the
-    packages' lazy __init__s) or where LAZY says what it would cost."""
+    kept only where start-up pays for it (the CLI's lazy table, bundled packages, compat's
+    faces, the packages' lazy __init__s) or where LAZY says what it would cost."""
     assert _lazy_breaks(_sources(), LAZY) == []
     probe = {
         'ros2lite/graph.py': 'def f():\n    import json\n',
@@ -895,13 +896,13 @@ def test_lazy_imports() -> None:
 
 
 def _foreign_imports(sources: dict[str, str]) -> list[str]:
-    """click or rich imported outside cli/ (demos' `*_view.py` may import rich inside a
+    """click or rich imported outside cli/ (bundled packages' `*_view.py` may import rich inside a
     function), zenoh imported outside transport/ (every import, TYPE_CHECKING exempt)."""
     breaks = []
     for imp in _imports(sources):
         top = imp.target.split('.')[0]
         folder = imp.source.split('.')[1:2]
-        view = folder == ['demos'] and imp.source.endswith('_view') and imp.lazy and top == 'rich'
+        view = folder == ['bundled'] and imp.source.endswith('_view') and imp.lazy and top == 'rich'
         if (top in ('click', 'rich') and folder != ['cli'] and not view) or (
             top == 'zenoh' and folder != ['transport']
         ):
@@ -917,11 +918,11 @@ def test_only_cli_imports_click_or_rich_and_only_transport_zenoh() -> None:
         'ros2lite/graph.py': 'def f():\n    import zenoh\n',
         'ros2lite/transport/session.py': 'import zenoh\n',
         'ros2lite/cli/render.py': 'import rich.table\nimport click\n',
-        'ros2lite/demos/turtlesim/window_view.py': 'import rich\ndef f():\n    import rich\n',
+        'ros2lite/bundled/turtlesim/window_view.py': 'import rich\ndef f():\n    import rich\n',
         'ros2lite/monitor/stats.py': 'from click import echo\n',
     }
     assert _foreign_imports(probe) == [
         'ros2lite.graph:2 zenoh',
-        'ros2lite.demos.turtlesim.window_view:1 rich',
+        'ros2lite.bundled.turtlesim.window_view:1 rich',
         'ros2lite.monitor.stats:1 click',
     ]

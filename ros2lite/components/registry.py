@@ -50,10 +50,10 @@ CPP_RESOURCE = 'rclcpp_components'
 
 BUNDLED: dict[str, dict[str, str]] = {
     'composition': {
-        'composition::Talker': 'ros2lite.demos.composition.talker:Talker',
-        'composition::Listener': 'ros2lite.demos.composition.listener:Listener',
-        'composition::Server': 'ros2lite.demos.composition.server:Server',
-        'composition::Client': 'ros2lite.demos.composition.client:Client',
+        'composition::Talker': 'ros2lite.bundled.composition.talker:Talker',
+        'composition::Listener': 'ros2lite.bundled.composition.listener:Listener',
+        'composition::Server': 'ros2lite.bundled.composition.server:Server',
+        'composition::Client': 'ros2lite.bundled.composition.client:Client',
     }
 }
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 __all__ = ['BUNDLED', 'STAND_INS']
 
-# package -> executables, each `main()` of ros2lite.demos.<package>.<executable>
+# package -> executables, each `main()` of ros2lite.bundled.<package>.<executable>
 _DEMOS = {
     'action_tutorials_py': ['fibonacci_action_client', 'fibonacci_action_server'],
     # Jazzy's demo_nodes_py (0.33.x), exactly
@@ -47,7 +47,7 @@ _DEMOS = {
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
 }
 BUNDLED: dict[str, dict[str, str]] = {
-    package: {name: f'ros2lite.demos.{package}.{name}:main' for name in names}
+    package: {name: f'ros2lite.bundled.{package}.{name}:main' for name in names}
     for package, names in _DEMOS.items()
 }
 """Bundled demo package -> executable name -> its `module:function` target."""
@@ -59,7 +59,7 @@ _STAND_INS = {
     'demo_nodes_py': ['introspection_client', 'introspection_service', 'parameter_blackboard']
 }
 STAND_INS: dict[str, dict[str, str]] = {
-    package: {name: f'ros2lite.demos.{package}.{name}:main' for name in names}
+    package: {name: f'ros2lite.bundled.{package}.{name}:main' for name in names}
     for package, names in _STAND_INS.items()
 }
 """Bundled package -> executable its C++ twin has and it does not -> `module:function`."""

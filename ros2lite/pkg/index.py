@@ -41,8 +41,8 @@ from .manifest import MANIFEST, is_valid_package_name
 from .workspace import SourcePackage, scan_workspace, workspace_sources, workspaces
 
 __all__ = [
-    'BUNDLED_DEMOS',
     'BUNDLED_INTERFACES',
+    'BUNDLED_PACKAGES',
     'ENTRY_POINT_GROUP',
     'INTERFACE_PATH_ENV',
     'ORIGINS',
@@ -59,7 +59,7 @@ ENTRY_POINT_GROUP = 'ros2lite.executables'
 """The entry-point group whose `<package>.<executable>` names declare packages and executables."""
 _ROOT = Path(__file__).resolve().parent.parent
 BUNDLED_INTERFACES = _ROOT / 'msgs'
-BUNDLED_DEMOS = _ROOT / 'demos'
+BUNDLED_PACKAGES = _ROOT / 'bundled'
 _KINDS = ('msg', 'srv', 'action')
 _AMENT_INDEX = Path('share') / 'ament_index' / 'resource_index' / 'packages'
 
@@ -271,7 +271,7 @@ class PackageIndex:
             if _has_interfaces(child):
                 found[child.name] = Package(child.name, ORIGIN_BUNDLED, _ROOT, child, child)
         for name in BUNDLED:
-            demo = BUNDLED_DEMOS / name
+            demo = BUNDLED_PACKAGES / name
             interfaces = found[name].interfaces if name in found else None
             found[name] = Package(
                 name, ORIGIN_BUNDLED, _ROOT, demo if demo.is_dir() else None, interfaces

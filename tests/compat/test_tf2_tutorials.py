@@ -10,9 +10,9 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from tests.bundled.tf2_ros.test_tf2_ros import read_until
+from tests.bundled.turtle_tf2_py.following import assert_turtle2_follows_turtle1
 from tests.compat.test_tutorials import in_ros_shell
-from tests.demos.tf2_ros.test_tf2_ros import read_until
-from tests.demos.turtle_tf2_py.following import assert_turtle2_follows_turtle1
 
 
 def start(processes: Any, tmp_path: Path, program: str, *args: str) -> Any:

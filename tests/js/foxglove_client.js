@@ -1,6 +1,6 @@
 // A Foxglove WebSocket client made of the ecosystem's own packages (@foxglove/ws-protocol,
 // ws, @foxglove/rosmsg, @foxglove/rosmsg2-serialization), driven by JSON lines on stdin;
-// everything it sees goes to stdout as JSON lines. tests/demos/test_foxglove_bridge.py and
+// everything it sees goes to stdout as JSON lines. tests/bundled/test_foxglove_bridge.py and
 // benchmarks/bench_foxglove.py drive it.
 //
 // usage: node foxglove_client.js ws://127.0.0.1:PORT [subprotocol,...]

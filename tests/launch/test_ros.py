@@ -76,10 +76,10 @@ def test_node_command(context: Any) -> None:
     assert cmd[1:5] == [
         '-m',
         'ros2lite.pkg.runner',
-        'ros2lite.demos.demo_nodes_py.talker:main',
+        'ros2lite.bundled.demo_nodes_py.talker:main',
         'talker',
     ]
-    assert display[0].endswith('ros2lite/demos/demo_nodes_py/talker.py')
+    assert display[0].endswith('ros2lite/bundled/demo_nodes_py/talker.py')
     ros = cmd[cmd.index('--ros-args') + 1 :]
     assert cmd[5] == '--extra'
     assert ros[:4] == ['-r', '__node:=speaker', '-r', '__ns:=/robot1']

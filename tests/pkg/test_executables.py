@@ -206,7 +206,7 @@ def test_cpp_demo_names_run_the_python_twins() -> None:
     # demo_nodes_cpp's own executables (Jazzy's demo_nodes_py has none of these) run too,
     # and only under the C++ package's name
     board = resolve_executable('demo_nodes_cpp', 'parameter_blackboard')
-    assert board.executable.target == 'ros2lite.demos.demo_nodes_py.parameter_blackboard:main'
+    assert board.executable.target == 'ros2lite.bundled.demo_nodes_py.parameter_blackboard:main'
     assert board.note == (
         'demo_nodes_cpp (C++) is not installed; running a Python parameter_blackboard bundled '
         'with ros2lite'

@@ -342,7 +342,7 @@ def test_every_way_out_ends_the_wait_at_once(ros_context: Any, talker: Any, way_
     """A program's ways out each end a spin parked in a channel (which has no timeout of its
     own): the key loop's BackgroundSpin.stop, Ctrl-C or SIGTERM (the context terminates), and
     the context's shutdown (which closes the channel)."""
-    from ros2lite.demos.teleop.spinning import BackgroundSpin
+    from ros2lite.bundled.teleop.spinning import BackgroundSpin
 
     listener = Listener(ros_context, f'park_exit_{way_out}')
     pub = talker.create_publisher(String, f'park_exit_{way_out}', 10)

@@ -13,7 +13,7 @@ import pytest
 
 from ros2lite.bag import Writer
 from ros2lite.interfaces import deserialize, get_interface
-from tests.demos.ptyproc import PtyProcess, ros2lite_argv
+from tests.bundled.ptyproc import PtyProcess, ros2lite_argv
 
 from .conftest import subscribed, wait_until
 
