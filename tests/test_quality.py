@@ -170,104 +170,23 @@ def test_scheduling_state() -> None:
     ]
 
 
-# DESIGN.md §2, the package map, folder by folder ('' is ros2lite/ itself): module names
-# (`name` is name.py), `{a,b}` expanded as the map writes them; `sub/` names a subpackage and
-# `sub/name` a file in a plain folder (bundled packages' launch files). Keep it in step with
-# the map.
-MAP = {
-    '': '__init__ __main__ node publisher subscription service client timer executors'
-    ' callback_groups task waitable destroyable context signals exceptions type_support qos'
-    ' qos_overriding_options event_handler time duration clock time_source logging'
-    ' logging_service parameter parameter_client parameter_event_handler service_introspection'
-    ' type_description_service serialization topic_endpoint_info utilities wait_for_message'
-    ' names message_info node_options rate graph'
-    ' action/ lifecycle/ parameters/ runtime/ tools/ util/ transport/ interfaces/ msgs/ daemon/'
-    ' bag/ pkg/ launch/ security/ components/ monitor/ bundled/ cli/',
-    'action': 'client server goals entity graph introspection',
-    'lifecycle': 'node state_machine managed_entity publisher remote',
-    'parameters': 'store node_api services events files',
-    'runtime': 'scheduling executable endpoint delivery bad_samples node_interface memory'
-    ' typesupport_checks arguments',
-    'tools': 'connection doctor multicast',
-    'util': 'files safe_yaml process keyboard',
-    'transport': 'handles endpoints config open session receivers pull keys qos attachment'
-    ' security admin errors',
-    'interfaces': 'parser registry classes hashing text convert errors stubs cdr cdr_gen',
-    'msgs': '',
-    'daemon': '__main__ router connect probe paths graph_cache control errors',
-    'bag': 'writer reader recorder player metadata definitions qos reindex convert errors storage/',
-    'bag/storage': 'mcap sqlite3',
-    'pkg': 'index bundled workspace manifest setup_files executables runner create templates'
-    ' ament_index environment',
-    'launch': 'api service context entity actions conditions substitutions events'
-    ' event_handlers execute process_spec ros find_package sources output introspection errors'
-    ' flow frontend/',
-    'launch/frontend': 'loader entity builders substitutions',
-    'security': 'keystore pki enclaves policy permissions access environment files errors',
-    'components': 'manager registry remote',
-    'monitor': 'topic subscription stats',
-    'bundled': 'runner display terminal demo_nodes_py/ action_tutorials_py/ lifecycle_py/'
-    ' lifecycle/ composition/ rclpy_components/ turtlesim/ teleop/ teleop_twist_keyboard/'
-    ' rqt_graph/',
-    'bundled/demo_nodes_py': 'talker listener add_two_ints_{server,client,client_async}'
-    ' introspection_{client,service} parameter_blackboard launch/talker_listener.launch.py',
-    'bundled/action_tutorials_py': 'fibonacci_action_{server,client}',
-    'bundled/lifecycle_py': 'lifecycle_talker',
-    'bundled/lifecycle': 'lifecycle_listener',
-    'bundled/composition': 'talker listener server client',
-    'bundled/rclpy_components': 'component_container{,_mt}',
-    'bundled/turtlesim': 'sim node sprite turtlesim_node turtle_teleop_key draw_square mimic'
-    ' window_view terminal_view launch/multisim.launch.py',
-    'bundled/teleop': 'spinning',
-    'bundled/teleop_twist_keyboard': 'teleop_twist_keyboard',
-    'bundled/rqt_graph': 'rqt_graph model layout output window_view terminal_view',
-    'cli': 'main lazy errors suggest completion numbers deprecated_interfaces common render'
-    ' options parsing run launch env doctor extensions extension_points'
-    ' action/ bag/ component/ daemon/ interface/ lifecycle/ msg/ multicast/ node/ param/ pkg/'
-    ' security/ service/ srv/ topic/',
-}
-# compat/ by face folder: the faces (and their subfolders) code written for ROS imports; plain
-# directories on PYTHONPATH, not a package of ros2lite (no compat/__init__.py)
-COMPAT_FACES = (
-    'sitecustomize.py rclpy/ rclpy/_lazy.py rclpy/action/ rclpy/lifecycle/ rclpy/impl/ launch/'
-    ' launch/events/ launch_ros/ launch_xml/ launch_yaml/ ament_index_python/'
-)
-# cli/<command>/: its VERBS, plus the shared module the map names
-CLI_SHARED = {'bag': 'options'} | dict.fromkeys(
-    ('component', 'daemon', 'lifecycle', 'multicast', 'param', 'security', 'topic'), 'common'
-)
-# modules that exist but the map does not name yet (the next map update places them and empties
-# this list; a folder with '/' covers all under it)
-NOT_YET_ON_MAP = {
-    # the mcap plugin split by job (issue 24): read, write, scan (record by record), recover
-    'bag/storage/mcap/',
-    'cli/doctor/',  # doctor became a command with verbs (hello), as ros2cli's
-    'compat/tf2_ros/',
-    'bundled/foxglove_bridge/',
-    'bundled/rqt_console/',
-    'bundled/rqt_tf_tree/',
-    # Jazzy's demo_nodes_py executables (issue 23)
-    'bundled/demo_nodes_py/async_param_client.py',
-    'bundled/demo_nodes_py/introspection.py',
-    'bundled/demo_nodes_py/listener_qos.py',
-    'bundled/demo_nodes_py/listener_serialized.py',
-    'bundled/demo_nodes_py/matched_event_detect.py',
-    'bundled/demo_nodes_py/set_parameters_callback.py',
-    'bundled/demo_nodes_py/talker_qos.py',
-    'bundled/demo_nodes_py/use_logger_service.py',
-    'bundled/tf2_ros/',
-    'bundled/tf2_tools/',
-    'bundled/turtle_tf2_py/',
-    'bundled/turtlesim/interfaces.py',
-    'daemon/security.py',  # security as values, shared by connect/control/router (issue 24)
-    'pkg/distro.py',
-    'tf2/',
-}
-# modules the map names that other branches are still writing (empty it as they merge)
-NOT_YET_BUILT = {
-    'bag/storage/mcap.py',  # now bag/storage/mcap/ (above); the map is to follow
-    'cli/doctor.py',  # now cli/doctor/ (above); the map is to follow
-}
+# The map is docs/DESIGN.md §2 itself: its code block (the rooms), its floors line and its list
+# of planned rooms. The grammar is written in §2, above the block.
+DESIGN = ROOT / 'docs' / 'DESIGN.md'
+
+
+def _section_2(text: str) -> str:
+    return text[text.index('\n## 2.') : text.index('\n## 3.')]
+
+
+def _strip_notes(text: str) -> str:
+    """The map's text without its notes in parentheses (nested ones too)."""
+    out, depth = [], 0
+    for ch in text:
+        depth += (ch == '(') - (ch == ')')
+        if depth == 0 and ch != ')':
+            out.append(ch)
+    return ''.join(out)
 
 
 def _expand(names: str) -> list[str]:
@@ -279,67 +198,153 @@ def _expand(names: str) -> list[str]:
     return out
 
 
-def _mapped() -> set[str]:
-    """Every path the map names, relative to ros2lite/ (packages by their __init__.py)."""
-    paths = set()
-    for folder, names in MAP.items():
-        prefix = f'{folder}/' if folder else ''
-        if folder != '' or names:
-            paths.add(f'{prefix}__init__.py')
-        for name in _expand(names):
-            if name.endswith('/'):
-                paths.add(f'{prefix}{name}__init__.py')
-            elif name.endswith('.py'):
-                paths.add(prefix + name)
-            else:
-                paths.add(f'{prefix}{name}.py')
-    for face in COMPAT_FACES.split():
-        paths.add('compat/' + (f'{face}__init__.py' if face.endswith('/') else face))
-    for command in _expand(MAP['cli']):
-        if not command.endswith('/'):
+def _read_map(section: str) -> dict[str, list[str]]:
+    """§2's block as {folder under ros2lite/ ('' itself): the names it lists}; a name `x/`
+    is a subfolder (its own entry), any other name a module (`x` or `a/x.launch.py`)."""
+    block = re.search(r'```\n(.*?)```', section, re.S)
+    assert block and block[1].startswith('ros2lite/\n'), '§2 has no ros2lite/ block'
+    texts = {'': ''}
+    current = ''
+    for line in block[1].splitlines()[1:]:
+        if not line.startswith(' '):
+            break  # tests/, docs/: outside ros2lite/
+        first = line.split()[0]
+        depth = len(line) - len(line.lstrip())
+        if depth == 2 and first.endswith('/'):
+            current = first.rstrip('/')
+            texts[current] = line.strip()[len(first) :]
             continue
-        verbs = list(importlib.import_module(f'ros2lite.cli.{command[:-1]}').VERBS)
-        shared = [CLI_SHARED[command[:-1]]] if command[:-1] in CLI_SHARED else []
-        paths |= {f'cli/{command}{verb}.py' for verb in [*verbs, *shared]}
+        current = '' if depth == 2 else current
+        texts[current] += ' ' + line.strip()
+    folders: dict[str, list[str]] = {}
+    for top, text in texts.items():
+        folders.setdefault(top, [])
+        stack = [top]
+        words = ' '.join(part.rpartition(':')[2] for part in _strip_notes(text).split('·'))
+        tokens = re.findall(r'\[|\]|[^\s\[\]]+', words)
+        for i, token in enumerate(tokens):
+            if token == ']':
+                stack.pop()
+            elif token != '[':
+                for name in _expand(token):
+                    folders[stack[-1]].append(name)
+                    if name.endswith('/'):
+                        sub = f'{stack[-1]}/{name[:-1]}'.lstrip('/')
+                        folders.setdefault(sub, [])
+                        if tokens[i + 1 : i + 2] == ['[']:
+                            stack.append(sub)
+    return folders
+
+
+def _read_planned(section: str) -> list[str]:
+    """The planned rooms: every name in backticks in the list under **Planned rooms**."""
+    part = section[section.index('**Planned rooms**') : section.index('**Rules of the house**')]
+    return [name for code in re.findall(r'`([^`]+)`', part) for name in _expand(code)]
+
+
+def _read_floors(section: str) -> dict[int, list[str]]:
+    """The floors line of test_floors' rule: `N `names`` pairs."""
+    rule = section[section.index('- `test_floors`') :]
+    rule = rule[: rule.index('\n- ')]
+    floors: dict[int, list[str]] = {}
+    for floor, codes in re.findall(r'(?<!\S)(\d) ((?:`[^`]+`\s*)+)', rule):
+        floors[int(floor)] = [n for code in re.findall(r'`([^`]+)`', codes) for n in code.split()]
+    return floors
+
+
+def _mapped(folders: dict[str, list[str]], commands: dict[str, list[str]]) -> set[str]:
+    """Every path the map names, relative to ros2lite/ (a package by its __init__.py);
+    `commands` gives the modules named by rule: a cli command's verbs, a bundled package's
+    executables. compat/ and its faces are plain directories."""
+    paths = set()
+    for folder, names in folders.items():
+        prefix = f'{folder}/' if folder else ''
+        if folder and not folder.startswith('compat'):
+            paths.add(f'{prefix}__init__.py')
+        for name in [*names, *commands.get(folder, [])]:
+            if not name.endswith('/'):
+                paths.add(prefix + (name if name.endswith('.py') else f'{name}.py'))
     return paths
 
 
+def _by_rule(folders: dict[str, list[str]]) -> dict[str, list[str]]:
+    """What the map names by rule: each cli command's VERBS, each bundled package's
+    executables as pkg/bundled.py lists them."""
+    from ros2lite.pkg.bundled import BUNDLED, STAND_INS
+
+    out: dict[str, list[str]] = {}
+    for folder in folders:
+        kind, _, name = folder.partition('/')
+        if kind == 'cli' and name and '/' not in name:
+            out[folder] = list(importlib.import_module(f'ros2lite.cli.{name}').VERBS)
+        elif kind == 'bundled' and name and '/' not in name:
+            out[folder] = [*BUNDLED.get(name, {}), *STAND_INS.get(name, {})]
+    return out
+
+
 def _map_breaks(
-    on_disk: set[str], mapped: set[str], not_on_map: set[str], not_built: set[str]
-) -> tuple[list[str], list[str], list[str]]:
-    """Modules off the map, map names missing, and stale waivers (paths under ros2lite/)."""
-
-    def waived(path: str, waivers: set[str]) -> bool:
-        return any(path == w or (w.endswith('/') and path.startswith(w)) for w in waivers)
-
-    compat_faces = {'compat/' + f for f in COMPAT_FACES.split() if f.endswith('/')}
-    in_a_face = {  # compat/: any module inside a face folder (by upstream path) is on the map
-        p for p in on_disk if p.startswith('compat/') and p.rpartition('/')[0] + '/' in compat_faces
-    }
-    unmapped = sorted(p for p in on_disk - mapped - in_a_face if not waived(p, not_on_map))
-    missing = sorted(p for p in mapped - on_disk if p not in not_built)
-    # the waiver lists only shrink: an entry the tree or the map has caught up with must go
-    stale = sorted(w for w in not_on_map if not any(waived(p, {w}) for p in on_disk - mapped))
-    stale += sorted(w for w in not_built if w in on_disk or w not in mapped)
-    return unmapped, missing, stale
+    on_disk: set[str], folders: dict[str, list[str]], commands: dict[str, list[str]],
+    planned: list[str],
+) -> tuple[list[str], list[str], list[str]]:  # fmt: skip
+    """Modules off the map, map names missing, and planned rooms that exist (paths under
+    ros2lite/)."""
+    mapped = _mapped(folders, commands)
+    faces = tuple(f'{f}/' for f in folders if f.startswith('compat/'))
+    unmapped = sorted(p for p in on_disk - mapped if not p.startswith(faces))
+    missing = sorted(mapped - on_disk)
+    built = sorted(
+        name
+        for name in planned
+        if {f'{name}__init__.py', f'{name}.py'} & on_disk
+        or any(p.startswith(name) for p in on_disk if name.endswith('/'))
+    )
+    return unmapped, missing, built
 
 
 def test_every_module_is_on_the_map() -> None:
-    """Each module under ros2lite/ is where DESIGN.md §2 puts it, and each module the map
-    names exists: a new module goes where the map says (or into NOT_YET_ON_MAP until the map
-    is updated), and a module that moves takes the map with it."""
+    """Each module under ros2lite/ is where docs/DESIGN.md §2 puts it, each module the map
+    names exists, and no planned room is built yet: a new module goes where the map says, and
+    a module that moves takes the map with it, in the same commit."""
     package = ROOT / 'ros2lite'
     on_disk = {str(p.relative_to(package)) for p in package.rglob('*.py')}
     on_disk = {p for p in on_disk if not p.startswith('msgs/') or p == 'msgs/__init__.py'}
-    unmapped, missing, stale = _map_breaks(on_disk, _mapped(), NOT_YET_ON_MAP, NOT_YET_BUILT)
-    assert (unmapped, missing) == ([], []), 'modules off the map, and map names missing'
-    assert stale == [], 'waived yet placed or built: take them out of the lists'
-    probe_disk = {'node.py', 'stray.py', 'tf2/x.py', 'compat/rclpy/anything.py', 'late.py'}
-    probe_map = {'node.py', 'graph.py', 'late.py'}
-    assert _map_breaks(probe_disk, probe_map, {'tf2/', 'gone/'}, {'late.py'}) == (
-        ['stray.py'],
-        ['graph.py'],
-        ['gone/', 'late.py'],
+    section = _section_2(DESIGN.read_text())
+    folders = _read_map(section)
+    unmapped, missing, built = _map_breaks(
+        on_disk, folders, _by_rule(folders), _read_planned(section)
+    )
+    assert unmapped == [], 'modules the map does not name: place them in docs/DESIGN.md §2'
+    assert missing == [], 'names of the map that are not on disk'
+    assert built == [], 'planned rooms that exist: move them into the block'
+    probe = (
+        '\n## 2. x\n```\nros2lite/\n  __init__ · face: node (a note: gone) stray\n'
+        '  bag/       writer · storage/[mcap/[read]] (protocols)\n'
+        '  cli/       main · commands: topic/[common]\n'
+        '  compat/    faces: rclpy/\n'
+        'tests/ x\n```\n**Planned rooms**: `urdf/` `sim/`\n**Rules of the house**\n## 3.\n'
+    )
+    folders = _read_map(probe)
+    assert folders == {
+        '': ['__init__', 'node', 'stray'],
+        'bag': ['writer', 'storage/'],
+        'bag/storage': ['mcap/'],
+        'bag/storage/mcap': ['read'],
+        'cli': ['main', 'topic/'],
+        'cli/topic': ['common'],
+        'compat': ['rclpy/'],
+        'compat/rclpy': [],
+    }
+    probe_disk = {
+        '__init__.py', 'node.py', 'late.py', 'bag/__init__.py', 'bag/writer.py',
+        'bag/storage/__init__.py', 'bag/storage/mcap/__init__.py', 'bag/storage/mcap/read.py',
+        'cli/__init__.py', 'cli/main.py', 'cli/topic/__init__.py', 'cli/topic/common.py',
+        'cli/topic/echo.py', 'compat/rclpy/anything.py', 'sim/__init__.py',
+    }  # fmt: skip
+    by_rule = {'cli/topic': ['echo', 'hz']}
+    assert _map_breaks(probe_disk, folders, by_rule, _read_planned(probe)) == (
+        ['late.py', 'sim/__init__.py'],
+        ['cli/topic/hz.py', 'stray.py'],
+        ['sim/'],
     )
 
 
@@ -436,19 +441,14 @@ def _imports(sources: dict[str, str]) -> list[_Import]:
     return out
 
 
-# DESIGN.md §2's floors; a top-level module not named is on 4, a folder not named on 7
-FLOORS = {
-    0: 'exceptions util/',
-    1: 'duration names qos time logging type_support message_info topic_endpoint_info'
-    ' callback_groups task destroyable parameter interfaces/ msgs/ pkg/',
-    2: 'transport/ security/',
-    3: 'runtime/ graph context signals service_introspection daemon/',
-    4: 'parameters/',
-    5: 'action/ lifecycle/ components/ monitor/ bag/ launch/ tf2/',
-    6: 'tools/',
-    7: 'cli/ bundled/ compat/ __main__',
-}
-_FLOOR_OF = {n.rstrip('/'): floor for floor, names in FLOORS.items() for n in names.split()}
+# docs/DESIGN.md §2's floors; a top-level module not named is on 4, a folder not named on 7
+FLOORS = _read_floors(_section_2(DESIGN.read_text()))
+_FLOOR_OF = {n.rstrip('/'): floor for floor, names in FLOORS.items() for n in names}
+
+
+def _existing(package: Path) -> set[Path]:
+    """The modules and folders directly under ros2lite/."""
+    return {*package.glob('*.py'), *(d for d in package.iterdir() if d.is_dir())}
 
 
 def _floor(module: str) -> int:
@@ -478,6 +478,11 @@ def test_floors() -> None:
     """Every import, in a function too, goes to its own floor or lower (DESIGN.md §2), so a
     lower floor never needs a higher one to load; transport/ and security/ never meet."""
     assert _floor_breaks(_sources()) == []
+    package = ROOT / 'ros2lite'
+    named = [n for names in FLOORS.values() for n in names]
+    assert sorted(FLOORS) == list(range(8)), 'docs/DESIGN.md §2 names floors 0 to 7'
+    gone = [n for n in named if not {package / f'{n}.py', package / n} & _existing(package)]
+    assert gone == [], 'floors name rooms that do not exist'
     probe = {
         'ros2lite/util/probe.py': 'def f():\n    from ros2lite.node import Node\n',
         'ros2lite/transport/probe.py': 'from ..security import keystore\n',
