@@ -18,7 +18,7 @@ if TYPE_CHECKING:
         SetLoggerLevels_Request,
         SetLoggerLevels_Response,
     )
-    from ros2lite.runtime.node_interface import NodeInterface
+    from ros2lite.node_interface import NodeInterface
     from ros2lite.service import Service
 
     _Services = tuple[

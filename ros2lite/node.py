@@ -90,7 +90,7 @@ class Node(ParameterMixin, GraphMixin):
         self.default_callback_group: CallbackGroup = MutuallyExclusiveCallbackGroup()
         self._callback_groups: list[CallbackGroup] = [self.default_callback_group]
         # who runs the node's work: the executor it is attached to, what waits for one
-        self.work: NodeWork[NodeExecutor] = NodeWork(self._executables, self.waitables)
+        self.work: NodeWork[NodeExecutor[Node]] = NodeWork(self._executables, self.waitables)
         for level_name, level in self._args.log_levels.items():
             set_logger_level(level_name, level)
         from ros2lite.transport.session import declare_token
@@ -176,7 +176,7 @@ class Node(ParameterMixin, GraphMixin):
 
     # -- executor and callback groups --------------------------------------------------------
     @property
-    def executor(self) -> NodeExecutor | None:
+    def executor(self) -> NodeExecutor[Node] | None:
         """The executor this node was last added to, or None. It stays after the node is
         removed from it (as in rclpy), so tasks created there, such as a deferred action
         goal's execution, run when that executor spins again."""
@@ -184,7 +184,7 @@ class Node(ParameterMixin, GraphMixin):
         return work.executor if work.executor is not None else work.last_executor
 
     @executor.setter
-    def executor(self, new_executor: NodeExecutor | None) -> None:
+    def executor(self, new_executor: NodeExecutor[Node] | None) -> None:
         """Move the node to `new_executor` (None: to no executor at all)."""
         current = self.executor
         if new_executor is current:

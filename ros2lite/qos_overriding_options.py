@@ -27,8 +27,8 @@ from ros2lite.qos import (
 
 if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
+    from ros2lite.node_interface import NodeInterface
     from ros2lite.parameter import Parameter
-    from ros2lite.runtime.node_interface import NodeInterface
 
 __all__ = [
     'InvalidQosOverridesError',

@@ -14,7 +14,7 @@ from ros2lite.exceptions import ROSInterruptException
 
 if TYPE_CHECKING:
     from ros2lite.clock import Clock
-    from ros2lite.runtime.node_interface import NodeInterface
+    from ros2lite.node_interface import NodeInterface
 
 __all__ = ['Rate']
 

@@ -11,10 +11,10 @@ them and `bag record --services` records them, for ros2lite's nodes and C++/rclp
 from __future__ import annotations
 
 import enum
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol, overload
 
 from ros2lite.qos import QoSProfile
-from ros2lite.runtime.node_interface import ServiceNode
+from ros2lite.runtime.executable import EntityNode
 
 if TYPE_CHECKING:
     from ros2lite.clock import Clock
@@ -22,7 +22,7 @@ if TYPE_CHECKING:
     from ros2lite.interfaces.convert import FormatOptions
     from ros2lite.publisher import Publisher
     from ros2lite.runtime.endpoint import Endpoint
-    from ros2lite.type_support import Msg
+    from ros2lite.type_support import Msg, MsgT
 
 __all__ = [
     'EVENT_TOPIC_SUFFIX',
@@ -36,6 +36,36 @@ __all__ = [
     'format_event',
     'state_from_name',
 ]
+
+
+class ServiceNode(EntityNode, Protocol):
+    """The node of a service or client (:class:`ros2lite.node.Node`): an entity's node that
+    also makes the publisher of its introspection events, and stamps them with its clock."""
+
+    @overload
+    def create_publisher(
+        self, msg_type: type[MsgT], topic: str, qos_profile: QoSProfile | int
+    ) -> Publisher[MsgT]: ...
+
+    @overload
+    def create_publisher(
+        self, msg_type: str, topic: str, qos_profile: QoSProfile | int
+    ) -> Publisher[MsgT]: ...
+
+    def create_publisher(
+        self, msg_type: type[MsgT] | str, topic: str, qos_profile: QoSProfile | int
+    ) -> Publisher[MsgT]:
+        """A publisher of the node's, of a message class or a 'pkg/msg/Name'."""
+        ...
+
+    def destroy_publisher(self, pub: Publisher[MsgT]) -> bool:
+        """Withdraw a publisher of the node's; False if it is not (or no longer) one."""
+        ...
+
+    def get_clock(self) -> Clock:
+        """The node's ROS clock."""
+        ...
+
 
 EVENT_TOPIC_SUFFIX = '/_service_event'
 GID_SIZE = 16  # service_msgs/msg/ServiceEventInfo's char[16] client_gid

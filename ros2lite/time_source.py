@@ -22,7 +22,7 @@ from ros2lite.time import ClockType, Time
 if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
     from ros2lite.msgs.rosgraph_msgs.msg import Clock as ClockMsg
-    from ros2lite.runtime.node_interface import NodeInterface
+    from ros2lite.node_interface import NodeInterface
     from ros2lite.subscription import Subscription
 
 __all__ = ['CLOCK_TOPIC', 'USE_SIM_TIME_NAME', 'TimeSource']

@@ -22,7 +22,7 @@ if TYPE_CHECKING:
         GetTypeDescription_Request,
         GetTypeDescription_Response,
     )
-    from ros2lite.runtime.node_interface import NodeInterface
+    from ros2lite.node_interface import NodeInterface
     from ros2lite.service import Service
 
 __all__ = ['START_TYPE_DESCRIPTION_SERVICE_PARAM', 'TypeDescriptionService']

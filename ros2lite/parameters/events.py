@@ -8,8 +8,8 @@ from ros2lite.parameter import Parameter
 
 if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import ParameterEvent
+    from ros2lite.node_interface import NodeInterface
     from ros2lite.publisher import Publisher
-    from ros2lite.runtime.node_interface import NodeInterface
 
 TOPIC = "/parameter_events"
 TYPE = "rcl_interfaces/msg/ParameterEvent"

@@ -33,7 +33,7 @@ if TYPE_CHECKING:
         ParameterValue,
         SetParametersResult,
     )
-    from ros2lite.runtime.node_interface import NodeInterface
+    from ros2lite.node_interface import NodeInterface
 
 
 class ParameterMixin(SharedParameterMethods):

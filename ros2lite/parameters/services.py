@@ -16,7 +16,7 @@ if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces import srv
     from ros2lite.msgs.rcl_interfaces.msg import Parameter as ParameterMsg
     from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
-    from ros2lite.runtime.node_interface import NodeInterface
+    from ros2lite.node_interface import NodeInterface
     from ros2lite.service import Service
 
 TYPES = {

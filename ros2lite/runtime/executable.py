@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 from ros2lite.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup
 from ros2lite.runtime.scheduling import NodeWork, Scheduled
@@ -17,7 +17,6 @@ from ros2lite.task import TaskRunner
 if TYPE_CHECKING:
     from ros2lite.context import Context
     from ros2lite.logging import RcutilsLogger
-    from ros2lite.node import Node
     from ros2lite.task import Task
 
 __all__ = [
@@ -41,6 +40,8 @@ class _Running(threading.local):
 # which executor and entity the current thread runs a callback for (set by the executor):
 # coroutine callbacks continue on it, and blocking calls check it for deadlocks
 _running = _Running()
+# the node a NodeExecutor takes (contravariant: it only goes in)
+_NodeT = TypeVar('_NodeT', contravariant=True)
 
 
 class Destroyable(Protocol):
@@ -69,15 +70,16 @@ class EntityExecutor(Protocol):
         ...
 
 
-class NodeExecutor(EntityExecutor, TaskRunner, Protocol):
+class NodeExecutor(EntityExecutor, TaskRunner, Protocol[_NodeT]):
     """The executor a node was added to (:class:`ros2lite.executors.Executor` is one), as the
-    node sees it: named below both, as executors import nodes to run them."""
+    node sees it: named below both, as executors import nodes to run them. The node's type is
+    a parameter (node.py says `NodeExecutor[Node]`), so this floor names nothing above it."""
 
-    def add_node(self, node: Node) -> bool:
+    def add_node(self, node: _NodeT) -> bool:
         """Take over `node`."""
         ...
 
-    def remove_node(self, node: Node) -> None:
+    def remove_node(self, node: _NodeT) -> None:
         """Stop running `node`'s work."""
         ...
 

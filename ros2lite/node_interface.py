@@ -3,17 +3,18 @@
 A node is made of parts that call back into its public API: the parameter events and
 services, the time source, the logger and type-description services, rates and QoS
 overrides. node.py makes them, so they cannot import node.py; they take a `NodeInterface`
-instead, which :class:`ros2lite.node.Node` is. Entities ask less of their node
+instead, which :class:`ros2lite.node.Node` is. It names the node's entities, so it stands
+beside them on the top level, not in runtime/ under them. Entities ask less of their node
 (:class:`ros2lite.runtime.executable.EntityNode`,
-:class:`ServiceNode`, here so service_introspection.py can sit above runtime/).
+:class:`ros2lite.service_introspection.ServiceNode`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Protocol, overload
+from typing import TYPE_CHECKING, Protocol
 
-from ros2lite.runtime.executable import EntityNode
+from ros2lite.service_introspection import ServiceNode
 
 if TYPE_CHECKING:
     from ros2lite.clock import Clock
@@ -24,8 +25,6 @@ if TYPE_CHECKING:
         SetParametersResult,
     )
     from ros2lite.parameter import AllowableParameterValue, Parameter
-    from ros2lite.parameters.store import OnSetCallback
-    from ros2lite.publisher import Publisher
     from ros2lite.qos import QoSProfile
     from ros2lite.runtime.endpoint import EndpointOwner
     from ros2lite.service import Service, ServiceCallback
@@ -34,36 +33,11 @@ if TYPE_CHECKING:
     from ros2lite.timer import Timer
     from ros2lite.type_support import MsgT, SrvRequestT, SrvResponseT
 
-__all__ = ['NodeInterface', 'ServiceNode']
+__all__ = ['NodeInterface']
 
-
-class ServiceNode(EntityNode, Protocol):
-    """The node of a service or client (:class:`ros2lite.node.Node`): an entity's node that
-    also makes the publisher of its introspection events, and stamps them with its clock."""
-
-    @overload
-    def create_publisher(
-        self, msg_type: type[MsgT], topic: str, qos_profile: QoSProfile | int
-    ) -> Publisher[MsgT]: ...
-
-    @overload
-    def create_publisher(
-        self, msg_type: str, topic: str, qos_profile: QoSProfile | int
-    ) -> Publisher[MsgT]: ...
-
-    def create_publisher(
-        self, msg_type: type[MsgT] | str, topic: str, qos_profile: QoSProfile | int
-    ) -> Publisher[MsgT]:
-        """A publisher of the node's, of a message class or a 'pkg/msg/Name'."""
-        ...
-
-    def destroy_publisher(self, pub: Publisher[MsgT]) -> bool:
-        """Withdraw a publisher of the node's; False if it is not (or no longer) one."""
-        ...
-
-    def get_clock(self) -> Clock:
-        """The node's ROS clock."""
-        ...
+# what parameters/store.py calls an OnSetCallback, spelled out: parameters/ stands beside
+# this module and imports it, so this module does not import parameters/
+OnSetCallback = Callable[[list['Parameter']], 'SetParametersResult']
 
 
 class NodeInterface(ServiceNode, Protocol):
