@@ -13,14 +13,13 @@ import threading
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 from ros2lite.names import absolute_node_name, action_entity_name, is_hidden_name, node_fqn
 from ros2lite.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum, format_gid
 from ros2lite.transport.keys import Entity, EntityKind, parse_token
 
 if TYPE_CHECKING:
-    from ros2lite.context import Context
     from ros2lite.transport.handles import Session
 
 # Entity and EntityKind are the graph's vocabulary; other modules import them from here
@@ -28,6 +27,7 @@ __all__ = [
     'Entity',
     'EntityKind',
     'GraphCache',
+    'GraphContext',
     'GraphMixin',
     'NodeInfo',
     'TopicEndpointInfo',
@@ -366,12 +366,28 @@ def format_endpoint_info(info: TopicEndpointInfo) -> str:
     return str(info)
 
 
+class GraphContext(Protocol):
+    """What a node's graph queries ask of its context (:class:`ros2lite.context.Context` is
+    one): named here, as the context makes the graph cache and so stands on this module."""
+
+    @property
+    def graph(self) -> GraphCache:
+        """The context's live graph cache."""
+        ...
+
+    def ok(self) -> bool:
+        """Whether the context is still initialized."""
+        ...
+
+
 class GraphMixin:
     """Node's graph queries, rclpy's `get_*`/`count_*`/`wait_for_node`, answered from the
     context's live `GraphCache`. Node supplies `context` and name resolution."""
 
     if TYPE_CHECKING:
-        context: Context
+
+        @property
+        def context(self) -> GraphContext: ...
 
         def resolve_topic_name(self, topic: str, *, only_expand: bool = False) -> str: ...
 

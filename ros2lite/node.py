@@ -52,6 +52,8 @@ class Node(ParameterMixin, GraphMixin):
     # rclpy's default QoS event callbacks (warnings, fed by the live graph); a tool's node
     # (ros2lite.tools.connection) goes without them, and without a graph cache of its own
     _default_event_callbacks = True
+    context: Context
+    """The context the node lives in (GraphMixin asks it only for the graph)."""
 
     def __init__(
         self,

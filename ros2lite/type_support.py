@@ -12,10 +12,8 @@ Nothing here runs: the protocols only describe the classes of :mod:`ros2lite.int
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, ClassVar, Protocol, TypeVar
-
-if TYPE_CHECKING:
-    from ros2lite.msgs.unique_identifier_msgs.msg import UUID
+from collections.abc import Sequence
+from typing import Any, ClassVar, Protocol, TypeVar
 
 __all__ = [
     'Action',
@@ -140,11 +138,21 @@ class GetResultResponse(Protocol[_ResultT_co]):
         ...
 
 
+class GoalId(Protocol):
+    """A goal's id (unique_identifier_msgs/UUID is one), by its one field: the generated
+    messages stand on this module's types, so it names none of them."""
+
+    @property
+    def uuid(self) -> Sequence[int]:
+        """The 16 bytes of the id."""
+        ...
+
+
 class FeedbackMessage(Protocol[_FeedbackT_co]):
     """What an action client's feedback callback gets: the goal's id and its feedback."""
 
     @property
-    def goal_id(self) -> UUID:
+    def goal_id(self) -> GoalId:
         """The goal's id."""
         ...
 

@@ -18,6 +18,7 @@ from ros2lite.exceptions import Ros2liteError
 from ros2lite.interfaces import get_interface
 from ros2lite.interfaces.classes import ActionType
 from ros2lite.names import NameValidationException, action_entity_name
+from ros2lite.type_support import GoalId
 
 if TYPE_CHECKING:
     from ros2lite.msgs.action_msgs import msg as _action_msgs_msg
@@ -138,14 +139,14 @@ def new_goal_id() -> _uuid_msg.UUID:
     return UUID(uuid=list(_uuid.uuid4().bytes))
 
 
-def goal_key(goal_id: _uuid_msg.UUID | bytes | Sequence[int]) -> bytes:
+def goal_key(goal_id: GoalId | bytes | Sequence[int]) -> bytes:
     """The 16 bytes of a UUID message (or of bytes/list), usable as a dict key."""
     if isinstance(goal_id, (bytes, bytearray, Sequence)):
         return bytes(goal_id)
     return bytes(goal_id.uuid)
 
 
-def goal_id_hex(goal_id: _uuid_msg.UUID | bytes | Sequence[int]) -> str:
+def goal_id_hex(goal_id: GoalId | bytes | Sequence[int]) -> str:
     """32 lower-case hex digits, as `ros2 action send_goal` prints a goal ID."""
     return goal_key(goal_id).hex()
 
