@@ -348,6 +348,50 @@ def test_every_module_is_on_the_map() -> None:
     )
 
 
+def _mirror_breaks(tests: set[str], modules: set[str]) -> list[str]:
+    """Test files `<path>/test_<m>.py` (under tests/) where `<m>` names a module of ros2lite/
+    (`modules`: paths under ros2lite/) but none at `<path>/<m>.py`, `<path>/<m>/` or `<path>`
+    itself (a package's tests in its own folder)."""
+    names = {
+        (
+            p.rpartition('/')[0].rpartition('/')[2] if p.endswith('/__init__.py') else p[:-3]
+        ).rpartition('/')[2]
+        for p in modules
+    }
+    breaks = []
+    for test in sorted(tests):
+        folder, _, file = test.rpartition('/')
+        m = file.removeprefix('test_').removesuffix('.py')
+        here = f'{folder}/' if folder else ''
+        homes = {f'{here}{m}.py', f'{here}{m}/__init__.py'}
+        if folder.rpartition('/')[2] == m:
+            homes.add(f'{folder}/__init__.py')
+        if m in names and not homes & modules:
+            breaks.append(test)
+    return breaks
+
+
+def test_tests_mirror() -> None:
+    """tests/ mirrors ros2lite/: a test file named for a module sits where that module does,
+    so a module's tests are found by its path, and a module that moves takes them along."""
+    package, tests = ROOT / 'ros2lite', ROOT / 'tests'
+    modules = {str(p.relative_to(package)) for p in package.rglob('*.py')}
+    modules = {p for p in modules if not p.startswith('msgs/') or p == 'msgs/__init__.py'}
+    found = {str(p.relative_to(tests)) for p in tests.rglob('test_*.py')}
+    assert _mirror_breaks(found, modules) == []
+    probe_tests = {
+        'test_node.py', 'runtime/test_node.py', 'test_keys.py', 'cli/topic/test_topic.py',
+        'bag/test_storage.py', 'test_anything_else.py',
+    }  # fmt: skip
+    probe_modules = {
+        'node.py',
+        'transport/keys.py',
+        'cli/topic/__init__.py',
+        'bag/storage/__init__.py',
+    }
+    assert _mirror_breaks(probe_tests, probe_modules) == ['runtime/test_node.py', 'test_keys.py']
+
+
 # --- imports: floors, laziness, circles (DESIGN.md §2, rules of the house) -------------------
 # Every checker below takes the sources as {path relative to the repo: text}, so each rule's
 # test also feeds it a small probe that breaks the rule and asserts the probe is caught.
