@@ -105,3 +105,29 @@ def play(*args: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
 
 
 __all__ = ["Listener", "Recording", "play", "subscribed", "wait_until"]
+
+
+def on_disk(path: Path, topic: str | None = None) -> int:
+    """Messages (of `topic`, or all) that the recording at `path` has put on disk so far, its
+    files read as a killed recorder's are: up to their last finished chunk. Polling this
+    waits exactly as long as the recorder takes, where a sleep would guess."""
+    from ros2lite.bag.storage.mcap import open_reader
+
+    total = 0
+    for file in sorted(path.glob("*.mcap")):
+        if file.stat().st_size == 0:
+            continue  # created, nothing written yet
+        reader = open_reader(str(file))
+        try:
+            summary = reader.summary()
+        finally:
+            reader.close()
+        total += summary.counts.get(topic, 0) if topic else summary.message_count
+    return total
+
+
+def node_up(ctx: Any, name: str = "rosbag2_recorder") -> bool:
+    """True once the graph shows a node of that name (a recorder that has started)."""
+    from ros2lite.graph import snapshot
+
+    return any(e.node_name == name for e in snapshot(ctx.session, ctx.domain_id))

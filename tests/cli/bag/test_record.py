@@ -17,7 +17,7 @@ from ros2lite.interfaces import get_interface, serialize
 from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
 
 from ..conftest import run_process
-from .conftest import play, subscribed, wait_until
+from .conftest import node_up, on_disk, play, subscribed, wait_until
 
 String = get_interface("std_msgs/msg/String")
 KEEP_ALL = QoSProfile(history=HistoryPolicy.KEEP_ALL)
@@ -37,7 +37,7 @@ def test_record_then_play_round_trip(
     rec = recording(tmp_path / "bag", "--topics", topic)
     wait_until(lambda: subscribed(ros_context, topic), timeout=20)
     sent = publish_all(pub, 2000)
-    time.sleep(0.5)
+    wait_until(lambda: on_disk(tmp_path / "bag") == 2000, timeout=20)
     code, _out, err = rec.finish(signal.SIGINT)
     assert code == 0, err
     assert f"Subscribed to topic '{topic}'" in err and "Recording stopped" in err
@@ -75,7 +75,7 @@ def test_sigterm_finishes_the_bag_and_late_topics_are_picked_up(
         "-p",
         "50",
     )
-    time.sleep(1.0)  # the recorder is up before any of these topics exists
+    wait_until(lambda: node_up(ros_context), timeout=20)  # up before any of these topics
     pubs = {
         name: node.create_publisher(String, name, KEEP_ALL)
         for name in (f"{topic}/late", f"{topic}/skip", f"{topic}/excluded", f"{topic}/_hidden")
@@ -83,7 +83,7 @@ def test_sigterm_finishes_the_bag_and_late_topics_are_picked_up(
     wait_until(lambda: subscribed(ros_context, f"{topic}/late"), timeout=20)
     for name, pub in pubs.items():
         publish_all(pub, 10, name)
-    time.sleep(0.5)
+    wait_until(lambda: on_disk(tmp_path / "bag", f"{topic}/late") == 10, timeout=20)
     code, _out, err = rec.finish(signal.SIGTERM)
     assert code == 0, err
     with Reader(tmp_path / "bag") as bag:
@@ -98,8 +98,7 @@ def test_latched_messages_are_recorded(
     pub = node.create_publisher(String, topic, latched)
     publish_all(pub, 3, "latched")  # before any recorder exists
     rec = recording(tmp_path / "bag", "--topics", topic)
-    wait_until(lambda: subscribed(ros_context, topic), timeout=20)
-    time.sleep(1.0)
+    wait_until(lambda: on_disk(tmp_path / "bag") == 3, timeout=20)
     code, _out, err = rec.finish()
     assert code == 0, err
     with Reader(tmp_path / "bag") as bag:
@@ -115,7 +114,7 @@ def test_sigkill_then_reindex_recovers(
     rec = recording(tmp_path / "bag", "--topics", topic)
     wait_until(lambda: subscribed(ros_context, topic), timeout=20)
     sent = publish_all(pub, 500)
-    time.sleep(2.0)  # the recorder puts finished data on disk every second
+    wait_until(lambda: on_disk(tmp_path / "bag") == 500, timeout=20)  # all in finished chunks
     rec.finish(signal.SIGKILL)
     assert not (tmp_path / "bag" / "metadata.yaml").exists()
     result = run_process("bag", "reindex", str(tmp_path / "bag"))
@@ -142,7 +141,7 @@ def test_random_bytes_are_recorded_as_they_came(
     for blob in junk:
         pub.publish(blob)
     pub.publish(good)
-    time.sleep(0.5)
+    wait_until(lambda: on_disk(tmp_path / "bag") == len(junk) + 1, timeout=20)
     assert rec.proc.poll() is None  # still recording
     code, _out, err = rec.finish()
     assert code == 0, err
@@ -169,7 +168,7 @@ def test_split_and_compressed_recording(
     wait_until(lambda: subscribed(ros_context, topic), timeout=20)
     for i in range(300):
         pub.publish(String(data=f"{i:05d}" + os.urandom(1500).hex()))
-    time.sleep(1.0)
+    wait_until(lambda: on_disk(tmp_path / "bag") == 300, timeout=20)
     code, _out, err = rec.finish()
     assert code == 0, err
     meta = read_metadata_file(tmp_path / "bag" / "metadata.yaml")
@@ -196,7 +195,7 @@ def test_full_disk_is_one_error_and_keeps_what_was_written(
     rec = recording(tmp_path / "bag", "--topics", topic, preexec=_small_file_limit)
     wait_until(lambda: subscribed(ros_context, topic), timeout=20)
     publish_all(pub, 20, "early")
-    time.sleep(1.8)  # flushed to disk
+    wait_until(lambda: on_disk(tmp_path / "bag") == 20, timeout=20)
     for i in range(100):
         pub.publish(String(data=f"big {i} " + "x" * 10_000))
     rec.proc.wait(timeout=30)  # the recorder ends by itself: no signal is sent
@@ -236,6 +235,10 @@ def test_start_paused_and_no_discovery_record_nothing(
     paused = recording(tmp_path / "paused", "--topics", topic, "--start-paused")
     blind = recording(tmp_path / "blind", "-e", f"^{topic}/late", "--no-discovery")
     wait_until(lambda: subscribed(ros_context, topic), timeout=20)
+    wait_until(lambda: node_up(ros_context), timeout=20)
+    # the rest shows that nothing comes, so only a bounded wait can: the blind recorder's one
+    # discovery is over before the late topic exists, and whatever it or the paused one
+    # would write is on disk well within 0.5 s (they flush every 0.1 s)
     time.sleep(0.5)
     late = node.create_publisher(String, f"{topic}/late", KEEP_ALL)
     time.sleep(0.5)
@@ -262,7 +265,7 @@ def test_types_unknown_here_are_recorded_and_played_as_bytes(
     blobs = [bytes([0, 1, 0, 0, i, i, i, i]) for i in range(5)]
     for blob in blobs:
         pub.publish(blob)
-    time.sleep(0.5)
+    wait_until(lambda: on_disk(tmp_path / "bag") == 5, timeout=20)
     code, _out, err = rec.finish()
     assert code == 0, err
     with Reader(tmp_path / "bag") as bag:
@@ -298,7 +301,7 @@ def test_use_sim_time_stamps_with_clock(
         clock.publish(sim)
         time.sleep(0.05)
     publish_all(pub, 5)
-    time.sleep(0.5)
+    wait_until(lambda: on_disk(tmp_path / "bag") == 5, timeout=20)
     code, _out, err = rec.finish()
     assert code == 0, err
     assert "use_sim_time set, waiting for /clock before starting recording..." in err
@@ -356,7 +359,8 @@ def test_topic_types_hidden_topics_and_qos_overrides(
     publish_all(other, 5)
     for _ in range(5):
         excluded.publish(Bool(data=True))
-    time.sleep(0.5)
+    wait_until(lambda: on_disk(tmp_path / "bag", f"{topic}/typed") == 5, timeout=20)
+    wait_until(lambda: on_disk(tmp_path / "bag", f"{topic}/_hidden") == 5, timeout=20)
     code, _out, err = rec.finish()
     assert code == 0, err
     with Reader(tmp_path / "bag") as bag:
@@ -402,7 +406,7 @@ def test_sigint_under_load_keeps_a_gapless_prefix(
 
     thread = threading.Thread(target=flood, daemon=True)
     thread.start()
-    time.sleep(1.0)
+    wait_until(lambda: on_disk(tmp_path / "bag") > 100, timeout=20)  # recording under load
     code, _out, err = rec.finish(signal.SIGINT)  # while messages are still pouring in
     stop.set()
     thread.join(5)
@@ -476,7 +480,8 @@ def test_a_hostile_topic_name_is_skipped_and_recording_goes_on(
     wait_until(lambda: subscribed(ros_context, f"{topic}/late"), timeout=20)
     publish_all(first, 10, "first")
     publish_all(late, 10, "late")
-    time.sleep(0.5)
+    for name in (f"{topic}/first", f"{topic}/late"):  # -a records /rosout too
+        wait_until(lambda: on_disk(tmp_path / "bag", name) == 10, timeout=20)  # noqa: B023
     code, _out, err = rec.finish()
     before.undeclare()
     during.undeclare()
