@@ -14,7 +14,7 @@ from typing import Any
 
 from ros2lite.bag import Reader
 from ros2lite.bag.reindex import reindex
-from tests.cli.bag.conftest import Recording, subscribed
+from tests.cli.bag.conftest import Recording, on_disk, subscribed
 from tests.spinning import wait_until
 
 BENCHMARKS = Path(__file__).resolve().parents[3] / 'benchmarks'
@@ -56,7 +56,7 @@ def test_sigkill_loses_only_the_last_flush_interval(
     try:
         processes.python(STAMPER, topic)  # the recorder subscribes once it has a publisher
         wait_until(lambda: subscribed(ros_context, topic), timeout=20)
-        time.sleep(2.5)
+        wait_until(lambda: on_disk(tmp_path / 'bag') >= 1500, timeout=30)  # 1.5 s of it
         killed = time.monotonic_ns()
         rec.proc.send_signal(signal.SIGKILL)
         rec.proc.wait(timeout=10)
@@ -90,7 +90,6 @@ def test_the_recorder_says_when_the_graph_is_unreachable(tmp_path: Path) -> None
         stderr=subprocess.PIPE,
         text=True,
     )
-    time.sleep(0.5)
     lines: list[str] = []
     deadline = time.monotonic() + 30
     assert proc.stderr is not None
