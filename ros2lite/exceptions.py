@@ -10,7 +10,8 @@ as ``except ValueError`` keeps working. Subpackages keep their own errors (``bag
 from __future__ import annotations
 
 import sys
-from typing import Any, Protocol
+from types import TracebackType
+from typing import Protocol
 
 
 class _TypeName(Protocol):
@@ -167,7 +168,9 @@ def quiet_interrupt_exit() -> None:
         sys.excepthook = _quiet_interrupt_hook
 
 
-def _quiet_interrupt_hook(kind: type[BaseException], error: BaseException, tb: Any) -> None:
+def _quiet_interrupt_hook(
+    kind: type[BaseException], error: BaseException, tb: TracebackType | None
+) -> None:
     if issubclass(kind, KeyboardInterrupt):
         return
     sys.__excepthook__(kind, error, tb)

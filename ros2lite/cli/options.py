@@ -198,11 +198,13 @@ class MessageFormat(TypedDict):
 
 
 DEFAULT_TRUNCATE_LENGTH = 128
+# an option decorator, as click.option makes them
+_Decorator = Callable[[Callable[..., object]], Callable[..., object]]
 CSV_HELP = 'Output all recursive fields separated by commas (e.g. for plotting)'
 
 
 def format_options(
-    *, csv_help: str = CSV_HELP, after_csv: Sequence[Callable[[Any], Any]] = ()
+    *, csv_help: str = CSV_HELP, after_csv: Sequence[_Decorator] = ()
 ) -> Callable[[F], F]:
     """The echo verbs' message-format options (--csv, then `after_csv`, -f/--full-length,
     -l/--truncate-length, --no-arr, --no-str, --flow-style), handed to the verb as one
@@ -211,15 +213,15 @@ def format_options(
     def decorate(fn: F) -> F:
         @functools.wraps(fn)
         def verb(
-            *args: Any,
+            *args: object,
             csv: bool,
             full_length: bool,
             truncate_length: int,
             no_arr: bool,
             no_str: bool,
             flow_style: bool,
-            **kwargs: Any,
-        ) -> Any:
+            **kwargs: object,
+        ) -> object:
             fmt: MessageFormat = {
                 'csv': csv,
                 'flow_style': flow_style,
@@ -229,7 +231,7 @@ def format_options(
             }
             return fn(*args, fmt=fmt, **kwargs)
 
-        opts = [
+        opts: list[_Decorator] = [
             click.option('--csv', is_flag=True, help=csv_help),
             *after_csv,
             click.option(
@@ -255,7 +257,7 @@ def format_options(
                 help='Print collections in the flow style (not available with csv format)',
             ),
         ]
-        decorated: Any = verb
+        decorated: Callable[..., object] = verb
         for opt in reversed(opts):
             decorated = opt(decorated)
         return cast(F, decorated)
@@ -326,7 +328,7 @@ def bind(load: Callable[[], type[D]], to: str = 'options') -> Callable[[F], F]:
 
     def decorate(fn: F) -> F:
         @functools.wraps(fn)
-        def verb(*args: Any, **kwargs: Any) -> Any:
+        def verb(*args: object, **kwargs: object) -> object:
             cls = load()
             values = {
                 f.name: _field_value(kwargs.pop(f.name))

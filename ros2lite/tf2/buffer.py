@@ -8,7 +8,7 @@ from __future__ import annotations
 import threading
 import time as _time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Literal, overload
 
 from ros2lite.clock import Clock, JumpThreshold
 from ros2lite.duration import Duration
@@ -57,7 +57,9 @@ class Buffer(BufferCore):
             threshold, post_callback=self.time_jump_callback
         )
 
-    def _get_frames(self, request: Any, response: Any) -> Any:
+    def _get_frames(
+        self, request: FrameGraph.Request, response: FrameGraph.Response
+    ) -> FrameGraph.Response:
         response.frame_yaml = self.all_frames_as_yaml()
         return response
 
@@ -121,6 +123,37 @@ class Buffer(BufferCore):
             target_frame, target_time, source_frame, source_time, fixed_frame
         )
 
+    @overload
+    def can_transform(
+        self,
+        target_frame: str,
+        source_frame: str,
+        time: object,
+        timeout: Duration | None = None,
+        return_debug_tuple: Literal[False] = False,
+    ) -> bool: ...
+
+    @overload
+    def can_transform(
+        self,
+        target_frame: str,
+        source_frame: str,
+        time: object,
+        timeout: Duration | None,
+        return_debug_tuple: Literal[True],
+    ) -> tuple[bool, str]: ...
+
+    @overload
+    def can_transform(
+        self,
+        target_frame: str,
+        source_frame: str,
+        time: object,
+        timeout: Duration | None = None,
+        *,
+        return_debug_tuple: Literal[True],
+    ) -> tuple[bool, str]: ...
+
     def can_transform(
         self,
         target_frame: str,
@@ -128,12 +161,49 @@ class Buffer(BufferCore):
         time: object,
         timeout: Duration | None = None,
         return_debug_tuple: bool = False,
-    ) -> Any:
+    ) -> bool | tuple[bool, str]:
         """Whether the lookup can be made, waiting up to `timeout`; with
         `return_debug_tuple`, (whether, why not)."""
         self._wait(lambda: self.can_transform_core(target_frame, source_frame, time)[0], timeout)
         result = self.can_transform_core(target_frame, source_frame, time)
         return result if return_debug_tuple else result[0]
+
+    @overload
+    def can_transform_full(
+        self,
+        target_frame: str,
+        target_time: object,
+        source_frame: str,
+        source_time: object,
+        fixed_frame: str,
+        timeout: Duration | None = None,
+        return_debug_tuple: Literal[False] = False,
+    ) -> bool: ...
+
+    @overload
+    def can_transform_full(
+        self,
+        target_frame: str,
+        target_time: object,
+        source_frame: str,
+        source_time: object,
+        fixed_frame: str,
+        timeout: Duration | None,
+        return_debug_tuple: Literal[True],
+    ) -> tuple[bool, str]: ...
+
+    @overload
+    def can_transform_full(
+        self,
+        target_frame: str,
+        target_time: object,
+        source_frame: str,
+        source_time: object,
+        fixed_frame: str,
+        timeout: Duration | None = None,
+        *,
+        return_debug_tuple: Literal[True],
+    ) -> tuple[bool, str]: ...
 
     def can_transform_full(
         self,
@@ -144,7 +214,7 @@ class Buffer(BufferCore):
         fixed_frame: str,
         timeout: Duration | None = None,
         return_debug_tuple: bool = False,
-    ) -> Any:
+    ) -> bool | tuple[bool, str]:
         """As `can_transform`, for the full lookup."""
         args = (target_frame, target_time, source_frame, source_time, fixed_frame)
         self._wait(lambda: self.can_transform_full_core(*args)[0], timeout)

@@ -20,7 +20,7 @@ import sys
 import threading
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from types import FrameType
-from typing import TYPE_CHECKING, Any
+from typing import IO, TYPE_CHECKING, Any
 
 from ros2lite.exceptions import Ros2liteError
 
@@ -403,7 +403,7 @@ class ChildProcess:
         threading.Thread(target=self._wait, name='child-wait', daemon=True).start()
         return self._proc.pid
 
-    def _read(self, name: str, stream: Any) -> None:
+    def _read(self, name: str, stream: IO[bytes]) -> None:
         try:
             for raw in iter(stream.readline, b''):
                 if self.on_line is not None:

@@ -6,7 +6,8 @@
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import TypeVar
 
 import ros2lite
 from ros2lite.bundled.runner import run_main
@@ -19,9 +20,12 @@ from ros2lite.event_handler import (
 from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.node import Node
+from ros2lite.publisher import Publisher
+from ros2lite.subscription import Subscription
 from ros2lite.task import Future
 
 PUB_TOPIC = 'pub_topic_matched_event_detect'
+_Made = TypeVar('_Made')
 SUB_TOPIC = 'sub_topic_matched_event_detect'
 STEP_TIMEOUT = 10.0
 
@@ -87,12 +91,12 @@ class MultiSubNode(Node):
         super().__init__('multi_sub_node')
         self.topic = topic
 
-    def create_one_sub(self) -> Any:
+    def create_one_sub(self) -> Subscription[String]:
         """One more subscription."""
         self.get_logger().info('Create a new subscription.')
         return self.create_subscription(String, self.topic, lambda msg: None, 10)
 
-    def destroy_one_sub(self, sub: Any) -> None:
+    def destroy_one_sub(self, sub: Subscription[String]) -> None:
         """Drop one made here."""
         self.get_logger().info('Destroy a subscription.')
         self.destroy_subscription(sub)
@@ -105,12 +109,12 @@ class MultiPubNode(Node):
         super().__init__('multi_pub_node')
         self.topic = topic
 
-    def create_one_pub(self) -> Any:
+    def create_one_pub(self) -> Publisher[String]:
         """One more publisher."""
         self.get_logger().info('Create a new publisher.')
         return self.create_publisher(String, self.topic, 10)
 
-    def destroy_one_pub(self, pub: Any) -> None:
+    def destroy_one_pub(self, pub: Publisher[String]) -> None:
         """Drop one made here."""
         self.get_logger().info('Destroy a publisher.')
         self.destroy_publisher(pub)
@@ -125,7 +129,7 @@ def walk_through() -> None:
     for node in (detector, subs, pubs):
         executor.add_node(node)
 
-    def step(action: Any, *args: Any) -> Any:
+    def step(action: Callable[..., _Made], *args: object) -> _Made:
         future = detector.get_future()
         made = action(*args)
         executor.spin_until_future_complete(future, STEP_TIMEOUT)
