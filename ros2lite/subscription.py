@@ -7,7 +7,7 @@ import inspect
 import time
 from collections import deque
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, Generic, cast
+from typing import TYPE_CHECKING, Generic, cast
 
 from ros2lite.message_info import MessageInfo
 from ros2lite.qos import HistoryPolicy, QoSProfile
@@ -112,7 +112,9 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         # raw samples as a pump thread (or an arrival hook, through _keep) queued them,
         # `(sample, arrival ns)` (tools like `topic hz` need arrival times); typed
         # subscriptions pull from Zenoh on the executor thread (`_source` below)
-        self._buffer: deque[Any] = deque(maxlen=None if keep_all else max(ep.qos.depth, 1))
+        self._buffer: deque[tuple[Sample, int]] = deque(
+            maxlen=None if keep_all else max(ep.qos.depth, 1)
+        )
         self._deserialize: Callable[[bytes], MsgT] | None = None
         # read per message by runtime/delivery.py, a plain attribute; only destroy() sets it
         self.destroyed = False

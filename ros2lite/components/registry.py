@@ -30,7 +30,6 @@ import sys
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 from ros2lite.exceptions import Ros2liteError
 
@@ -183,7 +182,7 @@ def load_class(component: ComponentType) -> Callable[..., object]:
     if component.prefix is not None:
         _add_python_path(component.prefix)
     try:
-        found: Any = importlib.import_module(module_name)
+        found: object = importlib.import_module(module_name)
         for part in attr.split('.'):
             found = getattr(found, part)
     except Exception as e:  # the module's own import errors too: report, never crash

@@ -231,7 +231,7 @@ def _coerce(current: Any, value: Any, ft: FieldType) -> Any:
     return type(current)(value)
 
 
-def _reason(name: str, value: Any, ft: FieldType, e: Exception) -> str:
+def _reason(name: str, value: object, ft: FieldType, e: Exception) -> str:
     """Why `value` does not fit field `name`, in the user's terms where Python's own words
     would say nothing to them (NaN to int, str to bytes, a string for an array); rosidl's
     own messages otherwise, as ros2cli prints them."""

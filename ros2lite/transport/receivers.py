@@ -6,7 +6,6 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Callable
-from typing import Any
 
 from ros2lite.qos import QoSProfile
 from ros2lite.transport.handles import Receiving, Sample, Session
@@ -23,7 +22,7 @@ def open_receiver(
     qos: QoSProfile,
     on_ready: Callable[[], None],
     *,
-    buffer: deque[Any] | None = None,
+    buffer: deque[tuple[Sample, int]] | None = None,
     hook: Callable[[Sample], None] | None = None,
     name: str = '',
     keeper: Callable[[PulledSamples], bool] | None = None,

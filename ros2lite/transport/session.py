@@ -17,7 +17,7 @@ import time
 from collections import deque
 from collections.abc import Callable
 from itertools import chain, islice
-from typing import Any, cast
+from typing import cast
 
 import zenoh
 import zenoh.ext
@@ -244,7 +244,7 @@ class SampleReceiver:
         session: Session,
         key: str,
         qos: QoSProfile,
-        buffer: deque[Any],  # (sample, arrival ns)
+        buffer: deque[tuple[Sample, int]],  # (sample, arrival ns)
         on_batch: Callable[[], None],
         *,
         hook: Callable[[Sample], None] | None = None,

@@ -5,7 +5,7 @@ step logged — set, list, get, load `params.yaml` (this package's share), delet
 from __future__ import annotations
 
 import os
-from typing import Any
+from typing import TypeVar
 
 import ros2lite
 from ros2lite.bundled.runner import run_main
@@ -18,6 +18,8 @@ from ros2lite.pkg.ament_index import get_package_share_directory
 TARGET = 'parameter_blackboard'
 NAMES = ['int_parameter', 'bool_parameter', 'string_parameter']
 TO_DELETE = ['other_int_parameter', 'other_string_parameter', 'string_parameter']
+
+_R = TypeVar('_R')  # what a call's future holds
 
 
 class BlackboardMissing(Ros2liteError):
@@ -35,7 +37,7 @@ def walk_through() -> None:
             '`ros2 run demo_nodes_cpp parameter_blackboard` before running this demo'
         )
 
-    def answer(future: ros2lite.Future[Any], what: str) -> Any:
+    def answer(future: ros2lite.Future[_R], what: str) -> _R | None:
         ros2lite.spin_until_future_complete(node, future)
         if future.exception() is not None or future.result() is None:
             log.error(f'Error {what} parameters: {future.exception()}')
@@ -48,27 +50,27 @@ def walk_through() -> None:
         Parameter('bool_parameter', Parameter.Type.BOOL, False),
         Parameter('string_parameter', Parameter.Type.STRING, 'Fee Fi Fo Fum'),
     ]
-    result = answer(client.set_parameters(values), 'setting')
-    for name, outcome in zip(NAMES, result.results if result else [], strict=False):
+    set_result = answer(client.set_parameters(values), 'setting')
+    for name, outcome in zip(NAMES, set_result.results if set_result else [], strict=False):
         log.info(f'    {name}:')
         log.info(f'        successful: {outcome.successful}')
 
     log.info('Listing Parameters:')
-    result = answer(client.list_parameters(NAMES, 10), 'listing')
-    for name in result.result.names if result else []:
+    listed = answer(client.list_parameters(NAMES, 10), 'listing')
+    for name in listed.result.names if listed else []:
         log.info(f'    - {name}')
 
     log.info('Getting parameters:')
-    result = answer(client.get_parameters(NAMES), 'getting')
-    for name, value in zip(NAMES, result.values if result else [], strict=False):
+    got = answer(client.get_parameters(NAMES), 'getting')
+    for name, value in zip(NAMES, got.values if got else [], strict=False):
         log.info(f'    - {name}: {parameter_value_to_python(value)}')
 
     log.info('Loading parameters: ')
     path = os.path.join(get_package_share_directory('demo_nodes_py'), 'params.yaml')
-    result = answer(client.load_parameter_file(path), 'loading')
-    if result is not None:
+    loaded = answer(client.load_parameter_file(path), 'loading')
+    if loaded is not None:
         from_file = parameter_dict_from_yaml_file(path)
-        for (name, param), outcome in zip(from_file.items(), result.results, strict=False):
+        for (name, param), outcome in zip(from_file.items(), loaded.results, strict=False):
             log.info(f'    {name}:')
             log.info(f'        successful: {outcome.successful}')
             log.info(f'        value: {parameter_value_to_python(param.value)}')

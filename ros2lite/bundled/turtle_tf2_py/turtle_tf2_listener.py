@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import math
 import sys
-from typing import Any
 
 from ros2lite.bundled.runner import run_node
 from ros2lite.msgs.geometry_msgs.msg import Twist
@@ -29,7 +28,7 @@ class FrameListener(Node):
         self.tf_buffer = Buffer()
         self.tf_listener = TransformListener(self.tf_buffer, self)
         self.spawner = self.create_client(Spawn, 'spawn')
-        self.spawn_result: Future[Any] | None = None
+        self.spawn_result: Future[Spawn.Response] | None = None
         self.turtle_spawned = False
         self.publisher = self.create_publisher(Twist, 'turtle2/cmd_vel', 1)
         self.timer = self.create_timer(1.0, self.on_timer)
