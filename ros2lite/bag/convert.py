@@ -16,7 +16,7 @@ import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TypeVar
 
 from ros2lite.bag.errors import BagError
 from ros2lite.bag.metadata import BagMetadata
@@ -90,7 +90,10 @@ class OutputBag:
         return self.record.selects(topic, type_name)
 
 
-def _field(entry: dict[str, Any], key: str, kind: type, where: str) -> Any:
+_T = TypeVar('_T')
+
+
+def _field(entry: dict[str, object], key: str, kind: type[_T], where: str) -> _T | None:
     value = entry.get(key)
     if value is None:
         return None

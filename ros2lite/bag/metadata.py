@@ -326,12 +326,14 @@ def _require(d: dict[str, Any], key: str, version: int) -> Any:  # YAML: checked
     return d[key]
 
 
-def _int(value: Any, what: str) -> int:
+def _int(value: object, what: str) -> int:
     if isinstance(value, dict):
         value = next(iter(value.values()), 0)
+    if not isinstance(value, (int, float, str)):
+        raise MetadataError(f"bad {what}: {value!r}")
     try:
         return int(value)
-    except (TypeError, ValueError):
+    except ValueError:
         raise MetadataError(f"bad {what}: {value!r}") from None
 
 

@@ -21,7 +21,10 @@ from __future__ import annotations
 
 import os
 import sys
-from typing import Any
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import ctypes
 
 __all__ = [
     'MMAP_THRESHOLD',
@@ -74,7 +77,7 @@ def _tune() -> bool:
     return tuned
 
 
-def _start_release(libc: Any) -> None:
+def _start_release(libc: ctypes.CDLL) -> None:
     """The watcher thread that returns freed memory above RELEASE_ABOVE (see the module doc);
     glibc 2.33+ (mallinfo2), else nothing."""
     import ctypes

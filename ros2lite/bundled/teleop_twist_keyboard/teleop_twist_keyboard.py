@@ -8,9 +8,9 @@ speed and turn; any other key stops; Ctrl-C quits after a last, stopping Twist.
 from __future__ import annotations
 
 import sys
-from typing import Any
 
 from ros2lite.bundled.runner import run_main
+from ros2lite.msgs.geometry_msgs.msg import Twist, TwistStamped
 
 USAGE = """
 This node takes keypresses from the keyboard and publishes them
@@ -88,14 +88,7 @@ class TeleopTwistKeyboard:
         self.frame_id = str(self.node.declare_parameter('frame_id', '').value)
         if not self.stamped and self.frame_id:
             raise ValueError("'frame_id' can only be set when 'stamped' is True")
-        if self.stamped:
-            from ros2lite.msgs.geometry_msgs.msg import TwistStamped
-
-            self._msg_type: Any = TwistStamped
-        else:
-            from ros2lite.msgs.geometry_msgs.msg import Twist
-
-            self._msg_type = Twist
+        self._msg_type: type[Twist] | type[TwistStamped] = TwistStamped if self.stamped else Twist
         self.pub = self.node.create_publisher(self._msg_type, 'cmd_vel', 10)
         self.speed = 0.5
         self.turn = 1.0
@@ -105,11 +98,12 @@ class TeleopTwistKeyboard:
     def publish(self, x: float, y: float, z: float, th: float) -> None:
         """Publish one (stamped) Twist in direction (x, y, z, th) at the current speeds."""
         msg = self._msg_type()
-        twist = msg
-        if self.stamped:
+        if isinstance(msg, TwistStamped):
             msg.header.stamp = self.node.get_clock().now().to_msg()
             msg.header.frame_id = self.frame_id
             twist = msg.twist
+        else:
+            twist = msg
         twist.linear.x = x * self.speed
         twist.linear.y = y * self.speed
         twist.linear.z = z * self.speed

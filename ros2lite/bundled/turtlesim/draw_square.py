@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import math
 import sys
-from typing import Any
 
 from ros2lite.bundled.runner import run_node
 from ros2lite.bundled.turtlesim.interfaces import Pose
@@ -32,24 +31,24 @@ class DrawSquare(Node):
         self.reset_client = self.create_client(Empty, 'reset')
         self.timer = self.create_timer(0.016, self.on_timer)
         self.reset_done = self.reset_client.call_async(Empty.Request())
-        self.pose: Any = None  # a turtlesim Pose once one came after the reset
+        self.pose: Pose | None = None  # once one came after the reset
         self.goal = Pose()
         self.state = FORWARD
         self.first_goal_set = False
 
-    def on_pose(self, pose: Any) -> None:
+    def on_pose(self, pose: Pose) -> None:
         """Keep the latest pose (once the reset is done)."""
         if self.reset_done.done():  # poses from before the reset are of the old turtle1
             self.pose = pose
 
-    def reached_goal(self) -> bool:
+    def reached_goal(self, p: Pose) -> bool:
         """Whether the pose is at the goal (position and heading)."""
-        p, g = self.pose, self.goal
+        g = self.goal
         return abs(p.x - g.x) < 0.1 and abs(p.y - g.y) < 0.1 and abs(p.theta - g.theta) < 0.01
 
-    def stopped(self) -> bool:
+    def stopped(self, p: Pose) -> bool:
         """Whether the turtle stands still."""
-        return self.pose.angular_velocity < 0.0001 and self.pose.linear_velocity < 0.0001
+        return p.angular_velocity < 0.0001 and p.linear_velocity < 0.0001
 
     def print_goal(self) -> None:
         """Log the new goal, as draw_square does."""
@@ -63,35 +62,35 @@ class DrawSquare(Node):
         twist.angular.z = angular
         self.twist_pub.publish(twist)
 
-    def goal_ahead(self) -> None:
+    def goal_ahead(self, p: Pose) -> None:
         """Set the goal 2 m ahead of the turtle."""
-        p = self.pose
         self.goal.x = f32(math.cos(p.theta) * 2 + p.x)
         self.goal.y = f32(math.sin(p.theta) * 2 + p.y)
         self.goal.theta = p.theta
 
     def on_timer(self) -> None:
         """One 16 ms step of the square's state machine."""
-        if self.pose is None:
+        pose = self.pose
+        if pose is None:
             return
         if not self.first_goal_set:
             self.first_goal_set = True
             self.state = FORWARD
-            self.goal_ahead()
+            self.goal_ahead(pose)
             self.print_goal()
         if self.state == FORWARD:
-            if self.reached_goal():
+            if self.reached_goal(pose):
                 self.state = STOP_FORWARD
                 self.command(0.0, 0.0)
             else:
                 self.command(1.0, 0.0)
         elif self.state == STOP_FORWARD:
-            if self.stopped():
+            if self.stopped(pose):
                 self.get_logger().info('Reached goal')
                 self.state = TURN
-                self.goal.x = self.pose.x
-                self.goal.y = self.pose.y
-                theta = math.fmod(self.pose.theta + PI / 2.0, 2.0 * PI)
+                self.goal.x = pose.x
+                self.goal.y = pose.y
+                theta = math.fmod(pose.theta + PI / 2.0, 2.0 * PI)
                 if theta >= PI:  # into [-pi, pi)
                     theta -= 2.0 * PI
                 self.goal.theta = f32(theta)
@@ -99,15 +98,15 @@ class DrawSquare(Node):
             else:
                 self.command(0.0, 0.0)
         elif self.state == TURN:
-            if self.reached_goal():
+            if self.reached_goal(pose):
                 self.state = STOP_TURN
                 self.command(0.0, 0.0)
             else:
                 self.command(0.0, 0.4)
-        elif self.stopped():
+        elif self.stopped(pose):
             self.get_logger().info('Reached goal')
             self.state = FORWARD
-            self.goal_ahead()
+            self.goal_ahead(pose)
             self.print_goal()
         else:
             self.command(0.0, 0.0)

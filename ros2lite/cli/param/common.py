@@ -57,7 +57,7 @@ def node_options(*, timeout: bool = True, node_required: bool = True) -> Callabl
     and --service-timeout, handed to the verb as one `target: Target`."""
 
     def decorate(fn: F) -> F:
-        cmd: Any = bind(lambda: Target, 'target')(fn)
+        cmd = bind(lambda: Target, 'target')(fn)
         if timeout:
             cmd = click.option(
                 "--service-timeout",
