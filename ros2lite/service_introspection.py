@@ -11,7 +11,7 @@ them and `bag record --services` records them, for ros2lite's nodes and C++/rclp
 from __future__ import annotations
 
 import enum
-from typing import TYPE_CHECKING, Any, Protocol, overload
+from typing import TYPE_CHECKING, Protocol, overload
 
 from ros2lite.qos import QoSProfile
 from ros2lite.runtime.executable import EntityNode
@@ -118,7 +118,7 @@ def event_to_dict(
     truncate_length: int | None = None,
     no_arr: bool = False,
     no_str: bool = False,
-) -> dict[str, Any]:
+) -> dict[str, object]:
     """A `<Srv>_Event` message as a dict, its event type by name (`REQUEST_SENT`…): what
     `service echo` prints."""
     from ros2lite.interfaces import message_to_dict

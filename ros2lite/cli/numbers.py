@@ -44,7 +44,7 @@ class Count(click.IntRange):
 
     name = 'integer'
 
-    def __init__(self, min: int | None = 0, max: int | None = MAX_COUNT, **kw: Any) -> None:
+    def __init__(self, min: int | None = 0, max: int | None = MAX_COUNT, **kw: bool) -> None:
         super().__init__(min=min, max=max, **kw)
 
 

@@ -90,7 +90,7 @@ def definition_text(name: str) -> str:
     return _definition_text(normalize_name(name), default_registry())
 
 
-def message_to_dict(msg: Message, **opts: Unpack[FormatOptions]) -> dict[str, Any]:
+def message_to_dict(msg: Message, **opts: Unpack[FormatOptions]) -> dict[str, object]:
     """Nested plain dict/list/scalar form of a message, in field order (rosidl_runtime_py's)."""
     from .convert import message_to_dict as _f
 

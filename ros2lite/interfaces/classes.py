@@ -111,7 +111,7 @@ def constant_value(constant: Constant) -> Any:
     """A constant's value as the class holds it: rosidl's Python classes make a `byte`
     constant `bytes` (`DiagnosticStatus.WARN == b'\\x01'`), ready to assign to a byte field;
     `char` is uint8 there, an int like the rest."""
-    if constant.type == 'byte':
+    if constant.type == 'byte' and isinstance(constant.value, int):
         return bytes((constant.value,))
     return constant.value
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import sys
 from array import array
-from collections.abc import Callable, Sized
+from collections.abc import Callable, Mapping, Sized
 from functools import cache, partial
 from typing import TYPE_CHECKING, Any, TypedDict
 
@@ -90,7 +90,7 @@ def _fields(cls: type[Message]) -> tuple[tuple[str, FieldType], ...]:
 
 def message_to_dict(
     msg: Message, *, truncate_length: int | None = None, no_arr: bool = False, no_str: bool = False
-) -> dict[str, Any]:
+) -> dict[str, object]:
     """Nested plain dict/list/scalar form of a message, in field order."""
     return {
         name: _convert(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
@@ -159,7 +159,7 @@ def message_to_yaml(
     return dict_to_yaml(data, flow_style=flow_style, fast=fast)
 
 
-def dict_to_yaml(data: dict[str, Any], *, flow_style: bool = False, fast: bool = True) -> str:
+def dict_to_yaml(data: Mapping[str, object], *, flow_style: bool = False, fast: bool = True) -> str:
     """YAML text of a message's dict form (`message_to_dict`, perhaps edited, as `service
     echo` names event types), dumped exactly as rosidl_runtime_py dumps messages."""
     import yaml
@@ -306,7 +306,7 @@ def _populate(
 
 def set_message_fields(
     msg: Message,
-    values: dict[str, Any] | str | None,
+    values: Mapping[str, object] | str | None,
     *,
     expand_header_auto: bool = False,
     expand_time_now: bool = False,

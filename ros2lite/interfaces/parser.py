@@ -120,7 +120,7 @@ class Field:
 
     name: str
     type: FieldType
-    default: Any = None  # parsed default value, None when the .msg gives none
+    default: object = None  # parsed default value, None when the .msg gives none
 
 
 @dataclass(frozen=True)
@@ -129,7 +129,7 @@ class Constant:
 
     name: str
     type: str  # a primitive type name
-    value: Any
+    value: object
 
 
 @dataclass
