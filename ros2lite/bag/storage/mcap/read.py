@@ -104,6 +104,12 @@ class McapStorageReader:
             self._indexed = self._summary is not None and self._summary.statistics is not None
         return self._summary if self._indexed else None
 
+    @property
+    def indexed(self) -> bool:
+        """Whether the file ends in a summary with statistics (its writer closed it), so
+        that counts and messages come through the indexes, not a scan."""
+        return self._mcap_summary() is not None
+
     def summary(self) -> FileSummary:
         """From the summary section; a file without one is scanned."""
         s = self._mcap_summary()

@@ -80,6 +80,6 @@ def is_complete(path: str) -> bool:
     """Whether a file has its summary (was closed properly)."""
     reader = McapStorageReader(path)
     try:
-        return reader._mcap_summary() is not None
+        return reader.indexed
     finally:
         reader.close()
