@@ -316,6 +316,19 @@ class _Scan:
             )
 
 
+def records(stream: IO[bytes], problems: list[str] | None = None) -> Iterator[McapRecord]:
+    """The Schema, Channel, Message and Metadata records of a file in file order (inside its
+    chunks too, and the summary's repeats), up to the first that cannot be trusted; what was
+    lost goes into `problems` when the scan ends. What `mcap recover` and the MCAP project's
+    streamed readers see, so their conformance files can check it."""
+    scan = _Scan(stream, getattr(stream, "name", "the file"))
+    try:
+        yield from scan.records()
+    finally:
+        if problems is not None:
+            problems.extend(scan.problems)
+
+
 def _scan(
     stream: IO[bytes],
     on_metadata: Callable[[Metadata], object] | None = None,
