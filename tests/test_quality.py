@@ -171,6 +171,31 @@ def test_any_in_annotations() -> None:
     assert _any_in_annotations(ast.parse(probe)) == 4
 
 
+# a room a newcomer reads whole: at most 600 lines; rclpy's node and qos modules, which carry
+# rclpy's whole API, 700
+SIZE_LIMIT = 600
+SIZE_LIMITS = {'ros2lite/node.py': 700, 'ros2lite/qos.py': 700}
+# modules over their limit while a branch at work splits them; may only shrink
+SIZE_LEFT = {'ros2lite/executors.py': 'the kept channel moves to runtime/parking (issue 33)'}
+
+
+def _oversized(sizes: dict[str, int]) -> list[str]:
+    return sorted(p for p, n in sizes.items() if n > SIZE_LIMITS.get(p, SIZE_LIMIT))
+
+
+def test_module_sizes() -> None:
+    """No room grows past what one reading holds; one that has to is split into rooms."""
+    sizes = {
+        str(p.relative_to(ROOT)): len(p.read_text().splitlines())
+        for p in (ROOT / 'ros2lite').rglob('*.py')
+    }
+    over = _oversized(sizes)
+    assert [p for p in over if p not in SIZE_LEFT] == [], sizes
+    assert [p for p in SIZE_LEFT if p not in over] == [], 'split: out of SIZE_LEFT'
+    probe = {'ros2lite/a.py': 601, 'ros2lite/node.py': 700, 'ros2lite/qos.py': 701}
+    assert _oversized(probe) == ['ros2lite/a.py', 'ros2lite/qos.py']
+
+
 def _scheduling_breaks(sources: dict[str, str], slots: set[str]) -> list[str]:
     """Touches of a NodeWork's `slots` (but its own) or of the banned flags outside
     runtime/scheduling.py."""
