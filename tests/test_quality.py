@@ -189,7 +189,7 @@ MAP = {
     'runtime': 'scheduling executable endpoint delivery bad_samples node_interface memory'
     ' typesupport_checks arguments',
     'tools': 'connection doctor multicast',
-    'util': 'files safe_yaml process keyboard',
+    'util': 'files safe_yaml process keyboard domain',
     'transport': 'handles endpoints config open session receivers pull keys qos attachment'
     ' security admin errors',
     'interfaces': 'parser registry classes hashing text convert errors stubs cdr cdr_gen',
