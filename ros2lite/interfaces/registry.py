@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ros2lite.pkg.distro import ros_distro
 from ros2lite.pkg.index import BUNDLED_INTERFACES, interface_packages
 
 from .errors import InterfaceError, UnknownInterfaceError
@@ -107,9 +108,15 @@ class Registry:
         return [n for pkg in sorted(self.packages()) for n in self.package_interfaces(pkg)]
 
     def interface_path(self, name: str) -> Path:
-        """The file defining 'pkg/kind/Name' (no generated sub-types)."""
+        """The file defining 'pkg/kind/Name' (no generated sub-types); for a bundled package,
+        the current distribution's own definition where it changed after Jazzy."""
         pkg, kind, short = validate_type_name(name)
-        path = self.package_dir(pkg) / kind / (short + EXTENSIONS[kind])
+        base = self.package_dir(pkg)
+        path = base / kind / (short + EXTENSIONS[kind])
+        if base.parent == BUNDLED:
+            changed = BUNDLED / f'_{ros_distro()}' / pkg / kind / path.name
+            if changed.is_file():
+                return changed
         if not path.is_file():
             raise UnknownInterfaceError(f"Unknown interface '{name}'")
         return path
