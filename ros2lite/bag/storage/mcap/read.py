@@ -18,7 +18,7 @@ from ros2lite.bag.storage import FileSummary
 from ros2lite.bag.storage.mcap.scan import _CHUNK, _chunk_records, _ChunkHead, _Damage, _scan
 
 if TYPE_CHECKING:
-    from mcap.records import Channel, McapRecord, Metadata, Schema
+    from mcap.records import Channel, ChunkIndex, McapRecord, Metadata, Schema
     from mcap.summary import Summary
 
 
@@ -170,7 +170,7 @@ class McapStorageReader:
         chunks = sorted(
             (
                 c
-                for c in summary.chunk_indexes
+                for c in self._chunk_indexes(summary.chunk_indexes)
                 if (stop is None or c.message_start_time < stop)
                 and (start is None or c.message_end_time >= start)
                 and (not c.message_index_offsets or wanted & set(c.message_index_offsets))
@@ -220,6 +220,32 @@ class McapStorageReader:
                 t, _, _, topic, data, publish_time = heapq.heappop(pending)
                 yield topic, data, t, publish_time
 
+    def _chunk_indexes(self, indexes: Iterable[ChunkIndex]) -> list[ChunkIndex]:
+        """Each chunk once, however many indexes name it (R5-B3: one chunk behind 10,000
+        indexes was read 10,000 times, every message repeated), and no index whose chunk
+        overlaps another's; what was dropped is said in one line."""
+        listed = list(indexes)
+        by_offset: dict[int, ChunkIndex] = {}
+        for index in listed:
+            by_offset.setdefault(index.chunk_start_offset, index)
+        repeated = len(listed) - len(by_offset)
+        kept: list[ChunkIndex] = []
+        overlapping = 0
+        end = -1
+        for offset in sorted(by_offset):
+            index = by_offset[offset]
+            if offset < end:
+                overlapping += 1
+                continue
+            kept.append(index)
+            end = offset + max(index.chunk_length, 1)
+        if repeated or overlapping:
+            _warn(
+                f"'{self.path}': its summary names {repeated} chunk(s) more than once and "
+                f"{overlapping} overlapping another; each chunk is read once"
+            )
+        return kept
+
     def _read_chunk(self, where: int, kept: list[McapRecord]) -> str | None:
         """The trusted records of the chunk at `where` into `kept`; what was wrong, if aught."""
         stream = self._stream
@@ -256,6 +282,7 @@ class McapStorageReader:
             on_metadata=records.append,
             on_channel=on_channel,
             problems=summary.problems,
+            headers_only=True,
         ):
             summary.add(channel.topic, 1, m.log_time, m.log_time)
         summary.topics = list(topics.values())
