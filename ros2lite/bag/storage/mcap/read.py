@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import stat
 import struct
 from collections.abc import Iterable, Iterator
 from typing import TYPE_CHECKING
@@ -18,6 +19,7 @@ from ros2lite.bag.storage import FileSummary
 from ros2lite.bag.storage.mcap.scan import _CHUNK, _chunk_records, _ChunkHead, _Damage, _scan
 
 if TYPE_CHECKING:
+    from mcap.data_stream import ReadDataStream
     from mcap.records import Channel, ChunkIndex, McapRecord, Metadata, Schema
     from mcap.summary import Summary
 
@@ -78,9 +80,20 @@ class McapStorageReader:
 
         self.path = path
         try:
-            self._stream = open(path, "rb")  # noqa: SIM115 - closed by close()
+            # a FIFO named by a hostile metadata.yaml would block open() until a writer came
+            # (R5-B7): only a regular file is opened
+            fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
         except OSError as e:
             raise BagError(f"Cannot open '{path}': {e.strerror or e}") from None
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            os.close(fd)
+            raise BagError(f"Cannot open '{path}': not a regular file")
+        if info.st_size == 0:
+            os.close(fd)
+            raise BagError(f"'{path}' is empty (0 bytes): not an MCAP file")
+        os.set_blocking(fd, True)
+        self._stream = os.fdopen(fd, "rb")
         try:
             self._reader = SeekingReader(self._stream)
             self._reader.get_header()
@@ -125,14 +138,33 @@ class McapStorageReader:
         if stats.message_count:
             summary.message_count = stats.message_count
             summary.start, summary.end = stats.message_start_time, stats.message_end_time
-        _note_rosbag2_records(summary, self._metadata_records())
+        _note_rosbag2_records(summary, self._metadata_records(summary.problems))
         return summary
 
-    def _metadata_records(self) -> Iterator[Metadata]:
+    def _metadata_records(self, problems: list[str] | None = None) -> Iterator[Metadata]:
+        """The `rosbag2` metadata records; one that does not decode (a flipped byte, R5-B6)
+        is named in `problems` and passed over: the messages do not depend on it."""
         s = self._summary
         if s is None or not s.metadata_indexes:
-            return iter(())
-        return (r for r in self._reader.iter_metadata() if r.name == "rosbag2")
+            return
+        from mcap.records import Metadata
+
+        stream = self._stream
+        for index in s.metadata_indexes:
+            if index.name != "rosbag2":
+                continue
+            try:
+                stream.seek(index.offset + 9)
+                body = stream.read(max(0, min(index.length - 9, 1 << 26)))
+                record = Metadata.read(_stream_of(body))
+            except Exception as e:
+                if problems is not None:
+                    problems.append(
+                        f"'{self.path}': its rosbag2 metadata record at byte {index.offset} is "
+                        f"damaged ({type(e).__name__}); read without it"
+                    )
+                continue
+            yield record
 
     def messages(
         self, topics: set[str] | None = None, start: int | None = None, stop: int | None = None
@@ -295,6 +327,14 @@ def _warn(message: str) -> None:
     from ros2lite.logging import get_logger
 
     get_logger("rosbag2_storage").warn(message)
+
+
+def _stream_of(body: bytes) -> ReadDataStream:
+    import io
+
+    from mcap.data_stream import ReadDataStream
+
+    return ReadDataStream(io.BytesIO(body))
 
 
 def _text(data: bytes) -> str:

@@ -386,7 +386,15 @@ class _Scan:
                     self._stop(pos, "at a record that does not parse; the rest is unreadable")
                     return
                 yield record
-            elif op in (_SCHEMA, _CHANNEL, _MESSAGE, _METADATA):
+            elif op == _METADATA:
+                record = _parse(op, stream.read(length))
+                if record is None:  # its length is sound: the records after it still read
+                    self.problems.append(
+                        f"'{self.path}': the metadata record at byte {pos} is damaged; skipped"
+                    )
+                else:
+                    yield record
+            elif op in (_SCHEMA, _CHANNEL, _MESSAGE):
                 record = _parse(op, stream.read(length))
                 if record is None:
                     self._stop(pos, "at a record that does not parse; the rest is unreadable")
