@@ -315,6 +315,7 @@ class McapStorageReader:
             on_channel=on_channel,
             problems=summary.problems,
             headers_only=True,
+            path=self.path,
         ):
             summary.add(channel.topic, 1, m.log_time, m.log_time)
         summary.topics = list(topics.values())

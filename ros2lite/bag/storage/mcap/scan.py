@@ -441,13 +441,15 @@ def _scan(
     on_channel: Callable[[Channel, Schema | None], object] | None = None,
     problems: list[str] | None = None,
     headers_only: bool = False,
+    path: str | None = None,
 ) -> Iterator[tuple[dict[int, Schema], Channel, McapMessage]]:
     """Every message record in file order that can be trusted, up to the first that cannot
     (see `_Scan`); what was lost goes into `problems` when the scan ends. `headers_only`:
     messages come without their data (for counting)."""
     from mcap.records import Channel, Message, Metadata
 
-    scan = _Scan(stream, getattr(stream, "name", "the file"), headers_only)
+    name = path if path is not None else getattr(stream, "name", "the file")
+    scan = _Scan(stream, str(name), headers_only)
     seen: set[int] = set()
     try:
         for record in scan.records():
