@@ -15,7 +15,6 @@ import os
 import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import TypeVar
 
 from ros2lite.bag.errors import BagError
@@ -24,6 +23,7 @@ from ros2lite.bag.reader import Reader
 from ros2lite.bag.recorder import RecordOptions
 from ros2lite.bag.writer import Writer
 from ros2lite.service_introspection import event_topic
+from ros2lite.util.files import ReadRefused, read_text_bounded
 from ros2lite.util.safe_yaml import YamlInputError, load
 
 __all__ = ["OutputBag", "convert", "parse_output_options", "read_output_options"]
@@ -215,10 +215,9 @@ def parse_output_options(text: str) -> list[OutputBag]:
 def read_output_options(path: str | os.PathLike[str]) -> list[OutputBag]:
     """The output options file at `path` (see :func:`parse_output_options`)."""
     try:
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as e:
-        reason = e.strerror if isinstance(e, OSError) and e.strerror else e
-        raise BagError(f"Cannot read '{path}': {reason}") from None
+        text = read_text_bounded(path, "an output options file")
+    except ReadRefused as e:
+        raise BagError(f"Cannot read '{path}': {e.reason}") from None
     return parse_output_options(text)
 
 

@@ -26,7 +26,7 @@ from ros2lite.qos import (
     QoSProfile,
     ReliabilityPolicy,
 )
-from ros2lite.util.files import replace_file
+from ros2lite.util.files import ReadRefused, read_text_bounded, replace_file
 from ros2lite.util.safe_yaml import YamlInputError, load
 
 __all__ = [
@@ -403,12 +403,16 @@ def parse_metadata(text: str, *, top_key: bool = True) -> BagMetadata:
     )
 
 
+# a rosbag2 metadata.yaml of thousands of topics and files stays far below this
+_METADATA_LIMIT = 16 * 1024 * 1024
+
+
 def read_metadata_file(path: str | os.PathLike[str]) -> BagMetadata:
     """Parse a metadata.yaml file (MetadataError when unreadable or malformed)."""
     try:
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as e:
-        raise MetadataError(f"cannot read '{path}': {getattr(e, 'strerror', None) or e}") from None
+        text = read_text_bounded(path, "bag metadata", _METADATA_LIMIT)
+    except ReadRefused as e:
+        raise MetadataError(f"cannot read '{path}': {e.reason}") from None
     return parse_metadata(text)
 
 

@@ -15,6 +15,7 @@ from pathlib import Path
 from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import qos_from_dict, qos_to_dict
 from ros2lite.qos import HistoryPolicy, QoSProfile, match_publishers_qos
+from ros2lite.util.files import ReadRefused, read_text_bounded
 from ros2lite.util.safe_yaml import YamlInputError, load
 
 __all__ = [
@@ -96,9 +97,9 @@ def playback_qos(
 def read_qos_overrides(path: str | Path) -> dict[str, QoSProfile]:
     """The overrides file at `path` (see :func:`parse_qos_overrides`)."""
     try:
-        text = Path(path).read_text(encoding="utf-8")
-    except OSError as e:
-        raise BagError(f"Cannot read '{path}': {e.strerror or e}") from None
+        text = read_text_bounded(path, "a QoS overrides file")
+    except ReadRefused as e:
+        raise BagError(f"Cannot read '{path}': {e.reason}") from None
     return parse_qos_overrides(text)
 
 

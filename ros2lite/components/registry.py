@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ros2lite.exceptions import Ros2liteError
+from ros2lite.util.files import ReadRefused, read_bounded
 
 __all__ = [
     'BUNDLED',
@@ -121,14 +122,18 @@ def _ament_types(env: Mapping[str, str] | None) -> dict[str, list[ComponentType]
     return found
 
 
+# a resource index entry names a few plugins a line
+_RESOURCE_LIMIT = 1024 * 1024
+
+
 def _read_resource(path: Path, origin: str, prefix: Path) -> list[ComponentType]:
     """`<plugin>;<target>` lines (blank and malformed lines skipped)."""
     try:
-        text = path.read_text(encoding='utf-8', errors='replace')
-    except OSError:
+        data = read_bounded(path, _RESOURCE_LIMIT, ReadRefused, 'a resource index entry')
+    except ReadRefused:
         return []
     types = []
-    for line in text.splitlines():
+    for line in data.decode('utf-8', 'replace').splitlines():
         plugin, sep, target = line.partition(';')
         plugin, target = plugin.strip(), target.strip()
         if sep and plugin and target:

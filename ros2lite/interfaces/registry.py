@@ -11,7 +11,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ros2lite.pkg.distro import ros_distro
 from ros2lite.pkg.index import BUNDLED_INTERFACES, interface_packages
+from ros2lite.util.files import read_text_bounded
 
 from .errors import InterfaceError, UnknownInterfaceError
 from .parser import (
@@ -50,6 +52,16 @@ SERVICE_SUFFIXES = ('_Request', '_Response', '_Event')
 _UUID = FieldType('unique_identifier_msgs/msg/UUID')
 _TIME = FieldType('builtin_interfaces/msg/Time')
 _EVENT_INFO = FieldType('service_msgs/msg/ServiceEventInfo')
+
+
+# the largest upstream definition is a few KB; past this a file is no definition
+DEFINITION_LIMIT = 1024 * 1024
+
+
+def read_definition(path: Path) -> str:
+    """A definition file's text, read only if it is a regular file of at most
+    DEFINITION_LIMIT bytes of UTF-8 (a link to /dev/zero is one InterfaceError)."""
+    return read_text_bounded(path, 'an interface definition', DEFINITION_LIMIT, InterfaceError)
 
 
 def _is_interface_package(path: Path) -> bool:
@@ -107,16 +119,22 @@ class Registry:
         return [n for pkg in sorted(self.packages()) for n in self.package_interfaces(pkg)]
 
     def interface_path(self, name: str) -> Path:
-        """The file defining 'pkg/kind/Name' (no generated sub-types)."""
+        """The file defining 'pkg/kind/Name' (no generated sub-types); for a bundled package,
+        the current distribution's own definition where it changed after Jazzy."""
         pkg, kind, short = validate_type_name(name)
-        path = self.package_dir(pkg) / kind / (short + EXTENSIONS[kind])
+        base = self.package_dir(pkg)
+        path = base / kind / (short + EXTENSIONS[kind])
+        if base.parent == BUNDLED:
+            changed = BUNDLED / f'_{ros_distro()}' / pkg / kind / path.name
+            if changed.is_file():
+                return changed
         if not path.is_file():
             raise UnknownInterfaceError(f"Unknown interface '{name}'")
         return path
 
     def interface_text(self, name: str) -> str:
         """The definition file's text."""
-        return self.interface_path(name).read_text(encoding='utf-8')
+        return read_definition(self.interface_path(name))
 
     def exists(self, name: str) -> bool:
         """Whether a definition file for 'pkg/kind/Name' exists."""
@@ -132,7 +150,7 @@ class Registry:
         svc = self._services.get(name)
         if svc is None:
             path = self.interface_path(name)
-            svc = parse_service(path.read_text(encoding='utf-8'), name, str(path))
+            svc = parse_service(read_definition(path), name, str(path))
             self._services[name] = svc
         return svc
 
@@ -141,7 +159,7 @@ class Registry:
         act = self._actions.get(name)
         if act is None:
             path = self.interface_path(name)
-            act = parse_action(path.read_text(encoding='utf-8'), name, str(path))
+            act = parse_action(read_definition(path), name, str(path))
             self._actions[name] = act
         return act
 
@@ -157,7 +175,7 @@ class Registry:
         _, kind, short = validate_type_name(name)
         if kind == 'msg':
             path = self.interface_path(name)
-            return parse_message(path.read_text(encoding='utf-8'), name, str(path))
+            return parse_message(read_definition(path), name, str(path))
         if kind == 'srv':
             for suffix in SERVICE_SUFFIXES:
                 if short.endswith(suffix) and self.exists(name[: -len(suffix)]):

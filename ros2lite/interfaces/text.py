@@ -14,7 +14,7 @@ from .classes import get_interface
 from .convert import message_to_yaml
 from .errors import InterfaceError, UnknownInterfaceError
 from .parser import PRIMITIVES, SERVICE_SEPARATOR, Constant, MessageDef, parse_line, split_comment
-from .registry import Registry, normalize_name
+from .registry import Registry, normalize_name, read_definition
 
 SEPARATOR = '=' * 80 + '\n'
 _FIELD_TYPE_RE = re.compile(r'(?:^|\n)\s*([a-zA-Z0-9_/]+)(?:\[[^\]]*\])?\s+')
@@ -156,7 +156,7 @@ def show_lines(
     def show(type_name: str, comments: bool, level: int) -> None:
         package = type_name.split('/')[0]
         path = reg.interface_path(type_name)
-        text = path.read_text(encoding='utf-8')
+        text = read_definition(path)
         for lineno, raw in enumerate(_file_lines(text), start=1):
             try:
                 line = _classify(raw, package)

@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeAlias
 
 from ros2lite.names import NameValidationException, normalize_namespace, validate_namespace
+from ros2lite.util.files import ReadRefused, read_text_bounded
 
 from .actions import Action, ActionOptions, Entities, path_of
 from .context import ParameterData
@@ -322,9 +323,9 @@ class Node(ExecuteProcess):
         from .frontend.substitutions import parse_substitutions
 
         try:
-            text = Path(path).read_text(encoding='utf-8')
-        except OSError as e:
-            raise LaunchError(f"parameter file '{path}': {e.strerror}") from None
+            text = read_text_bounded(path, 'a parameter file')
+        except ReadRefused as e:
+            raise LaunchError(f"parameter file '{path}': {e.reason}") from None
         performed = perform_substitutions(context, parse_substitutions(text))
         fd, out_path = tempfile.mkstemp(prefix='launch_params_', suffix='.yaml')
         with os.fdopen(fd, 'w', encoding='utf-8') as out:

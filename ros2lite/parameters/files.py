@@ -68,12 +68,16 @@ def _entries_loader() -> type[yaml.SafeLoader]:
 def read_params_file(path: str | Path) -> list[tuple[str, Values]]:
     """Every (node name, flattened parameters) entry of the file, in file order (a node key
     that appears twice gives two entries, as rcl reads it)."""
+    from ros2lite.util.files import ReadRefused, read_text_bounded
     from ros2lite.util.safe_yaml import YamlInputError, load
 
     path = Path(path)
     try:
-        data = load(path.read_text(encoding="utf-8"), "the file", loader_class=_entries_loader())
-    except (OSError, UnicodeDecodeError, YamlInputError) as e:
+        text = read_text_bounded(path, "a parameters file")
+        data = load(text, "the file", loader_class=_entries_loader())
+    except ReadRefused as e:
+        raise ParamsFileError(f"Couldn't read parameters file '{path}': {e.reason}") from None
+    except (OSError, YamlInputError) as e:
         why = (e.strerror if isinstance(e, OSError) else None) or e
         raise ParamsFileError(f"Couldn't read parameters file '{path}': {why}") from None
     if data is None:

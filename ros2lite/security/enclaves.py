@@ -14,23 +14,27 @@ from pathlib import Path
 from ros2lite.exceptions import NameValidationException
 from ros2lite.names import validate_namespace
 from ros2lite.security.errors import EnclaveError, KeystoreError
+from ros2lite.util.domain import DDS_MAX_DOMAIN_ID, parse_domain_id
 
 __all__ = ['KEYSTORE_ENV', 'enclave_directory', 'env_domain_id', 'validate_enclave_name']
 
 KEYSTORE_ENV = 'ROS_SECURITY_KEYSTORE'
-MAX_DOMAIN_ID = 232
 
 
 def env_domain_id(env: Mapping[str, str] | None = None) -> int:
     """``ROS_DOMAIN_ID`` as sros2 writes it into documents and as a secured process checks
-    its permissions against (0 when unset)."""
-    raw = (os.environ if env is None else env).get('ROS_DOMAIN_ID', '').strip() or '0'
+    its permissions against (0 when unset): read as rcl reads it, as the transport does, so
+    the domain checked is the domain joined; documents hold DDS's domains, 0..232."""
+    raw = (os.environ if env is None else env).get('ROS_DOMAIN_ID', '')
     try:
-        value = int(raw)
-    except ValueError:
-        raise KeystoreError(f'ROS_DOMAIN_ID must be an integer, got {raw!r}') from None
-    if not 0 <= value <= MAX_DOMAIN_ID:
-        raise KeystoreError(f'ROS_DOMAIN_ID must be in 0..{MAX_DOMAIN_ID}, got {value}')
+        value = parse_domain_id(raw)
+    except ValueError as e:
+        raise KeystoreError(str(e)) from None
+    if value > DDS_MAX_DOMAIN_ID:
+        raise KeystoreError(
+            f'ROS_DOMAIN_ID {raw!r} is domain {value}: security documents hold domains '
+            f'0..{DDS_MAX_DOMAIN_ID}'
+        )
     return value
 
 

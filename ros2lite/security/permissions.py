@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 
 from ros2lite.security.errors import PolicyError
 from ros2lite.security.files import parse_xml
+from ros2lite.util.domain import DDS_MAX_DOMAIN_ID
 
 __all__ = [
     'Grant',
@@ -215,7 +216,7 @@ class Grant:
         )
 
 
-MAX_DOMAIN_ID = 232
+MAX_DOMAIN_ID = DDS_MAX_DOMAIN_ID
 
 
 def _time(text: str | None, origin: str) -> datetime.datetime | None:

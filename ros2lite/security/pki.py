@@ -14,6 +14,7 @@ Importing this module loads ``cryptography``; nothing on a hot path does.
 from __future__ import annotations
 
 import datetime
+import email
 from pathlib import Path
 
 from cryptography import x509
@@ -177,7 +178,45 @@ def verify_document(ca: x509.Certificate, signed: bytes, content: bytes) -> bool
         pkcs7_verify(serialization.Encoding.SMIME, signed, _text_mode(content), [ca], [])
     except (ValueError, TypeError, InternalError):
         return False
-    return True
+    return document_signer_is(ca, signed)
+
+
+def document_signer_is(ca: x509.Certificate, signed: bytes) -> bool:
+    """Whether the CA itself signed: every certificate the signature carries is ``ca``.
+
+    OpenSSL's check above passes a signature by *any* certificate ``ca`` issued, and in
+    sros2's default keystore every enclave's certificate is one, so an enclave could re-sign
+    its own permissions. DDS Security asks for the permissions CA's own signature; OpenSSL
+    looks for the signer among the certificates the signature carries and those it is given
+    (``ca`` alone), so when it carries no other, the signer can only be the CA."""
+    try:
+        carried = pkcs7.load_der_pkcs7_certificates(_signature_der(signed))
+    except ValueError:
+        return False
+    return all(cert == ca for cert in carried)
+
+
+def _carried_other_than(ca: x509.Certificate, signed: bytes) -> str | None:
+    """The subject of a certificate other than ``ca`` that the signature carries, if any."""
+    try:
+        carried = pkcs7.load_der_pkcs7_certificates(_signature_der(signed))
+    except ValueError:
+        return None
+    return next((c.subject.rfc4514_string() for c in carried if c != ca), None)
+
+
+def _signature_der(signed: bytes) -> bytes:
+    """The PKCS#7 structure (DER) inside an S/MIME multipart/signed document."""
+    message = email.message_from_bytes(signed)
+    for part in message.walk():
+        if part.get_content_type() in _SIGNATURE_TYPES:
+            payload = part.get_payload(decode=True)
+            if isinstance(payload, bytes) and payload:
+                return payload
+    raise ValueError('no PKCS#7 signature part')
+
+
+_SIGNATURE_TYPES = ('application/pkcs7-signature', 'application/x-pkcs7-signature')
 
 
 def read_signed(document: Path, signature: Path, ca_certificate: Path, what: str) -> bytes:
@@ -187,7 +226,13 @@ def read_signed(document: Path, signature: Path, ca_certificate: Path, what: str
     if not signature.is_file():
         raise PolicyError(f'{what}: {signature.name} (its signature) is missing')
     signed = read_bytes(signature, f'{what} signature')
-    if not verify_document(load_certificate(ca_certificate), signed, content):
+    ca = load_certificate(ca_certificate)
+    if not verify_document(ca, signed, content):
+        other = _carried_other_than(ca, signed)
+        if other is not None:
+            raise PolicyError(
+                f'{what}: {signature.name} is signed by {other}, not by the permissions CA'
+            )
         raise PolicyError(
             f'{what}: {document.name} does not match its signature {signature.name} '
             'by the permissions CA'

@@ -22,6 +22,7 @@ hello naming its host and counts the hellos of other hosts, by topic and by mult
 
 from __future__ import annotations
 
+import contextlib
 import os
 import platform
 import re
@@ -32,6 +33,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import ros2lite
+from ros2lite.util.domain import DDS_MAX_DOMAIN_ID
 
 if TYPE_CHECKING:
     from ros2lite.daemon.control import DaemonStatus
@@ -255,6 +257,19 @@ class Diagnosis:
                 read_setting(self.env)
             except ConfigError as e:
                 result.error(str(e))
+        raw = self.env.get('ROS_DOMAIN_ID', '')
+        with contextlib.suppress(ConfigError):
+            domain = domain_id(self.env)
+            if domain > DDS_MAX_DOMAIN_ID:
+                result.warn(
+                    f'ROS_DOMAIN_ID {raw!r} is domain {domain}: rmw_zenoh nodes join it, but '
+                    f'DDS-based ROS 2 nodes only reach domains 0..{DDS_MAX_DOMAIN_ID}'
+                )
+            elif raw.strip() and raw.strip() != str(domain):
+                result.warn(
+                    f'ROS_DOMAIN_ID {raw!r} reads as domain {domain} (as rcl reads it: '
+                    'a leading 0 is octal, 0x hex, and what follows the number is ignored)'
+                )
         if self.endpoint() is not None:
             try:
                 session_config(self.router, self.env, mode='peer')

@@ -11,12 +11,12 @@ import re
 from collections.abc import Mapping
 
 from ros2lite.transport.errors import ConfigError
+from ros2lite.util.domain import parse_domain_id
 
 __all__ = [
     "DEFAULT_ROUTER",
     "DEFAULT_SECURE_ROUTER",
     "DOMAIN_ENV",
-    "MAX_DOMAIN_ID",
     "OVERRIDE_ENV",
     "ROUTER_CHECK_ENV",
     "ROUTER_CONFIG_ENV",
@@ -41,7 +41,6 @@ ROUTER_CONFIG_ENV = "ZENOH_ROUTER_CONFIG_URI"
 OVERRIDE_ENV = "ZENOH_CONFIG_OVERRIDE"
 DOMAIN_ENV = "ROS_DOMAIN_ID"
 ROUTER_CHECK_ENV = "ZENOH_ROUTER_CHECK_ATTEMPTS"
-MAX_DOMAIN_ID = 232
 
 
 def environ(env: Mapping[str, str] | None = None) -> Mapping[str, str]:
@@ -77,19 +76,11 @@ def explicit_router(router: str | None, env: Mapping[str, str] | None = None) ->
 
 
 def domain_id(env: Mapping[str, str] | None = None) -> int:
-    """``ROS_DOMAIN_ID`` (default 0), checked to be an integer in 0..232."""
-    raw = environ(env).get(DOMAIN_ENV, "").strip()
-    if not raw:
-        return 0
+    """``ROS_DOMAIN_ID`` read as rcl reads it (:func:`parse_domain_id`; unset or empty: 0)."""
     try:
-        value = int(raw)
-    except ValueError:
-        raise ConfigError(
-            f"ROS_DOMAIN_ID must be an integer in 0..{MAX_DOMAIN_ID}, got {raw!r}"
-        ) from None
-    if not 0 <= value <= MAX_DOMAIN_ID:
-        raise ConfigError(f"ROS_DOMAIN_ID must be in 0..{MAX_DOMAIN_ID}, got {value}")
-    return value
+        return parse_domain_id(environ(env).get(DOMAIN_ENV, ""))
+    except ValueError as e:
+        raise ConfigError(str(e)) from None
 
 
 def endpoint_host_port(endpoint: str) -> tuple[str, str, int] | None:

@@ -25,12 +25,15 @@ from pathlib import Path
 from ros2lite.exceptions import Ros2liteError
 
 __all__ = [
+    'TEXT_LIMIT',
+    'ReadRefused',
     'UnsafePathError',
     'create_new',
     'fallback_dir',
     'open_for_writing',
     'private_dir',
     'read_bounded',
+    'read_text_bounded',
     'replace_file',
 ]
 
@@ -174,14 +177,55 @@ def private_dir(base: str | os.PathLike[str] | None, name: str = 'ros2lite') -> 
 
 
 def read_bounded(path: Path, limit: int, error: type[Exception], what: str) -> bytes:
-    """The bytes of a file we parse whole (a manifest, a launch file): a read error or a
-    file over `limit` bytes becomes one `error` naming the path (`what` says what the file
+    """The bytes of a file we parse whole (a manifest, a launch file, a parameters file): a
+    read error, anything but a regular file (a FIFO would block, `/dev/zero` never ends) or
+    a file over `limit` bytes becomes one `error` naming the path (`what` says what the file
     should have been)."""
-    try:  # no more than one byte past the limit is read (a symlink to /dev/zero ends here)
-        with path.open('rb') as f:
-            data = f.read(limit + 1)
+    try:
+        # O_NONBLOCK: opening a FIFO must not wait for a writer before we can refuse it
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
     except OSError as e:
         raise error(f'{path}: {e.strerror or e}') from None
+    try:
+        regular = stat.S_ISREG(os.fstat(fd).st_mode)
+        if regular:
+            with os.fdopen(fd, 'rb') as f:
+                fd = -1
+                # no more than one byte past the limit is read
+                data = f.read(limit + 1)
+    except OSError as e:
+        raise error(f'{path}: {e.strerror or e}') from None
+    finally:
+        if fd >= 0:
+            os.close(fd)
+    if not regular:
+        raise error(f'{path}: not a regular file, so not read as {what}')
     if len(data) > limit:
         raise error(f'{path}: too large for {what}')
     return data
+
+
+class ReadRefused(Ros2liteError, OSError):
+    """A file not read (see :func:`read_text_bounded`); ``reason`` says why without the
+    path, for callers that word their own line."""
+
+    def __init__(self, message: str) -> None:
+        super().__init__(message)
+        self.reason = message.partition(': ')[2] or message
+
+
+def read_text_bounded(
+    path: str | os.PathLike[str], what: str, limit: int = 0, error: type[Exception] = ReadRefused
+) -> str:
+    """:func:`read_bounded` as UTF-8 text (`limit` 0: :data:`TEXT_LIMIT`); undecodable
+    bytes are the same one `error`."""
+    path = Path(path)
+    data = read_bounded(path, limit or TEXT_LIMIT, error, what)
+    try:
+        return data.decode('utf-8')
+    except UnicodeDecodeError as e:
+        raise error(f'{path}: not UTF-8 text ({e.reason} at byte {e.start})') from None
+
+
+# what a file a user hands us may hold: YAML of parameters, QoS, bag metadata, a launch file
+TEXT_LIMIT = 64 * 1024 * 1024

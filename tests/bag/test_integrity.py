@@ -275,3 +275,62 @@ def test_a_flipped_bit_anywhere_never_crashes_or_invents_a_message(tmp_path: Pat
             got = [m.data if hasattr(m, 'data') else m for _, m, _ in reader.messages()]
         written = iter(WRITTEN)
         assert all(text in written for text in got), at
+
+
+def _with_rosbag2_record(path: Path, metadata_text: str, *, summary: bool = True) -> Path:
+    """A bag of 100 messages with a `rosbag2` metadata record, as rosbag2 writes it."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, 'wb') as f:
+        w = Writer(
+            f, chunk_size=1024, compression=CompressionType.NONE, use_summary_offsets=summary
+        )
+        w.start(profile='ros2', library='test')
+        sid = w.register_schema('std_msgs/msg/String', 'ros2msg', STRING.encode())
+        cid = w.register_channel('/t', 'cdr', sid, {})
+        for i in range(100):
+            w.add_message(cid, T0 + i, cdr(f'm{i:04d}'), T0 + i, i)
+        w.add_metadata('rosbag2', {'serialized_metadata': metadata_text, 'ROS_DISTRO': 'jazzy'})
+        w.finish()
+    return path
+
+
+def test_a_flipped_byte_in_the_metadata_record_loses_no_message(tmp_path: Path) -> None:
+    """R5-B6: a byte of the rosbag2 metadata record made invalid UTF-8 failed info, play and
+    reindex with a utf-8 codec line, and the 100 intact messages were unreadable; now the
+    damage is named and every message read."""
+    marker = 'ros2lite-flip-me'
+    path = _with_rosbag2_record(tmp_path / 'b' / 'b_0.mcap', f'version: 9\n# {marker}\n')
+    data = bytearray(path.read_bytes())
+    spots = [i for i in range(len(data)) if data.startswith(marker.encode(), i)]
+    assert spots  # the record and nowhere else (no summary copy of metadata)
+    for at in spots:
+        data[at] = 0xFF  # not UTF-8
+    path.write_bytes(bytes(data))
+    with Reader(path.parent) as reader:
+        problems = reader.shortfalls()
+        got = [m.data for _, m, _ in reader.messages()]
+    assert got == [f'm{i:04d}' for i in range(100)]
+    assert any('rosbag2 metadata record at byte' in p and 'damaged' in p for p in problems), (
+        problems
+    )
+
+
+def test_an_empty_mcap_and_a_fifo_are_named_not_waited_on(tmp_path: Path) -> None:
+    """R5-B6/B7: a zero-length .mcap said `is not an MCAP file ()`; a metadata.yaml naming a
+    FIFO blocked info and play silently. Only regular files are opened."""
+    import os
+
+    from ros2lite.bag.errors import BagError
+
+    empty = tmp_path / 'e'
+    empty.mkdir()
+    (empty / 'e_0.mcap').write_bytes(b'')
+    with pytest.raises(BagError, match=r'is empty \(0 bytes\)'):
+        Reader(empty).summary()
+    fifo = tmp_path / 'f'
+    fifo.mkdir()
+    os.mkfifo(fifo / 'f_0.mcap')
+    started = time.monotonic()
+    with pytest.raises(BagError, match='not a regular file'):
+        Reader(fifo / 'f_0.mcap').summary()
+    assert time.monotonic() - started < 2

@@ -10,6 +10,7 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
 import lz4.frame
 import pytest
@@ -129,3 +130,188 @@ def test_a_checksummed_chunk_is_not_inflated_past_its_declared_size(
     err, seconds = info(bag)
     assert 'inflates past its declared 1024 bytes: 0 of its messages kept' in err, err
     assert seconds < 15
+
+
+def _record(op: int, body: bytes) -> bytes:
+    return struct.pack('<BQ', op, len(body)) + body
+
+
+def _empty_message() -> bytes:
+    """The smallest message record there is: channel 1, no data (31 bytes)."""
+    return _record(5, struct.pack('<HIQQ', 1, 0, 1, 1))
+
+
+def test_millions_of_identical_tiny_records_are_one_line(tmp_path: Path) -> None:
+    """R5-B1: 22 KB of zstd holding 256 MiB of 31-byte empty messages took `bag info` 24 s and
+    1.2 GB; a chunk may hold no more records than a recording's compressor could have made
+    of its bytes, so the rest is refused in one line, at once."""
+    one = _empty_message()
+    count = N // len(one)
+    per_piece = (1 << 20) // len(one)
+    pieces = [one * per_piece] * (count // per_piece)
+    bag = bomb(tmp_path / 'b', 'zstd', None, len(one) * per_piece * len(pieces))
+    # bomb() writes zeros when given no records: write this chunk's records instead
+    data = compress('zstd', pieces)
+    b = RecordBuilder()
+    Header(profile='ros2', library='bomb').write(b)
+    Schema(id=1, name='std_msgs/msg/String', encoding='ros2msg', data=b'string data').write(b)
+    Channel(id=1, topic='/s', message_encoding='cdr', metadata={}, schema_id=1).write(b)
+    Chunk(
+        compression='zstd',
+        data=data,
+        message_start_time=1,
+        message_end_time=1,
+        uncompressed_crc=0,
+        uncompressed_size=len(one) * per_piece * len(pieces),
+    ).write(b)
+    DataEnd(data_section_crc=0).write(b)
+    Footer(summary_start=0, summary_offset_start=0, summary_crc=0).write(b)
+    (bag / 'b_0.mcap').write_bytes(MAGIC + b.end() + MAGIC)
+    assert (bag / 'b_0.mcap').stat().st_size < 64 << 10
+    err, seconds = info(bag)
+    lines = err.splitlines()
+    assert len(lines) == 1 and 'a decompression bomb' in lines[0], err
+    assert seconds < 10  # was 24-45 s
+    kept = int(lines[0].split(': ')[-1].split(' of its')[0])
+    assert 0 < kept <= 4096 + len(data)
+
+
+def test_one_huge_record_without_summary_is_counted_without_holding_it(tmp_path: Path) -> None:
+    """R5-B2: one 256 MiB record, no summary: `bag info` held it whole (790 MB); counting a
+    message needs its header only, so info runs in a process allowed less than the record."""
+    body = struct.pack('<HIQQ', 1, 0, 5, 5) + b'\0\1\0\0' + struct.pack('<I', 1) + b'\0'
+    record_len = 22 + N
+    head = struct.pack('<BQ', 5, record_len) + body
+    pieces = [head, *([b'\0' * (1 << 20)] * (N >> 20))]
+    size = len(head) + N - (len(body) - 22)
+    pieces[-1] = pieces[-1][: len(pieces[-1]) - (len(body) - 22)]
+    bag = bomb(tmp_path / 'b', 'zstd', None, size)
+    data = compress('zstd', pieces)
+    b = RecordBuilder()
+    Header(profile='ros2', library='bomb').write(b)
+    Schema(id=1, name='std_msgs/msg/String', encoding='ros2msg', data=b'string data').write(b)
+    Channel(id=1, topic='/s', message_encoding='cdr', metadata={}, schema_id=1).write(b)
+    Chunk(
+        compression='zstd',
+        data=data,
+        message_start_time=5,
+        message_end_time=5,
+        uncompressed_crc=0,
+        uncompressed_size=size,
+    ).write(b)
+    DataEnd(data_section_crc=0).write(b)
+    Footer(summary_start=0, summary_offset_start=0, summary_crc=0).write(b)
+    (bag / 'b_0.mcap').write_bytes(MAGIC + b.end() + MAGIC)
+    err, seconds = info(bag)  # RLIMIT_AS of 256 MiB: holding the record would fail
+    assert 'bomb' not in err, err
+    proc = subprocess.run(
+        [sys.executable, '-m', 'ros2lite', 'bag', 'info', str(bag)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert 'Messages:          1\n' in proc.stdout, proc.stdout
+    assert seconds < 10
+
+
+def test_a_chunk_behind_many_indexes_is_read_once(tmp_path: Path) -> None:
+    """R5-B3: one chunk named by 10,000 chunk indexes made the reader yield every message
+    10,000 times; each chunk is now read once, and the repetition is said in one line."""
+    import zlib
+
+    from mcap.records import ChunkIndex, Statistics
+
+    def rec(record: Any) -> bytes:
+        b = RecordBuilder()
+        record.write(b)
+        return bytes(b.end())
+
+    raw = messages(1000)
+    data = compress('zstd', [raw])
+    schema = Schema(id=1, name='std_msgs/msg/String', encoding='ros2msg', data=b'string data')
+    channel = Channel(id=1, topic='/s', message_encoding='cdr', metadata={}, schema_id=1)
+    out = bytearray(MAGIC) + rec(Header(profile='ros2', library='dup')) + rec(schema)
+    out += rec(channel)
+    chunk = rec(
+        Chunk(
+            compression='zstd',
+            data=data,
+            message_start_time=1,
+            message_end_time=1000,
+            uncompressed_crc=zlib.crc32(raw),
+            uncompressed_size=len(raw),
+        )
+    )
+    chunk_at = len(out)
+    out += chunk + rec(DataEnd(data_section_crc=0))
+    summary_start = len(out)
+    out += rec(schema) + rec(channel)
+    out += rec(
+        Statistics(
+            message_count=1000,
+            schema_count=1,
+            channel_count=1,
+            attachment_count=0,
+            metadata_count=0,
+            chunk_count=10_000,
+            message_start_time=1,
+            message_end_time=1000,
+            channel_message_counts={1: 1000},
+        )
+    )
+    index = rec(
+        ChunkIndex(
+            message_start_time=1,
+            message_end_time=1000,
+            chunk_start_offset=chunk_at,
+            chunk_length=len(chunk),
+            message_index_offsets={},
+            message_index_length=0,
+            compression='zstd',
+            compressed_size=len(data),
+            uncompressed_size=len(raw),
+        )
+    )
+    out += index * 10_000
+    out += rec(Footer(summary_start=summary_start, summary_offset_start=0, summary_crc=0))
+    out += MAGIC
+    bag = tmp_path / 'dup'
+    bag.mkdir()
+    (bag / 'dup_0.mcap').write_bytes(bytes(out))
+    started = time.monotonic()
+    with Reader(bag) as reader:
+        got = [m.data for _, m, _ in reader.messages()]
+    assert got == [f'm{i:07d}' for i in range(1000)]  # each once, in order
+    assert time.monotonic() - started < 20  # was 167 s for 10,000,000 messages
+
+
+def test_a_legitimate_huge_message_reads_in_about_the_time_of_reading_it(tmp_path: Path) -> None:
+    """R5-B4: a real 64 MiB message in a zstd chunk with a summary: its record was grown by
+    `bytes +=` piece after piece (quadratic); now inflated once and copied once."""
+    from mcap.writer import CompressionType, Writer
+
+    size = 64 << 20
+    text = b'a' * (size - 1) + b'\0'
+    bag = tmp_path / 'big'
+    bag.mkdir()
+    with open(bag / 'big_0.mcap', 'wb') as f:
+        writer = Writer(f, compression=CompressionType.ZSTD)
+        writer.start(profile='ros2', library='test')
+        sid = writer.register_schema('std_msgs/msg/String', 'ros2msg', b'string data')
+        cid = writer.register_channel('/big', 'cdr', sid)
+        writer.add_message(
+            cid, log_time=1, publish_time=1, data=b'\0\1\0\0' + struct.pack('<I', size) + text
+        )
+        writer.finish()
+    # the floor on this machine now: inflating the same data once with zstd
+    packed = compress('zstd', [text])
+    floor_start = time.monotonic()
+    zstandard.ZstdDecompressor().decompress(packed, max_output_size=size)
+    floor = time.monotonic() - floor_start
+    started = time.monotonic()
+    with Reader(bag) as reader:
+        [(_, message, _, _)] = list(reader.raw_messages())
+    seconds = time.monotonic() - started
+    assert len(message) == size + 8
+    # quadratic growth cost 33 s at 256 MiB; linear reading is a small multiple of the floor
+    assert seconds < 10 * floor + 2, (seconds, floor)

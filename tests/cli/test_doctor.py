@@ -107,13 +107,35 @@ def test_no_router(run: Callable[..., Result], monkeypatch: pytest.MonkeyPatch) 
 
 
 def test_bad_environment(run: Callable[..., Result], graph: Any, monkeypatch: Any) -> None:
-    monkeypatch.setenv('ROS_DOMAIN_ID', '999')
+    monkeypatch.setenv('ROS_DOMAIN_ID', 'abc')
     monkeypatch.setenv('RMW_IMPLEMENTATION', 'rmw_fastrtps_cpp')
     result = run('doctor')
     assert 'Failed modules: middleware' in result.out
     findings = _findings(result.err)
-    assert 'ERROR: ROS_DOMAIN_ID must be in 0..232, got 999' in findings
+    assert "ERROR: ROS_DOMAIN_ID is not an integral number: 'abc'" in findings, findings
     assert any(f.startswith('RMW_IMPLEMENTATION is rmw_fastrtps_cpp') for f in findings)
+
+
+def test_domain_ids_rcl_reads_otherwise_are_said(
+    run: Callable[..., Result], graph: Any, monkeypatch: Any
+) -> None:
+    """rmw_zenoh joins domains above DDS's 232, and rcl reads `010` as octal: both are
+    warnings (the node runs), not errors."""
+    for raw, said in (
+        (
+            '999',
+            "ROS_DOMAIN_ID '999' is domain 999: rmw_zenoh nodes join it, but DDS-based "
+            'ROS 2 nodes only reach domains 0..232',
+        ),
+        (
+            '010',
+            "ROS_DOMAIN_ID '010' reads as domain 8 (as rcl reads it: a leading 0 is "
+            'octal, 0x hex, and what follows the number is ignored)',
+        ),
+    ):
+        monkeypatch.setenv('ROS_DOMAIN_ID', raw)
+        result = run('doctor')
+        assert said in ' '.join(result.err.split()), result.err
 
 
 def test_report_layout(run: Callable[..., Result], graph: TokenGraph) -> None:

@@ -235,3 +235,52 @@ def test_a_token_flood_is_bounded_counted_and_said(
     log = capfd.readouterr().err
     assert 'ros2lite daemon: graph cache full (100 tokens): 1 token(s) not kept so far' in log
     assert log.count('graph cache full') == 6, log  # at 1, 2, 4, … 32: said, never flooding
+
+
+# a publisher token whose deadline (99,999,999,999 s) is past what a Duration holds: rmw_zenoh
+# reads any uint64 there, so its peers may well announce one
+def _odd_tokens(zid: str, domain: int) -> tuple[str, str]:
+    overflow = (
+        f'@ros2_lv/{domain}/{zid}/5/7/MP/%/%/odd_node/%odd_topic/std_msgs::msg::dds_::String_/'
+        f'{HASH}/::,10:99999999999,:,:,,'
+    )
+    # one key holding a newline and what looks like a second node's token after it
+    forged = f'@ros2_lv/{domain}/{zid}/6/8/NN/%/%/nl\n@ros2_lv/{domain}/{zid}/7/9/NN/%/%/forged'
+    return overflow, forged
+
+
+@pytest.mark.parametrize('no_daemon', [False, True])
+def test_odd_tokens_are_skipped_or_clamped_and_said_once(
+    running: str, monkeypatch: pytest.MonkeyPatch, no_daemon: bool
+) -> None:
+    monkeypatch.setenv('ROS2LITE_ROUTER', running)
+    tokens = Tokens(running, DOMAIN, '/cached_chatter')
+    overflow, forged = _odd_tokens(str(tokens.session.info.zid()), DOMAIN)
+    lv = tokens.session.liveliness()
+    odd = [lv.declare_token(overflow), lv.declare_token(forged)]
+    flag = ['--no-daemon'] if no_daemon else []
+    try:
+        wait_until(lambda: len(cached_keys(running, DOMAIN) or ()) == 4)
+        topics = _cli('topic', 'list', '-t', *flag)
+        assert topics.returncode == 0, topics.stderr
+        # the overflowing deadline is infinite: the topic is listed with the rest
+        assert topics.stdout.splitlines() == [
+            '/cached_chatter [std_msgs/msg/String]',
+            '/odd_topic [std_msgs/msg/String]',
+        ], topics.stdout
+        nodes = _cli('node', 'list', *flag)
+        assert nodes.returncode == 0, nodes.stderr
+        # the newline token is skipped, never read as two nodes; the others are listed (a
+        # node known only by its endpoints' tokens too, as rmw_zenoh's graph lists it)
+        assert nodes.stdout.splitlines() == ['/cached', '/odd_node'], nodes.stdout
+        said = [line for line in nodes.stderr.splitlines() if 'skipped' in line]
+        assert len(said) == 1, nodes.stderr
+        assert said[0].startswith('ros2lite: skipped 1 liveliness token(s)'), said
+        assert 'forged' in said[0] and '\\n' in said[0]  # the key shown, escaped
+        info = _cli('topic', 'info', '/odd_topic', '-v', *flag)
+        assert info.returncode == 0, info.stderr
+        assert '  Deadline: Infinite' in info.stdout.splitlines(), info.stdout
+    finally:
+        for token in odd:
+            token.undeclare()
+        tokens.close()

@@ -3,11 +3,14 @@ builders make of it."""
 
 from __future__ import annotations
 
+import shutil
+import subprocess
 from pathlib import Path
 
 import pytest
 
 from ros2lite.security import environment
+from ros2lite.security.access import router_access
 from ros2lite.security.errors import SecurityError
 from ros2lite.security.keystore import create_enclave, create_keystore
 
@@ -191,3 +194,68 @@ def test_unsigned_or_tampered_documents(tmp_path: Path) -> None:
     governance.write_bytes(governance.read_bytes().replace(b'ENCRYPT', b'NONE'))
     with pytest.raises(SecurityError, match=r'governance of keystore .*: governance.xml does not'):
         environment.resolve(secure(root), enclave='/p')
+
+
+def _resign_as_enclave(directory: Path, document: str) -> None:
+    """What R5-S1 did: the enclave's own key signs its edited document, with openssl (in
+    sros2's default keystore the enclave's certificate chains to the permissions CA)."""
+    subprocess.run(
+        [
+            'openssl',
+            'smime',
+            '-sign',
+            '-text',
+            '-in',
+            str(directory / f'{document}.xml'),
+            '-out',
+            str(directory / f'{document}.p7s'),
+            '-signer',
+            str(directory / 'cert.pem'),
+            '-inkey',
+            str(directory / 'key.pem'),
+        ],
+        check=True,
+        capture_output=True,
+    )
+
+
+@pytest.mark.skipif(shutil.which('openssl') is None, reason='needs the openssl command')
+def test_permissions_signed_by_anything_but_the_permissions_ca_are_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """R5-S1: an enclave that grants itself a topic and re-signs the document with its own
+    key is refused under Enforce and warned about under Permissive, as DDS Security asks for
+    the permissions CA's own signature."""
+    root = tmp_path / 'ks'
+    create_keystore(root, {})
+    create_enclave(root, '/tl/evil', {})
+    directory = root / 'enclaves' / 'tl' / 'evil'
+    permissions = directory / 'permissions.xml'
+    permissions.write_bytes(
+        permissions.read_bytes().replace(b'<topic>rt/*</topic>', b'<topic>rt/chatter</topic>')
+    )
+    _resign_as_enclave(directory, 'permissions')
+    with pytest.raises(SecurityError) as caught:
+        environment.resolve(secure(root), enclave='/tl/evil')
+    assert str(caught.value) == (
+        'SECURITY ERROR: permissions of enclave /tl/evil: permissions.p7s is signed by '
+        'CN=/tl/evil, not by the permissions CA (ROS_SECURITY_STRATEGY=Enforce)'
+    )
+    permissive = secure(root, ROS_SECURITY_STRATEGY='Permissive')
+    assert environment.resolve(permissive, enclave='/tl/evil') is not None
+    assert 'permissions.p7s is signed by CN=/tl/evil' in capsys.readouterr().err
+    # the router's access control drops that enclave too
+    access = router_access(root)
+    assert [s.common_name for s in access.subjects] == []
+    assert any('signed by CN=/tl/evil, not by the permissions CA' in w for w in access.warnings)
+    # and the document the CA signs again is obeyed again
+    create_enclave(root, '/tl/evil', {})
+    assert environment.resolve(secure(root), enclave='/tl/evil') is not None
+    # the governance, re-signed by an enclave, is refused the same way
+    shutil.copy(root / 'enclaves' / 'governance.xml', tmp_path / 'governance.xml')
+    for name in ('cert.pem', 'key.pem'):
+        shutil.copy(directory / name, tmp_path / name)
+    _resign_as_enclave(tmp_path, 'governance')
+    (root / 'enclaves' / 'governance.p7s').write_bytes((tmp_path / 'governance.p7s').read_bytes())
+    with pytest.raises(SecurityError, match=r'governance.p7s is signed by CN=/tl/evil'):
+        environment.resolve(secure(root), enclave='/tl/evil')

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import ctypes
+import errno
 import sys
 
 import pytest
@@ -21,16 +23,76 @@ def test_reading_them_loads_no_zenoh() -> None:
     assert out.stdout.strip() == 'False'
 
 
-def test_domain_id() -> None:
-    assert ep.domain_id({}) == 0
-    assert ep.domain_id({"ROS_DOMAIN_ID": " 7 "}) == 7
-    assert ep.domain_id({"ROS_DOMAIN_ID": "232"}) == 232
-    with pytest.raises(ConfigError, match=r"0\.\.232, got 233"):
-        ep.domain_id({"ROS_DOMAIN_ID": "233"})
-    with pytest.raises(ConfigError, match="integer"):
-        ep.domain_id({"ROS_DOMAIN_ID": "abc"})
-    with pytest.raises(ConfigError):
-        ep.domain_id({"ROS_DOMAIN_ID": "-1"})
+def _strtoul_as_rcl(raw: str) -> int | None:
+    """rcl_get_default_domain_id on `raw`, through the C library's own strtoul (None where
+    rcl refuses the value); SIZE_MAX is rmw's default domain, which rmw_zenoh reads as 0."""
+    libc = ctypes.CDLL(None, use_errno=True)
+    libc.strtoul.restype = ctypes.c_ulong
+    libc.strtoul.argtypes = [ctypes.c_char_p, ctypes.POINTER(ctypes.c_char_p), ctypes.c_int]
+    if raw == '':
+        return 0
+    end = ctypes.c_char_p()
+    ctypes.set_errno(0)
+    number = libc.strtoul(raw.encode(), ctypes.byref(end), 0)
+    if number == 0 and end.value:
+        return None
+    if number == 2**64 - 1 and ctypes.get_errno() == errno.ERANGE:
+        return None
+    return 0 if number == 2**64 - 1 else number
+
+
+# rcl's cases: octal, hex, signs, blanks, junk after a number, overflow, DDS's 232 limit
+DOMAIN_TABLE = [
+    '',
+    '0',
+    '7',
+    ' 7 ',
+    '\t12',
+    '010',
+    '08',
+    '0x2b',
+    '0X2B',
+    '0x',
+    '43abc',
+    'abc',
+    '0abc',
+    '1e3',
+    '5.5',
+    '+5',
+    '-0',
+    '-1',
+    '-2',
+    '232',
+    '233',
+    '999',
+    '18446744073709551615',
+    '18446744073709551616',
+    ' ',
+    '00',
+    '0777',
+]
+
+
+@pytest.mark.parametrize('raw', DOMAIN_TABLE)
+def test_domain_id_as_rcl_reads_it(raw: str) -> None:
+    expected = _strtoul_as_rcl(raw)
+    if expected is None:
+        with pytest.raises(ConfigError, match='ROS_DOMAIN_ID is'):
+            ep.domain_id({'ROS_DOMAIN_ID': raw})
+    else:
+        assert ep.domain_id({'ROS_DOMAIN_ID': raw}) == expected
+
+
+def test_domain_id_table_spot_checks() -> None:
+    """The table's oracle itself, on the values the findings name."""
+    assert [_strtoul_as_rcl(v) for v in ('010', '0x2b', '43abc', 'abc', '-1', '233')] == [
+        8,
+        43,
+        43,
+        None,
+        0,
+        233,
+    ]
 
 
 def test_router_endpoint() -> None:

@@ -1,6 +1,8 @@
 from __future__ import annotations
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from ros2lite.qos import QoSProfile
 from ros2lite.transport import keys as k
@@ -202,3 +204,22 @@ def test_mangling_and_prefix() -> None:
         k.node_token(0, "zid", 0, "", "n")
     with pytest.raises(ValueError, match="node_token"):
         k.endpoint_token(0, "z", 0, 1, "NN", "/", "n", "/t", "a/msg/B", "h", QoSProfile(depth=10))
+
+
+_NUMBER = st.one_of(st.just(''), st.integers(0, 2**64 + 5).map(str), st.text(max_size=4))
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(_NUMBER, min_size=11, max_size=11), st.sampled_from(['MP', 'MS', 'SS', 'SC']))
+def test_no_qos_chunk_raises(numbers: list[str], kind: str) -> None:
+    """Whatever numbers a peer writes into a token's QoS chunk (rmw_zenoh reads each as a
+    uint64), parsing gives an entity or None, never an exception."""
+    n = numbers
+    chunk = f'{n[0]}:{n[1]}:{n[2]},{n[3]}:{n[4]},{n[5]}:{n[6]},{n[7]}:{n[8]},{n[9]},{n[10]}'
+    key = (
+        f'@ros2_lv/0/{"ab" * 16}/0/1/{kind}/%/%/node/%topic/std_msgs::msg::dds_::String_/'
+        f'RIHS01_{"0" * 64}/{chunk}'
+    )
+    entity = parse_token(key)
+    if entity is not None and entity.qos is not None:
+        assert entity.qos.deadline.nanoseconds <= 2**63 - 1

@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import shutil
 import stat
+import time
 from pathlib import Path
 
 import pytest
@@ -144,5 +145,46 @@ def test_read_bounded_reads_no_more_than_its_limit(tmp_path: Path) -> None:
 
     endless = tmp_path / 'package.xml'
     endless.symlink_to('/dev/zero')  # read whole, this would never end
-    with pytest.raises(ValueError, match='too large for a manifest'):
+    with pytest.raises(ValueError, match='not a regular file, so not read as a manifest'):
         read_bounded(endless, 1 << 16, ValueError, 'a manifest')
+    big = tmp_path / 'big.xml'
+    big.write_bytes(b'x' * ((1 << 16) + 1))
+    with pytest.raises(ValueError, match='too large for a manifest'):
+        read_bounded(big, 1 << 16, ValueError, 'a manifest')
+    big.write_bytes(b'x' * (1 << 16))
+    assert len(read_bounded(big, 1 << 16, ValueError, 'a manifest')) == 1 << 16
+
+
+def test_a_fifo_is_refused_without_waiting_for_a_writer(tmp_path: Path) -> None:
+    """R5-B7/R5-P1: opening a FIFO to read would block until someone writes; it is refused at
+    once, as anything but a regular file is."""
+    from ros2lite.util.files import ReadRefused, read_text_bounded
+
+    fifo = tmp_path / 'params.yaml'
+    os.mkfifo(fifo)
+    started = time.monotonic()
+    with pytest.raises(ReadRefused, match='not a regular file') as caught:
+        read_text_bounded(fifo, 'a parameters file')
+    assert time.monotonic() - started < 1.0
+    assert caught.value.reason == 'not a regular file, so not read as a parameters file'
+
+
+@pytest.mark.parametrize('target', ['/dev/zero', 'big'])
+def test_param_files_from_outside_are_bounded(tmp_path: Path, target: str) -> None:
+    """R5-P1: `param load` of a link to /dev/zero read 23.9 GB; every parameters file is
+    now read only if it is a regular file, and at most TEXT_LIMIT bytes of it."""
+    from ros2lite.parameters.files import ParamsFileError, read_params_file
+    from ros2lite.util.files import TEXT_LIMIT
+
+    link = tmp_path / 'params.yaml'
+    if target == 'big':
+        with open(tmp_path / 'big', 'wb') as f:
+            f.truncate(TEXT_LIMIT + 4096)  # sparse: no disk used
+        target = str(tmp_path / 'big')
+    link.symlink_to(target)
+    with pytest.raises(ParamsFileError) as caught:
+        read_params_file(link)
+    message = str(caught.value)
+    assert message.startswith(f"Couldn't read parameters file '{link}': "), message
+    assert ('not a regular file' in message) == (target == '/dev/zero'), message
+    assert '\n' not in message

@@ -20,6 +20,12 @@ from ros2lite.bag.storage import FileSummary, StorageReader
 __all__ = ["Sqlite3StorageReader", "open_reader"]
 
 
+# a message row as rosbag2 writes it: an integer time and a blob (R5-B5: a TEXT timestamp
+# or data broke arithmetic and decoding); the others are counted and skipped
+_SOUND_ROW = "typeof(timestamp) = 'integer' AND typeof(data) = 'blob'"
+_NAME_LIMIT = 4096
+
+
 class Sqlite3StorageReader:
     """One `.db3` file of an older rosbag2 bag, read with SQL."""
 
@@ -29,6 +35,26 @@ class Sqlite3StorageReader:
         if not os.path.isfile(path):
             raise BagError(f"Cannot open '{path}': No such file")
         self._db = self._connect(path)
+        try:
+            self._check_columns()
+        except BagError:
+            self._db.close()
+            raise
+        except sqlite3.DatabaseError as e:
+            self._db.close()
+            raise BagError(f"'{path}' is not a readable sqlite3 bag ({e})") from None
+
+    def _check_columns(self) -> None:
+        """A table of a bag stores its values: a generated column (computed on read, e.g. a
+        500 MB topic name or a 1 GB blob per row, R5-B5) is no rosbag2 bag's, and refused
+        before anything reads it."""
+        for table in ("topics", "messages"):
+            for row in self._db.execute(f"PRAGMA table_xinfo({table})"):
+                if row[6] in (2, 3):  # hidden: 2 virtual, 3 stored generated column
+                    raise BagError(
+                        f"'{self.path}': column {table}.{str(row[1])[:64]} is generated, "
+                        "not stored: not a rosbag2 bag"
+                    )
 
     @staticmethod
     def _connect(path: str) -> sqlite3.Connection:
@@ -55,10 +81,13 @@ class Sqlite3StorageReader:
     def _topic_rows(self) -> list[tuple[int, TopicMetadata]]:
         cols = [r[1] for r in self._db.execute("PRAGMA table_info(topics)")]
         has_hash = "type_description_hash" in cols
+        # text of sane size only: a name or type of another type or size is skipped
         rows = self._db.execute(
             "SELECT id, name, type, serialization_format, offered_qos_profiles"
             + (", type_description_hash" if has_hash else "")
-            + " FROM topics ORDER BY id"
+            + " FROM topics WHERE typeof(name) = 'text' AND typeof(type) = 'text'"
+            f" AND length(name) <= {_NAME_LIMIT} AND length(type) <= {_NAME_LIMIT}"
+            " ORDER BY id"
         )
         out = []
         for row in rows:
@@ -95,10 +124,18 @@ class Sqlite3StorageReader:
         by_id = {tid: t for tid, t in topics}
         summary = FileSummary([t for _, t in topics], {t.name: 0 for _, t in topics})
         for tid, n, lo, hi in self._db.execute(
-            "SELECT topic_id, count(*), min(timestamp), max(timestamp) FROM messages "
-            "GROUP BY topic_id"
+            f"SELECT topic_id, count(*), min(timestamp), max(timestamp) FROM messages "
+            f"WHERE {_SOUND_ROW} GROUP BY topic_id"
         ):
             summary.add(by_id[tid].name if tid in by_id else None, n, lo, hi)
+        (odd,) = self._db.execute(
+            f"SELECT count(*) FROM messages WHERE NOT ({_SOUND_ROW})"
+        ).fetchone()
+        if odd:
+            summary.problems.append(
+                f"'{self.path}': {odd} message row(s) whose timestamp is not an integer or whose "
+                "data is not a blob; skipped"
+            )
         if "message_definitions" in tables:
             for type_name, encoding, text in self._db.execute(
                 "SELECT topic_type, encoding, encoded_message_definition FROM message_definitions"
@@ -124,7 +161,7 @@ class Sqlite3StorageReader:
         """(topic, data, log time, log time) in time order, `start <= t < stop`."""
         names = {tid: t.name for tid, t in self._topic_rows()}
         query = "SELECT topic_id, timestamp, data FROM messages"
-        where: list[str] = []
+        where: list[str] = [_SOUND_ROW]
         args: list[int] = []
         if start is not None:
             where.append("timestamp >= ?")
@@ -132,8 +169,7 @@ class Sqlite3StorageReader:
         if stop is not None:
             where.append("timestamp < ?")
             args.append(stop)
-        if where:
-            query += " WHERE " + " AND ".join(where)
+        query += " WHERE " + " AND ".join(where)
         query += " ORDER BY timestamp, id"
         try:
             for tid, stamp, data in self._db.execute(query, args):

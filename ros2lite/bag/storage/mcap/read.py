@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import stat
 import struct
 from collections.abc import Iterable, Iterator
 from typing import TYPE_CHECKING
@@ -18,7 +19,8 @@ from ros2lite.bag.storage import FileSummary
 from ros2lite.bag.storage.mcap.scan import _CHUNK, _chunk_records, _ChunkHead, _Damage, _scan
 
 if TYPE_CHECKING:
-    from mcap.records import Channel, McapRecord, Metadata, Schema
+    from mcap.data_stream import ReadDataStream
+    from mcap.records import Channel, ChunkIndex, McapRecord, Metadata, Schema
     from mcap.summary import Summary
 
 
@@ -78,9 +80,20 @@ class McapStorageReader:
 
         self.path = path
         try:
-            self._stream = open(path, "rb")  # noqa: SIM115 - closed by close()
+            # a FIFO named by a hostile metadata.yaml would block open() until a writer came
+            # (R5-B7): only a regular file is opened
+            fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
         except OSError as e:
             raise BagError(f"Cannot open '{path}': {e.strerror or e}") from None
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            os.close(fd)
+            raise BagError(f"Cannot open '{path}': not a regular file")
+        if info.st_size == 0:
+            os.close(fd)
+            raise BagError(f"'{path}' is empty (0 bytes): not an MCAP file")
+        os.set_blocking(fd, True)
+        self._stream = os.fdopen(fd, "rb")
         try:
             self._reader = SeekingReader(self._stream)
             self._reader.get_header()
@@ -131,14 +144,33 @@ class McapStorageReader:
         if stats.message_count:
             summary.message_count = stats.message_count
             summary.start, summary.end = stats.message_start_time, stats.message_end_time
-        _note_rosbag2_records(summary, self._metadata_records())
+        _note_rosbag2_records(summary, self._metadata_records(summary.problems))
         return summary
 
-    def _metadata_records(self) -> Iterator[Metadata]:
+    def _metadata_records(self, problems: list[str] | None = None) -> Iterator[Metadata]:
+        """The `rosbag2` metadata records; one that does not decode (a flipped byte, R5-B6)
+        is named in `problems` and passed over: the messages do not depend on it."""
         s = self._summary
         if s is None or not s.metadata_indexes:
-            return iter(())
-        return (r for r in self._reader.iter_metadata() if r.name == "rosbag2")
+            return
+        from mcap.records import Metadata
+
+        stream = self._stream
+        for index in s.metadata_indexes:
+            if index.name != "rosbag2":
+                continue
+            try:
+                stream.seek(index.offset + 9)
+                body = stream.read(max(0, min(index.length - 9, 1 << 26)))
+                record = Metadata.read(_stream_of(body))
+            except Exception as e:
+                if problems is not None:
+                    problems.append(
+                        f"'{self.path}': its rosbag2 metadata record at byte {index.offset} is "
+                        f"damaged ({type(e).__name__}); read without it"
+                    )
+                continue
+            yield record
 
     def messages(
         self, topics: set[str] | None = None, start: int | None = None, stop: int | None = None
@@ -176,7 +208,7 @@ class McapStorageReader:
         chunks = sorted(
             (
                 c
-                for c in summary.chunk_indexes
+                for c in self._chunk_indexes(summary.chunk_indexes)
                 if (stop is None or c.message_start_time < stop)
                 and (start is None or c.message_end_time >= start)
                 and (not c.message_index_offsets or wanted & set(c.message_index_offsets))
@@ -226,6 +258,32 @@ class McapStorageReader:
                 t, _, _, topic, data, publish_time = heapq.heappop(pending)
                 yield topic, data, t, publish_time
 
+    def _chunk_indexes(self, indexes: Iterable[ChunkIndex]) -> list[ChunkIndex]:
+        """Each chunk once, however many indexes name it (R5-B3: one chunk behind 10,000
+        indexes was read 10,000 times, every message repeated), and no index whose chunk
+        overlaps another's; what was dropped is said in one line."""
+        listed = list(indexes)
+        by_offset: dict[int, ChunkIndex] = {}
+        for index in listed:
+            by_offset.setdefault(index.chunk_start_offset, index)
+        repeated = len(listed) - len(by_offset)
+        kept: list[ChunkIndex] = []
+        overlapping = 0
+        end = -1
+        for offset in sorted(by_offset):
+            index = by_offset[offset]
+            if offset < end:
+                overlapping += 1
+                continue
+            kept.append(index)
+            end = offset + max(index.chunk_length, 1)
+        if repeated or overlapping:
+            _warn(
+                f"'{self.path}': its summary names {repeated} chunk(s) more than once and "
+                f"{overlapping} overlapping another; each chunk is read once"
+            )
+        return kept
+
     def _read_chunk(self, where: int, kept: list[McapRecord]) -> str | None:
         """The trusted records of the chunk at `where` into `kept`; what was wrong, if aught."""
         stream = self._stream
@@ -262,6 +320,8 @@ class McapStorageReader:
             on_metadata=records.append,
             on_channel=on_channel,
             problems=summary.problems,
+            headers_only=True,
+            path=self.path,
         ):
             summary.add(channel.topic, 1, m.log_time, m.log_time)
         summary.topics = list(topics.values())
@@ -274,6 +334,14 @@ def _warn(message: str) -> None:
     from ros2lite.logging import get_logger
 
     get_logger("rosbag2_storage").warn(message)
+
+
+def _stream_of(body: bytes) -> ReadDataStream:
+    import io
+
+    from mcap.data_stream import ReadDataStream
+
+    return ReadDataStream(io.BytesIO(body))
 
 
 def _text(data: bytes) -> str:

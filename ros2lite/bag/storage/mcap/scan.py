@@ -5,6 +5,7 @@ without a summary and for recovering it.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import struct
 from collections.abc import Callable, Iterator
@@ -108,7 +109,7 @@ def _inflate(compression: str, data: bytes, limit: int) -> Iterator[bytes]:
         raise _Damage(f"does not decompress ({e or type(e).__name__})") from None
 
 
-def _parse(op: int, body: bytes) -> McapRecord | None:
+def _parse(op: int, body: bytes | memoryview) -> McapRecord | None:
     """One record from its whole body; None when the body does not hold what the record
     says (the first bad record)."""
     import io
@@ -120,7 +121,7 @@ def _parse(op: int, body: bytes) -> McapRecord | None:
         if len(body) < 22:
             return None
         cid, seq, log_time, publish_time = struct.unpack_from("<HIQQ", body)
-        return Message(cid, log_time, body[22:], publish_time, seq)
+        return Message(cid, log_time, bytes(body[22:]), publish_time, seq)
     stream = ReadDataStream(io.BytesIO(body))
     kinds: dict[int, Callable[[ReadDataStream], McapRecord]] = {
         _SCHEMA: Schema.read,
@@ -149,65 +150,168 @@ class _ChunkHead:
         (self.records_length,) = struct.unpack_from("<Q", body, 32 + n)
 
 
+# a real recording's records each cost a compressor bytes (their sequence numbers and
+# times change: zstd at level 19 keeps at most 0.34 of them a byte, lz4 0.07, measured on
+# perfectly regular ones), so a chunk holding more than one record per compressed byte is a
+# bomb of identical records (R5-B1: 22 KB of zstd holding 8.6 million empty messages)
+_RECORDS_PER_BYTE = 1
+_RECORDS_FLOOR = 4096
+
+
+def record_bound(head: _ChunkHead, data_length: int) -> int | None:
+    """The most records a compressed chunk of `data_length` bytes may honestly hold (None:
+    an uncompressed chunk, bounded by its size already)."""
+    if head.compression == "":
+        return None
+    return _RECORDS_FLOOR + _RECORDS_PER_BYTE * data_length
+
+
 def _chunk_records(
-    head: _ChunkHead, data: bytes, whole: bool, kept: list[McapRecord]
+    head: _ChunkHead,
+    data: bytes,
+    whole: bool,
+    kept: list[McapRecord],
+    *,
+    headers_only: bool = False,
+    max_records: int | None = None,
 ) -> str | None:
     """Put into `kept` the records of one chunk that can be trusted: all of them when its
     CRC holds; else those before the first bad record (cut short, inflating past its size,
-    a length running out of the chunk, a body that does not parse) or before the byte that
-    broke its CRC. Returns what was wrong, or None."""
+    a length running out of the chunk, a body that does not parse, more records than its
+    compressed size or `max_records` allow) or before the byte that broke its CRC. Returns
+    what was wrong, or None. `headers_only` keeps messages without their data (counting
+    needs no 256 MiB body held in memory)."""
     if head.size > (1 << 40):
         return f"declares an impossible size ({head.size} bytes)"
+    import zlib
+
     good_until = head.size
     problem = None
-    if whole and head.crc:
-        import zlib
+    # a compressed chunk's CRC is taken on the pieces as they are parsed: inflating a
+    # 256 MiB chunk twice doubled the cost of reading it
+    crc_as_parsed = whole and bool(head.crc) and head.compression != ""
+    first = len(kept)
+    # uncompressed: the CRC is cheap first, and finds the damaged byte
+    if whole and head.crc and not crc_as_parsed and zlib.crc32(data) != head.crc:
+        where = first_damaged_byte(data, head.crc)
+        if where is None:
+            return "fails its CRC check"
+        good_until = where
+        problem = f"fails its CRC check (byte {where} of its records damaged)"
+    crc = [0]
+    damage: list[str] = []
 
+    def pieces() -> Iterator[bytes]:
         try:
-            if head.compression == "":
-                crc = zlib.crc32(data)
-            else:
-                crc = 0
-                for piece in _inflate(head.compression, data, head.size):
-                    crc = zlib.crc32(piece, crc)
+            for piece in _inflate(head.compression, data, head.size):
+                if crc_as_parsed:
+                    crc[0] = zlib.crc32(piece, crc[0])
+                yield piece
         except _Damage as e:
-            return str(e)
-        if crc != head.crc:
-            where = first_damaged_byte(data, head.crc) if head.compression == "" else None
-            if where is None:
-                return "fails its CRC check"
-            good_until = where
-            problem = f"fails its CRC check (byte {where} of its records damaged)"
-    buf = b""
-    done = 0  # bytes of the records parsed so far
+            damage.append(str(e))
+            raise
+
+    stream = pieces()
+    found = _parse_records(
+        head, len(data), good_until, whole, stream, kept, headers_only, max_records
+    )
+    if crc_as_parsed:
+        with contextlib.suppress(_Damage):
+            for _ in stream:  # the rest, for the CRC, when parsing stopped early
+                pass
+        if damage or crc[0] != head.crc:
+            del kept[first:]  # a chunk whose CRC does not hold keeps nothing
+            return damage[0] if damage else "fails its CRC check"
+    if found is not None:
+        return problem or found
+    return problem
+
+
+def _parse_records(
+    head: _ChunkHead,
+    compressed: int,
+    good_until: int,
+    whole: bool,
+    stream: Iterator[bytes],
+    kept: list[McapRecord],
+    headers_only: bool,
+    max_records: int | None,
+) -> str | None:
+    """The records of a chunk's inflated `stream` into `kept` (see `_chunk_records`)."""
+    from mcap.records import Message
+
+    bounds = [b for b in (record_bound(head, compressed), max_records) if b is not None]
+    limit = min(bounds) if bounds else None
+    count = 0
+    # a bytearray with its parsed front deleted: appending a piece costs the piece, not the
+    # buffer (`bytes +=` made one 256 MiB record quadratic: 33 s, R5-B4)
+    buf = bytearray()
+    done = 0  # bytes of the records consumed so far (parsed or skipped)
+    skip = 0  # bytes of a headers-only message's data still to pass over
+    pending: McapRecord | None = None  # that message, kept once its record is whole
     try:
-        for piece in _inflate(head.compression, data, head.size):
-            buf += piece
+        for piece in stream:
             pos = 0
+            if skip:
+                step = min(skip, len(piece))
+                skip -= step
+                done += step
+                if skip == 0 and pending is not None:
+                    kept.append(pending)  # its whole record is there: it counts
+                    pending = None
+                if step == len(piece):
+                    continue
+                piece = piece[step:]
+            buf += piece
             while len(buf) - pos >= 9:
                 op, length = struct.unpack_from("<BQ", buf, pos)
                 if op not in _IN_CHUNK and op < 0x80:
-                    return problem or f"holds a record of unknown kind ({op})"
+                    return f"holds a record of unknown kind ({op})"
                 end = done + pos + 9 + length
                 if end > head.size:
-                    return problem or "holds a record running past its end"
+                    return "holds a record running past its end"
                 if end > good_until:
-                    return problem
+                    return ""
+                count += 1
+                if limit is not None and count > limit:
+                    return (
+                        f"holds more records than its {compressed} compressed bytes can "
+                        f"(over {limit}: a decompression bomb)"
+                    )
+                if headers_only and op == _MESSAGE and length >= 22:
+                    have = min(len(buf) - pos - 9, length)
+                    if have < 22:
+                        count -= 1  # counted again once its header is here
+                        break
+                    cid, seq, log_time, publish_time = struct.unpack_from("<HIQQ", buf, pos + 9)
+                    message = Message(cid, log_time, b"", publish_time, seq)
+                    if have < length:
+                        pending = message
+                        skip = length - have
+                        done += len(buf)
+                        del buf[:]
+                        pos = 0
+                        break
+                    kept.append(message)
+                    pos += 9 + length
+                    continue
                 if len(buf) - pos - 9 < length:
+                    count -= 1  # counted again once the whole record is here
                     break
                 if op in _IN_CHUNK:
-                    record = _parse(op, buf[pos + 9 : pos + 9 + length])
+                    with memoryview(buf) as view:  # released before `buf` is resized
+                        record = _parse(op, view[pos + 9 : pos + 9 + length])
                     if record is None:
-                        return problem or "holds a record that does not parse"
+                        return "holds a record that does not parse"
                     kept.append(record)
                 pos += 9 + length
-            buf = buf[pos:]
+            del buf[:pos]
             done += pos
     except _Damage as e:
-        return problem or str(e)
-    if buf or (whole and done != head.size):
-        return problem or ("is cut short" if not whole else "ends inside a record")
-    return problem
+        return str(e)
+    if buf or skip or (whole and done != head.size):
+        return "ends inside a record" if whole else "is cut short"
+    return None
 
 
 class _Scan:
@@ -216,9 +320,10 @@ class _Scan:
     before them; a chunk cut short keeps its complete records; reading goes on after a
     damaged chunk whose length is still sound. `problems` says what was lost, one line each."""
 
-    def __init__(self, stream: IO[bytes], path: str) -> None:
+    def __init__(self, stream: IO[bytes], path: str, headers_only: bool = False) -> None:
         self.stream = stream
         self.path = path
+        self.headers_only = headers_only
         self.problems: list[str] = []
         self.messages = 0
         self.schemas: dict[int, Schema] = {}
@@ -275,7 +380,21 @@ class _Scan:
             elif not whole:
                 self._stop(pos + 9, "inside a record")
                 return
-            elif op in (_SCHEMA, _CHANNEL, _MESSAGE, _METADATA):
+            elif op == _MESSAGE and self.headers_only and length >= 22:
+                record = _parse(op, stream.read(22))
+                if record is None:
+                    self._stop(pos, "at a record that does not parse; the rest is unreadable")
+                    return
+                yield record
+            elif op == _METADATA:
+                record = _parse(op, stream.read(length))
+                if record is None:  # its length is sound: the records after it still read
+                    self.problems.append(
+                        f"'{self.path}': the metadata record at byte {pos} is damaged; skipped"
+                    )
+                else:
+                    yield record
+            elif op in (_SCHEMA, _CHANNEL, _MESSAGE):
                 record = _parse(op, stream.read(length))
                 if record is None:
                     self._stop(pos, "at a record that does not parse; the rest is unreadable")
@@ -299,7 +418,7 @@ class _Scan:
         inner_whole = whole and head.records_length <= length - (start - pos - 9)
         data = stream.read(min(head.records_length, max(0, pos + 9 + length - start)))
         kept: list[McapRecord] = []
-        problem = _chunk_records(head, data, inner_whole, kept)
+        problem = _chunk_records(head, data, inner_whole, kept, headers_only=self.headers_only)
         before = self.messages
         yield from kept
         if not whole:
@@ -334,12 +453,16 @@ def _scan(
     on_metadata: Callable[[Metadata], object] | None = None,
     on_channel: Callable[[Channel, Schema | None], object] | None = None,
     problems: list[str] | None = None,
+    headers_only: bool = False,
+    path: str | None = None,
 ) -> Iterator[tuple[dict[int, Schema], Channel, McapMessage]]:
     """Every message record in file order that can be trusted, up to the first that cannot
-    (see `_Scan`); what was lost goes into `problems` when the scan ends."""
+    (see `_Scan`); what was lost goes into `problems` when the scan ends. `headers_only`:
+    messages come without their data (for counting)."""
     from mcap.records import Channel, Message, Metadata
 
-    scan = _Scan(stream, getattr(stream, "name", "the file"))
+    name = path if path is not None else getattr(stream, "name", "the file")
+    scan = _Scan(stream, str(name), headers_only)
     seen: set[int] = set()
     try:
         for record in scan.records():
