@@ -65,7 +65,7 @@ def _median(times: list[float]) -> float:
 
 
 def bench_lifecycle_set() -> None:
-    with graph_with('ros2lite.demos.lifecycle_py.lifecycle_talker') as (env, exe):
+    with graph_with('ros2lite.bundled.lifecycle_py.lifecycle_talker') as (env, exe):
         _until([exe, 'lifecycle', 'get', '/lc_talker'], env, 'unconfigured [1]\n')
         times = []
         for i in range(15):
@@ -80,7 +80,7 @@ def bench_lifecycle_set() -> None:
 
 
 def bench_component_load() -> None:
-    module = 'ros2lite.demos.rclpy_components.component_container'
+    module = 'ros2lite.bundled.rclpy_components.component_container'
     with graph_with(module) as (env, exe):
         _until([exe, 'component', 'list', '--containers-only'], env, '/ComponentManager\n')
         times = []

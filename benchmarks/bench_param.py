@@ -28,7 +28,7 @@ def bench_param_get() -> None:
                     [
                         sys.executable,
                         "-m",
-                        "ros2lite.demos.demo_nodes_py.parameter_blackboard",
+                        "ros2lite.bundled.demo_nodes_py.parameter_blackboard",
                         "--ros-args",
                         "-p",
                         "answer:=42",
