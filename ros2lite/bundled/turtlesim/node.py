@@ -49,6 +49,10 @@ STATS_PERIOD = 5.0  # s between the debug lines with step and render rates
 PARAMETER_EVENTS_QOS = QoSProfile(depth=100, reliability=ReliabilityPolicy.BEST_EFFORT)
 
 
+# the largest value a float32 field (Pose.x, Pose.linear_velocity, …) holds
+_FLOAT32_MAX = 3.4028234663852886e38
+
+
 @dataclass(frozen=True)
 class TurtleView:
     """What a view draws of one turtle."""
@@ -316,12 +320,15 @@ class TurtlesimNode(Node):
         return real_name
 
     def finite(self, what: str, **values: float) -> bool:
-        """Whether every value is a finite number; else the request is refused with a log
-        line (NaN or infinity would end the simulation, not just this turtle's step)."""
-        bad = {k: v for k, v in values.items() if not math.isfinite(v)}
+        """Whether every value is a finite number turtlesim's float32 pose can hold; else
+        the request is refused with a log line (NaN or infinity would end the simulation,
+        and 1e308 cannot be written into a Pose)."""
+        bad = {k: v for k, v in values.items() if not (math.isfinite(v) and abs(v) <= _FLOAT32_MAX)}
         if bad:
             shown = ', '.join(f'{k}={v}' for k, v in bad.items())
-            self.get_logger().error(f'Ignoring a {what} with a value that is not finite ({shown})')
+            self.get_logger().error(
+                f'Ignoring a {what} with a value that is not a finite float32 ({shown})'
+            )
         return not bad
 
     def _on_spawn(self, request: Spawn.Request, response: Spawn.Response) -> Spawn.Response:

@@ -303,6 +303,9 @@ def test_nan_and_infinity_are_refused_and_the_node_lives(
          '{linear: .inf, angular: .nan}'),
         ('action', 'send_goal', '/turtle1/rotate_absolute', 'turtlesim/action/RotateAbsolute',
          '{theta: -.inf}'),
+        # R5: finite, but past what the float32 Pose holds (it ended the node in packing)
+        ('topic', 'pub', '-t', '1', '-w', '1', '/turtle1/cmd_vel', 'geometry_msgs/msg/Twist',
+         '{linear: {x: 1.0e+308}}'),
     ]  # fmt: skip
     for args in sent:
         assert run(*args).code == 0, args
@@ -312,8 +315,9 @@ def test_nan_and_infinity_are_refused_and_the_node_lives(
         ('teleport', 'x=nan, theta=inf'),
         ('teleport', 'linear=inf, angular=nan'),
         ('rotation goal', 'theta=-inf'),
+        ('velocity command', 'linear_x=1e+308'),
     ]:
-        line = f'Ignoring a {what} with a value that is not finite ({values})'
+        line = f'Ignoring a {what} with a value that is not a finite float32 ({values})'
         wait_for_log(proc, lines, re.escape(line))
     assert proc.poll() is None
     assert '/n/pose' not in run('topic', 'list').out.split('\n')
