@@ -103,6 +103,9 @@ def read_qos_overrides(path: str | Path) -> dict[str, QoSProfile]:
     return parse_qos_overrides(text)
 
 
+# a queue's length in a C ssize_t on any platform, as every other count option
+_MAX_DEPTH = 2**31 - 1
+
 _QOS_KEYS = {
     "history",
     "depth",
@@ -139,6 +142,15 @@ def parse_qos_overrides(text: str) -> dict[str, QoSProfile]:
             value = profile.get(key)
             if value is not None and (not isinstance(value, dict) or set(value) != {"sec", "nsec"}):
                 raise QoSOverrideError(f"QoS override {key} of {topic!r} needs both sec and nsec")
+        depth = profile.get("depth")
+        if depth is not None and (
+            isinstance(depth, bool) or not isinstance(depth, int) or not 0 <= depth <= _MAX_DEPTH
+        ):
+            # a depth of 1e20 ended the recorder's queue set-up, recording nothing
+            raise QoSOverrideError(
+                f"QoS override depth of {topic!r} must be an integer in 0..{_MAX_DEPTH}, "
+                f"got {depth!r}"
+            )
         full = {**qos_to_dict(defaults, True), **profile}
         out[str(topic)] = qos_from_dict(full)
     return out

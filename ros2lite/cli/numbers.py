@@ -55,5 +55,6 @@ def seconds(min_open: bool = False, minimum: float = 0.0) -> Finite:
 
 
 def rate() -> Finite:
-    """A rate in Hz: finite, positive, at most MAX_RATE."""
-    return Finite(min=0, max=MAX_RATE, min_open=True)
+    """A rate in Hz: finite, at most MAX_RATE, and at least one period in MAX_SECONDS (a
+    rate of 1e-300 Hz made a period no clock holds)."""
+    return Finite(min=1 / MAX_SECONDS, max=MAX_RATE)

@@ -75,3 +75,15 @@ def test_override_files(tmp_path: object) -> None:
         parse_qos_overrides("/a: {colour: red}")
     with pytest.raises(Exception, match="Cannot read"):
         read_qos_overrides(tmp_path / "missing.yaml")
+
+
+@pytest.mark.parametrize('depth', ['100000000000000000000', '1.0e+20', '-1', 'true', '2.5'])
+def test_an_override_depth_no_queue_holds_is_one_line(depth: str) -> None:
+    """R5: a depth of 1e20 made `bag record` fail its queue set-up and record nothing while
+    it kept running; the override file is refused before recording starts."""
+    with pytest.raises(QoSOverrideError, match=r"QoS override depth of '/c' must be an integer"):
+        parse_qos_overrides(f'/c:\n  depth: {depth}\n')
+
+
+def test_a_large_but_sane_override_depth_is_kept() -> None:
+    assert parse_qos_overrides('/c:\n  depth: 100000\n')['/c'].depth == 100000
