@@ -469,29 +469,56 @@ def declared_arguments(
 MAX_INCLUDE_DEPTH = 64
 """Launch files nested deeper than this are refused (a runaway, not a design)."""
 
-# the launch files being read, outermost first: what led to the file read now
+# the launch files being read, outermost first: what led to the file read now, each with
+# the launch arguments its include gave (a file may include itself with other arguments:
+# `n:=n-1` until a condition ends it, which is no cycle)
 _INCLUDES: ContextVar[tuple[str, ...]] = ContextVar('ros2lite_launch_includes', default=())
+# the arguments of the include about to read its file
+_GIVEN: ContextVar[str] = ContextVar('ros2lite_launch_given', default='')
+
+
+def include_key(path: str, arguments: Iterable[tuple[str, str]] = ()) -> str:
+    """How the chain knows a file read with some arguments: the same file with the same
+    arguments again is a cycle, with others it is recursion a condition may end."""
+    given = ' '.join(f'{k}:={v}' for k, v in sorted(arguments))
+    return f'{path} [{given}]' if given else path
+
+
+@contextlib.contextmanager
+def giving(arguments: Iterable[tuple[str, str]]) -> Iterator[None]:
+    """While an include reads its file: the launch arguments it gives it."""
+    token = _GIVEN.set(include_key('', arguments).strip())
+    try:
+        yield
+    finally:
+        _GIVEN.reset(token)
 
 
 @contextlib.contextmanager
 def including(path: str) -> Iterator[None]:
     """While the launch file `path` (resolved) is read: refuse it when it is already on the
-    way to itself (a cycle would load forever) or nested too deep, in one line."""
+    way to itself with the same arguments (a cycle would load forever) or nested too deep,
+    in one line."""
     chain = _INCLUDES.get()
-    if path in chain:
-        loop = [*chain[chain.index(path) :], path]
+    given = _GIVEN.get()
+    key = f'{path} {given}' if given else path
+    if key in chain:
+        loop = [*chain[chain.index(key) :], key]
         if len(loop) == 2:
-            raise LaunchError(f"launch file '{path}' includes itself")
+            raise LaunchError(f"launch file '{key}' includes itself")
         raise LaunchError(f'launch files include each other in a cycle: {" -> ".join(loop)}')
+    path = key
     if len(chain) >= MAX_INCLUDE_DEPTH:
         raise LaunchError(
             f'launch files are nested more than {MAX_INCLUDE_DEPTH} deep '
             f"(… {' -> '.join(chain[-3:])} -> {path})"
         )
     token = _INCLUDES.set((*chain, path))
+    consumed = _GIVEN.set('')  # the arguments were this file's, not those it reads in turn
     try:
         yield
     finally:
+        _GIVEN.reset(consumed)
         _INCLUDES.reset(token)
 
 

@@ -16,7 +16,9 @@ from .actions import (
     PushLaunchConfigurations,
     SetLaunchConfiguration,
     declared_arguments,
+    giving,
     include_chain,
+    include_key,
     including,
     reading_from,
     seconds_of,
@@ -129,16 +131,22 @@ class IncludeLaunchDescription(Action):
     def execute(self, context: LaunchContext) -> Entities | None:
         """The included description, after setting its launch arguments and checking that
         every argument it requires is given."""
-        with reading_from(self._chain):
+        values = [
+            (perform_substitutions(context, key), perform_substitutions(context, value))
+            for key, value in self.launch_arguments
+        ]
+        with reading_from(self._chain), giving(values):
             description = self.launch_description_source.get_launch_description(context)
         location = getattr(self.launch_description_source, 'location', None)
-        if isinstance(location, str) and os.path.realpath(location) in self._chain:
-            with reading_from(self._chain), including(os.path.realpath(location)):
-                pass  # (a source read before, included again on its own way: says the cycle)
+        if isinstance(location, str):
+            key = include_key(os.path.realpath(location), values)
+            if key in self._chain:
+                real = os.path.realpath(location)
+                with reading_from(self._chain), giving(values), including(real):
+                    pass  # (a source read before, included again: says the cycle)
         given = []
-        for key, value in self.launch_arguments:
-            name = perform_substitutions(context, key)
-            context.launch_configurations[name] = perform_substitutions(context, value)
+        for name, value in values:
+            context.launch_configurations[name] = value
             given.append(name)
         for arg, conditional, via in declared_arguments(description):
             if conditional or arg.default_value is not None:

@@ -68,3 +68,25 @@ def test_includes_nested_too_deep_say_so(tmp_path: Path) -> None:
     assert code == 1, out
     assert f'launch files are nested more than {MAX_INCLUDE_DEPTH} deep' in out, out
     assert f'f{MAX_INCLUDE_DEPTH}.launch.xml' in out
+
+
+COUNTDOWN_XML = '''\
+<launch>
+  <arg name="n" default="6"/>
+  <log message="level $(var n)"/>
+  <include file="$(dirname)/countdown.launch.xml" if="$(eval '$(var n) > 0')">
+    <arg name="n" value="$(eval '$(var n) - 1')"/>
+  </include>
+</launch>
+'''
+
+
+def test_a_bounded_self_include_is_no_cycle(tmp_path: Path) -> None:
+    """R5: a file including itself with `n:=n-1` until a condition ends it was refused as a
+    cycle at level 3; the same file with other arguments is recursion, not a cycle."""
+    (tmp_path / 'countdown.launch.xml').write_text(COUNTDOWN_XML)
+    code, out, _ = launch(tmp_path / 'countdown.launch.xml')
+    assert code == 0, out
+    levels = [line.rsplit('level ', 1)[1] for line in out.splitlines() if 'level ' in line]
+    assert levels == ['6', '5', '4', '3', '2', '1', '0'], out
+    assert '[ERROR]' not in out
