@@ -166,3 +166,31 @@ def test_multicast_datagram_on_a_terminal() -> None:
     text = out.decode(errors='replace')
     assert 'garbage\\x1b]0;MCTITLE\\x07' in text, text
     assert '\x1b' not in text
+
+
+@pytest.mark.parametrize('report', [False, True])
+def test_doctor_on_a_terminal(
+    alien_session: Any, ros_router: str, monkeypatch: pytest.MonkeyPatch, report: bool
+) -> None:
+    """R5-S2: `doctor` and `doctor --report` wrote hostile graph names raw to a terminal."""
+    domain = private_domain(monkeypatch)
+    zid = os.urandom(16).hex()
+    keys = [
+        f'@ros2_lv/{domain}/{zid}/0/0/NN/%/%/{HOSTILE}',
+        f'@ros2_lv/{domain}/{zid}/0/1/MP/%/%/{HOSTILE}/%t{HOSTILE}/'
+        'std_msgs::msg::dds_::String_/RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e'
+        '948f6b1a18/::,10:,:,:,,',
+    ]
+    tokens = [alien_session.liveliness().declare_token(k) for k in keys]
+    try:
+        out = ''
+        deadline = time.monotonic() + 30
+        args = ['doctor', '--report'] if report else ['doctor']
+        while 'RED' not in out and time.monotonic() < deadline:
+            out = on_tty(args, timeout=30)
+        assert 'RED' in out, out
+        assert '\\x1b[31mRED' in out, out
+        assert '\x1b' not in out and '\x07' not in out
+    finally:
+        for token in tokens:
+            token.undeclare()

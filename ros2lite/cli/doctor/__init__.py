@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import click
 
+from .. import render
 from ..lazy import LazyGroup
 
 VERBS = {'hello': 'Check network connectivity between multiple hosts'}
@@ -67,7 +68,8 @@ def cli(
     for result in results:
         for finding in result.findings:
             prefix = 'ERROR: ' if finding.severity == 'error' else ''
-            click.echo(
+            # findings name nodes and topics from the graph: escaped on a terminal
+            render.echo(
                 f'{finding.filename}: {finding.lineno}: UserWarning: {prefix}{finding.message}',
                 err=True,
             )
@@ -90,4 +92,4 @@ def _print_report(report: object) -> None:
     click.echo(f'\n   {report.name}')
     pad = max([8, *(len(key) + 4 for key, _ in report.items)])
     for key, value in report.items:
-        click.echo(f'{key:{pad}}: {value}')
+        render.echo(f'{key:{pad}}: {value}')
