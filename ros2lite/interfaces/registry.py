@@ -9,7 +9,9 @@ copy of a package never mixes with ours.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
+from typing import TypeVar
 
 from ros2lite.pkg.distro import ros_distro
 from ros2lite.pkg.index import BUNDLED_INTERFACES, interface_packages
@@ -62,6 +64,18 @@ def read_definition(path: Path) -> str:
     """A definition file's text, read only if it is a regular file of at most
     DEFINITION_LIMIT bytes of UTF-8 (a link to /dev/zero is one InterfaceError)."""
     return read_text_bounded(path, 'an interface definition', DEFINITION_LIMIT, InterfaceError)
+
+
+_Def = TypeVar('_Def')
+_warned: set[str] = set()
+
+
+def _warn_once(text: str) -> None:
+    if text not in _warned:
+        _warned.add(text)
+        from ros2lite.logging import get_logger
+
+        get_logger('ros2lite.interfaces').warn(text)
 
 
 def _is_interface_package(path: Path) -> bool:
@@ -129,6 +143,10 @@ class Registry:
             if changed.is_file():
                 return changed
         if not path.is_file():
+            if path.is_symlink() or path.exists():  # there, but no file to read (R5-I1)
+                raise InterfaceError(
+                    f'{path}: not a regular file, so not read as an interface definition'
+                )
             raise UnknownInterfaceError(f"Unknown interface '{name}'")
         return path
 
@@ -145,22 +163,36 @@ class Registry:
         return True
 
     # -- definitions -----------------------------------------------------------------------
+    def _parsed(self, name: str, parse: Callable[[str, str, str], _Def]) -> _Def:
+        """`parse` of the definition of `name`; when the file the index found does not
+        read or parse (a broken file in an installed wheel, R5-I1) and ros2lite bundles that
+        interface, the bundled definition, with one warning naming the broken file."""
+        pkg, kind, short = validate_type_name(name)
+        path = self.package_dir(pkg) / kind / (short + EXTENSIONS[kind])
+        try:
+            path = self.interface_path(name)
+            return parse(read_definition(path), name, str(path))
+        except UnknownInterfaceError:
+            raise
+        except InterfaceError as e:
+            bundled = BUNDLED / pkg / kind / path.name
+            if BUNDLED in path.parents or not bundled.is_file():
+                raise
+            _warn_once(f'{e}; using the definition ros2lite bundles for {name}')
+            return parse(read_definition(bundled), name, str(bundled))
+
     def service(self, name: str) -> ServiceDef:
         """The parsed definition of a service (cached)."""
         svc = self._services.get(name)
         if svc is None:
-            path = self.interface_path(name)
-            svc = parse_service(read_definition(path), name, str(path))
-            self._services[name] = svc
+            svc = self._services[name] = self._parsed(name, parse_service)
         return svc
 
     def action(self, name: str) -> ActionDef:
         """The parsed definition of an action (cached)."""
         act = self._actions.get(name)
         if act is None:
-            path = self.interface_path(name)
-            act = parse_action(read_definition(path), name, str(path))
-            self._actions[name] = act
+            act = self._actions[name] = self._parsed(name, parse_action)
         return act
 
     def message(self, name: str) -> MessageDef:
@@ -174,8 +206,7 @@ class Registry:
     def _load_message(self, name: str) -> MessageDef:
         _, kind, short = validate_type_name(name)
         if kind == 'msg':
-            path = self.interface_path(name)
-            return parse_message(read_definition(path), name, str(path))
+            return self._parsed(name, parse_message)
         if kind == 'srv':
             for suffix in SERVICE_SUFFIXES:
                 if short.endswith(suffix) and self.exists(name[: -len(suffix)]):

@@ -51,9 +51,10 @@ def _may_be_package(name: str) -> bool:
     key = (roots, name)
     hit = _maybe.get(key)
     if hit is None:
-        hit = _maybe[key] = any(
-            os.path.isdir(os.path.join(root, name, kind)) for root in roots for kind in _KINDS
-        ) or name in _workspace_packages()
+        hit = _maybe[key] = (
+            any(os.path.isdir(os.path.join(root, name, kind)) for root in roots for kind in _KINDS)
+            or name in _workspace_packages()
+        )
     return hit
 
 
@@ -87,14 +88,20 @@ class _InterfaceModule(types.ModuleType):
         from ros2lite.interfaces import get_interface
         from ros2lite.interfaces.errors import InterfaceError
 
+        from ros2lite.interfaces.errors import UnknownInterfaceError
+
         pkg, kind = _split(self.__name__, self._prefix)
         try:
             cls = get_interface(f'{pkg}/{kind}/{attr}')
-        except InterfaceError:
+        except UnknownInterfaceError:
             raise AttributeError(
                 f"module '{self.__name__}' has no interface '{attr}' "
                 f'(no {kind} file {attr} in package {pkg})'
             ) from None
+        except InterfaceError as e:
+            # the file is there but broken: an ImportError that names it (an AttributeError
+            # becomes "cannot import name" without the file, R5-I1)
+            raise ImportError(f"cannot import name '{attr}' from '{self.__name__}': {e}") from None
         setattr(self, attr, cls)
         return cls
 
