@@ -9,6 +9,7 @@ copy of a package never mixes with ours.
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import TypeVar
@@ -71,11 +72,11 @@ _warned: set[str] = set()
 
 
 def _warn_once(text: str) -> None:
+    """One line on stderr, as a logger's warning reads (the logging module sits above the
+    type system: it publishes /rosout messages)."""
     if text not in _warned:
         _warned.add(text)
-        from ros2lite.logging import get_logger
-
-        get_logger('ros2lite.interfaces').warn(text)
+        print(f'[WARN] [ros2lite.interfaces]: {text}', file=sys.stderr, flush=True)
 
 
 def _is_interface_package(path: Path) -> bool:
