@@ -20,6 +20,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ros2lite.util.files import read_bounded
+
 from .actions import LaunchDescription, LaunchDescriptionSource, including
 from .errors import InvalidFrontendLaunchFileError, LaunchError
 from .substitutions import (
@@ -76,11 +78,17 @@ def _compat_on_path() -> None:
         sys.path.insert(0, str(COMPAT_DIR))
 
 
+# the largest Python launch file read (upstream's biggest are a few KB)
+_PYTHON_LIMIT = 16 * 1024 * 1024
+
+
 def load_python_launch_file(path: Path) -> LaunchDescription:
     """Run a Python launch file and return what its ``generate_launch_description()`` gives."""
     _compat_on_path()
-    if not path.is_file():
+    if not path.exists():
         raise LaunchError(f"launch file '{path}' does not exist")
+    # read bounded and only if a regular file (a link to /dev/zero, a FIFO), then compiled
+    source = read_bounded(path, _PYTHON_LIMIT, LaunchError, 'a Python launch file')
     name = f'_ros2lite_launch_file_{next(_modules)}'
     spec = importlib.util.spec_from_file_location(name, path)
     if spec is None or spec.loader is None:
@@ -88,7 +96,8 @@ def load_python_launch_file(path: Path) -> LaunchDescription:
     module = importlib.util.module_from_spec(spec)
     sys.modules[name] = module
     try:
-        spec.loader.exec_module(module)
+        code = compile(source, str(path), 'exec')
+        exec(code, module.__dict__)  # what the spec's loader would run, from the bytes read
     except SyntaxError as e:
         raise LaunchError(f"launch file '{path}' is not valid Python: {e}") from None
     generate = getattr(module, 'generate_launch_description', None)

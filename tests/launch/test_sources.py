@@ -4,6 +4,7 @@ deeper than the limit say so."""
 
 from __future__ import annotations
 
+import os
 import time
 from pathlib import Path
 
@@ -90,3 +91,19 @@ def test_a_bounded_self_include_is_no_cycle(tmp_path: Path) -> None:
     levels = [line.rsplit('level ', 1)[1] for line in out.splitlines() if 'level ' in line]
     assert levels == ['6', '5', '4', '3', '2', '1', '0'], out
     assert '[ERROR]' not in out
+
+
+@pytest.mark.parametrize('target', ['/dev/zero', 'fifo'])
+def test_a_python_launch_file_from_outside_is_read_bounded(tmp_path: Path, target: str) -> None:
+    """R5-P1: an included launch file that is a link to /dev/zero (or a FIFO) is refused in
+    one line, not read until memory runs out (or forever); `launch` itself refuses them."""
+    path = tmp_path / 'x.launch.py'
+    if target == 'fifo':
+        os.mkfifo(path)
+    else:
+        path.symlink_to(target)
+    (tmp_path / 'top.launch.xml').write_text(f'<launch><include file="{path}"/></launch>')
+    code, out, seconds = launch(tmp_path / 'top.launch.xml')
+    assert code == 1, out
+    assert 'not a regular file, so not read as a Python launch file' in out, out
+    assert seconds < 20
