@@ -97,10 +97,13 @@ class _Words:
                 self._add(param)
         self.values: dict[str, Any] = {}
         self.order: list[click.Parameter] = []
+        self.rest: list[str] = []  # the words not read yet
+        self.loose: list[str] = []  # the words read that are no option, in order
 
     @property
     def _opt_prefixes(self) -> set[str]:
-        """The prefixes click's shell completion tells options by (it reads this name)."""
+        """The option prefixes: click's parse_args reads them by this name into the context,
+        where its shell completion tells an option's name from a value by them."""
         return self.prefixes
 
     def _add(self, option: click.Option) -> None:
@@ -127,7 +130,6 @@ class _Words:
         """(values, leftover words, parameters in order); a usage error is raised, or with
         click's `resilient_parsing` (completion) ends the parse where it is."""
         self.rest = list(args)
-        self.loose: list[str] = []  # words that are no option, in order
         try:
             self._options()
             self._arguments()
