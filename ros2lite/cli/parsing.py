@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any, TypeVar
 
 import click
@@ -67,14 +66,17 @@ class ValueGroups(ManyValues):
         super().__init__(*args, **kwargs)
 
 
-@dataclass
 class _Spelling:
     """What one spelling of an option does when it occurs: `const` is a flag's value (its
-    `--no-…` spelling's False), `takes_value` False for flags and counters."""
+    `--no-…` spelling's False), `takes_value` False for flags and counters. (A plain class:
+    dataclasses would add `inspect` to every start-up.)"""
 
-    option: click.Option
-    takes_value: bool
-    const: Any = None
+    __slots__ = ('const', 'option', 'takes_value')
+
+    def __init__(self, option: click.Option, takes_value: bool, const: Any = None) -> None:
+        self.option = option
+        self.takes_value = takes_value
+        self.const = const
 
 
 class _Words:
