@@ -161,7 +161,7 @@ def _main(args: list[str]) -> int:
             raise
         render.echo(str(e), err=True)  # it may name what came from outside
         return e.code if isinstance(e, CliError) else 1
-    except Exception as e:  # any library failure: one line, no traceback
+    except Exception as e:  # not an error raised on purpose: a bug, said as one
         if debug_enabled():
             raise
         if _caused_by(e, KeyboardInterrupt):
@@ -172,9 +172,20 @@ def _main(args: list[str]) -> int:
 
         if _caused_by(e, Terminated):
             return signal.SIGTERM.value
-        render.echo(str(e) or type(e).__name__, err=True)
+        render.echo(failure_line(e), err=True)
         return 1
     return rc if isinstance(rc, int) else 0
+
+
+def failure_line(error: Exception) -> str:
+    """The one line an unexpected exception gets. An OSError is the machine refusing (a
+    file missing, a port taken), which the user can fix, so it is said as it is; anything
+    else is a bug in ros2lite and is named one, not dressed as bad input."""
+    text = ' '.join(str(error).split())
+    if isinstance(error, OSError):
+        return text or type(error).__name__
+    said = f'{type(error).__name__}: {text}' if text else type(error).__name__
+    return f'ros2lite: internal error: {said} (run with --debug for the traceback)'
 
 
 def _caused_by(error: BaseException, kind: type[BaseException]) -> bool:

@@ -12,7 +12,9 @@ with a parser that keeps the habits of ros2cli's argparse that hands and scripts
 - An ambiguous prefix is a usage error naming the candidates (exit 2).
 - Options may follow positionals; `--` ends the options.
 
-Error wording stays click's where click has a message for the case.
+Error wording stays click's where click has a message for the case. The words are told
+apart here (`_Words`), with nothing of click's private parser; click converts, defaults and
+checks the values as for any command.
 """
 
 from __future__ import annotations
@@ -22,7 +24,6 @@ from collections.abc import Callable
 from typing import Any, TypeVar
 
 import click
-from click.parser import _Option, _OptionParser, _ParsingState
 
 F = TypeVar('F', bound=Callable[..., Any])
 
@@ -65,16 +66,87 @@ class ValueGroups(ManyValues):
         super().__init__(*args, **kwargs)
 
 
-class _Parser(_OptionParser):
-    """click's parser with argparse's rules for telling options from values (module doc)."""
+class _Spelling:
+    """What one spelling of an option does when it occurs: `const` is a flag's value (its
+    `--no-…` spelling's False), `takes_value` False for flags and counters. (A plain class:
+    dataclasses would add `inspect` to every start-up.)"""
+
+    __slots__ = ('const', 'option', 'takes_value')
+
+    def __init__(self, option: click.Option, takes_value: bool, const: Any = None) -> None:
+        self.option = option
+        self.takes_value = takes_value
+        self.const = const
+
+
+class _Words:
+    """The argparse-rules tokenizer (module doc) of one command's words, made fresh for each
+    parse. It is what click's `Command.parse_args` asks `make_parser` for: `parse_args(args)`
+    gives (values by parameter name, leftover words, parameters in the order they came), and
+    click then converts, defaults and checks every value through its public
+    `Parameter.handle_parse_result`. A value left out is a name left out of the values."""
+
+    def __init__(self, command: click.Command, ctx: click.Context) -> None:
+        self.ctx = ctx
+        self.long: dict[str, _Spelling] = {}
+        self.short: dict[str, _Spelling] = {}
+        self.prefixes = {'-', '--'}
+        self.arguments: list[click.Argument] = []
+        for param in command.get_params(ctx):
+            if isinstance(param, click.Argument):
+                self.arguments.append(param)
+            elif isinstance(param, click.Option):
+                self._add(param)
+        self.values: dict[str, Any] = {}
+        self.order: list[click.Parameter] = []
+        self.rest: list[str] = []  # the words not read yet
+        self.loose: list[str] = []  # the words read that are no option, in order
+
+    @property
+    def _opt_prefixes(self) -> set[str]:
+        """The option prefixes: click's parse_args reads them by this name into the context,
+        where its shell completion tells an option's name from a value by them."""
+        return self.prefixes
+
+    def _add(self, option: click.Option) -> None:
+        if option.is_flag and option.is_bool_flag and option.secondary_opts:
+            groups = [(option.opts, True), (option.secondary_opts, False)]
+        else:
+            groups = [(option.opts, option.flag_activation_value)]
+        for spellings, const in groups:
+            takes_value = not (option.is_flag or option.count)
+            entry = _Spelling(option, takes_value, const if option.is_flag else None)
+            for spelling in spellings:
+                first = spelling[:1]
+                if first.isalnum() or not first:
+                    raise ValueError(f'Invalid start character for option ({spelling})')
+                prefix = spelling[:2] if spelling[1:2] == first else first
+                self.prefixes.add(first)
+                if len(prefix) == 1 and len(spelling) == 2:
+                    self.short[spelling] = entry
+                else:
+                    self.long[spelling] = entry
+                    self.prefixes.add(prefix)
+
+    def parse_args(self, args: list[str]) -> tuple[dict[str, Any], list[str], list[Any]]:
+        """(values, leftover words, parameters in order); a usage error is raised, or with
+        click's `resilient_parsing` (completion) ends the parse where it is."""
+        self.rest = list(args)
+        try:
+            self._options()
+            self._arguments()
+        except click.UsageError:
+            if not self.ctx.resilient_parsing:
+                raise
+        return self.values, self.loose, self.order
 
     def _is_option_word(self, arg: str) -> bool:
         """Whether argparse would read `arg` as an option (known or not) rather than a value;
         `--` counts as one (it is never a value of an option)."""
-        if len(arg) < 2 or arg[:1] not in self._opt_prefixes:
+        if len(arg) < 2 or arg[:1] not in self.prefixes:
             return False
         name = arg.partition('=')[0]
-        if name in self._long_opt or name in self._short_opt or arg[:2] in self._short_opt:
+        if name in self.long or name in self.short or arg[:2] in self.short:
             return True
         if arg == '--' or (arg.startswith('--') and self._candidates(name)):
             return True
@@ -83,34 +155,34 @@ class _Parser(_OptionParser):
         return ' ' not in arg
 
     def _has_negative_options(self) -> bool:
-        return any(NEGATIVE_NUMBER.fullmatch(o) for o in (*self._long_opt, *self._short_opt))
+        return any(NEGATIVE_NUMBER.fullmatch(o) for o in (*self.long, *self.short))
 
     def _candidates(self, prefix: str) -> list[str]:
         """The long options `prefix` abbreviates, one spelling per option."""
         seen: dict[int, str] = {}
-        for name in self._long_opt:
+        for name, entry in self.long.items():
             if name.startswith('--') and name.startswith(prefix):
-                seen.setdefault(id(self._long_opt[name]), name)
+                seen.setdefault(id(entry), name)
         return list(seen.values())
 
-    def _process_args_for_options(self, state: _ParsingState) -> None:
-        while state.rargs:
-            arg = state.rargs.pop(0)
+    def _options(self) -> None:
+        while self.rest:
+            arg = self.rest.pop(0)
             if arg == '--':
                 return
             if self._is_option_word(arg):
-                self._process_opts(arg, state)
-            elif self.allow_interspersed_args:
-                state.largs.append(arg)
+                self._option(arg)
+            elif self.ctx.allow_interspersed_args:
+                self.loose.append(arg)
             else:
-                state.rargs.insert(0, arg)
+                self.rest.insert(0, arg)
                 return
 
-    def _process_opts(self, arg: str, state: _ParsingState) -> None:
+    def _option(self, arg: str) -> None:
         name, sep, value = arg.partition('=')
         explicit = value if sep else None
-        if name in self._long_opt:
-            self._take(self._long_opt[name], name, explicit, state)
+        if name in self.long:
+            self._take(self.long[name], name, explicit)
         elif arg.startswith('--'):
             candidates = self._candidates(name)
             if len(candidates) > 1:
@@ -120,67 +192,67 @@ class _Parser(_OptionParser):
                     ctx=self.ctx,
                 )
             if candidates:
-                self._take(self._long_opt[candidates[0]], candidates[0], explicit, state)
-            elif self.ignore_unknown_options:
-                state.largs.append(arg)
+                self._take(self.long[candidates[0]], candidates[0], explicit)
+            elif self.ctx.ignore_unknown_options:
+                self.loose.append(arg)
             else:
-                raise click.NoSuchOption(name, possibilities=list(self._long_opt), ctx=self.ctx)
-        elif sep and name in self._short_opt:
-            self._take(self._short_opt[name], name, explicit, state)
+                raise click.NoSuchOption(name, possibilities=list(self.long), ctx=self.ctx)
+        elif sep and name in self.short:
+            self._take(self.short[name], name, explicit)
         else:
-            self._match_short_opt(arg, state)
+            self._short_options(arg)
 
-    def _match_short_opt(self, arg: str, state: _ParsingState) -> None:
+    def _short_options(self, arg: str) -> None:
         """`-abc`: flags `-a -b -c`, or the first that takes a value gets the rest (`-l5`)."""
         prefix = arg[0]
         unknown: list[str] = []
         for i, char in enumerate(arg[1:], start=2):
             name = f'{prefix}{char}'
-            option = self._short_opt.get(name)
-            if option is None:
-                if not self.ignore_unknown_options:
+            entry = self.short.get(name)
+            if entry is None:
+                if not self.ctx.ignore_unknown_options:
                     raise click.NoSuchOption(name, ctx=self.ctx)
                 unknown.append(char)
                 continue
-            if option.takes_value:
-                self._take(option, name, arg[i:] or None, state)
+            if entry.takes_value:
+                self._take(entry, name, arg[i:] or None)
                 break
-            self._take(option, name, None, state)
+            self._take(entry, name, None)
         if unknown:
-            state.largs.append(f'{prefix}{"".join(unknown)}')
+            self.loose.append(f'{prefix}{"".join(unknown)}')
 
-    def _take(self, option: _Option, name: str, explicit: str | None, state: _ParsingState) -> None:
-        """Hand `option` its value(s): `explicit` (`--opt=v`, `-ov`) or the next words."""
-        if not option.takes_value:
+    def _take(self, entry: _Spelling, name: str, explicit: str | None) -> None:
+        """Hand the option its value(s): `explicit` (`--opt=v`, `-ov`) or the next words."""
+        option = entry.option
+        if not entry.takes_value:
             if explicit is not None:
                 raise click.BadOptionUsage(
                     name, f'Option {name!r} does not take a value.', ctx=self.ctx
                 )
-            option.process(None, state)  # a flag's constant or count: no value to pass
+            self._store(entry, entry.const)  # a flag's constant or a count
             return
-        obj = option.obj
-        if isinstance(obj, Option) and obj.takes_many:
-            words = [explicit] if explicit is not None else self._values(state)
-            if len(words) < obj.at_least:
+        if isinstance(option, Option) and option.takes_many:
+            words = [explicit] if explicit is not None else self._values()
+            if len(words) < option.at_least:
                 raise click.BadOptionUsage(
                     name, f'Option {name!r} requires at least one argument.', ctx=self.ctx
                 )
-            if obj.grouped:
-                option.process(tuple(words), state)
+            if option.grouped:
+                self._store(entry, tuple(words))
             else:
                 for word in words:
-                    option.process(word, state)
+                    self._store(entry, word)
             return
         if explicit is not None:
-            state.rargs.insert(0, explicit)
-        elif getattr(obj, '_flag_needs_value', False):
-            # an option whose value may be left out (argparse's nargs='?' with a const):
-            # click decides, once a value-looking word is not next
-            if not (state.rargs and not self._is_option_word(state.rargs[0])):
-                option.process(self._get_value_from_state(name, option, state), state)
+            self.rest.insert(0, explicit)
+        elif option.flag_activation_value is not None:
+            # a value that may be left out (argparse's nargs='?' with a const, click's
+            # `flag_value` on an option that is no flag): the constant unless a value is next
+            if not (self.rest and not self._is_option_word(self.rest[0])):
+                self._store(entry, option.flag_activation_value)
                 return
         else:
-            needed = state.rargs[: option.nargs]
+            needed = self.rest[: option.nargs]
             if len(needed) < option.nargs or any(self._is_option_word(w) for w in needed):
                 raise click.BadOptionUsage(
                     name,
@@ -190,43 +262,91 @@ class _Parser(_OptionParser):
                     ctx=self.ctx,
                 )
         if option.nargs == 1:
-            option.process(state.rargs.pop(0), state)
+            self._store(entry, self.rest.pop(0))
         else:
-            value = tuple(state.rargs[: option.nargs])
-            del state.rargs[: option.nargs]
-            option.process(value, state)
+            value = tuple(self.rest[: option.nargs])
+            del self.rest[: option.nargs]
+            self._store(entry, value)
 
-    def _values(self, state: _ParsingState) -> list[str]:
-        """The words up to the next option or `--`, taken off `state`."""
+    def _store(self, entry: _Spelling, value: Any) -> None:
+        """One occurrence, as click's option actions keep it: a list for `multiple`, a
+        running total for `count`, else the last value."""
+        option = entry.option
+        name = option.name or ''
+        if option.multiple:
+            self.values.setdefault(name, []).append(value)
+        elif option.count:
+            self.values[name] = self.values.get(name, 0) + 1
+        else:
+            self.values[name] = value
+        self.order.append(option)
+
+    def _values(self) -> list[str]:
+        """The words up to the next option or `--`, taken off the rest."""
         words: list[str] = []
-        while state.rargs and not self._is_option_word(state.rargs[0]):
-            words.append(state.rargs.pop(0))
+        while self.rest and not self._is_option_word(self.rest[0]):
+            words.append(self.rest.pop(0))
         return words
 
+    def _arguments(self) -> None:
+        """Deal the words that are no option to the positional arguments in turn; one with
+        `nargs=-1` takes what the ones after it leave. A missing value stays out."""
+        words = self.loose + self.rest
+        counts = [a.nargs for a in self.arguments]
+        star = next((i for i, n in enumerate(counts) if n < 0), len(counts))
+        after = sum(counts[star + 1 :])
+        head = sum(counts[:star])
+        dealt: list[list[str]] = []
+        taken = 0
+        for n in counts[:star]:
+            dealt.append(words[taken : taken + n])
+            taken += n
+        if star < len(counts):
+            tail_start = max(taken, len(words) - after)
+            dealt.append(words[taken:tail_start])
+            tail = words[tail_start:]
+            missing = after - len(tail)  # the missing words are the last arguments' first
+            padded: list[str | None] = [None] * max(missing, 0) + list(tail)
+            pos = 0
+            for n in counts[star + 1 :]:
+                dealt.append([w for w in padded[pos : pos + n] if w is not None])
+                pos += n
+            leftover: list[str] = []
+        else:
+            leftover = words[head:]
+        for argument, got in zip(self.arguments, dealt, strict=True):
+            self._argument(argument, got)
+        self.loose, self.rest = leftover, []
 
-def _parser(command: click.Command, ctx: click.Context) -> _OptionParser:
-    parser = _Parser(ctx)
-    for param in command.get_params(ctx):
-        param.add_to_parser(parser, ctx)
-    return parser
+    def _argument(self, argument: click.Argument, got: list[str]) -> None:
+        if argument.nargs == 1:
+            if got:
+                self.values[argument.name or ''] = got[0]
+        elif got:
+            if 0 < argument.nargs != len(got):
+                raise click.BadArgumentUsage(
+                    f'Argument {argument.name!r} takes {argument.nargs} values.'
+                )
+            self.values[argument.name or ''] = tuple(got)
+        self.order.append(argument)
 
 
 class Command(click.Command):
     """A ros2lite command or verb: click's Command parsed the argparse way."""
 
-    def make_parser(self, ctx: click.Context) -> _OptionParser:
-        return _parser(self, ctx)
+    # click's own parse_args runs on the parser this returns; its annotation names the
+    # parser click 8 keeps in its private click.parser, which _Words stands in for
+    def make_parser(self, ctx: click.Context) -> _Words:  # type: ignore[override]
+        return _Words(self, ctx)
 
 
-class Group(click.Group):
-    """A ros2lite command with verbs (and the root): its own options parsed the argparse way,
-    and commands made from it are the shared classes."""
+class Group(click.Group, Command):
+    """A ros2lite command with verbs (and the root): its own options parsed the argparse way
+    (click.Group's parse_args hands the words to Command's parser), and commands made from
+    it are the shared classes."""
 
     command_class = Command
     group_class = type
-
-    def make_parser(self, ctx: click.Context) -> _OptionParser:
-        return _parser(self, ctx)
 
 
 def command(name: str | None = None, **kwargs: Any) -> Callable[[Callable[..., Any]], Command]:

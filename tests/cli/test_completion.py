@@ -96,6 +96,16 @@ def test_types_packages_and_executables() -> None:
     assert complete('ros2lite top') == ['topic']
 
 
+def test_option_names_and_values() -> None:
+    """Option names complete wherever a word starts with '-' (the parser tells click's
+    completion its option prefixes), and an option's value gets the option's completer."""
+    assert complete('ros2lite topic echo --qos-d') == ['--qos-depth', '--qos-durability']
+    assert complete('ros2lite --rou') == ['--router']
+    assert complete('ros2lite bag play x --clo') == ['--clock']
+    assert '-1' in complete('ros2lite topic pub -')
+    assert complete('ros2lite topic echo --qos-profile sensor_') == ['sensor_data']
+
+
 def test_no_router_completes_nothing_quickly() -> None:
     nobody = {'ROS2LITE_ROUTER': f'tcp/127.0.0.1:{free_port()}'}
     start = time.monotonic()

@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
+from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import pytest
 
-from .conftest import run_process
+from .conftest import Result, run_process
 
 
 def test_help_imports_nothing_heavy() -> None:
@@ -44,6 +47,55 @@ def test_errors_are_one_line_without_traceback_unless_debug() -> None:
     assert debug.code == 1 and 'Traceback' in debug.err
     env_debug = run_process('interface', 'show', 'nope/msg/X', env={'ROS2LITE_DEBUG': '1'})
     assert 'Traceback' in env_debug.err
+
+
+def test_a_bug_is_said_to_be_one(
+    run: Callable[..., Result], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """An exception nobody raised on purpose is an internal error, in one line that names
+    it; --debug lets its traceback out. The machine refusing (an OSError) is said as is."""
+    import ros2lite.cli.interface.packages as verb
+
+    def broken() -> list[str]:
+        return {}['no such key']  # type: ignore[no-any-return]
+
+    monkeypatch.setenv('ROS2LITE_DEBUG', '')  # restored after the --debug run sets it
+    monkeypatch.setattr(verb, 'list_interfaces', broken)
+    failed = run('interface', 'packages')
+    assert (failed.code, failed.out) == (1, '')
+    assert failed.err == (
+        "ros2lite: internal error: KeyError: 'no such key' (run with --debug for the traceback)\n"
+    )
+    with pytest.raises(KeyError):  # the entry point lets Python print its traceback
+        run('--debug', 'interface', 'packages')
+    monkeypatch.setenv('ROS2LITE_DEBUG', '')
+
+    def refused() -> list[str]:
+        raise PermissionError(13, 'Permission denied', '/opt/ros')
+
+    monkeypatch.setattr(verb, 'list_interfaces', refused)
+    failed = run('interface', 'packages')
+    assert (failed.code, failed.err) == (1, "[Errno 13] Permission denied: '/opt/ros'\n")
+
+
+def test_an_internal_error_shows_its_traceback_with_debug(tmp_path: Path) -> None:
+    """Through the real entry point: one line, and the traceback with --debug."""
+    probe = tmp_path / 'sitecustomize.py'
+    probe.write_text(
+        'import ros2lite.cli.interface.packages as verb\n'
+        'def broken():\n    return 1 / 0\n'
+        'verb.list_interfaces = broken\n'
+    )
+    env = {'PYTHONPATH': os.pathsep.join([str(tmp_path), *sys.path])}
+    plain = run_process('interface', 'packages', env=env)
+    assert plain.code == 1
+    assert plain.err == (
+        'ros2lite: internal error: ZeroDivisionError: division by zero '
+        '(run with --debug for the traceback)\n'
+    )
+    debug = run_process('--debug', 'interface', 'packages', env=env)
+    assert debug.code == 1
+    assert 'Traceback' in debug.err and debug.err.endswith('ZeroDivisionError: division by zero\n')
 
 
 def test_broken_definition_is_one_line(tmp_path: object) -> None:

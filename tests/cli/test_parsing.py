@@ -138,6 +138,40 @@ def test_options_follow_positionals() -> None:
     assert (got['topic_name'], got['once'], got['no_arr']) == ('/t', True, True)
 
 
+def test_positionals_are_dealt_as_click_deals_them() -> None:
+    """Words that are no option go to the arguments in turn, one with nargs=-1 taking what
+    the ones after it leave, exactly as a plain click command deals them."""
+
+    def declare(cls: type[click.Command]) -> click.Command:
+        @click.argument('first', required=False)
+        @click.argument('middle', nargs=-1)
+        @click.argument('pair', nargs=2, required=False)
+        @click.argument('last', required=False)
+        def deal(**_values: Any) -> None:
+            """A probe."""
+
+        return click.command('deal', cls=cls)(deal)
+
+    ours, plain = declare(parsing.Command), declare(click.Command)
+    for n in range(7):
+        words = [f'w{i}' for i in range(n)]
+        outcomes = []
+        for command in (ours, plain):
+            try:
+                outcomes.append(params(command, *words))
+            except click.UsageError as e:
+                outcomes.append({'error': e.format_message()})
+        assert outcomes[0] == outcomes[1], words
+        if n == 3:  # the pair is short of a word
+            assert outcomes[0] == {'error': "Argument 'pair' takes 2 values."}
+    assert params(ours, *'abcdef') == {
+        'first': 'a',
+        'middle': ('b', 'c'),
+        'pair': ('d', 'e'),
+        'last': 'f',
+    }
+
+
 def _commands() -> Iterator[tuple[str, click.Command]]:
     """Every command and verb reachable from the root, lazy tables included."""
     ctx = click.Context(root)
