@@ -1,0 +1,104 @@
+"""Reading a CMakeLists.txt without CMake: the interface files, the DEPENDENCIES, and what
+needs a real build, with file and line for what cannot be read."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from ros2lite.tools.colcon.cmake import CMakeError, parse_calls, read_cmake_package
+
+COURSE = """cmake_minimum_required(VERSION 3.8)
+project(custom_interfaces)
+
+if(CMAKE_COMPILER_IS_GNUCXX OR CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+  add_compile_options(-Wall -Wextra -Wpedantic)
+endif()
+
+find_package(ament_cmake REQUIRED)
+find_package(rosidl_default_generators REQUIRED)
+set(msg_files "msg/Age.msg" msg/Person.msg)
+rosidl_generate_interfaces(${PROJECT_NAME}
+  ${msg_files}
+  "srv/AddTwo.srv"  # a comment
+  "${CMAKE_CURRENT_SOURCE_DIR}/action/Count.action"
+  DEPENDENCIES builtin_interfaces geometry_msgs
+)
+#[[ a bracket
+comment ]]
+ament_package()
+"""
+
+
+def _write(tmp_path: Path, text: str) -> Path:
+    (tmp_path / 'CMakeLists.txt').write_text(text)
+    return tmp_path
+
+
+def test_the_course_interface_package(tmp_path: Path) -> None:
+    found = read_cmake_package(_write(tmp_path, COURSE), 'custom_interfaces')
+    assert found.interfaces == [
+        'msg/Age.msg',
+        'msg/Person.msg',
+        'srv/AddTwo.srv',
+        'action/Count.action',
+    ]
+    assert found.dependencies == ['builtin_interfaces', 'geometry_msgs']
+    assert (found.has_interfaces, found.rosidl_line, found.unbuilt) == (True, 11, [])
+
+
+def test_cpp_targets_are_named_with_their_lines(tmp_path: Path) -> None:
+    text = COURSE.replace(
+        'ament_package()',
+        'add_executable(talker src/talker.cpp)\ninstall(TARGETS talker DESTINATION lib)\n'
+        'ament_package()',
+    )
+    found = read_cmake_package(_write(tmp_path, text), 'custom_interfaces')
+    assert found.unbuilt_summary() == 'add_executable (line 19), install (line 20)'
+
+
+def test_an_empty_cpp_package_has_nothing_ros2lite_builds(tmp_path: Path) -> None:
+    found = read_cmake_package(
+        _write(
+            tmp_path, 'project(my_package)\nfind_package(ament_cmake REQUIRED)\nament_package()\n'
+        ),
+        'my_package',
+    )
+    assert (found.has_interfaces, found.unbuilt) == (False, [])
+
+
+@pytest.mark.parametrize(
+    ('text', 'message'),
+    [
+        ('project(p\n', "CMakeLists.txt:1: project( is never closed with ')'"),
+        ('project(p)\n)\n', "CMakeLists.txt:2: expected a command, found ')'"),
+        (
+            'rosidl_generate_interfaces(${NOPE} "msg/A.msg")\n',
+            'CMakeLists.txt:1: ${NOPE} is not set',
+        ),
+        ('project(p)\nrosidl_generate_interfaces(${PROJECT_NAME})\n', 'CMakeLists.txt:2: '),
+        ('project(p)\nrosidl_generate_interfaces(p "../x/msg/A.msg")\n', 'leaves the package'),
+        ('project(p)\nrosidl_generate_interfaces(p "/etc/msg/A.msg")\n', 'outside the package'),
+    ],
+)
+def test_what_cannot_be_read_is_one_line_with_file_and_line(
+    tmp_path: Path, text: str, message: str
+) -> None:
+    with pytest.raises(CMakeError) as e:
+        read_cmake_package(_write(tmp_path, text), 'p')
+    assert message in str(e.value)
+    assert '\n' not in str(e.value)
+
+
+def test_a_missing_file_is_named(tmp_path: Path) -> None:
+    with pytest.raises(CMakeError, match=r'CMakeLists\.txt: cannot be read'):
+        read_cmake_package(tmp_path, 'p')
+
+
+def test_calls_keep_their_first_line() -> None:
+    calls = parse_calls('a(x\n  y)\n\nB("q\nr")\n')
+    assert [(c.name, c.args, c.line) for c in calls] == [
+        ('a', ('x', 'y'), 1),
+        ('b', ('"q\nr"',), 4),
+    ]
