@@ -232,7 +232,7 @@ MAP = {
 COMPAT_FACES = (
     'sitecustomize.py rclpy/ rclpy/_lazy.py rclpy/action/ rclpy/lifecycle/ rclpy/impl/ launch/'
     ' launch/events/ launch_ros/ launch_xml/ launch_yaml/ ament_index_python/'
-    ' ament_copyright/'
+    ' ament_copyright/ ament_flake8/'
 )
 # cli/<command>/: its VERBS, plus the shared module the map names
 CLI_SHARED = {'bag': 'options'} | dict.fromkeys(

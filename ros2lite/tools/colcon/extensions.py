@@ -17,13 +17,15 @@ real ament_cmake builds everything, as on ROS.
 
 `colcon test` of an ament_python package runs pytest in the environment `ros2lite run`
 gives nodes (the compat faces first on PYTHONPATH), so a package's tests import `rclpy`,
-its messages and `ament_copyright` as on ROS, unless a ROS install's linters are sourced.
+its messages and the linters as on ROS (compat/'s `ament_copyright`, and `ament_flake8` where
+PyPI's wheel does not run), unless a ROS install's linters are sourced.
 
 This module is imported by colcon, never by ros2lite itself; it imports nothing of the CLI.
 """
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import shutil
 import sys
@@ -65,6 +67,8 @@ INTERFACES_TYPE = 'ros.ament_cmake.interfaces'
 UNBUILT_TYPE = 'ros.ament_cmake.unbuilt'
 _CONFIGS = ('ament_cmakeConfig.cmake', 'ament_cmake-config.cmake')
 _INDEX = Path('share') / 'ament_index' / 'resource_index' / 'packages'
+# linters compat/ has faces of, for where PyPI has no (fitting) wheel
+_FACES = ('ament_copyright', 'ament_flake8')
 
 
 def _prefixes(env: Mapping[str, str]) -> list[Path]:
@@ -265,10 +269,13 @@ class RosEnvironmentPytestStep(PythonTestingStepExtensionPoint):
         markers registered."""
         test_env = dict(env)
         test_env.update(ros_environment(test_env))
+        # the faces' markers, where no installed linter registers its own (entry points)
         plugins = [p for p in test_env.get('PYTEST_PLUGINS', '').split(',') if p]
-        if 'ament_copyright.pytest_marker' not in plugins:
-            plugins.append('ament_copyright.pytest_marker')
-        test_env['PYTEST_PLUGINS'] = ','.join(plugins)
+        for face in _FACES:
+            if importlib.util.find_spec(face) is None:
+                plugins.append(f'{face}.pytest_marker')
+        if plugins:
+            test_env['PYTEST_PLUGINS'] = ','.join(dict.fromkeys(plugins))
         test_env.setdefault('PYTHONDONTWRITEBYTECODE', '1')
         logger.info(f"Testing '{context.pkg.name}' with ros2lite's faces ({sys.executable})")
         return await self._pytest.step(context, test_env, setup_py_data)
