@@ -2,7 +2,8 @@
 `rosidl_generate_interfaces` call names, and which commands need a real CMake build.
 
 Only what the ROS courses write is understood: commands with quoted and unquoted arguments,
-comments, `set(VAR ...)` and `${VAR}` (with `PROJECT_NAME` and `CMAKE_CURRENT_SOURCE_DIR`).
+comments, `set(VAR ...)`, `list(APPEND VAR ...)` and `${VAR}` (with `PROJECT_NAME` and
+`CMAKE_CURRENT_SOURCE_DIR`).
 Anything else is not guessed at: a command ros2lite cannot carry out is reported by name and
 line, so the build can say what was skipped.
 """
@@ -19,6 +20,7 @@ __all__ = [
     'CMakeCall',
     'CMakeError',
     'CMakePackage',
+    'mentions_rosidl',
     'parse_calls',
     'read_cmake_package',
 ]
@@ -49,7 +51,6 @@ _HARMLESS = frozenset(
         'ament_add_pytest_test',
         'rosidl_generate_interfaces',
         'rosidl_get_typesupport_target',
-        'list',
         'foreach',
         'endforeach',
     }
@@ -215,6 +216,16 @@ class _Variables:
         return text
 
 
+def mentions_rosidl(package_dir: Path) -> bool:
+    """Does the CMakeLists.txt name rosidl_generate_interfaces at all (for a file that
+    cannot be read as a whole: is it meant to be an interface package)?"""
+    try:
+        text = (package_dir / CMAKE_LISTS).read_text(encoding='utf-8', errors='replace')
+    except OSError:
+        return False
+    return re.search(r'^[ \t]*rosidl_generate_interfaces[ \t]*\(', text, re.M | re.I) is not None
+
+
 def read_cmake_package(package_dir: Path, package_name: str) -> CMakePackage:
     """Read `package_dir`/CMakeLists.txt: interface files and rosidl DEPENDENCIES, and every
     call that needs a real CMake build. A missing or unreadable file is a CMakeError."""
@@ -241,6 +252,14 @@ def read_cmake_package(package_dir: Path, package_name: str) -> CMakePackage:
                 variables.values.pop(var, None)
                 continue
             variables.values[var] = [v for v in values if v not in ('CACHE', 'PARENT_SCOPE')]
+        elif call.name == 'list' and call.args and call.args[0] == 'APPEND':
+            try:
+                values = variables.expand(call)
+            except CMakeError:
+                found.unbuilt.append(call)
+                continue
+            if len(values) > 1:
+                variables.values.setdefault(values[1], []).extend(values[2:])
         elif call.name == 'rosidl_generate_interfaces':
             _read_rosidl(call, variables.expand(call), package_dir, package_name, found, source)
         elif call.name not in _HARMLESS:

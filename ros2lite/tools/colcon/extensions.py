@@ -46,7 +46,7 @@ from ros2lite.interfaces.registry import Registry
 from ros2lite.pkg.environment import ros_environment
 from ros2lite.pkg.manifest import ManifestError, read_manifest
 
-from .cmake import CMakeError, read_cmake_package
+from .cmake import CMakeError, mentions_rosidl, read_cmake_package
 from .rosidl import InterfacePackageError, check_interfaces, install_plan, resource_index_entry
 
 __all__ = [
@@ -126,8 +126,8 @@ class AmentCmakeIdentification(PackageIdentificationExtensionPoint):
         try:
             cmake = read_cmake_package(path, manifest.name)
             has_interfaces = cmake.has_interfaces
-        except CMakeError:
-            has_interfaces = True  # the build task names the problem
+        except CMakeError:  # the build task names the problem, or the skip line does
+            has_interfaces = mentions_rosidl(path)
         desc.type = INTERFACES_TYPE if has_interfaces else UNBUILT_TYPE
         if desc.name is None:
             desc.name = manifest.name

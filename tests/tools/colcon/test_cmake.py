@@ -7,7 +7,12 @@ from pathlib import Path
 
 import pytest
 
-from ros2lite.tools.colcon.cmake import CMakeError, parse_calls, read_cmake_package
+from ros2lite.tools.colcon.cmake import (
+    CMakeError,
+    mentions_rosidl,
+    parse_calls,
+    read_cmake_package,
+)
 
 COURSE = """cmake_minimum_required(VERSION 3.8)
 project(custom_interfaces)
@@ -102,3 +107,19 @@ def test_calls_keep_their_first_line() -> None:
         ('a', ('x', 'y'), 1),
         ('b', ('"q\nr"',), 4),
     ]
+
+
+def test_list_append_adds_interface_files(tmp_path: Path) -> None:
+    text = (
+        'project(p)\nset(files msg/A.msg)\nlist(APPEND files "msg/B.msg" ${PROJECT_NAME})\n'
+        'rosidl_generate_interfaces(p ${files})\n'
+    )
+    found = read_cmake_package(_write(tmp_path, text), 'p')
+    assert found.interfaces == ['msg/A.msg', 'msg/B.msg', 'p']
+
+
+def test_an_unreadable_file_is_an_interface_package_only_if_it_says_so(tmp_path: Path) -> None:
+    _write(tmp_path, 'project(p\nadd_executable(x x.cpp)\n')
+    assert not mentions_rosidl(tmp_path)
+    _write(tmp_path, 'project(p\n  rosidl_generate_interfaces (p "msg/A.msg")\n')
+    assert mentions_rosidl(tmp_path)
