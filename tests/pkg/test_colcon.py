@@ -380,13 +380,17 @@ def test_broken_message_names_file_and_line_and_fails_the_build(
     (ifaces / 'msg' / 'Age.msg').write_text('int64 age\nfloat99 weight\n')
     (ifaces / 'CMakeLists.txt').write_text(INTERFACES_CMAKE)
     (ifaces / 'package.xml').write_text(INTERFACES_XML)
-    _create(ws / 'src', '--build-type ament_cmake my_package')
-    built = _run(f'{COLCON} build', ws, _clean_env(), colcon_site)
+    _create(ws / 'src', '--build-type ament_cmake --node-name cpp_node cpp_pkg')
+    built = _run(f'{COLCON} build --continue-on-error', ws, _clean_env(), colcon_site)
     out = built.stdout + built.stderr
     assert built.returncode != 0, out
     assert f"{ifaces}/msg/Age.msg:2: invalid type name 'float99'" in out
     assert '1 package failed: custom_interfaces' in out
     assert 'Traceback' not in out
+    # a package with C++ sources: what it builds, by line, in the one line
+    (line,) = [ln for ln in out.splitlines() if 'cpp_pkg:' in ln]
+    assert re.search(r'cpp_pkg: a C\+\+ package \(ament_cmake: add_executable \(line \d+\)', line)
+    assert 'so it is skipped: build it in a ROS 2 install' in line
 
 
 @pytest.mark.timeout(600)

@@ -133,10 +133,10 @@ class AmentCmakeIdentification(PackageIdentificationExtensionPoint):
             desc.name = manifest.name
 
 
-def _where_to_build(name: str, what: str) -> str:
+def _where_to_build(name: str, what: str, skipped: str = 'it is skipped') -> str:
     return (
-        f"{name}: {what}; ros2lite runs Python nodes and builds interface packages only, "
-        'so it was skipped (build it in a ROS 2 install: source /opt/ros/<distro>/setup.bash, '
+        f'{name}: {what}; ros2lite runs Python nodes and builds interface packages only, '
+        f'so {skipped}: build it in a ROS 2 install (source /opt/ros/<distro>/setup.bash, '
         'then colcon build)'
     )
 
@@ -185,7 +185,8 @@ class InterfacePackageBuildTask(_Task):
                 _where_to_build(
                     pkg.name,
                     f'its {len(files)} interfaces are installed, but its CMakeLists.txt also '
-                    f'does {cmake.unbuilt_summary()}, which needs CMake',
+                    f'builds C++ ({cmake.unbuilt_summary()})',
+                    skipped='that part is skipped',
                 )
             )
         return 0
@@ -224,12 +225,12 @@ class UnbuiltPackageBuildTask(_Task):
         try:
             cmake = read_cmake_package(Path(args.path), pkg.name)
             what = (
-                f'an ament_cmake package whose CMakeLists.txt does {cmake.unbuilt_summary()}'
+                f'a C++ package (ament_cmake: {cmake.unbuilt_summary()})'
                 if cmake.unbuilt
-                else 'an ament_cmake package with nothing but CMake to build'
+                else 'a C++ package (ament_cmake, nothing to compile yet)'
             )
         except CMakeError as e:
-            what = f'an ament_cmake package ros2lite cannot read ({e})'
+            what = f'a C++ package (ament_cmake; its CMakeLists.txt: {e})'
         logger.warning(_where_to_build(pkg.name, what))
         return 0
 
