@@ -415,3 +415,24 @@ def test_colcon_test_on_a_fresh_package(colcon_site: Path, tmp_path: Path) -> No
         for case in ET.parse(ws / 'build' / 'fresh' / 'pytest.xml').iter('testcase')
     }
     assert cases == {'test_copyright': ['skipped'], 'test_flake8': [], 'test_pep257': []}
+
+
+def test_with_a_ros_install_the_real_ament_cmake_builds(
+    course: Course, colcon_site: Path, tmp_path: Path
+) -> None:
+    """A sourced ROS install (ament_cmake on the prefix path, cmake on PATH): the plugin steps
+    aside and colcon-ros claims every ament_cmake package, as on ROS."""
+    ros = tmp_path / 'opt' / 'ros' / 'jazzy'
+    config = ros / 'share' / 'ament_cmake' / 'cmake' / 'ament_cmakeConfig.cmake'
+    config.parent.mkdir(parents=True)
+    config.write_text('')
+    bin_dir = tmp_path / 'bin'
+    bin_dir.mkdir()
+    (bin_dir / 'cmake').write_text('#!/bin/sh\nexit 0\n')
+    (bin_dir / 'cmake').chmod(0o755)
+    env = {**_clean_env(), 'AMENT_PREFIX_PATH': str(ros)}
+    env['PATH'] = f'{bin_dir}{os.pathsep}{env["PATH"]}'
+    listed = _run(f'{COLCON} list', course.ws, env, colcon_site)
+    assert listed.returncode == 0, listed.stderr
+    assert 'custom_interfaces\tsrc/custom_interfaces\t(ros.ament_cmake)' in listed.stdout
+    assert 'my_package\tsrc/my_package\t(ros.ament_cmake)' in listed.stdout
