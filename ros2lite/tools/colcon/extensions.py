@@ -41,10 +41,10 @@ from colcon_core.shell import create_environment_hook
 from colcon_core.task import TaskExtensionPoint, create_file, install
 from colcon_core.task.python.test import PythonTestingStepExtensionPoint
 from colcon_core.task.python.test.pytest import PytestPythonTestingStep
+from colcon_ros.package_identification.ros import get_package_with_build_type
 
 from ros2lite.interfaces.registry import Registry
 from ros2lite.pkg.environment import ros_environment
-from ros2lite.pkg.manifest import ManifestError, read_manifest
 
 from .cmake import CMakeError, mentions_rosidl, read_cmake_package
 from .rosidl import InterfacePackageError, check_interfaces, install_plan, resource_index_entry
@@ -61,7 +61,7 @@ __all__ = [
     'ros_ament_cmake_found',
 ]
 
-logger = colcon_logger.getChild("ros2lite")
+logger = colcon_logger.getChild('ros2lite')
 
 INTERFACES_TYPE = 'ros.ament_cmake.interfaces'
 UNBUILT_TYPE = 'ros.ament_cmake.unbuilt'
@@ -113,16 +113,12 @@ class AmentCmakeIdentification(PackageIdentificationExtensionPoint):
         if desc.type is not None and desc.type != 'ros':
             return
         path = Path(desc.path)
-        if not (path / 'package.xml').is_file():
-            return
         if (path / 'AMENT_IGNORE').exists() or (path / 'CATKIN_IGNORE').exists():
             return  # colcon-ros ignores the location
-        try:
-            manifest = read_manifest(path / 'package.xml')
-        except ManifestError:
-            return  # colcon-ros reports the broken manifest
-        if manifest.build_type != 'ament_cmake':
-            return
+        # colcon-ros's own reading of package.xml (cached), so both agree on name and type
+        manifest, build_type = get_package_with_build_type(str(path))
+        if manifest is None or build_type != 'ament_cmake':
+            return  # not a ROS package, another build type, or a manifest colcon-ros reports
         try:
             cmake = read_cmake_package(path, manifest.name)
             has_interfaces = cmake.has_interfaces
