@@ -240,6 +240,26 @@ def main(args=None):
 """
 
 
+BRINGUP_LAUNCH = """from launch import LaunchDescription
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    return LaunchDescription([Node(package='py_pubsub', executable='talker')])
+"""
+BRINGUP_CMAKE = """cmake_minimum_required(VERSION 3.8)
+project(my_robot_bringup)
+
+find_package(ament_cmake REQUIRED)
+
+install(DIRECTORY launch
+  DESTINATION share/${PROJECT_NAME}/
+)
+
+ament_package()
+"""
+
+
 def _run(
     script: str, cwd: Path, env: dict[str, str], site: Path
 ) -> subprocess.CompletedProcess[str]:
@@ -281,6 +301,14 @@ def course(colcon_site: Path, tmp_path_factory: pytest.TempPathFactory) -> Cours
     )
     (src / 'age_publisher' / 'age_publisher' / 'age_publisher.py').write_text(AGE_PUBLISHER)
     _create(src, '--build-type ament_cmake my_package')
+    # a bringup package: ament_cmake that only installs its launch files
+    bringup = src / 'my_robot_bringup'
+    (bringup / 'launch').mkdir(parents=True)
+    (bringup / 'launch' / 'talker.launch.py').write_text(BRINGUP_LAUNCH)
+    (bringup / 'package.xml').write_text(
+        INTERFACES_XML.replace('custom_interfaces', 'my_robot_bringup')
+    )
+    (bringup / 'CMakeLists.txt').write_text(BRINGUP_CMAKE)
     built = _run(f'{COLCON} build', ws, _clean_env(), colcon_site)
     return Course(ws, built)
 
@@ -288,7 +316,7 @@ def course(colcon_site: Path, tmp_path_factory: pytest.TempPathFactory) -> Cours
 def test_course_workspace_builds_and_skips_cpp_in_one_line(course: Course) -> None:
     out = course.built.stdout + course.built.stderr
     assert course.built.returncode == 0, out
-    assert 'Summary: 4 packages finished' in out, out
+    assert 'Summary: 5 packages finished' in out, out
     assert 'failed' not in out, out
     skipped = [line for line in out.splitlines() if 'my_package' in line and 'skipped' in line]
     assert len(skipped) == 1, out
@@ -312,6 +340,7 @@ def test_colcon_list_names_what_each_package_is(course: Course, colcon_site: Pat
         'age_publisher\tsrc/age_publisher\t(ros.ament_python)',
         'custom_interfaces\tsrc/custom_interfaces\t(ros.ament_cmake.interfaces)',
         'my_package\tsrc/my_package\t(ros.ament_cmake.unbuilt)',
+        'my_robot_bringup\tsrc/my_robot_bringup\t(ros.ament_cmake.files)',
         'py_pubsub\tsrc/py_pubsub\t(ros.ament_python)',
     ]
 
@@ -324,6 +353,20 @@ def test_sourced_install_shows_the_message_from_home(course: Course) -> None:
         _clean_env(),
     )
     assert (shown.stdout, shown.stderr, shown.returncode) == (AGE_MSG, '', 0)
+
+
+def test_sourced_install_finds_the_bringup_launch_file_from_home(course: Course) -> None:
+    launch = course.ws / 'install' / 'my_robot_bringup' / 'share' / 'my_robot_bringup' / 'launch'
+    assert (launch / 'talker.launch.py').read_text() == BRINGUP_LAUNCH
+    shown = _bash(
+        f'source {course.ws}/install/setup.bash && {ROS2LITE} launch my_robot_bringup '
+        'talker.launch.py -p',
+        course.home,
+        _clean_env(),
+    )
+    assert shown.returncode == 0, shown.stderr
+    assert f'({launch}/talker.launch.py)' in shown.stdout
+    assert "Node(package='py_pubsub', executable='talker')" in shown.stdout
 
 
 @pytest.mark.timeout(300)

@@ -1,5 +1,6 @@
 """Reading an `ament_cmake` package's CMakeLists.txt without CMake: which interface files its
-`rosidl_generate_interfaces` call names, and which commands need a real CMake build.
+`rosidl_generate_interfaces` call names, which files its plain `install()` calls copy, and
+which commands need a real CMake build.
 
 Only what the ROS courses write is understood: commands with quoted and unquoted arguments,
 comments, `set(VAR ...)`, `list(APPEND VAR ...)` and `${VAR}` (with `PROJECT_NAME` and
@@ -10,6 +11,7 @@ line, so the build can say what was skipped.
 
 from __future__ import annotations
 
+import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,6 +22,8 @@ __all__ = [
     'CMakeCall',
     'CMakeError',
     'CMakePackage',
+    'FileInstall',
+    'file_install_plan',
     'mentions_rosidl',
     'parse_calls',
     'read_cmake_package',
@@ -95,6 +99,17 @@ class CMakeCall:
     line: int
 
 
+@dataclass(frozen=True)
+class FileInstall:
+    """One `install(DIRECTORY|FILES|PROGRAMS <sources> DESTINATION <dest>)` call: sources
+    relative to the package, the destination relative to the install prefix."""
+
+    kind: str  # DIRECTORY | FILES | PROGRAMS
+    sources: tuple[str, ...]
+    destination: str
+    line: int
+
+
 @dataclass
 class CMakePackage:
     """What a CMakeLists.txt asks for, as far as ros2lite can carry it out."""
@@ -104,6 +119,7 @@ class CMakePackage:
     dependencies: list[str] = field(default_factory=list)  # rosidl DEPENDENCIES
     rosidl_line: int = 0  # the rosidl_generate_interfaces call (0: none)
     unbuilt: list[CMakeCall] = field(default_factory=list)  # what needs a real CMake build
+    installs: list[FileInstall] = field(default_factory=list)  # install(DIRECTORY|FILES|...)
 
     @property
     def has_interfaces(self) -> bool:
@@ -260,11 +276,37 @@ def read_cmake_package(package_dir: Path, package_name: str) -> CMakePackage:
                 continue
             if len(values) > 1:
                 variables.values.setdefault(values[1], []).extend(values[2:])
+        elif call.name == 'install' and call.args and call.args[0] in _INSTALL_KINDS:
+            try:
+                found.installs.append(_read_install(call, variables.expand(call), package_dir))
+            except CMakeError:
+                found.unbuilt.append(call)  # more than ros2lite copies: CMake's business
         elif call.name == 'rosidl_generate_interfaces':
             _read_rosidl(call, variables.expand(call), package_dir, package_name, found, source)
         elif call.name not in _HARMLESS:
             found.unbuilt.append(call)
     return found
+
+
+_INSTALL_KINDS = ('DIRECTORY', 'FILES', 'PROGRAMS')
+
+
+def _read_install(call: CMakeCall, values: list[str], package_dir: Path) -> FileInstall:
+    """An install() ros2lite can carry out: sources inside the package, one relative
+    DESTINATION, no other option (PATTERN, TARGETS, ... stay CMake's)."""
+    kind, rest = values[0], values[1:]
+    if 'DESTINATION' not in rest:
+        raise CMakeError(f'line {call.line}: install({kind}) without DESTINATION')
+    at = rest.index('DESTINATION')
+    sources, tail = rest[:at], rest[at + 1 :]
+    if len(tail) != 1 or not sources or Path(tail[0]).is_absolute() or '..' in Path(tail[0]).parts:
+        raise CMakeError(f'line {call.line}: install({kind}) beyond what ros2lite copies')
+    relative = tuple(
+        _relative(src, package_dir, str(package_dir / CMAKE_LISTS), call.line)
+        + ('/' if src.endswith('/') else '')
+        for src in sources
+    )
+    return FileInstall(kind, relative, Path(tail[0]).as_posix(), call.line)
 
 
 def _read_rosidl(
@@ -317,3 +359,40 @@ def _relative(value: str, package_dir: Path, source: str, line: int) -> str:
     if '..' in path.parts:
         raise CMakeError(f'{source}:{line}: {value} leaves the package directory')
     return path.as_posix()
+
+
+def file_install_plan(
+    package_dir: Path, installs: list[FileInstall]
+) -> list[tuple[str, str, bool]]:
+    """(source relative to the package, destination relative to the prefix, executable) for
+    every file the install() calls copy, as CMake lays them out: `DIRECTORY launch` puts the
+    folder itself under the destination, `DIRECTORY launch/` its contents. A source that does
+    not exist is a CMakeError naming the call's line."""
+    plan: list[tuple[str, str, bool]] = []
+    for item in installs:
+        for source in item.sources:
+            full = package_dir / source
+            if item.kind != 'DIRECTORY':
+                if not full.is_file():
+                    raise CMakeError(
+                        f'{package_dir / CMAKE_LISTS}:{item.line}: install({item.kind}) '
+                        f'names {source}, which is not a file'
+                    )
+                plan.append((source, f'{item.destination}/{full.name}', item.kind == 'PROGRAMS'))
+                continue
+            if not full.is_dir() or full.is_symlink():
+                raise CMakeError(
+                    f'{package_dir / CMAKE_LISTS}:{item.line}: install(DIRECTORY) names '
+                    f'{source}, which is not a folder'
+                )
+            top = Path(item.destination)
+            if not source.endswith('/'):
+                top = top / full.name
+            for dirpath, dirnames, filenames in os.walk(full):
+                dirnames.sort()
+                rel = Path(dirpath).relative_to(full)
+                for name in sorted(filenames):
+                    if (Path(dirpath) / name).is_file():
+                        src = (Path(source.rstrip('/')) / rel / name).as_posix()
+                        plan.append((src, (top / rel / name).as_posix(), False))
+    return plan

@@ -9,6 +9,8 @@ types of ours, with colcon-ros's dependencies from package.xml kept (the `ros.` 
   interface files are checked and installed as ROS installs them (:mod:`.rosidl`), with the
   ament index entries and an AMENT_PREFIX_PATH hook, so `source install/setup.bash` makes
   them known to every shell and node;
+- ``ros.ament_cmake.files``: it only copies files (`install(DIRECTORY launch ...)`, a bringup
+  package); they are installed as CMake lays them out, with the same index entry and hook;
 - ``ros.ament_cmake.unbuilt``: C++ (or nothing) to build; one line says so and the package is
   passed over, so the rest of the workspace builds and the status stays 0.
 
@@ -46,10 +48,11 @@ from colcon_ros.package_identification.ros import get_package_with_build_type
 from ros2lite.interfaces.registry import Registry
 from ros2lite.pkg.environment import ros_environment
 
-from .cmake import CMakeError, mentions_rosidl, read_cmake_package
+from .cmake import CMakeError, file_install_plan, mentions_rosidl, read_cmake_package
 from .rosidl import InterfacePackageError, check_interfaces, install_plan, resource_index_entry
 
 __all__ = [
+    'FILES_TYPE',
     'INTERFACES_TYPE',
     'UNBUILT_TYPE',
     'AmentCmakeIdentification',
@@ -64,6 +67,7 @@ __all__ = [
 logger = colcon_logger.getChild('ros2lite')
 
 INTERFACES_TYPE = 'ros.ament_cmake.interfaces'
+FILES_TYPE = 'ros.ament_cmake.files'
 UNBUILT_TYPE = 'ros.ament_cmake.unbuilt'
 _CONFIGS = ('ament_cmakeConfig.cmake', 'ament_cmake-config.cmake')
 _INDEX = Path('share') / 'ament_index' / 'resource_index' / 'packages'
@@ -121,10 +125,15 @@ class AmentCmakeIdentification(PackageIdentificationExtensionPoint):
             return  # not a ROS package, another build type, or a manifest colcon-ros reports
         try:
             cmake = read_cmake_package(path, manifest.name)
-            has_interfaces = cmake.has_interfaces
         except CMakeError:  # the build task names the problem, or the skip line does
-            has_interfaces = mentions_rosidl(path)
-        desc.type = INTERFACES_TYPE if has_interfaces else UNBUILT_TYPE
+            desc.type = INTERFACES_TYPE if mentions_rosidl(path) else UNBUILT_TYPE
+        else:
+            if cmake.has_interfaces:
+                desc.type = INTERFACES_TYPE
+            elif cmake.installs and not cmake.unbuilt:
+                desc.type = FILES_TYPE  # launch files, configs, scripts: copies only
+            else:
+                desc.type = UNBUILT_TYPE
         if desc.name is None:
             desc.name = manifest.name
 
@@ -144,29 +153,38 @@ class _Task(TaskExtensionPoint):
 
 
 class InterfacePackageBuildTask(_Task):
-    """Check and install an interface package's definitions, as ament_cmake would."""
+    """Build an ament_cmake package whose CMakeLists only generates interfaces and copies
+    files: check and install the interfaces, copy what install() names, then the manifest,
+    the ament index entries and the AMENT_PREFIX_PATH hook, as ament_cmake would."""
 
     async def build(self) -> int:
-        """Check every interface file, then install them with the manifest and index."""
+        """Check every interface file, then install them and the copied files."""
         args = self.context.args
         pkg = self.context.pkg
         path = Path(args.path)
         try:
             cmake = read_cmake_package(path, pkg.name)
-            if not cmake.has_interfaces:  # pragma: no cover - identified as unbuilt then
-                raise CMakeError(f'{cmake.path}: no rosidl_generate_interfaces call')
-            files = check_interfaces(path, pkg.name, cmake, self._provider())
+            files = []
+            if cmake.has_interfaces:
+                files = check_interfaces(path, pkg.name, cmake, self._provider())
+            copies = file_install_plan(path, cmake.installs)
         except (CMakeError, InterfacePackageError) as e:
             logger.error(str(e))
             return 1
         for source, destination in install_plan(pkg.name, files):
             install(args, source, destination)
+        for source, destination, executable in copies:
+            install(args, source, destination)
+            target = Path(args.install_base) / destination
+            if executable and not target.is_symlink():
+                target.chmod(0o755)
         create_file(args, f'share/ament_index/resource_index/packages/{pkg.name}')
-        create_file(
-            args,
-            f'share/ament_index/resource_index/rosidl_interfaces/{pkg.name}',
-            content=resource_index_entry(files),
-        )
+        if files:
+            create_file(
+                args,
+                f'share/ament_index/resource_index/rosidl_interfaces/{pkg.name}',
+                content=resource_index_entry(files),
+            )
         hooks = create_environment_hook(
             'ament_prefix_path',
             Path(args.install_base),
@@ -177,11 +195,13 @@ class InterfacePackageBuildTask(_Task):
         )
         create_environment_scripts(pkg, args, additional_hooks=hooks)
         if cmake.unbuilt:
+            done = f'its {len(files)} interfaces are installed'
+            if copies:
+                done += f' with {len(copies)} files'
             logger.warning(
                 _where_to_build(
                     pkg.name,
-                    f'its {len(files)} interfaces are installed, but its CMakeLists.txt also '
-                    f'builds C++ ({cmake.unbuilt_summary()})',
+                    f'{done}, but its CMakeLists.txt also builds C++ ({cmake.unbuilt_summary()})',
                     skipped='that part is skipped',
                 )
             )
@@ -204,7 +224,8 @@ class InterfacePackageBuildTask(_Task):
 
 
 class InterfacePackageTestTask(_Task):
-    """An interface package has nothing ros2lite tests (the build checked its files)."""
+    """An interface (or files-only) package has nothing ros2lite tests: the build checked
+    its files, and its CMake tests (ament_lint_auto) need CMake."""
 
     async def test(self) -> int:
         """Nothing to run."""

@@ -9,6 +9,7 @@ import pytest
 
 from ros2lite.tools.colcon.cmake import (
     CMakeError,
+    file_install_plan,
     mentions_rosidl,
     parse_calls,
     read_cmake_package,
@@ -123,3 +124,30 @@ def test_an_unreadable_file_is_an_interface_package_only_if_it_says_so(tmp_path:
     assert not mentions_rosidl(tmp_path)
     _write(tmp_path, 'project(p\n  rosidl_generate_interfaces (p "msg/A.msg")\n')
     assert mentions_rosidl(tmp_path)
+
+
+def test_install_calls_ros2lite_copies_and_those_it_leaves(tmp_path: Path) -> None:
+    for name in ('launch/a.launch.py', 'launch/sub/b.yaml', 'config/p.yaml', 'scripts/go.py'):
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text('')
+    text = (
+        'project(b)\n'
+        'install(DIRECTORY launch config/ DESTINATION share/${PROJECT_NAME})\n'
+        'install(PROGRAMS scripts/go.py DESTINATION lib/${PROJECT_NAME})\n'
+        'install(TARGETS x DESTINATION lib/${PROJECT_NAME})\n'
+        'install(DIRECTORY launch DESTINATION share/b FILES_MATCHING PATTERN *.py)\n'
+        'install(FILES /etc/passwd DESTINATION share/b)\n'
+    )
+    found = read_cmake_package(_write(tmp_path, text), 'b')
+    assert found.unbuilt_summary() == 'install (line 4), install (line 5), install (line 6)'
+    assert file_install_plan(tmp_path, found.installs) == [
+        ('launch/a.launch.py', 'share/b/launch/a.launch.py', False),
+        ('launch/sub/b.yaml', 'share/b/launch/sub/b.yaml', False),
+        ('config/p.yaml', 'share/b/p.yaml', False),
+        ('scripts/go.py', 'lib/b/go.py', True),
+    ]
+    (tmp_path / 'scripts' / 'go.py').unlink()
+    with pytest.raises(
+        CMakeError, match=r'CMakeLists\.txt:3: install\(PROGRAMS\) names scripts/go'
+    ):
+        file_install_plan(tmp_path, found.installs)
