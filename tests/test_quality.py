@@ -198,7 +198,7 @@ MAP = {
     'bag': 'writer reader recorder player metadata definitions qos reindex convert errors storage/',
     'bag/storage': 'mcap sqlite3',
     'pkg': 'index bundled workspace manifest setup_files executables runner create templates'
-    ' ament_index environment',
+    ' ament_index environment shell',
     'launch': 'api service context entity actions conditions substitutions events'
     ' event_handlers execute process_spec ros find_package sources output introspection errors'
     ' flow frontend/',
