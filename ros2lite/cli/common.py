@@ -152,10 +152,14 @@ def wait_saying_other_types(
                 {t for n, types in served_types() if n == name for t in types if t != type_name}
             )
             if others:
+                from ros2lite.pkg.distro import other_distro_name
+
                 warned = True
+                hint = other_distro_name(type_name, others)
                 click.echo(
                     f"WARNING: {kind} '{name}' is served as {', '.join(others)}, not "
-                    f'{type_name}; nothing will answer until a server of {type_name} appears',
+                    f'{type_name}; nothing will answer until a server of {type_name} appears'
+                    + (f' ({hint})' if hint else ''),
                     err=True,
                 )
         if deadline is not None and time.monotonic() >= deadline:
