@@ -174,13 +174,15 @@ def connect(
     try:
         return open_session(router, mode="client", timeout=timeout, security=security)
     except RouterUnavailableError as exc:
-        raise _diagnosed(exc) from None
+        raise _diagnosed(exc, security) from None
 
 
-def _diagnosed(exc: RouterUnavailableError) -> RouterUnavailableError:
+def _diagnosed(
+    exc: RouterUnavailableError, security: Security | None = None
+) -> RouterUnavailableError:
     """The error, saying why when something does listen at the endpoint (where 'start one
     with daemon start' would only get 'already running' back)."""
-    from ros2lite.daemon.probe import not_a_router, router_answers
+    from ros2lite.daemon.probe import not_a_router, router_answers, secured_router, speaks_tls
 
     if not router_answers(exc.endpoint):
         return exc
@@ -188,5 +190,9 @@ def _diagnosed(exc: RouterUnavailableError) -> RouterUnavailableError:
 
     pid = daemon_pid(exc.endpoint)
     better = RouterUnavailableError(exc.endpoint, exc.detail)
-    better.args = (not_a_router(exc.endpoint, pid),)
+    if speaks_tls(exc.endpoint):  # secured, not frozen: this process has no way in
+        has_enclave = security is not None and security.credentials is not None
+        better.args = (secured_router(exc.endpoint, pid, has_enclave=has_enclave),)
+    else:
+        better.args = (not_a_router(exc.endpoint, pid),)
     return better
