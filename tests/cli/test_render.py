@@ -121,7 +121,7 @@ def test_multicast_datagram_on_a_terminal() -> None:
     import socket
 
     from tests.spinning import free_port
-    from tests.test_multicast import multicast_on_loopback
+    from tests.tools.test_multicast import multicast_on_loopback
 
     port = free_port()
     if not multicast_on_loopback(port):

@@ -10,7 +10,7 @@ import pytest
 
 from tests.cli.conftest import Result
 from tests.spinning import free_port
-from tests.test_multicast import multicast_on_loopback
+from tests.tools.test_multicast import multicast_on_loopback
 
 Run = Callable[..., Result]
 
