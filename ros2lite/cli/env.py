@@ -34,7 +34,11 @@ from .parsing import command
     '(--no-ros2). Default: only when none is.',
 )
 def cli(shell: str, ros2: bool | None) -> None:
-    """Print shell lines that let code written for rclpy run on ros2lite."""
+    """Print shell lines that make this shell a ROS shell.
+
+    Use as eval "$(ros2lite env)": code written for rclpy runs on ros2lite, `ros2` runs
+    ros2lite with Tab completion, and the workspace this runs in is found from anywhere.
+    """
     from ros2lite.pkg.environment import shell_lines
     from ros2lite.pkg.shell import command_lines
     from ros2lite.pkg.workspace import workspaces
