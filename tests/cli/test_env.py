@@ -89,7 +89,8 @@ def _path_without_ros2() -> str:
 @pytest.mark.parametrize('shell', ['bash', 'zsh', 'fish'])
 def test_ros2_as_printed_with_tab_completion(shell: str, ros_context: Any, tmp_path: Path) -> None:
     """The course's line typed as printed at an interactive prompt after the one step:
-    `ros2 to<Tab>` completes to `topic`, `ros2 topic list` lists the live graph."""
+    `ros2 to<Tab>` completes to `topic`, `ros2 topic list` lists the live graph, and a
+    topic's name completes from it."""
     if shutil.which(shell) is None:
         pytest.skip(f'{shell} is not installed')
     node = Node('shell_probe', context=ros_context, enable_rosout=False)
@@ -134,6 +135,9 @@ def test_ros2_as_printed_with_tab_completion(shell: str, ros_context: Any, tmp_p
         pane.keys('Enter')
         screen = shows('/ros2_as_printed')
         assert 'command not found' not in screen and 'Unknown command' not in screen
+        # names come from the live graph through the function's completion too
+        pane.keys('ros2 topic info /ros2_as\t')
+        shows('ros2 topic info /ros2_as_printed\n')
     finally:
         pane.close()
         node.destroy_node()
