@@ -481,7 +481,9 @@ def _private_imports(sources: dict[str, str]) -> list[str]:
         me = _module_of(path)
         package = me if path.endswith('__init__.py') else me.rpartition('.')[0]
         bound: dict[str, str] = {}  # a name bound to a module of another package -> module
-        for node, _lazy in _import_statements(ast.parse(text)):
+        for node, _lazy, typing in _import_statements(ast.parse(text)):
+            if typing:
+                continue
             if isinstance(node, ast.Import):
                 for alias in node.names:
                     target = alias.name if alias.asname else alias.name.split('.')[0]

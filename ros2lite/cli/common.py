@@ -22,8 +22,8 @@ if TYPE_CHECKING:
 
 def yaml_fields(values: str, *, allow_empty: bool = False) -> dict[str, object]:
     """The field values given in YAML (VALUES or --stdin) as a mapping, or ros2cli's line
-    saying why they are not one (`allow_empty`: empty text means no fields, as in
-    `service call`)."""
+    saying why they are not one, with the line and column where YAML breaks (`allow_empty`:
+    empty text means no fields, as in `service call`)."""
     from ros2lite.util.safe_yaml import YamlInputError, load
 
     try:
@@ -31,7 +31,10 @@ def yaml_fields(values: str, *, allow_empty: bool = False) -> dict[str, object]:
     except YamlInputError as e:
         if not e.syntax:
             raise CliError(str(e)) from None
-        raise CliError('The passed value needs to be in YAML string or a dictionary') from None
+        # ros2cli's line, and where the YAML breaks (as `param load` says it)
+        raise CliError(
+            f'The passed value needs to be in YAML string or a dictionary: {e.detail}'
+        ) from None
     if parsed is None and allow_empty:
         return {}
     if not isinstance(parsed, dict):
@@ -149,10 +152,14 @@ def wait_saying_other_types(
                 {t for n, types in served_types() if n == name for t in types if t != type_name}
             )
             if others:
+                from ros2lite.pkg.distro import other_distro_name
+
                 warned = True
+                hint = other_distro_name(type_name, others)
                 click.echo(
                     f"WARNING: {kind} '{name}' is served as {', '.join(others)}, not "
-                    f'{type_name}; nothing will answer until a server of {type_name} appears',
+                    f'{type_name}; nothing will answer until a server of {type_name} appears'
+                    + (f' ({hint})' if hint else ''),
                     err=True,
                 )
         if deadline is not None and time.monotonic() >= deadline:

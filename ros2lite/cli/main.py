@@ -20,7 +20,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     'bag': ('ros2lite.cli.bag', 'Various rosbag related sub-commands'),
     'component': ('ros2lite.cli.component', 'Various component related sub-commands'),
     'daemon': ('ros2lite.cli.daemon', 'Various daemon related sub-commands'),
-    'env': ('ros2lite.cli.env', 'Print shell lines that let code written for rclpy run'),
+    'env': ('ros2lite.cli.env', 'Print shell lines that make this shell a ROS shell'),
     'doctor': ('ros2lite.cli.doctor', 'Check ROS setup and other potential issues'),
     'extension_points': ('ros2lite.cli.extension_points', 'List extension points'),
     'extensions': ('ros2lite.cli.extensions', 'List extensions'),

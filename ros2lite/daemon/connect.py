@@ -39,6 +39,7 @@ from ros2lite.transport.config import (
 )
 from ros2lite.transport.endpoints import (
     ROUTER_CHECK_ENV,
+    default_router,
     is_local_endpoint,
     router_check_attempts,
     router_endpoint,
@@ -55,6 +56,7 @@ __all__ = [
     "autostart_enabled",
     "connect",
     "open_node_session",
+    "started_elsewhere",
 ]
 
 NO_DAEMON_ENV = "ROS2LITE_NO_DAEMON"
@@ -82,6 +84,28 @@ def _log(severity: str, message: str) -> None:
     (logger.warn if severity == "warn" else logger.info)(message)
 
 
+def started_elsewhere(
+    endpoint: str, pid: int | None, *, secure: bool = False, default: str | None = None
+) -> str | None:
+    """The line said when the daemon was just started at an endpoint the user named
+    (``--router``, ``ROS2LITE_ROUTER``) rather than the default one (`default`: the default
+    endpoint, for tests): a mistyped endpoint would otherwise make a second, empty graph in
+    silence. It adds that a router answers at the default endpoint when one does (the likely
+    typo). None at the default endpoint, where starting it is the quick start's promise."""
+    from ros2lite.daemon.probe import router_answers
+
+    usual = default or default_router(secure)
+    if endpoint == usual:
+        return None
+    line = (
+        f"no Zenoh router answered at {endpoint}: started the ros2lite daemon there (pid "
+        f"{pid}), a graph of its own at the endpoint --router or ROS2LITE_ROUTER named"
+    )
+    if router_answers(usual, timeout=0.2):
+        line += f"; a router answers at {usual}: is the endpoint mistyped?"
+    return line + f" ('ros2lite --router {endpoint} daemon stop' ends it)"
+
+
 def _autostart(router: str | None, security: Security) -> None:
     """Start our daemon at the node's endpoint when nothing answers there (see module doc)."""
     from ros2lite.daemon.probe import router_answers
@@ -102,6 +126,10 @@ def _autostart(router: str | None, security: Security) -> None:
         _log("warn", f"could not start the ros2lite daemon: {exc}")
         return
     if result.started:
+        named = started_elsewhere(endpoint, result.pid, secure=security.secure_default)
+        if named is not None:
+            _log("warn", named)
+            return
         _log(
             "info",
             f"no Zenoh router answered at {endpoint}: started the ros2lite daemon "
@@ -170,17 +198,22 @@ def connect(
                 raise RouterUnavailableError(endpoint, "nothing listens there")
             from ros2lite.daemon.control import start
 
-            start(endpoint, known_absent=True)
+            result = start(endpoint, known_absent=True)
+            named = started_elsewhere(endpoint, result.pid, secure=security.secure_default)
+            if result.started and named is not None:
+                _log("warn", named)
     try:
         return open_session(router, mode="client", timeout=timeout, security=security)
     except RouterUnavailableError as exc:
-        raise _diagnosed(exc) from None
+        raise _diagnosed(exc, security) from None
 
 
-def _diagnosed(exc: RouterUnavailableError) -> RouterUnavailableError:
+def _diagnosed(
+    exc: RouterUnavailableError, security: Security | None = None
+) -> RouterUnavailableError:
     """The error, saying why when something does listen at the endpoint (where 'start one
     with daemon start' would only get 'already running' back)."""
-    from ros2lite.daemon.probe import not_a_router, router_answers
+    from ros2lite.daemon.probe import not_a_router, router_answers, secured_router, speaks_tls
 
     if not router_answers(exc.endpoint):
         return exc
@@ -188,5 +221,9 @@ def _diagnosed(exc: RouterUnavailableError) -> RouterUnavailableError:
 
     pid = daemon_pid(exc.endpoint)
     better = RouterUnavailableError(exc.endpoint, exc.detail)
-    better.args = (not_a_router(exc.endpoint, pid),)
+    if speaks_tls(exc.endpoint):  # secured, not frozen: this process has no way in
+        has_enclave = security is not None and security.credentials is not None
+        better.args = (secured_router(exc.endpoint, pid, has_enclave=has_enclave),)
+    else:
+        better.args = (not_a_router(exc.endpoint, pid),)
     return better

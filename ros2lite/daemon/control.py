@@ -29,7 +29,14 @@ from typing import TYPE_CHECKING, Any
 
 from ros2lite.daemon.errors import DaemonError
 from ros2lite.daemon.paths import lock_file, log_file, pid_file
-from ros2lite.daemon.probe import not_a_router, router_answers, speaks_zenoh, wait_answers
+from ros2lite.daemon.probe import (
+    not_a_router,
+    router_answers,
+    secured_router,
+    speaks_tls,
+    speaks_zenoh,
+    wait_answers,
+)
 from ros2lite.daemon.router import DaemonInfo, router_security
 from ros2lite.daemon.security import secured_endpoint, session_security
 from ros2lite.security.errors import SecurityError
@@ -40,6 +47,7 @@ from ros2lite.util.files import NOFOLLOW
 
 if TYPE_CHECKING:
     from ros2lite.transport.admin import ConnectedSession
+    from ros2lite.transport.security import Security
 
 __all__ = [
     "DaemonStatus",
@@ -115,6 +123,9 @@ class DaemonStatus:
     # other sessions connected to the router, when asked for and its admin space answers
     sessions: list[ConnectedSession] | None = None
     answers_zenoh: bool = True  # False: something listens, but no Zenoh router answers
+    # it speaks TLS (the endpoint is tls/, or a TLS listener sits behind a tcp/ one)
+    secured: bool = False
+    has_enclave: bool = False  # this process has a certificate to offer a secured router
 
     @property
     def pid(self) -> int | None:
@@ -125,6 +136,8 @@ class DaemonStatus:
     def message(self) -> str:
         """The line `daemon status` prints."""
         if self.running and not self.answers_zenoh:
+            if self.secured:  # there, and secured: not frozen
+                return secured_router(self.endpoint, self.pid, has_enclave=self.has_enclave)
             return not_a_router(self.endpoint, self.pid)
         if self.running and self.ours:
             return "The daemon is running"
@@ -227,9 +240,36 @@ def status(router: str | None = None, *, sessions: bool = False) -> DaemonStatus
     endpoint = secured_endpoint(router)
     info = _read_info(pid_file(endpoint))
     running = router_answers(endpoint)
-    zenoh = not running or speaks_zenoh(endpoint)
+    security = _security_or_none()
+    zenoh = not running or _answers_zenoh(endpoint, security)
     connected = connected_sessions(endpoint) if running and zenoh and sessions else None
-    return DaemonStatus(endpoint, running, info is not None, info, connected, zenoh)
+    secured = running and (endpoint.startswith("tls/") or (not zenoh and speaks_tls(endpoint)))
+    enclave = security is not None and security.credentials is not None
+    return DaemonStatus(
+        endpoint, running, info is not None, info, connected, zenoh, secured, enclave
+    )
+
+
+def _security_or_none() -> Security | None:
+    """This process's session security; None when it cannot have any (Enforce without
+    material: the probe then goes without, and says what it sees)."""
+    try:
+        return session_security()
+    except SecurityError:
+        return None
+
+
+def _answers_zenoh(endpoint: str, security: Security | None) -> bool:
+    """Does a Zenoh router answer at `endpoint`? A tls/ one is asked with this process's
+    certificate (a session without one is refused: that is not a frozen router)."""
+    if endpoint.startswith("tls/") and security is not None and security.credentials is not None:
+        try:
+            session = open_session(endpoint, mode="client", timeout=1.0, security=security)
+        except (SessionError, SecurityError):
+            return False
+        session.close()
+        return True
+    return speaks_zenoh(endpoint)
 
 
 def connected_sessions(
@@ -276,10 +316,13 @@ def start(
         if (not known_absent and router_answers(endpoint)) or (
             info is not None and wait_answers(endpoint, timeout)
         ):
-            from ros2lite.daemon.probe import not_a_router, speaks_zenoh
-
-            if not speaks_zenoh(endpoint):  # a frozen router, or not a router at all
-                raise DaemonError(not_a_router(endpoint, info.pid if info else None))
+            pid = info.pid if info else None
+            mine = _security_or_none()
+            if not _answers_zenoh(endpoint, mine):
+                if speaks_tls(endpoint):  # secured, and this process cannot get in
+                    has = mine is not None and mine.credentials is not None
+                    raise DaemonError(secured_router(endpoint, pid, has_enclave=has))
+                raise DaemonError(not_a_router(endpoint, pid))  # frozen, or not a router
             return StartResult(
                 endpoint,
                 False,

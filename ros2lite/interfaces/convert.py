@@ -220,8 +220,18 @@ def message_to_csv(
     )
 
 
+def _has_float(value: object) -> bool:
+    """Whether `value`, or an item of it, is a float (for an integer field, never fine)."""
+    if isinstance(value, float):
+        return True
+    return isinstance(value, (list, tuple)) and any(isinstance(v, float) for v in value)
+
+
 def _coerce(current: Any, value: Any, ft: FieldType) -> Any:
     """Convert `value` towards the type of the field's current value, like rosidl does."""
+    if ft.base in INT_RANGES and _has_float(value):
+        # rclpy's setters assert an integer field gets an int; int(1.5) would quietly send 1
+        raise TypeError('a float for an integer field')
     if isinstance(current, array):
         return array(current.typecode, value)
     if type(value) is type(current):
@@ -242,6 +252,9 @@ def _reason(name: str, value: object, ft: FieldType, e: Exception) -> str:
         return f"field '{name}' is a byte (an integer 0-255 or one-byte bytes), not {shown}"
     if isinstance(value, float) and ft.base in INT_RANGES:
         return f"field '{name}' is an integer ({ft}); {shown} is not one"
+    if ft.base in INT_RANGES and isinstance(value, (list, tuple)) and _has_float(value):
+        first = next(v for v in value if isinstance(v, float))
+        return f"field '{name}' is a list of integers ({ft}); {first!r} is not one"
     if isinstance(e, OverflowError):
         return f"field '{name}' ({ft}): {shown} is out of range"
     if isinstance(e, TypeError) and ft.is_container and ft.is_primitive and not ft.is_string:

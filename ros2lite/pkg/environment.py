@@ -89,12 +89,27 @@ def ros_environment(base: Mapping[str, str] | None = None) -> dict[str, str]:
     return changes
 
 
-def shell_lines(shell: str = 'bash', base: Mapping[str, str] | None = None) -> str:
-    """Lines that `eval` in `shell` turns into :func:`ros_environment` (values quoted)."""
+def shell_lines(
+    shell: str = 'bash',
+    base: Mapping[str, str] | None = None,
+    *,
+    workspaces: Iterable[Path] = (),
+) -> str:
+    """Lines that `eval` in `shell` turns into :func:`ros_environment` (values quoted).
+
+    `workspaces` (the ones the shell stands in, see :func:`ros2lite.pkg.workspace.workspaces`)
+    go in front of ``ROS2LITE_WORKSPACE``: a shell that evaluates these lines somewhere else
+    (another terminal, ``cd ~`` afterwards) still finds their packages and interfaces, as a
+    shell that sourced ``install/setup.bash`` does on ROS."""
     if shell not in SHELLS:
         raise UnknownShellError(f"unknown shell '{shell}'; choose one of: {', '.join(SHELLS)}")
+    env = os.environ if base is None else base
+    changes = ros_environment(env)
+    known = [str(ws) for ws in workspaces]
+    if known:
+        changes[WORKSPACE_ENV] = prepend_path(env.get(WORKSPACE_ENV, ''), known)
     lines = []
-    for name, value in ros_environment(base).items():
+    for name, value in changes.items():
         if shell == 'fish':
             # fish splits *PATH variables on ':' itself; one quoted word keeps the others whole
             lines.append(f'set -gx {name} {_fish_quote(value)};')

@@ -57,3 +57,35 @@ def test_no_daemon_for_a_router_the_config_names(
     assert not daemon.status(elsewhere).running
     err = capfd.readouterr().err
     assert f"no Zenoh router answers at {elsewhere}: running without one" in err
+
+
+def test_a_daemon_started_at_a_named_endpoint_is_said_with_the_likely_typo(
+    endpoint: str, runtime: Path
+) -> None:
+    """At the default endpoint starting the daemon is silent (the quick start's promise);
+    at another one it is said, and when a router answers at the default one, that the
+    endpoint may be mistyped."""
+    import zenoh
+
+    from ros2lite.daemon.connect import started_elsewhere
+    from ros2lite.transport.config import router_config
+
+    assert started_elsewhere(endpoint, 42, default=endpoint) is None
+    assert started_elsewhere("tcp/127.0.0.1:7447", 42) is None
+    assert started_elsewhere("tls/127.0.0.1:7447", 42, secure=True) is None
+    typo = f"tcp/127.0.0.1:{free_port()}"
+    quiet = started_elsewhere(typo, 42, default=endpoint)  # nothing answers at `endpoint`
+    assert quiet == (
+        f"no Zenoh router answered at {typo}: started the ros2lite daemon there (pid 42), a "
+        "graph of its own at the endpoint --router or ROS2LITE_ROUTER named ('ros2lite "
+        f"--router {typo} daemon stop' ends it)"
+    )
+    router = zenoh.open(router_config(endpoint, env={}))
+    try:
+        said = started_elsewhere(typo, 42, default=endpoint)
+    finally:
+        router.close()
+    assert said is not None
+    assert (
+        f"ROS2LITE_ROUTER named; a router answers at {endpoint}: is the endpoint mistyped?" in said
+    )

@@ -128,8 +128,8 @@ def test_set_fields_coercions_and_nesting() -> None:
     assert I.set_message_fields(twist, '{linear: {x: 2}, angular: {z: 1.8}}') == []
     assert twist.linear.x == 2.0 and twist.angular.z == 1.8
     num = msg('std_msgs/msg/Int32')
-    I.set_message_fields(num, {'data': 1.9})
-    assert num.data == 1
+    I.set_message_fields(num, {'data': 7})  # a float is refused (the test below)
+    assert num.data == 7
     text = msg('std_msgs/msg/String')
     I.set_message_fields(text, 'data: 5')
     assert text.data == '5'
@@ -152,6 +152,23 @@ def test_set_fields_errors(values: str, reason: str) -> None:
     with pytest.raises(PopulateError) as err:
         I.set_message_fields(msg('geometry_msgs/msg/Twist'), values)
     assert reason in str(err.value)
+
+
+def test_a_float_for_an_integer_field_is_refused_as_rclpy_refuses_it() -> None:
+    """rclpy's setter asserts an int; truncating 1.5 to 1 would send what nobody typed. An int
+    for a float field stays fine."""
+    for values, reason in [
+        ({'data': 1.5}, "field 'data' is an integer (int32); 1.5 is not one"),
+        ({'data': 2.0}, "field 'data' is an integer (int32); 2.0 is not one"),
+    ]:
+        with pytest.raises(PopulateError) as err:
+            I.set_message_fields(msg('std_msgs/msg/Int32'), values)
+        assert str(err.value) == reason
+    with pytest.raises(PopulateError, match=r"list of integers \(uint8\[\]\); 0.5 is not one"):
+        I.set_message_fields(msg('std_msgs/msg/UInt8MultiArray'), {'data': [1, 0.5]})
+    twist = msg('geometry_msgs/msg/Twist')
+    I.set_message_fields(twist, '{linear: {x: 1}}')
+    assert twist.linear.x == 1.0 and isinstance(twist.linear.x, float)
 
 
 def test_range_error_reads_like_rclpy() -> None:

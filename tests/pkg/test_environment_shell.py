@@ -4,6 +4,7 @@ PYTHONPATH, said once however often it is applied, and shell lines that survive 
 from __future__ import annotations
 
 import os
+import shlex
 import subprocess
 import sys
 from pathlib import Path
@@ -121,3 +122,43 @@ def test_a_workspace_package_never_shadows_what_ros2lite_imports(tmp_path: Path)
         'print(hasattr(click, "command"), Foo(x=3).x)',
     )
     assert probe.stdout == 'True 3\n', probe.stderr
+
+
+def test_a_shell_started_in_a_workspace_keeps_it_from_anywhere(tmp_path: Path) -> None:
+    """Item 3 of issue 32: `eval "$(ros2lite env)"` in the workspace, then `cd ~`: the
+    workspace's interface package is still found, in this shell and its children."""
+    pkg = tmp_path / 'ros2_ws' / 'src' / 'my_msgs'
+    (pkg / 'msg').mkdir(parents=True)
+    (pkg / 'package.xml').write_text(
+        '<?xml version="1.0"?><package format="3"><name>my_msgs</name><version>0.0.1</version>'
+        '<description>x</description><maintainer email="a@b.c">a</maintainer>'
+        '<license>MIT</license><buildtool_depend>ament_cmake</buildtool_depend>'
+        '<export><build_type>ament_cmake</build_type></export></package>\n'
+    )
+    (pkg / 'msg' / 'Age.msg').write_text('int32 years\n')
+    home = tmp_path / 'home'
+    home.mkdir()
+    env = {k: v for k, v in os.environ.items() if k not in ('PYTHONPATH', 'ROS2LITE_WORKSPACE')}
+    env['HOME'] = str(home)
+    ros2lite = f'{shlex.quote(sys.executable)} -m ros2lite'
+    script = (
+        f'eval "$({ros2lite} env)" && cd ~ && {ros2lite} interface show my_msgs/msg/Age && '
+        'printf "%s\\n" "$ROS2LITE_WORKSPACE"'
+    )
+    proc = subprocess.run(
+        ['bash', '-c', script],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path / 'ros2_ws',
+        timeout=60,
+    )
+    assert (proc.returncode, proc.stdout) == (
+        0,
+        f'int32 years\n{tmp_path / "ros2_ws"}\n',
+    ), proc.stderr
+    # outside any workspace the lines name none; one already exported is kept behind the new
+    plain = shell_lines('bash', {'ROS2LITE_WORKSPACE': '/elsewhere'})
+    assert 'ROS2LITE_WORKSPACE' not in plain
+    both = shell_lines('bash', {'ROS2LITE_WORKSPACE': '/elsewhere'}, workspaces=[Path('/ws')])
+    assert f'export ROS2LITE_WORKSPACE=/ws{os.pathsep}/elsewhere;' in both

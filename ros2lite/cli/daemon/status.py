@@ -16,16 +16,17 @@ def cli() -> None:
     from .common import table
 
     st = daemon.status(sessions=True)
-    if st.running and not st.answers_zenoh:
+    if st.running and not st.answers_zenoh and not st.secured:
         # a frozen router, or another program on the port: neither running nor free
         click.echo('The daemon is not answering')
         click.echo(st.message)
         return
     click.echo('The daemon is running' if st.running else 'The daemon is not running')
+    secured = ', secured: TLS with client certificates' if st.secured else ''
     if st.running and st.ours:
-        click.echo(f'Serving {st.endpoint} (ros2lite daemon, pid {st.pid})')
+        click.echo(f'Serving {st.endpoint} (ros2lite daemon, pid {st.pid}{secured})')
     elif st.running:
-        click.echo(f'Serving {st.endpoint} (a Zenoh router not started by ros2lite)')
+        click.echo(f'Serving {st.endpoint} (a Zenoh router not started by ros2lite{secured})')
     elif st.ours:
         click.echo(
             f'The ros2lite daemon (pid {st.pid}) exists but does not answer at {st.endpoint}'
@@ -41,6 +42,9 @@ def cli() -> None:
                 f"Graph cache full: {stats['dropped']} token(s) dropped past its "
                 f"{stats.get('limit')}; tools ask the router for the domains concerned"
             )
+    if st.running and not st.answers_zenoh:  # secured, and no way in from here
+        click.echo(st.message)
+        return
     if st.running:
         if st.sessions is None:
             click.echo("Connected sessions: unknown (the router's admin space does not answer)")

@@ -147,6 +147,20 @@ def complete_parameter_names(
     return [CompletionItem(n) for n in sorted(names) if n.startswith(incomplete)]
 
 
+def complete_pair_names(
+    ctx: click.Context, param: click.Parameter, incomplete: str
+) -> list[CompletionItem]:
+    """`param set`'s NAME VALUE...: the node's parameter names where a name goes (those not
+    typed yet), nothing where a value does."""
+    typed = ctx.params.get(param.name or "") or ()
+    if len(typed) % 2:
+        return []
+    taken = set(typed[::2])
+    return [
+        item for item in complete_parameter_names(ctx, param, incomplete) if item.value not in taken
+    ]
+
+
 def _remote_parameter_names(ctx: click.Context) -> list[str]:
     from ros2lite.parameter_client import AsyncParameterClient
     from ros2lite.tools.connection import Connection

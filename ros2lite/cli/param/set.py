@@ -6,12 +6,18 @@ import click
 
 from ..errors import CliError
 from ..parsing import command
-from .common import Target, node_options, with_remote
+from .common import Target, complete_pair_names, node_options, with_remote
 
 
 @command("set")
 @node_options()
-@click.argument("params_and_values", nargs=-1, required=True, metavar="NAME VALUE...")
+@click.argument(
+    "params_and_values",
+    nargs=-1,
+    required=True,
+    metavar="NAME VALUE...",
+    shell_complete=complete_pair_names,
+)
 @click.option(
     "--atomic",
     is_flag=True,

@@ -275,16 +275,20 @@ def warn_type_mismatch(watch: TopicMonitor, type_name: str) -> None:
     mismatch = watch.type_mismatch(type_name)
     if mismatch is None:
         return
+    hint = ''
     if mismatch.same_name:
         why = (
             f'as {type_name} with type hash {", ".join(mismatch.published_hashes)}, not '
             f'{mismatch.type_hash} (another definition of the type)'
         )
     else:
+        from ros2lite.pkg.distro import other_distro_name
+
         why = f'as {", ".join(mismatch.published_types)}, not {type_name}'
+        hint = other_distro_name(type_name, list(mismatch.published_types))
     click.echo(
         f"WARNING: topic '{watch.topic}' is published {why}; nothing will arrive until a "
-        f'matching publisher appears',
+        f'matching publisher appears' + (f' ({hint})' if hint else ''),
         err=True,
     )
 

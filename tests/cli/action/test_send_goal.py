@@ -60,8 +60,17 @@ def test_bad_input(run: Callable[..., Any]) -> None:
     assert result.code == 1 and result.out == ''
     assert result.err.startswith('Failed to populate message fields: ')
     assert 'ordr' in result.err and len(result.err.splitlines()) == 1
-    result = run('action', 'send_goal', '/fib', FIB, '{order: 1.5.}')
-    assert result.code == 1 and result.err.startswith('Failed to populate message fields: ')
+    result = run('action', 'send_goal', '/fib', FIB, '{order: 1.5}')
+    assert (result.code, result.err) == (
+        1,
+        "Failed to populate message fields: field 'order' is an integer (int32); 1.5 is not one\n",
+    )
+    result = run('action', 'send_goal', '/fib', FIB, '{order: [1}')
+    assert (result.code, result.err) == (
+        1,
+        "Failed to populate message fields: invalid YAML: expected ',' or ']', but got '}' "
+        '(line 1, column 11)\n',
+    )
 
 
 def test_timeout_waiting_for_server(run: Callable[..., Any], ros_router: str) -> None:

@@ -5,8 +5,10 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 from ros2lite import daemon
+from ros2lite.daemon.control import daemon_pid
 
 from ..conftest import run_process
 from .conftest import Private
@@ -104,3 +106,59 @@ def test_sessions_and_their_nodes(private: Private) -> None:
         ['client', str(client.zid()), '(no', 'nodes)'],
         ['peer', node_zid, '/status_probe'],
     ]
+
+
+def test_a_secured_router_is_called_secured_not_frozen(private: Private, tmp_path: Path) -> None:
+    """A daemon listening with TLS and client certificates, asked by a shell without an
+    enclave (at its tls/ endpoint, or at tcp/ on the same port by mistake), and by one with
+    an enclave of the same keystore: said to be there and secured, with what can be seen."""
+    keystore = tmp_path / 'ks'
+    for args in (('create_keystore', str(keystore)), ('create_enclave', str(keystore), '/me')):
+        assert run_process('security', *args).code == 0
+    port = private.endpoint.rpartition(':')[2]
+    tls = f'tls/127.0.0.1:{port}'
+    secured = {
+        **private.env,
+        'ROS2LITE_ROUTER': tls,
+        'ROS_SECURITY_ENABLE': 'true',
+        'ROS_SECURITY_STRATEGY': 'Enforce',
+        'ROS_SECURITY_KEYSTORE': str(keystore),
+        'ROS_SECURITY_ENCLAVE_OVERRIDE': '/me',
+    }
+    started = run_process('daemon', 'start', env=secured)
+    assert (started.code, started.out) == (0, 'The daemon has been started\n'), started.err
+    pid = daemon_pid(tls)  # the fixture points this process at the same runtime dir
+    try:
+        inside = run_process('daemon', 'status', env=secured)
+        assert (inside.code, inside.err) == (0, '')
+        assert inside.out.startswith(
+            'The daemon is running\n'
+            f'Serving {tls} (ros2lite daemon, pid {pid}, secured: TLS with client certificates)\n'
+            'Connected sessions: '
+        )
+        outside = run_process('daemon', 'status', env={**private.env, 'ROS2LITE_ROUTER': tls})
+        assert (outside.code, outside.err) == (0, '')
+        assert outside.out == (
+            'The daemon is running\n'
+            f'Serving {tls} (ros2lite daemon, pid {pid}, secured: TLS with client certificates)\n'
+            f'The ros2lite daemon (pid {pid}) at {tls} is secured (TLS with client '
+            'certificates); this process runs unsecured, so it sees that the router is there '
+            f'but not its sessions or graph: to join, use {tls} with ROS_SECURITY_ENABLE=true, '
+            'ROS_SECURITY_KEYSTORE and an enclave (ROS_SECURITY_ENCLAVE_OVERRIDE or --ros-args '
+            '--enclave)\n'
+        )
+        assert 'frozen' not in outside.out
+        plain = run_process('daemon', 'status', env=private.env)  # tcp/ at the same port
+        assert plain.out.startswith(
+            'The daemon is running\n'
+            f'Serving {private.endpoint} (a Zenoh router not started by ros2lite, secured: '
+            f'TLS with client certificates)\nA Zenoh router at {private.endpoint} is secured'
+        )
+        assert f'use {tls} with ROS_SECURITY_ENABLE=true' in plain.out
+        # a graph verb there gets the same words, in one line
+        listed = run_process('topic', 'list', env=private.env)
+        assert (listed.code, listed.out) == (1, '')
+        assert listed.err.startswith(f'A Zenoh router at {private.endpoint} is secured')
+        assert listed.err.count('\n') == 1
+    finally:
+        assert run_process('daemon', 'stop', env=secured).code == 0

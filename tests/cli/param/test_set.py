@@ -68,3 +68,17 @@ def test_delete(run: Callable[..., Result], fresh_target: str) -> None:
     result = run("param", "delete", node, "loose")
     assert (result.code, result.out) == (0, "Deleted parameter successfully\n")
     assert "loose" not in run("param", "list", node).out
+
+
+def test_parameter_names_complete_where_a_name_goes(target: str) -> None:
+    """`param set NODE <TAB>` offers the live node's parameters; after a name comes its value
+    (nothing offered), then names again, less those already set on the line."""
+    from tests.cli.test_completion import complete
+
+    assert complete(f"ros2lite param set {target} na") == ["name", "names"]
+    assert complete(f"ros2lite param set {target} name ") == []
+    assert complete(f"ros2lite param set {target} name x na") == ["names"]
+    every = "bools count doubles fixed flag ints loose name names nested.deep.value ratio"
+    every += " start_type_description_service use_sim_time"
+    assert complete(f"ros2lite param set {target} ") == every.split()
+    assert complete("ros2lite param set /cli/no_such_node na") == []

@@ -69,6 +69,15 @@ def test_call_errors(adder: Any) -> None:
             "Failed to populate field: invalid literal for int() with base 10: 'x'",
         ),
         (
+            ('/math/add', 'example_interfaces/AddTwoInts', '{a: 1.5, b: 2}'),
+            "Failed to populate field: field 'a' is an integer (int64); 1.5 is not one",
+        ),
+        (
+            ('/math/add', 'example_interfaces/AddTwoInts', '{a: 1, b: [2'),
+            'The passed value needs to be in YAML string or a dictionary: '
+            "expected ',' or ']', but got '<stream end>' (line 1, column 13)",
+        ),
+        (
             ('/math/add', 'example_interfaces/AddTwoInts', '[1, 2]'),
             'The passed value needs to be a dictionary in YAML format',
         ),

@@ -105,6 +105,24 @@ def test_type_not_published_is_said_at_once(
     )
 
 
+def test_a_jazzy_name_at_a_kilted_turtlesim_names_ros_distro(
+    run: Callable[..., Result], talker: Any, ros_context: Any, topic: str
+) -> None:
+    from ros2lite.interfaces import get_interface
+
+    pose = get_interface('turtlesim_msgs/msg/Pose')
+    talker(topic, 'turtlesim_msgs/msg/Pose', lambda i: pose(x=float(i)))
+    wait_until(lambda: has_endpoint(ros_context, topic, 'MP'))
+    result = run('topic', 'echo', topic, 'turtlesim/msg/Pose', '--timeout', '0.5')
+    assert (result.code, result.out) == (0, '')
+    assert result.err == (
+        f"WARNING: topic '{topic}' is published as turtlesim_msgs/msg/Pose, not "
+        'turtlesim/msg/Pose; nothing will arrive until a matching publisher appears (the '
+        'node runs with ROS_DISTRO=kilted, which names them turtlesim_msgs: type '
+        'turtlesim_msgs/msg/Pose, or start it without ROS_DISTRO=kilted)\n'
+    )
+
+
 def test_csv_and_flow_style(run: Callable[..., Result], talker: Any, topic: str) -> None:
     # as ros2cli prints them: an empty sequence in first place leaves no CSV column, and
     # --flow-style flows the sequences only, mappings stay in block style

@@ -98,7 +98,16 @@ def test_value_errors(run: Callable[..., Result], topic: str) -> None:
         ('std_msgs/msg/Nope', '{}'): 'The passed message type is invalid',
         (STRING, 'data'): 'The passed value needs to be a dictionary in YAML format',
         (STRING, '[1, 2]'): 'The passed value needs to be a dictionary in YAML format',
-        (STRING, '{data: [1'): 'The passed value needs to be in YAML string or a dictionary',
+        # where the YAML breaks, in the one line
+        (STRING, '{data: [1'): 'The passed value needs to be in YAML string or a dictionary: '
+        "expected ',' or ']', but got '<stream end>' (line 1, column 10)",
+        (STRING, 'data: 1\n  b: 2'): 'The passed value needs to be in YAML string or a '
+        'dictionary: mapping values are not allowed here (line 2, column 4)',
+        # refused as rclpy's setter refuses it, never truncated to 1
+        ('std_msgs/msg/Int32', '{data: 1.5}'): "Failed to populate field: field 'data' is an "
+        'integer (int32); 1.5 is not one',
+        ('std_msgs/msg/Int32MultiArray', '{data: [1, 2.5]}'): "Failed to populate field: field "
+        "'data' is a list of integers (int32[]); 2.5 is not one",
         (STRING, '{nope: 1}'): "Failed to populate field: 'String' object has no attribute 'nope'",
         ('std_msgs/msg/Int8', '{data: 300}'): 'Failed to populate field: The \'data\' field '
         'must be an integer in [-128, 127]',

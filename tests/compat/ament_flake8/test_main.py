@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 
 from ros2lite.pkg.environment import COMPAT_DIR
-from tests.pkg.test_colcon import colcon_site  # noqa: F401 (the extra's packages, a fixture)
+from tests.tools.colcon.test_course_workspaces import colcon_site  # noqa: F401 (the extra's packages, a fixture)
 
 RUN = """
 import json
