@@ -29,6 +29,7 @@ __all__ = [
     'GraphCache',
     'GraphContext',
     'GraphMixin',
+    'GraphView',
     'NodeInfo',
     'TopicEndpointInfo',
     'action_endpoints',
@@ -42,8 +43,10 @@ __all__ = [
     'node_info',
     'node_names_and_namespaces',
     'parse_tokens',
+    'read_tokens',
     'service_names_and_types',
     'snapshot',
+    'survey',
     'topic_counts',
     'topic_names_and_types',
 ]
@@ -56,9 +59,38 @@ _SERVICE_KINDS = (EntityKind.SERVICE, EntityKind.CLIENT)
 
 def snapshot(session: Session, domain_id: int, timeout: float = 5.0) -> list[Entity]:
     """All entities in the domain, from one complete liveliness query."""
-    from ros2lite.transport.session import liveliness_keys
+    return survey(session, domain_id, timeout).entities
 
-    return parse_tokens(liveliness_keys(session, domain_id, timeout))
+
+@dataclass
+class GraphView:
+    """The entities of one look at the graph, with what a tool should say about it: the
+    keys skipped as no token rmw_zenoh makes, and whether the answer was whole."""
+
+    entities: list[Entity]
+    skipped: list[str]
+    complete: bool = True
+
+
+def survey(session: Session, domain_id: int, timeout: float = 5.0) -> GraphView:
+    """The domain's entities from one liveliness query, saying whether the time-out cut it."""
+    from ros2lite.transport.session import liveliness_answer
+
+    keys, complete = liveliness_answer(session, domain_id, timeout)
+    return read_tokens(keys, complete=complete)
+
+
+def read_tokens(keys: Iterable[str], *, complete: bool = True) -> GraphView:
+    """`parse_tokens`, keeping the keys it skipped (each once) for the tool to report."""
+    entities: list[Entity] = []
+    skipped: list[str] = []
+    for key in dict.fromkeys(keys):
+        entity = parse_token(key)
+        if entity is None:
+            skipped.append(key)
+        else:
+            entities.append(entity)
+    return GraphView(entities, skipped, complete)
 
 
 def parse_tokens(keys: Iterable[str]) -> list[Entity]:

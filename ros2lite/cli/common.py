@@ -55,6 +55,7 @@ def connect(
         use_sim_time=use_sim_time,
         as_node=as_node,
         graph_cache=not no_daemon,
+        on_note=lambda text: render.echo(f'ros2lite: {text}', err=True),
     )
 
 

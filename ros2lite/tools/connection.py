@@ -73,8 +73,13 @@ class Connection:
         use_sim_time: bool = False,
         as_node: bool = False,
         graph_cache: bool = True,
+        on_note: Callable[[str], None] | None = None,
     ) -> None:
         self.router = router
+        # where to say what a look at the graph found odd (skipped tokens, a cut answer);
+        # each note once per run
+        self.on_note = on_note
+        self._noted: set[str] = set()
         self.autostart = autostart
         self.graph_cache = graph_cache
         # a node's peer session (a recorder's: it must keep hearing publishers while the
@@ -126,8 +131,9 @@ class Connection:
     # -- the graph ---------------------------------------------------------------------------
     def entities(self, timeout: float = 5.0) -> list[Entity]:
         """Every entity in the domain: the daemon's graph cache, else one complete query."""
-        from ros2lite.graph import parse_tokens, snapshot
+        from ros2lite.graph import read_tokens, survey
 
+        view = None
         if self.graph_cache:
             from ros2lite.daemon.graph_cache import cache_endpoint, cached_keys
             from ros2lite.transport.endpoints import domain_id
@@ -136,9 +142,28 @@ class Connection:
             if endpoint is not None:
                 keys = cached_keys(endpoint, domain_id(), min(timeout, 1.0))
                 if keys is not None:
-                    return parse_tokens(keys)
-        self.open()
-        return snapshot(self.context.require(), self.context.domain_id, timeout)
+                    view = read_tokens(keys)
+        if view is None:
+            self.open()
+            view = survey(self.context.require(), self.context.domain_id, timeout)
+        if view.skipped:
+            self._note(
+                'skipped',
+                f"skipped {len(view.skipped)} liveliness token(s) that are not as rmw_zenoh "
+                f"makes them, e.g. {view.skipped[0][:200]!a}",
+            )
+        if not view.complete:
+            self._note(
+                'cut',
+                f"the graph may be incomplete: the router's answer was cut after {timeout:g} s "
+                f"({len(view.entities)} entities so far)",
+            )
+        return view.entities
+
+    def _note(self, kind: str, text: str) -> None:
+        if self.on_note is not None and kind not in self._noted:
+            self._noted.add(kind)
+            self.on_note(text)
 
     def wait_for_node(self, fqn: str, *, include_hidden: bool, timeout: float) -> bool:
         """Whether the node `fqn` is (or appears within `timeout` s) in the graph; a hidden

@@ -251,7 +251,13 @@ def parse_token(key: str, *, strict: bool = False) -> Entity | None:
     with the reason when ``strict``).  Extra trailing chunks are kept in ``Entity.extra``;
     a QoS chunk that does not decode leaves ``qos=None`` unless ``strict``.
     """
-    parts = str(key).split("/")
+    key = str(key)
+    if "\n" in key:
+        # no ROS name, type, hash or QoS number holds one, and wherever names travel one a
+        # line (the daemon's answer, `node list` piped) it would forge a second entry
+        _fail(strict, key, "a newline in the key")
+        return None
+    parts = key.split("/")
     if len(parts) < 9 or parts[0] != LIVELINESS_PREFIX:
         _fail(strict, key, "wrong prefix or too few chunks")
         return None
@@ -293,7 +299,7 @@ def parse_token(key: str, *, strict: bool = False) -> Entity | None:
     qos: QoSProfile | None
     try:
         qos = _decode_qos_cached(parts[12])
-    except ValueError:
+    except (ValueError, OverflowError):
         if strict:
             raise
         qos = None

@@ -73,8 +73,15 @@ def best_available_qos(profile: QoSProfile) -> QoSProfile:
     )
 
 
+# rmw_zenoh reads every number of a QoS chunk as an unsigned 64-bit value
+_UINT64_MAX = 2**64 - 1
+_INFINITE_NS = 2**63 - 1
+
+
 def _rmw_time(sec: int, nsec: int) -> Duration:
-    return Duration(nanoseconds=sec * 1_000_000_000 + nsec)
+    """A token's duration: rmw_zenoh takes any uint64 seconds and nanoseconds, while a
+    Duration holds at most rmw's infinity (INT64_MAX ns), so longer ones are infinite."""
+    return Duration(nanoseconds=min(sec * 1_000_000_000 + nsec, _INFINITE_NS))
 
 
 def _num(value: int, default: int) -> str:
@@ -106,9 +113,12 @@ def _parse_int(text: str, default: int, what: str, chunk: str) -> int:
     if not text:
         return default
     try:
-        return int(text)
+        value = int(text)
     except ValueError:
         raise ValueError(f"bad {what} {text!r} in QoS chunk {chunk!r}") from None
+    if value > _UINT64_MAX:
+        raise ValueError(f"{what} {text!r} in QoS chunk {chunk!r} exceeds 64 bits")
+    return value
 
 
 def decode_qos(

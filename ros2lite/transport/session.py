@@ -40,6 +40,7 @@ __all__ = [
     "declare_querier",
     "declare_queryable",
     "declare_token",
+    "liveliness_answer",
     "liveliness_keys",
     "put_local",
     "sole_subscriber",
@@ -80,6 +81,16 @@ def declare_token(session: Session, key: str) -> Handle:
 
 def liveliness_keys(session: Session, domain_id: int, timeout: float = 5.0) -> list[str]:
     """Keys of every live token of the domain, from one complete liveliness query."""
+    return liveliness_answer(session, domain_id, timeout)[0]
+
+
+def liveliness_answer(
+    session: Session, domain_id: int, timeout: float = 5.0
+) -> tuple[list[str], bool]:
+    """The keys of one liveliness query, and whether it ended before its time-out: a query
+    the time-out ends has only the replies that came until then (a router with tens of
+    thousands of tokens can take longer)."""
+    start = time.monotonic()
     # an explicit large channel: the default handler can stall past a few hundred replies
     replies = (
         as_zenoh(session)
@@ -95,7 +106,8 @@ def liveliness_keys(session: Session, domain_id: int, timeout: float = 5.0) -> l
         sample = reply.ok
         if sample is not None:
             keys.append(str(sample.key_expr))
-    return keys
+    # Zenoh closes the channel either when every queryable has answered or at the time-out
+    return keys, time.monotonic() - start < timeout * 0.95
 
 
 def declare_liveliness_subscriber(
