@@ -38,7 +38,13 @@ from pathlib import Path
 
 from .bundled import BUNDLED
 from .manifest import MANIFEST, is_valid_package_name
-from .workspace import SourcePackage, scan_workspace, workspace_sources, workspaces
+from .workspace import (
+    ROS2LITE_ROOT,
+    SourcePackage,
+    scan_workspace,
+    workspace_sources,
+    workspaces,
+)
 
 __all__ = [
     'BUNDLED_INTERFACES',
@@ -57,7 +63,7 @@ __all__ = [
 INTERFACE_PATH_ENV = 'ROS2LITE_INTERFACE_PATH'
 ENTRY_POINT_GROUP = 'ros2lite.executables'
 """The entry-point group whose `<package>.<executable>` names declare packages and executables."""
-_ROOT = Path(__file__).resolve().parent.parent
+_ROOT = ROS2LITE_ROOT
 BUNDLED_INTERFACES = _ROOT / 'msgs'
 BUNDLED_PACKAGES = _ROOT / 'bundled'
 _KINDS = ('msg', 'srv', 'action')

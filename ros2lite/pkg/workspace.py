@@ -12,6 +12,13 @@ A workspace is a directory whose `src/` holds packages (each a directory with a
 2. each directory in ``ROS2LITE_WORKSPACE`` (`:`-separated): its `src/` if it has one,
    else the directory itself.
 
+ros2lite's own files are never a source workspace, nor part of one: its bundled packages
+carry `package.xml` files (for `pkg xml`), and a checkout cloned into `~/ros2_ws/src/` (where
+ROS users keep everything) would otherwise be read as a workspace of 40 packages hiding every
+bundled demo. The walk skips the running ros2lite's package directory and any directory that
+is a ros2lite package (another install or checkout, by its shape); the package directory also
+holds a `COLCON_IGNORE`, so colcon itself skips it too.
+
 The walk follows colcon's rules: it does not descend into a package, skips hidden
 directories and any directory holding a `COLCON_IGNORE`, `AMENT_IGNORE` or `CATKIN_IGNORE`
 file, follows symlinked directories once (no loops), and is bounded in depth and size so a
@@ -30,11 +37,13 @@ from .manifest import MANIFEST, Manifest, ManifestError, read_manifest
 
 __all__ = [
     'IGNORE_MARKERS',
+    'ROS2LITE_ROOT',
     'SKIPPED_DIRS',
     'WORKSPACE_ENV',
     'Scan',
     'SourcePackage',
     'enclosing_workspace',
+    'inside_ros2lite',
     'scan_workspace',
     'workspace_sources',
     'workspaces',
@@ -50,6 +59,37 @@ _MAX_DIRS = 5000
 # (colcon workspaces keep packages at src/<repo>/<pkg>), so a big non-ROS ~/src costs little
 _DETECT_DEPTH = 4
 _DETECT_DIRS = 1000
+ROS2LITE_ROOT = Path(__file__).resolve().parent.parent
+"""The running ros2lite's package directory (its bundled packages and interfaces)."""
+_own_key: tuple[int, int] | None = None
+
+
+def _own_root_key() -> tuple[int, int]:
+    global _own_key
+    if _own_key is None:
+        try:
+            st = ROS2LITE_ROOT.stat()
+            _own_key = (st.st_dev, st.st_ino)
+        except OSError:
+            _own_key = (-1, -1)
+    return _own_key
+
+
+def _is_ros2lite_package(directory: Path, names: set[str]) -> bool:
+    """Is `directory` a ros2lite package directory (any install or checkout of it)?"""
+    return (
+        directory.name == 'ros2lite'
+        and {'__init__.py', 'msgs', 'pkg'} <= names
+        and (directory / 'pkg' / 'index.py').is_file()
+    )
+
+
+def inside_ros2lite(path: Path) -> bool:
+    """Does `path` lie in the running ros2lite's package directory (never a workspace)?"""
+    try:
+        return path.resolve().is_relative_to(ROS2LITE_ROOT)
+    except (OSError, RuntimeError):
+        return False
 
 
 @dataclass(frozen=True)
@@ -91,14 +131,17 @@ def _package_dirs(
         budget -= 1
         try:
             st = directory.stat()
-            if (st.st_dev, st.st_ino) in seen:
+            key = (st.st_dev, st.st_ino)
+            if key in seen or key == _own_root_key():
                 continue
-            seen.add((st.st_dev, st.st_ino))
+            seen.add(key)
             entries = sorted(os.scandir(directory), key=lambda e: e.name)
         except OSError:
             continue
         names = {e.name for e in entries}
         if any(marker in names for marker in IGNORE_MARKERS):
+            continue
+        if _is_ros2lite_package(directory, names):
             continue
         if MANIFEST in names:  # a package (perhaps `src` itself): do not look inside
             yield directory
@@ -125,6 +168,8 @@ def scan_workspace(root: Path, workspace: Path | None = None) -> Scan:
     """Every package under `root` (a workspace's `src/`)."""
     scan = Scan(root)
     owner = workspace if workspace is not None else root
+    if inside_ros2lite(root):
+        return scan
     for directory in _package_dirs(root):
         try:
             manifest = read_manifest(directory / MANIFEST)
@@ -178,7 +223,7 @@ def workspaces(env: Mapping[str, str] | None = None, cwd: Path | None = None) ->
     if enclosing is not None:
         found.append(enclosing)
     for entry in environ.get(WORKSPACE_ENV, '').split(os.pathsep):
-        if entry:
+        if entry and not inside_ros2lite(Path(entry).expanduser()):
             found.append(Path(entry).expanduser().absolute())
     unique: list[Path] = []
     keys: set[Path] = set()
