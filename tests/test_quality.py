@@ -197,8 +197,8 @@ MAP = {
     'daemon': '__main__ router connect probe paths graph_cache control errors',
     'bag': 'writer reader recorder player metadata definitions qos reindex convert errors storage/',
     'bag/storage': 'mcap sqlite3',
-    'pkg': 'index bundled workspace manifest setup_files executables runner create templates'
-    ' ament_index environment',
+    'pkg': 'index errors bundled not_here workspace manifest setup_files executables runner'
+    ' create templates ament_index environment',
     'launch': 'api service context entity actions conditions substitutions events'
     ' event_handlers execute process_spec ros find_package sources output introspection errors'
     ' flow frontend/',
@@ -210,7 +210,8 @@ MAP = {
     ' lifecycle/ composition/ rclpy_components/ turtlesim/ teleop/ teleop_twist_keyboard/'
     ' rqt_graph/',
     'bundled/demo_nodes_py': 'talker listener add_two_ints_{server,client,client_async}'
-    ' introspection_{client,service} parameter_blackboard launch/talker_listener.launch.py',
+    ' introspection_{client,service} parameter_blackboard launch/talker_listener.launch.py'
+    ' launch/add_two_ints.launch.py',
     'bundled/action_tutorials_py': 'fibonacci_action_{server,client}',
     'bundled/lifecycle_py': 'lifecycle_talker',
     'bundled/lifecycle': 'lifecycle_listener',
@@ -817,7 +818,6 @@ LAZY = {
     'interfaces.convert': '+26 modules ~16 ms: PyYAML, safe_yaml',
     'launch.api': '+5 modules ~5 ms: the package index',
     'launch.context': '+6 modules ~3 ms: the package index',
-    'launch.find_package': '+8 modules ~7 ms: the package index',
     'launch.frontend.builders': '+3 modules ~5 ms: tempfile, launch/ros, names.py',
     'launch.ros': '+39 modules ~27 ms: PyYAML, xml.etree, the package index',
     'launch.sources': '+5 modules ~3 ms: pkg environment',
@@ -832,6 +832,7 @@ LAZY = {
     'parameters.files': '+29 modules ~18 ms: PyYAML, safe_yaml',
     'parameters.services': '+12 modules ~12 ms: qos.py',
     'parameters.store': '+29 modules ~19 ms: the interface registry',
+    'pkg.errors': '+3 modules ~9 ms: difflib (heapq), for close matches in a message shown',
     'pkg.executables': '+64 modules ~28 ms: importlib.metadata, tempfile, setup files',
     'pkg.index': '+62 modules ~22 ms: importlib.metadata, tempfile',
     'pkg.manifest': '+10 modules ~4 ms: xml.etree, util/files',

@@ -26,8 +26,8 @@ def test_scan_follows_colcon_rules(tmp_path: Path) -> None:
     scan = scan_workspace(src)
     assert sorted(scan.packages) == ['a', 'b']
     assert scan.packages['a'].directory == src / 'dup'  # the first one in name order
-    assert any("duplicate package 'a'" in p for p in scan.problems)
-    assert any("invalid package name 'bad name'" in p for p in scan.problems)
+    assert any("duplicate package 'a'" in str(p) for p in scan.problems)
+    assert any("invalid package name 'bad name'" in str(p) for p in scan.problems)
 
 
 def test_enclosing_workspace(tmp_path: Path) -> None:
@@ -86,14 +86,18 @@ REPO = Path(__file__).resolve().parents[2]
 @pytest.fixture(scope='module')
 def cloned_home(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A home whose `~/ros2_ws/src/ros2lite` is this checkout (its tracked files, as a clone
-    holds them, with the working tree's edits), beside a package the user wrote."""
+    holds them once committed: the working tree's files, new ones too), beside a package the
+    user wrote."""
     import shutil
     import subprocess
 
     home = tmp_path_factory.mktemp('home')
     clone = home / 'ros2_ws' / 'src' / 'ros2lite'
     listed = subprocess.run(
-        ['git', 'ls-files', '-z'], cwd=REPO, capture_output=True, check=True
+        ['git', 'ls-files', '-z', '--cached', '--others', '--exclude-standard'],
+        cwd=REPO,
+        capture_output=True,
+        check=True,
     ).stdout.decode()
     for rel in filter(None, listed.split('\0')):
         if (REPO / rel).is_file():
@@ -160,3 +164,31 @@ def test_a_checkout_alone_is_no_workspace(tmp_path: Path) -> None:
     assert enclosing_workspace(tmp_path) is None
     assert workspaces({'ROS2LITE_WORKSPACE': str(ROS2LITE_ROOT / 'bundled')}, tmp_path) == []
     assert scan_workspace(ROS2LITE_ROOT).packages == {}
+
+
+def test_find_nearby(tmp_path: Path) -> None:
+    """Around (cwd and its parents) or just below (its subdirectories): sources by package
+    name or by directory, an install/ isolated or merged; workspaces in use are skipped."""
+    from ros2lite.pkg.workspace import find_nearby
+
+    ws = tmp_path / 'ros2_ws'
+    write_package(ws / 'src' / 'repo' / 'renamed_dir', 'real_name')
+    found = find_nearby('real_name', tmp_path)
+    assert found is not None and (found.workspace, found.built, found.sources) == (ws, False, True)
+    assert find_nearby('real_name', ws / 'src' / 'repo') == found  # from a parent
+    assert find_nearby('real_name', tmp_path, in_use=[ws]) is None
+    assert find_nearby('absent', tmp_path) is None
+    merged = tmp_path / 'merged'
+    marker = merged / 'install' / 'share' / 'ament_index' / 'resource_index' / 'packages'
+    marker.mkdir(parents=True)
+    (marker / 'only_built').write_text('')
+    built = find_nearby('only_built', tmp_path)
+    assert built is not None and (built.workspace, built.built, built.sources) == (
+        merged,
+        True,
+        False,
+    )
+    assert built.ways_in() == (
+        f'it is built in the workspace {merged}, which this shell has not sourced: '
+        f'`source {merged}/install/setup.bash`'
+    )
