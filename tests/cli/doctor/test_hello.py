@@ -15,7 +15,7 @@ from ros2lite.node import Node
 from ros2lite.tools.multicast import MulticastSender
 from tests.cli.conftest import Result
 from tests.spinning import free_port, wait_until
-from tests.test_multicast import multicast_on_loopback
+from tests.tools.test_multicast import multicast_on_loopback
 
 String = get_interface('std_msgs/msg/String')
 OTHER = "hello, it's me otherhost"
