@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -192,3 +193,38 @@ def test_find_nearby(tmp_path: Path) -> None:
         f'it is built in the workspace {merged}, which this shell has not sourced: '
         f'`source {merged}/install/setup.bash`'
     )
+
+
+def test_the_quick_start_runs_in_the_clone(
+    cloned_home: Path, ros_context: Any, processes: Any
+) -> None:
+    """`run demo_nodes_py talker` typed in the checkout publishes, and `doctor` there has
+    nothing to say about packages."""
+    import subprocess
+    import sys
+
+    from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.node import Node
+    from tests.spinning import spin_until
+
+    clone = cloned_home / 'ros2_ws' / 'src' / 'ros2lite'
+    node = Node('clone_probe', context=ros_context)
+    got: list[str] = []
+    node.create_subscription(
+        'std_msgs/msg/String', '/clone_chatter', lambda m: got.append(m.data), 10
+    )
+    ex = SingleThreadedExecutor(context=ros_context)
+    ex.add_node(node)
+    env = {**os.environ, 'HOME': str(cloned_home)}
+    talker = ['run', 'demo_nodes_py', 'talker', '--ros-args', '-r', 'chatter:=/clone_chatter']
+    processes.start(
+        [sys.executable, '-m', 'ros2lite', *talker],
+        cwd=clone,
+        env=env,
+        stdin=subprocess.DEVNULL,
+        start_new_session=True,
+    )
+    spin_until(ex, lambda: got, timeout=20)
+    assert got[0].startswith('Hello World: ')
+    _code, out, err = _cli(cloned_home, clone, 'doctor')
+    assert 'workspace package' not in err and 'package' not in out.partition('Failed')[2], err
