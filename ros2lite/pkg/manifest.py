@@ -101,7 +101,10 @@ def read_manifest(path: Path) -> Manifest:
     except ET.ParseError as e:
         line = e.position[0] if e.position else None
         reason = str(e).split(': line ')[0]
-        raise ManifestError(path, line, f'not valid XML: {reason}') from None
+        # the package it most likely is, for a lookup by name to find this line
+        named = re.search(rb'<name>\s*([A-Za-z][A-Za-z0-9_-]*)\s*</name>', data)
+        package = named[1].decode() if named else ''
+        raise ManifestError(path, line, f'not valid XML: {reason}', package) from None
     package_line = _line_of(data, root.tag)
     if root.tag != 'package':
         raise ManifestError(path, package_line, f'the root element is <{root.tag}>, not <package>')

@@ -68,4 +68,10 @@ def test_the_index_words_each_case(tmp_path: Path) -> None:
     assert isinstance(gazebo, NotHereError)
     assert str(gazebo).startswith('Package not found; gazebo_ros belongs to Gazebo')
     assert str(index.not_found('nowhere_at_all')) == "Package 'nowhere_at_all' not found"
+    # a folder named otherwise: the name in the broken file still finds its line
+    (ws / 'src' / 'repo').mkdir()
+    (ws / 'src' / 'repo' / 'package.xml').write_text('<package>\n<name>in_repo</name>\n<x>\n')
+    assert str(PackageIndex({}, cwd=ws).not_found('in_repo')) == (
+        f"Package 'in_repo' not found; {ws}/src/repo/package.xml:4: not valid XML: no element found"
+    )
     assert index.why_missing('turtlesim') == ''  # it is found: nothing to explain
