@@ -13,7 +13,7 @@ from pathlib import Path
 
 from ros2lite.exceptions import BrokenFileError, Ros2liteError
 
-__all__ = ['NotHereError', 'PackageFileError', 'PackageNotFoundError']
+__all__ = ['NotHereError', 'PackageFileError', 'PackageNotFoundError', 'did_you_mean']
 
 
 class PackageNotFoundError(Ros2liteError, KeyError):
@@ -39,7 +39,7 @@ class PackageNotFoundError(Ros2liteError, KeyError):
     def __str__(self) -> str:  # KeyError's own would quote the message
         if self._text is None:
             reason = self._explain() if self._explain is not None else ''
-            tail = f'; {reason}' if reason else _suggest(self.package, self._known)
+            tail = f'; {reason}' if reason else did_you_mean(self.package, self._known)
             self._text = str(self.args[0]) + tail
         return self._text
 
@@ -66,7 +66,8 @@ class NotHereError(PackageNotFoundError):
         super().__init__(package, message=message)
 
 
-def _suggest(name: str, candidates: Sequence[str]) -> str:
+def did_you_mean(name: str, candidates: Sequence[str]) -> str:
+    """'; did you mean: a, b?' for the close matches of `name`, or ''."""
     import difflib  # only when a message is shown; the index loads this module everywhere
 
     close = difflib.get_close_matches(name, sorted(set(candidates)), n=3, cutoff=0.6)

@@ -28,7 +28,6 @@ would refuse (:class:`~ros2lite.pkg.errors.PackageFileError`), or that it is C++
 
 from __future__ import annotations
 
-import difflib
 import os
 import re
 import sys
@@ -40,7 +39,7 @@ from pathlib import Path
 from ros2lite.exceptions import Ros2liteError
 
 from .bundled import BUNDLED, STAND_INS
-from .errors import NotHereError, PackageNotFoundError
+from .errors import NotHereError, PackageNotFoundError, did_you_mean
 from .index import (
     ENTRY_POINT_GROUP,
     ORIGIN_AMENT,
@@ -76,11 +75,6 @@ _PYTHON = re.compile(r'python[0-9.]*\Z')
 EQUIVALENTS = {'demo_nodes_cpp': 'demo_nodes_py'}
 
 
-def _suggest(name: str, candidates: Sequence[str]) -> str:
-    close = difflib.get_close_matches(name, sorted(set(candidates)), n=3, cutoff=0.6)
-    return f"; did you mean: {', '.join(close)}?" if close else ''
-
-
 class ExecutableNotFoundError(Ros2liteError, LookupError):
     """The package has no executable by that name; the message names close matches (or,
     given, says why it is not here)."""
@@ -88,7 +82,7 @@ class ExecutableNotFoundError(Ros2liteError, LookupError):
     def __init__(
         self, package: str, name: str, known: Sequence[str] = (), message: str | None = None
     ) -> None:
-        super().__init__(message or f'No executable found{_suggest(name, known)}')
+        super().__init__(message or f'No executable found{did_you_mean(name, known)}')
         self.package = package
         self.name = name
 
