@@ -45,12 +45,6 @@ class Ros2liteError(Exception):
     """Base of every error ros2lite raises on purpose; its message is one line for a user."""
 
 
-class BrokenFileError(Ros2liteError):
-    """A file the user wrote (a package.xml, a setup.py, a .msg) that cannot be used; the
-    message is `file:line: what is wrong`, as colcon names it, and is all a user needs:
-    shown alone, even where a node's own errors would get a traceback."""
-
-
 class NotInitializedException(Ros2liteError, RuntimeError):
     """A node or entity was created before `ros2lite.init()` (rclpy's name)."""
 

@@ -7,16 +7,9 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from ros2lite.exceptions import BrokenFileError, Ros2liteError
+from ros2lite.exceptions import Ros2liteError
 
-__all__ = [
-    'CdrError',
-    'DefinitionError',
-    'FieldError',
-    'InterfaceError',
-    'PopulateError',
-    'UnknownInterfaceError',
-]
+__all__ = ['CdrError', 'FieldError', 'InterfaceError', 'PopulateError', 'UnknownInterfaceError']
 
 
 class InterfaceError(Ros2liteError, ValueError):
@@ -38,10 +31,6 @@ class UnknownInterfaceError(InterfaceError, LookupError):
             reason = self._explain() if self._explain is not None else ''
             self._text = str(self.args[0]) + (f'; {reason}' if reason else '')
         return self._text
-
-
-class DefinitionError(InterfaceError, BrokenFileError):
-    """A definition file (.msg, .srv, .action) that does not parse: `file:line: problem`."""
 
 
 class CdrError(Ros2liteError, ValueError):

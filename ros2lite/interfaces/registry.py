@@ -9,13 +9,11 @@ copy of a package never mixes with ours.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from pathlib import Path
-from typing import TypeVar
 
 from ros2lite.pkg.index import BUNDLED_INTERFACES, PackageIndex, interface_packages
 
-from .errors import DefinitionError, InterfaceError, UnknownInterfaceError
+from .errors import InterfaceError, UnknownInterfaceError
 from .parser import (
     ActionDef,
     Field,
@@ -52,20 +50,6 @@ SERVICE_SUFFIXES = ('_Request', '_Response', '_Event')
 _UUID = FieldType('unique_identifier_msgs/msg/UUID')
 _TIME = FieldType('builtin_interfaces/msg/Time')
 _EVENT_INFO = FieldType('service_msgs/msg/ServiceEventInfo')
-
-
-_Parsed = TypeVar('_Parsed')
-
-
-def _parsed(parse: Callable[[str, str, str], _Parsed], path: Path, name: str) -> _Parsed:
-    """A definition file parsed; one that does not parse is a DefinitionError, the file
-    and line a user fixes (shown alone, even in a node)."""
-    try:
-        return parse(path.read_text(encoding='utf-8'), name, str(path))
-    except (UnknownInterfaceError, DefinitionError):
-        raise
-    except InterfaceError as e:
-        raise DefinitionError(str(e)) from None
 
 
 def _is_interface_package(path: Path) -> bool:
@@ -150,7 +134,7 @@ class Registry:
         svc = self._services.get(name)
         if svc is None:
             path = self.interface_path(name)
-            svc = _parsed(parse_service, path, name)
+            svc = parse_service(path.read_text(encoding='utf-8'), name, str(path))
             self._services[name] = svc
         return svc
 
@@ -159,7 +143,7 @@ class Registry:
         act = self._actions.get(name)
         if act is None:
             path = self.interface_path(name)
-            act = _parsed(parse_action, path, name)
+            act = parse_action(path.read_text(encoding='utf-8'), name, str(path))
             self._actions[name] = act
         return act
 
@@ -175,7 +159,7 @@ class Registry:
         _, kind, short = validate_type_name(name)
         if kind == 'msg':
             path = self.interface_path(name)
-            return _parsed(parse_message, path, name)
+            return parse_message(path.read_text(encoding='utf-8'), name, str(path))
         if kind == 'srv':
             for suffix in SERVICE_SUFFIXES:
                 if short.endswith(suffix) and self.exists(name[: -len(suffix)]):

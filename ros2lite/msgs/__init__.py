@@ -85,12 +85,12 @@ class _InterfaceModule(types.ModuleType):
         if attr.startswith('__'):
             raise AttributeError(attr)
         from ros2lite.interfaces import get_interface
-        from ros2lite.interfaces.errors import UnknownInterfaceError
+        from ros2lite.interfaces.errors import InterfaceError
 
         pkg, kind = _split(self.__name__, self._prefix)
         try:
             cls = get_interface(f'{pkg}/{kind}/{attr}')
-        except UnknownInterfaceError:  # a broken definition goes on: its file and line
+        except InterfaceError:
             raise AttributeError(
                 f"module '{self.__name__}' has no interface '{attr}' "
                 f'(no {kind} file {attr} in package {pkg})'

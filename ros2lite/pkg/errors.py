@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-from ros2lite.exceptions import BrokenFileError, Ros2liteError
+from ros2lite.exceptions import Ros2liteError
 
 __all__ = ['NotHereError', 'PackageFileError', 'PackageNotFoundError', 'did_you_mean']
 
@@ -44,7 +44,7 @@ class PackageNotFoundError(Ros2liteError, KeyError):
         return self._text
 
 
-class PackageFileError(BrokenFileError, ValueError):
+class PackageFileError(Ros2liteError, ValueError):
     """A package's own file (package.xml, setup.py, setup.cfg, a .msg) that cannot be read:
     one line, `file:line: what is wrong`, as colcon names it."""
 

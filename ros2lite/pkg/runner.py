@@ -4,7 +4,6 @@ executable (a console script's target) the way its installed script would.
 `sys.argv[0]` becomes the executable's name, the working directory is not importable (as for
 an installed script), and the function's return value is the exit status. Being a module,
 it also runs under a Python prefix: `ros2lite run --prefix 'python -m pdb' pkg exe`.
-A definition the node uses that does not parse ends it with that file and line, in one line.
 """
 
 from __future__ import annotations
@@ -14,7 +13,7 @@ import os
 import sys
 from typing import Any
 
-from ros2lite.exceptions import BrokenFileError, quiet_interrupt_exit
+from ros2lite.exceptions import quiet_interrupt_exit
 from ros2lite.util.process import forget_caught_interrupt, release_interrupts
 
 USAGE = 'usage: python -m ros2lite.pkg.runner <module:function> <name> [argv...]'
@@ -36,18 +35,13 @@ def main() -> None:
         del sys.path[0]
     sys.argv[:] = [name, *rest]
     module, _, attr = target.partition(':')
+    fn: Any = importlib.import_module(module)
+    for part in attr.split('.'):
+        fn = getattr(fn, part)
     try:
-        fn: Any = importlib.import_module(module)
-        for part in attr.split('.'):
-            fn = getattr(fn, part)
         code = fn()
     except SystemExit as e:
         code = e.code
-    except BrokenFileError as e:
-        # a .msg/.srv/.action the node uses does not parse: its file and line, in one line,
-        # as colcon would have refused to build it
-        print(e, file=sys.stderr)
-        code = 1
     # a target that caught Ctrl-C leaves with its own status, as its installed script would
     forget_caught_interrupt()
     sys.exit(code)
