@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import TypeVar
 
 from ros2lite.pkg.distro import ros_distro
-from ros2lite.pkg.index import BUNDLED_INTERFACES, interface_packages
+from ros2lite.pkg.index import BUNDLED_INTERFACES, PackageIndex, interface_packages
 from ros2lite.util.files import read_text_bounded
 
 from .errors import InterfaceError, UnknownInterfaceError
@@ -117,7 +117,9 @@ class Registry:
         try:
             return self.packages()[package]
         except KeyError:
-            raise UnknownInterfaceError(f"Unknown package '{package}'") from None
+            # with the package index's search path, say why when it is shown
+            explain = (lambda: PackageIndex().why_missing(package)) if self.roots is None else None
+            raise UnknownInterfaceError(f"Unknown package '{package}'", explain) from None
 
     def package_interfaces(self, package: str) -> list[str]:
         """Sorted 'pkg/kind/Name' of every definition file in a package."""

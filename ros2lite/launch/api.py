@@ -48,22 +48,27 @@ def find_launch_file(
     """The launch file `file_name` anywhere under the package's share directory (a
     workspace package's source directory); and a note when a stand-in package was used
     (e.g. demo_nodes_py for an uninstalled demo_nodes_cpp)."""
-    from ros2lite.pkg.executables import EQUIVALENTS, PackageNotFoundError
+    from ros2lite.pkg.executables import equivalent
     from ros2lite.pkg.index import PackageIndex
 
     idx = index if index is not None else PackageIndex()
     pkg = idx.find(package)
     note = None
-    if pkg is None and package in EQUIVALENTS:
-        twin = idx.find(EQUIVALENTS[package])
+    if pkg is None:
+        twin = equivalent(package, idx)
         if twin is not None and twin.share is not None and _matches(twin.share, file_name):
             pkg = twin
             note = (
                 f'{package} (C++) is not installed; launching {twin.name} {file_name}, '
                 'its Python equivalent'
             )
+        elif twin is not None:
+            raise LaunchError(
+                f"{package} (C++) is not installed, and {twin.name}, its Python equivalent, "
+                f"has no launch file '{file_name}'"
+            )
     if pkg is None:
-        raise PackageNotFoundError(package, list(idx.packages()))
+        raise idx.not_found(package)
     if pkg.share is None:
         raise LaunchError(f"package '{package}' has no share directory to hold launch files")
     found = _matches(pkg.share, file_name)

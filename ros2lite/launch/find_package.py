@@ -38,9 +38,7 @@ class FindPackagePrefix(Substitution):
         index = context.package_index
         pkg = index.find(name)
         if pkg is None:
-            from ros2lite.pkg.executables import PackageNotFoundError
-
-            raise SubstitutionFailure(str(PackageNotFoundError(name, list(index.packages()))))
+            raise SubstitutionFailure(str(index.not_found(name)))
         return pkg
 
     def perform(self, context: LaunchContext) -> str:

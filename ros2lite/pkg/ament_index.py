@@ -5,8 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ros2lite.exceptions import Ros2liteError
-
+from .errors import PackageNotFoundError
 from .index import PackageIndex
 
 __all__ = [
@@ -18,14 +17,12 @@ __all__ = [
 ]
 
 
-class PackageNotFoundError(Ros2liteError, KeyError):
-    """No source knows the package (a KeyError, as ament_index_python's is)."""
-
-
 def _find(package_name: str) -> tuple[Path, Path | None]:
-    pkg = PackageIndex().find(package_name)
+    index = PackageIndex()
+    pkg = index.find(package_name)
     if pkg is None:
-        raise PackageNotFoundError(f"package '{package_name}' not found")
+        # the package index's one error (a KeyError, as ament_index_python's is), in its words
+        raise index.not_found(package_name, f"package '{package_name}' not found")
     return pkg.prefix, pkg.share
 
 

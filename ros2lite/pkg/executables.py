@@ -20,12 +20,14 @@ Python targets are started as ``python -m ros2lite.pkg.runner <module:function> 
 with the same interpreter, so they run in this environment without needing a console script
 on PATH. Courses name a few C++ demo packages;
 when one is not installed, :func:`resolve_executable` runs its Python twin
-(:data:`EQUIVALENTS`) and says so.
+(:data:`EQUIVALENTS`) and says so, and :func:`equivalent` gives the twin to `pkg` and
+`launch`. A workspace package that cannot run here says why in one line: the file colcon
+would refuse (:class:`~ros2lite.pkg.errors.PackageFileError`), or that it is C++
+(:mod:`.not_here`).
 """
 
 from __future__ import annotations
 
-import difflib
 import os
 import re
 import sys
@@ -37,6 +39,7 @@ from pathlib import Path
 from ros2lite.exceptions import Ros2liteError
 
 from .bundled import BUNDLED, STAND_INS
+from .errors import NotHereError, PackageNotFoundError, did_you_mean
 from .index import (
     ENTRY_POINT_GROUP,
     ORIGIN_AMENT,
@@ -46,6 +49,23 @@ from .index import (
     Package,
     PackageIndex,
 )
+from .not_here import cpp_executable_line, cpp_package_line, cpp_sources
+
+__all__ = [
+    'EQUIVALENTS',
+    'ExecutableNotFoundError',
+    'MultipleExecutablesError',
+    'PackageExecutable',
+    'PackageNotFoundError',
+    'Resolved',
+    'equivalent',
+    'equivalent_executables',
+    'find_executable',
+    'get_executables',
+    'list_packages',
+    'package_executables',
+    'resolve_executable',
+]
 
 RUNNER = 'ros2lite.pkg.runner'
 _PYTHON = re.compile(r'python[0-9.]*\Z')
@@ -55,24 +75,14 @@ _PYTHON = re.compile(r'python[0-9.]*\Z')
 EQUIVALENTS = {'demo_nodes_cpp': 'demo_nodes_py'}
 
 
-def _suggest(name: str, candidates: Sequence[str]) -> str:
-    close = difflib.get_close_matches(name, sorted(set(candidates)), n=3, cutoff=0.6)
-    return f"; did you mean: {', '.join(close)}?" if close else ''
-
-
-class PackageNotFoundError(Ros2liteError, LookupError):
-    """No source knows the package; the message names close matches."""
-
-    def __init__(self, package: str, known: Sequence[str] = ()) -> None:
-        super().__init__(f"Package '{package}' not found{_suggest(package, known)}")
-        self.package = package
-
-
 class ExecutableNotFoundError(Ros2liteError, LookupError):
-    """The package has no executable by that name; the message names close matches."""
+    """The package has no executable by that name; the message names close matches (or,
+    given, says why it is not here)."""
 
-    def __init__(self, package: str, name: str, known: Sequence[str] = ()) -> None:
-        super().__init__(f'No executable found{_suggest(name, known)}')
+    def __init__(
+        self, package: str, name: str, known: Sequence[str] = (), message: str | None = None
+    ) -> None:
+        super().__init__(message or f'No executable found{did_you_mean(name, known)}')
         self.package = package
         self.name = name
 
@@ -146,14 +156,24 @@ def _module_file(module: str, pythonpath: Sequence[str]) -> str | None:
 
 
 def _workspace_executables(pkg: Package) -> list[PackageExecutable]:
-    """An ament_python package's console scripts, run from its sources; other build types
-    need a build before anything of theirs can run."""
+    """An ament_python package's console scripts, run from its sources (its setup.py or
+    setup.cfg broken: the first problem, raised); an ament_cmake package with C++ sources
+    is not here (NotHereError); other build types need a build before anything can run."""
     source = pkg.source
-    if source is None or source.manifest.build_type != 'ament_python':
+    if source is None:
+        return []
+    if source.manifest.build_type == 'ament_cmake':
+        sources = cpp_sources(source.directory)
+        if sources:
+            raise NotHereError(pkg.name, cpp_package_line(pkg.name, source.directory, sources))
+        return []
+    if source.manifest.build_type != 'ament_python':
         return []
     from .setup_files import read_python_package  # ast + configparser: workspaces only
 
     info = read_python_package(source.directory)
+    if info.problems:
+        raise info.problems[0]
     root = str(info.package_root or source.directory)
     return [
         PackageExecutable(pkg.name, name, target, ORIGIN_WORKSPACE, (root,))
@@ -193,16 +213,6 @@ def _bundled(package: str) -> list[PackageExecutable]:
     ]
 
 
-def _stand_in(twin: str, name: str, idx: PackageIndex) -> PackageExecutable | None:
-    """`name` of the C++ package `twin` stands in for, when only the C++ one has it (and
-    `twin` is still the bundled package, not one that shadows it)."""
-    pkg = idx.find(twin)
-    target = STAND_INS.get(twin, {}).get(name)
-    if pkg is None or pkg.origin != ORIGIN_BUNDLED or target is None:
-        return None
-    return PackageExecutable(twin, name, target, ORIGIN_BUNDLED)
-
-
 def package_executables(pkg: Package) -> list[PackageExecutable]:
     """Everything `pkg` can run, as its source defines it."""
     if pkg.origin == ORIGIN_WORKSPACE:
@@ -230,8 +240,31 @@ def get_executables(
     idx = _index(env, index)
     pkg = idx.find(package)
     if pkg is None:
-        raise PackageNotFoundError(package, list(idx.packages()))
+        raise idx.not_found(package)
     return package_executables(pkg)
+
+
+def equivalent(package: str, index: PackageIndex) -> Package | None:
+    """The Python twin that stands in for `package` (a C++ demo package no source
+    provides), or None."""
+    twin = EQUIVALENTS.get(package)
+    if twin is None or index.find(package) is not None:
+        return None
+    return index.find(twin)
+
+
+def equivalent_executables(package: str, index: PackageIndex) -> list[PackageExecutable]:
+    """What `run <package> …` runs for a C++ demo package that is not installed: its twin's
+    executables and, while the twin is the bundled one (not a package shadowing it), the
+    stand-ins for the ones only the C++ package has, by name."""
+    twin = equivalent(package, index)
+    if twin is None:
+        return []
+    found = {e.name: e for e in package_executables(twin)}
+    stand_ins = STAND_INS.get(twin.name, {}) if twin.origin == ORIGIN_BUNDLED else {}
+    for name, target in stand_ins.items():
+        found.setdefault(name, PackageExecutable(twin.name, name, target, ORIGIN_BUNDLED))
+    return [found[name] for name in sorted(found)]
 
 
 def find_executable(
@@ -274,18 +307,18 @@ def resolve_executable(
     matches) or MultipleExecutablesError.
     """
     idx = _index(env, index)
-    twin = EQUIVALENTS.get(package)
-    if twin is not None and idx.find(package) is None:
-        exe = find_executable(twin, name, index=idx)
+    twin = equivalent(package, idx)
+    if twin is not None:
+        standing_in = {e.name: e for e in equivalent_executables(package, idx)}
+        exe = standing_in.get(name)
         if exe is not None:
-            note = f'{package} (C++) is not installed; running {twin} {name}, its Python equivalent'
-            return Resolved(exe, note)
-        exe = _stand_in(twin, name, idx)
-        if exe is not None:
-            note = (
-                f'{package} (C++) is not installed; running a Python {name} bundled with ros2lite'
-            )
-            return Resolved(exe, note)
+            if name not in STAND_INS.get(twin.name, {}) or twin.origin != ORIGIN_BUNDLED:
+                note = f'running {twin.name} {name}, its Python equivalent'
+            else:
+                note = f'running a Python {name} bundled with ros2lite'
+            return Resolved(exe, f'{package} (C++) is not installed; {note}')
+        why = cpp_executable_line(package, name)
+        raise ExecutableNotFoundError(package, name, list(standing_in), message=why)
     exe = find_executable(package, name, index=idx)
     if exe is None:
         known = [e.name for e in get_executables(package, index=idx)]

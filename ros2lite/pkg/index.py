@@ -24,6 +24,11 @@ Sources, first one first; **a package belongs entirely to the first source that 
 
 `ros2lite pkg prefix <pkg>` prints where the winner lives and, when it is not an ament
 prefix or when it shadows another source, a line on stderr naming the source.
+
+A name no source knows is answered by :meth:`PackageIndex.not_found`, one line for every verb:
+the broken file when a workspace package of that name could not be read; what to use instead
+when ros2lite does not provide the package (:mod:`.not_here`); the ways in when a workspace
+nearby holds it but this process does not use it; else close matches.
 """
 
 from __future__ import annotations
@@ -37,10 +42,13 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .bundled import BUNDLED
+from .errors import NotHereError, PackageFileError, PackageNotFoundError
 from .manifest import MANIFEST, is_valid_package_name
+from .not_here import not_here_line
 from .workspace import (
     ROS2LITE_ROOT,
     SourcePackage,
+    find_nearby,
     scan_workspace,
     workspace_sources,
     workspaces,
@@ -178,7 +186,8 @@ class PackageIndex:
         self.cwd = cwd
         self._sources: dict[str, dict[str, Package]] = {}
         self._workspaces: list[Path] | None = None
-        self.problems: list[str] = []
+        self.problems: list[PackageFileError] = []
+        self.broken: dict[str, PackageFileError] = {}
 
     # -- the sources, each name -> Package ---------------------------------------------------
     def workspaces(self) -> list[Path]:
@@ -217,6 +226,8 @@ class PackageIndex:
         for ws in self.workspaces():
             scan = scan_workspace(workspace_sources(ws), ws)
             self.problems += scan.problems
+            for name, problem in scan.broken.items():
+                self.broken.setdefault(name, problem)
             for name, source in scan.packages.items():
                 if name not in found:
                     d = source.directory
@@ -296,6 +307,39 @@ class PackageIndex:
             if pkg is not None:
                 return pkg
         return None
+
+    def not_found(self, name: str, message: str | None = None) -> PackageNotFoundError:
+        """The error for a package no source knows (`message` replaces the first words,
+        "Package 'x' not found", where a verb words it otherwise), with :meth:`why_missing`
+        after them (asked when it is shown), else close matches."""
+        base = message if message is not None else f"Package '{name}' not found"
+        self.packages_from(ORIGIN_WORKSPACE)  # its broken packages
+        if not_here_line(name) is not None and self.broken.get(name) is None:
+            return NotHereError(name, f'{base}; {self.why_missing(name)}')
+        return PackageNotFoundError(
+            name, list(self.packages()), message=base, explain=lambda: self.why_missing(name)
+        )
+
+    def why_missing(self, name: str) -> str:
+        """Why no source has `name`, or '' (when one has, or nothing explains it): the file
+        and line that stopped a workspace package of that name from being read; what to use
+        instead of a package ros2lite does not provide (:mod:`.not_here`); the ways into a
+        workspace near the current directory that holds it, its sources unread by this
+        process and its install/ not sourced."""
+        if self.find(name) is not None:
+            return ''
+        broken = self.broken.get(name)
+        if broken is not None:
+            return str(broken)
+        instead = not_here_line(name)
+        if instead is not None:
+            return instead
+        try:
+            here = (self.cwd if self.cwd is not None else Path.cwd()).absolute()
+        except OSError:
+            return ''
+        nearby = find_nearby(name, here, self.workspaces())
+        return nearby.ways_in() if nearby is not None else ''
 
     def packages(self) -> dict[str, Package]:
         """Every package (the winner for each name), sorted by name."""

@@ -3,7 +3,8 @@
 A manifest found in a workspace is someone else's file: it is parsed with the standard
 library's expat (which expands no external entities and limits entity growth), its name is
 checked before it is ever used to build a path, and anything malformed is a
-:class:`ManifestError` saying which file and why.
+:class:`ManifestError` saying which file, which line and why, in one line as colcon does:
+not XML, no `<package>` root, a missing or invalid name, no version, no build type.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ros2lite.exceptions import Ros2liteError
+from .errors import PackageFileError
 
 if TYPE_CHECKING:
     import xml.etree.ElementTree as ET
@@ -45,8 +46,14 @@ _DEPEND_TAGS = (
 )
 
 
-class ManifestError(Ros2liteError, ValueError):
+class ManifestError(PackageFileError):
     """A package.xml that cannot be read or does not describe a package."""
+
+
+def _line_of(data: bytes, tag: str) -> int | None:
+    """The line of the first `<tag` in the file (where to point at a wrong or missing part)."""
+    m = re.search(rb'<' + re.escape(tag.encode()) + rb'[\s>/]', data)
+    return data.count(b'\n', 0, m.start()) + 1 if m else None
 
 
 def is_valid_package_name(name: str) -> bool:
@@ -85,21 +92,42 @@ def read_manifest(path: Path) -> Manifest:
 
     from ros2lite.util.files import read_bounded
 
-    data = read_bounded(path, _MAX_BYTES, ManifestError, 'a package manifest')
+    try:
+        data = read_bounded(path, _MAX_BYTES, ValueError, 'a package manifest')
+    except ValueError as e:
+        raise ManifestError(path, None, str(e)[len(str(path)) + 2 :]) from None
     try:
         root = ET.fromstring(data)
     except ET.ParseError as e:
-        raise ManifestError(f'{path}: not valid XML ({e})') from None
+        line = e.position[0] if e.position else None
+        reason = str(e).split(': line ')[0]
+        # the package it most likely is, for a lookup by name to find this line
+        named = re.search(rb'<name>\s*([A-Za-z][A-Za-z0-9_-]*)\s*</name>', data)
+        package = named[1].decode() if named else ''
+        raise ManifestError(path, line, f'not valid XML: {reason}', package) from None
+    package_line = _line_of(data, root.tag)
     if root.tag != 'package':
-        raise ManifestError(f"{path}: the root element is <{root.tag}>, not <package>")
+        raise ManifestError(path, package_line, f'the root element is <{root.tag}>, not <package>')
     name = _text(root.find('name'))
+    if not name:
+        raise ManifestError(path, package_line, 'no <name>: a package needs one')
     if not is_valid_package_name(name):
-        raise ManifestError(f"{path}: invalid package name '{name}'")
+        raise ManifestError(path, _line_of(data, 'name'), f"invalid package name '{name}'")
     try:
         fmt = int(root.get('format', '1'))
     except ValueError:
-        raise ManifestError(f"{path}: invalid format '{root.get('format')}'") from None
-    build_type = _text(root.find('export/build_type')) or 'ament_cmake'
+        raise ManifestError(path, package_line, f"invalid format '{root.get('format')}'") from None
+    if not _text(root.find('version')):
+        raise ManifestError(path, package_line, f"no <version> for package '{name}'", name)
+    build_type = _text(root.find('export/build_type'))
+    if not build_type:
+        raise ManifestError(
+            path,
+            _line_of(data, 'export') or package_line,
+            f"no <build_type> in <export> for package '{name}' (colcon would take it for a "
+            'ROS 1 catkin package): add <build_type>ament_python</build_type>',
+            name,
+        )
     depends: dict[str, tuple[str, ...]] = {}
     for tag in _DEPEND_TAGS:
         names = tuple(_text(e) for e in root.findall(tag) if _text(e))

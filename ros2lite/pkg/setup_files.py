@@ -7,6 +7,10 @@ to such values at module level, `+` of strings or lists, f-strings of those, and
 (`package_name = 'py_pubsub'`, `'talker = py_pubsub.publisher_member_function:main'`).
 Anything else is left unknown, never executed. `setup.cfg` is read as INI without
 interpolation (its values contain `$base`).
+
+What would stop colcon building the package is kept as a :class:`PackageFileError` naming the
+file and line: a setup.py that is not Python or calls no `setup()`, an entry point that does
+not parse, a setup.cfg that is not INI, an ament_python package with neither file.
 """
 
 from __future__ import annotations
@@ -18,6 +22,8 @@ import re
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from .errors import PackageFileError
 
 __all__ = ['PythonPackageInfo', 'parse_console_script', 'read_python_package']
 
@@ -41,10 +47,12 @@ UNKNOWN = _Unknown()
 
 @dataclass
 class PythonPackageInfo:
-    """Console scripts (`name` → `module:attr`) and where the package's modules live."""
+    """Console scripts (`name` → `module:attr`), where the package's modules live, and what
+    in its files colcon would refuse."""
 
     console_scripts: dict[str, str] = field(default_factory=dict)
     package_root: Path | None = None
+    problems: list[PackageFileError] = field(default_factory=list)
 
 
 def parse_console_script(entry: str) -> tuple[str, str] | None:
@@ -124,7 +132,14 @@ def _dotted(node: ast.AST) -> str:
     return ''
 
 
-def _setup_keywords(tree: ast.Module) -> dict[str, object]:
+def _setup_call(tree: ast.Module) -> ast.Call | None:
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and _dotted(node.func) in ('setup', 'setuptools.setup'):
+            return node
+    return None
+
+
+def _setup_keywords(tree: ast.Module, call: ast.Call) -> dict[str, object]:
     """The keyword arguments of the `setup(...)` call, evaluated where literal."""
     ev = _Evaluator()
     for stmt in tree.body:
@@ -136,10 +151,19 @@ def _setup_keywords(tree: ast.Module) -> dict[str, object]:
             ev.names[stmt.targets[0].id] = ev.value(stmt.value)
         elif isinstance(stmt, ast.AnnAssign) and isinstance(stmt.target, ast.Name) and stmt.value:
             ev.names[stmt.target.id] = ev.value(stmt.value)
+    return {kw.arg: ev.value(kw.value) for kw in call.keywords if kw.arg is not None}
+
+
+def _string_lines(tree: ast.AST) -> dict[str, int]:
+    """Each string constant in `tree` → the line it starts on (first one wins)."""
+    lines: dict[str, int] = {}
     for node in ast.walk(tree):
-        if isinstance(node, ast.Call) and _dotted(node.func) in ('setup', 'setuptools.setup'):
-            return {kw.arg: ev.value(kw.value) for kw in node.keywords if kw.arg is not None}
-    return {}
+        if isinstance(node, ast.Constant) and isinstance(node.value, str):
+            lines.setdefault(node.value, node.lineno)
+    return lines
+
+
+_SCRIPT_FORM = "expected 'name = package.module:function'"
 
 
 def _scripts_from(value: object) -> Iterable[str]:
@@ -176,16 +200,35 @@ def _read_text(path: Path) -> str | None:
 def _from_setup_py(path: Path, info: PythonPackageInfo) -> None:
     source = _read_text(path)
     if source is None:
+        if path.exists():
+            info.problems.append(PackageFileError(path, None, 'cannot be read'))
         return
     try:
         tree = ast.parse(source, filename=str(path))
-    except (SyntaxError, ValueError):
+    except SyntaxError as e:
+        info.problems.append(PackageFileError(path, e.lineno, f'not valid Python: {e.msg}'))
         return
-    kwargs = _setup_keywords(tree)
+    except ValueError as e:  # a NUL byte
+        info.problems.append(PackageFileError(path, None, f'not valid Python: {e}'))
+        return
+    call = _setup_call(tree)
+    if call is None:
+        info.problems.append(
+            PackageFileError(path, 1, 'no setup() call: colcon cannot build the package')
+        )
+        return
+    kwargs = _setup_keywords(tree, call)
+    entry_points = next((kw.value for kw in call.keywords if kw.arg == 'entry_points'), None)
+    lines = _string_lines(entry_points) if entry_points is not None else {}
     for line in _scripts_from(kwargs.get('entry_points')):
         parsed = parse_console_script(line)
         if parsed is not None:
             info.console_scripts.setdefault(*parsed)
+        elif line.strip():
+            where = lines.get(line, entry_points.lineno if entry_points is not None else None)
+            info.problems.append(
+                PackageFileError(path, where, f"entry point '{line.strip()}': {_SCRIPT_FORM}")
+            )
     package_dir = kwargs.get('package_dir')
     if isinstance(package_dir, dict) and isinstance(package_dir.get(''), str):
         info.package_root = _inside(path.parent, package_dir[''])
@@ -201,18 +244,50 @@ def _from_setup_cfg(path: Path, info: PythonPackageInfo) -> None:
     parser = configparser.RawConfigParser()
     try:
         parser.read_string(text, source=str(path))
-    except configparser.Error:
+    except configparser.Error as e:
+        info.problems.append(PackageFileError(path, _ini_line(e), f'not valid INI: {_ini_why(e)}'))
         return
     scripts = parser.get('options.entry_points', 'console_scripts', fallback='')
     for line in scripts.splitlines():
         parsed = parse_console_script(line)
         if parsed is not None:
             info.console_scripts.setdefault(*parsed)
+        elif line.strip():
+            where = _text_line(text, line.strip())
+            info.problems.append(
+                PackageFileError(path, where, f"entry point '{line.strip()}': {_SCRIPT_FORM}")
+            )
     package_dir = parser.get('options', 'package_dir', fallback='')
     for line in package_dir.splitlines():
         key, eq, value = line.partition('=')
         if eq and not key.strip() and info.package_root is None:
             info.package_root = _inside(path.parent, value.strip())
+
+
+def _ini_line(e: configparser.Error) -> int | None:
+    line = getattr(e, 'lineno', None)
+    if isinstance(line, int):
+        return line
+    errors = getattr(e, 'errors', None)  # a ParsingError's (line, text) pairs
+    return int(errors[0][0]) if errors else None
+
+
+def _ini_why(e: configparser.Error) -> str:
+    if isinstance(e, configparser.MissingSectionHeaderError):
+        return 'a line before the first [section]'
+    if isinstance(e, configparser.ParsingError):
+        errors = getattr(e, 'errors', None)
+        return f'cannot parse {errors[0][1]}' if errors else 'cannot parse'
+    if isinstance(e, (configparser.DuplicateSectionError, configparser.DuplicateOptionError)):
+        return e.message.split(' (from ', 1)[0].split(': ', 1)[-1]
+    return e.message
+
+
+def _text_line(text: str, needle: str) -> int | None:
+    for number, line in enumerate(text.splitlines(), start=1):
+        if needle in line:
+            return number
+    return None
 
 
 def _inside(base: Path, relative: str) -> Path | None:
@@ -231,6 +306,12 @@ def read_python_package(directory: Path) -> PythonPackageInfo:
     info = PythonPackageInfo()
     _from_setup_py(directory / 'setup.py', info)
     _from_setup_cfg(directory / 'setup.cfg', info)
+    if not (directory / 'setup.py').exists() and not (directory / 'setup.cfg').exists():
+        info.problems.append(
+            PackageFileError(
+                directory / 'setup.py', None, 'missing: an ament_python package needs one'
+            )
+        )
     if info.package_root is None:
         info.package_root = directory
     return info

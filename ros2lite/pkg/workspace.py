@@ -33,6 +33,7 @@ from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .errors import PackageFileError
 from .manifest import MANIFEST, Manifest, ManifestError, read_manifest
 
 __all__ = [
@@ -40,9 +41,11 @@ __all__ = [
     'ROS2LITE_ROOT',
     'SKIPPED_DIRS',
     'WORKSPACE_ENV',
+    'Nearby',
     'Scan',
     'SourcePackage',
     'enclosing_workspace',
+    'find_nearby',
     'inside_ros2lite',
     'scan_workspace',
     'workspace_sources',
@@ -112,11 +115,18 @@ class SourcePackage:
 
 @dataclass
 class Scan:
-    """The packages of one source tree, and what could not be read there."""
+    """The packages of one source tree, and what could not be read there (each problem is
+    also kept under the package it most likely is: its name, else its directory's)."""
 
     root: Path
     packages: dict[str, SourcePackage] = field(default_factory=dict)
-    problems: list[str] = field(default_factory=list)
+    problems: list[PackageFileError] = field(default_factory=list)
+    broken: dict[str, PackageFileError] = field(default_factory=dict)
+
+    def add_problem(self, problem: PackageFileError) -> None:
+        """Keep a problem, and the first one per package name."""
+        self.problems.append(problem)
+        self.broken.setdefault(problem.package, problem)
 
 
 def _package_dirs(
@@ -174,12 +184,18 @@ def scan_workspace(root: Path, workspace: Path | None = None) -> Scan:
         try:
             manifest = read_manifest(directory / MANIFEST)
         except ManifestError as e:
-            scan.problems.append(str(e))
+            scan.add_problem(e)
             continue
         first = scan.packages.get(manifest.name)
         if first is not None:
+            # not under `broken`: the name still has a package, the first one
             scan.problems.append(
-                f"duplicate package '{manifest.name}': {directory} (using {first.directory})"
+                PackageFileError(
+                    directory / MANIFEST,
+                    None,
+                    f"duplicate package '{manifest.name}' (using {first.directory})",
+                    manifest.name,
+                )
             )
             continue
         scan.packages[manifest.name] = SourcePackage(manifest, owner)
@@ -239,3 +255,82 @@ def workspace_sources(workspace: Path) -> Path:
     """Where a workspace's packages are: its `src/`, or the directory itself without one."""
     src = workspace / 'src'
     return src if src.is_dir() else workspace
+
+
+# -- a workspace nearby that this shell does not use --------------------------------------------
+
+_NEARBY_CHILDREN = 200  # directories below the current one looked at as workspace roots
+
+
+@dataclass(frozen=True)
+class Nearby:
+    """A workspace near the current directory that holds a package this process missed."""
+
+    workspace: Path
+    built: bool  # its install/ has the package (colcon built it; not sourced here)
+    sources: bool  # its src/ has the package
+
+    def ways_in(self) -> str:
+        """The two ways to use it, for a "not found" line."""
+        ws = self.workspace
+        source = f'source {ws}/install/setup.bash'
+        variable = f'export {WORKSPACE_ENV}={ws}'
+        if self.built:
+            where = f'it is built in the workspace {ws}, which this shell has not sourced: '
+            return where + (f'`{source}`, or `{variable}`' if self.sources else f'`{source}`')
+        return (
+            f'it is in the workspace {ws}, which this shell does not use: `colcon build` '
+            f'there and `{source}`, or `{variable}`'
+        )
+
+
+def _installed(install: Path, package: str) -> bool:
+    """Does a colcon install/ (isolated or merged) hold `package`?"""
+    marker = Path('share') / 'ament_index' / 'resource_index' / 'packages' / package
+    return (
+        (install / package / marker).is_file()
+        or (install / package / 'share' / package / MANIFEST).is_file()
+        or (install / marker).is_file()
+    )
+
+
+def _sources_have(src: Path, package: str) -> bool:
+    for directory in _package_dirs(src, _DETECT_DEPTH, _DETECT_DIRS):
+        if directory.name == package:
+            return True
+        try:
+            if read_manifest(directory / MANIFEST).name == package:
+                return True
+        except ManifestError:
+            continue
+    return False
+
+
+def find_nearby(package: str, cwd: Path, in_use: list[Path] | None = None) -> Nearby | None:
+    """A workspace around `cwd` (it and its parents) or just below it (its subdirectories)
+    whose `src/` or unsourced `install/` holds `package`; workspaces in `in_use` are skipped
+    (their packages were already seen). Looked for only when a lookup has failed."""
+    skip = {ws.resolve() for ws in in_use or ()}
+    roots: list[Path] = [cwd, *cwd.parents]
+    try:
+        children = sorted(
+            (e for e in os.scandir(cwd) if not e.name.startswith('.') and _is_dir(e)),
+            key=lambda e: e.name,
+        )
+        roots += [Path(e.path) for e in children[:_NEARBY_CHILDREN]]
+    except OSError:
+        pass
+    for root in roots:
+        try:
+            key = root.resolve()
+        except (OSError, RuntimeError):
+            continue
+        if key in skip or inside_ros2lite(root):
+            continue
+        skip.add(key)
+        src, install = root / 'src', root / 'install'
+        built = install.is_dir() and _installed(install, package)
+        sources = src.is_dir() and _sources_have(src, package)
+        if built or sources:
+            return Nearby(root, built, sources)
+    return None

@@ -11,7 +11,11 @@ Six checks, each a *category* (what ``Failed modules:`` names):
   endpoints of one topic disagreeing on the type or its RIHS01 hash are errors (rmw_zenoh
   puts the hash in the key expression, so such endpoints never exchange a message);
 - ``qos`` — publisher/subscription pairs whose QoS is incompatible;
-- ``package`` — source workspace packages that cannot be read.
+- ``package`` — source workspace packages colcon would refuse are errors, each one line with
+  file and line: a package.xml that is not XML or lacks a name, version or build type; a
+  setup.py that is not Python, calls no `setup()` or has an entry point that does not parse;
+  a `.msg`/`.srv`/`.action` that does not parse. A C++ package is a warning (it is not
+  broken, but ros2lite will not run it).
 
 The graph is read once, from the router (the daemon is never started by a diagnosis). A
 finding remembers the file and line that raised it, as ros2doctor's Python warnings do.
@@ -330,14 +334,38 @@ class Diagnosis:
         return result
 
     def check_package(self) -> CheckResult:
-        """Warn about workspace packages that could not be read."""
-        from ros2lite.pkg.index import PackageIndex
+        """Fail on workspace packages whose files colcon would refuse; warn about C++ ones."""
+        from ros2lite.interfaces.errors import InterfaceError
+        from ros2lite.interfaces.registry import Registry
+        from ros2lite.pkg.errors import NotHereError, PackageFileError
+        from ros2lite.pkg.executables import package_executables
+        from ros2lite.pkg.index import ORIGIN_WORKSPACE, PackageIndex
 
         result = CheckResult('package')
         index = PackageIndex(self.env)
-        index.packages()
+        workspace_packages = index.packages_from(ORIGIN_WORKSPACE)
         for problem in index.problems:
-            result.warn(f'workspace package skipped: {problem}')
+            result.error(f'workspace package skipped: {problem}')
+        registry = Registry()
+        for name, pkg in workspace_packages.items():
+            try:
+                package_executables(pkg)
+            except PackageFileError as e:
+                result.error(f'workspace package {name}: {e}')
+            except NotHereError as e:
+                result.warn(str(e))
+            if pkg.interfaces is None or index.find(name) is not pkg:
+                continue
+            for interface in registry.package_interfaces(name):
+                try:
+                    if '/srv/' in interface:
+                        registry.service(interface)
+                    elif '/action/' in interface:
+                        registry.action(interface)
+                    else:
+                        registry.message(interface)
+                except InterfaceError as e:
+                    result.error(f'workspace package {name}: {e}')
         return result
 
     def _pairs(self) -> list[tuple[str, Entity, Entity, Compatibility]]:

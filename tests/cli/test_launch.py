@@ -323,7 +323,8 @@ def test_a_required_argument_missing(workspace: Path) -> None:
 
 
 def _screen_of_a_launch_in_a_terminal(env: dict[str, str]) -> str:
-    """What a terminal shows of a two-node launch until the listener hears the talker."""
+    """What a terminal shows of a two-node launch until the listener hears the talker and
+    the talker's own line is there."""
     import pty
     import select
 
@@ -340,7 +341,8 @@ def _screen_of_a_launch_in_a_terminal(env: dict[str, str]) -> str:
     seen = b''
     try:
         deadline = time.monotonic() + 30
-        while b'I heard' not in seen and time.monotonic() < deadline:
+        # both nodes' own lines: the listener may hear before the talker's line is flushed
+        while not (b'I heard' in seen and b'Publishing' in seen) and time.monotonic() < deadline:
             ready, _, _ = select.select([master], [], [], 0.5)
             if ready:
                 seen += os.read(master, 65536)

@@ -20,23 +20,44 @@ def test_fields(tmp_path: Path) -> None:
     assert m.directory == tmp_path
 
 
+_EXPORT = '<export><build_type>ament_python</build_type></export>'
+
+
 @pytest.mark.parametrize(
     ('content', 'error'),
     [
-        ('<package><name>x', 'not valid XML'),
-        ('<launch/>', 'the root element is <launch>'),
+        ('<package>\n<name>x', '2: not valid XML: no element found'),
         (
-            '<package format="3"><name>../../etc</name></package>',
-            "invalid package name '../../etc'",
+            '<?xml version="1.0"?>\n<package>\n <name>x</nam>\n</package>',
+            '3: not valid XML: mismatched tag',
         ),
-        ('<package format="3"></package>', "invalid package name ''"),
-        ('<package format="x"><name>a</name></package>', "invalid format 'x'"),
+        ('<launch/>', '1: the root element is <launch>, not <package>'),
+        (
+            '<package format="3">\n<name>../../etc</name></package>',
+            "2: invalid package name '../../etc'",
+        ),
+        (
+            '<?xml version="1.0"?>\n<package format="3"></package>',
+            '2: no <name>: a package needs one',
+        ),
+        ('<package format="x"><name>a</name></package>', "1: invalid format 'x'"),
+        (
+            f'<package format="3">\n  <name>a</name>\n  {_EXPORT}\n</package>',
+            "1: no <version> for package 'a'",
+        ),
+        (
+            '<package format="3">\n  <name>a</name>\n  <version>1.0.0</version>\n</package>',
+            "1: no <build_type> in <export> for package 'a' (colcon would take it for a ROS 1 "
+            'catkin package): add <build_type>ament_python</build_type>',
+        ),
     ],
 )
-def test_bad_manifests(tmp_path: Path, content: str, error: str) -> None:
+def test_bad_manifests_name_file_and_line(tmp_path: Path, content: str, error: str) -> None:
+    """One line each, `file:line: what is wrong`, as colcon names a package.xml it refuses."""
     (tmp_path / 'package.xml').write_text(content)
-    with pytest.raises(ManifestError, match=error.replace('(', r'\(').replace('.', r'\.')):
+    with pytest.raises(ManifestError) as caught:
         read_manifest(tmp_path / 'package.xml')
+    assert str(caught.value) == f'{tmp_path / "package.xml"}:{error}'
 
 
 def test_entities_are_not_expanded(tmp_path: Path) -> None:

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from ros2lite.pkg.setup_files import parse_console_script, read_python_package
 
 
@@ -33,6 +35,11 @@ def test_tutorial_setup_py(tmp_path: Path) -> None:
         'odd': 'py_pubsub.odd:Runner.run',
     }
     assert info.package_root == tmp_path
+    # colcon (setuptools) would refuse the package for the line that does not parse
+    assert [str(p) for p in info.problems] == [
+        f"{tmp_path}/setup.py:15: entry point 'broken = not a target': expected "
+        "'name = package.module:function'"
+    ]
 
 
 def test_setup_py_is_never_executed(tmp_path: Path) -> None:
@@ -70,3 +77,48 @@ def test_console_script_lines() -> None:
     assert parse_console_script('a = x') == ('a', 'x')
     assert parse_console_script('a = x; import os') is None
     assert parse_console_script('a = x:__import__("os")') is None
+
+
+_SETUP_HEAD = "from setuptools import setup\n\npackage_name = 'p'\n\n"
+
+
+@pytest.mark.parametrize(
+    ('files', 'problem'),
+    [
+        (
+            {'setup.py': _SETUP_HEAD + 'setup(\n    name=package_name,\n'},
+            "setup.py:5: not valid Python: '(' was never closed",
+        ),
+        (
+            {'setup.py': 'import setuptools\n\nprint(1)\n'},
+            'setup.py:1: no setup() call: colcon cannot build the package',
+        ),
+        (
+            {
+                'setup.py': _SETUP_HEAD
+                + "setup(\n    entry_points={\n        'console_scripts': [\n"
+                "            'ok = p.ok:main',\n"
+                "            'talker = p.talker:main:extra',\n"
+                '        ],\n    },\n)\n'
+            },
+            "setup.py:9: entry point 'talker = p.talker:main:extra': expected "
+            "'name = package.module:function'",
+        ),
+        (
+            {'setup.cfg': 'script_dir=$base/lib/p\n'},
+            'setup.cfg:1: not valid INI: a line before the first [section]',
+        ),
+        (
+            {'setup.cfg': '[options.entry_points]\nconsole_scripts =\n    talker p.talker:main\n'},
+            "setup.cfg:3: entry point 'talker p.talker:main': expected "
+            "'name = package.module:function'",
+        ),
+        ({}, 'setup.py: missing: an ament_python package needs one'),
+    ],
+)
+def test_what_colcon_would_refuse_is_named_with_file_and_line(
+    tmp_path: Path, files: dict[str, str], problem: str
+) -> None:
+    for name, text in files.items():
+        (tmp_path / name).write_text(text)
+    assert [str(p) for p in read_python_package(tmp_path).problems] == [f'{tmp_path}/{problem}']

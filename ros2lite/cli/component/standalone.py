@@ -25,7 +25,8 @@ START_TIMEOUT = 30.0  # a container that has not come up by then is given up on
 
 def _container_command(package: str, plugin: str, name: str) -> list[str]:
     from ros2lite.components.registry import ComponentLoadError, find_component
-    from ros2lite.pkg.executables import PackageNotFoundError, find_executable
+    from ros2lite.pkg.errors import PackageNotFoundError
+    from ros2lite.pkg.executables import find_executable
 
     owner = 'rclpy_components'
     try:

@@ -1,10 +1,17 @@
-"""`pkg executables [pkg] [--full-path]`: `<package> <executable>` lines, sorted."""
+"""`pkg executables [pkg] [--full-path]`: `<package> <executable>` lines, sorted.
+
+A C++ demo package that is not installed lists what `run` starts for it (its Python twin's
+executables, by its own name), with a note on stderr. A workspace package whose files colcon
+would refuse is named in one line on stderr, file and line, and the status is 1; a C++
+workspace package gets its line on stderr too, without failing a listing of all.
+"""
 
 from __future__ import annotations
 
 import click
 
 from .. import completion
+from ..errors import CliError
 from ..parsing import command
 
 
@@ -13,20 +20,48 @@ from ..parsing import command
 @click.option('--full-path', is_flag=True, help='Show full path of each executable')
 def cli(package_name: str | None, full_path: bool) -> None:
     """Output a list of package specific executables."""
+    from ros2lite.pkg.errors import NotHereError, PackageFileError
     from ros2lite.pkg.executables import (
-        PackageNotFoundError,
+        equivalent,
+        equivalent_executables,
         package_executables,
     )
     from ros2lite.pkg.index import PackageIndex
 
     index = PackageIndex()
-    if package_name is None:
-        packages = list(index.packages().values())
-    else:
-        pkg = index.find(package_name)
-        if pkg is None:
-            raise PackageNotFoundError(package_name, list(index.packages()))
-        packages = [pkg]
+    if package_name is not None and index.find(package_name) is None:
+        twin = equivalent(package_name, index)
+        if twin is None:
+            raise index.not_found(package_name)
+        click.echo(
+            f'{package_name} (C++) is not installed; these run {twin.name}, its Python '
+            'equivalent, and stand-ins bundled with ros2lite',
+            err=True,
+        )
+        for exe in equivalent_executables(package_name, index):
+            click.echo(exe.path() if full_path else f'{package_name} {exe.name}')
+        return
+    packages = (
+        list(index.packages().values())
+        if package_name is None
+        else [index.packages()[package_name]]
+    )
+    # listing all: a workspace package.xml that could not be read is a failure too
+    failures = [str(p) for p in index.problems] if package_name is None else []
     for pkg in packages:
-        for exe in package_executables(pkg):
+        try:
+            executables = package_executables(pkg)
+        except (NotHereError, PackageFileError) as e:
+            if package_name is not None:
+                raise
+            if isinstance(e, NotHereError):  # a C++ package is no failure of the listing
+                click.echo(str(e), err=True)
+            else:
+                failures.append(str(e))
+            continue
+        for exe in executables:
             click.echo(exe.path() if full_path else f'{pkg.name} {exe.name}')
+    if failures:
+        for failure in failures[:-1]:
+            click.echo(failure, err=True)
+        raise CliError(failures[-1])

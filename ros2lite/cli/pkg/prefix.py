@@ -1,5 +1,6 @@
 """`pkg prefix <pkg> [--share]`: where a package lives, and (on stderr) which source won
-when that is not simply an installed prefix."""
+when that is not simply an installed prefix, or which Python twin stands in for a C++ demo
+package that is not installed."""
 
 from __future__ import annotations
 
@@ -15,11 +16,21 @@ from ..parsing import command
 @click.option('--share', is_flag=True, help='Show share directory for the package')
 def cli(package_name: str, share: bool) -> None:
     """Output the prefix path of a package."""
+    from ros2lite.pkg.executables import equivalent
     from ros2lite.pkg.index import ORIGIN_AMENT, PackageIndex
 
-    candidates = PackageIndex().candidates(package_name)
+    index = PackageIndex()
+    candidates = index.candidates(package_name)
+    twin = equivalent(package_name, index) if not candidates else None
+    if twin is not None:
+        click.echo(str(twin.share if share else twin.prefix))
+        click.echo(
+            f'{package_name} (C++) is not installed; this is {twin.name}, its Python equivalent',
+            err=True,
+        )
+        return
     if not candidates:
-        raise CliError('Package not found')
+        raise index.not_found(package_name, 'Package not found')
     winner, shadowed = candidates[0], candidates[1:]
     path = winner.share if share else winner.prefix
     if path is None:

@@ -1,4 +1,5 @@
-"""`pkg xml <pkg> [-t TAG]`: the package manifest as ros2pkg prints it."""
+"""`pkg xml <pkg> [-t TAG]`: the package manifest as ros2pkg prints it (a C++ demo package
+that is not installed: its Python twin's, with a note on stderr)."""
 
 from __future__ import annotations
 
@@ -16,11 +17,19 @@ def cli(package_name: str, tag: str | None) -> None:
     """Output the XML of the package manifest or a specific tag."""
     import xml.etree.ElementTree as ET
 
+    from ros2lite.pkg.executables import equivalent
     from ros2lite.pkg.index import PackageIndex
 
-    pkg = PackageIndex().find(package_name)
+    index = PackageIndex()
+    pkg = index.find(package_name)
     if pkg is None:
-        raise CliError('Package not found')
+        pkg = equivalent(package_name, index)
+        if pkg is None:
+            raise index.not_found(package_name, 'Package not found')
+        click.echo(
+            f'{package_name} (C++) is not installed; this is {pkg.name}, its Python equivalent',
+            err=True,
+        )
     path = pkg.manifest_path
     if path is None:
         raise CliError('Package XML manifest not found')
