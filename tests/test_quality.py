@@ -208,7 +208,9 @@ MAP = {
     'monitor': 'topic subscription stats',
     'bundled': 'runner display terminal demo_nodes_py/ action_tutorials_py/ lifecycle_py/'
     ' lifecycle/ composition/ rclpy_components/ turtlesim/ teleop/ teleop_twist_keyboard/'
-    ' rqt_graph/',
+    ' rqt_graph/ foxglove_bridge/',
+    'bundled/foxglove_bridge': 'foxglove_bridge bridge state channels services publishing'
+    ' parameters assets front',
     'bundled/demo_nodes_py': 'talker listener add_two_ints_{server,client,client_async}'
     ' introspection_{client,service} parameter_blackboard launch/talker_listener.launch.py',
     'bundled/action_tutorials_py': 'fibonacci_action_{server,client}',
@@ -243,7 +245,6 @@ NOT_YET_ON_MAP = {
     'bag/storage/mcap/',
     'cli/doctor/',  # doctor became a command with verbs (hello), as ros2cli's
     'compat/tf2_ros/',
-    'bundled/foxglove_bridge/',
     'bundled/rqt_console/',
     'bundled/rqt_tf_tree/',
     # Jazzy's demo_nodes_py executables (issue 23)
