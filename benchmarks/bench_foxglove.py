@@ -138,7 +138,7 @@ ctx.shutdown()
 
 def _client_class() -> type:
     sys.path.insert(0, str(ROOT))
-    from tests.demos.test_foxglove_bridge import JsClient
+    from tests.bundled.test_foxglove_bridge import JsClient
 
     return JsClient
 
