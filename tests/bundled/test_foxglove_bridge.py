@@ -79,7 +79,10 @@ class JsClient:
     def _read(self) -> None:
         assert self.proc.stdout is not None
         for line in self.proc.stdout:
-            self.events.put(json.loads(line))
+            try:
+                self.events.put(json.loads(line))
+            except ValueError:  # a line cut short when the client is killed at teardown
+                self.events.put({'event': 'garbled', 'line': line})
 
     def send(self, **cmd: Any) -> None:
         assert self.proc.stdin is not None

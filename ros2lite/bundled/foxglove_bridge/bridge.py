@@ -197,7 +197,13 @@ class Bridge(ServerListener):
         state.server = server
         if front:
             try:
-                self.front = SubprotocolFront(s.address, s.port, server.port, warn=state.warn)
+                self.front = SubprotocolFront(
+                    s.address,
+                    s.port,
+                    server.port,
+                    warn=lambda m: self._events.put(('warn', m)),
+                    log=lambda m: self._events.put(('log', m)),
+                )
             except (RuntimeError, OSError) as e:
                 server.stop()
                 state.server = None

@@ -100,10 +100,17 @@ class SubprotocolFront:
     on loopback, the subprotocol name rewritten where only the old one was offered."""
 
     def __init__(
-        self, host: str, port: int, backend_port: int, *, warn: Callable[[str], object] = print
+        self,
+        host: str,
+        port: int,
+        backend_port: int,
+        *,
+        warn: Callable[[str], object] = print,
+        log: Callable[[str], object] | None = None,
     ) -> None:
         self._backend = ('127.0.0.1', backend_port)
         self._warn = warn
+        self._log = log  # (must not block: the front's one thread serves every client)
         family, kind, proto, _, address = socket.getaddrinfo(
             host, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE
         )[0]
@@ -233,6 +240,11 @@ class SubprotocolFront:
             raise OSError(result, 'the bridge server does not answer')
         conn.backend = _Side(backend)
         conn.backend.out += head + rest
+        if self._log is not None:
+            # the SDK sees every client as the front: say which address stands for whom
+            peer = _address(conn.client.sock.getpeername())
+            local = _address(backend.getsockname())
+            self._log(f'Client {peer} connected (the server sees it as {local})')
         conn.answer = bytearray() if rewrite else None
         if not rewrite:
             conn.deadline = 0.0
@@ -300,3 +312,10 @@ class SubprotocolFront:
             with contextlib.suppress(KeyError, ValueError):
                 self._selector.unregister(side.sock)
             side.sock.close()
+
+
+def _address(name: tuple[object, ...] | str) -> str:
+    if isinstance(name, tuple) and len(name) >= 2:
+        host = str(name[0])
+        return f'[{host}]:{name[1]}' if ':' in host else f'{host}:{name[1]}'
+    return str(name)

@@ -4,6 +4,7 @@ like one offering the current name; the handshake is bounded and loopback is the
 
 from __future__ import annotations
 
+import re
 import socket
 import time
 from typing import Any
@@ -18,9 +19,11 @@ from ros2lite.bundled.foxglove_bridge.front import (
 )
 from ros2lite.bundled.foxglove_bridge.state import Settings
 from tests.bundled.test_foxglove_bridge import client_factory, pytestmark, start_bridge
+from tests.spinning import wait_until
 
 __all__ = ['client_factory', 'pytestmark']
 
+_SEEN_AS = r'Client 127\.0\.0\.1:\d+ connected \(the server sees it as 127\.0\.0\.1:\d+\)'
 HEAD = (
     b'GET / HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n'
     b'Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n'
@@ -56,7 +59,7 @@ def test_old_name_connects_subscribes_and_decodes_a_talker(
     processes: Any, client_factory: Any
 ) -> None:
     processes.cli('run', 'demo_nodes_py', 'talker')
-    _, port, _ = start_bridge(processes)
+    _, port, log = start_bridge(processes)
     # a half-sent handshake (slowloris) holds no one else up: one thread serves them all
     lazy = socket.create_connection(('127.0.0.1', port))
     lazy.sendall(HEAD)
@@ -77,6 +80,8 @@ def test_old_name_connects_subscribes_and_decodes_a_talker(
     current = client_factory(port, NEW_NAME)
     assert current.expect(lambda e: e['event'] in ('open', 'rejected'))['protocol'] == NEW_NAME
     lazy.close()
+    # the SDK sees the front's address: the log says who stands behind it
+    wait_until(lambda: any(re.search(_SEEN_AS, line) for line in log), timeout=20)
 
 
 def test_an_unfinished_handshake_is_ended(processes: Any) -> None:
