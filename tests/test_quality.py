@@ -784,17 +784,7 @@ def _import_circles(sources: dict[str, str], *, folders: bool = False) -> list[l
 
 
 # circles left to a branch at work on them, each with its reason; may only shrink
-CIRCLES_LEFT = [
-    # bridge parts over a BridgeState (issue 33 item 6, the bridge's branch): state.py names
-    # bridge.py's Settings under TYPE_CHECKING
-    [
-        'ros2lite.bundled.foxglove_bridge.bridge',
-        'ros2lite.bundled.foxglove_bridge.channels',
-        'ros2lite.bundled.foxglove_bridge.publishing',
-        'ros2lite.bundled.foxglove_bridge.services',
-        'ros2lite.bundled.foxglove_bridge.state',
-    ],
-]
+CIRCLES_LEFT: list[list[str]] = []
 
 
 def test_no_import_circles() -> None:

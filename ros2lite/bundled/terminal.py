@@ -9,16 +9,34 @@ CLI's rendering packages.
 from __future__ import annotations
 
 import os
+import re
 import shutil
 from typing import TextIO
 
-__all__ = ['BOLD', 'RESET', 'LivePicture', 'rgb', 'terminal_size']
+__all__ = ['BOLD', 'RESET', 'LivePicture', 'rgb', 'terminal_size', 'visible']
 
 RESET = '\x1b[0m'
 BOLD = '\x1b[1m'
 _HIDE_CURSOR = '\x1b[?25l'
 _SHOW_CURSOR = '\x1b[?25h'
 _CLEAR_BELOW = '\x1b[J'
+
+
+# what must not reach a terminal from outside: C0 and C1 controls (ESC starts CSI and OSC
+# sequences), DEL, and the bidirectional overrides that reorder what is shown
+_UNSAFE = re.compile('[\x00-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]')
+
+
+def _escaped(match: re.Match[str]) -> str:
+    code = ord(match.group())
+    return f'\\x{code:02x}' if code < 0x100 else f'\\u{code:04x}'
+
+
+def visible(text: str) -> str:
+    """`text` from outside (a log line, a frame name) as a view may show it: every control
+    character written as an escape (`\\x1b`), so it can never move the cursor, retitle or
+    blank the terminal."""
+    return _UNSAFE.sub(_escaped, text)
 
 
 def rgb(fg: tuple[int, int, int], bg: tuple[int, int, int] | None = None) -> str:

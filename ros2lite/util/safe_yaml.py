@@ -93,15 +93,20 @@ def load(
     what: str = 'YAML',
     *,
     max_values: int = MAX_VALUES,
-    loader_class: type[yaml.SafeLoader] | None = None,
+    loader_class: type[yaml.SafeLoader] | type[yaml.CSafeLoader] | None = None,
 ) -> Any:
     """The value of a YAML document, like `yaml.safe_load` (tags of Python objects are
     refused), or YamlInputError naming `what` (see the module doc). `loader_class`, a
-    SafeLoader subclass, may construct values its own way (e.g. keep repeated keys); the
-    bounds hold all the same."""
+    SafeLoader subclass, may construct values its own way (e.g. keep repeated keys), or be
+    libyaml's CSafeLoader for speed; the bounds hold all the same."""
     import yaml
 
-    loader = (loader_class or yaml.SafeLoader)(text)
+    try:
+        # the reader checks the characters as it is made: a control character (a hostile
+        # name in a frame tree) raises here, and is the same syntax error as any other
+        loader = (loader_class or yaml.SafeLoader)(text)
+    except yaml.YAMLError as e:
+        raise _syntax(what, e) from None
     try:
         try:
             node = loader.get_single_node()

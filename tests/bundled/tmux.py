@@ -57,6 +57,10 @@ class TmuxPane:
         """What the pane shows now (with SGR colour sequences if `colours`)."""
         return self._tmux('capture-pane', '-p', *(['-e'] if colours else []))
 
+    def title(self) -> str:
+        """The pane's title (what an OSC 0 or 2 sequence from the program would set)."""
+        return self._tmux('display-message', '-p', '#{pane_title}').strip()
+
     def wait_for(self, text: str, timeout: float = 20.0) -> str:
         """The screen once it shows `text`."""
         return str(wait_until(lambda: text in (s := self.screen()) and s, timeout))

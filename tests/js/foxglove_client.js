@@ -128,6 +128,15 @@ client.on('serviceCallResponse', (r) => {
   const value = new MessageReader(parse(schema, { ros2: true })).readMessage(bytes);
   emit({ event: 'serviceResponse', service: service.name, value: summarise(value) });
 });
+client.on('fetchAssetResponse', (r) => {
+  if (r.status === 0) {
+    const bytes = new Uint8Array(r.data.buffer, r.data.byteOffset, r.data.byteLength);
+    const sha256 = require('crypto').createHash('sha256').update(bytes).digest('hex');
+    emit({ event: 'asset', id: r.requestId, status: r.status, length: bytes.length, sha256 });
+  } else {
+    emit({ event: 'asset', id: r.requestId, status: r.status, error: r.error });
+  }
+});
 client.on('serviceCallFailure', (f) => emit({ event: 'serviceFailure', message: f.message }));
 
 const published = new Map(); // topic -> {id, writer}
@@ -191,6 +200,8 @@ function handle(cmd) {
       return client.setParameters(cmd.parameters, cmd.id);
     case 'subscribeParameters':
       return client.subscribeParameterUpdates(cmd.names);
+    case 'fetchAsset':
+      return client.fetchAsset(cmd.uri, cmd.id);
     case 'subscribeGraph':
       return client.subscribeConnectionGraph();
     case 'raw':

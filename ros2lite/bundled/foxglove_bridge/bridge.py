@@ -6,11 +6,14 @@ subscribes to its channel, and samples go from the receive thread to the SDK as 
 never decoded. The SDK queues them per client and drops the oldest when a client falls
 behind, so a slow client never pushes back on the robot.
 
-The SDK calls the listener on its own threads. Anything that declares or undeclares
-something in Zenoh (subscribing, a client's publishers, the graph's channels and services)
-is handed to one worker thread, so an SDK callback never waits on Zenoh while a receive
-thread waits on the SDK. Service calls and parameter requests block the SDK thread that asked,
-each with a deadline, as the C++ bridge does.
+The bridge is parts over one `BridgeState`: channels, client publishing, services,
+parameters and assets, each an object of its module. The SDK calls the listener (this class)
+on its own threads, and serves no other client while a listener call runs: anything that
+declares or undeclares something in Zenoh (subscribing, a client's publishers, the graph's
+channels and services) is handed to one worker thread, parameters are asked on a thread of
+their own and answered within a short bound. Service calls and assets run on the SDK's
+blocking pool, each with a deadline or a size bound. A front (`front.py`) takes clients that
+offer only the protocol's older name.
 """
 
 from __future__ import annotations
@@ -21,7 +24,6 @@ import re
 import threading
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import foxglove
@@ -34,10 +36,19 @@ from foxglove.websocket import (
     WebSocketServer,
 )
 
+from ros2lite.bundled.foxglove_bridge.assets import PackageAssets
 from ros2lite.bundled.foxglove_bridge.channels import GraphChannels
-from ros2lite.bundled.foxglove_bridge.parameters import RemoteParameters, split_name, to_foxglove
+from ros2lite.bundled.foxglove_bridge.front import SubprotocolFront
+from ros2lite.bundled.foxglove_bridge.parameters import RemoteParameters
 from ros2lite.bundled.foxglove_bridge.publishing import CLIENT_ENCODINGS, ClientPublishing
 from ros2lite.bundled.foxglove_bridge.services import GraphServices
+from ros2lite.bundled.foxglove_bridge.state import (
+    DEFAULT_CAPABILITIES,
+    BridgeState,
+    Say,
+    Settings,
+    compile_patterns,
+)
 from ros2lite.graph import EntityKind
 
 if TYPE_CHECKING:
@@ -45,11 +56,10 @@ if TYPE_CHECKING:
     from ros2lite.node import Node
     from ros2lite.subscription import Subscription
 
-__all__ = ['CAPABILITIES', 'Bridge', 'Settings']
+__all__ = ['CAPABILITIES', 'DEFAULT_CAPABILITIES', 'Bridge', 'Settings', 'compile_patterns']
 
-Say = Callable[[str], object]
-
-# capability names of the C++ bridge's `capabilities` parameter -> the SDK's
+# capability names of the C++ bridge's `capabilities` parameter -> the SDK's ('assets' is
+# the SDK's own choice: it offers it when given an asset handler)
 CAPABILITIES = {
     'clientPublish': Capability.ClientPublish,
     'parameters': Capability.Parameters,
@@ -58,14 +68,6 @@ CAPABILITIES = {
     'connectionGraph': Capability.ConnectionGraph,
     'time': Capability.Time,
 }
-DEFAULT_CAPABILITIES = [
-    'clientPublish',
-    'parameters',
-    'parametersSubscribe',
-    'services',
-    'connectionGraph',
-    'assets',
-]
 # how often the graph is looked at when no change was heard (seconds)
 _REFRESH_PERIOD = 1.0
 # what the SDK logs (at INFO) when a client's queue overflowed and it dropped the oldest
@@ -74,42 +76,7 @@ _OUTBOX_FULL = re.compile(r'outbox for client (\S+) full')
 _CLIENT_DATA_LIMIT = 64 * 1024 * 1024
 
 
-@dataclass
-class Settings:
-    """The bridge's parameters, as the C++ bridge names them."""
-
-    port: int = 8765
-    address: str = '127.0.0.1'
-    topic_whitelist: list[str] = field(default_factory=lambda: ['.*'])
-    service_whitelist: list[str] = field(default_factory=lambda: ['.*'])
-    param_whitelist: list[str] = field(default_factory=lambda: ['.*'])
-    client_topic_whitelist: list[str] = field(default_factory=lambda: ['.*'])
-    capabilities: list[str] = field(default_factory=lambda: list(DEFAULT_CAPABILITIES))
-    message_backlog_size: int = 1024
-    send_buffer_limit: int = 10_000_000
-    min_qos_depth: int = 1
-    max_qos_depth: int = 25
-    include_hidden: bool = False
-    ignore_unresponsive_param_nodes: bool = True
-    service_timeout: float = 5.0
-    use_sim_time: bool = False
-    tls: bool = False
-    certfile: str = ''
-    keyfile: str = ''
-
-
-def compile_patterns(patterns: list[str], what: str) -> list[re.Pattern[str]]:
-    """The regexes of a whitelist; a bad one is the user's error, named."""
-    out = []
-    for p in patterns:
-        try:
-            out.append(re.compile(p))
-        except re.error as e:
-            raise ValueError(f"invalid regular expression '{p}' in {what}: {e}") from None
-    return out
-
-
-class Bridge(GraphChannels, ClientPublishing, GraphServices, ServerListener):
+class Bridge(ServerListener):
     """Serves `node`'s graph on a Foxglove WebSocket server until `close()`."""
 
     def __init__(
@@ -120,40 +87,48 @@ class Bridge(GraphChannels, ClientPublishing, GraphServices, ServerListener):
         log: Callable[[str], object] | None = None,
         warn: Callable[[str], object] | None = None,
     ) -> None:
-        self.node = node
-        self.settings = settings
-        self._log = log or node.get_logger().info
-        self._warn = warn or node.get_logger().warning
-        self._topic_patterns = compile_patterns(settings.topic_whitelist, 'topic_whitelist')
-        self._service_patterns = compile_patterns(settings.service_whitelist, 'service_whitelist')
-        self._client_topic_patterns = compile_patterns(
-            settings.client_topic_whitelist, 'client_topic_whitelist'
-        )
-        param_patterns = compile_patterns(settings.param_whitelist, 'param_whitelist')
         caps = set(settings.capabilities)
         unknown = caps - set(CAPABILITIES) - {'assets'}
         if unknown:
             raise ValueError(f'unknown capabilities: {", ".join(sorted(unknown))}')
-        self._caps = caps
+        self.state = state = BridgeState(
+            node=node,
+            settings=settings,
+            context=foxglove.Context(),
+            own=node.get_fully_qualified_name(),
+            capabilities=caps,
+            warn=warn or node.get_logger().warning,
+            log=log or node.get_logger().info,
+        )
         if settings.send_buffer_limit != Settings.send_buffer_limit:
-            self._warn(
+            state.warn(
                 'send_buffer_limit (bytes) is not used: foxglove-sdk bounds each client\'s '
                 'queue by message_backlog_size (messages)'
             )
-        self._own = node.get_fully_qualified_name()
-        self._context = foxglove.Context()
-        self._topics = {}
-        self._by_channel = {}
-        self._unknown_types = set()
-        self._services = {}
-        self._service_clients = {}
-        self._client_channels = {}
+        self.channels = GraphChannels(
+            state, compile_patterns(settings.topic_whitelist, 'topic_whitelist')
+        )
+        self.services = GraphServices(
+            state, compile_patterns(settings.service_whitelist, 'service_whitelist')
+        )
+        self.publishing = ClientPublishing(
+            state, compile_patterns(settings.client_topic_whitelist, 'client_topic_whitelist')
+        )
+        self.params = RemoteParameters(
+            node,
+            self._node_names,
+            compile_patterns(settings.param_whitelist, 'param_whitelist'),
+            ignore_unresponsive=settings.ignore_unresponsive_param_nodes,
+            warn=state.warn,
+        )
+        self.assets: PackageAssets | None = None
+        if 'assets' in caps:
+            self.assets = PackageAssets(
+                compile_patterns(settings.asset_uri_allowlist, 'asset_uri_allowlist')
+            )
+        self.front: SubprotocolFront | None = None
         self._client_bytes = 0
         self._client_bytes_lock = threading.Lock()
-        self._graph_subscribed = False
-        self._last_graph: object = None
-        self._param_names: set[str] = set()
-        self._param_lock = threading.Lock()
         self._events: queue.Queue[tuple[Any, ...]] = queue.Queue()
         # (client, channel) -> subscribed, the latest wish only: a client flipping a
         # subscription a million times leaves one entry, not a million events
@@ -164,20 +139,28 @@ class Bridge(GraphChannels, ClientPublishing, GraphServices, ServerListener):
         self._worker: threading.Thread | None = None
         self._param_events: Subscription[Any] | None = None
         self._clock_sub: Subscription[Any] | None = None
-        self.params = RemoteParameters(
-            node,
-            self._node_names,
-            param_patterns,
-            ignore_unresponsive=settings.ignore_unresponsive_param_nodes,
-            warn=self._warn,
-        )
-        self.server: WebSocketServer | None = None
+
+    @property
+    def server(self) -> WebSocketServer | None:
+        """The SDK's server, once started."""
+        return self.state.server
+
+    @property
+    def node(self) -> Node:
+        """The bridge's node."""
+        return self.state.node
+
+    @property
+    def settings(self) -> Settings:
+        """The bridge's parameters."""
+        return self.state.settings
 
     # -- life ----------------------------------------------------------------------------------
     def start(self) -> WebSocketServer:
         """Open the server and start following the graph."""
-        s = self.settings
-        names = {c for c in self._caps if c in CAPABILITIES}
+        state = self.state
+        s = state.settings
+        names = {c for c in state.capabilities if c in CAPABILITIES}
         if s.use_sim_time:
             names.add('time')
         # the SDK's Capability is not hashable: one per distinct value, by name
@@ -194,56 +177,79 @@ class Bridge(GraphChannels, ClientPublishing, GraphServices, ServerListener):
             lambda m: self._events.put(('warn', m)),
             lambda m: self._events.put(('log', m)),
         )
-        self.server = foxglove.start_server(
-            name=self._own,
-            host=s.address,
-            port=s.port,
+        # without TLS the front listens where we were told and the SDK on a loopback port of
+        # its own (the front reads the upgrade request); with TLS the SDK listens itself and
+        # only the protocol's current name is taken
+        front = not s.tls
+        server = foxglove.start_server(
+            name=state.own,
+            host='127.0.0.1' if front else s.address,
+            port=0 if front else s.port,
             capabilities=capabilities,
             server_listener=self,
             supported_encodings=list(CLIENT_ENCODINGS),
-            context=self._context,
+            asset_handler=self.assets.fetch if self.assets is not None else None,
+            context=state.context,
             message_backlog_size=max(1, s.message_backlog_size),
             tls_cert=cert,
             tls_key=key,
         )
-        self.node.context.graph.add_listener(self._graph_changed)
-        if 'parametersSubscribe' in self._caps:
-            self._param_events = self.node.create_subscription(
+        state.server = server
+        if front:
+            try:
+                self.front = SubprotocolFront(
+                    s.address,
+                    s.port,
+                    server.port,
+                    warn=lambda m: self._events.put(('warn', m)),
+                    log=lambda m: self._events.put(('log', m)),
+                )
+            except (RuntimeError, OSError) as e:
+                server.stop()
+                state.server = None
+                raise RuntimeError(str(e)) from None
+            self.front.start()
+        self.params.start()
+        state.node.context.graph.add_listener(self._graph_changed)
+        if 'parametersSubscribe' in state.capabilities:
+            self._param_events = state.node.create_subscription(
                 _interface('rcl_interfaces/msg/ParameterEvent'),
                 '/parameter_events',
                 self._on_parameter_event,
                 10,
             )
         if s.use_sim_time:
-            self._clock_sub = self.node.create_subscription(
+            self._clock_sub = state.node.create_subscription(
                 _interface('rosgraph_msgs/msg/Clock'), '/clock', self._on_clock, 10
             )
         self._refresh()
         self._worker = threading.Thread(target=self._work, name='foxglove-bridge', daemon=True)
         self._worker.start()
         scheme = 'wss' if s.tls else 'ws'
-        self._log(f'Foxglove bridge listening on {scheme}://{s.address}:{self.server.port}')
-        return self.server
+        state.log(f'Foxglove bridge listening on {scheme}://{s.address}:{self.port}')
+        return server
 
     @property
     def port(self) -> int:
-        """The port the server listens on (the chosen one when `port` was 0)."""
-        assert self.server is not None
-        return self.server.port
+        """The port clients connect to (the chosen one when `port` was 0)."""
+        if self.front is not None:
+            return self.front.port
+        assert self.state.server is not None
+        return self.state.server.port
 
     def close(self) -> None:
         """Stop serving: the server, the worker, every subscription and publisher we made."""
         self._stopping.set()
-        self.node.context.graph.remove_listener(self._graph_changed)
+        self.state.node.context.graph.remove_listener(self._graph_changed)
         if self._worker is not None:
             self._events.put(('stop',))
             self._worker.join(5.0)
-        if self.server is not None:
-            self.server.stop()
-        for topic in list(self._topics.values()):
-            self._unsubscribe_topic(topic)
-            topic.channel.close()
-        self._topics.clear()
+        if self.front is not None:
+            self.front.close()
+        if self.state.server is not None:
+            self.state.server.stop()
+        self.params.close()
+        self.channels.close()
 
     # -- the worker: everything that declares in Zenoh ----------------------------------------
     def _work(self) -> None:
@@ -266,7 +272,17 @@ class Bridge(GraphChannels, ClientPublishing, GraphServices, ServerListener):
             except Exception as e:  # one bad request must not end the bridge
                 if self._stopping.is_set():
                     return
-                self._warn(f'foxglove_bridge: {e}')
+                self.state.warn(f'foxglove_bridge: {e}')
+
+    def _refresh(self) -> None:
+        """Channels and services in line with the graph (our own entities left out)."""
+        state = self.state
+        entities = [
+            e for e in state.node.context.graph.entities() if e.node_fqn != state.own or e.is_node
+        ]
+        self.channels.refresh(entities)
+        if 'services' in state.capabilities:
+            self.services.refresh(entities)
 
     def _handle(self, event: tuple[Any, ...]) -> None:
         kind = event[0]
@@ -275,25 +291,23 @@ class Bridge(GraphChannels, ClientPublishing, GraphServices, ServerListener):
                 wishes, self._wishes = self._wishes, {}
             for (client_id, channel_id), subscribed in wishes.items():
                 if subscribed:
-                    self._subscribe(client_id, channel_id)
+                    self.channels.subscribe(client_id, channel_id)
                 else:
-                    self._unsubscribe(client_id, channel_id)
+                    self.channels.unsubscribe(client_id, channel_id)
         elif kind == 'advertise':
-            self._advertise(event[1], event[2])
+            self.publishing.advertise(event[1], event[2])
         elif kind == 'unadvertise':
-            pub = self._client_channels.pop((event[1], event[2]), None)
-            if pub is not None and pub.publisher is not None:
-                self.node.destroy_publisher(pub.publisher)
+            self.publishing.unadvertise(event[1], event[2])
         elif kind == 'status':
-            self._status(event[1])
+            self.state.status(event[1])
         elif kind == 'warn':
-            self._warn(event[1])
+            self.state.warn(event[1])
         elif kind == 'log':
-            self._log(event[1])
+            self.state.log(event[1])
         elif kind == 'data':
             with self._client_bytes_lock:
                 self._client_bytes -= len(event[3])
-            self._publish(event[1], event[2], event[3])
+            self.publishing.publish(event[1], event[2], event[3])
 
     def _wish(self, client_id: int, channel_id: int, subscribed: bool) -> None:
         with self._wishes_lock:
@@ -307,28 +321,22 @@ class Bridge(GraphChannels, ClientPublishing, GraphServices, ServerListener):
 
     def _node_names(self) -> list[str]:
         return sorted(
-            {e.node_fqn for e in self.node.context.graph.entities() if e.kind is EntityKind.NODE}
+            {
+                e.node_fqn
+                for e in self.state.node.context.graph.entities()
+                if e.kind is EntityKind.NODE
+            }
         )
 
-    # -- parameters ----------------------------------------------------------------------------
+    # -- parameters and time (the executor's thread) -------------------------------------------
     def _on_parameter_event(self, event: Any) -> None:
-        node = event.node
-        with self._param_lock:
-            watched = set(self._param_names)
-        changed = []
-        from ros2lite.parameter import Parameter
+        changed = self.params.on_event(event)
+        if changed and self.state.server is not None:
+            self.state.server.publish_parameter_values(changed)
 
-        for p in [*event.new_parameters, *event.changed_parameters]:
-            name = f'{node}.{p.name}'
-            if name in watched:
-                changed.append(to_foxglove(node, Parameter.from_parameter_msg(p)))
-        if changed and self.server is not None:
-            self.server.publish_parameter_values(changed)
-
-    # -- time ----------------------------------------------------------------------------------
     def _on_clock(self, msg: Any) -> None:
-        if self.server is not None:
-            self.server.broadcast_time(msg.clock.sec * 1_000_000_000 + msg.clock.nanosec)
+        if self.state.server is not None:
+            self.state.server.broadcast_time(msg.clock.sec * 1_000_000_000 + msg.clock.nanosec)
 
     def tell_clients(self, message: str) -> None:
         """A warning status for every client, sent from the worker (safe on any thread)."""
@@ -345,7 +353,7 @@ class Bridge(GraphChannels, ClientPublishing, GraphServices, ServerListener):
 
     def on_client_advertise(self, client: Client, channel: ClientChannel) -> None:
         """A client will publish on a topic."""
-        if 'clientPublish' in self._caps:
+        if 'clientPublish' in self.state.capabilities:
             self._events.put(('advertise', client.id, channel))
 
     def on_client_unadvertise(self, client: Client, client_channel_id: int) -> None:
@@ -359,7 +367,9 @@ class Bridge(GraphChannels, ClientPublishing, GraphServices, ServerListener):
             if not full:
                 self._client_bytes += len(data)
         if full:
-            self._status('Client messages arrive faster than they can be published; dropped one')
+            self.state.status(
+                'Client messages arrive faster than they can be published; dropped one'
+            )
             return
         self._events.put(('data', client.id, client_channel_id, data))
 
@@ -377,23 +387,21 @@ class Bridge(GraphChannels, ClientPublishing, GraphServices, ServerListener):
 
     def on_parameters_subscribe(self, param_names: list[str]) -> None:
         """Clients now watch these parameters (sent on /parameter_events)."""
-        with self._param_lock:
-            self._param_names.update(n for n in param_names if split_name(n) is not None)
+        self.params.watch(param_names)
 
     def on_parameters_unsubscribe(self, param_names: list[str]) -> None:
         """No client watches these parameters any more."""
-        with self._param_lock:
-            self._param_names.difference_update(param_names)
+        self.params.unwatch(param_names)
 
     def on_connection_graph_subscribe(self) -> None:
         """The first client wants the connection graph: the worker sends it."""
-        self._graph_subscribed = True
-        self._last_graph = None
+        self.channels.graph_subscribed = True
+        self.channels.last_graph = None
         self._dirty.set()
 
     def on_connection_graph_unsubscribe(self) -> None:
         """No client wants the connection graph any more."""
-        self._graph_subscribed = False
+        self.channels.graph_subscribed = False
 
 
 class _SdkLog(logging.Handler):

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 import foxglove
 
-from ros2lite.bundled.foxglove_bridge.state import BridgeState, _matches
+from ros2lite.bundled.foxglove_bridge.state import BridgeState, matches
 from ros2lite.graph import EntityKind
 from ros2lite.names import is_hidden_name
 from ros2lite.qos import HistoryPolicy, QoSProfile, match_publishers_qos
@@ -30,81 +30,77 @@ class _Topic:
     subscription: MonitoredSubscription | None = None
 
 
-class GraphChannels(BridgeState):
+class GraphChannels:
     """Topics -> channels, and the connection graph."""
 
-    _topic_patterns: list[re.Pattern[str]]
-    _service_patterns: list[re.Pattern[str]]
-    _topics: dict[tuple[str, str], _Topic]
-    _by_channel: dict[int, _Topic]
-    _graph_subscribed: bool
-    _last_graph: object
+    def __init__(self, state: BridgeState, topic_patterns: list[re.Pattern[str]]) -> None:
+        self.state = state
+        self.topic_patterns = topic_patterns
+        self.topics: dict[tuple[str, str], _Topic] = {}
+        self.by_channel: dict[int, _Topic] = {}
+        self.graph_subscribed = False
+        self.last_graph: object = None
 
-    def _visible(self, name: str, patterns: list[re.Pattern[str]]) -> bool:
-        return (self.settings.include_hidden or not is_hidden_name(name)) and _matches(
-            patterns, name
-        )
-
-    def _refresh(self) -> None:
-        """Bring channels and services in line with the graph; send the connection graph."""
+    def refresh(self, entities: list[Entity]) -> None:
+        """Bring channels in line with the graph's topics; send the connection graph."""
         from ros2lite.interfaces import definition_text
 
-        entities = [
-            e for e in self.node.context.graph.entities() if e.node_fqn != self._own or e.is_node
-        ]
+        state = self.state
         wanted: dict[tuple[str, str], list[Entity]] = {}
-        services: dict[str, str] = {}
         for e in entities:
             if not (e.topic_name and e.type_name):
                 continue
-            if e.kind in (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION):
-                if self._visible(e.topic_name, self._topic_patterns):
-                    wanted.setdefault((e.topic_name, e.type_name), []).append(e)
-            elif e.kind is EntityKind.SERVICE and self._visible(
-                e.topic_name, self._service_patterns
+            if e.kind in (EntityKind.PUBLISHER, EntityKind.SUBSCRIPTION) and visible(
+                state, e.topic_name, self.topic_patterns
             ):
-                services.setdefault(e.topic_name, e.type_name)
-        for key in list(self._topics):
+                wanted.setdefault((e.topic_name, e.type_name), []).append(e)
+        for key in list(self.topics):
             if key not in wanted:
-                topic = self._topics.pop(key)
-                self._by_channel.pop(topic.channel.id(), None)
+                topic = self.topics.pop(key)
+                self.by_channel.pop(topic.channel.id(), None)
                 self._unsubscribe_topic(topic)
                 topic.channel.close()
         for (name, type_name), _ in sorted(wanted.items()):
-            if (name, type_name) in self._topics or type_name in self._unknown_types:
+            if (name, type_name) in self.topics or type_name in state.unknown_types:
                 continue
             try:
                 text = definition_text(type_name)
             except Exception as e:  # a type not defined here: no schema a client could use
-                self._unknown_types.add(type_name)
-                self._warn(f"Topic '{name}': type {type_name} is unknown here ({e}); not shown")
+                state.unknown_types.add(type_name)
+                state.warn(f"Topic '{name}': type {type_name} is unknown here ({e}); not shown")
                 continue
             schema = foxglove.Schema(name=type_name, encoding='ros2msg', data=text.encode())
             channel = foxglove.Channel(
-                name, message_encoding='cdr', schema=schema, context=self._context
+                name, message_encoding='cdr', schema=schema, context=state.context
             )
             topic = _Topic(name, type_name, channel)
-            self._topics[(name, type_name)] = topic
-            self._by_channel[channel.id()] = topic
-        for (name, type_name), topic in self._topics.items():
+            self.topics[(name, type_name)] = topic
+            self.by_channel[channel.id()] = topic
+        for (name, type_name), topic in self.topics.items():
             if topic.subscription is not None:
                 continue
             if topic.subscribers:  # publishers came back for a channel clients still watch
                 self._subscribe_topic(topic, wanted.get((name, type_name), []))
-        if 'services' in self._caps:
-            self._refresh_services(services)
-        if self._graph_subscribed:
+        if self.graph_subscribed:
             self._publish_graph(entities)
 
-    def _subscribe(self, client_id: int, channel_id: int) -> None:
-        topic = self._by_channel.get(channel_id)
+    def close(self) -> None:
+        """Every subscription undeclared, every channel closed."""
+        for topic in list(self.topics.values()):
+            self._unsubscribe_topic(topic)
+            topic.channel.close()
+        self.topics.clear()
+        self.by_channel.clear()
+
+    def subscribe(self, client_id: int, channel_id: int) -> None:
+        topic = self.by_channel.get(channel_id)
         if topic is None:
             return
         topic.subscribers.add(client_id)
         if topic.subscription is None:
             pubs = [
                 e
-                for e in self.node.context.graph.entities()
+                for e in self.state.node.context.graph.entities()
                 if e.kind is EntityKind.PUBLISHER
                 and e.topic_name == topic.name
                 and e.type_name == topic.type_name
@@ -115,7 +111,7 @@ class GraphChannels(BridgeState):
         from ros2lite.bag.definitions import type_ref
         from ros2lite.monitor.subscription import MonitoredSubscription
 
-        s = self.settings
+        s = self.state.settings
         depth = sum(p.qos.depth for p in pubs if p.qos is not None)
         depth = min(max(depth, s.min_qos_depth, 1), max(s.max_qos_depth, 1))
         offered = [p.qos for p in pubs if p.qos is not None and p.kind is EntityKind.PUBLISHER]
@@ -128,7 +124,7 @@ class GraphChannels(BridgeState):
             # the publishers' own hash, so a type that changed here still matches them
             msg_type = type_ref(topic.type_name, next(iter(hashes)))
         log = topic.channel.base.log
-        clock = self.node.get_clock()
+        clock = self.state.node.get_clock()
 
         def receive(data: bytes, _attachment: bytes, received: int) -> None:
             if clock.ros_time_is_active:
@@ -136,11 +132,11 @@ class GraphChannels(BridgeState):
             log(data, received)
 
         topic.subscription = MonitoredSubscription(
-            self.node, msg_type, topic.name, None, qos, on_payload=receive
+            self.state.node, msg_type, topic.name, None, qos, on_payload=receive
         )
 
-    def _unsubscribe(self, client_id: int, channel_id: int) -> None:
-        topic = self._by_channel.get(channel_id)
+    def unsubscribe(self, client_id: int, channel_id: int) -> None:
+        topic = self.by_channel.get(channel_id)
         if topic is None:
             return
         topic.subscribers.discard(client_id)
@@ -150,11 +146,12 @@ class GraphChannels(BridgeState):
     def _unsubscribe_topic(self, topic: _Topic) -> None:
         sub, topic.subscription = topic.subscription, None
         if sub is not None:
-            self.node.destroy_subscription(sub)
+            self.state.node.destroy_subscription(sub)
 
     # -- connection graph ----------------------------------------------------------------------
     def _publish_graph(self, entities: list[Entity]) -> None:
-        assert self.server is not None
+        server = self.state.server
+        assert server is not None
         published: dict[str, set[str]] = {}
         subscribed: dict[str, set[str]] = {}
         provided: dict[str, set[str]] = {}
@@ -171,9 +168,9 @@ class GraphChannels(BridgeState):
             tuple(sorted((k, tuple(sorted(v))) for k, v in t.items()))
             for t in (published, subscribed, provided)
         )
-        if picture == self._last_graph:
+        if picture == self.last_graph:
             return
-        self._last_graph = picture
+        self.last_graph = picture
         graph = foxglove.ConnectionGraph()
         for topic, ids in published.items():
             graph.set_published_topic(topic, sorted(ids))
@@ -181,4 +178,9 @@ class GraphChannels(BridgeState):
             graph.set_subscribed_topic(topic, sorted(ids))
         for service, ids in provided.items():
             graph.set_advertised_service(service, sorted(ids))
-        self.server.publish_connection_graph(graph)
+        server.publish_connection_graph(graph)
+
+
+def visible(state: BridgeState, name: str, patterns: list[re.Pattern[str]]) -> bool:
+    """Whether a topic or service is shown: whitelisted, and not hidden unless asked."""
+    return (state.settings.include_hidden or not is_hidden_name(name)) and matches(patterns, name)

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 from foxglove.websocket import ClientChannel
 
-from ros2lite.bundled.foxglove_bridge.state import BridgeState, _matches
+from ros2lite.bundled.foxglove_bridge.state import BridgeState, matches
 
 if TYPE_CHECKING:
     from ros2lite.publisher import Publisher
@@ -37,38 +37,40 @@ class _ClientPublication:
     msg_class: Any = None
 
 
-class ClientPublishing(BridgeState):
+class ClientPublishing:
     """The channels clients advertise, each with its publisher."""
 
-    _client_topic_patterns: list[re.Pattern[str]]
-    _client_channels: dict[tuple[int, int], _ClientPublication]
+    def __init__(self, state: BridgeState, patterns: list[re.Pattern[str]]) -> None:
+        self.state = state
+        self.patterns = patterns
+        self.channels: dict[tuple[int, int], _ClientPublication] = {}
 
-    def _advertise(self, client_id: int, channel: ClientChannel) -> None:
+    def advertise(self, client_id: int, channel: ClientChannel) -> None:
         from ros2lite.interfaces import get_interface
 
         key = (client_id, channel.id)
         if channel.encoding not in CLIENT_ENCODINGS:
-            self._status(f'Unsupported encoding {channel.encoding!r} for {channel.topic}')
+            self.state.status(f'Unsupported encoding {channel.encoding!r} for {channel.topic}')
             return
-        if not _matches(self._client_topic_patterns, channel.topic):
-            self._status(f"Topic '{channel.topic}' is not whitelisted for client publishing")
+        if not matches(self.patterns, channel.topic):
+            self.state.status(f"Topic '{channel.topic}' is not whitelisted for client publishing")
             return
-        if sum(1 for c, _ in self._client_channels if c == client_id) >= _CLIENT_CHANNEL_LIMIT:
-            self._status(f'A client may advertise {_CLIENT_CHANNEL_LIMIT} channels at most')
+        if sum(1 for c, _ in self.channels if c == client_id) >= _CLIENT_CHANNEL_LIMIT:
+            self.state.status(f'A client may advertise {_CLIENT_CHANNEL_LIMIT} channels at most')
             return
         type_name = _type_name(channel.schema_name)
         try:
             msg_class = get_interface(type_name)
-            publisher = self.node.create_publisher(msg_class, channel.topic, 10)
+            publisher = self.state.node.create_publisher(msg_class, channel.topic, 10)
         except Exception as e:
-            self._status(f"Cannot advertise '{channel.topic}' ({channel.schema_name}): {e}")
+            self.state.status(f"Cannot advertise '{channel.topic}' ({channel.schema_name}): {e}")
             return
-        self._client_channels[key] = _ClientPublication(
+        self.channels[key] = _ClientPublication(
             channel.topic, type_name, channel.encoding, publisher, msg_class
         )
 
-    def _publish(self, client_id: int, channel_id: int, data: bytes) -> None:
-        pub = self._client_channels.get((client_id, channel_id))
+    def publish(self, client_id: int, channel_id: int, data: bytes) -> None:
+        pub = self.channels.get((client_id, channel_id))
         if pub is None or pub.publisher is None:
             return  # the SDK refuses unknown channel ids; one we could not advertise
         try:
@@ -84,4 +86,10 @@ class ClientPublishing(BridgeState):
             set_message_fields(msg, fields)
             pub.publisher.publish(msg)
         except Exception as e:
-            self._status(f"Dropped a message to '{pub.topic}': {e}")
+            self.state.status(f"Dropped a message to '{pub.topic}': {e}")
+
+    def unadvertise(self, client_id: int, channel_id: int) -> None:
+        """A client's channel withdrawn: its publisher goes."""
+        pub = self.channels.pop((client_id, channel_id), None)
+        if pub is not None and pub.publisher is not None:
+            self.state.node.destroy_publisher(pub.publisher)

@@ -4,64 +4,81 @@ made through a client of ours with a deadline (CDR or JSON)."""
 from __future__ import annotations
 
 import json
+import re
 from typing import TYPE_CHECKING, Any
 
 import foxglove
 from foxglove.websocket import ServiceRequest
 
+from ros2lite.bundled.foxglove_bridge.channels import visible
 from ros2lite.bundled.foxglove_bridge.state import BridgeState
+from ros2lite.graph import EntityKind
 
 if TYPE_CHECKING:
     from ros2lite.client import Client as RosClient
+    from ros2lite.graph import Entity
 
 
-class GraphServices(BridgeState):
+class GraphServices:
     """The graph's services, as the clients see them."""
 
-    _services: dict[str, str]  # name -> type, as advertised
-    _service_clients: dict[str, RosClient[Any, Any]]
+    def __init__(self, state: BridgeState, patterns: list[re.Pattern[str]]) -> None:
+        self.state = state
+        self.patterns = patterns
+        self.advertised: dict[str, str] = {}  # name -> type, as advertised
+        self.clients: dict[str, RosClient[Any, Any]] = {}
 
-    def _refresh_services(self, services: dict[str, str]) -> None:
+    def refresh(self, entities: list[Entity]) -> None:
+        """Offer the graph's visible services, withdraw the ones gone."""
         from ros2lite.interfaces import definition_text
 
-        assert self.server is not None
-        gone = [n for n, t in self._services.items() if services.get(n) != t]
+        state = self.state
+        server = state.server
+        assert server is not None
+        services: dict[str, str] = {}
+        for e in entities:
+            name, type_name = e.topic_name, e.type_name
+            if e.kind is not EntityKind.SERVICE or not name or not type_name:
+                continue
+            if visible(state, name, self.patterns):
+                services.setdefault(name, type_name)
+        gone = [n for n, t in self.advertised.items() if services.get(n) != t]
         if gone:
-            self.server.remove_services(gone)
+            server.remove_services(gone)
             for name in gone:
-                del self._services[name]
-                client = self._service_clients.pop(name, None)
+                del self.advertised[name]
+                client = self.clients.pop(name, None)
                 if client is not None:
-                    self.node.destroy_client(client)
+                    state.node.destroy_client(client)
         added = []
         for name, type_name in sorted(services.items()):
-            if name in self._services or type_name in self._unknown_types:
+            if name in self.advertised or type_name in state.unknown_types:
                 continue
             try:
                 request = definition_text(f'{type_name}_Request')
                 response = definition_text(f'{type_name}_Response')
             except Exception as e:
-                self._unknown_types.add(type_name)
-                self._warn(f"Service '{name}': type {type_name} is unknown here ({e}); not shown")
+                state.unknown_types.add(type_name)
+                state.warn(f"Service '{name}': type {type_name} is unknown here ({e}); not shown")
                 continue
             schema = foxglove.ServiceSchema(
                 type_name,
                 request=_message_schema(f'{type_name}_Request', request),
                 response=_message_schema(f'{type_name}_Response', response),
             )
-            added.append(foxglove.Service(name, schema=schema, handler=self._call_service))
-            self._services[name] = type_name
+            added.append(foxglove.Service(name, schema=schema, handler=self.call))
+            self.advertised[name] = type_name
         if added:
-            self.server.add_services(added)
+            server.add_services(added)
 
-    def _call_service(self, request: ServiceRequest) -> bytes:
+    def call(self, request: ServiceRequest) -> bytes:
         """A client's call of a graph service, answered with the response's CDR bytes (or an
         error the SDK sends back as a failed call)."""
         from ros2lite.interfaces import get_interface, serialize, set_message_fields
         from ros2lite.interfaces.cdr import service_codecs
 
         name = request.service_name
-        type_name = self._services.get(name)
+        type_name = self.advertised.get(name)
         if type_name is None:
             raise ValueError(f"service '{name}' is gone")
         srv = get_interface(type_name)
@@ -73,11 +90,11 @@ class GraphServices(BridgeState):
             set_message_fields(msg, fields)
         else:
             msg = service_codecs(type_name)[0].deserialize(request.payload)
-        client = self._service_clients.get(name)
+        client = self.clients.get(name)
         if client is None:
-            client = self.node.create_client(srv, name, fail_without_server=True)
-            self._service_clients[name] = client
-        response = client.call(msg, timeout_sec=self.settings.service_timeout)
+            client = self.state.node.create_client(srv, name, fail_without_server=True)
+            self.clients[name] = client
+        response = client.call(msg, timeout_sec=self.state.settings.service_timeout)
         if response is None:
             raise TimeoutError(f"service '{name}' did not answer in time")
         if request.encoding == 'json':

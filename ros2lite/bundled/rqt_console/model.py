@@ -15,6 +15,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
+from ros2lite.bundled.terminal import visible
 from ros2lite.logging import LoggingSeverity
 
 if TYPE_CHECKING:
@@ -196,14 +197,16 @@ _WIDEST = {'#': 6, 'Severity': 8, 'Node': 24, 'Stamp': 15, 'Message': 0, 'Locati
 
 
 def cells(row: Row) -> tuple[str, ...]:
-    """A row's text, column by column."""
+    """A row's text, column by column; what came from `/rosout` with its control characters
+    escaped, so a hostile line (an OSC retitling the terminal, a CSI blanking it) is shown,
+    never obeyed."""
     return (
         str(row.number),
         row.severity,
-        row.node,
+        visible(row.node),
         row.stamp_text(),
-        row.message.replace('\n', ' '),
-        row.location,
+        visible(row.message.replace('\n', ' ')),
+        visible(row.location),
     )
 
 

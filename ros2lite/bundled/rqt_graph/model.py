@@ -53,10 +53,11 @@ class Graph:
 
     def text(self, name: str) -> str:
         """What the vertex `name` shows."""
-        for key, text in self.labels:
-            if key == name:
-                return text
-        return name
+        index = self.__dict__.get('_label_index')
+        if index is None:  # built once: a lookup per vertex stays constant (2,000 frames)
+            index = dict(self.labels)
+            object.__setattr__(self, '_label_index', index)
+        return str(index.get(name, name))
 
 
 def build(nodes: Iterable[str], endpoints: Iterable[Endpoint], options: Options) -> Graph:

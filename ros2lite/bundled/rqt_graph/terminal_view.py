@@ -26,12 +26,22 @@ def cell_layout(graph: Graph) -> Layout:
     return layout(graph, lambda n, _t: _cell_size(graph, n), layer_gap=gap, node_gap=1, margin=1)
 
 
-def render_lines(graph: Graph) -> list[list[tuple[str, str]]]:
+def render_lines(graph: Graph, crop: tuple[int, int] | None = None) -> list[list[tuple[str, str]]]:
     """The picture as rows of (character, role) cells; roles: '', 'edge', 'node', 'topic',
-    'note'."""
+    'note'. With `crop` (columns, rows) only that top-left part is drawn: a terminal shows no
+    more, and a star of 3,000 frames is a picture of 100,000 columns whose every edge would
+    otherwise be drawn across it."""
     lay = cell_layout(graph)
     width, height = int(lay.width) + 2, int(lay.height) + 1
+    if crop is not None:
+        width, height = min(width, max(crop[0], 0)), min(height, max(crop[1], 0))
     grid = [[(' ', '')] * width for _ in range(height)]
+
+    def xs(start: int, stop: int) -> range:
+        return range(max(start, 0), min(stop, width))
+
+    def ys(start: int, stop: int) -> range:
+        return range(max(start, 0), min(stop, height))
 
     def put(x: int, y: int, ch: str, role: str) -> None:
         if 0 <= y < height and 0 <= x < width:
@@ -44,15 +54,16 @@ def render_lines(graph: Graph) -> list[list[tuple[str, str]]]:
         x0, x1 = (sl + sr) // 2, (tl + tr) // 2
         y0, y1 = sb + 1, tt - 1
         mid = (y0 + y1) // 2
-        for y in range(y0, mid):
+        for y in ys(y0, mid):
             put(x0, y, '│', 'edge')
-        for y in range(mid, y1 + 1):
+        for y in ys(mid, y1 + 1):
             put(x1, y, '│', 'edge')
         if x0 != x1:
-            for x in range(min(x0, x1) + 1, max(x0, x1)):
+            for x in xs(min(x0, x1) + 1, max(x0, x1)):
                 put(x, mid, '─', 'edge')
             # children on both sides of their parent share a junction: ┴
-            put(x0, mid, '┴' if grid[mid][x0][0] in '╰╯┴' else '╰' if x1 > x0 else '╯', 'edge')
+            joined = 0 <= mid < height and 0 <= x0 < width and grid[mid][x0][0] in '╰╯┴'
+            put(x0, mid, '┴' if joined else '╰' if x1 > x0 else '╯', 'edge')
             put(x1, mid, '╮' if x1 > x0 else '╭', 'edge')
         if not lay.boxes[target].is_note:
             put(x1, y1, '▼', 'edge')
@@ -64,28 +75,30 @@ def render_lines(graph: Graph) -> list[list[tuple[str, str]]]:
         x1 = tl - 1
         if x1 <= x0:  # a link back to the left: leave below the boxes and come back
             below = max(sb, tb) + 1
-            for x in range(min(x1, x0), max(x1, x0) + 1):
+            for x in xs(min(x1, x0), max(x1, x0) + 1):
                 put(x, below, '─', 'edge')
-            for y in range(min(y0, below), below):
+            for y in ys(min(y0, below), below):
                 put(x0, y, '│', 'edge')
-            for y in range(min(y1, below), below):
+            for y in ys(min(y1, below), below):
                 put(x1, y, '│', 'edge')
             put(x0, below, '╯', 'edge')
             put(x1, below, '╰', 'edge')
             put(x1, y1, '▶', 'edge')
             continue
         mid = (x0 + x1) // 2
-        for x in range(x0, mid):
+        for x in xs(x0, mid):
             put(x, y0, '─', 'edge')
-        for x in range(mid, x1):
+        for x in xs(mid, x1):
             put(x, y1, '─', 'edge')
         if y0 != y1:
-            for y in range(min(y0, y1), max(y0, y1)):
+            for y in ys(min(y0, y1), max(y0, y1)):
                 put(mid, y, '│', 'edge')
             put(mid, y0, '╮' if y1 > y0 else '╯', 'edge')
             put(mid, y1, '╰' if y1 > y0 else '╭', 'edge')
         put(x1, y1, '▶', 'edge')
     for name, (left, top, right, bottom) in boxes.items():
+        if left >= width or top >= height:
+            continue  # outside the crop
         if lay.boxes[name].is_note:  # bare text, centred
             for i, text in enumerate(graph.text(name).split('\n')):
                 start = (left + right + 1 - len(text)) // 2
@@ -99,13 +112,13 @@ def render_lines(graph: Graph) -> list[list[tuple[str, str]]]:
         put(right, top, corners[1], role)
         put(left, bottom, corners[2], role)
         put(right, bottom, corners[3], role)
-        for x in range(left + 1, right):
+        for x in xs(left + 1, right):
             put(x, top, '─', role)
             put(x, bottom, '─', role)
-        for y in range(top + 1, bottom):
+        for y in ys(top + 1, bottom):
             put(left, y, '│', role)
             put(right, y, '│', role)
-            for x in range(left + 1, right):
+            for x in xs(left + 1, right):
                 put(x, y, ' ', role)
         for i, text in enumerate(graph.text(name).split('\n')):
             for j, ch in enumerate(text):
@@ -150,8 +163,7 @@ class GraphTerminal:
         """The graph as coloured text, cropped to `width` x `height` cells."""
         title = f'{self.title(graph)}  (Ctrl-C to quit)'
         lines = [BOLD + title[:width] + RESET]
-        for row in render_lines(graph)[: max(height - 1, 0)]:
-            row = row[:width]
+        for row in render_lines(graph, (width, max(height - 1, 0))):
             parts = []
             role = None
             for ch, r in row:  # one colour change per run of the same role

@@ -38,7 +38,12 @@ def view(options: argparse.Namespace) -> None:
     # gives the same text without a second node answering for another view_frames' buffer
     result = FrameGraph.Response(frame_yaml=buffer.all_frames_as_yaml())
     log.info('Result:' + repr(result))
-    frames = parse(result.frame_yaml)
+    skipped: list[str] = []
+    frames = parse(result.frame_yaml, skipped)
+    for line in skipped[:20]:
+        log.warning(line)
+    if len(skipped) > 20:
+        log.warning(f'({len(skipped) - 20} more entries skipped)')
     if options.output is not None:
         gv, pdf = f'{options.output}.gv', f'{options.output}.pdf'
     else:
@@ -48,10 +53,15 @@ def view(options: argparse.Namespace) -> None:
     recorded_at = sec + nsec / 1e9
     log.info(f'Exporting graph in {pdf} file...')
     try:
-        for path, content in (
-            (gv, to_dot(frames, recorded_at)),
-            (pdf, to_pdf(frames, recorded_at)),
-        ):
+        # a stop signal (SIGTERM, Ctrl-C) ends the context: nothing more is drawn or written
+        files = []
+        for path, draw in ((gv, to_dot), (pdf, to_pdf)):
+            if not node.context.ok():
+                return
+            files.append((path, draw(frames, recorded_at)))
+        for path, content in files:
+            if not node.context.ok():
+                return
             try:
                 replace_file(path, content, sync=False)
             except OSError as e:

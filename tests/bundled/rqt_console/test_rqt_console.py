@@ -103,6 +103,32 @@ def test_terminal_table_in_tmux(ros_context: Any, tmp_path: Path) -> None:
         pane.close()
 
 
+# what a hostile node may log: OSC 0 (retitles the terminal), CSI 2J (blanks it), a bidi
+# override, BEL
+HOSTILE = 'pwn \x1b]0;PWNED\x07 then \x1b[2J\x1b[H and \u202e end'
+
+
+def test_hostile_rosout_text_is_shown_not_obeyed(ros_context: Any, tmp_path: Path) -> None:
+    pane = TmuxPane(CONSOLE, no_display(), tmp_path)
+    node = Node('intruder', context=ros_context)
+    try:
+        pane.wait_for('rqt_console  (p pause')
+        before = pane.title()
+        listening(node)
+        node.get_logger().warning(HOSTILE)
+        node.get_logger().warning('after it')
+        screen = pane.wait_for('after it')
+        # the sequences are written as text, the table is still there, the title unchanged
+        assert 'pwn \\x1b]0;PWNED\\x07 then \\x1b[2J\\x1b[H and \\u202e end' in screen
+        assert 'Displaying 2 of 2 messages' in screen and 'rqt_console  (p pause' in screen
+        assert pane.title() == before and 'PWNED' not in pane.title()
+        pane.keys('q')
+        assert pane.exit_status() == 0
+    finally:
+        node.destroy_node()
+        pane.close()
+
+
 def test_plain_lines_without_a_display(ros_context: Any, processes: Any) -> None:
     proc = processes.start([*CONSOLE, '--display', 'none', '--severity', 'warn'], env=no_display())
     node = Node('battery_monitor', context=ros_context)
@@ -113,6 +139,10 @@ def test_plain_lines_without_a_display(ros_context: Any, processes: Any) -> None
         assert proc.stdout is not None
         first = proc.stdout.readline()  # the INFO before it is filtered out
         assert first.split()[1:3] == ['WARN', 'battery_monitor'] and 'low battery 12%' in first
+        node.get_logger().error(HOSTILE)
+        hostile = proc.stdout.readline()
+        assert '\x1b' not in hostile and '\x07' not in hostile and '\u202e' not in hostile
+        assert 'pwn \\x1b]0;PWNED\\x07 then' in hostile
     finally:
         node.destroy_node()
     out, err = processes.stop(proc)

@@ -5,12 +5,15 @@ from __future__ import annotations
 
 import shutil
 import subprocess
+import time
 from pathlib import Path
 
 import pytest
 
-from ros2lite.bundled.tf2_tools.frames import Frame, parse, to_dot
+from ros2lite.bundled.tf2_tools.frames import Frame, parse, to_dot, to_graph
 from ros2lite.bundled.tf2_tools.pdf import to_pdf
+from ros2lite.msgs.geometry_msgs.msg import TransformStamped
+from ros2lite.tf2 import Buffer
 
 # tf2's own text (a frame's line ends in a space, as tf2 writes it)
 YAML = (
@@ -47,9 +50,14 @@ def test_parse_and_dot() -> None:
         '}->"world";\n}'
     )
     assert parse('[]') == () and to_dot((), 1.0) == 'digraph G { "No tf data received" }'
-    for bad in ('- 1', 'a: {parent: b}', 'a: 3', 'a: {parent: b, rate: x}'):
+    for bad in ('- 1', 'a: [b', 'a: 3\n- b'):
         with pytest.raises(ValueError):
             parse(bad)
+    # an entry that is not a frame is left out with a line; the others stay
+    for bad in ('a: {parent: b}', 'a: 3', 'a: {parent: b, rate: x}'):
+        skipped: list[str] = []
+        assert parse(YAML + bad, skipped) == frames
+        assert len(skipped) == 1 and "entry for 'a'" in skipped[0]
 
 
 def pdf_text(pdf: Path) -> str:
@@ -87,3 +95,70 @@ def test_pdf_shows_every_frame(tmp_path: Path) -> None:
     empty = tmp_path / 'empty.pdf'
     empty.write_bytes(to_pdf((), 1.0))
     assert 'No tf data received' in pdf_text(empty)
+
+
+# frame names no one should send, and one that is merely long
+HOSTILE = (
+    'evil\x1b]0;PWNED\x07',  # OSC 0: retitles a terminal
+    'line\n@ros2_lv/forged: x',  # a line break and a colon
+    "quote'd \"both\"",
+    'Z' * 5000,  # over YAML's 1,024 characters of a simple key
+    'true',  # a YAML word
+)
+
+
+def _buffer(children: list[tuple[str, str]]) -> Buffer:
+    buffer = Buffer()
+    for parent, child in children:
+        t = TransformStamped()
+        t.header.frame_id = parent
+        t.child_frame_id = child
+        t.header.stamp.sec = 100
+        t.transform.rotation.w = 1.0
+        buffer.set_transform(t, 'default_authority')
+    return buffer
+
+
+def test_hostile_frame_names_are_drawn_escaped_with_the_rest(tmp_path: Path) -> None:
+    needs_poppler()
+    tree = [('world', 'base_link'), *(('base_link', name) for name in HOSTILE)]
+    skipped: list[str] = []
+    frames = parse(_buffer(tree).all_frames_as_yaml(), skipped)
+    assert skipped == []
+    assert sorted(f.name for f in frames) == sorted(['base_link', *HOSTILE])
+    dot = to_dot(frames, 1.0)
+    assert '\x1b' not in dot and '\x07' not in dot
+    assert '"base_link" -> "evil\\\\x1b]0;PWNED\\\\x07"' in dot
+    assert '"base_link" -> "line\\\\x0a@ros2_lv/forged: x"' in dot
+    assert '"base_link" -> "quote\'d \\"both\\""' in dot
+    assert dot.count(' -> ') == 1 + len(HOSTILE)
+    graph = to_graph(frames)
+    assert all(ch.isprintable() for name in graph.nodes for ch in name)
+    pdf = tmp_path / 'frames.pdf'
+    pdf.write_bytes(to_pdf(frames, 1.0))
+    text = pdf_text(pdf)
+    assert 'base_link' in text.split() and 'evil\\x1b]0;PWNED\\x07' in text
+
+
+def test_raw_control_characters_from_a_peer_are_read_escaped() -> None:
+    # tf2 itself writes names unescaped: a peer's answer may hold raw ESC and BEL
+    raw = YAML + YAML.split('turtle2')[0].replace('turtle1', 'evil\x1b]0;PWNED\x07')
+    skipped: list[str] = []
+    frames = parse(raw, skipped)
+    assert [f.name for f in frames] == ['turtle1', 'turtle2', 'evil\\x1b]0;PWNED\\x07']
+    assert skipped == ['frame names with control characters are shown escaped']
+
+
+def test_two_thousand_frames_take_seconds(tmp_path: Path) -> None:
+    # the layout was quadratic (grandalf builds its graph so): 500 / 1,000 / 2,000 frames took
+    # 8.7 s / 29 s / ~250 s; a tree is now laid out in linear time (about 6 s here, with fpdf
+    # drawing most of it, on a loaded 2-core machine)
+    buffer = _buffer([('map', f'sensor_{i}') for i in range(2000)])
+    started = time.monotonic()
+    frames = parse(buffer.all_frames_as_yaml())
+    assert len(frames) == 2000
+    to_dot(frames, 1.0)
+    pdf = to_pdf(frames, 1.0)
+    assert time.monotonic() - started < 60, time.monotonic() - started
+    (tmp_path / 'big.pdf').write_bytes(pdf)
+    assert pdf.startswith(b'%PDF')

@@ -5,8 +5,11 @@ frame on it; -o names both files."""
 from __future__ import annotations
 
 import re
+import signal
 import subprocess
 import sys
+import threading
+import time
 from pathlib import Path
 from typing import Any
 
@@ -66,3 +69,64 @@ def test_bad_input() -> None:
         "cannot write '/nonexistent/dir/tree.gv': No such file or directory"
         in done.stderr.splitlines()
     )
+
+
+# 2,000 static frames in one message, and one whose name holds an OSC sequence
+STAR = r'''
+import ros2lite
+from ros2lite.executors import ExternalShutdownException
+from ros2lite.msgs.geometry_msgs.msg import TransformStamped
+from ros2lite.node import Node
+from ros2lite.tf2 import StaticTransformBroadcaster
+
+def transform(child):
+    t = TransformStamped()
+    t.header.frame_id = 'map'
+    t.child_frame_id = child
+    t.transform.rotation.w = 1.0
+    return t
+
+with ros2lite.init():
+    node = Node('star_broadcaster')
+    names = [f'sensor_{i}' for i in range(2000)] + ['evil\x1b]0;PWNED\x07']
+    StaticTransformBroadcaster(node).sendTransform([transform(n) for n in names])
+    print('broadcasting', flush=True)
+    try:
+        ros2lite.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+'''
+
+
+def test_a_big_tree_with_a_hostile_name_is_drawn_and_sigterm_stops_it(
+    processes: Any, tmp_path: Path
+) -> None:
+    star = processes.python(STAR)
+    assert star.stdout.readline() == 'broadcasting\n', star.stderr.read()
+    started = time.monotonic()
+    done = subprocess.run(
+        [*VIEW_FRAMES, '-t', '2', '-o', str(tmp_path / 'star')], capture_output=True, text=True
+    )
+    took = time.monotonic() - started
+    assert done.returncode == 0 and 'Traceback' not in done.stderr, done.stderr
+    assert took < 90, took  # ~250 s before the layout became linear
+    dot = (tmp_path / 'star.gv').read_text()
+    assert dot.count('"map" -> ') == 2001
+    assert '"map" -> "evil\\\\x1b]0;PWNED\\\\x07"' in dot and '\x1b' not in dot
+    # SIGTERM while the picture is made: it ends soon, with nothing half-written
+    proc = processes.start([*VIEW_FRAMES, '-t', '2', '-o', str(tmp_path / 'stopped')])
+    assert proc.stderr is not None
+    generating = threading.Event()
+
+    def drain() -> None:  # (its log must never fill the pipe and block it)
+        for line in proc.stderr:
+            if 'Generating graph...' in line:
+                generating.set()
+
+    threading.Thread(target=drain, daemon=True).start()
+    assert generating.wait(60)
+    proc.send_signal(signal.SIGTERM)
+    stopped = time.monotonic()
+    proc.wait(timeout=60)
+    assert time.monotonic() - stopped < 30  # it waited 130 s past SIGTERM before
+    assert not (tmp_path / 'stopped.pdf').exists()
