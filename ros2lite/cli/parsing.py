@@ -73,7 +73,7 @@ class _Spelling:
 
     __slots__ = ('const', 'option', 'takes_value')
 
-    def __init__(self, option: click.Option, takes_value: bool, const: Any = None) -> None:
+    def __init__(self, option: click.Option, takes_value: bool, const: object = None) -> None:
         self.option = option
         self.takes_value = takes_value
         self.const = const
@@ -97,7 +97,7 @@ class _Words:
                 self.arguments.append(param)
             elif isinstance(param, click.Option):
                 self._add(param)
-        self.values: dict[str, Any] = {}
+        self.values: dict[str, object] = {}
         self.order: list[click.Parameter] = []
         self.rest: list[str] = []  # the words not read yet
         self.loose: list[str] = []  # the words read that are no option, in order
@@ -268,15 +268,19 @@ class _Words:
             del self.rest[: option.nargs]
             self._store(entry, value)
 
-    def _store(self, entry: _Spelling, value: Any) -> None:
+    def _store(self, entry: _Spelling, value: object) -> None:
         """One occurrence, as click's option actions keep it: a list for `multiple`, a
         running total for `count`, else the last value."""
         option = entry.option
         name = option.name or ''
         if option.multiple:
-            self.values.setdefault(name, []).append(value)
+            kept = self.values.setdefault(name, [])
+            assert isinstance(kept, list)
+            kept.append(value)
         elif option.count:
-            self.values[name] = self.values.get(name, 0) + 1
+            count = self.values.get(name, 0)
+            assert isinstance(count, int)
+            self.values[name] = count + 1
         else:
             self.values[name] = value
         self.order.append(option)

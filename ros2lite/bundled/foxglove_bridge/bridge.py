@@ -53,6 +53,8 @@ from ros2lite.graph import EntityKind
 
 if TYPE_CHECKING:
     from ros2lite.graph import Entity
+    from ros2lite.msgs.rcl_interfaces.msg import ParameterEvent
+    from ros2lite.msgs.rosgraph_msgs.msg import Clock
     from ros2lite.node import Node
     from ros2lite.subscription import Subscription
 
@@ -137,8 +139,8 @@ class Bridge(ServerListener):
         self._dirty = threading.Event()
         self._stopping = threading.Event()
         self._worker: threading.Thread | None = None
-        self._param_events: Subscription[Any] | None = None
-        self._clock_sub: Subscription[Any] | None = None
+        self._param_events: Subscription[ParameterEvent] | None = None
+        self._clock_sub: Subscription[Clock] | None = None
 
     @property
     def server(self) -> WebSocketServer | None:
@@ -329,12 +331,12 @@ class Bridge(ServerListener):
         )
 
     # -- parameters and time (the executor's thread) -------------------------------------------
-    def _on_parameter_event(self, event: Any) -> None:
+    def _on_parameter_event(self, event: ParameterEvent) -> None:
         changed = self.params.on_event(event)
         if changed and self.state.server is not None:
             self.state.server.publish_parameter_values(changed)
 
-    def _on_clock(self, msg: Any) -> None:
+    def _on_clock(self, msg: Clock) -> None:
         if self.state.server is not None:
             self.state.server.broadcast_time(msg.clock.sec * 1_000_000_000 + msg.clock.nanosec)
 

@@ -16,11 +16,14 @@ import sys
 import time
 from collections import Counter
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING
 from xml.sax.saxutils import escape, quoteattr
 
 from flake8.api import legacy
 from flake8.formatting.base import BaseFormatter
+
+if TYPE_CHECKING:
+    from flake8.violation import Violation
 
 __all__ = ['EXTEND_IGNORE', 'MAX_LINE_LENGTH', 'main', 'main_with_errors']
 
@@ -41,7 +44,7 @@ class _Collecting(BaseFormatter):
         """Start a fresh list for this run."""
         type(self).errors = []
 
-    def format(self, error: Any) -> str:
+    def format(self, error: Violation) -> str:
         """`path:line:col: CODE text`, as flake8's default formatter prints it."""
         line = f'{error.filename}:{error.line_number}:{error.column_number}: '
         line += f'{error.code} {error.text}'
@@ -79,10 +82,11 @@ def main_with_errors(argv: Sequence[str] | None = None) -> tuple[int, list[str]]
     parser.add_argument('--xunit-file')
     args = parser.parse_args(sys.argv[1:] if argv is None else list(argv))
     started = time.monotonic()
-    options: dict[str, Any] = {
+    excluded = _excluded(args.excludes)
+    options: dict[str, object] = {
         'max_line_length': args.linelength or MAX_LINE_LENGTH,
         'extend_ignore': list(EXTEND_IGNORE),
-        'exclude': _excluded(args.excludes),
+        'exclude': excluded,
         'show_source': True,
     }
     if args.config_file:
@@ -94,7 +98,7 @@ def main_with_errors(argv: Sequence[str] | None = None) -> tuple[int, list[str]]
     style.init_report(_Collecting)
     report = style.check_files(args.paths)
     errors = list(_Collecting.errors)
-    files = sorted(_checked_files(args.paths, options['exclude']))
+    files = sorted(_checked_files(args.paths, excluded))
     if errors:
         print('')
         for code, count in sorted(Counter(e.split(': ', 1)[1].split()[0] for e in errors).items()):

@@ -27,20 +27,21 @@ This module is imported by colcon, never by ros2lite itself; it imports nothing 
 
 from __future__ import annotations
 
+import argparse
 import importlib.util
 import os
 import shutil
 import sys
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any
 
 from colcon_core.environment import create_environment_scripts
 from colcon_core.logging import colcon_logger
+from colcon_core.package_descriptor import PackageDescriptor
 from colcon_core.package_identification import PackageIdentificationExtensionPoint
 from colcon_core.plugin_system import SkipExtensionException, satisfies_version
 from colcon_core.shell import create_environment_hook
-from colcon_core.task import TaskExtensionPoint, create_file, install
+from colcon_core.task import TaskContext, TaskExtensionPoint, create_file, install
 from colcon_core.task.python.test import PythonTestingStepExtensionPoint
 from colcon_core.task.python.test.pytest import PytestPythonTestingStep
 from colcon_ros.package_identification.ros import get_package_with_build_type
@@ -112,7 +113,7 @@ class AmentCmakeIdentification(PackageIdentificationExtensionPoint):
         if ros_ament_cmake_found():
             raise SkipExtensionException('a ROS install builds ament_cmake packages here')
 
-    def identify(self, desc: Any) -> None:
+    def identify(self, desc: PackageDescriptor) -> None:
         """Claim an ament_cmake package as ros.ament_cmake.interfaces or .unbuilt."""
         if desc.type is not None and desc.type != 'ros':
             return
@@ -207,7 +208,7 @@ class InterfacePackageBuildTask(_Task):
             )
         return 0
 
-    def _provider(self) -> Any:
+    def _provider(self) -> Callable[[str], bool]:
         """Does a dependency built in this workspace, or any package ros2lite finds, define
         `pkg/msg/Name`?"""
         prefixes = {name: Path(p) for name, p in (self.context.dependencies or {}).items()}
@@ -272,17 +273,21 @@ class RosEnvironmentPytestStep(PythonTestingStepExtensionPoint):
         satisfies_version(PythonTestingStepExtensionPoint.EXTENSION_POINT_VERSION, '^1.0')
         self._pytest = PytestPythonTestingStep()  # SkipExtensionException without pytest
 
-    def add_arguments(self, *, parser: Any) -> None:
+    def add_arguments(self, *, parser: argparse.ArgumentParser) -> None:
         """colcon-core's pytest step adds --pytest-args; nothing more here."""
 
-    def match(self, context: Any, env: Mapping[str, str], setup_py_data: Any) -> bool:
+    def match(
+        self, context: TaskContext, env: Mapping[str, str], setup_py_data: Mapping[str, object]
+    ) -> bool:
         """A ROS Python package whose tests pytest runs, where no ROS install's linters are
         sourced."""
         if not str(context.pkg.type).startswith('ros.') or _ros_linters_sourced(env):
             return False
         return bool(self._pytest.match(context, env, setup_py_data))
 
-    async def step(self, context: Any, env: Mapping[str, str], setup_py_data: Any) -> Any:
+    async def step(
+        self, context: TaskContext, env: Mapping[str, str], setup_py_data: Mapping[str, object]
+    ) -> int | None:
         """colcon-core's pytest run, with the compat faces on PYTHONPATH and the linter
         markers registered."""
         test_env = dict(env)
