@@ -1104,6 +1104,7 @@ LAZY = {
     'time': '+35 modules ~20 ms: the interface registry',
     'tools.connection': '+98 modules ~121 ms: zenoh, node.py, graph.py',
     'tools.doctor': '+106 modules ~67 ms: zenoh, importlib.metadata, subprocess, tempfile',
+    'tools.hello': '+ the node and the multicast sockets, only when the verb runs',
     'transport.session': '+2 modules ~1 ms: traceback, for a failing callback',
     'type_description_service': '+39 modules ~27 ms: the interface registry, the parameter store',
     'util.files': '+16 modules ~4 ms: tempfile',

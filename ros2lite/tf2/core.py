@@ -4,7 +4,6 @@ chain shares, tf2's errors and its texts. `buffer.Buffer` adds tf2_ros's waiting
 
 from __future__ import annotations
 
-import re
 import threading
 from collections.abc import Iterator
 
@@ -31,6 +30,7 @@ from ros2lite.tf2.errors import (
 )
 from ros2lite.tf2.math import IDENTITY, Transform, compose, inverse
 from ros2lite.time import Time
+from ros2lite.util.safe_yaml import yaml_key, yaml_text
 
 __all__ = ['DEFAULT_CACHE_TIME', 'BufferCore']
 
@@ -560,8 +560,7 @@ class BufferCore:
         return ''.join(lines)
 
     def all_frames_as_yaml(self, current_time: object = None) -> str:
-        """Every frame's parent, broadcaster, rate and time span, in tf2's YAML (the text
-        view_frames and the tf2_frames service carry)."""
+        """Each frame's parent, broadcaster, rate and span in tf2's YAML (view_frames' text)."""
         now = to_ns(current_time) if current_time is not None else 0
         out: list[str] = []
         with self._lock:
@@ -576,10 +575,10 @@ class BufferCore:
                 latest, oldest = cache.latest()[0], cache.oldest_stamp()
                 span = latest - oldest
                 rate = len(cache) * 1e9 / max(span, 100_000)
-                out.append(_yaml_key(self._names[frame]))
-                out.append(f'  parent: {_yaml_text(self._names[sample[0]])}\n')
+                out.append(yaml_key(self._names[frame]))
+                out.append(f'  parent: {yaml_text(self._names[sample[0]])}\n')
                 authority = self._authority.get(frame, 'no recorded authority')
-                out.append(f'  broadcaster: {_yaml_text(authority)}\n')
+                out.append(f'  broadcaster: {yaml_text(authority)}\n')
                 out.append(f'  rate: {rate:.3f}\n')
                 out.append(f'  most_recent_transform: {display_time(latest)}\n')
                 out.append(f'  oldest_transform: {display_time(oldest)}\n')
@@ -587,45 +586,6 @@ class BufferCore:
                     out.append(f'  transform_delay: {to_seconds(now - latest):.3f}\n')
                 out.append(f'  buffer_length: {to_seconds(span):.3f}\n')
         return ''.join(out)
-
-
-# a frame name written as tf2 writes it (plain, or in single quotes as a value); any other
-# name (a control character, a quote, a line break, a colon, longer than YAML's 1,024
-# characters of a simple key) is written as a double-quoted YAML scalar with escapes, so one
-# odd name from the wire never spoils the text for the other frames
-_PLAIN = re.compile(r'[A-Za-z_/][A-Za-z0-9_/.~+-]{0,999}')
-_QUOTABLE = re.compile(r"[ -&(-~]{0,1000}")  # printable ASCII but the single quote
-_WORDS = {'true', 'false', 'yes', 'no', 'on', 'off', 'null', 'y', 'n'}  # YAML reads otherwise
-
-
-def _quoted(text: str) -> str:
-    out = ['"']
-    for ch in text:
-        code = ord(ch)
-        if ch in '"\\':
-            out.append('\\' + ch)
-        elif 0x20 <= code < 0x7F:
-            out.append(ch)
-        elif code < 0x10000:
-            out.append(f'\\u{code:04x}')
-        else:
-            out.append(f'\\U{code:08x}')
-    out.append('"')
-    return ''.join(out)
-
-
-def _yaml_key(name: str) -> str:
-    """A frame's first line in the frame YAML."""
-    if _PLAIN.fullmatch(name) and name.lower() not in _WORDS:
-        return f'{name}: \n'
-    quoted = _quoted(name)
-    # an explicit key has no length limit
-    return f'{quoted}: \n' if len(quoted) <= 1000 else f'? {quoted}\n: \n'
-
-
-def _yaml_text(value: str) -> str:
-    """A parent's or broadcaster's name as a YAML value."""
-    return f"'{value}'" if _QUOTABLE.fullmatch(value) else _quoted(value)
 
 
 def _message(target: str, source: str, transform: Transform, ns: int) -> TransformStamped:

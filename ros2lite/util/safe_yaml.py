@@ -12,6 +12,7 @@ nesting is refused the same way. Errors are :class:`YamlInputError` with one rea
 
 from __future__ import annotations
 
+import re
 from typing import TYPE_CHECKING, Any
 
 from ros2lite.exceptions import Ros2liteError
@@ -19,7 +20,7 @@ from ros2lite.exceptions import Ros2liteError
 if TYPE_CHECKING:
     import yaml
 
-__all__ = ['MAX_DEPTH', 'MAX_VALUES', 'YamlInputError', 'load']
+__all__ = ['MAX_DEPTH', 'MAX_VALUES', 'YamlInputError', 'load', 'yaml_key', 'yaml_text']
 
 # scalars + collections of the fully expanded value; generous for any hand-written input and
 # for parameter files, far below what exhausts memory
@@ -127,3 +128,42 @@ def load(
             raise _syntax(what, e) from None
     finally:
         loader.dispose()
+
+
+# a name written as ROS's tools write it (plain, or in single quotes as a value); any other
+# name (a control character, a quote, a line break, a colon, longer than YAML's 1,024
+# characters of a simple key) is written as a double-quoted YAML scalar with escapes, so one
+# odd name from the wire never spoils the text for the other names
+_PLAIN = re.compile(r'[A-Za-z_/][A-Za-z0-9_/.~+-]{0,999}')
+_QUOTABLE = re.compile(r"[ -&(-~]{0,1000}")  # printable ASCII but the single quote
+_WORDS = {'true', 'false', 'yes', 'no', 'on', 'off', 'null', 'y', 'n'}  # YAML reads otherwise
+
+
+def _quoted(text: str) -> str:
+    out = ['"']
+    for ch in text:
+        code = ord(ch)
+        if ch in '"\\':
+            out.append('\\' + ch)
+        elif 0x20 <= code < 0x7F:
+            out.append(ch)
+        elif code < 0x10000:
+            out.append(f'\\u{code:04x}')
+        else:
+            out.append(f'\\U{code:08x}')
+    out.append('"')
+    return ''.join(out)
+
+
+def yaml_key(name: str) -> str:
+    """A mapping's key line for `name` (tf2's frame YAML starts each frame so)."""
+    if _PLAIN.fullmatch(name) and name.lower() not in _WORDS:
+        return f'{name}: \n'
+    quoted = _quoted(name)
+    # an explicit key has no length limit
+    return f'{quoted}: \n' if len(quoted) <= 1000 else f'? {quoted}\n: \n'
+
+
+def yaml_text(value: str) -> str:
+    """`value` as a YAML scalar: single-quoted as tf2 writes names, else double-quoted."""
+    return f"'{value}'" if _QUOTABLE.fullmatch(value) else _quoted(value)

@@ -16,7 +16,7 @@ from ..multicast.common import address_options
 from ..parsing import command
 
 if TYPE_CHECKING:
-    from ros2lite.tools.doctor import HelloCounts
+    from ros2lite.tools.hello import HelloCounts
 
 POSITIVE = click.FloatRange(min=0, min_open=True)
 
@@ -71,7 +71,7 @@ def cli(
     Run it on each host: it publishes and multicasts hellos and counts those of the other
     hosts (the topic part goes through the Zenoh router, the multicast part does not).
     """
-    from ros2lite.tools.doctor import Hello, hello_node_name
+    from ros2lite.tools.hello import Hello, hello_node_name
     from ros2lite.tools.multicast import check_settings
 
     from ..common import connect
