@@ -195,7 +195,8 @@ MAP = {
     'interfaces': 'parser registry classes hashing text convert errors stubs cdr cdr_gen',
     'msgs': '',
     'daemon': '__main__ router connect probe paths graph_cache control errors',
-    'bag': 'writer reader recorder player metadata definitions qos reindex convert errors storage/',
+    'bag': 'writer reader recorder player metadata definitions qos reindex convert errors plot'
+    ' storage/',
     'bag/storage': 'mcap sqlite3',
     'pkg': 'index bundled workspace manifest setup_files executables runner create templates'
     ' ament_index environment',
@@ -205,10 +206,10 @@ MAP = {
     'launch/frontend': 'loader entity builders substitutions',
     'security': 'keystore pki enclaves policy permissions access environment files errors',
     'components': 'manager registry remote',
-    'monitor': 'topic subscription stats',
+    'monitor': 'topic subscription stats plot chart',
     'bundled': 'runner display terminal demo_nodes_py/ action_tutorials_py/ lifecycle_py/'
     ' lifecycle/ composition/ rclpy_components/ turtlesim/ teleop/ teleop_twist_keyboard/'
-    ' rqt_graph/',
+    ' rqt_graph/ rqt_plot/',
     'bundled/demo_nodes_py': 'talker listener add_two_ints_{server,client,client_async}'
     ' introspection_{client,service} parameter_blackboard launch/talker_listener.launch.py',
     'bundled/action_tutorials_py': 'fibonacci_action_{server,client}',
@@ -221,6 +222,7 @@ MAP = {
     'bundled/teleop': 'spinning',
     'bundled/teleop_twist_keyboard': 'teleop_twist_keyboard',
     'bundled/rqt_graph': 'rqt_graph model layout output window_view terminal_view',
+    'bundled/rqt_plot': 'rqt_plot window_view terminal_view',
     'cli': 'main lazy errors suggest completion numbers deprecated_interfaces common render'
     ' options parsing run launch env doctor extensions extension_points'
     ' action/ bag/ component/ daemon/ interface/ lifecycle/ msg/ multicast/ node/ param/ pkg/'
@@ -824,6 +826,7 @@ LAZY = {
     'lifecycle.node': '+17 modules ~11 ms: the interface registry',
     'lifecycle.remote': '+17 modules ~11 ms: the interface registry',
     'logging_service': '+26 modules ~14 ms: the interface registry',
+    'monitor.chart': '+16 modules ~20 ms: Pillow (PIL), only to write a PNG',
     'monitor.topic': '+17 modules ~11 ms: the interface registry',
     'node': '+30 modules ~32 ms: zenoh, the interface registry',
     'parameter': '+36 modules ~20 ms: the interface registry, safe_yaml',
