@@ -252,7 +252,12 @@ def braille(chart: Chart, width: int, height: int, *, colour: bool = True) -> st
     out.append(' ' * margin + '└' + ''.join(axis))
     label = chart.x_label
     end = min(width, len(under))
-    if label and len(label) < end and all(ch == ' ' for ch in under[end - len(label) - 1 : end]):
+    if label and len(label) + 8 < end:
+        # the axis' name at the right end, in place of the tick labels it would run into
+        start = end - len(label)
+        while start > 0 and under[start - 1] != ' ':
+            start -= 1
+        under[start - 1 : end] = [' '] * (end - start + 1)
         under[end - len(label) : end] = list(label)
     out.append(''.join(under).rstrip())
     if chart.status:
