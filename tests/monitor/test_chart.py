@@ -104,7 +104,7 @@ def test_braille_draws_lines_ticks_and_a_legend() -> None:
     assert '/up = 10' in rows[0] and '/down' in rows[0]
     plot_rows = rows[1:-2]
     # the rising line starts bottom left and ends top right; the falling one the other way
-    first_col = [r.index('┤') if '┤' in r else r.index('│') for r in plot_rows][0] + 1
+    first_col = next(r.index('┤') if '┤' in r else r.index('│') for r in plot_rows) + 1
     assert plot_rows[-1][first_col] != ' ' and plot_rows[0][first_col] != ' '
     assert plot_rows[0].rstrip()[-1] != ' ' and plot_rows[-1].rstrip()[-1] != ' '
     assert any(0x2800 < ord(ch) <= 0x28FF for ch in plot_rows[len(plot_rows) // 2])
