@@ -184,7 +184,9 @@ class PlotScreen:
         """Back to the normal screen, with the last picture left on it."""
         self.stream.write(_ALT_SCREEN_OFF)
         width, height = self._size()
-        self.stream.write(_chart_text(plot, window, width, min(height - 1, 30), True) + '\n')
+        self.stream.write(
+            _chart_text(plot, window, width, max(min(height - 5, 30), 8), True) + '\n'
+        )
         self.stream.flush()
 
 

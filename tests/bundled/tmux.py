@@ -57,6 +57,10 @@ class TmuxPane:
         """What the pane shows now (with SGR colour sequences if `colours`)."""
         return self._tmux('capture-pane', '-p', *(['-e'] if colours else []))
 
+    def history(self, lines: int = 200) -> str:
+        """The screen with up to `lines` of scrollback above it (what scrolled off)."""
+        return self._tmux('capture-pane', '-p', '-S', f'-{lines}')
+
     def wait_for(self, text: str, timeout: float = 20.0) -> str:
         """The screen once it shows `text`."""
         return str(wait_until(lambda: text in (s := self.screen()) and s, timeout))

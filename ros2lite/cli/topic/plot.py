@@ -93,7 +93,7 @@ def cli(
     if csv_out and pictures:
         raise CliError('--csv prints the samples instead of a picture: give one or the other')
     texts = [t if t.startswith('/') else '/' + t for t in series]
-    if snapshot and count is None and duration is None and pictures:
+    if snapshot and count is None and pictures:
         count = 1  # a picture of a profile: the first one that comes
     live = not pictures and not csv_out and fancy()
     rows: list[list[str]] | None = [] if csv_out else None
