@@ -47,13 +47,16 @@ def bag_plot(
             live=False,
         )
         checked: set[str] = set()
+        first: int | None = None
         for topic, msg, log_time in bag.messages(plot.topics):
+            if first is None:
+                first = log_time  # times from here: nanoseconds since 1970 overflow a float's
             if topic not in checked:
                 if isinstance(msg, bytes):
                     raise PlotError(f"'{topic}': its type cannot be decoded here")
                 plot.check(topic, type(msg))
                 checked.add(topic)
-            plot.feed(topic, msg, log_time * 1e-9)
+            plot.feed(topic, msg, (log_time - first) * 1e-9)
     return plot
 
 
