@@ -49,7 +49,7 @@ def print_pictures(plot: Plot, window: float, ok: Callable[[], bool]) -> None:
     from ros2lite.monitor.chart import braille
     from ros2lite.monitor.plot import to_chart
 
-    shown = -1
+    shown = 0
     while ok():
         if plot.messages != shown:
             shown = plot.messages
