@@ -170,7 +170,8 @@ class PlotScreen:
             size = os.get_terminal_size(self.stream.fileno())
         except (OSError, ValueError):
             size = shutil.get_terminal_size()
-        return size.columns, size.lines
+        # a terminal that says 0x0 (a bare pseudo-terminal) gets the usual 80x24
+        return size.columns or 80, size.lines or 24
 
     def show(self, plot: Plot, window: float | None) -> None:
         """Draw `plot` as it is now over the whole screen."""

@@ -23,9 +23,10 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from ros2lite.exceptions import Ros2liteError
-from ros2lite.interfaces import get_interface
+from ros2lite.interfaces import CdrError, deserialize, get_interface
 from ros2lite.interfaces.convert import value_to_csv
 from ros2lite.monitor.chart import PALETTE, Chart, Line, png, svg
+from ros2lite.monitor.subscription import MonitoredSubscription
 from ros2lite.util.files import replace_file
 
 if TYPE_CHECKING:
@@ -247,11 +248,14 @@ class Series:
         self.times: deque[float] = deque(maxlen=capacity)
         self.values: deque[float] = deque(maxlen=capacity)
         self.count = 0  # samples ever added
+        self.ordered = True  # no sample's time was before the one before it
         self._arrived = 0.0  # monotonic time of the newest sample
         self.lock = threading.Lock()
 
     def add(self, t: float, value: float, arrival: float | None = None) -> None:
         with self.lock:
+            if self.times and t < self.times[-1]:
+                self.ordered = False
             self.times.append(t)
             self.values.append(value)
             self._arrived = time.monotonic() if arrival is None else arrival
@@ -268,6 +272,7 @@ class Series:
         with self.lock:
             self.times.clear()
             self.values.clear()
+            self.ordered = True
 
     def points(self, start: float | None = None) -> tuple[list[float], list[float]]:
         """Copies of the samples (from time `start` on)."""
@@ -367,6 +372,7 @@ class Plot:
     latest: float = 0.0
     messages: int = 0  # messages fed
     live: bool = True  # fed as messages arrive (a bag's are not: its rates need no decay)
+    limit: int | None = None  # messages taken at most (later ones are ignored)
 
     def __post_init__(self) -> None:
         if self.mode not in ('time', 'xy', 'snapshot'):
@@ -380,6 +386,7 @@ class Plot:
         else:
             self.series = [Series(s, self.capacity) for s in self.specs]
         self._lock = threading.Lock()
+        self._feeding = threading.Lock()  # one message at a time (receive threads, a bag)
         self._xy: deque[tuple[float, float]] = deque(maxlen=self.capacity)
         self._by_topic: dict[str, list[int]] = {}
         for i, spec in enumerate(self.specs):
@@ -409,6 +416,11 @@ class Plot:
     def feed(self, topic: str, msg: object, log_time: float) -> None:
         """Add the values of one message of `topic` received (or logged) at `log_time`
         (seconds); a value past an array's end is skipped."""
+        with self._feeding:
+            if self.limit is None or self.messages < self.limit:
+                self._feed(topic, msg, log_time)
+
+    def _feed(self, topic: str, msg: object, log_time: float) -> None:
         t = log_time
         if self.header_stamp:
             stamp = msg.header.stamp  # type: ignore[attr-defined]
@@ -444,7 +456,8 @@ class Plot:
         if self.mode == 'xy' and len(values) == 2 and None not in values:
             with self._lock:
                 self._xy.append((values[0], values[1]))  # type: ignore[arg-type]
-        if self.window is not None and self.mode == 'time':
+        if self.window is not None and self.mode == 'time' and self.messages % 64 == 0:
+            # now and then: the window bounds what is kept, the draw cuts exactly
             for s in self.series:
                 if isinstance(s, Series):
                     s.trim(self.latest - self.start - self.window)
@@ -514,19 +527,43 @@ def subscribe(
     types: dict[str, str],
     qos: Callable[[TopicMonitor], QoSProfile],
 ) -> list[Subscription]:
-    """Subscribe `plot` to each of its topics (typed, on the monitors' node), with the QoS
-    `qos(monitor)` picks for it (matched to its publishers, so sensor-data topics plot).
-    Each message's values are taken at its arrival time (or its header stamp)."""
-    subs = []
+    """Subscribe `plot` to each of its topics with the QoS `qos(monitor)` picks for it
+    (matched to its publishers, so sensor-data topics plot). Each message is decoded and its
+    values taken at its arrival time (or its header stamp) on the receive thread, as a tool's
+    arrival hook: nothing is queued, so a fast topic is never thinned by a queue's depth and a
+    1 kHz topic costs no executor wake-ups."""
+    subs: list[Subscription] = []
     for topic in plot.topics:
         watch = monitors[topic]
-        type_name = types[topic]
-        plot.check(topic, get_interface(type_name))
+        cls = get_interface(types[topic])
+        plot.check(topic, cls)
+        warned: list[bool] = []
 
-        def arrived(msg: object, topic: str = topic) -> None:
+        def arrived(
+            cdr: bytes,
+            _attachment: bytes,
+            _received: int,
+            topic: str = topic,
+            cls: type = cls,
+            warned: list[bool] = warned,
+            watch: TopicMonitor = watch,
+        ) -> None:
+            try:
+                msg = deserialize(cls, cdr)
+            except CdrError as e:
+                if not warned:
+                    warned.append(True)
+                    watch.node.get_logger().warn(
+                        f"dropping samples on '{topic}' that are not a {cls.__name__}: {e}"
+                    )
+                return
             plot.feed(topic, msg, time.time())
 
-        subs.append(watch.node.create_subscription(type_name, watch.topic, arrived, qos(watch)))
+        subs.append(
+            MonitoredSubscription(
+                watch.node, cls, watch.topic, None, qos(watch), on_payload=arrived
+            )
+        )
     return subs
 
 
@@ -564,7 +601,8 @@ def to_chart(
     for i, s in enumerate(plot.series):
         start = None if window is None else plot.now() - window
         xs, ys = s.points(start)
-        lines.append(Line(s.label, xs, ys, PALETTE[i % len(PALETTE)], note(s)))
+        ordered = s.ordered if isinstance(s, Series) else True
+        lines.append(Line(s.label, xs, ys, PALETTE[i % len(PALETTE)], note(s), ordered))
     if plot.mode == 'snapshot':
         return Chart(lines, y_range=y_range, x_label=x_label or 'index')
     x_range = None

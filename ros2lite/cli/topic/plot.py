@@ -105,6 +105,7 @@ def cli(
                 lambda text: click.echo(
                     f'WARNING: no topic for [{text}] appears to be published yet', err=True
                 ),
+                timeout=duration,
             )
             plot = Plot(
                 specs,
@@ -113,10 +114,20 @@ def cli(
                 header_stamp=header_stamp,
                 rows=rows,
             )
+            plot.limit = count
             monitors, types = watch_topics(conn, plot)
             if rows is not None:
                 click.echo(','.join(plot.csv_header()))
-                plot.on_sample = lambda: print_rows(rows)
+            executor = conn.executor
+
+            def sampled() -> None:
+                # on a receive thread: the rows go out, and the spinning thread wakes for the end
+                if rows is not None:
+                    print_rows(rows)
+                if count is not None and plot.messages >= count:
+                    executor.wake()
+
+            plot.on_sample = sampled
             subscribe(plot, monitors, types, lambda watch: matched_qos(watch, qos))
         except PlotError as e:
             raise CliError(str(e)) from None
