@@ -29,11 +29,12 @@ def bag_plot(
     mode: str = 'time',
     header_stamp: bool = False,
     rows: list[list[str]] | None = None,
-    capacity: int = 10_000_000,
+    capacity: int = 2_000_000,
     storage_id: str | None = None,
 ) -> Plot:
     """The plot of `texts` (``/turtle1/pose/x``…) over the bag at `path`; PlotError when a
-    text names no topic of the bag or no number in its messages."""
+    text names no topic of the bag or no number in its messages. Each series keeps its last
+    `capacity` samples (2 million: about 130 MB), so a huge bag cannot take all memory."""
     with Reader(path, storage_id) as bag:
         names = [t.name for t in bag.topics]
         specs = [s for text in texts for s in _specs(text, names)]

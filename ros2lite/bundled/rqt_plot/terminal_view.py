@@ -50,6 +50,8 @@ class PlotTerminal:
             self.window = min(self.window * 2, 3600.0)
         elif key == '-':
             self.window = max(self.window / 2, 0.5)
+        if key in ('+', '=', '-'):
+            self.plot.window = self.window  # what the series keep follows what is shown
         elif key == 'c':
             self.plot.clear()
         return True

@@ -76,6 +76,7 @@ class PlotWindow:
             return self.window
         if value > 0:
             self.window = value
+            self.plot.window = value  # what the series keep follows what is shown
         return self.window
 
     def chart(self) -> Chart:

@@ -9,7 +9,7 @@ from ..errors import CliError
 from ..options import plot_options
 from ..parsing import command
 from ..render import print_chart, write_plot
-from .options import bag_argument, bag_error, existing_bag
+from .options import bag_argument, bag_error, existing_bag, warn
 
 
 @command("plot")
@@ -62,6 +62,9 @@ def cli(
         raise CliError(str(e)) from None
     except BagError as e:
         raise bag_error(str(e)) from None
+    cut = [s.label for s in plot.series if s.count > len(s.points()[0]) and plot.mode == "time"]
+    if cut:
+        warn(f"only the last samples of {', '.join(cut)} are plotted (a series keeps 2 million)")
     if plot.messages == 0:
         click.echo(f"[WARN] [ros2bag]: no messages of {', '.join(plot.topics)}", err=True)
     if rows is not None:
