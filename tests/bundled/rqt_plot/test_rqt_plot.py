@@ -147,3 +147,34 @@ def test_bad_arguments() -> None:
     assert 'Traceback' not in done.stderr
     done = subprocess.run([*PLOT, '/a/x', '--time-window', '0'], capture_output=True, text=True)
     assert done.returncode == 2 and "'0' is not a number of seconds" in done.stderr
+
+
+def test_bag_plot_in_rqt_plots_window(processes: Any, xdisplay: str, tmp_path: Path) -> None:
+    """`bag plot --display window`: the whole bag in the same window, both series' colours."""
+    from ros2lite.bag import Writer
+
+    Point = get_interface('geometry_msgs/msg/Point')
+    with Writer(str(tmp_path / 'arc')) as bag:
+        for i in range(200):
+            bag.write(
+                '/arc', Point(x=i / 20, y=(i / 20) ** 0.5), 1_700_000_000_000_000_000 + i * 10**7
+            )
+    proc = processes.cli(
+        'bag',
+        'plot',
+        str(tmp_path / 'arc'),
+        '/arc/x:y',
+        '--display',
+        'window',
+        env={**os.environ, 'DISPLAY': xdisplay},
+    )
+
+    def drawn() -> Image | None:
+        shot = screenshot(xdisplay)
+        counts = [shot.count(c, (0, 0, shot.width, shot.height)) for c in PALETTE[:2]]
+        return shot if min(counts) > 300 else None
+
+    shot = wait_until(drawn, 30, interval=0.2)
+    shot.save_png(str(tmp_path / 'bag_window.png'))
+    assert proc.poll() is None  # it stays until the window is closed
+    processes.stop(proc)
