@@ -192,6 +192,13 @@ class SeriesSpec:
     topic: str
     path: FieldPath
 
+    def check(self, cls: type) -> str:
+        """`path.check(cls)`, its errors naming the whole series."""
+        try:
+            return self.path.check(cls)
+        except PlotError as e:
+            raise PlotError(str(e).replace(f"'{self.path}'", f"'{self.label}'", 1)) from None
+
     @property
     def label(self) -> str:
         """rqt_plot's name for it: the topic and the path as one."""
@@ -392,6 +399,19 @@ class Plot:
         for i, spec in enumerate(self.specs):
             self._by_topic.setdefault(spec.topic, []).append(i)
 
+    def add(self, specs: Sequence[SeriesSpec]) -> list[SeriesSpec]:
+        """Plot more series of a time plot while it runs (rqt_plot's topic box); returns the
+        ones it did not have yet."""
+        if self.mode != 'time':
+            raise PlotError('series are added to a plot over time only')
+        fresh = [s for s in specs if s not in self.specs]
+        with self._feeding:
+            for spec in fresh:
+                self.specs.append(spec)
+                self.series.append(Series(spec, self.capacity))
+                self._by_topic.setdefault(spec.topic, []).append(len(self.specs) - 1)
+        return fresh
+
     @property
     def topics(self) -> list[str]:
         """The topics to subscribe to, in the order first named."""
@@ -402,10 +422,7 @@ class Plot:
         want = 'array' if self.mode == 'snapshot' else 'number'
         for i in self._by_topic.get(topic, []):
             spec = self.specs[i]
-            try:
-                kind = spec.path.check(cls)
-            except PlotError as e:
-                raise PlotError(str(e).replace(f"'{spec.path}'", f"'{spec.label}'", 1)) from None
+            kind = spec.check(cls)
             if kind != want:
                 if want == 'array':
                     raise PlotError(f"'{spec.label}' is one number; --snapshot plots arrays")
@@ -526,14 +543,16 @@ def subscribe(
     monitors: dict[str, TopicMonitor],
     types: dict[str, str],
     qos: Callable[[TopicMonitor], QoSProfile],
+    topics: Sequence[str] | None = None,
 ) -> list[Subscription]:
     """Subscribe `plot` to each of its topics with the QoS `qos(monitor)` picks for it
     (matched to its publishers, so sensor-data topics plot). Each message is decoded and its
     values taken at its arrival time (or its header stamp) on the receive thread, as a tool's
     arrival hook: nothing is queued, so a fast topic is never thinned by a queue's depth and a
-    1 kHz topic costs no executor wake-ups."""
+    1 kHz topic costs no executor wake-ups. `topics` (all of the plot's by default) are the
+    ones to subscribe to now."""
     subs: list[Subscription] = []
-    for topic in plot.topics:
+    for topic in plot.topics if topics is None else topics:
         watch = monitors[topic]
         cls = get_interface(types[topic])
         plot.check(topic, cls)

@@ -14,22 +14,30 @@ import argparse
 import sys
 import time
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 from ros2lite.bundled.display import DisplayError, add_display_argument, choose, own_arguments
-from ros2lite.monitor.plot import DEFAULT_WINDOW, Plot
+from ros2lite.monitor.plot import DEFAULT_WINDOW, Plot, PlotError, subscribe
+
+if TYPE_CHECKING:
+    from ros2lite.monitor.topic import TopicMonitor
+    from ros2lite.node import Node
+    from ros2lite.qos import QoSProfile
 
 PERIOD = 0.1  # s between redraws: a sample shows well within a second
 PRINT_PERIOD = 1.0  # s between text pictures without a display
 
 
-def show(plot: Plot, display: str, window: float, ok: Callable[[], bool]) -> None:
-    """Show `plot` where `display` says (see ros2lite.bundled.display) while `ok()`."""
+def show(session: Session, display: str, window: float, ok: Callable[[], bool]) -> None:
+    """Show the session's plot where `display` says (see ros2lite.bundled.display) while
+    `ok()`."""
+    plot = session.plot
     for kind in choose(display):
         try:
             if kind == 'window':
                 from ros2lite.bundled.rqt_plot.window_view import PlotWindow
 
-                PlotWindow(plot, window).run(ok, PERIOD)
+                PlotWindow(plot, window, add=session.add).run(ok, PERIOD)
                 return
             if kind == 'terminal':
                 from ros2lite.bundled.rqt_plot.terminal_view import PlotTerminal
@@ -57,14 +65,72 @@ def print_pictures(plot: Plot, window: float, ok: Callable[[], bool]) -> None:
         time.sleep(PRINT_PERIOD)
 
 
+class Session:
+    """The node's side of a running rqt_plot: its monitors and subscriptions, and adding a
+    series while it runs (the window's topic box)."""
+
+    def __init__(self, node: Node, plot: Plot) -> None:
+        self.node = node
+        self.plot = plot
+        self.monitors: dict[str, TopicMonitor] = {}
+        self.types: dict[str, str] = {}
+
+    def qos(self, watch: TopicMonitor) -> QoSProfile:
+        from ros2lite.qos import qos_profile_sensor_data
+
+        return watch.matched_qos(qos_profile_sensor_data).profile
+
+    def watch(self, topic: str, wait: bool) -> None:
+        """A monitor of `topic` and its type (waited for, or PlotError when not yet known)."""
+        from ros2lite.monitor.topic import TopicMonitor
+
+        if topic in self.monitors:
+            return
+        monitor = TopicMonitor(self.node, topic, self.node.context.graph.entities)
+        type_name = monitor.wait_for_type() if wait else monitor.graph_type()
+        if type_name is None:
+            raise PlotError(f"'{topic}' has no type in the graph yet")
+        self.monitors[topic], self.types[topic] = monitor, type_name
+
+    def start(self) -> None:
+        """Subscribe to every topic the plot has."""
+        for topic in self.plot.topics:
+            self.watch(topic, wait=True)
+        subscribe(self.plot, self.monitors, self.types, self.qos)
+
+    def add(self, text: str) -> str | None:
+        """Plot `text` (``/turtle1/pose/theta``) too; why not, in one line, if it cannot be."""
+        from ros2lite.interfaces import get_interface
+        from ros2lite.monitor.plot import resolve_specs
+        from ros2lite.monitor.topic import MultipleTypesError
+
+        text = text.strip()
+        if not text:
+            return None
+        text = text if text.startswith('/') else '/' + text
+        try:
+            specs = resolve_specs([text], self._topic_names, timeout=0)
+            new_topics = sorted({s.topic for s in specs} - set(self.plot.topics))
+            for spec in specs:
+                self.watch(spec.topic, wait=False)
+                if spec.check(get_interface(self.types[spec.topic])) != 'number':
+                    raise PlotError(f"'{spec.label}' is an array; name an element ([0]) of it")
+            self.plot.add(specs)
+            subscribe(self.plot, self.monitors, self.types, self.qos, topics=new_topics)
+        except (PlotError, MultipleTypesError) as e:
+            return str(e)
+        return None
+
+    def _topic_names(self) -> list[str]:
+        return [name for name, _ in self.node.get_topic_names_and_types()]
+
+
 def run(texts: list[str], display: str, window: float) -> None:
     """Subscribe a node of our own (named as rqt's node is) to the series and show them."""
     from ros2lite.bundled.runner import rqt_node_name
     from ros2lite.bundled.teleop.spinning import BackgroundSpin
-    from ros2lite.monitor.plot import resolve_specs, subscribe
-    from ros2lite.monitor.topic import TopicMonitor
+    from ros2lite.monitor.plot import resolve_specs
     from ros2lite.node import Node
-    from ros2lite.qos import qos_profile_sensor_data
 
     node = Node(rqt_node_name())
     log = node.get_logger()
@@ -75,17 +141,9 @@ def run(texts: list[str], display: str, window: float) -> None:
                 lambda: [name for name, _ in node.get_topic_names_and_types()],
                 lambda text: log.warn(f"no topic for '{text}' is published yet: waiting"),
             )
-            plot = Plot(specs, window=window)
-            entities = node.context.graph.entities
-            monitors = {t: TopicMonitor(node, t, entities) for t in plot.topics}
-            types = {t: m.wait_for_type() for t, m in monitors.items()}
-            subscribe(
-                plot,
-                monitors,
-                types,
-                lambda watch: watch.matched_qos(qos_profile_sensor_data).profile,
-            )
-            show(plot, display, window, node.context.ok)
+            session = Session(node, Plot(specs, window=window))
+            session.start()
+            show(session, display, window, node.context.ok)
     finally:
         node.destroy_node()
 
@@ -109,9 +167,10 @@ def main(args: list[str] | None = None) -> int:
     )
     parser.add_argument(
         'topics',
-        nargs='+',
+        nargs='*',
         metavar='TOPIC/FIELD',
-        help='what to plot, e.g. /turtle1/pose/x, /turtle1/pose/x:y, /scan/ranges[0]',
+        help='what to plot, e.g. /turtle1/pose/x, /turtle1/pose/x:y, /scan/ranges[0] (in a '
+        'window, more can be added in its topic box)',
     )
     add_display_argument(parser)
     parser.add_argument(
@@ -122,6 +181,8 @@ def main(args: list[str] | None = None) -> int:
         help=f'how many seconds the x axis spans (default {DEFAULT_WINDOW:g})',
     )
     options = parser.parse_args(own_arguments(args))
+    if not options.topics and choose(options.display)[0] != 'window':
+        parser.error('name what to plot (TOPIC/FIELD …): only a window has a box to add it in')
     texts = [t if t.startswith('/') else '/' + t for t in options.topics]
     return run_main(lambda: run(texts, options.display, options.time_window), args)
 

@@ -24,10 +24,18 @@ class PlotWindow:
     """A window titled `rqt_plot` (or `title`); `run` until closed, `ok()` turns False or
     Ctrl-C. `window` None shows all samples (a bag), else the last `window` seconds."""
 
-    def __init__(self, plot: Plot, window: float | None, title: str = 'rqt_plot') -> None:
+    def __init__(
+        self,
+        plot: Plot,
+        window: float | None,
+        title: str = 'rqt_plot',
+        add: Callable[[str], str | None] | None = None,
+    ) -> None:
         import tkinter
 
         self.plot = plot
+        self.add = add  # plots one more series (None: this window's series are fixed)
+        self.problem = ''  # why the last series typed in could not be added
         self.window = window
         self.paused = False
         self.closed = False
@@ -49,12 +57,28 @@ class PlotWindow:
                 bar, from_=1, to=3600, increment=1, width=6, textvariable=self.span
             ).pack(side='left')
         tkinter.Button(bar, text='Clear', command=plot.clear).pack(side='left')
+        if add is not None:  # rqt_plot's topic row, above the buttons
+            row = tkinter.Frame(root)
+            row.pack(side='top', fill='x', before=bar)
+            tkinter.Label(row, text='Topic').pack(side='left')
+            self.topic = tkinter.StringVar(root, '')
+            entry = tkinter.Entry(row, textvariable=self.topic)
+            entry.pack(side='left', fill='x', expand=True)
+            entry.bind('<Return>', lambda _e: self._add())
+            tkinter.Button(row, text='+', command=self._add).pack(side='left')
         self.status = tkinter.Label(root, anchor='w')
         self.status.pack(side='bottom', fill='x')
         self.canvas = tkinter.Canvas(
             root, width=WIDTH, height=HEIGHT, background='white', highlightthickness=0
         )
         self.canvas.pack(side='top', fill='both', expand=True)
+
+    def _add(self) -> None:
+        assert self.add is not None
+        problem = self.add(self.topic.get())
+        self.problem = problem or ''
+        if problem is None:
+            self.topic.set('')
 
     def _close(self) -> None:
         self.closed = True
@@ -107,7 +131,8 @@ class PlotWindow:
                 anchor: Any = _ANCHORS[s.anchor]
                 canvas.create_text(x, y, text=s.text, fill=_hex(s.colour), anchor=anchor)
         state = 'PAUSED · ' if self.paused else ''
-        self.status.configure(text=f'{state}{self.plot.messages} messages')
+        problem = f' · {self.problem}' if self.problem else ''
+        self.status.configure(text=f'{state}{self.plot.messages} messages{problem}')
 
     def run(self, ok: Callable[[], bool], period: float = 0.1) -> None:
         """Redraw every `period` s (unless paused) until closed or not `ok()`."""

@@ -137,9 +137,45 @@ def test_text_pictures_without_a_display(processes: Any) -> None:
     assert proc.returncode == 0 and 'Traceback' not in err
 
 
+def test_a_series_added_while_it_runs(ros_context: Any) -> None:
+    """What the window's topic box does: a series named while the plot runs is subscribed
+    and plotted; a name that cannot be is one line for the status bar."""
+    import uuid
+
+    from ros2lite.bundled.rqt_plot.rqt_plot import Session
+    from ros2lite.monitor.plot import Plot
+
+    topic = f'/level_{uuid.uuid4().hex[:8]}'
+    Float64 = get_interface('std_msgs/msg/Float64')
+    talker = Node('level_talker', context=ros_context, enable_rosout=False)
+    plotter = Node('level_plotter', context=ros_context, enable_rosout=False)
+    try:
+        pub = talker.create_publisher(Float64, topic, 10)
+        session = Session(plotter, Plot([], window=10.0))
+        session.start()  # nothing to plot yet
+        wait_until(lambda: topic in [n for n, _ in plotter.get_topic_names_and_types()], 20)
+        assert session.add(f'{topic}/date') == (
+            f"'{topic}/date': 'Float64' has no field 'date' (its fields: data)"
+        )
+        assert session.add('/no_such_topic/x') == "no topic in the graph matches '/no_such_topic/x'"
+        assert session.add(f'{topic}/data') is None
+        assert session.add(f'{topic}/data') is None  # twice is once
+        assert [s.label for s in session.plot.series] == [f'{topic}/data']
+        wait_until(lambda: pub.get_subscription_count() >= 1, 20)
+
+        def plotted() -> bool:
+            pub.publish(Float64(data=42.5))
+            return session.plot.series[0].last() == 42.5
+
+        wait_until(plotted, 20)
+    finally:
+        plotter.destroy_node()
+        talker.destroy_node()
+
+
 def test_bad_arguments() -> None:
-    done = subprocess.run([*PLOT], capture_output=True, text=True, env=no_display())
-    assert done.returncode == 2 and 'the following arguments are required' in done.stderr
+    done = subprocess.run([*PLOT, '--display', 'none'], capture_output=True, text=True)
+    assert done.returncode == 2 and 'only a window has a box to add it in' in done.stderr
     done = subprocess.run(
         [*PLOT, '/turtle1/pose/x[', '--display', 'none'], capture_output=True, text=True
     )
