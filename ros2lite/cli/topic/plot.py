@@ -20,6 +20,8 @@ from ..parsing import command
 from ..render import PlotScreen, fancy, print_chart, write_plot
 from .common import choose_qos, graph_type, monitor, warn_type_mismatch
 
+CSV_PERIOD = 0.05  # s between writes of the CSV rows that came
+
 if TYPE_CHECKING:
     from typing_extensions import Unpack
 
@@ -119,15 +121,12 @@ def cli(
             if rows is not None:
                 click.echo(','.join(plot.csv_header()))
             executor = conn.executor
-
-            def sampled() -> None:
-                # on a receive thread: the rows go out, and the spinning thread wakes for the end
-                if rows is not None:
-                    print_rows(rows)
-                if count is not None and plot.messages >= count:
-                    executor.wake()
-
-            plot.on_sample = sampled
+            if rows is not None:
+                csv_rows = rows
+                conn.every(CSV_PERIOD, lambda: print_rows(csv_rows))
+            if count is not None:
+                # on a receive thread: only the spinning thread's wake-up for the end
+                plot.on_sample = lambda: executor.wake() if plot.messages >= count else None
             subscribe(plot, monitors, types, lambda watch: matched_qos(watch, qos))
         except PlotError as e:
             raise CliError(str(e)) from None
@@ -144,7 +143,9 @@ def cli(
         finally:
             if pictures:
                 write_plot(plot, pictures, size)
-            elif rows is None:
+            elif rows is not None:
+                print_rows(rows)
+            else:
                 print_chart(plot, None)
 
 
@@ -155,10 +156,13 @@ def spin(conn: Connection, plot: Plot, duration: float | None, count: int | None
 
 
 def print_rows(rows: list[list[str]]) -> None:
-    """Print (and forget) the CSV rows that came since the last call."""
+    """Print (and forget) the CSV rows that came since the last call (the receive threads
+    append to the list; this, on the executor, takes from its front)."""
     out = sys.stdout
-    while rows:
-        out.write(','.join(rows.pop(0)) + '\n')
+    taken = len(rows)
+    for row in rows[:taken]:
+        out.write(','.join(row) + '\n')
+    del rows[:taken]
     out.flush()
 
 
