@@ -1078,6 +1078,7 @@ LAZY = {
     'lifecycle.node': '+17 modules ~11 ms: the interface registry',
     'lifecycle.remote': '+17 modules ~11 ms: the interface registry',
     'logging_service': '+26 modules ~14 ms: the interface registry',
+    'monitor.chart': '+16 modules ~20 ms: Pillow (PIL), only to write a PNG',
     'monitor.topic': '+17 modules ~11 ms: the interface registry',
     'node': '+30 modules ~32 ms: zenoh, the interface registry',
     'parameter': '+36 modules ~20 ms: the interface registry, safe_yaml',

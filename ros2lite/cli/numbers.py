@@ -11,7 +11,7 @@ from typing import Any
 
 import click
 
-__all__ = ['MAX_COUNT', 'MAX_SECONDS', 'Count', 'Finite', 'rate', 'seconds']
+__all__ = ['MAX_COUNT', 'MAX_SECONDS', 'Count', 'Finite', 'Size', 'rate', 'seconds']
 
 # the longest duration any option may ask for (about 3 years): far past any real wait, and
 # well inside what time.sleep() and threading timeouts accept
@@ -58,3 +58,21 @@ def rate() -> Finite:
     """A rate in Hz: finite, at most MAX_RATE, and at least one period in MAX_SECONDS (a
     rate of 1e-300 Hz made a period no clock holds)."""
     return Finite(min=1 / MAX_SECONDS, max=MAX_RATE)
+
+
+class Size(click.ParamType):
+    """A picture size `WxH` in pixels, each side 64 to 8192."""
+
+    name = 'size'
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> Any:
+        if isinstance(value, tuple):
+            return value
+        parts = str(value).lower().split('x')
+        try:
+            width, height = (int(p) for p in parts)
+        except ValueError:
+            self.fail(f'{value!r} is not a size WIDTHxHEIGHT (as 800x480).', param, ctx)
+        if not (64 <= width <= 8192 and 64 <= height <= 8192):
+            self.fail(f'{value!r}: each side must be 64 to 8192 pixels.', param, ctx)
+        return (width, height)

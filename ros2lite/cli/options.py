@@ -344,3 +344,62 @@ def bind(load: Callable[[], type[D]], to: str = 'options') -> Callable[[F], F]:
 
 def _field_value(value: object) -> object:
     return list(value) if isinstance(value, tuple) else value
+
+
+def plot_options(*, live: bool) -> Callable[[F], F]:
+    """The options `topic plot` and `bag plot` share: what kind of plot, and where it goes
+    instead of the terminal (a picture file, CSV rows)."""
+
+    def decorate(fn: F) -> F:
+        opts = [
+            click.option(
+                '--xy',
+                is_flag=True,
+                help='Plot one field against another of the same topic '
+                '(/odom/pose/pose/position/x,y) instead of against time',
+            ),
+            click.option(
+                '--snapshot',
+                is_flag=True,
+                help="Plot the newest value of an array field against its index (a LaserScan's "
+                'ranges as a profile)' + ('' if live else '; a bag shows its last message'),
+            ),
+            click.option(
+                '--header-stamp',
+                is_flag=True,
+                help='Time on x from the header stamp of each message, not its '
+                + ('arrival' if live else 'log time'),
+            ),
+            click.option(
+                '--png',
+                'png_path',
+                metavar='FILE',
+                help='Write the plot as a PNG picture instead of drawing it',
+            ),
+            click.option(
+                '--svg',
+                'svg_path',
+                metavar='FILE',
+                help='Write the plot as an SVG picture instead of drawing it',
+            ),
+            click.option(
+                '--csv',
+                'csv_out',
+                is_flag=True,
+                help='Print the samples as CSV (time, then each value as topic echo --csv '
+                'writes it) instead of drawing',
+            ),
+            click.option(
+                '--size',
+                type=numbers.Size(),
+                default='800x480',
+                show_default=True,
+                metavar='WxH',
+                help='Size of a picture in pixels',
+            ),
+        ]
+        for opt in reversed(opts):
+            fn = opt(fn)
+        return fn
+
+    return decorate

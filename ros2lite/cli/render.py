@@ -16,8 +16,11 @@ from typing import TYPE_CHECKING, TextIO
 
 import click
 
+from .errors import CliError
+
 if TYPE_CHECKING:
     from ros2lite.interfaces import Message
+    from ros2lite.monitor.plot import Plot
 
     from .options import MessageFormat
 
@@ -136,3 +139,76 @@ def print_event(msg: Message, fmt: MessageFormat, head: str = '') -> None:
 
     text = format_event(msg, **fmt)
     sys.stdout.write(head + text + ('\n' if fmt['csv'] else '---\n'))
+
+
+# -- plots (`topic plot`, `bag plot`) ----------------------------------------------------------
+
+_ALT_SCREEN_ON = '\x1b[?1049h\x1b[?25l'
+_ALT_SCREEN_OFF = '\x1b[?25h\x1b[?1049l'
+
+
+def _chart_text(plot: Plot, window: float | None, width: int, height: int, colour: bool) -> str:
+    from ros2lite.monitor.chart import braille
+    from ros2lite.monitor.plot import to_chart
+
+    return braille(to_chart(plot, window=window), width, height, colour=colour)
+
+
+class PlotScreen:
+    """A live plot on the terminal's alternate screen, redrawn in place (so the scrollback
+    stays clean); on `close` the last picture is printed on the normal screen."""
+
+    def __init__(self, stream: TextIO | None = None) -> None:
+        self.stream = sys.stdout if stream is None else stream
+        self.stream.write(_ALT_SCREEN_ON)
+        self.stream.flush()
+
+    def _size(self) -> tuple[int, int]:
+        import shutil
+
+        try:
+            size = os.get_terminal_size(self.stream.fileno())
+        except (OSError, ValueError):
+            size = shutil.get_terminal_size()
+        # a terminal that says 0x0 (a bare pseudo-terminal) gets the usual 80x24
+        return size.columns or 80, size.lines or 24
+
+    def show(self, plot: Plot, window: float | None) -> None:
+        """Draw `plot` as it is now over the whole screen."""
+        width, height = self._size()
+        text = _chart_text(plot, window, width, height - 1, True)
+        lines = text.split('\n')
+        self.stream.write('\x1b[H' + '\x1b[K\n'.join(lines) + '\x1b[K\x1b[J')
+        self.stream.flush()
+
+    def close(self, plot: Plot, window: float | None) -> None:
+        """Back to the normal screen, with the last picture left on it."""
+        self.stream.write(_ALT_SCREEN_OFF)
+        width, height = self._size()
+        self.stream.write(
+            _chart_text(plot, window, width, max(min(height - 5, 30), 8), True) + '\n'
+        )
+        self.stream.flush()
+
+
+def print_chart(plot: Plot, window: float | None, stream: TextIO | None = None) -> None:
+    """The plot once, as plain braille text (80x24 unless the terminal says otherwise)."""
+    import shutil
+
+    out = sys.stdout if stream is None else stream
+    width, height = shutil.get_terminal_size((80, 24))
+    out.write(_chart_text(plot, window, width, height - 1, fancy(out)) + '\n')
+    out.flush()
+
+
+def write_plot(plot: Plot, paths: Sequence[str], size: tuple[int, int]) -> None:
+    """Write the whole plot to each picture file (PNG or SVG by suffix); one line each."""
+    from ros2lite.monitor.plot import save_picture, to_chart
+
+    chart = to_chart(plot, window=None)
+    for path in paths:
+        try:
+            save_picture(chart, path, size)
+        except OSError as e:
+            raise CliError(f"cannot write '{path}': {e.strerror or e}") from None
+        click.echo(f"Wrote {path} ({plot.messages} messages)", err=True)

@@ -227,6 +227,12 @@ def _has_float(value: object) -> bool:
     return isinstance(value, (list, tuple)) and any(isinstance(v, float) for v in value)
 
 
+def value_to_csv(value: object) -> str:
+    """One field's value as `ros2 topic echo --csv` writes it (a message or an array as its
+    comma-joined leaves), for tools that print a few fields rather than whole messages."""
+    return _csv_value(value, None, None, False, False)
+
+
 def _coerce(current: Any, value: Any, ft: FieldType) -> Any:
     """Convert `value` towards the type of the field's current value, like rosidl does."""
     if ft.base in INT_RANGES and _has_float(value):

@@ -33,6 +33,7 @@ _DEMOS = {
     'rclpy_components': ['component_container', 'component_container_mt'],
     'rqt_console': ['rqt_console'],
     'rqt_graph': ['rqt_graph'],
+    'rqt_plot': ['rqt_plot'],
     'rqt_tf_tree': ['rqt_tf_tree'],
     'teleop_twist_keyboard': ['teleop_twist_keyboard'],
     'tf2_tools': ['view_frames'],

@@ -61,6 +61,10 @@ class TmuxPane:
         """The pane's title (what an OSC 0 or 2 sequence from the program would set)."""
         return self._tmux('display-message', '-p', '#{pane_title}').strip()
 
+    def history(self, lines: int = 200) -> str:
+        """The screen with up to `lines` of scrollback above it (what scrolled off)."""
+        return self._tmux('capture-pane', '-p', '-S', f'-{lines}')
+
     def wait_for(self, text: str, timeout: float = 20.0) -> str:
         """The screen once it shows `text`."""
         return str(wait_until(lambda: text in (s := self.screen()) and s, timeout))

@@ -10,6 +10,7 @@ VERBS = {
     "info": "Print information about a bag to the screen",
     "list": "Print information about available plugins to the screen",
     "play": "Play back ROS data from a bag",
+    "plot": "Plot numeric fields of the messages in a bag",
     "record": "Record ROS data to a bag",
     "reindex": "Reconstruct metadata file for a bag",
 }

@@ -12,6 +12,7 @@ VERBS = {
     'hz': 'Print the average publishing rate to screen',
     'info': 'Print information about a topic',
     'list': 'Output a list of available topics',
+    'plot': 'Plot numeric fields of topics live, in the terminal or to a picture',
     'pub': 'Publish a message to a topic',
     'type': "Print a topic's type",
 }

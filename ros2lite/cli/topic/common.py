@@ -10,12 +10,16 @@ import click
 
 from .. import numbers
 from ..errors import CliError
+from ..options import explicit_qos, qos_from_options
 
 F = TypeVar('F', bound=Callable[..., Any])
 
 if TYPE_CHECKING:
     from ros2lite.monitor.topic import TopicMonitor
+    from ros2lite.qos import QoSProfile
     from ros2lite.tools.connection import Connection
+
+    from ..options import QosOptions
 
 
 def message_type_name(name: str) -> str:
@@ -94,3 +98,51 @@ def graph_type(watch: TopicMonitor, *, wait: bool = False) -> str | None:
             f"Cannot echo topic '{watch.name}', as it contains more than one type: "
             f'[{", ".join(e.types)}]'
         ) from None
+
+
+def warn_type_mismatch(watch: TopicMonitor, type_name: str) -> None:
+    """Say at once when no publisher uses the asked type (or its hash): such a subscription
+    would wait forever in silence."""
+    mismatch = watch.type_mismatch(type_name)
+    if mismatch is None:
+        return
+    hint = ''
+    if mismatch.same_name:
+        why = (
+            f'as {type_name} with type hash {", ".join(mismatch.published_hashes)}, not '
+            f'{mismatch.type_hash} (another definition of the type)'
+        )
+    else:
+        from ros2lite.pkg.distro import other_distro_name
+
+        why = f'as {", ".join(mismatch.published_types)}, not {type_name}'
+        hint = other_distro_name(type_name, list(mismatch.published_types))
+    click.echo(
+        f"WARNING: topic '{watch.topic}' is published {why}; nothing will arrive until a "
+        f'matching publisher appears' + (f' ({hint})' if hint else ''),
+        err=True,
+    )
+
+
+def choose_qos(watch: TopicMonitor, options: QosOptions, *, err: bool = False) -> QoSProfile:
+    """The `--qos-*` profile, or the preset adapted to what every publisher offers (saying
+    so on stdout as ros2cli does, or on stderr with `err`, when stdout carries data)."""
+    profile = qos_from_options(**options)
+    if explicit_qos(**options):
+        return profile
+    matched = watch.matched_qos(profile)
+    if matched.reliability_fell_back:
+        click.echo(
+            'Some, but not all, publishers are offering QoSReliabilityPolicy.RELIABLE. '
+            'Falling back to QoSReliabilityPolicy.BEST_EFFORT as it will connect to '
+            'all publishers',
+            err=err,
+        )
+    if matched.durability_fell_back:
+        click.echo(
+            'Some, but not all, publishers are offering '
+            'QoSDurabilityPolicy.TRANSIENT_LOCAL. Falling back to '
+            'QoSDurabilityPolicy.VOLATILE as it will connect to all publishers',
+            err=err,
+        )
+    return matched.profile

@@ -11,24 +11,22 @@ import click
 from .. import completion, numbers
 from ..common import connect
 from ..errors import CliError
-from ..options import (
-    CSV_HELP,
-    explicit_qos,
-    format_options,
-    qos_from_options,
-    qos_options,
-    strategy_options,
-)
+from ..options import CSV_HELP, format_options, qos_options, strategy_options
 from ..parsing import command
-from .common import compile_filter, graph_type, message_type_name, monitor
+from .common import (
+    choose_qos,
+    compile_filter,
+    graph_type,
+    message_type_name,
+    monitor,
+    warn_type_mismatch,
+)
 
 if TYPE_CHECKING:
     from typing_extensions import Unpack
 
     from ros2lite.interfaces.convert import FormatOptions
     from ros2lite.monitor.stats import LostMessageCounter
-    from ros2lite.monitor.topic import TopicMonitor
-    from ros2lite.qos import QoSProfile
     from ros2lite.subscription import MessageInfo
 
     from ..options import MessageFormat, QosOptions
@@ -267,48 +265,3 @@ def cli(
         else:
             watch.on_sample(type_name, profile, printer)
         conn.spin_until(lambda: printer.done, timeout)
-
-
-def warn_type_mismatch(watch: TopicMonitor, type_name: str) -> None:
-    """Say at once when no publisher uses the asked type (or its hash): such a subscription
-    would wait forever in silence."""
-    mismatch = watch.type_mismatch(type_name)
-    if mismatch is None:
-        return
-    hint = ''
-    if mismatch.same_name:
-        why = (
-            f'as {type_name} with type hash {", ".join(mismatch.published_hashes)}, not '
-            f'{mismatch.type_hash} (another definition of the type)'
-        )
-    else:
-        from ros2lite.pkg.distro import other_distro_name
-
-        why = f'as {", ".join(mismatch.published_types)}, not {type_name}'
-        hint = other_distro_name(type_name, list(mismatch.published_types))
-    click.echo(
-        f"WARNING: topic '{watch.topic}' is published {why}; nothing will arrive until a "
-        f'matching publisher appears' + (f' ({hint})' if hint else ''),
-        err=True,
-    )
-
-
-def choose_qos(watch: TopicMonitor, options: QosOptions) -> QoSProfile:
-    """The `--qos-*` profile, or the preset adapted to what every publisher offers."""
-    profile = qos_from_options(**options)
-    if explicit_qos(**options):
-        return profile
-    matched = watch.matched_qos(profile)
-    if matched.reliability_fell_back:
-        click.echo(
-            'Some, but not all, publishers are offering QoSReliabilityPolicy.RELIABLE. '
-            'Falling back to QoSReliabilityPolicy.BEST_EFFORT as it will connect to '
-            'all publishers'
-        )
-    if matched.durability_fell_back:
-        click.echo(
-            'Some, but not all, publishers are offering '
-            'QoSDurabilityPolicy.TRANSIENT_LOCAL. Falling back to '
-            'QoSDurabilityPolicy.VOLATILE as it will connect to all publishers'
-        )
-    return matched.profile

@@ -1,0 +1,1 @@
+"""rqt_plot: live plots of numeric fields of topics."""
