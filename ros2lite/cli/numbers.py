@@ -7,7 +7,7 @@ types make it, never a Python error later on.
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import cast
 
 import click
 
@@ -26,7 +26,9 @@ class Finite(click.FloatRange):
 
     name = 'float'
 
-    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> Any:
+    def convert(
+        self, value: object, param: click.Parameter | None, ctx: click.Context | None
+    ) -> float:
         if isinstance(value, str):
             try:
                 number = float(value)
@@ -36,7 +38,8 @@ class Finite(click.FloatRange):
                 self.fail(f'{value!r} is not a finite number.', param, ctx)
         elif isinstance(value, float) and not math.isfinite(value):
             self.fail(f'{value!r} is not a finite number.', param, ctx)
-        return super().convert(value, param, ctx)
+        # click's range converts text and numbers alike (typed float there)
+        return super().convert(cast(float, value), param, ctx)
 
 
 class Count(click.IntRange):
@@ -65,7 +68,9 @@ class Size(click.ParamType):
 
     name = 'size'
 
-    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> Any:
+    def convert(
+        self, value: object, param: click.Parameter | None, ctx: click.Context | None
+    ) -> tuple[int, int]:
         if isinstance(value, tuple):
             return value
         parts = str(value).lower().split('x')

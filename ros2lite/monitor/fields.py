@@ -9,10 +9,10 @@ import math
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Any
 
 from ros2lite.exceptions import Ros2liteError
 from ros2lite.interfaces import get_interface
+from ros2lite.interfaces.parser import FieldType
 
 __all__ = [
     'FieldPath',
@@ -66,9 +66,9 @@ class FieldPath:
     def __str__(self) -> str:
         return '/'.join(str(s) for s in self.steps)
 
-    def get(self, msg: object) -> Any:
+    def get(self, msg: object) -> object:
         """The value at the path in `msg` (IndexError past an array's end)."""
-        value: Any = msg
+        value = msg
         for step in self.steps:
             value = getattr(value, step.name)
             for i in step.indices:
@@ -78,7 +78,7 @@ class FieldPath:
     def check(self, cls: type) -> str:
         """What the path names in messages of class `cls`: 'number' or 'array' (of numbers);
         PlotError saying why when it names a field that is missing or not numeric."""
-        current: Any = cls
+        current: object = cls
         where = cls.__name__ if hasattr(cls, '__name__') else str(cls)
         for n, step in enumerate(self.steps):
             types = field_types(current)
@@ -119,19 +119,19 @@ class FieldPath:
         return 'number'
 
 
-def field_types(cls: Any) -> dict[str, Any] | None:
+def field_types(cls: object) -> dict[str, FieldType] | None:
     """Field name -> FieldType of a message class (None for anything else)."""
     names = getattr(cls, 'get_fields_and_field_types', None)
     if names is None:
         return None
-    return dict(zip(names(), cls.SLOT_TYPES, strict=True))
+    return dict(zip(names(), getattr(cls, 'SLOT_TYPES', ()), strict=True))
 
 
 def _numeric_type(base: str) -> bool:
     return base not in ('string', 'wstring')
 
 
-def _numeric_leaves(cls: Any, prefix: str = '', limit: int = 8) -> list[str]:
+def _numeric_leaves(cls: object, prefix: str = '', limit: int = 8) -> list[str]:
     """The first few paths of numbers in messages of `cls` (for a hint)."""
     found: list[str] = []
     for name, ft in (field_types(cls) or {}).items():

@@ -18,7 +18,7 @@ import time
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from ros2lite.interfaces import CdrError, deserialize, get_interface
 from ros2lite.interfaces.convert import value_to_csv
@@ -143,7 +143,7 @@ class Snapshot:
         self._arrived = 0.0
         self.lock = threading.Lock()
 
-    def add(self, t: float, values: Sequence[Any], arrival: float | None = None) -> None:
+    def add(self, t: float, values: Sequence[object], arrival: float | None = None) -> None:
         data = [numeric(v) for v in values]
         with self.lock:
             self.values = data
@@ -279,6 +279,7 @@ class Plot:
                 continue
             target = self.series[i]
             if isinstance(target, Snapshot):
+                assert isinstance(raw, Sequence)  # checked an array of numbers by its spec
                 target.add(x, raw, now)
                 if self.rows is not None:
                     self.rows.append([f'{x:.6f}', target.label, *(value_to_csv(v) for v in raw)])
