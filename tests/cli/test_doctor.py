@@ -199,3 +199,31 @@ def test_type_hash_mismatch_between_real_nodes(
     assert finding.startswith('ERROR: Type hash mismatch on /age (lesson_msgs/msg/Age): ')
     assert hashes['old'] in finding and hashes['new'] in finding
     assert finding.endswith('; these endpoints never exchange a message')
+
+
+def test_old_rmw_zenoh_peers_are_named(run: Callable[..., Result], graph: TokenGraph) -> None:
+    """Hand-made tokens as rmw_zenoh 0.2.0-0.2.2 writes them (TRANSIENT_LOCAL was its
+    default: volatile written `2`, /rosout's transient-local left empty), beside a current
+    node's: only the old nodes are named, with the advice to upgrade."""
+    from ros2lite.qos import DurabilityPolicy
+
+    rosout_qos = QoSProfile(depth=1000, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+
+    def old(key: str, chunk: str) -> None:
+        graph.undeclare(key)
+        graph.declare(key.rsplit('/', 1)[0] + '/' + chunk)
+
+    events = 'rcl_interfaces/msg/ParameterEvent'
+    old_talker = graph.node('old_talker', zid='1' * 32)
+    old(old_talker.pub('/parameter_events', events), ':2:,1000:,:,:,,')
+    old_listener = graph.node('old_listener', '/robot', zid='2' * 32)
+    old(old_listener.pub('/rosout', 'rcl_interfaces/msg/Log', rosout_qos), '::,1000:,:10,0:,,')
+    current = graph.node('current')
+    current.pub('/rosout', 'rcl_interfaces/msg/Log', rosout_qos)
+    current.pub('/parameter_events', events)
+    current.sub('/parameter_events', events)
+    result = run('doctor')
+    assert result.code == 0
+    advice = [f for f in _findings(result.err) if 'rmw_zenoh 0.2.0-0.2.2' in f]
+    assert [f.split(':')[0] for f in advice] == ['node /old_talker', 'node /robot/old_listener']
+    assert all('upgrade rmw_zenoh_cpp' in f for f in advice)
