@@ -27,7 +27,9 @@ from ros2lite.transport.handles import Handle, Sample, Session
 from ros2lite.transport.keys import liveliness_subscription_key
 
 __all__ = [
+    "HISTORY_BYTES",
     "Handle",
+    "HistoryBoundedPublisher",
     "Publisher",
     "Querier",
     "Request",
@@ -48,7 +50,36 @@ __all__ = [
 ]
 
 
-Publisher = zenoh.Publisher | zenoh.ext.AdvancedPublisher
+# What one transient-local publisher's history may hold, in bytes: a sample larger than this
+# over its depth goes out live but is not kept for late joiners (a 1000-deep /rosout keeps
+# lines up to 64 KiB; a 1-deep map or /tf_static up to the whole 64 MiB)
+HISTORY_BYTES = 64 << 20
+
+
+class HistoryBoundedPublisher:
+    """A transient-local publisher whose history is bounded in bytes as well as in depth.
+
+    zenoh-ext's advanced publisher keeps the last `depth` samples whatever their size (a
+    /rosout of 16 MB lines holds 16 GB). Samples over the per-sample share of
+    :data:`HISTORY_BYTES` go through a plain publisher of the same key instead: subscribers
+    get them live all the same, the cache never holds them.
+    """
+
+    def __init__(self, cached: zenoh.ext.AdvancedPublisher, live: zenoh.Publisher, depth: int):
+        self._cached, self._live = cached, live
+        self.largest_kept = max(HISTORY_BYTES // max(depth, 1), 1)
+
+    def put(self, payload: bytes, *, attachment: bytes | None = None) -> None:
+        """Publish; keep the sample for late joiners only if it is small enough."""
+        target = self._cached if len(payload) <= self.largest_kept else self._live
+        target.put(payload, attachment=attachment)
+
+    def undeclare(self) -> None:
+        """Undeclare both publishers (the history goes with the advanced one)."""
+        undeclare_quietly(self._cached, self._live)
+
+
+Publisher = zenoh.Publisher | HistoryBoundedPublisher
 """A declared publisher: `.put(payload, attachment=…)` and `.undeclare()`."""
 
 
@@ -130,7 +161,8 @@ def _transient_local(qos: QoSProfile) -> bool:
 def declare_publisher(session: Session, key: str, qos: QoSProfile) -> Publisher:
     """A publisher with `.put(payload, attachment=…)`, mapped from QoS as rmw_zenoh does:
     reliability, BLOCK congestion control only for reliable KEEP_ALL, and transient local
-    through zenoh-ext's advanced publisher (a cache of `depth` samples)."""
+    through zenoh-ext's advanced publisher (a cache of `depth` samples, bounded in bytes:
+    :class:`HistoryBoundedPublisher`)."""
     reliable = _reliable(qos)
     block = reliable and qos.history == HistoryPolicy.KEEP_ALL
     reliability = zenoh.Reliability.RELIABLE if reliable else zenoh.Reliability.BEST_EFFORT
@@ -143,7 +175,7 @@ def declare_publisher(session: Session, key: str, qos: QoSProfile) -> Publisher:
             if reliable
             else None
         )
-        return zenoh.ext.declare_advanced_publisher(
+        cached = zenoh.ext.declare_advanced_publisher(
             as_zenoh(session),
             key,
             cache=zenoh.ext.CacheConfig(max(qos.depth, 1)),
@@ -152,6 +184,10 @@ def declare_publisher(session: Session, key: str, qos: QoSProfile) -> Publisher:
             reliability=reliability,
             congestion_control=congestion,
         )
+        live = as_zenoh(session).declare_publisher(
+            key, reliability=reliability, congestion_control=congestion
+        )
+        return HistoryBoundedPublisher(cached, live, qos.depth)
     return as_zenoh(session).declare_publisher(
         key, reliability=reliability, congestion_control=congestion
     )
