@@ -9,7 +9,7 @@ Six checks, each a *category* (what ``Failed modules:`` names):
   make a valid session configuration that talks to rmw_zenoh nodes;
 - ``topic`` — one-sided topics and nodes of rmw_zenoh 0.2.0-0.2.2 are warnings; endpoints
   disagreeing on the type or its RIHS01 hash are errors (rmw_zenoh keys data by both);
-- ``qos`` — publisher/subscription pairs whose QoS is incompatible;
+- ``qos`` — pairs rmw_zenoh's QoS rule calls incompatible (none: the report shows its warning);
 - ``package`` — source workspace packages that cannot be read.
 
 The graph is read once, from the router (the daemon is never started by a diagnosis). A
@@ -343,7 +343,7 @@ class Diagnosis:
 
     def _pairs(self) -> list[tuple[str, Entity, Entity, Compatibility]]:
         from ros2lite.graph import EntityKind
-        from ros2lite.qos import check_compatible
+        from ros2lite.qos import zenoh_check_compatible as check_compatible
 
         pairs = []
         for topic, endpoints in self._topics().items():
