@@ -140,7 +140,48 @@ class Context:
         self.session = connect(router, tool=short_lived, autostart=autostart)
         self.zid = str(self.session.info.zid())
         _live.add(self)
+        if not short_lived:
+            self._watch_client_link(router)
         return self
+
+    def _watch_client_link(self, router: str | None) -> None:
+        """A node whose session is a client (secured nodes are) loses what is published
+        while its router is away: say so when the link drops, and when it is back."""
+        from ros2lite.daemon.connect import node_is_client
+        from ros2lite.logging import get_logger
+
+        client, endpoint = node_is_client(router)
+        if not client:
+            return
+        logger = get_logger('rmw_zenoh_cpp')
+        stop = threading.Event()
+
+        def changed(linked: bool) -> None:
+            if stop.is_set():
+                return  # shutting down: the session closes, the router is not gone
+            if linked:
+                logger.warning(f'The link to the Zenoh router at {endpoint} is back')
+            else:
+                logger.warning(
+                    f'Lost the link to the Zenoh router at {endpoint}: this node is a Zenoh '
+                    'client, so what is published until it is back neither reaches it nor '
+                    'leaves it'
+                )
+
+        def watch() -> None:
+            link = RouterLink(self, changed)
+            while not stop.wait(_LINK_CHECK_PERIOD):
+                link.check()
+
+        thread = threading.Thread(target=watch, name='router-link', daemon=True)
+
+        def end() -> None:  # before the session closes: no thread of ours left inside zenoh
+            stop.set()
+            if thread is not threading.current_thread():
+                thread.join()
+
+        self.on_shutdown(end)
+        thread.start()
 
     # `with Context():` initialises it (as rclpy's does) and `with ros2lite.init():` uses the
     # one just initialised; both shut it down on the way out
@@ -298,6 +339,9 @@ class RouterLink:
             self.linked = linked
             self.on_change(linked)
 
+
+# how often a client node's session is looked at for its router link (seconds)
+_LINK_CHECK_PERIOD = 0.25
 
 # Contexts still open at interpreter exit are shut down first: zenoh threads and our pump
 # threads must be gone before Python finalises, or the process aborts instead of exiting.

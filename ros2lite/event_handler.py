@@ -3,8 +3,11 @@ and incompatible type, the events rmw_zenoh_cpp reports.
 
 They come from the live graph, as rmw_zenoh's do: when an endpoint of the other side appears
 on (or leaves) the topic, each handler of ours updates its counts and the executor runs its
-callback with an info record, in the handler's callback group. By default every publisher and
-subscription has the incompatible-QoS and incompatible-type handlers, which log a warning.
+callback with an info record, in the handler's callback group. Matched means what rmw_zenoh's
+graph cache counts: the other side's endpoints of the same topic name and type, whatever their
+QoS; so, as on rmw_zenoh, an incompatible-QoS handler can be made but never fires. By default
+every publisher and subscription has the incompatible-QoS and incompatible-type handlers, which
+log a warning; the type one fires when a type name or hash differs (no sample crosses then).
 Deadline, liveliness and message-lost events have no source on rmw_zenoh (rmw_zenoh_cpp does
 not offer them either): asking for one raises UnsupportedEventTypeError.
 """
@@ -18,7 +21,8 @@ from typing import TYPE_CHECKING, NamedTuple
 
 from ros2lite import logging
 from ros2lite.exceptions import Ros2liteError
-from ros2lite.qos import QoSPolicyKind, incompatible_policy
+from ros2lite.graph import matches
+from ros2lite.qos import QoSPolicyKind
 from ros2lite.runtime.executable import Executable
 from ros2lite.transport.keys import EntityKind
 
@@ -225,17 +229,12 @@ class EventHandler(Executable):
         other = EntityKind.SUBSCRIPTION if ep.kind == EntityKind.PUBLISHER else EntityKind.PUBLISHER
         if entity.kind != other or entity.topic_name != ep.topic_name:
             return
-        same_type = entity.type_name == ep.type_name and entity.type_hash == ep.type_hash
-        policy = None
-        if same_type and entity.qos is not None:
-            pub, sub = (
-                (ep.qos, entity.qos) if other == EntityKind.SUBSCRIPTION else (entity.qos, ep.qos)
-            )
-            policy = incompatible_policy(pub, sub)
+        if self._kind is _Kind.INCOMPATIBLE_QOS:
+            return  # rmw_zenoh's rule: no QoS pair is incompatible (see graph.matches)
         key = entity.to_token()
         with self._lock:
             if self._kind is _Kind.MATCHED:
-                if not same_type or policy is not None:
+                if not matches(entity, ep.topic_name, ep.type_name, other):
                     return
                 if alive and key not in self._matched:
                     self._matched.add(key)
@@ -249,17 +248,11 @@ class EventHandler(Executable):
                     return
             elif not alive:
                 return
-            elif self._kind is _Kind.INCOMPATIBLE_TYPE:
-                if same_type:
+            else:  # incompatible type: data keys differ, so no sample crosses
+                if entity.type_name == ep.type_name and entity.type_hash == ep.type_hash:
                     return
                 self._total += 1
                 self._total_change += 1
-            else:
-                if policy is None:
-                    return
-                self._total += 1
-                self._total_change += 1
-                self._last_policy = policy
             self._ready = True
         self._notify()
 

@@ -254,6 +254,52 @@ def count(entities: Iterable[Entity], topic: str, kind: EntityKind) -> int:
     return sum(1 for e in entities if e.kind == kind and e.topic_name == topic)
 
 
+def matches(entity: Entity, topic: str, type_name: str | None, kind: EntityKind) -> bool:
+    """Is `entity` a `kind` endpoint matched with ours on `topic` of `type_name`?
+
+    rmw_zenoh's graph cache files endpoints by topic name, then type name, then QoS string,
+    and counts as matched every endpoint of the other side under the same name and type
+    whatever its QoS: its own compatibility check never answers "incompatible" (Zenoh
+    delivers between any reliability/durability pair), and the type hash is not part of the
+    lookup. We count the same way so a node sees the numbers an rmw_zenoh node sees.
+    """
+    return entity.kind == kind and entity.topic_name == topic and entity.type_name == type_name
+
+
+def matched_count(
+    entities: Iterable[Entity], topic: str, type_name: str | None, kind: EntityKind
+) -> int:
+    """How many `kind` endpoints are matched with ours (see :func:`matches`)."""
+    return sum(1 for e in entities if matches(e, topic, type_name, kind))
+
+
+OLD_RMW_ZENOH = (
+    'its tokens show the durability default of rmw_zenoh 0.2.0-0.2.2, which reads only the '
+    'old 77-byte attachment and aborts on the 33-byte one ros2lite and rmw_zenoh >= 0.2.4 '
+    'send: upgrade rmw_zenoh_cpp on that host'
+)
+
+
+def old_rmw_zenoh_nodes(entities: Iterable[Entity]) -> list[str]:
+    """Nodes whose tokens were written by rmw_zenoh 0.2.0-0.2.2 (sorted, one per node).
+
+    Those releases (and 0.2.3) read only the old 77-byte keyed attachment and abort on
+    today's 33-byte one. Their tokens give them away by the old durability default,
+    TRANSIENT_LOCAL: they write `2` for a volatile endpoint (today's default, which current
+    releases leave empty) and leave `/rosout`'s transient-local publisher empty (current
+    releases write `1`). 0.2.3 already had today's default, so no token tells it apart.
+    """
+    found = set()
+    for e in entities:
+        if e.is_node or e.qos_chunk is None:
+            continue
+        durability = e.qos_chunk.split(':')[1] if e.qos_chunk.count(':') >= 2 else ''
+        rosout = e.kind == EntityKind.PUBLISHER and e.topic_name == '/rosout'
+        if durability == '2' or (rosout and durability == ''):
+            found.add(e.node_fqn)
+    return sorted(found)
+
+
 # -- queries behind `topic list/info` and `node list/info` ---------------------------------------
 # rcl_action has no entity kinds of its own: an action shows up as a node publishing (server) or
 # subscribing (client) `<action>/_action/feedback`, typed `<pkg>/action/<Name>_FeedbackMessage`.

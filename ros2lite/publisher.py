@@ -88,12 +88,13 @@ class Publisher(EndpointOwner, Generic[MsgT]):
         nothing to assert by hand."""
 
     def get_subscription_count(self) -> int:
-        """How many subscriptions on the graph match this topic name."""
-        from ros2lite.graph import count
+        """How many subscriptions are matched: same topic name and type, any QoS (as
+        rmw_zenoh's graph cache counts them)."""
+        from ros2lite.graph import matched_count
 
-        return count(
-            self._ep.node.context.graph.entities(), self.topic_name, EntityKind.SUBSCRIPTION
-        )
+        ep = self._ep
+        entities = ep.node.context.graph.entities()
+        return matched_count(entities, ep.topic_name, ep.type_name, EntityKind.SUBSCRIPTION)
 
     def destroy(self) -> None:
         """Withdraw the publisher and its token; publishing afterwards raises."""

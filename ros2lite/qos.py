@@ -54,6 +54,7 @@ __all__ = [
     "qos_profile_system_default",
     "qos_profile_unknown",
     "resolve_best_available",
+    "zenoh_check_compatible",
 ]
 
 _P = TypeVar("_P", bound="_Policy")
@@ -556,6 +557,21 @@ def check_compatible(publisher: QoSProfile, subscription: QoSProfile) -> Compati
     return Compatibility(True, " ".join(_warnings(pub, sub)))
 
 
+def zenoh_check_compatible(publisher: QoSProfile, subscription: QoSProfile) -> Compatibility:
+    """What rmw_zenoh's own compatibility check says of the pair (what rclpy's
+    ``qos_check_compatible`` returns on rmw_zenoh, and what its graph cache counts by).
+
+    Zenoh delivers between any two QoS profiles, so no pair is incompatible; the one warning
+    is a transient-local publisher with a volatile subscription, which misses the history.
+    """
+    if publisher.durability == _D.TRANSIENT_LOCAL and subscription.durability == _D.VOLATILE:
+        return Compatibility(
+            True,
+            "WARNING: Publisher's durability is TRANSIENT_LOCAL, but subscription's is VOLATILE;",
+        )
+    return Compatibility(True, "")
+
+
 def incompatible_policy(publisher: QoSProfile, subscription: QoSProfile) -> QoSPolicyKind | None:
     """The last policy (in rmw's order of checks) that makes the pair incompatible, or None:
     what QoS-incompatibility events report."""
@@ -604,8 +620,9 @@ class QoSCompatibility(enum.IntEnum):
 def qos_check_compatible(
     publisher_qos: QoSProfile, subscription_qos: QoSProfile
 ) -> tuple[QoSCompatibility, str]:
-    """rclpy's form of :func:`check_compatible`: (OK/WARNING/ERROR, reason)."""
-    compatible, reason = check_compatible(publisher_qos, subscription_qos)
+    """rclpy's verdict on rmw_zenoh (:func:`zenoh_check_compatible`): (OK/WARNING/ERROR,
+    reason); :func:`check_compatible` has DDS's."""
+    compatible, reason = zenoh_check_compatible(publisher_qos, subscription_qos)
     if not compatible:
         return QoSCompatibility.ERROR, reason
     return (QoSCompatibility.WARNING if reason else QoSCompatibility.OK), reason

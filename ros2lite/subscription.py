@@ -282,10 +282,13 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self._ep.undeclare(self._receiver)  # ends the receive thread too
 
     def get_publisher_count(self) -> int:
-        """How many publishers on the graph match this topic name."""
-        from ros2lite.graph import count
+        """How many publishers are matched: same topic name and type, any QoS (as
+        rmw_zenoh's graph cache counts them)."""
+        from ros2lite.graph import matched_count
 
-        return count(self._ep.node.context.graph.entities(), self.topic_name, EntityKind.PUBLISHER)
+        ep = self._ep
+        entities = ep.node.context.graph.entities()
+        return matched_count(entities, ep.topic_name, ep.type_name, EntityKind.PUBLISHER)
 
 
 class _SubscriptionEndpoint(Endpoint):

@@ -191,12 +191,13 @@ def test_rclpy_compatibility_verdicts() -> None:
 
     reliable = QoSProfile(depth=1, liveliness=L.AUTOMATIC)
     best_effort = QoSProfile(depth=1, reliability=R.BEST_EFFORT)
+    # rclpy on rmw_zenoh: its own rule, no pair is an error
     assert qos_check_compatible(reliable, reliable) == (QoSCompatibility.OK, "")
-    verdict, reason = qos_check_compatible(best_effort, reliable)
-    assert verdict == QoSCompatibility.ERROR and reason
-    assert qos_check_compatible(qos_profile_system_default, reliable)[0] == (
-        QoSCompatibility.WARNING
-    )
+    assert qos_check_compatible(best_effort, reliable) == (QoSCompatibility.OK, "")
+    assert qos_check_compatible(qos_profile_system_default, reliable)[0] == QoSCompatibility.OK
+    latched = QoSProfile(depth=1, durability=D.TRANSIENT_LOCAL)
+    verdict, reason = qos_check_compatible(latched, reliable)
+    assert verdict == QoSCompatibility.WARNING and "TRANSIENT_LOCAL" in reason
     assert incompatible_policy(best_effort, reliable) == QoSPolicyKind.RELIABILITY
     transient = QoSProfile(depth=1, durability=D.TRANSIENT_LOCAL)
     assert incompatible_policy(best_effort, transient) == QoSPolicyKind.DURABILITY  # the last

@@ -55,6 +55,7 @@ __all__ = [
     "NO_DAEMON_ENV",
     "autostart_enabled",
     "connect",
+    "node_is_client",
     "open_node_session",
     "started_elsewhere",
 ]
@@ -135,6 +136,16 @@ def _autostart(router: str | None, security: Security) -> None:
             f"no Zenoh router answered at {endpoint}: started the ros2lite daemon "
             f"(pid {result.pid}); set {NO_DAEMON_ENV}=1 to stop nodes doing this",
         )
+
+
+def node_is_client(router: str | None = None) -> tuple[bool, str]:
+    """Whether a node's session is a Zenoh client (secured, or a remote router, or so
+    configured), and its router endpoint: a client hears and reaches nothing while its
+    router is away, where a peer keeps the links it has."""
+    security = session_security()
+    mode = node_session_mode(router, security=security)
+    config = session_config(router, mode=mode, security=security)
+    return configured_mode(config) != "peer", session_endpoint(router, security=security)
 
 
 def open_node_session(router: str | None = None) -> Session:

@@ -7,10 +7,9 @@ Six checks, each a *category* (what ``Failed modules:`` names):
 - ``network`` — a Zenoh router answers at the endpoint every session uses;
 - ``middleware`` — ``ROS_DOMAIN_ID``, the ``ZENOH_*`` variables and ``RMW_IMPLEMENTATION``
   make a valid session configuration that talks to rmw_zenoh nodes;
-- ``topic`` — topics with publishers but no subscribers (and the reverse) are warnings;
-  endpoints of one topic disagreeing on the type or its RIHS01 hash are errors (rmw_zenoh
-  puts the hash in the key expression, so such endpoints never exchange a message);
-- ``qos`` — publisher/subscription pairs whose QoS is incompatible;
+- ``topic`` — one-sided topics and nodes of rmw_zenoh 0.2.0-0.2.2 are warnings; endpoints
+  disagreeing on the type or its RIHS01 hash are errors (rmw_zenoh keys data by both);
+- ``qos`` — pairs rmw_zenoh's QoS rule calls incompatible (none: the report shows its warning);
 - ``package`` — source workspace packages colcon would refuse are errors, each one line with
   file and line: a package.xml that is not XML or lacks a name, version or build type; a
   setup.py that is not Python, calls no `setup()` or has an entry point that does not parse;
@@ -280,13 +279,15 @@ class Diagnosis:
         return result
 
     def check_topic(self) -> CheckResult:
-        """Warn about one-sided topics; report type and type hash mismatches."""
-        from ros2lite.graph import EntityKind
+        """Warn about one-sided topics and old peers; report type and type hash mismatches."""
+        from ros2lite.graph import OLD_RMW_ZENOH, EntityKind, old_rmw_zenoh_nodes
 
         result = CheckResult('topic')
         if self.graph() is None:
             result.warn(f'topics not checked: {self.graph_error}')
             return result
+        for name in old_rmw_zenoh_nodes(self.graph() or []):
+            result.warn(f'node {name}: {OLD_RMW_ZENOH}')
         for topic, endpoints in self._topics().items():
             pubs = [e for e in endpoints if e.kind == EntityKind.PUBLISHER]
             subs = [e for e in endpoints if e.kind == EntityKind.SUBSCRIPTION]
@@ -362,7 +363,7 @@ class Diagnosis:
 
     def _pairs(self) -> list[tuple[str, Entity, Entity, Compatibility]]:
         from ros2lite.graph import EntityKind
-        from ros2lite.qos import check_compatible
+        from ros2lite.qos import zenoh_check_compatible as check_compatible
 
         pairs = []
         for topic, endpoints in self._topics().items():

@@ -15,7 +15,8 @@ Two session modes, chosen by what the process is:
   router (which always forwards to and from its clients), and ``zenoh.open`` itself reports a
   missing router, so failing fast is easy.
 
-``ZENOH_CONFIG_OVERRIDE='mode="client"'`` (or ``"peer"``) forces a mode for every session.
+``ZENOH_CONFIG_OVERRIDE='mode="client"'`` (or ``"peer"``) forces a mode for every session. A
+verb given a node's peer-mode file opens it as a client (:func:`_tool_as_client` says why).
 
 Precedence, lowest first: built-in defaults, or the json5 file in ``ZENOH_SESSION_CONFIG_URI``
 / ``ZENOH_ROUTER_CONFIG_URI`` instead of them (as rmw_zenoh does); ``ROS2LITE_ROUTER``;
@@ -241,6 +242,8 @@ def session_config(
         ]
         for key, value in defaults:
             _insert(config, key, value, "built-in session config")
+    elif mode == "client":
+        _tool_as_client(config)
     if endpoint:
         _insert(config, "connect/endpoints", _endpoints_json([endpoint]), ROUTER_ENV)
     if security.credentials is not None:
@@ -255,6 +258,39 @@ def session_config(
     if security.credentials is not None:
         _require_tls(config, "connect/endpoints", security)
     return config
+
+
+def _tool_as_client(config: zenoh.Config) -> None:
+    """A short-lived tool given a node's peer-mode file (rmw_zenoh's own session config)
+    opens as a client of the same router.
+
+    A peer hears other peers' tokens only over direct links, which gossip opens and fill
+    some time after ``zenoh.open`` returns, and no signal says when that view is complete: a
+    one-shot `node list` then answers from part of the graph (measured 2 runs in 6). A
+    client's query is answered by its router for the whole graph. Left as it is: a file for
+    peers without a router (multicast scouting on, or nothing to connect to), and a mode that
+    ``ZENOH_CONFIG_OVERRIDE`` sets (applied after this).
+    """
+    try:
+        mode = json.loads(config.get_json("mode")) or "peer"
+        multicast = json.loads(config.get_json("scouting/multicast/enabled"))
+        connect = json.loads(config.get_json("connect/endpoints"))
+    except (zenoh.ZError, ValueError, TypeError):
+        return
+    if isinstance(connect, dict):  # the per-mode form: a client connects where a peer would
+        if connect.get("client") or not connect.get("peer"):
+            connect = connect.get("client")
+        else:
+            _insert(
+                config,
+                "connect/endpoints",
+                json.dumps({**connect, "client": connect["peer"]}),
+                "a tool's session",
+            )
+            connect = connect["peer"]
+    if mode != "peer" or multicast is not False or not connect:
+        return
+    _insert(config, "mode", '"client"', "a tool's session")
 
 
 def _require_tls(config: zenoh.Config, key: str, security: Security) -> None:

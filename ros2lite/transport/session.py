@@ -12,6 +12,7 @@ runs user code), never block.
 from __future__ import annotations
 
 import contextlib
+import heapq
 import threading
 import time
 from collections import deque
@@ -27,7 +28,9 @@ from ros2lite.transport.handles import Handle, Sample, Session
 from ros2lite.transport.keys import liveliness_subscription_key
 
 __all__ = [
+    "HISTORY_BYTES",
     "Handle",
+    "HistoryBoundedPublisher",
     "Publisher",
     "Querier",
     "Request",
@@ -49,7 +52,111 @@ __all__ = [
 ]
 
 
-Publisher = zenoh.Publisher | zenoh.ext.AdvancedPublisher
+# What one transient-local publisher's history may hold, in bytes: a sample larger than this
+# over its depth goes out live but is not kept for late joiners (a 1000-deep /rosout keeps
+# lines up to 64 KiB; a 1-deep map or /tf_static up to the whole 64 MiB)
+HISTORY_BYTES = 64 << 20
+
+
+class HistoryBoundedPublisher:
+    """A transient-local publisher whose history is bounded in bytes as well as in depth,
+    and forgotten once its lifespan has passed.
+
+    zenoh-ext's advanced publisher keeps the last `depth` samples whatever their size or age
+    (a /rosout of 16 MB lines holds 16 GB, and serves hour-old lines to a late joiner).
+    Samples over the per-sample share of :data:`HISTORY_BYTES` go through a plain publisher
+    of the same key instead: subscribers get them live all the same, the cache never holds
+    them. With a finite lifespan, once the newest kept sample is older than it, the advanced
+    publisher is made anew, empty (its cache cannot drop samples one by one): a late joiner
+    then gets no expired sample. While samples keep coming, the older ones stay until depth
+    pushes them out.
+    """
+
+    def __init__(
+        self,
+        make: Callable[[], zenoh.ext.AdvancedPublisher],
+        live: zenoh.Publisher,
+        depth: int,
+        lifespan: float | None,
+    ) -> None:
+        self._make, self._live, self._lifespan = make, live, lifespan
+        self._cached: zenoh.ext.AdvancedPublisher | None = make()
+        self._lock = threading.Lock()
+        self._newest = 0.0  # monotonic time of the newest kept sample (0: none kept)
+        self.largest_kept = max(HISTORY_BYTES // max(depth, 1), 1)
+
+    def put(self, payload: bytes, *, attachment: bytes | None = None) -> None:
+        """Publish; keep the sample for late joiners only if it is small enough."""
+        if len(payload) > self.largest_kept:
+            self._live.put(payload, attachment=attachment)
+            return
+        with self._lock:
+            if self._cached is None:
+                raise zenoh.ZError("the publisher is undeclared")
+            self._cached.put(payload, attachment=attachment)
+            if self._lifespan is not None:
+                first = not self._newest
+                self._newest = time.monotonic()
+                if first:
+                    _expiry.watch(self, self._newest + self._lifespan)
+
+    def expire(self) -> float | None:
+        """Forget the history if its newest sample has expired; else when to look again."""
+        with self._lock:
+            assert self._lifespan is not None
+            due = self._newest + self._lifespan
+            if self._cached is None or not self._newest:
+                return None
+            if time.monotonic() < due:
+                return due
+            undeclare_quietly(self._cached)
+            self._cached = None  # a put meanwhile waits for the lock, then goes to the new one
+            self._cached = self._make()
+            self._newest = 0.0
+            return None
+
+    def undeclare(self) -> None:
+        """Undeclare both publishers (the history goes with the advanced one)."""
+        with self._lock:
+            cached, self._cached = self._cached, None
+        undeclare_quietly(cached, self._live)
+
+
+class _Expiry:
+    """One thread for the process, forgetting expired transient-local histories on time."""
+
+    def __init__(self) -> None:
+        self._due: list[tuple[float, int, HistoryBoundedPublisher]] = []
+        self._cond = threading.Condition()
+        self._thread: threading.Thread | None = None
+        self._ids = iter(range(1 << 62))
+
+    def watch(self, publisher: HistoryBoundedPublisher, due: float) -> None:
+        with self._cond:
+            heapq.heappush(self._due, (due, next(self._ids), publisher))
+            if self._thread is None:
+                self._thread = threading.Thread(target=self._run, name="tl-expiry", daemon=True)
+                self._thread.start()
+            self._cond.notify()
+
+    def _run(self) -> None:
+        while True:
+            with self._cond:
+                while not self._due or self._due[0][0] > time.monotonic():
+                    self._cond.wait(self._due[0][0] - time.monotonic() if self._due else None)
+                _, _, publisher = heapq.heappop(self._due)
+            try:
+                again = publisher.expire()
+            except zenoh.ZError:
+                again = None  # its session closed: nothing to keep or forget
+            if again is not None:
+                self.watch(publisher, again)
+
+
+_expiry = _Expiry()
+
+
+Publisher = zenoh.Publisher | HistoryBoundedPublisher
 """A declared publisher: `.put(payload, attachment=…)` and `.undeclare()`."""
 
 
@@ -142,7 +249,8 @@ def _transient_local(qos: QoSProfile) -> bool:
 def declare_publisher(session: Session, key: str, qos: QoSProfile) -> Publisher:
     """A publisher with `.put(payload, attachment=…)`, mapped from QoS as rmw_zenoh does:
     reliability, BLOCK congestion control only for reliable KEEP_ALL, and transient local
-    through zenoh-ext's advanced publisher (a cache of `depth` samples)."""
+    through zenoh-ext's advanced publisher (a cache of `depth` samples, bounded in bytes:
+    :class:`HistoryBoundedPublisher`)."""
     reliable = _reliable(qos)
     block = reliable and qos.history == HistoryPolicy.KEEP_ALL
     reliability = zenoh.Reliability.RELIABLE if reliable else zenoh.Reliability.BEST_EFFORT
@@ -155,15 +263,24 @@ def declare_publisher(session: Session, key: str, qos: QoSProfile) -> Publisher:
             if reliable
             else None
         )
-        return zenoh.ext.declare_advanced_publisher(
-            as_zenoh(session),
-            key,
-            cache=zenoh.ext.CacheConfig(max(qos.depth, 1)),
-            sample_miss_detection=miss,
-            publisher_detection=True,
-            reliability=reliability,
-            congestion_control=congestion,
+
+        def make() -> zenoh.ext.AdvancedPublisher:
+            return zenoh.ext.declare_advanced_publisher(
+                as_zenoh(session),
+                key,
+                cache=zenoh.ext.CacheConfig(max(qos.depth, 1)),
+                sample_miss_detection=miss,
+                publisher_detection=True,
+                reliability=reliability,
+                congestion_control=congestion,
+            )
+
+        live = as_zenoh(session).declare_publisher(
+            key, reliability=reliability, congestion_control=congestion
         )
+        span = qos.lifespan
+        lifespan = None if span.is_unspecified or span.is_infinite else span.nanoseconds / 1e9
+        return HistoryBoundedPublisher(make, live, qos.depth, lifespan)
     return as_zenoh(session).declare_publisher(
         key, reliability=reliability, congestion_control=congestion
     )

@@ -11,7 +11,7 @@ from typing import Any
 
 import pytest
 
-from ros2lite.qos import QoSProfile, ReliabilityPolicy
+from ros2lite.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from tests.cli.conftest import Result
 from tests.cli.graph_helpers import STRING_HASH, TokenGraph, fake_hash, private_domain
 from tests.spinning import free_port, wait_until
@@ -78,18 +78,25 @@ def test_type_hash_mismatch_is_an_error(run: Callable[..., Result], graph: Token
     )
 
 
-def test_incompatible_qos(run: Callable[..., Result], graph: TokenGraph) -> None:
+def test_qos_by_rmw_zenohs_rule(run: Callable[..., Result], graph: TokenGraph) -> None:
+    """A pair DDS calls incompatible (best effort to reliable) is fine on rmw_zenoh, whose
+    check never answers incompatible; its one warning (transient local to volatile) shows
+    in the report and fails nothing."""
     best_effort = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT)
     graph.node('camera').pub('/image', qos=best_effort)
     graph.node('viewer').sub('/image', qos=QoSProfile(depth=10))
-    result = run('doctor', '-iw', '-rf')
-    assert 'Failed modules: qos\n' in result.out
-    assert _findings(result.err) == [
-        'QoS incompatibility on /image: publisher /camera, subscription /viewer: '
-        'ERROR: Best effort publisher and reliable subscription;'
-    ]
+    latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    graph.node('mapper').pub('/map', qos=latched)
+    graph.node('planner').sub('/map', qos=QoSProfile(depth=1))
+    checked = run('doctor', '-iw')
+    assert checked.code == 0 and 'All 6 checks passed' in checked.out, checked
+    result = run('doctor', '-r')
     assert '\n   QOS COMPATIBILITY LIST\n' in result.out
     assert 'publisher node          : /camera\n' in result.out
+    assert (
+        "compatibility status    : WARNING: Publisher's durability is TRANSIENT_LOCAL, but "
+        "subscription's is VOLATILE;\n" in result.out
+    )
 
 
 def test_no_router(run: Callable[..., Result], monkeypatch: pytest.MonkeyPatch) -> None:
@@ -199,3 +206,29 @@ def test_type_hash_mismatch_between_real_nodes(
     assert finding.startswith('ERROR: Type hash mismatch on /age (lesson_msgs/msg/Age): ')
     assert hashes['old'] in finding and hashes['new'] in finding
     assert finding.endswith('; these endpoints never exchange a message')
+
+
+def test_old_rmw_zenoh_peers_are_named(run: Callable[..., Result], graph: TokenGraph) -> None:
+    """Hand-made tokens as rmw_zenoh 0.2.0-0.2.2 writes them (TRANSIENT_LOCAL was its
+    default: volatile written `2`, /rosout's transient-local left empty), beside a current
+    node's: only the old nodes are named, with the advice to upgrade."""
+    rosout_qos = QoSProfile(depth=1000, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+
+    def old(key: str, chunk: str) -> None:
+        graph.undeclare(key)
+        graph.declare(key.rsplit('/', 1)[0] + '/' + chunk)
+
+    events = 'rcl_interfaces/msg/ParameterEvent'
+    old_talker = graph.node('old_talker', zid='1' * 32)
+    old(old_talker.pub('/parameter_events', events), ':2:,1000:,:,:,,')
+    old_listener = graph.node('old_listener', '/robot', zid='2' * 32)
+    old(old_listener.pub('/rosout', 'rcl_interfaces/msg/Log', rosout_qos), '::,1000:,:10,0:,,')
+    current = graph.node('current')
+    current.pub('/rosout', 'rcl_interfaces/msg/Log', rosout_qos)
+    current.pub('/parameter_events', events)
+    current.sub('/parameter_events', events)
+    result = run('doctor')
+    assert result.code == 0
+    advice = [f for f in _findings(result.err) if 'rmw_zenoh 0.2.0-0.2.2' in f]
+    assert [f.split(':')[0] for f in advice] == ['node /old_talker', 'node /robot/old_listener']
+    assert all('upgrade rmw_zenoh_cpp' in f for f in advice)

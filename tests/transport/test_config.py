@@ -134,6 +134,37 @@ def test_session_config_file_replaces_defaults(tmp_path: Path) -> None:
         cfg.session_config(env={"ZENOH_SESSION_CONFIG_URI": str(bad)})
 
 
+RMW_ZENOH_SESSION = """{
+  mode: "peer",
+  connect: { endpoints: %s },
+  listen: { endpoints: ["tcp/localhost:0"] },
+  scouting: { multicast: { enabled: %s }, gossip: { enabled: true } },
+}"""
+
+
+def test_a_tool_opens_a_nodes_peer_file_as_a_client(tmp_path: Path) -> None:
+    """rmw_zenoh's session file (peer, a router to connect to, no multicast): a tool
+    (mode="client") opens it as a client of that router, a node keeps peer; a file for
+    router-less peers, and a mode the override sets, are left alone."""
+    path = tmp_path / "session.json5"
+    path.write_text(RMW_ZENOH_SESSION % ('["tcp/localhost:7447"]', "false"))
+    env = {"ZENOH_SESSION_CONFIG_URI": str(path)}
+    tool = cfg.session_config(env=env)
+    assert get(tool, "mode") == "client"
+    assert get(tool, "connect/endpoints") == ["tcp/localhost:7447"]
+    assert get(cfg.session_config(env=env, mode="peer"), "mode") == "peer"
+    forced = cfg.session_config(env={**env, "ZENOH_CONFIG_OVERRIDE": 'mode="peer"'})
+    assert get(forced, "mode") == "peer"
+    path.write_text(RMW_ZENOH_SESSION % ('{ peer: ["tcp/localhost:7447"] }', "false"))
+    per_mode = cfg.session_config(env=env)
+    assert get(per_mode, "mode") == "client"
+    assert get(per_mode, "connect/endpoints")["client"] == ["tcp/localhost:7447"]
+    path.write_text(RMW_ZENOH_SESSION % ("[]", "false"))
+    assert get(cfg.session_config(env=env), "mode") == "peer"
+    path.write_text(RMW_ZENOH_SESSION % ('["tcp/localhost:7447"]', "true"))
+    assert get(cfg.session_config(env=env), "mode") == "peer"
+
+
 def test_router_config(tmp_path: Path) -> None:
     config = cfg.router_config("tcp/127.0.0.1:5555", connect=["tcp/10.0.0.1:7447"], env={})
     assert get(config, "mode") == "router"

@@ -47,12 +47,30 @@ def _serve() -> None:
             bridge.start()
         except RuntimeError as e:  # the SDK's: the port is taken, a certificate is bad
             raise ValueError(f'foxglove_bridge: cannot start the server: {e}') from None
+        _warn_if_secured(node, bridge.port)
         try:
             ros2lite.spin(node)
         finally:
             bridge.close()
     finally:
         node.destroy_node()
+
+
+def _warn_if_secured(node: Node, port: int) -> None:
+    """A bridge under an enclave lends that enclave to whoever reaches its port, since
+    WebSocket clients show no certificate: say so, once, and how to close the door."""
+    from ros2lite.security.environment import resolve, security_enabled
+
+    if not security_enabled() or resolve() is None:
+        return
+    address = node.get_parameter('address').value
+    scheme = 'wss' if node.get_parameter('tls').value else 'ws'
+    node.get_logger().warning(
+        f'security is on: any local user who reaches {scheme}://{address}:{port} publishes, calls '
+        f'services and sets parameters as enclave {node.context.enclave}; bind `address` '
+        'where only trusted users reach it and firewall the port, or run no bridge under an '
+        'enclave'
+    )
 
 
 def main(args: list[str] | None = None) -> int:
