@@ -23,6 +23,8 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ros2lite.util.files import ReadRefused, read_bounded
+
 from .errors import PackageFileError
 
 __all__ = ['PythonPackageInfo', 'parse_console_script', 'read_python_package']
@@ -189,11 +191,13 @@ def _scripts_from(value: object) -> Iterable[str]:
 
 
 def _read_text(path: Path) -> str | None:
+    """The file's text, None when it cannot be read: too big, or no regular file (a size
+    checked by stat() alone let a link to /dev/zero be read without end)."""
     try:
-        if path.stat().st_size > _MAX_BYTES:
-            return None
-        return path.read_text(encoding='utf-8', errors='replace')
-    except OSError:
+        return read_bounded(path, _MAX_BYTES, ReadRefused, 'a setup file').decode(
+            'utf-8', 'replace'
+        )
+    except ReadRefused:
         return None
 
 

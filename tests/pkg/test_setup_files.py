@@ -122,3 +122,12 @@ def test_what_colcon_would_refuse_is_named_with_file_and_line(
     for name, text in files.items():
         (tmp_path / name).write_text(text)
     assert [str(p) for p in read_python_package(tmp_path).problems] == [f'{tmp_path}/{problem}']
+
+
+def test_a_setup_py_linked_to_dev_zero_is_not_read_without_end(tmp_path: Path) -> None:
+    """R5-P1: only a regular file is read, and only so much of it."""
+    from ros2lite.pkg.setup_files import _read_text
+
+    link = tmp_path / 'setup.py'
+    link.symlink_to('/dev/zero')
+    assert _read_text(link) is None

@@ -75,3 +75,30 @@ def test_echo_says_when_the_router_goes_and_comes_back(echo_env: dict[str, str])
             except subprocess.TimeoutExpired:
                 proc.kill()
         router.close()
+
+
+def test_a_graph_answer_cut_by_its_time_out_is_said_once(
+    alien_session: Any, ros_router: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """R5-G3: `--no-daemon` with 20k tokens returned about half in silence; an answer the
+    time-out ends is now said to be incomplete, once, and a whole answer says nothing."""
+    from ros2lite.tools.connection import Connection
+
+    domain = random.randint(1, 99)
+    monkeypatch.setenv('ROS_DOMAIN_ID', str(domain))
+    zid = os.urandom(16).hex()
+    lv = alien_session.liveliness()
+    tokens = [lv.declare_token(f'@ros2_lv/{domain}/{zid}/{i}/{i}/NN/%/%/n{i}') for i in range(3000)]
+    try:
+        notes: list[str] = []
+        with Connection(graph_cache=False, on_note=notes.append) as conn:
+            assert wait_until(lambda: len(conn.entities(timeout=10.0)) == 3000, timeout=60)
+            assert notes == []  # a whole answer is not doubted
+            cut = conn.entities(timeout=0.005)
+            conn.entities(timeout=0.005)
+        assert len(cut) < 3000
+        assert len(notes) == 1, notes
+        assert notes[0].startswith("the graph may be incomplete: the router's answer was cut")
+    finally:
+        for token in tokens:
+            token.undeclare()
