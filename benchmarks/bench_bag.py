@@ -30,6 +30,11 @@ Each benchmark starts its own router on a free loopback port with a private doma
   metadata.yaml and once without it (the MCAP summary path). Ratio = time / the 200 ms
   target; the bare interpreter start-up (`python -c pass`) is printed as `python_startup`.
 
+* huge message: one legitimate 256 MiB message in a zstd chunk (with a summary) read whole by
+  the library's Reader (what `bag play` does before it publishes), against the floor of
+  inflating the same chunk once with zstd in this process (R5-B4: its record grew by
+  `bytes +=`, 33 s). Ratio = read time / floor.
+
 Medians of RUNS runs are reported; single runs on a small shared VM scatter widely.
 """
 
@@ -415,9 +420,47 @@ def bench_info() -> None:
     report("bag_info_1gib_mcap_summary", summary_only * 1e3, "ms", summary_only / 0.2)
 
 
+def bench_huge_message() -> None:
+    import struct
+
+    import zstandard
+    from mcap.writer import CompressionType
+    from mcap.writer import Writer as McapWriter
+
+    from ros2lite.bag import Reader
+
+    size = 256 << 20
+    data = b"\0\1\0\0" + struct.pack("<I", size) + b"a" * (size - 1) + b"\0"
+    reads, floors = [], []
+    with tempfile.TemporaryDirectory(dir=os.environ.get("BENCH_TMP")) as tmp:
+        bag = Path(tmp) / "huge"
+        bag.mkdir()
+        with open(bag / "huge_0.mcap", "wb") as f:
+            writer = McapWriter(f, compression=CompressionType.ZSTD)
+            writer.start(profile="ros2", library="bench")
+            sid = writer.register_schema("std_msgs/msg/String", "ros2msg", b"string data")
+            cid = writer.register_channel("/huge", "cdr", sid)
+            writer.add_message(cid, log_time=1, publish_time=1, data=data)
+            writer.finish()
+        packed = zstandard.ZstdCompressor().compress(data)
+        for _ in range(RUNS):
+            start = time.perf_counter()
+            zstandard.ZstdDecompressor().decompress(packed, max_output_size=len(data))
+            floors.append(time.perf_counter() - start)
+            start = time.perf_counter()
+            with Reader(bag) as reader:
+                [(_, got, _, _)] = list(reader.raw_messages())
+            reads.append(time.perf_counter() - start)
+            assert len(got) == len(data)
+            del got
+    read, floor = statistics.median(reads), statistics.median(floors)
+    report("bag_read_256mib_message", read, "s", read / floor)
+
+
 BENCHES: dict[str, Any] = {
     "bag_record_string": bench_record_small,
     "bag_record_1mib": bench_record_1mib,
     "bag_play": bench_play,
     "bag_info": bench_info,
+    "bag_huge_message": bench_huge_message,
 }
