@@ -186,7 +186,7 @@ MAP = {
     'action': 'client server goals entity graph introspection',
     'lifecycle': 'node state_machine managed_entity publisher remote',
     'parameters': 'store node_api services events files',
-    'runtime': 'scheduling executable endpoint delivery bad_samples node_interface memory'
+    'runtime': 'scheduling parking executable endpoint delivery bad_samples node_interface memory'
     ' typesupport_checks arguments',
     'tools': 'connection doctor multicast',
     'util': 'files safe_yaml process keyboard',

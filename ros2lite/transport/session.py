@@ -12,6 +12,7 @@ runs user code), never block.
 from __future__ import annotations
 
 import contextlib
+import os
 import threading
 import time
 from collections import deque
@@ -40,6 +41,7 @@ __all__ = [
     "declare_querier",
     "declare_queryable",
     "declare_token",
+    "is_interrupt",
     "liveliness_keys",
     "put_local",
     "sole_subscriber",
@@ -213,11 +215,23 @@ def declare_subscriber(
     return as_zenoh(session).declare_subscriber(key, handler)
 
 
+# the payload of this process's interrupts: a secret, so a peer's empty sample (which a flood
+# may send by the million) is never mistaken for one and is reported instead of dropped unheard
+_INTERRUPT = os.urandom(16)
+
+
 def put_local(session: Session, key: str) -> None:
-    """An empty sample without an attachment on `key`, for this session's own subscribers
-    only: it wakes a consumer waiting in a channel's `recv()` (ros2lite.transport.pull), and
-    every receiver drops it, as rmw_zenoh drops samples without an attachment."""
-    as_zenoh(session).put(key, b"", allowed_destination=zenoh.Locality.SESSION_LOCAL)
+    """An interrupt on `key`, for this session's own subscribers only: a sample without an
+    attachment that wakes a consumer waiting in a channel's `recv()` (ros2lite.transport.pull).
+    Every receiver drops it, as rmw_zenoh drops samples without an attachment;
+    :func:`is_interrupt` tells it from a peer's."""
+    as_zenoh(session).put(key, _INTERRUPT, allowed_destination=zenoh.Locality.SESSION_LOCAL)
+
+
+def is_interrupt(sample: Sample) -> bool:
+    """Whether a sample without an attachment is one of this process's interrupts (else it
+    came from a peer: not a ROS message, to be reported)."""
+    return sample.payload.to_bytes() == _INTERRUPT
 
 
 # Rust-side queue between zenoh and the pump thread (never below the QoS depth), and how many
