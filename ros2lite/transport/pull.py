@@ -47,7 +47,7 @@ import zenoh
 from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
 from ros2lite.transport.session import (
     declare_subscriber,
-    is_interrupt,
+    foreign_unattached,
     put_local,
     sole_subscriber,
     undeclare_subscriber,
@@ -62,6 +62,9 @@ __all__ = ['PulledSamples']
 _CAPACITY = 4096
 # how many samples a KEEP_ALL consumer pulls at least once it pulls
 _CHUNK = 64
+# how many more the doorbell drains at once after a sample without attachment (a flood's
+# come in thousands: one GIL hold and one report for them all)
+_DRAIN = 4096
 # a sample without an attachment (an interrupt, or not a ROS message) never enters `pending`,
 # where it could push a real one out of a KEEP_LAST deque
 _attached = attrgetter('attachment')
@@ -135,20 +138,26 @@ class PulledSamples:
         return not self._armed or bool(self._pending)
 
     def _doorbell(self) -> None:
-        recv, rearm, pending, handover = self._recv, self._rearm, self._pending, self._handover
+        recv, try_recv, rearm, pending = self._recv, self._try_recv, self._rearm, self._pending
+        handover = self._handover
         while True:
             try:
                 sample = recv()  # GIL released while the channel is empty
+                if sample.attachment:
+                    real = [sample]
+                else:  # an interrupt left over, or not a ROS message (a flood?)
+                    batch = [sample, *islice(iter(try_recv, None), _DRAIN)]
+                    real = list(filter(_attached, batch))
+                    self._unattached(batch)
+                    if not real:
+                        continue
             except Exception:
                 return  # closed: undeclared, or the session went away
-            if not sample.attachment:
-                self._unattached([sample])  # an interrupt left over, or not a ROS message
-                continue
             with handover:
                 if self._closed:
                     return
                 self._owes = True  # the consumer's from now on, until it gives it back
-            pending.append(sample)
+            pending.extend(real)
             self._armed = False  # after the append: a consumer seeing this sees the sample
             self._on_ready()
             rearm.acquire()  # until the channel comes back (GIL released)
@@ -168,10 +177,11 @@ class PulledSamples:
     def _unattached(self, samples: Sequence[Sample]) -> None:
         """Samples without an attachment among `samples`: our interrupts go unheard, a peer's
         are told to `on_unattached`."""
-        foreign = sum(1 for s in samples if not s.attachment and not is_interrupt(s))
         report = self._on_unattached
-        if foreign and report is not None:
-            report(foreign)
+        if report is not None:
+            foreign = foreign_unattached(samples)
+            if foreign:
+                report(foreign)
 
     def _pull(self, limit: int) -> None:
         """Consumer thread, while it owns the channel: move up to what `limit` needs into
@@ -224,13 +234,27 @@ class PulledSamples:
         subscriber's channel is never kept."""
         return self._kept and not self._closed
 
-    def _arrived(self, sample: Sample) -> None:
-        """A real sample from the kept channel ends the keeping: the consumer owns the
-        channel (the doorbell still waits for it), with this sample pending."""
+    def _arrived(self, samples: list[Sample]) -> None:
+        """Real samples from the kept channel end the keeping: the consumer owns the channel
+        (the doorbell still waits for it), with these pending."""
         with self._handover:
             self._kept = False
-        self._pending.append(sample)
+        self._pending.extend(samples)
         self._armed = False
+
+    def _sorted(self, sample: Sample) -> bool | None:
+        """Kept channel, `sample` (without an attachment) and what else waits now read from
+        it: True when real samples came too (pending now), False when one of ours was an
+        interrupt, None when all were a peer's (reported)."""
+        batch = [sample, *islice(iter(self._try_recv, None), _DRAIN)]
+        real = list(filter(_attached, batch))
+        foreign = foreign_unattached(batch)
+        if foreign and self._on_unattached is not None:
+            self._on_unattached(foreign)
+        if real:
+            self._arrived(real)
+            return True
+        return False if foreign < len(batch) else None
 
     def poll(self) -> bool:
         """Consumer thread, kept channel: whether a sample came meanwhile (it is pending
@@ -238,9 +262,10 @@ class PulledSamples:
         try:
             while (sample := self._try_recv()) is not None:
                 if sample.attachment:
-                    self._arrived(sample)
+                    self._arrived([sample])
                     return True
-                self._unattached([sample])
+                if self._sorted(sample):
+                    return True
         except Exception:  # closed: undeclared, or the session went away
             pass
         return False
@@ -248,18 +273,18 @@ class PulledSamples:
     def park(self) -> bool:
         """Consumer thread, kept channel: wait in `recv()` (GIL released) until a sample
         comes (True, as after `poll`) or an interrupt (False: whether it was the awaited one
-        is the waiter's to know). A closed channel returns False at once; a peer's sample
-        without an attachment is dropped and reported on the way."""
+        is the waiter's to know). A closed channel returns False at once; a peer's samples
+        without an attachment are dropped and reported on the way."""
         recv = self._recv
         try:
             while True:
                 sample = recv()
                 if sample.attachment:
-                    self._arrived(sample)
+                    self._arrived([sample])
                     return True
-                if is_interrupt(sample):
-                    return False
-                self._unattached([sample])
+                came = self._sorted(sample)
+                if came is not None:
+                    return came
         except Exception:  # closed
             return False
 
