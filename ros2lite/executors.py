@@ -322,6 +322,8 @@ class Executor:
                 item = work.get_nowait()
                 if item is not None:
                     return self._queued(item)
+                if not self._ok() or (stop is not None and stop()):
+                    return None  # (a shutdown's wake-up, taken here, ends the wait)
             while timeout is None:
                 item = self._wait(None)
                 if item is not None:
@@ -492,8 +494,7 @@ class SingleThreadedExecutor(Executor):
     """Runs every callback on the thread that spins it."""
 
 
-# queued by a worker whose callback raised, so the spinning thread raises it promptly (a task
-# that is never run: only its arrival counts)
+# queued by a worker whose callback raised, so the spinning thread raises it at once (never run)
 _WORKER_FAILED = Task(lambda: None)
 
 
