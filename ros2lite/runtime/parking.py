@@ -112,16 +112,21 @@ class Parking:
         """The node runs on `executor` now. One that does not park gets every kept channel
         back to its doorbell; a park another executor has going on ends (its end hands that
         channel on)."""
+        if executor.parks:  # (`spin_once(node)` attaches per call: no lock on this path)
+            self._executor = executor
+            return
         with self._lock:
             self._executor = executor
-            if executor.parks or not self._kept:
+            if not self._kept:
                 return
             parked = self._parked
             given = [c for e, c in self._kept.items() if parked is None or e is not parked[1]]
             self._kept = {parked[1]: parked[2]} if parked is not None else {}
+            waiting = self._disarm()
         for channel in given:
             channel.release()
-        self.interrupt()
+        if waiting is not None:
+            waiting.interrupt()
 
     def detach(self, executor: Parker) -> None:
         """`executor` stops running the node (no effect if it is attached elsewhere): its
@@ -130,7 +135,9 @@ class Parking:
             if self._executor is not executor:
                 return
             self._executor = None
-        self.interrupt()
+            waiting = self._disarm()
+        if waiting is not None:
+            waiting.interrupt()
 
     def close(self) -> None:
         """The node is destroyed: the alarm's thread ends."""
@@ -221,11 +228,16 @@ class Parking:
     def interrupt(self) -> None:
         """Any thread: end the park going on, if any (once per park)."""
         with self._lock:
-            if not self._armed or self._parked is None:
-                return
-            self._armed = False
-            channel = self._parked[2]
-        channel.interrupt()
+            waiting = self._disarm()
+        if waiting is not None:
+            waiting.interrupt()
+
+    def _disarm(self) -> Channel | None:
+        """Under the lock: the channel a park waits in, to interrupt (once per park)."""
+        if not self._armed or self._parked is None:
+            return None
+        self._armed = False
+        return self._parked[2]
 
     def _park(self, channel: Channel) -> bool:
         """Wait in `channel` until a sample (True), or this park's interrupt or a close
