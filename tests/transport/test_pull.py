@@ -179,3 +179,34 @@ def test_a_peers_samples_without_attachment_are_reported_and_ours_are_not(
     finally:
         src.undeclare()
     assert sum(heard) == 3  # the three of the peer, not the interrupt
+
+
+def test_only_a_keys_sole_subscriber_in_the_session_keeps_its_channel(ros_context: Any) -> None:
+    """An interrupt reaches every subscriber of its key in the session, so a channel whose key
+    has another local subscriber is never kept (a second subscription lost its newest sample
+    at depth 1 to a stray interrupt)."""
+    key = f'pull_test/sole/{time.monotonic_ns()}'
+    asked: list[PulledSamples] = []
+
+    def keeper(channel: PulledSamples) -> bool:
+        asked.append(channel)
+        return True
+
+    ready = threading.Event()
+    first = PulledSamples(ros_context.session, key, QoSProfile(depth=1), ready.set, keeper=keeper)
+    second = PulledSamples(ros_context.session, key, QoSProfile(depth=1), lambda: None)
+    try:
+        _put(ros_context, key, ['a'])
+        assert ready.wait(5)
+        assert first.take(1)
+        assert not first.kept and asked == []  # shared key: handed back, keeper not asked
+        second.undeclare()
+        ready.clear()
+        _put(ros_context, key, ['b'])
+        assert ready.wait(5)
+        assert first.take(1)
+        assert first.kept and asked == [first]  # alone now: kept
+        first.release()
+        assert not first.kept
+    finally:
+        first.undeclare()
