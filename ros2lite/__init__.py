@@ -12,6 +12,8 @@ Names are re-exported lazily so `import ros2lite` (and `ros2lite --help`) stays 
 from __future__ import annotations
 
 import importlib
+import threading
+import weakref
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
@@ -29,10 +31,6 @@ if TYPE_CHECKING:  # what type checkers see; at run time the names load lazily
         ExternalShutdownException,
         MultiThreadedExecutor,
         SingleThreadedExecutor,
-        get_global_executor,
-        spin,
-        spin_once,
-        spin_until_future_complete,
     )
     from ros2lite.logging import get_logger
     from ros2lite.message_info import MessageInfo
@@ -96,10 +94,6 @@ _EXPORTS = {
     'SingleThreadedExecutor': 'ros2lite.executors',
     'MultiThreadedExecutor': 'ros2lite.executors',
     'ExternalShutdownException': 'ros2lite.executors',
-    'get_global_executor': 'ros2lite.executors',
-    'spin': 'ros2lite.executors',
-    'spin_once': 'ros2lite.executors',
-    'spin_until_future_complete': 'ros2lite.executors',
     'Future': 'ros2lite.task',
     'Task': 'ros2lite.task',
     'MutuallyExclusiveCallbackGroup': 'ros2lite.callback_groups',
@@ -198,6 +192,67 @@ def create_node(node_name: str, **kwargs: Unpack[NodeOptions]) -> Node:
     from ros2lite.node import Node
 
     return Node(node_name, **kwargs)
+
+
+# -- spinning a node on the context's shared executor (rclpy's global executor), here as in rclpy
+_global: weakref.WeakKeyDictionary[Context, SingleThreadedExecutor] = weakref.WeakKeyDictionary()
+_global_lock = threading.Lock()
+# the last one asked for: `spin_once(node)` in a loop asks every time
+_last_global: SingleThreadedExecutor | None = None
+
+
+def get_global_executor(context: Context | None = None) -> SingleThreadedExecutor:
+    """The context's shared single-threaded executor (what ros2lite.spin uses)."""
+    global _last_global
+    ctx = context or (_default_context or _load_default_context())()
+    last = _last_global
+    if last is not None and last.context is ctx:
+        return last
+    from ros2lite.executors import SingleThreadedExecutor
+
+    with _global_lock:
+        executor = _global.get(ctx)
+        if executor is None:
+            executor = _global[ctx] = SingleThreadedExecutor(context=ctx)
+        _last_global = executor
+        return executor
+
+
+def spin_once(
+    node: Node, *, executor: Executor | None = None, timeout_sec: float | None = None
+) -> None:
+    """Run one callback of `node` (on the global executor unless one is given)."""
+    ex = executor if executor is not None else get_global_executor(node.context)
+    added = ex.add_node(node)
+    try:
+        ex.spin_once(timeout_sec)
+    finally:
+        if added:
+            ex.remove_node(node)
+
+
+def spin(node: Node, executor: Executor | None = None) -> None:
+    """Run the node's callbacks until shutdown (Ctrl-C raises KeyboardInterrupt, as rclpy)."""
+    ex = executor if executor is not None else get_global_executor(node.context)
+    added = ex.add_node(node)
+    try:
+        ex.spin()
+    finally:
+        if added:
+            ex.remove_node(node)
+
+
+def spin_until_future_complete(
+    node: Node, future: Future, executor: Executor | None = None, timeout_sec: float | None = None
+) -> None:
+    """Spin `node` until `future` is done or `timeout_sec` passes."""
+    ex = executor if executor is not None else get_global_executor(node.context)
+    added = ex.add_node(node)
+    try:
+        ex.spin_until_future_complete(future, timeout_sec)
+    finally:
+        if added:
+            ex.remove_node(node)
 
 
 def __getattr__(name: str) -> object:

@@ -12,10 +12,9 @@ and time, and ended as soon as the awaited future completes), which is what make
 rates affordable in Python.
 
 An idle single-threaded executor whose nodes keep one emptied channel waits in that channel
-rather than on its queue (NodeWork's kept channels): the next message then wakes the spinning
+rather than on its queue (ros2lite.runtime.parking): the next message then wakes the spinning
 thread straight from Zenoh, with no doorbell thread between. Anything queued meanwhile
-interrupts that wait, and an :class:`~ros2lite.runtime.scheduling.Alarm` ends it at a timer's
-or the caller's deadline.
+interrupts that wait, and the node's alarm ends it at a timer's or the caller's deadline.
 """
 
 from __future__ import annotations
@@ -26,14 +25,14 @@ import queue
 import threading
 import time
 import warnings
-import weakref
 from collections.abc import Callable, Coroutine, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from typing import TYPE_CHECKING, Any, cast
 
 from ros2lite.context import Context, default_context
 from ros2lite.runtime.executable import Executable, _running
-from ros2lite.runtime.scheduling import Alarm, Channel, NodeWork
+from ros2lite.runtime.parking import QUEUE, Parking
+from ros2lite.runtime.scheduling import NodeWork
 from ros2lite.task import Future, Task
 
 if TYPE_CHECKING:
@@ -49,10 +48,6 @@ __all__ = [
     'ShutdownException',
     'SingleThreadedExecutor',
     'TimeoutException',
-    'get_global_executor',
-    'spin',
-    'spin_once',
-    'spin_until_future_complete',
 ]
 
 
@@ -75,8 +70,6 @@ class ConditionReachedException(Exception):
 # a wait shorter than this (seconds) is not parked: the queue's own timed wait is exact, and a
 # park would pay the alarm's hand-over to end it
 _PARK_MIN = 0.002
-# what _park returns when it did not park: wait on the queue instead
-_QUEUE = Task(lambda: None)
 
 
 class Executor:
@@ -92,10 +85,9 @@ class Executor:
         # entities and tasks with work; None is a bare wake-up
         self._queue: queue.SimpleQueue[Executable | Task | None] = queue.SimpleQueue()
         self._put = self._queue.put
-        # the kept channel the spinning thread waits in, and that thread
-        self._parked: Channel | None = None
+        # the node whose kept channel the spinning thread waits in, and that thread
+        self._parked: Parking | None = None
         self._ident = 0
-        self._alarm: Alarm | None = None
         # entities whose callback group was busy, re-queued when the group frees
         self._blocked: list[Executable] = []
         # a due timer waits for its group: releasing a group must wake the loop
@@ -129,6 +121,7 @@ class Executor:
             previous.remove_node(node)
         # what got work while the node had no executor is queued now (NodeWork.attach)
         work.attach(self, self._enqueue)
+        node.parking.attach(self)
         if self._spinning:
             self.wake()  # a spinning thread must see the node's timers
         return True
@@ -140,6 +133,7 @@ class Executor:
                 return
             self._nodes.remove(node)
         node.work.detach(self)
+        node.parking.detach(self)
 
     def get_nodes(self) -> list[Node]:
         """The nodes added to this executor."""
@@ -150,16 +144,9 @@ class Executor:
         """Any thread: make a waiting spin look again (at ok(), timers, conditions)."""
         self._enqueue(None)
 
-    def _enqueue(self, item: Executable | Task | None) -> None:
-        """Any thread: queue work (None: a bare wake-up), ending a wait in a kept channel."""
-        self._put(item)
-        parked = self._parked
-        if parked is not None:
-            parked.interrupt()
-
     @property
     def parks(self) -> bool:
-        """Whether an idle spin waits in a kept channel (NodeWork) instead of its queue."""
+        """Whether an idle spin waits in a kept channel (parking) instead of its queue."""
         return self._parks
 
     def keeps_here(self) -> bool:
@@ -189,9 +176,6 @@ class Executor:
         for node in self.get_nodes():
             self.remove_node(node)
         self.wake()
-        if self._alarm is not None:
-            self._alarm.close()
-            self._alarm = None
         return True
 
     # -- spinning --------------------------------------------------------------------------------
@@ -204,14 +188,7 @@ class Executor:
 
     def spin(self) -> None:
         """Run callbacks until the context shuts down or shutdown() is called."""
-        self._spinning += 1
-        try:
-            while self._ok():
-                item = self._next(None, None)
-                if item is not None:
-                    self._dispatch(item, True, None)
-        finally:
-            self._spinning -= 1
+        self._run_until(None, None)
         self._check_terminating()
 
     def spin_once(self, timeout_sec: float | None = None) -> None:
@@ -233,19 +210,7 @@ class Executor:
         """Run callbacks until `future` is done or `timeout_sec` passes (a future completed
         on another thread ends the wait at once)."""
         future.add_done_callback_now(lambda _f: self.wake())
-        deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
-        self._spinning += 1
-        try:
-            while self._ok() and not future.done():
-                remaining = None if deadline is None else deadline - time.monotonic()
-                if remaining is not None and remaining <= 0:
-                    return
-                item = self._next(remaining, future.done)
-                if item is not None:
-                    self._dispatch(item, True, future.done)
-        finally:
-            self._spinning -= 1
-        if not future.done():
+        if self._run_until(future.done, timeout_sec) is None and not future.done():
             self._check_terminating()
 
     def spin_until(
@@ -255,22 +220,30 @@ class Executor:
         shutdown); True when the condition ended it. The condition is checked between
         callbacks and whenever the executor is woken, so a callback or another thread (which
         should then call `wake()`) can end the wait at once."""
+        ended = self._run_until(condition, timeout_sec)
+        if ended is not None:
+            return ended
+        self._check_terminating()
+        return condition is not None and condition()
+
+    def _run_until(self, stop: Callable[[], bool] | None, timeout_sec: float | None) -> bool | None:
+        """Run callbacks, a batch per turn, until `stop()` holds (True), `timeout_sec` passes
+        (False) or the executor or its context shuts down (None)."""
         deadline = None if timeout_sec is None else time.monotonic() + timeout_sec
         self._spinning += 1
         try:
             while self._ok():
-                if condition is not None and condition():
+                if stop is not None and stop():
                     return True
                 remaining = None if deadline is None else deadline - time.monotonic()
                 if remaining is not None and remaining <= 0:
                     return False
-                item = self._next(remaining, condition)
+                item = self._next(remaining, stop)
                 if item is not None:
-                    self._dispatch(item, True, condition)
+                    self._dispatch(item, True, stop)
         finally:
             self._spinning -= 1
-        self._check_terminating()
-        return condition is not None and condition()
+        return None
 
     def spin_once_until_future_complete(
         self, future: Future, timeout_sec: float | None = None
@@ -349,6 +322,8 @@ class Executor:
                 item = work.get_nowait()
                 if item is not None:
                     return self._queued(item)
+                if not self._ok() or (stop is not None and stop()):
+                    return None  # (a shutdown's wake-up, taken here, ends the wait)
             while timeout is None:
                 item = self._wait(None)
                 if item is not None:
@@ -377,86 +352,59 @@ class Executor:
         """Up to `wait` seconds (None: no limit) for the next queued item; None after a bare
         wake-up or when the time passed. Parks in a kept channel when it can."""
         if self._parks:
-            for node in self._nodes:
-                if node.work.keeps:
-                    item = self._park(wait)
-                    if item is not _QUEUE:
-                        return item
-                    break
+            parking = self._parking(wait)
+            if parking is not None:
+                self._parked = parking  # (before it arms: an _enqueue from then on interrupts)
+                try:
+                    outcome = parking.wait(self, wait, self._queue.empty)
+                finally:
+                    self._parked = None
+                if outcome is not QUEUE:
+                    return cast('Executable | None', outcome)
+                if not self._ok():
+                    return None
         try:
             item = self._queue.get(timeout=wait) if wait != 0 else self._queue.get_nowait()
         except queue.Empty:
             return None
         return None if item is None else self._queued(item)
 
+    def _parking(self, wait: float | None) -> Parking | None:
+        """The node whose one kept channel an idle spin may wait in; when there is no single
+        one, or the wait is too short to park, or a second thread spins this executor, every
+        kept channel goes back to its doorbell."""
+        found: Parking | None = None
+        count = 0
+        for node in self._nodes:
+            parking = node.parking
+            if parking.keeps:
+                kept = parking.kept_for(self)
+                if kept:
+                    found, count = parking, count + kept
+        if count == 1 and not (wait is not None and 0 < wait < _PARK_MIN) and self._spinning <= 1:
+            return found
+        if count:
+            self._hand_back()
+        return None
+
     def _queued(self, item: Executable | Task) -> Executable | Task:
         """`item` (queued work or a due timer) runs next: kept channels go back to their
         doorbells, so a sample that comes while other work keeps the executor busy is queued
         behind that work rather than waiting until the executor is idle again."""
-        for node in self._nodes:
-            if node.work.keeps:
-                node.work.release_kept(self)
+        self._hand_back()
         return item
 
-    def _park(self, wait: float | None) -> Executable | Task | None:
-        """Wait in the one kept channel of this executor's nodes: the entity whose sample
-        came, queued work, or None (interrupted, or `wait` passed); `wait` 0 only looks into
-        it. More than one kept channel, or a wait too short to park, hands them back to their
-        doorbells; then, as after a poll that found nothing, `_QUEUE`."""
-        works: list[NodeWork[Any]] = []
-        count = 0
+    def _hand_back(self) -> None:
         for node in self._nodes:
-            work = node.work
-            if work.keeps:
-                kept = work.kept_count(self)
-                if kept:
-                    works.append(work)
-                    count += kept
-        # (a sample that came meanwhile is found by the park's recv, or by the doorbell); a
-        # second thread spinning this executor waits on the queue (one park per executor)
-        if count != 1 or (wait is not None and 0 < wait < _PARK_MIN) or self._spinning > 1:
-            for work in works:
-                work.release_kept(self)
-            return _QUEUE
-        work = works[0]
-        begun = None
-        got = parked = False
-        queued: Executable | Task | None = None
-        try:
-            begun = work.begin_park(self)
-            if begun is None:
-                return _QUEUE
-            entity, channel = begun
-            self._parked = channel
-            if not self._queue.empty():  # queued before the park was armed: no interrupt
-                queued = self._queue.get_nowait()
-                return queued  # (None, a bare wake-up: the caller looks at ok() and stop())
-            if not self._ok():
-                return None
-            if wait == 0:  # a poll (spin_once(timeout_sec=0)): look into the channel only
-                got = channel.poll()
-            else:
-                if wait is not None:
-                    alarm = self._alarm
-                    if alarm is None:
-                        alarm = self._alarm = Alarm('ros2lite-executor-alarm')
-                        weakref.finalize(self, alarm.close)  # its thread ends with the executor
-                    alarm.set(time.monotonic() + wait, channel.interrupt)
-                parked = True
-                got = channel.park()
-        finally:
-            if begun is not None:
-                self._parked = None
-                if not parked:
-                    channel.disarm()
-                elif wait is not None and self._alarm is not None:
-                    self._alarm.cancel()
-                run = work.end_park(self, entity, got)
-                if queued is not None:
-                    self._queued(queued)
-        if run:
-            return cast(Executable, entity)
-        return _QUEUE if wait == 0 else None  # a poll found nothing: the queue is looked at
+            if node.parking.keeps:
+                node.parking.hand_back(self)
+
+    def _enqueue(self, item: Executable | Task | None) -> None:
+        """Any thread: queue work (None: a bare wake-up), ending a wait in a kept channel."""
+        self._put(item)
+        parked = self._parked
+        if parked is not None:
+            parked.interrupt()
 
     # -- running work ----------------------------------------------------------------------------
     def _dispatch(
@@ -546,8 +494,7 @@ class SingleThreadedExecutor(Executor):
     """Runs every callback on the thread that spins it."""
 
 
-# queued by a worker whose callback raised, so the spinning thread raises it promptly (a task
-# that is never run: only its arrival counts)
+# queued by a worker whose callback raised, so the spinning thread raises it at once (never run)
 _WORKER_FAILED = Task(lambda: None)
 
 
@@ -650,68 +597,3 @@ class MultiThreadedExecutor(Executor):
         super().shutdown(timeout_sec)
         self._executor.shutdown(wait=timeout_sec is None or timeout_sec > 0)
         return True
-
-
-# -- the module-level helpers, on one executor per context (rclpy's global executor) ----------
-_global: weakref.WeakKeyDictionary[Context, SingleThreadedExecutor] = weakref.WeakKeyDictionary()
-_global_lock = threading.Lock()
-
-
-# the last one asked for: `spin_once(node)` in a loop asks every time
-_last_global: SingleThreadedExecutor | None = None
-
-
-def get_global_executor(context: Context | None = None) -> SingleThreadedExecutor:
-    """The context's shared single-threaded executor (what ros2lite.spin uses)."""
-    global _last_global
-    ctx = context or default_context()
-    last = _last_global
-    if last is not None and last.context is ctx:
-        return last
-    with _global_lock:
-        executor = _global.get(ctx)
-        if executor is None:
-            executor = _global[ctx] = SingleThreadedExecutor(context=ctx)
-        _last_global = executor
-        return executor
-
-
-def _executor_for(node: Node, executor: Executor | None) -> Executor:
-    return executor if executor is not None else get_global_executor(node.context)
-
-
-def spin_once(
-    node: Node, *, executor: Executor | None = None, timeout_sec: float | None = None
-) -> None:
-    """Run one callback of `node` (on the global executor unless one is given)."""
-    ex = _executor_for(node, executor)
-    added = ex.add_node(node)
-    try:
-        ex.spin_once(timeout_sec)
-    finally:
-        if added:
-            ex.remove_node(node)
-
-
-def spin(node: Node, executor: Executor | None = None) -> None:
-    """Run the node's callbacks until shutdown (Ctrl-C raises KeyboardInterrupt, as rclpy)."""
-    ex = _executor_for(node, executor)
-    added = ex.add_node(node)
-    try:
-        ex.spin()
-    finally:
-        if added:
-            ex.remove_node(node)
-
-
-def spin_until_future_complete(
-    node: Node, future: Future, executor: Executor | None = None, timeout_sec: float | None = None
-) -> None:
-    """Spin `node` until `future` is done or `timeout_sec` passes."""
-    ex = _executor_for(node, executor)
-    added = ex.add_node(node)
-    try:
-        ex.spin_until_future_complete(future, timeout_sec)
-    finally:
-        if added:
-            ex.remove_node(node)

@@ -25,6 +25,7 @@ from ros2lite.qos import (
 from ros2lite.rate import Rate
 from ros2lite.runtime.arguments import RosArgs, parse_ros_args
 from ros2lite.runtime.executable import Executable, GuardCondition, NodeExecutor
+from ros2lite.runtime.parking import Parking
 from ros2lite.runtime.scheduling import NodeWork
 from ros2lite.service import Service
 from ros2lite.subscription import Subscription
@@ -93,6 +94,8 @@ class Node(ParameterMixin, GraphMixin):
         self._callback_groups: list[CallbackGroup] = [self.default_callback_group]
         # who runs the node's work: the executor it is attached to, what waits for one
         self.work: NodeWork[NodeExecutor[Node]] = NodeWork(self._executables, self.waitables)
+        # where its single-threaded executor waits when idle: its kept channels
+        self.parking = Parking(self.work.notify)
         for level_name, level in self._args.log_levels.items():
             set_logger_level(level_name, level)
         from ros2lite.transport.session import declare_token
@@ -658,6 +661,7 @@ class Node(ParameterMixin, GraphMixin):
         executor = self.work.executor
         if executor is not None:
             executor.remove_node(self)
+        self.parking.close()
         self.context.remove_node(self)
 
     # -- time and logging ---------------------------------------------------------------------

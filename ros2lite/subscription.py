@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import enum
 import inspect
+import threading
 import time
 from collections import deque
 from collections.abc import Callable
@@ -29,6 +30,9 @@ if TYPE_CHECKING:
     from ros2lite.transport.session import SampleReceiver
 
 __all__ = ['CallbackType', 'Receiving', 'Subscription', 'SubscriptionCallback', 'callback_type']
+
+# makes the one BadSamples of a subscription that two threads may find a bad sample for at once
+_first_bad = threading.Lock()
 
 
 class CallbackType(enum.Enum):
@@ -140,6 +144,7 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
             hook=on_arrival,
             name=ep.topic_name,
             keeper=self._keep_channel,
+            on_unattached=self._unattached,
         )
         self._receiver: SampleReceiver | PulledSamples = receiver
         # typed pull: the executor takes samples from here (None for the other two)
@@ -157,8 +162,13 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
 
     def _keep_channel(self, channel: PulledSamples) -> bool:
         """The typed source emptied its channel: may the node keep it for its executor to
-        wait in (NodeWork.keep)?"""
-        return self._node.work.keep(self, channel)  # type: ignore[union-attr]  # typed: has one
+        wait in (Parking.keep)?"""
+        return self._node.parking.keep(self, channel)  # type: ignore[union-attr]  # has one
+
+    def _unattached(self, count: int) -> None:
+        """Any thread: `count` samples without an attachment came from a peer (not ROS
+        messages, perhaps a flood): dropped, counted and reported as bad samples."""
+        self._bad_samples().add_unattached(count)
 
     def has_work(self) -> bool:
         if self.destroyed:
@@ -237,13 +247,19 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
 
     def _bad_sample(self, data: bytes, gid: bytes, error: Exception) -> None:
         """A sample that is not the topic's type: dropped, counted, reported (rate-limited)."""
+        self._bad_samples().add(gid, error, len(data))
+
+    def _bad_samples(self) -> BadSamples:
         bad = self.bad_samples
         if bad is None:
-            node = self._ep.node
-            bad = self.bad_samples = BadSamples(
-                self._ep.topic_name, self._ep.type_name, node.get_logger().warn
-            )
-        bad.add(gid, error, len(data))
+            with _first_bad:  # (the doorbell and the executor thread may both find one)
+                bad = self.bad_samples
+                if bad is None:
+                    warn = self._ep.node.get_logger().warn
+                    bad = self.bad_samples = BadSamples(
+                        self._ep.topic_name, self._ep.type_name, warn
+                    )
+        return bad
 
     def _deliver_raw(self, limit: int, stop: Callable[[], bool] | None) -> None:
         """Raw bytes, with MessageInfo for callbacks that take it (stamped at arrival); a
@@ -278,7 +294,7 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self._buffer.clear()
         if self._source is not None:
             self._source.clear()
-            self._node.work.unkeep(self)  # type: ignore[union-attr]  # subscriptions have one
+            self._node.parking.unkeep(self)  # type: ignore[union-attr]  # subscriptions have one
         self._ep.undeclare(self._receiver)  # ends the receive thread too
 
     def get_publisher_count(self) -> int:

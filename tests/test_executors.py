@@ -84,6 +84,19 @@ def test_future_completed_from_another_thread_wakes_the_executor(ros_context: An
     assert fut.done() and time.monotonic() - start < 1.0
 
 
+def test_a_shutdown_whose_wake_up_is_taken_first_ends_the_spin(ros_context: Any) -> None:
+    """Found by the churn test (tests/runtime/test_parking.py): a shutdown between spin's look
+    at ok() and its look into the queue left only a bare wake-up there, which the fast path
+    took as no work and then waited on an empty queue for good."""
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.wake()  # the shutdown's wake-up, already queued ...
+    executor._is_shutdown = True  # ... when the spin looks into the queue (white box)
+    thread = threading.Thread(target=executor.spin_once, daemon=True)
+    thread.start()
+    thread.join(5)
+    assert not thread.is_alive()
+
+
 def test_spin_once_honours_timeout(ros_context: Any) -> None:
     ex = SingleThreadedExecutor(context=ros_context)
     ex.add_node(Node('idle', context=ros_context))

@@ -184,6 +184,47 @@ def test_destroyed_subscription_stops_receiving(
     assert pub.get_subscription_count() == 0
 
 
+# a peer that floods a key with samples without attachment (the interrupt's shape, R5-L2)
+FLOODER = '''
+import sys
+from ros2lite.context import Context
+ctx = Context()
+ctx.init([])
+session, key = ctx.session, sys.argv[1]
+print('flooding', flush=True)
+for _ in range(int(sys.argv[2])):
+    session.put(key, b'')
+print('done', flush=True)
+ctx.try_shutdown()
+'''
+
+
+def test_a_flood_of_samples_without_attachment_is_reported_once(
+    processes: Any, node: Node, executor: SingleThreadedExecutor, capfd: Any
+) -> None:
+    """Samples without an attachment are no ROS message: a peer's are dropped, counted and
+    reported in one warning however many come (a flood used to pass without a word), and
+    messages keep arriving meanwhile."""
+    got: list[str] = []
+    sub = node.create_subscription(String, 'flooded', lambda m: got.append(m.data), 1000)
+    pub = node.create_publisher(String, 'flooded', 1000)
+    wait_matched(pub)
+    flood = processes.python(FLOODER, sub._ep.key, '50000')
+    assert flood.stdout.readline().strip() == 'flooding'
+    i = 0
+    while flood.poll() is None:
+        pub.publish(String(data=str(i)))
+        i += 1
+        executor.spin_once(timeout_sec=0.001)
+    spin_until(executor, lambda: sub.bad_samples is not None and sub.bad_samples.unattached)
+    spin_for(executor, 0.2)
+    bad = sub.bad_samples
+    assert bad is not None and 0 < bad.unattached <= 50000
+    assert got  # (how many a bounded queue keeps against a flood: see R5-L2 in the note)
+    warnings = capfd.readouterr().err.count('without an attachment')
+    assert warnings == 1
+
+
 CROSS_PROCESS_PUBLISHER = '''
 import sys, time
 import ros2lite

@@ -11,7 +11,9 @@ action feedback and status and a node's ``/clock``; ``topic echo``) hands such a
 * rate-limits those warnings (a peer can invent a new GID for every sample): at most one per
   `interval` seconds, the ones held back summed up in the next;
 * keeps at most `max_publishers` publishers in its table (the oldest is forgotten first), so
-  its memory is bounded whatever arrives.
+  its memory is bounded whatever arrives;
+* counts samples without an attachment (no ROS message: a peer's, perhaps a flood of them)
+  apart, with one warning for them all.
 """
 
 from __future__ import annotations
@@ -72,6 +74,9 @@ class BadSamples:
         self._counts: OrderedDict[bytes, int] = OrderedDict()
         self._next_warning = float('-inf')
         self._held = 0  # new publishers not warned about because of the rate limit
+        # samples without an attachment (in `total` too), and whether they were warned about
+        self.unattached = 0
+        self._warned_unattached = False
 
     @property
     def publishers(self) -> int:
@@ -109,3 +114,17 @@ class BadSamples:
             text += f'; {held} other publisher(s) sent bad samples since the last warning'
 
         self._warn(text)
+
+    def add_unattached(self, count: int) -> None:
+        """`count` dropped samples without an attachment (not ROS messages: rmw_zenoh drops
+        them too, and a flood of them is a peer's doing): counted, warned about once."""
+        with self._lock:
+            self.total += count
+            self.unattached += count
+            if self._warned_unattached:
+                return
+            self._warned_unattached = True
+        self._warn(
+            f"dropped a sample without an attachment on '{self.topic}' (not a ROS message); "
+            'further ones are counted without a word'
+        )

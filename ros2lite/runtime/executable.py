@@ -11,6 +11,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 from ros2lite.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup
+from ros2lite.runtime.parking import Parking
 from ros2lite.runtime.scheduling import NodeWork, Scheduled
 from ros2lite.task import TaskRunner
 
@@ -85,7 +86,7 @@ class NodeExecutor(EntityExecutor, TaskRunner, Protocol[_NodeT]):
 
     @property
     def parks(self) -> bool:
-        """Whether an idle spin waits in a kept channel (NodeWork) instead of its queue."""
+        """Whether an idle spin waits in a kept channel (parking) instead of its queue."""
         ...
 
     def keeps_here(self) -> bool:
@@ -116,6 +117,11 @@ class EntityNode(Protocol):
     @property
     def work(self) -> NodeWork[Any]:
         """Who runs the node's work: its executor and what waits for one."""
+        ...
+
+    @property
+    def parking(self) -> Parking:
+        """Where the node's executor waits when idle: its kept channels."""
         ...
 
     def get_name(self) -> str:

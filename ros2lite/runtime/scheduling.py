@@ -7,21 +7,15 @@ shut down all meet here, so their order is decided in one place: an entity is qu
 once until it has run, work that arrives while the node has no executor is held until
 `attach`, and an entry left in a former executor's queue is dropped, not run twice.
 
-It also holds the node's *kept* channels (see ros2lite.transport.pull): a subscription that
-emptied its channel on an executor that would only wait afterwards leaves the channel with
-the node, and that executor waits in it itself instead of on its queue, saving the doorbell's
-hand-over. A kept channel stays with the node across `spin_once(node)` calls (which add and
-remove the node each time); an executor that cannot park gets them handed back on attach.
+Where an idle executor waits (a node's kept channels) is ros2lite.runtime.parking's room.
 """
 
 from __future__ import annotations
 
-import threading
-import time
 from collections.abc import Callable, Sequence
 from typing import Any, Generic, Protocol, TypeVar
 
-__all__ = ['Alarm', 'Channel', 'NodeWork', 'Scheduled', 'WorkExecutor']
+__all__ = ['NodeWork', 'Scheduled', 'WorkExecutor']
 
 
 class Scheduled:
@@ -32,7 +26,7 @@ class Scheduled:
     # the entity tells its NodeWork whenever it gets work, also while its node has no
     # executor (so attach need not ask it); user waitables that only answer is_ready() do not
     notifies_itself = False
-    # going away (set before its channel closes): its node keeps no channel for it
+    # going away (set before its channel closes): its node keeps no channel for it (parking)
     destroyed = False
 
     @property
@@ -48,50 +42,8 @@ class Scheduled:
 class WorkExecutor(Protocol):
     """An executor as a NodeWork sees it."""
 
-    @property
-    def parks(self) -> bool:
-        """Whether it waits in kept channels itself (single-threaded executors do)."""
-        ...
-
     def wake(self) -> None:
         """Any thread: make a waiting spin look again."""
-        ...
-
-    def keeps_here(self) -> bool:
-        """Whether the calling thread is the one it spins on, and it would park."""
-        ...
-
-
-class Channel(Protocol):
-    """A kept channel as executors use it (ros2lite.transport.pull.PulledSamples)."""
-
-    @property
-    def kept(self) -> bool:
-        """Still kept (a take() that found a sample, or an undeclare, ends it)."""
-        ...
-
-    def poll(self) -> bool:
-        """Without waiting: a sample came (now pending; the channel is not kept any more)."""
-        ...
-
-    def arm(self) -> None:
-        """About to park: interrupts from now on end it."""
-        ...
-
-    def disarm(self) -> None:
-        """Armed, but will not park after all."""
-        ...
-
-    def park(self) -> bool:
-        """Wait in the channel: True when a sample came, False when interrupted."""
-        ...
-
-    def interrupt(self) -> None:
-        """Any thread: end a park."""
-        ...
-
-    def release(self) -> None:
-        """Hand the channel back to its doorbell."""
         ...
 
 
@@ -103,17 +55,7 @@ class NodeWork(Generic[ExecutorT]):
     whose queue may still hold entries of its entities), and whether work arrived while it
     had none. Executors attach, detach, claim and report back; entities notify."""
 
-    __slots__ = (
-        '_entities',
-        '_executor',
-        '_kept',
-        '_last',
-        '_lock',
-        '_parking',
-        '_put',
-        '_unqueued',
-        '_waitables',
-    )
+    __slots__ = ('_entities', '_executor', '_last', '_put', '_unqueued', '_waitables')
 
     def __init__(
         self,
@@ -130,10 +72,6 @@ class NodeWork(Generic[ExecutorT]):
         self._put: Callable[[Any], None] | None = None
         # an entity got work while the node had no executor: the next attach looks
         self._unqueued = True
-        # kept channels, by the entity whose channel it is; the one an executor waits in
-        self._kept: dict[Scheduled, Channel] = {}
-        self._parking: tuple[WorkExecutor, Scheduled] | None = None
-        self._lock = threading.Lock()
 
     @property
     def executor(self) -> ExecutorT | None:
@@ -160,8 +98,6 @@ class NodeWork(Generic[ExecutorT]):
         # executor before queue: an entity queued from now on is claimed by `executor`
         self._executor = executor
         self._put = put
-        if not executor.parks:
-            self._hand_back()  # (under the lock that keep() checks the executor under)
         if entities is None and self._unqueued:
             entities = self._entities()
         self._unqueued = False
@@ -177,116 +113,11 @@ class NodeWork(Generic[ExecutorT]):
 
     def detach(self, executor: ExecutorT) -> None:
         """`executor` stops running the node (no effect if it is attached elsewhere). Entries
-        left in its queue are dropped when claimed; a wait in one of its channels ends."""
-        with self._lock:
-            if self._executor is not executor:
-                return
-            self._put = None
-            self._executor = None
-            parked = self._parking
-            channel = (
-                self._kept.get(parked[1]) if parked is not None and parked[0] is executor else None
-            )
-        if channel is not None:
-            channel.interrupt()
-
-    # -- kept channels ---------------------------------------------------------------------------
-    @property
-    def keeps(self) -> bool:
-        """Whether any channel is kept (read unlocked: a hint for the executor's idle path)."""
-        return bool(self._kept)
-
-    def keep(self, entity: Scheduled, channel: Channel) -> bool:
-        """Consumer thread, `entity` emptied `channel`: may it stay with the node, for the
-        executor to wait in? Only for a parking executor that spins on this very thread
-        (which looks at kept channels before it waits)."""
-        executor = self._executor
-        if executor is None or not executor.keeps_here():
-            return False
-        with self._lock:
-            # checked again where attach and destroy change them: a node moved to an
-            # executor that does not park, or an entity going away, keeps nothing
-            if self._executor is not executor or not executor.parks or entity.destroyed:
-                return False
-            self._kept[entity] = channel
-        return True
-
-    def unkeep(self, entity: Scheduled) -> None:
-        """`entity` is going away: forget its kept channel (its undeclare closes it)."""
-        with self._lock:
-            self._kept.pop(entity, None)
-
-    def kept_count(self, executor: ExecutorT) -> int:
-        """Executor thread: how many channels the node keeps for `executor` (0 when the node
-        is not its, or another executor is parked in one: a node moved mid-wait). Entries
-        whose channel is no longer kept (a take() found a sample, an undeclare closed it)
-        are dropped on the way."""
-        with self._lock:
-            if self._executor is not executor or self._parking is not None:
-                return 0
-            stale = [entity for entity, channel in self._kept.items() if not channel.kept]
-            for entity in stale:
-                del self._kept[entity]
-            return len(self._kept)
-
-    def release_kept(self, executor: ExecutorT) -> None:
-        """Executor thread, about to wait elsewhere: every kept channel goes back to its
-        doorbell."""
-        with self._lock:
-            if self._executor is not executor or self._parking is not None:
-                return
-            kept, self._kept = self._kept, {}
-        for channel in kept.values():
-            channel.release()
-
-    def begin_park(self, executor: ExecutorT) -> tuple[Scheduled, Channel] | None:
-        """Executor thread: the one kept channel to wait in, armed (interrupts reach it
-        from now on); None when the node is not the executor's or keeps not exactly one."""
-        with self._lock:
-            if self._executor is not executor or self._parking is not None:
-                return None
-            if len(self._kept) != 1:
-                return None
-            ((entity, channel),) = self._kept.items()
-            channel.arm()
-            self._parking = (executor, entity)
-            return entity, channel
-
-    def end_park(self, executor: ExecutorT, entity: Scheduled, got: bool) -> bool:
-        """Executor thread, its park on `entity` ended (`got`: with a sample): whether it
-        may run the entity now. If the node moved meanwhile, the sample (or the channel)
-        goes where the node went."""
-        with self._lock:
-            self._parking = None
-            if got:
-                self._kept.pop(entity, None)
-            if self._executor is executor:
-                return got
-            new = self._executor
-            channel = None if got or new is None or new.parks else self._kept.pop(entity, None)
-        if channel is not None:
-            channel.release()  # the node's new executor does not park: the doorbell serves it
-        elif got:
-            self.notify(entity)  # queued where the node is now (or when it is attached)
-        elif new is not None:
-            new.wake()  # it may park in the channel now
-        return False
-
-    def _hand_back(self) -> None:
-        """Attach to an executor that does not park: kept channels go back to their
-        doorbells, except one another executor is parked in (its end_park hands it back)."""
-        with self._lock:
-            if not self._kept:
-                return
-            parked = self._parking
-            kept = {e: c for e, c in self._kept.items() if parked is None or e is not parked[1]}
-            for entity in kept:
-                del self._kept[entity]
-            waiting = self._kept.get(parked[1]) if parked is not None else None
-        for channel in kept.values():
-            channel.release()
-        if waiting is not None:
-            waiting.interrupt()
+        left in its queue are dropped when claimed."""
+        if self._executor is not executor:
+            return
+        self._put = None
+        self._executor = None
 
     def handed_to(self, executor: ExecutorT) -> None:
         """The node was given to `executor` (``node.executor = …``): it is the node's executor
@@ -359,60 +190,3 @@ class NodeWork(Generic[ExecutorT]):
                 return
         entity._scheduled = True
         put(entity)
-
-
-class Alarm:
-    """One thread that calls an action at a deadline, for a wait with no timeout of its own
-    (an executor parked in a channel). `set` replaces what is pending and wakes the thread
-    only when the new deadline is earlier than the one it sleeps until, so a loop of waits
-    with growing deadlines (`spin_once(timeout_sec=…)` in a loop) costs no hand-over each."""
-
-    def __init__(self, name: str) -> None:
-        self._cond = threading.Condition(threading.Lock())
-        self._deadline = 0.0
-        self._action: Callable[[], None] | None = None
-        self._sleeping_until = float('inf')
-        self._name = name
-        self._thread: threading.Thread | None = None
-        self._closed = False
-
-    def set(self, deadline: float, action: Callable[[], None]) -> None:
-        """Call `action()` at `deadline` (time.monotonic), unless set again or cancelled."""
-        with self._cond:
-            self._deadline, self._action = deadline, action
-            if self._thread is None:
-                self._thread = threading.Thread(target=self._run, daemon=True, name=self._name)
-                self._thread.start()
-            elif deadline < self._sleeping_until:
-                self._cond.notify()
-
-    def cancel(self) -> None:
-        """Drop what is pending (the thread is not woken; a late call finds nothing)."""
-        self._action = None
-
-    def close(self) -> None:
-        """End the thread (whatever is pending is dropped)."""
-        with self._cond:
-            self._action = None
-            self._closed = True
-            self._cond.notify()
-
-    def _run(self) -> None:
-        cond = self._cond
-        with cond:
-            while not self._closed:
-                if self._action is None:
-                    self._sleeping_until = float('inf')
-                    cond.wait()
-                    continue
-                remaining = self._deadline - time.monotonic()
-                if remaining > 0:
-                    self._sleeping_until = self._deadline
-                    cond.wait(remaining)
-                    continue
-                action, self._action = self._action, None
-                cond.release()
-                try:
-                    action()
-                finally:
-                    cond.acquire()

@@ -15,12 +15,21 @@ reads a batch through C-level iterators (:func:`ros2lite.runtime.delivery.payloa
 
 One message at a time, the doorbell is a thread hand-over of its own on every delivery (Rust
 wakes the doorbell, the doorbell wakes the executor). So a consumer whose executor would only
-sit idle afterwards may *keep* the emptied channel instead of handing it back (`keeper`), and
-then *park*: wait in `recv()` itself, woken by Rust directly, as a raw zenoh program is. Work
-for anything else wakes a parked consumer with :meth:`interrupt`: an empty sample without an
-attachment, put on the subscriber's own key and kept inside this session. Every receiver here
-drops such samples (rmw_zenoh's rule: no attachment, no ROS message), and a KEEP_LAST ring has
-one slot more than its depth, so a stray interrupt never pushes out a sample the QoS keeps.
+sit idle afterwards may *keep* the emptied channel instead of handing it back (`keeper`, which
+asks the node's ros2lite.runtime.parking.Parking), and wait in it itself: :meth:`park` is a
+`recv()` woken by Rust directly, as a raw zenoh program is, and :meth:`interrupt` ends it with
+an *interrupt*, a sample put on the subscriber's own key and kept inside this session. A
+KEEP_LAST ring has one slot more than its depth for it, so an interrupt never pushes out a
+sample the QoS keeps.
+
+Who owns the channel is one flag under one lock: `_owes` is set by the doorbell before it
+hands a sample over and cleared by whoever gives the channel back (the consumer emptying it, a
+kept channel handed back, an undeclare), so the doorbell is woken exactly once per hand-over,
+whatever the threads race to do.
+
+Samples without an attachment are no ROS message (rmw_zenoh drops them) and are never handed
+out. Our own interrupts are dropped silently; any other (a peer's, perhaps a flood) is counted
+to `on_unattached`, which reports it.
 """
 
 from __future__ import annotations
@@ -28,7 +37,7 @@ from __future__ import annotations
 import contextlib
 import threading
 from collections import deque
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from itertools import islice
 from operator import attrgetter
 from typing import TYPE_CHECKING
@@ -38,6 +47,7 @@ import zenoh
 from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
 from ros2lite.transport.session import (
     declare_subscriber,
+    foreign_unattached,
     put_local,
     sole_subscriber,
     undeclare_subscriber,
@@ -52,6 +62,9 @@ __all__ = ['PulledSamples']
 _CAPACITY = 4096
 # how many samples a KEEP_ALL consumer pulls at least once it pulls
 _CHUNK = 64
+# how many more the doorbell drains at once after a sample without attachment (a flood's
+# come in thousands: one GIL hold and one report for them all)
+_DRAIN = 4096
 # a sample without an attachment (an interrupt, or not a ROS message) never enters `pending`,
 # where it could push a real one out of a KEEP_LAST deque
 _attached = attrgetter('attachment')
@@ -64,7 +77,8 @@ class PulledSamples:
     said it was done; `ready` tells whether samples may be waiting. KEEP_LAST keeps exactly
     the newest `depth` samples not yet taken; KEEP_ALL blocks the publisher (through Zenoh's
     congestion control) once `_CAPACITY` samples wait. Samples without an attachment, which
-    rmw_zenoh ignores, are never handed out.
+    rmw_zenoh ignores, are never handed out; `on_unattached(n)` hears of those that were not
+    our own interrupts (any thread).
     """
 
     def __init__(
@@ -76,6 +90,7 @@ class PulledSamples:
         *,
         name: str = '',
         keeper: Callable[[PulledSamples], bool] | None = None,
+        on_unattached: Callable[[int], None] | None = None,
     ) -> None:
         keep_all = qos.history == HistoryPolicy.KEEP_ALL
         depth = max(qos.depth, 1)
@@ -90,25 +105,28 @@ class PulledSamples:
         )
         self._sub = declare_subscriber(session, key, qos, handler)
         self._session, self._key = session, key
-        # a transient-local subscriber is zenoh-ext's, with a history of its own: never parked
+        # a transient-local subscriber is zenoh-ext's, with a history of its own: never kept
         self._keeper = None if qos.durability == DurabilityPolicy.TRANSIENT_LOCAL else keeper
-        self._kept = False  # emptied, the doorbell asleep, the consumer may park
-        self._interrupted = True  # an interrupt is on its way (or nobody is parked)
-        self._interrupting = threading.Lock()  # one interrupt per arming, whoever sends it
+        self._on_unattached = on_unattached
         channel = self._sub.handler
         self._recv = channel.recv
         self._try_recv = channel.try_recv
         # samples taken from the channel and not yet handed out, oldest first
         self._pending: deque[Sample] = deque(maxlen=self._depth)
         self._armed = True  # the doorbell owns the channel (the consumer found it empty)
-        # the doorbell waits on this lock (held) for the consumer to hand the channel back;
-        # a bare lock, because threading.Event runs Python code on both sides of every wake
+        # the doorbell waits on this lock (held) for the channel to come back; a bare lock,
+        # because threading.Event runs Python code on both sides of every wake
         self._rearm = threading.Lock()
         self._rearm.acquire()
-        self._owed = False  # the consumer has taken the channel back and not released it yet
+        # who owns the channel, and whether it is kept or closed, change together under this
+        self._handover = threading.Lock()
+        self._owes = False  # the doorbell waits for the channel back (it is the consumer's)
+        self._kept = False  # the consumer keeps it emptied, to wait in it itself
+        self._closed = False
+        # consumer thread only: it found the channel dry and gives it back at rearm()
+        self._dry = False
         self._rearm_later = False
         self._on_ready = on_ready
-        self._closed = False
         self._thread = threading.Thread(
             target=self._doorbell, daemon=True, name=f'ros2lite-sub {name}'
         )
@@ -120,65 +138,95 @@ class PulledSamples:
         return not self._armed or bool(self._pending)
 
     def _doorbell(self) -> None:
-        recv, rearm, pending = self._recv, self._rearm, self._pending
+        recv, try_recv, rearm, pending = self._recv, self._try_recv, self._rearm, self._pending
+        handover = self._handover
         while True:
             try:
                 sample = recv()  # GIL released while the channel is empty
+                if sample.attachment:
+                    real = [sample]
+                else:  # an interrupt left over, or not a ROS message (a flood?)
+                    batch = [sample, *islice(iter(try_recv, None), _DRAIN)]
+                    real = list(filter(_attached, batch))
+                    self._unattached(batch)
+                    if not real:
+                        continue
             except Exception:
                 return  # closed: undeclared, or the session went away
-            if not sample.attachment:
-                continue  # an interrupt left over, or not a ROS message: wait on
-            pending.append(sample)
+            with handover:
+                if self._closed:
+                    return
+                self._owes = True  # the consumer's from now on, until it gives it back
+            pending.extend(real)
             self._armed = False  # after the append: a consumer seeing this sees the sample
             self._on_ready()
-            rearm.acquire()  # until the consumer has emptied the channel (GIL released)
+            rearm.acquire()  # until the channel comes back (GIL released)
             if self._closed:
                 return
+
+    def _give_back(self, *, only_kept: bool = False) -> None:
+        """Any thread: wake the doorbell if it waits for the channel (once per hand-over,
+        whoever calls); with `only_kept`, only a kept channel."""
+        with self._handover:
+            if not self._owes or (only_kept and not self._kept):
+                return
+            self._owes = False
+            self._kept = False
+        self._rearm.release()
+
+    def _unattached(self, samples: Sequence[Sample]) -> None:
+        """Samples without an attachment among `samples`: our interrupts go unheard, a peer's
+        are told to `on_unattached`."""
+        report = self._on_unattached
+        if report is not None:
+            foreign = foreign_unattached(samples)
+            if foreign:
+                report(foreign)
 
     def _pull(self, limit: int) -> None:
         """Consumer thread, while it owns the channel: move up to what `limit` needs into
         `pending` (KEEP_LAST: all of it, so the ring's newest `depth` survive); when the
-        channel runs dry, hand it back to the doorbell (woken now, or by `rearm()` when the
-        consumer said it would call that after delivering)."""
+        channel runs dry, give it back to the doorbell (now, or at `rearm()` when the consumer
+        said it would call that after delivering)."""
         pending = self._pending
-        # KEEP_ALL: a chunk at a time, so one-by-one consumers (spin_once) pull rarely
+        # KEEP_ALL: a chunk at a time, so one-by-one consumers (spin_once) pull rarely; one
+        # more than wanted tells whether the channel holds more
         want = max(limit, _CHUNK) - len(pending) if self._depth is None else self._depth + limit
-        it = filter(_attached, iter(self._try_recv, None))
+        want = max(want, 0)
         try:
-            if want > 0:
-                pending.extend(islice(it, want))
-            extra = next(it, None)  # does the channel hold more?
+            raw = list(islice(iter(self._try_recv, None), want + 1))
         except Exception:  # closed mid-pull
-            extra = None
-        if extra is None:
+            raw = []
+        attached = list(filter(_attached, raw))
+        pending.extend(attached)
+        if len(attached) != len(raw):
+            self._unattached(raw)
+        if len(raw) <= want:  # try_recv found it empty
             self._armed = True
-            self._owed = True
+            self._dry = True
             if not self._rearm_later:
                 self.rearm()
-        else:
-            pending.append(extra)
 
     def rearm(self) -> None:
         """Consumer thread, after delivering what `take(…, rearm_later=True)` gave: wake the
         doorbell if the channel ran dry, unless the keeper keeps the channel for the consumer
-        to park on. Waking it only now keeps it from taking the GIL in the middle of a
+        to wait in. Waking it only now keeps it from taking the GIL in the middle of a
         callback (which costs a delivery its latency)."""
         self._rearm_later = False
-        if self._owed and not self._kept:
-            keeper = self._keeper
-            if (
-                keeper is not None
-                and not self._closed
-                # an interrupt reaches every subscriber of the key in this session
-                and sole_subscriber(self._session, self._key)
-                and keeper(self)
-            ):
-                self._kept = True
+        if not self._dry:
+            return
+        self._dry = False
+        keeper = self._keeper
+        # an interrupt reaches every subscriber of the key in this session: only a sole one
+        if keeper is not None and sole_subscriber(self._session, self._key):
+            with self._handover:
+                keep = self._owes and not self._closed
+                self._kept = keep
+            if keep and keeper(self):
                 return
-            self._owed = False
-            self._rearm.release()
+        self._give_back()
 
-    # -- a kept channel: the consumer waits on it itself -------------------------------------------
+    # -- a kept channel: the consumer waits in it itself -------------------------------------------
     @property
     def kept(self) -> bool:
         """The consumer keeps the emptied channel (the doorbell sleeps): it must `poll`,
@@ -186,68 +234,69 @@ class PulledSamples:
         subscriber's channel is never kept."""
         return self._kept and not self._closed
 
-    def _arrived(self, sample: Sample) -> bool:
-        """A sample from the kept channel: a real one ends the keeping (the consumer owns
-        the channel, with this sample pending); an interrupt is dropped."""
-        if not sample.attachment:
-            return False
-        self._pending.append(sample)
+    def _arrived(self, samples: list[Sample]) -> None:
+        """Real samples from the kept channel end the keeping: the consumer owns the channel
+        (the doorbell still waits for it), with these pending."""
+        with self._handover:
+            self._kept = False
+        self._pending.extend(samples)
         self._armed = False
-        self._owed = False  # owed again once the consumer has emptied the channel
-        self._kept = False
-        return True
+
+    def _sorted(self, sample: Sample) -> bool | None:
+        """Kept channel, `sample` (without an attachment) and what else waits now read from
+        it: True when real samples came too (pending now), False when one of ours was an
+        interrupt, None when all were a peer's (reported)."""
+        batch = [sample, *islice(iter(self._try_recv, None), _DRAIN)]
+        real = list(filter(_attached, batch))
+        foreign = foreign_unattached(batch)
+        if foreign and self._on_unattached is not None:
+            self._on_unattached(foreign)
+        if real:
+            self._arrived(real)
+            return True
+        return False if foreign < len(batch) else None
 
     def poll(self) -> bool:
         """Consumer thread, kept channel: whether a sample came meanwhile (it is pending
         now, and the channel no longer kept)."""
         try:
             while (sample := self._try_recv()) is not None:
-                if self._arrived(sample):
+                if sample.attachment:
+                    self._arrived([sample])
+                    return True
+                if self._sorted(sample):
                     return True
         except Exception:  # closed: undeclared, or the session went away
             pass
         return False
 
-    def arm(self) -> None:
-        """Consumer thread, kept channel, about to park: interrupts from now on end the
-        park (also one that comes before `park()` is called: it then returns at once)."""
-        self._interrupted = False
-
-    def disarm(self) -> None:
-        """Consumer thread: it armed, and will not park after all."""
-        self._interrupted = True
-
     def park(self) -> bool:
-        """Consumer thread, kept and armed channel: wait in `recv()` (GIL released) until a
-        sample comes (True, as after `poll`) or :meth:`interrupt` (False). A closed channel
-        returns False at once."""
+        """Consumer thread, kept channel: wait in `recv()` (GIL released) until a sample
+        comes (True, as after `poll`) or an interrupt (False: whether it was the awaited one
+        is the waiter's to know). A closed channel returns False at once; a peer's samples
+        without an attachment are dropped and reported on the way."""
+        recv = self._recv
         try:
             while True:
-                if self._arrived(self._recv()):
+                sample = recv()
+                if sample.attachment:
+                    self._arrived([sample])
                     return True
-                if self._interrupted:
-                    return False  # (an older interrupt's sample is dropped on the way)
+                came = self._sorted(sample)
+                if came is not None:
+                    return came
         except Exception:  # closed
             return False
-        finally:
-            self._interrupted = True
 
     def interrupt(self) -> None:
-        """Any thread: end a `park()` (once per arming; no effect unless armed)."""
-        with self._interrupting:
-            if self._interrupted:
-                return
-            self._interrupted = True
+        """Any thread: end a `park()` (an interrupt that finds nobody parked is dropped by
+        the next one to read the channel)."""
         with contextlib.suppress(Exception):  # closed: the park has ended anyway
             put_local(self._session, self._key)
 
     def release(self) -> None:
-        """Consumer thread (nobody parked): hand a kept channel back to the doorbell."""
-        if self._kept:
-            self._kept = False
-            self._owed = False
-            with contextlib.suppress(RuntimeError):  # undeclare released it already
-                self._rearm.release()
+        """Any thread, nobody parked: hand a kept channel back to the doorbell."""
+        self._give_back(only_kept=True)
 
     def take(self, limit: int, *, rearm_later: bool = False) -> list[Sample]:
         """Consumer thread: up to `limit` samples, oldest first (fewer, or none, when fewer
@@ -288,11 +337,11 @@ class PulledSamples:
 
     def undeclare(self) -> None:
         """Stop receiving; the doorbell thread ends."""
-        self._closed = True
+        with self._handover:
+            self._closed = True
         # closes the channel: a doorbell (or a parked consumer) in recv() returns
         undeclare_subscriber(self._session, self._key, self._sub)
-        with contextlib.suppress(RuntimeError):  # (not held: the doorbell is in recv())
-            self._rearm.release()  # a doorbell waiting for the consumer returns
+        self._give_back()  # a doorbell waiting for the channel returns
         if self._thread is not threading.current_thread():
             # a thread still inside zenoh when the interpreter finalises aborts the process
             self._thread.join(timeout=1.0)

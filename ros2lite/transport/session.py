@@ -13,11 +13,13 @@ from __future__ import annotations
 
 import contextlib
 import heapq
+import os
 import threading
 import time
 from collections import deque
-from collections.abc import Callable
-from itertools import chain, islice
+from collections.abc import Callable, Iterable
+from itertools import chain, filterfalse, islice
+from operator import attrgetter, methodcaller
 from typing import cast
 
 import zenoh
@@ -43,6 +45,7 @@ __all__ = [
     "declare_querier",
     "declare_queryable",
     "declare_token",
+    "foreign_unattached",
     "liveliness_answer",
     "liveliness_keys",
     "put_local",
@@ -342,11 +345,32 @@ def declare_subscriber(
     return as_zenoh(session).declare_subscriber(key, handler)
 
 
+# the payload of this process's interrupts: a secret, so a peer's empty sample (which a flood
+# may send by the million) is never mistaken for one and is reported instead of dropped unheard
+_INTERRUPT = os.urandom(16)
+
+
 def put_local(session: Session, key: str) -> None:
-    """An empty sample without an attachment on `key`, for this session's own subscribers
-    only: it wakes a consumer waiting in a channel's `recv()` (ros2lite.transport.pull), and
-    every receiver drops it, as rmw_zenoh drops samples without an attachment."""
-    as_zenoh(session).put(key, b"", allowed_destination=zenoh.Locality.SESSION_LOCAL)
+    """An interrupt on `key`, for this session's own subscribers only: a sample without an
+    attachment that wakes a consumer waiting in a channel's `recv()` (ros2lite.transport.pull).
+    Every receiver drops it, as rmw_zenoh drops samples without an attachment;
+    :func:`foreign_unattached` tells it from a peer's."""
+    as_zenoh(session).put(key, _INTERRUPT, allowed_destination=zenoh.Locality.SESSION_LOCAL)
+
+
+def foreign_unattached(samples: Iterable[Sample]) -> int:
+    """How many of `samples` have no attachment and are not our interrupts (a peer's), in
+    C-level maps: a flood brings them by the hundred thousand a second."""
+    unattached = list(filterfalse(_attachment_of, samples))
+    if not unattached:
+        return 0
+    ours = sum(map(_INTERRUPT.__eq__, map(_to_bytes, map(_payload_of, unattached))))
+    return len(unattached) - ours
+
+
+_attachment_of = attrgetter("attachment")
+_payload_of = attrgetter("payload")
+_to_bytes = methodcaller("to_bytes")
 
 
 # Rust-side queue between zenoh and the pump thread (never below the QoS depth), and how many

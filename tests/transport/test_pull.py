@@ -126,3 +126,87 @@ def test_undeclare_ends_the_doorbell_thread(ros_context: Any) -> None:
     src.undeclare()
     thread.join(timeout=5)
     assert not thread.is_alive()
+
+
+def test_the_channel_goes_back_once_however_threads_race(ros_context: Any) -> None:
+    """R5-L1, replayed on the channel: the consumer gives back a channel it emptied while
+    another thread undeclares it (a subscription destroyed while its executor delivers).
+    Both wake the doorbell; the second wake raised `release unlocked lock` whenever the
+    doorbell had not yet taken the first."""
+    errors: list[BaseException] = []
+    for i in range(300):
+        key = f'pull_test/race/{time.monotonic_ns()}/{i}'
+        src, ready = _source(ros_context, key, QoSProfile(depth=10))
+        _put(ros_context, key, ['a'])
+        assert ready.wait(5)
+        assert src.take(1, rearm_later=True)  # emptied: the consumer owes the channel back
+        start = threading.Barrier(2)
+
+        def undeclare(src: PulledSamples = src, start: threading.Barrier = start) -> None:
+            start.wait()
+            src.undeclare()
+
+        other = threading.Thread(target=undeclare)
+        other.start()
+        start.wait()
+        try:
+            src.rearm()
+        except RuntimeError as e:
+            errors.append(e)
+        other.join(5)
+    assert errors == []
+
+
+def test_a_peers_samples_without_attachment_are_reported_and_ours_are_not(
+    ros_context: Any,
+) -> None:
+    """An interrupt (put_local) is dropped unheard; any other sample without an attachment is
+    no ROS message and is counted to `on_unattached` (a flood is reported, never silent)."""
+    from ros2lite.transport.session import put_local
+
+    key = f'pull_test/unattached/{time.monotonic_ns()}'
+    heard: list[int] = []
+    ready = threading.Event()
+    src = PulledSamples(
+        ros_context.session, key, QoSProfile(depth=10), ready.set, on_unattached=heard.append
+    )
+    try:
+        put_local(ros_context.session, key)
+        _put(ros_context, key, ['x', 'y', ''], attachment=None)  # as a peer's would come
+        _put(ros_context, key, ['real'])
+        assert ready.wait(5)
+        assert list(payloads(src.take(8))) == [b'real']
+    finally:
+        src.undeclare()
+    assert sum(heard) == 3  # the three of the peer, not the interrupt
+
+
+def test_only_a_keys_sole_subscriber_in_the_session_keeps_its_channel(ros_context: Any) -> None:
+    """An interrupt reaches every subscriber of its key in the session, so a channel whose key
+    has another local subscriber is never kept (a second subscription lost its newest sample
+    at depth 1 to a stray interrupt)."""
+    key = f'pull_test/sole/{time.monotonic_ns()}'
+    asked: list[PulledSamples] = []
+
+    def keeper(channel: PulledSamples) -> bool:
+        asked.append(channel)
+        return True
+
+    ready = threading.Event()
+    first = PulledSamples(ros_context.session, key, QoSProfile(depth=1), ready.set, keeper=keeper)
+    second = PulledSamples(ros_context.session, key, QoSProfile(depth=1), lambda: None)
+    try:
+        _put(ros_context, key, ['a'])
+        assert ready.wait(5)
+        assert first.take(1)
+        assert not first.kept and asked == []  # shared key: handed back, keeper not asked
+        second.undeclare()
+        ready.clear()
+        _put(ros_context, key, ['b'])
+        assert ready.wait(5)
+        assert first.take(1)
+        assert first.kept and asked == [first]  # alone now: kept
+        first.release()
+        assert not first.kept
+    finally:
+        first.undeclare()
