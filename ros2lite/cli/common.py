@@ -165,3 +165,20 @@ def wait_saying_other_types(
                 )
         if deadline is not None and time.monotonic() >= deadline:
             return False
+
+
+def plot_request(
+    series: tuple[str, ...] | list[str],
+    xy: bool,
+    snapshot: bool,
+    pictures: tuple[str | None, ...],
+    csv_out: bool,
+) -> tuple[list[str], list[str]]:
+    """What `topic plot` and `bag plot` were asked for, checked alike: the series (each an
+    absolute name) and the picture files to write; one line when the options clash."""
+    if xy and snapshot:
+        raise CliError('--xy and --snapshot are two kinds of plot: choose one')
+    files = [p for p in pictures if p]
+    if csv_out and files:
+        raise CliError('--csv prints the samples instead of a picture: give one or the other')
+    return [t if t.startswith('/') else '/' + t for t in series], files

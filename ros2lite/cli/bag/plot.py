@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import click
 
+from ..common import plot_request
 from ..errors import CliError
 from ..options import plot_options
 from ..parsing import command
@@ -41,13 +42,8 @@ def cli(
     from ros2lite.bag.plot import bag_plot
     from ros2lite.monitor.plot import PlotError
 
-    if xy and snapshot:
-        raise CliError("--xy and --snapshot are two kinds of plot: choose one")
-    pictures = [p for p in (png_path, svg_path) if p]
-    if csv_out and pictures:
-        raise CliError("--csv prints the samples instead of a picture: give one or the other")
+    texts, pictures = plot_request(series, xy, snapshot, (png_path, svg_path), csv_out)
     existing_bag(bag_path)
-    texts = [t if t.startswith("/") else "/" + t for t in series]
     rows: list[list[str]] | None = [] if csv_out else None
     try:
         plot = bag_plot(

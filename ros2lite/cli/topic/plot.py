@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion, numbers
-from ..common import connect
+from ..common import connect, plot_request
 from ..errors import CliError
 from ..options import plot_options, qos_options, strategy_options
 from ..parsing import command
@@ -89,12 +89,7 @@ def cli(
     from ros2lite.graph import topic_names_and_types
     from ros2lite.monitor.plot import Plot, PlotError, resolve_specs, subscribe
 
-    if xy and snapshot:
-        raise CliError('--xy and --snapshot are two kinds of plot: choose one')
-    pictures = [p for p in (png_path, svg_path) if p]
-    if csv_out and pictures:
-        raise CliError('--csv prints the samples instead of a picture: give one or the other')
-    texts = [t if t.startswith('/') else '/' + t for t in series]
+    texts, pictures = plot_request(series, xy, snapshot, (png_path, svg_path), csv_out)
     if snapshot and count is None and pictures:
         count = 1  # a picture of a profile: the first one that comes
     live = not pictures and not csv_out and fancy()
