@@ -30,7 +30,7 @@ from concurrent.futures import ThreadPoolExecutor
 from typing import TYPE_CHECKING, Any, cast
 
 from ros2lite.context import Context, default_context
-from ros2lite.runtime.executable import Executable, _running
+from ros2lite.runtime.executable import RUNNING, Executable
 from ros2lite.runtime.parking import QUEUE, Parking
 from ros2lite.runtime.scheduling import NodeWork
 from ros2lite.task import Future, Task
@@ -433,7 +433,7 @@ class Executor:
     def _run_entity(
         self, entity: Executable, group: CallbackGroup, batch: bool, stop: Callable[[], bool] | None
     ) -> None:
-        running = _running
+        running = RUNNING
         saved = running.executor, running.entity
         running.executor, running.entity = self, entity
         pending: Task | None = None

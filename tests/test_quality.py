@@ -535,7 +535,6 @@ PRIVATE_IMPORTS_LEFT = {
     'ros2lite.qos_overriding_options._declare_qos_parameters',
     'ros2lite/compat/rclpy/qos_overriding_options.py '
     'ros2lite.qos_overriding_options._get_qos_policy_parameter',
-    'ros2lite/executors.py ros2lite.runtime.executable._running',
     'ros2lite/security/pki.py cryptography.hazmat.bindings._rust.test_support',
 }
 

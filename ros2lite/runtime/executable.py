@@ -21,6 +21,7 @@ if TYPE_CHECKING:
     from ros2lite.task import Task
 
 __all__ = [
+    'RUNNING',
     'Destroyable',
     'EntityExecutor',
     'EntityNode',
@@ -38,9 +39,9 @@ class _Running(threading.local):
     entity: Executable | None = None
 
 
-# which executor and entity the current thread runs a callback for (set by the executor):
-# coroutine callbacks continue on it, and blocking calls check it for deadlocks
-_running = _Running()
+# which executor and entity the current thread runs a callback for (set by the executor that
+# runs it, read here): coroutine callbacks continue on it, blocking calls check it for deadlocks
+RUNNING = _Running()
 # the node a NodeExecutor takes (contravariant: it only goes in)
 _NodeT = TypeVar('_NodeT', contravariant=True)
 
@@ -151,7 +152,7 @@ class EntityNode(Protocol):
 
 def current_execution() -> tuple[EntityExecutor | None, Executable | None]:
     """(executor, entity) whose callback this thread is running, or (None, None)."""
-    return _running.executor, _running.entity
+    return RUNNING.executor, RUNNING.entity
 
 
 class Executable(Scheduled):
@@ -198,7 +199,7 @@ class Executable(Scheduled):
         """Run a user callback on the executor's terms (a coroutine becomes a Task). That is
         the executor running this entity now: a multi-threaded one may run it after the node
         has moved on (spin_once's helper removes the node once the work is handed over)."""
-        executor = _running.executor
+        executor = RUNNING.executor
         if executor is None and self._node is not None:
             executor = self._node.work.executor
         if executor is not None:
