@@ -30,7 +30,6 @@ from ros2lite.transport.handles import Handle, Sample, Session
 from ros2lite.transport.keys import liveliness_subscription_key
 
 __all__ = [
-    "HISTORY_BYTES",
     "Handle",
     "HistoryBoundedPublisher",
     "Publisher",
@@ -55,44 +54,30 @@ __all__ = [
 ]
 
 
-# What one transient-local publisher's history may hold, in bytes: a sample larger than this
-# over its depth goes out live but is not kept for late joiners (a 1000-deep /rosout keeps
-# lines up to 64 KiB; a 1-deep map or /tf_static up to the whole 64 MiB)
-HISTORY_BYTES = 64 << 20
-
-
 class HistoryBoundedPublisher:
-    """A transient-local publisher whose history is bounded in bytes as well as in depth,
-    and forgotten once its lifespan has passed.
+    """A transient-local publisher whose history is forgotten once its lifespan has passed.
 
-    zenoh-ext's advanced publisher keeps the last `depth` samples whatever their size or age
-    (a /rosout of 16 MB lines holds 16 GB, and serves hour-old lines to a late joiner).
-    Samples over the per-sample share of :data:`HISTORY_BYTES` go through a plain publisher
-    of the same key instead: subscribers get them live all the same, the cache never holds
-    them. With a finite lifespan, once the newest kept sample is older than it, the advanced
-    publisher is made anew, empty (its cache cannot drop samples one by one): a late joiner
-    then gets no expired sample. While samples keep coming, the older ones stay until depth
-    pushes them out.
+    zenoh-ext's advanced publisher keeps the last `depth` samples whatever their age (and
+    serves hour-old /rosout lines to a late joiner). With a finite lifespan, once the newest
+    kept sample is older than it, the advanced publisher is made anew, empty (its cache
+    cannot drop samples one by one): a late joiner then gets no expired sample. While samples
+    keep coming, the older ones stay until depth pushes them out. (A bound in bytes, sending
+    large samples through a second, plain publisher, was taken out: two publishers of one key
+    do not keep their samples in order.)
     """
 
     def __init__(
         self,
         make: Callable[[], zenoh.ext.AdvancedPublisher],
-        live: zenoh.Publisher,
-        depth: int,
         lifespan: float | None,
     ) -> None:
-        self._make, self._live, self._lifespan = make, live, lifespan
+        self._make, self._lifespan = make, lifespan
         self._cached: zenoh.ext.AdvancedPublisher | None = make()
         self._lock = threading.Lock()
         self._newest = 0.0  # monotonic time of the newest kept sample (0: none kept)
-        self.largest_kept = max(HISTORY_BYTES // max(depth, 1), 1)
 
     def put(self, payload: bytes, *, attachment: bytes | None = None) -> None:
-        """Publish; keep the sample for late joiners only if it is small enough."""
-        if len(payload) > self.largest_kept:
-            self._live.put(payload, attachment=attachment)
-            return
+        """Publish, keeping the sample for late joiners."""
         with self._lock:
             if self._cached is None:
                 raise zenoh.ZError("the publisher is undeclared")
@@ -119,10 +104,10 @@ class HistoryBoundedPublisher:
             return None
 
     def undeclare(self) -> None:
-        """Undeclare both publishers (the history goes with the advanced one)."""
+        """Undeclare the publisher (its history goes with it)."""
         with self._lock:
             cached, self._cached = self._cached, None
-        undeclare_quietly(cached, self._live)
+        undeclare_quietly(cached)
 
 
 class _Expiry:
@@ -252,8 +237,8 @@ def _transient_local(qos: QoSProfile) -> bool:
 def declare_publisher(session: Session, key: str, qos: QoSProfile) -> Publisher:
     """A publisher with `.put(payload, attachment=…)`, mapped from QoS as rmw_zenoh does:
     reliability, BLOCK congestion control only for reliable KEEP_ALL, and transient local
-    through zenoh-ext's advanced publisher (a cache of `depth` samples, bounded in bytes:
-    :class:`HistoryBoundedPublisher`)."""
+    through zenoh-ext's advanced publisher (a cache of `depth` samples, forgotten after its
+    lifespan: :class:`HistoryBoundedPublisher`)."""
     reliable = _reliable(qos)
     block = reliable and qos.history == HistoryPolicy.KEEP_ALL
     reliability = zenoh.Reliability.RELIABLE if reliable else zenoh.Reliability.BEST_EFFORT
@@ -278,12 +263,9 @@ def declare_publisher(session: Session, key: str, qos: QoSProfile) -> Publisher:
                 congestion_control=congestion,
             )
 
-        live = as_zenoh(session).declare_publisher(
-            key, reliability=reliability, congestion_control=congestion
-        )
         span = qos.lifespan
         lifespan = None if span.is_unspecified or span.is_infinite else span.nanoseconds / 1e9
-        return HistoryBoundedPublisher(make, live, qos.depth, lifespan)
+        return HistoryBoundedPublisher(make, lifespan)
     return as_zenoh(session).declare_publisher(
         key, reliability=reliability, congestion_control=congestion
     )
