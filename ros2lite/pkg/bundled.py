@@ -35,6 +35,7 @@ _DEMOS = {
     'rqt_graph': ['rqt_graph'],
     'rqt_plot': ['rqt_plot'],
     'rqt_tf_tree': ['rqt_tf_tree'],
+    'rviz2': ['rviz2'],
     'teleop_twist_keyboard': ['teleop_twist_keyboard'],
     'tf2_tools': ['view_frames'],
     'tf2_ros': ['static_transform_publisher', 'tf2_echo', 'tf2_monitor'],
