@@ -31,6 +31,7 @@ _DEMOS = {
     'lifecycle': ['lifecycle_listener'],
     'lifecycle_py': ['lifecycle_talker'],
     'rclpy_components': ['component_container', 'component_container_mt'],
+    'robot_state_publisher': ['robot_state_publisher'],
     'rqt_console': ['rqt_console'],
     'rqt_graph': ['rqt_graph'],
     'rqt_plot': ['rqt_plot'],
