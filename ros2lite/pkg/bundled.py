@@ -47,6 +47,7 @@ _DEMOS = {
         'turtle_tf2_listener',
     ],
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
+    'xacro': ['xacro'],
 }
 BUNDLED: dict[str, dict[str, str]] = {
     package: {name: f'ros2lite.bundled.{package}.{name}:main' for name in names}
