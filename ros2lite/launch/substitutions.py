@@ -18,6 +18,8 @@ import subprocess
 from collections.abc import Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING, TypeAlias
 
+from ros2lite.pkg.environment import child_environment
+
 from .errors import InvalidConditionExpressionError, SubstitutionFailure
 
 if TYPE_CHECKING:
@@ -295,9 +297,12 @@ class Command(Substitution):
         text = perform_substitutions(context, self.command)
         try:
             argv = shlex.split(text)
-            done = subprocess.run(
-                argv, capture_output=True, text=True, env=dict(context.environment), check=False
+            # a ROS shell's environment, as for the launch's processes: `xacro` on PATH and
+            # its `ament_index_python` answered by the package index
+            env = child_environment(
+                context.environment, workspaces=context.package_index.workspaces()
             )
+            done = subprocess.run(argv, capture_output=True, text=True, env=env, check=False)
         except (OSError, ValueError) as e:
             raise SubstitutionFailure(f"command '{text}' could not run: {e}") from None
         if done.returncode != 0:

@@ -31,6 +31,7 @@ _DEMOS = {
     'lifecycle': ['lifecycle_listener'],
     'lifecycle_py': ['lifecycle_talker'],
     'rclpy_components': ['component_container', 'component_container_mt'],
+    'robot_state_publisher': ['robot_state_publisher'],
     'rqt_console': ['rqt_console'],
     'rqt_graph': ['rqt_graph'],
     'rqt_plot': ['rqt_plot'],
@@ -47,6 +48,7 @@ _DEMOS = {
         'turtle_tf2_listener',
     ],
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
+    'xacro': ['xacro'],
 }
 BUNDLED: dict[str, dict[str, str]] = {
     package: {name: f'ros2lite.bundled.{package}.{name}:main' for name in names}

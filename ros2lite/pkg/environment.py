@@ -15,7 +15,8 @@ A child started from the package index gets three things on top of the caller's 
 
 - what ``ros2lite env`` gives a shell (:func:`ros_environment`): the compat
   directory first on ``PYTHONPATH``, so code written for ROS imports ``rclpy``, ``launch``,
-  ``launch_ros``, ``ament_index_python`` and interface packages by their ROS names;
+  ``launch_ros``, ``ament_index_python`` and interface packages by their ROS names, and the
+  scripts directory of ros2lite's environment last on ``PATH`` (``xacro``);
 - the executable's own source directory (a workspace package run in place), so
   ``py_pubsub.publisher_member_function`` imports without an install;
 - ``ROS2LITE_WORKSPACE`` naming the workspaces this process saw, so the child finds the same
@@ -82,6 +83,13 @@ def ros_environment(base: Mapping[str, str] | None = None) -> dict[str, str]:
         SITE_VAR: os.pathsep.join(_python_site()),
         VERSION_VAR: f'{sys.version_info[0]}.{sys.version_info[1]}',
     }
+    # the scripts of ros2lite's own environment (its dependencies' `xacro`, for launch files'
+    # `Command(['xacro ', path])`) last on PATH: found where nothing else is, so a real ROS
+    # install's programs, and the user's own, still come first
+    scripts = sysconfig.get_paths().get('scripts')
+    path = env.get('PATH', '')
+    if scripts and scripts not in path.split(os.pathsep):
+        changes['PATH'] = os.pathsep.join([p for p in (path, scripts) if p])
     # Jazzy's message classes check field assignments only when asked to (=1); ros2lite's
     # check unless told not to (=0): a ROS shell gets Jazzy's default unless it chose
     if CHECK_FIELDS_VAR not in env:

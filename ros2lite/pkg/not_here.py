@@ -84,7 +84,6 @@ NOT_HERE: dict[str, str] = {
             'logging_demo',
             'pendulum_control',
             'quality_of_service_demo_cpp',
-            'robot_state_publisher',
             'teleop_twist_joy',
         ),
         _CPP,

@@ -1,8 +1,11 @@
-"""A small URDF robot with a bit of everything, shared by the urdf/ tests and the packages'."""
+"""Robots shared by the urdf/ tests and the packages': a small URDF with a bit of everything,
+and a xacro robot in a source workspace."""
 
 from __future__ import annotations
 
-__all__ = ['ARM']
+from pathlib import Path
+
+__all__ = ['ARM', 'bot_workspace']
 
 ARM = """<?xml version="1.0"?>
 <robot name="arm">
@@ -73,3 +76,50 @@ ARM = """<?xml version="1.0"?>
   <gazebo reference="wheel"><mu1>0.5</mu1></gazebo>
 </robot>
 """
+
+
+_MANIFEST = """<?xml version="1.0"?>
+<package format="3">
+  <name>bot_description</name><version>0.0.1</version><description>a test robot</description>
+  <maintainer email="test@invalid">test</maintainer><license>MIT</license>
+  <export><build_type>ament_python</build_type></export>
+</package>
+"""
+_BOT = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="bot">
+  <xacro:arg name="width" default="0.2"/>
+  <xacro:property name="w" value="$(arg width)"/>
+  <xacro:include filename="$(find bot_description)/urdf/parts.xacro"/>
+  <material name="orange"><color rgba="1 0.5 0 1"/></material>
+  <link name="base_link">
+    <visual><geometry><box size="${w} ${w} 0.1"/></geometry><material name="orange"/></visual>
+  </link>
+  <xacro:wheel side="left" y="${w/2}"/>
+  <xacro:wheel side="right" y="${-w/2}"/>
+</robot>
+"""
+_PARTS = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="wheel" params="side y">
+    <link name="${side}_wheel">
+      <visual><geometry><cylinder radius="0.05" length="0.02"/></geometry></visual>
+    </link>
+    <joint name="${side}_wheel_joint" type="continuous">
+      <parent link="base_link"/><child link="${side}_wheel"/>
+      <origin xyz="0 ${y} 0"/><axis xyz="0 1 0"/>
+    </joint>
+  </xacro:macro>
+</robot>
+"""
+
+
+def bot_workspace(root: Path) -> Path:
+    """A source workspace under `root` holding `bot_description`: a xacro robot (an argument,
+    a property, an include found by `$(find bot_description)`, a macro used twice)."""
+    ws = root / 'ws'
+    pkg = ws / 'src' / 'bot_description'
+    (pkg / 'urdf').mkdir(parents=True)
+    (pkg / 'package.xml').write_text(_MANIFEST)
+    (pkg / 'urdf' / 'bot.urdf.xacro').write_text(_BOT)
+    (pkg / 'urdf' / 'parts.xacro').write_text(_PARTS)
+    return ws
