@@ -1,0 +1,1 @@
+"""rviz2: the robot's scene, in a browser, a window or on the terminal."""
