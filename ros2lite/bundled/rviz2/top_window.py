@@ -60,10 +60,13 @@ class TopWindow:
         self.view: Viewport = Viewport()
         self.frames = frames
         self.closed = False
+        # as large as turtlesim's window and more, but never past a small screen's edge
+        side = max(min(SIZE, self.root.winfo_screenwidth() - 40,
+                       self.root.winfo_screenheight() - 80), 100)  # fmt: skip
         self.canvas = tkinter.Canvas(
             self.root,
-            width=SIZE,
-            height=SIZE,
+            width=side,
+            height=side,
             highlightthickness=0,
             borderwidth=0,
             background=hex_colour(BACKGROUND),
