@@ -12,7 +12,7 @@ import math
 import threading
 import time
 from collections import deque
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 
 from ros2lite.msgs.nav_msgs.msg import OccupancyGrid, Odometry, Path
@@ -22,6 +22,7 @@ from ros2lite.serialization import deserialize_message
 from ros2lite.tf2.core import BufferCore
 from ros2lite.tf2.errors import TransformException
 from ros2lite.tf2.math import Transform, matrix_from_quaternion
+from ros2lite.urdf import UrdfError, Visual, parse_urdf
 from ros2lite.util.safe_yaml import YamlInputError, load
 
 __all__ = [
@@ -31,6 +32,7 @@ __all__ = [
     'Scene',
     'Snapshot',
     'Viewport',
+    'footprint_from_urdf',
     'yaw_of',
 ]
 
@@ -132,6 +134,60 @@ class Footprint:
         if self.kind == 'box':
             return self.x + self.length / 2
         return self.x + self.radius
+
+
+FLAT = 0.1  # rad: a shape tilted more than this is not the robot's outline from above
+
+
+def footprint_from_urdf(text: str, base: str) -> Footprint | None:
+    """The robot's outline from above: the largest upright box or cylinder of the base link
+    (collision shapes first, then visuals), or of the links fixed to it (base_footprint ->
+    base_link); None when the URDF does not parse or has neither."""
+    try:
+        robot = parse_urdf(text)
+    except UrdfError:
+        return None
+    start = base if base in robot.links else robot.root
+    fixed_children: dict[str, list[tuple[str, Affine]]] = {}
+    for joint in robot.joints.values():
+        if joint.type == 'fixed':
+            offset = _pose_affine(joint.xyz[0], joint.xyz[1], joint.rpy[2])
+            fixed_children.setdefault(joint.parent, []).append((joint.child, offset))
+    best: tuple[float, Footprint] | None = None
+    todo: list[tuple[str, Affine]] = [(start, (1.0, 0.0, 0.0, 0.0, 1.0, 0.0))]
+    seen = set()
+    while todo:
+        name, place = todo.pop(0)
+        if name in seen or name not in robot.links:
+            continue
+        seen.add(name)
+        link = robot.links[name]
+        for shapes in (link.collisions, link.visuals):
+            for shape in shapes:
+                found = _outline_of(shape, place)
+                if found is not None and (best is None or found[0] > best[0]):
+                    best = found
+            if best is not None:
+                break
+        todo.extend((child, _then(place, offset)) for child, offset in fixed_children.get(name, []))
+    return best[1] if best is not None else None
+
+
+def _outline_of(shape: Visual, place: Affine) -> tuple[float, Footprint] | None:
+    """(area from above, footprint) of an upright box or cylinder placed by `place`."""
+    roll, pitch, yaw = shape.rpy
+    g = shape.geometry
+    if abs(roll) > FLAT or abs(pitch) > FLAT or g.kind not in ('box', 'cylinder'):
+        return None
+    where = _pose_of(_then(place, _pose_affine(shape.xyz[0], shape.xyz[1], yaw)))
+    if g.kind == 'box':
+        length, width = g.size[0], g.size[1]
+        if length <= 0 or width <= 0:
+            return None
+        return length * width, Footprint('box', 0.0, length, width, *where)
+    if g.radius <= 0:
+        return None
+    return math.pi * g.radius**2, Footprint('circle', g.radius, 0.0, 0.0, *where)
 
 
 @dataclass(frozen=True)
@@ -259,13 +315,11 @@ class Scene:
         fixed_frame: str | None = None,
         base_frame: str | None = None,
         robot_radius: float = 0.2,
-        footprint_from_urdf: Callable[[str, str], Footprint | None] | None = None,
     ) -> None:
         self.buffer = buffer
         self.requested_fixed = fixed_frame
         self.requested_base = base_frame
         self.default_footprint = Footprint(radius=robot_radius)
-        self.footprint_from_urdf = footprint_from_urdf
         self.revision = 0
         self._lock = threading.Lock()
         self._raw: dict[str, tuple[str, bytes, int]] = {}  # topic -> (kind, cdr, revision)
@@ -457,14 +511,14 @@ class Scene:
             self._trail.append((robot[0], robot[1]))
 
     def _robot_footprint(self, base: str | None) -> Footprint:
-        """From /robot_description's base link when a parser was given and it has a box or
-        a cylinder there; otherwise a circle of the robot radius."""
+        """From /robot_description's base link when it has a box or a cylinder there;
+        otherwise a circle of the robot radius."""
         found = self._latest('std_msgs/msg/String')
-        if self.footprint_from_urdf is None or base is None or not found:
+        if base is None or not found:
             return self.default_footprint
         text = str(getattr(found[0][1], 'data', ''))
         if self._footprint is None or self._footprint[:2] != (text, base):
-            shape = self.footprint_from_urdf(text, base)
+            shape = footprint_from_urdf(text, base)
             self._footprint = (text, base, shape or self.default_footprint)
         return self._footprint[2]
 

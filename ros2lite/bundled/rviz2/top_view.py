@@ -21,7 +21,7 @@ from ros2lite.bundled.display import DisplayError, own_arguments
 from ros2lite.bundled.terminal import RESET, LivePicture, rgb, terminal_size, visible
 
 if TYPE_CHECKING:
-    from ros2lite.monitor.scene import Footprint, Grid, Scene, Snapshot, Viewport
+    from ros2lite.monitor.scene import Grid, Scene, Snapshot, Viewport
     from ros2lite.node import Node
 
 Colour = tuple[int, int, int]
@@ -76,7 +76,6 @@ class SceneSource:
             fixed_frame=options.fixed_frame,
             base_frame=options.base_frame,
             robot_radius=options.robot_radius,
-            footprint_from_urdf=urdf_footprint,
         )
         self.scans: list[str] = list(options.scan)
         self.subscribed: set[str] = set()
@@ -93,7 +92,8 @@ class SceneSource:
         if topic in self.subscribed:
             return
         self.subscribed.add(topic)
-        latched = kind in ('nav_msgs/msg/OccupancyGrid', 'std_msgs/msg/String')
+        # maps, descriptions and plans are often published once, latched
+        latched = kind in ('nav_msgs/msg/OccupancyGrid', 'std_msgs/msg/String', 'nav_msgs/msg/Path')
         qos = QoSProfile(
             depth=1,  # newest wins: a flood replaces, never queues
             reliability=ReliabilityPolicy.RELIABLE if latched else ReliabilityPolicy.BEST_EFFORT,
@@ -123,11 +123,6 @@ _KIND_NAMES = (
     'nav_msgs/msg/Path',
     'nav_msgs/msg/Odometry',
 )
-
-
-def urdf_footprint(text: str, base: str) -> Footprint | None:
-    """The base link's box or cylinder in a URDF, once ros2lite.urdf can parse it."""
-    return None
 
 
 def status(snap: Snapshot, view: Viewport, extra: str = '') -> str:
