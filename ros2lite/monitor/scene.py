@@ -338,6 +338,11 @@ class Scene:
             self.revision += 1
             self._raw[topic] = (kind, data, self.revision)
 
+    def held(self) -> int:
+        """How many samples wait to be decoded: one a topic at most, whatever the rate."""
+        with self._lock:
+            return len(self._raw)
+
     def clear_trail(self) -> None:
         with self._lock:
             self._trail.clear()
