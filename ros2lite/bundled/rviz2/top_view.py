@@ -1,0 +1,405 @@
+"""The scene from above on the terminal (over SSH, in tmux): laser hits, the map, paths, the
+trail, tf frames and the robot's outline, in braille dots (2 x 4 a character cell) over the
+map's cells as background colours, fitted to the terminal and redrawn at a bounded rate.
+
+Keys: +/- zoom, arrows pan, `f` follows the robot, `a` fits everything again, `t` shows or
+hides the tf frames, `c` clears the trail, `q` quits. The node and the scene it fills are
+shared with the window (top_window.py).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from collections.abc import Callable
+from itertools import pairwise
+from typing import TYPE_CHECKING
+
+from ros2lite.bundled.display import DisplayError, own_arguments
+from ros2lite.bundled.terminal import RESET, LivePicture, rgb, terminal_size, visible
+
+if TYPE_CHECKING:
+    from ros2lite.monitor.scene import Grid, Scene, Snapshot, Viewport
+    from ros2lite.node import Node
+
+Colour = tuple[int, int, int]
+SCAN: Colour = (255, 64, 64)
+ROBOT: Colour = (64, 200, 255)
+TRAIL: Colour = (230, 200, 60)
+PATH: Colour = (90, 230, 90)
+FRAME: Colour = (200, 130, 255)
+NAME: Colour = (170, 170, 170)
+OCCUPIED: Colour = (205, 205, 205)
+FREE: Colour = (44, 44, 52)
+DISCOVER_SECONDS = 1.0
+KEYS = '+/- zoom · arrows pan · f follow · a fit · t frames · c clear trail · q quit'
+_BITS = ((0x01, 0x08), (0x02, 0x10), (0x04, 0x20), (0x40, 0x80))
+
+
+# -- the node, shared with the window ---------------------------------------------------------
+def parser(prog: str) -> argparse.ArgumentParser:
+    """The options both views take."""
+    p = argparse.ArgumentParser(prog=prog, description='The robot\'s scene seen from above.')
+    p.add_argument('--fixed-frame', help='the frame to draw in (default: the tf tree\'s root)')
+    p.add_argument('--base-frame', help='the robot\'s frame (default: base_footprint or base_link)')
+    p.add_argument('--robot-radius', type=float, default=0.2, help='m, without a URDF footprint')
+    p.add_argument('--scan', action='append', default=[], help='a LaserScan topic (default: all)')
+    p.add_argument('--rate', type=float, default=10.0, help='redraws a second at most')
+    p.add_argument('--no-frames', action='store_true', help='hide the tf frames')
+    return p
+
+
+def check(options: argparse.Namespace) -> None:
+    """Bad numbers as one line."""
+    if not (options.robot_radius > 0 and math.isfinite(options.robot_radius)):
+        raise ValueError(f'--robot-radius must be a positive number, not {options.robot_radius}')
+    if not (0 < options.rate <= 100):
+        raise ValueError(f'--rate must be between 0 and 100 redraws a second, not {options.rate}')
+
+
+class SceneSource:
+    """A node that feeds a Scene: tf through a listener, and every topic of a kind the scene
+    shows (as the graph reveals them, or the scans asked for), newest-wins, undecoded."""
+
+    def __init__(self, options: argparse.Namespace, name: str) -> None:
+        from ros2lite.monitor.scene import Scene
+        from ros2lite.node import Node
+        from ros2lite.tf2 import Buffer, TransformListener
+
+        self.node: Node = Node(name)
+        self.buffer = Buffer(node=self.node)
+        self.listener = TransformListener(self.buffer, self.node)
+        self.scene: Scene = Scene(
+            self.buffer,
+            fixed_frame=options.fixed_frame,
+            base_frame=options.base_frame,
+            robot_radius=options.robot_radius,
+        )
+        self.scans: list[str] = list(options.scan)
+        self.subscribed: set[str] = set()
+        for topic in self.scans:
+            self._subscribe(topic, 'sensor_msgs/msg/LaserScan')
+        self._subscribe('/robot_description', 'std_msgs/msg/String')
+        self.discover()
+        self.node.create_timer(DISCOVER_SECONDS, self.discover)
+
+    def _subscribe(self, topic: str, kind: str) -> None:
+        from ros2lite.monitor.scene import KINDS
+        from ros2lite.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+
+        if topic in self.subscribed:
+            return
+        self.subscribed.add(topic)
+        # maps, descriptions and plans are often published once, latched
+        latched = kind in ('nav_msgs/msg/OccupancyGrid', 'std_msgs/msg/String', 'nav_msgs/msg/Path')
+        qos = QoSProfile(
+            depth=1,  # newest wins: a flood replaces, never queues
+            reliability=ReliabilityPolicy.RELIABLE if latched else ReliabilityPolicy.BEST_EFFORT,
+            durability=DurabilityPolicy.TRANSIENT_LOCAL if latched else DurabilityPolicy.VOLATILE,
+        )
+        scene = self.scene
+
+        def arrived(data: bytes) -> None:
+            scene.offer(topic, kind, data)
+
+        self.node.create_subscription(KINDS[kind], topic, arrived, qos, raw=True)
+
+    def discover(self) -> None:
+        """Subscribe to the graph's new topics of the kinds shown."""
+        for topic, types in self.node.get_topic_names_and_types():
+            for kind in types:
+                if kind == 'std_msgs/msg/String' or kind not in _KIND_NAMES:
+                    continue
+                if kind == 'sensor_msgs/msg/LaserScan' and self.scans:
+                    continue
+                self._subscribe(topic, kind)
+
+
+_KIND_NAMES = (
+    'sensor_msgs/msg/LaserScan',
+    'nav_msgs/msg/OccupancyGrid',
+    'nav_msgs/msg/Path',
+    'nav_msgs/msg/Odometry',
+)
+
+
+def status(snap: Snapshot, view: Viewport, extra: str = '') -> str:
+    """The line under the picture: frame, robot, scale, mode, counts, problems."""
+    parts = [f'fixed {visible(snap.fixed_frame)}']
+    if snap.robot is not None:
+        x, y, yaw = snap.robot
+        parts.append(f'robot {x:.2f},{y:.2f} {math.degrees(yaw):.0f}°')
+    parts.append(f'{view.scale:.3g} m/dot')
+    parts.append('follow' if view.follow else 'fit' if view.auto else 'fixed view')
+    hits = sum(len(h) for h in snap.scans.values())
+    if snap.scans:
+        parts.append(f'{hits} hits')
+    if snap.grids:
+        parts.append(f'{len(snap.grids)} map')
+    if snap.paths:
+        parts.append(f'{len(snap.paths)} path')
+    if snap.problems:
+        parts.append(visible(snap.problems[0]))
+    if extra:
+        parts.append(extra)
+    return '  '.join(parts)
+
+
+# -- the dot canvas ---------------------------------------------------------------------------
+class DotCanvas:
+    """`cols` x `rows` character cells of 2 x 4 braille dots: a foreground colour per cell
+    (the last layer drawn there), an optional background colour, and text that replaces
+    dots."""
+
+    def __init__(self, cols: int, rows: int) -> None:
+        self.cols, self.rows = cols, rows
+        self.width, self.height = cols * 2, rows * 4
+        self.bits = [0] * (cols * rows)
+        self.fg: list[Colour | None] = [None] * (cols * rows)
+        self.bg: list[Colour | None] = [None] * (cols * rows)
+        self.text: dict[int, tuple[str, Colour]] = {}
+
+    def dot(self, x: float, y: float, colour: Colour) -> None:
+        px, py = math.floor(x), math.floor(y)
+        if 0 <= px < self.width and 0 <= py < self.height:
+            cell = (py >> 2) * self.cols + (px >> 1)
+            self.bits[cell] |= _BITS[py & 3][px & 1]
+            self.fg[cell] = colour
+
+    def line(self, a: tuple[float, float], b: tuple[float, float], colour: Colour) -> None:
+        clipped = _clip(a, b, self.width, self.height)
+        if clipped is None:
+            return
+        (x0, y0), (x1, y1) = clipped
+        steps = max(1, math.ceil(max(abs(x1 - x0), abs(y1 - y0))))
+        for k in range(steps + 1):
+            t = k / steps
+            self.dot(x0 + (x1 - x0) * t, y0 + (y1 - y0) * t, colour)
+
+    def label(self, x: float, y: float, text: str, colour: Colour) -> None:
+        col, row = math.floor(x / 2), math.floor(y / 4)
+        if not 0 <= row < self.rows:
+            return
+        for k, ch in enumerate(text):
+            if 0 <= col + k < self.cols:
+                self.text[row * self.cols + col + k] = (ch, colour)
+
+    def lines(self) -> list[str]:
+        """The cells as terminal text, one string a row, colours changed only where they
+        change."""
+        out = []
+        for r in range(self.rows):
+            parts: list[str] = []
+            last: tuple[Colour | None, Colour | None] | None = None
+            for c in range(self.cols):
+                i = r * self.cols + c
+                written = self.text.get(i)
+                fg: Colour | None
+                if written is not None:
+                    ch, fg = written[0], written[1]
+                else:
+                    bits = self.bits[i]
+                    ch = chr(0x2800 + bits) if bits else ' '
+                    fg = self.fg[i] if bits else None
+                bg = self.bg[i]
+                if (fg, bg) != last:
+                    parts.append(RESET + (rgb(fg or NAME, bg) if fg or bg else ''))
+                    if fg is None and bg is not None:  # a background alone
+                        parts[-1] = RESET + f'\x1b[48;2;{bg[0]};{bg[1]};{bg[2]}m'
+                    last = (fg, bg)
+                parts.append(ch)
+            out.append(''.join(parts) + RESET)
+        return out
+
+
+def _clip(
+    a: tuple[float, float], b: tuple[float, float], width: int, height: int
+) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """Segment a-b cut to the canvas (Liang-Barsky), or None when it misses it."""
+    (x0, y0), (x1, y1) = a, b
+    dx, dy = x1 - x0, y1 - y0
+    t0, t1 = 0.0, 1.0
+    for p, q in ((-dx, x0), (dx, width - 1 - x0), (-dy, y0), (dy, height - 1 - y0)):
+        if p == 0:
+            if q < 0:
+                return None
+            continue
+        t = q / p
+        if p < 0:
+            t0 = max(t0, t)
+        else:
+            t1 = min(t1, t)
+        if t0 > t1:
+            return None
+    return (x0 + t0 * dx, y0 + t0 * dy), (x0 + t1 * dx, y0 + t1 * dy)
+
+
+def _grid_backgrounds(canvas: DotCanvas, grid: Grid, view: Viewport) -> None:
+    """Each cell's map colour: occupied if any of its dots is, else free if its middle is."""
+    w, h = canvas.width, canvas.height
+    for r in range(canvas.rows):
+        for c in range(canvas.cols):
+            i = r * canvas.cols + c
+            x, y = view.to_world(2 * c + 1, 4 * r + 2, w, h)
+            middle = grid.value_at(x, y)
+            occupied = middle is not None and middle >= 50
+            if not occupied and (middle is None or view.scale < grid.resolution * 2):
+                for dc, dr in ((0.5, 0.5), (1.5, 0.5), (0.5, 3.5), (1.5, 3.5)):
+                    v = grid.value_at(*view.to_world(2 * c + dc, 4 * r + dr, w, h))
+                    if v is not None and v >= 50:
+                        occupied = True
+                        break
+            if occupied:
+                canvas.bg[i] = OCCUPIED
+            elif middle is not None and 0 <= middle < 50:
+                canvas.bg[i] = FREE
+
+
+def draw(snap: Snapshot, view: Viewport, canvas: DotCanvas) -> None:
+    """The snapshot's layers on `canvas`, the robot last (on top)."""
+    w, h = canvas.width, canvas.height
+
+    def at(p: tuple[float, float]) -> tuple[float, float]:
+        return view.to_dot(p[0], p[1], w, h)
+
+    for grid in snap.grids:
+        _grid_backgrounds(canvas, grid, view)
+    for a, b in pairwise(snap.trail):
+        canvas.line(at(a), at(b), TRAIL)
+    for path in snap.paths.values():
+        for a, b in pairwise(path):
+            canvas.line(at(a), at(b), PATH)
+    axis = 3 * view.scale * 2  # 6 dots long whatever the zoom
+    for name, (x, y, yaw) in snap.frames:
+        origin = at((x, y))
+        canvas.line(origin, at((x + axis * math.cos(yaw), y + axis * math.sin(yaw))), FRAME)
+        canvas.line(origin, at((x - axis * math.sin(yaw), y + axis * math.cos(yaw))), FRAME)
+        canvas.label(origin[0] + 3, origin[1], visible(name)[:24], NAME)
+    for hits in snap.scans.values():
+        for p in hits:
+            canvas.dot(*at(p), SCAN)
+    if snap.robot is not None:
+        outline = snap.footprint.outline(snap.robot)
+        for a, b in pairwise(outline):
+            canvas.line(at(a), at(b), ROBOT)
+        x, y, yaw = snap.robot
+        reach = snap.footprint.reach()
+        canvas.line(at((x, y)), at((x + reach * math.cos(yaw), y + reach * math.sin(yaw))), ROBOT)
+
+
+def picture(scene: Scene, view: Viewport, cols: int, rows: int, frames: bool) -> str:
+    """One frame of the terminal: the canvas, then the status line and the keys."""
+    snap = scene.snapshot(show_frames=frames)
+    canvas = DotCanvas(max(cols, 4), max(rows - 2, 2))
+    view.update(snap, canvas.width, canvas.height)
+    draw(snap, view, canvas)
+    lines = canvas.lines()
+    lines.append(status(snap, view)[:cols])
+    lines.append(KEYS[:cols])
+    return '\n'.join(lines)
+
+
+class TopTerminal:
+    """The view on stdout, keys from stdin; `run(ok)` until `q`, Ctrl-C or not `ok()`."""
+
+    def __init__(self, scene: Scene, frames: bool = True) -> None:
+        from ros2lite.monitor.scene import Viewport
+
+        if not sys.stdout.isatty():
+            raise DisplayError('cannot draw on the terminal: standard output is not a terminal')
+        self.scene = scene
+        self.view = Viewport()
+        self.frames = frames
+
+    def key(self, key: str) -> bool:
+        """Act on one key; False when it asks to quit."""
+        view = self.view
+        if key in ('q', 'Q'):
+            return False
+        if key in ('+', '='):
+            view.zoom(1.5)
+        elif key in ('-', '_'):
+            view.zoom(1 / 1.5)
+        elif key in ('up', 'down', 'left', 'right'):
+            dcols, drows = {'up': (0, -8), 'down': (0, 8), 'left': (-8, 0), 'right': (8, 0)}[key]
+            view.pan(dcols, drows)
+        elif key == 'f':
+            view.follow = not view.follow
+        elif key == 'a':
+            view.auto, view.follow = True, False
+        elif key == 't':
+            self.frames = not self.frames
+        elif key == 'c':
+            self.scene.clear_trail()
+        return True
+
+    def run(self, ok: Callable[[], bool], period: float) -> None:
+        from ros2lite.bundled.turtlesim.terminal_view import LogLines
+        from ros2lite.util.keyboard import Keyboard
+
+        logs = LogLines() if sys.stderr.isatty() else None
+        saved_stderr = sys.stderr
+        if logs is not None:
+            sys.stderr = logs
+        keys = True
+        drawn = -math.inf
+        shown = ''
+        try:
+            with LivePicture(sys.stdout) as live, Keyboard() as keyboard:
+                while ok():
+                    if logs is not None and (lines := logs.drain()):
+                        live.print_above([visible(line) for line in lines])
+                    now = time.monotonic()
+                    if now - drawn >= period:
+                        drawn = now
+                        cols, rows = terminal_size(sys.stdout)
+                        text = picture(self.scene, self.view, cols, rows - 1, self.frames)
+                        if text != shown:
+                            live.show(text)
+                            shown = text
+                    key = None
+                    if keys:
+                        try:
+                            key = keyboard.read(min(period / 2, 0.05))
+                        except EOFError:
+                            keys = False
+                    else:
+                        time.sleep(min(period / 2, 0.05))
+                    if key is not None:
+                        if not self.key(key):
+                            return
+                        drawn = -math.inf  # show what the key did now
+        finally:
+            if logs is not None:
+                sys.stderr = saved_stderr
+                for line in logs.drain():
+                    print(visible(line), file=saved_stderr, flush=True)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """`top_view`: the scene from above on this terminal."""
+    from ros2lite.bundled.runner import run_main
+
+    options = parser('top_view').parse_args(own_arguments(argv))
+
+    def body() -> None:
+        from ros2lite.bundled.teleop.spinning import BackgroundSpin
+
+        check(options)
+        if not sys.stdout.isatty():  # said before any node starts
+            raise DisplayError('cannot draw on the terminal: standard output is not a terminal')
+        source = SceneSource(options, 'rviz2_top_view')
+        try:
+            view = TopTerminal(source.scene, frames=not options.no_frames)
+            with BackgroundSpin(source.node):
+                view.run(source.node.context.ok, 1.0 / options.rate)
+        finally:
+            source.node.destroy_node()
+
+    return run_main(body, argv)
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())
