@@ -47,6 +47,7 @@ _DEMOS = {
         'turtle_tf2_broadcaster',
         'turtle_tf2_listener',
     ],
+    'turtlebot3_gazebo': ['gazebo_2d'],
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
     'xacro': ['xacro'],
 }

@@ -1,0 +1,6 @@
+"""ros2lite's 2D world simulator: the courses' Gazebo robots as a flat world.
+
+`world` holds the grid and its ray casts, `drive` the differential-drive base and its
+odometry, `sensors` the laser, IMU and camera, `robots` the robots by the names they are
+launched with, `worlds` the course worlds drawn as shapes, and `node` the ROS node.
+"""
