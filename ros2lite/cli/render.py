@@ -123,10 +123,35 @@ class ProgressLine:
         self.stream.flush()
 
 
-def print_names(names_and_types: list[tuple[str, list[str]]], count: bool, types: bool) -> None:
-    """What the list and find verbs print: how many there are, or one name a line (with
-    `[type, …]` when asked)."""
+def print_json(obj: object) -> None:
+    """One JSON document of a verb's `--json` (compact, one line: `jq` pretty-prints it)."""
+    from ros2lite.interfaces.json_form import dumps
+
+    sys.stdout.write(dumps(obj) + '\n')
+
+
+def print_json_line(obj: object) -> None:
+    """One NDJSON line of a stream, flushed at once: a reader of the pipe (`jq`, `head -1`)
+    sees each object as it happens."""
+    print_json(obj)
+    sys.stdout.flush()
+
+
+def names_json(names_and_types: list[tuple[str, list[str]]], count: bool) -> object:
+    """The `--json` of the list and find verbs: `{"count": N}` or `[{"name", "types"}…]`."""
     if count:
+        return {'count': len(names_and_types)}
+    return [{'name': n, 'types': t} for n, t in names_and_types]
+
+
+def print_names(
+    names_and_types: list[tuple[str, list[str]]], count: bool, types: bool, as_json: bool = False
+) -> None:
+    """What the list and find verbs print: how many there are, or one name a line (with
+    `[type, …]` when asked); `as_json`: `names_json`'s document."""
+    if as_json:
+        print_json(names_json(names_and_types, count))
+    elif count:
         click.echo(len(names_and_types))
     elif names_and_types:
         echo('\n'.join(f'{n} [{", ".join(t)}]' if types else n for n, t in names_and_types))
