@@ -21,6 +21,8 @@ from .errors import CliError
 if TYPE_CHECKING:
     from ros2lite.interfaces import Message
     from ros2lite.monitor.plot import Plot
+    from ros2lite.qos import QoSProfile
+    from ros2lite.topic_endpoint_info import TopicEndpointInfo
 
     from .options import MessageFormat
 
@@ -135,6 +137,35 @@ def print_json_line(obj: object) -> None:
     sees each object as it happens."""
     print_json(obj)
     sys.stdout.flush()
+
+
+def qos_json(qos: QoSProfile) -> dict[str, object]:
+    """A QoS profile in the schema: policies by name, durations in integer nanoseconds."""
+    return {
+        'reliability': qos.reliability.name,
+        'history': qos.history.name,
+        'depth': qos.depth,
+        'durability': qos.durability.name,
+        'lifespan_ns': qos.lifespan.nanoseconds,
+        'deadline_ns': qos.deadline.nanoseconds,
+        'liveliness': qos.liveliness.name,
+        'liveliness_lease_duration_ns': qos.liveliness_lease_duration.nanoseconds,
+    }
+
+
+def endpoint_json(info: TopicEndpointInfo) -> dict[str, object]:
+    """One endpoint of `topic info -v` (and `node info`'s peers) in the schema."""
+    from ros2lite.topic_endpoint_info import format_gid
+
+    return {
+        'node_name': info.node_name,
+        'node_namespace': info.node_namespace,
+        'topic_type': info.topic_type,
+        'topic_type_hash': info.topic_type_hash or None,
+        'endpoint_type': info.endpoint_type.name,
+        'gid': format_gid(info.endpoint_gid),
+        'qos': qos_json(info.qos_profile),
+    }
 
 
 def names_json(names_and_types: list[tuple[str, list[str]]], count: bool) -> object:
