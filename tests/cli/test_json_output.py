@@ -16,6 +16,7 @@ from pathlib import Path
 import pytest
 
 from tests.cli.conftest import Result
+from tests.conftest import Processes
 from tests.spinning import wait_until
 
 pytestmark = pytest.mark.skipif(shutil.which('jq') is None, reason='needs jq')
@@ -199,3 +200,130 @@ def test_service_call_and_action_send_goal(graph: str, run: Run) -> None:
         {'sequence': [0, 1, 1, 2, 3]},
     ]
     assert lines[-1] == {'result': {'sequence': [0, 1, 1, 2, 3]}, 'status': 'SUCCEEDED'}
+
+
+def test_graph_verbs(graph: str, run: Run) -> None:
+    wait_until(lambda: graph in str(one(run('node', 'list', '--json'))))
+    topics = one(run('topic', 'list', '--json', '-v'), '[.[] | select(.name == "/json/seq")]')
+    assert topics == [
+        {'name': '/json/seq', 'types': [UNBOUNDED], 'publisher_count': 1, 'subscription_count': 0}
+    ]
+    assert one(run('topic', 'list', '--json', '-c'), '.count | type') == 'number'
+    assert one(run('topic', 'type', '--json', '/json/seq')) == {
+        'name': '/json/seq',
+        'types': [UNBOUNDED],
+    }
+    assert one(run('topic', 'find', '--json', UNBOUNDED), '[.[].name]') == ['/json/seq']
+    info = one(run('topic', 'info', '--json', '-v', '/json/seq'))
+    assert isinstance(info, dict) and info['publisher_count'] == 1 and info['subscriptions'] == []
+    (pub,) = info['publishers']
+    assert pub['node_name'] == 'graph' and pub['node_namespace'] == '/json'
+    assert pub['topic_type_hash'].startswith('RIHS01_') and pub['endpoint_type'] == 'PUBLISHER'
+    assert pub['qos']['reliability'] == 'RELIABLE' and pub['qos']['depth'] == 10
+    node = one(run('node', 'info', '--json', graph))
+    assert isinstance(node, dict) and node['name'] == graph
+    assert {'name': '/json/seq', 'types': [UNBOUNDED]} in node['publishers']
+    assert {'name': '/json/add', 'types': ['example_interfaces/srv/AddTwoInts']} in node[
+        'service_servers'
+    ]
+    assert node['action_servers'] == [
+        {'name': '/json/fib', 'types': ['example_interfaces/action/Fibonacci']}
+    ]
+    services = one(run('service', 'list', '--json'), '[.[] | select(.name == "/json/add")]')
+    assert services == [{'name': '/json/add', 'types': ['example_interfaces/srv/AddTwoInts']}]
+    assert one(run('service', 'type', '--json', '/json/add'), '.types') == [
+        'example_interfaces/srv/AddTwoInts'
+    ]
+    assert one(run('action', 'list', '--json')) == [
+        {'name': '/json/fib', 'types': ['example_interfaces/action/Fibonacci']}
+    ]
+    assert one(run('action', 'find', '--json', '-c', 'example_interfaces/action/Fibonacci')) == {
+        'count': 1
+    }
+    # an error stays one line on stderr, with the exit status of the text form
+    missing = run('topic', 'type', '--json', '/json/none')
+    assert missing.code == 1 and missing.out == '' and 'Unknown topic' in missing.err
+
+
+def test_param_verbs(graph: str, run: Run) -> None:
+    assert one(run('param', 'get', '--json', graph, 'ratio')) == {
+        'name': 'ratio',
+        'type': 'double',
+        'value': 1.5,
+    }
+    listed = one(run('param', 'list', '--json', '--param-type', graph))
+    assert isinstance(listed, dict)
+    assert {'name': 'names', 'type': 'string array'} in listed[graph]
+    described = one(run('param', 'describe', '--json', graph, 'names'))
+    assert isinstance(described, list) and described[0]['name'] == 'names'
+    assert described[0]['type'] == 9 and described[0]['read_only'] is False
+    dump = one(run('param', 'dump', '--json', graph), f'.["{graph}"].ros__parameters')
+    assert isinstance(dump, dict) and dump['ratio'] == 1.5 and dump['names'] == ['a', 'b']
+
+
+def test_stream_reports_of_hz_and_bw(graph: str, processes: Processes) -> None:
+    procs = {
+        verb: processes.cli('topic', verb, '--json', '/json/seq', stdin=subprocess.DEVNULL)
+        for verb in ('hz', 'bw')
+    }
+    lines = {}
+    for verb, proc in procs.items():
+        assert proc.stdout is not None
+        lines[verb] = proc.stdout.readline()  # the first report, a second or so in
+        processes.stop(proc)
+    (hz,) = jq(lines['hz'])
+    assert isinstance(hz, dict) and hz['topic'] == '/json/seq' and 5 < hz['rate'] < 40
+    assert set(hz) == {'topic', 'rate', 'min', 'max', 'std_dev', 'window'}
+    (bw,) = jq(lines['bw'])
+    assert isinstance(bw, dict) and bw['count'] > 1 and bw['min'] > 256
+
+
+def test_interface_verbs(graph: str, run: Run) -> None:
+    shown = one(run('interface', 'show', '--json', 'test_msgs/msg/Arrays'))
+    assert isinstance(shown, dict) and shown['kind'] == 'message'
+    fields = {f['name']: f for f in shown['fields']}
+    assert fields['uint8_values'] == {
+        'name': 'uint8_values',
+        'type': 'uint8',
+        'string_bound': None,
+        'container': 'array',
+        'size': 3,
+        'default': None,
+    }
+    assert fields['float32_values_default']['default'] == [1.125, 0.0, -1.125]
+    assert fields['string_values_default']['default'] == ['', 'max value', 'min value']
+    assert set(shown['types']) == {
+        'test_msgs/msg/BasicTypes',
+        'test_msgs/msg/Constants',
+        'test_msgs/msg/Defaults',
+    }
+    constants = one(run('interface', 'show', '--json', 'test_msgs/msg/Constants'), '.constants')
+    assert {'name': 'FLOAT64_CONST', 'type': 'float64', 'value': 1.125} in constants
+    bounded = one(
+        run('interface', 'show', '--json', 'test_msgs/msg/BoundedSequences'),
+        '.fields[] | select(.name == "bool_values") | [.container, .size]',
+    )
+    assert bounded == ['bounded', 3]
+    fib = one(run('interface', 'show', '--json', 'example_interfaces/action/Fibonacci'))
+    assert isinstance(fib, dict) and fib['kind'] == 'action'
+    assert fib['feedback']['fields'][0]['container'] == 'sequence'
+    listed = one(run('interface', 'list', '--json', '-s'))
+    assert isinstance(listed, dict) and list(listed) == ['services']
+    assert 'example_interfaces/srv/AddTwoInts' in listed['services']
+    assert 'test_msgs/msg/WStrings' in str(one(run('interface', 'package', '--json', 'test_msgs')))
+    assert 'test_msgs' in str(one(run('interface', 'packages', '--json', '-m')))
+
+
+def test_tool_verbs(run: Run) -> None:
+    data = Path(__file__).parents[1] / 'bag' / 'data' / 'mcap' / 'cdr_test'
+    bag = one(run('bag', 'info', '--json', str(data)))
+    assert isinstance(bag, dict) and bag['storage_identifier'] == 'mcap'
+    assert bag['message_count'] == sum(t['message_count'] for t in bag['topics'])
+    assert [t['name'] for t in bag['topics']] == ['/array_topic', '/test_topic']
+    exes = one(run('pkg', 'executables', '--json', 'turtlesim'), '[.[].name]')
+    assert isinstance(exes, list) and 'turtlesim_node' in exes
+    assert 'turtlesim' in str(one(run('pkg', 'list', '--json')))
+    status = one(run('daemon', 'status', '--json'), '[.running, (.endpoint | type)]')
+    assert status[1] == 'string'
+    doctor = one(run('doctor', '--json'), '[.checks[].category, (.failed | type)]')
+    assert isinstance(doctor, list) and 'platform' in doctor and doctor[-1] == 'array'
