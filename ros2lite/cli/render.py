@@ -188,10 +188,21 @@ def print_names(
         echo('\n'.join(f'{n} [{", ".join(t)}]' if types else n for n, t in names_and_types))
 
 
-def print_event(msg: Message, fmt: MessageFormat, head: str = '') -> None:
+def print_event(
+    msg: Message, fmt: MessageFormat, head: str = '', as_json: dict[str, object] | None = None
+) -> None:
     """Print one service event (or any message) as `service echo` and `action echo` do:
-    `head`, the message, then `---` (a CSV line ends with its newline alone)."""
+    `head`, the message, then `---` (a CSV line ends with its newline alone). `as_json`:
+    an NDJSON line instead, the message under "message" beside those keys (none: the
+    message alone)."""
     from ros2lite.service_introspection import format_event
+
+    if as_json is not None:
+        from ros2lite.interfaces.json_form import message_to_json
+
+        body = message_to_json(msg, no_arr=fmt['no_arr'], no_str=fmt['no_str'])
+        print_json_line({**as_json, 'message': body} if as_json else body)
+        return
 
     text = format_event(msg, **fmt)
     sys.stdout.write(head + text + ('\n' if fmt['csv'] else '---\n'))

@@ -182,13 +182,18 @@ def test_echo_info_wrapper_field_no_arr_and_count(graph: str, run: Run) -> None:
     assert both.code != 0 and both.out == '' and 'pick one' in both.err
 
 
-def test_service_call_and_action_send_goal(graph: str, run: Run) -> None:
+def test_service_call_and_action_send_goal_and_echo(
+    graph: str, run: Run, processes: Processes
+) -> None:
     call = run('service', 'call', '--json', '/json/add', 'example_interfaces/srv/AddTwoInts',
                '{"a": 9007199254740993, "b": 1}')  # fmt: skip
     assert one(call, '[(.request | keys), (.response | keys)]') == [['a', 'b'], ['sum']]
     assert (
         call.out == '{"request":{"a":9007199254740993,"b":1},"response":{"sum":9007199254740994}}\n'
     )
+    echo = processes.cli('action', 'echo', '--json', '-i', 'FEEDBACK_TOPIC', '/json/fib')
+    feedback = '/json/fib/_action/feedback'
+    wait_until(lambda: 'Subscription count: 1' in run('topic', 'info', feedback).out)
     goal = run('action', 'send_goal', '--json', '-f', '/json/fib',
                'example_interfaces/action/Fibonacci', '{order: 4}')  # fmt: skip
     assert goal.code == 0, goal.err
@@ -327,3 +332,23 @@ def test_tool_verbs(run: Run) -> None:
     assert status[1] == 'string'
     doctor = one(run('doctor', '--json'), '[.checks[].category, (.failed | type)]')
     assert isinstance(doctor, list) and 'platform' in doctor and doctor[-1] == 'array'
+    assert echo.stdout is not None
+    (echoed,) = jq(echo.stdout.readline())
+    processes.stop(echo)
+    assert isinstance(echoed, dict) and echoed['interface'] == 'FEEDBACK_TOPIC'
+    assert echoed['message']['feedback'] == {'sequence': [0, 1, 1]}
+    assert set(echoed['message']) == {'goal_id', 'feedback'}
+
+
+def test_lifecycle_and_component_verbs(graph: str, run: Run, processes: Processes) -> None:
+    processes.cli('run', 'lifecycle_py', 'lifecycle_talker', '--ros-args', '-r', '__ns:=/json')
+    wait_until(lambda: run('lifecycle', 'nodes', '--json').out.count('/json/lc_talker'))
+    assert one(run('lifecycle', 'nodes', '--json')) == ['/json/lc_talker']
+    assert one(run('lifecycle', 'get', '--json', '/json/lc_talker')) == {
+        '/json/lc_talker': {'label': 'unconfigured', 'id': 1}
+    }
+    moves = one(run('lifecycle', 'list', '--json', '/json/lc_talker'))
+    assert isinstance(moves, list)
+    assert {'label': 'configure', 'id': 1, 'start': 'unconfigured', 'goal': 'configuring'} in moves
+    types = one(run('component', 'types', '--json'))
+    assert isinstance(types, dict) and 'composition::Talker' in types['composition']
