@@ -205,6 +205,12 @@ def test_service_call_and_action_send_goal_and_echo(
         {'sequence': [0, 1, 1, 2, 3]},
     ]
     assert lines[-1] == {'result': {'sequence': [0, 1, 1, 2, 3]}, 'status': 'SUCCEEDED'}
+    assert echo.stdout is not None
+    (echoed,) = jq(echo.stdout.readline())
+    processes.stop(echo)
+    assert isinstance(echoed, dict) and echoed['interface'] == 'FEEDBACK_TOPIC'
+    assert echoed['message']['feedback'] == {'sequence': [0, 1, 1]}
+    assert set(echoed['message']) == {'goal_id', 'feedback'}
 
 
 def test_graph_verbs(graph: str, run: Run) -> None:
@@ -328,16 +334,15 @@ def test_tool_verbs(run: Run) -> None:
     exes = one(run('pkg', 'executables', '--json', 'turtlesim'), '[.[].name]')
     assert isinstance(exes, list) and 'turtlesim_node' in exes
     assert 'turtlesim' in str(one(run('pkg', 'list', '--json')))
+    prefix = one(run('pkg', 'prefix', '--json', 'turtlesim'))
+    assert isinstance(prefix, dict) and Path(prefix['share']).name == 'turtlesim'
+    assert one(run('bag', 'list', '--json', 'storage'), '[.[].name]') == ['mcap', 'sqlite3']
+    proto = run('interface', 'proto', '--json', 'example_interfaces/srv/AddTwoInts')
+    assert one(proto) == {'a': 0, 'b': 0}
     status = one(run('daemon', 'status', '--json'), '[.running, (.endpoint | type)]')
     assert status[1] == 'string'
     doctor = one(run('doctor', '--json'), '[.checks[].category, (.failed | type)]')
     assert isinstance(doctor, list) and 'platform' in doctor and doctor[-1] == 'array'
-    assert echo.stdout is not None
-    (echoed,) = jq(echo.stdout.readline())
-    processes.stop(echo)
-    assert isinstance(echoed, dict) and echoed['interface'] == 'FEEDBACK_TOPIC'
-    assert echoed['message']['feedback'] == {'sequence': [0, 1, 1]}
-    assert set(echoed['message']) == {'goal_id', 'feedback'}
 
 
 def test_lifecycle_and_component_verbs(graph: str, run: Run, processes: Processes) -> None:
