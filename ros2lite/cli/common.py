@@ -16,6 +16,7 @@ from .errors import CliError
 
 if TYPE_CHECKING:
     from ros2lite.graph import Entity
+    from ros2lite.interfaces import Message
     from ros2lite.node import Node
     from ros2lite.tools.connection import Connection
 
@@ -23,8 +24,13 @@ if TYPE_CHECKING:
 def yaml_fields(values: str, *, allow_empty: bool = False) -> dict[str, object]:
     """The field values given in YAML (VALUES or --stdin) as a mapping, or ros2cli's line
     saying why they are not one, with the line and column where YAML breaks (`allow_empty`:
-    empty text means no fields, as in `service call`)."""
+    empty text means no fields, as in `service call`). A JSON object is read as JSON (YAML
+    1.1 would take `1e-07` for a string), so `--json` output comes back exactly."""
     from ros2lite.util.safe_yaml import YamlInputError, load
+
+    obj = json_object(values)
+    if obj is not None:
+        return obj
 
     try:
         parsed = load(values, 'the passed value')
@@ -40,6 +46,29 @@ def yaml_fields(values: str, *, allow_empty: bool = False) -> dict[str, object]:
     if not isinstance(parsed, dict):
         raise CliError('The passed value needs to be a dictionary in YAML format')
     return parsed
+
+
+def json_object(text: str) -> dict[str, object] | None:
+    """`text` read as a JSON object, or None when it is not one (YAML then reads it: a flow
+    mapping, or broken text YAML says where)."""
+    import json
+
+    if not text.lstrip().startswith('{'):
+        return None
+    try:
+        obj = json.loads(text)
+    except ValueError:
+        return None
+    return obj if isinstance(obj, dict) else None
+
+
+def message_fields(cls: type[Message], fields: dict[str, object]) -> dict[str, object]:
+    """`fields` with the JSON form's spellings (base64 byte arrays, "nan"/"inf") turned into
+    values, so `--json` output fills a message; YAML never means anything else by them (a
+    string for an array or a float is an error there)."""
+    from ros2lite.interfaces.json_form import json_to_fields
+
+    return json_to_fields(cls, fields)
 
 
 def connect(
@@ -94,6 +123,7 @@ def print_names_of_type(
     count: bool,
     no_daemon: bool,
     names_and_types: Callable[[list[Entity]], list[tuple[str, list[str]]]],
+    as_json: bool = False,
 ) -> None:
     """What `topic/service/action find` share: the names in the graph with `type_name`
     among their types, one a line, or only how many (`count`)."""
@@ -103,6 +133,7 @@ def print_names_of_type(
         [(name, types) for name, types in names_and_types(entities) if type_name in types],
         count,
         types=False,
+        as_json=as_json,
     )
 
 
@@ -111,6 +142,7 @@ def print_types_of(
     no_daemon: bool,
     names_and_types: Callable[[list[Entity]], list[tuple[str, list[str]]]],
     kind: str = 'topic',
+    as_json: bool = False,
 ) -> None:
     """What `topic/service/action type` share: the type(s) of `name` in the graph. Exit 1 as
     ros2cli does when there is none, with nothing on stdout (scripts read it) and one line
@@ -126,7 +158,10 @@ def print_types_of(
     types = dict(names_and_types(entities)).get(full)
     if types is None:
         raise CliError(f"Unknown {kind} '{full}' (not in the graph now)")
-    render.echo('\n'.join(types))
+    if as_json:
+        render.print_json({'name': full, 'types': types})
+    else:
+        render.echo('\n'.join(types))
 
 
 def wait_saying_other_types(

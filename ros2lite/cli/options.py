@@ -93,6 +93,17 @@ def count_option(kind: str) -> Callable[[F], F]:
     )
 
 
+def json_option(what: str = 'one JSON document') -> Callable[[F], F]:
+    """`--json` of every verb that prints data (`as_json`); `what` says what it prints (the
+    README's schema section is the reference)."""
+    return click.option(
+        '--json', 'as_json', is_flag=True, help=f'Print {what} (schema 1, see the README)'
+    )
+
+
+NDJSON = 'NDJSON: one JSON object per line'
+
+
 def show_types_option(kind: str) -> Callable[[F], F]:
     """`-t/--show-types` of the verbs that list services or actions, in ros2cli's words."""
     return click.option(

@@ -21,6 +21,8 @@ from .errors import CliError
 if TYPE_CHECKING:
     from ros2lite.interfaces import Message
     from ros2lite.monitor.plot import Plot
+    from ros2lite.qos import QoSProfile
+    from ros2lite.topic_endpoint_info import TopicEndpointInfo
 
     from .options import MessageFormat
 
@@ -123,19 +125,84 @@ class ProgressLine:
         self.stream.flush()
 
 
-def print_names(names_and_types: list[tuple[str, list[str]]], count: bool, types: bool) -> None:
-    """What the list and find verbs print: how many there are, or one name a line (with
-    `[type, …]` when asked)."""
+def print_json(obj: object) -> None:
+    """One JSON document of a verb's `--json` (compact, one line: `jq` pretty-prints it)."""
+    from ros2lite.interfaces.json_form import dumps
+
+    sys.stdout.write(dumps(obj) + '\n')
+
+
+def print_json_line(obj: object) -> None:
+    """One NDJSON line of a stream, flushed at once: a reader of the pipe (`jq`, `head -1`)
+    sees each object as it happens."""
+    print_json(obj)
+    sys.stdout.flush()
+
+
+def qos_json(qos: QoSProfile) -> dict[str, object]:
+    """A QoS profile in the schema: policies by name, durations in integer nanoseconds."""
+    return {
+        'reliability': qos.reliability.name,
+        'history': qos.history.name,
+        'depth': qos.depth,
+        'durability': qos.durability.name,
+        'lifespan_ns': qos.lifespan.nanoseconds,
+        'deadline_ns': qos.deadline.nanoseconds,
+        'liveliness': qos.liveliness.name,
+        'liveliness_lease_duration_ns': qos.liveliness_lease_duration.nanoseconds,
+    }
+
+
+def endpoint_json(info: TopicEndpointInfo) -> dict[str, object]:
+    """One endpoint of `topic info -v` (and `node info`'s peers) in the schema."""
+    from ros2lite.topic_endpoint_info import format_gid
+
+    return {
+        'node_name': info.node_name,
+        'node_namespace': info.node_namespace,
+        'topic_type': info.topic_type,
+        'topic_type_hash': info.topic_type_hash or None,
+        'endpoint_type': info.endpoint_type.name,
+        'gid': format_gid(info.endpoint_gid),
+        'qos': qos_json(info.qos_profile),
+    }
+
+
+def names_json(names_and_types: list[tuple[str, list[str]]], count: bool) -> object:
+    """The `--json` of the list and find verbs: `{"count": N}` or `[{"name", "types"}…]`."""
     if count:
+        return {'count': len(names_and_types)}
+    return [{'name': n, 'types': t} for n, t in names_and_types]
+
+
+def print_names(
+    names_and_types: list[tuple[str, list[str]]], count: bool, types: bool, as_json: bool = False
+) -> None:
+    """What the list and find verbs print: how many there are, or one name a line (with
+    `[type, …]` when asked); `as_json`: `names_json`'s document."""
+    if as_json:
+        print_json(names_json(names_and_types, count))
+    elif count:
         click.echo(len(names_and_types))
     elif names_and_types:
         echo('\n'.join(f'{n} [{", ".join(t)}]' if types else n for n, t in names_and_types))
 
 
-def print_event(msg: Message, fmt: MessageFormat, head: str = '') -> None:
+def print_event(
+    msg: Message, fmt: MessageFormat, head: str = '', as_json: dict[str, object] | None = None
+) -> None:
     """Print one service event (or any message) as `service echo` and `action echo` do:
-    `head`, the message, then `---` (a CSV line ends with its newline alone)."""
+    `head`, the message, then `---` (a CSV line ends with its newline alone). `as_json`:
+    an NDJSON line instead, the message under "message" beside those keys (none: the
+    message alone)."""
     from ros2lite.service_introspection import format_event
+
+    if as_json is not None:
+        from ros2lite.interfaces.json_form import message_to_json
+
+        body = message_to_json(msg, no_arr=fmt['no_arr'], no_str=fmt['no_str'])
+        print_json_line({**as_json, 'message': body} if as_json else body)
+        return
 
     text = format_event(msg, **fmt)
     sys.stdout.write(head + text + ('\n' if fmt['csv'] else '---\n'))

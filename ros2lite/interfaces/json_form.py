@@ -19,11 +19,15 @@ import math
 from array import array
 from collections.abc import Mapping
 from functools import cache
+from typing import TYPE_CHECKING
 
 from .classes import Message, field_class
 from .convert import abbreviate_array, set_message_fields
 from .errors import PopulateError
-from .parser import FieldType
+from .parser import FieldType, MessageDef
+
+if TYPE_CHECKING:
+    from .registry import Registry
 
 SCHEMA_VERSION = 1
 """Bumped whenever a value's JSON spelling changes (the README's schema section)."""
@@ -197,3 +201,70 @@ def json_to_message(cls: type[Message], obj: object) -> Message:
     msg = cls()
     set_message_fields(msg, json_to_fields(cls, obj))
     return msg
+
+
+# -- definitions (`interface show --json`) -------------------------------------------------
+
+
+def _default_json(value: object) -> object:
+    if isinstance(value, float):
+        return float_to_json(value)
+    if isinstance(value, (list, tuple)):
+        return [_default_json(v) for v in value]
+    return value
+
+
+def _message_def_json(mdef: MessageDef, nested: list[str]) -> dict[str, object]:
+    fields: list[dict[str, object]] = []
+    for f in mdef.fields:
+        ft = f.type
+        if not ft.is_primitive and ft.base not in nested:
+            nested.append(ft.base)
+        fields.append(
+            {
+                'name': f.name,
+                'type': ft.base,
+                'string_bound': ft.string_bound or None,
+                'container': ft.container or None,
+                'size': ft.size if ft.container in ('array', 'bounded') else None,
+                'default': _default_json(f.default),
+            }
+        )
+    constants = [
+        {'name': c.name, 'type': c.type, 'value': _default_json(c.value)} for c in mdef.constants
+    ]
+    return {'name': mdef.name, 'fields': fields, 'constants': constants}
+
+
+def definition_to_json(name: str, reg: Registry | None = None) -> dict[str, object]:
+    """A type's parsed definition as data: its parts (a message's fields and constants; a
+    service's request/response; an action's goal/result/feedback) and, under "types", each
+    message type they nest, once, by name. Field "type" is a primitive name or
+    'pkg/msg/Name'; "container" is null, "array" (T[N]), "bounded" (T[<=N]) or "sequence"
+    (T[]); comments are not kept (the text form has them)."""
+    from .registry import default_registry, normalize_name
+
+    reg = reg if reg is not None else default_registry()
+    name = normalize_name(name)
+    kind = reg.kind_of(name)
+    nested: list[str] = []
+    doc: dict[str, object] = {'name': name, 'kind': kind}
+    if kind == 'service':
+        svc = reg.service(name)
+        doc['request'] = _message_def_json(svc.request, nested)
+        doc['response'] = _message_def_json(svc.response, nested)
+    elif kind == 'action':
+        act = reg.action(name)
+        doc['goal'] = _message_def_json(act.goal, nested)
+        doc['result'] = _message_def_json(act.result, nested)
+        doc['feedback'] = _message_def_json(act.feedback, nested)
+    else:
+        message = _message_def_json(reg.message(name), nested)
+        doc['fields'], doc['constants'] = message['fields'], message['constants']
+    types: dict[str, object] = {}
+    while nested:  # breadth first: every type nested anywhere, once
+        base = nested.pop(0)
+        if base not in types:
+            types[base] = _message_def_json(reg.message(base), nested)
+    doc['types'] = types
+    return doc

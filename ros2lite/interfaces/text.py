@@ -10,7 +10,7 @@ import re
 import textwrap
 from dataclasses import dataclass
 
-from .classes import get_interface
+from .classes import Message, get_interface
 from .convert import message_to_yaml
 from .errors import InterfaceError, UnknownInterfaceError
 from .parser import PRIMITIVES, SERVICE_SEPARATOR, Constant, MessageDef, parse_line, split_comment
@@ -174,6 +174,11 @@ def show_lines(
 
 def proto_yaml(name: str, reg: Registry) -> str:
     """Default-valued YAML of a message, a service request or an action goal."""
+    return message_to_yaml(proto_message(name, reg))
+
+
+def proto_message(name: str, reg: Registry) -> Message:
+    """A default-valued message, service request or action goal (`interface proto`)."""
     name = normalize_name(name)
     kind = reg.kind_of(name)
     cls = get_interface(name, reg)
@@ -181,4 +186,5 @@ def proto_yaml(name: str, reg: Registry) -> str:
         cls = cls.Request
     elif kind == 'action':
         cls = cls.Goal
-    return message_to_yaml(cls())
+    message: Message = cls()
+    return message

@@ -10,7 +10,7 @@ import click
 from .. import completion
 from ..common import connect, interface_type_name, resolved_name
 from ..errors import CliError
-from ..options import format_options, strategy_options
+from ..options import NDJSON, format_options, json_option, strategy_options
 from ..parsing import command
 from ..render import print_event
 
@@ -32,6 +32,7 @@ if TYPE_CHECKING:
     'RESULT_SERVICE, FEEDBACK_TOPIC, STATUS_TOPIC (default: all of them)',
 )
 @format_options()
+@json_option(f'{{"interface", "message"}} per message ({NDJSON})')
 def cli(
     action_name: str,
     action_type: str | None,
@@ -39,6 +40,7 @@ def cli(
     fmt: MessageFormat,
     no_daemon: bool,
     use_sim_time: bool,
+    as_json: bool,
 ) -> None:
     """Echo a action.
 
@@ -74,7 +76,12 @@ def cli(
                 continue
 
             def show(msg: Message, name: str = watched.interface) -> None:
-                print_event(msg, fmt, head=f'interface: {name}\n')
+                print_event(
+                    msg,
+                    fmt,
+                    head=f'interface: {name}\n',
+                    as_json={'interface': name} if as_json else None,
+                )
 
             # typed: a sample that is not the type is dropped and reported, not fatal
             node.create_subscription(watched.type_name, watched.topic, show, watched.qos)

@@ -7,7 +7,7 @@ import click
 from .. import completion, render
 from ..common import connect
 from ..errors import CliError
-from ..options import show_types_option, strategy_options
+from ..options import json_option, show_types_option, strategy_options
 from ..parsing import command
 
 
@@ -33,8 +33,17 @@ def _section(
     is_flag=True,
     help='Only display the number of action clients and action servers',
 )
+@json_option(
+    '{"name", "client_count", "server_count", "clients", "servers"}: each node as '
+    '{"name", "types"} (-c: the counts alone)'
+)
 def cli(
-    action_name: str, show_types: bool, count: bool, no_daemon: bool, use_sim_time: bool
+    action_name: str,
+    show_types: bool,
+    count: bool,
+    no_daemon: bool,
+    use_sim_time: bool,
+    as_json: bool,
 ) -> None:
     """Print information about an action."""
     from ros2lite.graph import action_endpoints
@@ -48,6 +57,17 @@ def cli(
     with connect(no_daemon=no_daemon) as conn:
         entities = conn.entities()
     clients, servers = action_endpoints(entities, name)
+    if as_json:
+        doc: dict[str, object] = {
+            'name': name,
+            'client_count': len(clients),
+            'server_count': len(servers),
+        }
+        if not count:
+            doc['clients'] = render.names_json(clients, False)
+            doc['servers'] = render.names_json(servers, False)
+        render.print_json(doc)
+        return
     # ros2cli echoes the name as it was given
     lines = [f'Action: {action_name}']
     lines += _section('Action clients', clients, show_types, count)

@@ -11,10 +11,10 @@ from typing import TYPE_CHECKING, TypeVar
 
 import click
 
-from .. import completion, numbers
-from ..common import connect, wait_saying_other_types
+from .. import completion, numbers, render
+from ..common import connect, json_object, message_fields, wait_saying_other_types
 from ..errors import CliError
-from ..options import check_stdin, values_argument
+from ..options import NDJSON, check_stdin, json_option, values_argument
 from ..parsing import command
 
 if TYPE_CHECKING:
@@ -44,7 +44,8 @@ def build_goal(cls: type[ActionType], values: str) -> Message:
 
     goal = cls.Goal()
     try:
-        set_message_fields(goal, values)
+        obj = json_object(values)
+        set_message_fields(goal, values if obj is None else message_fields(type(goal), obj))
     except Exception as e:  # any reason the values do not fit, in one line
         raise CliError(f'Failed to populate message fields: {e}') from None
     return goal
@@ -54,8 +55,9 @@ class FeedbackPrinter:
     """Prints feedback as ros2cli does, but never before the goal's acceptance line: the
     first feedback may overtake the server's answer to send_goal on the way here."""
 
-    def __init__(self) -> None:
+    def __init__(self, as_json: bool = False) -> None:
         self._held: list[FeedbackMessage[Message]] | None = []
+        self.as_json = as_json
 
     def __call__(self, message: FeedbackMessage[Message]) -> None:
         if self._held is not None:
@@ -68,10 +70,14 @@ class FeedbackPrinter:
         for message in held:
             self._print(message)
 
-    @staticmethod
-    def _print(message: FeedbackMessage[Message]) -> None:
+    def _print(self, message: FeedbackMessage[Message]) -> None:
         from ros2lite.interfaces import message_to_yaml
 
+        if self.as_json:
+            from ros2lite.interfaces.json_form import message_to_json
+
+            render.print_json_line({'feedback': message_to_json(message.feedback)})
+            return
         click.echo(f'Feedback:\n    {message_to_yaml(message.feedback)}')
 
 
@@ -86,6 +92,9 @@ class FeedbackPrinter:
     metavar='SECONDS',
     help='Give up when no action server shows up within this time (default: wait forever)',
 )
+@json_option(
+    f'{NDJSON}: {{"goal", "accepted", "goal_id"}}, {{"feedback"}} each, {{"result", "status"}}'
+)
 def cli(
     action_name: str,
     action_type: str,
@@ -93,10 +102,11 @@ def cli(
     use_stdin: bool,
     feedback: bool,
     timeout: float | None,
+    as_json: bool,
 ) -> None:
     """Send an action goal.
 
-    GOAL fills the goal message in YAML (e.g. '{order: 5}').
+    GOAL fills the goal message in YAML (e.g. '{order: 5}') or JSON (as --json prints it).
     """
     check_stdin(goal, use_stdin, 'goal')
     values = sys.stdin.read() if use_stdin else (goal if goal is not None else '{}')
@@ -110,8 +120,9 @@ def cli(
             cls,
             action_name,
             goal_msg,
-            FeedbackPrinter() if feedback else None,
+            FeedbackPrinter(as_json) if feedback else None,
             timeout,
+            as_json,
         )
 
 
@@ -122,10 +133,12 @@ def send_goal(
     goal: Message,
     feedback: FeedbackPrinter | None,
     timeout: float | None,
+    as_json: bool = False,
 ) -> None:
     from ros2lite.action import ActionClient
     from ros2lite.action.goals import GoalStatus, goal_id_hex, status_name
     from ros2lite.interfaces import message_to_yaml
+    from ros2lite.interfaces.json_form import message_to_json
 
     try:
         # a server that vanishes mid-goal is reported, not waited for forever
@@ -134,7 +147,8 @@ def send_goal(
         raise CliError(str(e)) from None
     from ros2lite.action.graph import get_action_names_and_types
 
-    click.echo('Waiting for an action server to become available...')
+    # with --json, stdout holds the objects alone; what happens meanwhile goes to stderr
+    click.echo('Waiting for an action server to become available...', err=as_json)
     node = conn.node()
     if not wait_saying_other_types(
         lambda step: client.wait_for_server(timeout_sec=step),
@@ -145,19 +159,36 @@ def send_goal(
         lambda: get_action_names_and_types(node),
     ):
         raise CliError(f"No action server for '{client.action_name}' after {timeout} s")
-    click.echo(f'Sending goal:\n     {message_to_yaml(goal)}')
+    if not as_json:
+        click.echo(f'Sending goal:\n     {message_to_yaml(goal)}')
     goal_handle = None
     try:
         goal_future = client.send_goal_async(goal, feedback)
         goal_handle = _outcome(conn, goal_future, 'sending goal')
-        if not goal_handle.accepted:
+        if as_json:
+            render.print_json_line(
+                {
+                    'goal': message_to_json(goal),
+                    'accepted': goal_handle.accepted,
+                    'goal_id': goal_id_hex(goal_handle.goal_id) if goal_handle.accepted else None,
+                }
+            )
+            if not goal_handle.accepted:
+                return
+        elif not goal_handle.accepted:
             click.echo('Goal was rejected.')
             return
-        click.echo(f'Goal accepted with ID: {goal_id_hex(goal_handle.goal_id)}\n')
+        else:
+            click.echo(f'Goal accepted with ID: {goal_id_hex(goal_handle.goal_id)}\n')
         if feedback is not None:
             feedback.release()
         result_future = goal_handle.get_result_async()
         result = _outcome(conn, result_future, 'getting result')
+        if as_json:
+            render.print_json_line(
+                {'result': message_to_json(result.result), 'status': status_name(result.status)}
+            )
+            return
         click.echo(f'Result:\n    {message_to_yaml(result.result)}')
         click.echo(f'Goal finished with status: {status_name(result.status)}')
     except BaseException as e:
@@ -170,7 +201,7 @@ def send_goal(
             and goal_handle.status
             in (GoalStatus.STATUS_UNKNOWN, GoalStatus.STATUS_ACCEPTED, GoalStatus.STATUS_EXECUTING)
         ):
-            _cancel(conn, goal_handle)
+            _cancel(conn, goal_handle, as_json)
         raise
     finally:
         client.destroy()
@@ -187,10 +218,14 @@ def _outcome(conn: Connection, future: Future[_T], doing: str) -> _T:
     return result
 
 
-def _cancel(conn: Connection, goal_handle: ClientGoalHandle[Message, Message, Message]) -> None:
+def _cancel(
+    conn: Connection,
+    goal_handle: ClientGoalHandle[Message, Message, Message],
+    as_json: bool = False,
+) -> None:
     from ros2lite.action.goals import goal_key
 
-    click.echo('Canceling goal...')
+    click.echo('Canceling goal...', err=as_json)
     response = _outcome(conn, goal_handle.cancel_goal_async(), 'canceling goal')
     canceling = response.goals_canceling
     if not canceling:
@@ -199,4 +234,4 @@ def _cancel(conn: Connection, goal_handle: ClientGoalHandle[Message, Message, Me
         raise CliError('More than one goal canceled')
     if goal_key(canceling[0].goal_id) != goal_key(goal_handle.goal_id):
         raise CliError('Canceled goal with incorrect goal ID')
-    click.echo('Goal canceled.')
+    click.echo('Goal canceled.', err=as_json)

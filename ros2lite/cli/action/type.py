@@ -6,14 +6,15 @@ import click
 
 from .. import completion
 from ..common import print_types_of
-from ..options import strategy_options
+from ..options import json_option, strategy_options
 from ..parsing import command
 
 
 @command('type')
 @strategy_options()
 @click.argument('action_name', shell_complete=completion.actions)
-def cli(action_name: str, no_daemon: bool, use_sim_time: bool) -> None:
+@json_option('{"name", "types"}')
+def cli(action_name: str, no_daemon: bool, use_sim_time: bool, as_json: bool) -> None:
     """Print a action's type."""
     from ros2lite.graph import action_names_and_types
 
@@ -22,4 +23,5 @@ def cli(action_name: str, no_daemon: bool, use_sim_time: bool) -> None:
         no_daemon,
         lambda entities: action_names_and_types(entities, include_hidden=True),
         'action',
+        as_json,
     )

@@ -16,12 +16,14 @@ import click
 
 from ros2lite.service_introspection import EVENT_TOPIC_SUFFIX as SERVICE_EVENT_SUFFIX
 
+from ..options import json_option
 from ..parsing import command
 from ..render import echo as echo_shown
-from ..render import format_size
+from ..render import format_size, print_json
 from .options import bag_argument, bag_error, existing_bag, warn
 
 if TYPE_CHECKING:
+    from ros2lite.bag.metadata import TopicInformation
     from ros2lite.bag.reader import Reader
 
 LABEL = 19
@@ -58,9 +60,10 @@ def _lines(label: str, items: list[str], indent: int = LABEL) -> list[str]:
     return [label + items[0]] + [" " * indent + item for item in items[1:]]
 
 
-def render(
-    path: Path, reader: Reader, *, verbose: bool, sort: str, sizes: dict[str, int] | None
-) -> str:
+def _topics_and_services(
+    reader: Reader, sort: str
+) -> tuple[list[TopicInformation], list[TopicInformation]]:
+    """The bag's topics and its service-event topics, each in the order `--sort` asks."""
     m = reader.metadata
     topics = [
         t
@@ -79,6 +82,57 @@ def render(
     }
     topics.sort(key=keys[sort])
     services.sort(key=keys[sort])
+    return topics, services
+
+
+def info_json(
+    path: Path, reader: Reader, *, sort: str, sizes: dict[str, int] | None
+) -> dict[str, object]:
+    """`bag info --json`: the summary as data (times and durations in integer nanoseconds,
+    sizes in bytes; "size" per topic only with -v)."""
+    m = reader.metadata
+    topics, services = _topics_and_services(reader, sort)
+
+    def size(name: str) -> dict[str, object]:
+        return {} if sizes is None else {"size": sizes.get(name, 0)}
+
+    return {
+        "files": [f.name for f in reader.files],
+        "bag_size": bag_size(path),
+        "storage_identifier": m.storage_identifier,
+        "ros_distro": m.ros_distro,
+        "duration_ns": m.duration,
+        "starting_time_ns": m.starting_time,
+        "end_time_ns": m.starting_time + m.duration,
+        "message_count": sum(t.message_count for t in topics),
+        "topics": [
+            {
+                "name": t.topic_metadata.name,
+                "type": t.topic_metadata.type,
+                "message_count": t.message_count,
+                "serialization_format": t.topic_metadata.serialization_format,
+                **size(t.topic_metadata.name),
+            }
+            for t in topics
+        ],
+        "services": [
+            {
+                "name": s.topic_metadata.name[: -len(SERVICE_EVENT_SUFFIX)],
+                "type": s.topic_metadata.type.removesuffix("_Event"),
+                "event_count": s.message_count,
+                "serialization_format": s.topic_metadata.serialization_format,
+                **size(s.topic_metadata.name),
+            }
+            for s in services
+        ],
+    }
+
+
+def render(
+    path: Path, reader: Reader, *, verbose: bool, sort: str, sizes: dict[str, int] | None
+) -> str:
+    m = reader.metadata
+    topics, services = _topics_and_services(reader, sort)
     messages = sum(t.message_count for t in topics)
 
     def size_part(name: str) -> str:
@@ -141,7 +195,10 @@ def message_sizes(reader: Reader) -> dict[str, int]:
     show_default=True,
     help="Order of the topic list.",
 )
-def cli(bag_path: str, storage: str | None, topic_name: bool, verbose: bool, sort: str) -> None:
+@json_option('the summary: {"files", "bag_size", "duration_ns", …, "topics", "services"}')
+def cli(
+    bag_path: str, storage: str | None, topic_name: bool, verbose: bool, sort: str, as_json: bool
+) -> None:
     """Print information about a bag to the screen."""
     from ros2lite.bag.errors import BagError
     from ros2lite.bag.reader import Reader
@@ -157,11 +214,17 @@ def cli(bag_path: str, storage: str | None, topic_name: bool, verbose: bool, sor
         with Reader(path, storage) as reader:
             if topic_name:
                 names = sorted(t.name for t in reader.topics)
+                if as_json:
+                    print_json(names)
+                    return
                 echo_shown("".join(n + "\n" for n in names), nl=False)
                 return
             sizes = message_sizes(reader) if verbose else None
             for problem in reader.shortfalls():
                 warn(problem)
+            if as_json:
+                print_json(info_json(path, reader, sort=sort, sizes=sizes))
+                return
             echo_shown(render(path, reader, verbose=verbose, sort=sort, sizes=sizes), nl=False)
     except BagError as e:
         raise bag_error(str(e)) from None

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import click
 
+from ..options import json_option
 from ..parsing import command
+from ..render import print_json
 
 # plugin kind → [(name, description, type, base class)], pluginlib's fields
 PLUGINS: dict[str, list[tuple[str, str, str, str]]] = {
@@ -45,8 +47,17 @@ PLUGINS: dict[str, list[tuple[str, str, str, str]]] = {
 @command("list")
 @click.argument("plugin_type", type=click.Choice(list(PLUGINS)))
 @click.option("-v", "--verbose", is_flag=True, help="List out verbose information.")
-def cli(plugin_type: str, verbose: bool) -> None:
+@json_option('[{"name", "description", "type", "base_class"}…]')
+def cli(plugin_type: str, verbose: bool, as_json: bool) -> None:
     """Print information about available plugins to the screen."""
+    if as_json:
+        print_json(
+            [
+                {"name": n, "description": d, "type": t, "base_class": b}
+                for n, d, t, b in PLUGINS[plugin_type]
+            ]
+        )
+        return
     for name, description, type_name, base in PLUGINS[plugin_type]:
         if verbose:
             click.echo(

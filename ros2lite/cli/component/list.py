@@ -7,7 +7,7 @@ import click
 from .. import completion, render
 from ..common import connect
 from ..errors import CliError
-from ..options import strategy_options
+from ..options import json_option, strategy_options
 from ..parsing import command
 from .common import unable_to_find
 
@@ -16,8 +16,13 @@ from .common import unable_to_find
 @click.argument('container_node_name', required=False, shell_complete=completion.nodes)
 @strategy_options()
 @click.option('--containers-only', is_flag=True, help='List found containers nodes only')
+@json_option('{"/container": [{"unique_id", "name"}…]} (--containers-only: empty lists)')
 def cli(
-    container_node_name: str | None, containers_only: bool, no_daemon: bool, use_sim_time: bool
+    container_node_name: str | None,
+    containers_only: bool,
+    no_daemon: bool,
+    use_sim_time: bool,
+    as_json: bool,
 ) -> None:
     """Output a list of running containers and components."""
     from ros2lite.components.remote import (
@@ -35,8 +40,10 @@ def cli(
             containers, indent, heading = [container_node_name], '', False
         else:
             indent, heading = '  ', True
+        doc: dict[str, list[dict[str, object]]] = {}
         for name in containers:
-            if heading:
+            doc[name] = []
+            if heading and not as_json:
                 render.echo(name)
             if containers_only:
                 continue
@@ -44,5 +51,10 @@ def cli(
                 loaded = RemoteContainer(conn.node(), name, LIST_TIMEOUT).list_nodes()
             except ContainerError as e:
                 raise CliError(str(e)) from None
+            if as_json:
+                doc[name] = [{'unique_id': c.unique_id, 'name': c.name} for c in loaded]
+                continue
             for component in loaded:
                 render.echo(f'{indent}{component.unique_id}  {component.name}')
+    if as_json:
+        render.print_json(doc)

@@ -5,17 +5,43 @@ from __future__ import annotations
 
 import click
 
+from ..options import json_option
 from ..parsing import command
 
 
 @command('status')
-def cli() -> None:
+@json_option(
+    '{"running", "ours", "endpoint", "pid", "secured", "answers_zenoh", "message", '
+    '"sessions": [{"whatami", "zid", "nodes"}…] or null}'
+)
+def cli(as_json: bool) -> None:
     """Output the status of the daemon."""
     from ros2lite import daemon
 
     from .common import table
 
     st = daemon.status(sessions=True)
+    if as_json:
+        from .. import render
+
+        render.print_json(
+            {
+                'running': st.running,
+                'ours': st.ours,
+                'endpoint': st.endpoint,
+                'pid': st.pid,
+                'secured': st.secured,
+                'answers_zenoh': st.answers_zenoh,
+                'message': st.message,
+                'sessions': None
+                if st.sessions is None
+                else [
+                    {'whatami': s.whatami, 'zid': s.zid, 'nodes': list(s.nodes)}
+                    for s in st.sessions
+                ],
+            }
+        )
+        return
     if st.running and not st.answers_zenoh and not st.secured:
         # a frozen router, or another program on the port: neither running nor free
         click.echo('The daemon is not answering')

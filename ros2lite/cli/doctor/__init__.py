@@ -13,6 +13,7 @@ import click
 
 from .. import render
 from ..lazy import LazyGroup
+from ..options import json_option
 
 VERBS = {'hello': 'Check network connectivity between multiple hosts'}
 
@@ -44,6 +45,10 @@ VERBS = {'hello': 'Check network connectivity between multiple hosts'}
     is_flag=True,
     help='Include warnings as failed checks. Warnings are ignored by default.',
 )
+@json_option(
+    '{"checks": [{"category", "failed", "findings"}…], "failed": [category…], "reports": '
+    '[{"name", "category", "items": [{"key", "value"}…]}…] (with -r/-rf)}'
+)
 @click.pass_context
 def cli(
     ctx: click.Context,
@@ -51,6 +56,7 @@ def cli(
     report_failed: bool,
     exclude_packages: bool,
     include_warnings: bool,
+    as_json: bool,
 ) -> None:
     """Check ROS setup and other potential issues."""
     if ctx.invoked_subcommand is not None:
@@ -59,6 +65,9 @@ def cli(
 
     diagnosis = Diagnosis()
     exclude = ('package',) if exclude_packages else ()
+    if as_json:
+        _print_json(diagnosis, exclude, report, report_failed, include_warnings)
+        return
     if report:
         for section in diagnosis.reports():
             if section.category not in exclude:
@@ -83,6 +92,42 @@ def cli(
         sections: list[Report] = diagnosis.reports(set(failed))
         for section in sections:
             _print_report(section)
+
+
+def _print_json(
+    diagnosis: object, exclude: tuple[str, ...], report: bool, failed_only: bool, warnings: bool
+) -> None:
+    """`doctor --json`: the checks (unless -r), the failed categories, and the reports asked
+    for, as one document."""
+    from ros2lite.tools.doctor import Diagnosis
+
+    assert isinstance(diagnosis, Diagnosis)
+    doc: dict[str, object] = {}
+    failed: list[str] = []
+    if not report:
+        results = diagnosis.run_checks(exclude=exclude)
+        failed = [r.category for r in results if r.failed(warnings)]
+        doc['checks'] = [
+            {
+                'category': r.category,
+                'failed': r.failed(warnings),
+                'findings': [{'severity': f.severity, 'message': f.message} for f in r.findings],
+            }
+            for r in results
+        ]
+        doc['failed'] = failed
+    if report or (failed_only and failed):
+        sections = diagnosis.reports() if report else diagnosis.reports(set(failed))
+        doc['reports'] = [
+            {
+                'name': s.name,
+                'category': s.category,
+                'items': [{'key': k, 'value': v} for k, v in s.items],
+            }
+            for s in sections
+            if s.category not in exclude
+        ]
+    render.print_json(doc)
 
 
 def _print_report(report: object) -> None:

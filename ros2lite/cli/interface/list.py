@@ -6,6 +6,8 @@ import click
 
 from ros2lite.interfaces import list_interfaces
 
+from .. import render
+from ..options import json_option
 from ..parsing import command
 
 _SECTIONS = (('msg', 'Messages:'), ('srv', 'Services:'), ('action', 'Actions:'))
@@ -24,9 +26,22 @@ def print_sections(kinds: list[str], names: list[str]) -> None:
 @click.option('-m', '--only-msgs', is_flag=True, help='Print out only the message types')
 @click.option('-s', '--only-srvs', is_flag=True, help='Print out only the service types')
 @click.option('-a', '--only-actions', is_flag=True, help='Print out only the action types')
-def cli(only_msgs: bool, only_srvs: bool, only_actions: bool) -> None:
+@json_option('{"messages", "services", "actions"}: lists of type names (the kinds asked for)')
+def cli(only_msgs: bool, only_srvs: bool, only_actions: bool, as_json: bool) -> None:
     """List all interface types available."""
     chosen = [
         k for k, flag in (('msg', only_msgs), ('srv', only_srvs), ('action', only_actions)) if flag
     ]
-    print_sections(chosen or ['msg', 'srv', 'action'], list_interfaces())
+    kinds = chosen or ['msg', 'srv', 'action']
+    if as_json:
+        names = list_interfaces()
+        keys = {'msg': 'messages', 'srv': 'services', 'action': 'actions'}
+        render.print_json(
+            {
+                keys[k]: [n for n in names if n.split('/')[1] == k]
+                for k, _ in _SECTIONS
+                if k in kinds
+            }
+        )
+        return
+    print_sections(kinds, list_interfaces())

@@ -9,7 +9,8 @@ import click
 from ros2lite.interfaces.registry import default_registry
 from ros2lite.interfaces.text import show_lines
 
-from .. import completion
+from .. import completion, render
+from ..options import json_option
 from ..parsing import command
 
 
@@ -32,10 +33,19 @@ def read_type_argument(value: str) -> str:
     help='Show all comments, including for nested interface definitions',
 )
 @click.option('--no-comments', is_flag=True, help='Show no comments or whitespace')
-def cli(type_name: str, all_comments: bool, no_comments: bool) -> None:
+@json_option(
+    'the parsed definition: {"name", "kind", fields/constants or its parts, "types": the '
+    'nested message types}'
+)
+def cli(type_name: str, all_comments: bool, no_comments: bool, as_json: bool) -> None:
     """Output the interface definition (TYPE '-' reads it from stdin)."""
     if all_comments and no_comments:
         raise click.UsageError('--all-comments and --no-comments are mutually exclusive')
     name = read_type_argument(type_name)
+    if as_json:
+        from ros2lite.interfaces.json_form import definition_to_json
+
+        render.print_json(definition_to_json(name, default_registry()))
+        return
     lines = show_lines(name, default_registry(), all_comments=all_comments, no_comments=no_comments)
     click.echo(''.join(line + '\n' for line in lines), nl=False)  # an empty type: nothing

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import click
 
-from .. import completion
+from .. import completion, render
 from ..common import connect
 from ..errors import CliError
-from ..options import strategy_options
+from ..options import json_option, strategy_options
 from ..parsing import command
 from .common import NODE_NOT_FOUND, absolute, call_failed, managed_nodes
 
@@ -24,12 +24,14 @@ from .common import NODE_NOT_FOUND, absolute, call_failed, managed_nodes
     metavar='N',
     help='Maximum time to wait for response in seconds (default: waits indefinitely)',
 )
+@json_option('{"/node": {"label", "id"}} (each managed node, or NODE_NAME\'s)')
 def cli(
     node_name: str | None,
     include_hidden_nodes: bool,
     timeout: float | None,
     no_daemon: bool,
     use_sim_time: bool,
+    as_json: bool,
 ) -> None:
     """Get lifecycle state for one or more nodes.
 
@@ -44,6 +46,7 @@ def cli(
             if absolute(node_name) not in names:
                 raise CliError(NODE_NOT_FOUND)
             names = [absolute(node_name)]
+        states: dict[str, object] = {}
         for name in names:
             try:
                 state = RemoteLifecycle(conn.node(), name).get_state(timeout)
@@ -52,5 +55,10 @@ def cli(
                     raise CliError(call_failed(name, e)) from None
                 click.echo(call_failed(name, e), err=True)
                 continue
+            if as_json:
+                states[name] = {'label': state.label, 'id': state.state_id}
+                continue
             prefix = '' if node_name is not None else f'{name}: '
             click.echo(f'{prefix}{state.label} [{state.state_id}]')
+    if as_json:
+        render.print_json(states)

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import click
 
-from .. import completion
+from .. import completion, render
 from ..common import connect
 from ..errors import CliError
-from ..options import strategy_options
+from ..options import json_option, strategy_options
 from ..parsing import command
 from .common import call_failed, require_node
 
@@ -17,8 +17,14 @@ from .common import call_failed, require_node
 @strategy_options()
 @click.option('--include-hidden-nodes', is_flag=True, help='Consider hidden nodes as well')
 @click.option('-a', '--all', 'show_all', is_flag=True, help='Display all existing transitions')
+@json_option('[{"label", "id", "start", "goal"}…] (states by label)')
 def cli(
-    node_name: str, include_hidden_nodes: bool, show_all: bool, no_daemon: bool, use_sim_time: bool
+    node_name: str,
+    include_hidden_nodes: bool,
+    show_all: bool,
+    no_daemon: bool,
+    use_sim_time: bool,
+    as_json: bool,
 ) -> None:
     """Output a list of available transitions."""
     from ros2lite.client import ServiceCallError
@@ -32,6 +38,19 @@ def cli(
         except (ServiceCallError, TimeoutError) as e:
             raise CliError(call_failed(node_name, e)) from None
     labels = remote.state_labels
+    if as_json:
+        render.print_json(
+            [
+                {
+                    'label': t.label,
+                    'id': t.id,
+                    'start': labels.get(t.start, t.start),
+                    'goal': labels.get(t.goal, t.goal),
+                }
+                for t in found
+            ]
+        )
+        return
     for t in found:
         click.echo(
             f'- {t.label} [{t.id}]\n\tStart: {labels.get(t.start, t.start)}\n'

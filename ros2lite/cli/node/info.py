@@ -7,7 +7,7 @@ import click
 from .. import completion, render
 from ..common import connect
 from ..errors import CliError
-from ..options import strategy_options
+from ..options import json_option, strategy_options
 from ..parsing import command
 
 
@@ -23,7 +23,13 @@ def _section(title: str, items: list[tuple[str, list[str]]]) -> str:
 @click.option(
     '--include-hidden', is_flag=True, help='Also show hidden topics, services and actions'
 )
-def cli(node_name: str, include_hidden: bool, no_daemon: bool, use_sim_time: bool) -> None:
+@json_option(
+    '{"name", "subscribers", "publishers", "service_servers", "service_clients", '
+    '"action_servers", "action_clients"}, each [{"name", "types"}…]'
+)
+def cli(
+    node_name: str, include_hidden: bool, no_daemon: bool, use_sim_time: bool, as_json: bool
+) -> None:
     """Output information about a node."""
     from ros2lite.graph import node_full_names, node_info
     from ros2lite.names import split_fqn
@@ -42,6 +48,19 @@ def cli(node_name: str, include_hidden: bool, no_daemon: bool, use_sim_time: boo
     info = node_info(entities, name, namespace, include_hidden) if count else None
     if info is None:
         raise CliError(f"Unable to find node '{full}'")
+    if as_json:
+        render.print_json(
+            {
+                'name': full,
+                'subscribers': render.names_json(info.subscribers, False),
+                'publishers': render.names_json(info.publishers, False),
+                'service_servers': render.names_json(info.service_servers, False),
+                'service_clients': render.names_json(info.service_clients, False),
+                'action_servers': render.names_json(info.action_servers, False),
+                'action_clients': render.names_json(info.action_clients, False),
+            }
+        )
+        return
     render.echo(
         ''.join(
             [

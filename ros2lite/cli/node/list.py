@@ -6,7 +6,7 @@ import click
 
 from .. import render
 from ..common import connect
-from ..options import strategy_options
+from ..options import json_option, strategy_options
 from ..parsing import command
 
 DUPLICATE_WARNING = (
@@ -28,17 +28,22 @@ DUPLICATE_WARNING = (
     is_flag=True,
     help='Print only how many nodes there are',
 )
-def cli(show_all: bool, count_nodes: bool, no_daemon: bool, use_sim_time: bool) -> None:
+@json_option('["/ns/name", …] or {"count"}')
+def cli(
+    show_all: bool, count_nodes: bool, no_daemon: bool, use_sim_time: bool, as_json: bool
+) -> None:
     """Output a list of available nodes."""
     from ros2lite.graph import node_full_names
 
     with connect(no_daemon=no_daemon) as conn:
         names = node_full_names(conn.entities(), include_hidden=show_all)
+    if len(set(names)) < len(names):
+        click.echo(DUPLICATE_WARNING, err=True)
+    if as_json:
+        render.print_json({'count': len(names)} if count_nodes else names)
+        return
     if count_nodes:
         click.echo(len(names))
         return
-    if not names:
-        return
-    if len(set(names)) < len(names):
-        click.echo(DUPLICATE_WARNING, err=True)
-    render.echo('\n'.join(names))
+    if names:
+        render.echo('\n'.join(names))

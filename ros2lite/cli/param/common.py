@@ -179,5 +179,19 @@ def _remote_parameter_names(ctx: click.Context) -> list[str]:
         return list(response.result.names) if response is not None else []
 
 
+def python_json(value: object) -> object:
+    """A parameter's Python value in the JSON schema: floats as its floats (nan/inf as
+    strings), a byte array as base64, lists as lists."""
+    from ros2lite.interfaces.json_form import value_to_json
+
+    if isinstance(value, dict):
+        return {k: python_json(v) for k, v in value.items()}
+    if isinstance(value, list) and value and all(isinstance(v, bytes) for v in value):
+        return value_to_json(value)
+    if isinstance(value, list):
+        return [python_json(v) for v in value]
+    return value_to_json(value)
+
+
 def type_name(type_number: int) -> str:
     return TYPE_NAMES.get(type_number, f"unknown ({type_number})")

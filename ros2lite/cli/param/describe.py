@@ -15,21 +15,31 @@ if TYPE_CHECKING:
         ParameterDescriptor,
     )
 
+from ..options import json_option
 from .common import Target, complete_parameter_names, node_options, type_name, with_remote
 
 
 @command("describe")
 @node_options()
 @click.argument("parameter_names", nargs=-1, required=True, shell_complete=complete_parameter_names)
+@json_option("[ParameterDescriptor…] (rcl_interfaces' fields, in the JSON form)")
 def cli(
     parameter_names: tuple[str, ...],
     target: Target,
+    as_json: bool,
 ) -> None:
     """Show descriptive information about declared parameters."""
     descriptors = with_remote(
         target,
         lambda r: r.call("describe_parameters", list(parameter_names)),
     ).descriptors
+    if as_json:
+        from ros2lite.interfaces.json_form import message_to_json
+
+        from .. import render as draw
+
+        draw.print_json([message_to_json(d) for d in descriptors])
+        return
     # as ros2cli: a name the node does not know empties the reply, which prints nothing
     for descriptor in descriptors:
         click.echo("\n".join(render(descriptor)))

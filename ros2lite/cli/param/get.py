@@ -12,7 +12,15 @@ if TYPE_CHECKING:
     from ros2lite.msgs.rcl_interfaces.msg import ParameterValue
 
 from ..errors import CliError
-from .common import Target, complete_parameter_names, node_options, with_remote
+from ..options import json_option
+from .common import (
+    Target,
+    complete_parameter_names,
+    node_options,
+    python_json,
+    type_name,
+    with_remote,
+)
 
 # ParameterType number → the label before the value
 LABELS = {
@@ -32,15 +40,31 @@ LABELS = {
 @node_options()
 @click.argument("parameter_name", shell_complete=complete_parameter_names)
 @click.option("--hide-type", is_flag=True, help="Hide the type information")
+@json_option('{"name", "type", "value"} (type "not set" and value null when unset)')
 def cli(
     parameter_name: str,
     hide_type: bool,
     target: Target,
+    as_json: bool,
 ) -> None:
     """Get parameter."""
     values = with_remote(target, lambda r: r.call("get_parameters", [parameter_name])).values
     if not values:
         raise CliError("Parameter not set")
+    if as_json:
+        from ros2lite.parameter import parameter_value_to_python
+
+        from .. import render as draw
+
+        value = values[0]
+        draw.print_json(
+            {
+                "name": parameter_name,
+                "type": type_name(value.type),
+                "value": python_json(parameter_value_to_python(value)),
+            }
+        )
+        return
     click.echo(render(values[0], hide_type))
 
 

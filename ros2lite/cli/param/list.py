@@ -9,6 +9,7 @@ import click
 from .. import render
 from ..common import connect
 from ..errors import CliError
+from ..options import json_option
 from ..parsing import ManyValues, command
 from .common import Remote, Target, node_options, type_name
 
@@ -28,11 +29,13 @@ from .common import Remote, Target, node_options, type_name
     help="Only list parameters with the provided prefixes",
 )
 @click.option("--param-type", is_flag=True, help="Print parameter types with parameter names")
+@json_option('{"/node": [{"name", "type"}…]} (type null without --param-type)')
 def cli(
     filter_regex: str | None,
     param_prefixes: tuple[str, ...],
     param_type: bool,
     target: Target,
+    as_json: bool,
 ) -> None:
     """Output a list of available parameters."""
     from ros2lite.graph import node_full_names, service_names_and_types
@@ -42,6 +45,7 @@ def cli(
         pattern = re.compile(filter_regex) if filter_regex is not None else None
     except re.error as e:
         raise CliError(f"Invalid regular expression '{filter_regex}': {e}") from None
+    doc: dict[str, object] = {}
     with connect(no_daemon=target.no_daemon, use_sim_time=target.use_sim_time) as conn:
         entities = conn.entities()
         nodes = sorted(set(node_full_names(entities, include_hidden=target.include_hidden_nodes)))
@@ -66,9 +70,14 @@ def cli(
             except CliError as e:
                 click.echo(str(e), err=True)
                 continue
+            if as_json:
+                doc[fqn] = [{"name": n, "type": types.get(n)} for n in names]
+                continue
             if target.node_name is None:
                 render.echo(f"{fqn}:")
             for name in names:
                 render.echo(
                     f"  {name} (type: {types.get(name, 'not set')})" if param_type else f"  {name}"
                 )
+    if as_json:
+        render.print_json(doc)

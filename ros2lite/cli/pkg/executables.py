@@ -10,15 +10,17 @@ from __future__ import annotations
 
 import click
 
-from .. import completion
+from .. import completion, render
 from ..errors import CliError
+from ..options import json_option
 from ..parsing import command
 
 
 @command('executables')
 @click.argument('package_name', required=False, shell_complete=completion.executable_packages)
 @click.option('--full-path', is_flag=True, help='Show full path of each executable')
-def cli(package_name: str | None, full_path: bool) -> None:
+@json_option('[{"package", "name", "path"}…]')
+def cli(package_name: str | None, full_path: bool, as_json: bool) -> None:
     """Output a list of package specific executables."""
     from ros2lite.pkg.errors import NotHereError, PackageFileError
     from ros2lite.pkg.executables import (
@@ -38,7 +40,13 @@ def cli(package_name: str | None, full_path: bool) -> None:
             'equivalent, and stand-ins bundled with ros2lite',
             err=True,
         )
-        for exe in equivalent_executables(package_name, index):
+        rows = [(package_name, exe) for exe in equivalent_executables(package_name, index)]
+        if as_json:
+            render.print_json(
+                [{'package': p, 'name': e.name, 'path': str(e.path())} for p, e in rows]
+            )
+            return
+        for _, exe in rows:
             click.echo(exe.path() if full_path else f'{package_name} {exe.name}')
         return
     packages = (
@@ -48,6 +56,7 @@ def cli(package_name: str | None, full_path: bool) -> None:
     )
     # listing all: a workspace package.xml that could not be read is a failure too
     failures = [str(p) for p in index.problems] if package_name is None else []
+    found: list[dict[str, object]] = []
     for pkg in packages:
         try:
             executables = package_executables(pkg)
@@ -60,7 +69,12 @@ def cli(package_name: str | None, full_path: bool) -> None:
                 failures.append(str(e))
             continue
         for exe in executables:
-            click.echo(exe.path() if full_path else f'{pkg.name} {exe.name}')
+            if as_json:
+                found.append({'package': pkg.name, 'name': exe.name, 'path': str(exe.path())})
+            else:
+                click.echo(exe.path() if full_path else f'{pkg.name} {exe.name}')
+    if as_json and not failures:
+        render.print_json(found)
     if failures:
         for failure in failures[:-1]:
             click.echo(failure, err=True)

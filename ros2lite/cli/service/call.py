@@ -15,10 +15,16 @@ if TYPE_CHECKING:
     from ros2lite.interfaces import Message, ServiceType
     from ros2lite.node import Node
 
-from .. import completion, numbers
-from ..common import connect, interface_type_name, wait_saying_other_types, yaml_fields
+from .. import completion, numbers, render
+from ..common import (
+    connect,
+    interface_type_name,
+    message_fields,
+    wait_saying_other_types,
+    yaml_fields,
+)
 from ..errors import CliError
-from ..options import check_stdin, values_argument
+from ..options import NDJSON, check_stdin, json_option, values_argument
 
 
 @command('call')
@@ -40,6 +46,7 @@ from ..options import check_stdin, values_argument
     help='Give up if the service is not available, or does not answer, within '
     'this many seconds (default: wait forever, as ros2cli does)',
 )
+@json_option(f'{{"request", "response"}} per call ({NDJSON})')
 def cli(
     service_name: str,
     service_type: str,
@@ -47,10 +54,11 @@ def cli(
     use_stdin: bool,
     rate: float | None,
     timeout: float | None,
+    as_json: bool,
 ) -> None:
     """Call a service.
 
-    VALUES fills the request in YAML (e.g. '{a: 1, b: 2}').
+    VALUES fills the request in YAML (e.g. '{a: 1, b: 2}') or JSON (as --json prints it).
     """
     from ros2lite.interfaces import get_interface, set_message_fields
 
@@ -67,30 +75,42 @@ def cli(
     fields = yaml_fields(sys.stdin.read() if use_stdin else values or '{}', allow_empty=True)
     request = srv_class.Request()
     try:
-        set_message_fields(request, fields)
+        set_message_fields(request, message_fields(type(request), fields))
     except Exception as e:  # any reason the values do not fit, as ros2cli reports it
         raise CliError(f'Failed to populate field: {e}') from None
     package, _, name = type_name.split('/')
     with connect() as conn:
         node = conn.node(f'_ros2lite_requester_{package}_{name}')
         client = node.create_client(srv_class, service_name, fail_without_server=True)
-        _wait(client, timeout, node, type_name)
+        _wait(client, timeout, node, type_name, as_json)
         period = None if rate is None else 1.0 / rate
         while True:
             last_call = time.monotonic()
-            click.echo(f'requester: making request: {request!r}\n')
-            click.echo(f'response:\n{_call(client, request, timeout)!r}\n')
+            if as_json:
+                from ros2lite.interfaces.json_form import message_to_json
+
+                response = _call(client, request, timeout)
+                render.print_json_line(
+                    {'request': message_to_json(request), 'response': message_to_json(response)}
+                )
+            else:
+                click.echo(f'requester: making request: {request!r}\n')
+                click.echo(f'response:\n{_call(client, request, timeout)!r}\n')
             if period is None or not conn.context.ok():
                 return
             time.sleep(max(0.0, last_call + period - time.monotonic()))
 
 
 def _wait(
-    client: Client[Message, Message], timeout: float | None, node: Node, type_name: str
+    client: Client[Message, Message],
+    timeout: float | None,
+    node: Node,
+    type_name: str,
+    as_json: bool = False,
 ) -> None:
     if client.service_is_ready():
         return
-    click.echo('waiting for service to become available...')
+    click.echo('waiting for service to become available...', err=as_json)
     if not wait_saying_other_types(
         lambda step: client.wait_for_service(timeout_sec=step),
         timeout,

@@ -9,7 +9,14 @@ import click
 from .. import completion
 from ..common import connect, interface_type_name, resolved_name
 from ..errors import CliError
-from ..options import format_options, qos_from_options, qos_options, strategy_options
+from ..options import (
+    NDJSON,
+    format_options,
+    json_option,
+    qos_from_options,
+    qos_options,
+    strategy_options,
+)
 from ..parsing import command
 from ..render import print_event
 
@@ -27,12 +34,14 @@ if TYPE_CHECKING:
 @strategy_options()
 @qos_options('services_default')
 @format_options()
+@json_option(f'each event in the JSON form ({NDJSON}; info.event_type as its number)')
 def cli(
     service_name: str,
     service_type: str | None,
     fmt: MessageFormat,
     no_daemon: bool,
     use_sim_time: bool,
+    as_json: bool,
     **qos: Unpack[QosOptions],
 ) -> None:
     """Echo a service.
@@ -66,11 +75,12 @@ def cli(
         if not count(entities, topic, EntityKind.PUBLISHER):
             click.echo(
                 f"No publishers on topic '{topic}'; is service introspection on the client or "
-                'server enabled?'
+                'server enabled?',
+                err=as_json,
             )
 
         def show(msg: Message) -> None:
-            print_event(msg, fmt)
+            print_event(msg, fmt, as_json={} if as_json else None)
 
         # typed: a sample that is not the event type is dropped and reported, not fatal
         node.create_subscription(event_type, topic, show, qos_from_options(**qos))

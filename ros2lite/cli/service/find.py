@@ -7,7 +7,7 @@ import click
 from .. import completion
 from ..common import print_names_of_type
 from ..lazy import include_hidden, include_hidden_option
-from ..options import count_option, strategy_options
+from ..options import count_option, json_option, strategy_options
 from ..parsing import command
 
 
@@ -16,6 +16,7 @@ from ..parsing import command
 @click.argument('service_type', shell_complete=completion.service_types)
 @count_option('services')
 @include_hidden_option('services')
+@json_option('[{"name", "types"}…] or {"count"}')
 @click.pass_context
 def cli(
     ctx: click.Context,
@@ -24,6 +25,7 @@ def cli(
     include_hidden_services: bool,
     no_daemon: bool,
     use_sim_time: bool,
+    as_json: bool,
 ) -> None:
     """Output a list of available services of a given type."""
     from ros2lite.graph import service_names_and_types
@@ -35,4 +37,5 @@ def cli(
         lambda entities: service_names_and_types(
             entities, include_hidden(ctx, 'services', include_hidden_services)
         ),
+        as_json,
     )

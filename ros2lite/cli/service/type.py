@@ -6,14 +6,15 @@ import click
 
 from .. import completion
 from ..common import print_types_of
-from ..options import strategy_options
+from ..options import json_option, strategy_options
 from ..parsing import command
 
 
 @command('type')
 @strategy_options()
 @click.argument('service_name', shell_complete=completion.services)
-def cli(service_name: str, no_daemon: bool, use_sim_time: bool) -> None:
+@json_option('{"name", "types"}')
+def cli(service_name: str, no_daemon: bool, use_sim_time: bool, as_json: bool) -> None:
     """Output a service's type."""
     from ros2lite.graph import service_names_and_types
 
@@ -22,4 +23,5 @@ def cli(service_name: str, no_daemon: bool, use_sim_time: bool) -> None:
         no_daemon,
         lambda entities: service_names_and_types(entities, include_hidden=True),
         'service',
+        as_json,
     )

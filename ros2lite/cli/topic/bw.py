@@ -8,9 +8,9 @@ from typing import TYPE_CHECKING
 
 import click
 
-from .. import completion
+from .. import completion, render
 from ..common import connect
-from ..options import strategy_options
+from ..options import NDJSON, json_option, strategy_options
 from ..parsing import command
 from .common import watch, window_option
 
@@ -42,7 +42,11 @@ def bw_line(s: BandwidthSummary) -> str:
 @click.argument('topic', shell_complete=completion.topics)
 @window_option(DEFAULT_WINDOW_SIZE, 'maximum window')
 @strategy_options(no_daemon=False)
-def cli(topic: str, window: int, use_sim_time: bool) -> None:
+@json_option(
+    f'{NDJSON}: {{"topic", "bytes_per_second", "count", "mean", "min", "max"}} per report '
+    '(sizes in bytes)'
+)
+def cli(topic: str, window: int, use_sim_time: bool, as_json: bool) -> None:
     """Display bandwidth used by topic."""
     from ros2lite.monitor.stats import BandwidthStats
     from ros2lite.qos import qos_profile_sensor_data
@@ -61,11 +65,22 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
 
         def report() -> None:
             summary = stats.summary(now_ns())
-            if summary is not None:
+            if summary is not None and as_json:
+                render.print_json_line(
+                    {
+                        'topic': topic,
+                        'bytes_per_second': summary.bytes_per_second,
+                        'count': summary.count,
+                        'mean': summary.mean,
+                        'min': summary.min,
+                        'max': summary.max,
+                    }
+                )
+            elif summary is not None:
                 click.echo(bw_line(summary))
 
         # sizes are taken as samples arrive, so none is missed and none is decoded
         watched.on_arrival(type_name, qos_profile_sensor_data, on_arrival)
-        click.echo(f'Subscribed to [{topic}]')
+        click.echo(f'Subscribed to [{topic}]', err=as_json)
         conn.node().create_timer(1.0, report)
         conn.spin()

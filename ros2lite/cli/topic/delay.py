@@ -6,10 +6,10 @@ from typing import TYPE_CHECKING, Protocol, cast
 
 import click
 
-from .. import completion
+from .. import completion, render
 from ..common import connect
 from ..errors import CliError
-from ..options import strategy_options
+from ..options import NDJSON, json_option, strategy_options
 from ..parsing import command
 from .common import watch, window_option
 
@@ -40,7 +40,11 @@ def delay_line(s: IntervalSummary) -> str:
 @click.argument('topic', shell_complete=completion.topics)
 @window_option(DEFAULT_WINDOW_SIZE, 'window', minimum=0)
 @strategy_options(no_daemon=False)
-def cli(topic: str, window: int, use_sim_time: bool) -> None:
+@json_option(
+    f'{NDJSON}: {{"topic", "mean", "min", "max", "std_dev", "window"}} per report (seconds; '
+    '{"topic", "window": 0} when no new message came)'
+)
+def cli(topic: str, window: int, use_sim_time: bool, as_json: bool) -> None:
     """Display delay of topic from timestamp in header."""
     from ros2lite.interfaces import deserialize, get_interface
     from ros2lite.monitor.stats import DelayStats
@@ -57,12 +61,26 @@ def cli(topic: str, window: int, use_sim_time: bool) -> None:
             stamp = cast(_Stamped, deserialize(type_name, data)).header.stamp
             now = clock.now().nanoseconds if clock.ros_time_is_active else info.received_timestamp
             if stats.add(now, stamp.sec * 1_000_000_000 + stamp.nanosec):
-                click.echo('time has reset, resetting counters')
+                click.echo('time has reset, resetting counters', err=as_json)
 
         def report() -> None:
             if stats.empty:
                 return
             summary = stats.summary()
+            if as_json:
+                render.print_json_line(
+                    {'topic': topic, 'window': 0}
+                    if summary is None
+                    else {
+                        'topic': topic,
+                        'mean': summary.mean * 1e-9,
+                        'min': summary.min * 1e-9,
+                        'max': summary.max * 1e-9,
+                        'std_dev': summary.std_dev * 1e-9,
+                        'window': summary.count,
+                    }
+                )
+                return
             click.echo('no new messages' if summary is None else delay_line(summary))
 
         watched.on_sample(type_name, qos_profile_sensor_data, on_sample)

@@ -11,7 +11,14 @@ import click
 from .. import completion, numbers
 from ..common import connect
 from ..errors import CliError
-from ..options import CSV_HELP, format_options, qos_options, strategy_options
+from ..options import (
+    CSV_HELP,
+    NDJSON,
+    format_options,
+    json_option,
+    qos_options,
+    strategy_options,
+)
 from ..parsing import command
 from .common import (
     choose_qos,
@@ -26,6 +33,7 @@ if TYPE_CHECKING:
     from typing_extensions import Unpack
 
     from ros2lite.interfaces.convert import FormatOptions
+    from ros2lite.interfaces.parser import FieldType
     from ros2lite.monitor.stats import LostMessageCounter
     from ros2lite.subscription import MessageInfo
 
@@ -59,6 +67,7 @@ class Printer:
         lost: LostMessageCounter | None,
         warn: Callable[[str], object],
         topic: str = '',
+        as_json: bool = False,
     ) -> None:
         from ros2lite.interfaces import deserialize
         from ros2lite.interfaces.classes import Message
@@ -81,6 +90,8 @@ class Printer:
         self.include_info = include_info
         self.clear = clear
         self.lost = lost
+        self.as_json = as_json
+        self.field_type: FieldType | None = None  # of the --field value, once known
         self.done = False
         self.out = sys.stdout
         self.bad = BadSamples(topic, type_name, warn)
@@ -90,7 +101,8 @@ class Printer:
         if self.lost is None:
             return
         for change, total in self.lost.drain():
-            self.out.write(
+            # NDJSON holds messages only: the notice goes where errors go
+            (sys.stderr if self.as_json else self.out).write(
                 f'A message was lost!!!\n\ttotal count change:{change}\n\ttotal count: {total}---\n'
             )
 
@@ -106,15 +118,27 @@ class Printer:
             return
         if self.field is not None:
             for name in self.field:
+                parent = value
                 try:
                     value = getattr(value, name)
                 except AttributeError as e:
                     raise CliError(f"Invalid field '{'.'.join(self.field)}': {e}") from None
+            if self.as_json and self.field_type is None:
+                self.field_type = self.type_of(parent, self.field[-1])
         if self.filter_fn is not None and not self.filter_fn(value):
             return
         if self.once:
             self.done = True
         self.out.write(self.render(value, info))
+        if self.as_json:
+            self.out.flush()
+
+    def type_of(self, parent: object, name: str) -> FieldType | None:
+        """The type of field `name` of `parent` (so --json tells an empty byte array)."""
+        if not isinstance(parent, self._message_class):
+            return None
+        names = parent.get_fields_and_field_types()
+        return dict(zip(names, parent.SLOT_TYPES, strict=True)).get(name)
 
     def bad_sample(self, data: bytes, info: MessageInfo, error: Exception) -> None:
         """A sample that is not the type: dropped with a (rate-limited) warning, or shown
@@ -122,7 +146,7 @@ class Printer:
         from ros2lite.runtime.bad_samples import describe_publisher
 
         self.bad.add(info.publisher_gid, error, len(data))
-        if not self.include_info:
+        if not self.include_info or self.as_json:
             return
         head = ''.join(f'{k}: {v}\n' for k, v in sorted(info_dict(info).items()))
         self.out.write(
@@ -133,6 +157,8 @@ class Printer:
     def render(self, value: object, info: MessageInfo) -> str:
         from ros2lite.interfaces import message_to_csv, message_to_yaml
 
+        if self.as_json:
+            return self.render_json(value, info)
         head = CLEAR_SCREEN if self.clear else ''
         if not isinstance(value, self._message_class):
             if self.include_info:
@@ -150,6 +176,25 @@ class Printer:
             # what yaml.dump() makes of the info dict: sorted keys, plain integers
             head += ''.join(f'{k}: {v}\n' for k, v in sorted(info_dict(info).items())) + '---\n'
         return head + message_to_yaml(value, flow_style=self.flow_style, **self.fmt) + '---\n'
+
+    def render_json(self, value: object, info: MessageInfo) -> str:
+        """One NDJSON line: the message (or --field value; --raw: the CDR bytes as base64)
+        in the JSON form, inside `{"message", "info"}` when message info was asked for.
+        Always full length; --no-arr/--no-str put their placeholder strings in."""
+        import base64
+
+        from ros2lite.interfaces.json_form import dumps, value_to_json
+
+        obj: object
+        if isinstance(value, bytes) and self.raw:
+            obj = base64.b64encode(value).decode('ascii')
+        else:
+            obj = value_to_json(
+                value, self.field_type, no_arr=self.fmt['no_arr'], no_str=self.fmt['no_str']
+            )
+        if self.include_info:
+            obj = {'message': obj, 'info': info_dict(info)}
+        return dumps(obj) + '\n'
 
 
 def info_dict(info: MessageInfo) -> dict[str, int]:
@@ -199,6 +244,7 @@ def info_dict(info: MessageInfo) -> dict[str, int]:
 )
 @click.option('-c', '--clear', is_flag=True, help='Clear the screen before each message')
 @click.option('-n', '--node-name', help='Name of the created subscribing node')
+@json_option(f'each message in the JSON form ({NDJSON}; with -i: {{"message", "info"}})')
 def cli(
     topic_name: str,
     message_type: str | None,
@@ -214,9 +260,12 @@ def cli(
     node_name: str | None,
     use_sim_time: bool,
     no_daemon: bool,
+    as_json: bool,
     **qos: Unpack[QosOptions],
 ) -> None:
     """Output messages from a topic."""
+    if as_json and fmt['csv']:
+        raise click.UsageError('--json and --csv are two formats: pick one')
     fields: list[str] | None = None
     if field is not None:
         fields = [f for f in field.split('.') if f]
@@ -250,6 +299,7 @@ def cli(
             lost=lost,
             warn=watch.node.get_logger().warn,
             topic=watch.topic,
+            as_json=as_json,
             **fmt,
         )
         if lost is not None:

@@ -7,7 +7,7 @@ import click
 from .. import completion
 from ..common import print_names_of_type
 from ..lazy import include_hidden, include_hidden_option
-from ..options import strategy_options
+from ..options import json_option, strategy_options
 from ..parsing import command
 
 
@@ -17,6 +17,7 @@ from ..parsing import command
 @click.option('-c', '--count-topics', is_flag=True, help='Print only how many topics match')
 @include_hidden_option('topics', 'match')
 @click.pass_context
+@json_option('[{"name", "types"}…] or {"count"}')
 def cli(
     ctx: click.Context,
     topic_type: str,
@@ -24,6 +25,7 @@ def cli(
     include_hidden_topics: bool,
     no_daemon: bool,
     use_sim_time: bool,
+    as_json: bool,
 ) -> None:
     """Output a list of available topics of a given type."""
     from ros2lite.graph import topic_names_and_types
@@ -35,4 +37,5 @@ def cli(
         lambda entities: topic_names_and_types(
             entities, include_hidden(ctx, 'topics', include_hidden_topics)
         ),
+        as_json,
     )

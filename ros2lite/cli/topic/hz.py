@@ -15,7 +15,7 @@ import click
 
 from .. import completion, render
 from ..common import connect
-from ..options import strategy_options
+from ..options import NDJSON, json_option, strategy_options
 from ..parsing import command
 from .common import compile_filter, watch, window_option
 
@@ -87,12 +87,17 @@ def ros_or_arrival_time(node: Node, wall_time: bool) -> Callable[[int], int]:
     'published during simulation',
 )
 @strategy_options(no_daemon=False)
+@json_option(
+    f'{NDJSON}: {{"topic", "rate", "min", "max", "std_dev", "window"}} per topic and report '
+    '(Hz; seconds)'
+)
 def cli(
     topic_names: tuple[str, ...],
     window: int,
     filter_expr: str | None,
     wall_time: bool,
     use_sim_time: bool,
+    as_json: bool,
 ) -> None:
     """Print the average publishing rate to screen
 
@@ -109,10 +114,10 @@ def cli(
         for topic in topic_names:
             watched, type_name = watch(conn, topic)
             stats[topic] = rate = RateStats(window)
-            _subscribe(watched, type_name, rate, stamp, filter_fn)
+            _subscribe(watched, type_name, rate, stamp, filter_fn, as_json)
             if len(topic_names) > 1:
-                click.echo(f'Subscribed to [{topic}]')
-        report = _Report(stats)
+                click.echo(f'Subscribed to [{topic}]', err=as_json)
+        report = _Report(stats, as_json)
         try:
             conn.every(1.0, report)
             conn.spin()
@@ -126,6 +131,7 @@ def _subscribe(
     rate: RateStats,
     stamp: Callable[[int], int],
     filter_fn: Callable[[object], object] | None,
+    as_json: bool = False,
 ) -> None:
     """Count samples on arrival (Zenoh thread, nothing queued or decoded) unless a filter
     needs the message; then decode on the executor and use the arrival stamp it carries."""
@@ -133,7 +139,7 @@ def _subscribe(
 
     def record(arrived: int) -> None:
         if rate.add(stamp(arrived)):
-            click.echo('time has reset, resetting counters')
+            click.echo('time has reset, resetting counters', err=as_json)
 
     if filter_fn is None:
         watched.on_arrival(
@@ -152,11 +158,28 @@ def _subscribe(
 class _Report:
     """Once a second: one topic's summary line, or a table of several (live on a terminal)."""
 
-    def __init__(self, stats: dict[str, RateStats]) -> None:
+    def __init__(self, stats: dict[str, RateStats], as_json: bool = False) -> None:
         self.stats = stats
-        self.live = render.LiveTable(HEADER) if len(stats) > 1 and render.fancy() else None
+        self.as_json = as_json
+        fancy = len(stats) > 1 and render.fancy() and not as_json
+        self.live = render.LiveTable(HEADER) if fancy else None
 
     def __call__(self) -> None:
+        if self.as_json:
+            for topic, rate in self.stats.items():
+                s = rate.summary()
+                if s is not None:
+                    render.print_json_line(
+                        {
+                            'topic': topic,
+                            'rate': s.rate,
+                            'min': s.min * 1e-9,
+                            'max': s.max * 1e-9,
+                            'std_dev': s.std_dev * 1e-9,
+                            'window': s.count,
+                        }
+                    )
+            return
         if len(self.stats) == 1:
             summary = next(iter(self.stats.values())).summary()
             if summary is not None:

@@ -7,7 +7,7 @@ import click
 from .. import completion, render
 from ..common import connect
 from ..errors import CliError
-from ..options import strategy_options
+from ..options import json_option, strategy_options
 from ..parsing import command
 
 
@@ -20,7 +20,11 @@ from ..parsing import command
     is_flag=True,
     help='Also describe every publisher and subscription: node, type hash, GID and QoS',
 )
-def cli(topic_name: str, verbose: bool, no_daemon: bool, use_sim_time: bool) -> None:
+@json_option(
+    '{"name", "types", "publisher_count", "subscription_count"} (-v adds "publishers" and '
+    '"subscriptions": node, type hash, GID, QoS)'
+)
+def cli(topic_name: str, verbose: bool, no_daemon: bool, use_sim_time: bool, as_json: bool) -> None:
     """Print information about a topic."""
     from ros2lite.graph import (
         EntityKind,
@@ -41,6 +45,23 @@ def cli(topic_name: str, verbose: bool, no_daemon: bool, use_sim_time: bool) -> 
     types = dict(topic_names_and_types(entities, include_hidden=True)).get(name)
     if types is None:
         raise CliError(f"Unknown topic '{name}'")
+    if as_json:
+        doc: dict[str, object] = {'name': name, 'types': types}
+        for kind, key in (
+            (EntityKind.PUBLISHER, 'publisher'),
+            (EntityKind.SUBSCRIPTION, 'subscription'),
+        ):
+            doc[f'{key}_count'] = count(entities, name, kind)
+            if verbose:
+                doc[f'{key}s'] = [
+                    render.endpoint_json(info)
+                    for info in sorted(
+                        endpoints_by_topic(entities, name, kind),
+                        key=lambda i: (i.node_namespace, i.node_name, i.endpoint_gid),
+                    )
+                ]
+        render.print_json(doc)
+        return
     end = '\n\n' if verbose else '\n'
     out = [f'Type: {types[0] if len(types) == 1 else types}' + end]
     for kind, label in (

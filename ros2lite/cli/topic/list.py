@@ -7,7 +7,7 @@ import click
 from .. import render
 from ..common import connect
 from ..lazy import include_hidden, include_hidden_option
-from ..options import strategy_options
+from ..options import json_option, strategy_options
 from ..parsing import command
 from ..render import print_names
 
@@ -37,6 +37,7 @@ def _section(rows: list[tuple[str, list[str], int]], publishers: bool) -> str:
 )
 @include_hidden_option('topics', 'list', all_alias=True)
 @click.option('-v', '--verbose', is_flag=True, help='Count publishers and subscribers per topic')
+@json_option('[{"name", "types"}…] (-v adds publisher_count, subscription_count)')
 @click.pass_context
 def cli(
     ctx: click.Context,
@@ -46,6 +47,7 @@ def cli(
     verbose: bool,
     no_daemon: bool,
     use_sim_time: bool,
+    as_json: bool,
 ) -> None:
     """Output a list of available topics."""
     from ros2lite.graph import topic_counts, topic_names_and_types
@@ -53,11 +55,25 @@ def cli(
     with connect(no_daemon=no_daemon) as conn:
         entities = conn.entities()
     topics = topic_names_and_types(entities, include_hidden(ctx, 'topics', include_hidden_topics))
-    if verbose and topics and not count_topics:
+    if as_json and verbose and not count_topics:
+        counts = topic_counts(entities)
+        render.print_json(
+            [
+                {
+                    'name': name,
+                    'types': types,
+                    'publisher_count': counts[name][0],
+                    'subscription_count': counts[name][1],
+                }
+                for name, types in topics
+            ]
+        )
+        return
+    if verbose and topics and not count_topics and not as_json:
         counts = topic_counts(entities)
         pubs = [(name, types, counts[name][0]) for name, types in topics]
         subs = [(name, types, counts[name][1]) for name, types in topics]
         render.echo(_section(pubs, True))
         render.echo(_section(subs, False))
         return
-    print_names(topics, count_topics, show_types)
+    print_names(topics, count_topics, show_types, as_json)

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion, numbers
-from ..common import connect, yaml_fields
+from ..common import connect, message_fields, yaml_fields
 from ..errors import CliError
 from ..options import check_stdin, qos_from_options, qos_options, strategy_options, values_argument
 from ..parsing import command
@@ -99,7 +99,8 @@ def cli(
 ) -> None:
     """Publish a message to a topic.
 
-    VALUES fills the message in YAML (e.g. 'data: Hello World'); 'now' sets a time field and
+    VALUES fills the message in YAML (e.g. 'data: Hello World') or as `topic echo --json`
+    prints it (base64 byte arrays, "nan"/"inf" strings); 'now' sets a time field and
     'header: auto' a header to the current time on every publish.
     """
     check_stdin(values, use_stdin)
@@ -172,7 +173,7 @@ def publish_loop(
     msg = get_interface(type_name)()
     try:
         stamp_setters = set_message_fields(
-            msg, fields, expand_header_auto=True, expand_time_now=True
+            msg, message_fields(type(msg), fields), expand_header_auto=True, expand_time_now=True
         )
     except Exception as e:  # any reason the values do not fit, as ros2cli reports it
         raise CliError(f'Failed to populate field: {e}') from None

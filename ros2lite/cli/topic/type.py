@@ -7,7 +7,7 @@ import click
 from .. import completion
 from ..common import print_types_of
 from ..lazy import include_hidden
-from ..options import strategy_options
+from ..options import json_option, strategy_options
 from ..parsing import command
 
 
@@ -15,7 +15,10 @@ from ..parsing import command
 @strategy_options()
 @click.argument('topic_name', shell_complete=completion.topics)
 @click.pass_context
-def cli(ctx: click.Context, topic_name: str, no_daemon: bool, use_sim_time: bool) -> None:
+@json_option('{"name", "types"}')
+def cli(
+    ctx: click.Context, topic_name: str, no_daemon: bool, use_sim_time: bool, as_json: bool
+) -> None:
     """Print a topic's type."""
     from ros2lite.graph import topic_names_and_types
 
@@ -23,4 +26,5 @@ def cli(ctx: click.Context, topic_name: str, no_daemon: bool, use_sim_time: bool
         topic_name,
         no_daemon,
         lambda entities: topic_names_and_types(entities, include_hidden(ctx, 'topics')),
+        as_json=as_json,
     )
