@@ -10,6 +10,7 @@ from ros2lite.interfaces.registry import default_registry
 from ros2lite.interfaces.text import show_lines
 
 from .. import completion
+from ..common import connect, known_type
 from ..parsing import command
 
 
@@ -36,6 +37,11 @@ def cli(type_name: str, all_comments: bool, no_comments: bool) -> None:
     """Output the interface definition (TYPE '-' reads it from stdin)."""
     if all_comments and no_comments:
         raise click.UsageError('--all-comments and --no-comments are mutually exclusive')
+    from ros2lite.remote_types import is_known
+
     name = read_type_argument(type_name)
+    if len(name.split('/')) == 3 and not is_known(name):
+        with connect() as conn:  # a type only some node knows
+            known_type(conn, name)
     lines = show_lines(name, default_registry(), all_comments=all_comments, no_comments=no_comments)
     click.echo(''.join(line + '\n' for line in lines), nl=False)  # an empty type: nothing
