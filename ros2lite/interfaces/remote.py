@@ -17,7 +17,7 @@ from __future__ import annotations
 import hashlib
 import json
 from collections.abc import Sequence
-from typing import Protocol
+from typing import NamedTuple, Protocol
 
 from .classes import MAX_NESTING
 from .errors import InterfaceError
@@ -302,13 +302,22 @@ def _check_parses(texts: dict[str, str], reg: Registry) -> None:
             reg.action(n)
 
 
-_FETCHED: dict[str, tuple[str, str]] = {}  # wire hash → (type name, where it came from)
+class _Checked(NamedTuple):
+    """A description that passed: what it gave, and from where."""
+
+    name: str
+    origin: str
+    texts: dict[str, str]
+    messages: dict[str, MessageDef]
+
+
+_FETCHED: dict[str, _Checked] = {}  # by wire hash, for this process's lifetime
 
 
 def fetched_from(type_name: str, wire_hash: str) -> str | None:
     """Where a type with this hash was installed from in this process (None: it was not)."""
     found = _FETCHED.get(wire_hash)
-    return found[1] if found is not None and found[0] == type_name else None
+    return found.origin if found is not None and found.name == type_name else None
 
 
 def install(
@@ -322,19 +331,23 @@ def install(
     """Check a node's description of `name` against the hash it announced and add what the
     local search path lacks to `reg` (the default registry); RemoteTypeError says why not."""
     reg = reg or default_registry()
-    if fetched_from(name, wire_hash) is not None:
+    known = _FETCHED.get(wire_hash)
+    if known is not None and known.name == name:
+        reg.add_definitions(known.texts, known.messages, known.origin)
         return
     got = description_hash(description)
     if got != wire_hash:
         raise RemoteTypeError(
             f'{origin} describes {name} as {got}, not as the {wire_hash} it announces'
         )
-    texts, messages = build(name, description, sources)
     alone = Registry(roots=[])
-    alone.add_definitions(texts, messages, origin)
     try:
+        texts, messages = build(name, description, sources)
+        alone.add_definitions(texts, messages, origin)
         _check_parses(texts, alone)
         own = type_hash(name, alone)
+    except RemoteTypeError:
+        raise
     except InterfaceError as e:
         raise RemoteTypeError(f'{name} from {origin}: {e}') from None
     if own != wire_hash:
@@ -350,7 +363,7 @@ def install(
         raise RemoteTypeError(
             f'{name} from {origin} uses types defined differently here ({local} here)'
         )
-    _FETCHED[wire_hash] = (name, origin)
+    _FETCHED[wire_hash] = _Checked(name, origin, texts, messages)
 
 
 def assemble_action(name: str, reg: Registry | None = None) -> bool:
@@ -365,6 +378,6 @@ def assemble_action(name: str, reg: Registry | None = None) -> bool:
             parts.append(reg.message(name + suffix))
         except InterfaceError:
             return False
-    origin = next((o for n, o in _FETCHED.values() if n.startswith(name + '_')), 'the graph')
+    origin = next((c.origin for c in _FETCHED.values() if c.name.startswith(name)), 'the graph')
     reg.add_definitions({name: '---\n'.join(_field_lines(p) for p in parts)}, {}, origin)
     return True
