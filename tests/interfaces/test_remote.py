@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import pytest
 
+from ros2lite.interfaces.cdr import codec
 from ros2lite.interfaces.classes import get_interface
 from ros2lite.interfaces.hashing import type_hash
-from ros2lite.interfaces.cdr import codec
 from ros2lite.interfaces.registry import Registry, default_registry
 from ros2lite.interfaces.remote import (
     MAX_TYPES,
