@@ -52,7 +52,9 @@ def scale(req, resp):
     resp.y = req.x * req.s.value
     return resp
 node.create_service(Scale, 'scale', scale)
-node.create_subscription(Reading, 'command', lambda m: print('GOT', m.level, m.note, flush=True), 10)
+def heard(m):
+    print('GOT', m.level, m.note, flush=True)
+node.create_subscription(Reading, 'command', heard, 10)
 count = 0
 def tick():
     global count
@@ -100,9 +102,7 @@ def _cli(workspace: Path, *args: str, timeout: float = 30) -> subprocess.Complet
 FETCHED = 'ros2lite: type wire_test_msgs/msg/Reading fetched from node /lab/sensor\n'
 
 
-def test_echo_show_pub_and_call_a_type_only_the_node_knows(
-    processes: Any, workspace: Path
-) -> None:
+def test_echo_show_pub_and_call_a_type_only_the_node_knows(processes: Any, workspace: Path) -> None:
     node = _node(processes, workspace)
     echo = _cli(workspace, 'topic', 'echo', '--once', '/lab/reading')
     assert echo.returncode == 0, echo.stderr
