@@ -67,15 +67,21 @@ rclpy.spin(node)
 """
 
 
-@pytest.fixture
-def workspace(tmp_path: Path) -> Path:
-    """A package of interfaces only the node's environment names."""
-    pkg = tmp_path / 'ws' / 'wire_test_msgs'
+def write_workspace(root: Path) -> Path:
+    """`root/ws`: a package of interfaces only the node's environment names."""
+    pkg = root / 'ws' / 'wire_test_msgs'
     (pkg / 'msg').mkdir(parents=True)
     (pkg / 'srv').mkdir()
     (pkg / 'msg' / 'Reading.msg').write_text(READING)
     (pkg / 'msg' / 'Sample.msg').write_text(SAMPLE)
     (pkg / 'srv' / 'Scale.srv').write_text(SCALE)
+    return root / 'ws'
+
+
+@pytest.fixture
+def workspace(tmp_path: Path) -> Path:
+    """The workspace, and a directory `elsewhere` for the CLI to run in."""
+    write_workspace(tmp_path)
     (tmp_path / 'elsewhere').mkdir()
     return tmp_path
 
