@@ -50,12 +50,19 @@ def _type_names(type_name: str) -> set[str]:
 def offering_nodes(
     entities: Iterable[Entity], type_name: str, name: str | None = None
 ) -> list[tuple[str, str, str]]:
-    """(node, announced type, its hash) of each endpoint using the type: those on `name` (a
-    topic or service) first, then publishers and servers, then the rest."""
+    """(node, announced type, its hash) of each endpoint using the type whose node serves
+    `~/get_type_description` (a tool's hidden node does not): those on `name` (a topic or
+    service) first, then publishers and servers, then the rest."""
+    every = list(entities)
+    describing = {
+        e.topic_name for e in every if e.kind is EntityKind.SERVICE and e.type_name == SERVICE_TYPE
+    }
     wanted = _type_names(type_name)
     out: dict[tuple[str, str, str], int] = {}
-    for e in entities:
+    for e in every:
         if e.is_node or e.type_name not in wanted or not e.type_hash:
+            continue
+        if f'{e.node_fqn.rstrip("/")}/get_type_description' not in describing:
             continue
         rank = (0 if e.topic_name == name else 2) + (
             0 if e.kind in (EntityKind.PUBLISHER, EntityKind.SERVICE) else 1
@@ -68,7 +75,7 @@ def offering_nodes(
 def _ask(node: Node, fqn: str, type_name: str, type_hash: str, timeout: float) -> str | None:
     """Install the type from node `fqn`'s description; None, or why that node could not."""
     srv = get_interface(SERVICE_TYPE)
-    client = node.create_client(srv, f'{fqn}/get_type_description')
+    client = node.create_client(srv, f'{fqn.rstrip("/")}/get_type_description')
     try:
         if not client.wait_for_service(timeout_sec=timeout):
             return f'{fqn} offers no ~/get_type_description'
