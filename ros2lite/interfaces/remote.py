@@ -311,6 +311,13 @@ class _Checked(NamedTuple):
     messages: dict[str, MessageDef]
 
 
+def _hash_or_none(name: str, reg: Registry) -> str | None:
+    try:
+        return type_hash(name, reg)
+    except InterfaceError:
+        return None
+
+
 _FETCHED: dict[str, _Checked] = {}  # by wire hash, for this process's lifetime
 
 
@@ -354,15 +361,10 @@ def install(
         raise RemoteTypeError(
             f'the definition files {origin} sends for {name} do not match its description'
         )
+    for dep in sorted(set(texts) | set(messages)):
+        if reg.exists(dep) and _hash_or_none(dep, reg) != type_hash(dep, alone):
+            raise RemoteTypeError(f'{name} from {origin} uses {dep}, defined differently here')
     reg.add_definitions(texts, messages, origin)
-    try:
-        local = type_hash(name, reg)
-    except InterfaceError as e:
-        raise RemoteTypeError(f'{name} from {origin}: {e}') from None
-    if local != wire_hash:
-        raise RemoteTypeError(
-            f'{name} from {origin} uses types defined differently here ({local} here)'
-        )
     _FETCHED[wire_hash] = _Checked(name, origin, texts, messages)
 
 

@@ -172,3 +172,12 @@ def test_an_invalid_type_name_is_refused() -> None:
     desc, wire_hash = _described(Individual(type_name='evil/msg/../A', fields=[]), [])
     with pytest.raises(RemoteTypeError):
         install('evil/msg/../A', wire_hash, desc, [], 'node /evil', Registry(roots=[]))  # type: ignore[arg-type]
+
+
+def test_a_type_whose_dependency_is_defined_differently_here() -> None:
+    local = Registry(roots=[])
+    local.add_definitions({'std_msgs/msg/Header': 'string frame_id\n'}, {}, 'a test')
+    name = 'geometry_msgs/msg/PointStamped'
+    with pytest.raises(RemoteTypeError, match='uses std_msgs/msg/Header, defined differently'):
+        _install(name, sources=True, reg=local)
+    assert not local.exists(name)
