@@ -359,6 +359,7 @@ class Recorder:
         hashes = {p.type_hash for p in pubs if p.type_hash}
         msg_type: type | str = type_name
         try:
+            self._fetch_type(type_name, topic)
             get_interface(type_name)
         except (InterfaceError, LookupError, ValueError) as e:
             if len(hashes) != 1:
@@ -391,6 +392,16 @@ class Recorder:
             self._by_name[topic] = tid
             self._subscriptions.append(sub)
         self._log(f"Subscribed to topic '{topic}'")
+
+    def _fetch_type(self, type_name: str, topic: str) -> None:
+        """A type no local package defines, asked of a node that publishes it: the bag then
+        gets its full definition as a schema, as for a local type."""
+        from ros2lite.remote_types import RemoteTypeError, ensure_type
+
+        try:
+            ensure_type(lambda: self.node, self.node.context.graph.entities(), type_name, topic)
+        except RemoteTypeError as e:  # its bytes are still recorded, with no schema
+            self._warn(f"Topic '{topic}': {e}")
 
     def _receiver(self, tid: int, stats: TopicStats) -> Callable[[bytes, bytes, int], None]:
         """The per-sample hook, run on the subscription's receive thread: queue the bytes."""

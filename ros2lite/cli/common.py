@@ -88,6 +88,15 @@ def connect(
     )
 
 
+def known_type(conn: Connection, type_name: str, name: str | None = None) -> None:
+    """When no local package defines `type_name`, fetch it from a node that uses it (on topic
+    or service `name` first): then the verb sees it as any local type. One line on stderr
+    says where it came from; a description that does not fit is the verb's one error line."""
+    from ros2lite.remote_types import ensure_type
+
+    ensure_type(conn.node, conn.entities(), type_name, name, say=lambda t: render.echo(t, err=True))
+
+
 def resolved_name(node: Node, name: str, kind: str) -> str:
     """`name` resolved by the CLI's node as a `kind` ('service', 'action') name, or ros2cli's
     line saying it is invalid."""

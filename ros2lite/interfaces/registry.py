@@ -93,6 +93,9 @@ class Registry:
         self._messages: dict[str, MessageDef] = {}
         self._services: dict[str, ServiceDef] = {}
         self._actions: dict[str, ActionDef] = {}
+        # definitions that came from elsewhere than a file (a node's type description, see
+        # interfaces/remote.py): 'pkg/kind/Name' → (where from, text); consulted first
+        self._given: dict[str, tuple[str, str]] = {}
 
     # -- discovery -------------------------------------------------------------------------
     def packages(self) -> dict[str, Path]:
@@ -155,10 +158,32 @@ class Registry:
 
     def interface_text(self, name: str) -> str:
         """The definition file's text."""
-        return read_definition(self.interface_path(name))
+        return self.interface_source(name)[1]
+
+    def interface_source(self, name: str) -> tuple[str, str]:
+        """Where the definition of 'pkg/kind/Name' comes from (a path, or a node) and its
+        text."""
+        given = self._given.get(name)
+        if given is not None:
+            return given
+        path = self.interface_path(name)
+        return str(path), read_definition(path)
+
+    def add_definitions(
+        self, texts: dict[str, str], messages: dict[str, MessageDef], origin: str
+    ) -> None:
+        """Take definitions that no file holds: texts of 'pkg/kind/Name' interfaces and
+        parsed generated sub-types (a node's type description); names known already stay."""
+        for name, text in texts.items():
+            if not self.exists(name):
+                self._given[name] = (origin, text)
+        for name, mdef in messages.items():
+            self._messages.setdefault(name, mdef)
 
     def exists(self, name: str) -> bool:
         """Whether a definition file for 'pkg/kind/Name' exists."""
+        if name in self._given:
+            return True
         try:
             self.interface_path(name)
         except InterfaceError:
@@ -170,6 +195,9 @@ class Registry:
         """`parse` of the definition of `name`; when the file the index found does not
         read or parse (a broken file in an installed wheel, R5-I1) and ros2lite bundles that
         interface, the bundled definition, with one warning naming the broken file."""
+        given = self._given.get(name)
+        if given is not None:
+            return parse(given[1], name, given[0])
         pkg, kind, short = validate_type_name(name)
         path = self.package_dir(pkg) / kind / (short + EXTENSIONS[kind])
         try:

@@ -14,7 +14,7 @@ from .classes import Message, get_interface
 from .convert import message_to_yaml
 from .errors import InterfaceError, UnknownInterfaceError
 from .parser import PRIMITIVES, SERVICE_SEPARATOR, Constant, MessageDef, parse_line, split_comment
-from .registry import Registry, normalize_name, read_definition
+from .registry import Registry, normalize_name
 
 SEPARATOR = '=' * 80 + '\n'
 _FIELD_TYPE_RE = re.compile(r'(?:^|\n)\s*([a-zA-Z0-9_/]+)(?:\[[^\]]*\])?\s+')
@@ -155,8 +155,7 @@ def show_lines(
 
     def show(type_name: str, comments: bool, level: int) -> None:
         package = type_name.split('/')[0]
-        path = reg.interface_path(type_name)
-        text = read_definition(path)
+        path, text = reg.interface_source(type_name)
         for lineno, raw in enumerate(_file_lines(text), start=1):
             try:
                 line = _classify(raw, package)

@@ -465,3 +465,29 @@ def test_launch_file_takes_the_cpp_packages_arguments(processes: Any, client_fac
     late = client_factory(port)
     shown = late.expect(lambda e: e['event'] == 'advertise')['channels']
     assert [c['topic'] for c in shown] == ['/chatter']  # the whitelist holds (not /clock)
+
+
+def test_a_type_only_a_node_knows_gets_its_schema_from_that_node(
+    processes: Any, client_factory: Any, tmp_path: Path
+) -> None:
+    """The bridge has no definition of the topic's type: it asks the publishing node for it
+    and advertises the channel with the full schema, which the npm client decodes with."""
+    import os
+
+    from tests.test_remote_types import NODE, write_workspace
+
+    workspace = write_workspace(tmp_path)
+    env = {**os.environ, 'ROS2LITE_INTERFACE_PATH': str(workspace)}
+    node = processes.python(NODE, 'honest', env=env)
+    assert node.stdout.readline().strip() == 'READY'
+    _, port, lines = start_bridge(processes)
+    client = client_factory(port)
+    channel = client.channels({'/lab/reading'})['/lab/reading']
+    assert channel['schemaName'] == 'wire_test_msgs/msg/Reading' and channel['parsed']
+    # decoding needs the whole schema: the nested Sample's section too
+    client.send(cmd='subscribe', topic='/lab/reading', decode=1)
+    reading = client.message('/lab/reading')
+    assert reading['level'] == 2 and reading['samples'][0]['value'] == 1.5
+    assert any(
+        'type wire_test_msgs/msg/Reading fetched from node /lab/sensor' in line for line in lines
+    )

@@ -44,6 +44,7 @@ class GraphChannels:
     def refresh(self, entities: list[Entity]) -> None:
         """Bring channels in line with the graph's topics; send the connection graph."""
         from ros2lite.interfaces import definition_text
+        from ros2lite.remote_types import ensure_type
 
         state = self.state
         wanted: dict[tuple[str, str], list[Entity]] = {}
@@ -64,6 +65,7 @@ class GraphChannels:
             if (name, type_name) in self.topics or type_name in state.unknown_types:
                 continue
             try:
+                ensure_type(lambda: state.node, entities, type_name, name)
                 text = definition_text(type_name)
             except Exception as e:  # a type not defined here: no schema a client could use
                 state.unknown_types.add(type_name)

@@ -10,6 +10,7 @@ from ros2lite.interfaces.registry import default_registry
 from ros2lite.interfaces.text import show_lines
 
 from .. import completion, render
+from ..common import connect, known_type
 from ..options import json_option
 from ..parsing import command
 
@@ -41,7 +42,12 @@ def cli(type_name: str, all_comments: bool, no_comments: bool, as_json: bool) ->
     """Output the interface definition (TYPE '-' reads it from stdin)."""
     if all_comments and no_comments:
         raise click.UsageError('--all-comments and --no-comments are mutually exclusive')
+    from ros2lite.remote_types import is_known
+
     name = read_type_argument(type_name)
+    if len(name.split('/')) == 3 and not is_known(name):
+        with connect() as conn:  # a type only some node knows
+            known_type(conn, name)
     if as_json:
         from ros2lite.interfaces.json_form import definition_to_json
 

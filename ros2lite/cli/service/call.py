@@ -19,6 +19,7 @@ from .. import completion, numbers, render
 from ..common import (
     connect,
     interface_type_name,
+    known_type,
     message_fields,
     wait_saying_other_types,
     yaml_fields,
@@ -65,12 +66,7 @@ def cli(
     check_stdin(values, use_stdin)
     if rate is not None and rate <= 0:
         raise CliError('rate must be greater than zero')
-    type_name = interface_type_name(
-        service_type,
-        'srv',
-        invalid='The passed service type is invalid',
-        not_kind='The passed type is not a service',
-    )
+    type_name = _service_type(service_type, service_name)
     srv_class: type[ServiceType] = get_interface(type_name)
     fields = yaml_fields(sys.stdin.read() if use_stdin else values or '{}', allow_empty=True)
     request = srv_class.Request()
@@ -99,6 +95,31 @@ def cli(
             if period is None or not conn.context.ok():
                 return
             time.sleep(max(0.0, last_call + period - time.monotonic()))
+
+
+def _service_type(service_type: str, service_name: str) -> str:
+    """The full name of the service type, fetched from the graph's nodes if it has no local
+    definition."""
+    from ros2lite.remote_types import is_known
+
+    def full_name() -> str:
+        return interface_type_name(
+            service_type,
+            'srv',
+            invalid='The passed service type is invalid',
+            not_kind='The passed type is not a service',
+        )
+
+    try:
+        return full_name()
+    except CliError:
+        parts = service_type.split('/')
+        guess = '/'.join([parts[0], 'srv', parts[1]] if len(parts) == 2 else parts)
+        if is_known(guess) or len(guess.split('/')) != 3:
+            raise
+        with connect() as conn:
+            known_type(conn, guess, service_name if service_name.startswith('/') else None)
+        return full_name()
 
 
 def _wait(

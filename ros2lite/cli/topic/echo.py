@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion, numbers
-from ..common import connect
+from ..common import connect, known_type
 from ..errors import CliError
 from ..options import (
     CSV_HELP,
@@ -271,6 +271,8 @@ def cli(
         fields = [f for f in field.split('.') if f]
         if not fields:
             raise CliError(f"Invalid field value '{field}'")
+    from ros2lite.interfaces.registry import normalize_name
+
     filter_fn = compile_filter(filter_expr)
     with connect(no_daemon=no_daemon, use_sim_time=use_sim_time) as conn:
         watch = monitor(conn, topic_name, node_name)
@@ -280,7 +282,9 @@ def cli(
             if type_name is None:
                 click.echo(f'WARNING: topic [{topic_name}] does not appear to be published yet')
                 raise CliError('Could not determine the type for the passed topic')
+            known_type(conn, type_name, watch.topic)
         else:
+            known_type(conn, normalize_name(message_type), watch.topic)
             type_name = message_type_name(message_type)
             warn_type_mismatch(watch, type_name)
         lost = None

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 import click
 
 from .. import completion, numbers
-from ..common import connect, message_fields, yaml_fields
+from ..common import connect, known_type, message_fields, yaml_fields
 from ..errors import CliError
 from ..options import check_stdin, qos_from_options, qos_options, strategy_options, values_argument
 from ..parsing import command
@@ -146,10 +146,12 @@ def publish_loop(
 ) -> None:
     """ros2cli's order: check the type and YAML, wait for subscribers, fill, publish."""
     from ros2lite.interfaces import get_interface, set_message_fields
+    from ros2lite.interfaces.registry import normalize_name
 
+    node = conn.node()
+    known_type(conn, normalize_name(message_type), topic)
     type_name = message_type_name(message_type)
     fields = yaml_fields(values)
-    node = conn.node()
     pub = node.create_publisher(type_name, topic, profile)
     if wait_for == 0 and max_wait is not None:
         raise CliError(
