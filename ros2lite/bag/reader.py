@@ -294,15 +294,16 @@ class Reader:
     ) -> Iterator[tuple[str, Message | bytes, int]]:
         """(topic, message, log_time): message objects, or CDR bytes with `raw=True` or for
         a type that cannot be decoded here."""
-        decoders = self._decoders
         for topic, data, log_time, _ in self.raw_messages(topics, start, stop):
-            if raw:
-                yield topic, data, log_time
-                continue
-            decode = decoders.get(topic)
-            if decode is None:
-                decode = decoders[topic] = self._decoder(topic)
-            yield topic, decode(data), log_time
+            yield topic, data if raw else self.decode(topic, data), log_time
+
+    def decode(self, topic: str, data: bytes) -> Message | bytes:
+        """One message of `topic` as `messages()` gives it: decoded with the type it was
+        recorded with, or the CDR bytes when no definition here or in the bag fits."""
+        decode = self._decoders.get(topic)
+        if decode is None:
+            decode = self._decoders[topic] = self._decoder(topic)
+        return decode(data)
 
     def deserialize(self, data: bytes, type_name: str) -> Message:
         """Decode CDR bytes of a type the bag holds (its own definition if need be)."""

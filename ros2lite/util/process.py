@@ -76,6 +76,22 @@ def _handlers(handlers: dict[int, _Handler]) -> Iterator[None]:
 
 
 @contextlib.contextmanager
+def on_signals(callbacks: dict[int, Callable[[], object]]) -> Iterator[None]:
+    """Within the block, each signal of `callbacks` runs its callback (in the main thread,
+    between two of its steps; elsewhere the block changes nothing): SIGUSR1 asking a
+    snapshot recorder to write, say."""
+
+    def handler_for(callback: Callable[[], object]) -> _Handler:
+        def handle(_signum: int, _frame: FrameType | None) -> None:
+            callback()
+
+        return handle
+
+    with _handlers({sig: handler_for(cb) for sig, cb in callbacks.items()}):
+        yield
+
+
+@contextlib.contextmanager
 def stop_signals_raise() -> Iterator[None]:
     """Within the block, SIGTERM raises :class:`Terminated` and SIGINT KeyboardInterrupt in the
     main thread, SIGINT even when it came ignored: a shell script's background job starts with

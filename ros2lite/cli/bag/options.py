@@ -278,3 +278,46 @@ def bag_player(
         except (BagError, ValueError) as e:
             raise bag_error(str(e)) from None
         yield player, log
+
+
+TIME_HELP = (
+    "seconds from the bag's start (90), a duration from the start (1:30, 1:02:03.5), or an "
+    "absolute time (seconds or nanoseconds since the epoch, or 2024-05-01T12:00:00, UTC)"
+)
+
+
+def run_cut(
+    bag_path: str,
+    output: str,
+    *,
+    start: str | None = None,
+    end: str | None = None,
+    topics: list[str] | None = None,
+    exclude: list[str] | None = None,
+) -> None:
+    """What `bag cut` and `bag filter` both do: parse the times against the bag, cut, say
+    what the new bag holds."""
+    from ros2lite.bag import Reader
+    from ros2lite.bag.cut import cut, parse_time
+    from ros2lite.bag.errors import BagError
+
+    try:
+        with Reader(bag_path) as reader:
+            origin = reader.start_time if reader.message_count else 0
+        begin = None if start is None else parse_time(start, origin)
+        finish = None if end is None else parse_time(end, origin)
+        result = cut(bag_path, output, start=begin, end=finish, topics=topics, exclude=exclude)
+    except BagError as e:
+        raise bag_error(str(e)) from None
+    for line in result.problems:
+        warn(line)
+    m = result.metadata
+    how = (
+        f"{result.chunks_copied} chunks copied, {result.chunks_rewritten} re-encoded"
+        if result.spliced
+        else "rewritten message by message"
+    )
+    click.echo(
+        f"Wrote {m.message_count} messages on {len(m.topics_with_message_count)} topics "
+        f"to '{output}' ({how})"
+    )

@@ -33,8 +33,12 @@ from .options import (
 )
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from ros2lite.bag.recorder import Recorder, RecordOptions
     from ros2lite.bag.writer import Writer
+    from ros2lite.logging import RcutilsLogger
+    from ros2lite.node import Node
     from ros2lite.tools.connection import Connection
 
 SELECTION_ERROR = (
@@ -101,6 +105,19 @@ SELECTION_ERROR = (
     show_default=True,
     help="Bytes per topic kept in memory while the disk catches up; past it the "
     "receiver waits (Zenoh then queues) rather than dropping messages.",
+)
+@click.option(
+    "--snapshot",
+    "snapshot_duration",
+    type=numbers.seconds(min_open=True),
+    metavar="DURATION",
+    help="Snapshot mode: keep the last DURATION seconds in memory (at most --max-cache-size "
+    "bytes) and write them only when the ~/snapshot service is called or on SIGUSR1.",
+)
+@click.option(
+    "--snapshot-mode",
+    is_flag=True,
+    help="rosbag2's snapshot mode: the buffer is bounded by --max-cache-size alone.",
 )
 @click.option(
     "--storage-preset-profile",
@@ -172,6 +189,8 @@ def cli(
     node_name: str,
     custom_data: tuple[str, ...],
     disable_keyboard_controls: bool,
+    snapshot_duration: float | None,
+    snapshot_mode: bool,
 ) -> None:
     """Record ROS data to a bag."""
 
@@ -222,14 +241,25 @@ def cli(
     if os.path.exists(uri):
         raise bag_error(f"Output folder '{uri}' already exists.")
     try:
-        writer = Writer(
-            uri,
-            compression=compression_format or "none",
-            preset=storage_preset_profile,
-            max_bag_size=max_bag_size,
-            max_bag_duration=max_bag_duration,
-            custom_data=custom,
-        ).open()
+        if snapshot_duration is not None or snapshot_mode:
+            writer = _snapshot_writer(
+                uri,
+                snapshot_duration or 0.0,
+                options.max_cache_size,
+                split=bool(max_bag_size or max_bag_duration),
+                compression=compression_format or "none",
+                preset=storage_preset_profile,
+                custom_data=custom,
+            )
+        else:
+            writer = Writer(
+                uri,
+                compression=compression_format or "none",
+                preset=storage_preset_profile,
+                max_bag_size=max_bag_size,
+                max_bag_duration=max_bag_duration,
+                custom_data=custom,
+            ).open()
     except BagError as e:
         raise bag_error(str(e)) from None
     # the recorder is a node: a peer session keeps it hearing publishers through a router outage
@@ -247,6 +277,50 @@ def cli(
             f"'{uri}' (run `ros2lite bag reindex {uri}` if another tool "
             f"cannot open it)"
         )
+
+
+def _snapshot_writer(
+    uri: str, duration: float, max_bytes: int, *, split: bool, **options: object
+) -> Writer:
+    """The bag of snapshot mode (a file per snapshot, so no size or time splits)."""
+    from ros2lite.bag.snapshot import SnapshotWriter
+
+    if split:
+        raise bag_error("--max-bag-size and --max-bag-duration do not apply to snapshots")
+    return SnapshotWriter(uri, duration=duration, max_bytes=max_bytes, **options).open()
+
+
+def _serve_snapshots(
+    conn: Connection, node: Node, recorder: Recorder, log: RcutilsLogger
+) -> tuple[Callable[[], object], Callable[[], object]]:
+    """The ~/snapshot service on the recorder node, and SIGUSR1: both ask for a snapshot.
+    Returns what SIGUSR1 runs and what the main loop runs to serve it."""
+    import threading
+
+    from ros2lite.bag.snapshot import SnapshotWriter, snapshot_handler
+    from ros2lite.msgs.rosbag2_interfaces.srv import Snapshot, Snapshot_Response
+
+    writer = recorder.writer
+    assert isinstance(writer, SnapshotWriter)
+    clock = node.get_clock()
+    trigger = snapshot_handler(
+        recorder, writer, lambda: clock.now().nanoseconds, lambda m: log.info(m)
+    )
+
+    def serve(request: object, response: Snapshot_Response) -> Snapshot_Response:
+        response.success = trigger()
+        return response
+
+    node.create_service(Snapshot, "~/snapshot", serve)
+    asked = threading.Event()
+    log.info(f"Snapshot mode: call {node.get_fully_qualified_name()}/snapshot or send SIGUSR1")
+
+    def on_tick() -> None:
+        if asked.is_set():
+            asked.clear()
+            trigger()
+
+    return asked.set, on_tick
 
 
 def _absolute(names: list[str], node_name: str) -> list[str]:
@@ -279,7 +353,7 @@ def _record(
     """Run the recorder until a signal (or a write error); returns it, stopped."""
     from ros2lite.bag.recorder import Recorder
     from ros2lite.logging import get_logger
-    from ros2lite.util.process import StopSignals
+    from ros2lite.util.process import StopSignals, on_signals
 
     log = get_logger(node_name)
     node = conn.node(node_name)
@@ -291,12 +365,24 @@ def _record(
     if keyboard and keys_module.available():
         log.info("Press SPACE for pausing/resuming")
         keys = keys_module.KeyHandlers({" ": recorder.toggle_paused})
+    ticks: list[Callable[[], object]] = [status.update] if status is not None else []
+    signals: dict[int, Callable[[], object]] = {}
+    snapshots = getattr(writer, "snapshot", None) is not None
+    if snapshots:
+        import signal
+
+        ask, serve = _serve_snapshots(conn, node, recorder, log)
+        signals[signal.SIGUSR1] = ask
+        ticks.append(serve)
     try:
-        with StopSignals() as stop:
+        with StopSignals() as stop, on_signals(signals):
             recorder.run(
                 stop.event,
-                spin=(lambda t: conn.spin_until(timeout=t)) if conn.use_sim_time else None,
-                on_tick=status.update if status is not None else None,
+                # the snapshot service's calls are served by spinning the node
+                spin=(lambda t: conn.spin_until(timeout=t))
+                if conn.use_sim_time or snapshots
+                else None,
+                on_tick=(lambda: [tick() for tick in ticks]) if ticks else None,
             )
     finally:
         if keys is not None:

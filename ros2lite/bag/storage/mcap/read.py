@@ -9,14 +9,13 @@ from __future__ import annotations
 import contextlib
 import os
 import stat
-import struct
 from collections.abc import Iterable, Iterator
 from typing import TYPE_CHECKING
 
 from ros2lite.bag.errors import BagError, MetadataError
 from ros2lite.bag.metadata import BagMetadata, TopicMetadata, parse_metadata, parse_qos_list
 from ros2lite.bag.storage import FileSummary
-from ros2lite.bag.storage.mcap.scan import _CHUNK, _chunk_records, _ChunkHead, _Damage, _scan
+from ros2lite.bag.storage.mcap.scan import _scan, read_chunk_at
 
 if TYPE_CHECKING:
     from mcap.data_stream import ReadDataStream
@@ -286,24 +285,7 @@ class McapStorageReader:
 
     def _read_chunk(self, where: int, kept: list[McapRecord]) -> str | None:
         """The trusted records of the chunk at `where` into `kept`; what was wrong, if aught."""
-        stream = self._stream
-        size = stream.seek(0, os.SEEK_END)
-        stream.seek(where)
-        op_length = stream.read(9)
-        if len(op_length) < 9 or op_length[0] != _CHUNK:
-            return "is not where the index says"
-        (length,) = struct.unpack_from("<Q", op_length, 1)
-        try:
-            head = _ChunkHead(stream.read(min(length, 40 + 64)))
-        except _Damage as e:
-            return str(e)
-        start = where + 9 + 32 + len(head.compression.encode()) + 8
-        end = where + 9 + length
-        stream.seek(start)
-        data = stream.read(max(0, min(head.records_length, end - start, size - start)))
-        whole = end <= size and start + head.records_length <= end
-        problem = _chunk_records(head, data, whole, kept)
-        return problem if whole else problem or "is cut short"
+        return read_chunk_at(self._stream, where, kept)
 
     def _scan_summary(self) -> FileSummary:
         """Summary of a file without one, from its records up to the first broken one."""

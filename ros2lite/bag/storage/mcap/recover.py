@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, BinaryIO
 
 from ros2lite.bag.storage.mcap.read import McapStorageReader
 from ros2lite.bag.storage.mcap.scan import _scan
-from ros2lite.bag.storage.mcap.write import DEFAULT_CHUNK_SIZE, _library
+from ros2lite.bag.storage.mcap.write import DEFAULT_CHUNK_SIZE, library_name
 
 if TYPE_CHECKING:
     from mcap.records import Metadata
@@ -49,7 +49,7 @@ def _copy_readable(path: str, dst: BinaryIO, problems: list[str]) -> int:
             compression=CompressionType.NONE,
             index_types=IndexType.ALL,
         )
-        writer.start(profile="ros2", library=_library())
+        writer.start(profile="ros2", library=library_name())
         schema_ids: dict[int, int] = {}
         channel_ids: dict[int, int] = {}
         metadata: list[Metadata] = []

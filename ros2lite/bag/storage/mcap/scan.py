@@ -314,6 +314,31 @@ def _parse_records(
     return None
 
 
+def read_chunk_at(
+    stream: IO[bytes], where: int, kept: list[McapRecord], headers_only: bool = False
+) -> str | None:
+    """The trusted records of the chunk record at byte `where` of `stream` into `kept` (its
+    CRC checked, inflating bounded; `headers_only`: messages without their data); what was
+    wrong, if aught (None: the whole chunk)."""
+    size = stream.seek(0, os.SEEK_END)
+    stream.seek(where)
+    op_length = stream.read(9)
+    if len(op_length) < 9 or op_length[0] != _CHUNK:
+        return "is not where the index says"
+    (length,) = struct.unpack_from("<Q", op_length, 1)
+    try:
+        head = _ChunkHead(stream.read(min(length, 40 + 64)))
+    except _Damage as e:
+        return str(e)
+    start = where + 9 + 32 + len(head.compression.encode()) + 8
+    end = where + 9 + length
+    stream.seek(start)
+    data = stream.read(max(0, min(head.records_length, end - start, size - start)))
+    whole = end <= size and start + head.records_length <= end
+    problem = _chunk_records(head, data, whole, kept, headers_only=headers_only)
+    return problem if whole else problem or "is cut short"
+
+
 class _Scan:
     """A file read record by record in file order, as `mcap recover` reads it: every record
     that can be trusted up to the first that cannot. A chunk with bad records keeps those

@@ -24,7 +24,8 @@ PRESETS: dict[str, tuple[str, int]] = {
 }
 
 
-def _library() -> str:
+def library_name() -> str:
+    """The MCAP header's library field: ros2lite and its version."""
     from importlib.metadata import PackageNotFoundError, version
 
     try:
@@ -105,7 +106,7 @@ class McapStorageWriter:
         self._schemas: dict[str, int] = {}
         self._closed = False
         try:
-            self._writer.start(profile="ros2", library=_library())
+            self._writer.start(profile="ros2", library=library_name())
         except OSError as e:
             self.abandon()
             raise _os_error(path, e) from None
