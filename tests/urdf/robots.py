@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ['ARM', 'bot_workspace']
+__all__ = ['ARM', 'DISPLAY_LAUNCH', 'bot_workspace', 'with_display_launch']
 
 ARM = """<?xml version="1.0"?>
 <robot name="arm">
@@ -122,4 +122,44 @@ def bot_workspace(root: Path) -> Path:
     (pkg / 'package.xml').write_text(_MANIFEST)
     (pkg / 'urdf' / 'bot.urdf.xacro').write_text(_BOT)
     (pkg / 'urdf' / 'parts.xacro').write_text(_PARTS)
+    return ws
+
+
+# the URDF tutorial's display.launch.py, in its shape: xacro -> robot_description ->
+# robot_state_publisher, joint_state_publisher or its GUI by `gui`, and rviz2 (optional here:
+# the viewer is another package's)
+DISPLAY_LAUNCH = """
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch.conditions import IfCondition, UnlessCondition
+from launch.substitutions import Command, LaunchConfiguration, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.parameter_descriptions import ParameterValue
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    model = PathJoinSubstitution([FindPackageShare('bot_description'), 'urdf', 'bot.urdf.xacro'])
+    description = ParameterValue(Command(['xacro ', LaunchConfiguration('model')]), value_type=str)
+    return LaunchDescription([
+        DeclareLaunchArgument('gui', default_value='true', choices=['true', 'false']),
+        DeclareLaunchArgument('rviz', default_value='true', choices=['true', 'false']),
+        DeclareLaunchArgument('model', default_value=model),
+        Node(package='robot_state_publisher', executable='robot_state_publisher',
+             parameters=[{'robot_description': description}]),
+        Node(package='joint_state_publisher', executable='joint_state_publisher',
+             condition=UnlessCondition(LaunchConfiguration('gui'))),
+        Node(package='joint_state_publisher_gui', executable='joint_state_publisher_gui',
+             condition=IfCondition(LaunchConfiguration('gui'))),
+        Node(package='rviz2', executable='rviz2', name='rviz2', output='screen',
+             condition=IfCondition(LaunchConfiguration('rviz'))),
+    ])
+"""
+
+
+def with_display_launch(ws: Path) -> Path:
+    """`ws` with the tutorial-shaped launch file in bot_description/launch/."""
+    launch = ws / 'src' / 'bot_description' / 'launch'
+    launch.mkdir(exist_ok=True)
+    (launch / 'display.launch.py').write_text(DISPLAY_LAUNCH)
     return ws
