@@ -49,6 +49,7 @@ _DEMOS = {
         'turtle_tf2_listener',
     ],
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
+    'urdf_launch': [],  # launch files only
     'xacro': ['xacro'],
 }
 BUNDLED: dict[str, dict[str, str]] = {

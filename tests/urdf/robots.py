@@ -125,34 +125,30 @@ def bot_workspace(root: Path) -> Path:
     return ws
 
 
-# the URDF tutorial's display.launch.py, in its shape: xacro -> robot_description ->
-# robot_state_publisher, joint_state_publisher or its GUI by `gui`, and rviz2 (optional here:
-# the viewer is another package's)
+# Jazzy's URDF tutorial's display.launch.py, in its shape: urdf_launch's display.launch.py
+# included with this package's xacro file (xacro -> robot_description -> robot_state_publisher,
+# joint_state_publisher or its GUI by `gui`, and rviz2, optional here: another branch's)
 DISPLAY_LAUNCH = """
 from launch import LaunchDescription
-from launch.actions import DeclareLaunchArgument
-from launch.conditions import IfCondition, UnlessCondition
-from launch.substitutions import Command, LaunchConfiguration, PathJoinSubstitution
-from launch_ros.actions import Node
-from launch_ros.parameter_descriptions import ParameterValue
+from launch.actions import DeclareLaunchArgument, IncludeLaunchDescription
+from launch.substitutions import LaunchConfiguration, PathJoinSubstitution
 from launch_ros.substitutions import FindPackageShare
 
 
 def generate_launch_description():
-    model = PathJoinSubstitution([FindPackageShare('bot_description'), 'urdf', 'bot.urdf.xacro'])
-    description = ParameterValue(Command(['xacro ', LaunchConfiguration('model')]), value_type=str)
     return LaunchDescription([
         DeclareLaunchArgument('gui', default_value='true', choices=['true', 'false']),
         DeclareLaunchArgument('rviz', default_value='true', choices=['true', 'false']),
-        DeclareLaunchArgument('model', default_value=model),
-        Node(package='robot_state_publisher', executable='robot_state_publisher',
-             parameters=[{'robot_description': description}]),
-        Node(package='joint_state_publisher', executable='joint_state_publisher',
-             condition=UnlessCondition(LaunchConfiguration('gui'))),
-        Node(package='joint_state_publisher_gui', executable='joint_state_publisher_gui',
-             condition=IfCondition(LaunchConfiguration('gui'))),
-        Node(package='rviz2', executable='rviz2', name='rviz2', output='screen',
-             condition=IfCondition(LaunchConfiguration('rviz'))),
+        DeclareLaunchArgument('model', default_value='urdf/bot.urdf.xacro'),
+        IncludeLaunchDescription(
+            PathJoinSubstitution([FindPackageShare('urdf_launch'), 'launch', 'display.launch.py']),
+            launch_arguments={
+                'urdf_package': 'bot_description',
+                'urdf_package_path': LaunchConfiguration('model'),
+                'jsp_gui': LaunchConfiguration('gui'),
+                'rviz': LaunchConfiguration('rviz'),
+            }.items(),
+        ),
     ])
 """
 

@@ -1,4 +1,4 @@
-"""The URDF tutorial's launch, in its shape, through `ros2lite launch` from a workspace
+"""Jazzy's URDF tutorial's launch, in its shape (urdf_launch's display included), from a workspace
 package: xacro runs through Command, robot_state_publisher gets the URDF, joint_state_publisher
 reads it back from /robot_description, and a tf2 Buffer sees every link of the xacro robot."""
 
