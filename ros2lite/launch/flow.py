@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterable, Mapping
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .actions import (
@@ -28,6 +29,7 @@ from .entity import Entities, LaunchDescriptionEntity
 from .errors import LaunchError
 from .events import Event
 from .events import Shutdown as ShutdownEvent
+from .sources import AnyLaunchDescriptionSource
 from .substitutions import (
     SomeSubstitutionsType,
     SubstitutionMapping,
@@ -106,7 +108,10 @@ class IncludeLaunchDescription(Action):
 
     def __init__(
         self,
-        launch_description_source: LaunchDescriptionSource | LaunchDescription,
+        launch_description_source: LaunchDescriptionSource
+        | LaunchDescription
+        | SomeSubstitutionsType
+        | Path,
         *,
         launch_arguments: Iterable[tuple[SomeSubstitutionsType, SomeSubstitutionsType]]
         | SubstitutionMapping
@@ -116,6 +121,9 @@ class IncludeLaunchDescription(Action):
         super().__init__(**kwargs)
         if isinstance(launch_description_source, LaunchDescription):
             launch_description_source = LaunchDescriptionSource(launch_description_source)
+        elif not isinstance(launch_description_source, LaunchDescriptionSource):
+            # a file's path as such, as launch takes it since Iron (urdf_launch's includes)
+            launch_description_source = AnyLaunchDescriptionSource(launch_description_source)
         self.launch_description_source = launch_description_source
         items = (
             launch_arguments.items()

@@ -28,6 +28,8 @@ _DEMOS = {
         'use_logger_service',
     ],
     'foxglove_bridge': ['foxglove_bridge'],
+    'joint_state_publisher': ['joint_state_publisher'],
+    'joint_state_publisher_gui': ['joint_state_publisher_gui'],
     'lifecycle': ['lifecycle_listener'],
     'lifecycle_py': ['lifecycle_talker'],
     'rclpy_components': ['component_container', 'component_container_mt'],
@@ -49,6 +51,7 @@ _DEMOS = {
     ],
     'turtlebot3_gazebo': ['gazebo_2d'],
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
+    'urdf_launch': [],  # launch files only
     'xacro': ['xacro'],
 }
 BUNDLED: dict[str, dict[str, str]] = {

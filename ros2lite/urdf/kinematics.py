@@ -3,9 +3,9 @@ transform from its parent link's frame to its child's.
 
 A revolute or continuous joint turns about its axis by its position, a prismatic one slides
 along it; fixed joints sit at their origin, and so do floating and planar ones (a single
-position cannot place them: robot_state_publisher's kinematics treats them as fixed, though
-it publishes them with the moving ones). A mimic joint's position is its leader's times the
-multiplier plus the offset, unless the joint state names it itself.
+position cannot place them: robot_state_publisher's kinematics makes a planar joint fixed and
+sends no floating one). A mimic joint's position is its leader's times the multiplier plus
+the offset, unless the joint state names it itself.
 """
 
 from __future__ import annotations

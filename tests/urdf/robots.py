@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-__all__ = ['ARM', 'bot_workspace']
+__all__ = ['ARM', 'DISPLAY_LAUNCH', 'bot_workspace', 'with_display_launch']
 
 ARM = """<?xml version="1.0"?>
 <robot name="arm">
@@ -122,4 +122,40 @@ def bot_workspace(root: Path) -> Path:
     (pkg / 'package.xml').write_text(_MANIFEST)
     (pkg / 'urdf' / 'bot.urdf.xacro').write_text(_BOT)
     (pkg / 'urdf' / 'parts.xacro').write_text(_PARTS)
+    return ws
+
+
+# Jazzy's URDF tutorial's display.launch.py, in its shape: urdf_launch's display.launch.py
+# included with this package's xacro file (xacro -> robot_description -> robot_state_publisher,
+# joint_state_publisher or its GUI by `gui`, and rviz2, optional here: another branch's)
+DISPLAY_LAUNCH = """
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, IncludeLaunchDescription
+from launch.substitutions import LaunchConfiguration, PathJoinSubstitution
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    return LaunchDescription([
+        DeclareLaunchArgument('gui', default_value='true', choices=['true', 'false']),
+        DeclareLaunchArgument('rviz', default_value='true', choices=['true', 'false']),
+        DeclareLaunchArgument('model', default_value='urdf/bot.urdf.xacro'),
+        IncludeLaunchDescription(
+            PathJoinSubstitution([FindPackageShare('urdf_launch'), 'launch', 'display.launch.py']),
+            launch_arguments={
+                'urdf_package': 'bot_description',
+                'urdf_package_path': LaunchConfiguration('model'),
+                'jsp_gui': LaunchConfiguration('gui'),
+                'rviz': LaunchConfiguration('rviz'),
+            }.items(),
+        ),
+    ])
+"""
+
+
+def with_display_launch(ws: Path) -> Path:
+    """`ws` with the tutorial-shaped launch file in bot_description/launch/."""
+    launch = ws / 'src' / 'bot_description' / 'launch'
+    launch.mkdir(exist_ok=True)
+    (launch / 'display.launch.py').write_text(DISPLAY_LAUNCH)
     return ws

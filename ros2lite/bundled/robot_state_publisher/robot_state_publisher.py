@@ -21,6 +21,7 @@ import sys
 from collections.abc import Sequence
 
 from ros2lite.bundled.runner import run_node
+from ros2lite.context import Context
 from ros2lite.msgs.geometry_msgs.msg import TransformStamped
 from ros2lite.msgs.rcl_interfaces.msg import SetParametersResult
 from ros2lite.msgs.sensor_msgs.msg import JointState
@@ -49,8 +50,8 @@ def _valid_frequency(value: float) -> bool:
 class RobotStatePublisher(Node):
     """Sends a robot's frames; the description may change while it runs."""
 
-    def __init__(self) -> None:
-        super().__init__('robot_state_publisher')
+    def __init__(self, *, context: Context | None = None) -> None:
+        super().__init__('robot_state_publisher', context=context)
         description = str(self.declare_parameter('robot_description', '').value or '')
         if not description:
             raise ValueError('robot_description parameter must not be empty')

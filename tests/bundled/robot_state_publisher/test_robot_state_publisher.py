@@ -11,8 +11,10 @@ import sys
 from pathlib import Path
 from typing import Any
 
+import pytest
 import yaml
 
+from ros2lite.bundled.robot_state_publisher.robot_state_publisher import RobotStatePublisher
 from ros2lite.executors import SingleThreadedExecutor
 from ros2lite.msgs.sensor_msgs.msg import JointState
 from ros2lite.msgs.std_msgs.msg import String
@@ -165,10 +167,10 @@ def test_frames_follow_joint_states_and_the_description(
     assert 'Robot initialized' in err
 
 
-def test_bad_descriptions_are_one_line(ros_router: str, tmp_path: Path) -> None:
-    empty = run_rsp()
-    assert empty.returncode == 1
-    assert errors(empty) == ['robot_description parameter must not be empty']
+def test_bad_descriptions_are_one_line(ros_context: Any, tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match=r'^robot_description parameter must not be empty$'):
+        RobotStatePublisher(context=ros_context)
+    # as a process: the one line, status 1, no traceback
     broken = run_rsp(
         '--ros-args', '--params-file', str(params_file(tmp_path, robot_description='<robot'))
     )
