@@ -27,6 +27,7 @@ string note "none"
 """
 SAMPLE = 'float64 value\nint32[3] counts\n'
 SCALE = 'float64 x\nSample s\n---\nfloat64 y\n'
+COUNT = 'int32 to\n---\nint32 reached\n---\nSample last\n'
 
 NODE = """
 import sys
@@ -52,6 +53,8 @@ def scale(req, resp):
     resp.y = req.x * req.s.value
     return resp
 node.create_service(Scale, 'scale', scale)
+from ros2lite.action import ActionServer
+ActionServer(node, get_interface('wire_test_msgs/action/Count'), 'count', lambda goal: None)
 def heard(m):
     print('GOT', m.level, m.note, flush=True)
 node.create_subscription(Reading, 'command', heard, 10)
@@ -72,6 +75,8 @@ def write_workspace(root: Path) -> Path:
     pkg = root / 'ws' / 'wire_test_msgs'
     (pkg / 'msg').mkdir(parents=True)
     (pkg / 'srv').mkdir()
+    (pkg / 'action').mkdir()
+    (pkg / 'action' / 'Count.action').write_text(COUNT)
     (pkg / 'msg' / 'Reading.msg').write_text(READING)
     (pkg / 'msg' / 'Sample.msg').write_text(SAMPLE)
     (pkg / 'srv' / 'Scale.srv').write_text(SCALE)
@@ -120,6 +125,14 @@ def test_echo_show_pub_and_call_a_type_only_the_node_knows(processes: Any, works
     assert show.returncode == 0, show.stderr
     assert show.stdout.startswith(READING.split('std_msgs')[0] + 'std_msgs/Header header\n')
     assert '\tfloat64 value\n\tint32[3] counts\n' in show.stdout
+
+    action = _cli(workspace, 'interface', 'show', 'wire_test_msgs/action/Count')
+    assert action.returncode == 0, action.stderr
+    assert action.stderr == FETCHED.replace('msg/Reading', 'action/Count')
+    assert action.stdout == (
+        'int32 to\n---\nint32 reached\n---\nwire_test_msgs/Sample last\n'
+        '\tfloat64 value\n\tint32[3] counts\n'
+    )
 
     call = _cli(
         workspace, 'service', 'call', '/lab/scale', 'wire_test_msgs/srv/Scale',
