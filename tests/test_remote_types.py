@@ -203,3 +203,24 @@ def test_a_node_lying_about_its_type_gets_one_line(processes: Any, workspace: Pa
     assert len(lines) == 1, echo.stderr
     assert 'node /lab/sensor describes wire_test_msgs/msg/Reading as RIHS01_' in lines[0]
     assert 'not as the RIHS01_' in lines[0]
+
+
+def test_only_nodes_that_describe_are_asked_publishers_on_the_topic_first() -> None:
+    from ros2lite.graph import Entity, EntityKind
+    from ros2lite.remote_types import SERVICE_TYPE, offering_nodes
+
+    def endpoint(kind: EntityKind, node: str, topic: str, type_name: str) -> Entity:
+        return Entity(0, 'z', 1, 2, kind, '/', '/', node, topic, type_name, None, 'RIHS01_x')
+
+    entities = [
+        endpoint(EntityKind.SUBSCRIPTION, 'b', '/t', 'p/msg/T'),
+        endpoint(EntityKind.PUBLISHER, 'a', '/other', 'p/msg/T'),
+        endpoint(EntityKind.PUBLISHER, 'c', '/t', 'p/msg/T'),
+        endpoint(EntityKind.PUBLISHER, '_ros2lite_tool', '/t', 'p/msg/T'),  # serves nothing
+        *(
+            endpoint(EntityKind.SERVICE, n, f'/{n}/get_type_description', SERVICE_TYPE)
+            for n in 'abc'
+        ),
+    ]
+    assert [n for n, _, _ in offering_nodes(entities, 'p/msg/T', '/t')] == ['/c', '/b', '/a']
+    assert offering_nodes(entities, 'p/msg/U', '/t') == []
