@@ -10,7 +10,7 @@ from ros2lite.interfaces.registry import default_registry
 from ros2lite.interfaces.text import show_lines
 
 from .. import completion
-from ..common import connect, known_type
+from ..common import known_type_if_graph
 from ..parsing import command
 
 
@@ -37,11 +37,7 @@ def cli(type_name: str, all_comments: bool, no_comments: bool) -> None:
     """Output the interface definition (TYPE '-' reads it from stdin)."""
     if all_comments and no_comments:
         raise click.UsageError('--all-comments and --no-comments are mutually exclusive')
-    from ros2lite.remote_types import is_known
-
     name = read_type_argument(type_name)
-    if len(name.split('/')) == 3 and not is_known(name):
-        with connect() as conn:  # a type only some node knows
-            known_type(conn, name)
+    known_type_if_graph(name)  # a type only some node on the graph knows
     lines = show_lines(name, default_registry(), all_comments=all_comments, no_comments=no_comments)
     click.echo(''.join(line + '\n' for line in lines), nl=False)  # an empty type: nothing
