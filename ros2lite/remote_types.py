@@ -102,9 +102,9 @@ def ensure_type(
 ) -> bool:
     """Make `type_name` known, fetching it from a node that uses it (on topic or service
     `name` if given) when the local search path lacks it (`node()` makes the asking node
-    only then); True if it is known now. Saying
-    where it came from goes to `say` (stderr by default). RemoteTypeError when every node
-    that was asked failed and one of them described something that does not fit."""
+    only then); True if it is known now, False if no node offers it. Saying where it came
+    from goes to `say` (stderr by default). RemoteTypeError when every node asked failed:
+    the first that described something that does not fit, else the first reason."""
     type_name = normalize_name(type_name)
     if is_known(type_name):
         return True
@@ -114,19 +114,28 @@ def ensure_type(
         return False
     report = say or (lambda text: print(text, file=sys.stderr, flush=True))
     lie: RemoteTypeError | None = None
+    failed: list[str] = []
+    sources: list[str] = []  # the nodes that described (an action's parts may be several)
     for fqn, announced, type_hash in offering_nodes(entities, type_name, name):
         if fetched_from(announced, type_hash) is None:
             try:
-                if _ask(node(), fqn, announced, type_hash, timeout) is not None:
-                    continue
+                why = _ask(node(), fqn, announced, type_hash, timeout)
             except RemoteTypeError as e:
                 lie = lie or e
                 continue
-            report(f'ros2lite: type {announced} fetched from node {fqn}')
+            if why is not None:
+                failed.append(why)
+                continue
+            if fqn not in sources:
+                sources.append(fqn)
         if announced != type_name:
             assemble_action(type_name)
         if is_known(type_name):
+            if sources:
+                report(f'ros2lite: type {type_name} fetched from node {", ".join(sources)}')
             return True
     if lie is not None:
         raise lie
+    if failed:
+        raise RemoteTypeError(f'type {type_name} is not defined here, and {failed[0]}')
     return False

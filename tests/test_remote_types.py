@@ -27,6 +27,7 @@ string note "none"
 """
 SAMPLE = 'float64 value\nint32[3] counts\n'
 SCALE = 'float64 x\nSample s\n---\nfloat64 y\n'
+COUNT = 'int32 to\n---\nint32 reached\n---\nSample last\n'
 
 NODE = """
 import sys
@@ -52,6 +53,8 @@ def scale(req, resp):
     resp.y = req.x * req.s.value
     return resp
 node.create_service(Scale, 'scale', scale)
+from ros2lite.action import ActionServer
+ActionServer(node, get_interface('wire_test_msgs/action/Count'), 'count', lambda goal: None)
 def heard(m):
     print('GOT', m.level, m.note, flush=True)
 node.create_subscription(Reading, 'command', heard, 10)
@@ -72,6 +75,8 @@ def write_workspace(root: Path) -> Path:
     pkg = root / 'ws' / 'wire_test_msgs'
     (pkg / 'msg').mkdir(parents=True)
     (pkg / 'srv').mkdir()
+    (pkg / 'action').mkdir()
+    (pkg / 'action' / 'Count.action').write_text(COUNT)
     (pkg / 'msg' / 'Reading.msg').write_text(READING)
     (pkg / 'msg' / 'Sample.msg').write_text(SAMPLE)
     (pkg / 'srv' / 'Scale.srv').write_text(SCALE)
@@ -120,6 +125,14 @@ def test_echo_show_pub_and_call_a_type_only_the_node_knows(processes: Any, works
     assert show.returncode == 0, show.stderr
     assert show.stdout.startswith(READING.split('std_msgs')[0] + 'std_msgs/Header header\n')
     assert '\tfloat64 value\n\tint32[3] counts\n' in show.stdout
+
+    action = _cli(workspace, 'interface', 'show', 'wire_test_msgs/action/Count')
+    assert action.returncode == 0, action.stderr
+    assert action.stderr == FETCHED.replace('msg/Reading', 'action/Count')
+    assert action.stdout == (
+        'int32 to\n---\nint32 reached\n---\nwire_test_msgs/Sample last\n'
+        '\tfloat64 value\n\tint32[3] counts\n'
+    )
 
     call = _cli(
         workspace, 'service', 'call', '/lab/scale', 'wire_test_msgs/srv/Scale',
@@ -190,3 +203,24 @@ def test_a_node_lying_about_its_type_gets_one_line(processes: Any, workspace: Pa
     assert len(lines) == 1, echo.stderr
     assert 'node /lab/sensor describes wire_test_msgs/msg/Reading as RIHS01_' in lines[0]
     assert 'not as the RIHS01_' in lines[0]
+
+
+def test_only_nodes_that_describe_are_asked_publishers_on_the_topic_first() -> None:
+    from ros2lite.graph import Entity, EntityKind
+    from ros2lite.remote_types import SERVICE_TYPE, offering_nodes
+
+    def endpoint(kind: EntityKind, node: str, topic: str, type_name: str) -> Entity:
+        return Entity(0, 'z', 1, 2, kind, '/', '/', node, topic, type_name, None, 'RIHS01_x')
+
+    entities = [
+        endpoint(EntityKind.SUBSCRIPTION, 'b', '/t', 'p/msg/T'),
+        endpoint(EntityKind.PUBLISHER, 'a', '/other', 'p/msg/T'),
+        endpoint(EntityKind.PUBLISHER, 'c', '/t', 'p/msg/T'),
+        endpoint(EntityKind.PUBLISHER, '_ros2lite_tool', '/t', 'p/msg/T'),  # serves nothing
+        *(
+            endpoint(EntityKind.SERVICE, n, f'/{n}/get_type_description', SERVICE_TYPE)
+            for n in 'abc'
+        ),
+    ]
+    assert [n for n, _, _ in offering_nodes(entities, 'p/msg/T', '/t')] == ['/c', '/b', '/a']
+    assert offering_nodes(entities, 'p/msg/U', '/t') == []

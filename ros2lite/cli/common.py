@@ -72,15 +72,19 @@ def message_fields(cls: type[Message], fields: dict[str, object]) -> dict[str, o
 
 
 def connect(
-    *, no_daemon: bool = False, use_sim_time: bool = False, as_node: bool = False
+    *,
+    no_daemon: bool = False,
+    use_sim_time: bool = False,
+    as_node: bool = False,
+    autostart: bool | None = None,
 ) -> Connection:
     """This run's connection to the graph (the daemon's graph cache asked, and the daemon
-    started on demand, unless `--no-daemon`; a node's peer session with `as_node`); use it
-    as a context manager."""
+    started on demand unless `--no-daemon` or `autostart` is false; a node's peer session
+    with `as_node`); use it as a context manager."""
     from ros2lite.tools.connection import Connection
 
     return Connection(
-        autostart=not no_daemon,
+        autostart=not no_daemon if autostart is None else autostart,
         use_sim_time=use_sim_time,
         as_node=as_node,
         graph_cache=not no_daemon,
@@ -95,6 +99,24 @@ def known_type(conn: Connection, type_name: str, name: str | None = None) -> Non
     from ros2lite.remote_types import ensure_type
 
     ensure_type(conn.node, conn.entities(), type_name, name, say=lambda t: render.echo(t, err=True))
+
+
+def known_type_if_graph(type_name: str, name: str | None = None) -> None:
+    """`known_type` for a verb that needs no graph otherwise (`interface show`, the type
+    check of `service call`): no daemon is started for it, and no router means no fetch
+    (the verb then says the type is unknown, as it would have)."""
+    from ros2lite.exceptions import Ros2liteError
+    from ros2lite.remote_types import RemoteTypeError, is_known
+
+    if len(type_name.split('/')) != 3 or is_known(type_name):
+        return
+    try:
+        with connect(autostart=False) as conn:
+            known_type(conn, type_name, name)
+    except RemoteTypeError:
+        raise
+    except Ros2liteError:
+        return
 
 
 def resolved_name(node: Node, name: str, kind: str) -> str:

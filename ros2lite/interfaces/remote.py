@@ -258,11 +258,9 @@ def build(
     total = 0
     texts: dict[str, str] = {}
     for s in sources:
-        if s.encoding == 'implicit' or s.type_name not in described:
+        # 'idl', 'dynamic', 'implicit' (or a file of another kind): built from the structure
+        if s.type_name not in described or s.encoding != s.type_name.split('/')[1]:
             continue
-        kind = s.type_name.split('/')[1]
-        if s.encoding != kind:
-            raise RemoteTypeError(f'{s.type_name}: source encoding {s.encoding!r} is not {kind}')
         total += len(s.raw_file_contents)
         if len(s.raw_file_contents) > DEFINITION_LIMIT or total > MAX_SOURCES_TOTAL:
             raise RemoteTypeError(f'the definition files of {name} are too large')

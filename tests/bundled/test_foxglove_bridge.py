@@ -491,3 +491,12 @@ def test_a_type_only_a_node_knows_gets_its_schema_from_that_node(
     assert any(
         'type wire_test_msgs/msg/Reading fetched from node /lab/sensor' in line for line in lines
     )
+    # the node's service of a type only it knows is offered too, and answers
+    client.expect(
+        lambda e: (
+            e['event'] == 'advertiseServices'
+            and any(s['name'] == '/lab/scale' for s in e['services'])
+        )
+    )
+    client.send(cmd='call', service='/lab/scale', request={'x': 2.0, 's': {'value': 4.0}})
+    assert client.expect(lambda e: e['event'] == 'serviceResponse')['value']['y'] == 8.0

@@ -20,6 +20,15 @@ from ros2lite.interfaces.remote import (
 from ros2lite.interfaces.text import definition_text, show_lines
 from ros2lite.type_description_service import description_message, type_sources
 
+
+@pytest.fixture(autouse=True)
+def _fresh_cache(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Each test checks its own descriptions (the cache is by hash, for a process's life)."""
+    from ros2lite.interfaces import remote
+
+    monkeypatch.setattr(remote, '_FETCHED', {})
+
+
 FieldMsg = get_interface('type_description_interfaces/msg/Field')
 FieldTypeMsg = get_interface('type_description_interfaces/msg/FieldType')
 Individual = get_interface('type_description_interfaces/msg/IndividualTypeDescription')
@@ -181,3 +190,14 @@ def test_a_type_whose_dependency_is_defined_differently_here() -> None:
     with pytest.raises(RemoteTypeError, match='uses std_msgs/msg/Header, defined differently'):
         _install(name, sources=True, reg=local)
     assert not local.exists(name)
+
+
+def test_sources_in_other_encodings_give_way_to_the_structure() -> None:
+    name = 'std_msgs/msg/ColorRGBA'
+    desc = description_message(name)
+    sources = type_sources(desc)
+    sources[0].encoding = 'idl'
+    sources[0].raw_file_contents = 'module std_msgs { module msg { struct ColorRGBA {}; }; };'
+    reg = Registry(roots=[])
+    install(name, type_hash(name), desc, sources, 'node /idl', reg)
+    assert reg.interface_text(name) == 'float32 r\nfloat32 g\nfloat32 b\nfloat32 a\n'

@@ -31,6 +31,7 @@ class GraphServices:
     def refresh(self, entities: list[Entity]) -> None:
         """Offer the graph's visible services, withdraw the ones gone."""
         from ros2lite.interfaces import definition_text
+        from ros2lite.remote_types import ensure_type
 
         state = self.state
         server = state.server
@@ -55,6 +56,7 @@ class GraphServices:
             if name in self.advertised or type_name in state.unknown_types:
                 continue
             try:
+                ensure_type(lambda: state.node, entities, type_name, name)
                 request = definition_text(f'{type_name}_Request')
                 response = definition_text(f'{type_name}_Response')
             except Exception as e:

@@ -10,7 +10,7 @@ from ros2lite.interfaces.registry import default_registry
 from ros2lite.interfaces.text import show_lines
 
 from .. import completion, render
-from ..common import connect, known_type
+from ..common import known_type_if_graph
 from ..options import json_option
 from ..parsing import command
 
@@ -42,12 +42,8 @@ def cli(type_name: str, all_comments: bool, no_comments: bool, as_json: bool) ->
     """Output the interface definition (TYPE '-' reads it from stdin)."""
     if all_comments and no_comments:
         raise click.UsageError('--all-comments and --no-comments are mutually exclusive')
-    from ros2lite.remote_types import is_known
-
     name = read_type_argument(type_name)
-    if len(name.split('/')) == 3 and not is_known(name):
-        with connect() as conn:  # a type only some node knows
-            known_type(conn, name)
+    known_type_if_graph(name)  # a type only some node on the graph knows
     if as_json:
         from ros2lite.interfaces.json_form import definition_to_json
 

@@ -19,7 +19,7 @@ from .. import completion, numbers, render
 from ..common import (
     connect,
     interface_type_name,
-    known_type,
+    known_type_if_graph,
     message_fields,
     wait_saying_other_types,
     yaml_fields,
@@ -100,7 +100,6 @@ def cli(
 def _service_type(service_type: str, service_name: str) -> str:
     """The full name of the service type, fetched from the graph's nodes if it has no local
     definition."""
-    from ros2lite.remote_types import is_known
 
     def full_name() -> str:
         return interface_type_name(
@@ -115,10 +114,7 @@ def _service_type(service_type: str, service_name: str) -> str:
     except CliError:
         parts = service_type.split('/')
         guess = '/'.join([parts[0], 'srv', parts[1]] if len(parts) == 2 else parts)
-        if is_known(guess) or len(guess.split('/')) != 3:
-            raise
-        with connect() as conn:
-            known_type(conn, guess, service_name if service_name.startswith('/') else None)
+        known_type_if_graph(guess, service_name if service_name.startswith('/') else None)
         return full_name()
 
 
