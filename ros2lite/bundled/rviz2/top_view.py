@@ -236,36 +236,50 @@ def _clip(
     return (x0 + t0 * dx, y0 + t0 * dy), (x0 + t1 * dx, y0 + t1 * dy)
 
 
-def _grid_backgrounds(canvas: DotCanvas, grid: Grid, view: Viewport) -> None:
-    """Each cell's map colour: occupied if any of its dots is, else free if its middle is."""
-    w, h = canvas.width, canvas.height
-    for r in range(canvas.rows):
-        for c in range(canvas.cols):
-            i = r * canvas.cols + c
-            x, y = view.to_world(2 * c + 1, 4 * r + 2, w, h)
-            middle = grid.value_at(x, y)
-            occupied = middle is not None and middle >= 50
-            if not occupied and (middle is None or view.scale < grid.resolution * 2):
-                for dc, dr in ((0.5, 0.5), (1.5, 0.5), (0.5, 3.5), (1.5, 3.5)):
-                    v = grid.value_at(*view.to_world(2 * c + dc, 4 * r + dr, w, h))
-                    if v is not None and v >= 50:
-                        occupied = True
-                        break
-            if occupied:
-                canvas.bg[i] = OCCUPIED
-            elif middle is not None and 0 <= middle < 50:
-                canvas.bg[i] = FREE
+# where in a character cell the map is sampled, in dots: the middle first, then the corners
+CELL_SAMPLES = ((1.0, 2.0), (0.5, 0.5), (1.5, 0.5), (0.5, 3.5), (1.5, 3.5))
 
 
-def draw(snap: Snapshot, view: Viewport, canvas: DotCanvas) -> None:
-    """The snapshot's layers on `canvas`, the robot last (on top)."""
+class MapCells:
+    """The map's cell colours of the last frame, and what they were computed for."""
+
+    def __init__(self) -> None:
+        self.key: object = None
+        self.colours: list[Colour | None] = []
+
+
+def _grid_backgrounds(
+    canvas: DotCanvas, grids: list[Grid], view: Viewport, cache: MapCells
+) -> None:
+    """Each cell's map colour: occupied if any of its samples is, else free if its middle
+    is; computed again only when the view, the size or a grid changed."""
+    from ros2lite.monitor.scene import FREE_CELL, OCCUPIED_CELL
+
+    key = (view.cx, view.cy, view.scale, canvas.cols, canvas.rows, [id(g.data) for g in grids])
+    if cache.key != key:
+        colours: list[Colour | None] = [None] * (canvas.cols * canvas.rows)
+        where = view.dot_to_world(canvas.width, canvas.height)
+        for grid in reversed(grids):  # the first grid on top
+            classes = grid.classes(where, canvas.cols, canvas.rows, (2, 4), CELL_SAMPLES)
+            for i, kind in enumerate(classes):
+                if kind == OCCUPIED_CELL:
+                    colours[i] = OCCUPIED
+                elif kind == FREE_CELL:
+                    colours[i] = FREE
+        cache.key, cache.colours = key, colours
+    canvas.bg = list(cache.colours)
+
+
+def draw(snap: Snapshot, view: Viewport, canvas: DotCanvas, cache: MapCells | None = None) -> None:
+    """The snapshot's layers on `canvas`, the robot last (on top); `cache` keeps the map's
+    cells from one frame to the next."""
     w, h = canvas.width, canvas.height
 
     def at(p: tuple[float, float]) -> tuple[float, float]:
         return view.to_dot(p[0], p[1], w, h)
 
-    for grid in snap.grids:
-        _grid_backgrounds(canvas, grid, view)
+    if snap.grids:
+        _grid_backgrounds(canvas, snap.grids, view, MapCells() if cache is None else cache)
     for a, b in pairwise(snap.trail):
         canvas.line(at(a), at(b), TRAIL)
     for path in snap.paths.values():
@@ -289,12 +303,14 @@ def draw(snap: Snapshot, view: Viewport, canvas: DotCanvas) -> None:
         canvas.line(at((x, y)), at((x + reach * math.cos(yaw), y + reach * math.sin(yaw))), ROBOT)
 
 
-def picture(scene: Scene, view: Viewport, cols: int, rows: int, frames: bool) -> str:
+def picture(
+    scene: Scene, view: Viewport, cols: int, rows: int, frames: bool, cache: MapCells | None = None
+) -> str:
     """One frame of the terminal: the canvas, then the status line and the keys."""
     snap = scene.snapshot(show_frames=frames)
     canvas = DotCanvas(max(cols, 4), max(rows - 2, 2))
     view.update(snap, canvas.width, canvas.height)
-    draw(snap, view, canvas)
+    draw(snap, view, canvas, cache)
     lines = canvas.lines()
     lines.append(status(snap, view)[:cols])
     lines.append(KEYS[:cols])
@@ -312,6 +328,7 @@ class TopTerminal:
         self.scene = scene
         self.view = Viewport()
         self.frames = frames
+        self.cache = MapCells()
 
     def key(self, key: str) -> bool:
         """Act on one key; False when it asks to quit."""
@@ -355,7 +372,9 @@ class TopTerminal:
                     if now - drawn >= period:
                         drawn = now
                         cols, rows = terminal_size(sys.stdout)
-                        text = picture(self.scene, self.view, cols, rows - 1, self.frames)
+                        text = picture(
+                            self.scene, self.view, cols, rows - 1, self.frames, self.cache
+                        )
                         if text != shown:
                             live.show(text)
                             shown = text
