@@ -57,9 +57,11 @@ t.transform.rotation.w = 1.0
 print('start', flush=True)
 start = time.monotonic()
 sent = 0
+last_tf = -1.0
 while time.monotonic() - start < seconds:
     now = node.get_clock().now().to_msg()
-    if sent % max(1, int(hz / 20)) == 0:  # tf at about 20 Hz whatever the scan rate
+    if time.monotonic() - last_tf >= 0.05:  # tf at 20 Hz whatever the scan rate
+        last_tf = time.monotonic()
         t.header.stamp = now
         tf.sendTransform(t)
     scan.header.stamp = now
