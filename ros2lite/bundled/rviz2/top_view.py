@@ -179,12 +179,25 @@ class DotCanvas:
             self.dot(x0 + (x1 - x0) * t, y0 + (y1 - y0) * t, colour)
 
     def label(self, x: float, y: float, text: str, colour: Colour) -> None:
+        """`text` beside dot (x, y): right of it (past a frame's axes), else below, else
+        above, wherever its first cells are empty; it stops short of anything drawn (a name
+        never hides data)."""
         col, row = math.floor(x / 2), math.floor(y / 4)
-        if not 0 <= row < self.rows:
+        places = ((col + 4, row), (col + 7, row), (col + 1, row + 1), (col + 1, row - 1),
+                  (col + 1, row + 2), (col + 1, row - 2))  # fmt: skip
+        for c, r in places:
+            if not 0 <= r < self.rows or not 0 <= c < self.cols:
+                continue
+            start = r * self.cols + c
+            head = range(start, start + min(len(text), 3, self.cols - c))
+            if any(self.bits[i] or i in self.text for i in head):
+                continue
+            for k, ch in enumerate(text):
+                i = start + k
+                if c + k >= self.cols or self.bits[i] or i in self.text:
+                    return
+                self.text[i] = (ch, colour)
             return
-        for k, ch in enumerate(text):
-            if 0 <= col + k < self.cols:
-                self.text[row * self.cols + col + k] = (ch, colour)
 
     def lines(self) -> list[str]:
         """The cells as terminal text, one string a row, colours changed only where they
@@ -286,11 +299,10 @@ def draw(snap: Snapshot, view: Viewport, canvas: DotCanvas, cache: MapCells | No
         for a, b in pairwise(path):
             canvas.line(at(a), at(b), PATH)
     axis = 3 * view.scale * 2  # 6 dots long whatever the zoom
-    for name, (x, y, yaw) in snap.frames:
+    for _, (x, y, yaw) in snap.frames:
         origin = at((x, y))
         canvas.line(origin, at((x + axis * math.cos(yaw), y + axis * math.sin(yaw))), FRAME)
         canvas.line(origin, at((x - axis * math.sin(yaw), y + axis * math.cos(yaw))), FRAME)
-        canvas.label(origin[0] + 3, origin[1], visible(name)[:24], NAME)
     for hits in snap.scans.values():
         for p in hits:
             canvas.dot(*at(p), SCAN)
@@ -301,6 +313,10 @@ def draw(snap: Snapshot, view: Viewport, canvas: DotCanvas, cache: MapCells | No
         x, y, yaw = snap.robot
         reach = snap.footprint.reach()
         canvas.line(at((x, y)), at((x + reach * math.cos(yaw), y + reach * math.sin(yaw))), ROBOT)
+    # the frames' names last, where nothing else is drawn
+    for name, (x, y, _) in snap.frames:
+        origin = at((x, y))
+        canvas.label(origin[0], origin[1], visible(name)[:24], NAME)
 
 
 def picture(

@@ -84,6 +84,13 @@ def where(grid: list[list[Cell]], colour: object) -> list[tuple[int, int]]:
     ]
 
 
+def one_line_error(processes: Any, argv: list[str], env: dict[str, str], expected: str) -> None:
+    proc = processes.start([sys.executable, '-m', *argv], env=env)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 1, (out, err)
+    assert err.strip() == expected, err
+
+
 def behind(grid: list[list[Cell]], colour: object) -> set[tuple[int, int]]:
     """(column, row) of every cell of background `colour`."""
     return {
@@ -148,6 +155,21 @@ def test_terminal_shows_the_room_and_the_robot(processes: Any, tmp_path: Path) -
         pane.keys('+')
         after = wait_until(lambda: 'fixed view' in (t := pane.screen()) and scale(t), 10)
         assert abs(before / after - 1.5) < 0.03, (before, after)
+        # a smaller terminal: the picture is fitted to it again ('a' fits everything)
+        pane.keys('a')
+        pane.resize(60, 20)
+
+        def fitted() -> list[list[Cell]] | None:
+            screen = pane.screen(colours=True)  # whole: the status line is drawn last
+            grid = cells(screen)
+            hits = where(grid, SCAN)
+            whole = 'fixed map' in screen and 'fit' in screen and where(grid, ROBOT)
+            return grid if whole and hits and max(c for c, _ in hits) < 60 else None
+
+        small = wait_until(fitted, 10)
+        assert len(small) <= 21  # 20 lines, and the capture's last newline
+        hits = where(small, SCAN)
+        assert max(r for _, r in hits) - min(r for _, r in hits) < 18
         pane.keys('q')
         assert pane.exit_status() == 0
     finally:
@@ -207,3 +229,14 @@ def test_window_shows_the_room_and_the_robot(processes: Any, xdisplay: str, tmp_
     assert img.count(OCCUPIED_PX, (left, top - 6, right, top + 2)) > right - left
     assert len(colour_box(img, PATH)) > 50
     assert proc.poll() is None
+
+
+def test_bad_input_is_one_line(processes: Any) -> None:
+    env = {k: v for k, v in os.environ.items() if k not in ('DISPLAY', 'WAYLAND_DISPLAY')}
+    view = 'ros2lite.bundled.rviz2.top_view'
+    one_line_error(processes, [view], env,
+                   'cannot draw on the terminal: standard output is not a terminal')  # fmt: skip
+    one_line_error(processes, [view, '--robot-radius', '-1'], env,
+                   '--robot-radius must be a positive number, not -1.0')  # fmt: skip
+    one_line_error(processes, ['ros2lite.bundled.rviz2.top_window'], env,
+                   'cannot open a window: no display (DISPLAY is not set)')  # fmt: skip
