@@ -9,6 +9,7 @@ bounded pace. The fixed frame, unless given, is the root of the robot's tf tree.
 from __future__ import annotations
 
 import math
+import re
 import threading
 import time
 from collections import deque
@@ -36,9 +37,9 @@ from ros2lite.serialization import deserialize_message
 from ros2lite.tf2.core import BufferCore
 from ros2lite.tf2.errors import TransformException
 from ros2lite.urdf import UrdfError, Visual, parse_urdf
-from ros2lite.util.safe_yaml import YamlInputError, load
 
 __all__ = [
+    'FRAME_LIMIT',
     'FREE_CELL',
     'KINDS',
     'OCCUPIED_CELL',
@@ -66,6 +67,10 @@ TRAIL_POINTS = 2000  # the trail keeps this many positions, newest last
 TRAIL_STEP = 0.02  # m: a new trail point once the robot moved this far
 TREE_SECONDS = 0.5  # how often the frame tree is read again
 BASE_FRAMES = ('base_footprint', 'base_link')
+FRAME_LIMIT = 200  # tf frames drawn at most (a tree of thousands would be a smudge)
+# all_frames_as_string's entries; a name may hold anything, a newline too, so an entry ends
+# only where the next begins
+_FRAME_LINE = re.compile(r'Frame (.*?) exists with parent (.*?)\.\n(?=Frame |\Z)', re.DOTALL)
 
 
 OFF_GRID, UNKNOWN_CELL, FREE_CELL, OCCUPIED_CELL = range(4)  # what Grid.classes says
@@ -345,19 +350,11 @@ class Scene:
         now = time.monotonic()
         if now - self._tree_read >= TREE_SECONDS:
             self._tree_read = now
-            text = self.buffer.all_frames_as_yaml()
+            # tf2's one line a frame: 3000 frames read in milliseconds (its YAML took 16 s)
+            text = self.buffer.all_frames_as_string()
             if text != self._tree_text:
                 self._tree_text = text
-                try:
-                    tree = load(text, 'the tf tree')
-                except YamlInputError:
-                    tree = None
-                parents: dict[str, str] = {}
-                if isinstance(tree, dict):
-                    for name, info in tree.items():
-                        if isinstance(info, dict) and isinstance(info.get('parent'), str):
-                            parents[str(name)] = info['parent']
-                self._parents = parents
+                self._parents = {m[1]: m[2] for m in _FRAME_LINE.finditer(text)}
         return self._parents
 
     @staticmethod
@@ -452,7 +449,10 @@ class Scene:
             else:
                 snap.grids.append(grid)
         if show_frames:
-            for frame in sorted(set(parents) | set(parents.values())):
+            names = sorted(set(parents) | set(parents.values()))
+            if len(names) > FRAME_LIMIT:
+                snap.problems.append(f'{len(names)} tf frames: the first {FRAME_LIMIT} drawn')
+            for frame in names[:FRAME_LIMIT]:
                 place = self._place(fixed, frame, 0)
                 if place is not None:
                     snap.frames.append((frame, pose_of(place)))
