@@ -234,5 +234,6 @@ def test_thousands_of_frames_stay_quick() -> None:
     started = time.monotonic()
     snap = scene.snapshot()
     assert time.monotonic() - started < 3.0
-    assert snap.fixed_frame == 'map' and len(snap.frames) == FRAME_LIMIT
+    # the first FRAME_LIMIT names, less the two of the other tree (not placed in map)
+    assert snap.fixed_frame == 'map' and len(snap.frames) == FRAME_LIMIT - 2
     assert f'3006 tf frames: the first {FRAME_LIMIT} drawn' in snap.problems
