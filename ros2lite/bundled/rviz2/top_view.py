@@ -42,7 +42,20 @@ _BITS = ((0x01, 0x08), (0x02, 0x10), (0x04, 0x20), (0x40, 0x80))
 def parser(prog: str) -> argparse.ArgumentParser:
     """The options both views take."""
     p = argparse.ArgumentParser(prog=prog, description='The robot\'s scene seen from above.')
-    p.add_argument('--fixed-frame', help='the frame to draw in (default: the tf tree\'s root)')
+    p.add_argument(
+        '-f', '--fixed-frame', help='the frame to draw in (default: the tf tree\'s root)'
+    )
+    p.add_argument(
+        '-d',
+        '--display-config',
+        metavar='FILE.rviz',
+        help='take the fixed frame and the LaserScan topics of an RViz configuration',
+    )
+    # rviz2's options for its browser view, which hands `--terminal` over to this one
+    for name, kind in (('--host', str), ('--port', int), ('--point-budget', int),
+                       ('--image-width', int)):  # fmt: skip
+        p.add_argument(name, type=kind, help=argparse.SUPPRESS)
+    p.add_argument('--terminal', action='store_true', help=argparse.SUPPRESS)
     p.add_argument('--base-frame', help='the robot\'s frame (default: base_footprint or base_link)')
     p.add_argument('--robot-radius', type=float, default=0.2, help='m, without a URDF footprint')
     p.add_argument('--scan', action='append', default=[], help='a LaserScan topic (default: all)')
@@ -51,12 +64,44 @@ def parser(prog: str) -> argparse.ArgumentParser:
     return p
 
 
+def rviz_config(path: str) -> tuple[str | None, list[str]]:
+    """The fixed frame and the enabled LaserScan displays' topics of a `.rviz` file."""
+    from ros2lite.util.safe_yaml import load
+
+    try:
+        with open(path, encoding='utf-8') as f:
+            data = load(f.read(), path)
+    except OSError as e:
+        raise ValueError(f'cannot read {path}: {e.strerror or e}') from None
+    manager = data.get('Visualization Manager') if isinstance(data, dict) else None
+    if not isinstance(manager, dict):
+        raise ValueError(f'{path} is not an RViz configuration (no Visualization Manager)')
+    options = manager.get('Global Options')
+    fixed = options.get('Fixed Frame') if isinstance(options, dict) else None
+    scans = []
+    for display in manager.get('Displays') or []:
+        if not isinstance(display, dict) or not str(display.get('Class', '')).endswith(
+            '/LaserScan'
+        ):
+            continue
+        topic = display.get('Topic')
+        name = topic.get('Value') if isinstance(topic, dict) else topic
+        if isinstance(name, str) and name and display.get('Enabled', True) is not False:
+            scans.append(name)
+    return (str(fixed) if fixed else None), scans
+
+
 def check(options: argparse.Namespace) -> None:
-    """Bad numbers as one line."""
+    """Bad numbers as one line; a `.rviz` file's fixed frame and scans, where the command
+    line does not say."""
     if not (options.robot_radius > 0 and math.isfinite(options.robot_radius)):
         raise ValueError(f'--robot-radius must be a positive number, not {options.robot_radius}')
     if not (0 < options.rate <= 100):
         raise ValueError(f'--rate must be between 0 and 100 redraws a second, not {options.rate}')
+    if options.display_config:
+        fixed, scans = rviz_config(options.display_config)
+        options.fixed_frame = options.fixed_frame or fixed
+        options.scan = options.scan or scans
 
 
 class SceneSource:
@@ -73,7 +118,7 @@ class SceneSource:
         self.listener = TransformListener(self.buffer, self.node)
         self.scene: Scene = Scene(
             self.buffer,
-            fixed_frame=options.fixed_frame,
+            fixed_frame=(options.fixed_frame or '').lstrip('/') or None,
             base_frame=options.base_frame,
             robot_radius=options.robot_radius,
         )

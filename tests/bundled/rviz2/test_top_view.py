@@ -13,7 +13,9 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from ros2lite.bundled.rviz2.top_view import FREE, OCCUPIED, PATH, ROBOT, SCAN
+import pytest
+
+from ros2lite.bundled.rviz2.top_view import FREE, OCCUPIED, PATH, ROBOT, SCAN, rviz_config
 from ros2lite.bundled.rviz2.top_window import OCCUPIED_PX
 from tests.bundled.rviz2.room import BOX
 from tests.bundled.screenshot import Image, screenshot
@@ -240,3 +242,33 @@ def test_bad_input_is_one_line(processes: Any) -> None:
                    '--robot-radius must be a positive number, not -1.0')  # fmt: skip
     one_line_error(processes, ['ros2lite.bundled.rviz2.top_window'], env,
                    'cannot open a window: no display (DISPLAY is not set)')  # fmt: skip
+
+
+RVIZ = """Panels: []
+Visualization Manager:
+  Class: ""
+  Displays:
+    - Class: rviz_default_plugins/Grid
+      Enabled: true
+    - Class: rviz_default_plugins/LaserScan
+      Enabled: true
+      Topic:
+        Value: /front/scan
+    - Class: rviz_default_plugins/LaserScan
+      Enabled: false
+      Topic:
+        Value: /rear/scan
+  Global Options:
+    Fixed Frame: odom
+"""
+
+
+def test_an_rviz_file_gives_the_fixed_frame_and_scans(tmp_path: Path) -> None:
+    path = tmp_path / 'view.rviz'
+    path.write_text(RVIZ)
+    assert rviz_config(str(path)) == ('odom', ['/front/scan'])
+    path.write_text('just: text\n')
+    with pytest.raises(ValueError, match='is not an RViz configuration'):
+        rviz_config(str(path))
+    with pytest.raises(ValueError, match=r'cannot read .*missing\.rviz: No such file'):
+        rviz_config(str(tmp_path / 'missing.rviz'))
