@@ -72,7 +72,9 @@ class TopWindow:
             background=hex_colour(BACKGROUND),
         )
         self.canvas.pack(fill='both', expand=True)
-        self.line = tkinter.Label(self.root, anchor='w', font=('TkFixedFont', 9))
+        # width 1: the status line fills the window's width but never asks for more (a long
+        # line would widen the window, and the canvas under the pointer with it)
+        self.line = tkinter.Label(self.root, anchor='w', width=1, font=('TkFixedFont', 9))
         self.line.pack(fill='x')
         self.map_key: object = None
         self.map_image: tkinter.PhotoImage | None = None

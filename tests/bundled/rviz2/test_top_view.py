@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 import os
 import re
+import shutil
+import subprocess
 import sys
 from pathlib import Path
 from typing import Any
@@ -231,6 +233,33 @@ def test_window_shows_the_room_and_the_robot(processes: Any, xdisplay: str, tmp_
     assert img.count(OCCUPIED_PX, (left, top - 6, right, top + 2)) > right - left
     assert len(colour_box(img, PATH)) > 50
     assert proc.poll() is None
+    if shutil.which('xdotool') is None:
+        return  # the mouse is driven through xdotool (apt-get install xdotool)
+
+    def mouse(*args: str) -> None:
+        subprocess.run(['xdotool', *args], env=env, check=True)
+
+    # the wheel zooms about the pointer: over the robot, it stays put and grows 1.25 x a notch
+    mouse('mousemove', str(round(rx)), str(round(ry)), 'click', '4', 'click', '4')
+
+    def robot_now(width: float) -> list[tuple[int, int]] | None:
+        found = colour_box(screenshot(xdisplay), ROBOT)
+        wide = found and max(x for x, _ in found) - min(x for x, _ in found)
+        return found if wide and abs(wide / width - 1.5625) < 0.1 else None
+
+    width = max(x for x, _ in robot) - min(x for x, _ in robot)
+    zoomed = wait_until(lambda: robot_now(width), 20)
+    zx = sum(x for x, _ in zoomed) / len(zoomed)
+    assert abs(zx - rx) < 6, (zx, rx)
+    # a drag pans: the robot follows the pointer
+    mouse('mousedown', '1', 'mousemove', str(round(rx) - 30), str(round(ry)),
+          'mousemove', str(round(rx) - 60), str(round(ry)), 'mouseup', '1')  # fmt: skip
+
+    def dragged() -> bool:
+        found = colour_box(screenshot(xdisplay), ROBOT)
+        return bool(found) and abs(sum(x for x, _ in found) / len(found) - (zx - 60)) < 6
+
+    wait_until(dragged, 20)
 
 
 def test_bad_input_is_one_line(processes: Any) -> None:
