@@ -159,6 +159,14 @@ def test_terminal_shows_the_room_and_the_robot(processes: Any, tmp_path: Path) -
         pane.keys('+')
         after = wait_until(lambda: 'fixed view' in (t := pane.screen()) and scale(t), 10)
         assert abs(before / after - 1.5) < 0.03, (before, after)
+        # 'f' keeps the robot in the middle, at the scale chosen
+        pane.keys('f')
+        grid = cells(
+            str(wait_until(lambda: 'm/dot  follow' in (t := pane.screen(colours=True)) and t, 10))
+        )
+        robot = where(grid, ROBOT)  # the box and the heading mark ahead of it: a little right
+        middle = sum(c for c, _ in robot) / len(robot) if robot else -1
+        assert 49 <= middle <= 53, middle
         # a smaller terminal: the picture is fitted to it again ('a' fits everything)
         pane.keys('a')
         pane.resize(60, 20)
@@ -167,7 +175,7 @@ def test_terminal_shows_the_room_and_the_robot(processes: Any, tmp_path: Path) -
             screen = pane.screen(colours=True)  # whole: the status line is drawn last
             grid = cells(screen)
             hits = where(grid, SCAN)
-            whole = 'fixed map' in screen and 'fit' in screen and where(grid, ROBOT)
+            whole = 'fixed map' in screen and 'm/dot  fit' in screen and where(grid, ROBOT)
             return grid if whole and hits and max(c for c, _ in hits) < 60 else None
 
         small = wait_until(fitted, 10)
