@@ -69,6 +69,10 @@ class TmuxPane:
         """The screen once it shows `text`."""
         return str(wait_until(lambda: text in (s := self.screen()) and s, timeout))
 
+    def resize(self, cols: int, rows: int) -> None:
+        """Make the pane `cols` x `rows`, as a user dragging the terminal's corner."""
+        self._tmux('resize-window', '-x', str(cols), '-y', str(rows))
+
     def keys(self, *keys: str) -> None:
         """Type `keys` (literal text, or tmux key names such as Enter)."""
         for key in keys:

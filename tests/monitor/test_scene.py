@@ -5,10 +5,12 @@ that a flood keeps one sample a topic."""
 from __future__ import annotations
 
 import math
+import time
 
 import pytest
 
 from ros2lite.monitor.scene import (
+    FRAME_LIMIT,
     TRAIL_POINTS,
     Footprint,
     Scene,
@@ -221,3 +223,17 @@ def test_viewport_fits_zooms_and_pans() -> None:
     view.follow = True
     view.update(Snapshot('map', robot=(5.0, 6.0, 0.0)), 100, 100)
     assert (view.cx, view.cy) == (5.0, 6.0)
+
+
+def test_thousands_of_frames_stay_quick() -> None:
+    # the tree was read as tf2's YAML: 16 s for 3,000 frames, every half second
+    buffer = robot_world()
+    for i in range(3000):
+        tf(buffer, 'map', f'sensor_{i}', math.cos(i), math.sin(i), 0.0, static=True)
+    scene = Scene(buffer)
+    started = time.monotonic()
+    snap = scene.snapshot()
+    assert time.monotonic() - started < 3.0
+    # the first FRAME_LIMIT names, less the two of the other tree (not placed in map)
+    assert snap.fixed_frame == 'map' and len(snap.frames) == FRAME_LIMIT - 2
+    assert f'3006 tf frames: the first {FRAME_LIMIT} drawn' in snap.problems

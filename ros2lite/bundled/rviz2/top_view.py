@@ -42,7 +42,20 @@ _BITS = ((0x01, 0x08), (0x02, 0x10), (0x04, 0x20), (0x40, 0x80))
 def parser(prog: str) -> argparse.ArgumentParser:
     """The options both views take."""
     p = argparse.ArgumentParser(prog=prog, description='The robot\'s scene seen from above.')
-    p.add_argument('--fixed-frame', help='the frame to draw in (default: the tf tree\'s root)')
+    p.add_argument(
+        '-f', '--fixed-frame', help='the frame to draw in (default: the tf tree\'s root)'
+    )
+    p.add_argument(
+        '-d',
+        '--display-config',
+        metavar='FILE.rviz',
+        help='take the fixed frame and the LaserScan topics of an RViz configuration',
+    )
+    # rviz2's options for its browser view, which hands `--terminal` over to this one
+    for name, kind in (('--host', str), ('--port', int), ('--point-budget', int),
+                       ('--image-width', int)):  # fmt: skip
+        p.add_argument(name, type=kind, help=argparse.SUPPRESS)
+    p.add_argument('--terminal', action='store_true', help=argparse.SUPPRESS)
     p.add_argument('--base-frame', help='the robot\'s frame (default: base_footprint or base_link)')
     p.add_argument('--robot-radius', type=float, default=0.2, help='m, without a URDF footprint')
     p.add_argument('--scan', action='append', default=[], help='a LaserScan topic (default: all)')
@@ -51,12 +64,44 @@ def parser(prog: str) -> argparse.ArgumentParser:
     return p
 
 
+def rviz_config(path: str) -> tuple[str | None, list[str]]:
+    """The fixed frame and the enabled LaserScan displays' topics of a `.rviz` file."""
+    from ros2lite.util.safe_yaml import load
+
+    try:
+        with open(path, encoding='utf-8') as f:
+            data = load(f.read(), path)
+    except OSError as e:
+        raise ValueError(f'cannot read {path}: {e.strerror or e}') from None
+    manager = data.get('Visualization Manager') if isinstance(data, dict) else None
+    if not isinstance(manager, dict):
+        raise ValueError(f'{path} is not an RViz configuration (no Visualization Manager)')
+    options = manager.get('Global Options')
+    fixed = options.get('Fixed Frame') if isinstance(options, dict) else None
+    scans = []
+    for display in manager.get('Displays') or []:
+        if not isinstance(display, dict) or not str(display.get('Class', '')).endswith(
+            '/LaserScan'
+        ):
+            continue
+        topic = display.get('Topic')
+        name = topic.get('Value') if isinstance(topic, dict) else topic
+        if isinstance(name, str) and name and display.get('Enabled', True) is not False:
+            scans.append(name)
+    return (str(fixed) if fixed else None), scans
+
+
 def check(options: argparse.Namespace) -> None:
-    """Bad numbers as one line."""
+    """Bad numbers as one line; a `.rviz` file's fixed frame and scans, where the command
+    line does not say."""
     if not (options.robot_radius > 0 and math.isfinite(options.robot_radius)):
         raise ValueError(f'--robot-radius must be a positive number, not {options.robot_radius}')
     if not (0 < options.rate <= 100):
         raise ValueError(f'--rate must be between 0 and 100 redraws a second, not {options.rate}')
+    if options.display_config:
+        fixed, scans = rviz_config(options.display_config)
+        options.fixed_frame = options.fixed_frame or fixed
+        options.scan = options.scan or scans
 
 
 class SceneSource:
@@ -73,7 +118,7 @@ class SceneSource:
         self.listener = TransformListener(self.buffer, self.node)
         self.scene: Scene = Scene(
             self.buffer,
-            fixed_frame=options.fixed_frame,
+            fixed_frame=(options.fixed_frame or '').lstrip('/') or None,
             base_frame=options.base_frame,
             robot_radius=options.robot_radius,
         )
@@ -179,12 +224,25 @@ class DotCanvas:
             self.dot(x0 + (x1 - x0) * t, y0 + (y1 - y0) * t, colour)
 
     def label(self, x: float, y: float, text: str, colour: Colour) -> None:
+        """`text` beside dot (x, y): right of it (past a frame's axes), else below, else
+        above, wherever its first cells are empty; it stops short of anything drawn (a name
+        never hides data)."""
         col, row = math.floor(x / 2), math.floor(y / 4)
-        if not 0 <= row < self.rows:
+        places = ((col + 4, row), (col + 7, row), (col + 1, row + 1), (col + 1, row - 1),
+                  (col + 1, row + 2), (col + 1, row - 2))  # fmt: skip
+        for c, r in places:
+            if not 0 <= r < self.rows or not 0 <= c < self.cols:
+                continue
+            start = r * self.cols + c
+            head = range(start, start + min(len(text), 3, self.cols - c))
+            if any(self.bits[i] or i in self.text for i in head):
+                continue
+            for k, ch in enumerate(text):
+                i = start + k
+                if c + k >= self.cols or self.bits[i] or i in self.text:
+                    return
+                self.text[i] = (ch, colour)
             return
-        for k, ch in enumerate(text):
-            if 0 <= col + k < self.cols:
-                self.text[row * self.cols + col + k] = (ch, colour)
 
     def lines(self) -> list[str]:
         """The cells as terminal text, one string a row, colours changed only where they
@@ -236,47 +294,60 @@ def _clip(
     return (x0 + t0 * dx, y0 + t0 * dy), (x0 + t1 * dx, y0 + t1 * dy)
 
 
-def _grid_backgrounds(canvas: DotCanvas, grid: Grid, view: Viewport) -> None:
-    """Each cell's map colour: occupied if any of its dots is, else free if its middle is."""
-    w, h = canvas.width, canvas.height
-    for r in range(canvas.rows):
-        for c in range(canvas.cols):
-            i = r * canvas.cols + c
-            x, y = view.to_world(2 * c + 1, 4 * r + 2, w, h)
-            middle = grid.value_at(x, y)
-            occupied = middle is not None and middle >= 50
-            if not occupied and (middle is None or view.scale < grid.resolution * 2):
-                for dc, dr in ((0.5, 0.5), (1.5, 0.5), (0.5, 3.5), (1.5, 3.5)):
-                    v = grid.value_at(*view.to_world(2 * c + dc, 4 * r + dr, w, h))
-                    if v is not None and v >= 50:
-                        occupied = True
-                        break
-            if occupied:
-                canvas.bg[i] = OCCUPIED
-            elif middle is not None and 0 <= middle < 50:
-                canvas.bg[i] = FREE
+# where in a character cell the map is sampled, in dots: the middle first, then the corners
+CELL_SAMPLES = ((1.0, 2.0), (0.5, 0.5), (1.5, 0.5), (0.5, 3.5), (1.5, 3.5))
 
 
-def draw(snap: Snapshot, view: Viewport, canvas: DotCanvas) -> None:
-    """The snapshot's layers on `canvas`, the robot last (on top)."""
+class MapCells:
+    """The map's cell colours of the last frame, and what they were computed for."""
+
+    def __init__(self) -> None:
+        self.key: object = None
+        self.colours: list[Colour | None] = []
+
+
+def _grid_backgrounds(
+    canvas: DotCanvas, grids: list[Grid], view: Viewport, cache: MapCells
+) -> None:
+    """Each cell's map colour: occupied if any of its samples is, else free if its middle
+    is; computed again only when the view, the size or a grid changed."""
+    from ros2lite.monitor.scene import FREE_CELL, OCCUPIED_CELL
+
+    key = (view.cx, view.cy, view.scale, canvas.cols, canvas.rows, [id(g.data) for g in grids])
+    if cache.key != key:
+        colours: list[Colour | None] = [None] * (canvas.cols * canvas.rows)
+        where = view.dot_to_world(canvas.width, canvas.height)
+        for grid in reversed(grids):  # the first grid on top
+            classes = grid.classes(where, canvas.cols, canvas.rows, (2, 4), CELL_SAMPLES)
+            for i, kind in enumerate(classes):
+                if kind == OCCUPIED_CELL:
+                    colours[i] = OCCUPIED
+                elif kind == FREE_CELL:
+                    colours[i] = FREE
+        cache.key, cache.colours = key, colours
+    canvas.bg = list(cache.colours)
+
+
+def draw(snap: Snapshot, view: Viewport, canvas: DotCanvas, cache: MapCells | None = None) -> None:
+    """The snapshot's layers on `canvas`, the robot last (on top); `cache` keeps the map's
+    cells from one frame to the next."""
     w, h = canvas.width, canvas.height
 
     def at(p: tuple[float, float]) -> tuple[float, float]:
         return view.to_dot(p[0], p[1], w, h)
 
-    for grid in snap.grids:
-        _grid_backgrounds(canvas, grid, view)
+    if snap.grids:
+        _grid_backgrounds(canvas, snap.grids, view, MapCells() if cache is None else cache)
     for a, b in pairwise(snap.trail):
         canvas.line(at(a), at(b), TRAIL)
     for path in snap.paths.values():
         for a, b in pairwise(path):
             canvas.line(at(a), at(b), PATH)
     axis = 3 * view.scale * 2  # 6 dots long whatever the zoom
-    for name, (x, y, yaw) in snap.frames:
+    for _, (x, y, yaw) in snap.frames:
         origin = at((x, y))
         canvas.line(origin, at((x + axis * math.cos(yaw), y + axis * math.sin(yaw))), FRAME)
         canvas.line(origin, at((x - axis * math.sin(yaw), y + axis * math.cos(yaw))), FRAME)
-        canvas.label(origin[0] + 3, origin[1], visible(name)[:24], NAME)
     for hits in snap.scans.values():
         for p in hits:
             canvas.dot(*at(p), SCAN)
@@ -287,14 +358,20 @@ def draw(snap: Snapshot, view: Viewport, canvas: DotCanvas) -> None:
         x, y, yaw = snap.robot
         reach = snap.footprint.reach()
         canvas.line(at((x, y)), at((x + reach * math.cos(yaw), y + reach * math.sin(yaw))), ROBOT)
+    # the frames' names last, where nothing else is drawn
+    for name, (x, y, _) in snap.frames:
+        origin = at((x, y))
+        canvas.label(origin[0], origin[1], visible(name)[:24], NAME)
 
 
-def picture(scene: Scene, view: Viewport, cols: int, rows: int, frames: bool) -> str:
+def picture(
+    scene: Scene, view: Viewport, cols: int, rows: int, frames: bool, cache: MapCells | None = None
+) -> str:
     """One frame of the terminal: the canvas, then the status line and the keys."""
     snap = scene.snapshot(show_frames=frames)
     canvas = DotCanvas(max(cols, 4), max(rows - 2, 2))
     view.update(snap, canvas.width, canvas.height)
-    draw(snap, view, canvas)
+    draw(snap, view, canvas, cache)
     lines = canvas.lines()
     lines.append(status(snap, view)[:cols])
     lines.append(KEYS[:cols])
@@ -312,6 +389,7 @@ class TopTerminal:
         self.scene = scene
         self.view = Viewport()
         self.frames = frames
+        self.cache = MapCells()
 
     def key(self, key: str) -> bool:
         """Act on one key; False when it asks to quit."""
@@ -355,7 +433,9 @@ class TopTerminal:
                     if now - drawn >= period:
                         drawn = now
                         cols, rows = terminal_size(sys.stdout)
-                        text = picture(self.scene, self.view, cols, rows - 1, self.frames)
+                        text = picture(
+                            self.scene, self.view, cols, rows - 1, self.frames, self.cache
+                        )
                         if text != shown:
                             live.show(text)
                             shown = text

@@ -72,7 +72,9 @@ class TopWindow:
             background=hex_colour(BACKGROUND),
         )
         self.canvas.pack(fill='both', expand=True)
-        self.line = tkinter.Label(self.root, anchor='w', font=('TkFixedFont', 9))
+        # width 1: the status line fills the window's width but never asks for more (a long
+        # line would widen the window, and the canvas under the pointer with it)
+        self.line = tkinter.Label(self.root, anchor='w', width=1, font=('TkFixedFont', 9))
         self.line.pack(fill='x')
         self.map_key: object = None
         self.map_image: tkinter.PhotoImage | None = None
@@ -138,6 +140,9 @@ class TopWindow:
         grid changed."""
         import tkinter
 
+        from ros2lite.monitor.scene import FREE_CELL, OCCUPIED_CELL, OFF_GRID, UNKNOWN_CELL
+
+        NAMES = {UNKNOWN_CELL: 'unknown', FREE_CELL: 'free', OCCUPIED_CELL: 'occupied'}
         view = self.view
         key = (view.cx, view.cy, view.scale, w, h, tuple(id(g.data) for g in grids))
         if key != self.map_key:
@@ -149,19 +154,18 @@ class TopWindow:
                 'free': hex_colour(FREE),
                 'unknown': hex_colour(UNKNOWN_PX),
             }
-            text_rows = []
-            for r in range(rows):
-                row = []
-                for c in range(cols):
-                    x, y = view.to_world((c + 0.5) * MAP_BLOCK, (r + 0.5) * MAP_BLOCK, w, h)
-                    what: str | None = None
-                    for grid in grids:
-                        v = grid.value_at(x, y)
-                        if v is not None:
-                            what = 'unknown' if v < 0 else 'occupied' if v >= 50 else 'free'
-                            break
-                    row.append(paint[what])
-                text_rows.append('{' + ' '.join(row) + '}')
+            kinds: list[str | None] = [None] * (cols * rows)
+            where = view.dot_to_world(w, h)
+            middle = ((MAP_BLOCK / 2, MAP_BLOCK / 2),)
+            for grid in reversed(grids):  # the first grid on top
+                classes = grid.classes(where, cols, rows, (MAP_BLOCK, MAP_BLOCK), middle)
+                for i, kind in enumerate(classes):
+                    if kind != OFF_GRID:
+                        kinds[i] = NAMES[kind]
+            text_rows = [
+                '{' + ' '.join(paint[k] for k in kinds[r * cols : (r + 1) * cols]) + '}'
+                for r in range(rows)
+            ]
             small = tkinter.PhotoImage(width=cols, height=rows)
             small.put(' '.join(text_rows))
             self.map_image = small.zoom(MAP_BLOCK)

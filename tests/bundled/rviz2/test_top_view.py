@@ -9,11 +9,15 @@ from __future__ import annotations
 import math
 import os
 import re
+import shutil
+import subprocess
 import sys
 from pathlib import Path
 from typing import Any
 
-from ros2lite.bundled.rviz2.top_view import FREE, OCCUPIED, PATH, ROBOT, SCAN
+import pytest
+
+from ros2lite.bundled.rviz2.top_view import FREE, OCCUPIED, PATH, ROBOT, SCAN, rviz_config
 from ros2lite.bundled.rviz2.top_window import OCCUPIED_PX
 from tests.bundled.rviz2.room import BOX
 from tests.bundled.screenshot import Image, screenshot
@@ -84,6 +88,13 @@ def where(grid: list[list[Cell]], colour: object) -> list[tuple[int, int]]:
     ]
 
 
+def one_line_error(processes: Any, argv: list[str], env: dict[str, str], expected: str) -> None:
+    proc = processes.start([sys.executable, '-m', *argv], env=env)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 1, (out, err)
+    assert err.strip() == expected, err
+
+
 def behind(grid: list[list[Cell]], colour: object) -> set[tuple[int, int]]:
     """(column, row) of every cell of background `colour`."""
     return {
@@ -148,6 +159,29 @@ def test_terminal_shows_the_room_and_the_robot(processes: Any, tmp_path: Path) -
         pane.keys('+')
         after = wait_until(lambda: 'fixed view' in (t := pane.screen()) and scale(t), 10)
         assert abs(before / after - 1.5) < 0.03, (before, after)
+        # 'f' keeps the robot in the middle, at the scale chosen
+        pane.keys('f')
+        grid = cells(
+            str(wait_until(lambda: 'm/dot  follow' in (t := pane.screen(colours=True)) and t, 10))
+        )
+        robot = where(grid, ROBOT)  # the box and the heading mark ahead of it: a little right
+        middle = sum(c for c, _ in robot) / len(robot) if robot else -1
+        assert 49 <= middle <= 53, middle
+        # a smaller terminal: the picture is fitted to it again ('a' fits everything)
+        pane.keys('a')
+        pane.resize(60, 20)
+
+        def fitted() -> list[list[Cell]] | None:
+            screen = pane.screen(colours=True)  # whole: the status line is drawn last
+            grid = cells(screen)
+            hits = where(grid, SCAN)
+            whole = 'fixed map' in screen and 'm/dot  fit' in screen and where(grid, ROBOT)
+            return grid if whole and hits and max(c for c, _ in hits) < 60 else None
+
+        small = wait_until(fitted, 10)
+        assert len(small) <= 21  # 20 lines, and the capture's last newline
+        hits = where(small, SCAN)
+        assert max(r for _, r in hits) - min(r for _, r in hits) < 18
         pane.keys('q')
         assert pane.exit_status() == 0
     finally:
@@ -207,3 +241,71 @@ def test_window_shows_the_room_and_the_robot(processes: Any, xdisplay: str, tmp_
     assert img.count(OCCUPIED_PX, (left, top - 6, right, top + 2)) > right - left
     assert len(colour_box(img, PATH)) > 50
     assert proc.poll() is None
+    if shutil.which('xdotool') is None:
+        return  # the mouse is driven through xdotool (apt-get install xdotool)
+
+    def mouse(*args: str) -> None:
+        subprocess.run(['xdotool', *args], env=env, check=True)
+
+    # the wheel zooms about the pointer: over the robot, it stays put and grows 1.25 x a notch
+    mouse('mousemove', str(round(rx)), str(round(ry)), 'click', '4', 'click', '4')
+
+    def robot_now(width: float) -> list[tuple[int, int]] | None:
+        found = colour_box(screenshot(xdisplay), ROBOT)
+        wide = found and max(x for x, _ in found) - min(x for x, _ in found)
+        return found if wide and abs(wide / width - 1.5625) < 0.1 else None
+
+    width = max(x for x, _ in robot) - min(x for x, _ in robot)
+    zoomed = wait_until(lambda: robot_now(width), 20)
+    zx = sum(x for x, _ in zoomed) / len(zoomed)
+    assert abs(zx - rx) < 6, (zx, rx)
+    # a drag pans: the robot follows the pointer
+    mouse('mousedown', '1', 'mousemove', str(round(rx) - 30), str(round(ry)),
+          'mousemove', str(round(rx) - 60), str(round(ry)), 'mouseup', '1')  # fmt: skip
+
+    def dragged() -> bool:
+        found = colour_box(screenshot(xdisplay), ROBOT)
+        return bool(found) and abs(sum(x for x, _ in found) / len(found) - (zx - 60)) < 6
+
+    wait_until(dragged, 20)
+
+
+def test_bad_input_is_one_line(processes: Any) -> None:
+    env = {k: v for k, v in os.environ.items() if k not in ('DISPLAY', 'WAYLAND_DISPLAY')}
+    view = 'ros2lite.bundled.rviz2.top_view'
+    one_line_error(processes, [view], env,
+                   'cannot draw on the terminal: standard output is not a terminal')  # fmt: skip
+    one_line_error(processes, [view, '--robot-radius', '-1'], env,
+                   '--robot-radius must be a positive number, not -1.0')  # fmt: skip
+    one_line_error(processes, ['ros2lite.bundled.rviz2.top_window'], env,
+                   'cannot open a window: no display (DISPLAY is not set)')  # fmt: skip
+
+
+RVIZ = """Panels: []
+Visualization Manager:
+  Class: ""
+  Displays:
+    - Class: rviz_default_plugins/Grid
+      Enabled: true
+    - Class: rviz_default_plugins/LaserScan
+      Enabled: true
+      Topic:
+        Value: /front/scan
+    - Class: rviz_default_plugins/LaserScan
+      Enabled: false
+      Topic:
+        Value: /rear/scan
+  Global Options:
+    Fixed Frame: odom
+"""
+
+
+def test_an_rviz_file_gives_the_fixed_frame_and_scans(tmp_path: Path) -> None:
+    path = tmp_path / 'view.rviz'
+    path.write_text(RVIZ)
+    assert rviz_config(str(path)) == ('odom', ['/front/scan'])
+    path.write_text('just: text\n')
+    with pytest.raises(ValueError, match='is not an RViz configuration'):
+        rviz_config(str(path))
+    with pytest.raises(ValueError, match=r'cannot read .*missing\.rviz: No such file'):
+        rviz_config(str(tmp_path / 'missing.rviz'))
