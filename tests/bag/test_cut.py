@@ -99,10 +99,10 @@ def test_filter_leaves_no_record_of_a_dropped_topic(tmp_path: Path) -> None:
 
 
 def test_a_split_bag_is_cut_file_by_file(tmp_path: Path) -> None:
-    make_bag(tmp_path / "src", max_bag_size=40_000)
+    make_bag(tmp_path / "src", n=600, max_bag_size=12_000)
     with Reader(tmp_path / "src") as r:
         assert len(r.files) >= 3
-    start, end = T0 + 3_000 * MS, T0 + 17_000 * MS
+    start, end = T0 + 1_000 * MS, T0 + 5_000 * MS
     result = cut(tmp_path / "src", tmp_path / "out", start=start, end=end)
     assert len(result.metadata.files) >= 2
     assert messages(tmp_path / "out") == messages(tmp_path / "src", start=start, stop=end + 1)
