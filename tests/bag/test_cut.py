@@ -142,3 +142,30 @@ def test_parse_time() -> None:
     for bad in ("xx", "-3", "1:75", "nan"):
         with pytest.raises(BagError):
             parse_time(bad, start)
+
+
+def test_a_lying_chunk_index_is_not_copied_on_its_word(tmp_path: Path) -> None:
+    """Chunk indexes whose lengths do not match their chunks: those chunks are read (CRC
+    checked) and re-encoded instead of copied, and the cut still holds the right messages."""
+    import struct
+
+    from mcap.reader import make_reader
+
+    make_bag(tmp_path / "src", n=400)
+    [f] = list((tmp_path / "src").glob("*.mcap"))
+    with open(f, "rb") as stream:
+        indexes = make_reader(stream).get_summary().chunk_indexes  # type: ignore[union-attr]
+    data = bytearray(f.read_bytes())
+    lied = 0
+    for index in indexes[2:6]:
+        # a ChunkIndex record: its start time, end time, offset, then the chunk's length
+        head = struct.pack("<QQQQ", index.message_start_time, index.message_end_time,
+                           index.chunk_start_offset, index.chunk_length)  # fmt: skip
+        at = data.rfind(head)
+        assert at > 0
+        struct.pack_into("<Q", data, at + 24, index.chunk_length + 7)
+        lied += 1
+    f.write_bytes(bytes(data))
+    result = cut(tmp_path / "src", tmp_path / "out")
+    assert result.chunks_rewritten == lied and result.chunks_copied == len(indexes) - lied
+    assert messages(tmp_path / "out") == messages(tmp_path / "src")
