@@ -1047,6 +1047,8 @@ LAZY = {
     'action.graph': '+5 modules ~9 ms: graph.py',
     'bag.export': 'pyarrow (an optional extra, ~300 ms) for Parquet, Pillow (~40 ms) for PNG: '
     'each only for its format',
+    'bag.rosbag1': 'rosbags (the optional ros1 extra: numpy, ~150 ms), only when a ROS 1 '
+    'bag is opened',
     'bag.player': '+19 modules ~11 ms: the interface registry, bag definitions',
     'bag.reader': '+20 modules ~15 ms: the interface registry, bag definitions',
     'bag.recorder': '+35 modules ~33 ms: the interface registry, graph.py',

@@ -118,6 +118,7 @@ class StorageWriter(Protocol):
 PLUGINS: dict[str, tuple[str, str]] = {
     "mcap": ("ros2lite.bag.storage.mcap", ".mcap"),
     "sqlite3": ("ros2lite.bag.storage.sqlite3", ".db3"),
+    "rosbag1": ("ros2lite.bag.rosbag1", ".bag"),  # ROS 1 bags, read through rosbags
 }
 
 

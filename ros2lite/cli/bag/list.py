@@ -23,6 +23,12 @@ PLUGINS: dict[str, list[tuple[str, str, str, str]]] = {
             "rosbag2_storage_plugins::SqliteStorage",
             "rosbag2_storage::storage_interfaces::ReadWriteInterface",
         ),
+        (
+            "rosbag1",
+            "Plugin to read ROS 1 (.bag) bags, as ROS 2 messages (needs rosbags)",
+            "ros2lite::Rosbag1Storage",
+            "rosbag2_storage::storage_interfaces::ReadOnlyInterface",
+        ),
     ],
     "converter": [],
     "compressor": [

@@ -25,7 +25,7 @@ F = TypeVar("F", bound=Callable[..., Any])
 
 # the storage plugins' ids (the keys of ros2lite.bag.storage.PLUGINS), written out so that
 # parsing a bag verb's options imports no bag code
-STORAGE_IDS = ("mcap", "sqlite3")
+STORAGE_IDS = ("mcap", "sqlite3", "rosbag1")
 
 # -m/--remap, --start-offset and the player's (hidden) node name: play and burst alike
 remap_option = click.option(

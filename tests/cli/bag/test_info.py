@@ -126,7 +126,7 @@ def test_reindex_and_list(run: Any, tmp_path: Path) -> None:
     assert "Messages:          3177\n" in info.out
     not_dir = run("bag", "reindex", str(bag / "metadata.yaml"))
     assert (not_dir.code, not_dir.err) == (1, "[ERROR] [ros2bag]: Must specify a bag directory\n")
-    assert run("bag", "list", "storage").out == "mcap\nsqlite3\n"
+    assert run("bag", "list", "storage").out == "mcap\nsqlite3\nrosbag1\n"
     verbose = run("bag", "list", "storage", "-v").out
     assert verbose.startswith("name: mcap\n\tdescription: ")
     assert run("bag", "list", "compressor").out == "zstd\n"

@@ -50,6 +50,7 @@ __all__ = ["SpliceResult", "splice"]
 _MAGIC = b"\x89MCAP0\r\n"
 _MESSAGE, _CHUNK, _MESSAGE_INDEX, _DATA_END = 5, 6, 7, 15
 _COPY_STEP = 64 << 20  # bytes per copy_file_range call
+_MAX_INDEX_BYTES = 64 << 20  # the message indexes of one chunk read to count its messages
 
 
 @dataclass
@@ -436,7 +437,10 @@ def _copyable(
     says, of the length it says, followed by message indexes of kept channels only. None when
     anything disagrees (the chunk is then read and checked instead)."""
     at, length, mlen = index.chunk_start_offset, index.chunk_length, index.message_index_length
-    if at < 8 or length < 9 or mlen < 0 or at + length + mlen > data_end or mlen > (1 << 30):
+    # an index entry is 16 bytes for a message record of at least 31: more index than that
+    # is a lie, and is not read into memory on its word
+    most = min(_MAX_INDEX_BYTES, 16 * (index.uncompressed_size // 31 + 1) + 4096)
+    if at < 8 or length < 9 or mlen < 0 or at + length + mlen > data_end or mlen > most:
         return None
     src.seek(at)
     head = src.read(9)
