@@ -13,7 +13,7 @@ import itertools
 import sys
 import threading
 import weakref
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Protocol
 
 from ros2lite.exceptions import NotInitializedException, Ros2liteError
@@ -29,8 +29,22 @@ if TYPE_CHECKING:
 # them only by what it (or a blocking client) asks of them.
 
 
+class CountingPublisher(Protocol):
+    """A node's publisher as the context sees it: how many messages it has sent."""
+
+    @property
+    def sent(self) -> int:
+        """Messages published so far."""
+        ...
+
+
 class ContextNode(Protocol):
     """A node of the context (:class:`ros2lite.node.Node`): destroyed when it shuts down."""
+
+    @property
+    def publishers(self) -> Sequence[CountingPublisher]:
+        """Its publishers (counted across a router outage)."""
+        ...
 
     def destroy_node(self) -> None:
         """Leave the graph: every entity of the node goes."""
@@ -144,6 +158,12 @@ class Context:
             self._watch_client_link(router)
         return self
 
+    def published(self) -> int:
+        """Messages this context's nodes have published so far (their publishers' now)."""
+        with self._lock:
+            nodes = list(self._nodes)
+        return sum(pub.sent for node in nodes for pub in list(node.publishers))
+
     def _watch_client_link(self, router: str | None) -> None:
         """A node whose session is a client (secured nodes are) loses what is published
         while its router is away: say so when the link drops, and when it is back."""
@@ -155,13 +175,19 @@ class Context:
             return
         logger = get_logger('rmw_zenoh_cpp')
         stop = threading.Event()
+        sent_at_loss = [0]
 
         def changed(linked: bool) -> None:
             if stop.is_set():
                 return  # shutting down: the session closes, the router is not gone
             if linked:
-                logger.warning(f'The link to the Zenoh router at {endpoint} is back')
+                lost = self.published() - sent_at_loss[0]
+                logger.warning(
+                    f'The link to the Zenoh router at {endpoint} is back; {lost} message(s) '
+                    "this process published while it was away reached no one"
+                )
             else:
+                sent_at_loss[0] = self.published()
                 logger.warning(
                     f'Lost the link to the Zenoh router at {endpoint}: this node is a Zenoh '
                     'client, so what is published until it is back neither reaches it nor '

@@ -42,6 +42,11 @@ class Publisher(EndpointOwner, Generic[MsgT]):
         self._put: Callable[..., object] = self._pub.put
 
     @property
+    def sent(self) -> int:
+        """Messages published so far (rmw_zenoh's sequence number of the last one)."""
+        return self._seq
+
+    @property
     def gid(self) -> bytes:
         """The 16-byte global id rmw_zenoh puts in every sample's attachment."""
         return self._gid

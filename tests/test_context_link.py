@@ -17,7 +17,7 @@ from tests.transport.test_security import environ, procs, start_node
 __all__ = ['procs']  # the fixture
 
 LOST = 'Lost the link to the Zenoh router at'
-BACK = 'is back'
+BACK = 'is back;'
 
 
 @pytest.fixture
@@ -56,9 +56,14 @@ def test_a_secured_node_says_when_its_router_goes_and_comes_back(
         router.close()
         lost = talker.wait_for(LOST)
         assert keystore['ROS2LITE_ROUTER'] in lost and 'Zenoh client' in lost
+        published = talker.text().count('Publishing:')
+        wait_until(lambda: talker.text().count('Publishing:') >= published + 2, timeout=10)
         router = _router(keystore)
         back = talker.wait_for(BACK, timeout=30)  # the session's retry backs off to 1 s
         assert keystore['ROS2LITE_ROUTER'] in back
+        # and how many of its messages went nowhere meanwhile (the talker publishes at 1 Hz)
+        lost_count = int(back.split('is back; ')[1].split()[0])
+        assert lost_count >= 2 and 'reached no one' in back
         assert talker.text().count(LOST) == 1
     finally:
         router.close()

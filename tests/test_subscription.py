@@ -3,6 +3,7 @@ TRANSIENT_LOCAL late joining, and rmw_zenoh's rule that samples without attachme
 
 from __future__ import annotations
 
+import contextlib
 import time
 from typing import Any
 
@@ -191,9 +192,10 @@ from ros2lite.context import Context
 ctx = Context()
 ctx.init([])
 session, key = ctx.session, sys.argv[1]
+put = session.declare_publisher(key).put
 print('flooding', flush=True)
 for _ in range(int(sys.argv[2])):
-    session.put(key, b'')
+    put(b'')
 print('done', flush=True)
 ctx.try_shutdown()
 '''
@@ -305,3 +307,49 @@ def test_receiving_strategies(node: Node, executor: SingleThreadedExecutor) -> N
     spin_until(executor, lambda: len(arrivals) == 4 and len(delivered) == 2)
     assert threading.current_thread().name not in arrivals
     assert delivered == [interfaces.serialize(String(data=f'{i}')) for i in (0, 2)]
+
+
+@pytest.mark.parametrize('depth', [100])
+def test_a_flood_of_samples_without_attachment_costs_a_reliable_subscription_nothing(
+    processes: Any, node: Node, executor: SingleThreadedExecutor, depth: int
+) -> None:
+    """R5-L2: a peer flooding the key with empty samples without an attachment must not push
+    real messages out of a bounded queue: every message published while it floods arrives
+    (the executor takes each right after it is published, so KEEP_LAST drops none)."""
+    got: list[str] = []
+    sub = node.create_subscription(String, 'flooded', lambda m: got.append(m.data), depth)
+    pub = node.create_publisher(String, 'flooded', depth)
+    wait_matched(pub)
+    flood = processes.python(FLOODER, sub._ep.key, '300000')
+    assert flood.stdout.readline().strip() == 'flooding'
+    sent = 0
+    while flood.poll() is None and sent < 3000:
+        pub.publish(String(data=str(sent)))
+        sent += 1
+        executor.spin_once(timeout_sec=0.001)
+    with contextlib.suppress(pytest.fail.Exception):
+        spin_until(executor, lambda: len(got) == sent, timeout=5)
+    bad = sub.bad_samples
+    assert bad is not None and bad.unattached > 0  # the flood reached it, and was reported
+    lost = sorted(set(map(str, range(sent))) - set(got), key=int)
+    assert not lost, f'{len(lost)} of {sent} lost ({bad.unattached} flood samples): {lost[:10]}'
+    assert got == [str(i) for i in range(sent)]
+
+
+def test_a_raw_subscription_reports_samples_without_attachment(
+    processes: Any, node: Node, executor: SingleThreadedExecutor
+) -> None:
+    """The raw queue (topic hz, echo's raw path) drops a peer's samples without an attachment
+    before its buffer and reports them, as the typed path does (they went unreported)."""
+    got: list[bytes] = []
+    sub = node.create_subscription(String, 'flooded_raw', got.append, 10, raw=True)
+    pub = node.create_publisher(String, 'flooded_raw', 10)
+    wait_matched(pub)
+    flood = processes.python(FLOODER, sub._ep.key, '2000')
+    assert flood.stdout.readline().strip() == 'flooding'
+    flood.wait(timeout=30)
+    pub.publish(String(data='real'))
+    spin_until(executor, lambda: got and sub.bad_samples is not None)
+    bad = sub.bad_samples
+    assert bad is not None and 0 < bad.unattached <= 2000
+    assert len(got) == 1

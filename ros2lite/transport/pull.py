@@ -29,13 +29,22 @@ whatever the threads race to do.
 
 Samples without an attachment are no ROS message (rmw_zenoh drops them) and are never handed
 out. Our own interrupts are dropped silently; any other (a peer's, perhaps a flood) is counted
-to `on_unattached`, which reports it.
+to `on_unattached`, which reports it. In the Rust ring, though, a peer's would take the slots
+of real samples: a flood of them pushes real ones out before Python sees them. So the first
+time one is seen the subscription puts a *filter* in front of its ring (:class:`_Filter`): a
+callback on Zenoh's receive thread that drops them there and passes real samples (and our
+interrupts) on to a ring of its own, on a key only this session hears. That costs a Python
+call per sample (the GIL on the receive thread), so it is only done once a peer has shown it
+sends such samples, and then kept for the subscription's life; a flood then slows the link it
+comes on, not the subscription.
 """
 
 from __future__ import annotations
 
 import contextlib
+import itertools
 import threading
+import time
 from collections import deque
 from collections.abc import Callable, Sequence
 from itertools import islice
@@ -46,15 +55,19 @@ import zenoh
 
 from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile
 from ros2lite.transport.session import (
+    declare_filter,
+    declare_local_publisher,
     declare_subscriber,
     foreign_unattached,
+    is_interrupt,
     put_local,
     sole_subscriber,
+    undeclare_quietly,
     undeclare_subscriber,
 )
 
 if TYPE_CHECKING:
-    from ros2lite.transport.handles import Sample, Session
+    from ros2lite.transport.handles import Handle, Payload, Sample, Session
 
 __all__ = ['PulledSamples']
 
@@ -68,6 +81,94 @@ _DRAIN = 4096
 # a sample without an attachment (an interrupt, or not a ROS message) never enters `pending`,
 # where it could push a real one out of a KEEP_LAST deque
 _attached = attrgetter('attachment')
+# the filter reports a flood's samples at the first and then once per this many
+_REPORT_EVERY = 4096
+_filter_ids = itertools.count()
+
+
+class _Filter:
+    """Zenoh's receive thread, every sample of the key: a peer's samples without an attachment
+    are counted and dropped here, before any bounded queue; real ones and our interrupts go on
+    to the subscription's own ring through a session-local publisher (no copy: the payload is
+    Zenoh's). While the ring is being switched over, samples are held, and those the old ring
+    already held dropped (by attachment and payload: the same sample carries the same)."""
+
+    def __init__(
+        self, session: Session, ring_key: str, on_unattached: Callable[[int], None] | None
+    ) -> None:
+        self._publisher = declare_local_publisher(session, ring_key)
+        self._report = on_unattached
+        self._foreign = 0  # counted, not yet reported
+        self._counted = 0
+        self._lock = threading.Lock()
+        self._held: list[Sample] | None = []
+        # (attachment, payload) of what the old ring held, until a second after start()
+        self._seen: set[tuple[bytes, bytes]] = set()
+        self._seen_until = 0.0
+        self.subscriber: Handle | None = None  # on the subscription's key, set by its owner
+
+    def __call__(self, sample: zenoh.Sample) -> None:
+        attachment = sample.attachment
+        if attachment is None:
+            if is_interrupt(sample.payload):
+                self._publisher.put(sample.payload)
+                return
+            self._counted += 1
+            self._foreign += 1
+            if self._counted == 1 or self._foreign >= _REPORT_EVERY:
+                self.flush()
+            return
+        if self._seen and self._duplicate(sample, attachment):
+            return
+        if self._held is not None:
+            with self._lock:
+                held = self._held
+                if held is not None:
+                    held.append(sample)
+                    return
+        if self._foreign:
+            self.flush()
+        self._publisher.put(sample.payload, attachment=attachment)
+
+    def _duplicate(self, sample: Sample, attachment: Payload) -> bool:
+        """Whether the old ring held this sample too (each is held once, so it is forgotten
+        when met; the old ring's last arrivals come here within moments, so after a second
+        nothing is compared any more)."""
+        if time.monotonic() > self._seen_until:
+            self._seen = set()
+            return False
+        ident = (attachment.to_bytes(), sample.payload.to_bytes())
+        if ident in self._seen:
+            self._seen.discard(ident)
+            return True
+        return False
+
+    def flush(self) -> None:
+        """Report what was counted and not reported yet."""
+        n, self._foreign = self._foreign, 0
+        if n and self._report is not None:
+            self._report(n)
+
+    def start(self, drained: Sequence[Sample]) -> None:
+        """The old ring is drained (`drained`, what it held): pass on what was held
+        meanwhile, save those."""
+        with self._lock:
+            self._seen = {
+                (attachment.to_bytes(), sample.payload.to_bytes())
+                for sample in drained
+                if (attachment := sample.attachment) is not None
+            }
+            self._seen_until = time.monotonic() + 1.0
+            held, self._held = self._held or [], None
+            for sample in held:
+                attachment = sample.attachment
+                if attachment is not None and not self._duplicate(sample, attachment):
+                    self._publisher.put(sample.payload, attachment=attachment)
+
+    def undeclare(self) -> None:
+        """Stop passing on (after its subscriber is undeclared) and report the rest."""
+        undeclare_quietly(self._publisher)
+        self.flush()
 
 
 class PulledSamples:
@@ -95,16 +196,12 @@ class PulledSamples:
         keep_all = qos.history == HistoryPolicy.KEEP_ALL
         depth = max(qos.depth, 1)
         self._depth = None if keep_all else depth
-        handler: (
-            zenoh.handlers.FifoChannel[zenoh.Sample] | zenoh.handlers.RingChannel[zenoh.Sample]
-        ) = (
-            zenoh.handlers.FifoChannel(max(qos.depth, _CAPACITY))
-            if keep_all
-            # the ring drops the oldest; its spare slot is for an interrupt (see above)
-            else zenoh.handlers.RingChannel(depth + 1)
-        )
-        self._sub = declare_subscriber(session, key, qos, handler)
-        self._session, self._key = session, key
+        # the ring drops the oldest; its spare slot is for an interrupt (see above)
+        self._size = max(qos.depth, _CAPACITY) if keep_all else depth + 1
+        self._sub = declare_subscriber(session, key, qos, self._channel())
+        self._session, self._key, self._qos = session, key, qos
+        self._ring_key = key  # where the ring listens: the key, or the filter's own one
+        self._filter: _Filter | None = None
         # a transient-local subscriber is zenoh-ext's, with a history of its own: never kept
         self._keeper = None if qos.durability == DurabilityPolicy.TRANSIENT_LOCAL else keeper
         self._on_unattached = on_unattached
@@ -132,15 +229,23 @@ class PulledSamples:
         )
         self._thread.start()
 
+    def _channel(
+        self,
+    ) -> zenoh.handlers.FifoChannel[zenoh.Sample] | zenoh.handlers.RingChannel[zenoh.Sample]:
+        if self._depth is None:
+            return zenoh.handlers.FifoChannel(self._size)
+        return zenoh.handlers.RingChannel(self._size)
+
     @property
     def ready(self) -> bool:
         """Samples may be waiting (so a consumer that stops early must come back)."""
         return not self._armed or bool(self._pending)
 
     def _doorbell(self) -> None:
-        recv, try_recv, rearm, pending = self._recv, self._try_recv, self._rearm, self._pending
-        handover = self._handover
+        rearm, pending, handover = self._rearm, self._pending, self._handover
         while True:
+            # read anew each time: the channel changes when a filter is put in front of it
+            recv, try_recv = self._recv, self._try_recv
             try:
                 sample = recv()  # GIL released while the channel is empty
                 if sample.attachment:
@@ -149,7 +254,7 @@ class PulledSamples:
                     batch = [sample, *islice(iter(try_recv, None), _DRAIN)]
                     real = list(filter(_attached, batch))
                     self._unattached(batch)
-                    if not real:
+                    if not real and not pending:
                         continue
             except Exception:
                 return  # closed: undeclared, or the session went away
@@ -174,14 +279,43 @@ class PulledSamples:
             self._kept = False
         self._rearm.release()
 
-    def _unattached(self, samples: Sequence[Sample]) -> None:
-        """Samples without an attachment among `samples`: our interrupts go unheard, a peer's
-        are told to `on_unattached`."""
-        report = self._on_unattached
-        if report is not None:
-            foreign = foreign_unattached(samples)
-            if foreign:
-                report(foreign)
+    def _unattached(self, samples: Sequence[Sample]) -> bool:
+        """Whoever owns the channel: samples without an attachment among `samples`. Our
+        interrupts go unheard; a peer's are told to `on_unattached`, and the first put the
+        filter in front of the ring (True: the channel changed)."""
+        foreign = foreign_unattached(samples)
+        if not foreign:
+            return False
+        changed = self._filter is None
+        if changed:  # first: the ring's real samples are being pushed out meanwhile
+            self._filter_from_now()
+        if self._on_unattached is not None:
+            self._on_unattached(foreign)
+        return changed
+
+    def _filter_from_now(self) -> None:
+        """The owner of the channel: move the ring behind a filter (see _Filter). The filter
+        hears the key before the old ring is drained, and drops what that held."""
+        if self._closed:
+            return
+        session, qos = self._session, self._qos
+        ring_key = f'{self._key}/@ros2lite_filtered/{next(_filter_ids)}'
+        sieve = _Filter(session, ring_key, self._on_unattached)
+        # it holds what comes until start(); transient local: without the history, which
+        # the old subscriber had already
+        sieve.subscriber = declare_filter(session, self._key, qos, sieve)
+        ring = declare_subscriber(session, ring_key, qos, self._channel(), local_only=True)
+        try:
+            raw = list(islice(iter(self._try_recv, None), self._size))
+        except Exception:  # closed meanwhile
+            raw = []
+        real = list(filter(_attached, raw))
+        self._pending.extend(real)  # the caller hands them out as its own
+        old, self._sub, self._filter = self._sub, ring, sieve
+        self._recv, self._try_recv = ring.handler.recv, ring.handler.try_recv
+        self._ring_key = ring_key
+        sieve.start(real)
+        undeclare_subscriber(session, self._key, old)
 
     def _pull(self, limit: int) -> None:
         """Consumer thread, while it owns the channel: move up to what `limit` needs into
@@ -218,7 +352,7 @@ class PulledSamples:
         self._dry = False
         keeper = self._keeper
         # an interrupt reaches every subscriber of the key in this session: only a sole one
-        if keeper is not None and sole_subscriber(self._session, self._key):
+        if keeper is not None and sole_subscriber(self._session, self._ring_key):
             with self._handover:
                 keep = self._owes and not self._closed
                 self._kept = keep
@@ -249,9 +383,9 @@ class PulledSamples:
         batch = [sample, *islice(iter(self._try_recv, None), _DRAIN)]
         real = list(filter(_attached, batch))
         foreign = foreign_unattached(batch)
-        if foreign and self._on_unattached is not None:
-            self._on_unattached(foreign)
-        if real:
+        if foreign:
+            self._unattached(batch)
+        if real or self._pending:  # (the filter may have drained the old ring into it)
             self._arrived(real)
             return True
         return False if foreign < len(batch) else None
@@ -275,10 +409,9 @@ class PulledSamples:
         comes (True, as after `poll`) or an interrupt (False: whether it was the awaited one
         is the waiter's to know). A closed channel returns False at once; a peer's samples
         without an attachment are dropped and reported on the way."""
-        recv = self._recv
         try:
             while True:
-                sample = recv()
+                sample = self._recv()
                 if sample.attachment:
                     self._arrived([sample])
                     return True
@@ -292,7 +425,7 @@ class PulledSamples:
         """Any thread: end a `park()` (an interrupt that finds nobody parked is dropped by
         the next one to read the channel)."""
         with contextlib.suppress(Exception):  # closed: the park has ended anyway
-            put_local(self._session, self._key)
+            put_local(self._session, self._ring_key)
 
     def release(self) -> None:
         """Any thread, nobody parked: hand a kept channel back to the doorbell."""
@@ -339,8 +472,13 @@ class PulledSamples:
         """Stop receiving; the doorbell thread ends."""
         with self._handover:
             self._closed = True
+        sieve = self._filter
+        if sieve is not None:
+            if sieve.subscriber is not None:
+                undeclare_subscriber(self._session, self._key, sieve.subscriber)
+            sieve.undeclare()
         # closes the channel: a doorbell (or a parked consumer) in recv() returns
-        undeclare_subscriber(self._session, self._key, self._sub)
+        undeclare_subscriber(self._session, self._ring_key, self._sub)
         self._give_back()  # a doorbell waiting for the channel returns
         if self._thread is not threading.current_thread():
             # a thread still inside zenoh when the interpreter finalises aborts the process

@@ -33,7 +33,8 @@ def open_receiver(
     `(sample, arrival ns)`; arrival hook calls `hook(sample)` on the receive thread and
     fills nothing (the hook calls on_ready itself if it queues anything). `keeper` (typed
     pull only) may keep an emptied channel for its consumer to wait in; `on_unattached(n)`
-    hears of samples without an attachment that were not this process's interrupts."""
+    (typed pull and raw queue) hears of samples without an attachment that were not this
+    process's interrupts."""
     if (buffer is not None) != (receiving is Receiving.RAW_QUEUE):
         raise ValueError('a buffer goes with the raw queue, and only with it')
     if (hook is not None) != (receiving is Receiving.ARRIVAL_HOOK):
@@ -44,6 +45,8 @@ def open_receiver(
         )
     if receiving is Receiving.RAW_QUEUE:
         assert buffer is not None
-        return SampleReceiver(session, key, qos, buffer, on_ready, name=name)
+        return SampleReceiver(
+            session, key, qos, buffer, on_ready, name=name, on_unattached=on_unattached
+        )
     assert hook is not None
     return SampleReceiver(session, key, qos, deque(maxlen=0), on_ready, hook=hook, name=name)

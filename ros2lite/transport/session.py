@@ -12,7 +12,6 @@ runs user code), never block.
 from __future__ import annotations
 
 import contextlib
-import heapq
 import os
 import threading
 import time
@@ -26,7 +25,8 @@ import zenoh
 import zenoh.ext
 
 from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
-from ros2lite.transport.handles import Handle, Sample, Session
+from ros2lite.transport.handles import Handle, Payload, Sample, Session
+from ros2lite.transport.history import HistoryBoundedPublisher
 from ros2lite.transport.keys import liveliness_subscription_key
 
 __all__ = [
@@ -39,12 +39,15 @@ __all__ = [
     "SampleReceiver",
     "Session",
     "as_zenoh",
+    "declare_filter",
     "declare_liveliness_subscriber",
+    "declare_local_publisher",
     "declare_publisher",
     "declare_querier",
     "declare_queryable",
     "declare_token",
     "foreign_unattached",
+    "is_interrupt",
     "liveliness_answer",
     "liveliness_keys",
     "put_local",
@@ -52,96 +55,6 @@ __all__ = [
     "undeclare_quietly",
     "undeclare_subscriber",
 ]
-
-
-class HistoryBoundedPublisher:
-    """A transient-local publisher whose history is forgotten once its lifespan has passed.
-
-    zenoh-ext's advanced publisher keeps the last `depth` samples whatever their age (and
-    serves hour-old /rosout lines to a late joiner). With a finite lifespan, once the newest
-    kept sample is older than it, the advanced publisher is made anew, empty (its cache
-    cannot drop samples one by one): a late joiner then gets no expired sample. While samples
-    keep coming, the older ones stay until depth pushes them out. (A bound in bytes, sending
-    large samples through a second, plain publisher, was taken out: two publishers of one key
-    do not keep their samples in order.)
-    """
-
-    def __init__(
-        self,
-        make: Callable[[], zenoh.ext.AdvancedPublisher],
-        lifespan: float | None,
-    ) -> None:
-        self._make, self._lifespan = make, lifespan
-        self._cached: zenoh.ext.AdvancedPublisher | None = make()
-        self._lock = threading.Lock()
-        self._newest = 0.0  # monotonic time of the newest kept sample (0: none kept)
-
-    def put(self, payload: bytes, *, attachment: bytes | None = None) -> None:
-        """Publish, keeping the sample for late joiners."""
-        with self._lock:
-            if self._cached is None:
-                raise zenoh.ZError("the publisher is undeclared")
-            self._cached.put(payload, attachment=attachment)
-            if self._lifespan is not None:
-                first = not self._newest
-                self._newest = time.monotonic()
-                if first:
-                    _expiry.watch(self, self._newest + self._lifespan)
-
-    def expire(self) -> float | None:
-        """Forget the history if its newest sample has expired; else when to look again."""
-        with self._lock:
-            assert self._lifespan is not None
-            due = self._newest + self._lifespan
-            if self._cached is None or not self._newest:
-                return None
-            if time.monotonic() < due:
-                return due
-            undeclare_quietly(self._cached)
-            self._cached = None  # a put meanwhile waits for the lock, then goes to the new one
-            self._cached = self._make()
-            self._newest = 0.0
-            return None
-
-    def undeclare(self) -> None:
-        """Undeclare the publisher (its history goes with it)."""
-        with self._lock:
-            cached, self._cached = self._cached, None
-        undeclare_quietly(cached)
-
-
-class _Expiry:
-    """One thread for the process, forgetting expired transient-local histories on time."""
-
-    def __init__(self) -> None:
-        self._due: list[tuple[float, int, HistoryBoundedPublisher]] = []
-        self._cond = threading.Condition()
-        self._thread: threading.Thread | None = None
-        self._ids = iter(range(1 << 62))
-
-    def watch(self, publisher: HistoryBoundedPublisher, due: float) -> None:
-        with self._cond:
-            heapq.heappush(self._due, (due, next(self._ids), publisher))
-            if self._thread is None:
-                self._thread = threading.Thread(target=self._run, name="tl-expiry", daemon=True)
-                self._thread.start()
-            self._cond.notify()
-
-    def _run(self) -> None:
-        while True:
-            with self._cond:
-                while not self._due or self._due[0][0] > time.monotonic():
-                    self._cond.wait(self._due[0][0] - time.monotonic() if self._due else None)
-                _, _, publisher = heapq.heappop(self._due)
-            try:
-                again = publisher.expire()
-            except zenoh.ZError:
-                again = None  # its session closed: nothing to keep or forget
-            if again is not None:
-                self.watch(publisher, again)
-
-
-_expiry = _Expiry()
 
 
 Publisher = zenoh.Publisher | HistoryBoundedPublisher
@@ -302,12 +215,19 @@ def declare_subscriber(
     key: str,
     qos: QoSProfile,
     handler: zenoh.handlers.FifoChannel[zenoh.Sample] | zenoh.handlers.RingChannel[zenoh.Sample],
+    *,
+    local_only: bool = False,
 ) -> _Subscriber:
     """A subscriber feeding `handler` (a zenoh channel), mapped from QoS as rmw_zenoh does:
     transient local through zenoh-ext's advanced subscriber, which asks late-joining
     publishers for their cache (and, when reliable, recovers missed samples by heartbeat).
-    Undeclare it with undeclare_subscriber."""
+    `local_only`: a plain subscriber hearing only this session's puts (the ring behind a
+    filter, ros2lite.transport.pull). Undeclare it with undeclare_subscriber."""
     _count_subscriber(session, key, +1)
+    if local_only:
+        return as_zenoh(session).declare_subscriber(
+            key, handler, allowed_origin=zenoh.Locality.SESSION_LOCAL
+        )
     if _transient_local(qos):
         recovery = (
             zenoh.ext.RecoveryConfig(periodic_queries=None, heartbeat=True)
@@ -338,6 +258,41 @@ def put_local(session: Session, key: str) -> None:
     Every receiver drops it, as rmw_zenoh drops samples without an attachment;
     :func:`foreign_unattached` tells it from a peer's."""
     as_zenoh(session).put(key, _INTERRUPT, allowed_destination=zenoh.Locality.SESSION_LOCAL)
+
+
+def declare_filter(
+    session: Session, key: str, qos: QoSProfile, callback: Callable[[zenoh.Sample], None]
+) -> Handle:
+    """A subscriber calling `callback(sample)` on Zenoh's receive thread (a GIL hold per
+    sample: only for filtering, ros2lite.transport.pull). Transient local: zenoh-ext's, with
+    recovery but no history query (it replaces a subscriber that had the history already)."""
+    _count_subscriber(session, key, +1)
+    handler = zenoh.handlers.Callback(callback, indirect=False)
+    if _transient_local(qos):
+        recovery = (
+            zenoh.ext.RecoveryConfig(periodic_queries=None, heartbeat=True)
+            if _reliable(qos)
+            else None
+        )
+        advanced: Handle = zenoh.ext.declare_advanced_subscriber(
+            as_zenoh(session), key, handler, recovery=recovery, subscriber_detection=True
+        )
+        return advanced
+    plain: Handle = as_zenoh(session).declare_subscriber(key, handler)
+    return plain
+
+
+def is_interrupt(payload: Payload) -> bool:
+    """Whether a sample without an attachment carries this process's interrupt."""
+    return len(payload) == len(_INTERRUPT) and payload.to_bytes() == _INTERRUPT
+
+
+def declare_local_publisher(session: Session, key: str) -> zenoh.Publisher:
+    """A publisher whose puts reach only this session's subscribers (a filter passing
+    samples on, ros2lite.transport.pull)."""
+    return as_zenoh(session).declare_publisher(
+        key, allowed_destination=zenoh.Locality.SESSION_LOCAL
+    )
 
 
 def foreign_unattached(samples: Iterable[Sample]) -> int:
@@ -371,7 +326,8 @@ class SampleReceiver:
     waiting while holding the GIL once, then calls `on_batch()` (which schedules delivery).
     Each is stored as `(sample, arrival ns)` (raw consumers such as `topic hz` need arrival
     times); a `hook(sample)` replaces the buffer entirely (monitors that must see every
-    sample at arrival, a typed waiter that keeps the first message).
+    sample at arrival, a typed waiter that keeps the first message). Samples without an
+    attachment never take a slot of the buffer; a peer's are counted to `on_unattached`.
     """
 
     def __init__(
@@ -384,8 +340,8 @@ class SampleReceiver:
         *,
         hook: Callable[[Sample], None] | None = None,
         name: str = "",
+        on_unattached: Callable[[int], None] | None = None,
     ) -> None:
-
         keep_all = qos.history == HistoryPolicy.KEEP_ALL
         capacity = max(qos.depth, _CHANNEL_CAPACITY)
         handler = (
@@ -398,6 +354,7 @@ class SampleReceiver:
         self._buffer = buffer
         self._on_batch = on_batch
         self._hook = hook
+        self._on_unattached = on_unattached
         self._now = time.time_ns
         self._thread = threading.Thread(
             target=self._pump, args=(self._sub.handler,), daemon=True, name=f"ros2lite-sub {name}"
@@ -427,9 +384,16 @@ class SampleReceiver:
 
                             traceback.print_exc()
                     continue
-                append((first, now()))
-                for sample in rest:
+                batch = [first, *rest]
+                real = list(filter(_attachment_of, batch))
+                if len(real) != len(batch):  # never a slot of the buffer: dropped, reported
+                    foreign = foreign_unattached(batch)
+                    if foreign and self._on_unattached is not None:
+                        self._on_unattached(foreign)
+                for sample in real:
                     append((sample, now()))
+                if not real:
+                    continue
             except Exception:
                 pass  # closed mid-batch; the next recv() ends the thread
             on_batch()
