@@ -77,6 +77,7 @@ class Settings:
     odom_noise: float = -1.0  # < 0: the robot's own
     publish_robot_state: bool = False
     seed: int = -1  # < 0: a new random seed each run
+    scan_rate: float = 0.0  # Hz; <= 0: the robot's laser's own
 
 
 class SimNode(Node):
@@ -87,6 +88,8 @@ class SimNode(Node):
         super().__init__(node_name)
         chosen = self._read_parameters(settings or Settings())
         spec = robot(chosen.robot_model)
+        if chosen.scan_rate > 0:
+            spec = replace(spec, laser=replace(spec.laser, rate=chosen.scan_rate))
         self.spec = spec
         self.world = open_world(chosen.world)
         self.real_time_factor = chosen.real_time_factor
