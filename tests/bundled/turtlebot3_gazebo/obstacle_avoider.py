@@ -22,6 +22,7 @@ class ObstacleAvoider(Node):
         self.travelled = 0.0
         self.last = None
         self.start = None
+        self.turn = 0.0
         self.pub = self.create_publisher(Twist, 'cmd_vel', 10)
         self.create_subscription(LaserScan, 'scan', self.on_scan, qos_profile_sensor_data)
         self.create_subscription(Odometry, 'odom', self.on_odom, 10)
@@ -52,12 +53,15 @@ class ObstacleAvoider(Node):
         if self.scan is None:
             return
         cmd = Twist()
-        front = self.sector(-40, 41)
-        if front > 0.6:
+        if self.sector(-35, 36) > 0.5:
             cmd.linear.x = 0.2
+            self.turn = 0.0
         else:
-            left, right = self.sector(40, 100), self.sector(260, 320)
-            cmd.angular.z = 1.0 if left > right else -1.0
+            # keep turning the way it started until the way ahead is clear
+            if not self.turn:
+                left, right = self.sector(35, 100), self.sector(260, 325)
+                self.turn = 1.0 if left > right else -1.0
+            cmd.angular.z = self.turn
         self.pub.publish(cmd)
 
 

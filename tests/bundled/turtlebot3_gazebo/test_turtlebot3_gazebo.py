@@ -77,7 +77,7 @@ def test_obstacle_avoidance_drives_a_minute_without_collision(processes: Any) ->
 
 
 @pytest.mark.timeout(60)
-def test_scan_rate_odometry_and_reset(processes: Any) -> None:
+def test_scan_comes_at_the_lds_rate(processes: Any) -> None:
     _launch(processes, 'empty_world.launch.py')
     hz = processes.cli('topic', 'hz', '/scan', '--window', '20')
     time.sleep(0)  # hz prints every second once 20 scans (4 s) are in its window
@@ -94,33 +94,63 @@ def test_scan_rate_odometry_and_reset(processes: Any) -> None:
     processes.stop(hz)
     assert abs(rates[-1] - 5.0) / 5.0 < 0.02, rates
 
-    # drive straight at 0.2 m/s for 2 s of sim time, then stop: the odometry says 0.4 m
-    pub = processes.cli(
-        'topic', 'pub', '-r', '20', '/cmd_vel', 'geometry_msgs/msg/Twist', '{linear: {x: 0.2}}'
-    )
-    wait_until(lambda: _field(_echo('/odom', '--no-arr'), 'x') > 0.3, timeout=20)
-    processes.stop(pub)
-    x = _field(_echo('/odom', '--no-arr'), 'x')
-    assert x > 0.3
 
-    call = subprocess.run(
-        [
-            sys.executable,
-            '-m',
-            'ros2lite',
-            'service',
-            'call',
-            '/reset_simulation',
-            'std_srvs/srv/Empty',
-        ],
-        capture_output=True,
-        text=True,
-        timeout=20,
+@pytest.mark.timeout(60)
+def test_reset_simulation_puts_the_robot_back(processes: Any, ros_context: Any) -> None:
+    from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.msgs.geometry_msgs.msg import Twist
+    from ros2lite.msgs.nav_msgs.msg import Odometry
+    from ros2lite.msgs.rosgraph_msgs.msg import Clock
+    from ros2lite.msgs.std_srvs.srv import Empty
+    from ros2lite.node import Node
+
+    sim = processes.cli(
+        'run',
+        'turtlebot3_gazebo',
+        'gazebo_2d',
+        '--ros-args',
+        '-p',
+        'world:=empty_world',
+        '-p',
+        'real_time_factor:=5.0',
     )
-    assert call.returncode == 0, call.stderr
-    odom = _echo('/odom', '--no-arr')
-    assert math.hypot(_field(odom, 'x'), _field(odom, 'y')) < 1e-6, odom
-    assert _field(_echo('/clock'), 'sec') < 5
+    node = Node('resetter', context=ros_context)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(node)
+    pub = node.create_publisher(Twist, '/cmd_vel', 10)
+    odoms: list[Odometry] = []
+    clocks: list[float] = []
+    node.create_subscription(Odometry, '/odom', odoms.append, 10)
+    node.create_subscription(
+        Clock, '/clock', lambda m: clocks.append(m.clock.sec + m.clock.nanosec * 1e-9), 10
+    )
+    client = node.create_client(Empty, '/reset_simulation')
+
+    def spin_until(predicate: Any, timeout: float = 20) -> Any:
+        return wait_until(predicate, timeout, step=lambda: executor.spin_once(timeout_sec=0.02))
+
+    def stamp(msg: Odometry) -> float:
+        return msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+
+    try:
+        move = Twist()
+        move.linear.x = 0.2
+        spin_until(lambda: odoms and pub.get_subscription_count() > 0)
+        pub.publish(move)
+        spin_until(lambda: odoms[-1].pose.pose.position.x > 0.3)
+        pub.publish(Twist())
+        assert client.wait_for_service(timeout_sec=10)
+        before = stamp(odoms[-1])
+        future = client.call_async(Empty.Request())
+        spin_until(future.done)
+        # sim time starts again from zero, and the odometry with it
+        spin_until(lambda: clocks[-1] < before and stamp(odoms[-1]) < before)
+        position = odoms[-1].pose.pose.position
+        assert math.hypot(position.x, position.y) < 1e-6, position
+    finally:
+        executor.shutdown()
+        node.destroy_node()
+        processes.stop(sim)
 
 
 @pytest.mark.timeout(60)
@@ -144,7 +174,7 @@ def test_odometry_integrates_the_commanded_arc(processes: Any, ros_context: Any)
         '-p',
         'y_pose:=0.0',
         '-p',
-        'real_time_factor:=5.0',
+        'real_time_factor:=2.0',
         '-p',
         'odom_noise:=0.01',
         '-p',
@@ -181,8 +211,9 @@ def test_odometry_integrates_the_commanded_arc(processes: Any, ros_context: Any)
     yaw = rpy_from_quaternion(
         (pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w)
     )[2]
-    # the wheels' 1 m/s² ramps at start and stop nearly cancel; command latency at 5x adds
-    # a few hundredths of a radian
-    assert abs(yaw - 2.0) < 0.1, yaw
-    assert abs(pose.position.x - 0.5 * math.sin(2.0)) < 0.06, pose.position
-    assert abs(pose.position.y - 0.5 * (1 - math.cos(2.0))) < 0.06, pose.position
+    # the pose lies on the commanded 0.5 m-radius arc (the wheels' 1 m/s² ramps bend it by
+    # millimetres, the 1 % wheel noise by less); how far along depends on when the commands
+    # arrived, which a loaded machine delays by tenths of a second of sim time
+    assert abs(pose.position.x - 0.5 * math.sin(yaw)) < 0.03, (pose.position, yaw)
+    assert abs(pose.position.y - 0.5 * (1 - math.cos(yaw))) < 0.03, (pose.position, yaw)
+    assert abs(yaw - 2.0) < 0.3, yaw
