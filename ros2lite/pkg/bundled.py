@@ -28,6 +28,7 @@ _DEMOS = {
         'use_logger_service',
     ],
     'foxglove_bridge': ['foxglove_bridge'],
+    'jackal_gazebo': ['gazebo_2d'],
     'lifecycle': ['lifecycle_listener'],
     'lifecycle_py': ['lifecycle_talker'],
     'rclpy_components': ['component_container', 'component_container_mt'],

@@ -139,12 +139,18 @@ class SimNode(Node):
         spec = self.spec
         self.clock_pub = self.create_publisher(Clock, '/clock', 10)
         self.scan_pub = self.create_publisher(LaserScan, spec.laser.topic, qos_profile_sensor_data)
-        self.odom_pub = self.create_publisher(Odometry, spec.odom_topic, 10)
+        self.odom_pubs = [
+            self.create_publisher(Odometry, topic, 10)
+            for topic in (spec.odom_topic, *spec.odom_copies)
+        ]
         self.tf_pub = self.create_publisher(TFMessage, '/tf', 100)
         self.joints_pub = self.create_publisher(JointState, 'joint_states', 10)
-        self.imu_pub: Publisher[Imu] | None = None
+        self.imu_pubs: list[Publisher[Imu]] = []
         if spec.imu is not None:
-            self.imu_pub = self.create_publisher(Imu, spec.imu.topic, qos_profile_sensor_data)
+            self.imu_pubs = [
+                self.create_publisher(Imu, topic, qos_profile_sensor_data)
+                for topic in (spec.imu.topic, *spec.imu_copies)
+            ]
         self.image_pub: Publisher[Image] | None = None
         self.info_pub: Publisher[CameraInfo] | None = None
         if spec.camera is not None:
@@ -274,8 +280,8 @@ class SimNode(Node):
             self._publish_joints(stamp)
         if due['scan'].check(now) and self.scan_pub.get_subscription_count() > 0:
             self._publish_scan(stamp)
-        imu = self.imu_pub
-        if imu is not None and due['imu'].check(now) and imu.get_subscription_count() > 0:
+        imu = self.imu_pubs
+        if imu and due['imu'].check(now) and any(p.get_subscription_count() for p in imu):
             self._publish_imu(stamp)
         if self.image_pub is not None and due['camera'].check(now):
             self._publish_camera(stamp)
@@ -317,7 +323,8 @@ class SimNode(Node):
         cov[0] = cov[7] = cov[14] = cov[21] = cov[28] = cov[35] = 1e-5
         msg.pose.covariance = cov
         msg.twist.covariance = cov
-        self.odom_pub.publish(msg)
+        for pub in self.odom_pubs:
+            pub.publish(msg)
         if spec.publish_odom_tf:
             t = self._transform(
                 spec.odom_frame, spec.base_frame, (odom.x, odom.y, 0.0), (0.0, 0.0, odom.yaw), 0.0
@@ -328,16 +335,19 @@ class SimNode(Node):
     def _publish_joints(self, stamp: Time) -> None:
         msg = JointState()
         msg.header.stamp = stamp
-        msg.name = list(self.spec.wheel_joints)
-        msg.position = [_wrap(a) for a in self.base.wheel_angle]
+        names = self.spec.wheel_joints
+        sides = [0 if 'left' in name else 1 for name in names]
+        angles = [self.base.wheel_angle[side] for side in sides]
+        msg.name = list(names)
+        msg.position = [_wrap(a) for a in angles]
         r = self.spec.limits.wheel_radius
-        msg.velocity = [s / r for s in self.base.wheel_speed]
-        msg.effort = [0.0, 0.0]
+        msg.velocity = [self.base.wheel_speed[side] / r for side in sides]
+        msg.effort = [0.0] * len(names)
         self.joints_pub.publish(msg)
         if self._publish_robot_state:
             transforms = []
             by_name = {j.name: j for j in self.spec.joints}
-            for name, angle in zip(self.spec.wheel_joints, self.base.wheel_angle, strict=True):
+            for name, angle in zip(names, angles, strict=True):
                 joint = by_name.get(name)
                 if joint is None:
                     continue
@@ -383,7 +393,7 @@ class SimNode(Node):
 
     def _publish_imu(self, stamp: Time) -> None:
         spec = self.spec.imu
-        if spec is None or self.imu_pub is None:
+        if spec is None:
             return
         base = self.base
         gauss = self.rng.gauss
@@ -404,7 +414,8 @@ class SimNode(Node):
         msg.linear_acceleration.z = 9.80665 + (gauss(0.0, a) if a else 0.0)
         msg.angular_velocity_covariance = [g * g, 0.0, 0.0, 0.0, g * g, 0.0, 0.0, 0.0, g * g]
         msg.linear_acceleration_covariance = [a * a, 0.0, 0.0, 0.0, a * a, 0.0, 0.0, 0.0, a * a]
-        self.imu_pub.publish(msg)
+        for pub in self.imu_pubs:
+            pub.publish(msg)
 
     def _publish_camera(self, stamp: Time) -> None:
         spec = self.spec.camera

@@ -58,12 +58,16 @@ class RobotSpec:
     camera: CameraSpec | None = None
     cmd_vel: str = 'cmd_vel'
     odom_topic: str = 'odom'
+    # more topics carrying the same odometry (a localisation filter's output, as the real
+    # robot's launch has one), and more carrying the IMU's readings
+    odom_copies: tuple[str, ...] = ()
+    imu_copies: tuple[str, ...] = ()
     odom_frame: str = 'odom'
     base_frame: str = 'base_footprint'
     odom_rate: float = 30.0
     publish_odom_tf: bool = True
     joint_states_rate: float = 30.0
-    wheel_joints: tuple[str, str] = ('wheel_left_joint', 'wheel_right_joint')
+    wheel_joints: tuple[str, ...] = ('wheel_left_joint', 'wheel_right_joint')
     body_rgb: tuple[float, float, float] = (0.3, 0.3, 0.3)
     extra: dict[str, str] = field(default_factory=dict)
 
@@ -195,6 +199,112 @@ ROBOTS: dict[str, RobotSpec] = {
     ),
 }
 ROBOTS['waffle_pi'] = ROBOTS['waffle']
+
+# Clearpath Jackal (jackal_description foxy-devel, jackal_control's control.yaml): the front
+# laser is the default Hokuyo UST-10 (720 beams over ±2.35619 rad, 0.1-30 m, 50 Hz, noise
+# 0.001 m) on `front/scan`, frame `front_laser`; diff_drive_controller at 50 Hz with a 0.25 s
+# cmd_vel timeout, odom -> base_link (the EKF's /odometry/filtered and its TF; the
+# controller's odometry on /odom as the courses see it); IMU `imu/data_raw` at 100 Hz
+# (and the Madgwick filter's `imu/data`).
+_JACKAL_WHEEL = ('cylinder', (0.098, 0.04, 0.0))
+ROBOTS['jackal'] = RobotSpec(
+    name='jackal',
+    banner=(
+        "ros2lite's 2D stand-in for the Gazebo simulation of Clearpath Jackal "
+        '(a flat world: no physics engine, same topics, frames and rates)'
+    ),
+    limits=DriveLimits(
+        0.37559,
+        0.098,
+        footprint_radius=0.3,
+        wheel_accel=20.0,
+        max_linear=2.0,
+        max_angular=4.0,
+        cmd_timeout=0.25,
+    ),
+    start=Pose2D(0.0, 0.0, 0.0),
+    joints=(
+        Joint(
+            'base_link_joint',
+            'base_link',
+            'chassis_link',
+            (0.0, 0.0, 0.0),
+            shape=('box', (0.42, 0.31, 0.184)),
+        ),
+        Joint(
+            'front_left_wheel_joint',
+            'chassis_link',
+            'front_left_wheel_link',
+            (0.131, 0.187795, 0.0345),
+            (-math.pi / 2, 0.0, 0.0),
+            'continuous',
+            _JACKAL_WHEEL,
+        ),
+        Joint(
+            'front_right_wheel_joint',
+            'chassis_link',
+            'front_right_wheel_link',
+            (0.131, -0.187795, 0.0345),
+            (-math.pi / 2, 0.0, 0.0),
+            'continuous',
+            _JACKAL_WHEEL,
+        ),
+        Joint(
+            'rear_left_wheel_joint',
+            'chassis_link',
+            'rear_left_wheel_link',
+            (-0.131, 0.187795, 0.0345),
+            (-math.pi / 2, 0.0, 0.0),
+            'continuous',
+            _JACKAL_WHEEL,
+        ),
+        Joint(
+            'rear_right_wheel_joint',
+            'chassis_link',
+            'rear_right_wheel_link',
+            (-0.131, -0.187795, 0.0345),
+            (-math.pi / 2, 0.0, 0.0),
+            'continuous',
+            _JACKAL_WHEEL,
+        ),
+        Joint('imu_joint', 'chassis_link', 'imu_link', (0.0, 0.0, 0.0)),
+        Joint('front_mount_joint', 'chassis_link', 'front_mount', (0.12, 0.0, 0.184)),
+        Joint('front_laser_mount_joint', 'front_mount', 'front_laser_mount', (0.0, 0.0, 0.0)),
+        Joint(
+            'front_laser_joint',
+            'front_laser_mount',
+            'front_laser',
+            (0.0, 0.0, 0.0474),
+            shape=('cylinder', (0.025, 0.07, 0.0)),
+        ),
+    ),
+    laser=LaserSpec(
+        topic='front/scan',
+        frame_id='front_laser',
+        samples=720,
+        angle_min=-2.35619,
+        angle_max=2.35619,
+        range_min=0.1,
+        range_max=30.0,
+        rate=50.0,
+        noise=0.001,
+        x=0.12,
+    ),
+    imu=ImuSpec('imu/data_raw', 'imu_link', 100.0, gyro_noise=0.005, accel_noise=0.005),
+    odom_topic='odom',
+    odom_copies=('odometry/filtered',),
+    imu_copies=('imu/data',),
+    base_frame='base_link',
+    odom_rate=50.0,
+    joint_states_rate=50.0,
+    wheel_joints=(
+        'front_left_wheel_joint',
+        'front_right_wheel_joint',
+        'rear_left_wheel_joint',
+        'rear_right_wheel_joint',
+    ),
+    body_rgb=(0.1, 0.1, 0.1),
+)
 
 
 def robot(name: str) -> RobotSpec:

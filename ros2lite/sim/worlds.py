@@ -3,6 +3,7 @@ lookup that turns a `world:=` argument (a name, a world file, a map YAML) into a
 
 - `turtlebot3_world`: a hexagonal arena, 3x3 pillars 1.1 m apart (radius 0.15 m);
 - `turtlebot3_house`: a house of rooms joined by doorways, with furniture;
+- `jackal_race`: a walled yard with a slalom of barrels and crates;
 - `empty_world`: a floor with nothing on it.
 A `.yaml` path is a map_server map; a `.world`/`.sdf` file is read for its boxes and
 cylinders (the SDF `<collision>` geometry of models placed in it), seen from above.
@@ -83,6 +84,23 @@ def _turtlebot3_house() -> WorldSpec:
     return WorldSpec('turtlebot3_house', -7.7, -5.2, 7.7, 5.2, tuple(shapes), 0.03, 1.0)
 
 
+def _jackal_race() -> WorldSpec:
+    # a walled yard with a slalom of barrels and a few crates, the Jackal at its centre
+    shapes: list[Shape] = _polygon(
+        [(-10.0, -10.0), (10.0, -10.0), (10.0, 10.0), (-10.0, 10.0)], 0.2
+    )
+    shapes += [
+        Cylinder(float(x), 4.0 if x % 4 else -4.0, 0.3, rgb=(200, 90, 30)) for x in range(-8, 9, 2)
+    ]
+    shapes += [
+        Box(5.0, 0.0, 1.0, 1.0, 0.3, rgb=_WOOD),
+        Box(-5.0, 1.5, 1.5, 0.8, -0.4, rgb=_WOOD),
+        Box(0.0, 7.5, 6.0, 0.4, 0.0, rgb=_WALL),
+        Box(0.0, -7.5, 6.0, 0.4, 0.0, rgb=_WALL),
+    ]
+    return WorldSpec('jackal_race', -10.3, -10.3, 10.3, 10.3, tuple(shapes), 0.05, 1.0)
+
+
 def _empty_world() -> WorldSpec:
     return WorldSpec('empty_world', -25.0, -25.0, 25.0, 25.0, (), 0.1, 0.5)
 
@@ -90,6 +108,7 @@ def _empty_world() -> WorldSpec:
 WORLDS = {
     'turtlebot3_world': _turtlebot3_world,
     'turtlebot3_house': _turtlebot3_house,
+    'jackal_race': _jackal_race,
     'empty_world': _empty_world,
     'empty': _empty_world,
 }
