@@ -46,6 +46,7 @@ _DEMOS = {
         'turtle_tf2_broadcaster',
         'turtle_tf2_listener',
     ],
+    'tiago_gazebo': ['gazebo_2d'],
     'turtlebot3_gazebo': ['gazebo_2d'],
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
 }

@@ -160,8 +160,11 @@ class SimNode(Node):
             self.info_pub = self.create_publisher(
                 CameraInfo, spec.camera.info_topic, qos_profile_sensor_data
             )
-        self.create_subscription(Twist, spec.cmd_vel, self._on_twist, 10)
-        self.create_subscription(TwistStamped, spec.cmd_vel, self._on_twist_stamped, 10)
+        inputs = spec.twist_mux or ((spec.cmd_vel, 0, 0.0),)
+        self._mux: dict[str, tuple[int, float, float, float, float]] = {}
+        for topic, priority, timeout in inputs:
+            self._mux[topic] = (priority, timeout, -math.inf, 0.0, 0.0)
+            self._listen(topic)
         self.create_service(Empty, '/reset_simulation', self._on_reset_simulation)
         self.create_service(Empty, '/reset_world', self._on_reset_world)
         self.create_service(Empty, '/pause_physics', self._on_pause)
@@ -191,18 +194,32 @@ class SimNode(Node):
         self.static_pub = static
 
     # -- inputs (executor thread) ------------------------------------------------------------
-    def _on_twist(self, msg: Twist) -> None:
-        self._command(msg.linear.x, msg.angular.z)
+    def _listen(self, topic: str) -> None:
+        """Subscribe to a velocity input as Twist and as TwistStamped."""
 
-    def _on_twist_stamped(self, msg: TwistStamped) -> None:
-        self._command(msg.twist.linear.x, msg.twist.angular.z)
+        def on_twist(msg: Twist) -> None:
+            self._command(topic, msg.linear.x, msg.angular.z)
 
-    def _command(self, linear: float, angular: float) -> None:
+        def on_stamped(msg: TwistStamped) -> None:
+            self._command(topic, msg.twist.linear.x, msg.twist.angular.z)
+
+        self.create_subscription(Twist, topic, on_twist, 10)
+        self.create_subscription(TwistStamped, topic, on_stamped, 10)
+
+    def _command(self, topic: str, linear: float, angular: float) -> None:
+        """A twist on input `topic`: it drives unless a higher-priority input is live."""
         if not (math.isfinite(linear) and math.isfinite(angular)):
             self.get_logger().warn('ignoring a velocity command that is not finite')
             return
         with self.lock:
-            self.base.set_command(linear, angular, self.sim_time)
+            now = self.sim_time
+            priority, timeout, _, _, _ = self._mux[topic]
+            self._mux[topic] = (priority, timeout, now, linear, angular)
+            for other, (p, t, heard, _, _) in self._mux.items():
+                live = t <= 0 or now - heard <= t
+                if other != topic and p > priority and live and heard > -math.inf:
+                    return
+            self.base.set_command(linear, angular, now)
 
     def _on_reset_simulation(
         self, request: Empty.Request, response: Empty.Response

@@ -57,6 +57,9 @@ class RobotSpec:
     imu: ImuSpec | None = None
     camera: CameraSpec | None = None
     cmd_vel: str = 'cmd_vel'
+    # a twist multiplexer's inputs, (topic, priority, timeout s), when the robot has one
+    # (the highest-priority input heard within its timeout drives); empty: `cmd_vel` alone
+    twist_mux: tuple[tuple[str, int, float], ...] = ()
     odom_topic: str = 'odom'
     # more topics carrying the same odometry (a localisation filter's output, as the real
     # robot's launch has one), and more carrying the IMU's readings
@@ -304,6 +307,115 @@ ROBOTS['jackal'] = RobotSpec(
         'rear_right_wheel_joint',
     ),
     body_rgb=(0.1, 0.1, 0.1),
+)
+
+
+# PAL TIAGo's base (pmb2_description, pmb2_controller_configuration): the SICK TiM571 on
+# `scan_raw` (220 degrees, 666 beams, 0.05-25 m, 10 Hz, noise 0.06 m) in base_laser_link,
+# 0.202 m ahead; mobile_base_controller at 50 Hz (wheel separation 0.4044, radius 0.0985,
+# 1 m/s, 1.05 rad/s, 0.25 s timeout), odometry on mobile_base_controller/odom, odom ->
+# base_footprint; the head's Xtion on head_front_camera/rgb/image_raw; the twist mux of
+# tiago_bringup (joystick, tablet, marker, keyboard key_vel, navigation nav_vel).
+ROBOTS['tiago'] = RobotSpec(
+    name='tiago',
+    banner=(
+        "ros2lite's 2D stand-in for the Gazebo simulation of PAL TIAGo "
+        '(a flat world: no physics engine, same topics, frames and rates)'
+    ),
+    limits=DriveLimits(
+        0.4044,
+        0.0985,
+        footprint_radius=0.27,
+        wheel_accel=0.5,
+        max_linear=1.0,
+        max_angular=1.05,
+        cmd_timeout=0.25,
+    ),
+    start=Pose2D(0.0, 0.0, 0.0),
+    joints=(
+        Joint(
+            'base_footprint_joint',
+            'base_footprint',
+            'base_link',
+            (0.0, 0.0, 0.0762),
+            shape=('cylinder', (0.27, 0.3, 0.0)),
+        ),
+        Joint(
+            'wheel_left_joint',
+            'base_link',
+            'wheel_left_link',
+            (0.0, 0.2022, -0.0762),
+            (-math.pi / 2, 0.0, 0.0),
+            'continuous',
+            ('cylinder', (0.0985, 0.04, 0.0)),
+        ),
+        Joint(
+            'wheel_right_joint',
+            'base_link',
+            'wheel_right_link',
+            (0.0, -0.2022, -0.0762),
+            (-math.pi / 2, 0.0, 0.0),
+            'continuous',
+            ('cylinder', (0.0985, 0.04, 0.0)),
+        ),
+        Joint('base_laser_joint', 'base_link', 'base_laser_link', (0.202, 0.0, -0.004)),
+        Joint('base_imu_joint', 'base_link', 'base_imu_link', (0.1044, 0.0, 0.0)),
+        Joint(
+            'torso_fixed_joint',
+            'base_link',
+            'torso_fixed_link',
+            (-0.062, 0.0, 0.193),
+            shape=('box', (0.25, 0.3, 0.6)),
+        ),
+        Joint(
+            'head_front_camera_joint',
+            'torso_fixed_link',
+            'head_front_camera_link',
+            (0.11, 0.0, 0.85),
+        ),
+        Joint(
+            'head_front_camera_rgb_optical_joint',
+            'head_front_camera_link',
+            'head_front_camera_rgb_optical_frame',
+            (0.0, 0.0, 0.0),
+            (-math.pi / 2, 0.0, -math.pi / 2),
+        ),
+    ),
+    laser=LaserSpec(
+        topic='scan_raw',
+        frame_id='base_laser_link',
+        samples=666,
+        angle_min=-1.91986,
+        angle_max=1.91986,
+        range_min=0.05,
+        range_max=25.0,
+        rate=10.0,
+        noise=0.06,
+        x=0.202,
+    ),
+    imu=ImuSpec('base_imu', 'base_imu_link', 100.0, gyro_noise=0.001, accel_noise=0.01),
+    camera=CameraSpec(
+        image_topic='head_front_camera/rgb/image_raw',
+        info_topic='head_front_camera/rgb/camera_info',
+        frame_id='head_front_camera_rgb_optical_frame',
+        width=320,
+        height=240,
+        hfov=1.0472,
+        rate=30.0,
+        x=0.048,
+        z=1.12,
+    ),
+    odom_topic='mobile_base_controller/odom',
+    odom_rate=50.0,
+    joint_states_rate=50.0,
+    twist_mux=(
+        ('joy_vel', 100, 0.5),
+        ('tab_vel', 100, 0.5),
+        ('marker_vel', 98, 0.5),
+        ('key_vel', 90, 0.5),
+        ('nav_vel', 10, 0.5),
+    ),
+    body_rgb=(0.85, 0.85, 0.85),
 )
 
 
