@@ -29,6 +29,7 @@ _DEMOS = {
     ],
     'foxglove_bridge': ['foxglove_bridge'],
     'jackal_gazebo': ['gazebo_2d'],
+    'jackal_viz': [],  # launch files only: view_model.launch.py opens rviz2
     'lifecycle': ['lifecycle_listener'],
     'lifecycle_py': ['lifecycle_talker'],
     'rclpy_components': ['component_container', 'component_container_mt'],
