@@ -28,6 +28,8 @@ _DEMOS = {
         'use_logger_service',
     ],
     'foxglove_bridge': ['foxglove_bridge'],
+    'jackal_gazebo': ['gazebo_2d'],
+    'jackal_viz': [],  # launch files only: view_model.launch.py opens rviz2
     'joint_state_publisher': ['joint_state_publisher'],
     'joint_state_publisher_gui': ['joint_state_publisher_gui'],
     'lifecycle': ['lifecycle_listener'],
@@ -49,6 +51,7 @@ _DEMOS = {
         'turtle_tf2_broadcaster',
         'turtle_tf2_listener',
     ],
+    'tiago_gazebo': ['gazebo_2d'],
     'turtlebot3_gazebo': ['gazebo_2d'],
     'turtlesim': ['draw_square', 'mimic', 'turtle_teleop_key', 'turtlesim_node'],
     'urdf_launch': [],  # launch files only

@@ -77,6 +77,7 @@ class Settings:
     odom_noise: float = -1.0  # < 0: the robot's own
     publish_robot_state: bool = False
     seed: int = -1  # < 0: a new random seed each run
+    scan_rate: float = 0.0  # Hz; <= 0: the robot's laser's own
 
 
 class SimNode(Node):
@@ -87,6 +88,8 @@ class SimNode(Node):
         super().__init__(node_name)
         chosen = self._read_parameters(settings or Settings())
         spec = robot(chosen.robot_model)
+        if chosen.scan_rate > 0:
+            spec = replace(spec, laser=replace(spec.laser, rate=chosen.scan_rate))
         self.spec = spec
         self.world = open_world(chosen.world)
         self.real_time_factor = chosen.real_time_factor
@@ -136,12 +139,18 @@ class SimNode(Node):
         spec = self.spec
         self.clock_pub = self.create_publisher(Clock, '/clock', 10)
         self.scan_pub = self.create_publisher(LaserScan, spec.laser.topic, qos_profile_sensor_data)
-        self.odom_pub = self.create_publisher(Odometry, spec.odom_topic, 10)
+        self.odom_pubs = [
+            self.create_publisher(Odometry, topic, 10)
+            for topic in (spec.odom_topic, *spec.odom_copies)
+        ]
         self.tf_pub = self.create_publisher(TFMessage, '/tf', 100)
         self.joints_pub = self.create_publisher(JointState, 'joint_states', 10)
-        self.imu_pub: Publisher[Imu] | None = None
+        self.imu_pubs: list[Publisher[Imu]] = []
         if spec.imu is not None:
-            self.imu_pub = self.create_publisher(Imu, spec.imu.topic, qos_profile_sensor_data)
+            self.imu_pubs = [
+                self.create_publisher(Imu, topic, qos_profile_sensor_data)
+                for topic in (spec.imu.topic, *spec.imu_copies)
+            ]
         self.image_pub: Publisher[Image] | None = None
         self.info_pub: Publisher[CameraInfo] | None = None
         if spec.camera is not None:
@@ -151,8 +160,11 @@ class SimNode(Node):
             self.info_pub = self.create_publisher(
                 CameraInfo, spec.camera.info_topic, qos_profile_sensor_data
             )
-        self.create_subscription(Twist, spec.cmd_vel, self._on_twist, 10)
-        self.create_subscription(TwistStamped, spec.cmd_vel, self._on_twist_stamped, 10)
+        inputs = spec.twist_mux or ((spec.cmd_vel, 0, 0.0),)
+        self._mux: dict[str, tuple[int, float, float, float, float]] = {}
+        for topic, priority, timeout in inputs:
+            self._mux[topic] = (priority, timeout, -math.inf, 0.0, 0.0)
+            self._listen(topic)
         self.create_service(Empty, '/reset_simulation', self._on_reset_simulation)
         self.create_service(Empty, '/reset_world', self._on_reset_world)
         self.create_service(Empty, '/pause_physics', self._on_pause)
@@ -182,18 +194,32 @@ class SimNode(Node):
         self.static_pub = static
 
     # -- inputs (executor thread) ------------------------------------------------------------
-    def _on_twist(self, msg: Twist) -> None:
-        self._command(msg.linear.x, msg.angular.z)
+    def _listen(self, topic: str) -> None:
+        """Subscribe to a velocity input as Twist and as TwistStamped."""
 
-    def _on_twist_stamped(self, msg: TwistStamped) -> None:
-        self._command(msg.twist.linear.x, msg.twist.angular.z)
+        def on_twist(msg: Twist) -> None:
+            self._command(topic, msg.linear.x, msg.angular.z)
 
-    def _command(self, linear: float, angular: float) -> None:
+        def on_stamped(msg: TwistStamped) -> None:
+            self._command(topic, msg.twist.linear.x, msg.twist.angular.z)
+
+        self.create_subscription(Twist, topic, on_twist, 10)
+        self.create_subscription(TwistStamped, topic, on_stamped, 10)
+
+    def _command(self, topic: str, linear: float, angular: float) -> None:
+        """A twist on input `topic`: it drives unless a higher-priority input is live."""
         if not (math.isfinite(linear) and math.isfinite(angular)):
             self.get_logger().warn('ignoring a velocity command that is not finite')
             return
         with self.lock:
-            self.base.set_command(linear, angular, self.sim_time)
+            now = self.sim_time
+            priority, timeout, _, _, _ = self._mux[topic]
+            self._mux[topic] = (priority, timeout, now, linear, angular)
+            for other, (p, t, heard, _, _) in self._mux.items():
+                live = t <= 0 or now - heard <= t
+                if other != topic and p > priority and live and heard > -math.inf:
+                    return
+            self.base.set_command(linear, angular, now)
 
     def _on_reset_simulation(
         self, request: Empty.Request, response: Empty.Response
@@ -271,8 +297,8 @@ class SimNode(Node):
             self._publish_joints(stamp)
         if due['scan'].check(now) and self.scan_pub.get_subscription_count() > 0:
             self._publish_scan(stamp)
-        imu = self.imu_pub
-        if imu is not None and due['imu'].check(now) and imu.get_subscription_count() > 0:
+        imu = self.imu_pubs
+        if imu and due['imu'].check(now) and any(p.get_subscription_count() for p in imu):
             self._publish_imu(stamp)
         if self.image_pub is not None and due['camera'].check(now):
             self._publish_camera(stamp)
@@ -314,7 +340,8 @@ class SimNode(Node):
         cov[0] = cov[7] = cov[14] = cov[21] = cov[28] = cov[35] = 1e-5
         msg.pose.covariance = cov
         msg.twist.covariance = cov
-        self.odom_pub.publish(msg)
+        for pub in self.odom_pubs:
+            pub.publish(msg)
         if spec.publish_odom_tf:
             t = self._transform(
                 spec.odom_frame, spec.base_frame, (odom.x, odom.y, 0.0), (0.0, 0.0, odom.yaw), 0.0
@@ -325,16 +352,19 @@ class SimNode(Node):
     def _publish_joints(self, stamp: Time) -> None:
         msg = JointState()
         msg.header.stamp = stamp
-        msg.name = list(self.spec.wheel_joints)
-        msg.position = [_wrap(a) for a in self.base.wheel_angle]
+        names = self.spec.wheel_joints
+        sides = [0 if 'left' in name else 1 for name in names]
+        angles = [self.base.wheel_angle[side] for side in sides]
+        msg.name = list(names)
+        msg.position = [_wrap(a) for a in angles]
         r = self.spec.limits.wheel_radius
-        msg.velocity = [s / r for s in self.base.wheel_speed]
-        msg.effort = [0.0, 0.0]
+        msg.velocity = [self.base.wheel_speed[side] / r for side in sides]
+        msg.effort = [0.0] * len(names)
         self.joints_pub.publish(msg)
         if self._publish_robot_state:
             transforms = []
             by_name = {j.name: j for j in self.spec.joints}
-            for name, angle in zip(self.spec.wheel_joints, self.base.wheel_angle, strict=True):
+            for name, angle in zip(names, angles, strict=True):
                 joint = by_name.get(name)
                 if joint is None:
                     continue
@@ -380,7 +410,7 @@ class SimNode(Node):
 
     def _publish_imu(self, stamp: Time) -> None:
         spec = self.spec.imu
-        if spec is None or self.imu_pub is None:
+        if spec is None:
             return
         base = self.base
         gauss = self.rng.gauss
@@ -401,7 +431,8 @@ class SimNode(Node):
         msg.linear_acceleration.z = 9.80665 + (gauss(0.0, a) if a else 0.0)
         msg.angular_velocity_covariance = [g * g, 0.0, 0.0, 0.0, g * g, 0.0, 0.0, 0.0, g * g]
         msg.linear_acceleration_covariance = [a * a, 0.0, 0.0, 0.0, a * a, 0.0, 0.0, 0.0, a * a]
-        self.imu_pub.publish(msg)
+        for pub in self.imu_pubs:
+            pub.publish(msg)
 
     def _publish_camera(self, stamp: Time) -> None:
         spec = self.spec.camera

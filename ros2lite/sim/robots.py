@@ -57,13 +57,20 @@ class RobotSpec:
     imu: ImuSpec | None = None
     camera: CameraSpec | None = None
     cmd_vel: str = 'cmd_vel'
+    # a twist multiplexer's inputs, (topic, priority, timeout s), when the robot has one
+    # (the highest-priority input heard within its timeout drives); empty: `cmd_vel` alone
+    twist_mux: tuple[tuple[str, int, float], ...] = ()
     odom_topic: str = 'odom'
+    # more topics carrying the same odometry (a localisation filter's output, as the real
+    # robot's launch has one), and more carrying the IMU's readings
+    odom_copies: tuple[str, ...] = ()
+    imu_copies: tuple[str, ...] = ()
     odom_frame: str = 'odom'
     base_frame: str = 'base_footprint'
     odom_rate: float = 30.0
     publish_odom_tf: bool = True
     joint_states_rate: float = 30.0
-    wheel_joints: tuple[str, str] = ('wheel_left_joint', 'wheel_right_joint')
+    wheel_joints: tuple[str, ...] = ('wheel_left_joint', 'wheel_right_joint')
     body_rgb: tuple[float, float, float] = (0.3, 0.3, 0.3)
     extra: dict[str, str] = field(default_factory=dict)
 
@@ -195,6 +202,221 @@ ROBOTS: dict[str, RobotSpec] = {
     ),
 }
 ROBOTS['waffle_pi'] = ROBOTS['waffle']
+
+# Clearpath Jackal (jackal_description foxy-devel, jackal_control's control.yaml): the front
+# laser is the default Hokuyo UST-10 (720 beams over ±2.35619 rad, 0.1-30 m, 50 Hz, noise
+# 0.001 m) on `front/scan`, frame `front_laser`; diff_drive_controller at 50 Hz with a 0.25 s
+# cmd_vel timeout, odom -> base_link (the EKF's /odometry/filtered and its TF; the
+# controller's odometry on /odom as the courses see it); IMU `imu/data_raw` at 100 Hz
+# (and the Madgwick filter's `imu/data`).
+_JACKAL_WHEEL = ('cylinder', (0.098, 0.04, 0.0))
+ROBOTS['jackal'] = RobotSpec(
+    name='jackal',
+    banner=(
+        "ros2lite's 2D stand-in for the Gazebo simulation of Clearpath Jackal "
+        '(a flat world: no physics engine, same topics, frames and rates)'
+    ),
+    limits=DriveLimits(
+        0.37559,
+        0.098,
+        footprint_radius=0.3,
+        wheel_accel=20.0,
+        max_linear=2.0,
+        max_angular=4.0,
+        cmd_timeout=0.25,
+    ),
+    start=Pose2D(0.0, 0.0, 0.0),
+    joints=(
+        Joint(
+            'base_link_joint',
+            'base_link',
+            'chassis_link',
+            (0.0, 0.0, 0.0),
+            shape=('box', (0.42, 0.31, 0.184)),
+        ),
+        Joint(
+            'front_left_wheel_joint',
+            'chassis_link',
+            'front_left_wheel_link',
+            (0.131, 0.187795, 0.0345),
+            (-math.pi / 2, 0.0, 0.0),
+            'continuous',
+            _JACKAL_WHEEL,
+        ),
+        Joint(
+            'front_right_wheel_joint',
+            'chassis_link',
+            'front_right_wheel_link',
+            (0.131, -0.187795, 0.0345),
+            (-math.pi / 2, 0.0, 0.0),
+            'continuous',
+            _JACKAL_WHEEL,
+        ),
+        Joint(
+            'rear_left_wheel_joint',
+            'chassis_link',
+            'rear_left_wheel_link',
+            (-0.131, 0.187795, 0.0345),
+            (-math.pi / 2, 0.0, 0.0),
+            'continuous',
+            _JACKAL_WHEEL,
+        ),
+        Joint(
+            'rear_right_wheel_joint',
+            'chassis_link',
+            'rear_right_wheel_link',
+            (-0.131, -0.187795, 0.0345),
+            (-math.pi / 2, 0.0, 0.0),
+            'continuous',
+            _JACKAL_WHEEL,
+        ),
+        Joint('imu_joint', 'chassis_link', 'imu_link', (0.0, 0.0, 0.0)),
+        Joint('front_mount_joint', 'chassis_link', 'front_mount', (0.12, 0.0, 0.184)),
+        Joint('front_laser_mount_joint', 'front_mount', 'front_laser_mount', (0.0, 0.0, 0.0)),
+        Joint(
+            'front_laser_joint',
+            'front_laser_mount',
+            'front_laser',
+            (0.0, 0.0, 0.0474),
+            shape=('cylinder', (0.025, 0.07, 0.0)),
+        ),
+    ),
+    laser=LaserSpec(
+        topic='front/scan',
+        frame_id='front_laser',
+        samples=720,
+        angle_min=-2.35619,
+        angle_max=2.35619,
+        range_min=0.1,
+        range_max=30.0,
+        rate=50.0,
+        noise=0.001,
+        x=0.12,
+    ),
+    imu=ImuSpec('imu/data_raw', 'imu_link', 100.0, gyro_noise=0.005, accel_noise=0.005),
+    odom_topic='odom',
+    odom_copies=('odometry/filtered',),
+    imu_copies=('imu/data',),
+    base_frame='base_link',
+    odom_rate=50.0,
+    joint_states_rate=50.0,
+    wheel_joints=(
+        'front_left_wheel_joint',
+        'front_right_wheel_joint',
+        'rear_left_wheel_joint',
+        'rear_right_wheel_joint',
+    ),
+    body_rgb=(0.1, 0.1, 0.1),
+)
+
+
+# PAL TIAGo's base (pmb2_description, pmb2_controller_configuration): the SICK TiM571 on
+# `scan_raw` (220 degrees, 666 beams, 0.05-25 m, 10 Hz, noise 0.06 m) in base_laser_link,
+# 0.202 m ahead; mobile_base_controller at 50 Hz (wheel separation 0.4044, radius 0.0985,
+# 1 m/s, 1.05 rad/s, 0.25 s timeout), odometry on mobile_base_controller/odom, odom ->
+# base_footprint; the head's Xtion on head_front_camera/rgb/image_raw; the twist mux of
+# tiago_bringup (joystick, tablet, marker, keyboard key_vel, navigation nav_vel).
+ROBOTS['tiago'] = RobotSpec(
+    name='tiago',
+    banner=(
+        "ros2lite's 2D stand-in for the Gazebo simulation of PAL TIAGo "
+        '(a flat world: no physics engine, same topics, frames and rates)'
+    ),
+    limits=DriveLimits(
+        0.4044,
+        0.0985,
+        footprint_radius=0.27,
+        wheel_accel=0.5,
+        max_linear=1.0,
+        max_angular=1.05,
+        cmd_timeout=0.25,
+    ),
+    start=Pose2D(0.0, 0.0, 0.0),
+    joints=(
+        Joint(
+            'base_footprint_joint',
+            'base_footprint',
+            'base_link',
+            (0.0, 0.0, 0.0762),
+            shape=('cylinder', (0.27, 0.3, 0.0)),
+        ),
+        Joint(
+            'wheel_left_joint',
+            'base_link',
+            'wheel_left_link',
+            (0.0, 0.2022, -0.0762),
+            (-math.pi / 2, 0.0, 0.0),
+            'continuous',
+            ('cylinder', (0.0985, 0.04, 0.0)),
+        ),
+        Joint(
+            'wheel_right_joint',
+            'base_link',
+            'wheel_right_link',
+            (0.0, -0.2022, -0.0762),
+            (-math.pi / 2, 0.0, 0.0),
+            'continuous',
+            ('cylinder', (0.0985, 0.04, 0.0)),
+        ),
+        Joint('base_laser_joint', 'base_link', 'base_laser_link', (0.202, 0.0, -0.004)),
+        Joint('base_imu_joint', 'base_link', 'base_imu_link', (0.1044, 0.0, 0.0)),
+        Joint(
+            'torso_fixed_joint',
+            'base_link',
+            'torso_fixed_link',
+            (-0.062, 0.0, 0.193),
+            shape=('box', (0.25, 0.3, 0.6)),
+        ),
+        Joint(
+            'head_front_camera_joint',
+            'torso_fixed_link',
+            'head_front_camera_link',
+            (0.11, 0.0, 0.85),
+        ),
+        Joint(
+            'head_front_camera_rgb_optical_joint',
+            'head_front_camera_link',
+            'head_front_camera_rgb_optical_frame',
+            (0.0, 0.0, 0.0),
+            (-math.pi / 2, 0.0, -math.pi / 2),
+        ),
+    ),
+    laser=LaserSpec(
+        topic='scan_raw',
+        frame_id='base_laser_link',
+        samples=666,
+        angle_min=-1.91986,
+        angle_max=1.91986,
+        range_min=0.05,
+        range_max=25.0,
+        rate=10.0,
+        noise=0.06,
+        x=0.202,
+    ),
+    imu=ImuSpec('base_imu', 'base_imu_link', 100.0, gyro_noise=0.001, accel_noise=0.01),
+    camera=CameraSpec(
+        image_topic='head_front_camera/rgb/image_raw',
+        info_topic='head_front_camera/rgb/camera_info',
+        frame_id='head_front_camera_rgb_optical_frame',
+        width=320,
+        height=240,
+        hfov=1.0472,
+        rate=30.0,
+        x=0.048,
+        z=1.12,
+    ),
+    odom_topic='mobile_base_controller/odom',
+    odom_rate=50.0,
+    joint_states_rate=50.0,
+    twist_mux=(
+        ('joy_vel', 100, 0.5),
+        ('tab_vel', 100, 0.5),
+        ('marker_vel', 98, 0.5),
+        ('key_vel', 90, 0.5),
+        ('nav_vel', 10, 0.5),
+    ),
+    body_rgb=(0.85, 0.85, 0.85),
+)
 
 
 def robot(name: str) -> RobotSpec:

@@ -15,9 +15,18 @@ from dataclasses import dataclass
 
 from PIL import Image, ImageDraw
 
+from ros2lite.sim.rays import fan
 from ros2lite.sim.world import Grid
 
-__all__ = ['CameraSpec', 'ImuSpec', 'LaserSpec', 'render_camera', 'scan']
+__all__ = [
+    'CameraSpec',
+    'ImuSpec',
+    'LaserSpec',
+    'LaserTables',
+    'camera_angles',
+    'render_camera',
+    'scan',
+]
 
 
 @dataclass(frozen=True)
@@ -96,19 +105,23 @@ def scan(
     cy, sy = math.cos(yaw), math.sin(yaw)
     ox = x + spec.x * cy - spec.y * sy
     oy = y + spec.x * sy + spec.y * cy
-    base = yaw + spec.yaw
     limit = spec.range_max + 3 * spec.noise
+    hits, _ = fan(world.outlines, ox, oy, yaw + spec.yaw, tables.angles, limit)
+    gauss, noise = rng.gauss, spec.noise
+    lo, hi, inf = spec.range_min, spec.range_max, math.inf
     ranges = []
-    cast = world.cast
-    cos, sin, gauss, noise = math.cos, math.sin, rng.gauss, spec.noise
-    lo, hi = spec.range_min, spec.range_max
-    for angle in tables.angles:
-        a = base + angle
-        r, _ = cast(ox, oy, cos(a), sin(a), limit)
-        if r != math.inf and noise > 0:
+    for r in hits:
+        if r != inf and noise > 0:
             r += gauss(0.0, noise)
-        ranges.append(r if lo <= r <= hi else math.inf)
+        ranges.append(r if lo <= r <= hi else inf)
     return ranges
+
+
+def camera_angles(spec: CameraSpec) -> list[float]:
+    """Each image column's ray angle from the optical axis (left of centre positive),
+    ascending: the last column first."""
+    f = spec.focal
+    return [math.atan2(spec.width / 2 - (u + 0.5), f) for u in reversed(range(spec.width))]
 
 
 def render_camera(world: Grid, spec: CameraSpec, x: float, y: float, yaw: float) -> bytes:
@@ -124,16 +137,17 @@ def render_camera(world: Grid, spec: CameraSpec, x: float, y: float, yaw: float)
     f = spec.focal
     top_above = world.wall_height - spec.z
     palette = world.palette or [(170, 170, 170)]
-    for u in range(w):
-        rel = math.atan2((w / 2 - (u + 0.5)), f)
-        a = yaw + rel
-        distance, colour = world.cast(ox, oy, math.cos(a), math.sin(a), spec.far)
+    angles = camera_angles(spec)
+    distances, colours = fan(world.outlines, ox, oy, yaw, angles, spec.far)
+    for k, distance in enumerate(distances):
         if distance == math.inf:
             continue
-        depth = max(1e-3, distance * math.cos(rel))
+        u = w - 1 - k
+        depth = max(1e-3, distance * math.cos(angles[k]))
         top = horizon - f * top_above / depth
         bottom = horizon + f * spec.z / depth
         shade = 1.0 / (1.0 + 0.12 * depth)
+        colour = colours[k]
         r, g, b = palette[colour] if 0 <= colour < len(palette) else palette[0]
         draw.line(
             (u, max(0, int(top)), u, min(h - 1, int(bottom))),

@@ -1,11 +1,10 @@
-"""The 2D world: an occupancy grid with a colour per occupied cell and a distance field.
+"""The 2D world: an occupancy grid with its distance field, and the outlines rays meet.
 
 A world comes from a map_server map (a PNG, PGM or other picture and its YAML) or from shapes
-(walls, boxes, cylinders) drawn onto a grid. Every query the simulator makes — can the robot
-stand here, where does this laser beam stop, what colour is the wall this camera column sees —
-is answered from the grid and its exact Euclidean distance field, computed once at load: a ray
-then jumps by the free distance around it (sphere tracing), so a 3.5 m beam costs a handful of
-steps instead of one per cell, in pure Python.
+(walls, boxes, cylinders). The grid and its exact Euclidean distance field (computed once at
+load) answer "can the robot stand here" in one lookup; the outlines (the shapes' sides and
+circles, or the edges of a map's occupied cells) answer "where does this beam stop, and what
+colour is it" exactly (`rays.fan`).
 """
 
 from __future__ import annotations
@@ -18,6 +17,7 @@ from pathlib import Path
 from PIL import Image, UnidentifiedImageError
 
 from ros2lite.sim.errors import SimError
+from ros2lite.sim.rays import Outlines
 from ros2lite.util.safe_yaml import YamlInputError, load
 
 __all__ = [
@@ -106,6 +106,7 @@ class Grid:
     dist: list[float] = field(default_factory=list)
     wall_height: float = 0.5
     name: str = 'world'
+    outlines: Outlines = field(default_factory=Outlines)
 
     def finish(self) -> Grid:
         """Compute the distance field (after the cells are set); returns self."""
@@ -130,43 +131,6 @@ class Grid:
         if self.occupied[k]:
             return 0.0
         return max(0.0, self.dist[k] - 0.5 * self.resolution)
-
-    def cast(self, x: float, y: float, c: float, s: float, limit: float) -> tuple[float, int]:
-        """Distance along the unit direction (c, s) from (x, y) to the first occupied cell,
-        and that cell's colour index; (inf, -1) when nothing is hit within `limit` or the
-        ray leaves the grid."""
-        res = self.resolution
-        ox, oy, w, h = self.origin_x, self.origin_y, self.width, self.height
-        occupied, dist = self.occupied, self.dist
-        # a point is within res/√2 of its cell's centre, and so is an obstacle's nearest edge
-        margin = 1.4143 * res
-        small = 0.25 * res
-        t = 0.0
-        last_free = 0.0
-        while t <= limit:
-            i = int((x + c * t - ox) / res + 1e6) - 1000000
-            j = int((y + s * t - oy) / res + 1e6) - 1000000
-            if i < 0 or j < 0 or i >= w or j >= h:
-                return _INF, -1
-            k = j * w + i
-            if occupied[k]:
-                return self._refine(x, y, c, s, last_free, t), self.colour[k]
-            last_free = t
-            step = dist[k] - margin
-            t += step if step > small else small
-        return _INF, -1
-
-    def _refine(self, x: float, y: float, c: float, s: float, free: float, hit: float) -> float:
-        """Bisect between a free and an occupied distance to a tenth of a cell."""
-        res = self.resolution
-        while hit - free > 0.1 * res:
-            mid = 0.5 * (free + hit)
-            k = self.cell(x + c * mid, y + s * mid)
-            if k >= 0 and self.occupied[k]:
-                hit = mid
-            else:
-                free = mid
-        return hit
 
 
 # -- building --------------------------------------------------------------------------------
@@ -238,6 +202,7 @@ def _draw(grid: Grid, shape: Shape) -> None:
             return math.hypot(px - wall.x1 - u * ex, py - wall.y1 - u * ey) <= half
 
     colour = _colour_index(grid, shape.rgb)
+    _outline(grid.outlines, shape, colour)
     res = grid.resolution
     i0 = max(0, int((box[0] - grid.origin_x) / res) - 1)
     i1 = min(grid.width - 1, int((box[2] - grid.origin_x) / res) + 1)
@@ -250,6 +215,60 @@ def _draw(grid: Grid, shape: Shape) -> None:
             if inside(grid.origin_x + (i + 0.5) * res, py):
                 grid.occupied[row + i] = 1
                 grid.colour[row + i] = colour
+
+
+def _outline(outlines: Outlines, shape: Shape, colour: int) -> None:
+    """Add `shape`'s outline: a circle, or the sides of a (wall's) rectangle."""
+    if isinstance(shape, Cylinder):
+        outlines.circles.append((shape.x, shape.y, shape.radius, colour))
+        return
+    if isinstance(shape, Box):
+        cx, cy, yaw, hx, hy = shape.x, shape.y, shape.yaw, shape.sx / 2, shape.sy / 2
+    else:
+        cx, cy = (shape.x1 + shape.x2) / 2, (shape.y1 + shape.y2) / 2
+        yaw = math.atan2(shape.y2 - shape.y1, shape.x2 - shape.x1)
+        hx = math.hypot(shape.x2 - shape.x1, shape.y2 - shape.y1) / 2 + shape.thickness / 2
+        hy = shape.thickness / 2
+    c, s = math.cos(yaw), math.sin(yaw)
+    corners = [
+        (cx + c * px - s * py, cy + s * px + c * py)
+        for px, py in ((hx, hy), (-hx, hy), (-hx, -hy), (hx, -hy))
+    ]
+    for n in range(4):
+        (x1, y1), (x2, y2) = corners[n], corners[(n + 1) % 4]
+        outlines.segments.append((x1, y1, x2, y2, colour))
+
+
+def _cell_edges(grid: Grid) -> Outlines:
+    """The edges between occupied and free cells, merged into runs along rows and columns."""
+    w, h, res, ox, oy = grid.width, grid.height, grid.resolution, grid.origin_x, grid.origin_y
+    occ = grid.occupied
+    out = Outlines()
+
+    def solid(i: int, j: int) -> bool:
+        return 0 <= i < w and 0 <= j < h and occ[j * w + i] == 1
+
+    for j in range(h + 1):  # horizontal edges below row j
+        start = -1
+        for i in range(w + 1):
+            edge = i < w and solid(i, j) != solid(i, j - 1)
+            if edge and start < 0:
+                start = i
+            elif not edge and start >= 0:
+                y = oy + j * res
+                out.segments.append((ox + start * res, y, ox + i * res, y, 0))
+                start = -1
+    for i in range(w + 1):  # vertical edges left of column i
+        start = -1
+        for j in range(h + 1):
+            edge = j < h and solid(i, j) != solid(i - 1, j)
+            if edge and start < 0:
+                start = j
+            elif not edge and start >= 0:
+                x = ox + i * res
+                out.segments.append((x, oy + start * res, x, oy + j * res, 0))
+                start = -1
+    return out
 
 
 # -- map_server maps -------------------------------------------------------------------------
@@ -301,6 +320,7 @@ def load_map(yaml_path: str | Path, wall_height: float = 0.5) -> Grid:
         wall_height=wall_height,
         name=path.stem,
     )
+    grid.outlines = _cell_edges(grid)
     return grid.finish()
 
 

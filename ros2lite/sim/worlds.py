@@ -3,6 +3,8 @@ lookup that turns a `world:=` argument (a name, a world file, a map YAML) into a
 
 - `turtlebot3_world`: a hexagonal arena, 3x3 pillars 1.1 m apart (radius 0.15 m);
 - `turtlebot3_house`: a house of rooms joined by doorways, with furniture;
+- `jackal_race`: a walled yard with a slalom of barrels and crates;
+- `small_office`: TIAGo's office: a corridor, offices, desks and a meeting table;
 - `empty_world`: a floor with nothing on it.
 A `.yaml` path is a map_server map; a `.world`/`.sdf` file is read for its boxes and
 cylinders (the SDF `<collision>` geometry of models placed in it), seen from above.
@@ -83,6 +85,46 @@ def _turtlebot3_house() -> WorldSpec:
     return WorldSpec('turtlebot3_house', -7.7, -5.2, 7.7, 5.2, tuple(shapes), 0.03, 1.0)
 
 
+def _jackal_race() -> WorldSpec:
+    # a walled yard with a slalom of barrels and a few crates, the Jackal at its centre
+    shapes: list[Shape] = _polygon(
+        [(-10.0, -10.0), (10.0, -10.0), (10.0, 10.0), (-10.0, 10.0)], 0.2
+    )
+    shapes += [
+        Cylinder(float(x), 4.0 if x % 4 else -4.0, 0.3, rgb=(200, 90, 30)) for x in range(-8, 9, 2)
+    ]
+    shapes += [
+        Box(5.0, 0.0, 1.0, 1.0, 0.3, rgb=_WOOD),
+        Box(-5.0, 1.5, 1.5, 0.8, -0.4, rgb=_WOOD),
+        Box(0.0, 7.5, 6.0, 0.4, 0.0, rgb=_WALL),
+        Box(0.0, -7.5, 6.0, 0.4, 0.0, rgb=_WALL),
+    ]
+    return WorldSpec('jackal_race', -10.3, -10.3, 10.3, 10.3, tuple(shapes), 0.05, 1.0)
+
+
+def _small_office() -> WorldSpec:
+    # an office floor: a corridor, four offices off it, desks and a meeting table
+    t = 0.12
+    shapes: list[Shape] = _polygon([(-6.0, -4.0), (6.0, -4.0), (6.0, 4.0), (-6.0, 4.0)], t)
+
+    def wall(x1: float, y1: float, x2: float, y2: float) -> None:
+        shapes.append(Wall(x1, y1, x2, y2, thickness=t, rgb=(230, 225, 210)))
+
+    for x1, x2 in ((-6.0, -4.2), (-3.2, 1.0), (2.0, 6.0)):
+        wall(x1, 1.0, x2, 1.0)  # corridor's north side, doors at -4.2..-3.2 and 1.0..2.0
+    for x1, x2 in ((-6.0, -1.5), (-0.5, 3.5), (4.5, 6.0)):
+        wall(x1, -1.0, x2, -1.0)  # south side, doors at -1.5..-0.5 and 3.5..4.5
+    wall(0.0, 1.0, 0.0, 4.0)
+    wall(1.5, -1.0, 1.5, -4.0)
+    shapes += [
+        Box(-4.5, 3.0, 1.4, 0.7, 0.0, rgb=_WOOD),
+        Box(3.5, 3.0, 1.4, 0.7, 0.0, rgb=_WOOD),
+        Box(-3.0, -2.8, 2.0, 1.0, 0.0, rgb=_WOOD),  # meeting table
+        Cylinder(4.0, -2.5, 0.3, rgb=(60, 130, 60)),  # a plant
+    ]
+    return WorldSpec('small_office', -6.2, -4.2, 6.2, 4.2, tuple(shapes), 0.03, 2.5)
+
+
 def _empty_world() -> WorldSpec:
     return WorldSpec('empty_world', -25.0, -25.0, 25.0, 25.0, (), 0.1, 0.5)
 
@@ -90,6 +132,11 @@ def _empty_world() -> WorldSpec:
 WORLDS = {
     'turtlebot3_world': _turtlebot3_world,
     'turtlebot3_house': _turtlebot3_house,
+    'jackal_race': _jackal_race,
+    'small_office': _small_office,
+    'pal_office': _small_office,
+    'house': _turtlebot3_house,  # TIAGo's house and home: the house drawn for TurtleBot3
+    'home': _turtlebot3_house,
     'empty_world': _empty_world,
     'empty': _empty_world,
 }
