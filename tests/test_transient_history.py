@@ -69,3 +69,65 @@ def test_a_late_joiner_gets_no_expired_sample(ros_context: Any, processes: Any) 
     later = join('span_later')
     spin_until(executor, lambda: later == ['c'], timeout=10)
     assert late == ['c'] and early == ['a', 'b', 'c']
+
+
+DEPTH = 1000
+BOUND = 1 << 20  # the publisher's HISTORY_BYTES here: 1 MiB, so 40 samples of 100 kB pass it
+BYTES_PUBLISHER = f"""
+import sys
+import ros2lite
+import ros2lite.transport.history as history
+from ros2lite.node import Node
+from ros2lite.qos import DurabilityPolicy, QoSProfile
+from ros2lite.msgs.std_msgs.msg import String
+
+history.HISTORY_BYTES = {BOUND}
+ros2lite.init()
+node = Node('bytes_pub')
+pub = node.create_publisher(
+    String, 'bytes', QoSProfile(depth={DEPTH}, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+)
+print('ready', flush=True)
+for line in sys.stdin:
+    n, size = line.split()
+    pub.publish(String(data=n + ':' + 'x' * int(size)))
+    print('sent', n, flush=True)
+"""
+
+
+def test_the_history_is_bounded_in_bytes_and_live_subscribers_get_everything_in_order(
+    ros_context: Any, processes: Any
+) -> None:
+    """R5-G4: depth 1000 of 100 kB samples would keep 4 MB; the history keeps at most the
+    bound (1 MiB here) and always the newest sample, while a live subscriber gets every
+    sample, once and in order, across the history's new starts."""
+    import subprocess
+
+    proc = processes.python(BYTES_PUBLISHER, stdin=subprocess.PIPE)
+    assert proc.stdout.readline().strip() == 'ready'
+    qos = QoSProfile(depth=DEPTH, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    node = Node('bytes_sub', context=ros_context)
+    live: list[str] = []
+    node.create_subscription('std_msgs/msg/String', 'bytes', lambda m: live.append(m.data), qos)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(node)
+    spin_until(executor, lambda: node.count_publishers('bytes') == 1, timeout=10)
+    sizes = [10, 20, 30] + [100_000] * 40 + [40]
+    for n, size in enumerate(sizes):
+        proc.stdin.write(f'{n} {size}\n')
+        proc.stdin.flush()
+        assert proc.stdout.readline().split() == ['sent', str(n)]
+    spin_until(executor, lambda: len(live) == len(sizes), timeout=30)
+    spin_for(executor, 0.5)  # nothing twice
+    assert [int(d.split(':')[0]) for d in live] == list(range(len(sizes)))
+
+    late = Node('bytes_late', context=ros_context)
+    kept: list[str] = []
+    late.create_subscription('std_msgs/msg/String', 'bytes', lambda m: kept.append(m.data), qos)
+    executor.add_node(late)
+    spin_until(executor, lambda: kept and kept[-1].startswith(f'{len(sizes) - 1}:'), timeout=10)
+    spin_for(executor, 0.5)  # the history comes in one answer: nothing more is on its way
+    numbers = [int(d.split(':')[0]) for d in kept]
+    assert numbers == sorted(numbers) and numbers[-1] == len(sizes) - 1
+    assert sum(len(d) for d in kept) <= BOUND, numbers  # bounded in bytes
+    assert len(kept) >= 5, numbers  # and still a history, not only the newest sample

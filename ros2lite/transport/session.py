@@ -151,7 +151,7 @@ def declare_publisher(session: Session, key: str, qos: QoSProfile) -> Publisher:
     """A publisher with `.put(payload, attachment=…)`, mapped from QoS as rmw_zenoh does:
     reliability, BLOCK congestion control only for reliable KEEP_ALL, and transient local
     through zenoh-ext's advanced publisher (a cache of `depth` samples, forgotten after its
-    lifespan: :class:`HistoryBoundedPublisher`)."""
+    lifespan, or once its bytes pass HISTORY_BYTES: :class:`HistoryBoundedPublisher`)."""
     reliable = _reliable(qos)
     block = reliable and qos.history == HistoryPolicy.KEEP_ALL
     reliability = zenoh.Reliability.RELIABLE if reliable else zenoh.Reliability.BEST_EFFORT
@@ -178,7 +178,7 @@ def declare_publisher(session: Session, key: str, qos: QoSProfile) -> Publisher:
 
         span = qos.lifespan
         lifespan = None if span.is_unspecified or span.is_infinite else span.nanoseconds / 1e9
-        return HistoryBoundedPublisher(make, lifespan)
+        return HistoryBoundedPublisher(make, lifespan, max(qos.depth, 1))
     return as_zenoh(session).declare_publisher(
         key, reliability=reliability, congestion_control=congestion
     )
