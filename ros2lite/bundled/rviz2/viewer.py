@@ -302,16 +302,26 @@ class Viewer:
             parents = self.parents()
             self._choose_fixed(parents)
             self._draw_tf(parents)
-            self._status_text.content = '  \n'.join(
-                f'{k}: {v}' for k, v in sorted(self._messages.items())
-            ) + (f'  \nfixed frame: {self.fixed_frame or self._first_frame or "?"}')
-            self._messages.clear()
+            self._show_status()
         with self._lock:
             displays = list(self.displays.values())
         with self.server.atomic():
             for d in displays:
                 if d.spec.kind not in ('Grid', 'TF'):
                     d.render()
+
+    def _show_status(self) -> None:
+        """Each display's count of messages received (RViz's status line), its problems,
+        and the fixed frame in use."""
+        with self._lock:
+            counts = [
+                (d.spec.name or d.name, d.received) for d in self.displays.values() if d.spec.topic
+            ]
+        lines = [f'{name}: {n} messages' for name, n in counts]
+        lines += [f'{k}: {v}' for k, v in sorted(self._messages.items())]
+        lines.append(f'fixed frame: {self.fixed_frame or self._first_frame or "?"}')
+        self._status_text.content = '  \n'.join(lines)
+        self._messages.clear()
 
     def run(self, ok: Callable[[], bool]) -> None:
         """Render until `ok()` is False."""
