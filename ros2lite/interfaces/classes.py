@@ -57,6 +57,8 @@ class Message(metaclass=MessageMeta):
     __slots__ = ()
     _TYPE_NAME: ClassVar[str] = ''
     _DEF: ClassVar[MessageDef]
+    # the classes of the message-typed fields, from the factory that built this one
+    _NESTED: ClassVar[dict[str, type[Message]]] = {}
     SLOT_TYPES: tuple[FieldType, ...] = ()
     _fields_and_field_types: dict[str, str] = {}
 
@@ -396,10 +398,19 @@ class ClassFactory:
         cls._DEF = mdef
         cls.SLOT_TYPES = tuple(f.type for f in mdef.fields)
         cls._fields_and_field_types = {f.name: rosidl_type_string(f.type) for f in mdef.fields}
+        cls._NESTED = {
+            f.name: self.classes[f.type.base] for f in mdef.fields if not f.type.is_primitive
+        }
         pkg, kind, _ = mdef.name.split('/')
         cls.__module__ = f'ros2lite.msgs.{pkg}.{kind}'
         cls.__qualname__ = short
         return cls
+
+
+def field_class(cls: type[Message], name: str) -> type[Message]:
+    """The class of a message-typed field's elements, built by the same factory (so a type
+    from a workspace registry finds its nested types where it found itself)."""
+    return cls._NESTED[name]
 
 
 class _Missing:

@@ -14,7 +14,7 @@ from collections.abc import Callable, Mapping, Sized
 from functools import cache, partial
 from typing import TYPE_CHECKING, Any, TypedDict
 
-from .classes import ROSIDL_NAMES, Message, checked_fields, get_interface
+from .classes import ROSIDL_NAMES, Message, checked_fields, field_class
 from .errors import FieldError, PopulateError
 from .parser import INT_RANGES, FieldType
 
@@ -307,7 +307,7 @@ def _populate(
             except (TypeError, ValueError, OverflowError) as e:
                 raise PopulateError(_reason(name, value, ft, e)) from None
         if ft.is_container and not ft.is_primitive:
-            cls = get_interface(ft.base)
+            cls = field_class(type(msg), name)
             built = []
             for item in coerced:
                 if isinstance(item, cls):
