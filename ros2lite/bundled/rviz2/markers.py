@@ -22,7 +22,6 @@ if TYPE_CHECKING:
     import trimesh
     import viser
 
-    from ros2lite.bundled.foxglove_bridge.assets import PackageAssets
     from ros2lite.bundled.rviz2.config import DisplaySpec
 
 ARROW, CUBE, SPHERE, CYLINDER, LINE_STRIP, LINE_LIST = 0, 1, 2, 3, 4, 5
@@ -236,7 +235,7 @@ class MarkerDisplay(Display[Marker | MarkerArray]):
         elif kind == MESH_RESOURCE:
             mesh = load_mesh(str(m.mesh_resource))
             if not m.mesh_use_embedded_materials:
-                mesh.visual = _flat_visual(mesh, colour)
+                mesh.visual = flat_visual(mesh, colour)
             scene.add_mesh_trimesh(g, mesh, scale=(sx, sy, sz))
         else:
             raise ConvertError(f'marker type {kind} is not one RViz draws')
@@ -268,27 +267,18 @@ def load_mesh(uri: str) -> trimesh.Trimesh:
     return loaded
 
 
-_assets: list[PackageAssets] = []
-
-
 def resolve(uri: str) -> Path:
-    """`package://` and `file://` URIs to a file inside a package's share folder (the
-    bridge's rule: nothing else of the filesystem)."""
-    import re
+    """`package://` and `file://` URIs to a file inside a package's share folder (nothing
+    else of the filesystem), through ros2lite.urdf."""
+    from ros2lite.urdf import UrdfError, resolve_resource
 
-    from ros2lite.bundled.foxglove_bridge.assets import PackageAssets
-
-    if not _assets:
-        _assets.append(PackageAssets([re.compile('.*')]))
     try:
-        return _assets[0].resolve(uri)
-    except (ValueError, OSError) as e:
+        return resolve_resource(uri)
+    except (UrdfError, OSError) as e:
         raise ConvertError(f'cannot resolve mesh {uri}: {e}') from None
 
 
-def _flat_visual(
-    mesh: trimesh.Trimesh, colour: tuple[int, int, int]
-) -> trimesh.visual.ColorVisuals:
+def flat_visual(mesh: trimesh.Trimesh, colour: tuple[int, int, int]) -> trimesh.visual.ColorVisuals:
     import trimesh
 
     return trimesh.visual.ColorVisuals(mesh, face_colors=(*colour, 255))

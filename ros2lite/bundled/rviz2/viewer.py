@@ -21,6 +21,7 @@ from ros2lite.bundled.rviz2.config import KINDS, ROBOT_DESCRIPTION, TOPIC_KINDS,
 from ros2lite.bundled.rviz2.convert import Pose, ground_hit, wxyz, yaw_quaternion
 from ros2lite.bundled.rviz2.displays import CLASSES, Shown
 from ros2lite.bundled.rviz2.markers import MarkerDisplay
+from ros2lite.bundled.rviz2.robot import RobotModelDisplay
 
 if TYPE_CHECKING:
     import viser
@@ -96,6 +97,8 @@ def make(ctx: Viewer, spec: DisplaySpec, type_name: str) -> Shown:
     cls = get_interface(type_name)
     if spec.kind in ('Marker', 'MarkerArray'):
         return MarkerDisplay(ctx, spec, cls)
+    if spec.kind == 'RobotModel':
+        return RobotModelDisplay(ctx, spec, cls)
     return CLASSES[spec.kind](ctx, spec, cls)
 
 
@@ -119,7 +122,7 @@ class Viewer:
         self._lock = threading.Lock()
         self._first_frame = ''
         self._tf_handles: dict[str, tuple[viser.FrameHandle, viser.LabelHandle]] = {}
-        self._graph_at = self._tree_at = 0.0
+        self._tree_at = 0.0
         self._tool: str | None = None
         self._clicks: list[tuple[float, float]] = []
         self._publishers: dict[str, Publisher[Msg]] = {}
@@ -138,6 +141,10 @@ class Viewer:
         self._tf_shown = False
         for spec in specs:
             self.add(spec, '')
+        if self.auto:
+            # on the executor's thread: a subscription made while the executor spins on
+            # another thread can be seen by it half-built (its source not yet set)
+            node.create_timer(GRAPH_PERIOD, self.discover)
 
     @property
     def url(self) -> str:
@@ -196,9 +203,6 @@ class Viewer:
             self._tf_shown = spec.enabled
             box.on_update(lambda _: self._show_tf(box.value))
             self.displays[key] = Shown(spec)
-            return
-        if spec.kind == 'RobotModel':
-            self._messages[spec.name or spec.kind] = 'RobotModel is not drawn by this build yet'
             return
         display = make(self, spec, type_name or KINDS[spec.kind][0])
         display.subscribe()
@@ -294,24 +298,31 @@ class Viewer:
     def tick(self) -> None:
         """One pass of the render loop."""
         now = time.monotonic()
-        if self.auto and now - self._graph_at >= GRAPH_PERIOD:
-            self._graph_at = now
-            self.discover()
         if now - self._tree_at >= TREE_PERIOD:
             self._tree_at = now
             parents = self.parents()
             self._choose_fixed(parents)
             self._draw_tf(parents)
-            self._status_text.content = '  \n'.join(
-                f'{k}: {v}' for k, v in sorted(self._messages.items())
-            ) + (f'  \nfixed frame: {self.fixed_frame or self._first_frame or "?"}')
-            self._messages.clear()
+            self._show_status()
         with self._lock:
             displays = list(self.displays.values())
         with self.server.atomic():
             for d in displays:
                 if d.spec.kind not in ('Grid', 'TF'):
                     d.render()
+
+    def _show_status(self) -> None:
+        """Each display's count of messages received (RViz's status line), its problems,
+        and the fixed frame in use."""
+        with self._lock:
+            counts = [
+                (d.spec.name or d.name, d.received) for d in self.displays.values() if d.spec.topic
+            ]
+        lines = [f'{name}: {n} messages' for name, n in counts]
+        lines += [f'{k}: {v}' for k, v in sorted(self._messages.items())]
+        lines.append(f'fixed frame: {self.fixed_frame or self._first_frame or "?"}')
+        self._status_text.content = '  \n'.join(lines)
+        self._messages.clear()
 
     def run(self, ok: Callable[[], bool]) -> None:
         """Render until `ok()` is False."""

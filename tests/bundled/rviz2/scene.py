@@ -72,7 +72,7 @@ def main() -> None:
             tf.sendTransform(
                 [
                     transform('map', 'odom', 0.0, 0.0, now),
-                    transform('odom', 'base_link', joint, 0.0, now),
+                    transform('odom', 'base_link', joint, joint, now),
                 ]
             )
             scan = LaserScan()

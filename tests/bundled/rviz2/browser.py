@@ -1,0 +1,208 @@
+"""A real headless Chromium (Debian's, with SwiftShader's WebGL) driven through the DevTools
+protocol: open a page, take screenshots as a person sees them, click with the mouse.
+
+The protocol is spoken over a WebSocket with the `websockets` package (viser's dependency),
+so nothing else is installed. Screenshots come back as PNG and are read with Pillow."""
+
+from __future__ import annotations
+
+import base64
+import io
+import itertools
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+import time
+import urllib.request
+from typing import Any
+
+CHROMIUM = '/usr/bin/chromium'
+
+
+def chromium() -> str | None:
+    """The browser the tests drive, when installed."""
+    return CHROMIUM if os.path.exists(CHROMIUM) else shutil.which('chromium')
+
+
+class Browser:
+    """One headless Chromium with one page, closed with `close()`."""
+
+    def __init__(self, width: int = 900, height: int = 700) -> None:
+        from websockets.sync.client import connect
+
+        from tests.spinning import free_port
+
+        exe = chromium()
+        assert exe is not None
+        self.profile = tempfile.mkdtemp(prefix='rviz2-chromium-')
+        port = free_port()
+        self.proc = subprocess.Popen(
+            [
+                exe,
+                '--headless',
+                '--no-sandbox',
+                '--use-angle=swiftshader',
+                '--enable-unsafe-swiftshader',
+                '--disable-background-networking',
+                '--no-first-run',
+                f'--user-data-dir={self.profile}',
+                # a page nobody looks at still animates (viser's fade-in and frames run on
+                # requestAnimationFrame, which a background page would pause)
+                '--disable-renderer-backgrounding',
+                '--disable-background-timer-throttling',
+                '--disable-backgrounding-occluded-windows',
+                f'--window-size={width},{height}',
+                f'--remote-debugging-port={port}',
+                'about:blank',
+            ],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+        self.width, self.height = width, height
+        deadline = time.monotonic() + 30
+        pages: list[dict[str, Any]] = []
+        while time.monotonic() < deadline:
+            try:
+                with urllib.request.urlopen(f'http://127.0.0.1:{port}/json/list', timeout=2) as r:
+                    pages = [p for p in json.load(r) if p.get('type') == 'page']
+                if pages:
+                    break
+            except OSError:
+                pass
+            time.sleep(0.2)
+        assert pages, 'chromium did not open its DevTools port'
+        self.ws = connect(pages[0]['webSocketDebuggerUrl'], max_size=64 * 1024 * 1024)
+        self._ids = itertools.count(1)
+        self.call('Page.enable')
+        self.call('Page.bringToFront')
+        self.call('Emulation.setFocusEmulationEnabled', enabled=True)
+
+    def call(self, method: str, **params: object) -> dict[str, Any]:
+        """One DevTools command and its result (events in between are skipped)."""
+        n = next(self._ids)
+        self.ws.send(json.dumps({'id': n, 'method': method, 'params': params}))
+        while True:
+            reply = json.loads(self.ws.recv(timeout=60))
+            if reply.get('id') == n:
+                assert 'error' not in reply, reply['error']
+                result: dict[str, Any] = reply.get('result', {})
+                return result
+
+    def open(self, url: str) -> None:
+        self.call(
+            'Emulation.setDeviceMetricsOverride',
+            width=self.width,
+            height=self.height,
+            deviceScaleFactor=1,
+            mobile=False,
+        )
+        self.call('Page.navigate', url=url)
+
+    def evaluate(self, expression: str) -> object:
+        result = self.call('Runtime.evaluate', expression=expression, returnByValue=True)
+        return result.get('result', {}).get('value')
+
+    def screenshot(self, path: str | None = None) -> Any:
+        """The page as a PIL RGB image (saved to `path` too, to look at)."""
+        from PIL import Image
+
+        data = base64.b64decode(self.call('Page.captureScreenshot', format='png')['data'])
+        if path:
+            with open(path, 'wb') as f:
+                f.write(data)
+        return Image.open(io.BytesIO(data)).convert('RGB')
+
+    def click(self, x: float, y: float) -> None:
+        """A left click as a mouse makes it: move, press, release."""
+        self.call('Input.dispatchMouseEvent', type='mouseMoved', x=x, y=y)
+        for kind in ('mousePressed', 'mouseReleased'):
+            self.call(
+                'Input.dispatchMouseEvent',
+                type=kind,
+                x=x,
+                y=y,
+                button='left',
+                buttons=1 if kind == 'mousePressed' else 0,
+                clickCount=1,
+            )
+
+    def button_centre(self, text: str) -> tuple[float, float] | None:
+        """Where the page shows the button labelled `text` (None while it does not)."""
+        found = self.evaluate(
+            '(() => { for (const b of document.querySelectorAll("button")) {'
+            f' if (b.innerText.trim() === {json.dumps(text)}) {{'
+            ' const r = b.getBoundingClientRect(); return [r.x + r.width / 2,'
+            ' r.y + r.height / 2]; } } return null; })()'
+        )
+        return (float(found[0]), float(found[1])) if isinstance(found, list) else None
+
+    def close(self) -> None:
+        try:
+            self.ws.close()
+        finally:
+            self.proc.terminate()
+            try:
+                self.proc.wait(10)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+            shutil.rmtree(self.profile, ignore_errors=True)
+
+
+def count(image: Any, test: Any, box: tuple[int, int, int, int] | None = None) -> int:
+    """Pixels of `image` (inside box: left, top, right, bottom) for which test(r, g, b)."""
+    region = image.crop(box) if box else image
+    return sum(1 for px in region.get_flattened_data() if test(*px))
+
+
+def red(r: int, g: int, b: int) -> bool:
+    return r > 180 and g < 90 and b < 90
+
+
+def blue(r: int, g: int, b: int) -> bool:
+    return b > 180 and r < 90 and g < 90
+
+
+def magenta(r: int, g: int, b: int) -> bool:
+    return r > 140 and b > 140 and g < 100
+
+
+def screenshot(url: str, path: str, width: int, height: int, budget_ms: int = 6000) -> Any:
+    """A one-shot headless screenshot (`chromium --screenshot`): virtual time runs the page's
+    animation frames for `budget_ms`, as a person would see it after that long. None when
+    chromium wrote nothing (a loaded machine: the caller tries again)."""
+    from PIL import Image
+
+    exe = chromium()
+    assert exe is not None
+    profile = tempfile.mkdtemp(prefix='rviz2-chromium-')
+    if os.path.exists(path):
+        os.unlink(path)
+    try:
+        subprocess.run(
+            [
+                exe,
+                '--headless',
+                '--no-sandbox',
+                '--use-angle=swiftshader',
+                '--enable-unsafe-swiftshader',
+                '--disable-background-networking',
+                '--no-first-run',
+                f'--user-data-dir={profile}',
+                f'--window-size={width},{height}',
+                f'--virtual-time-budget={budget_ms}',
+                f'--screenshot={path}',
+                url,
+            ],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+            timeout=120,
+        )
+    except subprocess.TimeoutExpired:
+        return None
+    finally:
+        shutil.rmtree(profile, ignore_errors=True)
+    if not os.path.exists(path):
+        return None
+    return Image.open(path).convert('RGB')

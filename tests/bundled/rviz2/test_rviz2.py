@@ -1,0 +1,212 @@
+"""`ros2lite run rviz2 rviz2` against a real router and a real publisher process, looked at
+by a real headless Chromium (SwiftShader's WebGL): screenshots are checked by their pixels
+(the scan's red ring, the cloud's blue square, the marker's magenta cube, where TF puts
+them), and the "2D Goal Pose" tool is clicked with the DevTools protocol's mouse events, so
+the click takes the page's own path (canvas pointer events -> viser's scene click message ->
+the tool -> a PoseStamped on /goal_pose)."""
+
+from __future__ import annotations
+
+import math
+import sys
+import urllib.request
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from tests.bundled.rviz2.browser import Browser, blue, chromium, count, magenta, red, screenshot
+from tests.conftest import Processes
+from tests.spinning import Listener, free_port, wait_until
+
+pytestmark = pytest.mark.skipif(
+    chromium() is None, reason='chromium is not installed (apt-get install chromium)'
+)
+ROOT = Path(__file__).resolve().parents[3]
+SHOTS = Path('/tmp') / 'rviz2-shots'
+W, H = 900, 700
+
+
+def _serving(port: int) -> bool:
+    try:
+        with urllib.request.urlopen(f'http://127.0.0.1:{port}/', timeout=2):
+            return True
+    except OSError:
+        return False
+
+
+def _start_viewer(procs: Processes, *args: str) -> str:
+    port = free_port()
+    proc = procs.cli('run', 'rviz2', 'rviz2', '--port', str(port), *args, cwd=ROOT)
+    wait_until(lambda: _serving(port) or proc.poll() is not None, timeout=30)
+    assert proc.poll() is None, procs.stop(proc)
+    return f'http://127.0.0.1:{port}/'
+
+
+@pytest.fixture(scope='module')
+def scene(ros_router: str) -> Iterator[Processes]:
+    """The scene publisher (tests/bundled/rviz2/scene.py), base_link at (1.5, 1.5) of map."""
+    procs = Processes()
+    procs.start([sys.executable, '-m', 'tests.bundled.rviz2.scene', '1.5'], cwd=ROOT)
+    try:
+        yield procs
+    finally:
+        procs.close()
+
+
+@pytest.fixture
+def browser() -> Iterator[Browser]:
+    b = Browser(W, H)
+    try:
+        yield b
+    finally:
+        b.close()
+
+
+def centroid(image: Any, test: Any) -> tuple[float, float]:
+    xs = ys = n = 0
+    for i, px in enumerate(image.get_flattened_data()):
+        if test(*px):
+            xs += i % image.width
+            ys += i // image.width
+            n += 1
+    return (xs / n, ys / n) if n else (math.nan, math.nan)
+
+
+def _shot(url: str, name: str, ready: Any) -> Any:
+    """A screenshot of the page once `ready(image)` holds (each try is a fresh page)."""
+    SHOTS.mkdir(exist_ok=True)
+    shot: list[Any] = []
+
+    def taken() -> bool:
+        image = screenshot(url, str(SHOTS / name), W, H)
+        shot[:] = [image]
+        return image is not None and ready(image)
+
+    wait_until(taken, timeout=120, interval=0.5)
+    return shot[0]
+
+
+def test_zero_configuration_shows_scan_cloud_and_markers_where_tf_puts_them(
+    scene: Processes,
+) -> None:
+    url = _start_viewer(scene)
+    image = _shot(
+        url, 'zero_config.png', lambda im: all(count(im, c) > 200 for c in (red, blue, magenta))
+    )
+    ring, cloud, cube = centroid(image, red), centroid(image, blue), centroid(image, magenta)
+    # the camera looks from (-6, -6, 6) at map's origin: screen-right is map's (1, -1),
+    # screen-up (1, 1). The cloud (odom x/y -3..-2, odom = map) is nearest, below the centre;
+    # the cube (map -2, 2) is left; the ring, round the laser on base_link at (1.5, 1.5)
+    # through map -> odom -> base_link -> laser, is beyond the centre, above the other two.
+    assert cloud[1] > H / 2 > ring[1], (ring, cloud)
+    assert cube[0] < W / 2 - 80 < ring[0], (ring, cube)
+    assert abs(ring[0] - cloud[0]) < 60, (ring, cloud)  # both on the screen's middle line
+
+
+RVIZ_FILE = """\
+Panels: []
+Visualization Manager:
+  Class: ""
+  Displays:
+    - Class: rviz_default_plugins/Grid
+      Enabled: true
+      Name: Grid
+    - Class: rviz_default_plugins/LaserScan
+      Enabled: true
+      Name: LaserScan
+      Topic:
+        Value: /scan
+        Reliability Policy: Best Effort
+    - Class: rviz_default_plugins/MarkerArray
+      Enabled: true
+      Name: MarkerArray
+      Topic:
+        Value: /markers
+  Global Options:
+    Fixed Frame: base_link
+  Views:
+    Current:
+      Class: rviz_default_plugins/Orbit
+      Distance: 10.392
+      Focal Point: {X: 0, Y: 0, Z: 0}
+      Pitch: 0.6155
+      Yaw: 3.927
+"""
+
+
+def test_rviz_file_opens_its_fixed_frame_and_displays(
+    scene: Processes, browser: Browser, tmp_path: Path
+) -> None:
+    config = tmp_path / 'three.rviz'
+    config.write_text(RVIZ_FILE)
+    url = _start_viewer(scene, '-d', str(config))
+    image = _shot(
+        url, 'rviz_file.png', lambda im: count(im, red) > 200 and count(im, magenta) > 200
+    )
+    # the cloud is published with the scan, so a cloud display would have drawn it by now
+    assert count(image, blue) == 0  # the file names no PointCloud2 display
+    ring, cube = centroid(image, red), centroid(image, magenta)
+    # fixed frame base_link: the ring round the laser is at the origin, the screen's centre
+    # (the view looks at it from the same place as the default one)
+    assert abs(ring[0] - W / 2) < 40 and abs(ring[1] - H / 2) < 40, ring
+    assert cube[0] < ring[0] - 80, (ring, cube)  # map (-2, 2) is base_link (-3.5, 0.5)
+    browser.open(url)
+    panel = wait_until(
+        lambda: (
+            'LaserScan /scan' in str(browser.evaluate('document.body.innerText'))
+            and browser.evaluate('document.body.innerText')
+        ),
+        timeout=60,
+    )
+    assert isinstance(panel, str)
+    assert 'LaserScan /scan' in panel and 'MarkerArray /markers' in panel
+    assert 'PointCloud2' not in panel
+
+
+def test_goal_pose_click_publishes_a_pose_stamped(
+    scene: Processes, browser: Browser, ros_context: Any, tmp_path: Path
+) -> None:
+    from ros2lite.msgs.geometry_msgs.msg import PoseStamped
+
+    # a still page (a grid, fixed frame map): the tool, not the streams, is under test, and
+    # SwiftShader redrawing 20 scene updates a second would keep the page from answering
+    config = tmp_path / 'grid.rviz'
+    config.write_text(
+        'Visualization Manager:\n  Displays:\n    - Class: rviz_default_plugins/Grid\n'
+        '  Global Options:\n    Fixed Frame: map\n'
+    )
+    url = _start_viewer(scene, '-d', str(config))
+    listener = Listener(ros_context, '/goal_pose', PoseStamped, 10)
+    try:
+        browser.open(url)
+        # the panel settles (its parts arrive one by one and move the button) before the click
+        seen: list[object] = [None]
+
+        def settled() -> tuple[float, float] | None:
+            where = browser.button_centre('2D Goal Pose')
+            still = where is not None and where == seen[0]
+            seen[0] = where
+            return where if still else None
+
+        wait_until(
+            lambda: 'fixed frame: map' in str(browser.evaluate('document.body.innerText')),
+            timeout=60,
+        )
+        button = wait_until(settled, timeout=30, interval=1.0)
+        browser.click(*button)
+        wait_until(lambda: 'click the ground' in str(browser.evaluate('document.body.innerText')))
+        # the camera looks at map's origin: the canvas centre is (0, 0) on the ground; a click
+        # above it is further along the view, map's (1, 1): a heading of 45 degrees
+        browser.click(W / 2, H / 2)
+        wait_until(lambda: 'where it faces' in str(browser.evaluate('document.body.innerText')))
+        browser.click(W / 2, H / 2 - 100)
+        wait_until(lambda: listener.messages, timeout=20)
+    finally:
+        listener.stop()
+    goal = listener.messages[0]
+    assert goal.header.frame_id == 'map'
+    assert abs(goal.pose.position.x) < 0.2 and abs(goal.pose.position.y) < 0.2, goal.pose
+    yaw = 2 * math.atan2(goal.pose.orientation.z, goal.pose.orientation.w)
+    assert abs(yaw - math.pi / 4) < 0.1, yaw
