@@ -104,6 +104,12 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         from ros2lite.transport.pull import PulledSamples
         from ros2lite.transport.receivers import open_receiver
 
+        # what the executor reads first, set before the callback group or a receiver can
+        # show this subscription to an executor spinning on another thread (`destroyed` is
+        # read per message by runtime/delivery.py, a plain attribute; only destroy() sets it)
+        self.destroyed = False
+        self._source: PulledSamples | None = None
+        self._buffer: deque[tuple[Sample, int]] = deque()
         Executable.__init__(self, node, callback_group)
         self._ep = _SubscriptionEndpoint(node, msg_type, topic, qos)
         ep = self._ep
@@ -116,12 +122,8 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         # raw samples as a pump thread (or an arrival hook, through _keep) queued them,
         # `(sample, arrival ns)` (tools like `topic hz` need arrival times); typed
         # subscriptions pull from Zenoh on the executor thread (`_source` below)
-        self._buffer: deque[tuple[Sample, int]] = deque(
-            maxlen=None if keep_all else max(ep.qos.depth, 1)
-        )
+        self._buffer = deque(maxlen=None if keep_all else max(ep.qos.depth, 1))
         self._deserialize: Callable[[bytes], MsgT] | None = None
-        # read per message by runtime/delivery.py, a plain attribute; only destroy() sets it
-        self.destroyed = False
         # undecodable samples so far (None until the first one)
         self.bad_samples: BadSamples | None = None
         # how samples arrive: an arrival hook (topic monitors, a waiter for one message)
@@ -149,6 +151,8 @@ class Subscription(EndpointOwner, Executable, Generic[MsgT]):
         self._receiver: SampleReceiver | PulledSamples = receiver
         # typed pull: the executor takes samples from here (None for the other two)
         self._source = receiver if isinstance(receiver, PulledSamples) else None
+        if self._source is not None and self._source.ready:
+            self._notify()  # samples came while it was being built: the executor looked away
         ep.announce()
 
     def _keep(self, sample: Sample) -> None:

@@ -353,3 +353,49 @@ def test_a_raw_subscription_reports_samples_without_attachment(
     bad = sub.bad_samples
     assert bad is not None and 0 < bad.unattached <= 2000
     assert len(got) == 1
+
+
+def test_subscriptions_created_while_another_thread_spins(
+    node: Node, executor: SingleThreadedExecutor
+) -> None:
+    """rclpy lets a node make subscriptions on one thread while an executor spins it on
+    another, with messages already flowing (the viewer does this as topics appear): the
+    executor must never see a half-built subscription, and each new one gets its messages."""
+    import threading
+
+    pub = node.create_publisher(String, 'spun', 10)
+    stop = threading.Event()
+    errors: list[BaseException] = []
+
+    def spin() -> None:
+        try:
+            while not stop.is_set():
+                executor.spin_once(timeout_sec=0.01)
+        except BaseException as e:  # the spin thread's death is the failure
+            errors.append(e)
+
+    def flood() -> None:
+        while not stop.is_set():
+            pub.publish(String(data='x'))
+            time.sleep(0.0005)
+
+    threads = [threading.Thread(target=spin), threading.Thread(target=flood)]
+    for t in threads:
+        t.start()
+    counts: list[list[int]] = []
+    try:
+        for _ in range(40):
+            got = [0]
+            counts.append(got)
+            node.create_subscription(
+                String, 'spun', lambda _m, got=got: got.__setitem__(0, got[0] + 1), 10
+            )
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline and not errors and min(c[0] for c in counts) == 0:
+            time.sleep(0.05)
+    finally:
+        stop.set()
+        for t in threads:
+            t.join()
+    assert errors == []
+    assert min(c[0] for c in counts) > 0
