@@ -168,7 +168,11 @@ def field_type(parent: object, name: str) -> FieldType | None:
     csv_help=f"{CSV_HELP}. With several topics each row starts with the topic and log time.",
     after_csv=[
         click.option(
-            "--json", "as_json", is_flag=True, help="One JSON object per message (NDJSON)."
+            "--json",
+            "as_json",
+            is_flag=True,
+            help='topic echo --json\'s lines (NDJSON; -i: {"message", "info"}); with several '
+            'topics {"topic", "message", "info"}.',
         ),
         click.option(
             "--field",
