@@ -6,6 +6,7 @@ announces gets one line and a non-zero exit."""
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -54,7 +55,11 @@ def scale(req, resp):
     return resp
 node.create_service(Scale, 'scale', scale)
 from ros2lite.action import ActionServer
-ActionServer(node, get_interface('wire_test_msgs/action/Count'), 'count', lambda goal: None)
+Count = get_interface('wire_test_msgs/action/Count')
+def count_to(goal):
+    goal.succeed()
+    return Count.Result(reached=goal.request.to)
+ActionServer(node, Count, 'count', count_to)
 def heard(m):
     print('GOT', m.level, m.note, flush=True)
 node.create_subscription(Reading, 'command', heard, 10)
@@ -141,6 +146,16 @@ def test_echo_show_pub_and_call_a_type_only_the_node_knows(processes: Any, works
     assert call.returncode == 0, call.stderr
     assert 'fetched from node /lab/sensor' in call.stderr
     assert 'y=8.0' in call.stdout
+
+    goal = _cli(
+        workspace, 'action', 'send_goal', '/lab/count', 'wire_test_msgs/action/Count', '{to: 3}',
+        '--json', '--timeout', '10',
+    )  # fmt: skip
+    assert goal.returncode == 0, goal.stderr
+    assert goal.stderr.startswith(FETCHED.replace('msg/Reading', 'action/Count'))
+    lines = [json.loads(line) for line in goal.stdout.splitlines()]
+    assert lines[0]['goal'] == {'to': 3} and lines[0]['accepted'] is True
+    assert lines[-1] == {'result': {'reached': 3}, 'status': 'SUCCEEDED'}
 
     pub = _cli(
         workspace, 'topic', 'pub', '-1', '-w', '1', '/lab/command', 'wire_test_msgs/msg/Reading',

@@ -21,7 +21,7 @@ from ros2lite.bag.errors import BagError
 from ros2lite.bag.reader import Reader
 from ros2lite.interfaces import message_to_csv
 from ros2lite.interfaces.classes import Message
-from ros2lite.interfaces.json_form import dumps, message_to_json
+from ros2lite.interfaces.json_form import dumps, echo_record, message_to_json
 from ros2lite.util.files import UnsafePathError, create_new, open_for_writing
 
 if TYPE_CHECKING:
@@ -95,14 +95,21 @@ def _csv(reader: Reader, topic: str, out: IO[str], options: ExportOptions) -> in
 
 
 def _jsonl(reader: Reader, topic: str, out: IO[str], options: ExportOptions) -> int:
-    """One JSON object per message; with times: `{"time", "publish_time", "message"}`."""
+    """`topic echo --json`'s lines; with times, `topic echo -i`'s `{"message", "info"}` (the
+    publish time as source timestamp, the log time as received; a bag keeps no sequence
+    numbers)."""
     n = 0
     for msg, log_time, publish_time in _messages(reader, topic, options):
         body = message_to_json(msg, no_arr=options.no_arr, no_str=options.no_str)
+        info = None
         if options.include_info:
-            out.write(dumps({"time": log_time, "publish_time": publish_time, "message": body}))
-        else:
-            out.write(dumps(body))
+            info = {
+                "source_timestamp": publish_time,
+                "received_timestamp": log_time,
+                "publication_sequence_number": 0,
+                "reception_sequence_number": 0,
+            }
+        out.write(dumps(echo_record(body, info)))
         out.write("\n")
         n += 1
     return n

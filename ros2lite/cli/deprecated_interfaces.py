@@ -6,7 +6,9 @@ from __future__ import annotations
 
 import click
 
+from . import render
 from .errors import CliError
+from .options import json_option
 from .parsing import command
 
 _WORDS = {'msg': 'message', 'srv': 'service'}
@@ -40,17 +42,25 @@ def _names(kind: str, package: str) -> list[str]:
     return [n for n in default_registry().package_interfaces(package) if n.split('/')[1] == kind]
 
 
+def _print_names(names: list[str], as_json: bool) -> None:
+    """Names one a line, or (`--json`) as one JSON list, as `interface package` prints them."""
+    if as_json:
+        render.print_json(names)
+        return
+    for name in names:
+        click.echo(name)
+
+
 def list_verb(kind: str) -> click.Command:
     """`<kind> list`: every type of that kind, sorted by package and name."""
 
     @command('list', help=verbs(kind)['list'] + '.')
-    def cli() -> None:
+    @json_option('["pkg/kind/Name", …]')
+    def cli(as_json: bool) -> None:
         from ros2lite.interfaces import list_interfaces
 
         _deprecated(kind, f'list {_FLAGS[kind]}')
-        for name in list_interfaces():
-            if name.split('/')[1] == kind:
-                click.echo(name)
+        _print_names([n for n in list_interfaces() if n.split('/')[1] == kind], as_json)
 
     return cli
 
@@ -60,10 +70,10 @@ def package_verb(kind: str) -> click.Command:
 
     @command('package', help=verbs(kind)['package'] + '.')
     @click.argument('package_name')
-    def cli(package_name: str) -> None:
+    @json_option('["pkg/kind/Name", …]')
+    def cli(package_name: str, as_json: bool) -> None:
         _deprecated(kind, f'package {package_name}')
-        for name in _names(kind, package_name):
-            click.echo(name)
+        _print_names(_names(kind, package_name), as_json)
 
     return cli
 
@@ -72,13 +82,13 @@ def packages_verb(kind: str) -> click.Command:
     """`<kind> packages`: the packages that define types of that kind."""
 
     @command('packages', help=verbs(kind)['packages'] + '.')
-    def cli() -> None:
+    @json_option('["package", …]')
+    def cli(as_json: bool) -> None:
         from ros2lite.interfaces import list_interfaces
 
         _deprecated(kind, f'packages {_FLAGS[kind]}')
         found = {n.split('/')[0] for n in list_interfaces() if n.split('/')[1] == kind}
-        for package in sorted(found):
-            click.echo(package)
+        _print_names(sorted(found), as_json)
 
     return cli
 
@@ -88,7 +98,8 @@ def show_verb(kind: str) -> click.Command:
 
     @command('show', help=verbs(kind)['show'] + '.')
     @click.argument('type_name', metavar='TYPE')
-    def cli(type_name: str) -> None:
+    @json_option('the parsed definition, as `interface show --json`')
+    def cli(type_name: str, as_json: bool) -> None:
         from ros2lite.interfaces.registry import default_registry
 
         parts = type_name.split('/')
@@ -102,6 +113,11 @@ def show_verb(kind: str) -> click.Command:
             raise CliError('Unknown package name')
         if full not in _names(kind, parts[0]):
             raise CliError(f'Unknown {_WORDS[kind]} name')
+        if as_json:
+            from ros2lite.interfaces.json_form import definition_to_json
+
+            render.print_json(definition_to_json(full, default_registry()))
+            return
         click.echo(default_registry().interface_text(full), nl=False)
 
     return cli

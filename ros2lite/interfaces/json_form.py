@@ -131,6 +131,21 @@ def dumps(obj: object) -> str:
     return json.dumps(obj, ensure_ascii=False, allow_nan=False, separators=(',', ':'))
 
 
+def echo_record(
+    message: object,
+    info: Mapping[str, object] | None = None,
+    topic: str | None = None,
+) -> object:
+    """One echoed message as `topic echo --json` and `bag echo --json` both print it, so a
+    bag replays to the same lines as the live topic: the message alone; with message info
+    `{"message", "info"}`; from one of several topics `{"topic", "message", "info"}`."""
+    if topic is not None:
+        return {'topic': topic, 'message': message, 'info': dict(info or {})}
+    if info is not None:
+        return {'message': message, 'info': dict(info)}
+    return message
+
+
 def _float_from_json(name: str, value: object) -> object:
     if isinstance(value, str):
         got = _NON_FINITE.get(value.strip().lower())

@@ -52,7 +52,7 @@ def test_jsonl_and_parquet_keep_the_values(tmp_path: Path) -> None:
     assert back.data[0] == 2.5 and math.isnan(back.data[1])
     export(tmp_path / "bag", "/f", "jsonl", tmp_path / "t.jsonl", ExportOptions(include_info=True))
     first = json.loads((tmp_path / "t.jsonl").read_text().splitlines()[0])
-    assert first["time"] == 100 and first["message"]["data"] == [0.5, "nan"]
+    assert first["info"]["received_timestamp"] == 100 and first["message"]["data"] == [0.5, "nan"]
     assert export(tmp_path / "bag", "/f", "parquet", tmp_path / "f.parquet") == 3
     table = pq.read_table(tmp_path / "f.parquet").to_pylist()
     assert [r["log_time"] for r in table] == [100, 101, 102]

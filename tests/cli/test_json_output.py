@@ -324,6 +324,16 @@ def test_interface_verbs(graph: str, run: Run) -> None:
     assert 'example_interfaces/srv/AddTwoInts' in listed['services']
     assert 'test_msgs/msg/WStrings' in str(one(run('interface', 'package', '--json', 'test_msgs')))
     assert 'test_msgs' in str(one(run('interface', 'packages', '--json', '-m')))
+    # the deprecated msg/srv verbs: interface's documents (their deprecation line on stderr)
+    legacy = one(run('msg', 'show', '--json', 'test_msgs/Arrays'))
+    assert legacy == one(run('interface', 'show', '--json', 'test_msgs/msg/Arrays'))
+    assert one(run('srv', 'show', '--json', 'example_interfaces/srv/AddTwoInts'), '.kind') == (
+        'service'
+    )
+    names = one(run('srv', 'package', '--json', 'example_interfaces'))
+    assert isinstance(names, list) and 'example_interfaces/srv/AddTwoInts' in names
+    assert 'test_msgs' in str(one(run('msg', 'packages', '--json')))
+    assert 'test_msgs/msg/Arrays' in str(one(run('msg', 'list', '--json')))
 
 
 def test_tool_verbs(run: Run) -> None:
@@ -337,7 +347,17 @@ def test_tool_verbs(run: Run) -> None:
     assert 'turtlesim' in str(one(run('pkg', 'list', '--json')))
     prefix = one(run('pkg', 'prefix', '--json', 'turtlesim'))
     assert isinstance(prefix, dict) and Path(prefix['share']).name == 'turtlesim'
-    assert one(run('bag', 'list', '--json', 'storage'), '[.[].name]') == ['mcap', 'sqlite3']
+    assert one(run('bag', 'list', '--json', 'storage'), '[.[].name]') == [
+        'mcap',
+        'sqlite3',
+        'rosbag1',
+    ]
+    manifest = one(run('pkg', 'xml', '--json', 'turtlesim'))
+    assert isinstance(manifest, dict) and manifest['tag'] == 'package'
+    assert {'tag': 'name', 'attributes': {}, 'text': 'turtlesim', 'children': []} in manifest[
+        'children'
+    ]
+    assert one(run('pkg', 'xml', '--json', 'turtlesim', '-t', 'name')) == ['turtlesim']
     proto = run('interface', 'proto', '--json', 'example_interfaces/srv/AddTwoInts')
     assert one(proto) == {'a': 0, 'b': 0}
     status = one(run('daemon', 'status', '--json'), '[.running, (.endpoint | type)]')

@@ -12,7 +12,13 @@ from typing import TYPE_CHECKING, TypeVar
 import click
 
 from .. import completion, numbers, render
-from ..common import connect, json_object, message_fields, wait_saying_other_types
+from ..common import (
+    connect,
+    json_object,
+    known_type_if_graph,
+    message_fields,
+    wait_saying_other_types,
+)
 from ..errors import CliError
 from ..options import NDJSON, check_stdin, json_option, values_argument
 from ..parsing import command
@@ -28,14 +34,23 @@ _T = TypeVar('_T')
 
 
 def action_class(action_type: str) -> tuple[str, type[ActionType]]:
-    """('pkg/action/Name', class) for 'pkg/action/Name' or 'pkg/Name'."""
+    """('pkg/action/Name', class) for 'pkg/action/Name' or 'pkg/Name'; a type no local
+    package defines is fetched from a node that serves or uses it (one line on stderr)."""
     from ros2lite.action.goals import resolve_action_type
     from ros2lite.interfaces import InterfaceError
 
+    def resolve() -> type[ActionType]:
+        try:
+            return resolve_action_type(action_type)
+        except (InterfaceError, ValueError, TypeError, LookupError):
+            raise CliError('The passed action type is invalid') from None
+
     try:
-        cls = resolve_action_type(action_type)
-    except (InterfaceError, ValueError, TypeError, LookupError):
-        raise CliError('The passed action type is invalid') from None
+        cls = resolve()
+    except CliError:
+        parts = action_type.split('/')
+        known_type_if_graph('/'.join([parts[0], 'action', parts[1]] if len(parts) == 2 else parts))
+        cls = resolve()
     return cls._TYPE_NAME, cls
 
 

@@ -3,8 +3,9 @@ lines or raw CDR), from one topic, several or all, over a time range.
 
 One topic echoed prints exactly what `topic echo` prints for the same messages. Several
 topics put a line before each message saying its topic and log time (a `#` comment in YAML;
-`topic,time,` columns in CSV; a `{"topic", "time", "publish_time", "message"}` object in JSON),
-so the output still parses. Times are printed as ROS prints them (`sec.nanosec`, or the
+`topic,time,` columns in CSV), so the output still parses; in JSON each line is
+`topic echo -i`'s `{"message", "info"}` object with a `"topic"` key added
+(`json_form.echo_record`). Times are printed as ROS prints them (`sec.nanosec`, or the
 integer nanoseconds of message info), or as local dates with `--human`.
 """
 
@@ -24,6 +25,8 @@ from ..topic.common import compile_filter
 from .options import TIME_HELP, bag_error, warn
 
 if TYPE_CHECKING:
+    from ros2lite.interfaces.parser import FieldType
+
     from ..options import MessageFormat
 
 
@@ -68,6 +71,7 @@ class BagPrinter:
         self.when = human_time if human else ros_time
         self.stamp: Callable[[int], object] = human_time if human else int
         self.undecoded: set[str] = set()
+        self.field_types: dict[str, FieldType | None] = {}  # of the --field value, per topic
 
     def info(self, log_time: int, publish_time: int) -> dict[str, object]:
         """rclpy's message info, as `topic echo -i` prints it: the publish time is the
@@ -92,11 +96,15 @@ class BagPrinter:
                     "nor defined in the bag): printed as raw CDR"
                 )
         elif self.field is not None:
+            parent = value
             for name in self.field:
+                parent = value
                 try:
                     value = getattr(value, name)
                 except AttributeError as e:
                     raise CliError(f"Invalid field '{'.'.join(self.field)}': {e}") from None
+            if self.json and topic not in self.field_types:
+                self.field_types[topic] = field_type(parent, self.field[-1])
         if self.filter_fn is not None and not self.filter_fn(value):
             return None
         if self.json:
@@ -132,28 +140,25 @@ class BagPrinter:
         return head + message_to_yaml(value, flow_style=fmt["flow_style"], **opts) + "---\n"  # type: ignore[arg-type]
 
     def _json(self, topic: str, value: object, log_time: int, publish_time: int) -> str:
-        import base64
+        """`topic echo --json`'s line for the message (`--raw` or an undecodable type: the
+        CDR bytes as one base64 string), in the `"topic"` wrapper when several are echoed."""
+        from ros2lite.interfaces.json_form import dumps, echo_record, value_to_json
 
-        from ros2lite.interfaces.classes import Message
-        from ros2lite.interfaces.json_form import dumps, message_to_json, value_to_json
+        body = value_to_json(  # bytes (raw CDR) become one base64 string
+            value, self.field_types.get(topic), no_arr=self.fmt["no_arr"], no_str=self.fmt["no_str"]
+        )
+        info = self.info(log_time, publish_time) if self.include_info or self.headers else None
+        return dumps(echo_record(body, info, topic if self.headers else None)) + "\n"
 
-        if isinstance(value, Message):
-            body: object = message_to_json(
-                value, no_arr=self.fmt["no_arr"], no_str=self.fmt["no_str"]
-            )
-        elif isinstance(value, (bytes, bytearray)):
-            body = {"cdr": base64.b64encode(value).decode("ascii")}
-        else:
-            body = value_to_json(value, no_arr=self.fmt["no_arr"], no_str=self.fmt["no_str"])
-        if not self.headers and not self.include_info:
-            return dumps(body) + "\n"
-        envelope: dict[str, object] = {
-            "topic": topic,
-            "time": self.stamp(log_time),
-            "publish_time": self.stamp(publish_time),
-            "message": body,
-        }
-        return dumps(envelope) + "\n"
+
+def field_type(parent: object, name: str) -> FieldType | None:
+    """The type of field `name` of `parent`, so --json tells an empty byte array from a list."""
+    from ros2lite.interfaces.classes import Message
+
+    if not isinstance(parent, Message):
+        return None
+    names = parent.get_fields_and_field_types()
+    return dict(zip(names, parent.SLOT_TYPES, strict=True)).get(name)
 
 
 @command("echo")
@@ -163,7 +168,11 @@ class BagPrinter:
     csv_help=f"{CSV_HELP}. With several topics each row starts with the topic and log time.",
     after_csv=[
         click.option(
-            "--json", "as_json", is_flag=True, help="One JSON object per message (NDJSON)."
+            "--json",
+            "as_json",
+            is_flag=True,
+            help='topic echo --json\'s lines (NDJSON; -i: {"message", "info"}); with several '
+            'topics {"topic", "message", "info"}.',
         ),
         click.option(
             "--field",

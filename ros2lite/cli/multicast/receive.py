@@ -6,6 +6,7 @@ import click
 
 from .. import render
 from ..errors import CliError
+from ..options import json_option
 from ..parsing import command
 from .common import address_options
 
@@ -19,12 +20,13 @@ from .common import address_options
     metavar='N',
     help='Give up after N seconds (exit status 1; default: wait until Ctrl-C)',
 )
-def cli(group: str, port: int, interface: str | None, timeout: float | None) -> None:
+@json_option('{"group", "port", "sender", "sender_port", "data"} of the datagram')
+def cli(group: str, port: int, interface: str | None, timeout: float | None, as_json: bool) -> None:
     """Receive a single UDP multicast packet."""
     from ros2lite.tools.multicast import ZENOH_SCOUTING, check_settings, receive
 
     check_settings(group, port, interface)
-    click.echo('Waiting for UDP multicast datagram...')
+    click.echo('Waiting for UDP multicast datagram...', err=as_json)
     try:
         data, (host, sender_port) = receive(
             group=group, port=port, timeout=timeout, interface=interface
@@ -38,7 +40,12 @@ def cli(group: str, port: int, interface: str | None, timeout: float | None) -> 
             'need it: nodes meet through the router)'
         ) from None
     text = data.decode('utf-8', errors='replace')
-    render.echo(f"Received from {host}:{sender_port}: '{text}'")
+    if as_json:
+        render.print_json(
+            {'group': group, 'port': port, 'sender': host, 'sender_port': sender_port, 'data': text}
+        )
+    else:
+        render.echo(f"Received from {host}:{sender_port}: '{text}'")
     click.echo(
         'Multicast passes here: Zenoh peers could also find each other by multicast scouting '
         f'({ZENOH_SCOUTING}), which ros2lite and rmw_zenoh leave off (they meet through the '

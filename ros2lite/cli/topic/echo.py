@@ -183,7 +183,7 @@ class Printer:
         Always full length; --no-arr/--no-str put their placeholder strings in."""
         import base64
 
-        from ros2lite.interfaces.json_form import dumps, value_to_json
+        from ros2lite.interfaces.json_form import dumps, echo_record, value_to_json
 
         obj: object
         if isinstance(value, bytes) and self.raw:
@@ -192,9 +192,7 @@ class Printer:
             obj = value_to_json(
                 value, self.field_type, no_arr=self.fmt['no_arr'], no_str=self.fmt['no_str']
             )
-        if self.include_info:
-            obj = {'message': obj, 'info': info_dict(info)}
-        return dumps(obj) + '\n'
+        return dumps(echo_record(obj, info_dict(info) if self.include_info else None)) + '\n'
 
 
 def info_dict(info: MessageInfo) -> dict[str, int]:

@@ -108,8 +108,23 @@ def test_json_lines_read_back_into_the_messages(run: Any, tmp_path: Path) -> Non
     assert back.data[0] == 1.5 and math.isnan(back.data[1])
     both = run("bag", "echo", str(tmp_path / "bag"), "--json")
     lines = [json.loads(line) for line in both.out.splitlines()]
-    assert [(x["topic"], x["time"]) for x in lines] == [("/f", 10), ("/s", 15), ("/f", 20)]
+    # several topics: topic echo -i's {"message", "info"} with the topic added
+    got = [(x["topic"], x["info"]["received_timestamp"]) for x in lines]
+    assert got == [("/f", 10), ("/s", 15), ("/f", 20)]
     assert lines[1]["message"] == {"data": "ü"}
+    assert list(lines[1]) == ["topic", "message", "info"]
+    info = run("bag", "echo", str(tmp_path / "bag"), "/s", "--json", "-i").out
+    assert json.loads(info) == {
+        "message": {"data": "ü"},
+        "info": {
+            "source_timestamp": 15,
+            "received_timestamp": 15,
+            "publication_sequence_number": 0,
+            "reception_sequence_number": 0,
+        },
+    }
+    raw = run("bag", "echo", str(tmp_path / "bag"), "/s", "--json", "--raw").out
+    assert isinstance(json.loads(raw), str)  # the CDR as base64, as topic echo --raw --json
 
 
 def test_time_range_and_count(run: Any, tmp_path: Path) -> None:

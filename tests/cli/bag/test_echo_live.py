@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -99,3 +100,21 @@ def test_bag_echo_equals_topic_echo(
         replay = run("bag", "echo", str(tmp_path / "bag"), topic, *args)
         assert replay.code == 0, replay.err
         assert replay.out == text, args
+        if args == ("--json",) and shutil.which("jq"):
+            # the bar as a script checks it: the same documents, keys sorted by jq
+            assert jq_sorted(replay.out) == jq_sorted(text)
+    # bag export writes topic echo's lines: --csv rows, --jsonl objects
+    for fmt, args in (("--csv", ("--csv",)), ("--jsonl", ("--json",))):
+        if args not in kinds:
+            continue
+        out = tmp_path / f"export{fmt}"
+        done = run("bag", "export", str(tmp_path / "bag"), topic, fmt, "-o", str(out))
+        assert done.code == 0, done.err
+        assert out.read_text() == live[kinds.index(args)], fmt
+
+
+def jq_sorted(text: str) -> str:
+    """`jq -S -c .` of NDJSON: each document with its keys sorted."""
+    return subprocess.run(
+        ["jq", "-S", "-c", "."], input=text, capture_output=True, text=True, check=True, timeout=20
+    ).stdout

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import time
 from collections.abc import Callable
 from typing import Any
@@ -33,6 +34,24 @@ def test_send_receive(run: Run, processes: Any) -> None:
     assert lines[1].startswith('Received from 127.0.0.1:') and lines[1].endswith(": 'Hello World!'")
     assert len(lines) == 2
     assert 'multicast scouting' in err
+
+
+def test_receive_json(run: Run, processes: Any) -> None:
+    port = free_port()
+    if not multicast_on_loopback(port):
+        pytest.skip('this machine has no multicast route on loopback')
+    where = ('--port', str(port), '--interface', '127.0.0.1')
+    receiver = processes.cli('multicast', 'receive', *where, '-t', '30', '--json')
+    deadline = time.monotonic() + 30
+    while receiver.poll() is None and time.monotonic() < deadline:
+        run('multicast', 'send', *where, '--ttl', '0')
+        time.sleep(0.1)  # until the receiver has joined and heard one
+    out, err = processes.stop(receiver)
+    assert receiver.returncode == 0, err
+    got = json.loads(out)  # stdout holds the one document; the waiting line is on stderr
+    assert got['sender'] == '127.0.0.1' and isinstance(got['sender_port'], int)
+    assert (got['group'], got['port'], got['data']) == ('225.0.0.1', port, 'Hello World!')
+    assert 'Waiting for UDP multicast datagram...' in err
 
 
 def test_receive_timeout_and_bad_input(run: Run) -> None:
