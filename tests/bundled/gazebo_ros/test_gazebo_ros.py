@@ -9,6 +9,7 @@ from __future__ import annotations
 import itertools
 import subprocess
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -75,22 +76,21 @@ def _run(*args: str, timeout: float = 40) -> subprocess.CompletedProcess[str]:
     )
 
 
-@pytest.fixture
-def empty_world(processes: Any) -> Any:
-    """Gazebo's server alone: the 2D world with no robot, at 4x real time."""
-    world = processes.cli(
-        'run',
-        'turtlebot3_gazebo',
-        'gazebo_2d',
-        '--ros-args',
-        '-p',
-        'robot_model:=none',
-        '-p',
-        'world:=empty_world',
-        '-p',
-        'real_time_factor:=4.0',
-    )
-    return world
+@pytest.fixture(scope='module')
+def empty_world(ros_router: str) -> Iterator[None]:
+    """Gazebo's server alone: the 2D world with no robot, at 4x real time (one for both tests:
+    their robots have names and topics of their own)."""
+    from tests.conftest import Processes
+
+    procs = Processes()
+    try:
+        procs.cli(
+            'run', 'turtlebot3_gazebo', 'gazebo_2d', '--ros-args', '-p', 'robot_model:=none',
+            '-p', 'world:=empty_world', '-p', 'real_time_factor:=4.0',
+        )  # fmt: skip
+        yield
+    finally:
+        procs.close()
 
 
 @pytest.mark.timeout(90)

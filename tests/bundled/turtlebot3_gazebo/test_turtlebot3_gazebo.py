@@ -6,6 +6,7 @@ follows `/cmd_vel`, and `/reset_simulation` brings the robot back."""
 from __future__ import annotations
 
 import math
+import os
 import re
 import shlex
 import subprocess
@@ -23,9 +24,9 @@ from tests.spinning import wait_until
 HERE = Path(__file__).parent
 
 
-def _launch(processes: Any, *args: str) -> subprocess.Popen[str]:
+def _launch(processes: Any, *args: str, **kw: Any) -> subprocess.Popen[str]:
     proc = processes.cli(
-        'launch', 'turtlebot3_gazebo', *args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT
+        'launch', 'turtlebot3_gazebo', *args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, **kw
     )
     lines: list[str] = []
     proc.lines = lines  # type: ignore[attr-defined]
@@ -80,12 +81,14 @@ def test_obstacle_avoidance_drives_a_minute_without_collision(processes: Any) ->
 @pytest.fixture(scope='module')
 def empty_world(ros_router: str) -> Iterator[subprocess.Popen[str]]:
     """One `empty_world.launch.py` for the tests that only watch it (started once: a launch
-    with robot_state_publisher costs seconds on a loaded machine)."""
+    with robot_state_publisher costs seconds on a loaded machine), with `gui:=false` and a
+    DISPLAY that is never there: a window it opened would say so in the launch's output."""
     from tests.conftest import Processes
 
     procs = Processes()
+    env = {**os.environ, 'DISPLAY': ':99999'}
     try:
-        yield _launch(procs, 'empty_world.launch.py', 'gui:=false')
+        yield _launch(procs, 'empty_world.launch.py', 'gui:=false', env=env)
     finally:
         procs.close()
 
@@ -157,6 +160,8 @@ def test_robot_state_publisher_takes_the_description(empty_world: Any, ros_conte
         assert by('/robot_description') == {'robot_state_publisher'}
         assert by('/tf_static') == {'robot_state_publisher'}
         assert by('/joint_states') == {'gazebo'}
+        log = ''.join(empty_world.lines)
+        assert 'top_window' not in log and 'robot_state_publisher' in log, log
     finally:
         executor.shutdown()
         node.destroy_node()
