@@ -33,6 +33,7 @@ def view_actions() -> list[object]:
     from ros2lite.launch.actions import DeclareLaunchArgument
     from ros2lite.launch.conditions import IfCondition
     from ros2lite.launch.execute import ExecuteProcess
+    from ros2lite.launch.flow import LogInfo
     from ros2lite.launch.substitutions import (
         AndSubstitution,
         LaunchConfiguration,
@@ -43,16 +44,19 @@ def view_actions() -> list[object]:
         DeclareLaunchArgument('gui', default_value='true', description='open the top view window'),
         DeclareLaunchArgument('headless', default_value='false', description='no window at all'),
     ]
-    if os.environ.get('DISPLAY') or os.environ.get('WAYLAND_DISPLAY'):
-        show = AndSubstitution(
-            LaunchConfiguration('gui'), NotSubstitution(LaunchConfiguration('headless'))
+    if not (os.environ.get('DISPLAY') or os.environ.get('WAYLAND_DISPLAY')):
+        terminal = f'{sys.executable} -m ros2lite.bundled.rviz2.top_view'
+        actions.append(LogInfo(msg=f'no display for the window; the terminal view: {terminal}'))
+        return actions
+    show = AndSubstitution(
+        LaunchConfiguration('gui'), NotSubstitution(LaunchConfiguration('headless'))
+    )
+    actions.append(
+        ExecuteProcess(
+            cmd=[sys.executable, '-m', 'ros2lite.bundled.rviz2.top_window', '--no-frames'],
+            name='top_window',
+            output='screen',
+            condition=IfCondition(show),
         )
-        actions.append(
-            ExecuteProcess(
-                cmd=[sys.executable, '-m', 'ros2lite.bundled.rviz2.top_window', '--no-frames'],
-                name='top_window',
-                output='screen',
-                condition=IfCondition(show),
-            )
-        )
+    )
     return actions
