@@ -175,3 +175,12 @@ def test_create_reads_the_description_topic_and_names_are_unique(
         [sys.executable, '-m', 'ros2lite', 'topic', 'list'], capture_output=True, text=True
     )
     assert '/twin/scan' in out.stdout and '/twin/cmd' in out.stdout, out.stdout
+
+
+def test_an_executable_with_py_runs_its_module() -> None:
+    from ros2lite.pkg.bundled import BUNDLED
+
+    assert BUNDLED['gazebo_ros'] == {
+        'spawn_entity.py': 'ros2lite.bundled.gazebo_ros.spawn_entity:main'
+    }
+    assert BUNDLED['ros_gz_sim'] == {'create': 'ros2lite.bundled.ros_gz_sim.create:main'}
