@@ -8,7 +8,8 @@ from __future__ import annotations
 
 __all__ = ['BUNDLED', 'STAND_INS']
 
-# package -> executables, each `main()` of ros2lite.bundled.<package>.<executable>
+# package -> executables, each `main()` of ros2lite.bundled.<package>.<executable> (a name
+# with `.py`, as ROS packages install some scripts, is the module without the suffix)
 _DEMOS = {
     'action_tutorials_py': ['fibonacci_action_client', 'fibonacci_action_server'],
     # Jazzy's demo_nodes_py (0.33.x), exactly
@@ -28,6 +29,7 @@ _DEMOS = {
         'use_logger_service',
     ],
     'foxglove_bridge': ['foxglove_bridge'],
+    'gazebo_ros': ['spawn_entity.py'],
     'jackal_gazebo': ['gazebo_2d'],
     'jackal_viz': [],  # launch files only: view_model.launch.py opens rviz2
     'joint_state_publisher': ['joint_state_publisher'],
@@ -36,6 +38,7 @@ _DEMOS = {
     'lifecycle_py': ['lifecycle_talker'],
     'rclpy_components': ['component_container', 'component_container_mt'],
     'robot_state_publisher': ['robot_state_publisher'],
+    'ros_gz_sim': ['create'],
     'rqt_console': ['rqt_console'],
     'rqt_graph': ['rqt_graph'],
     'rqt_plot': ['rqt_plot'],
@@ -57,9 +60,14 @@ _DEMOS = {
     'urdf_launch': [],  # launch files only
     'xacro': ['xacro'],
 }
+
+
+def _target(package: str, name: str) -> str:
+    return f'ros2lite.bundled.{package}.{name.removesuffix(".py")}:main'
+
+
 BUNDLED: dict[str, dict[str, str]] = {
-    package: {name: f'ros2lite.bundled.{package}.{name}:main' for name in names}
-    for package, names in _DEMOS.items()
+    package: {name: _target(package, name) for name in names} for package, names in _DEMOS.items()
 }
 """Bundled demo package -> executable name -> its `module:function` target."""
 
@@ -70,7 +78,7 @@ _STAND_INS = {
     'demo_nodes_py': ['introspection_client', 'introspection_service', 'parameter_blackboard']
 }
 STAND_INS: dict[str, dict[str, str]] = {
-    package: {name: f'ros2lite.bundled.{package}.{name}:main' for name in names}
+    package: {name: _target(package, name) for name in names}
     for package, names in _STAND_INS.items()
 }
 """Bundled package -> executable its C++ twin has and it does not -> `module:function`."""

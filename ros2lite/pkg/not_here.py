@@ -21,9 +21,9 @@ __all__ = [
 ]
 
 _SIMULATOR = (
-    '{package} belongs to Gazebo, a 3D simulator ros2lite does not run, and ros2lite\'s 2D '
-    'simulator is not here yet; for a robot to drive, use turtlesim: '
-    'ros2lite run turtlesim turtlesim_node'
+    '{package} belongs to Gazebo, a 3D simulator ros2lite does not run; ros2lite\'s 2D '
+    'simulator stands in for the courses\' robots (ros2lite launch turtlebot3_gazebo '
+    'empty_world.launch.py) and spawns a URDF robot (ros2lite run gazebo_ros spawn_entity.py)'
 )
 _VIEWER = (
     '{package} belongs to rviz: ros2lite has no rviz2 and no browser scene view yet; to see '
@@ -40,22 +40,17 @@ NOT_HERE: dict[str, str] = {
     **dict.fromkeys(
         (
             'gazebo',
-            'gazebo_ros',
             'gazebo_ros_pkgs',
             'gazebo_plugins',
             'gazebo_msgs',
             'gz_ros2_control',
             'ros_gz',
-            'ros_gz_sim',
             'ros_gz_bridge',
             'ros_gz_image',
             'ros_gz_interfaces',
             'ros_ign_gazebo',
             'ros_ign_bridge',
-            'turtlebot3_gazebo',
             'turtlebot3_simulations',
-            'jackal_gazebo',
-            'tiago_gazebo',
         ),
         _SIMULATOR,
     ),

@@ -1,5 +1,7 @@
-"""The simulator's ROS node (`/gazebo`, as Gazebo's): one robot in one world, its topics as
-the robot's Gazebo plugins publish them, `/clock`, and Gazebo's reset and pause services.
+"""The simulator's ROS node (`/gazebo`, as Gazebo's): robots in one world, their topics as
+the robots' Gazebo plugins publish them, `/clock`, and Gazebo's reset and pause services.
+The launch line's robot is there from the start; more join through the spawn topic
+(`ros2lite.sim.spawn`: what `spawn_entity.py` and `ros_gz_sim create` send).
 
 Physics runs on its own thread in fixed 10 ms steps of sim time, paced against the wall clock
 by the real-time factor (0: as fast as it goes), and publishes from there: `/clock` every step,
@@ -10,6 +12,7 @@ A sensor with no subscriber is not drawn (the camera costs most), as Gazebo's se
 
 from __future__ import annotations
 
+import json
 import math
 import random
 import threading
@@ -29,8 +32,9 @@ from ros2lite.node import Node
 from ros2lite.qos import DurabilityPolicy, QoSProfile, qos_profile_sensor_data
 from ros2lite.sim.drive import Base, Pose2D
 from ros2lite.sim.errors import SimError
-from ros2lite.sim.robots import robot, urdf
+from ros2lite.sim.robots import RobotSpec, robot, urdf
 from ros2lite.sim.sensors import LaserTables, render_camera, scan
+from ros2lite.sim.spawn import SPAWN_TOPIC, SPAWNED_TOPIC, SpawnRequest, spec_from_urdf
 from ros2lite.sim.worlds import open_world
 from ros2lite.tf2.math import qmul, quaternion_from_rpy
 
@@ -41,6 +45,8 @@ __all__ = ['STEP', 'Settings', 'SimNode']
 
 STEP = 0.01  # s of sim time per physics step
 _LATCHED = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+# the spawn answers stay for a spawner whose subscription matches after the answer went out
+_SPAWNED_QOS = QoSProfile(depth=10, durability=DurabilityPolicy.TRANSIENT_LOCAL)
 
 
 def _stamp(t: float) -> Time:
@@ -80,95 +86,67 @@ class Settings:
     scan_rate: float = 0.0  # Hz; <= 0: the robot's laser's own
 
 
-class SimNode(Node):
-    """One robot in one world, simulated and published; `settings` are the parameters'
-    defaults (a launch file's `parameters=` or `-p` override them)."""
+class _Body:
+    """One robot in the world: its drive, its inputs and outputs, and when each is due."""
 
-    def __init__(self, settings: Settings | None = None, *, node_name: str = 'gazebo') -> None:
-        super().__init__(node_name)
-        chosen = self._read_parameters(settings or Settings())
-        spec = robot(chosen.robot_model)
-        if chosen.scan_rate > 0:
-            spec = replace(spec, laser=replace(spec.laser, rate=chosen.scan_rate))
+    def __init__(
+        self,
+        node: SimNode,
+        spec: RobotSpec,
+        start: Pose2D,
+        seed: int | None,
+        *,
+        namespace: str = '',
+        publish_robot_state: bool = False,
+    ) -> None:
+        self.node = node
         self.spec = spec
-        self.world = open_world(chosen.world)
-        self.real_time_factor = chosen.real_time_factor
-        limits = spec.limits
-        if chosen.odom_noise >= 0:
-            limits = replace(limits, odom_noise=chosen.odom_noise)
-        start = Pose2D(
-            spec.start.x if math.isnan(chosen.x_pose) else chosen.x_pose,
-            spec.start.y if math.isnan(chosen.y_pose) else chosen.y_pose,
-            chosen.yaw,
-        )
-        seed = None if chosen.seed < 0 else chosen.seed
-        self.base = Base(limits, start, seed)
+        self.namespace = namespace.strip('/')
+        self.base = Base(spec.limits, start, seed)
         self.rng = random.Random(seed)
-        self.sim_time = 0.0
-        self.paused = False
-        self.lock = threading.Lock()
-        self._reset_request: str | None = None
-        self._stop = threading.Event()
         self._tables = LaserTables(spec.laser)
         self._last_linear = 0.0
-        self._publish_robot_state = chosen.publish_robot_state
+        self._publish_robot_state = publish_robot_state
         self._make_interfaces()
-        self._thread = threading.Thread(target=self._run, name='sim-physics', daemon=True)
-        self.get_logger().info(spec.banner)
-        self.get_logger().info(
-            f'world {self.world.name!r}, robot at ({start.x:.2f}, {start.y:.2f}), '
-            f'real-time factor {self.real_time_factor:g}'
-        )
-        self._thread.start()
 
-    def _read_parameters(self, defaults: Settings) -> Settings:
-        values: dict[str, object] = {}
-        for name, default in asdict(defaults).items():
-            value = self.declare_parameter(name, default).value
-            if isinstance(default, float) and isinstance(value, int):
-                value = float(value)
-            if type(value) is not type(default):
-                raise SimError(
-                    f'parameter {name!r} must be a {type(default).__name__}, not {value!r}'
-                )
-            values[name] = value
-        return Settings(**values)  # type: ignore[arg-type]
+    def topic(self, name: str) -> str:
+        """`name` under the robot's namespace (a spawned robot's `-robot_namespace`)."""
+        if not self.namespace or name.startswith('/'):
+            return name
+        return f'/{self.namespace}/{name}'
 
     # -- set-up ------------------------------------------------------------------------------
     def _make_interfaces(self) -> None:
-        spec = self.spec
-        self.clock_pub = self.create_publisher(Clock, '/clock', 10)
-        self.scan_pub = self.create_publisher(LaserScan, spec.laser.topic, qos_profile_sensor_data)
+        spec, node, topic = self.spec, self.node, self.topic
+        self.scan_pub = node.create_publisher(
+            LaserScan, topic(spec.laser.topic), qos_profile_sensor_data
+        )
         self.odom_pubs = [
-            self.create_publisher(Odometry, topic, 10)
-            for topic in (spec.odom_topic, *spec.odom_copies)
+            node.create_publisher(Odometry, topic(name), 10)
+            for name in (spec.odom_topic, *spec.odom_copies)
         ]
-        self.tf_pub = self.create_publisher(TFMessage, '/tf', 100)
-        self.joints_pub = self.create_publisher(JointState, 'joint_states', 10)
+        self.tf_pub = node.tf_pub
+        self.joints_pub = node.create_publisher(JointState, topic('joint_states'), 10)
         self.imu_pubs: list[Publisher[Imu]] = []
         if spec.imu is not None:
             self.imu_pubs = [
-                self.create_publisher(Imu, topic, qos_profile_sensor_data)
-                for topic in (spec.imu.topic, *spec.imu_copies)
+                node.create_publisher(Imu, topic(name), qos_profile_sensor_data)
+                for name in (spec.imu.topic, *spec.imu_copies)
             ]
         self.image_pub: Publisher[Image] | None = None
         self.info_pub: Publisher[CameraInfo] | None = None
         if spec.camera is not None:
-            self.image_pub = self.create_publisher(
-                Image, spec.camera.image_topic, qos_profile_sensor_data
+            self.image_pub = node.create_publisher(
+                Image, topic(spec.camera.image_topic), qos_profile_sensor_data
             )
-            self.info_pub = self.create_publisher(
-                CameraInfo, spec.camera.info_topic, qos_profile_sensor_data
+            self.info_pub = node.create_publisher(
+                CameraInfo, topic(spec.camera.info_topic), qos_profile_sensor_data
             )
         inputs = spec.twist_mux or ((spec.cmd_vel, 0, 0.0),)
         self._mux: dict[str, tuple[int, float, float, float, float]] = {}
-        for topic, priority, timeout in inputs:
-            self._mux[topic] = (priority, timeout, -math.inf, 0.0, 0.0)
-            self._listen(topic)
-        self.create_service(Empty, '/reset_simulation', self._on_reset_simulation)
-        self.create_service(Empty, '/reset_world', self._on_reset_world)
-        self.create_service(Empty, '/pause_physics', self._on_pause)
-        self.create_service(Empty, '/unpause_physics', self._on_unpause)
+        for name, priority, timeout in inputs:
+            self._mux[name] = (priority, timeout, -math.inf, 0.0, 0.0)
+            self._listen(name)
         self._due = {
             'scan': _Due(spec.laser.rate),
             'odom': _Due(spec.odom_rate),
@@ -181,12 +159,14 @@ class SimNode(Node):
 
     def _publish_description(self) -> None:
         """The robot's description and fixed frames, for when no robot_state_publisher runs."""
-        spec = self.spec
-        self.description_pub = self.create_publisher(String, 'robot_description', _LATCHED)
+        spec, node = self.spec, self.node
+        self.description_pub = node.create_publisher(
+            String, self.topic('robot_description'), _LATCHED
+        )
         self.description_pub.publish(String(data=urdf(spec)))
-        static = self.create_publisher(TFMessage, '/tf_static', _LATCHED)
+        static = node.create_publisher(TFMessage, '/tf_static', _LATCHED)
         transforms = [
-            self._transform(j.parent, j.child, j.xyz, j.rpy, 0.0)
+            _transform(j.parent, j.child, j.xyz, j.rpy, 0.0)
             for j in spec.joints
             if j.kind == 'fixed'
         ]
@@ -194,102 +174,49 @@ class SimNode(Node):
         self.static_pub = static
 
     # -- inputs (executor thread) ------------------------------------------------------------
-    def _listen(self, topic: str) -> None:
+    def _listen(self, name: str) -> None:
         """Subscribe to a velocity input as Twist and as TwistStamped."""
 
         def on_twist(msg: Twist) -> None:
-            self._command(topic, msg.linear.x, msg.angular.z)
+            self._command(name, msg.linear.x, msg.angular.z)
 
         def on_stamped(msg: TwistStamped) -> None:
-            self._command(topic, msg.twist.linear.x, msg.twist.angular.z)
+            self._command(name, msg.twist.linear.x, msg.twist.angular.z)
 
-        self.create_subscription(Twist, topic, on_twist, 10)
-        self.create_subscription(TwistStamped, topic, on_stamped, 10)
+        self.node.create_subscription(Twist, self.topic(name), on_twist, 10)
+        self.node.create_subscription(TwistStamped, self.topic(name), on_stamped, 10)
 
-    def _command(self, topic: str, linear: float, angular: float) -> None:
-        """A twist on input `topic`: it drives unless a higher-priority input is live."""
+    def _command(self, name: str, linear: float, angular: float) -> None:
+        """A twist on input `name`: it drives unless a higher-priority input is live."""
         if not (math.isfinite(linear) and math.isfinite(angular)):
-            self.get_logger().warn('ignoring a velocity command that is not finite')
+            self.node.get_logger().warn('ignoring a velocity command that is not finite')
             return
-        with self.lock:
-            now = self.sim_time
-            priority, timeout, _, _, _ = self._mux[topic]
-            self._mux[topic] = (priority, timeout, now, linear, angular)
+        with self.node.lock:
+            now = self.node.sim_time
+            priority, timeout, _, _, _ = self._mux[name]
+            self._mux[name] = (priority, timeout, now, linear, angular)
             for other, (p, t, heard, _, _) in self._mux.items():
                 live = t <= 0 or now - heard <= t
-                if other != topic and p > priority and live and heard > -math.inf:
+                if other != name and p > priority and live and heard > -math.inf:
                     return
             self.base.set_command(linear, angular, now)
 
-    def _on_reset_simulation(
-        self, request: Empty.Request, response: Empty.Response
-    ) -> Empty.Response:
-        with self.lock:
-            self._reset_request = 'simulation'
-        return response
-
-    def _on_reset_world(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
-        with self.lock:
-            self._reset_request = 'world'
-        return response
-
-    def _on_pause(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
-        with self.lock:
-            self.paused = True
-        return response
-
-    def _on_unpause(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
-        with self.lock:
-            self.paused = False
-        return response
-
     # -- the physics thread ------------------------------------------------------------------
-    def _run(self) -> None:
-        anchor_wall = time.monotonic()
-        anchor_sim = 0.0
-        try:
-            while not self._stop.is_set() and self.context.ok():
-                with self.lock:
-                    paused = self.paused
-                    reset = self._reset_request
-                    self._reset_request = None
-                    if reset is not None:
-                        self._reset(reset)
-                        anchor_wall, anchor_sim = time.monotonic(), self.sim_time
-                    if not paused:
-                        self.sim_time = round(self.sim_time + STEP, 9)
-                        if self.base.step(STEP, self.sim_time, self.world):
-                            p = self.base.pose
-                            self.get_logger().warn(
-                                f'{self.spec.name} hit an obstacle at ({p.x:.2f}, {p.y:.2f}): '
-                                'stopped'
-                            )
-                if paused:
-                    anchor_wall, anchor_sim = time.monotonic(), self.sim_time
-                    self._stop.wait(0.02)
-                    continue
-                self._publish(self.sim_time)
-                rtf = self.real_time_factor
-                if rtf > 0:
-                    delay = anchor_wall + (self.sim_time - anchor_sim) / rtf - time.monotonic()
-                    if delay > 0:
-                        self._stop.wait(delay)
-                    elif delay < -0.5:  # fell behind: do not race to catch up
-                        anchor_wall, anchor_sim = time.monotonic(), self.sim_time
-        except Exception as e:  # the context went away under a publish at shutdown
-            if self.context.ok():
-                self.get_logger().error(f'simulation stopped: {e}')
+    def step(self, now: float) -> None:
+        """One physics step (under the node's lock); a collision is said once."""
+        if self.base.step(STEP, now, self.node.world):
+            p = self.base.pose
+            self.node.get_logger().warn(
+                f'{self.spec.name} hit an obstacle at ({p.x:.2f}, {p.y:.2f}): stopped'
+            )
 
-    def _reset(self, kind: str) -> None:
+    def reset(self, kind: str) -> None:
         self.base.reset()
         if kind == 'simulation':
-            self.sim_time = 0.0
             for due in self._due.values():
                 due.next = 0.0
 
-    def _publish(self, now: float) -> None:
-        stamp = _stamp(now)
-        self.clock_pub.publish(Clock(clock=stamp))
+    def publish(self, now: float, stamp: Time) -> None:
         due = self._due
         if due['odom'].check(now):
             self._publish_odom(stamp)
@@ -304,24 +231,6 @@ class SimNode(Node):
             self._publish_camera(stamp)
 
     # -- outputs -----------------------------------------------------------------------------
-    def _transform(
-        self,
-        parent: str,
-        child: str,
-        xyz: tuple[float, float, float],
-        rpy: tuple[float, float, float],
-        t: float,
-    ) -> TransformStamped:
-        msg = TransformStamped()
-        msg.header.stamp = _stamp(t)
-        msg.header.frame_id = parent
-        msg.child_frame_id = child
-        msg.transform.translation.x, msg.transform.translation.y, msg.transform.translation.z = xyz
-        q = quaternion_from_rpy(*rpy)
-        rot = msg.transform.rotation
-        rot.x, rot.y, rot.z, rot.w = q
-        return msg
-
     def _publish_odom(self, stamp: Time) -> None:
         spec, base = self.spec, self.base
         odom = base.odom
@@ -343,7 +252,7 @@ class SimNode(Node):
         for pub in self.odom_pubs:
             pub.publish(msg)
         if spec.publish_odom_tf:
-            t = self._transform(
+            t = _transform(
                 spec.odom_frame, spec.base_frame, (odom.x, odom.y, 0.0), (0.0, 0.0, odom.yaw), 0.0
             )
             t.header.stamp = stamp
@@ -383,7 +292,7 @@ class SimNode(Node):
         rpy: tuple[float, float, float],
         angle: float,
     ) -> TransformStamped:
-        msg = self._transform(parent, child, xyz, rpy, 0.0)
+        msg = _transform(parent, child, xyz, rpy, 0.0)
         fixed = quaternion_from_rpy(*rpy)
         turn = quaternion_from_rpy(0.0, 0.0, angle)
         rot = msg.transform.rotation
@@ -392,7 +301,7 @@ class SimNode(Node):
 
     def _publish_scan(self, stamp: Time) -> None:
         spec = self.spec.laser
-        with self.lock:
+        with self.node.lock:
             pose = Pose2D(self.base.pose.x, self.base.pose.y, self.base.pose.yaw)
         msg = LaserScan()
         msg.header.stamp = stamp
@@ -404,7 +313,7 @@ class SimNode(Node):
         msg.scan_time = 0.0
         msg.range_min = spec.range_min
         msg.range_max = spec.range_max
-        msg.ranges = scan(self.world, self._tables, pose.x, pose.y, pose.yaw, self.rng)
+        msg.ranges = scan(self.node.world, self._tables, pose.x, pose.y, pose.yaw, self.rng)
         msg.intensities = [0.0] * spec.samples
         self.scan_pub.publish(msg)
 
@@ -459,8 +368,187 @@ class SimNode(Node):
         msg.width, msg.height = spec.width, spec.height
         msg.encoding = 'rgb8'
         msg.step = spec.width * 3
-        msg.data = render_camera(self.world, spec, pose.x, pose.y, pose.yaw)
+        msg.data = render_camera(self.node.world, spec, pose.x, pose.y, pose.yaw)
         self.image_pub.publish(msg)
+
+
+class SimNode(Node):
+    """Robots in one world, simulated and published; `settings` are the parameters' defaults
+    (a launch file's `parameters=` or `-p` override them). `robot_model:=none` starts an empty
+    world, as Gazebo's server alone; robots join it through `SPAWN_TOPIC`."""
+
+    def __init__(self, settings: Settings | None = None, *, node_name: str = 'gazebo') -> None:
+        super().__init__(node_name)
+        chosen = self._read_parameters(settings or Settings())
+        self.world = open_world(chosen.world)
+        self.real_time_factor = chosen.real_time_factor
+        self.sim_time = 0.0
+        self.paused = False
+        self.lock = threading.Lock()
+        self._reset_request: str | None = None
+        self._stop = threading.Event()
+        self._seed = None if chosen.seed < 0 else chosen.seed
+        self.bodies: list[_Body] = []
+        self.clock_pub = self.create_publisher(Clock, '/clock', 10)
+        self.tf_pub = self.create_publisher(TFMessage, '/tf', 100)
+        self.create_service(Empty, '/reset_simulation', self._on_reset_simulation)
+        self.create_service(Empty, '/reset_world', self._on_reset_world)
+        self.create_service(Empty, '/pause_physics', self._on_pause)
+        self.create_service(Empty, '/unpause_physics', self._on_unpause)
+        self._spawned = self.create_publisher(String, SPAWNED_TOPIC, _SPAWNED_QOS)
+        self.create_subscription(String, SPAWN_TOPIC, self._on_spawn, 10)
+        if chosen.robot_model != 'none':
+            self._add_first(chosen)
+        else:
+            self.get_logger().info(
+                "ros2lite's 2D stand-in for the Gazebo simulation: an empty world, robots join "
+                f'it through {SPAWN_TOPIC}'
+            )
+        self.get_logger().info(
+            f'world {self.world.name!r}, real-time factor {self.real_time_factor:g}'
+        )
+        self._thread = threading.Thread(target=self._run, name='sim-physics', daemon=True)
+        self._thread.start()
+
+    def _add_first(self, chosen: Settings) -> None:
+        spec = robot(chosen.robot_model)
+        if chosen.scan_rate > 0:
+            spec = replace(spec, laser=replace(spec.laser, rate=chosen.scan_rate))
+        if chosen.odom_noise >= 0:
+            spec = replace(spec, limits=replace(spec.limits, odom_noise=chosen.odom_noise))
+        start = Pose2D(
+            spec.start.x if math.isnan(chosen.x_pose) else chosen.x_pose,
+            spec.start.y if math.isnan(chosen.y_pose) else chosen.y_pose,
+            chosen.yaw,
+        )
+        body = _Body(self, spec, start, self._seed, publish_robot_state=chosen.publish_robot_state)
+        self.bodies.append(body)
+        self.get_logger().info(spec.banner)
+        self.get_logger().info(f'{spec.name} at ({start.x:.2f}, {start.y:.2f})')
+
+    @property
+    def spec(self) -> RobotSpec:
+        """The first robot's spec (the one the launch line named)."""
+        return self.bodies[0].spec
+
+    @property
+    def base(self) -> Base:
+        """The first robot's drive."""
+        return self.bodies[0].base
+
+    def _read_parameters(self, defaults: Settings) -> Settings:
+        values: dict[str, object] = {}
+        for name, default in asdict(defaults).items():
+            value = self.declare_parameter(name, default).value
+            if isinstance(default, float) and isinstance(value, int):
+                value = float(value)
+            if type(value) is not type(default):
+                raise SimError(
+                    f'parameter {name!r} must be a {type(default).__name__}, not {value!r}'
+                )
+            values[name] = value
+        return Settings(**values)  # type: ignore[arg-type]
+
+    # -- spawning (executor thread) ----------------------------------------------------------
+    def _on_spawn(self, msg: String) -> None:
+        """A spawner's request (see `SpawnRequest`): the robot joins, or one line says why not."""
+        request: SpawnRequest | None = None
+        try:
+            request = SpawnRequest.from_json(msg.data)
+            self.spawn(request)
+        except SimError as e:
+            name = request.name if request is not None else '?'
+            self.get_logger().error(f'cannot spawn {name!r}: {e}')
+            self._answer(request, str(e))
+            return
+        self._answer(request, '')
+
+    def _answer(self, request: SpawnRequest | None, error: str) -> None:
+        if request is None:
+            return
+        answer = {'id': request.id, 'name': request.name, 'ok': not error, 'message': error}
+        self._spawned.publish(String(data=json.dumps(answer)))
+
+    def spawn(self, request: SpawnRequest) -> None:
+        """Add the robot `request` describes to the running world."""
+        if any(b.spec.name == request.name for b in self.bodies):
+            raise SimError(f'an entity named {request.name!r} is already in the world')
+        spec = replace(spec_from_urdf(request.urdf, request.name), start=Pose2D())
+        start = Pose2D(request.x, request.y, request.yaw)
+        body = _Body(self, spec, start, self._seed, namespace=request.namespace)
+        with self.lock:
+            self.bodies.append(body)
+        self.get_logger().info(
+            f'spawned {spec.name!r} at ({start.x:.2f}, {start.y:.2f}): '
+            f'{body.topic(spec.cmd_vel)} drives it, {body.topic(spec.laser.topic)} at '
+            f'{spec.laser.rate:g} Hz'
+        )
+
+    # -- services (executor thread) ----------------------------------------------------------
+    def _on_reset_simulation(
+        self, request: Empty.Request, response: Empty.Response
+    ) -> Empty.Response:
+        with self.lock:
+            self._reset_request = 'simulation'
+        return response
+
+    def _on_reset_world(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
+        with self.lock:
+            self._reset_request = 'world'
+        return response
+
+    def _on_pause(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
+        with self.lock:
+            self.paused = True
+        return response
+
+    def _on_unpause(self, request: Empty.Request, response: Empty.Response) -> Empty.Response:
+        with self.lock:
+            self.paused = False
+        return response
+
+    # -- the physics thread ------------------------------------------------------------------
+    def _run(self) -> None:
+        anchor_wall = time.monotonic()
+        anchor_sim = 0.0
+        try:
+            while not self._stop.is_set() and self.context.ok():
+                with self.lock:
+                    paused = self.paused
+                    reset = self._reset_request
+                    self._reset_request = None
+                    if reset is not None:
+                        self._reset(reset)
+                        anchor_wall, anchor_sim = time.monotonic(), self.sim_time
+                    if not paused:
+                        self.sim_time = round(self.sim_time + STEP, 9)
+                        for body in self.bodies:
+                            body.step(self.sim_time)
+                    bodies = list(self.bodies)
+                if paused:
+                    anchor_wall, anchor_sim = time.monotonic(), self.sim_time
+                    self._stop.wait(0.02)
+                    continue
+                stamp = _stamp(self.sim_time)
+                self.clock_pub.publish(Clock(clock=stamp))
+                for body in bodies:
+                    body.publish(self.sim_time, stamp)
+                rtf = self.real_time_factor
+                if rtf > 0:
+                    delay = anchor_wall + (self.sim_time - anchor_sim) / rtf - time.monotonic()
+                    if delay > 0:
+                        self._stop.wait(delay)
+                    elif delay < -0.5:  # fell behind: do not race to catch up
+                        anchor_wall, anchor_sim = time.monotonic(), self.sim_time
+        except Exception as e:  # the context went away under a publish at shutdown
+            if self.context.ok():
+                self.get_logger().error(f'simulation stopped: {e}')
+
+    def _reset(self, kind: str) -> None:
+        if kind == 'simulation':
+            self.sim_time = 0.0
+        for body in self.bodies:
+            body.reset(kind)
 
     # -- the end -----------------------------------------------------------------------------
     def destroy_node(self) -> None:
@@ -468,6 +556,24 @@ class SimNode(Node):
         if self._thread.is_alive() and self._thread is not threading.current_thread():
             self._thread.join(2.0)
         super().destroy_node()
+
+
+def _transform(
+    parent: str,
+    child: str,
+    xyz: tuple[float, float, float],
+    rpy: tuple[float, float, float],
+    t: float,
+) -> TransformStamped:
+    msg = TransformStamped()
+    msg.header.stamp = _stamp(t)
+    msg.header.frame_id = parent
+    msg.child_frame_id = child
+    msg.transform.translation.x, msg.transform.translation.y, msg.transform.translation.z = xyz
+    q = quaternion_from_rpy(*rpy)
+    rot = msg.transform.rotation
+    rot.x, rot.y, rot.z, rot.w = q
+    return msg
 
 
 def _wrap(angle: float) -> float:

@@ -5,12 +5,20 @@ What the simulator needs is what Gazebo's plugins are told: the diff-drive plugi
 topics, frames, rate, acceleration) and each ray sensor (`ray`, `gpu_ray`, `lidar`,
 `gpu_lidar`: beams, angles, range, noise, rate, topic, frame), placed where the URDF's
 joints put its link. The footprint is the base link's collision geometry.
+
+A robot joins a running world as a `SpawnRequest` published (std_msgs/String, JSON) on
+`SPAWN_TOPIC`; the world answers on `SPAWNED_TOPIC` with the request's id. ros2lite's bundled
+interfaces have neither gazebo_msgs' SpawnEntity nor ros_gz_interfaces' SpawnEntity, and a
+topic of strings needs no new interface: the spawners speak it, users run the spawners.
 """
 
 from __future__ import annotations
 
+import json
 import math
+import uuid
 import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
 
 from ros2lite.sim.drive import DriveLimits, Pose2D
 from ros2lite.sim.errors import SimError
@@ -18,7 +26,47 @@ from ros2lite.sim.robots import Joint, RobotSpec
 from ros2lite.sim.sensors import LaserSpec
 from ros2lite.urdf import Robot, UrdfError, parse_urdf
 
-__all__ = ['spec_from_urdf']
+__all__ = ['SPAWNED_TOPIC', 'SPAWN_TOPIC', 'SpawnRequest', 'spec_from_urdf']
+
+SPAWN_TOPIC = '/gazebo/spawn_2d'
+SPAWNED_TOPIC = '/gazebo/spawned_2d'
+
+
+@dataclass(frozen=True)
+class SpawnRequest:
+    """One robot to add: its name, its URDF (after xacro), where, and its topics' namespace."""
+
+    name: str
+    urdf: str
+    x: float = 0.0
+    y: float = 0.0
+    yaw: float = 0.0
+    namespace: str = ''
+    id: str = field(default_factory=lambda: uuid.uuid4().hex)
+
+    def to_json(self) -> str:
+        return json.dumps(self.__dict__)
+
+    @classmethod
+    def from_json(cls, text: str) -> SpawnRequest:
+        """The request a spawner sent; a malformed one is a SimError."""
+        try:
+            data = json.loads(text)
+            request = cls(
+                name=str(data['name']),
+                urdf=str(data['urdf']),
+                x=float(data.get('x', 0.0)),
+                y=float(data.get('y', 0.0)),
+                yaw=float(data.get('yaw', 0.0)),
+                namespace=str(data.get('namespace', '')),
+                id=str(data.get('id', '')),
+            )
+        except (ValueError, KeyError, TypeError, AttributeError) as e:
+            raise SimError(f'not a spawn request: {e}') from None
+        if not request.name:
+            raise SimError('a spawn request needs an entity name')
+        return request
+
 
 _DIFF_DRIVE = ('diff_drive', 'DiffDrive')
 _RAYS = ('ray', 'gpu_ray', 'lidar', 'gpu_lidar')
@@ -32,12 +80,13 @@ def _number(element: ET.Element, path: str, default: float) -> float:
         raise SimError(f'<{path}> is not a number: {text!r}') from None
 
 
-def _remapped(plugin: ET.Element, default: str) -> str:
-    """The topic a gazebo_ros plugin's `~/out:=topic` remapping names, else `default`."""
+def _remapped(plugin: ET.Element, default: str, *names: str) -> str:
+    """The topic a gazebo_ros plugin's `<remapping>name:=topic</remapping>` gives one of
+    `names` (as `~/out`, `cmd_vel`, `odom`), else `default`."""
     for remap in plugin.iter('remapping'):
-        text = (remap.text or '').strip()
-        if text.startswith('~/out:='):
-            return text.split(':=', 1)[1]
+        key, sep, topic = (remap.text or '').strip().partition(':=')
+        if sep and key.strip() in names:
+            return topic.strip()
     return default
 
 
@@ -95,7 +144,7 @@ def spec_from_urdf(text: str, name: str = '') -> RobotSpec:
         link = gazebo.get('reference', base)
         ray_plugin = sensor.find('plugin')
         topic = sensor.findtext('topic') or (
-            _remapped(ray_plugin, 'scan') if ray_plugin is not None else 'scan'
+            _remapped(ray_plugin, 'scan', '~/out', 'out') if ray_plugin is not None else 'scan'
         )
         frame = (
             sensor.findtext('gz_frame_id')
@@ -152,9 +201,15 @@ def spec_from_urdf(text: str, name: str = '') -> RobotSpec:
         start=Pose2D(),
         joints=joints,
         laser=laser,
-        cmd_vel=(drive.findtext('command_topic') or drive.findtext('topic') or 'cmd_vel').strip(),
+        cmd_vel=(
+            drive.findtext('command_topic')
+            or drive.findtext('topic')
+            or _remapped(drive, 'cmd_vel', 'cmd_vel', '~/cmd_vel')
+        ).strip(),
         odom_topic=(
-            drive.findtext('odometry_topic') or drive.findtext('odom_topic') or 'odom'
+            drive.findtext('odometry_topic')
+            or drive.findtext('odom_topic')
+            or _remapped(drive, 'odom', 'odom', '~/odom')
         ).strip(),
         odom_frame=(
             drive.findtext('odometry_frame') or drive.findtext('frame_id') or 'odom'

@@ -7,23 +7,29 @@ import os
 import shutil
 import subprocess
 from collections.abc import Iterator
+from contextlib import contextmanager
 
 import pytest
 
 
-@pytest.fixture
-def xdisplay() -> Iterator[str]:
-    """`:N` of a fresh 24-bit Xvfb screen, gone after the test."""
+def xvfb_missing() -> str:
+    """Why no window can be tested here ('' when it can)."""
     try:
         import tkinter  # noqa: F401
     except ImportError:
-        pytest.skip('tkinter is not installed: no window to test (apt-get install python3-tk)')
+        return 'tkinter is not installed: no window to test (apt-get install python3-tk)'
     missing = [tool for tool in ('Xvfb', 'xwd') if shutil.which(tool) is None]
     if missing:
-        pytest.skip(
+        return (
             f'{" and ".join(missing)} not installed: window tests need a virtual X display '
             '(apt-get install xvfb x11-apps)'
         )
+    return ''
+
+
+@contextmanager
+def xvfb() -> Iterator[str]:
+    """`:N` of a fresh 24-bit Xvfb screen, gone after the block."""
     read_end, write_end = os.pipe()
     proc = subprocess.Popen(
         ['Xvfb', '-displayfd', str(write_end), '-screen', '0', '640x520x24', '-nolisten', 'tcp'],
@@ -40,3 +46,13 @@ def xdisplay() -> Iterator[str]:
     finally:
         proc.terminate()
         proc.wait(10)
+
+
+@pytest.fixture
+def xdisplay() -> Iterator[str]:
+    """`:N` of a fresh 24-bit Xvfb screen, gone after the test."""
+    why = xvfb_missing()
+    if why:
+        pytest.skip(why)
+    with xvfb() as display:
+        yield display

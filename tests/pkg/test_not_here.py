@@ -20,10 +20,10 @@ def test_no_row_names_a_package_ros2lite_has() -> None:
 
 
 def test_each_line_says_what_is_missing_and_what_to_use() -> None:
-    assert not_here_line('turtlebot3_gazebo') == (
-        "turtlebot3_gazebo belongs to Gazebo, a 3D simulator ros2lite does not run, and "
-        "ros2lite's 2D simulator is not here yet; for a robot to drive, use turtlesim: "
-        'ros2lite run turtlesim turtlesim_node'
+    assert not_here_line('gazebo_plugins') == (
+        "gazebo_plugins belongs to Gazebo, a 3D simulator ros2lite does not run; ros2lite's 2D "
+        "simulator stands in for the courses' robots (ros2lite launch turtlebot3_gazebo "
+        'empty_world.launch.py) and spawns a URDF robot (ros2lite run gazebo_ros spawn_entity.py)'
     )
     assert not_here_line('rviz2') == (
         'rviz2 belongs to rviz: ros2lite has no rviz2 and no browser scene view yet; to see '

@@ -24,9 +24,9 @@ def nowhere(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
 @pytest.mark.parametrize(
     ('args', 'first'),
     [
-        (('run', 'gazebo_ros', 'spawn_entity.py'), "Package 'gazebo_ros' not found"),
-        (('launch', 'turtlebot3_gazebo', 'turtlebot3_world.launch.py'), None),
-        (('launch', 'ros_gz_sim', 'gz_sim.launch.py'), None),
+        (('run', 'ros_gz_bridge', 'parameter_bridge'), "Package 'ros_gz_bridge' not found"),
+        (('launch', 'turtlebot3_simulations', 'x.launch.py'), None),
+        (('launch', 'gazebo_plugins', 'x.launch.py'), None),
         (('run', 'rviz2', 'rviz2'), "Package 'rviz2' not found"),
         (('pkg', 'prefix', 'rviz2'), 'Package not found'),
         (('pkg', 'executables', 'image_tools'), "Package 'image_tools' not found"),
@@ -49,7 +49,8 @@ def test_a_gazebo_interface(run: Callable[..., Result]) -> None:
 
 
 def test_a_launch_file_including_gazebo(run: Callable[..., Result], tmp_path: Path) -> None:
-    """The course's launch file finds gazebo_ros's share: the substitution fails with the line."""
+    """The course's launch file finds gazebo_plugins' share: the substitution fails with the
+    line."""
     launch = tmp_path / 'world.launch.py'
     launch.write_text(
         'from launch import LaunchDescription\n'
@@ -59,7 +60,7 @@ def test_a_launch_file_including_gazebo(run: Callable[..., Result], tmp_path: Pa
         'from launch_ros.substitutions import FindPackageShare\n\n\n'
         'def generate_launch_description():\n'
         '    gazebo = PathJoinSubstitution(\n'
-        "        [FindPackageShare('gazebo_ros'), 'launch', 'gazebo.launch.py']\n"
+        "        [FindPackageShare('gazebo_plugins'), 'launch', 'gazebo.launch.py']\n"
         '    )\n'
         '    source = PythonLaunchDescriptionSource(gazebo)\n'
         '    return LaunchDescription([IncludeLaunchDescription(source)])\n'
@@ -68,7 +69,7 @@ def test_a_launch_file_including_gazebo(run: Callable[..., Result], tmp_path: Pa
     assert result.code == 1
     assert result.out.splitlines()[-1] == (
         '[ERROR] [launch]: Caught exception in launch (see debug for traceback): '
-        f"Package 'gazebo_ros' not found; {not_here_line('gazebo_ros')}"
+        f"Package 'gazebo_plugins' not found; {not_here_line('gazebo_plugins')}"
     )
 
 

@@ -1,6 +1,7 @@
 """`ros2lite launch jackal_gazebo jackal_world.launch.py`: the Jackal in the race world (or
 `world_path:=<a .world file>`), on ros2lite's 2D simulator; the description published by
-robot_state_publisher when that package is installed, by the simulator otherwise."""
+robot_state_publisher when that package is installed, by the simulator otherwise; the top
+view window with a display unless gui:=false or headless:=true."""
 
 from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument
@@ -48,4 +49,6 @@ def generate_launch_description():
     ]
     if state_publisher is not None:
         actions.append(state_publisher)
-    return LaunchDescription(actions)
+    from ros2lite.bundled.simulator import view_actions
+
+    return LaunchDescription(actions + view_actions())

@@ -2,7 +2,8 @@
 launch file is included by br2_tiago's sim.launch.py. The arguments PAL's file takes for
 the arm, end effector, public simulation and so on are accepted and change nothing here:
 the 2D TIAGo is its base, laser, IMU and head camera. Velocity commands go through the
-robot's twist multiplexer (key_vel, joy_vel, nav_vel, ...), as on the real robot."""
+robot's twist multiplexer (key_vel, joy_vel, nav_vel, ...), as on the real robot. The top
+view window opens with a display unless gui:=false or headless:=true."""
 
 from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument
@@ -67,4 +68,6 @@ def generate_launch_description():
     actions.append(simulator)
     if state_publisher is not None:
         actions.append(state_publisher)
-    return LaunchDescription(actions)
+    from ros2lite.bundled.simulator import view_actions
+
+    return LaunchDescription(actions + view_actions())

@@ -1,7 +1,8 @@
 """`ros2lite launch turtlebot3_gazebo empty_world.launch.py`: TurtleBot3
 ($TURTLEBOT3_MODEL, burger by default) in the empty_world, on ros2lite's 2D simulator; the
 description published by robot_state_publisher when that package is installed, by the
-simulator otherwise."""
+simulator otherwise; the top view window with a display unless gui:=false or
+headless:=true."""
 
 from launch import LaunchDescription
 from launch.actions import DeclareLaunchArgument
@@ -61,4 +62,6 @@ def generate_launch_description():
     ]
     if state_publisher is not None:
         actions.append(state_publisher)
-    return LaunchDescription(actions)
+    from ros2lite.bundled.simulator import view_actions
+
+    return LaunchDescription(actions + view_actions())
