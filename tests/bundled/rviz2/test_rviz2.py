@@ -64,14 +64,23 @@ def browser() -> Iterator[Browser]:
         b.close()
 
 
-def centroid(image: Any, test: Any) -> tuple[float, float]:
+# the scene's part of the page: not the panel (right), the banner (top) or the axes (bottom left)
+SCENE_BOX = (100, 150, 560, H)
+
+
+def centroid(
+    image: Any, test: Any, box: tuple[int, int, int, int] | None = None
+) -> tuple[float, float]:
+    """The mean place of the pixels for which test(r, g, b), in the page's coordinates."""
+    left, top = (box[0], box[1]) if box else (0, 0)
+    region = image.crop(box) if box else image
     xs = ys = n = 0
-    for i, px in enumerate(image.get_flattened_data()):
+    for i, px in enumerate(region.get_flattened_data()):
         if test(*px):
-            xs += i % image.width
-            ys += i // image.width
+            xs += i % region.width
+            ys += i // region.width
             n += 1
-    return (xs / n, ys / n) if n else (math.nan, math.nan)
+    return (left + xs / n, top + ys / n) if n else (math.nan, math.nan)
 
 
 def _shot(url: str, name: str, ready: Any) -> Any:
@@ -86,23 +95,6 @@ def _shot(url: str, name: str, ready: Any) -> Any:
 
     wait_until(taken, timeout=120, interval=0.5)
     return shot[0]
-
-
-def test_zero_configuration_shows_scan_cloud_and_markers_where_tf_puts_them(
-    scene: Processes,
-) -> None:
-    url = _start_viewer(scene)
-    image = _shot(
-        url, 'zero_config.png', lambda im: all(count(im, c) > 200 for c in (red, blue, magenta))
-    )
-    ring, cloud, cube = centroid(image, red), centroid(image, blue), centroid(image, magenta)
-    # the camera looks from (-6, -6, 6) at map's origin: screen-right is map's (1, -1),
-    # screen-up (1, 1). The cloud (odom x/y -3..-2, odom = map) is nearest, below the centre;
-    # the cube (map -2, 2) is left; the ring, round the laser on base_link at (1.5, 1.5)
-    # through map -> odom -> base_link -> laser, is beyond the centre, above the other two.
-    assert cloud[1] > H / 2 > ring[1], (ring, cloud)
-    assert cube[0] < W / 2 - 80 < ring[0], (ring, cube)
-    assert abs(ring[0] - cloud[0]) < 60, (ring, cloud)  # both on the screen's middle line
 
 
 RVIZ_FILE = """\
@@ -210,3 +202,76 @@ def test_goal_pose_click_publishes_a_pose_stamped(
     assert abs(goal.pose.position.x) < 0.2 and abs(goal.pose.position.y) < 0.2, goal.pose
     yaw = 2 * math.atan2(goal.pose.orientation.z, goal.pose.orientation.w)
     assert abs(yaw - math.pi / 4) < 0.1, yaw
+
+
+def green(r: int, g: int, b: int) -> bool:
+    return g > 110 and r < 80 and b < 80
+
+
+def yellow(r: int, g: int, b: int) -> bool:
+    return r > 130 and g > 110 and b < 70 and abs(r - g) < 80
+
+
+def test_zero_configuration_shows_the_robot_scan_cloud_and_markers_and_follows_a_joint(
+    scene: Processes, processes: Processes, ros_context: Any, tmp_path: Path
+) -> None:
+    """Zero configuration, with a real robot_state_publisher on the test's URDF (green base,
+    yellow arm on a revolute joint) and /joint_states from a process the test controls: the
+    scan, cloud, markers and model stand where TF puts them, and a new joint angle swings
+    the arm in the next screenshot."""
+    import yaml
+
+    from tests.bundled.rviz2.joints import URDF
+
+    params = tmp_path / 'rsp.yaml'
+    params.write_text(
+        yaml.safe_dump({'robot_state_publisher': {'ros__parameters': {'robot_description': URDF}}})
+    )
+    processes.cli(
+        'run', 'robot_state_publisher', 'robot_state_publisher',
+        '--ros-args', '--params-file', str(params), cwd=ROOT,
+    )  # fmt: skip
+    joints = [sys.executable, '-m', 'tests.bundled.rviz2.joints']
+    swing = processes.start([*joints, '0.0'], cwd=ROOT)
+    url = _start_viewer(scene)
+    colours = (red, blue, magenta, green, yellow)
+    image = _shot(
+        url, 'zero_config.png', lambda im: all(count(im, c, SCENE_BOX) > 100 for c in colours)
+    )
+    ring, cloud, cube = (centroid(image, c, SCENE_BOX) for c in (red, blue, magenta))
+    # the camera looks from (-6, -6, 6) at map's origin: screen-right is map's (1, -1),
+    # screen-up (1, 1). The cloud (odom x/y -3..-2, odom = map) is nearest, below the centre;
+    # the cube (map -2, 2) is left; the ring, round the laser on base_link at (1.5, 1.5)
+    # through map -> odom -> base_link -> laser, is beyond the centre, above the other two.
+    assert cloud[1] > H / 2 > ring[1], (ring, cloud)
+    assert cube[0] < W / 2 - 80 < ring[0], (ring, cube)
+    assert abs(ring[0] - cloud[0]) < 60, (ring, cloud)  # both on the screen's middle line
+    base, arm = centroid(image, green, SCENE_BOX), centroid(image, yellow, SCENE_BOX)
+    # the robot stands on base_link, the laser's frame: inside the scan's ring
+    assert abs(base[0] - ring[0]) < 40 and abs(base[1] - ring[1]) < 40, (ring, base)
+    # the arm along base_link's +x: screen-right and up
+    assert arm[0] > base[0] + 15 and arm[1] < base[1], (base, arm)
+    processes.stop(swing)
+    processes.start([*joints, str(math.pi / 2)], cwd=ROOT)
+    from ros2lite.msgs.sensor_msgs.msg import JointState
+
+    # the new angle is on /joint_states (robot_state_publisher turns it into TF at once)
+    listener = Listener(ros_context, '/joint_states', JointState, 10)
+    try:
+        wait_until(
+            lambda: any(abs(m.position[0] - math.pi / 2) < 1e-6 for m in listener.messages),
+            timeout=30,
+        )
+    finally:
+        listener.stop()
+
+    def swung(im: Any) -> bool:
+        # (the arm hides part of the base's green, so the arm is compared with itself too)
+        a = centroid(im, yellow, SCENE_BOX)
+        return count(im, yellow, SCENE_BOX) > 100 and a[0] < min(base[0], arm[0] - 20)
+
+    after = _shot(url, 'robot_swung.png', swung)
+    # the arm along base_link's +y now: screen-left and up; the base stayed
+    base2, arm2 = centroid(after, green, SCENE_BOX), centroid(after, yellow, SCENE_BOX)
+    assert abs(base2[0] - base[0]) < 10 and abs(base2[1] - base[1]) < 10, (base, base2)
+    assert arm2[1] < base2[1], (base2, arm2)
