@@ -40,7 +40,7 @@ class HistoryBoundedPublisher:
         self._lock = threading.Lock()
         self._newest = 0.0  # monotonic time of the newest kept sample (0: none kept)
 
-    def put(self, payload: bytes, *, attachment: bytes | None = None) -> None:
+    def put(self, payload: bytes | zenoh.ZBytes, *, attachment: bytes | None = None) -> None:
         """Publish, keeping the sample for late joiners."""
         with self._lock:
             if self._cached is None:
