@@ -183,3 +183,28 @@ def test_topic_echo_through_the_router_gets_the_bytes(processes: Processes, pub_
     out, err = echo.communicate(timeout=30)
     assert echo.returncode == 0, err
     assert f'data: {text}' in out
+
+
+def test_a_context_opened_with_it_on_publishes_through_its_pool(
+    ros_router: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from ros2lite.context import Context
+    from ros2lite.transport.session import declare_publisher
+    from ros2lite.transport.shm import ShmPublisher, settings_of
+
+    monkeypatch.setenv('ZENOH_CONFIG_OVERRIDE', ON)
+    monkeypatch.setenv('ZENOH_SHM_ALLOC_SIZE', str(2 << 20))
+    ctx = Context()
+    ctx.init([])
+    session = ctx.require()
+    try:
+        assert settings_of(session).alloc_size == 2 << 20
+        from ros2lite.qos import QoSProfile
+
+        pub = declare_publisher(session, 'shm/ctx', QoSProfile(depth=1))
+        assert isinstance(pub, ShmPublisher)
+        pub.put(bytes(1 << 20), attachment=bytes(33))
+        pub.undeclare()
+    finally:
+        ctx.try_shutdown()
+    assert not settings_of(session).enabled  # forgotten with its session
