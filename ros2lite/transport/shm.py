@@ -91,7 +91,7 @@ class _Pool:
         self._provider: zenoh.shm.ShmProvider | None = None
         self._lock = threading.Lock()
 
-    def payload(self, data: bytes) -> zenoh.ZBytes | bytes:
+    def payload(self, data: bytes | bytearray | memoryview) -> zenoh.ZBytes | bytes:
         """`data` in a chunk of the pool, or `data` itself when the pool has no room."""
         with self._lock:
             if self._provider is None:
@@ -99,8 +99,9 @@ class _Pool:
             try:
                 chunk = self._provider.alloc(len(data), zenoh.shm.GarbageCollect())
             except zenoh.ZError:
-                return data
-        chunk[:] = data
+                return bytes(data)
+        # a chunk takes bytes or bytearray only, not a memoryview
+        chunk[:] = data if isinstance(data, (bytes, bytearray)) else bytes(data)
         return zenoh.ZBytes(chunk)
 
 
@@ -142,7 +143,9 @@ class ShmPublisher:
         self._pool = pool
         self._threshold = threshold
 
-    def put(self, payload: bytes, *, attachment: bytes | None = None) -> None:
+    def put(
+        self, payload: bytes | bytearray | memoryview, *, attachment: bytes | None = None
+    ) -> None:
         """Send `payload`, from shared memory when it is large enough and the pool has room."""
         if len(payload) >= self._threshold:
             self._inner(self._pool.payload(payload), attachment=attachment)
