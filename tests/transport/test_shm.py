@@ -208,3 +208,55 @@ def test_a_context_opened_with_it_on_publishes_through_its_pool(
     finally:
         ctx.try_shutdown()
     assert not settings_of(session).enabled  # forgotten with its session
+
+
+def test_the_hand_written_rmw_zenoh_peer_hears_a_publisher_with_it_on(
+    ros_router: str, alien_session: Any, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The alien peer of `tests/test_alien_peer.py` (keys spelled by hand) through the router
+    (shm off): each sample arrives whole, attachment and all, as rmw_zenoh would send it."""
+    import struct
+    import threading
+
+    from ros2lite.context import Context
+    from ros2lite.node import Node
+    from tests.test_alien_peer import STRING_HASH, STRING_TYPE, parse_cdr_string
+
+    monkeypatch.setenv('ZENOH_CONFIG_OVERRIDE', ON)
+    monkeypatch.setenv('ZENOH_SHM_MESSAGE_SIZE_THRESHOLD', '16')
+    ctx = Context()
+    ctx.init([])
+    got: list[tuple[bytes, bytes]] = []
+    cond = threading.Condition()
+
+    def on_sample(sample: Any) -> None:
+        with cond:
+            got.append((sample.payload.to_bytes(), sample.attachment.to_bytes()))
+            cond.notify_all()
+
+    d = ctx.domain_id
+    sub = alien_session.declare_subscriber(f'{d}/shm_alien/{STRING_TYPE}/{STRING_HASH}', on_sample)
+    token = alien_session.liveliness().declare_token(
+        f'@ros2_lv/{d}/{alien_session.info.zid()}/0/0/MS/%/%/alien_listener/%shm_alien/'
+        f'{STRING_TYPE}/{STRING_HASH}/::,10:,:,:,,'
+    )
+    try:
+        node = Node('shm_talker', context=ctx)
+        pub = node.create_publisher('std_msgs/msg/String', 'shm_alien', 10)
+        wait_until(lambda: pub.get_subscription_count() >= 1, timeout=15)
+        text = 'a String long enough for the shared-memory threshold'
+
+        def heard() -> bool:
+            pub.publish(pub.msg_type(data=text))
+            with cond:
+                return cond.wait_for(lambda: bool(got), 0.2)
+
+        wait_until(heard, timeout=15)
+        payload, att = got[0]
+        assert parse_cdr_string(payload) == text
+        assert len(att) == 33 and struct.unpack_from('<B', att, 16) == (16,)
+        assert att[17:] == pub.gid
+    finally:
+        token.undeclare()
+        sub.undeclare()
+        ctx.try_shutdown()
