@@ -306,6 +306,9 @@ class Context:
             session, self.session = self.session, None
             try:
                 session.close()
+                from ros2lite.transport.shm import forget
+
+                forget(session)  # its shared-memory pool goes with it
             finally:
                 # the last reference goes here, under the lock: zenoh lets go of the GIL
                 # while it drops a session, and a thread that is still inside zenoh when

@@ -66,7 +66,7 @@ class HistoryBoundedPublisher:
         self._bytes += size - pushed_out
         self._sizes.append(size)
 
-    def put(self, payload: bytes, *, attachment: bytes | None = None) -> None:
+    def put(self, payload: bytes | zenoh.ZBytes, *, attachment: bytes | None = None) -> None:
         """Publish, keeping the sample for late joiners."""
         with self._lock:
             if self._cached is None:

@@ -25,6 +25,7 @@ from ros2lite.transport.endpoints import endpoint_host_port, router_endpoint
 from ros2lite.transport.errors import RouterUnavailableError, SessionError, zerror_message
 from ros2lite.transport.handles import Session
 from ros2lite.transport.security import UNSECURED, Security, is_tls_endpoint
+from ros2lite.transport.shm import register, shm_settings
 
 __all__ = [
     "check_router",
@@ -69,6 +70,7 @@ def open_session(
                 ) from None
             raise RouterUnavailableError(endpoint, detail) from None
         raise SessionError(f"cannot open a Zenoh session: {detail}") from None
+    register(session, shm_settings(config, env))
     if not require_router:
         return session
     if not wait_for_router(session, timeout):

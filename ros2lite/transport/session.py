@@ -28,6 +28,7 @@ from ros2lite.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, Reliabilit
 from ros2lite.transport.handles import Handle, Payload, Sample, Session
 from ros2lite.transport.history import HistoryBoundedPublisher
 from ros2lite.transport.keys import liveliness_subscription_key
+from ros2lite.transport.shm import ShmPublisher, shm_publisher
 
 __all__ = [
     "Handle",
@@ -57,7 +58,7 @@ __all__ = [
 ]
 
 
-Publisher = zenoh.Publisher | HistoryBoundedPublisher
+Publisher = zenoh.Publisher | HistoryBoundedPublisher | ShmPublisher
 """A declared publisher: `.put(payload, attachment=…)` and `.undeclare()`."""
 
 
@@ -178,10 +179,12 @@ def declare_publisher(session: Session, key: str, qos: QoSProfile) -> Publisher:
 
         span = qos.lifespan
         lifespan = None if span.is_unspecified or span.is_infinite else span.nanoseconds / 1e9
-        return HistoryBoundedPublisher(make, lifespan, max(qos.depth, 1))
-    return as_zenoh(session).declare_publisher(
+        history = HistoryBoundedPublisher(make, lifespan, max(qos.depth, 1))
+        return shm_publisher(session, history.put, history.undeclare) or history
+    plain = as_zenoh(session).declare_publisher(
         key, reliability=reliability, congestion_control=congestion
     )
+    return shm_publisher(session, plain.put, plain.undeclare) or plain
 
 
 # subscribers declared per (session, key expression): an interrupt (put_local) reaches every

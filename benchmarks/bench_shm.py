@@ -1,0 +1,184 @@
+"""Shared memory (issue 38): 1 MiB `sensor_msgs/Image` and 4 MiB `sensor_msgs/PointCloud2`
+pub -> sub between two processes, today's path (shared memory off) against shared memory on,
+in the same run, next to raw zenoh-python with and without shared memory and a Python memcpy
+floor of the same size. Each figure is the median of ROUNDS interleaved rounds; MB/s received.
+
+The publisher sends as fast as it can (reliable, keep last 10: congestion drops what the link
+cannot take); the subscriber counts the payload bytes it got in WINDOW s after its first.
+ros2lite's subscriber deserializes each message (today: `to_bytes()` then CDR), raw zenoh's
+calls `to_bytes()` only, so the gap between the two is ros2lite's own cost.
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+from common import free_port, report, router_process
+
+ROUNDS = 3
+WINDOW = 1.5
+SIZES = {'image_1MiB': 1 << 20, 'cloud_4MiB': 4 << 20}
+COMPAT = Path(__file__).resolve().parent.parent / 'ros2lite' / 'compat'
+SHM_ON = 'transport/shared_memory/enabled=true'
+
+LITE = r'''
+import os, sys, time
+import rclpy
+from rclpy.qos import QoSProfile
+from sensor_msgs.msg import Image, PointCloud2
+role, size, window = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
+kind = Image if size <= (1 << 20) else PointCloud2
+rclpy.init()
+node = rclpy.create_node('shm_' + role)
+qos = QoSProfile(depth=10)
+if role == 'sub':
+    got = {'n': 0, 'bytes': 0, 't0': 0.0}
+    def on(msg):
+        if not got['t0']:
+            got['t0'] = time.perf_counter()
+            return
+        got['n'] += 1; got['bytes'] += len(msg.data)
+    node.create_subscription(kind, 'shm_flood', on, qos)
+    print('ready', flush=True)
+    while not got['t0'] or time.perf_counter() - got['t0'] < window:
+        rclpy.spin_once(node, timeout_sec=0.05)
+    print(got['bytes'] / (time.perf_counter() - got['t0']) / 1e6, flush=True)
+    os._exit(0)  # no session teardown while the flood goes on
+else:
+    pub = node.create_publisher(kind, 'shm_flood', qos)
+    msg = kind()
+    if kind is Image:
+        msg.height, msg.width, msg.encoding, msg.step = 512, 512, 'rgba8', 2048
+    else:
+        msg.height, msg.width, msg.point_step = 1, size // 16, 16
+        msg.row_step = size
+    msg.data = bytes(size)
+    print('ready', flush=True)
+    while True:
+        pub.publish(msg)
+'''
+
+RAW = r'''
+import os, sys, time, zenoh
+role, size, window, shm = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), sys.argv[4] == '1'
+link = '["%s"]' % sys.argv[5]  # the subscriber listens, the publisher connects: one link
+c = zenoh.Config()
+for k, v in (('mode', '"peer"'), ('connect/endpoints', link if role == 'pub' else '[]'),
+             ('listen/endpoints', link if role == 'sub' else '[]'),
+             ('scouting/multicast/enabled', 'false'),
+             ('transport/shared_memory/enabled', 'true' if shm else 'false')):
+    c.insert_json5(k, v)
+s = zenoh.open(c)
+if role == 'sub':
+    got = {'n': 0, 'bytes': 0, 't0': 0.0}
+    def on(sample):
+        data = sample.payload.to_bytes()
+        if not got['t0']:
+            got['t0'] = time.perf_counter(); return
+        got['n'] += 1; got['bytes'] += len(data)
+    sub = s.declare_subscriber('raw_flood', on)
+    print('ready', flush=True)
+    while not got['t0'] or time.perf_counter() - got['t0'] < window:
+        time.sleep(0.02)
+    print(got['bytes'] / (time.perf_counter() - got['t0']) / 1e6, flush=True)
+    os._exit(0)  # no session teardown while the flood goes on
+else:
+    pub = s.declare_publisher('raw_flood', reliability=zenoh.Reliability.RELIABLE)
+    data = bytes(size)
+    provider = zenoh.shm.ShmProvider.default_backend(48 << 20) if shm else None
+    print('ready', flush=True)
+    while True:
+        if provider is None:
+            pub.put(data)
+            continue
+        try:
+            chunk = provider.alloc(size, zenoh.shm.GarbageCollect())
+        except zenoh.ZError:
+            pub.put(data); continue
+        chunk[:] = data
+        pub.put(zenoh.ZBytes(chunk))
+'''
+
+
+def _start(code: str, *args: str, env: dict[str, str]) -> subprocess.Popen[str]:
+    proc = subprocess.Popen(
+        [sys.executable, '-c', code, *args], stdout=subprocess.PIPE, text=True, env=env
+    )
+    assert proc.stdout is not None
+    if proc.stdout.readline().strip() != 'ready':
+        proc.kill()
+        raise RuntimeError(f'bench_shm child {args} did not start')
+    return proc
+
+
+def _flow(code: str, size: int, env: dict[str, str], *extra: str) -> float:
+    sub = _start(code, 'sub', str(size), str(WINDOW), *extra, env=env)
+    pub = _start(code, 'pub', str(size), str(WINDOW), *extra, env=env)
+    try:
+        out, _ = sub.communicate(timeout=60)
+        return float(out.split()[-1])
+    finally:
+        pub.kill()
+        pub.wait()
+        if sub.poll() is None:
+            sub.kill()
+            sub.wait()
+
+
+def _link() -> str:
+    return f'tcp/127.0.0.1:{free_port()}'
+
+
+def _memcpy(size: int) -> float:
+    data = bytes(size)
+    n, t0 = 0, time.perf_counter()
+    while time.perf_counter() - t0 < 0.3:
+        bytearray(data)
+        n += 1
+    return n * size / (time.perf_counter() - t0) / 1e6
+
+
+VARIANTS = ('lite_today', 'lite_shm', 'raw_zenoh', 'raw_zenoh_shm', 'memcpy')
+
+
+def _measure(
+    variant: str, size: int, lite_off: dict[str, str], lite_on: dict[str, str], raw: dict[str, str]
+) -> float:
+    if variant == 'memcpy':
+        return _memcpy(size)
+    if variant.startswith('lite'):
+        return _flow(LITE, size, lite_on if variant == 'lite_shm' else lite_off)
+    return _flow(RAW, size, raw, '1' if variant == 'raw_zenoh_shm' else '0', _link())
+
+
+def bench_shm() -> None:
+    endpoint = f'tcp/127.0.0.1:{free_port()}'
+    base = {k: v for k, v in os.environ.items() if not k.startswith('ZENOH_')}
+    base.update(
+        ROS2LITE_ROUTER=endpoint,
+        ROUTER=endpoint,
+        ROS_DOMAIN_ID='198',
+        ROS2LITE_NO_DAEMON='1',
+        PYTHONPATH=str(COMPAT),
+    )
+    lite_off, lite_on = dict(base), {**base, 'ZENOH_CONFIG_OVERRIDE': SHM_ON}
+    figures: dict[str, list[float]] = {}
+    with router_process(endpoint):
+        for _ in range(ROUNDS):
+            for name, size in SIZES.items():
+                for variant in VARIANTS:
+                    run = _measure(variant, size, lite_off, lite_on, base)
+                    figures.setdefault(f'{name}_{variant}', []).append(run)
+    for name in SIZES:
+        today = statistics.median(figures[f'{name}_lite_today'])
+        for variant in VARIANTS:
+            value = statistics.median(figures[f'{name}_{variant}'])
+            report(f'shm_{name}_{variant}', value, 'MB/s', value / today if today else 0.0)
+
+
+BENCHES = {'shm': bench_shm}
