@@ -3,8 +3,8 @@
 Courses type lines for C++ nodes, Gazebo and rviz2. ros2lite runs Python nodes and bundles
 Python stand-ins for some C++ demos (:data:`ros2lite.pkg.executables.EQUIVALENTS`); for the
 rest, every lookup that fails (`run`, `launch`, `pkg`, `interface`, a launch file's
-`FindPackageShare`) ends in the one line this table gives. When a simulator or a viewer
-lands, its rows go (or say what now answers).
+`FindPackageShare`) ends in the one line this table gives. A package ros2lite bundles has
+no row (the 2D simulator's and the browser viewer's packages answer for themselves).
 """
 
 from __future__ import annotations
@@ -26,9 +26,9 @@ _SIMULATOR = (
     'empty_world.launch.py) and spawns a URDF robot (ros2lite run gazebo_ros spawn_entity.py)'
 )
 _VIEWER = (
-    '{package} belongs to rviz: ros2lite has no rviz2 and no browser scene view yet; to see '
-    'topics, TF and markers, run the Foxglove bridge (ros2lite run foxglove_bridge '
-    'foxglove_bridge) and open ws://localhost:8765 in Foxglove'
+    '{package} belongs to rviz\'s C++ plugins, which ros2lite does not load; ros2lite\'s rviz2 '
+    'shows the scene in a browser (ros2lite run rviz2 rviz2), or run the Foxglove bridge '
+    '(ros2lite run foxglove_bridge foxglove_bridge) and open ws://localhost:8765 in Foxglove'
 )
 _CPP = (
     '{package} is a C++ package, and ros2lite runs Python nodes; run it from a ROS 2 '
@@ -55,7 +55,7 @@ NOT_HERE: dict[str, str] = {
         _SIMULATOR,
     ),
     **dict.fromkeys(
-        ('rviz2', 'rviz', 'rviz_common', 'rviz_default_plugins', 'jackal_viz'), _VIEWER
+        ('rviz', 'rviz_common', 'rviz_default_plugins'), _VIEWER
     ),
     **dict.fromkeys(
         (

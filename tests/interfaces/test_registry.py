@@ -22,8 +22,8 @@ def make_pkg(root: Path, pkg: str, files: dict[str, str]) -> None:
 
 def test_bundled_packages_are_all_there() -> None:
     reg = registry.Registry([registry.BUNDLED])
-    assert len(reg.packages()) == 26
-    assert len(reg.all_interfaces()) == 238  # the reference set and nav_msgs/msg/Goals
+    assert len(reg.packages()) == 27  # the reference set, and rosbag2_interfaces for snapshots
+    assert len(reg.all_interfaces()) == 239  # and nav_msgs/msg/Goals, rosbag2's Snapshot
     assert 'action_tutorials_interfaces' in reg.packages()
     assert 'turtlesim_msgs' in reg.packages() and 'turtlesim' in reg.packages()
 

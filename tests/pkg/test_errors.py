@@ -64,9 +64,9 @@ def test_the_index_words_each_case(tmp_path: Path) -> None:
     assert str(index.not_found('broken')) == (
         f"Package 'broken' not found; {ws}/src/broken/package.xml:3: not valid XML: mismatched tag"
     )
-    gazebo = index.not_found('gazebo_ros', 'Package not found')
+    gazebo = index.not_found('gazebo_plugins', 'Package not found')
     assert isinstance(gazebo, NotHereError)
-    assert str(gazebo).startswith('Package not found; gazebo_ros belongs to Gazebo')
+    assert str(gazebo).startswith('Package not found; gazebo_plugins belongs to Gazebo')
     assert str(index.not_found('nowhere_at_all')) == "Package 'nowhere_at_all' not found"
     # a folder named otherwise: the name in the broken file still finds its line
     (ws / 'src' / 'repo').mkdir()

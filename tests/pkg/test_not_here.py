@@ -25,11 +25,13 @@ def test_each_line_says_what_is_missing_and_what_to_use() -> None:
         "simulator stands in for the courses' robots (ros2lite launch turtlebot3_gazebo "
         'empty_world.launch.py) and spawns a URDF robot (ros2lite run gazebo_ros spawn_entity.py)'
     )
-    assert not_here_line('rviz2') == (
-        'rviz2 belongs to rviz: ros2lite has no rviz2 and no browser scene view yet; to see '
-        'topics, TF and markers, run the Foxglove bridge (ros2lite run foxglove_bridge '
-        'foxglove_bridge) and open ws://localhost:8765 in Foxglove'
+    assert not_here_line('rviz_default_plugins') == (
+        "rviz_default_plugins belongs to rviz's C++ plugins, which ros2lite does not load; "
+        "ros2lite's rviz2 shows the scene in a browser (ros2lite run rviz2 rviz2), or run the "
+        'Foxglove bridge (ros2lite run foxglove_bridge foxglove_bridge) and open '
+        'ws://localhost:8765 in Foxglove'
     )
+    assert not_here_line('rviz2') is None  # bundled: the browser view
     assert not_here_line('image_tools') == (
         'image_tools is a C++ package, and ros2lite runs Python nodes; run it from a ROS 2 '
         'install, or use a Python package that does the same'

@@ -23,7 +23,7 @@ def test_list_sections(run: Run) -> None:
 
 def test_packages_and_package(run: Run) -> None:
     packages = run('interface', 'packages').out.splitlines()
-    assert len(packages) == 26 and packages == sorted(packages)
+    assert len(packages) == 27 and packages == sorted(packages)
     assert run('interface', 'packages', '-a').out.split() == [
         'action_tutorials_interfaces',
         'example_interfaces',

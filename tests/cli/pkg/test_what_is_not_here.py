@@ -1,4 +1,4 @@
-"""One clear line for what is not here (C++ packages and executables, Gazebo, rviz2), and
+"""One clear line for what is not here (C++ packages and executables, Gazebo, rviz's plugins), and
 the C++ demo package whose Python twin answers every verb as `run` does."""
 
 from __future__ import annotations
@@ -27,8 +27,8 @@ def nowhere(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
         (('run', 'ros_gz_bridge', 'parameter_bridge'), "Package 'ros_gz_bridge' not found"),
         (('launch', 'turtlebot3_simulations', 'x.launch.py'), None),
         (('launch', 'gazebo_plugins', 'x.launch.py'), None),
-        (('run', 'rviz2', 'rviz2'), "Package 'rviz2' not found"),
-        (('pkg', 'prefix', 'rviz2'), 'Package not found'),
+        (('run', 'rviz_default_plugins', 'x'), "Package 'rviz_default_plugins' not found"),
+        (('pkg', 'prefix', 'rviz_common'), 'Package not found'),
         (('pkg', 'executables', 'image_tools'), "Package 'image_tools' not found"),
         (('pkg', 'xml', 'examples_rclcpp_minimal_publisher'), 'Package not found'),
     ],
