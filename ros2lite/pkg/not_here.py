@@ -54,9 +54,7 @@ NOT_HERE: dict[str, str] = {
         ),
         _SIMULATOR,
     ),
-    **dict.fromkeys(
-        ('rviz', 'rviz_common', 'rviz_default_plugins'), _VIEWER
-    ),
+    **dict.fromkeys(('rviz', 'rviz_common', 'rviz_default_plugins'), _VIEWER),
     **dict.fromkeys(
         (
             'action_tutorials_cpp',
