@@ -310,6 +310,9 @@ class PulledSamples:
         except Exception:  # closed meanwhile
             raw = []
         real = list(filter(_attached, raw))
+        drained = foreign_unattached(raw)  # a peer's, still in the old ring: counted too
+        if drained and self._on_unattached is not None:
+            self._on_unattached(drained)
         self._pending.extend(real)  # the caller hands them out as its own
         old, self._sub, self._filter = self._sub, ring, sieve
         self._recv, self._try_recv = ring.handler.recv, ring.handler.try_recv
