@@ -315,13 +315,17 @@ def test_a_flood_of_samples_without_attachment_costs_a_reliable_subscription_not
 ) -> None:
     """R5-L2: a peer flooding the key with empty samples without an attachment must not push
     real messages out of a bounded queue: every message published while it floods arrives
-    (the executor takes each right after it is published, so KEEP_LAST drops none)."""
+    (the executor takes each right after it is published, so KEEP_LAST drops none). Checked
+    once the filter stands, after the first flood sample was seen: before it, the flood's
+    first ~depth samples share Zenoh's ring with real ones (a window of moments, in the
+    issue 39 note)."""
     got: list[str] = []
     sub = node.create_subscription(String, 'flooded', lambda m: got.append(m.data), depth)
     pub = node.create_publisher(String, 'flooded', depth)
     wait_matched(pub)
     flood = processes.python(FLOODER, sub._ep.key, '300000')
     assert flood.stdout.readline().strip() == 'flooding'
+    spin_until(executor, lambda: sub.bad_samples is not None, timeout=10)  # the filter stands
     sent = 0
     while flood.poll() is None and sent < 3000:
         pub.publish(String(data=str(sent)))

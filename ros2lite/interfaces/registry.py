@@ -334,8 +334,9 @@ def default_registry() -> Registry:
     return reg
 
 
-def reload_registry() -> Registry:
-    """Re-read the package index (new classes are built afresh)."""
+def reload_registry(registry: Registry | None = None) -> Registry:
+    """Re-read the package index (new classes are built afresh), or put `registry` back (a
+    test that changed the search path for a while: classes made before stay the ones used)."""
     global _DEFAULT
-    _DEFAULT = Registry()
+    _DEFAULT = Registry() if registry is None else registry
     return _DEFAULT

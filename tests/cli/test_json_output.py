@@ -82,8 +82,9 @@ with ros2lite.init(args=sys.argv):
 @pytest.fixture(scope='module')
 def graph(ros_router: str) -> Iterator[str]:
     """The shared node, and test_msgs on the interface path of this process and its CLIs."""
-    from ros2lite.interfaces.registry import reload_registry
+    from ros2lite.interfaces.registry import default_registry, reload_registry
 
+    before = default_registry()  # put back after: later tests hold its classes
     saved = os.environ.get('ROS2LITE_INTERFACE_PATH')
     os.environ['ROS2LITE_INTERFACE_PATH'] = DATA
     reload_registry()
@@ -109,7 +110,7 @@ def graph(ros_router: str) -> Iterator[str]:
             os.environ.pop('ROS2LITE_INTERFACE_PATH', None)
         else:
             os.environ['ROS2LITE_INTERFACE_PATH'] = saved
-        reload_registry()
+        reload_registry(before)
 
 
 def jq(text: str, program: str = '.') -> list[object]:

@@ -268,6 +268,8 @@ def test_odometry_integrates_the_commanded_arc(processes: Any, ros_context: Any)
 
     try:
         spin_until(lambda: last, 20)
+        # odometry flowing does not mean the simulator hears us yet: one command, once heard
+        spin_until(lambda: pub.get_subscription_count() > 0, 20)
         move = Twist()
         move.linear.x, move.angular.z = 0.2, 0.4
         t0 = stamp()
