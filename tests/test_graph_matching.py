@@ -145,7 +145,11 @@ def test_counts_and_matched_events_on_a_live_graph(ros_context: Any, ros_router:
 
         def all_matched() -> bool:
             peer_executor.spin_once(timeout_sec=0)
-            return all(matched[f'p{i}'] and matched[f's{i}'] for i in range(len(PAIRS)))
+            # the Int32 one's token may come after every String pair has matched
+            return (
+                all(matched[f'p{i}'] and matched[f's{i}'] for i in range(len(PAIRS)))
+                and node.count_subscribers('pair0') == 2
+            )
 
         spin_until(executor, all_matched, timeout=15)
         for i, (label, _, _) in enumerate(PAIRS):

@@ -45,8 +45,8 @@ import contextlib
 import itertools
 import threading
 import time
-from collections import deque
-from collections.abc import Callable, Sequence
+from collections import Counter, deque
+from collections.abc import Callable, MutableSequence, Sequence
 from itertools import islice
 from operator import attrgetter
 from typing import TYPE_CHECKING
@@ -91,7 +91,8 @@ class _Filter:
     are counted and dropped here, before any bounded queue; real ones and our interrupts go on
     to the subscription's own ring through a session-local publisher (no copy: the payload is
     Zenoh's). While the ring is being switched over, samples are held, and those the old ring
-    already held dropped (by attachment and payload: the same sample carries the same)."""
+    already held dropped (by attachment and payload: the same sample carries the same); a
+    peer's unattached ones of that moment are counted once, whichever ring heard them."""
 
     def __init__(
         self, session: Session, ring_key: str, on_unattached: Callable[[int], None] | None
@@ -102,6 +103,8 @@ class _Filter:
         self._counted = 0
         self._lock = threading.Lock()
         self._held: list[Sample] | None = []
+        # payloads of a peer's unattached samples while held: the old ring may hold them too
+        self._held_foreign: Counter[bytes] = Counter()
         # (attachment, payload) of what the old ring held, until a second after start()
         self._seen: set[tuple[bytes, bytes]] = set()
         self._seen_until = 0.0
@@ -113,6 +116,11 @@ class _Filter:
             if is_interrupt(sample.payload):
                 self._publisher.put(sample.payload)
                 return
+            if self._held is not None:
+                with self._lock:
+                    if self._held is not None and len(self._held_foreign) < _CAPACITY:
+                        self._held_foreign[sample.payload.to_bytes()] += 1
+                        return
             self._counted += 1
             self._foreign += 1
             if self._counted == 1 or self._foreign >= _REPORT_EVERY:
@@ -149,10 +157,17 @@ class _Filter:
         if n and self._report is not None:
             self._report(n)
 
-    def start(self, drained: Sequence[Sample]) -> None:
-        """The old ring is drained (`drained`, what it held): pass on what was held
-        meanwhile, save those."""
+    def start(self, drained: Sequence[Sample], drained_foreign: Sequence[bytes] = ()) -> None:
+        """The old ring is drained (`drained`, what it held; `drained_foreign`, the payloads
+        of a peer's unattached samples among them, counted by the caller): pass on what was
+        held meanwhile, save those, and count the unattached ones the old ring did not have."""
         with self._lock:
+            held_foreign, self._held_foreign = self._held_foreign, Counter()
+            held_foreign.subtract(drained_foreign)
+            new = sum(n for n in held_foreign.values() if n > 0)
+            if new:
+                self._counted += new
+                self._foreign += new
             self._seen = {
                 (attachment.to_bytes(), sample.payload.to_bytes())
                 for sample in drained
@@ -164,11 +179,30 @@ class _Filter:
                 attachment = sample.attachment
                 if attachment is not None and not self._duplicate(sample, attachment):
                     self._publisher.put(sample.payload, attachment=attachment)
+        self.flush()
 
     def undeclare(self) -> None:
         """Stop passing on (after its subscriber is undeclared) and report the rest."""
         undeclare_quietly(self._publisher)
         self.flush()
+
+
+def _until_closed(try_recv: Callable[[], Sample | None]) -> list[Sample]:
+    """What an undeclared subscriber's channel still holds, read until it says it is closed
+    (Zenoh closes it once no delivery to it is under way any more; a second at most)."""
+    out: list[Sample] = []
+    deadline = time.monotonic() + 1.0
+    while True:
+        try:
+            sample = try_recv()
+        except Exception:  # closed, and empty
+            return out
+        if sample is not None:
+            out.append(sample)
+        elif time.monotonic() > deadline:
+            return out
+        else:
+            time.sleep(0.0005)
 
 
 class PulledSamples:
@@ -248,12 +282,13 @@ class PulledSamples:
             recv, try_recv = self._recv, self._try_recv
             try:
                 sample = recv()  # GIL released while the channel is empty
+                real: list[Sample]
                 if sample.attachment:
                     real = [sample]
                 else:  # an interrupt left over, or not a ROS message (a flood?)
                     batch = [sample, *islice(iter(try_recv, None), _DRAIN)]
                     real = list(filter(_attached, batch))
-                    self._unattached(batch)
+                    self._unattached(batch, real)
                     if not real and not pending:
                         continue
             except Exception:
@@ -279,23 +314,24 @@ class PulledSamples:
             self._kept = False
         self._rearm.release()
 
-    def _unattached(self, samples: Sequence[Sample]) -> bool:
+    def _unattached(self, samples: Sequence[Sample], after: MutableSequence[Sample]) -> bool:
         """Whoever owns the channel: samples without an attachment among `samples`. Our
         interrupts go unheard; a peer's are told to `on_unattached`, and the first put the
-        filter in front of the ring (True: the channel changed)."""
+        filter in front of the ring (True: the channel changed), the real samples left in the
+        old ring appended to `after` (they came after `samples`)."""
         foreign = foreign_unattached(samples)
         if not foreign:
             return False
         changed = self._filter is None
         if changed:  # first: the ring's real samples are being pushed out meanwhile
-            self._filter_from_now()
+            self._filter_from_now(after)
         if self._on_unattached is not None:
             self._on_unattached(foreign)
         return changed
 
-    def _filter_from_now(self) -> None:
+    def _filter_from_now(self, into: MutableSequence[Sample]) -> None:
         """The owner of the channel: move the ring behind a filter (see _Filter). The filter
-        hears the key before the old ring is drained, and drops what that held."""
+        hears the key before the old ring is drained (into `into`), and drops what that held."""
         if self._closed:
             return
         session, qos = self._session, self._qos
@@ -305,20 +341,36 @@ class PulledSamples:
         # the old subscriber had already
         sieve.subscriber = declare_filter(session, self._key, qos, sieve)
         ring = declare_subscriber(session, ring_key, qos, self._channel(), local_only=True)
-        try:
-            raw = list(islice(iter(self._try_recv, None), self._size))
-        except Exception:  # closed meanwhile
-            raw = []
-        real = list(filter(_attached, raw))
-        drained = foreign_unattached(raw)  # a peer's, still in the old ring: counted too
-        if drained and self._on_unattached is not None:
-            self._on_unattached(drained)
-        self._pending.extend(real)  # the caller hands them out as its own
-        old, self._sub, self._filter = self._sub, ring, sieve
+        old, old_try_recv = self._sub, self._try_recv
+        self._sub, self._filter = ring, sieve
         self._recv, self._try_recv = ring.handler.recv, ring.handler.try_recv
         self._ring_key = ring_key
-        sieve.start(real)
-        undeclare_subscriber(session, self._key, old)
+        if self._depth is None:
+            # undeclared first, then read until closed: a delivery already under way when
+            # the filter came (a put routed before it) still lands in the old channel, kept
+            undeclare_subscriber(session, self._key, old)
+            raw = _until_closed(old_try_recv)
+        else:
+            # Zenoh deletes a ring with what it holds when its subscriber goes, so it is read
+            # before, twice: a delivery still under way after that is lost (KEEP_LAST only,
+            # and only at this moment)
+            raw = []
+            with contextlib.suppress(Exception):  # closed meanwhile (undeclared)
+                raw += islice(iter(old_try_recv, None), self._size)
+                time.sleep(0.001)
+                raw += islice(iter(old_try_recv, None), self._size)
+            undeclare_subscriber(session, self._key, old)
+        real = list(filter(_attached, raw))
+        # a peer's, still in the old ring: counted too (the filter counts only the others)
+        drained = [
+            sample.payload.to_bytes()
+            for sample in raw
+            if sample.attachment is None and not is_interrupt(sample.payload)
+        ]
+        if drained and self._on_unattached is not None:
+            self._on_unattached(len(drained))
+        into.extend(real)  # the caller hands them out as its own, after what it read
+        sieve.start(real, drained)
 
     def _pull(self, limit: int) -> None:
         """Consumer thread, while it owns the channel: move up to what `limit` needs into
@@ -337,7 +389,7 @@ class PulledSamples:
         attached = list(filter(_attached, raw))
         pending.extend(attached)
         if len(attached) != len(raw):
-            self._unattached(raw)
+            self._unattached(raw, pending)
         if len(raw) <= want:  # try_recv found it empty
             self._armed = True
             self._dry = True
@@ -387,8 +439,8 @@ class PulledSamples:
         real = list(filter(_attached, batch))
         foreign = foreign_unattached(batch)
         if foreign:
-            self._unattached(batch)
-        if real or self._pending:  # (the filter may have drained the old ring into it)
+            self._unattached(batch, real)
+        if real or self._pending:
             self._arrived(real)
             return True
         return False if foreign < len(batch) else None
