@@ -1,7 +1,10 @@
 """Shared memory (issue 38): 1 MiB `sensor_msgs/Image` and 4 MiB `sensor_msgs/PointCloud2`
 pub -> sub between two processes, today's path (shared memory off) against shared memory on,
-in the same run, next to raw zenoh-python with and without shared memory and a Python memcpy
-floor of the same size. Each figure is the median of ROUNDS interleaved rounds; MB/s received.
+in the same run, next to raw zenoh-python with and without shared memory, a Python memcpy
+floor of the same size, and the same rclpy program on real rclpy + Fast DDS (its shared-memory
+transport on, as it is by default on one host; confined to loopback as bench_vs_rclpy does it,
+skipped with a line when that venv cannot be had). Each figure is the median of ROUNDS
+interleaved rounds; MB/s received.
 
 The publisher sends as fast as it can (reliable, keep last 10: congestion drops what the link
 cannot take); the subscriber counts the payload bytes it got in WINDOW s after its first.
@@ -12,12 +15,15 @@ calls `to_bytes()` only, so the gap between the two is ros2lite's own cost.
 from __future__ import annotations
 
 import os
+import signal
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
+from bench_vs_rclpy import Unavailable, confined, real_domain, real_rclpy_python
 from common import free_port, report, router_process
 
 ROUNDS = 3
@@ -105,10 +111,10 @@ else:
 '''
 
 
-def _start(code: str, *args: str, env: dict[str, str]) -> subprocess.Popen[str]:
-    proc = subprocess.Popen(
-        [sys.executable, '-c', code, *args], stdout=subprocess.PIPE, text=True, env=env
-    )
+def _start(
+    code: str, *args: str, env: dict[str, str], python: str = sys.executable
+) -> subprocess.Popen[str]:
+    proc = subprocess.Popen([python, '-c', code, *args], stdout=subprocess.PIPE, text=True, env=env)
     assert proc.stdout is not None
     if proc.stdout.readline().strip() != 'ready':
         proc.kill()
@@ -116,9 +122,11 @@ def _start(code: str, *args: str, env: dict[str, str]) -> subprocess.Popen[str]:
     return proc
 
 
-def _flow(code: str, size: int, env: dict[str, str], *extra: str) -> float:
-    sub = _start(code, 'sub', str(size), str(WINDOW), *extra, env=env)
-    pub = _start(code, 'pub', str(size), str(WINDOW), *extra, env=env)
+def _flow(
+    code: str, size: int, env: dict[str, str], *extra: str, python: str = sys.executable
+) -> float:
+    sub = _start(code, 'sub', str(size), str(WINDOW), *extra, env=env, python=python)
+    pub = _start(code, 'pub', str(size), str(WINDOW), *extra, env=env, python=python)
     try:
         out, _ = sub.communicate(timeout=60)
         return float(out.split()[-1])
@@ -143,14 +151,21 @@ def _memcpy(size: int) -> float:
     return n * size / (time.perf_counter() - t0) / 1e6
 
 
-VARIANTS = ('lite_today', 'lite_shm', 'raw_zenoh', 'raw_zenoh_shm', 'memcpy')
+VARIANTS = ('lite_today', 'lite_shm', 'raw_zenoh', 'raw_zenoh_shm', 'memcpy', 'real_rclpy')
 
 
 def _measure(
-    variant: str, size: int, lite_off: dict[str, str], lite_on: dict[str, str], raw: dict[str, str]
-) -> float:
+    variant: str,
+    size: int,
+    lite_off: dict[str, str],
+    lite_on: dict[str, str],
+    raw: dict[str, str],
+    real: tuple[str, dict[str, str]] | None,
+) -> float | None:
     if variant == 'memcpy':
         return _memcpy(size)
+    if variant == 'real_rclpy':
+        return None if real is None else _flow(LITE, size, real[1], python=real[0])
     if variant.startswith('lite'):
         return _flow(LITE, size, lite_on if variant == 'lite_shm' else lite_off)
     return _flow(RAW, size, raw, '1' if variant == 'raw_zenoh_shm' else '0', _link())
@@ -167,18 +182,112 @@ def bench_shm() -> None:
         PYTHONPATH=str(COMPAT),
     )
     lite_off, lite_on = dict(base), {**base, 'ZENOH_CONFIG_OVERRIDE': SHM_ON}
+    real: tuple[str, dict[str, str]] | None
+    try:
+        real = real_rclpy_python(), confined(dict(os.environ), real_domain())
+    except Unavailable as e:
+        print(f'bench_shm: no real rclpy column: {e}', file=sys.stderr)
+        real = None
     figures: dict[str, list[float]] = {}
     with router_process(endpoint):
         for _ in range(ROUNDS):
             for name, size in SIZES.items():
                 for variant in VARIANTS:
-                    run = _measure(variant, size, lite_off, lite_on, base)
-                    figures.setdefault(f'{name}_{variant}', []).append(run)
+                    run = _measure(variant, size, lite_off, lite_on, base, real)
+                    if run is not None:
+                        figures.setdefault(f'{name}_{variant}', []).append(run)
     for name in SIZES:
         today = statistics.median(figures[f'{name}_lite_today'])
         for variant in VARIANTS:
+            if f'{name}_{variant}' not in figures:
+                continue
             value = statistics.median(figures[f'{name}_{variant}'])
             report(f'shm_{name}_{variant}', value, 'MB/s', value / today if today else 0.0)
 
 
-BENCHES = {'shm': bench_shm}
+CAMERA = r'''
+import sys, time
+import rclpy
+from sensor_msgs.msg import PointCloud2
+topic, n, size = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+rclpy.init()
+node = rclpy.create_node('shm_camera')
+pub = node.create_publisher(PointCloud2, topic, 10)
+msg = PointCloud2()
+msg.height, msg.width, msg.point_step, msg.row_step = 1, size // 16, 16, size
+msg.data = bytes(size)
+while pub.get_subscription_count() == 0:
+    rclpy.spin_once(node, timeout_sec=0.05)
+time.sleep(0.5)  # the recorder subscribes, then discovers: both done
+start = time.perf_counter()
+for i in range(n):
+    pub.publish(msg)
+    time.sleep(max(0.0, start + (i + 1) / 30 - time.perf_counter()))
+print('sent', flush=True)
+'''
+CAMERA_N = 90  # 3 s of a 30 Hz camera
+
+
+def _record(env: dict[str, str], directory: str, n: int) -> tuple[int, float]:
+    """(messages in the bag, CPU seconds of the `bag record` process) for one recording of
+    `n` 4 MiB clouds at 30 Hz (n = 0: the recorder alone, its start-up and idle cost)."""
+    from ros2lite.bag import Reader
+
+    topic = f'/shm_camera_{time.monotonic_ns()}'
+    bag = os.path.join(directory, f'bag_{time.monotonic_ns()}')
+    record = [sys.executable, '-m', 'ros2lite', 'bag', 'record', topic, '-o', bag]
+    recorder = subprocess.Popen(record, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    camera = None
+    if n:
+        args = [sys.executable, '-c', CAMERA, topic, str(n), str(4 << 20)]
+        camera = subprocess.Popen(args, env=env, stdout=subprocess.PIPE, text=True)
+        camera.communicate(timeout=120)
+    else:
+        time.sleep(1.0 + CAMERA_N / 30)  # as long as a recording lasts
+    time.sleep(1.0)  # the last ones reach the disk
+    recorder.send_signal(signal.SIGINT)
+    _, status, usage = os.wait4(recorder.pid, 0)
+    recorder.returncode = os.waitstatus_to_exitcode(status)
+    cpu = usage.ru_utime + usage.ru_stime
+    if not n:
+        return 0, cpu
+    with Reader(bag) as reader:
+        return reader.message_count, cpu
+
+
+def bench_shm_record() -> None:
+    """`bag record` of a 30 Hz 4 MiB camera, shared memory off and on: the fewest messages a
+    round kept (of CAMERA_N), and the recorder's CPU per message (its idle run's CPU taken off)."""
+    endpoint = f'tcp/127.0.0.1:{free_port()}'
+    base = {k: v for k, v in os.environ.items() if not k.startswith('ZENOH_')}
+    base.update(
+        ROS2LITE_ROUTER=endpoint,
+        ROUTER=endpoint,
+        ROS_DOMAIN_ID='197',
+        ROS2LITE_NO_DAEMON='1',
+        PYTHONPATH=str(COMPAT),
+    )
+    envs = {'off': dict(base), 'on': {**base, 'ZENOH_CONFIG_OVERRIDE': SHM_ON}}
+    cpu: dict[str, list[float]] = {k: [] for k in envs}
+    idle: dict[str, list[float]] = {k: [] for k in envs}
+    kept: dict[str, list[int]] = {k: [] for k in envs}
+    with router_process(endpoint), tempfile.TemporaryDirectory() as tmp:
+        for _ in range(ROUNDS):
+            for mode, env in envs.items():
+                count, seconds = _record(env, tmp, CAMERA_N)
+                kept[mode].append(count)
+                cpu[mode].append(seconds)
+                idle[mode].append(_record(env, tmp, 0)[1])
+    per = {
+        mode: (statistics.median(cpu[mode]) - statistics.median(idle[mode])) / CAMERA_N * 1e3
+        for mode in envs
+    }
+    for mode in envs:  # a KEEP_LAST publisher drops what a busy link cannot take (rmw_zenoh)
+        report(
+            f'shm_record_camera_kept_{mode}', min(kept[mode]), 'msgs', min(kept[mode]) / CAMERA_N
+        )
+    report('shm_record_camera_cpu_per_msg_off', per['off'], 'ms', 1.0)
+    report('shm_record_camera_cpu_per_msg_on', per['on'], 'ms', per['on'] / per['off'])
+
+
+BENCHES = {'shm': bench_shm, 'shm_record': bench_shm_record}
