@@ -309,7 +309,7 @@ def test_receiving_strategies(node: Node, executor: SingleThreadedExecutor) -> N
     assert delivered == [interfaces.serialize(String(data=f'{i}')) for i in (0, 2)]
 
 
-@pytest.mark.parametrize('depth', [100])
+@pytest.mark.parametrize('depth', [10, 100])
 def test_a_flood_of_samples_without_attachment_costs_a_reliable_subscription_nothing(
     processes: Any, node: Node, executor: SingleThreadedExecutor, depth: int
 ) -> None:
