@@ -18,7 +18,7 @@ import random
 import threading
 import time
 from dataclasses import asdict, dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 from ros2lite.msgs.builtin_interfaces.msg import Time
 from ros2lite.msgs.geometry_msgs.msg import TransformStamped, Twist, TwistStamped
@@ -40,6 +40,7 @@ from ros2lite.tf2.math import qmul, quaternion_from_rpy
 
 if TYPE_CHECKING:
     from ros2lite.publisher import Publisher
+    from ros2lite.sim.world import Grid
 
 __all__ = ['STEP', 'Settings', 'SimNode']
 
@@ -86,12 +87,23 @@ class Settings:
     scan_rate: float = 0.0  # Hz; <= 0: the robot's laser's own
 
 
-class _Body:
+class Stage(Protocol):
+    """What a body reads of the world it is in (the simulator node is one): the lock the
+    physics thread steps under, the grid, sim time, and the `/tf` publisher bodies share."""
+
+    lock: threading.Lock
+    world: Grid
+    sim_time: float
+    tf_pub: Publisher[TFMessage]
+
+
+class Body:
     """One robot in the world: its drive, its inputs and outputs, and when each is due."""
 
     def __init__(
         self,
-        node: SimNode,
+        node: Node,
+        stage: Stage,
         spec: RobotSpec,
         start: Pose2D,
         seed: int | None,
@@ -100,6 +112,7 @@ class _Body:
         publish_robot_state: bool = False,
     ) -> None:
         self.node = node
+        self.stage = stage
         self.spec = spec
         self.namespace = namespace.strip('/')
         self.base = Base(spec.limits, start, seed)
@@ -117,7 +130,7 @@ class _Body:
 
     # -- set-up ------------------------------------------------------------------------------
     def _make_interfaces(self) -> None:
-        spec, node, topic = self.spec, self.node, self.topic
+        spec, node, stage, topic = self.spec, self.node, self.stage, self.topic
         self.scan_pub = node.create_publisher(
             LaserScan, topic(spec.laser.topic), qos_profile_sensor_data
         )
@@ -125,7 +138,7 @@ class _Body:
             node.create_publisher(Odometry, topic(name), 10)
             for name in (spec.odom_topic, *spec.odom_copies)
         ]
-        self.tf_pub = node.tf_pub
+        self.tf_pub = stage.tf_pub
         self.joints_pub = node.create_publisher(JointState, topic('joint_states'), 10)
         self.imu_pubs: list[Publisher[Imu]] = []
         if spec.imu is not None:
@@ -191,8 +204,8 @@ class _Body:
         if not (math.isfinite(linear) and math.isfinite(angular)):
             self.node.get_logger().warn('ignoring a velocity command that is not finite')
             return
-        with self.node.lock:
-            now = self.node.sim_time
+        with self.stage.lock:
+            now = self.stage.sim_time
             priority, timeout, _, _, _ = self._mux[name]
             self._mux[name] = (priority, timeout, now, linear, angular)
             for other, (p, t, heard, _, _) in self._mux.items():
@@ -203,8 +216,8 @@ class _Body:
 
     # -- the physics thread ------------------------------------------------------------------
     def step(self, now: float) -> None:
-        """One physics step (under the node's lock); a collision is said once."""
-        if self.base.step(STEP, now, self.node.world):
+        """One physics step (under the stage's lock); a collision is said once."""
+        if self.base.step(STEP, now, self.stage.world):
             p = self.base.pose
             self.node.get_logger().warn(
                 f'{self.spec.name} hit an obstacle at ({p.x:.2f}, {p.y:.2f}): stopped'
@@ -301,7 +314,7 @@ class _Body:
 
     def _publish_scan(self, stamp: Time) -> None:
         spec = self.spec.laser
-        with self.node.lock:
+        with self.stage.lock:
             pose = Pose2D(self.base.pose.x, self.base.pose.y, self.base.pose.yaw)
         msg = LaserScan()
         msg.header.stamp = stamp
@@ -313,7 +326,7 @@ class _Body:
         msg.scan_time = 0.0
         msg.range_min = spec.range_min
         msg.range_max = spec.range_max
-        msg.ranges = scan(self.node.world, self._tables, pose.x, pose.y, pose.yaw, self.rng)
+        msg.ranges = scan(self.stage.world, self._tables, pose.x, pose.y, pose.yaw, self.rng)
         msg.intensities = [0.0] * spec.samples
         self.scan_pub.publish(msg)
 
@@ -368,7 +381,7 @@ class _Body:
         msg.width, msg.height = spec.width, spec.height
         msg.encoding = 'rgb8'
         msg.step = spec.width * 3
-        msg.data = render_camera(self.node.world, spec, pose.x, pose.y, pose.yaw)
+        msg.data = render_camera(self.stage.world, spec, pose.x, pose.y, pose.yaw)
         self.image_pub.publish(msg)
 
 
@@ -388,7 +401,7 @@ class SimNode(Node):
         self._reset_request: str | None = None
         self._stop = threading.Event()
         self._seed = None if chosen.seed < 0 else chosen.seed
-        self.bodies: list[_Body] = []
+        self.bodies: list[Body] = []
         self.clock_pub = self.create_publisher(Clock, '/clock', 10)
         self.tf_pub = self.create_publisher(TFMessage, '/tf', 100)
         self.create_service(Empty, '/reset_simulation', self._on_reset_simulation)
@@ -421,7 +434,9 @@ class SimNode(Node):
             spec.start.y if math.isnan(chosen.y_pose) else chosen.y_pose,
             chosen.yaw,
         )
-        body = _Body(self, spec, start, self._seed, publish_robot_state=chosen.publish_robot_state)
+        body = Body(
+            self, self, spec, start, self._seed, publish_robot_state=chosen.publish_robot_state
+        )
         self.bodies.append(body)
         self.get_logger().info(spec.banner)
         self.get_logger().info(f'{spec.name} at ({start.x:.2f}, {start.y:.2f})')
@@ -475,7 +490,7 @@ class SimNode(Node):
             raise SimError(f'an entity named {request.name!r} is already in the world')
         spec = replace(spec_from_urdf(request.urdf, request.name), start=Pose2D())
         start = Pose2D(request.x, request.y, request.yaw)
-        body = _Body(self, spec, start, self._seed, namespace=request.namespace)
+        body = Body(self, self, spec, start, self._seed, namespace=request.namespace)
         with self.lock:
             self.bodies.append(body)
         self.get_logger().info(
