@@ -22,6 +22,7 @@ from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.msgs.tf2_msgs.msg import TFMessage
 from ros2lite.qos import DurabilityPolicy, QoSProfile, qos_profile_sensor_data
 from ros2lite.sim.drive import Base, Pose2D
+from ros2lite.sim.mux import TwistMux
 from ros2lite.sim.robots import RobotSpec, urdf
 from ros2lite.sim.sensors import LaserTables, render_camera, scan
 from ros2lite.tf2.math import qmul, quaternion_from_rpy
@@ -127,10 +128,8 @@ class Body:
             self.info_pub = node.create_publisher(
                 CameraInfo, topic(spec.camera.info_topic), qos_profile_sensor_data
             )
-        inputs = spec.twist_mux or ((spec.cmd_vel, 0, 0.0),)
-        self._mux: dict[str, tuple[int, float, float, float, float]] = {}
-        for name, priority, timeout in inputs:
-            self._mux[name] = (priority, timeout, -math.inf, 0.0, 0.0)
+        self._mux = TwistMux(spec.twist_mux or ((spec.cmd_vel, 0, 0.0),))
+        for name in self._mux.names:
             self._listen(name)
         self._due = {
             'scan': _Due(spec.laser.rate),
@@ -178,13 +177,8 @@ class Body:
             return
         with self.stage.lock:
             now = self.stage.sim_time
-            priority, timeout, _, _, _ = self._mux[name]
-            self._mux[name] = (priority, timeout, now, linear, angular)
-            for other, (p, t, heard, _, _) in self._mux.items():
-                live = t <= 0 or now - heard <= t
-                if other != name and p > priority and live and heard > -math.inf:
-                    return
-            self.base.set_command(linear, angular, now)
+            if self._mux.admits(name, now):
+                self.base.set_command(linear, angular, now)
 
     # -- the physics thread ------------------------------------------------------------------
     def step(self, now: float) -> None:
