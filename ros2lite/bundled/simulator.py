@@ -1,9 +1,18 @@
 """The body of every simulator executable (`turtlebot3_gazebo gazebo_2d`, `jackal_gazebo
-gazebo_2d`, ...): ros2lite's 2D simulator node for a default robot, spun until Ctrl-C."""
+gazebo_2d`, ...): ros2lite's 2D simulator node for a default robot, spun until Ctrl-C; and
+what the simulator packages' launch files share: the simulator node with its description's
+publisher, and the views."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from ros2lite.bundled.runner import run_main
+
+if TYPE_CHECKING:
+    from ros2lite.launch.actions import LaunchDescription
+    from ros2lite.launch.entity import LaunchDescriptionEntity
+    from ros2lite.launch.ros import Node
 
 
 def run_simulator(default_model: str, args: list[str] | None = None) -> int:
@@ -22,7 +31,61 @@ def run_simulator(default_model: str, args: list[str] | None = None) -> int:
     return run_main(body, args)
 
 
-def view_actions() -> list[object]:
+def simulator_launch(
+    package: str,
+    model: str,
+    arguments: list[LaunchDescriptionEntity],
+    parameters: dict[str, object],
+    *,
+    state_publisher_name: str | None = None,
+) -> LaunchDescription:
+    """A simulator launch file's description: its `arguments`, `package`'s `gazebo_2d` as
+    `/gazebo` with `parameters` (and sim time), robot_state_publisher with robot `model`'s
+    description when that package is installed (else the simulator publishes it), the views."""
+    from ros2lite.launch.actions import LaunchDescription
+    from ros2lite.launch.ros import Node
+
+    state_publisher = robot_state_publisher(model, name=state_publisher_name)
+    simulator_parameters: dict[str, object] = {
+        **parameters,
+        'publish_robot_state': state_publisher is None,
+        'use_sim_time': True,
+    }
+    simulator = Node(
+        package=package,
+        executable='gazebo_2d',
+        name='gazebo',
+        output='screen',
+        parameters=[simulator_parameters],
+    )
+    actions = [*arguments, simulator]
+    if state_publisher is not None:
+        actions.append(state_publisher)
+    return LaunchDescription(actions + view_actions())
+
+
+def robot_state_publisher(model: str, *, name: str | None = None) -> Node | None:
+    """robot_state_publisher with robot `model`'s description, on sim time, when that package
+    is installed; None when it is not."""
+    try:
+        from ament_index_python.packages import get_package_share_directory
+
+        get_package_share_directory('robot_state_publisher')
+    except Exception:
+        return None
+    from ros2lite.launch.ros import Node
+    from ros2lite.sim.robots import robot, urdf
+
+    return Node(
+        package='robot_state_publisher',
+        executable='robot_state_publisher',
+        name=name,
+        output='screen',
+        parameters=[{'use_sim_time': True, 'robot_description': urdf(robot(model))}],
+    )
+
+
+def view_actions() -> list[LaunchDescriptionEntity]:
     """The launch files' views, as Gazebo's client: `gui:=true` (the default) opens the top
     view window (`ros2lite.bundled.rviz2.top_window`) when there is a display, `gui:=false`
     or `headless:=true` opens none. Over SSH, `python -m ros2lite.bundled.rviz2.top_view`
@@ -40,7 +103,7 @@ def view_actions() -> list[object]:
         NotSubstitution,
     )
 
-    actions: list[object] = [
+    actions: list[LaunchDescriptionEntity] = [
         DeclareLaunchArgument('gui', default_value='true', description='open the top view window'),
         DeclareLaunchArgument('headless', default_value='false', description='no window at all'),
     ]

@@ -75,29 +75,26 @@ class RobotSpec:
     extra: dict[str, str] = field(default_factory=dict)
 
 
+def _wheel(name: str, parent: str, child: str, xyz: Xyz, shape: tuple[str, Xyz]) -> Joint:
+    """A drive wheel: a continuous joint turned so the wheel spins about the body's y axis."""
+    return Joint(name, parent, child, xyz, (-math.pi / 2, 0.0, 0.0), 'continuous', shape)
+
+
+def _banner(robot: str) -> str:
+    """The line the simulator logs when it starts `robot` (a model's name as people say it)."""
+    return (
+        f"ros2lite's 2D stand-in for the Gazebo simulation of {robot} "
+        '(a flat world: no physics engine, same topics, frames and rates)'
+    )
+
+
 def _tb3_joints(separation: float, laser_x: float, laser_z: float, waffle: bool) -> list[Joint]:
     half = separation / 2
     wheel = ('cylinder', (0.033, 0.018, 0.0))
     joints = [
         Joint('base_joint', 'base_footprint', 'base_link', (0.0, 0.0, 0.010)),
-        Joint(
-            'wheel_left_joint',
-            'base_link',
-            'wheel_left_link',
-            (0.0, half, 0.023),
-            (-math.pi / 2, 0.0, 0.0),
-            'continuous',
-            wheel,
-        ),
-        Joint(
-            'wheel_right_joint',
-            'base_link',
-            'wheel_right_link',
-            (0.0, -half, 0.023),
-            (-math.pi / 2, 0.0, 0.0),
-            'continuous',
-            wheel,
-        ),
+        _wheel('wheel_left_joint', 'base_link', 'wheel_left_link', (0.0, half, 0.023), wheel),
+        _wheel('wheel_right_joint', 'base_link', 'wheel_right_link', (0.0, -half, 0.023), wheel),
         Joint('imu_joint', 'base_link', 'imu_link', (-0.032, 0.0, 0.068)),
         Joint(
             'scan_joint',
@@ -162,15 +159,11 @@ def _tb3_laser(x: float) -> LaserSpec:
 
 
 _TB3_IMU = ImuSpec('imu', 'imu_link', 200.0, gyro_noise=2e-4, accel_noise=1.7e-2)
-_TB3_BANNER = (
-    "ros2lite's 2D stand-in for the Gazebo simulation of TurtleBot3 {model} "
-    '(a flat world: no physics engine, same topics, frames and rates)'
-)
 
 ROBOTS: dict[str, RobotSpec] = {
     'burger': RobotSpec(
         name='burger',
-        banner=_TB3_BANNER.format(model='burger'),
+        banner=_banner('TurtleBot3 burger'),
         limits=DriveLimits(0.160, 0.033, footprint_radius=0.105, wheel_accel=1.0),
         start=Pose2D(-2.0, -0.5, 0.0),
         joints=tuple(_tb3_joints(0.160, -0.032, 0.172, waffle=False)),
@@ -180,7 +173,7 @@ ROBOTS: dict[str, RobotSpec] = {
     ),
     'waffle': RobotSpec(
         name='waffle',
-        banner=_TB3_BANNER.format(model='waffle'),
+        banner=_banner('TurtleBot3 waffle'),
         limits=DriveLimits(0.287, 0.033, footprint_radius=0.2, wheel_accel=1.0),
         start=Pose2D(-2.0, -0.5, 0.0),
         joints=tuple(_tb3_joints(0.287, -0.064, 0.122, waffle=True)),
@@ -212,10 +205,7 @@ ROBOTS['waffle_pi'] = ROBOTS['waffle']
 _JACKAL_WHEEL = ('cylinder', (0.098, 0.04, 0.0))
 ROBOTS['jackal'] = RobotSpec(
     name='jackal',
-    banner=(
-        "ros2lite's 2D stand-in for the Gazebo simulation of Clearpath Jackal "
-        '(a flat world: no physics engine, same topics, frames and rates)'
-    ),
+    banner=_banner('Clearpath Jackal'),
     limits=DriveLimits(
         0.37559,
         0.098,
@@ -234,41 +224,16 @@ ROBOTS['jackal'] = RobotSpec(
             (0.0, 0.0, 0.0),
             shape=('box', (0.42, 0.31, 0.184)),
         ),
-        Joint(
-            'front_left_wheel_joint',
-            'chassis_link',
-            'front_left_wheel_link',
-            (0.131, 0.187795, 0.0345),
-            (-math.pi / 2, 0.0, 0.0),
-            'continuous',
-            _JACKAL_WHEEL,
-        ),
-        Joint(
-            'front_right_wheel_joint',
-            'chassis_link',
-            'front_right_wheel_link',
-            (0.131, -0.187795, 0.0345),
-            (-math.pi / 2, 0.0, 0.0),
-            'continuous',
-            _JACKAL_WHEEL,
-        ),
-        Joint(
-            'rear_left_wheel_joint',
-            'chassis_link',
-            'rear_left_wheel_link',
-            (-0.131, 0.187795, 0.0345),
-            (-math.pi / 2, 0.0, 0.0),
-            'continuous',
-            _JACKAL_WHEEL,
-        ),
-        Joint(
-            'rear_right_wheel_joint',
-            'chassis_link',
-            'rear_right_wheel_link',
-            (-0.131, -0.187795, 0.0345),
-            (-math.pi / 2, 0.0, 0.0),
-            'continuous',
-            _JACKAL_WHEEL,
+        *(
+            _wheel(
+                f'{end}_{side}_wheel_joint',
+                'chassis_link',
+                f'{end}_{side}_wheel_link',
+                (x, y, 0.0345),
+                _JACKAL_WHEEL,
+            )
+            for end, x in (('front', 0.131), ('rear', -0.131))
+            for side, y in (('left', 0.187795), ('right', -0.187795))
         ),
         Joint('imu_joint', 'chassis_link', 'imu_link', (0.0, 0.0, 0.0)),
         Joint('front_mount_joint', 'chassis_link', 'front_mount', (0.12, 0.0, 0.184)),
@@ -316,12 +281,10 @@ ROBOTS['jackal'] = RobotSpec(
 # 1 m/s, 1.05 rad/s, 0.25 s timeout), odometry on mobile_base_controller/odom, odom ->
 # base_footprint; the head's Xtion on head_front_camera/rgb/image_raw; the twist mux of
 # tiago_bringup (joystick, tablet, marker, keyboard key_vel, navigation nav_vel).
+_TIAGO_WHEEL = ('cylinder', (0.0985, 0.04, 0.0))
 ROBOTS['tiago'] = RobotSpec(
     name='tiago',
-    banner=(
-        "ros2lite's 2D stand-in for the Gazebo simulation of PAL TIAGo "
-        '(a flat world: no physics engine, same topics, frames and rates)'
-    ),
+    banner=_banner('PAL TIAGo'),
     limits=DriveLimits(
         0.4044,
         0.0985,
@@ -340,23 +303,15 @@ ROBOTS['tiago'] = RobotSpec(
             (0.0, 0.0, 0.0762),
             shape=('cylinder', (0.27, 0.3, 0.0)),
         ),
-        Joint(
-            'wheel_left_joint',
-            'base_link',
-            'wheel_left_link',
-            (0.0, 0.2022, -0.0762),
-            (-math.pi / 2, 0.0, 0.0),
-            'continuous',
-            ('cylinder', (0.0985, 0.04, 0.0)),
+        _wheel(
+            'wheel_left_joint', 'base_link', 'wheel_left_link', (0.0, 0.2022, -0.0762), _TIAGO_WHEEL
         ),
-        Joint(
+        _wheel(
             'wheel_right_joint',
             'base_link',
             'wheel_right_link',
             (0.0, -0.2022, -0.0762),
-            (-math.pi / 2, 0.0, 0.0),
-            'continuous',
-            ('cylinder', (0.0985, 0.04, 0.0)),
+            _TIAGO_WHEEL,
         ),
         Joint('base_laser_joint', 'base_link', 'base_laser_link', (0.202, 0.0, -0.004)),
         Joint('base_imu_joint', 'base_link', 'base_imu_link', (0.1044, 0.0, 0.0)),
