@@ -278,8 +278,12 @@ def bench_shm_record() -> None:
                 kept[mode].append(count)
                 cpu[mode].append(seconds)
                 idle[mode].append(_record(env, tmp, 0)[1])
+    # per message kept (a round that lost some did less work)
     per = {
-        mode: (statistics.median(cpu[mode]) - statistics.median(idle[mode])) / CAMERA_N * 1e3
+        mode: statistics.median(
+            (c - statistics.median(idle[mode])) / max(k, 1) * 1e3
+            for c, k in zip(cpu[mode], kept[mode], strict=True)
+        )
         for mode in envs
     }
     for mode in envs:  # a KEEP_LAST publisher drops what a busy link cannot take (rmw_zenoh)
