@@ -15,6 +15,7 @@ import os
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass, field
+from decimal import Decimal, InvalidOperation
 from pathlib import Path
 
 from ros2lite.bag.errors import BagError
@@ -35,37 +36,42 @@ __all__ = ["CutResult", "cut", "parse_time"]
 _CLOCK = re.compile(r"^(?:(\d+):)?(\d+):(\d+(?:\.\d*)?)$")
 # a plain number this large is a time since the epoch, not an offset into the bag (no bag
 # lasts 30 years): seconds from 1e9 up, nanoseconds from 1e18 up
-_EPOCH_SECONDS = 1e9
-_EPOCH_NANOSECONDS = 1e18
+_EPOCH_SECONDS = 10**9
+_EPOCH_NANOSECONDS = 10**18
+
+
+def _ns(seconds: Decimal) -> int:
+    """Seconds, exactly as written (`bag echo` prints nine decimals), to whole nanoseconds."""
+    return int((seconds * 10**9).to_integral_value())
 
 
 def parse_time(text: str, bag_start: int) -> int:
     """A time given on the command line as ns since the epoch: seconds from the bag's start
     (`90`, `12.5`), a duration from the start (`1:30`, `1:02:03.5`), or an absolute time
     (seconds or nanoseconds since the epoch, or an ISO 8601 date and time, UTC unless it
-    says otherwise)."""
+    says otherwise). Decimal, not float: `1700000000.123456789` keeps its last digit."""
     value = text.strip()
     m = _CLOCK.match(value)
     if m is not None:
         hours, minutes, seconds = m.groups()
-        if (int(minutes) >= 60 and hours is not None) or float(seconds) >= 60:
+        if (int(minutes) >= 60 and hours is not None) or Decimal(seconds) >= 60:
             raise BagError(f"Bad time '{text}': minutes and seconds go up to 59")
-        offset = int(hours or 0) * 3600 + int(minutes) * 60 + float(seconds)
-        return bag_start + round(offset * 1e9)
+        offset = int(hours or 0) * 3600 + int(minutes) * 60 + Decimal(seconds)
+        return bag_start + _ns(offset)
     try:
-        number = float(value)
-    except ValueError:
+        number: Decimal | None = Decimal(value)
+    except InvalidOperation:
         number = None
     if number is not None:
-        if number != number or number in (float("inf"), float("-inf")):
+        if not number.is_finite() or number.adjusted() > 20:  # no time has 21 digits
             raise BagError(f"Bad time '{text}'")
         if number >= _EPOCH_NANOSECONDS:
-            return int(value) if value.isdigit() else round(number)
+            return int(number.to_integral_value())
         if number >= _EPOCH_SECONDS:
-            return round(number * 1e9)
+            return _ns(number)
         if number < 0:
             raise BagError(f"Bad time '{text}': an offset from the start is not negative")
-        return bag_start + round(number * 1e9)
+        return bag_start + _ns(number)
     try:
         when = datetime.datetime.fromisoformat(value)
     except ValueError:

@@ -137,9 +137,12 @@ def test_parse_time() -> None:
     assert parse_time("1:02:03.5", start) == T0 + 3723_500 * MS
     assert parse_time("1700000100", start) == T0 + 100 * 10**9
     assert parse_time("1700000100000000001", start) == T0 + 100 * 10**9 + 1
+    # as `bag echo` prints a stamp: every nanosecond kept (float lost the last digits)
+    assert parse_time("1700000100.123456789", start) == T0 + 100 * 10**9 + 123_456_789
+    assert parse_time("0:01.000000001", start) == T0 + 10**9 + 1
     assert parse_time("2023-11-14T22:13:20", start) == T0
     assert parse_time("2023-11-14T23:13:20.25+01:00", start) == T0 + 250 * MS
-    for bad in ("xx", "-3", "1:75", "nan"):
+    for bad in ("xx", "-3", "1:75", "nan", "Infinity", "1e999999999"):
         with pytest.raises(BagError):
             parse_time(bad, start)
 
