@@ -131,3 +131,36 @@ def test_the_history_is_bounded_in_bytes_and_live_subscribers_get_everything_in_
     assert numbers == sorted(numbers) and numbers[-1] == len(sizes) - 1
     assert sum(len(d) for d in kept) <= BOUND, numbers  # bounded in bytes
     assert len(kept) >= 5, numbers  # and still a history, not only the newest sample
+
+
+def test_a_depth_one_history_is_not_made_anew_for_every_large_sample() -> None:
+    """With depth 1 the cache holds only the newest sample anyway: a sample larger than the
+    byte bound replaces it without the advanced publisher being undeclared and declared
+    again per message (which it was, every put); at depth 3 the history starts anew only
+    when older samples would stay beside the new one past the bound."""
+    from ros2lite.transport.history import HistoryBoundedPublisher
+
+    made: list[list[int]] = []
+
+    class Fake:
+        def __init__(self) -> None:
+            self.sizes: list[int] = []
+            made.append(self.sizes)
+
+        def put(self, payload: bytes, attachment: bytes | None = None) -> None:
+            self.sizes.append(len(payload))
+
+        def undeclare(self) -> None:
+            pass
+
+    one = HistoryBoundedPublisher(Fake, None, depth=1, limit=100)  # type: ignore[arg-type]
+    for _ in range(5):
+        one.put(bytes(150))
+    assert made == [[150] * 5]
+    made.clear()
+    three = HistoryBoundedPublisher(Fake, None, depth=3, limit=100)  # type: ignore[arg-type]
+    for size in (40, 40, 40, 150, 150, 10):
+        three.put(bytes(size))
+    # 40+40+40 > 100 starts anew at the third; 150 beside a 40 does too; 150 beside 150 too;
+    # 10 beside 150 too: each time what stays would pass the bound
+    assert made == [[40, 40], [40], [150], [150], [10]]

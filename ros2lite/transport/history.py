@@ -53,10 +53,12 @@ class HistoryBoundedPublisher:
         self._bytes = 0
 
     def _keep(self, size: int) -> None:
-        """Count a sample into the history, starting it anew first if it would not fit."""
+        """Count a sample into the history, starting it anew first if it would not fit
+        beside the older ones that stay (none stay at depth 1: nothing to start anew)."""
         full = len(self._sizes) == self._sizes.maxlen
         pushed_out = self._sizes[0] if full else 0
-        if self._sizes and self._bytes - pushed_out + size > self._limit:
+        staying = self._bytes - pushed_out
+        if staying and staying + size > self._limit:
             with contextlib.suppress(Exception):  # the session is closed
                 if self._cached is not None:
                     self._cached.undeclare()
