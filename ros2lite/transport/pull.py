@@ -314,20 +314,18 @@ class PulledSamples:
             self._kept = False
         self._rearm.release()
 
-    def _unattached(self, samples: Sequence[Sample], after: MutableSequence[Sample]) -> bool:
+    def _unattached(self, samples: Sequence[Sample], after: MutableSequence[Sample]) -> None:
         """Whoever owns the channel: samples without an attachment among `samples`. Our
-        interrupts go unheard; a peer's are told to `on_unattached`, and the first put the
-        filter in front of the ring (True: the channel changed), the real samples left in the
-        old ring appended to `after` (they came after `samples`)."""
+        interrupts go unheard; a peer's are told to `on_unattached`, and the first puts the
+        filter in front of the ring, the real samples left in the old ring appended to
+        `after` (they came after `samples`)."""
         foreign = foreign_unattached(samples)
         if not foreign:
-            return False
-        changed = self._filter is None
-        if changed:  # first: the ring's real samples are being pushed out meanwhile
+            return
+        if self._filter is None:  # first: the ring's real samples are being pushed out meanwhile
             self._filter_from_now(after)
         if self._on_unattached is not None:
             self._on_unattached(foreign)
-        return changed
 
     def _filter_from_now(self, into: MutableSequence[Sample]) -> None:
         """The owner of the channel: move the ring behind a filter (see _Filter). The filter
