@@ -83,7 +83,7 @@ def _convert(
 
 
 @cache
-def _fields(cls: type[Message]) -> tuple[tuple[str, FieldType], ...]:
+def field_slots(cls: type[Message]) -> tuple[tuple[str, FieldType], ...]:
     """(name, type) of each field of a message class, in order; worked out once per class."""
     return tuple(zip(cls.get_fields_and_field_types(), cls.SLOT_TYPES, strict=True))
 
@@ -94,7 +94,7 @@ def message_to_dict(
     """Nested plain dict/list/scalar form of a message, in field order."""
     return {
         name: _convert(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
-        for name, ft in _fields(type(msg))
+        for name, ft in field_slots(type(msg))
     }
 
 
@@ -215,7 +215,7 @@ def message_to_csv(
     return _joined(
         [
             _csv_value(getattr(msg, '_' + name), ft, truncate_length, no_arr, no_str)
-            for name, ft in _fields(type(msg))
+            for name, ft in field_slots(type(msg))
         ]
     )
 
@@ -275,7 +275,7 @@ def _populate(
         raise PopulateError(
             f"Value '{values}' is expected to be a dictionary but is a {type(values).__name__}"
         )
-    types = dict(_fields(type(msg)))
+    types = dict(field_slots(type(msg)))
     for name, value in values.items():
         if name not in types:
             raise PopulateError(f"'{type(msg).__name__}' object has no attribute '{name}'")

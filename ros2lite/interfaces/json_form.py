@@ -18,10 +18,9 @@ import json
 import math
 from array import array
 from collections.abc import Mapping
-from functools import cache
 
 from .classes import Message, field_class
-from .convert import abbreviate_array, set_message_fields
+from .convert import abbreviate_array, field_slots, set_message_fields
 from .errors import PopulateError
 from .parser import FieldType, MessageDef
 from .registry import Registry, default_registry, normalize_name
@@ -72,12 +71,6 @@ def _scalar(value: object) -> object:
     return value
 
 
-@cache
-def _fields(cls: type[Message]) -> tuple[tuple[str, FieldType], ...]:
-    """(name, type) of each field of a message class, in order; worked out once per class."""
-    return tuple(zip(cls.get_fields_and_field_types(), cls.SLOT_TYPES, strict=True))
-
-
 def value_to_json(
     value: object, ft: FieldType | None = None, *, no_arr: bool = False, no_str: bool = False
 ) -> object:
@@ -121,7 +114,7 @@ def message_to_json(
     """The message as a json.dumps-ready dict, keys the ROS field names in definition order."""
     return {
         name: value_to_json(getattr(msg, '_' + name), ft, no_arr=no_arr, no_str=no_str)
-        for name, ft in _fields(type(msg))
+        for name, ft in field_slots(type(msg))
     }
 
 
@@ -196,7 +189,7 @@ def json_to_fields(cls: type[Message], obj: Mapping[str, object]) -> dict[str, o
     """The schema's JSON object turned into what `set_message_fields` takes (base64 to bytes,
     "nan"/"inf" strings to floats, recursively); keys it does not know are left for
     set_message_fields to report."""
-    types = dict(_fields(cls))
+    types = dict(field_slots(cls))
     out: dict[str, object] = {}
     for name, value in obj.items():
         ft = types.get(name)
