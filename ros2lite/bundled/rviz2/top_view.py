@@ -378,7 +378,40 @@ def picture(
     return '\n'.join(lines)
 
 
-class TopTerminal:
+class TopKeys:
+    """The keys both views take (see `KEYS`), acting on `view`, `scene` and `frames`; an arrow
+    pans `PAN` of the view's units (character cells here, pixels in the window)."""
+
+    PAN = 8
+    scene: Scene
+    view: Viewport
+    frames: bool
+
+    def key(self, key: str) -> bool:
+        """Act on one key (`up`, `down`, `left`, `right` for the arrows); False when it asks
+        to quit."""
+        view = self.view
+        if key in ('q', 'Q'):
+            return False
+        if key in ('+', '='):
+            view.zoom(1.5)
+        elif key in ('-', '_'):
+            view.zoom(1 / 1.5)
+        elif key in ('up', 'down', 'left', 'right'):
+            dx, dy = {'up': (0, -1), 'down': (0, 1), 'left': (-1, 0), 'right': (1, 0)}[key]
+            view.pan(dx * self.PAN, dy * self.PAN)
+        elif key == 'f':
+            view.follow = not view.follow
+        elif key == 'a':
+            view.auto, view.follow = True, False
+        elif key == 't':
+            self.frames = not self.frames
+        elif key == 'c':
+            self.scene.clear_trail()
+        return True
+
+
+class TopTerminal(TopKeys):
     """The view on stdout, keys from stdin; `run(ok)` until `q`, Ctrl-C or not `ok()`."""
 
     def __init__(self, scene: Scene, frames: bool = True) -> None:
@@ -390,28 +423,6 @@ class TopTerminal:
         self.view = Viewport()
         self.frames = frames
         self.cache = MapCells()
-
-    def key(self, key: str) -> bool:
-        """Act on one key; False when it asks to quit."""
-        view = self.view
-        if key in ('q', 'Q'):
-            return False
-        if key in ('+', '='):
-            view.zoom(1.5)
-        elif key in ('-', '_'):
-            view.zoom(1 / 1.5)
-        elif key in ('up', 'down', 'left', 'right'):
-            dcols, drows = {'up': (0, -8), 'down': (0, 8), 'left': (-8, 0), 'right': (8, 0)}[key]
-            view.pan(dcols, drows)
-        elif key == 'f':
-            view.follow = not view.follow
-        elif key == 'a':
-            view.auto, view.follow = True, False
-        elif key == 't':
-            self.frames = not self.frames
-        elif key == 'c':
-            self.scene.clear_trail()
-        return True
 
     def run(self, ok: Callable[[], bool], period: float) -> None:
         from ros2lite.bundled.turtlesim.terminal_view import LogLines

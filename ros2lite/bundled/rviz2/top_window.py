@@ -23,6 +23,7 @@ from ros2lite.bundled.rviz2.top_view import (
     TRAIL,
     Colour,
     SceneSource,
+    TopKeys,
     check,
     parser,
     status,
@@ -46,8 +47,10 @@ def hex_colour(c: Colour) -> str:
     return f'#{c[0]:02x}{c[1]:02x}{c[2]:02x}'
 
 
-class TopWindow:
+class TopWindow(TopKeys):
     """The window on `scene`; `run(ok, period)` until closed, `q`, Ctrl-C or not `ok()`."""
+
+    PAN = 40  # px
 
     def __init__(self, scene: Scene, frames: bool = True) -> None:
         import tkinter
@@ -115,24 +118,8 @@ class TopWindow:
         key = {'Up': 'up', 'Down': 'down', 'Left': 'left', 'Right': 'right'}.get(
             event.keysym, event.char
         )
-        view = self.view
-        if key in ('q', 'Q'):
+        if not self.key(key):
             self.closed = True
-        elif key in ('+', '='):
-            view.zoom(1.5)
-        elif key in ('-', '_'):
-            view.zoom(1 / 1.5)
-        elif key in ('up', 'down', 'left', 'right'):
-            dx, dy = {'up': (0, -40), 'down': (0, 40), 'left': (-40, 0), 'right': (40, 0)}[key]
-            view.pan(dx, dy)
-        elif key == 'f':
-            view.follow = not view.follow
-        elif key == 'a':
-            view.auto, view.follow = True, False
-        elif key == 't':
-            self.frames = not self.frames
-        elif key == 'c':
-            self.scene.clear_trail()
 
     # -- drawing --------------------------------------------------------------------------
     def _map(self, grids: list[Grid], w: int, h: int) -> None:
