@@ -410,6 +410,10 @@ class TopKeys:
             self.scene.clear_trail()
         return True
 
+    def run(self, ok: Callable[[], bool], period: float) -> None:
+        """Show the scene every `period` s and take keys, until quit or not `ok()`."""
+        raise NotImplementedError
+
 
 class TopTerminal(TopKeys):
     """The view on stdout, keys from stdin; `run(ok)` until `q`, Ctrl-C or not `ok()`."""
@@ -469,27 +473,43 @@ class TopTerminal(TopKeys):
                     print(visible(line), file=saved_stderr, flush=True)
 
 
-def main(argv: list[str] | None = None) -> int:
-    """`top_view`: the scene from above on this terminal."""
+def run_view(
+    argv: list[str] | None,
+    prog: str,
+    able: Callable[[], None],
+    make: Callable[[Scene, bool], TopKeys],
+) -> int:
+    """`prog`'s main, for both views: the options parsed and checked, `able()` (raising
+    DisplayError where the view cannot show) before any node starts, then the view
+    `make(scene, frames)` run on node `rviz2_<prog>`'s scene until it ends."""
     from ros2lite.bundled.runner import run_main
 
-    options = parser('top_view').parse_args(own_arguments(argv))
+    options = parser(prog).parse_args(own_arguments(argv))
 
     def body() -> None:
         from ros2lite.bundled.teleop.spinning import BackgroundSpin
 
         check(options)
-        if not sys.stdout.isatty():  # said before any node starts
-            raise DisplayError('cannot draw on the terminal: standard output is not a terminal')
-        source = SceneSource(options, 'rviz2_top_view')
+        able()
+        source = SceneSource(options, f'rviz2_{prog}')
         try:
-            view = TopTerminal(source.scene, frames=not options.no_frames)
+            view = make(source.scene, not options.no_frames)
             with BackgroundSpin(source.node):
                 view.run(source.node.context.ok, 1.0 / options.rate)
         finally:
             source.node.destroy_node()
 
     return run_main(body, argv)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """`top_view`: the scene from above on this terminal."""
+
+    def able() -> None:
+        if not sys.stdout.isatty():
+            raise DisplayError('cannot draw on the terminal: standard output is not a terminal')
+
+    return run_view(argv, 'top_view', able, TopTerminal)
 
 
 if __name__ == '__main__':

@@ -12,7 +12,6 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from ros2lite.bundled.display import own_arguments
 from ros2lite.bundled.rviz2.top_view import (
     FRAME,
     FREE,
@@ -22,10 +21,8 @@ from ros2lite.bundled.rviz2.top_view import (
     SCAN,
     TRAIL,
     Colour,
-    SceneSource,
     TopKeys,
-    check,
-    parser,
+    run_view,
     status,
 )
 from ros2lite.bundled.terminal import visible
@@ -230,27 +227,14 @@ class TopWindow(TopKeys):
 
 def main(argv: list[str] | None = None) -> int:
     """`top_window`: the scene from above in a window."""
-    from ros2lite.bundled.runner import run_main
 
-    options = parser('top_window').parse_args(own_arguments(argv))
-
-    def body() -> None:
-        from ros2lite.bundled.teleop.spinning import BackgroundSpin
-
-        check(options)
+    def able() -> None:
         from ros2lite.bundled.display import DisplayError, window_possible
 
-        if not window_possible():  # said before any node starts
+        if not window_possible():
             raise DisplayError('cannot open a window: no display (DISPLAY is not set)')
-        source = SceneSource(options, 'rviz2_top_window')
-        try:
-            window = TopWindow(source.scene, frames=not options.no_frames)
-            with BackgroundSpin(source.node):
-                window.run(source.node.context.ok, 1.0 / options.rate)
-        finally:
-            source.node.destroy_node()
 
-    return run_main(body, argv)
+    return run_view(argv, 'top_window', able, TopWindow)
 
 
 if __name__ == '__main__':
