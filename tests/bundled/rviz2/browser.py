@@ -143,12 +143,14 @@ class Browser:
                 f.write(data)
         return Image.open(io.BytesIO(data)).convert('RGB')
 
-    def shot(self, url: str, path: str, ready: Any, timeout: float = 120) -> Any:
-        """`url` opened afresh, then screenshots of it (each saved to `path`, to look at)
-        until `ready(image)` holds: the last one, as a person sees the page by then."""
+    def shot(self, url: str | None, path: str, ready: Any, timeout: float = 120) -> Any:
+        """`url` opened afresh (None: the page open now), then screenshots of it (each saved
+        to `path`, to look at) until `ready(image)` holds: the last one, as a person sees the
+        page by then."""
         from tests.spinning import wait_until
 
-        self.open(url)
+        if url is not None:
+            self.open(url)
         shot: list[Any] = []
 
         def taken() -> bool:
@@ -179,6 +181,18 @@ class Browser:
             f' if (b.innerText.trim() === {json.dumps(text)}) {{'
             ' const r = b.getBoundingClientRect(); return [r.x + r.width / 2,'
             ' r.y + r.height / 2]; } } return null; })()'
+        )
+        return (float(found[0]), float(found[1])) if isinstance(found, list) else None
+
+    def checkbox_centre(self, label: str) -> tuple[float, float] | None:
+        """Where the page shows the one checkbox whose row reads `label` (None while none)."""
+        found = self.evaluate(
+            '(() => { for (const box of document.querySelectorAll("input[type=checkbox]")) {'
+            ' let row = box.parentElement;'
+            ' while (row && row.querySelectorAll("input[type=checkbox]").length === 1) {'
+            f' if (row.innerText.replace(/\\s+/g, " ").trim() === {json.dumps(label)}) {{'
+            ' const r = box.getBoundingClientRect(); return [r.x + r.width / 2,'
+            ' r.y + r.height / 2]; } row = row.parentElement; } } return null; })()'
         )
         return (float(found[0]), float(found[1])) if isinstance(found, list) else None
 
