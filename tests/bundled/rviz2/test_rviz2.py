@@ -37,6 +37,8 @@ def _serving(port: int) -> bool:
 
 
 def _start_viewer(procs: Processes, *args: str) -> str:
+    """The viewer, in the test's own processes: stopped when the test ends, so it does not
+    go on drawing the scene (and taking the CPU) for the module's later tests."""
     port = free_port()
     proc = procs.cli('run', 'rviz2', 'rviz2', '--port', str(port), *args, cwd=ROOT)
     wait_until(lambda: _serving(port) or proc.poll() is not None, timeout=30)
@@ -122,11 +124,11 @@ Visualization Manager:
 
 
 def test_rviz_file_opens_its_fixed_frame_and_displays(
-    scene: Processes, browser: Browser, tmp_path: Path
+    scene: Processes, browser: Browser, processes: Processes, tmp_path: Path
 ) -> None:
     config = tmp_path / 'three.rviz'
     config.write_text(RVIZ_FILE)
-    url = _start_viewer(scene, '-d', str(config))
+    url = _start_viewer(processes, '-d', str(config))
     image = _shot(
         browser, url, 'rviz_file.png', lambda im: count(im, red) > 200 and count(im, magenta) > 200
     )
@@ -151,7 +153,7 @@ def test_rviz_file_opens_its_fixed_frame_and_displays(
 
 
 def test_goal_pose_click_publishes_a_pose_stamped(
-    scene: Processes, browser: Browser, ros_context: Any, tmp_path: Path
+    scene: Processes, browser: Browser, processes: Processes, ros_context: Any, tmp_path: Path
 ) -> None:
     from ros2lite.msgs.geometry_msgs.msg import PoseStamped
 
@@ -162,7 +164,7 @@ def test_goal_pose_click_publishes_a_pose_stamped(
         'Visualization Manager:\n  Displays:\n    - Class: rviz_default_plugins/Grid\n'
         '  Global Options:\n    Fixed Frame: map\n'
     )
-    url = _start_viewer(scene, '-d', str(config))
+    url = _start_viewer(processes, '-d', str(config))
     listener = Listener(ros_context, '/goal_pose', PoseStamped, 10)
     try:
         browser.open(url)
@@ -226,7 +228,7 @@ def test_zero_configuration_shows_the_robot_scan_cloud_and_markers_and_follows_a
     )  # fmt: skip
     joints = [sys.executable, '-m', 'tests.bundled.rviz2.joints']
     swing = processes.start([*joints, '0.0'], cwd=ROOT)
-    url = _start_viewer(scene)
+    url = _start_viewer(processes)
     colours = (red, blue, magenta, green, yellow)
     image = _shot(
         browser,
