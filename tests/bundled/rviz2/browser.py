@@ -143,19 +143,29 @@ class Browser:
                 f.write(data)
         return Image.open(io.BytesIO(data)).convert('RGB')
 
-    def shot(self, url: str | None, path: str, ready: Any, timeout: float = 120) -> Any:
+    def shot(
+        self, url: str | None, path: str, ready: Any, timeout: float = 120, settle: float = 2.0
+    ) -> Any:
         """`url` opened afresh (None: the page open now), then screenshots of it (each saved
-        to `path`, to look at) until `ready(image)` holds: the last one, as a person sees the
-        page by then."""
+        to `path`, to look at) until `ready(image)` has held on every one for `settle` s:
+        the last one, as a person sees the page once it has settled. (A live page passes
+        through moments no one would judge it by: an object drawn at the origin in the
+        frame before its pose arrives.)"""
         from tests.spinning import wait_until
 
         if url is not None:
             self.open(url)
         shot: list[Any] = []
+        since: list[float] = []  # when ready() began to hold, while it does
 
         def taken() -> bool:
             shot[:] = [self.screenshot(path)]
-            return bool(ready(shot[0]))
+            if not ready(shot[0]):
+                since.clear()
+                return False
+            if not since:
+                since.append(time.monotonic())
+            return time.monotonic() - since[0] >= settle
 
         wait_until(taken, timeout=timeout, interval=0.5)
         return shot[0]
