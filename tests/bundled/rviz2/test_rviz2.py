@@ -183,11 +183,18 @@ def test_goal_pose_click_publishes_a_pose_stamped(
         )
         button = wait_until(settled, timeout=30, interval=1.0)
         browser.click(*button)
-        wait_until(lambda: 'click the ground' in str(browser.evaluate('document.body.innerText')))
+        # (each answer is a round trip page -> viewer -> page: seconds on a loaded machine)
+        wait_until(
+            lambda: 'click the ground' in str(browser.evaluate('document.body.innerText')),
+            timeout=30,
+        )
         # the camera looks at map's origin: the canvas centre is (0, 0) on the ground; a click
         # above it is further along the view, map's (1, 1): a heading of 45 degrees
         browser.click(W / 2, H / 2)
-        wait_until(lambda: 'where it faces' in str(browser.evaluate('document.body.innerText')))
+        wait_until(
+            lambda: 'where it faces' in str(browser.evaluate('document.body.innerText')),
+            timeout=30,
+        )
         browser.click(W / 2, H / 2 - 100)
         wait_until(lambda: listener.messages, timeout=20)
     finally:
