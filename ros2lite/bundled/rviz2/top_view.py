@@ -378,7 +378,44 @@ def picture(
     return '\n'.join(lines)
 
 
-class TopTerminal:
+class TopKeys:
+    """The keys both views take (see `KEYS`), acting on `view`, `scene` and `frames`; an arrow
+    pans `PAN` of the view's units (character cells here, pixels in the window)."""
+
+    PAN = 8
+    scene: Scene
+    view: Viewport
+    frames: bool
+
+    def key(self, key: str) -> bool:
+        """Act on one key (`up`, `down`, `left`, `right` for the arrows); False when it asks
+        to quit."""
+        view = self.view
+        if key in ('q', 'Q'):
+            return False
+        if key in ('+', '='):
+            view.zoom(1.5)
+        elif key in ('-', '_'):
+            view.zoom(1 / 1.5)
+        elif key in ('up', 'down', 'left', 'right'):
+            dx, dy = {'up': (0, -1), 'down': (0, 1), 'left': (-1, 0), 'right': (1, 0)}[key]
+            view.pan(dx * self.PAN, dy * self.PAN)
+        elif key == 'f':
+            view.follow = not view.follow
+        elif key == 'a':
+            view.auto, view.follow = True, False
+        elif key == 't':
+            self.frames = not self.frames
+        elif key == 'c':
+            self.scene.clear_trail()
+        return True
+
+    def run(self, ok: Callable[[], bool], period: float) -> None:
+        """Show the scene every `period` s and take keys, until quit or not `ok()`."""
+        raise NotImplementedError
+
+
+class TopTerminal(TopKeys):
     """The view on stdout, keys from stdin; `run(ok)` until `q`, Ctrl-C or not `ok()`."""
 
     def __init__(self, scene: Scene, frames: bool = True) -> None:
@@ -390,28 +427,6 @@ class TopTerminal:
         self.view = Viewport()
         self.frames = frames
         self.cache = MapCells()
-
-    def key(self, key: str) -> bool:
-        """Act on one key; False when it asks to quit."""
-        view = self.view
-        if key in ('q', 'Q'):
-            return False
-        if key in ('+', '='):
-            view.zoom(1.5)
-        elif key in ('-', '_'):
-            view.zoom(1 / 1.5)
-        elif key in ('up', 'down', 'left', 'right'):
-            dcols, drows = {'up': (0, -8), 'down': (0, 8), 'left': (-8, 0), 'right': (8, 0)}[key]
-            view.pan(dcols, drows)
-        elif key == 'f':
-            view.follow = not view.follow
-        elif key == 'a':
-            view.auto, view.follow = True, False
-        elif key == 't':
-            self.frames = not self.frames
-        elif key == 'c':
-            self.scene.clear_trail()
-        return True
 
     def run(self, ok: Callable[[], bool], period: float) -> None:
         from ros2lite.bundled.turtlesim.terminal_view import LogLines
@@ -458,27 +473,43 @@ class TopTerminal:
                     print(visible(line), file=saved_stderr, flush=True)
 
 
-def main(argv: list[str] | None = None) -> int:
-    """`top_view`: the scene from above on this terminal."""
+def run_view(
+    argv: list[str] | None,
+    prog: str,
+    able: Callable[[], None],
+    make: Callable[[Scene, bool], TopKeys],
+) -> int:
+    """`prog`'s main, for both views: the options parsed and checked, `able()` (raising
+    DisplayError where the view cannot show) before any node starts, then the view
+    `make(scene, frames)` run on node `rviz2_<prog>`'s scene until it ends."""
     from ros2lite.bundled.runner import run_main
 
-    options = parser('top_view').parse_args(own_arguments(argv))
+    options = parser(prog).parse_args(own_arguments(argv))
 
     def body() -> None:
         from ros2lite.bundled.teleop.spinning import BackgroundSpin
 
         check(options)
-        if not sys.stdout.isatty():  # said before any node starts
-            raise DisplayError('cannot draw on the terminal: standard output is not a terminal')
-        source = SceneSource(options, 'rviz2_top_view')
+        able()
+        source = SceneSource(options, f'rviz2_{prog}')
         try:
-            view = TopTerminal(source.scene, frames=not options.no_frames)
+            view = make(source.scene, not options.no_frames)
             with BackgroundSpin(source.node):
                 view.run(source.node.context.ok, 1.0 / options.rate)
         finally:
             source.node.destroy_node()
 
     return run_main(body, argv)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """`top_view`: the scene from above on this terminal."""
+
+    def able() -> None:
+        if not sys.stdout.isatty():
+            raise DisplayError('cannot draw on the terminal: standard output is not a terminal')
+
+    return run_view(argv, 'top_view', able, TopTerminal)
 
 
 if __name__ == '__main__':

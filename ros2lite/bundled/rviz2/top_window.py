@@ -12,7 +12,6 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from ros2lite.bundled.display import own_arguments
 from ros2lite.bundled.rviz2.top_view import (
     FRAME,
     FREE,
@@ -22,9 +21,8 @@ from ros2lite.bundled.rviz2.top_view import (
     SCAN,
     TRAIL,
     Colour,
-    SceneSource,
-    check,
-    parser,
+    TopKeys,
+    run_view,
     status,
 )
 from ros2lite.bundled.terminal import visible
@@ -46,8 +44,10 @@ def hex_colour(c: Colour) -> str:
     return f'#{c[0]:02x}{c[1]:02x}{c[2]:02x}'
 
 
-class TopWindow:
+class TopWindow(TopKeys):
     """The window on `scene`; `run(ok, period)` until closed, `q`, Ctrl-C or not `ok()`."""
+
+    PAN = 40  # px
 
     def __init__(self, scene: Scene, frames: bool = True) -> None:
         import tkinter
@@ -115,24 +115,8 @@ class TopWindow:
         key = {'Up': 'up', 'Down': 'down', 'Left': 'left', 'Right': 'right'}.get(
             event.keysym, event.char
         )
-        view = self.view
-        if key in ('q', 'Q'):
+        if not self.key(key):
             self.closed = True
-        elif key in ('+', '='):
-            view.zoom(1.5)
-        elif key in ('-', '_'):
-            view.zoom(1 / 1.5)
-        elif key in ('up', 'down', 'left', 'right'):
-            dx, dy = {'up': (0, -40), 'down': (0, 40), 'left': (-40, 0), 'right': (40, 0)}[key]
-            view.pan(dx, dy)
-        elif key == 'f':
-            view.follow = not view.follow
-        elif key == 'a':
-            view.auto, view.follow = True, False
-        elif key == 't':
-            self.frames = not self.frames
-        elif key == 'c':
-            self.scene.clear_trail()
 
     # -- drawing --------------------------------------------------------------------------
     def _map(self, grids: list[Grid], w: int, h: int) -> None:
@@ -243,27 +227,14 @@ class TopWindow:
 
 def main(argv: list[str] | None = None) -> int:
     """`top_window`: the scene from above in a window."""
-    from ros2lite.bundled.runner import run_main
 
-    options = parser('top_window').parse_args(own_arguments(argv))
-
-    def body() -> None:
-        from ros2lite.bundled.teleop.spinning import BackgroundSpin
-
-        check(options)
+    def able() -> None:
         from ros2lite.bundled.display import DisplayError, window_possible
 
-        if not window_possible():  # said before any node starts
+        if not window_possible():
             raise DisplayError('cannot open a window: no display (DISPLAY is not set)')
-        source = SceneSource(options, 'rviz2_top_window')
-        try:
-            window = TopWindow(source.scene, frames=not options.no_frames)
-            with BackgroundSpin(source.node):
-                window.run(source.node.context.ok, 1.0 / options.rate)
-        finally:
-            source.node.destroy_node()
 
-    return run_main(body, argv)
+    return run_view(argv, 'top_window', able, TopWindow)
 
 
 if __name__ == '__main__':

@@ -1,5 +1,7 @@
 """A real headless Chromium (Debian's, with SwiftShader's WebGL) driven through the DevTools
-protocol: open a page, take screenshots as a person sees them, click with the mouse.
+protocol: open a page, take screenshots as a person sees them, click with the mouse. One
+browser serves a whole test module (starting one costs seconds under load); each screenshot
+is of the live page, taken again until the test's condition on its pixels holds.
 
 The protocol is spoken over a WebSocket with the `websockets` package (viser's dependency),
 so nothing else is installed. Screenshots come back as PNG and are read with Pillow."""
@@ -32,12 +34,9 @@ class Browser:
     def __init__(self, width: int = 900, height: int = 700) -> None:
         from websockets.sync.client import connect
 
-        from tests.spinning import free_port
-
         exe = chromium()
         assert exe is not None
         self.profile = tempfile.mkdtemp(prefix='rviz2-chromium-')
-        port = free_port()
         self.proc = subprocess.Popen(
             [
                 exe,
@@ -46,6 +45,9 @@ class Browser:
                 '--use-angle=swiftshader',
                 '--enable-unsafe-swiftshader',
                 '--disable-background-networking',
+                '--disable-component-update',
+                '--disable-sync',
+                '--disable-quic',
                 '--no-first-run',
                 f'--user-data-dir={self.profile}',
                 # a page nobody looks at still animates (viser's fade-in and frames run on
@@ -54,7 +56,9 @@ class Browser:
                 '--disable-background-timer-throttling',
                 '--disable-backgrounding-occluded-windows',
                 f'--window-size={width},{height}',
-                f'--remote-debugging-port={port}',
+                # chromium picks the port and writes it to DevToolsActivePort: no race with
+                # another process for a port chosen here
+                '--remote-debugging-port=0',
                 'about:blank',
             ],
             stdout=subprocess.DEVNULL,
@@ -63,24 +67,30 @@ class Browser:
         self.width, self.height = width, height
         deadline = time.monotonic() + 30
         pages: list[dict[str, Any]] = []
-        while time.monotonic() < deadline:
+        active = os.path.join(self.profile, 'DevToolsActivePort')
+        while time.monotonic() < deadline and self.proc.poll() is None:
             try:
+                with open(active) as f:
+                    port = int(f.readline())
                 with urllib.request.urlopen(f'http://127.0.0.1:{port}/json/list', timeout=2) as r:
                     pages = [p for p in json.load(r) if p.get('type') == 'page']
                 if pages:
                     break
-            except OSError:
+            except (OSError, ValueError):  # not written yet, or half written
                 pass
-            time.sleep(0.2)
+            time.sleep(0.1)
+        if not pages:
+            self.close()
         assert pages, 'chromium did not open its DevTools port'
         self.ws = connect(pages[0]['webSocketDebuggerUrl'], max_size=64 * 1024 * 1024)
         self._ids = itertools.count(1)
+        self._events: list[str] = []  # the names of the events read since the last open()
         self.call('Page.enable')
         self.call('Page.bringToFront')
         self.call('Emulation.setFocusEmulationEnabled', enabled=True)
 
     def call(self, method: str, **params: object) -> dict[str, Any]:
-        """One DevTools command and its result (events in between are skipped)."""
+        """One DevTools command and its result (events in between are noted by name)."""
         n = next(self._ids)
         self.ws.send(json.dumps({'id': n, 'method': method, 'params': params}))
         while True:
@@ -89,6 +99,21 @@ class Browser:
                 assert 'error' not in reply, reply['error']
                 result: dict[str, Any] = reply.get('result', {})
                 return result
+            if 'method' in reply:
+                self._events.append(reply['method'])
+
+    def _event(self, name: str, timeout: float) -> None:
+        """Until the event `name` has come (since the last open())."""
+        deadline = time.monotonic() + timeout
+        while name not in self._events:
+            left = deadline - time.monotonic()
+            assert left > 0, f'no {name} within {timeout} s'
+            try:
+                message = json.loads(self.ws.recv(timeout=left))
+            except TimeoutError:
+                continue
+            if 'method' in message:
+                self._events.append(message['method'])
 
     def open(self, url: str) -> None:
         self.call(
@@ -98,7 +123,11 @@ class Browser:
             deviceScaleFactor=1,
             mobile=False,
         )
+        self._events.clear()
         self.call('Page.navigate', url=url)
+        # until the page has loaded: a page still committing (a new origin gets a new
+        # renderer) answers a screenshot with "Not attached to an active page"
+        self._event('Page.loadEventFired', 60)
 
     def evaluate(self, expression: str) -> object:
         result = self.call('Runtime.evaluate', expression=expression, returnByValue=True)
@@ -113,6 +142,33 @@ class Browser:
             with open(path, 'wb') as f:
                 f.write(data)
         return Image.open(io.BytesIO(data)).convert('RGB')
+
+    def shot(
+        self, url: str | None, path: str, ready: Any, timeout: float = 120, settle: float = 2.0
+    ) -> Any:
+        """`url` opened afresh (None: the page open now), then screenshots of it (each saved
+        to `path`, to look at) until `ready(image)` has held on every one for `settle` s:
+        the last one, as a person sees the page once it has settled. (A live page passes
+        through moments no one would judge it by: an object drawn at the origin in the
+        frame before its pose arrives.)"""
+        from tests.spinning import wait_until
+
+        if url is not None:
+            self.open(url)
+        shot: list[Any] = []
+        since: list[float] = []  # when ready() began to hold, while it does
+
+        def taken() -> bool:
+            shot[:] = [self.screenshot(path)]
+            if not ready(shot[0]):
+                since.clear()
+                return False
+            if not since:
+                since.append(time.monotonic())
+            return time.monotonic() - since[0] >= settle
+
+        wait_until(taken, timeout=timeout, interval=0.5)
+        return shot[0]
 
     def click(self, x: float, y: float) -> None:
         """A left click as a mouse makes it: move, press, release."""
@@ -138,9 +194,22 @@ class Browser:
         )
         return (float(found[0]), float(found[1])) if isinstance(found, list) else None
 
+    def checkbox_centre(self, label: str) -> tuple[float, float] | None:
+        """Where the page shows the one checkbox whose row reads `label` (None while none)."""
+        found = self.evaluate(
+            '(() => { for (const box of document.querySelectorAll("input[type=checkbox]")) {'
+            ' let row = box.parentElement;'
+            ' while (row && row.querySelectorAll("input[type=checkbox]").length === 1) {'
+            f' if (row.innerText.replace(/\\s+/g, " ").trim() === {json.dumps(label)}) {{'
+            ' const r = box.getBoundingClientRect(); return [r.x + r.width / 2,'
+            ' r.y + r.height / 2]; } row = row.parentElement; } } return null; })()'
+        )
+        return (float(found[0]), float(found[1])) if isinstance(found, list) else None
+
     def close(self) -> None:
         try:
-            self.ws.close()
+            if hasattr(self, 'ws'):
+                self.ws.close()
         finally:
             self.proc.terminate()
             try:
@@ -166,43 +235,3 @@ def blue(r: int, g: int, b: int) -> bool:
 
 def magenta(r: int, g: int, b: int) -> bool:
     return r > 140 and b > 140 and g < 100
-
-
-def screenshot(url: str, path: str, width: int, height: int, budget_ms: int = 6000) -> Any:
-    """A one-shot headless screenshot (`chromium --screenshot`): virtual time runs the page's
-    animation frames for `budget_ms`, as a person would see it after that long. None when
-    chromium wrote nothing (a loaded machine: the caller tries again)."""
-    from PIL import Image
-
-    exe = chromium()
-    assert exe is not None
-    profile = tempfile.mkdtemp(prefix='rviz2-chromium-')
-    if os.path.exists(path):
-        os.unlink(path)
-    try:
-        subprocess.run(
-            [
-                exe,
-                '--headless',
-                '--no-sandbox',
-                '--use-angle=swiftshader',
-                '--enable-unsafe-swiftshader',
-                '--disable-background-networking',
-                '--no-first-run',
-                f'--user-data-dir={profile}',
-                f'--window-size={width},{height}',
-                f'--virtual-time-budget={budget_ms}',
-                f'--screenshot={path}',
-                url,
-            ],
-            stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL,
-            timeout=120,
-        )
-    except subprocess.TimeoutExpired:
-        return None
-    finally:
-        shutil.rmtree(profile, ignore_errors=True)
-    if not os.path.exists(path):
-        return None
-    return Image.open(path).convert('RGB')

@@ -16,7 +16,7 @@ from typing import Any
 
 import pytest
 
-from tests.bundled.rviz2.browser import Browser, blue, chromium, count, magenta, red, screenshot
+from tests.bundled.rviz2.browser import Browser, blue, chromium, count, magenta, red
 from tests.conftest import Processes
 from tests.spinning import Listener, free_port, wait_until
 
@@ -37,6 +37,8 @@ def _serving(port: int) -> bool:
 
 
 def _start_viewer(procs: Processes, *args: str) -> str:
+    """The viewer, in the test's own processes: stopped when the test ends, so it does not
+    go on drawing the scene (and taking the CPU) for the module's later tests."""
     port = free_port()
     proc = procs.cli('run', 'rviz2', 'rviz2', '--port', str(port), *args, cwd=ROOT)
     wait_until(lambda: _serving(port) or proc.poll() is not None, timeout=30)
@@ -55,8 +57,9 @@ def scene(ros_router: str) -> Iterator[Processes]:
         procs.close()
 
 
-@pytest.fixture
+@pytest.fixture(scope='module')
 def browser() -> Iterator[Browser]:
+    """One Chromium for the module's tests: each opens its own page in it."""
     b = Browser(W, H)
     try:
         yield b
@@ -83,18 +86,10 @@ def centroid(
     return (left + xs / n, top + ys / n) if n else (math.nan, math.nan)
 
 
-def _shot(url: str, name: str, ready: Any) -> Any:
-    """A screenshot of the page once `ready(image)` holds (each try is a fresh page)."""
+def _shot(browser: Browser, url: str, name: str, ready: Any) -> Any:
+    """A screenshot of the page, freshly opened, once `ready(image)` holds."""
     SHOTS.mkdir(exist_ok=True)
-    shot: list[Any] = []
-
-    def taken() -> bool:
-        image = screenshot(url, str(SHOTS / name), W, H)
-        shot[:] = [image]
-        return image is not None and ready(image)
-
-    wait_until(taken, timeout=120, interval=0.5)
-    return shot[0]
+    return browser.shot(url, str(SHOTS / name), ready)
 
 
 RVIZ_FILE = """\
@@ -129,13 +124,13 @@ Visualization Manager:
 
 
 def test_rviz_file_opens_its_fixed_frame_and_displays(
-    scene: Processes, browser: Browser, tmp_path: Path
+    scene: Processes, browser: Browser, processes: Processes, tmp_path: Path
 ) -> None:
     config = tmp_path / 'three.rviz'
     config.write_text(RVIZ_FILE)
-    url = _start_viewer(scene, '-d', str(config))
+    url = _start_viewer(processes, '-d', str(config))
     image = _shot(
-        url, 'rviz_file.png', lambda im: count(im, red) > 200 and count(im, magenta) > 200
+        browser, url, 'rviz_file.png', lambda im: count(im, red) > 200 and count(im, magenta) > 200
     )
     # the cloud is published with the scan, so a cloud display would have drawn it by now
     assert count(image, blue) == 0  # the file names no PointCloud2 display
@@ -144,7 +139,7 @@ def test_rviz_file_opens_its_fixed_frame_and_displays(
     # (the view looks at it from the same place as the default one)
     assert abs(ring[0] - W / 2) < 40 and abs(ring[1] - H / 2) < 40, ring
     assert cube[0] < ring[0] - 80, (ring, cube)  # map (-2, 2) is base_link (-3.5, 0.5)
-    browser.open(url)
+    # the page the screenshot was of is still open: its panel
     panel = wait_until(
         lambda: (
             'LaserScan /scan' in str(browser.evaluate('document.body.innerText'))
@@ -158,7 +153,7 @@ def test_rviz_file_opens_its_fixed_frame_and_displays(
 
 
 def test_goal_pose_click_publishes_a_pose_stamped(
-    scene: Processes, browser: Browser, ros_context: Any, tmp_path: Path
+    scene: Processes, browser: Browser, processes: Processes, ros_context: Any, tmp_path: Path
 ) -> None:
     from ros2lite.msgs.geometry_msgs.msg import PoseStamped
 
@@ -169,7 +164,7 @@ def test_goal_pose_click_publishes_a_pose_stamped(
         'Visualization Manager:\n  Displays:\n    - Class: rviz_default_plugins/Grid\n'
         '  Global Options:\n    Fixed Frame: map\n'
     )
-    url = _start_viewer(scene, '-d', str(config))
+    url = _start_viewer(processes, '-d', str(config))
     listener = Listener(ros_context, '/goal_pose', PoseStamped, 10)
     try:
         browser.open(url)
@@ -188,11 +183,18 @@ def test_goal_pose_click_publishes_a_pose_stamped(
         )
         button = wait_until(settled, timeout=30, interval=1.0)
         browser.click(*button)
-        wait_until(lambda: 'click the ground' in str(browser.evaluate('document.body.innerText')))
+        # (each answer is a round trip page -> viewer -> page: seconds on a loaded machine)
+        wait_until(
+            lambda: 'click the ground' in str(browser.evaluate('document.body.innerText')),
+            timeout=30,
+        )
         # the camera looks at map's origin: the canvas centre is (0, 0) on the ground; a click
         # above it is further along the view, map's (1, 1): a heading of 45 degrees
         browser.click(W / 2, H / 2)
-        wait_until(lambda: 'where it faces' in str(browser.evaluate('document.body.innerText')))
+        wait_until(
+            lambda: 'where it faces' in str(browser.evaluate('document.body.innerText')),
+            timeout=30,
+        )
         browser.click(W / 2, H / 2 - 100)
         wait_until(lambda: listener.messages, timeout=20)
     finally:
@@ -213,7 +215,7 @@ def yellow(r: int, g: int, b: int) -> bool:
 
 
 def test_zero_configuration_shows_the_robot_scan_cloud_and_markers_and_follows_a_joint(
-    scene: Processes, processes: Processes, ros_context: Any, tmp_path: Path
+    scene: Processes, browser: Browser, processes: Processes, ros_context: Any, tmp_path: Path
 ) -> None:
     """Zero configuration, with a real robot_state_publisher on the test's URDF (green base,
     yellow arm on a revolute joint) and /joint_states from a process the test controls: the
@@ -233,10 +235,13 @@ def test_zero_configuration_shows_the_robot_scan_cloud_and_markers_and_follows_a
     )  # fmt: skip
     joints = [sys.executable, '-m', 'tests.bundled.rviz2.joints']
     swing = processes.start([*joints, '0.0'], cwd=ROOT)
-    url = _start_viewer(scene)
+    url = _start_viewer(processes)
     colours = (red, blue, magenta, green, yellow)
     image = _shot(
-        url, 'zero_config.png', lambda im: all(count(im, c, SCENE_BOX) > 100 for c in colours)
+        browser,
+        url,
+        'zero_config.png',
+        lambda im: all(count(im, c, SCENE_BOX) > 100 for c in colours),
     )
     ring, cloud, cube = (centroid(image, c, SCENE_BOX) for c in (red, blue, magenta))
     # the camera looks from (-6, -6, 6) at map's origin: screen-right is map's (1, -1),
@@ -270,7 +275,7 @@ def test_zero_configuration_shows_the_robot_scan_cloud_and_markers_and_follows_a
         a = centroid(im, yellow, SCENE_BOX)
         return count(im, yellow, SCENE_BOX) > 100 and a[0] < min(base[0], arm[0] - 20)
 
-    after = _shot(url, 'robot_swung.png', swung)
+    after = _shot(browser, url, 'robot_swung.png', swung)
     # the arm along base_link's +y now: screen-left and up; the base stayed
     base2, arm2 = centroid(after, green, SCENE_BOX), centroid(after, yellow, SCENE_BOX)
     assert abs(base2[0] - base[0]) < 10 and abs(base2[1] - base[1]) < 10, (base, base2)
