@@ -115,11 +115,12 @@ class Grid:
 
     # -- queries -----------------------------------------------------------------------------
     def cell(self, x: float, y: float) -> int:
-        """The index of the cell holding (x, y), or -1 outside the grid."""
-        i = math.floor((x - self.origin_x) / self.resolution)
-        j = math.floor((y - self.origin_y) / self.resolution)
-        if 0 <= i < self.width and 0 <= j < self.height:
-            return j * self.width + i
+        """The index of the cell holding (x, y), or -1 outside the grid (and for a point
+        that is not finite: nan fails both comparisons)."""
+        u = (x - self.origin_x) / self.resolution
+        v = (y - self.origin_y) / self.resolution
+        if 0 <= u < self.width and 0 <= v < self.height:
+            return int(v) * self.width + int(u)
         return -1
 
     def clearance(self, x: float, y: float) -> float:

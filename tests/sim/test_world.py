@@ -70,3 +70,11 @@ def test_bad_maps_are_one_line(tmp_path: Path) -> None:
     (tmp_path / 'b.yaml').write_text('image: missing.png\nresolution: 0.05\n')
     with pytest.raises(SimError, match='cannot read image'):
         load_map(tmp_path / 'b.yaml')
+
+
+def test_a_point_that_is_not_finite_is_outside() -> None:
+    grid = _world(Box(0.0, 0.0, 0.5, 0.5))
+    assert grid.cell(0.0, 0.0) >= 0
+    for x, y in ((math.nan, 0.0), (0.0, math.nan), (math.inf, 0.0), (0.0, -math.inf), (1e308, 0)):
+        assert grid.cell(x, y) == -1
+        assert grid.clearance(x, y) == 0.0
