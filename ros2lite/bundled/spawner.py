@@ -83,9 +83,17 @@ def spawn(node_name: str, order: Order) -> None:
         name = name or _robot_name(text)
         request = SpawnRequest(name, text, *pose, namespace=order.namespace)
         answers: list[dict[str, object]] = []
+        warned: list[bool] = []
 
         def on_answer(msg: String) -> None:
-            answer = json.loads(msg.data)
+            # any peer can publish on the answer topic: what is not JSON is not our answer
+            try:
+                answer = json.loads(msg.data)
+            except (ValueError, RecursionError):
+                if not warned:
+                    warned.append(True)
+                    log.warn(f'ignoring an answer on {SPAWNED_TOPIC} that is not JSON')
+                return
             if isinstance(answer, dict) and answer.get('id') == request.id:
                 answers.append(answer)
 
@@ -105,12 +113,13 @@ def spawn(node_name: str, order: Order) -> None:
 
 def _robot_name(text: str) -> str:
     """The `<robot name=...>` of a URDF, for a spawner given no entity name."""
-    import xml.etree.ElementTree as ET
+    from ros2lite.urdf import UrdfError
+    from ros2lite.urdf.parse import read_xml
 
-    try:
-        return ET.fromstring(text).get('name', '') or 'robot'
-    except ET.ParseError as e:
-        raise SpawnFailed(f'the robot description is not XML: {e}') from None
+    try:  # the hardened reader: no DTD or entities, bounded in size
+        return read_xml(text, 'robot description').get('name', '') or 'robot'
+    except UrdfError as e:
+        raise SpawnFailed(str(e)) from None
 
 
 def run_spawner(node_name: str, parse: Callable[[list[str]], Order], args: list[str] | None) -> int:

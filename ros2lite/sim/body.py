@@ -12,7 +12,8 @@ from __future__ import annotations
 import math
 import random
 import threading
-from typing import TYPE_CHECKING, Protocol
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any, Protocol
 
 from ros2lite.msgs.builtin_interfaces.msg import Time
 from ros2lite.msgs.geometry_msgs.msg import TransformStamped, Twist, TwistStamped
@@ -31,6 +32,8 @@ if TYPE_CHECKING:
     from ros2lite.node import Node
     from ros2lite.publisher import Publisher
     from ros2lite.sim.world import Grid
+    from ros2lite.subscription import Subscription
+    from ros2lite.type_support import MsgT
 
 __all__ = ['STEP', 'Body', 'Stage', 'stamp_of']
 
@@ -93,7 +96,22 @@ class Body:
         self._tables = LaserTables(spec.laser)
         self._last_linear = 0.0
         self._publish_robot_state = publish_robot_state
-        self._make_interfaces()
+        self._pubs: list[Publisher[Any]] = []
+        self._subs: list[Subscription[Any]] = []
+        try:
+            self._make_interfaces()
+        except BaseException:  # a name the node refuses: no half-built robot stays behind
+            self.destroy()
+            raise
+
+    def destroy(self) -> None:
+        """Remove the robot's publishers and subscriptions from the node."""
+        for sub in self._subs:
+            self.node.destroy_subscription(sub)
+        for pub in self._pubs:
+            self.node.destroy_publisher(pub)
+        self._subs.clear()
+        self._pubs.clear()
 
     def topic(self, name: str) -> str:
         """`name` under the robot's namespace (a spawned robot's `-robot_namespace`)."""
@@ -102,30 +120,38 @@ class Body:
         return f'/{self.namespace}/{name}'
 
     # -- set-up ------------------------------------------------------------------------------
+    def _publisher(self, msg_type: type[MsgT], name: str, qos: QoSProfile | int) -> Publisher[MsgT]:
+        pub = self.node.create_publisher(msg_type, name, qos)
+        self._pubs.append(pub)
+        return pub
+
+    def _subscription(
+        self, msg_type: type[MsgT], name: str, callback: Callable[[MsgT], None], qos: int
+    ) -> None:
+        self._subs.append(self.node.create_subscription(msg_type, name, callback, qos))
+
     def _make_interfaces(self) -> None:
-        spec, node, stage, topic = self.spec, self.node, self.stage, self.topic
-        self.scan_pub = node.create_publisher(
-            LaserScan, topic(spec.laser.topic), qos_profile_sensor_data
-        )
+        spec, stage, topic = self.spec, self.stage, self.topic
+        self.scan_pub = self._publisher(LaserScan, topic(spec.laser.topic), qos_profile_sensor_data)
         self.odom_pubs = [
-            node.create_publisher(Odometry, topic(name), 10)
+            self._publisher(Odometry, topic(name), 10)
             for name in (spec.odom_topic, *spec.odom_copies)
         ]
         self.tf_pub = stage.tf_pub
-        self.joints_pub = node.create_publisher(JointState, topic('joint_states'), 10)
+        self.joints_pub = self._publisher(JointState, topic('joint_states'), 10)
         self.imu_pubs: list[Publisher[Imu]] = []
         if spec.imu is not None:
             self.imu_pubs = [
-                node.create_publisher(Imu, topic(name), qos_profile_sensor_data)
+                self._publisher(Imu, topic(name), qos_profile_sensor_data)
                 for name in (spec.imu.topic, *spec.imu_copies)
             ]
         self.image_pub: Publisher[Image] | None = None
         self.info_pub: Publisher[CameraInfo] | None = None
         if spec.camera is not None:
-            self.image_pub = node.create_publisher(
+            self.image_pub = self._publisher(
                 Image, topic(spec.camera.image_topic), qos_profile_sensor_data
             )
-            self.info_pub = node.create_publisher(
+            self.info_pub = self._publisher(
                 CameraInfo, topic(spec.camera.info_topic), qos_profile_sensor_data
             )
         self._mux = TwistMux(spec.twist_mux or ((spec.cmd_vel, 0, 0.0),))
@@ -143,12 +169,10 @@ class Body:
 
     def _publish_description(self) -> None:
         """The robot's description and fixed frames, for when no robot_state_publisher runs."""
-        spec, node = self.spec, self.node
-        self.description_pub = node.create_publisher(
-            String, self.topic('robot_description'), _LATCHED
-        )
+        spec = self.spec
+        self.description_pub = self._publisher(String, self.topic('robot_description'), _LATCHED)
         self.description_pub.publish(String(data=urdf(spec)))
-        static = node.create_publisher(TFMessage, '/tf_static', _LATCHED)
+        static = self._publisher(TFMessage, '/tf_static', _LATCHED)
         transforms = [
             _transform(j.parent, j.child, j.xyz, j.rpy, 0.0)
             for j in spec.joints
@@ -167,8 +191,8 @@ class Body:
         def on_stamped(msg: TwistStamped) -> None:
             self._command(name, msg.twist.linear.x, msg.twist.angular.z)
 
-        self.node.create_subscription(Twist, self.topic(name), on_twist, 10)
-        self.node.create_subscription(TwistStamped, self.topic(name), on_stamped, 10)
+        self._subscription(Twist, self.topic(name), on_twist, 10)
+        self._subscription(TwistStamped, self.topic(name), on_stamped, 10)
 
     def _command(self, name: str, linear: float, angular: float) -> None:
         """A twist on input `name`: it drives unless a higher-priority input is live."""

@@ -19,6 +19,7 @@ import threading
 import time
 from dataclasses import asdict, dataclass, replace
 
+from ros2lite.exceptions import Ros2liteError
 from ros2lite.msgs.rosgraph_msgs.msg import Clock
 from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.msgs.std_srvs.srv import Empty
@@ -140,7 +141,7 @@ class SimNode(Node):
         try:
             request = SpawnRequest.from_json(msg.data)
             self.spawn(request)
-        except SimError as e:
+        except (Ros2liteError, ValueError) as e:  # a peer's bad request: one line, dropped
             name = request.name if request is not None else '?'
             self.get_logger().error(f'cannot spawn {name!r}: {e}')
             self._answer(request, str(e))
@@ -154,7 +155,9 @@ class SimNode(Node):
         self._spawned.publish(String(data=json.dumps(answer)))
 
     def spawn(self, request: SpawnRequest) -> None:
-        """Add the robot `request` describes to the running world."""
+        """Add the robot `request` describes to the running world; a SimError (or a name
+        error, for a URDF's topic) says why not, and leaves nothing of the robot behind."""
+        request.validate()
         if any(b.spec.name == request.name for b in self.bodies):
             raise SimError(f'an entity named {request.name!r} is already in the world')
         spec = replace(spec_from_urdf(request.urdf, request.name), start=Pose2D())

@@ -20,6 +20,8 @@ import uuid
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 
+from ros2lite.exceptions import NameValidationException
+from ros2lite.names import validate_namespace
 from ros2lite.sim.drive import DriveLimits, Pose2D
 from ros2lite.sim.errors import SimError
 from ros2lite.sim.robots import Joint, RobotSpec
@@ -66,6 +68,20 @@ class SpawnRequest:
         if not request.name:
             raise SimError('a spawn request needs an entity name')
         return request
+
+    def validate(self) -> None:
+        """A SimError unless the pose is finite and the namespace a ROS namespace: a request
+        arrives from any peer, and a nan pose would stop the physics of every robot. Apart
+        from `from_json` so that the refusal can still answer the request's id."""
+        for axis in ('x', 'y', 'yaw'):
+            value = getattr(self, axis)
+            if not math.isfinite(value):
+                raise SimError(f'{axis} must be a finite number, not {value}')
+        if self.namespace.strip('/'):
+            try:
+                validate_namespace('/' + self.namespace.strip('/'))
+            except NameValidationException as e:
+                raise SimError(str(e)) from None
 
 
 _DIFF_DRIVE = ('diff_drive', 'DiffDrive')

@@ -21,6 +21,7 @@ from ros2lite.sim.rays import Outlines
 from ros2lite.util.safe_yaml import YamlInputError, load
 
 __all__ = [
+    'MAX_CELLS',
     'Box',
     'Cylinder',
     'Grid',
@@ -34,6 +35,8 @@ __all__ = [
 Rgb = tuple[int, int, int]
 WALL_GREY: Rgb = (170, 170, 170)
 _INF = float('inf')
+MAX_CELLS = 16_000_000
+"""The most cells a world's grid may have (a drawn world's extent or a map's picture)."""
 
 
 @dataclass(frozen=True)
@@ -115,11 +118,12 @@ class Grid:
 
     # -- queries -----------------------------------------------------------------------------
     def cell(self, x: float, y: float) -> int:
-        """The index of the cell holding (x, y), or -1 outside the grid."""
-        i = math.floor((x - self.origin_x) / self.resolution)
-        j = math.floor((y - self.origin_y) / self.resolution)
-        if 0 <= i < self.width and 0 <= j < self.height:
-            return j * self.width + i
+        """The index of the cell holding (x, y), or -1 outside the grid (and for a point
+        that is not finite: nan fails both comparisons)."""
+        u = (x - self.origin_x) / self.resolution
+        v = (y - self.origin_y) / self.resolution
+        if 0 <= u < self.width and 0 <= v < self.height:
+            return int(v) * self.width + int(u)
         return -1
 
     def clearance(self, x: float, y: float) -> float:
@@ -141,7 +145,7 @@ def build_world(spec: WorldSpec) -> Grid:
         raise SimError(f'world {spec.name!r}: resolution must be positive, not {res}')
     width = math.ceil((spec.xmax - spec.xmin) / res)
     height = math.ceil((spec.ymax - spec.ymin) / res)
-    if width <= 0 or height <= 0 or width * height > 16_000_000:
+    if width <= 0 or height <= 0 or width * height > MAX_CELLS:
         raise SimError(f'world {spec.name!r}: extent gives a {width}x{height} grid')
     grid = Grid(
         width,
@@ -294,21 +298,21 @@ def load_map(yaml_path: str | Path, wall_height: float = 0.5) -> Grid:
     image_path = path.parent / str(meta['image'])
     try:
         with Image.open(image_path) as picture:
+            width, height = picture.size  # from the header: nothing decoded yet
+            if width * height > MAX_CELLS:
+                raise SimError(
+                    f'map {path}: a {width}x{height} image is more than {MAX_CELLS} cells'
+                )
             grey = picture.convert('L')
-    except (OSError, UnidentifiedImageError) as e:
+    except (OSError, UnidentifiedImageError, Image.DecompressionBombError) as e:
         raise SimError(f'map {path}: cannot read image {image_path}: {e}') from None
-    width, height = grey.size
-    pixels = grey.tobytes()
-    occupied = bytearray(width * height)
-    for j in range(height):
-        # the picture's top row is the map's far (+y) edge
-        src = (height - 1 - j) * width
-        row = j * width
-        for i in range(width):
-            v = pixels[src + i]
-            p = v / 255.0 if negate else (255 - v) / 255.0
-            if p > occupied_thresh:
-                occupied[row + i] = 1
+    # map_server's threshold as a lookup table over the 256 grey levels (the same arithmetic
+    # per level as per pixel); the picture's top row is the map's far (+y) edge
+    table = [
+        1 if (v / 255.0 if negate else (255 - v) / 255.0) > occupied_thresh else 0
+        for v in range(256)
+    ]
+    occupied = bytearray(grey.point(table).transpose(Image.Transpose.FLIP_TOP_BOTTOM).tobytes())
     grid = Grid(
         width,
         height,

@@ -3,13 +3,15 @@ descriptions parse with ros2lite.urdf."""
 
 from __future__ import annotations
 
+import json
 import math
+import re
 
 import pytest
 
 from ros2lite.sim.errors import SimError
 from ros2lite.sim.robots import ROBOTS, urdf
-from ros2lite.sim.spawn import spec_from_urdf
+from ros2lite.sim.spawn import SpawnRequest, spec_from_urdf
 from ros2lite.urdf import parse_urdf
 
 MY_BOT = """<?xml version="1.0"?>
@@ -86,3 +88,21 @@ def test_our_descriptions_parse(name: str) -> None:
     for joint in spec.wheel_joints:
         assert robot.joints[joint].type == 'continuous'
     assert not math.isnan(spec.limits.wheel_separation)
+
+
+@pytest.mark.parametrize(
+    ('fields', 'said'),
+    [
+        ({'x': math.nan}, 'x must be a finite number, not nan'),
+        ({'yaw': math.inf}, 'yaw must be a finite number, not inf'),
+        ({'namespace': 'bad ns'}, "namespace '/bad ns' is invalid"),
+        ({'namespace': 'a//b'}, "namespace '/a//b' is invalid"),
+    ],
+)
+def test_a_request_from_a_peer_is_validated(fields: dict[str, object], said: str) -> None:
+    request = SpawnRequest.from_json(json.dumps({'name': 'r', 'urdf': MY_BOT, **fields}))
+    with pytest.raises(SimError, match=re.escape(said)):
+        request.validate()
+    SpawnRequest.from_json(
+        json.dumps({'name': 'r', 'urdf': MY_BOT, 'namespace': '/a/b'})
+    ).validate()

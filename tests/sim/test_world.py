@@ -70,3 +70,38 @@ def test_bad_maps_are_one_line(tmp_path: Path) -> None:
     (tmp_path / 'b.yaml').write_text('image: missing.png\nresolution: 0.05\n')
     with pytest.raises(SimError, match='cannot read image'):
         load_map(tmp_path / 'b.yaml')
+
+
+def test_a_point_that_is_not_finite_is_outside() -> None:
+    grid = _world(Box(0.0, 0.0, 0.5, 0.5))
+    assert grid.cell(0.0, 0.0) >= 0
+    for x, y in ((math.nan, 0.0), (0.0, math.nan), (math.inf, 0.0), (0.0, -math.inf), (1e308, 0)):
+        assert grid.cell(x, y) == -1
+        assert grid.clearance(x, y) == 0.0
+
+
+def test_a_map_picture_past_the_cell_cap_is_one_line(tmp_path: Path) -> None:
+    # 4001 x 4000 pixels: one column more than the 16M cells a drawn world may have
+    Image.new('L', (4001, 4000), 254).save(tmp_path / 'huge.png')
+    (tmp_path / 'huge.yaml').write_text('image: huge.png\nresolution: 0.05\n')
+    with pytest.raises(SimError, match=r'a 4001x4000 image is more than 16000000 cells'):
+        load_map(tmp_path / 'huge.yaml')
+
+
+@pytest.mark.parametrize('negate', [0, 1])
+def test_every_grey_level_thresholds_as_map_server_says(tmp_path: Path, negate: int) -> None:
+    # 256 columns, one per grey level, over 3 rows (the top row darkest-first reversed)
+    picture = Image.new('L', (256, 3))
+    for v in range(256):
+        for j in range(3):
+            picture.putpixel((v if j else 255 - v, j), v if j else 255 - v)
+    picture.save(tmp_path / 'levels.png')
+    (tmp_path / 'levels.yaml').write_text(
+        f'image: levels.png\nresolution: 1.0\nnegate: {negate}\noccupied_thresh: 0.65\n'
+    )
+    grid = load_map(tmp_path / 'levels.yaml')
+    for v in range(256):
+        p = v / 255.0 if negate else (255 - v) / 255.0
+        for j in range(3):
+            assert grid.occupied[j * 256 + v] == (p > 0.65), (v, j)
+    assert 0 < sum(grid.occupied) < 3 * 256

@@ -77,18 +77,17 @@ def _run(*args: str, timeout: float = 40) -> subprocess.CompletedProcess[str]:
 
 
 @pytest.fixture(scope='module')
-def empty_world(ros_router: str) -> Iterator[None]:
-    """Gazebo's server alone: the 2D world with no robot, at 4x real time (one for both tests:
-    their robots have names and topics of their own)."""
+def empty_world(ros_router: str) -> Iterator[subprocess.Popen[str]]:
+    """Gazebo's server alone: the 2D world with no robot, at 4x real time (one for all tests:
+    their robots have names and topics of their own); the world's process."""
     from tests.conftest import Processes
 
     procs = Processes()
     try:
-        procs.cli(
+        yield procs.cli(
             'run', 'turtlebot3_gazebo', 'gazebo_2d', '--ros-args', '-p', 'robot_model:=none',
             '-p', 'world:=empty_world', '-p', 'real_time_factor:=4.0',
         )  # fmt: skip
-        yield
     finally:
         procs.close()
 
@@ -184,3 +183,81 @@ def test_an_executable_with_py_runs_its_module() -> None:
         'spawn_entity.py': 'ros2lite.bundled.gazebo_ros.spawn_entity:main'
     }
     assert BUNDLED['ros_gz_sim'] == {'create': 'ros2lite.bundled.ros_gz_sim.create:main'}
+
+
+@pytest.mark.timeout(90)
+def test_hostile_spawn_requests_are_refused_and_the_world_runs_on(
+    empty_world: subprocess.Popen[str], ros_context: Any
+) -> None:
+    """Any peer can publish on the spawn topic: a bad namespace, a URDF whose remapping names
+    an invalid topic, a pose that is not finite are each one refusal, the half-built robot
+    leaves no topic behind, and the world (its process, its physics) carries on."""
+    import json
+    import math
+
+    from ros2lite.executors import SingleThreadedExecutor
+    from ros2lite.msgs.rosgraph_msgs.msg import Clock
+    from ros2lite.msgs.std_msgs.msg import String
+    from ros2lite.node import Node
+    from ros2lite.qos import DurabilityPolicy, QoSProfile
+    from ros2lite.sim.spawn import SPAWN_TOPIC, SPAWNED_TOPIC
+
+    node = Node('hostile', context=ros_context)
+    executor = SingleThreadedExecutor(context=ros_context)
+    executor.add_node(node)
+    ids = ('ns', 'half', 'nan', 'good')
+    answers: dict[str, dict[str, Any]] = {}
+    clocks: list[float] = []
+    latched = QoSProfile(depth=10, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+
+    def on_answer(msg: String) -> None:
+        answer = json.loads(msg.data)
+        if answer['id'] in ids:  # not the earlier tests' latched answers
+            answers[answer['id']] = answer
+
+    node.create_subscription(String, SPAWNED_TOPIC, on_answer, latched)
+    node.create_subscription(
+        Clock, '/clock', lambda m: clocks.append(m.clock.sec + m.clock.nanosec * 1e-9), 10
+    )
+    pub = node.create_publisher(String, SPAWN_TOPIC, 10)
+
+    def spin_until(predicate: Any, timeout: float = 30) -> Any:
+        return wait_until(predicate, timeout, step=lambda: executor.spin_once(timeout_sec=0.02))
+
+    # the laser's topic is fine and made first; the odometry's is not
+    half = _bot('half').replace('half/odom', 'half odom')
+    nan_pose = json.dumps({'name': 'nan_bot', 'urdf': _bot('nb'), 'x': math.nan, 'id': 'nan'})
+    assert '"x": NaN' in nan_pose  # what json.loads takes
+    requests = [
+        json.dumps({'name': 'ns_bot', 'urdf': _bot('ns'), 'namespace': 'bad ns', 'id': 'ns'}),
+        json.dumps({'name': 'half', 'urdf': half, 'id': 'half'}),
+        nan_pose,
+        json.dumps({'name': 'good', 'urdf': _bot('good'), 'id': 'good'}),
+    ]
+    try:
+        spin_until(lambda: pub.get_subscription_count() > 0)
+        for text in requests:
+            pub.publish(String(data=text))
+        spin_until(lambda: len(answers) == len(ids))
+        assert {k: a['ok'] for k, a in answers.items()} == {
+            'ns': False,
+            'half': False,
+            'nan': False,
+            'good': True,
+        }
+        assert "namespace '/bad ns' is invalid" in answers['ns']['message']
+        assert "topic name 'half odom' is invalid" in answers['half']['message']
+        assert answers['nan']['message'] == 'x must be a finite number, not nan'
+        # physics still steps after every request: sim time moves on
+        seen = len(clocks)
+        spin_until(lambda: len(clocks) > seen + 20)
+        assert clocks[-1] > clocks[seen]
+        assert empty_world.poll() is None
+    finally:
+        node.destroy_node()
+        executor.shutdown()
+    out = subprocess.run(
+        [sys.executable, '-m', 'ros2lite', 'topic', 'list'], capture_output=True, text=True
+    )
+    assert '/good/scan' in out.stdout, out.stdout
+    assert '/half/scan' not in out.stdout, out.stdout
