@@ -70,6 +70,8 @@ class MarkerDisplay(Display[Marker | MarkerArray]):
         self.changed: set[Key] = set()
         self.gone: set[Key] = set()
         self.handles: dict[Key, viser.FrameHandle] = {}
+        # each marker's drawing, under its frame: replaced on change, the frame kept
+        self.shapes: dict[Key, viser.SceneNodeHandle] = {}
 
     def store(self, msg: Marker | MarkerArray) -> None:
         now = time.monotonic()
@@ -112,6 +114,7 @@ class MarkerDisplay(Display[Marker | MarkerArray]):
             changed, self.changed = self.changed, set()
             current = dict(self.markers)
         for key in gone:
+            self.shapes.pop(key, None)
             handle = self.handles.pop(key, None)
             if handle is not None:
                 handle.remove()
@@ -148,10 +151,14 @@ class MarkerDisplay(Display[Marker | MarkerArray]):
     def _draw_one(self, key: Key, m: Marker) -> None:
         scene = self.ctx.server.scene
         name = self._name(key)
-        old = self.handles.pop(key, None)
+        # the frame stays (made anew, a page that joins later saw it at the origin: viser's
+        # replay put the old frame's pose before the new frame); only the shape is replaced,
+        # so a marker whose type changed leaves nothing of its old one
+        old = self.shapes.pop(key, None)
         if old is not None:
-            old.remove()  # a marker whose type changed leaves nothing of its old shape
-        self.handles[key] = scene.add_frame(name, show_axes=False, visible=False)
+            old.remove()
+        if key not in self.handles:
+            self.handles[key] = scene.add_frame(name, show_axes=False, visible=False)
         kind = int(m.type)
         s = m.scale
         sx, sy, sz = float(s.x), float(s.y), float(s.z)
@@ -160,17 +167,21 @@ class MarkerDisplay(Display[Marker | MarkerArray]):
         opacity = alpha if alpha < 1.0 else None
         g = f'{name}/shape'
         if kind == CUBE:
-            scene.add_box(g, colour, (sx, sy, sz), opacity=opacity)
+            self.shapes[key] = scene.add_box(g, colour, (sx, sy, sz), opacity=opacity)
         elif kind == SPHERE:
-            scene.add_icosphere(g, 0.5, colour, scale=(sx, sy, sz), opacity=opacity)
+            self.shapes[key] = scene.add_icosphere(
+                g, 0.5, colour, scale=(sx, sy, sz), opacity=opacity
+            )
         elif kind == CYLINDER:
             # viser's cylinder stands on z, as RViz's does; diameter x/y, height z
-            scene.add_cylinder(g, 0.5, 1.0, colour, scale=(sx, sy, sz), opacity=opacity)
+            self.shapes[key] = scene.add_cylinder(
+                g, 0.5, 1.0, colour, scale=(sx, sy, sz), opacity=opacity
+            )
         elif kind == ARROW:
             pts = _points(m)
             if len(pts) >= 2:
                 ends = pts[:2].reshape(1, 2, 3)
-                scene.add_arrows(
+                self.shapes[key] = scene.add_arrows(
                     g,
                     ends,
                     colour,
@@ -182,7 +193,7 @@ class MarkerDisplay(Display[Marker | MarkerArray]):
                 )
             else:
                 ends = arrows([((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))], sx)
-                scene.add_arrows(
+                self.shapes[key] = scene.add_arrows(
                     g, ends, colour, shaft_radius=sy / 2, head_radius=sz / 2, head_length=0.23 * sx
                 )
         elif kind in (LINE_STRIP, LINE_LIST):
@@ -195,7 +206,7 @@ class MarkerDisplay(Display[Marker | MarkerArray]):
             if len(segs):
                 colours = _colours(m, len(pts))
                 seg_colours = colours[:-1] if kind == LINE_STRIP else colours[0::2]
-                scene.add_line_segments(
+                self.shapes[key] = scene.add_line_segments(
                     g, segs, seg_colours[:, None, :].repeat(2, axis=1), thickness=max(sx, 1e-3)
                 )
         elif kind in (CUBE_LIST, SPHERE_LIST, POINTS):
@@ -204,7 +215,7 @@ class MarkerDisplay(Display[Marker | MarkerArray]):
                 shape: Literal['square', 'circle'] = (
                     'square' if kind in (CUBE_LIST, POINTS) else 'circle'
                 )
-                scene.add_point_cloud(
+                self.shapes[key] = scene.add_point_cloud(
                     g,
                     pts,
                     _colours(m, len(pts)),
@@ -213,7 +224,7 @@ class MarkerDisplay(Display[Marker | MarkerArray]):
                     point_shading='flat',
                 )
         elif kind == TEXT_VIEW_FACING:
-            scene.add_label(
+            self.shapes[key] = scene.add_label(
                 g,
                 str(m.text),
                 font_size_mode='scene',
@@ -224,7 +235,7 @@ class MarkerDisplay(Display[Marker | MarkerArray]):
             pts = _points(m)
             n = len(pts) // 3 * 3
             if n:
-                scene.add_mesh_simple(
+                self.shapes[key] = scene.add_mesh_simple(
                     g,
                     pts[:n] * (sx, sy, sz),
                     np.arange(n, dtype=np.uint32).reshape(-1, 3),
@@ -236,7 +247,7 @@ class MarkerDisplay(Display[Marker | MarkerArray]):
             mesh = load_mesh(str(m.mesh_resource))
             if not m.mesh_use_embedded_materials:
                 mesh.visual = flat_visual(mesh, colour)
-            scene.add_mesh_trimesh(g, mesh, scale=(sx, sy, sz))
+            self.shapes[key] = scene.add_mesh_trimesh(g, mesh, scale=(sx, sy, sz))
         else:
             raise ConvertError(f'marker type {kind} is not one RViz draws')
 
@@ -250,6 +261,7 @@ class MarkerDisplay(Display[Marker | MarkerArray]):
         for handle in self.handles.values():
             handle.remove()
         self.handles.clear()
+        self.shapes.clear()
 
 
 def load_mesh(uri: str) -> trimesh.Trimesh:
