@@ -155,7 +155,8 @@ def test_input_may_be_lists_and_other_infinity_spellings() -> None:
     ('obj', 'reason'),
     [
         ({'uint8_values': 'not base64!'}, "field 'uint8_values' (uint8[]) takes base64 text"),
-        ({'float32_values': ['NaN', 'big']}, "field 'float32_values' is a float; 'big'"),
+        # set_message_fields' own words (for a single float ros2cli's: "could not convert")
+        ({'float32_values': ['NaN', 'big']}, "(float32[]) takes numbers; [nan, 'big']"),
         ({'int64_values': [1.5]}, "field 'int64_values' is a list of integers"),
         ({'nope': 1}, "object has no attribute 'nope'"),
         ({'bool_values': [True] * 4}, ''),
