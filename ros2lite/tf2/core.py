@@ -329,7 +329,9 @@ class BufferCore:
         )
 
     def _loop_message(self) -> str:
-        return f'The tf tree is invalid because it contains a loop.\n{self._frames_text()}\n'
+        return (
+            f'The tf tree is invalid because it contains a loop.\n{self.all_frames_as_string()}\n'
+        )
 
     def _latest_common_time(self, target: int, source: int) -> tuple[int, str, int]:
         """The newest time at which every frame between the two has data (0 when the chain
@@ -546,18 +548,16 @@ class BufferCore:
     # -- the tree as text ---------------------------------------------------------------------
     def all_frames_as_string(self) -> str:
         """One line per frame: 'Frame child exists with parent parent.' (tf2's text)."""
-        with self._lock:
-            return self._frames_text()
+        return ''.join(
+            f'Frame {c} exists with parent {p}.\n' for c, p in self.frame_parents().items()
+        )
 
-    def _frames_text(self) -> str:
-        lines = []
-        for frame, cache in enumerate(self._caches):
-            if cache is None:
-                continue
-            sample = cache.get(0)[0]
-            parent = sample[0] if sample is not None else 0
-            lines.append(f'Frame {self._names[frame]} exists with parent {self._names[parent]}.\n')
-        return ''.join(lines)
+    def frame_parents(self) -> dict[str, str]:
+        """Each frame's parent by name, as that text says it (for views that walk the tree)."""
+        with self._lock:
+            names = self._names
+            got = ((names[f], c.get(0)[0]) for f, c in enumerate(self._caches) if c is not None)
+            return {child: names[s[0] if s is not None else 0] for child, s in got}
 
     def all_frames_as_yaml(self, current_time: object = None) -> str:
         """Each frame's parent, broadcaster, rate and span in tf2's YAML (view_frames' text)."""

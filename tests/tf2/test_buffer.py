@@ -228,6 +228,17 @@ def test_full_lookup_through_a_fixed_frame() -> None:
     assert b.chain('world', 0, 'tool', 0, 'world') == ['tool', 'arm', 'base', 'world']
 
 
+def test_frame_parents_is_the_text_as_a_map() -> None:
+    """What the views walk (monitor/scene, the rviz2 viewer), without parsing text or YAML."""
+    b = small_tree()
+    assert b.frame_parents() == {
+        'base': 'world',
+        'arm': 'base',
+        'tool': 'arm',
+        'lost': 'elsewhere',
+    }
+
+
 def test_frames_as_text() -> None:
     b = small_tree()
     assert b.all_frames_as_string() == (

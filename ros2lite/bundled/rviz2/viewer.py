@@ -235,12 +235,8 @@ class Viewer:
 
     # -- where things are ------------------------------------------------------------------
     def parents(self) -> dict[str, str]:
-        from ros2lite.util.safe_yaml import load
-
-        frames = load(self.buffer.all_frames_as_yaml())
-        if not isinstance(frames, dict):
-            return {}
-        return {str(f): str(v.get('parent', '')) for f, v in frames.items() if isinstance(v, dict)}
+        """Each frame's parent (a frame whose data was cleared has none: left out)."""
+        return {c: p for c, p in self.buffer.frame_parents().items() if p != 'NO_PARENT'}
 
     def place(self, frame: str, ns: int) -> Pose | None:
         """Where `frame` is in the fixed frame at `ns` (the latest when TF has no data then)."""
