@@ -171,17 +171,23 @@ def _measure(
     return _flow(RAW, size, raw, '1' if variant == 'raw_zenoh_shm' else '0', _link())
 
 
-def bench_shm() -> None:
+def _lite_envs(domain: str) -> tuple[str, dict[str, str], dict[str, str]]:
+    """A router endpoint and the rclpy programs' environments on it, shared memory off and on
+    (no ZENOH_* of the caller's: only the switch under test differs)."""
     endpoint = f'tcp/127.0.0.1:{free_port()}'
     base = {k: v for k, v in os.environ.items() if not k.startswith('ZENOH_')}
     base.update(
         ROS2LITE_ROUTER=endpoint,
         ROUTER=endpoint,
-        ROS_DOMAIN_ID='198',
+        ROS_DOMAIN_ID=domain,
         ROS2LITE_NO_DAEMON='1',
         PYTHONPATH=str(COMPAT),
     )
-    lite_off, lite_on = dict(base), {**base, 'ZENOH_CONFIG_OVERRIDE': SHM_ON}
+    return endpoint, base, {**base, 'ZENOH_CONFIG_OVERRIDE': SHM_ON}
+
+
+def bench_shm() -> None:
+    endpoint, lite_off, lite_on = _lite_envs('198')
     real: tuple[str, dict[str, str]] | None
     try:
         real = real_rclpy_python(), confined(dict(os.environ), real_domain())
@@ -193,7 +199,7 @@ def bench_shm() -> None:
         for _ in range(ROUNDS):
             for name, size in SIZES.items():
                 for variant in VARIANTS:
-                    run = _measure(variant, size, lite_off, lite_on, base, real)
+                    run = _measure(variant, size, lite_off, lite_on, lite_off, real)
                     if run is not None:
                         figures.setdefault(f'{name}_{variant}', []).append(run)
     for name in SIZES:
@@ -258,16 +264,8 @@ def _record(env: dict[str, str], directory: str, n: int) -> tuple[int, float]:
 def bench_shm_record() -> None:
     """`bag record` of a 30 Hz 4 MiB camera, shared memory off and on: the fewest messages a
     round kept (of CAMERA_N), and the recorder's CPU per message (its idle run's CPU taken off)."""
-    endpoint = f'tcp/127.0.0.1:{free_port()}'
-    base = {k: v for k, v in os.environ.items() if not k.startswith('ZENOH_')}
-    base.update(
-        ROS2LITE_ROUTER=endpoint,
-        ROUTER=endpoint,
-        ROS_DOMAIN_ID='197',
-        ROS2LITE_NO_DAEMON='1',
-        PYTHONPATH=str(COMPAT),
-    )
-    envs = {'off': dict(base), 'on': {**base, 'ZENOH_CONFIG_OVERRIDE': SHM_ON}}
+    endpoint, off, on = _lite_envs('197')
+    envs = {'off': off, 'on': on}
     cpu: dict[str, list[float]] = {k: [] for k in envs}
     idle: dict[str, list[float]] = {k: [] for k in envs}
     kept: dict[str, list[int]] = {k: [] for k in envs}
