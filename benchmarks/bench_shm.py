@@ -9,7 +9,9 @@ interleaved rounds; MB/s received.
 The publisher sends as fast as it can (reliable, keep last 10: congestion drops what the link
 cannot take); the subscriber counts the payload bytes it got in WINDOW s after its first.
 ros2lite's subscriber deserializes each message (today: `to_bytes()` then CDR), raw zenoh's
-calls `to_bytes()` only, so the gap between the two is ros2lite's own cost.
+calls `to_bytes()` only (and in `raw_zenoh_shm_array` also fills the `array.array` that an
+rclpy message's `uint8[]` is: the least a typed subscriber can do), so the gap between the
+two is ros2lite's own cost.
 """
 
 from __future__ import annotations
@@ -70,8 +72,9 @@ else:
 '''
 
 RAW = r'''
-import os, sys, time, zenoh
-role, size, window, shm = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), sys.argv[4] == '1'
+import array, os, sys, time, zenoh
+role, size, window, shm = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), sys.argv[4] != '0'
+typed = sys.argv[4] == '2'  # the subscriber also fills the array.array an rclpy uint8[] is
 link = '["%s"]' % sys.argv[5]  # the subscriber listens, the publisher connects: one link
 c = zenoh.Config()
 for k, v in (('mode', '"peer"'), ('connect/endpoints', link if role == 'pub' else '[]'),
@@ -84,6 +87,8 @@ if role == 'sub':
     got = {'n': 0, 'bytes': 0, 't0': 0.0}
     def on(sample):
         data = sample.payload.to_bytes()
+        if typed:
+            data = array.array('B', data)
         if not got['t0']:
             got['t0'] = time.perf_counter(); return
         got['n'] += 1; got['bytes'] += len(data)
@@ -151,7 +156,19 @@ def _memcpy(size: int) -> float:
     return n * size / (time.perf_counter() - t0) / 1e6
 
 
-VARIANTS = ('lite_today', 'lite_shm', 'raw_zenoh', 'raw_zenoh_shm', 'memcpy', 'real_rclpy')
+VARIANTS = (
+    'lite_today',
+    'lite_shm',
+    'raw_zenoh',
+    'raw_zenoh_shm',
+    'raw_zenoh_shm_array',
+    'memcpy',
+    'real_rclpy',
+)
+# raw zenoh's subscriber: bytes only (0), with shared memory (1), and with shared memory
+# filling the array.array that an rclpy message's uint8[] is (2): ros2lite's floor, since
+# zenoh-python 1.10 gives a received payload only as a bytes copy
+RAW_MODE = {'raw_zenoh': '0', 'raw_zenoh_shm': '1', 'raw_zenoh_shm_array': '2'}
 
 
 def _measure(
@@ -168,7 +185,7 @@ def _measure(
         return None if real is None else _flow(LITE, size, real[1], python=real[0])
     if variant.startswith('lite'):
         return _flow(LITE, size, lite_on if variant == 'lite_shm' else lite_off)
-    return _flow(RAW, size, raw, '1' if variant == 'raw_zenoh_shm' else '0', _link())
+    return _flow(RAW, size, raw, RAW_MODE[variant], _link())
 
 
 def _lite_envs(domain: str) -> tuple[str, dict[str, str], dict[str, str]]:
