@@ -44,3 +44,33 @@ def run_main(body: Callable[[], object], args: list[str] | None = None) -> int:
 def rqt_node_name() -> str:
     """The name of the node an rqt tool runs (rqt's own: one per process)."""
     return f'rqt_gui_py_node_{os.getpid()}'
+
+
+def spin_beside(node: Node, run: Callable[[Callable[[], bool]], object], name: str) -> None:
+    """Spin `node` in a thread while `run(done)` holds the calling thread (a window's or a
+    terminal's loop, which must own the main thread); `done()` turns True once spinning ends
+    or the context shuts down. What ended the spin (SIGTERM's ExternalShutdownException) is
+    raised here after the loop, so the caller leaves as a plain spin would."""
+    import threading
+
+    from ros2lite.executors import SingleThreadedExecutor
+
+    executor = SingleThreadedExecutor(context=node.context)
+    executor.add_node(node)
+    failure: list[BaseException] = []
+
+    def spin() -> None:
+        try:
+            executor.spin()
+        except BaseException as e:  # carried to the calling thread (SIGTERM: ExternalShutdown)
+            failure.append(e)
+
+    thread = threading.Thread(target=spin, name=name, daemon=True)
+    thread.start()
+    try:
+        run(lambda: not thread.is_alive() or not node.context.ok())
+    finally:
+        executor.shutdown()
+        thread.join(5.0)
+    if failure:
+        raise failure[0]

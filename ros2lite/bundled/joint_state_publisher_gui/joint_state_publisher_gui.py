@@ -22,7 +22,7 @@ from ros2lite.bundled.joint_state_publisher.joint_state_publisher import (
     JointStatePublisher,
     urdf_argument,
 )
-from ros2lite.bundled.runner import run_main
+from ros2lite.bundled.runner import run_main, spin_beside
 
 if TYPE_CHECKING:
     import tkinter
@@ -169,29 +169,8 @@ class SliderWindow:
 
 
 def _run(urdf_file: str | None) -> None:
-    from ros2lite.executors import SingleThreadedExecutor
-
     node = JointStatePublisher(urdf_file)
-    window = SliderWindow(node)
-    executor = SingleThreadedExecutor(context=node.context)
-    executor.add_node(node)
-    failure: list[BaseException] = []
-
-    def spin() -> None:
-        try:
-            executor.spin()
-        except BaseException as e:  # ExternalShutdownException on SIGTERM
-            failure.append(e)
-
-    thread = threading.Thread(target=spin, name='joint-state-publisher', daemon=True)
-    thread.start()
-    try:
-        window.run(lambda: not thread.is_alive() or not node.context.ok())
-    finally:
-        executor.shutdown()
-        thread.join(5.0)
-    if failure:
-        raise failure[0]
+    spin_beside(node, SliderWindow(node).run, 'joint-state-publisher')
 
 
 def main(args: list[str] | None = None) -> int:

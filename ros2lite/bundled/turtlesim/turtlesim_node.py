@@ -8,12 +8,11 @@ the node, as closing turtlesim's window does.
 from __future__ import annotations
 
 import argparse
-import threading
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from ros2lite.bundled.display import DisplayError, add_display_argument, choose, own_arguments
-from ros2lite.bundled.runner import run_main
+from ros2lite.bundled.runner import run_main, spin_beside
 
 if TYPE_CHECKING:
     from ros2lite.bundled.turtlesim.node import TurtlesimNode
@@ -48,28 +47,12 @@ def run_with_display(node: TurtlesimNode, requested: str) -> None:
     else:
         raise DisplayError(errors[-1] if errors else 'no display')
 
-    executor = SingleThreadedExecutor(context=node.context)
-    executor.add_node(node)
     if run is None:
+        executor = SingleThreadedExecutor(context=node.context)
+        executor.add_node(node)
         executor.spin()
         return
-    failure: list[BaseException] = []
-
-    def spin() -> None:
-        try:
-            executor.spin()
-        except BaseException as e:  # ExternalShutdownException on SIGTERM
-            failure.append(e)
-
-    thread = threading.Thread(target=spin, name='turtlesim-executor', daemon=True)
-    thread.start()
-    try:
-        run(lambda: not thread.is_alive() or not node.context.ok())
-    finally:
-        executor.shutdown()
-        thread.join(5.0)
-    if failure:
-        raise failure[0]
+    spin_beside(node, run, 'turtlesim-executor')
 
 
 def main(args: list[str] | None = None) -> int:
