@@ -88,6 +88,14 @@ def field_slots(cls: type[Message]) -> tuple[tuple[str, FieldType], ...]:
     return tuple(zip(cls.get_fields_and_field_types(), cls.SLOT_TYPES, strict=True))
 
 
+def field_type(parent: object, name: str) -> FieldType | None:
+    """The type of field `name` of the message `parent` (None for anything else): what tells
+    an empty byte array from an empty list when a value is printed alone."""
+    if not isinstance(parent, Message):
+        return None
+    return dict(field_slots(type(parent))).get(name)
+
+
 def message_to_dict(
     msg: Message, *, truncate_length: int | None = None, no_arr: bool = False, no_str: bool = False
 ) -> dict[str, object]:

@@ -104,6 +104,8 @@ class BagPrinter:
                 except AttributeError as e:
                     raise CliError(f"Invalid field '{'.'.join(self.field)}': {e}") from None
             if self.json and topic not in self.field_types:
+                from ros2lite.interfaces.convert import field_type
+
                 self.field_types[topic] = field_type(parent, self.field[-1])
         if self.filter_fn is not None and not self.filter_fn(value):
             return None
@@ -149,16 +151,6 @@ class BagPrinter:
         )
         info = self.info(log_time, publish_time) if self.include_info or self.headers else None
         return dumps(echo_record(body, info, topic if self.headers else None)) + "\n"
-
-
-def field_type(parent: object, name: str) -> FieldType | None:
-    """The type of field `name` of `parent`, so --json tells an empty byte array from a list."""
-    from ros2lite.interfaces.classes import Message
-
-    if not isinstance(parent, Message):
-        return None
-    names = parent.get_fields_and_field_types()
-    return dict(zip(names, parent.SLOT_TYPES, strict=True)).get(name)
 
 
 @command("echo")

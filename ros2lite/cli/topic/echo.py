@@ -124,7 +124,9 @@ class Printer:
                 except AttributeError as e:
                     raise CliError(f"Invalid field '{'.'.join(self.field)}': {e}") from None
             if self.as_json and self.field_type is None:
-                self.field_type = self.type_of(parent, self.field[-1])
+                from ros2lite.interfaces.convert import field_type
+
+                self.field_type = field_type(parent, self.field[-1])
         if self.filter_fn is not None and not self.filter_fn(value):
             return
         if self.once:
@@ -132,13 +134,6 @@ class Printer:
         self.out.write(self.render(value, info))
         if self.as_json:
             self.out.flush()
-
-    def type_of(self, parent: object, name: str) -> FieldType | None:
-        """The type of field `name` of `parent` (so --json tells an empty byte array)."""
-        if not isinstance(parent, self._message_class):
-            return None
-        names = parent.get_fields_and_field_types()
-        return dict(zip(names, parent.SLOT_TYPES, strict=True)).get(name)
 
     def bad_sample(self, data: bytes, info: MessageInfo, error: Exception) -> None:
         """A sample that is not the type: dropped with a (rate-limited) warning, or shown
