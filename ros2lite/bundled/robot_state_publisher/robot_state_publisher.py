@@ -58,6 +58,7 @@ class RobotStatePublisher(Node):
         self._description_pub = self.create_publisher(String, 'robot_description', DESCRIPTION_QOS)
         self.robot = self._parse(description)
         self._moving: dict[str, Joint] = {}
+        self._checked: tuple[str, Robot] | None = None  # the description the check parsed
         self._setup(self.robot, description)
         self.publish_frequency = float(self.declare_parameter('publish_frequency', 20.0).value)
         if not _valid_frequency(self.publish_frequency):
@@ -101,7 +102,7 @@ class RobotStatePublisher(Node):
                 if not text:
                     return SetParametersResult(successful=False, reason='Empty URDF is not allowed')
                 try:
-                    self._parse(text)
+                    self._checked = (text, self._parse(text))  # applied next: parsed once
                 except UrdfError as e:
                     self.get_logger().warning(str(e))
                     return SetParametersResult(successful=False, reason=str(e))
@@ -117,7 +118,9 @@ class RobotStatePublisher(Node):
     def _apply_parameters(self, parameters: Sequence[Parameter]) -> None:
         for p in parameters:
             if p.name == 'robot_description' and isinstance(p.value, str):
-                self._setup(self._parse(p.value), p.value)
+                checked, self._checked = self._checked, None
+                robot = checked[1] if checked and checked[0] == p.value else self._parse(p.value)
+                self._setup(robot, p.value)
                 self.publish_fixed_transforms()
             elif p.name == 'publish_frequency' and isinstance(p.value, float):
                 self.publish_frequency = p.value
