@@ -306,11 +306,11 @@ class Context:
             session, self.session = self.session, None
             try:
                 session.close()
+            finally:
                 from ros2lite.transport.shm import forget
 
-                forget(session)  # its shared-memory pool goes with it
-            finally:
-                # the last reference goes here, under the lock: zenoh lets go of the GIL
+                forget(session)  # its shared-memory pool goes with it, even if close failed
+                # and the last reference goes here, under the lock: zenoh lets go of the GIL
                 # while it drops a session, and a thread that is still inside zenoh when
                 # the interpreter finalises aborts the process
                 del session

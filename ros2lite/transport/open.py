@@ -25,7 +25,7 @@ from ros2lite.transport.endpoints import endpoint_host_port, router_endpoint
 from ros2lite.transport.errors import RouterUnavailableError, SessionError, zerror_message
 from ros2lite.transport.handles import Session
 from ros2lite.transport.security import UNSECURED, Security, is_tls_endpoint
-from ros2lite.transport.shm import register, shm_settings
+from ros2lite.transport.shm import forget, register, shm_settings
 
 __all__ = [
     "check_router",
@@ -74,6 +74,7 @@ def open_session(
     if not require_router:
         return session
     if not wait_for_router(session, timeout):
+        forget(session)
         session.close()
         raise RouterUnavailableError(endpoint, "session opened but no router is connected")
     return session
