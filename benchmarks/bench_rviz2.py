@@ -447,7 +447,6 @@ def _stamp_watch(
 
 
 def bench_rviz2() -> None:
-    from websockets.sync.client import connect
 
     import ros2lite
     from ros2lite.bundled.rviz2.config import Config
@@ -495,14 +494,12 @@ def bench_rviz2() -> None:
             browser.close()
             # a browser that connects, then never reads its socket again (the client's
             # queue of one frame stops its reading, so the TCP window closes)
-            import viser
+            # it says its camera first, as a page does: viser counts a connection as a
+            # client (and the viewer sends it its own clouds and scans) only from then on
+            sys.path.insert(0, str(ROOT))
+            from tests.bundled.rviz2.browser import raw_page
 
-            ws = connect(
-                f'ws://127.0.0.1:{port}',
-                subprotocols=[f'viser-v{viser.__version__}'],  # type: ignore[list-item]
-                max_size=None,
-                max_queue=1,
-            )
+            ws = raw_page(port, max_queue=1)
             time.sleep(2)
             before = rss_mib()
             counted_before = viewer.displays.get('LaserScan:/scan')

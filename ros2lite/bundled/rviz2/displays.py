@@ -2,8 +2,9 @@
 PoseArray, Map, Image.
 
 A subscription callback only keeps the newest message (newest wins: nothing queues behind a
-slow browser); the render loop draws it, decimated to the point budget, under a frame node
-placed by TF at the message's stamp.
+slow browser); the render loop draws it under a frame node placed by TF at the message's
+stamp. Scans and clouds are drawn per browser, each decimated to that page's point budget
+(clients.py).
 """
 
 from __future__ import annotations
@@ -16,13 +17,15 @@ from typing import TYPE_CHECKING, Generic, Protocol
 
 import numpy as np
 
+from ros2lite.bundled.rviz2.clients import Clouds
 from ros2lite.bundled.rviz2.config import DisplaySpec
 from ros2lite.bundled.rviz2.convert import (
     IDENTITY,
+    Bytes,
     ConvertError,
+    Floats,
     Pose,
     cloud_points,
-    decimate,
     grid_image,
     image_rgb,
     pose_of,
@@ -54,7 +57,7 @@ class Context(Protocol):
 
     server: viser.ViserServer
     node: Node
-    point_budget: int
+    clouds: Clouds
     image_width: int
 
     def place(self, frame: str, ns: int) -> Pose | None:
@@ -195,23 +198,61 @@ class Display(Shown, Generic[MsgT]):
             self._root.remove()
 
 
-class LaserScanDisplay(Display[LaserScan]):
-    def draw(self, msg: LaserScan) -> None:
+class CloudDisplay(Display[MsgT]):
+    """Points sent to each browser apart, decimated to its budget, under the display's frame
+    (the shared scene's node, placed by TF): the newest message's points are kept, so a
+    page that comes or changes its budget is sent them at the next pass."""
+
+    point_size = 0.03
+
+    def __init__(self, ctx: Context, spec: DisplaySpec, msg_class: type[MsgT]) -> None:
+        super().__init__(ctx, spec, msg_class)
+        self._cloud: tuple[Floats, Bytes] | None = None
+        self.label = spec.name or f'{spec.kind} {spec.topic}'
+
+    def points(self, msg: MsgT) -> tuple[Floats, Bytes]:
+        raise NotImplementedError
+
+    def draw(self, msg: MsgT) -> None:
+        self._cloud = self.points(msg)
+        self._send(everyone=True)
+
+    def render(self) -> None:
+        drawn = self.drawn
+        super().render()
+        if (
+            self.drawn == drawn
+            and self.enabled
+            and self._cloud is not None
+            and self.ctx.clouds.redraw()
+        ):
+            self._send(everyone=False)  # only to the pages that came or changed budget
+
+    def _send(self, *, everyone: bool) -> None:
+        if self._cloud is not None:
+            self.root()  # the shared frame the pages' points hang from
+            points, colours = self._cloud
+            name = f'{self.name}/points'
+            self.ctx.clouds.send(
+                name, self.label, points, colours, self.point_size, everyone=everyone
+            )
+
+    def close(self) -> None:
+        self.ctx.clouds.remove(f'{self.name}/points', self.label)
+        super().close()
+
+
+class LaserScanDisplay(CloudDisplay[LaserScan]):
+    point_size = 0.05
+
+    def points(self, msg: LaserScan) -> tuple[Floats, Bytes]:
         points = scan_points(msg)
-        colours = np.tile(np.array(SCAN_COLOUR, np.uint8), (len(points), 1))
-        points, colours = decimate(points, colours, self.ctx.point_budget)
-        self.ctx.server.scene.add_point_cloud(
-            f'{self.name}/points', points, colours, point_size=0.05, point_shading='flat'
-        )
+        return points, np.tile(np.array(SCAN_COLOUR, np.uint8), (len(points), 1))
 
 
-class PointCloud2Display(Display[PointCloud2]):
-    def draw(self, msg: PointCloud2) -> None:
-        points, colours = cloud_points(msg)
-        points, colours = decimate(points, colours, self.ctx.point_budget)
-        self.ctx.server.scene.add_point_cloud(
-            f'{self.name}/points', points, colours, point_size=0.03, point_shading='flat'
-        )
+class PointCloud2Display(CloudDisplay[PointCloud2]):
+    def points(self, msg: PointCloud2) -> tuple[Floats, Bytes]:
+        return cloud_points(msg)
 
 
 def arrows(poses: list[Pose], length: float) -> np.ndarray:

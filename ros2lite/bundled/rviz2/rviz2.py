@@ -45,7 +45,8 @@ def parser() -> argparse.ArgumentParser:
         type=int,
         default=200_000,
         metavar='N',
-        help='most points sent per cloud or scan display (default 200000)',
+        help='most points of each cloud or scan sent to a browser, which can change its own '
+        '(default 200000, 1..5000000)',
     )
     p.add_argument(
         '--image-width',
@@ -121,6 +122,14 @@ def main(args: list[str] | None = None) -> int:
         return int(top_view.main(rest))
     if not 0 <= options.port <= 65535:
         print(f'rviz2: --port must be 0..65535, not {options.port}', file=sys.stderr)
+        return 1
+    from ros2lite.bundled.rviz2.clients import MAX_BUDGET, MIN_BUDGET
+
+    if not MIN_BUDGET <= options.point_budget <= MAX_BUDGET:
+        print(
+            f'rviz2: --point-budget must be {MIN_BUDGET}..{MAX_BUDGET}, not {options.point_budget}',
+            file=sys.stderr,
+        )
         return 1
     return run_main(lambda: serve(options), args)
 

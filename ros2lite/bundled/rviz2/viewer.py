@@ -17,6 +17,7 @@ import time
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from ros2lite.bundled.rviz2.clients import Clouds
 from ros2lite.bundled.rviz2.config import KINDS, ROBOT_DESCRIPTION, TOPIC_KINDS, Config, DisplaySpec
 from ros2lite.bundled.rviz2.convert import Pose, ground_hit, wxyz, yaw_quaternion
 from ros2lite.bundled.rviz2.displays import CLASSES, Shown
@@ -111,7 +112,6 @@ class Viewer:
         self.node = node
         self.buffer = buffer
         self.settings = settings
-        self.point_budget = settings.point_budget
         self.image_width = settings.image_width
         self.config = config
         self.auto = not config.displays
@@ -136,6 +136,8 @@ class Viewer:
             self.server.initial_camera.position = (-6.0, -6.0, 6.0)
             self.server.initial_camera.look_at = (0.0, 0.0, 0.0)
         self._build_gui()
+        # each page's own point budget, its box in Global Options
+        self.clouds = Clouds(self.server, settings.point_budget, self._global_folder)
         specs = config.displays or (DisplaySpec('Grid'), DisplaySpec('TF'))
         self._grid: viser.GridHandle | None = None
         self._tf_shown = False
@@ -154,7 +156,7 @@ class Viewer:
     # -- the panels ------------------------------------------------------------------------
     def _build_gui(self) -> None:
         gui = self.server.gui
-        with gui.add_folder('Global Options'):
+        with gui.add_folder('Global Options') as self._global_folder:
             self._frame_box = gui.add_text('Fixed Frame', initial_value=self.fixed_frame)
             self._frame_box.on_update(lambda _: self._set_fixed(self._frame_box.value))
         with gui.add_folder('Tools'):
@@ -302,6 +304,7 @@ class Viewer:
             self._show_status()
         with self._lock:
             displays = list(self.displays.values())
+        self.clouds.begin()
         with self.server.atomic():
             for d in displays:
                 if d.spec.kind not in ('Grid', 'TF'):

@@ -22,6 +22,38 @@ from typing import Any
 
 CHROMIUM = '/usr/bin/chromium'
 
+# the camera message a viser page sends first, as its wire protocol carries it (msgpack of a
+# dict naming its type): viser 1.1.1 counts a connection as a client only from then on
+PAGE_CAMERA = {
+    'type': 'ViewerCameraMessage',
+    'wxyz': (1.0, 0.0, 0.0, 0.0),
+    'position': (-6.0, -6.0, 6.0),
+    'fov': 1.0,
+    'near': 0.01,
+    'far': 100.0,
+    'image_height': 700,
+    'image_width': 900,
+    'look_at': (0.0, 0.0, 0.0),
+    'up_direction': (0.0, 0.0, 1.0),
+}
+
+
+def raw_page(port: int, **options: Any) -> Any:
+    """A viser page that is only its WebSocket: it says its camera, as a browser does, and
+    reads what it is sent only when asked (`options` go to websockets' connect)."""
+    import msgspec
+    import viser
+    from websockets.sync.client import connect
+
+    ws = connect(
+        f'ws://127.0.0.1:{port}',
+        subprotocols=[f'viser-v{viser.__version__}'],  # type: ignore[list-item]
+        max_size=None,
+        **options,
+    )
+    ws.send(msgspec.msgpack.encode(PAGE_CAMERA))
+    return ws
+
 
 def chromium() -> str | None:
     """The browser the tests drive, when installed."""
@@ -183,6 +215,31 @@ class Browser:
                 buttons=1 if kind == 'mousePressed' else 0,
                 clickCount=1,
             )
+
+    def type_text(self, text: str) -> None:
+        """Select what the focused input holds (Ctrl+A) and type `text` over it."""
+        for kind in ('rawKeyDown', 'keyUp'):
+            self.call(
+                'Input.dispatchKeyEvent',
+                type=kind,
+                modifiers=2,  # Ctrl
+                key='a',
+                code='KeyA',
+                windowsVirtualKeyCode=65,
+                commands=['selectAll'] if kind == 'rawKeyDown' else [],
+            )
+        self.call('Input.insertText', text=text)
+
+    def input_centre(self, label: str) -> tuple[float, float] | None:
+        """Where the page shows the input labelled `label` (None while it does not)."""
+        found = self.evaluate(
+            '(() => { for (const l of document.querySelectorAll("label")) {'
+            f' if (l.innerText.trim() === {json.dumps(label)} && l.htmlFor) {{'
+            ' const i = document.getElementById(l.htmlFor); if (!i) continue;'
+            ' const r = i.getBoundingClientRect(); return [r.x + r.width / 2,'
+            ' r.y + r.height / 2]; } } return null; })()'
+        )
+        return (float(found[0]), float(found[1])) if isinstance(found, list) else None
 
     def button_centre(self, text: str) -> tuple[float, float] | None:
         """Where the page shows the button labelled `text` (None while it does not)."""

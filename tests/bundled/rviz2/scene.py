@@ -30,9 +30,16 @@ def transform(parent: str, child: str, x: float, y: float, stamp: object) -> Tra
     return t
 
 
-def cloud(stamp: object, n: int) -> PointCloud2:
+def cloud(
+    stamp: object,
+    n: int,
+    corner: tuple[float, float] = (-3.0, -3.0),
+    size: float = 1.0,
+    frame: str = 'odom',
+) -> PointCloud2:
+    """`n` points of CLOUD_COLOUR in rows filling a `size` square from `corner` (in `frame`)."""
     msg = PointCloud2()
-    msg.header.frame_id, msg.header.stamp = 'odom', stamp
+    msg.header.frame_id, msg.header.stamp = frame, stamp
     msg.fields = [
         PointField(name='x', offset=0, datatype=7, count=1),
         PointField(name='y', offset=4, datatype=7, count=1),
@@ -46,7 +53,8 @@ def cloud(stamp: object, n: int) -> PointCloud2:
     )[0]
     out = bytearray()
     for i in range(n):
-        out += struct.pack('<ffff', -3 + (i % side) / side, -3 + (i // side) / side, 0.0, rgb)
+        x, y = corner[0] + size * (i % side) / side, corner[1] + size * (i // side) / side
+        out += struct.pack('<ffff', x, y, 0.0, rgb)
     msg.row_step = 16 * n
     msg.data = bytes(out)
     return msg

@@ -86,7 +86,7 @@ def centroid(
     return (left + xs / n, top + ys / n) if n else (math.nan, math.nan)
 
 
-def _shot(browser: Browser, url: str, name: str, ready: Any) -> Any:
+def _shot(browser: Browser, url: str | None, name: str, ready: Any) -> Any:
     """A screenshot of the page, freshly opened, once `ready(image)` holds."""
     SHOTS.mkdir(exist_ok=True)
     return browser.shot(url, str(SHOTS / name), ready)
@@ -280,3 +280,71 @@ def test_zero_configuration_shows_the_robot_scan_cloud_and_markers_and_follows_a
     base2, arm2 = centroid(after, green, SCENE_BOX), centroid(after, yellow, SCENE_BOX)
     assert abs(base2[0] - base[0]) < 10 and abs(base2[1] - base[1]) < 10, (base, base2)
     assert arm2[1] < base2[1], (base2, arm2)
+
+
+BLOCK_FILE = """\
+Visualization Manager:
+  Displays:
+    - Class: rviz_default_plugins/PointCloud2
+      Name: Block
+      Topic:
+        Value: /block
+  Global Options:
+    Fixed Frame: map
+"""
+BLOCK_POINTS = 20_000
+
+
+def _panel_text(page: Browser) -> str:
+    return str(page.evaluate('document.body.innerText'))
+
+
+def test_each_browser_has_its_own_point_budget(
+    browser: Browser, processes: Processes, tmp_path: Path
+) -> None:
+    """Two pages on one viewer and a 20k-point blue block (a 2 m square, in a frame TF puts
+    at map's (-2, 2)): one types 100 into its "Point budget" box, the other keeps the
+    default. Each page's panel says what it was sent (100 of 20,000, 20,000 of 20,000), and
+    its screenshot shows it: the small budget's block is a sprinkle of blue, the other's
+    solid, both where TF puts the frame (each page's points hang from the shared frame)."""
+    config = tmp_path / 'block.rviz'
+    config.write_text(BLOCK_FILE)
+    processes.start(
+        [sys.executable, '-m', 'tests.bundled.rviz2.block', str(BLOCK_POINTS)], cwd=ROOT
+    )
+    url = _start_viewer(processes, '-d', str(config))
+    whole = f'Block: {BLOCK_POINTS:,} of {BLOCK_POINTS:,} points'
+    few = f'Block: 100 of {BLOCK_POINTS:,} points'
+    small = Browser(W, H)
+    try:
+        browser.open(url)
+        small.open(url)
+        for page in (browser, small):  # each is sent the whole block at the default budget
+            wait_until(lambda page=page: whole in _panel_text(page), timeout=60)  # type: ignore[misc]
+        seen: list[object] = [None]
+
+        def settled() -> tuple[float, float] | None:
+            where = small.input_centre('Point budget')
+            still = where is not None and where == seen[0]
+            seen[0] = where
+            return where if still else None
+
+        box = wait_until(settled, timeout=30, interval=1.0)
+        small.click(*box)
+        small.type_text('100')
+        wait_until(lambda: few in _panel_text(small), timeout=30)
+        both = _shot(browser, None, 'budget_default.png', lambda im: count(im, blue, SCENE_BOX) > 0)
+        sprinkle = _shot(small, None, 'budget_100.png', lambda im: count(im, blue, SCENE_BOX) > 0)
+        # the other page kept its budget (the box is each page's own)
+        assert whole in _panel_text(browser) and few not in _panel_text(browser)
+        solid_n, sprinkle_n = count(both, blue, SCENE_BOX), count(sprinkle, blue, SCENE_BOX)
+        print(f'blue pixels: default budget {solid_n}, budget 100 {sprinkle_n}')
+        assert solid_n > 3000, solid_n
+        assert 0 < sprinkle_n < solid_n / 5, (solid_n, sprinkle_n)
+        # both blocks stand where TF puts their frame: map's (-2, 2) is screen-left of the
+        # origin (the screen's centre; screen-right is map's (1, -1))
+        a, b = centroid(both, blue, SCENE_BOX), centroid(sprinkle, blue, SCENE_BOX)
+        assert a[0] < W / 2 - 90 and abs(a[1] - H / 2) < 40, a
+        assert abs(a[0] - b[0]) < 30 and abs(a[1] - b[1]) < 30, (a, b)
+    finally:
+        small.close()
