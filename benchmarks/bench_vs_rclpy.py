@@ -26,7 +26,8 @@ rclpy (higher is better for throughput, lower is better for times), followed by
 `vs_rclpy_<figure>_real_rclpy <real> unit 1.0`. Values are medians of VS_RCLPY_ROUNDS (3)
 rounds, the stacks interleaved within each round; VS_RCLPY_SECS (3) is the length of a
 throughput run; VS_RCLPY_ONLY="tp_small tp_image once latency service startup" picks
-scenarios. A round without a RESULT line is reported on stderr and left out.
+scenarios; VS_LITE_SHM=1 turns shared memory on for ros2lite (as rmw_zenoh's config key does).
+A round without a RESULT line is reported on stderr and left out.
 """
 
 from __future__ import annotations
@@ -349,6 +350,8 @@ def bench_vs_rclpy() -> None:
         except Unavailable as err:
             print(f'vs_rclpy: skipped: {err}', file=sys.stderr)
             return
+        if os.environ.get('VS_LITE_SHM') == '1':  # rmw_zenoh's switch, on the ros2lite side
+            lite_env['ZENOH_CONFIG_OVERRIDE'] = 'transport/shared_memory/enabled=true'
         stacks = (
             Stack('real rclpy', real_python, confined(base, real_domain())),
             Stack('ros2lite', lite_python, lite_env),
