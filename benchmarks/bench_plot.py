@@ -17,20 +17,15 @@ are drawn as on a user's screen, 10 a second). Measured:
 
 from __future__ import annotations
 
-import fcntl
 import os
-import pty
 import re
 import select
-import struct
 import subprocess
 import sys
-import termios
-import threading
 import time
 
 from bench_topic import private_router
-from common import report
+from common import Terminal, report
 
 RATE = 1000.0
 SECONDS = 6.0
@@ -77,33 +72,10 @@ def trial(args: list[str]) -> tuple[float, list[str], int, float]:
     """Run `ros2lite ARGS` on a 120x30 pseudo-terminal while the publisher sends; returns
     (its CPU share over the steady middle 3 s, the screen output, messages sent, sent rate)."""
     with private_router() as env:
-        master, slave = pty.openpty()
-        fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack('HHHH', 30, 120, 0, 0))
-        os.set_blocking(master, False)
         env = {**env, 'TERM': 'xterm-256color', 'ROS2LITE_NO_DAEMON': '1'}
         env.pop('NO_COLOR', None)
-        tool = subprocess.Popen(
-            [sys.executable, '-m', 'ros2lite', *args],
-            env=env,
-            stdin=slave,
-            stdout=slave,
-            stderr=slave,
-        )
-        os.close(slave)
-        screen: list[str] = []
-        stop = threading.Event()
-
-        def read() -> None:
-            while not stop.is_set():
-                ready, _, _ = select.select([master], [], [], 0.1)
-                if ready:
-                    try:
-                        screen.append(os.read(master, 65536).decode('utf-8', 'replace'))
-                    except OSError:
-                        return
-
-        reader = threading.Thread(target=read, daemon=True)
-        reader.start()
+        term = Terminal([sys.executable, '-m', 'ros2lite', *args], env, 30, 120)
+        tool = term.proc
         publisher = subprocess.Popen(
             [sys.executable, '-c', PUBLISHER, '/bench_plot', str(RATE), str(SECONDS)],
             env=env,
@@ -115,20 +87,17 @@ def trial(args: list[str]) -> tuple[float, list[str], int, float]:
         if not ready or publisher.stdout.readline().strip() != 'start':
             publisher.kill()
             tool.kill()
-            raise RuntimeError(f'no subscription came: {"".join(screen)[-800:]!r}')
+            raise RuntimeError(f'no subscription came: {term.output()[-800:]!r}')
         time.sleep(1.5)
         cpu0, t0 = cpu_seconds(tool.pid), time.monotonic()
         time.sleep(3.0)
         cpu1, t1 = cpu_seconds(tool.pid), time.monotonic()
-        middle = len(screen)
+        middle = len(term.chunks)
         done = publisher.stdout.readline().split()
         time.sleep(0.5)  # a few frames after the last message
         publisher.wait(10)
-        stop.set()
-        tool.send_signal(2)
-        tool.wait(10)
-        reader.join(2)
-        os.close(master)
+        term.close()
+    screen = [chunk.decode('utf-8', 'replace') for chunk in term.chunks]
     screen.insert(middle, '\0')  # where the middle of the run was
     return (cpu1 - cpu0) / (t1 - t0), screen, int(done[1]), float(done[2])
 

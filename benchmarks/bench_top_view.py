@@ -14,20 +14,15 @@ flood of scans makes it fall behind or grow.
 
 from __future__ import annotations
 
-import fcntl
 import os
-import pty
 import select
-import struct
 import subprocess
 import sys
-import termios
-import threading
 import time
 
 from bench_plot import cpu_seconds
 from bench_topic import private_router
-from common import report
+from common import Terminal, report
 
 TARGET_CPU = 0.25
 
@@ -85,31 +80,11 @@ def rss_mb(pid: int) -> float:
 def trial(hz: float, seconds: float) -> dict[str, float]:
     """The view on a pty while a publisher sends for `seconds` (hz 0: as fast as it can)."""
     with private_router() as env:
-        master, slave = pty.openpty()
-        fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack('HHHH', 40, 120, 0, 0))
         env = {**env, 'TERM': 'xterm-256color', 'ROS2LITE_NO_DAEMON': '1'}
-        view = subprocess.Popen(
-            [sys.executable, '-m', 'ros2lite.bundled.rviz2.top_view', '--no-frames'],
-            env=env,
-            stdin=slave,
-            stdout=slave,
-            stderr=slave,
+        term = Terminal(
+            [sys.executable, '-m', 'ros2lite.bundled.rviz2.top_view', '--no-frames'], env, 40, 120
         )
-        os.close(slave)
-        screen: list[bytes] = []
-        stop = threading.Event()
-
-        def read() -> None:
-            while not stop.is_set():
-                ready, _, _ = select.select([master], [], [], 0.1)
-                if ready:
-                    try:
-                        screen.append(os.read(master, 65536))
-                    except OSError:
-                        return
-
-        reader = threading.Thread(target=read, daemon=True)
-        reader.start()
+        view = term.proc
         publisher = subprocess.Popen(
             [sys.executable, '-c', PUBLISHER, str(hz), str(seconds)],
             env=env,
@@ -127,22 +102,18 @@ def trial(hz: float, seconds: float) -> dict[str, float]:
         cpu0, t0, drawn0 = (
             cpu_seconds(view.pid),
             time.monotonic(),
-            b''.join(screen).count(b'\x1b[J'),
+            term.output().count(b'\x1b[J'),
         )
         time.sleep(seconds - 3.0)
         cpu1, t1, drawn1 = (
             cpu_seconds(view.pid),
             time.monotonic(),
-            b''.join(screen).count(b'\x1b[J'),
+            term.output().count(b'\x1b[J'),
         )
         rss1 = rss_mb(view.pid)
         done = publisher.stdout.readline().split()
         publisher.wait(10)
-        stop.set()
-        view.send_signal(2)
-        view.wait(10)
-        reader.join(2)
-        os.close(master)
+        term.close()
     return {
         'cpu': (cpu1 - cpu0) / (t1 - t0),
         'redraws': (drawn1 - drawn0) / (t1 - t0),

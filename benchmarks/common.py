@@ -145,3 +145,46 @@ def router_process(
     would share zenoh's runtime threads with what is measured); `configured` lets it read
     the environment's configuration."""
     return ready_child(ROUTER, endpoint, *(['--env'] if configured else []), env=env)
+
+
+class Terminal:
+    """A process on a pseudo-terminal of `rows` x `cols`, its output read on a thread into
+    `chunks` (a terminal program draws only when it sees a terminal)."""
+
+    def __init__(self, cmd: list[str], env: dict[str, str], rows: int, cols: int) -> None:
+        import fcntl
+        import pty
+        import struct
+        import termios
+        import threading
+
+        self._master, slave = pty.openpty()
+        fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack('HHHH', rows, cols, 0, 0))
+        self.proc = subprocess.Popen(cmd, env=env, stdin=slave, stdout=slave, stderr=slave)
+        os.close(slave)
+        self.chunks: list[bytes] = []
+        self._stop = threading.Event()
+        self._reader = threading.Thread(target=self._read, daemon=True)
+        self._reader.start()
+
+    def _read(self) -> None:
+        import select
+
+        while not self._stop.is_set():
+            ready, _, _ = select.select([self._master], [], [], 0.1)
+            if ready:
+                try:
+                    self.chunks.append(os.read(self._master, 65536))
+                except OSError:
+                    return
+
+    def output(self) -> bytes:
+        return b''.join(self.chunks)
+
+    def close(self) -> None:
+        """Ctrl-C to the process, as a person ends it; then the reader and the terminal."""
+        self._stop.set()
+        self.proc.send_signal(2)
+        self.proc.wait(10)
+        self._reader.join(2)
+        os.close(self._master)
