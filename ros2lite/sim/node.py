@@ -20,6 +20,7 @@ import time
 from dataclasses import asdict, dataclass, replace
 
 from ros2lite.exceptions import Ros2liteError
+from ros2lite.msgs.rcl_interfaces.msg import ParameterDescriptor
 from ros2lite.msgs.rosgraph_msgs.msg import Clock
 from ros2lite.msgs.std_msgs.msg import String
 from ros2lite.msgs.std_srvs.srv import Empty
@@ -62,6 +63,8 @@ class SimNode(Node):
 
     def __init__(self, settings: Settings | None = None, *, node_name: str = 'gazebo') -> None:
         super().__init__(node_name)
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None  # until the world is made
         chosen = self._read_parameters(settings or Settings())
         self.world = open_world(chosen.world)
         self.real_time_factor = chosen.real_time_factor
@@ -69,7 +72,6 @@ class SimNode(Node):
         self.paused = False
         self.lock = threading.Lock()
         self._reset_request: str | None = None
-        self._stop = threading.Event()
         self._seed = None if chosen.seed < 0 else chosen.seed
         self.bodies: list[Body] = []
         self.clock_pub = self.create_publisher(Clock, '/clock', 10)
@@ -90,8 +92,10 @@ class SimNode(Node):
         self.get_logger().info(
             f'world {self.world.name!r}, real-time factor {self.real_time_factor:g}'
         )
-        self._thread = threading.Thread(target=self._run, name='sim-physics', daemon=True)
-        self._thread.start()
+        self._thread = thread = threading.Thread(
+            target=self._run, name='sim-physics', daemon=True
+        )
+        thread.start()
 
     def _add_first(self, chosen: Settings) -> None:
         spec = robot(chosen.robot_model)
@@ -124,7 +128,10 @@ class SimNode(Node):
     def _read_parameters(self, defaults: Settings) -> Settings:
         values: dict[str, object] = {}
         for name, default in asdict(defaults).items():
-            value = self.declare_parameter(name, default).value
+            # a decimal setting takes a whole number too (`real_time_factor:=10`), as the
+            # conversion below makes it a float: rclpy's typing would refuse it
+            descriptor = ParameterDescriptor(dynamic_typing=isinstance(default, float))
+            value = self.declare_parameter(name, default, descriptor).value
             if isinstance(default, float) and isinstance(value, int):
                 value = float(value)
             if type(value) is not type(default):
@@ -240,6 +247,7 @@ class SimNode(Node):
     # -- the end -----------------------------------------------------------------------------
     def destroy_node(self) -> None:
         self._stop.set()
-        if self._thread.is_alive() and self._thread is not threading.current_thread():
-            self._thread.join(2.0)
+        thread = self._thread
+        if thread is not None and thread.is_alive() and thread is not threading.current_thread():
+            thread.join(2.0)
         super().destroy_node()

@@ -193,3 +193,35 @@ def test_odometry_integrates_the_commanded_arc(processes: Any, ros_context: Any)
     )
     assert end - first > 3.0, (first, end)
     assert abs(yaw - 0.4 * (end - first)) < 0.1, (yaw, end - first)
+
+
+@pytest.mark.timeout(60)
+def test_a_whole_number_sets_a_decimal_setting_and_a_word_is_one_line(ros_router: str) -> None:
+    """`real_time_factor:=10` is a factor of 10 (a course types it so); a word is refused in
+    one line and the process ends (it used to hang after a traceback at shutdown)."""
+    line = [sys.executable, '-m', 'ros2lite', 'run', 'turtlebot3_gazebo', 'gazebo_2d']
+    line += ['--ros-args', '-p', 'world:=empty_world']
+    bad = subprocess.run(
+        [*line, '-p', 'real_time_factor:=fast'], capture_output=True, text=True, timeout=30
+    )
+    assert bad.returncode == 1, bad.stderr
+    assert "parameter 'real_time_factor' must be a float, not 'fast'" in bad.stderr
+    assert 'Traceback' not in bad.stderr + bad.stdout
+    sim = subprocess.Popen(
+        [*line, '-p', 'real_time_factor:=10', '-p', 'x_pose:=1'],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+    )
+    seen: list[str] = []
+    try:
+        assert sim.stdout is not None
+        for text in sim.stdout:
+            seen.append(text)
+            if 'real-time factor' in text:
+                break
+        assert "world 'empty_world', real-time factor 10\n" in seen[-1], seen
+        assert any('burger at (1.00, ' in s for s in seen), seen
+    finally:
+        sim.send_signal(2)
+        sim.wait(20)
