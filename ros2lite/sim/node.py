@@ -92,9 +92,7 @@ class SimNode(Node):
         self.get_logger().info(
             f'world {self.world.name!r}, real-time factor {self.real_time_factor:g}'
         )
-        self._thread = thread = threading.Thread(
-            target=self._run, name='sim-physics', daemon=True
-        )
+        self._thread = thread = threading.Thread(target=self._run, name='sim-physics', daemon=True)
         thread.start()
 
     def _add_first(self, chosen: Settings) -> None:
