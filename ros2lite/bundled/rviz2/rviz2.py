@@ -58,7 +58,8 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument(
         '--terminal',
         action='store_true',
-        help='draw the top-down view on this terminal instead (over SSH)',
+        help='draw the top-down view on this terminal instead (over SSH); the view\'s own '
+        'options (--scan, --rate, --base-frame, --robot-radius, --no-frames) follow',
     )
     return p
 
@@ -105,7 +106,11 @@ def main(args: list[str] | None = None) -> int:
     from ros2lite.bundled.runner import run_main
 
     argv = list(sys.argv[1:] if args is None else args)
-    options = parser().parse_args(own_arguments(argv))
+    cli = parser()
+    # the terminal view's own options (--scan, --rate, ...) pass through to it
+    options, unknown = cli.parse_known_args(own_arguments(argv))
+    if unknown and not options.terminal:
+        cli.error(f'unrecognized arguments: {" ".join(unknown)}')
     if options.terminal:
         import importlib
 

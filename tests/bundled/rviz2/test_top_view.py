@@ -277,6 +277,9 @@ def test_bad_input_is_one_line(processes: Any) -> None:
                    'cannot draw on the terminal: standard output is not a terminal')  # fmt: skip
     one_line_error(processes, [view, '--robot-radius', '-1'], env,
                    '--robot-radius must be a positive number, not -1.0')  # fmt: skip
+    # rviz2 --terminal hands the view's own options on to it
+    rviz2 = ['ros2lite.bundled.rviz2.rviz2', '--terminal', '--robot-radius', '-1']
+    one_line_error(processes, rviz2, env, '--robot-radius must be a positive number, not -1.0')
     one_line_error(processes, ['ros2lite.bundled.rviz2.top_window'], env,
                    'cannot open a window: no display (DISPLAY is not set)')  # fmt: skip
 
