@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import socket
 import threading
 import time
 from collections.abc import Callable
@@ -103,6 +104,16 @@ def make(ctx: Viewer, spec: DisplaySpec, type_name: str) -> Shown:
     return CLASSES[spec.kind](ctx, spec, cls)
 
 
+def page_url(host: str, port: int) -> str:
+    """The address to open: a server on every interface is named by this machine's name (an
+    address of 0.0.0.0 opens nothing elsewhere), an IPv6 address in brackets."""
+    if host in ('0.0.0.0', '::', ''):
+        host = socket.gethostname()
+    elif ':' in host:
+        host = f'[{host}]'
+    return f'http://{host}:{port}'
+
+
 class Viewer:
     """The scene, its displays and the tools, served at `settings.host:port`."""
 
@@ -150,8 +161,7 @@ class Viewer:
 
     @property
     def url(self) -> str:
-        host = self.server.get_host()
-        return f'http://{host}:{self.server.get_port()}'
+        return page_url(self.server.get_host(), self.server.get_port())
 
     # -- the panels ------------------------------------------------------------------------
     def _build_gui(self) -> None:

@@ -80,3 +80,14 @@ def test_bad_files_are_one_line(tmp_path: Path, text: str) -> None:
 def test_missing_file(tmp_path: Path) -> None:
     with pytest.raises(ConfigError, match='cannot read'):
         load(str(tmp_path / 'none.rviz'))
+
+
+def test_the_address_printed_is_one_to_open() -> None:
+    import socket
+
+    from ros2lite.bundled.rviz2.viewer import page_url
+
+    assert page_url('127.0.0.1', 8080) == 'http://127.0.0.1:8080'
+    assert page_url('0.0.0.0', 8081) == f'http://{socket.gethostname()}:8081'
+    assert page_url('::', 8081) == f'http://{socket.gethostname()}:8081'
+    assert page_url('::1', 9000) == 'http://[::1]:9000'
