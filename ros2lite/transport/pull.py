@@ -107,6 +107,13 @@ class _Filter:
         self._held_foreign: Counter[bytes] = Counter()
         # (attachment, payload) of what the old ring held, until a second after start()
         self._seen: set[tuple[bytes, bytes]] = set()
+        # payloads of a peer's unattached samples the old ring held and this filter had not
+        # met yet: one Zenoh hands a sample to both subscribers in turn, so those that come
+        # here within a tenth of a second are counted already (the ones that reached the old
+        # ring before this filter was declared never come: a flood meanwhile is undercounted
+        # by at most what they were, rather than counted twice)
+        self._seen_foreign: Counter[bytes] = Counter()
+        self._seen_foreign_until = 0.0
         self._seen_until = 0.0
         self.subscriber: Handle | None = None  # on the subscription's key, set by its owner
 
@@ -121,6 +128,8 @@ class _Filter:
                     if self._held is not None and len(self._held_foreign) < _CAPACITY:
                         self._held_foreign[sample.payload.to_bytes()] += 1
                         return
+            if self._seen_foreign and self._counted_already(sample.payload):
+                return
             self._counted += 1
             self._foreign += 1
             if self._counted == 1 or self._foreign >= _REPORT_EVERY:
@@ -151,6 +160,17 @@ class _Filter:
             return True
         return False
 
+    def _counted_already(self, payload: Payload) -> bool:
+        """Whether the old ring held this peer's unattached sample too (counted there)."""
+        if time.monotonic() > self._seen_foreign_until:
+            self._seen_foreign = Counter()
+            return False
+        key = payload.to_bytes()
+        if self._seen_foreign[key] > 0:
+            self._seen_foreign[key] -= 1
+            return True
+        return False
+
     def flush(self) -> None:
         """Report what was counted and not reported yet."""
         n, self._foreign = self._foreign, 0
@@ -163,8 +183,11 @@ class _Filter:
         held meanwhile, save those, and count the unattached ones the old ring did not have."""
         with self._lock:
             held_foreign, self._held_foreign = self._held_foreign, Counter()
-            held_foreign.subtract(drained_foreign)
-            new = sum(n for n in held_foreign.values() if n > 0)
+            drained_counts = Counter(drained_foreign)
+            new = sum((held_foreign - drained_counts).values())
+            # those the old ring heard first and this filter has still to meet
+            self._seen_foreign = drained_counts - held_foreign
+            self._seen_foreign_until = time.monotonic() + 0.1
             if new:
                 self._counted += new
                 self._foreign += new
